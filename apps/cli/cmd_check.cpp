@@ -1,0 +1,57 @@
+// `interfere check FILE`: read and validate a mesh; print (and optionally write) its statistics.
+#include <CLI/CLI.hpp>
+
+#include "commands.h"
+#include "common.h"
+#include "interfere/core/atomic_file.h"
+#include "interfere/mesh/validate.h"
+
+namespace interfere::cli {
+namespace {
+
+struct CheckOptions {
+  std::string file, json;
+};
+
+int run_check(const CheckOptions& o) {
+  MeshReadInfo info;
+  auto m = read_mesh(o.file, {}, &info);
+  if (!m) throw InputError(m.error());
+  const MeshStats s = mesh_stats(*m);
+  const Aabb box = m->bounds();
+  nlohmann::json j = {{"interfere_version", INTERFERE_VERSION},
+                      {"command", "check"},
+                      {"file", o.file},
+                      {"format", mesh_format_name(info.format)},
+                      {"polygons_split", info.polygons_split},
+                      {"vertices_before_weld", info.vertices_before_weld},
+                      {"vertices", s.vertices},
+                      {"triangles", s.triangles},
+                      {"degenerate_triangles", s.degenerate_triangles},
+                      {"duplicate_triangles", s.duplicate_triangles},
+                      {"open_edges", s.open_edges},
+                      {"nonmanifold_edges", s.nonmanifold_edges},
+                      {"inconsistent_edges", s.inconsistent_edges},
+                      {"components", s.components},
+                      {"closed", s.closed()},
+                      {"bbox", {{"min", {box.lo.x, box.lo.y, box.lo.z}}, {"max", {box.hi.x, box.hi.y, box.hi.z}}}}};
+  if (!o.json.empty()) {
+    const Status st = write_file_atomic(o.json, j.dump(2) + "\n");
+    if (!st) throw InputError(st.error());
+  }
+  std::printf("%s\n", j.dump(2).c_str());
+  return kClear;
+}
+
+}  // namespace
+
+void add_check_command(CLI::App& app, int& exit_code) {
+  auto o = std::make_shared<CheckOptions>();
+  CLI::App* c = app.add_subcommand("check", "Read and validate a mesh: counts of degenerate/duplicate "
+                                            "triangles, open and non-manifold edges");
+  c->add_option("FILE", o->file, "mesh file")->required();
+  c->add_option("--json", o->json, "write the statistics as JSON here");
+  c->callback([o, &exit_code] { exit_code = run_check(*o); });
+}
+
+}  // namespace interfere::cli

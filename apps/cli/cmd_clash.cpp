@@ -1,0 +1,174 @@
+// `interfere clash A B`: every intersecting triangle pair, regions, curves, containment, clearance.
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "commands.h"
+#include "common.h"
+#include "interfere/core/atomic_file.h"
+#include "interfere/mesh/polyline.h"
+#include "interfere/query/clash.h"
+#include "report_json.h"
+
+namespace interfere::cli {
+namespace {
+
+struct ClashOptions {
+  PartSpec a, b;
+  std::string scene, units, json, pairs, region_a, region_b, test = "exact", broadphase = "bvh",
+                                                              builder = "sah";
+  std::vector<std::string> curves;
+  double clearance = 0;
+  int threads = 0;
+  bool no_containment = false;
+  std::size_t max_clearance_pairs = 100000;
+};
+
+TriTest parse_test(const std::string& s) {
+  if (s == "exact") return TriTest::exact;
+  if (s == "moller") return TriTest::moller;
+  if (s == "gd" || s == "guigue_devillers") return TriTest::guigue_devillers;
+  throw InputError("--test: unknown test '" + s + "' (exact, moller, gd)");
+}
+
+Broadphase parse_broadphase(const std::string& s) {
+  if (s == "bvh") return Broadphase::bvh;
+  if (s == "brute") return Broadphase::brute_force;
+  if (s == "box") return Broadphase::box_pretest;
+  throw InputError("--broadphase: unknown broad phase '" + s + "' (bvh, brute, box)");
+}
+
+void check_output(const std::string& path, const std::vector<std::string>& extensions, const char* flag) {
+  if (path.empty()) return;
+  const std::filesystem::path p(path);
+  std::string ext = p.extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  bool ok = extensions.empty();
+  for (const std::string& e : extensions) ok |= ext == e;
+  if (!ok) throw InputError(std::string(flag) + ": " + path + ": unsupported extension '" + ext + "'");
+  const std::filesystem::path dir = p.parent_path().empty() ? std::filesystem::path(".") : p.parent_path();
+  if (!std::filesystem::is_directory(dir)) {
+    throw InputError(std::string(flag) + ": " + path + ": directory does not exist");
+  }
+}
+
+void write_or_throw(const Status& s) {
+  if (!s) throw InputError(s.error());
+}
+
+int run_clash(const ClashOptions& o) {
+  PartSpec a = o.a, b = o.b;
+  std::string units = o.units;
+  if (!o.scene.empty()) apply_scene(o.scene, a, b, units);
+  if (a.file.empty() || b.file.empty()) throw InputError("clash: two parts are needed (A B, or --scene)");
+  if (units.empty()) units = "mm";
+  check_units(units);
+  if (!(o.clearance >= 0) || !std::isfinite(o.clearance)) throw InputError("--clearance must be a finite number >= 0");
+  const ClashRequest request{.test = parse_test(o.test),
+                             .broadphase = parse_broadphase(o.broadphase),
+                             .parallel = true,
+                             .clearance = o.clearance,
+                             .regions = true,
+                             .containment = !o.no_containment};
+  const BvhBuildOptions bvh{.builder = parse_builder(o.builder)};
+  const std::vector<std::string> mesh_ext{".stl", ".ply", ".obj", ".off"};
+  check_output(o.json, {}, "--json");
+  check_output(o.pairs, {}, "--pairs");
+  check_output(o.region_a, mesh_ext, "--region-a");
+  check_output(o.region_b, mesh_ext, "--region-b");
+  for (const std::string& c : o.curves) check_output(c, {".obj", ".vtk"}, "--curves");
+  set_threads(o.threads);
+
+  Progress total("clash");
+  const LoadedPart pa = load_part(a, "A", bvh);
+  const LoadedPart pb = load_part(b, "B", bvh);
+  ClashResult result;
+  double query_seconds = 0;
+  {
+    Progress progress("clash query (" + std::to_string(active_threads()) + " threads)");
+    result = clash(pa.model, pb.model, request);
+    query_seconds = progress.seconds();
+  }
+  for (const std::string& w : result.warnings) std::fprintf(stderr, "[interfere] warning: %s\n", w.c_str());
+
+  // Outputs (each written atomically; inputs were fully validated above).
+  if (!o.pairs.empty()) {
+    std::string s;
+    s.reserve(result.pairs.size() * 24);
+    for (const TrianglePair& p : result.pairs) s += fmt::format("{} {} {}\n", p.a, p.b, kind_name(p.kind));
+    write_or_throw(write_file_atomic(o.pairs, s));
+  }
+  auto region_tris = [&](bool part_a) {
+    std::vector<std::uint32_t> t;
+    for (const ClashRegion& g : result.regions) {
+      const auto& v = part_a ? g.triangles_a : g.triangles_b;
+      t.insert(t.end(), v.begin(), v.end());
+    }
+    std::sort(t.begin(), t.end());
+    return t;
+  };
+  if (!o.region_a.empty()) write_or_throw(write_mesh(o.region_a, submesh(pa.model.mesh, region_tris(true))));
+  if (!o.region_b.empty()) write_or_throw(write_mesh(o.region_b, submesh(pb.model.mesh, region_tris(false))));
+  if (!o.curves.empty()) {
+    std::vector<Polyline> all;
+    for (const ClashRegion& g : result.regions) all.insert(all.end(), g.curves.begin(), g.curves.end());
+    for (const std::string& c : o.curves) write_or_throw(write_polylines(c, all));
+  }
+  if (!o.json.empty()) {
+    nlohmann::json j = {{"interfere_version", INTERFERE_VERSION},
+                        {"command", "clash"},
+                        {"units", units},
+                        {"inputs", {{"a", part_json(pa)}, {"b", part_json(pb)}}},
+                        {"options",
+                         {{"test", o.test}, {"broadphase", o.broadphase}, {"builder", o.builder},
+                          {"threads", active_threads()}, {"clearance", o.clearance},
+                          {"containment", !o.no_containment}}},
+                        {"result", clash_result_json(result, o.max_clearance_pairs)},
+                        {"warnings", result.warnings},
+                        {"timings_s",
+                         {{"read", pa.read_seconds + pb.read_seconds},
+                          {"build", pa.build_seconds + pb.build_seconds},
+                          {"query", query_seconds},
+                          {"total", total.seconds()}}},
+                        {"exit_status", result.interference() ? kInterference : kClear}};
+    write_or_throw(write_file_atomic(o.json, j.dump(2) + "\n"));
+  }
+
+  double curve_length = 0;
+  for (const ClashRegion& g : result.regions) curve_length += g.curve_length;
+  std::printf("%s: %zu pairs (%zu cross, %zu touch), %zu regions, curve length %.6g %s, containment %s",
+              result.interference() ? "INTERFERENCE" : "clear", result.pairs.size(), result.cross_pairs,
+              result.touch_pairs, result.regions.size(), curve_length, units.c_str(),
+              containment_name(result.containment));
+  if (o.clearance > 0) std::printf(", %zu pairs closer than %g", result.clearance.size(), o.clearance);
+  std::printf("\n");
+  return result.interference() ? kInterference : kClear;
+}
+
+}  // namespace
+
+void add_clash_command(CLI::App& app, int& exit_code) {
+  auto o = std::make_shared<ClashOptions>();
+  CLI::App* c = app.add_subcommand("clash", "Every intersecting triangle pair of parts A and B, clash "
+                                            "regions with intersection curves, containment, clearance");
+  c->add_option("A", o->a.file, "mesh file of part A (STL, OBJ, PLY, OFF)");
+  c->add_option("B", o->b.file, "mesh file of part B");
+  c->add_option("--scene", o->scene, "JSON scene giving both parts and their transforms");
+  c->add_option("--transform-a", o->a.transform, "pose of A: \"r00 r01 r02 tx r10 r11 r12 ty r20 r21 r22 tz\"");
+  c->add_option("--transform-b", o->b.transform, "pose of B, same form (p' = R·p + t in double)");
+  c->add_option("--json", o->json, "write the JSON report here");
+  c->add_option("--pairs", o->pairs, "write 'i j kind' per intersecting pair, sorted");
+  c->add_option("--region-a", o->region_a, "write A's clash-region triangles (.stl/.ply/.obj/.off)");
+  c->add_option("--region-b", o->region_b, "write B's clash-region triangles (.stl/.ply/.obj/.off)");
+  c->add_option("--curves", o->curves, "write intersection curves (.obj polylines or .vtk polydata); repeatable");
+  c->add_option("--clearance", o->clearance, "also report non-intersecting pairs closer than this distance");
+  c->add_option("--threads", o->threads, "worker threads (0 = all cores)");
+  c->add_option("--test", o->test, "triangle test: exact (default), moller, gd");
+  c->add_option("--broadphase", o->broadphase, "bvh (default), brute, box");
+  c->add_option("--builder", o->builder, "tree builder: sah (default), median, insertion");
+  c->add_option("--units", o->units, "length unit of the inputs, reported (mm, cm, m, um, in, ft)");
+  c->add_option("--max-clearance-pairs", o->max_clearance_pairs, "cap on clearance pairs listed in JSON");
+  c->add_flag("--no-containment", o->no_containment, "skip the containment test");
+  c->callback([o, &exit_code] { exit_code = run_clash(*o); });
+}
+
+}  // namespace interfere::cli

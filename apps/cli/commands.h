@@ -1,0 +1,11 @@
+// Subcommands; each registers itself on the app and sets `exit_code` when it runs.
+#pragma once
+namespace CLI {
+class App;
+}
+
+namespace interfere::cli {
+void add_clash_command(CLI::App& app, int& exit_code);
+void add_distance_command(CLI::App& app, int& exit_code);
+void add_check_command(CLI::App& app, int& exit_code);
+}  // namespace interfere::cli

@@ -1,0 +1,70 @@
+// Shared CLI plumbing: loading posed parts, scene files, progress lines, exit codes.
+#pragma once
+#include <chrono>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "interfere/core/error.h"
+#include "interfere/core/transform.h"
+#include "interfere/mesh/io.h"
+#include "interfere/query/model.h"
+
+namespace interfere::cli {
+
+/// Exit status (documented in the README): 0 no interference, 1 interference, 2 usage/input error.
+enum ExitCode : int { kClear = 0, kInterference = 1, kInputError = 2 };
+
+/// Thrown by command code for usage/input errors; main() prints it and exits with 2.
+struct InputError : std::runtime_error {
+  explicit InputError(const Error& e) : std::runtime_error(e.message()) {}
+  explicit InputError(const std::string& m) : std::runtime_error(m) {}
+};
+
+/// Progress lines on stderr ("[interfere] reading A.stl ... 0.12 s"), silenced by --quiet.
+class Progress {
+ public:
+  static void set_quiet(bool q) { quiet_ = q; }
+  static bool quiet() { return quiet_; }
+  explicit Progress(std::string what);
+  ~Progress();
+  double seconds() const;
+
+ private:
+  std::string what_;
+  std::chrono::steady_clock::time_point start_;
+  static inline bool quiet_ = false;
+};
+
+struct PartSpec {
+  std::string file;
+  std::string transform;  ///< 12 numbers, empty = identity
+};
+
+struct LoadedPart {
+  std::string file;
+  MeshFormat format = MeshFormat::automatic;
+  Transform transform;
+  Model model;
+  double read_seconds = 0, build_seconds = 0;
+};
+
+/// Reads, validates, poses (p' = R·p + t in double) and builds the model of one part.
+LoadedPart load_part(const PartSpec& spec, const std::string& label, const BvhBuildOptions& bvh);
+
+/// Fills part specs from a scene JSON file: {"a": {"file": ..., "transform": [12] | "..."}, "b": ...,
+/// "units": "mm"}. Files are relative to the scene's directory. Command-line values win.
+void apply_scene(const std::string& scene_path, PartSpec& a, PartSpec& b, std::string& units);
+
+BvhBuilder parse_builder(const std::string& name);
+void check_units(const std::string& units);
+
+/// Sets the oneTBB thread count for the rest of the process (0 = all cores).
+void set_threads(int threads);
+int active_threads();
+
+nlohmann::json part_json(const LoadedPart& p);
+
+}  // namespace interfere::cli

@@ -1,0 +1,81 @@
+// Static clash query (issue #2, item 5): every intersecting triangle pair, clash regions with their
+// intersection curves, containment of closed parts, and clearance pairs.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "interfere/core/aabb.h"
+#include "interfere/mesh/polyline.h"
+#include "interfere/np/tri_tri.h"
+#include "interfere/query/model.h"
+
+namespace interfere {
+
+enum class TriTest {
+  exact,             ///< default: exact decision + cross/touch classification + segment
+  moller,            ///< Möller 1997 in double (not robust; every hit reported as `cross`)
+  guigue_devillers,  ///< Guigue–Devillers 2003 in double (not robust; every hit reported as `cross`)
+};
+
+enum class Broadphase {
+  bvh,           ///< tree vs tree (default), parallel when threads > 1
+  brute_force,   ///< all |A|·|B| pairs (strategy 1/2 of the paper's table)
+  box_pretest,   ///< all pairs, triangle boxes compared first (strategy 3)
+};
+
+struct ClashRequest {
+  TriTest test = TriTest::exact;
+  Broadphase broadphase = Broadphase::bvh;
+  bool parallel = true;         ///< use oneTBB (thread count from the caller's tbb::global_control)
+  double clearance = 0.0;       ///< > 0: also report non-intersecting pairs closer than this
+  bool regions = true;          ///< group pairs into regions with curves
+  bool containment = true;      ///< test whether a closed part lies wholly inside the other
+};
+
+struct TrianglePair {
+  std::uint32_t a = 0, b = 0;  ///< triangle indices in A and B (input order)
+  ContactKind kind = ContactKind::none;
+  friend bool operator==(const TrianglePair&, const TrianglePair&) = default;
+};
+
+struct ClearancePair {
+  std::uint32_t a = 0, b = 0;
+  double distance = 0;  ///< > 0 and < clearance
+  Vec3 point_a, point_b;
+};
+
+struct ClashRegion {
+  std::vector<std::uint32_t> triangles_a;  ///< sorted
+  std::vector<std::uint32_t> triangles_b;  ///< sorted
+  std::size_t cross_pairs = 0, touch_pairs = 0;
+  Aabb box;                                ///< of the region's triangles on both parts
+  std::vector<Polyline> curves;            ///< intersection curves (crossing pairs' segments chained)
+  double curve_length = 0;
+};
+
+enum class Containment {
+  none,            ///< neither closed part lies inside the other (or surfaces intersect)
+  a_inside_b,
+  b_inside_a,
+  not_checked,     ///< a part is open (see warnings) or the check was disabled
+};
+const char* containment_name(Containment c);
+
+struct ClashResult {
+  std::vector<TrianglePair> pairs;        ///< sorted by (a, b)
+  std::vector<ClashRegion> regions;       ///< sorted by smallest triangle of A, then of B
+  std::vector<ClearancePair> clearance;   ///< sorted by (a, b); disjoint from `pairs`
+  Containment containment = Containment::not_checked;
+  std::size_t cross_pairs = 0, touch_pairs = 0;
+  std::size_t candidate_pairs = 0;        ///< box-overlapping pairs handed to the triangle test
+  std::vector<std::string> warnings;
+  bool interference() const {
+    return !pairs.empty() || containment == Containment::a_inside_b ||
+           containment == Containment::b_inside_a;
+  }
+};
+
+ClashResult clash(const Model& a, const Model& b, const ClashRequest& request = {});
+
+}  // namespace interfere

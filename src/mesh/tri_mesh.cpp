@@ -1,0 +1,32 @@
+#include "interfere/mesh/tri_mesh.h"
+
+#include <unordered_map>
+
+namespace interfere {
+
+TriMesh transformed(const TriMesh& mesh, const Transform& t) {
+  TriMesh out;
+  out.triangles = mesh.triangles;
+  out.positions.reserve(mesh.positions.size());
+  for (const Vec3& p : mesh.positions) out.positions.push_back(t.apply(p));
+  return out;
+}
+
+TriMesh submesh(const TriMesh& mesh, const std::vector<std::uint32_t>& tris) {
+  TriMesh out;
+  std::unordered_map<std::uint32_t, std::uint32_t> remap;
+  out.triangles.reserve(tris.size());
+  for (std::uint32_t t : tris) {
+    Tri f{};
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t v = mesh.triangles[t][k];
+      const auto [it, inserted] = remap.try_emplace(v, static_cast<std::uint32_t>(out.positions.size()));
+      if (inserted) out.positions.push_back(mesh.positions[v]);
+      f[k] = it->second;
+    }
+    out.triangles.push_back(f);
+  }
+  return out;
+}
+
+}  // namespace interfere

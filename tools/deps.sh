@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages interfere needs (build, tests, benchmarks, peers). Run as root.
+set -euo pipefail
+export DEBIAN_FRONTEND=noninteractive
+pkgs=(build-essential cmake ninja-build python3 git
+      libtbb-dev libeigen3-dev libcli11-dev nlohmann-json3-dev libfmt-dev
+      libgtest-dev googletest libbenchmark-dev
+      libcgal-dev libgmp-dev libmpfr-dev libfcl-dev)
+missing=()
+for p in "${pkgs[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
+if ((${#missing[@]})); then
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
