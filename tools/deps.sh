@@ -5,7 +5,8 @@ export DEBIAN_FRONTEND=noninteractive
 pkgs=(build-essential cmake ninja-build python3 git
       libtbb-dev libeigen3-dev libcli11-dev nlohmann-json3-dev libfmt-dev
       libgtest-dev googletest libbenchmark-dev
-      libcgal-dev libgmp-dev libmpfr-dev libfcl-dev)
+      libcgal-dev libgmp-dev libmpfr-dev libfcl-dev
+      pybind11-dev python3-dev python3-numpy)
 missing=()
 for p in "${pkgs[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
 if ((${#missing[@]})); then

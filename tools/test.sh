@@ -4,6 +4,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash tools/deps.sh
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DINTERFERE_BUILD_BENCH=ON
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DINTERFERE_BUILD_BENCH=ON \
+  -DPython3_EXECUTABLE=/usr/bin/python3
 cmake --build build -j2
 ctest --test-dir build --output-on-failure -j2

@@ -1,0 +1,77 @@
+"""interfere: exact, parallel clash detection for triangle meshes.
+
+The compiled extension ``interfere._interfere`` holds everything; this package re-exports it.
+numpy is optional: with it, point and index lists come back as numpy arrays; without it, as
+lists of tuples. ``HAVE_NUMPY`` says which. See docs/python.md.
+
+    import interfere as itf
+    a, b = itf.make_overlapping_spheres(20000)
+    r = itf.clash(itf.make_model(a), itf.make_model(b))
+    print(r.interference, len(r.pairs), r.regions[0].curve_length)
+"""
+
+from ._interfere import (  # noqa: F401
+    HAVE_NUMPY,
+    KIND_CROSS,
+    KIND_TOUCH,
+    ClashRegion,
+    ClashResult,
+    ClearancePair,
+    DistanceResult,
+    Error,
+    InputError,
+    MeshStats,
+    Model,
+    OutputError,
+    Polyline,
+    Transform,
+    TriMesh,
+    __version__,
+    clash,
+    distance,
+    exact_fallback_count,
+    make_box,
+    make_model,
+    make_overlapping_spheres,
+    make_sphere,
+    mesh_stats,
+    read_mesh,
+    submesh,
+    transformed,
+    weld_exact,
+    write_mesh,
+    write_polylines,
+)
+
+__all__ = [
+    "HAVE_NUMPY",
+    "KIND_CROSS",
+    "KIND_TOUCH",
+    "ClashRegion",
+    "ClashResult",
+    "ClearancePair",
+    "DistanceResult",
+    "Error",
+    "InputError",
+    "MeshStats",
+    "Model",
+    "OutputError",
+    "Polyline",
+    "Transform",
+    "TriMesh",
+    "__version__",
+    "clash",
+    "distance",
+    "exact_fallback_count",
+    "make_box",
+    "make_model",
+    "make_overlapping_spheres",
+    "make_sphere",
+    "mesh_stats",
+    "read_mesh",
+    "submesh",
+    "transformed",
+    "weld_exact",
+    "write_mesh",
+    "write_polylines",
+]
