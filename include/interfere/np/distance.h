@@ -16,7 +16,8 @@ struct ClosestPoints {
 Vec3 closest_point_on_triangle(const Vec3& p, const std::array<Vec3, 3>& t);
 
 /// Closest points of segments [p0,p1], [q0,q1] (Ericson §5.1.9), robust for parallel/degenerate.
-ClosestPoints segment_segment_closest(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1);
+ClosestPoints segment_segment_closest(const Vec3& p0, const Vec3& p1, const Vec3& q0,
+                                      const Vec3& q1);
 
 /// Closest points between two triangles: minimum over the 6 vertex–triangle and 9 edge–edge
 /// candidates. Distance 0 when they intersect (callers decide intersection exactly beforehand).

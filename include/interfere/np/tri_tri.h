@@ -25,15 +25,22 @@ enum class ContactKind : std::uint8_t {
 /// endpoint identically (used to chain segments into curves without any tolerance).
 struct Feature {
   enum Type : std::uint8_t { vertex = 0, edge = 1, face = 2 } type = face;
-  std::uint8_t index = 0;  ///< corner index for vertex, first corner for edge (edge i = (i, (i+1)%3))
+  std::uint8_t index =
+      0;  ///< corner index for vertex, first corner for edge (edge i = (i, (i+1)%3))
   friend bool operator==(const Feature&, const Feature&) = default;
 };
 
 struct TriTriResult {
   ContactKind kind = ContactKind::none;
-  /// For kind == cross: the intersection segment (computed in double from exact topology).
+  /// For kind == cross: the intersection segment (computed in double from exact topology), ordered
+  /// along nA x nB (nX = (x1-x0)x(x2-x0)). A vertex-feature end is that corner exactly; an end
+  /// where an edge crosses the other triangle's plane, or two edges cross, is computed from
+  /// canonically ordered input, so pairs that share the edge (and pass the other triangle with the
+  /// same corner order) get bit-identical points; accuracy about 1e-15 relative to the edge, also
+  /// when nearly coplanar.
   std::array<Vec3, 2> segment{};
   /// For kind == cross: the feature of triangle A and of triangle B that each endpoint lies on.
+  /// Every end lies on the boundary of A or of B (or both); the other one is then `face`.
   std::array<Feature, 2> feature_a{};
   std::array<Feature, 2> feature_b{};
 };
@@ -43,6 +50,10 @@ TriTriResult tri_tri_exact(const std::array<Vec3, 3>& a, const std::array<Vec3, 
 
 /// Exact yes/no only (cheaper: no classification or segment).
 bool tri_tri_exact_intersects(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b);
+
+/// Exact kind only (none/touch/cross, identical to tri_tri_exact(a, b).kind): skips the segment and
+/// features, i.e. two orient3d and the endpoint constructions per crossing pair.
+ContactKind tri_tri_exact_kind(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b);
 
 /// Non-robust reference tests (double arithmetic, as published). True = intersecting.
 bool tri_tri_moller(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b);
