@@ -1,0 +1,143 @@
+// BVH benchmarks (issue #2, items 3 and 7): build with each builder and refit, at 1e5 and 1e6
+// triangles (make_sphere), on 1 and 2 threads; tree-vs-tree overlap of
+// make_overlapping_spheres(1e6) serial and parallel. Throughput counters are triangles per second
+// (items_processed). Targets: default build >= 30 M tri/s and refit >= 100 M tri/s on 2 threads at
+// 1e6.
+#include <benchmark/benchmark.h>
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "interfere/bvh/bvh.h"
+#include "interfere/bvh/traverse.h"
+#include "interfere/mesh/generate.h"
+
+namespace interfere {
+namespace {
+
+const TriMesh& sphere_mesh(std::size_t n) {
+  static std::map<std::size_t, std::unique_ptr<TriMesh>> cache;
+  auto& slot = cache[n];
+  if (!slot)
+    slot = std::make_unique<TriMesh>(make_sphere({.target_triangles = n, .bump_amplitude = 0.01}));
+  return *slot;
+}
+
+struct TreePair {
+  SpherePair mesh;
+  Bvh a, b;
+};
+const TreePair& tree_pair(std::size_t n, BvhBuilder builder) {
+  static std::map<std::pair<std::size_t, BvhBuilder>, std::unique_ptr<TreePair>> cache;
+  auto& slot = cache[{n, builder}];
+  if (!slot) {
+    slot = std::make_unique<TreePair>();
+    slot->mesh = make_overlapping_spheres(n);
+    slot->a = build_bvh(slot->mesh.a, {.builder = builder});
+    slot->b = build_bvh(slot->mesh.b, {.builder = builder});
+  }
+  return *slot;
+}
+
+void bm_build(benchmark::State& state, BvhBuilder builder, std::size_t n, int threads) {
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+  const TriMesh& mesh = sphere_mesh(n);
+  std::size_t nodes = 0;
+  for (auto _ : state) {
+    Bvh bvh = build_bvh(mesh, {.builder = builder});
+    nodes = bvh.nodes.size();
+    benchmark::DoNotOptimize(bvh.nodes.data());
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * mesh.num_triangles()));
+  state.counters["nodes"] = static_cast<double>(nodes);
+}
+
+void bm_refit(benchmark::State& state, BvhBuilder builder, std::size_t n, int threads) {
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+  const TriMesh& mesh = sphere_mesh(n);
+  Bvh bvh = build_bvh(mesh, {.builder = builder});
+  TriMesh moved = mesh;
+  for (Vec3& p : moved.positions) p = p * 1.01 + Vec3{0.003, -0.002, 0.001};
+  bool flip = false;
+  for (auto _ : state) {
+    refit_bvh(bvh, flip ? mesh : moved);  // alternate so every iteration changes the boxes
+    flip = !flip;
+    benchmark::DoNotOptimize(bvh.nodes.data());
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * mesh.num_triangles()));
+}
+
+// threads == 0: the serial for_each_overlap; otherwise collide_parallel on that many threads.
+void bm_overlap(benchmark::State& state, BvhBuilder builder, std::size_t n, float margin,
+                int threads) {
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::max(threads, 1));
+  const TreePair& p = tree_pair(n, builder);
+  std::size_t pairs = 0;
+  for (auto _ : state) {
+    if (threads == 0) {  // serial traversal
+      pairs = 0;
+      for_each_overlap(p.a, p.b, margin, [&](std::uint32_t, std::uint32_t) { ++pairs; });
+    } else {
+      const auto out = collide_parallel<std::pair<std::uint32_t, std::uint32_t>>(
+          p.a, p.b, {.margin = margin}, [](std::uint32_t i, std::uint32_t j, auto& v) {
+            v.push_back({i, j});
+          });
+      pairs = out.size();
+    }
+    benchmark::DoNotOptimize(pairs);
+  }
+  state.counters["pairs"] = static_cast<double>(pairs);
+}
+
+std::string label(std::size_t n) {
+  return n == 100000 ? "1e5" : n == 1000000 ? "1e6" : std::to_string(n);
+}
+
+[[maybe_unused]] const bool registered = [] {
+  for (std::size_t n : {std::size_t{100000}, std::size_t{1000000}}) {
+    for (BvhBuilder b : {BvhBuilder::lbvh, BvhBuilder::binned_sah, BvhBuilder::median_split,
+                         BvhBuilder::insertion}) {
+      for (int t : {1, 2}) {
+        if (b == BvhBuilder::insertion && t != 1) continue;  // serial by nature
+        const std::string name = "Bvh/Build/" + std::string(bvh_builder_name(b)) + "/" + label(n) +
+                                 "/threads:" + std::to_string(t);
+        benchmark::RegisterBenchmark(name.c_str(),
+                                     [b, n, t](benchmark::State& s) { bm_build(s, b, n, t); })
+            ->Unit(benchmark::kMillisecond)
+            ->UseRealTime();
+      }
+    }
+    for (int t : {1, 2}) {
+      const std::string name = "Bvh/Refit/" + label(n) + "/threads:" + std::to_string(t);
+      benchmark::RegisterBenchmark(
+          name.c_str(),
+          [n, t](benchmark::State& s) { bm_refit(s, BvhBuildOptions{}.builder, n, t); })
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime();
+    }
+  }
+  for (BvhBuilder b : {BvhBuilder::lbvh, BvhBuilder::binned_sah, BvhBuilder::median_split}) {
+    for (float m : {0.0f, 0.01f}) {
+      for (int t : {0, 1, 2}) {
+        const std::string name = "Bvh/Overlap/" + std::string(bvh_builder_name(b)) +
+                                 "/1e6/margin:" + (m == 0 ? "0" : "0.01") +
+                                 (t == 0 ? "/serial" : "/parallel/threads:" + std::to_string(t));
+        benchmark::RegisterBenchmark(
+            name.c_str(), [b, m, t](benchmark::State& s) { bm_overlap(s, b, 1000000, m, t); })
+            ->Unit(benchmark::kMillisecond)
+            ->UseRealTime();
+      }
+    }
+  }
+  return true;
+}();
+
+}  // namespace
+}  // namespace interfere
