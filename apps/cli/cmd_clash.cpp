@@ -15,7 +15,7 @@ namespace {
 struct ClashOptions {
   PartSpec a, b;
   std::string scene, units, json, pairs, region_a, region_b, test = "exact", broadphase = "bvh",
-                                                              builder = "sah";
+                                                              builder = "lbvh";
   std::vector<std::string> curves;
   double clearance = 0;
   int threads = 0;
@@ -164,7 +164,7 @@ void add_clash_command(CLI::App& app, int& exit_code) {
   c->add_option("--threads", o->threads, "worker threads (0 = all cores)");
   c->add_option("--test", o->test, "triangle test: exact (default), moller, gd");
   c->add_option("--broadphase", o->broadphase, "bvh (default), brute, box");
-  c->add_option("--builder", o->builder, "tree builder: sah (default), median, insertion");
+  c->add_option("--builder", o->builder, "tree builder: lbvh (default), sah, median, insertion");
   c->add_option("--units", o->units, "length unit of the inputs, reported (mm, cm, m, um, in, ft)");
   c->add_option("--max-clearance-pairs", o->max_clearance_pairs, "cap on clearance pairs listed in JSON");
   c->add_flag("--no-containment", o->no_containment, "skip the containment test");

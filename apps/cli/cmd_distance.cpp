@@ -12,7 +12,7 @@ namespace {
 
 struct DistanceOptions {
   PartSpec a, b;
-  std::string scene, units, json, builder = "sah";
+  std::string scene, units, json, builder = "lbvh";
   int threads = 0;
 };
 
@@ -73,7 +73,7 @@ void add_distance_command(CLI::App& app, int& exit_code) {
   c->add_option("--transform-b", o->b.transform, "pose of B, same form");
   c->add_option("--json", o->json, "write the JSON report here");
   c->add_option("--threads", o->threads, "worker threads (0 = all cores)");
-  c->add_option("--builder", o->builder, "tree builder: sah (default), median, insertion");
+  c->add_option("--builder", o->builder, "tree builder: lbvh (default), sah, median, insertion");
   c->add_option("--units", o->units, "length unit of the inputs, reported (mm, cm, m, um, in, ft)");
   c->callback([o, &exit_code] { exit_code = run_distance(*o); });
 }

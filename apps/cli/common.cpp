@@ -98,10 +98,11 @@ void apply_scene(const std::string& scene_path, PartSpec& a, PartSpec& b, std::s
 }
 
 BvhBuilder parse_builder(const std::string& name) {
+  if (name == "lbvh") return BvhBuilder::lbvh;
   if (name == "sah" || name == "binned_sah") return BvhBuilder::binned_sah;
   if (name == "median" || name == "median_split") return BvhBuilder::median_split;
   if (name == "insertion") return BvhBuilder::insertion;
-  throw InputError("--builder: unknown builder '" + name + "' (sah, median, insertion)");
+  throw InputError("--builder: unknown builder '" + name + "' (lbvh, sah, median, insertion)");
 }
 
 void check_units(const std::string& units) {
