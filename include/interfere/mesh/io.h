@@ -1,21 +1,26 @@
 // Mesh file input/output: STL (ASCII, binary), OBJ, PLY (ASCII, binary little/big endian), OFF.
-// Every error names the file, the line (text formats) or byte offset (binary formats) and the reason.
+// Every error names the file, the line (text formats) or byte offset (binary formats) and the
+// reason.
 //
-// Supported flavours (docs/formats.md has the details):
+// Supported flavours:
 //  - STL binary: 80-byte header, uint32 count, 50 bytes per facet; a file whose size is exactly
 //    84 + 50·n is binary even when its header starts with "solid". The size must match exactly.
-//  - STL ASCII: solid/facet normal/outer loop/vertex/endloop/endfacet/endsolid, keywords in any case,
-//    several solids per file; a loop with more than 3 vertices is fan-triangulated. Facet normals are
-//    read but ignored (NaN normals, as some exporters write for slivers, are accepted).
-//  - OBJ: `v x y z [w | r g b]` and `f` with `i`, `i/t`, `i//n`, `i/t/n` corners, negative (relative)
-//    indices, polygons; every other statement (vt, vn, g, o, s, usemtl, mtllib, l, p, ...) is ignored.
-//  - PLY 1.0: ascii, binary_little_endian, binary_big_endian; element `vertex` with scalar x, y, z of
+//  - STL ASCII: solid/facet normal/outer loop/vertex/endloop/endfacet/endsolid, keywords in any
+//  case,
+//    several solids per file; a loop with more than 3 vertices is fan-triangulated. Facet normals
+//    are read but ignored (NaN normals, as some exporters write for slivers, are accepted).
+//  - OBJ: `v x y z [w | r g b]` and `f` with `i`, `i/t`, `i//n`, `i/t/n` corners, negative
+//  (relative)
+//    indices, polygons; every other statement (vt, vn, g, o, s, usemtl, mtllib, l, p, ...) is
+//    ignored.
+//  - PLY 1.0: ascii, binary_little_endian, binary_big_endian; element `vertex` with scalar x, y, z
+//  of
 //    any numeric type among other properties in any order; element `face` with the list property
 //    `vertex_indices` or `vertex_index` (integer count and index types); other elements and
 //    properties are skipped; polygons fan-triangulated.
 //  - OFF (also COFF, NOFF, STOFF, ... with extra per-vertex/per-face values ignored): `#` comments,
-//    counts on the keyword line or the next one, polygons fan-triangulated. 4OFF, nOFF and binary OFF
-//    are rejected with an error.
+//    counts on the keyword line or the next one, polygons fan-triangulated. 4OFF, nOFF and binary
+//    OFF are rejected with an error.
 #pragma once
 #include <filesystem>
 #include <string>
@@ -25,7 +30,16 @@
 
 namespace interfere {
 
-enum class MeshFormat { automatic, stl_ascii, stl_binary, obj, ply_ascii, ply_binary_le, ply_binary_be, off };
+enum class MeshFormat {
+  automatic,
+  stl_ascii,
+  stl_binary,
+  obj,
+  ply_ascii,
+  ply_binary_le,
+  ply_binary_be,
+  off
+};
 
 /// "stl" (= binary), "stl-ascii"/"stla", "stl-binary"/"stlb", "obj", "ply" (= binary LE),
 /// "ply-ascii", "ply-le", "ply-be", "off", "auto" -> MeshFormat ('_' may replace '-', case is
@@ -36,19 +50,20 @@ const char* mesh_format_name(MeshFormat f);
 
 struct ReadOptions {
   /// automatic: by extension (.stl .obj .ply .off, any case), by content for other extensions.
-  /// For reading, the format picks the family only: the STL flavour (ASCII/binary) is always decided
-  /// from the content (see above) and the PLY flavour from its header.
+  /// For reading, the format picks the family only: the STL flavour (ASCII/binary) is always
+  /// decided from the content (see above) and the PLY flavour from its header.
   MeshFormat format = MeshFormat::automatic;
   /// Merge vertices with bit-identical positions (weld_exact: triangle order is kept, vertices are
-  /// numbered in order of first use, unreferenced vertices are dropped). Without it, indexed formats
-  /// keep the file's vertices and STL gives 3 vertices per facet.
+  /// numbered in order of first use, unreferenced vertices are dropped). Without it, indexed
+  /// formats keep the file's vertices and STL gives 3 vertices per facet.
   bool weld = true;
 };
 
 /// Reads a triangle mesh. Polygons (OBJ/PLY/OFF faces with > 3 corners) are fan-triangulated and
 /// counted in MeshReadInfo. NaN/Inf coordinates, out-of-range or negative indices, truncated or
-/// malformed content and empty meshes are errors. Triangle i of the result is the i-th triangle of the
-/// file (a polygon with k corners contributes k-2 consecutive triangles (v0,v1,v2), (v0,v2,v3), ...).
+/// malformed content and empty meshes are errors. Triangle i of the result is the i-th triangle of
+/// the file (a polygon with k corners contributes k-2 consecutive triangles (v0,v1,v2), (v0,v2,v3),
+/// ...).
 struct MeshReadInfo {
   MeshFormat format = MeshFormat::automatic;  ///< the format actually read
   std::size_t polygons_split = 0;             ///< faces with more than 3 corners, fan-triangulated
@@ -58,7 +73,8 @@ Expected<TriMesh> read_mesh(const std::filesystem::path& path, const ReadOptions
                             MeshReadInfo* info = nullptr);
 
 struct WriteOptions {
-  MeshFormat format = MeshFormat::automatic;  ///< automatic: by extension (.stl -> binary STL, .ply -> binary LE)
+  /// automatic: by extension (.stl -> binary STL, .ply -> binary little endian).
+  MeshFormat format = MeshFormat::automatic;
   /// PLY only: store coordinates as float instead of double (double is exact and the default).
   bool ply_float = false;
 };
@@ -66,10 +82,11 @@ struct WriteOptions {
 /// Writes atomically: to a temporary file beside `path`, renamed over it only on success, so an
 /// existing file is never left half-written; on failure the temporary file is removed.
 /// The mesh is checked first and rejected, without touching any file, when it has no triangles, an
-/// index out of range, a non-finite position, or (STL, float PLY) a coordinate that overflows float.
-/// Precision: binary STL stores float (facet normals computed in double); ASCII STL, OBJ, OFF and
-/// PLY ASCII write the shortest decimal that reads back to the same double; binary PLY stores double
-/// unless `ply_float`.
-Status write_mesh(const std::filesystem::path& path, const TriMesh& mesh, const WriteOptions& options = {});
+/// index out of range, a non-finite position, or (STL, float PLY) a coordinate that overflows
+/// float. Precision: binary STL stores float (facet normals computed in double); ASCII STL, OBJ,
+/// OFF and PLY ASCII write the shortest decimal that reads back to the same double; binary PLY
+/// stores double unless `ply_float`. The data is fsync'ed before the rename.
+Status write_mesh(const std::filesystem::path& path, const TriMesh& mesh,
+                  const WriteOptions& options = {});
 
 }  // namespace interfere
