@@ -1,0 +1,148 @@
+#include "common.h"
+
+#include <benchmark/benchmark.h>
+#include <tbb/version.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <sstream>
+
+#include "interfere/query/clash.h"
+
+namespace interfere::bench {
+namespace {
+
+std::size_t parse_size(const std::string& text, std::size_t fallback) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (end == text.c_str() || !std::isfinite(v) || v < 0) return fallback;
+  return static_cast<std::size_t>(std::llround(v));
+}
+
+std::mutex& cache_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+[[maybe_unused]] const bool context_added = [] {
+  benchmark::AddCustomContext("compiler", __VERSION__);
+  benchmark::AddCustomContext("tbb_version", TBB_VERSION_STRING);
+  benchmark::AddCustomContext("default_builder", bvh_builder_name(BvhBuildOptions{}.builder));
+#ifdef NDEBUG
+  benchmark::AddCustomContext("interfere_build", "release (NDEBUG)");
+#else
+  benchmark::AddCustomContext("interfere_build", "assertions on (not NDEBUG)");
+#endif
+  return true;
+}();
+
+}  // namespace
+
+std::size_t env_size(const char* name, std::size_t fallback) {
+  const char* v = std::getenv(name);
+  return v && *v ? parse_size(v, fallback) : fallback;
+}
+
+std::vector<std::size_t> env_sizes(const char* name, std::vector<std::size_t> fallback) {
+  const char* v = std::getenv(name);
+  if (!v || !*v) return fallback;
+  std::vector<std::size_t> out;
+  std::stringstream ss(v);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    const std::size_t n = parse_size(item, 0);
+    if (n > 0) out.push_back(n);
+  }
+  return out.empty() ? fallback : out;
+}
+
+std::string env_string(const char* name, const std::string& fallback) {
+  const char* v = std::getenv(name);
+  return v ? std::string(v) : fallback;
+}
+
+int target_repetitions() {
+  return static_cast<int>(std::max<std::size_t>(1, env_size("INTERFERE_BENCH_REPETITIONS", 3)));
+}
+
+std::vector<std::size_t> table_sizes() {
+  return env_sizes("INTERFERE_BENCH_SIZES", {10000, 100000, 1000000});
+}
+
+std::vector<std::size_t> thread_counts() {
+  return env_sizes("INTERFERE_BENCH_THREADS", {1, 2});
+}
+
+std::string size_label(std::size_t n) {
+  std::size_t p = 0, m = n;
+  while (m >= 10 && m % 10 == 0) m /= 10, ++p;
+  if (m == 1 && p > 0) return "1e" + std::to_string(p);
+  return std::to_string(n);
+}
+
+const SpherePair& sphere_pair(std::size_t n) {
+  static std::map<std::size_t, std::unique_ptr<SpherePair>> cache;
+  std::lock_guard lock(cache_mutex());
+  auto& slot = cache[n];
+  if (!slot) slot = std::make_unique<SpherePair>(make_overlapping_spheres(n));
+  return *slot;
+}
+
+const ModelPair& model_pair(std::size_t n, BvhBuilder builder) {
+  static std::map<std::pair<std::size_t, int>, std::unique_ptr<ModelPair>> cache;
+  const SpherePair& p = sphere_pair(n);
+  std::lock_guard lock(cache_mutex());
+  auto& slot = cache[{n, static_cast<int>(builder)}];
+  if (!slot) {
+    const BvhBuildOptions options{.builder = builder};
+    slot = std::make_unique<ModelPair>(
+        ModelPair{make_model(p.a, options, false), make_model(p.b, options, false)});
+  }
+  return *slot;
+}
+
+const std::vector<std::pair<std::uint32_t, std::uint32_t>>& reference_pairs(std::size_t n) {
+  static std::map<std::size_t,
+                  std::unique_ptr<std::vector<std::pair<std::uint32_t, std::uint32_t>>>>
+      cache;
+  const ModelPair& m = model_pair(n, BvhBuilder::binned_sah);
+  std::lock_guard lock(cache_mutex());
+  auto& slot = cache[n];
+  if (!slot) {
+    const ClashResult r = clash(m.a, m.b,
+                                ClashRequest{.test = TriTest::exact,
+                                             .broadphase = Broadphase::bvh,
+                                             .parallel = true,
+                                             .regions = false,
+                                             .containment = false});
+    slot = std::make_unique<std::vector<std::pair<std::uint32_t, std::uint32_t>>>();
+    slot->reserve(r.pairs.size());
+    for (const TrianglePair& tp : r.pairs) slot->emplace_back(tp.a, tp.b);
+    std::sort(slot->begin(), slot->end());
+  }
+  return *slot;
+}
+
+PairDiff diff_pairs(const std::vector<std::pair<std::uint32_t, std::uint32_t>>& found,
+                    const std::vector<std::pair<std::uint32_t, std::uint32_t>>& reference) {
+  PairDiff d;
+  std::size_t i = 0, j = 0;
+  while (i < found.size() || j < reference.size()) {
+    if (j == reference.size() || (i < found.size() && found[i] < reference[j])) {
+      if (d.extra++ == 0) d.first_extra = found[i];
+      ++i;
+    } else if (i == found.size() || reference[j] < found[i]) {
+      if (d.missing++ == 0) d.first_missing = reference[j];
+      ++j;
+    } else {
+      ++i, ++j;
+    }
+  }
+  return d;
+}
+
+}  // namespace interfere::bench

@@ -1,0 +1,67 @@
+// Shared fixtures of the benchmark suite: cached sphere pairs and models (built once per process,
+// never inside a timed region), the engine's exact pair list as the reference that peers are
+// compared to, and the environment knobs that bench/run_benchmarks.py uses to size a run.
+//
+// Environment (all optional):
+//   INTERFERE_BENCH_SIZES        triangles per part for the strategy table, default "1e4,1e5,1e6"
+//   INTERFERE_BENCH_BRUTE_MAX    largest size for the O(n^2) brute-force strategies, default 1e4
+//   INTERFERE_BENCH_PRETEST_MAX  largest size for the O(n^2) box pre-test strategy, default 1e5
+//   INTERFERE_BENCH_PEER_MAX     largest size for the FCL/CGAL peers, default 1e6
+//   INTERFERE_BENCH_THREADS      thread counts for the parallel rows, default "1,2"
+//   INTERFERE_BENCH_STL_TRIANGLES  triangles of the generated binary STL, default 2e6 (~100 MB)
+//   INTERFERE_BENCH_DATA         folder with shared meshes (default <source>/../shared/data/mesh)
+//   INTERFERE_BENCH_REPETITIONS  repetitions of the rows that targets are judged on (median),
+//   default 3
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "interfere/bvh/bvh.h"
+#include "interfere/mesh/generate.h"
+#include "interfere/query/model.h"
+
+namespace interfere::bench {
+
+/// Integer from the environment ("1e6", "100000"), or `fallback`.
+std::size_t env_size(const char* name, std::size_t fallback);
+/// Comma-separated list of integers from the environment, or `fallback`.
+std::vector<std::size_t> env_sizes(const char* name, std::vector<std::size_t> fallback);
+/// String from the environment, or `fallback`.
+std::string env_string(const char* name, const std::string& fallback);
+
+/// Repetitions for the rows that targets are judged on (the report takes their median).
+int target_repetitions();
+
+/// The strategy-table sizes (triangles per part).
+std::vector<std::size_t> table_sizes();
+/// Thread counts for the parallel rows.
+std::vector<std::size_t> thread_counts();
+
+/// "1e4" for 10000, "1e6" for 1000000, otherwise the decimal number.
+std::string size_label(std::size_t n);
+
+/// make_overlapping_spheres(n), generated once per process.
+const SpherePair& sphere_pair(std::size_t n);
+
+/// Models of the pair built with `builder` (no statistics), built once per process.
+struct ModelPair {
+  Model a, b;
+};
+const ModelPair& model_pair(std::size_t n, BvhBuilder builder);
+
+/// The engine's exact pair list (a, b) for the sphere pair (SAH trees, exact test), cached.
+const std::vector<std::pair<std::uint32_t, std::uint32_t>>& reference_pairs(std::size_t n);
+
+/// |found \ reference| and |reference \ found| for two sorted, duplicate-free pair lists.
+struct PairDiff {
+  std::size_t extra = 0, missing = 0;
+  std::pair<std::uint32_t, std::uint32_t> first_extra{},
+      first_missing{};  ///< valid when the count > 0
+};
+PairDiff diff_pairs(const std::vector<std::pair<std::uint32_t, std::uint32_t>>& found,
+                    const std::vector<std::pair<std::uint32_t, std::uint32_t>>& reference);
+
+}  // namespace interfere::bench
