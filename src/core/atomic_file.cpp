@@ -17,46 +17,45 @@ std::filesystem::path temporary_sibling(const std::filesystem::path& target) {
   return p;
 }
 
-Status write_file_atomic(const std::filesystem::path& path, std::string_view content) {
+Status write_file_atomic(const std::filesystem::path& path, const std::function<int(std::FILE*)>& body) {
+  const std::string name = path.string();
   const std::filesystem::path tmp = temporary_sibling(path);
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (!f) return Error{.file = path.string(), .reason = std::string("cannot create: ") + std::strerror(errno)};
-  const bool ok = std::fwrite(content.data(), 1, content.size(), f) == content.size();
-  const bool closed = std::fclose(f) == 0;
-  if (!ok || !closed) {
-    std::error_code ec;
-    std::filesystem::remove(tmp, ec);
-    return Error{.file = path.string(), .reason = "write failed (disk full?)"};
+  std::FILE* file = std::fopen(tmp.c_str(), "wbx");
+  if (!file) {
+    return Error{.file = name, .reason = "cannot create temporary file '" + tmp.string() + "': " + std::strerror(errno)};
   }
+  // Whatever happens from here (including an exception), the temporary file does not outlive us.
+  struct Cleanup {
+    std::FILE* file;
+    const std::filesystem::path& tmp;
+    bool armed = true;
+    ~Cleanup() {
+      if (file) std::fclose(file);
+      std::error_code ec;
+      if (armed) std::filesystem::remove(tmp, ec);
+    }
+  } cleanup{file, tmp};
+  int err = body(file);
+  if (err == 0 && std::fflush(file) != 0) err = errno;
+  // Data on disk before the rename publishes it (otherwise a crash can leave an empty target).
+  if (err == 0 && ::fsync(::fileno(file)) != 0 && errno != EINVAL && errno != EROFS) err = errno;
+  cleanup.file = nullptr;
+  if (std::fclose(file) != 0 && err == 0) err = errno;
+  if (err != 0) return Error{.file = name, .reason = std::string("write failed: ") + std::strerror(err)};
   std::error_code ec;
+  if (const auto st = std::filesystem::status(path, ec); !ec && std::filesystem::is_regular_file(st)) {
+    std::filesystem::permissions(tmp, st.permissions(), ec);  // keep the permissions of a replaced file
+  }
   std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::filesystem::remove(tmp, ec);
-    return Error{.file = path.string(), .reason = "cannot rename temporary file into place: " + ec.message()};
-  }
+  if (ec) return Error{.file = name, .reason = "cannot replace the target with the written temporary file: " + ec.message()};
+  cleanup.armed = false;
   return {};
 }
 
-StagedFiles::~StagedFiles() {
-  for (const auto& [tmp, target] : staged_) {
-    std::error_code ec;
-    std::filesystem::remove(tmp, ec);
-  }
-}
-
-std::filesystem::path StagedFiles::stage(const std::filesystem::path& target) {
-  staged_.emplace_back(temporary_sibling(target), target);
-  return staged_.back().first;
-}
-
-Status StagedFiles::commit() {
-  for (const auto& [tmp, target] : staged_) {
-    std::error_code ec;
-    std::filesystem::rename(tmp, target, ec);
-    if (ec) return Error{.file = target.string(), .reason = "cannot rename temporary file into place: " + ec.message()};
-  }
-  staged_.clear();
-  return {};
+Status write_file_atomic(const std::filesystem::path& path, std::string_view content) {
+  return write_file_atomic(path, [content](std::FILE* f) {
+    return std::fwrite(content.data(), 1, content.size(), f) == content.size() ? 0 : (errno ? errno : EIO);
+  });
 }
 
 }  // namespace interfere

@@ -24,10 +24,6 @@
 #include "interfere/mesh/validate.h"
 #include "text_reader.h"
 
-#if defined(__unix__) || defined(__APPLE__)
-#include <unistd.h>
-#define INTERFERE_HAVE_POSIX 1
-#endif
 
 namespace interfere {
 namespace io_detail {
@@ -345,25 +341,7 @@ Status write_mesh_impl(const std::filesystem::path& path, const std::string& nam
   const bool ply_float = options.ply_float && family_of(f) == Family::ply;
   if (Status s = check_writable(name, mesh, f, ply_float); !s) return s;
 
-  const std::filesystem::path tmp = temporary_sibling(path);
-  std::FILE* file = std::fopen(tmp.c_str(), "wbx");
-  if (!file) {
-    return Error{name, -1, -1,
-                 "cannot create temporary file '" + tmp.string() + "': " + std::strerror(errno)};
-  }
-  // Whatever happens from here (including an exception), the temporary file does not outlive us.
-  struct Cleanup {
-    std::FILE* file;
-    const std::filesystem::path& tmp;
-    bool armed = true;
-    ~Cleanup() {
-      if (file) std::fclose(file);
-      std::error_code ec;
-      if (armed) std::filesystem::remove(tmp, ec);
-    }
-  } cleanup{file, tmp};
-  int err = 0;
-  {
+  return write_file_atomic(path, [&](std::FILE* file) {
     OutputBuffer out(file);
     switch (f) {
       case MeshFormat::stl_binary:
@@ -390,28 +368,8 @@ Status write_mesh_impl(const std::filesystem::path& path, const std::string& nam
       default:
         break;
     }
-    if (!out.flush()) err = out.error_number();
-  }
-  if (err == 0 && std::fflush(file) != 0) err = errno;
-#ifdef INTERFERE_HAVE_POSIX
-  // Data on disk before the rename publishes it (otherwise a crash can leave an empty target).
-  if (err == 0 && ::fsync(::fileno(file)) != 0 && errno != EINVAL && errno != EROFS) err = errno;
-#endif
-  cleanup.file = nullptr;
-  if (std::fclose(file) != 0 && err == 0) err = errno;
-  if (err != 0) return Error{name, -1, -1, std::string("write failed: ") + std::strerror(err)};
-  std::error_code ec;
-  // Keep the permissions of a file we replace.
-  if (const auto st = std::filesystem::status(path, ec);
-      !ec && std::filesystem::is_regular_file(st)) {
-    std::filesystem::permissions(tmp, st.permissions(), ec);
-  }
-  std::filesystem::rename(tmp, path, ec);
-  if (ec)
-    return Error{name, -1, -1,
-                 "cannot replace the target with the written temporary file: " + ec.message()};
-  cleanup.armed = false;
-  return {};
+    return out.flush() ? 0 : out.error_number();
+  });
 }
 
 }  // namespace
