@@ -58,7 +58,7 @@ class NarrowPhase {
             f.hit.feature_b = res.feature_b;
           }
         } else {
-          f.hit.kind = tri_tri_exact(ta, tb).kind;
+          f.hit.kind = tri_tri_exact_kind(ta, tb);
         }
         break;
       }

@@ -115,7 +115,7 @@ class Cli(unittest.TestCase):
     def test_transform_moves_part_b(self):
         a = write_obj("ta.obj", box((0, 0, 0), (1, 1, 1)))
         b = write_obj("tb.obj", box((3.5, 0.25, 0.25), (4, 0.75, 0.75)))
-        rc, _, err = run("clash", a, b, "--transform-b", "1 0 0 -3 0 1 0 0 0 0 1 0", "--json", path("tr.json"))
+        rc, _, err = run("clash", a, b, "--transform-b", "1 0 0 -2.75 0 1 0 0 0 0 1 0", "--json", path("tr.json"))
         self.assertEqual(rc, 1, err)
         self.assertGreater(json.load(open(path("tr.json")))["result"]["cross_pairs"], 0)
 
@@ -178,7 +178,8 @@ class Cli(unittest.TestCase):
         self.assert_input_error(["clash", path("nope.stl"), os.path.join(EXAMPLES, "pin.obj")], ["nope.stl"])
 
     def test_truncated_stl(self):
-        src = open(os.path.join(EXAMPLES, "plate.stl"), "rb").read()
+        with open(os.path.join(EXAMPLES, "plate.stl"), "rb") as f:
+            src = f.read()
         with open(path("trunc.stl"), "wb") as f:
             f.write(src[: len(src) - 30])
         self.assert_input_error(["clash", path("trunc.stl"), os.path.join(EXAMPLES, "pin.obj")], ["trunc.stl"])
