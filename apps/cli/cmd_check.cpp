@@ -25,16 +25,8 @@ int run_check(const CheckOptions& o) {
                       {"format", mesh_format_name(info.format)},
                       {"polygons_split", info.polygons_split},
                       {"vertices_before_weld", info.vertices_before_weld},
-                      {"vertices", s.vertices},
-                      {"triangles", s.triangles},
-                      {"degenerate_triangles", s.degenerate_triangles},
-                      {"duplicate_triangles", s.duplicate_triangles},
-                      {"open_edges", s.open_edges},
-                      {"nonmanifold_edges", s.nonmanifold_edges},
-                      {"inconsistent_edges", s.inconsistent_edges},
-                      {"components", s.components},
-                      {"closed", s.closed()},
                       {"bbox", {{"min", {box.lo.x, box.lo.y, box.lo.z}}, {"max", {box.hi.x, box.hi.y, box.hi.z}}}}};
+  j.update(stats_json(s));
   if (!o.json.empty()) {
     const Status st = write_file_atomic(o.json, j.dump(2) + "\n");
     if (!st) throw InputError(st.error());

@@ -12,13 +12,10 @@
 namespace interfere::cli {
 namespace {
 
-struct ClashOptions {
-  PartSpec a, b;
-  std::string scene, units, json, pairs, region_a, region_b, test = "exact", broadphase = "bvh",
-                                                              builder = "lbvh";
+struct ClashOptions : TwoPartOptions {
+  std::string pairs, region_a, region_b, test = "exact", broadphase = "bvh";
   std::vector<std::string> curves;
   double clearance = 0;
-  int threads = 0;
   bool no_containment = false;
   std::size_t max_clearance_pairs = 100000;
 };
@@ -56,12 +53,7 @@ void write_or_throw(const Status& s) {
 }
 
 int run_clash(const ClashOptions& o) {
-  PartSpec a = o.a, b = o.b;
-  std::string units = o.units;
-  if (!o.scene.empty()) apply_scene(o.scene, a, b, units);
-  if (a.file.empty() || b.file.empty()) throw InputError("clash: two parts are needed (A B, or --scene)");
-  if (units.empty()) units = "mm";
-  check_units(units);
+  const ResolvedParts parts = resolve_two_parts(o, "clash");
   if (!(o.clearance >= 0) || !std::isfinite(o.clearance)) throw InputError("--clearance must be a finite number >= 0");
   const ClashRequest request{.test = parse_test(o.test),
                              .broadphase = parse_broadphase(o.broadphase),
@@ -69,7 +61,6 @@ int run_clash(const ClashOptions& o) {
                              .clearance = o.clearance,
                              .regions = true,
                              .containment = !o.no_containment};
-  const BvhBuildOptions bvh{.builder = parse_builder(o.builder)};
   const std::vector<std::string> mesh_ext{".stl", ".ply", ".obj", ".off"};
   check_output(o.json, {}, "--json");
   check_output(o.pairs, {}, "--pairs");
@@ -79,8 +70,8 @@ int run_clash(const ClashOptions& o) {
   set_threads(o.threads);
 
   Progress total("clash");
-  const LoadedPart pa = load_part(a, "A", bvh);
-  const LoadedPart pb = load_part(b, "B", bvh);
+  const LoadedPart pa = load_part(parts.a, "A", parts.bvh);
+  const LoadedPart pb = load_part(parts.b, "B", parts.bvh);
   ClashResult result;
   double query_seconds = 0;
   {
@@ -113,23 +104,14 @@ int run_clash(const ClashOptions& o) {
     for (const ClashRegion& g : result.regions) all.insert(all.end(), g.curves.begin(), g.curves.end());
     for (const std::string& c : o.curves) write_or_throw(write_polylines(c, all));
   }
+  const int status = result.interference() ? kInterference : kClear;
   if (!o.json.empty()) {
-    nlohmann::json j = {{"interfere_version", INTERFERE_VERSION},
-                        {"command", "clash"},
-                        {"units", units},
-                        {"inputs", {{"a", part_json(pa)}, {"b", part_json(pb)}}},
-                        {"options",
-                         {{"test", o.test}, {"broadphase", o.broadphase}, {"builder", o.builder},
-                          {"threads", active_threads()}, {"clearance", o.clearance},
-                          {"containment", !o.no_containment}}},
-                        {"result", clash_result_json(result, o.max_clearance_pairs)},
-                        {"warnings", result.warnings},
-                        {"timings_s",
-                         {{"read", pa.read_seconds + pb.read_seconds},
-                          {"build", pa.build_seconds + pb.build_seconds},
-                          {"query", query_seconds},
-                          {"total", total.seconds()}}},
-                        {"exit_status", result.interference() ? kInterference : kClear}};
+    nlohmann::json j = two_part_report("clash", parts.units, pa, pb, query_seconds, total.seconds());
+    j["options"] = {{"test", o.test}, {"broadphase", o.broadphase}, {"builder", o.builder},
+                    {"threads", active_threads()}, {"clearance", o.clearance}, {"containment", !o.no_containment}};
+    j["result"] = clash_result_json(result, o.max_clearance_pairs);
+    j["warnings"] = result.warnings;
+    j["exit_status"] = status;
     write_or_throw(write_file_atomic(o.json, j.dump(2) + "\n"));
   }
 
@@ -137,11 +119,11 @@ int run_clash(const ClashOptions& o) {
   for (const ClashRegion& g : result.regions) curve_length += g.curve_length;
   std::printf("%s: %zu pairs (%zu cross, %zu touch), %zu regions, curve length %.6g %s, containment %s",
               result.interference() ? "INTERFERENCE" : "clear", result.pairs.size(), result.cross_pairs,
-              result.touch_pairs, result.regions.size(), curve_length, units.c_str(),
+              result.touch_pairs, result.regions.size(), curve_length, parts.units.c_str(),
               containment_name(result.containment));
   if (o.clearance > 0) std::printf(", %zu pairs closer than %g", result.clearance.size(), o.clearance);
   std::printf("\n");
-  return result.interference() ? kInterference : kClear;
+  return status;
 }
 
 }  // namespace
@@ -150,22 +132,16 @@ void add_clash_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<ClashOptions>();
   CLI::App* c = app.add_subcommand("clash", "Every intersecting triangle pair of parts A and B, clash "
                                             "regions with intersection curves, containment, clearance");
-  c->add_option("A", o->a.file, "mesh file of part A (STL, OBJ, PLY, OFF)");
-  c->add_option("B", o->b.file, "mesh file of part B");
-  c->add_option("--scene", o->scene, "JSON scene giving both parts and their transforms");
-  c->add_option("--transform-a", o->a.transform, "pose of A: \"r00 r01 r02 tx r10 r11 r12 ty r20 r21 r22 tz\"");
-  c->add_option("--transform-b", o->b.transform, "pose of B, same form (p' = R·p + t in double)");
-  c->add_option("--json", o->json, "write the JSON report here");
+  add_two_part_options(*c, *o);
   c->add_option("--pairs", o->pairs, "write 'i j kind' per intersecting pair, sorted");
   c->add_option("--region-a", o->region_a, "write A's clash-region triangles (.stl/.ply/.obj/.off)");
   c->add_option("--region-b", o->region_b, "write B's clash-region triangles (.stl/.ply/.obj/.off)");
-  c->add_option("--curves", o->curves, "write intersection curves (.obj polylines or .vtk polydata); repeatable");
+  c->add_option("--curves", o->curves, "write intersection curves (.obj polylines or .vtk polydata); repeatable")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   c->add_option("--clearance", o->clearance, "also report non-intersecting pairs closer than this distance");
-  c->add_option("--threads", o->threads, "worker threads (0 = all cores)");
   c->add_option("--test", o->test, "triangle test: exact (default), moller, gd");
   c->add_option("--broadphase", o->broadphase, "bvh (default), brute, box");
-  c->add_option("--builder", o->builder, "tree builder: lbvh (default), sah, median, insertion");
-  c->add_option("--units", o->units, "length unit of the inputs, reported (mm, cm, m, um, in, ft)");
   c->add_option("--max-clearance-pairs", o->max_clearance_pairs, "cap on clearance pairs listed in JSON");
   c->add_flag("--no-containment", o->no_containment, "skip the containment test");
   c->callback([o, &exit_code] { exit_code = run_clash(*o); });

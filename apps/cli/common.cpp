@@ -1,5 +1,6 @@
 #include "common.h"
 
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <fstream>
 #include <memory>
@@ -126,11 +127,8 @@ int active_threads() {
   return static_cast<int>(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
 }
 
-nlohmann::json part_json(const LoadedPart& p) {
-  const MeshStats& s = p.model.stats;
-  return {{"file", p.file},
-          {"format", mesh_format_name(p.format)},
-          {"vertices", s.vertices},
+nlohmann::json stats_json(const MeshStats& s) {
+  return {{"vertices", s.vertices},
           {"triangles", s.triangles},
           {"degenerate_triangles", s.degenerate_triangles},
           {"duplicate_triangles", s.duplicate_triangles},
@@ -138,10 +136,51 @@ nlohmann::json part_json(const LoadedPart& p) {
           {"nonmanifold_edges", s.nonmanifold_edges},
           {"inconsistent_edges", s.inconsistent_edges},
           {"components", s.components},
-          {"closed", s.closed()},
-          {"transform", p.transform.to_row_major()},
-          {"read_seconds", p.read_seconds},
-          {"build_seconds", p.build_seconds}};
+          {"closed", s.closed()}};
+}
+
+nlohmann::json part_json(const LoadedPart& p) {
+  nlohmann::json j = {{"file", p.file}, {"format", mesh_format_name(p.format)}};
+  j.update(stats_json(p.model.stats));
+  j.update({{"transform", p.transform.to_row_major()},
+            {"read_seconds", p.read_seconds},
+            {"build_seconds", p.build_seconds}});
+  return j;
+}
+
+void add_two_part_options(CLI::App& c, TwoPartOptions& o) {
+  c.add_option("A", o.a.file, "mesh file of part A (STL, OBJ, PLY, OFF)");
+  c.add_option("B", o.b.file, "mesh file of part B");
+  c.add_option("--scene", o.scene, "JSON scene giving both parts and their transforms");
+  c.add_option("--transform-a", o.a.transform, "pose of A: \"r00 r01 r02 tx r10 r11 r12 ty r20 r21 r22 tz\"");
+  c.add_option("--transform-b", o.b.transform, "pose of B, same form (p' = R·p + t in double)");
+  c.add_option("--json", o.json, "write the JSON report here");
+  c.add_option("--threads", o.threads, "worker threads (0 = all cores)");
+  c.add_option("--builder", o.builder, "tree builder: lbvh (default), sah, median, insertion");
+  c.add_option("--units", o.units, "length unit of the inputs, reported (mm, cm, m, um, in, ft)");
+}
+
+ResolvedParts resolve_two_parts(const TwoPartOptions& o, const std::string& command) {
+  ResolvedParts r{.a = o.a, .b = o.b, .units = o.units};
+  if (!o.scene.empty()) apply_scene(o.scene, r.a, r.b, r.units);
+  if (r.a.file.empty() || r.b.file.empty()) throw InputError(command + ": two parts are needed (A B, or --scene)");
+  if (r.units.empty()) r.units = "mm";
+  check_units(r.units);
+  r.bvh.builder = parse_builder(o.builder);
+  return r;
+}
+
+nlohmann::json two_part_report(const std::string& command, const std::string& units, const LoadedPart& a,
+                               const LoadedPart& b, double query_seconds, double total_seconds) {
+  return {{"interfere_version", INTERFERE_VERSION},
+          {"command", command},
+          {"units", units},
+          {"inputs", {{"a", part_json(a)}, {"b", part_json(b)}}},
+          {"timings_s",
+           {{"read", a.read_seconds + b.read_seconds},
+            {"build", a.build_seconds + b.build_seconds},
+            {"query", query_seconds},
+            {"total", total_seconds}}}};
 }
 
 }  // namespace interfere::cli

@@ -12,6 +12,10 @@
 #include "interfere/mesh/io.h"
 #include "interfere/query/model.h"
 
+namespace CLI {
+class App;
+}
+
 namespace interfere::cli {
 
 /// Exit status (documented in the README): 0 no interference, 1 interference, 2 usage/input error.
@@ -66,5 +70,27 @@ void set_threads(int threads);
 int active_threads();
 
 nlohmann::json part_json(const LoadedPart& p);
+nlohmann::json stats_json(const MeshStats& s);
+
+/// Options shared by the two-part commands (clash, distance).
+struct TwoPartOptions {
+  PartSpec a, b;
+  std::string scene, units, json, builder = "lbvh";
+  int threads = 0;
+};
+/// Registers A, B, --scene, --transform-a/-b, --json, --threads, --builder, --units.
+void add_two_part_options(CLI::App& command, TwoPartOptions& o);
+
+/// The two parts after the scene file, defaults and checks (files, units, builder).
+struct ResolvedParts {
+  PartSpec a, b;
+  std::string units;
+  BvhBuildOptions bvh;
+};
+ResolvedParts resolve_two_parts(const TwoPartOptions& o, const std::string& command);
+
+/// Report fields common to the two-part commands: version, command, units, inputs, timings.
+nlohmann::json two_part_report(const std::string& command, const std::string& units, const LoadedPart& a,
+                               const LoadedPart& b, double query_seconds, double total_seconds);
 
 }  // namespace interfere::cli

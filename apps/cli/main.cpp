@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   CLI::App app{"interfere " INTERFERE_VERSION ": exact, parallel interference (clash) checking"};
   app.set_version_flag("--version", INTERFERE_VERSION);
   app.require_subcommand(1);
+  app.fallthrough();  // global flags (--quiet) also after the subcommand
   bool quiet = false;
   app.add_flag("-q,--quiet", quiet, "no progress lines on stderr");
   int exit_code = kClear;
