@@ -137,8 +137,7 @@ void add_clash_command(CLI::App& app, int& exit_code) {
   c->add_option("--region-a", o->region_a, "write A's clash-region triangles (.stl/.ply/.obj/.off)");
   c->add_option("--region-b", o->region_b, "write B's clash-region triangles (.stl/.ply/.obj/.off)");
   c->add_option("--curves", o->curves, "write intersection curves (.obj polylines or .vtk polydata); repeatable")
-      ->expected(1)
-      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+      ->allow_extra_args(false);  // one file per --curves, so positionals may follow
   c->add_option("--clearance", o->clearance, "also report non-intersecting pairs closer than this distance");
   c->add_option("--test", o->test, "triangle test: exact (default), moller, gd");
   c->add_option("--broadphase", o->broadphase, "bvh (default), brute, box");
