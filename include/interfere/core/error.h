@@ -15,14 +15,7 @@ struct Error {
   std::string reason;
 
   /// "file:line: reason", "file: byte N: reason" or "reason".
-  std::string message() const {
-    std::string m;
-    if (!file.empty()) m += file;
-    if (line >= 0) m += ":" + std::to_string(line);
-    if (!file.empty() || line >= 0) m += ": ";
-    if (byte >= 0) m += "byte " + std::to_string(byte) + ": ";
-    return m + reason;
-  }
+  std::string message() const;
 };
 
 /// A value or an Error (std::expected is C++23; this is the subset we need).
