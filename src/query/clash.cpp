@@ -9,6 +9,8 @@
 #include <string>
 
 #include <tbb/combinable.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_sort.h>
 #include <tbb/parallel_for.h>
 
 #include "clash_internal.h"
@@ -29,81 +31,89 @@ const char* containment_name(Containment c) {
 
 namespace {
 
-using detail::Hit;
+using detail::Segment;
 
-/// A narrow-phase output: either an intersecting pair or a clearance pair.
-struct Found {
-  Hit hit;
-  bool is_clearance = false;
-  ClearancePair near;
+struct ByAb {
+  template <class X>
+  bool operator()(const X& x, const X& y) const {
+    return x.a != y.a ? x.a < y.a : x.b < y.b;
+  }
 };
 
+/// Narrow phase: appends intersecting pairs to the traversal's output and keeps the bulkier
+/// by-products (crossing segments, clearance pairs) in per-thread side buffers; everything is
+/// sorted by (a, b) afterwards, so no order depends on the thread count.
 class NarrowPhase {
  public:
   NarrowPhase(const TriMesh& a, const TriMesh& b, const ClashRequest& r) : a_(a), b_(b), r_(r) {}
 
-  void operator()(std::uint32_t ia, std::uint32_t ib, std::vector<Found>& out) const {
+  void operator()(std::uint32_t ia, std::uint32_t ib, std::vector<TrianglePair>& out) const {
     ++candidates_.local();  // per-thread counter: no shared cache line in the hot loop
     const auto ta = a_.corners(ia), tb = b_.corners(ib);
-    Found f;
-    f.hit.a = ia, f.hit.b = ib;
+    ContactKind kind = ContactKind::none;
     switch (r_.test) {
-      case TriTest::exact: {
+      case TriTest::exact:
         if (r_.regions) {
           const TriTriResult res = tri_tri_exact(ta, tb);
-          f.hit.kind = res.kind;
-          if (res.kind == ContactKind::cross) {
-            f.hit.has_segment = true;
-            f.hit.segment = res.segment;
-            f.hit.feature_a = res.feature_a;
-            f.hit.feature_b = res.feature_b;
+          kind = res.kind;
+          if (kind == ContactKind::cross) {
+            segments_.local().push_back(
+                {.a = ia, .b = ib, .points = res.segment, .feature_a = res.feature_a, .feature_b = res.feature_b});
           }
         } else {
-          f.hit.kind = tri_tri_exact_kind(ta, tb);
+          kind = tri_tri_exact_kind(ta, tb);
         }
         break;
-      }
       case TriTest::moller:
-        f.hit.kind = tri_tri_moller(ta, tb) ? ContactKind::cross : ContactKind::none;
+        kind = tri_tri_moller(ta, tb) ? ContactKind::cross : ContactKind::none;
         break;
       case TriTest::guigue_devillers:
-        f.hit.kind = tri_tri_guigue_devillers(ta, tb) ? ContactKind::cross : ContactKind::none;
+        kind = tri_tri_guigue_devillers(ta, tb) ? ContactKind::cross : ContactKind::none;
         break;
     }
-    if (f.hit.kind != ContactKind::none) {
-      out.push_back(f);
+    if (kind != ContactKind::none) {
+      out.push_back({ia, ib, kind});
       return;
     }
     if (r_.clearance > 0) {
       const ClosestPoints cp = triangle_triangle_closest(ta, tb);
       if (cp.distance < r_.clearance) {
-        f.is_clearance = true;
-        f.near = {.a = ia, .b = ib, .distance = cp.distance, .point_a = cp.p, .point_b = cp.q};
-        out.push_back(f);
+        clearance_.local().push_back({.a = ia, .b = ib, .distance = cp.distance, .point_a = cp.p, .point_b = cp.q});
       }
     }
   }
 
   std::size_t candidates() const { return candidates_.combine(std::plus<>()); }
+  template <class T>
+  static std::vector<T> gather(tbb::enumerable_thread_specific<std::vector<T>>& parts) {
+    std::vector<T> all;
+    for (auto& p : parts) all.insert(all.end(), p.begin(), p.end());
+    tbb::parallel_sort(all.begin(), all.end(), ByAb{});
+    return all;
+  }
+  std::vector<Segment> segments() { return gather(segments_); }
+  std::vector<ClearancePair> clearance() { return gather(clearance_); }
 
  private:
   const TriMesh& a_;
   const TriMesh& b_;
   const ClashRequest& r_;
   mutable tbb::combinable<std::size_t> candidates_{[] { return std::size_t{0}; }};
+  mutable tbb::enumerable_thread_specific<std::vector<Segment>> segments_;
+  mutable tbb::enumerable_thread_specific<std::vector<ClearancePair>> clearance_;
 };
 
 /// All |A|·|B| pairs (optionally box-pretested), rows of A split across threads; rows are
 /// concatenated in order, so the output does not depend on the thread count.
-std::vector<Found> all_pairs(const Model& a, const Model& b, const ClashRequest& r,
-                             const NarrowPhase& np, bool box_pretest) {
+std::vector<TrianglePair> all_pairs(const Model& a, const Model& b, const ClashRequest& r,
+                                     const NarrowPhase& np, bool box_pretest) {
   const std::size_t na = a.mesh.num_triangles(), nb = b.mesh.num_triangles();
   std::vector<Aabb> boxes_b;
   if (box_pretest) {
     boxes_b.reserve(nb);
     for (std::size_t j = 0; j < nb; ++j) boxes_b.push_back(b.mesh.triangle_box(j));
   }
-  std::vector<std::vector<Found>> rows(na);
+  std::vector<std::vector<TrianglePair>> rows(na);
   auto row = [&](std::size_t i) {
     Aabb box_a;
     if (box_pretest) {
@@ -121,7 +131,7 @@ std::vector<Found> all_pairs(const Model& a, const Model& b, const ClashRequest&
   } else {
     for (std::size_t i = 0; i < na; ++i) row(i);
   }
-  std::vector<Found> out;
+  std::vector<TrianglePair> out;
   for (auto& v : rows) out.insert(out.end(), v.begin(), v.end());
   return out;
 }
@@ -142,41 +152,23 @@ ClashResult clash(const Model& a, const Model& b, const ClashRequest& request) {
   }
 
   NarrowPhase np(a.mesh, b.mesh, r);
-  std::vector<Found> found;
   if (r.broadphase == Broadphase::bvh) {
     const float margin = r.clearance > 0 ? round_up(r.clearance) : 0.0f;
     if (r.parallel) {
-      found = collide_parallel<Found>(
+      result.pairs = collide_parallel<TrianglePair>(
           a.bvh, b.bvh, ParallelTraversalOptions{.margin = margin},
-          [&](std::uint32_t ia, std::uint32_t ib, std::vector<Found>& out) { np(ia, ib, out); });
+          [&](std::uint32_t ia, std::uint32_t ib, std::vector<TrianglePair>& out) { np(ia, ib, out); });
     } else {
-      for_each_overlap(a.bvh, b.bvh, margin,
-                       [&](std::uint32_t ia, std::uint32_t ib) { np(ia, ib, found); });
+      for_each_overlap(a.bvh, b.bvh, margin, [&](std::uint32_t ia, std::uint32_t ib) { np(ia, ib, result.pairs); });
     }
   } else {
-    found = all_pairs(a, b, r, np, r.broadphase == Broadphase::box_pretest);
+    result.pairs = all_pairs(a, b, r, np, r.broadphase == Broadphase::box_pretest);
   }
   result.candidate_pairs = np.candidates();
-
-  std::vector<Hit> hits;
-  hits.reserve(found.size());
-  for (Found& f : found) {
-    if (f.is_clearance) {
-      result.clearance.push_back(f.near);
-    } else {
-      hits.push_back(f.hit);
-    }
-  }
-  auto by_ab = [](const auto& x, const auto& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; };
-  std::sort(hits.begin(), hits.end(), by_ab);
-  std::sort(result.clearance.begin(), result.clearance.end(), by_ab);
-
-  result.pairs.reserve(hits.size());
-  for (const Hit& h : hits) {
-    result.pairs.push_back({h.a, h.b, h.kind});
-    (h.kind == ContactKind::cross ? result.cross_pairs : result.touch_pairs)++;
-  }
-  if (r.regions) result.regions = detail::build_regions(a.mesh, b.mesh, hits);
+  tbb::parallel_sort(result.pairs.begin(), result.pairs.end(), ByAb{});
+  result.clearance = np.clearance();
+  for (const TrianglePair& p : result.pairs) (p.kind == ContactKind::cross ? result.cross_pairs : result.touch_pairs)++;
+  if (r.regions) result.regions = detail::build_regions(a.mesh, b.mesh, result.pairs, np.segments());
 
   // Containment (no surface pair can exist when one closed part lies wholly inside the other).
   if (!r.containment) {
@@ -187,6 +179,12 @@ ClashResult clash(const Model& a, const Model& b, const ClashRequest& request) {
     result.containment = Containment::none;
   } else {
     auto open_warning = [&](const char* name, const MeshStats& s) {
+      if (s.triangles == 0) {
+        result.warnings.push_back(std::string("part ") + name +
+                                  ": mesh statistics not computed (make_model with_stats = false): "
+                                  "containment not checked");
+        return;
+      }
       result.warnings.push_back(std::string("part ") + name + " is not closed (" +
                                 std::to_string(s.open_edges) + " open, " +
                                 std::to_string(s.nonmanifold_edges) + " non-manifold, " +

@@ -8,17 +8,17 @@
 
 namespace interfere::detail {
 
-/// One intersecting triangle pair with the exact topology of its intersection segment.
-struct Hit {
+/// The intersection segment of a crossing pair (exact test) with the exact features its endpoints
+/// lie on. Kept apart from the pair list so that touch-heavy scenes carry 12 bytes per pair.
+struct Segment {
   std::uint32_t a = 0, b = 0;
-  ContactKind kind = ContactKind::none;
-  bool has_segment = false;  ///< exact test and kind == cross
-  std::array<Vec3, 2> segment{};
+  std::array<Vec3, 2> points{};
   std::array<Feature, 2> feature_a{}, feature_b{};
 };
 
-/// Groups hits (sorted by (a, b)) into regions and chains crossing segments into curves.
-std::vector<ClashRegion> build_regions(const TriMesh& a, const TriMesh& b, const std::vector<Hit>& hits);
+/// Groups pairs into regions and chains the segments into curves (both sorted by (a, b)).
+std::vector<ClashRegion> build_regions(const TriMesh& a, const TriMesh& b, const std::vector<TrianglePair>& pairs,
+                                       const std::vector<Segment>& segments);
 
 /// Exact point-in-closed-mesh by ray parity; p must not lie on the mesh surface.
 /// Returns +1 inside, 0 outside, -1 undecided (every ray direction tried was degenerate).

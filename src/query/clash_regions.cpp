@@ -4,10 +4,12 @@
 // pairs' segments (as CATIA draws its intersection curves): endpoints are keyed by the exact features
 // (vertex / edge / face of each part) they lie on, so neighbouring pairs agree without tolerances.
 #include <algorithm>
-#include <map>
 #include <numeric>
 #include <tuple>
 #include <unordered_map>
+
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include "clash_internal.h"
 
@@ -46,20 +48,30 @@ FeatureKey feature_key(const TriMesh& m, std::uint32_t tri, const Feature& f) {
   return {2, tri, 0};
 }
 
-using PointKey = std::pair<FeatureKey, FeatureKey>;
+/// One segment endpoint: the key of the point (feature on A, feature on B) and where it came from.
+struct EndRecord {
+  FeatureKey on_a, on_b;
+  std::uint32_t segment;
+  std::uint8_t end;
+  auto tie() const { return std::tie(on_a, on_b, segment, end); }
+  bool operator<(const EndRecord& o) const { return tie() < o.tie(); }
+  bool same_point(const EndRecord& o) const { return on_a == o.on_a && on_b == o.on_b; }
+};
 
-/// Chains segments (pairs of point ids) into polylines; deterministic for sorted input.
-std::vector<Polyline> chain(const std::vector<Vec3>& points,
-                            const std::vector<std::pair<std::uint32_t, std::uint32_t>>& segs) {
+/// Chains segments (pairs of point ids) into polylines; deterministic for sorted input. Each
+/// polyline comes with one of its segments (to find its region).
+std::vector<std::pair<Polyline, std::uint32_t>> chain(
+    const std::vector<Vec3>& points, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& segs) {
   std::vector<std::vector<std::uint32_t>> incident(points.size());
   for (std::uint32_t s = 0; s < segs.size(); ++s) {
     incident[segs[s].first].push_back(s);
     incident[segs[s].second].push_back(s);
   }
   std::vector<bool> used(segs.size(), false);
-  std::vector<Polyline> out;
+  std::vector<std::pair<Polyline, std::uint32_t>> out;
   auto walk = [&](std::uint32_t start) {
     Polyline pl;
+    std::uint32_t first_seg = UINT32_MAX;
     pl.points.push_back(points[start]);
     std::uint32_t at = start;
     for (;;) {
@@ -72,6 +84,7 @@ std::vector<Polyline> chain(const std::vector<Vec3>& points,
       }
       if (next_seg == UINT32_MAX) break;
       used[next_seg] = true;
+      first_seg = std::min(first_seg, next_seg);
       const auto [p, q] = segs[next_seg];
       const std::uint32_t nxt = p == at ? q : p;
       pl.length += distance(points[at], points[nxt]);
@@ -83,7 +96,7 @@ std::vector<Polyline> chain(const std::vector<Vec3>& points,
       pl.points.push_back(points[at]);
       if (incident[at].size() != 2) break;  // end or branch point: stop here
     }
-    if (pl.points.size() >= 2 || pl.closed) out.push_back(std::move(pl));
+    if (pl.points.size() >= 2 || pl.closed) out.emplace_back(std::move(pl), first_seg);
   };
   // Open chains start at ends and branch points; what remains are closed loops.
   for (std::uint32_t p = 0; p < points.size(); ++p) {
@@ -101,11 +114,12 @@ std::vector<Polyline> chain(const std::vector<Vec3>& points,
 
 }  // namespace
 
-std::vector<ClashRegion> build_regions(const TriMesh& a, const TriMesh& b, const std::vector<Hit>& hits) {
+std::vector<ClashRegion> build_regions(const TriMesh& a, const TriMesh& b, const std::vector<TrianglePair>& hits,
+                                       const std::vector<Segment>& segments) {
   if (hits.empty()) return {};
   // Node ids: clashing triangles of A first, then of B (both sorted).
   std::vector<std::uint32_t> ta, tb;
-  for (const Hit& h : hits) ta.push_back(h.a), tb.push_back(h.b);
+  for (const TrianglePair& h : hits) ta.push_back(h.a), tb.push_back(h.b);
   std::sort(ta.begin(), ta.end());
   ta.erase(std::unique(ta.begin(), ta.end()), ta.end());
   std::sort(tb.begin(), tb.end());
@@ -117,7 +131,7 @@ std::vector<ClashRegion> build_regions(const TriMesh& a, const TriMesh& b, const
     return static_cast<std::uint32_t>(ta.size() + (std::lower_bound(tb.begin(), tb.end(), t) - tb.begin()));
   };
   UnionFind uf(ta.size() + tb.size());
-  for (const Hit& h : hits) uf.unite(node_a(h.a), node_b(h.b));
+  for (const TrianglePair& h : hits) uf.unite(node_a(h.a), node_b(h.b));
   auto join_by_vertex = [&](const TriMesh& m, const std::vector<std::uint32_t>& tris, std::uint32_t base) {
     std::unordered_map<std::uint32_t, std::uint32_t> first_at_vertex;
     for (std::uint32_t n = 0; n < tris.size(); ++n) {
@@ -131,12 +145,12 @@ std::vector<ClashRegion> build_regions(const TriMesh& a, const TriMesh& b, const
   join_by_vertex(b, tb, static_cast<std::uint32_t>(ta.size()));
 
   // Regions numbered by their smallest node (A's triangles come first), hence deterministic.
-  std::map<std::uint32_t, std::size_t> region_of_root;
+  std::vector<std::uint32_t> region_of_root(ta.size() + tb.size(), UINT32_MAX);
   std::vector<ClashRegion> regions;
   auto region = [&](std::uint32_t node) -> ClashRegion& {
-    const auto [it, inserted] = region_of_root.try_emplace(uf.find(node), regions.size());
-    if (inserted) regions.emplace_back();
-    return regions[it->second];
+    std::uint32_t& r = region_of_root[uf.find(node)];
+    if (r == UINT32_MAX) r = static_cast<std::uint32_t>(regions.size()), regions.emplace_back();
+    return regions[r];
   };
   for (std::uint32_t n = 0; n < ta.size(); ++n) {
     ClashRegion& r = region(n);
@@ -149,29 +163,34 @@ std::vector<ClashRegion> build_regions(const TriMesh& a, const TriMesh& b, const
     for (std::uint32_t v : b.triangles[tb[n]]) r.box.expand(b.positions[v]);
   }
 
-  // Curves: per region, the crossing segments with their endpoints keyed by exact features.
-  std::vector<std::vector<const Hit*>> region_hits(regions.size());
-  for (const Hit& h : hits) {
+  for (const TrianglePair& h : hits) {
     ClashRegion& r = region(node_a(h.a));
     (h.kind == ContactKind::cross ? r.cross_pairs : r.touch_pairs)++;
-    if (h.has_segment) region_hits[&r - regions.data()].push_back(&h);
   }
-  for (std::size_t ri = 0; ri < regions.size(); ++ri) {
-    std::map<PointKey, std::uint32_t> point_id;
-    std::vector<Vec3> points;
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> segs;
-    for (const Hit* h : region_hits[ri]) {
-      std::uint32_t ids[2];
-      for (int k = 0; k < 2; ++k) {
-        const PointKey key{feature_key(a, h->a, h->feature_a[k]), feature_key(b, h->b, h->feature_b[k])};
-        const auto [it, inserted] = point_id.try_emplace(key, static_cast<std::uint32_t>(points.size()));
-        if (inserted) points.push_back(h->segment[k]);
-        ids[k] = it->second;
-      }
-      if (ids[0] != ids[1]) segs.emplace_back(ids[0], ids[1]);
+
+  // Curves: endpoints keyed by the exact features they lie on; equal keys are one point. Sorting the
+  // records (not a map) keeps this O(n log n) with small constants for 10^5+ segments.
+  std::vector<EndRecord> ends(2 * segments.size());
+  tbb::parallel_for(std::size_t{0}, segments.size(), [&](std::size_t i) {
+    const Segment& g = segments[i];
+    for (std::uint8_t k = 0; k < 2; ++k) {
+      ends[2 * i + k] = {feature_key(a, g.a, g.feature_a[k]), feature_key(b, g.b, g.feature_b[k]),
+                         static_cast<std::uint32_t>(i), k};
     }
-    regions[ri].curves = chain(points, segs);
-    for (const Polyline& pl : regions[ri].curves) regions[ri].curve_length += pl.length;
+  });
+  tbb::parallel_sort(ends.begin(), ends.end());
+  std::vector<Vec3> points;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> segs(segments.size());
+  for (std::size_t i = 0; i < ends.size(); ++i) {
+    if (i == 0 || !ends[i].same_point(ends[i - 1])) points.push_back(segments[ends[i].segment].points[ends[i].end]);
+    const auto id = static_cast<std::uint32_t>(points.size() - 1);
+    (ends[i].end == 0 ? segs[ends[i].segment].first : segs[ends[i].segment].second) = id;
+  }
+  // A crossing segment has positive length, so its two ends never share a key.
+  for (auto& [polyline, seg] : chain(points, segs)) {
+    ClashRegion& r = region(node_a(segments[seg].a));
+    r.curve_length += polyline.length;
+    r.curves.push_back(std::move(polyline));
   }
   return regions;
 }
