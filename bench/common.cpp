@@ -5,11 +5,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <memory>
 #include <mutex>
 #include <sstream>
+#include <stdexcept>
 
 #include "interfere/query/clash.h"
 
@@ -124,6 +126,115 @@ const std::vector<std::pair<std::uint32_t, std::uint32_t>>& reference_pairs(std:
     for (const TrianglePair& tp : r.pairs) slot->emplace_back(tp.a, tp.b);
     std::sort(slot->begin(), slot->end());
   }
+  return *slot;
+}
+
+PairList exact_pairs(const TriMesh& a, const TriMesh& b) {
+  const BvhBuildOptions options{.builder = BvhBuilder::binned_sah};
+  const Model ma = make_model(a, options, false), mb = make_model(b, options, false);
+  const ClashResult r = clash(ma, mb,
+                              ClashRequest{.test = TriTest::exact,
+                                           .broadphase = Broadphase::bvh,
+                                           .parallel = true,
+                                           .regions = false,
+                                           .containment = false});
+  PairList out;
+  out.reserve(r.pairs.size());
+  for (const TrianglePair& tp : r.pairs) out.emplace_back(tp.a, tp.b);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+namespace {
+
+std::vector<int> exact_box_subdivisions() {
+  std::vector<int> out;
+  for (std::size_t n : env_sizes("INTERFERE_BENCH_EXACT_BOX_N", {50, 100, 200})) {
+    out.push_back(static_cast<int>(n));
+  }
+  return out;
+}
+
+std::size_t exact_sphere_triangles() {
+  return env_size("INTERFERE_BENCH_EXACT_SPHERE", 100000);
+}
+
+Transform rotation_about_z(double c, double s) {
+  Transform t;
+  t.r = {{{c, -s, 0}, {s, c, 0}, {0, 0, 1}}};
+  return t;
+}
+
+ExactScene generate_scene(const std::string& name) {
+  ExactScene sc;
+  int n = 0;
+  if (std::sscanf(name.c_str(), "coplanar_face/n:%d", &n) == 1) {
+    sc.a = make_box({0, 0, 0}, {1, 1, 1}, n);
+    Transform shift;
+    shift.t = Vec3{1, 0, 0};  // the box's width: A's x = 1 face and B's x = 0 + 1 face coincide
+    sc.b = transformed(sc.a, shift);
+  } else if (std::sscanf(name.c_str(), "resting_box/n:%d", &n) == 1) {
+    // A's grid spacing is 1/n, B's 2/n, and A's lines sit 0.6/n off B's: for even n they never
+    // coincide. Both contact faces lie exactly in z = 0.
+    const double o = 0.6 / n;
+    sc.a = make_box({-0.5 + o, -0.5 + o, 0}, {0.5 + o, 0.5 + o, 1}, n);
+    sc.b = make_box({-1, -1, -1}, {1, 1, 0}, n);
+  } else if (name == "contained_sphere") {
+    const std::size_t t = exact_sphere_triangles();
+    sc.a = make_sphere({.target_triangles = t,
+                        .radius = 0.5,
+                        .center = {0.1, 0.05, -0.02},
+                        .bump_amplitude = 0.01,
+                        .bump_frequency = 9});
+    sc.b = make_sphere({.target_triangles = t,
+                        .radius = 1.0,
+                        .bump_amplitude = 0.01,
+                        .bump_frequency = 11,
+                        .twist = 0.123});
+  } else if (name == "rotated_sphere/0.001rad") {
+    sc.a = make_sphere({.target_triangles = exact_sphere_triangles()});
+    sc.b = transformed(sc.a, rotation_about_z(std::cos(1e-3), std::sin(1e-3)));
+  } else if (name == "rotated_sphere/quarter_turn") {
+    sc.a = make_sphere({.target_triangles = exact_sphere_triangles()});
+    sc.b = transformed(sc.a, rotation_about_z(0.0, 1.0));  // (x, y, z) -> (-y, x, z), exact
+  } else {
+    throw std::invalid_argument("unknown exactness scene " + name);
+  }
+  return sc;
+}
+
+}  // namespace
+
+std::vector<std::string> exact_scene_names() {
+  std::vector<std::string> names;
+  const std::vector<int> ns = exact_box_subdivisions();
+  for (int n : ns) names.push_back("coplanar_face/n:" + std::to_string(n));
+  for (int n : ns) names.push_back("resting_box/n:" + std::to_string(n));
+  names.push_back("contained_sphere");
+  names.push_back("rotated_sphere/0.001rad");
+  names.push_back("rotated_sphere/quarter_turn");
+  return names;
+}
+
+const ExactScene& exact_scene(const std::string& name) {
+  static std::map<std::string, std::unique_ptr<ExactScene>> cache;
+  std::lock_guard lock(cache_mutex());
+  auto& slot = cache[name];
+  if (!slot) slot = std::make_unique<ExactScene>(generate_scene(name));
+  return *slot;
+}
+
+const PairList& exact_scene_reference(const std::string& name) {
+  static std::map<std::string, std::unique_ptr<PairList>> cache;
+  const ExactScene& sc = exact_scene(name);
+  {
+    std::lock_guard lock(cache_mutex());
+    if (const auto it = cache.find(name); it != cache.end()) return *it->second;
+  }
+  auto pairs = std::make_unique<PairList>(exact_pairs(sc.a, sc.b));
+  std::lock_guard lock(cache_mutex());
+  auto& slot = cache[name];
+  if (!slot) slot = std::move(pairs);
   return *slot;
 }
 

@@ -12,6 +12,10 @@
 //   INTERFERE_BENCH_DATA         folder with shared meshes (default <source>/../shared/data/mesh)
 //   INTERFERE_BENCH_REPETITIONS  repetitions of the rows that targets are judged on (median),
 //   default 3
+//   INTERFERE_BENCH_EXACT_BOX_N   subdivisions per box edge of the coplanar exactness scenes,
+//   default "50,100,200" (12·n² triangles per box)
+//   INTERFERE_BENCH_EXACT_SPHERE  triangles per sphere of the containment and rotated-copy scenes,
+//   default 1e5
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -63,5 +67,35 @@ struct PairDiff {
 };
 PairDiff diff_pairs(const std::vector<std::pair<std::uint32_t, std::uint32_t>>& found,
                     const std::vector<std::pair<std::uint32_t, std::uint32_t>>& reference);
+
+/// Sorted, duplicate-free (triangle of A, triangle of B) pairs.
+using PairList = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
+
+/// The engine's exact pair list for any two meshes (binned-SAH trees, exact test), sorted.
+PairList exact_pairs(const TriMesh& a, const TriMesh& b);
+
+// ---- "Exactness beside the peers": small fixed scenes on which double-precision tests go wrong.
+// Every scene is run by the engine (bench_exactness.cpp) and by each peer (peer_fcl.cpp,
+// peer_cgal.cpp) as Exact/<scene>/<method>; the peers' pair lists are compared with the engine's.
+//   coplanar_face/n:<n>   make_box([0,1]³, n) and the same box translated by exactly its width
+//                         along x: the two x = 1 faces coincide (identical grids), every pair
+//                         touches
+//   resting_box/n:<n>     A = make_box([-0.5,0.5]² × [0,1], n) shifted by 0.6/n in x and y, resting
+//                         on B = make_box([-1,1]² × [-1,0], n): coplanar contact at z = 0 with
+//                         grids that never line up (spacing 1/n on A, 2/n on B)
+//   contained_sphere      a closed sphere (radius 0.5, off-centre) wholly inside a closed sphere of
+//                         radius 1: no surface pair, the answer is containment (A inside B)
+//   rotated_sphere/0.001rad, rotated_sphere/quarter_turn
+//                         make_sphere against a copy of itself turned about z by 1e-3 rad, and by
+//                         exactly a quarter turn (matrix entries 0, ±1: (x, y) -> (-y, x) exactly)
+std::vector<std::string> exact_scene_names();  ///< cheap: no geometry is generated
+
+struct ExactScene {
+  TriMesh a, b;
+};
+/// The scene's meshes, generated once per process.
+const ExactScene& exact_scene(const std::string& name);
+/// exact_pairs() of the scene, cached.
+const PairList& exact_scene_reference(const std::string& name);
 
 }  // namespace interfere::bench

@@ -3,6 +3,7 @@
 //   Peer/cgal/box_intersection_d/<n>  from the meshes in memory: one box per triangle, the two-set
 //       box_intersection_d sweep (Zomorodian & Edelsbrunner 2000), then CGAL::do_intersect on each
 //       box pair with Exact_predicates_inexact_constructions_kernel, collecting every pair.
+//   Exact/<scene>/cgal  the same pipeline on the exactness scenes of common.h.
 // Single-threaded (CGAL's sweep is serial). The counters compare CGAL's pair list with the engine's
 // exact one: both decide exactly, so `missing` and `extra` must be 0.
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -17,6 +18,7 @@
 
 #include "common.h"
 #include "interfere/np/distance.h"
+#include "interfere/np/tri_tri.h"
 
 namespace interfere::bench {
 namespace {
@@ -41,46 +43,71 @@ K::Triangle_3 cgal_triangle(const TriMesh& m, std::uint32_t t) {
           K::Point_3(c[2].x, c[2].y, c[2].z)};
 }
 
-void bm_cgal(benchmark::State& state, std::size_t n) {
-  const SpherePair& p = sphere_pair(n);
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
-  std::size_t candidates = 0;
-  for (auto _ : state) {
-    pairs.clear();
-    candidates = 0;
-    std::vector<Box> boxes_a = triangle_boxes_cgal(p.a), boxes_b = triangle_boxes_cgal(p.b);
-    CGAL::box_intersection_d(
-        boxes_a.begin(), boxes_a.end(), boxes_b.begin(), boxes_b.end(),
-        [&](const Box& ba, const Box& bb) {
-          ++candidates;
-          if (CGAL::do_intersect(cgal_triangle(p.a, ba.info()), cgal_triangle(p.b, bb.info()))) {
-            pairs.emplace_back(ba.info(), bb.info());
-          }
-        });
-    std::sort(pairs.begin(), pairs.end());  // the engine's output is sorted too
-    benchmark::DoNotOptimize(pairs.data());
-  }
-  const auto& reference = reference_pairs(n);
+/// Box sweep + do_intersect on each box pair: every intersecting (triangle of A, triangle of B)
+/// pair, sorted.
+PairList cgal_pairs(const TriMesh& a, const TriMesh& b, std::size_t& candidates) {
+  PairList pairs;
+  candidates = 0;
+  std::vector<Box> boxes_a = triangle_boxes_cgal(a), boxes_b = triangle_boxes_cgal(b);
+  CGAL::box_intersection_d(
+      boxes_a.begin(), boxes_a.end(), boxes_b.begin(), boxes_b.end(),
+      [&](const Box& ba, const Box& bb) {
+        ++candidates;
+        if (CGAL::do_intersect(cgal_triangle(a, ba.info()), cgal_triangle(b, bb.info()))) {
+          pairs.emplace_back(ba.info(), bb.info());
+        }
+      });
+  std::sort(pairs.begin(), pairs.end());  // the engine's output is sorted too
+  return pairs;
+}
+
+void report(benchmark::State& state, const TriMesh& a, const TriMesh& b, const PairList& pairs,
+            std::size_t candidates, const PairList& reference) {
   const PairDiff d = diff_pairs(pairs, reference);
   state.SetItemsProcessed(
-      static_cast<std::int64_t>(state.iterations() * (p.a.num_triangles() + p.b.num_triangles())));
+      static_cast<std::int64_t>(state.iterations() * (a.num_triangles() + b.num_triangles())));
   state.counters["pairs"] = static_cast<double>(pairs.size());
   state.counters["candidates"] = static_cast<double>(candidates);
   state.counters["reference_pairs"] = static_cast<double>(reference.size());
   state.counters["extra"] = static_cast<double>(d.extra);
   state.counters["missing"] = static_cast<double>(d.missing);
+  state.counters["tris_a"] = static_cast<double>(a.num_triangles());
+  state.counters["tris_b"] = static_cast<double>(b.num_triangles());
   if (d.extra) {  // one example for the report: (triangle of A, triangle of B)
     state.counters["first_extra_a"] = d.first_extra.first;
     state.counters["first_extra_b"] = d.first_extra.second;
     state.counters["first_extra_distance"] =
-        triangle_triangle_closest(p.a.corners(d.first_extra.first),
-                                  p.b.corners(d.first_extra.second))
+        triangle_triangle_closest(a.corners(d.first_extra.first), b.corners(d.first_extra.second))
             .distance;
   }
   if (d.missing) {
     state.counters["first_missing_a"] = d.first_missing.first;
     state.counters["first_missing_b"] = d.first_missing.second;
+    state.counters["first_missing_kind"] = static_cast<double>(static_cast<int>(
+        tri_tri_exact(a.corners(d.first_missing.first), b.corners(d.first_missing.second)).kind));
   }
+}
+
+void bm_cgal(benchmark::State& state, std::size_t n) {
+  const SpherePair& p = sphere_pair(n);
+  PairList pairs;
+  std::size_t candidates = 0;
+  for (auto _ : state) {
+    pairs = cgal_pairs(p.a, p.b, candidates);
+    benchmark::DoNotOptimize(pairs.data());
+  }
+  report(state, p.a, p.b, pairs, candidates, reference_pairs(n));
+}
+
+void bm_cgal_exact(benchmark::State& state, const std::string& scene) {
+  const ExactScene& sc = exact_scene(scene);
+  PairList pairs;
+  std::size_t candidates = 0;
+  for (auto _ : state) {
+    pairs = cgal_pairs(sc.a, sc.b, candidates);
+    benchmark::DoNotOptimize(pairs.data());
+  }
+  report(state, sc.a, sc.b, pairs, candidates, exact_scene_reference(scene));
 }
 
 #define INTERFERE_STR2(x) #x
@@ -93,6 +120,12 @@ void bm_cgal(benchmark::State& state, std::size_t n) {
     if (n > peer_max) continue;
     benchmark::RegisterBenchmark(("Peer/cgal/box_intersection_d/" + size_label(n)).c_str(),
                                  [n](benchmark::State& s) { bm_cgal(s, n); })
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
+  }
+  for (const std::string& scene : exact_scene_names()) {
+    benchmark::RegisterBenchmark(("Exact/" + scene + "/cgal").c_str(),
+                                 [scene](benchmark::State& s) { bm_cgal_exact(s, scene); })
         ->Unit(benchmark::kMillisecond)
         ->UseRealTime();
   }

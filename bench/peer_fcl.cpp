@@ -6,9 +6,13 @@
 //                         copy)
 //   Peer/fcl/collide/<n>  collide() asking for every contact (num_max_contacts large, no contact
 //                         points); counters compare FCL's pair list with the engine's exact one
+//   Exact/<scene>/fcl     the exactness scenes of common.h: both trees built + collide(), timed
+//                         together; counters as for collide plus fcl_collides
+//                         (CollisionResult::isCollision(), 0/1)
 // FCL decides triangle pairs with its double-precision triangle test, so `missing`/`extra` count
 // the pairs where it disagrees with the exact result (touching pairs are where double tests usually
-// differ).
+// differ). The meshes are handed over in world coordinates with identity transforms, exactly the
+// coordinates the engine and CGAL see.
 #include <benchmark/benchmark.h>
 #include <fcl/config.h>
 #include <fcl/geometry/bvh/BVH_model.h>
@@ -23,6 +27,7 @@
 
 #include "common.h"
 #include "interfere/np/distance.h"
+#include "interfere/np/tri_tri.h"
 
 namespace interfere::bench {
 namespace {
@@ -67,47 +72,88 @@ void bm_fcl_build(benchmark::State& state, std::size_t n) {
       static_cast<std::int64_t>(state.iterations() * (p.a.num_triangles() + p.b.num_triangles())));
 }
 
-void bm_fcl_collide(benchmark::State& state, std::size_t n) {
-  const SpherePair& p = sphere_pair(n);
-  const fcl::CollisionObjectd oa(build_fcl(to_fcl(p.a)), fcl::Transform3d::Identity());
-  const fcl::CollisionObjectd ob(build_fcl(to_fcl(p.b)), fcl::Transform3d::Identity());
-  const fcl::CollisionRequestd request(/*num_max_contacts=*/std::size_t{1} << 40,
-                                       /*enable_contact=*/false);
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
-  for (auto _ : state) {
-    fcl::CollisionResultd result;
-    fcl::collide(&oa, &ob, request, result);
-    state.PauseTiming();
-    std::vector<fcl::Contactd> contacts;
-    result.getContacts(contacts);
-    pairs.clear();
-    pairs.reserve(contacts.size());
-    for (const fcl::Contactd& c : contacts) {
-      pairs.emplace_back(static_cast<std::uint32_t>(c.b1), static_cast<std::uint32_t>(c.b2));
-    }
-    state.ResumeTiming();
+const fcl::CollisionRequestd& all_contacts_request() {
+  static const fcl::CollisionRequestd request(/*num_max_contacts=*/std::size_t{1} << 40,
+                                              /*enable_contact=*/false);
+  return request;
+}
+
+/// FCL's (triangle of A, triangle of B) pairs of one collide() result, sorted and unique.
+PairList fcl_pairs(fcl::CollisionResultd& result) {  // getContacts() is not const
+  std::vector<fcl::Contactd> contacts;
+  result.getContacts(contacts);
+  PairList pairs;
+  pairs.reserve(contacts.size());
+  for (const fcl::Contactd& c : contacts) {
+    pairs.emplace_back(static_cast<std::uint32_t>(c.b1), static_cast<std::uint32_t>(c.b2));
   }
   std::sort(pairs.begin(), pairs.end());
   pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-  const PairDiff d = diff_pairs(pairs, reference_pairs(n));
-  state.SetItemsProcessed(
-      static_cast<std::int64_t>(state.iterations() * (p.a.num_triangles() + p.b.num_triangles())));
+  return pairs;
+}
+
+/// pairs / reference_pairs / extra / missing counters plus one example of each disagreement.
+void set_diff_counters(benchmark::State& state, const PairList& pairs, const PairList& reference,
+                       const TriMesh& a, const TriMesh& b) {
+  const PairDiff d = diff_pairs(pairs, reference);
   state.counters["pairs"] = static_cast<double>(pairs.size());
-  state.counters["reference_pairs"] = static_cast<double>(reference_pairs(n).size());
+  state.counters["reference_pairs"] = static_cast<double>(reference.size());
   state.counters["extra"] = static_cast<double>(d.extra);
   state.counters["missing"] = static_cast<double>(d.missing);
   if (d.extra) {  // one example for the report: (triangle of A, triangle of B)
     state.counters["first_extra_a"] = d.first_extra.first;
     state.counters["first_extra_b"] = d.first_extra.second;
     state.counters["first_extra_distance"] =
-        triangle_triangle_closest(p.a.corners(d.first_extra.first),
-                                  p.b.corners(d.first_extra.second))
+        triangle_triangle_closest(a.corners(d.first_extra.first), b.corners(d.first_extra.second))
             .distance;
   }
   if (d.missing) {
     state.counters["first_missing_a"] = d.first_missing.first;
     state.counters["first_missing_b"] = d.first_missing.second;
+    state.counters["first_missing_kind"] = static_cast<double>(static_cast<int>(
+        tri_tri_exact(a.corners(d.first_missing.first), b.corners(d.first_missing.second)).kind));
   }
+}
+
+void bm_fcl_collide(benchmark::State& state, std::size_t n) {
+  const SpherePair& p = sphere_pair(n);
+  const fcl::CollisionObjectd oa(build_fcl(to_fcl(p.a)), fcl::Transform3d::Identity());
+  const fcl::CollisionObjectd ob(build_fcl(to_fcl(p.b)), fcl::Transform3d::Identity());
+  PairList pairs;
+  for (auto _ : state) {
+    fcl::CollisionResultd result;
+    fcl::collide(&oa, &ob, all_contacts_request(), result);
+    state.PauseTiming();
+    pairs = fcl_pairs(result);
+    state.ResumeTiming();
+  }
+  state.SetItemsProcessed(
+      static_cast<std::int64_t>(state.iterations() * (p.a.num_triangles() + p.b.num_triangles())));
+  set_diff_counters(state, pairs, reference_pairs(n), p.a, p.b);
+}
+
+/// An exactness scene: both trees + collide(), timed together (the conversion to Eigen is not).
+void bm_fcl_exact(benchmark::State& state, const std::string& scene) {
+  const ExactScene& sc = exact_scene(scene);
+  const FclInput a = to_fcl(sc.a), b = to_fcl(sc.b);
+  PairList pairs;
+  bool collides = false;
+  for (auto _ : state) {
+    const fcl::CollisionObjectd oa(build_fcl(a), fcl::Transform3d::Identity());
+    const fcl::CollisionObjectd ob(build_fcl(b), fcl::Transform3d::Identity());
+    fcl::CollisionResultd result;
+    fcl::collide(&oa, &ob, all_contacts_request(), result);
+    state.PauseTiming();
+    collides = result.isCollision();
+    pairs = fcl_pairs(result);
+    state.ResumeTiming();
+  }
+  const std::size_t na = sc.a.num_triangles(), nb = sc.b.num_triangles();
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * (na + nb)));
+  set_diff_counters(state, pairs, exact_scene_reference(scene), sc.a, sc.b);
+  state.counters["fcl_collides"] = collides ? 1 : 0;
+  state.counters["tris_a"] = static_cast<double>(na);
+  state.counters["tris_b"] = static_cast<double>(nb);
 }
 
 [[maybe_unused]] const bool registered = [] {
@@ -122,6 +168,12 @@ void bm_fcl_collide(benchmark::State& state, std::size_t n) {
         ->UseRealTime();
     benchmark::RegisterBenchmark(("Peer/fcl/collide/" + sn).c_str(),
                                  [n](benchmark::State& s) { bm_fcl_collide(s, n); })
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
+  }
+  for (const std::string& scene : exact_scene_names()) {
+    benchmark::RegisterBenchmark(("Exact/" + scene + "/fcl").c_str(),
+                                 [scene](benchmark::State& s) { bm_fcl_exact(s, scene); })
         ->Unit(benchmark::kMillisecond)
         ->UseRealTime();
   }

@@ -2,14 +2,16 @@
 """Builds and runs the interfere benchmark suite and regenerates docs/benchmarks.md + docs/benchmarks.json.
 
     python3 bench/run_benchmarks.py            # full run (about 10 min on 2 cores)
-    python3 bench/run_benchmarks.py --quick    # smoke run: short timing, fewer O(n^2) and peer rows
+    python3 bench/run_benchmarks.py --quick    # smoke run, under 3 min: short timing, no repetitions,
+                                               # fewer O(n^2), peer and exactness rows
     python3 bench/run_benchmarks.py --big      # also the 1e7 x 1e7 run (interfere_big_run)
     python3 bench/run_benchmarks.py --no-build --filter 'Strategy/.*1e4'   # rerun a subset, merged
                                                                            # into the kept report
 
 Configures a Release build with -DINTERFERE_BUILD_BENCH=ON in build-bench/ (tests and CLI off), builds
 interfere_bench and interfere_big_run, runs them, keeps the raw results in docs/benchmarks.json and
-writes docs/benchmarks.md. Standard library only.
+writes docs/benchmarks.md. Progress goes to the terminal (stderr): "[k/N] running NAME ..." when a
+benchmark starts and its time when it ends. Standard library only.
 """
 from __future__ import annotations
 
@@ -23,12 +25,15 @@ import subprocess
 import sys
 import shutil
 import tempfile
+import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 
 # Targets of issue #2 (item 8). Each: key, description, unit, comparison, threshold.
 GB = 1e9
+# The issue states its targets "on this 2-core machine": the thread count they are judged on.
+ISSUE_THREADS = 2
 
 
 def log(msg: str) -> None:
@@ -96,6 +101,7 @@ def run_bench(build_dir: Path, args: argparse.Namespace) -> dict:
     if args.quick:
         env.setdefault("INTERFERE_BENCH_PEER_MAX", "1e5")
         env.setdefault("INTERFERE_BENCH_REPETITIONS", "1")
+        env.setdefault("INTERFERE_BENCH_EXACT_BOX_N", "50")
     env.setdefault("INTERFERE_BENCH_REPETITIONS", "3")
     if args.threads:
         env["INTERFERE_BENCH_THREADS"] = args.threads
@@ -113,6 +119,8 @@ def run_bench(build_dir: Path, args: argparse.Namespace) -> dict:
     planned = [normalize_name(n) for n in listed.split()]
     data: dict = {"benchmarks": [], "crashed": []}
     remaining = planned
+    t_start = time.monotonic()
+    log(f"{len(planned)} benchmarks to run")
     # The STL benchmark writes ~100 MB under TMPDIR; a folder owned here is removed even after a crash.
     scratch = tempfile.TemporaryDirectory(prefix="interfere_bench_")
     env["TMPDIR"] = scratch.name
@@ -120,8 +128,9 @@ def run_bench(build_dir: Path, args: argparse.Namespace) -> dict:
     # is streamed line-buffered, finished rows are kept, the crashing row is recorded and skipped,
     # and the run resumes with the rows after it.
     while remaining:
-        regex = "^(" + "|".join(re.escape(n) for n in remaining) + ")(/repeats:[0-9]+)?(/real_time)?$"
-        part, rc = run_streaming(base + ["--benchmark_format=json", f"--benchmark_filter={regex}"], env)
+        regex = "^(" + "|".join(ere_escape(n) for n in remaining) + ")(/repeats:[0-9]+)?(/real_time)?$"
+        part, rc = run_streaming(base + ["--benchmark_format=json", f"--benchmark_filter={regex}"], env,
+                                 remaining, len(planned) - len(remaining), len(planned), t_start)
         data.setdefault("context", part.get("context", {}))
         data["benchmarks"] += part.get("benchmarks", [])
         if rc == 0:
@@ -145,6 +154,12 @@ def run_bench(build_dir: Path, args: argparse.Namespace) -> dict:
     if args.filter:
         data["settings"]["filter"] = args.filter
     return data
+
+
+def ere_escape(text: str) -> str:
+    """Escapes the POSIX extended-regex specials only: Google Benchmark compiles its filter with
+    std::regex::extended, which rejects Python's escapes of other characters ("\\-", "\\ ")."""
+    return re.sub(r"([.\[\]{}()\\*+?^$|])", r"\\\1", text)
 
 
 def normalize_name(name: str) -> str:
@@ -179,30 +194,69 @@ def parse_partial_json(text: str) -> dict:
     return out
 
 
-def run_streaming(cmd: list[str], env: dict) -> tuple[dict, int]:
+def run_streaming(cmd: list[str], env: dict, planned: list[str], done_before: int = 0,
+                  total: int | None = None, t0: float | None = None) -> tuple[dict, int]:
     """Runs interfere_bench with JSON on stdout, line-buffered (stdbuf) so that a crash keeps the rows
-    already finished; prints one progress line per finished row."""
+    already finished. Progress goes to the terminal (stderr): the row that is running now
+    ("[k/N] running NAME ...", rows run in the listed order) and, when it finishes, its time.
+    `planned` are the rows this process will run, in order; `done_before` rows ran before it; the
+    elapsed time counts from `t0` (default: now)."""
     if shutil.which("stdbuf"):
         cmd = ["stdbuf", "-oL"] + cmd
+    total = total if total is not None else done_before + len(planned)
     log("$ " + " ".join(cmd[:4]) + " ...")
+    t0 = time.monotonic() if t0 is None else t0
+    started = time.monotonic()
     proc = subprocess.Popen(cmd, cwd=ROOT, env=env, text=True, stdout=subprocess.PIPE)
-    lines = []
-    name, real = None, None
+    lines: list[str] = []
+    obj: list[str] | None = None  # lines of the benchmark object being read
+    index = 0  # position in `planned` of the row running now
+
+    def announce() -> None:
+        if index < len(planned):
+            log(f"[{done_before + index + 1}/{total}] running {planned[index]} ... "
+                f"(elapsed {_elapsed(time.monotonic() - t0)})")
+
+    announce()
     assert proc.stdout is not None
     for line in proc.stdout:
         lines.append(line)
-        m = re.match(r'\s*"name": "(.*)",$', line)
-        if m:
-            name = m.group(1)
-        m = re.match(r'\s*"real_time": (\S+),$', line)
-        if m:
-            real = float(m.group(1))
-        m = re.match(r'\s*"time_unit": "(\w+)"', line)
-        if m and name and real is not None:
-            log(f"  {name}: {real:.4g} {m.group(1)}")
-            name, real = None, None
+        # Google Benchmark writes each result as an object opened by "    {" and closed by "    }".
+        if line.rstrip() == "    {":
+            obj = [line]
+            continue
+        if obj is None:
+            continue
+        obj.append(line)
+        if line.rstrip() not in ("    }", "    },"):
+            continue
+        try:
+            b = json.loads("".join(obj).rstrip().rstrip(","))
+        except ValueError:
+            b = None
+        obj = None
+        if not b or b.get("run_type") == "aggregate":
+            continue
+        name = normalize_name(b.get("run_name", b.get("name", "?")))
+        reps, rep = int(b.get("repetitions", 1) or 1), int(b.get("repetition_index", 0) or 0)
+        if b.get("error_occurred"):
+            what = "error: " + str(b.get("error_message"))
+        else:
+            what = f"{b['real_time']:.4g} {b.get('time_unit', '')}"
+        if reps > 1 and rep + 1 < reps:
+            log(f"      repetition {rep + 1}/{reps}: {what}")
+            continue
+        log(f"      done {name}: {what}" + (f" (repetition {reps}/{reps})" if reps > 1 else ""))
+        if name in planned[index:]:
+            index = planned.index(name, index) + 1
+            announce()
     rc = proc.wait()
+    log(f"benchmark process finished (exit status {rc}) after {_elapsed(time.monotonic() - started)}")
     return parse_partial_json("".join(lines)), rc
+
+
+def _elapsed(s: float) -> str:
+    return f"{int(s // 60)}:{int(s % 60):02d}"
 
 
 def run_big(build_dir: Path, n: str, threads: str | None) -> dict | None:
@@ -211,12 +265,15 @@ def run_big(build_dir: Path, n: str, threads: str | None) -> dict | None:
         log(f"{exe} not found; big run skipped")
         return None
     cmd = [str(exe), n] + ([threads] if threads else [])
+    log(f"running interfere_big_run at {n} triangles per part ...")
     try:
         cp = run(cmd, capture=True)
     except subprocess.CalledProcessError as e:
         log(f"big run {n} failed: exit {e.returncode}")
         return {"triangles_per_part": float(n), "error": f"exit status {e.returncode}"}
     result = json.loads(cp.stdout)
+    log(f"      done: build + query {result.get('build_and_query_s', 0):.3g} s, peak "
+        f"{result.get('peak_rss_bytes', 0) / GB:.2f} GB")
     result["date_utc"] = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     return result
 
@@ -309,6 +366,188 @@ def verdict(ok: bool | None) -> str:
     return "—" if ok is None else ("**PASS**" if ok else "**MISS**")
 
 
+CONTAINMENT = {0: "none", 1: "A inside B", 2: "B inside A", 3: "not checked"}
+CONTACT_KIND = {0: "disjoint", 1: "touch", 2: "cross"}
+
+
+def disagreement(peer: str, where: str, b: dict | None, kind: str) -> str | None:
+    """One line for the first `extra` or `missing` pair a peer row recorded, or None."""
+    if not b or b.get(f"first_{kind}_a") is None:
+        return None
+    text = (f"{peer} {where}: {fmt_int(b.get(kind))} {kind}, e.g. triangle {int(b[f'first_{kind}_a'])} "
+            f"of A with {int(b[f'first_{kind}_b'])} of B")
+    if kind == "extra":
+        dist = b.get("first_extra_distance")
+        text += " (exact test: disjoint" + (f"; distance {dist:.3g})" if dist is not None else ")")
+    elif b.get("first_missing_kind") is not None:
+        text += f" (exact test: {CONTACT_KIND.get(int(b['first_missing_kind']), '?')})"
+    return text
+
+
+def missing_extra_sentence(fcl_fp: tuple[str, dict] | None, meshes: str, cgal_rows: list) -> str:
+    """The sentence under a peer table: what `missing` and `extra` mean, and FCL's first false
+    positive as the example."""
+    text = ("*missing* counts the pairs that our exact test finds intersecting (touching included) and "
+            "the peer does not report; *extra* counts the pairs the peer reports although they are "
+            "disjoint in exact arithmetic — false positives. ")
+    cg = [b for b in cgal_rows if b]
+    if cg and all(not b.get("missing") and not b.get("extra") for b in cg):
+        text += ("CGAL's exact predicates agree with us on every pair here (0 / 0), so each "
+                 "disagreement is the peer's double-precision test, not ours. ")
+    if fcl_fp:
+        where, b = fcl_fp
+        dist = b.get("first_extra_distance")
+        text += (f"Example of an FCL false positive ({where}): FCL reports triangle {int(b['first_extra_a'])} "
+                 f"of A with triangle {int(b['first_extra_b'])} of B, which the exact test finds disjoint"
+                 + (f", {dist:.3g} apart" if dist is not None else "")
+                 + " — a gap that FCL's double-precision triangle test rounds away.")
+    else:
+        text += f"FCL reported no false positive on {meshes} in this run."
+    return text
+
+
+EXACT_SCENES = [
+    (r"coplanar_face/n:(\d+)", "two boxes sharing a face, n = {0}",
+     "`make_box([0,1]³, n)` and the same box translated by exactly its width along x: the two "
+     "x = 1 faces coincide with identical grids"),
+    (r"resting_box/n:(\d+)", "box resting on a bigger box, offset grids, n = {0}",
+     "A = `make_box([-0.5,0.5]² × [0,1], n)` shifted by 0.6/n in x and y rests on "
+     "B = `make_box([-1,1]² × [-1,0], n)`: coplanar contact in z = 0, grid spacings 1/n and 2/n that "
+     "never line up"),
+    (r"contained_sphere", "small sphere wholly inside a big sphere",
+     "a closed bumpy sphere of radius 0.5, off-centre, inside a closed bumpy sphere of radius 1: no "
+     "surface pair; the right answer is containment (A inside B)"),
+    (r"rotated_sphere/0\.001rad", "sphere vs itself turned 1e-3 rad about z",
+     "`make_sphere` against a copy of itself rotated 1e-3 rad about z"),
+    (r"rotated_sphere/quarter_turn", "sphere vs itself turned exactly 90° about z",
+     "`make_sphere` against a copy of itself rotated by exactly a quarter turn ((x, y) → (−y, x), "
+     "exact in double): the copy's vertices land within rounding of the original's, so pairs of "
+     "triangles nearly coincide"),
+]
+
+
+def exact_scene_label(scene: str) -> tuple[str, str]:
+    for pattern, label, description in EXACT_SCENES:
+        m = re.fullmatch(pattern, scene)
+        if m:
+            return label.format(*m.groups()), description
+    return scene, ""
+
+
+def exact_make_section(w, res: "Results", data: dict) -> None:
+    """The "Exactness beside the peers" section (Exact/<scene>/<method> rows)."""
+    scenes = list(dict.fromkeys(m.group(1) for n in res.by_name
+                                for m in [re.match(r"^Exact/(.+)/(?:interfere|fcl|cgal)$", n)] if m))
+    w("## Exactness beside the peers")
+    w("")
+    if not scenes:
+        w("Not run (filtered out, or a binary without the Exact/ rows).")
+        w("")
+        return
+    w("The issue: FCL's double-precision triangle tests report false pairs on coplanar contact, and it "
+      "misses a part lying wholly inside another. Small fixed scenes (`bench/common.cpp`), all closed "
+      "meshes, the same world coordinates handed to all three:")
+    w("")
+    described = set()
+    for scene in scenes:
+        label, description = exact_scene_label(scene)
+        key = re.sub(r", n = \d+$", "", label)
+        if description and key not in described:
+            described.add(key)
+            w(f"- *{key}*: {description}.")
+    w("")
+    threads = next((int(b["threads"]) for sc in scenes
+                    for b in [res.get(f"Exact/{sc}/interfere")] if b and b.get("threads")), None)
+    w("interfere: both default trees with statistics (closedness, needed for containment) + the default "
+      "`clash()` (exact test with cross/touch classification, regions, containment)"
+      + (f", {threads} thread{'s' if threads > 1 else ''}" if threads else "") + ". "
+      "FCL: both `BVHModel<OBBRSS>` + `collide()` for all contacts, identity transforms. CGAL: "
+      "`box_intersection_d` + `do_intersect` (Epick). *time*: wall time of each whole pipeline from the "
+      "meshes in memory (build + query), for information only — ours includes the statistics, regions, "
+      "curves and containment test that the peers do not compute.")
+    w("")
+    w("| scene | triangles A / B | interfere: pairs | interfere: containment | FCL: pairs | FCL: missing / extra "
+      "| FCL: collide() | CGAL: pairs | CGAL: missing / extra | time: interfere / FCL / CGAL |")
+    w("|---|---|---|---|---|---|---|---|---|---|")
+    examples: list[str] = []
+    fcl_fp = None
+    cgal_rows = []
+    for scene in scenes:
+        label, _ = exact_scene_label(scene)
+        ours, fcl, cgal = (res.get(f"Exact/{scene}/{m}") for m in ("interfere", "fcl", "cgal"))
+        cgal_rows.append(cgal)
+        anyb = ours or fcl or cgal
+        tris = (f"{fmt_int(counter(anyb, 'tris_a'))} / {fmt_int(counter(anyb, 'tris_b'))}" if anyb else "—")
+        if ours:
+            pairs, cross, touch = ours.get("pairs", 0), ours.get("cross", 0), ours.get("touch", 0)
+            if not pairs:
+                op = "0"
+            elif not cross:
+                op = f"{fmt_int(pairs)} (all `touch`)"
+            else:
+                op = f"{fmt_int(pairs)} ({fmt_int(cross)} cross, {fmt_int(touch)} touch)"
+            oc = CONTAINMENT.get(int(ours.get("containment", 3)), "?")
+            if int(ours.get("containment", 0)) in (1, 2):
+                oc = f"**{oc}** (interference, no surface pair)"
+        else:
+            err = res.error(f"Exact/{scene}/interfere")
+            op, oc = ("error: " + err if err else "—"), "—"
+
+        def peer_cells(b: dict | None, name: str) -> tuple[str, str]:
+            if not b:
+                err = res.error(name)
+                return ("error: " + err if err else "—"), "—"
+            return fmt_int(b.get("pairs")), f"{fmt_int(b.get('missing'))} / {fmt_int(b.get('extra'))}"
+
+        fp, fd = peer_cells(fcl, f"Exact/{scene}/fcl")
+        cp, cd = peer_cells(cgal, f"Exact/{scene}/cgal")
+        fcoll = "—" if not fcl or fcl.get("fcl_collides") is None else (
+            "collision" if fcl["fcl_collides"] else "**no collision**")
+        times = " / ".join(fmt_time(seconds(b)) for b in (ours, fcl, cgal))
+        w(f"| {label} | {tris} | {op} | {oc} | {fp} | {fd} | {fcoll} | {cp} | {cd} | {times} |")
+        for peer, b in (("FCL", fcl), ("CGAL", cgal)):
+            for kind in ("extra", "missing"):
+                text = disagreement(peer, f"on {label}", b, kind)
+                if text:
+                    examples.append(text)
+                    if peer == "FCL" and kind == "extra" and fcl_fp is None:
+                        fcl_fp = (f"{label}", b)
+    w("")
+    # A one-line summary of what this run found, from the counters (not a fixed claim).
+    fcl_bad = [exact_scene_label(sc)[0] for sc in scenes for b in [res.get(f"Exact/{sc}/fcl")]
+               if b and (b.get("missing") or b.get("extra"))]
+    cgal_bad = [exact_scene_label(sc)[0] for sc in scenes for b in [res.get(f"Exact/{sc}/cgal")]
+                if b and (b.get("missing") or b.get("extra"))]
+    missed_containment = [exact_scene_label(sc)[0] for sc in scenes
+                          for o, f in [(res.get(f"Exact/{sc}/interfere"), res.get(f"Exact/{sc}/fcl"))]
+                          if o and f and int(o.get("containment", 0)) in (1, 2) and not f.get("fcl_collides")]
+    n_fcl = sum(1 for sc in scenes if res.get(f"Exact/{sc}/fcl"))
+    n_cgal = sum(1 for sc in scenes if res.get(f"Exact/{sc}/cgal"))
+    if n_fcl or n_cgal:
+        summary = "In this run: "
+        if n_fcl:
+            summary += (f"FCL's pair set differs from the exact one on {len(fcl_bad)} of {n_fcl} scenes"
+                        + (f" ({'; '.join(fcl_bad)})" if fcl_bad else ""))
+            if missed_containment:
+                summary += ", and `collide()` reports no collision for the contained part"
+            summary += "; "
+        if n_cgal:
+            summary += f"CGAL's differs on {len(cgal_bad)} of {n_cgal}" + (f" ({'; '.join(cgal_bad)})" if cgal_bad else "")
+        w(summary.rstrip("; ") + ".")
+        w("")
+    w(missing_extra_sentence(fcl_fp, "these scenes", cgal_rows)
+      + " Containment is not a pair: FCL's `collide()` and CGAL's box sweep see no intersecting "
+        "triangles when one part lies wholly inside the other, so they report nothing; the engine "
+        "answers it with a point-in-closed-mesh test (`ClashResult::containment`).")
+    w("")
+    if examples:
+        w("Disagreements with the exact result:")
+        w("")
+        for e in examples:
+            w(f"- {e}")
+        w("")
+
+
 # ----------------------------------------------------------------------------- report
 STRATEGIES = [
     ("1_brute_force_moller", "(1) brute force, Möller 1997 (double)"),
@@ -380,28 +619,32 @@ def make_markdown(data: dict, machine: dict, big: dict | None, big_small: dict |
     w("")
 
     # ---- targets
+    # The issue states its targets "on this 2-core machine": they are judged on the 2-thread rows with
+    # the default builder only. Rows on other thread counts or builders are information, no verdict.
     targets: list[dict] = []
+    info: list[dict] = []
 
     def target(name: str, measured: str, ok: bool | None, value=None, note: str = "") -> None:
         targets.append({"target": name, "measured": measured, "pass": ok, "value": value, "note": note})
 
-    e2e = res.get(f"Engine/end_to_end/1e6/threads:{tmax}")
+    def information(name: str, measured: str, value=None, note: str = "") -> None:
+        info.append({"measurement": name, "measured": measured, "value": value, "note": note})
+
+    it = ISSUE_THREADS
+    quick = bool(data.get("settings", {}).get("quick"))
+    missing = f"not measured (run with {it} threads)"
+    bd = res.get(f"Bvh/Build/{default_builder}/1e6/threads:{it}")
+    v = counter(bd, "items_per_second")
+    target(f"tree build, default builder ({default_builder}), 1e6 triangles, {it} threads ≥ 30 M tri/s",
+           missing if v is None else fmt_rate(v), None if v is None else v >= 30e6, v)
+    rf = res.get(f"Bvh/Refit/1e6/threads:{it}")
+    v = counter(rf, "items_per_second")
+    target(f"refit, 1e6 triangles, {it} threads ≥ 100 M tri/s", missing if v is None else fmt_rate(v),
+           None if v is None else v >= 100e6, v)
+    e2e = res.get(f"Engine/end_to_end/1e6/threads:{it}")
     s = seconds(e2e)
-    target(f"end to end 1e6 × 1e6, both trees built + exact clash + regions ({tmax} threads) ≤ 60 ms",
-           fmt_time(s), None if s is None else s <= 0.060, s)
-    # Build/refit rows come from bench/bench_bvh.cpp (one tree of make_sphere(1e6)).
-    for builder in dict.fromkeys((default_builder, "binned_sah")):
-        for t in threads:
-            b = res.get(f"Bvh/Build/{builder}/1e6/threads:{t}")
-            v = counter(b, "items_per_second")
-            tag = f"{builder}{', the default' if builder == default_builder else ''}"
-            target(f"tree build ({tag}; 1e6, {t} thread{'s' if t > 1 else ''}) ≥ 30 M tri/s",
-                   fmt_rate(v), None if v is None else v >= 30e6, v)
-    for t in threads:
-        b = res.get(f"Bvh/Refit/1e6/threads:{t}")
-        v = counter(b, "items_per_second")
-        target(f"refit (1e6, {t} thread{'s' if t > 1 else ''}) ≥ 100 M tri/s", fmt_rate(v),
-               None if v is None else v >= 100e6, v)
+    target(f"end to end 1e6 × 1e6, both trees built + exact clash + regions, {it} threads ≤ 60 ms",
+           missing if s is None else fmt_time(s), None if s is None else s <= 0.060, s)
     # Single-threaded microbenchmark: CPU time is the robust measure on a shared machine.
     ex = seconds(res.get("BM_TriTri_exact_intersects"), cpu=True)
     gd = seconds(res.get("BM_TriTri_guigue_devillers"), cpu=True)
@@ -418,7 +661,39 @@ def make_markdown(data: dict, machine: dict, big: dict | None, big_small: dict |
     target("binary STL read (with exact weld) ≥ 1 GB/s", "—" if v is None else f"{v / GB:.2f} GB/s",
            None if v is None else v >= GB, v)
 
+    # Information rows: the same measurements on other thread counts / builders.
+    def plural(t: int) -> str:
+        return f"{t} thread{'s' if t > 1 else ''}"
+
+    for builder in dict.fromkeys((default_builder, "binned_sah")):
+        for t in threads:
+            if builder == default_builder and t == it:
+                continue  # the judged row
+            v = counter(res.get(f"Bvh/Build/{builder}/1e6/threads:{t}"), "items_per_second")
+            if v is not None:
+                tag = "default builder" if builder == default_builder else "not the default builder"
+                information(f"tree build, {builder} ({tag}), 1e6 triangles, {plural(t)}", fmt_rate(v), v)
+    for t in threads:
+        if t != it:
+            v = counter(res.get(f"Bvh/Refit/1e6/threads:{t}"), "items_per_second")
+            if v is not None:
+                information(f"refit, 1e6 triangles, {plural(t)}", fmt_rate(v), v)
+    for t in threads:
+        if t != it:
+            s = seconds(res.get(f"Engine/end_to_end/1e6/threads:{t}"))
+            if s is not None:
+                information(f"end to end 1e6 × 1e6, {plural(t)}", fmt_time(s), s)
+    if big_small and "build_and_query_s" in big_small:
+        s = big_small["build_and_query_s"]
+        information(f"end to end 1e6 × 1e6 in a fresh process (`interfere_big_run`, "
+                    f"{plural(int(big_small.get('threads', 0)))}; first touch of every page included)",
+                    fmt_time(s), s)
+
     w("## Targets")
+    w("")
+    w(f"The issue's targets, stated for this 2-core machine: judged on the {it}-thread rows with the "
+      f"default builder (`{default_builder}`)."
+      + (" Quick run (short timing, no repetitions): the verdicts are indicative only." if quick else ""))
     w("")
     w("| target | measured | verdict |")
     w("|---|---|---|")
@@ -426,6 +701,16 @@ def make_markdown(data: dict, machine: dict, big: dict | None, big_small: dict |
         note = f" ({t['note']})" if t["note"] else ""
         w(f"| {t['target']} | {t['measured']}{note} | {verdict(t['pass'])} |")
     w("")
+    if info:
+        w("For information only — not targets of the issue, so no verdict: the same measurements on "
+          "other thread counts and on a non-default builder.")
+        w("")
+        w("| measurement (information, no verdict) | measured |")
+        w("|---|---|")
+        for t in info:
+            note = f" ({t['note']})" if t["note"] else ""
+            w(f"| {t['measurement']} | {t['measured']}{note} |")
+        w("")
 
     # ---- strategy table
     w("## The paper's strategy table (query only, trees prebuilt)")
@@ -511,6 +796,7 @@ def make_markdown(data: dict, machine: dict, big: dict | None, big_small: dict |
     w("| size | method | build | query | total | pairs | missing | extra |")
     w("|---|---|---|---|---|---|---|---|")
     examples: list[str] = []
+    fcl_false_positive = None  # (where, benchmark) of FCL's first extra pair
     for n in sizes:
         rows = []
         for t in sorted({1, tmax}):
@@ -536,11 +822,14 @@ def make_markdown(data: dict, machine: dict, big: dict | None, big_small: dict |
               f"{fmt_int(miss)} | {fmt_int(extra)} |")
         for peer, b in (("FCL", fc), ("CGAL", cg)):
             for kind in ("extra", "missing"):
-                if b and b.get(f"first_{kind}_a") is not None:
-                    dist = b.get(f"first_{kind}_distance")
-                    examples.append(f"{peer} at {n}: {fmt_int(b.get(kind))} {kind}, e.g. triangle "
-                                    f"{int(b[f'first_{kind}_a'])} of A with {int(b[f'first_{kind}_b'])} of B"
-                                    + (f" (exact test: disjoint; distance {dist:.3g})" if dist is not None else ""))
+                text = disagreement(peer, f"at {n}", b, kind)
+                if text:
+                    examples.append(text)
+                    if peer == "FCL" and kind == "extra" and fcl_false_positive is None:
+                        fcl_false_positive = (f"at {n}", b)
+    w("")
+    w(missing_extra_sentence(fcl_false_positive, "the sphere pairs",
+                             [res.get(f"Peer/cgal/box_intersection_d/{n}") for n in sizes]))
     w("")
     if examples:
         w("Disagreements with the exact result (check a pair with `tri_tri_exact` and "
@@ -549,6 +838,9 @@ def make_markdown(data: dict, machine: dict, big: dict | None, big_small: dict |
         for e in examples:
             w(f"- {e}")
         w("")
+
+    # ---- exactness scenes
+    exact_make_section(w, res, data)
 
     # ---- microbenchmarks
     w("## Microbenchmarks")
@@ -685,7 +977,7 @@ def make_markdown(data: dict, machine: dict, big: dict | None, big_small: dict |
     w("- Pair counts of rows 1–2 come from non-robust double tests and may differ from the exact count.")
     w("- The machine is shared with other compiling engineers; expect a few percent of noise.")
     w("")
-    return "\n".join(L), targets
+    return "\n".join(L), targets, info
 
 
 def regenerate_from_json(docs: Path) -> None:
@@ -693,8 +985,10 @@ def regenerate_from_json(docs: Path) -> None:
     raw = json.loads((docs / "benchmarks.json").read_text())
     big = raw.get("big_run")
     note = raw.get("big_run_note", "")
-    md, targets = make_markdown(raw["google_benchmark"], raw["machine"], big, raw.get("big_run_1e6"), note)
+    md, targets, info = make_markdown(raw["google_benchmark"], raw["machine"], big, raw.get("big_run_1e6"),
+                                      note)
     raw["targets"] = targets
+    raw["target_information"] = info
     (docs / "benchmarks.json").write_text(json.dumps(raw, indent=1) + "\n")
     (docs / "benchmarks.md").write_text(md + "\n")
 
@@ -702,7 +996,8 @@ def regenerate_from_json(docs: Path) -> None:
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--quick", action="store_true",
-                    help="short timing, box pre-test only at 1e4, peers only up to 1e5")
+                    help="smoke run in under 3 minutes: min_time 0.01 s, no repetitions, box pre-test only "
+                         "at 1e4, peers only up to 1e5, exactness boxes only at n = 50")
     ap.add_argument("--big", action="store_true", help="also run interfere_big_run at --big-n")
     ap.add_argument("--big-n", default="1e7", help="triangles per part of the big run (default 1e7)")
     ap.add_argument("--build-dir", default=str(ROOT / "build-bench"))
@@ -720,6 +1015,7 @@ def main() -> int:
         regenerate_from_json(Path(args.docs))
         return 0
 
+    started = time.monotonic()
     build_dir = Path(args.build_dir)
     docs = Path(args.docs)
     machine = machine_description()
@@ -756,15 +1052,18 @@ def main() -> int:
         except (OSError, ValueError):
             pass
 
-    md, targets = make_markdown(data, machine, big, big_small, big_note)
+    md, targets, info = make_markdown(data, machine, big, big_small, big_note)
     docs.mkdir(parents=True, exist_ok=True)
     raw = {"machine": machine, "google_benchmark": data, "big_run_1e6": big_small, "big_run": big,
-           "big_run_note": big_note, "targets": targets}
+           "big_run_note": big_note, "targets": targets, "target_information": info}
     (docs / "benchmarks.json").write_text(json.dumps(raw, indent=1) + "\n")
     (docs / "benchmarks.md").write_text(md + "\n")
     log(f"wrote {docs / 'benchmarks.md'} and {docs / 'benchmarks.json'}")
     for t in targets:
         log(f"  {'PASS' if t['pass'] else ('MISS' if t['pass'] is False else '----')}  {t['target']}: {t['measured']}")
+    for t in info:
+        log(f"  info  {t['measurement']}: {t['measured']}")
+    log(f"total {_elapsed(time.monotonic() - started)}")
     return 0
 
 
