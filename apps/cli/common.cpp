@@ -47,6 +47,17 @@ LoadedPart load_part(const PartSpec& spec, const std::string& label, const BvhBu
     p.model = make_model(std::move(mesh), bvh, true);
     p.build_seconds = progress.seconds();
   }
+  const MeshStats& s = p.model.stats;
+  auto warn = [&](std::size_t n, const char* what) {
+    if (n == 0) return;
+    p.warnings.push_back("part " + label + " (" + spec.file + "): " + std::to_string(n) + " " + what);
+    if (!Progress::quiet()) std::fprintf(stderr, "[interfere] warning: %s\n", p.warnings.back().c_str());
+  };
+  warn(s.degenerate_triangles, "degenerate triangles (zero area; tested as segments/points)");
+  warn(s.duplicate_triangles, "duplicate triangles");
+  warn(s.open_edges, "open edges");
+  warn(s.nonmanifold_edges, "non-manifold edges");
+  warn(s.inconsistent_edges, "inconsistently oriented edges");
   return p;
 }
 
@@ -176,6 +187,11 @@ nlohmann::json two_part_report(const std::string& command, const std::string& un
           {"command", command},
           {"units", units},
           {"inputs", {{"a", part_json(a)}, {"b", part_json(b)}}},
+          {"input_warnings", [&] {
+             std::vector<std::string> w = a.warnings;
+             w.insert(w.end(), b.warnings.begin(), b.warnings.end());
+             return w;
+           }()},
           {"timings_s",
            {{"read", a.read_seconds + b.read_seconds},
             {"build", a.build_seconds + b.build_seconds},

@@ -4,6 +4,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -53,6 +54,7 @@ struct LoadedPart {
   Transform transform;
   Model model;
   double read_seconds = 0, build_seconds = 0;
+  std::vector<std::string> warnings;  ///< degenerate/duplicate triangles, open or non-manifold edges
 };
 
 /// Reads, validates, poses (p' = R·p + t in double) and builds the model of one part.
