@@ -138,6 +138,8 @@ class Cli(unittest.TestCase):
         rep = json.load(open(path("open.json")))
         self.assertEqual(rep["result"]["containment"], "not_checked")
         self.assertTrue(any("not closed" in w for w in rep["warnings"]))
+        self.assertTrue(any("3 open edges" in w for w in rep["input_warnings"]), rep["input_warnings"])
+        self.assertEqual(rep["inputs"]["b"]["open_edges"], 3)
 
     def test_clearance(self):
         a = write_obj("ca.obj", box((0, 0, 0), (1, 1, 1)))
