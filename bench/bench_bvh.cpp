@@ -1,8 +1,9 @@
 // BVH benchmarks (issue #2, items 3 and 7): build with each builder and refit, at 1e5 and 1e6
 // triangles (make_sphere), on 1 and 2 threads; tree-vs-tree overlap of
 // make_overlapping_spheres(1e6) serial and parallel. Throughput counters are triangles per second
-// (items_processed). Targets: default build >= 30 M tri/s and refit >= 100 M tri/s on 2 threads at
-// 1e6.
+// (items_processed); build rows also report the tree's SAH cost (bvh_sah_cost), overlap rows the
+// box tests of the serial traversal (node pairs, and triangle boxes in leaf pairs). Targets:
+// default build >= 30 M tri/s and refit >= 100 M tri/s on 2 threads at 1e6.
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 
@@ -49,14 +50,14 @@ const TreePair& tree_pair(std::size_t n, BvhBuilder builder) {
 void bm_build(benchmark::State& state, BvhBuilder builder, std::size_t n, int threads) {
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
   const TriMesh& mesh = sphere_mesh(n);
-  std::size_t nodes = 0;
   for (auto _ : state) {
     Bvh bvh = build_bvh(mesh, {.builder = builder});
-    nodes = bvh.nodes.size();
     benchmark::DoNotOptimize(bvh.nodes.data());
   }
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * mesh.num_triangles()));
-  state.counters["nodes"] = static_cast<double>(nodes);
+  const Bvh bvh = build_bvh(mesh, {.builder = builder});  // for the counters, untimed
+  state.counters["nodes"] = static_cast<double>(bvh.nodes.size());
+  state.counters["sah"] = bvh_sah_cost(bvh);
 }
 
 void bm_refit(benchmark::State& state, BvhBuilder builder, std::size_t n, int threads) {
@@ -72,6 +73,42 @@ void bm_refit(benchmark::State& state, BvhBuilder builder, std::size_t n, int th
     benchmark::DoNotOptimize(bvh.nodes.data());
   }
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * mesh.num_triangles()));
+}
+
+// Box tests of the serial traversal (detail::overlap_from, counted): node pairs tested, and
+// triangle-box tests in leaf pairs.
+struct BoxTests {
+  std::size_t nodes = 0, prims = 0;
+};
+BoxTests count_box_tests(const Bvh& a, const Bvh& b, float margin) {
+  BoxTests c;
+  ++c.nodes;
+  if (a.empty() || b.empty() || !boxes_overlap(a.nodes[0].box, b.nodes[0].box, margin)) return c;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> stack{{0, 0}};
+  while (!stack.empty()) {
+    const auto [ia, ib] = stack.back();
+    stack.pop_back();
+    const BvhNode& na = a.nodes[ia];
+    const BvhNode& nb = b.nodes[ib];
+    if (na.is_leaf() && nb.is_leaf()) {
+      for (std::uint32_t i = na.first; i < na.first + na.count; ++i) {
+        ++c.prims;
+        if (!boxes_overlap(a.prim_boxes[i], nb.box, margin)) continue;
+        c.prims += nb.count;
+      }
+    } else if (detail::descend_a(na, nb)) {
+      for (std::uint32_t k : {na.first + 1, na.first}) {
+        ++c.nodes;
+        if (boxes_overlap(a.nodes[k].box, nb.box, margin)) stack.push_back({k, ib});
+      }
+    } else {
+      for (std::uint32_t k : {nb.first + 1, nb.first}) {
+        ++c.nodes;
+        if (boxes_overlap(na.box, b.nodes[k].box, margin)) stack.push_back({ia, k});
+      }
+    }
+  }
+  return c;
 }
 
 // threads == 0: the serial for_each_overlap; otherwise collide_parallel on that many threads.
@@ -94,6 +131,9 @@ void bm_overlap(benchmark::State& state, BvhBuilder builder, std::size_t n, floa
     benchmark::DoNotOptimize(pairs);
   }
   state.counters["pairs"] = static_cast<double>(pairs);
+  const BoxTests tests = count_box_tests(p.a, p.b, margin);
+  state.counters["node_tests"] = static_cast<double>(tests.nodes);
+  state.counters["prim_tests"] = static_cast<double>(tests.prims);
 }
 
 std::string label(std::size_t n) {
@@ -102,8 +142,8 @@ std::string label(std::size_t n) {
 
 [[maybe_unused]] const bool registered = [] {
   for (std::size_t n : {std::size_t{100000}, std::size_t{1000000}}) {
-    for (BvhBuilder b : {BvhBuilder::lbvh, BvhBuilder::binned_sah, BvhBuilder::median_split,
-                         BvhBuilder::insertion}) {
+    for (BvhBuilder b : {BvhBuilder::lbvh, BvhBuilder::lbvh_treelet, BvhBuilder::binned_sah,
+                         BvhBuilder::median_split, BvhBuilder::insertion}) {
       for (int t : {1, 2}) {
         if (b == BvhBuilder::insertion && t != 1) continue;  // serial by nature
         const std::string name = "Bvh/Build/" + std::string(bvh_builder_name(b)) + "/" + label(n) +
@@ -123,7 +163,8 @@ std::string label(std::size_t n) {
           ->UseRealTime();
     }
   }
-  for (BvhBuilder b : {BvhBuilder::lbvh, BvhBuilder::binned_sah, BvhBuilder::median_split}) {
+  for (BvhBuilder b : {BvhBuilder::lbvh, BvhBuilder::lbvh_treelet, BvhBuilder::binned_sah,
+                       BvhBuilder::median_split}) {
     for (float m : {0.0f, 0.01f}) {
       for (int t : {0, 1, 2}) {
         const std::string name = "Bvh/Overlap/" + std::string(bvh_builder_name(b)) +

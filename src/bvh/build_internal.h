@@ -392,4 +392,9 @@ Bvh build_median(const TriMesh& mesh, std::uint32_t max_leaf_size);
 Bvh build_sah(const TriMesh& mesh, std::uint32_t max_leaf_size);
 Bvh build_lbvh(const TriMesh& mesh, std::uint32_t max_leaf_size);
 
+/// Treelet restructuring (build_treelet.cpp): `passes` bottom-up passes over a tree in the layout
+/// above (every inner node's treelet of up to 7 subtrees rewired to its SAH-optimal topology), then
+/// the nodes laid out again in that layout. Leaves and prims are kept.
+void optimize_treelets(Bvh& bvh, std::uint32_t passes);
+
 }  // namespace interfere::detail
