@@ -111,10 +111,11 @@ void apply_scene(const std::string& scene_path, PartSpec& a, PartSpec& b, std::s
 
 BvhBuilder parse_builder(const std::string& name) {
   if (name == "lbvh") return BvhBuilder::lbvh;
+  if (name == "lbvh_treelet" || name == "treelet") return BvhBuilder::lbvh_treelet;
   if (name == "sah" || name == "binned_sah") return BvhBuilder::binned_sah;
   if (name == "median" || name == "median_split") return BvhBuilder::median_split;
   if (name == "insertion") return BvhBuilder::insertion;
-  throw InputError("--builder: unknown builder '" + name + "' (lbvh, sah, median, insertion)");
+  throw InputError("--builder: unknown builder '" + name + "' (lbvh, lbvh_treelet, sah, median, insertion)");
 }
 
 void check_units(const std::string& units) {
@@ -167,7 +168,7 @@ void add_two_part_options(CLI::App& c, TwoPartOptions& o) {
   c.add_option("--transform-b", o.b.transform, "pose of B, same form (p' = R·p + t in double)");
   c.add_option("--json", o.json, "write the JSON report here");
   c.add_option("--threads", o.threads, "worker threads (0 = all cores)");
-  c.add_option("--builder", o.builder, "tree builder: lbvh (default), sah, median, insertion");
+  c.add_option("--builder", o.builder, "tree builder: lbvh (default), lbvh_treelet, sah, median, insertion");
   c.add_option("--units", o.units, "length unit of the inputs, reported (mm, cm, m, um, in, ft)");
 }
 

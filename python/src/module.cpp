@@ -271,7 +271,8 @@ BvhBuilder builder_from(const std::string& name) {
   if (n == "median" || n == "median_split") return BvhBuilder::median_split;
   if (n == "insertion") return BvhBuilder::insertion;
   if (n == "lbvh") return BvhBuilder::lbvh;
-  throw py::value_error("builder: unknown builder '" + name + "' (sah, median, insertion, lbvh)");
+  if (n == "lbvh_treelet") return BvhBuilder::lbvh_treelet;
+  throw py::value_error("builder: unknown builder '" + name + "' (lbvh, lbvh_treelet, sah, median, insertion)");
 }
 
 TriTest test_from(const std::string& name) {
@@ -906,7 +907,7 @@ PYBIND11_MODULE(_interfere, m) {
       },
       py::arg("mesh"), py::arg("builder") = "sah", py::arg("max_leaf_size") = 4, py::arg("stats") = true,
       py::arg("threads") = 0,
-      "Builds the BVH (builder 'sah', 'median', 'insertion' or 'lbvh') and the statistics. Releases the GIL.");
+      "Builds the BVH (builder 'lbvh' (default), 'lbvh_treelet', 'sah', 'median' or 'insertion') and the statistics. Releases the GIL.");
 
   m.def(
       "clash",
