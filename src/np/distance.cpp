@@ -1,8 +1,9 @@
 // Closest points between points, segments and triangles, in double (constructions, not decisions).
 //  - closest_point_on_triangle: Ericson, Real-Time Collision Detection (2005), §5.1.5: Voronoi
 //    regions of the corners and edges via barycentric dot products, else the face projection.
-//    Slivers and degenerate triangles (where those region tests are all rounding noise) take the
-//    nearest of the edge projections and the interior plane projection instead.
+//    Slivers, needles and degenerate triangles (where those region tests are rounding noise: 4·area²
+//    below 1e-8 of the longest edge to the fourth) take the nearest of the edge projections and the
+//    interior plane projection instead (found by fuzzing: needles with two nearly equal corners).
 //  - segment_segment_closest: Ericson §5.1.9: minimise |P(s) - Q(t)|^2 on [0,1]^2 by solving for s,
 //    clamping, recomputing t and re-clamping s. Degenerate segments (points) and parallel segments
 //    (a*e - b^2 <= 0, where the minimiser is not unique) are handled by the published branches.
@@ -93,9 +94,10 @@ Vec3 closest_point_on_triangle(const Vec3& p, const std::array<Vec3, 3>& t) {
   const Vec3 ab = b - a, ac = c - a, ap = p - a;
   const double d1 = dot(ab, ap), d2 = dot(ac, ap);
   if (d1 <= 0 && d2 <= 0) return a;  // vertex region A (exact criterion for any shape)
-  // Slivers (sin of the angle at a below ~1e-4) and degenerate triangles: see above.
-  if (squared_norm(cross(ab, ac)) <= 1e-8 * squared_norm(ab) * squared_norm(ac))
-    return closest_point_on_sliver(p, t);
+  // Slivers and needles (area small against the longest edge squared, i.e. a small angle at ANY
+  // corner, or two nearly coincident corners) and degenerate triangles: see above.
+  const double l2 = std::max({squared_norm(ab), squared_norm(ac), squared_norm(c - b)});
+  if (squared_norm(cross(ab, ac)) <= 1e-8 * l2 * l2) return closest_point_on_sliver(p, t);
   const Vec3 bp = p - b;
   const double d3 = dot(ab, bp), d4 = dot(ac, bp);
   if (d3 >= 0 && d4 <= d3) return b;  // vertex region B
