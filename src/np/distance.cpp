@@ -102,17 +102,19 @@ Vec3 closest_point_on_triangle(const Vec3& p, const std::array<Vec3, 3>& t) {
   const double d3 = dot(ab, bp), d4 = dot(ac, bp);
   if (d3 >= 0 && d4 <= d3) return b;  // vertex region B
   const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + ab * (d1 / (d1 - d3));  // edge AB
+  if (vc <= 0 && d1 >= 0 && d3 <= 0 && d1 - d3 > 0) return a + ab * (d1 / (d1 - d3));  // edge AB
   const Vec3 cp = p - c;
   const double d5 = dot(ab, cp), d6 = dot(ac, cp);
   if (d6 >= 0 && d5 <= d6) return c;  // vertex region C
   const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));  // edge AC
+  if (vb <= 0 && d2 >= 0 && d6 <= 0 && d2 - d6 > 0) return a + ac * (d2 / (d2 - d6));  // edge AC
   const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0 && (d4 - d3) + (d5 - d6) > 0)
     return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));  // edge BC
-  const double denom = 1.0 / (va + vb + vc);                     // face region
-  return a + ab * (vb * denom) + ac * (vc * denom);
+  const double sum = va + vb + vc;  // face region; > 0 unless rounding ate a tiny triangle
+  if (!(sum > 0)) return closest_point_on_sliver(p, t);
+  const Vec3 q = a + ab * (vb / sum) + ac * (vc / sum);
+  return is_finite(q) ? q : closest_point_on_sliver(p, t);
 }
 
 ClosestPoints triangle_triangle_closest(const std::array<Vec3, 3>& a,
