@@ -25,6 +25,11 @@ inline Error byte_error(const std::string& path, std::int64_t byte, std::string 
   return Error{path, -1, byte, std::move(reason)};
 }
 
+/// Parses coordinate `axis` (0, 1, 2) of a vertex from a text token (OBJ, OFF); the error names the
+/// line, the token and the axis, and rejects malformed numbers and NaN/Inf.
+Status parse_coordinate(const std::string& path, std::int64_t line, std::string_view token, int axis,
+                        double& out);
+
 /// True when the bytes are a binary STL: the size is exactly 84 + 50·n for the count n in the
 /// header (even when the header starts with "solid"), or the file does not start with "solid", or
 /// it does but its first bytes are not text (a binary file with a "solid" header whose size is

@@ -21,7 +21,6 @@ Expected<TriMesh> read_obj(const std::string& path, std::string_view d, MeshRead
   std::int64_t pending_index = -1;
   std::int64_t pending_line = 0;
   constexpr std::int64_t kMaxVertices = std::numeric_limits<std::uint32_t>::max();
-  static const char* const kAxis[3] = {"x", "y", "z"};
 
   std::string_view line;
   while (r.next_line(line)) {
@@ -38,14 +37,7 @@ Expected<TriMesh> read_obj(const std::string& path, std::string_view d, MeshRead
                                 (k == 1 ? "" : "s") + "; 3 are needed");
         }
         double v;
-        if (!parse_double(w, v)) {
-          return text_error(path, r.line(),
-                            "malformed number " + quoted(w) + " (vertex " + kAxis[k] + ")");
-        }
-        if (!std::isfinite(v)) {
-          return text_error(path, r.line(),
-                            "non-finite coordinate " + quoted(w) + " (vertex " + kAxis[k] + ")");
-        }
+        if (Status st = parse_coordinate(path, r.line(), w, k, v); !st) return st.error();
         p[static_cast<std::size_t>(k)] = v;
       }
       if (static_cast<std::int64_t>(m.positions.size()) >= kMaxVertices) {

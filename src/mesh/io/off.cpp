@@ -99,7 +99,6 @@ Expected<TriMesh> read_off(const std::string& path, std::string_view d, MeshRead
   TriMesh m;
   m.positions.reserve(static_cast<std::size_t>(nv));
   m.triangles.reserve(static_cast<std::size_t>(nf));
-  static const char* const kAxis[3] = {"x", "y", "z"};
   for (std::int64_t i = 0; i < nv; ++i) {
     if (!next_content()) {
       return text_error(path, r.end_line(),
@@ -114,14 +113,7 @@ Expected<TriMesh> read_off(const std::string& path, std::string_view d, MeshRead
       if (w.empty())
         return text_error(path, r.line(),
                           "vertex has " + std::to_string(k) + " coordinates; 3 are needed");
-      if (!parse_double(w, v)) {
-        return text_error(path, r.line(),
-                          "malformed number " + quoted(w) + " (vertex " + kAxis[k] + ")");
-      }
-      if (!std::isfinite(v)) {
-        return text_error(path, r.line(),
-                          "non-finite coordinate " + quoted(w) + " (vertex " + kAxis[k] + ")");
-      }
+      if (Status st = parse_coordinate(path, r.line(), w, k, v); !st) return st.error();
       p[static_cast<std::size_t>(k)] = v;
     }
     m.positions.push_back(p);

@@ -1,5 +1,9 @@
 #include "text_reader.h"
 
+#include <cmath>
+
+#include "formats.h"
+
 #include <charconv>
 #include <cstdio>
 #include <system_error>
@@ -65,6 +69,18 @@ std::string_view strip_comment(std::string_view line) {
   while (b < e && is_space(line[b])) ++b;
   while (e > b && is_space(line[e - 1])) --e;
   return line.substr(b, e - b);
+}
+
+Status parse_coordinate(const std::string& path, std::int64_t line, std::string_view token, int axis,
+                        double& out) {
+  static const char* const kAxis[3] = {"x", "y", "z"};
+  if (!parse_double(token, out)) {
+    return text_error(path, line, "malformed number " + quoted(token) + " (vertex " + kAxis[axis] + ")");
+  }
+  if (!std::isfinite(out)) {
+    return text_error(path, line, "non-finite coordinate " + quoted(token) + " (vertex " + kAxis[axis] + ")");
+  }
+  return {};
 }
 
 }  // namespace interfere::io_detail
