@@ -233,13 +233,16 @@ Vec3 edge_edge_point(Vec3 p, Vec3 q, Vec3 r, Vec3 s) {
     std::swap(p, r);
     std::swap(q, s);
   }
-  const Vec3 n = cross(q - p, s - r);
-  const double nx = std::fabs(n.x), ny = std::fabs(n.y), nz = std::fabs(n.z);
-  const int drop = nx >= ny && nx >= nz ? 0 : (ny >= nz ? 1 : 2);
-  const int i = (drop + 1) % 3, j = (drop + 2) % 3;
-  const double hp = orient2d_value(r[i], r[j], s[i], s[j], p[i], p[j]);
-  const double hq = orient2d_value(r[i], r[j], s[i], s[j], q[i], q[j]);
-  const double den = hp - hq;
+  // The projection in which the two edges are least parallel, judged on the accurate heights, not
+  // on a double cross product, which is rounding noise for nearly parallel edges (fuzzing found a
+  // case where the cross product picked a plane in which both edges project exactly parallel).
+  double hp = 0, den = 0;
+  for (int drop = 0; drop < 3; ++drop) {
+    const int i = (drop + 1) % 3, j = (drop + 2) % 3;
+    const double h_p = orient2d_value(r[i], r[j], s[i], s[j], p[i], p[j]);
+    const double h_q = orient2d_value(r[i], r[j], s[i], s[j], q[i], q[j]);
+    if (std::fabs(h_p - h_q) > std::fabs(den)) hp = h_p, den = h_p - h_q;
+  }
   double alpha = den != 0 ? hp / den : 0.5;
   alpha = std::clamp(alpha, 0.0, 1.0);
   return p + (q - p) * alpha;

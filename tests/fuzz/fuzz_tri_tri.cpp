@@ -219,21 +219,40 @@ double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
   return interfere::distance(p, a + ab * t);
 }
 
-/// Reference distance from p to triangle t for the checks, independent of np/distance.h: the plane
-/// distance when p projects inside t (the side tests are unaffected by moving p along the normal),
-/// else the distance to the nearest edge. Accurate to a few ulps of |p - t| for any shape (a
-/// rounding error in the inside test only happens next to an edge, where both answers agree).
-double distance_to_triangle(const Vec3& p, const Tri& t) {
-  double d = std::numeric_limits<double>::infinity();
+/// Reference distances from p to triangle t for the checks, independent of np/distance.h: the
+/// distance to the nearest edge, or the plane distance where p projects inside t.
+///  - lenient: the projection counts as inside when the double side tests say so. Never much above
+///    the true distance (a side test can only be wrong where its value is rounding noise, i.e. next
+///    to an edge, or on a needle, whose interior is close to its edges); it may be below it.
+///  - upper: the projection counts as inside only when the side tests are certain (each above a
+///    bound on its rounding error), and the plane distance carries its error bound; never below the
+///    true distance (up to a few ulps).
+struct RefDistance {
+  double lenient, upper;
+};
+RefDistance distance_to_triangle(const Vec3& p, const Tri& t) {
+  constexpr double kEps = std::numeric_limits<double>::epsilon();
+  double edges = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < 3; ++i)
-    d = std::min(d, point_segment_distance(p, t[i], t[(i + 1) % 3]));
-  const Vec3 n = interfere::cross(t[1] - t[0], t[2] - t[0]);
+    edges = std::min(edges, point_segment_distance(p, t[i], t[(i + 1) % 3]));
+  const Vec3 e1 = t[1] - t[0], e2 = t[2] - t[0];
+  const Vec3 n = interfere::cross(e1, e2);
   const double nn = interfere::norm(n);
-  if (!(nn > 0)) return d;
+  RefDistance r{edges, edges};
+  if (!(nn > 0)) return r;
+  bool inside = true, certain = true;
+  const double scale = interfere::norm(e1) * interfere::norm(e2);
   for (std::size_t i = 0; i < 3; ++i) {
-    if (interfere::dot(interfere::cross(t[(i + 1) % 3] - t[i], p - t[i]), n) < 0) return d;
+    const Vec3 e = t[(i + 1) % 3] - t[i], w = p - t[i];
+    const double side = interfere::dot(interfere::cross(e, w), n);
+    inside &= side >= 0;
+    certain &= side > 16 * kEps * interfere::norm(e) * interfere::norm(w) * scale;
   }
-  return std::min(d, std::fabs(interfere::dot(n, p - t[0])) / nn);
+  const Vec3 w0 = p - t[0];
+  const double plane = std::fabs(interfere::dot(n, w0)) / nn;
+  if (inside) r.lenient = std::min(edges, plane);
+  if (certain) r.upper = std::min(edges, plane + 8 * kEps * scale / nn * interfere::norm(w0));
+  return r;
 }
 
 double tri_extent(const Tri& t) {
@@ -263,7 +282,7 @@ void check_closest_point(const Vec3& p, const Tri& t, const char* which, const T
         d <= interfere::distance(p, v) + tol,
         "closest_point_on_triangle is farther than a corner" + std::string(buf) + describe(a, b));
   }
-  const double want = distance_to_triangle(p, t);
+  const double want = distance_to_triangle(p, t).upper;
   char dist[96];
   std::snprintf(dist, sizeof dist, "closest_point_on_triangle is %.3g away, the triangle %.3g", d,
                 want);
@@ -312,8 +331,10 @@ void check_single(const Tri& a, const Tri& b, const TriTriResult& r) {
     }
     check_closest_point(p, a, "A", a, b);
     check_closest_point(p, b, "B", a, b);
-    FUZZ_CHECK(distance_to_triangle(p, a) <= tol, "cross segment end off triangle A" + where);
-    FUZZ_CHECK(distance_to_triangle(p, b) <= tol, "cross segment end off triangle B" + where);
+    FUZZ_CHECK(distance_to_triangle(p, a).lenient <= tol,
+               "cross segment end off triangle A" + where);
+    FUZZ_CHECK(distance_to_triangle(p, b).lenient <= tol,
+               "cross segment end off triangle B" + where);
     for (const auto& [f, t] : {std::pair{fa, &a}, std::pair{fb, &b}}) {
       if (f.type == Feature::vertex) {
         FUZZ_CHECK(p == (*t)[f.index], "vertex-feature end is not that corner" + where);
@@ -330,6 +351,7 @@ void check_single(const Tri& a, const Tri& b, const TriTriResult& r) {
 void check_same(const TriTriResult& ref, const Ends& want, const TriTriResult& got,
                 const Ends& have, const Tri& a, const Tri& b, double tol,
                 const std::string& variant) {
+  static const bool ignore_segment = interfere::fuzz::ignored("segment_accuracy");
   FUZZ_CHECK(got.kind == ref.kind, std::string("kind ") + kind_name(ref.kind) + " becomes " +
                                        kind_name(got.kind) + " under " + variant + describe(a, b));
   if (ref.kind != ContactKind::cross) return;
@@ -337,9 +359,11 @@ void check_same(const TriTriResult& ref, const Ends& want, const TriTriResult& g
     FUZZ_CHECK(want.fa[k] == have.fa[k] && want.fb[k] == have.fb[k],
                "endpoint features change under " + variant + " (end " + std::to_string(k) + ")" +
                    describe(a, b));
-    FUZZ_CHECK(
-        interfere::distance(want.p[k], have.p[k]) <= tol,
-        "segment end moves under " + variant + " (end " + std::to_string(k) + ")" + describe(a, b));
+    if (!ignore_segment) {
+      FUZZ_CHECK(interfere::distance(want.p[k], have.p[k]) <= tol,
+                 "segment end moves under " + variant + " (end " + std::to_string(k) + ")" +
+                     describe(a, b));
+    }
   }
 }
 

@@ -307,6 +307,17 @@ REGRESSIONS = [
          ((X("-0x1p-60"), X("-0x1p-60"), X("-0x1p-60")),
           (X("-0x1.0000000000001p+3"), X("-0x1.0000000000001p+3"), X("-0x1.0000000000001p+3")),
           (X("0x1.8p-59"), 0.0, X("-0x1p-60"))))),
+    # tri_tri_exact (src/np/tri_tri_exact.cpp, edge_edge_point): the cross end where edge 2 of A
+    # (a2 -> a0) crosses edge 2 of B (b2 -> b0), two edges nearly along (1,1,1), is returned as
+    # (-4, -4, -4) instead of the exact (-7.999999999999984, ...) (0x1.fffffffffffeep+2): the
+    # projection axis comes from the double cross product of the edges (rounding noise here), the
+    # chosen projection makes both edges exactly parallel (direction (1,1) in yz), the two heights
+    # are equal, den == 0 and the fallback alpha = 0.5 gives the edge midpoint. The same pair with
+    # the axes permuted, (x,y,z) -> (y,z,x), gives the exact point. Found by fuzz_tri_tri (mode 0).
+    ("tri_tri", "regression_edge_edge_point_parallel_projection",
+     raw(((X("-0x1p-58"), 0.0, 0.0), (4.0, -6.0, X("-0x1.ffffffffffffep+2")), (-8.0, -8.0, -8.0)),
+         ((0.0, X("0x1.8p-58"), X("0x1.8p-58")), (X("0x1.8p-58"), X("0x1.8p-58"), X("-0x1.ffffffffffffap+2")),
+          (X("-0x1.ffffffffffffap+2"), X("-0x1.ffffffffffffap+2"), X("-0x1.ffffffffffffap+2"))))),
 ]
 
 
