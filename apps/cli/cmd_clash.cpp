@@ -97,8 +97,19 @@ int run_clash(const ClashOptions& o) {
     std::sort(t.begin(), t.end());
     return t;
   };
-  if (!o.region_a.empty()) write_or_throw(write_mesh(o.region_a, submesh(pa.model.mesh, region_tris(true))));
-  if (!o.region_b.empty()) write_or_throw(write_mesh(o.region_b, submesh(pb.model.mesh, region_tris(false))));
+  // A part without clash region has no mesh to write (mesh formats need a triangle): say so instead.
+  auto write_region = [&](const std::string& path, const TriMesh& mesh, bool part_a) {
+    if (path.empty()) return;
+    const std::vector<std::uint32_t> tris = region_tris(part_a);
+    if (tris.empty()) {
+      std::fprintf(stderr, "[interfere] note: part %s has no clash region; %s not written\n", part_a ? "A" : "B",
+                   path.c_str());
+      return;
+    }
+    write_or_throw(write_mesh(path, submesh(mesh, tris)));
+  };
+  write_region(o.region_a, pa.model.mesh, true);
+  write_region(o.region_b, pb.model.mesh, false);
   if (!o.curves.empty()) {
     std::vector<Polyline> all;
     for (const ClashRegion& g : result.regions) all.insert(all.end(), g.curves.begin(), g.curves.end());

@@ -99,8 +99,9 @@ class Cli(unittest.TestCase):
     def test_separated_parts_are_clear_and_distance_is_exact(self):
         a = write_obj("a.obj", box((0, 0, 0), (1, 1, 1)))
         b = write_stl("b.stl", box((3.5, 0.25, 0.25), (4, 0.75, 0.75)))
-        rc, out, err = run("clash", a, b, "--json", path("sep.json"))
+        rc, out, err = run("clash", a, b, "--json", path("sep.json"), "--region-a", path("sep_a.stl"))
         self.assertEqual(rc, 0, err)
+        self.assertFalse(os.path.exists(path("sep_a.stl")))
         self.assertIn("clear", out)
         rep = json.load(open(path("sep.json")))
         self.assertFalse(rep["result"]["interference"])
