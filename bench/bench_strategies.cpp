@@ -1,10 +1,11 @@
 // The paper's strategy table (issue #2 source, §4) on the same sphere pairs, then the default
 // engine end to end. Build and query are timed separately:
-//   Build/<builder>/<n>/threads:<t>        both trees (make_model, no statistics), meshes copied
-//   untimed Strategy/<k>_<name>/<n>[/threads:<t>]  the clash query only, trees prebuilt
+//   Build/<builder>/<n>/threads:<t>        both trees one after the other (make_model, no
+//                                          statistics), meshes copied untimed
+//   Strategy/<k>_<name>/<n>[/threads:<t>]  the clash query only, trees prebuilt
 //   Engine/query_default/<n>/threads:<t>   the default clash request alone, trees prebuilt
-//   Engine/end_to_end/<n>/threads:<t>      meshes in memory -> both default trees -> clash with
-//   exact
+//   Engine/end_to_end/<n>/threads:<t>      meshes in memory -> both default trees, built
+//                                          concurrently (make_models) -> clash with exact
 //                                          classification, regions and curves -> sorted pair list
 // Strategies 1 and 2 run the published double tests on all |A|·|B| pairs; 3 tests every pair's
 // boxes first; 4–6 traverse two trees; 7 is 6 on the engine's default tree (LBVH). Rows 3–6 use the
@@ -106,16 +107,15 @@ void bm_build(benchmark::State& state, std::size_t n, BvhBuilder builder, std::s
 void bm_end_to_end(benchmark::State& state, std::size_t n, std::size_t threads) {
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
   const SpherePair& p = sphere_pair(n);
-  std::optional<Model> ma, mb;
+  std::optional<std::pair<Model, Model>> m;
   ClashResult r;
   for (auto _ : state) {
     state.PauseTiming();
-    ma.reset(), mb.reset(), r = ClashResult{};  // freeing the previous run is not part of the query
+    m.reset(), r = ClashResult{};  // freeing the previous run is not part of the query
     TriMesh a = p.a, b = p.b;
     state.ResumeTiming();
-    ma.emplace(make_model(std::move(a), BvhBuildOptions{}, false));
-    mb.emplace(make_model(std::move(b), BvhBuildOptions{}, false));
-    r = clash(*ma, *mb, ClashRequest{});
+    m.emplace(make_models(std::move(a), std::move(b), BvhBuildOptions{}, false));
+    r = clash(m->first, m->second, ClashRequest{});
     benchmark::DoNotOptimize(r.pairs.data());
   }
   const std::size_t na = p.a.num_triangles(), nb = p.b.num_triangles();

@@ -58,8 +58,7 @@ int main(int argc, char** argv) {
 
   t0 = std::chrono::steady_clock::now();
   // The meshes move into the models (no copy), as a caller that reads files and builds would do.
-  const Model a = make_model(std::move(pair->a), BvhBuildOptions{}, false);
-  const Model b = make_model(std::move(pair->b), BvhBuildOptions{}, false);
+  const auto [a, b] = make_models(std::move(pair->a), std::move(pair->b), BvhBuildOptions{}, false);
   const double build_s = seconds_since(t0);
   pair.reset();
 

@@ -748,7 +748,7 @@ def make_markdown(data: dict, machine: dict, big: dict | None, big_small: dict |
                     cells.append("not run")
             w(f"| {lab} | " + " | ".join(cells) + " |")
     w("")
-    w("Tree builds (both parts, `make_model` without statistics; meshes copied outside the timing):")
+    w("Tree builds (both parts one after the other, `make_model` without statistics; meshes copied outside the timing):")
     w("")
     w("| builder | threads | " + " | ".join(sizes) + " |")
     w("|---|---|" + "---|" * len(sizes))
@@ -764,7 +764,8 @@ def make_markdown(data: dict, machine: dict, big: dict | None, big_small: dict |
     # ---- engine end to end
     w("## Default engine end to end")
     w("")
-    w(f"Meshes in memory → both default trees (`{default_builder}`) → `clash()` with the default request "
+    w(f"Meshes in memory → both default trees (`{default_builder}`, built concurrently by `make_models`, as the CLI "
+      "and the Python API do) → `clash()` with the default request "
       "(exact test with cross/touch classification, regions with intersection curves, containment) → "
       "sorted pair list. *query* is the same `clash()` alone on prebuilt trees.")
     w("")

@@ -70,8 +70,9 @@ int run_clash(const ClashOptions& o) {
   set_threads(o.threads);
 
   Progress total("clash");
-  const LoadedPart pa = load_part(parts.a, "A", parts.bvh);
-  const LoadedPart pb = load_part(parts.b, "B", parts.bvh);
+  const LoadedParts loaded = load_parts(parts);
+  const LoadedPart& pa = loaded.a;
+  const LoadedPart& pb = loaded.b;
   ClashResult result;
   double query_seconds = 0;
   {
@@ -117,7 +118,7 @@ int run_clash(const ClashOptions& o) {
   }
   const int status = result.interference() ? kInterference : kClear;
   if (!o.json.empty()) {
-    nlohmann::json j = two_part_report("clash", parts.units, pa, pb, query_seconds, total.seconds());
+    nlohmann::json j = two_part_report("clash", parts.units, loaded, query_seconds, total.seconds());
     j["options"] = {{"test", o.test}, {"broadphase", o.broadphase}, {"builder", o.builder},
                     {"threads", active_threads()}, {"clearance", o.clearance}, {"containment", !o.no_containment}};
     j["result"] = clash_result_json(result, o.max_clearance_pairs);

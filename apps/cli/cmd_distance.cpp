@@ -14,8 +14,9 @@ int run_distance(const TwoPartOptions& o) {
   const ResolvedParts parts = resolve_two_parts(o, "distance");
   set_threads(o.threads);
   Progress total("distance");
-  const LoadedPart pa = load_part(parts.a, "A", parts.bvh);
-  const LoadedPart pb = load_part(parts.b, "B", parts.bvh);
+  const LoadedParts loaded = load_parts(parts);
+  const LoadedPart& pa = loaded.a;
+  const LoadedPart& pb = loaded.b;
   DistanceResult r;
   double query_seconds = 0;
   {
@@ -25,7 +26,7 @@ int run_distance(const TwoPartOptions& o) {
   }
   const int status = r.intersecting ? kInterference : kClear;
   if (!o.json.empty()) {
-    nlohmann::json j = two_part_report("distance", parts.units, pa, pb, query_seconds, total.seconds());
+    nlohmann::json j = two_part_report("distance", parts.units, loaded, query_seconds, total.seconds());
     j["result"] = distance_result_json(r);
     j["exit_status"] = status;
     const Status s = write_file_atomic(o.json, j.dump(2) + "\n");

@@ -57,8 +57,16 @@ struct LoadedPart {
   std::vector<std::string> warnings;  ///< degenerate/duplicate triangles, open or non-manifold edges
 };
 
-/// Reads, validates, poses (p' = R·p + t in double) and builds the model of one part.
-LoadedPart load_part(const PartSpec& spec, const std::string& label, const BvhBuildOptions& bvh);
+struct ResolvedParts;
+
+struct LoadedParts {
+  LoadedPart a, b;
+  double build_seconds = 0;  ///< wall time of building both models (they are built concurrently)
+};
+
+/// Reads, validates and poses (p' = R·p + t in double) both parts, A first, then builds their
+/// models concurrently and collects the input warnings.
+LoadedParts load_parts(const ResolvedParts& parts);
 
 /// Fills part specs from a scene JSON file: {"a": {"file": ..., "transform": [12] | "..."}, "b": ...,
 /// "units": "mm"}. Files are relative to the scene's directory. Command-line values win.
@@ -92,7 +100,7 @@ struct ResolvedParts {
 ResolvedParts resolve_two_parts(const TwoPartOptions& o, const std::string& command);
 
 /// Report fields common to the two-part commands: version, command, units, inputs, timings.
-nlohmann::json two_part_report(const std::string& command, const std::string& units, const LoadedPart& a,
-                               const LoadedPart& b, double query_seconds, double total_seconds);
+nlohmann::json two_part_report(const std::string& command, const std::string& units, const LoadedParts& parts,
+                               double query_seconds, double total_seconds);
 
 }  // namespace interfere::cli

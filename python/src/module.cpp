@@ -20,6 +20,7 @@
 #include <pybind11/stl/filesystem.h>
 
 #include <tbb/global_control.h>
+#include <tbb/parallel_invoke.h>
 
 #include <algorithm>
 #include <cctype>
@@ -352,6 +353,14 @@ class Part {
       model_ = &*built_;
     }
     return *model_;
+  }
+
+  /// Both operands, built concurrently where both are meshes (call without the GIL).
+  friend std::pair<const Model&, const Model&> get_both(Part& a, Part& b, const BvhBuildOptions& options) {
+    if (a.model_ == nullptr && b.model_ == nullptr) {
+      tbb::parallel_invoke([&] { a.get(options); }, [&] { b.get(options); });
+    }
+    return {a.get(options), b.get(options)};
   }
 
  private:
@@ -905,7 +914,7 @@ PYBIND11_MODULE(_interfere, m) {
         py::gil_scoped_release release;
         return make_model(std::move(copy), options, stats);
       },
-      py::arg("mesh"), py::arg("builder") = "sah", py::arg("max_leaf_size") = 4, py::arg("stats") = true,
+      py::arg("mesh"), py::arg("builder") = "lbvh", py::arg("max_leaf_size") = 4, py::arg("stats") = true,
       py::arg("threads") = 0,
       "Builds the BVH (builder 'lbvh' (default), 'lbvh_treelet', 'sah', 'median' or 'insertion') and the statistics. Releases the GIL.");
 
@@ -926,11 +935,12 @@ PYBIND11_MODULE(_interfere, m) {
         Part pa(a, "a"), pb(b, "b");
         ThreadLimit limit(threads);
         py::gil_scoped_release release;
-        return clash(pa.get(options), pb.get(options), request);
+        const auto [ma, mb] = get_both(pa, pb, options);
+        return clash(ma, mb, request);
       },
       py::arg("a"), py::arg("b"), py::arg("test") = "exact", py::arg("broadphase") = "bvh",
       py::arg("clearance") = 0.0, py::arg("regions") = true, py::arg("containment") = true, py::arg("threads") = 0,
-      py::arg("builder") = "sah",
+      py::arg("builder") = "lbvh",
       "Every intersecting triangle pair of a and b (Models, or TriMeshes built with `builder`), regions with "
       "curves, containment and clearance pairs. threads=0 uses all cores. Releases the GIL.");
 
@@ -942,9 +952,10 @@ PYBIND11_MODULE(_interfere, m) {
         Part pa(a, "a"), pb(b, "b");
         ThreadLimit limit(threads);
         py::gil_scoped_release release;
-        return distance(pa.get(options), pb.get(options), DistanceRequest{.upper_bound = upper_bound});
+        const auto [ma, mb] = get_both(pa, pb, options);
+        return distance(ma, mb, DistanceRequest{.upper_bound = upper_bound});
       },
-      py::arg("a"), py::arg("b"), py::arg("upper_bound") = 0.0, py::arg("threads") = 0, py::arg("builder") = "sah",
+      py::arg("a"), py::arg("b"), py::arg("upper_bound") = 0.0, py::arg("threads") = 0, py::arg("builder") = "lbvh",
       "Minimum distance with witness points and triangles. Releases the GIL.");
 
   m.def("exact_fallback_count", &exact_fallback_count,

@@ -1,5 +1,7 @@
 #include "interfere/query/model.h"
 
+#include <tbb/parallel_invoke.h>
+
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -11,6 +13,14 @@ Model make_model(TriMesh mesh, const BvhBuildOptions& options, bool with_stats) 
   m.mesh = std::move(mesh);
   m.bvh = build_bvh(m.mesh, options);
   if (with_stats) m.stats = mesh_stats(m.mesh);
+  return m;
+}
+
+std::pair<Model, Model> make_models(TriMesh a, TriMesh b, const BvhBuildOptions& options,
+                                    bool with_stats) {
+  std::pair<Model, Model> m;
+  tbb::parallel_invoke([&] { m.first = make_model(std::move(a), options, with_stats); },
+                       [&] { m.second = make_model(std::move(b), options, with_stats); });
   return m;
 }
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -62,7 +63,8 @@ TEST(Clash, OverlappingSpheresMatchBruteForceAndFormOneClosedCurve) {
 TEST(Clash, ResultIdenticalForOneAndTwoThreadsAndAllBuilders) {
   SpherePair p = make_overlapping_spheres(20000);
   std::vector<TrianglePair> reference;
-  for (BvhBuilder builder : {BvhBuilder::binned_sah, BvhBuilder::median_split, BvhBuilder::insertion}) {
+  for (BvhBuilder builder : {BvhBuilder::lbvh, BvhBuilder::lbvh_treelet, BvhBuilder::binned_sah,
+                             BvhBuilder::median_split, BvhBuilder::insertion}) {
     const Model a = make_model(p.a, {.builder = builder}), b = make_model(p.b, {.builder = builder});
     for (int threads : {1, 2}) {
       tbb::global_control gc(tbb::global_control::max_allowed_parallelism, threads);
@@ -74,6 +76,28 @@ TEST(Clash, ResultIdenticalForOneAndTwoThreadsAndAllBuilders) {
     }
   }
   EXPECT_FALSE(reference.empty());
+}
+
+TEST(Model, ConcurrentBuildOfTwoPartsGivesTheSameTreesAsSeparateBuilds) {
+  const SpherePair p = make_overlapping_spheres(30000);
+  for (int threads : {1, 2}) {
+    tbb::global_control gc(tbb::global_control::max_allowed_parallelism, threads);
+    const auto [a, b] = make_models(p.a, p.b);
+    const Model ra = make_model(p.a), rb = make_model(p.b);
+    for (const auto& [m, ref] : {std::pair{&a, &ra}, std::pair{&b, &rb}}) {
+      ASSERT_EQ(m->bvh.nodes.size(), ref->bvh.nodes.size());
+      EXPECT_EQ(m->bvh.prims, ref->bvh.prims);
+      for (std::size_t i = 0; i < m->bvh.nodes.size(); ++i) {
+        EXPECT_EQ(m->bvh.nodes[i].first, ref->bvh.nodes[i].first);
+        EXPECT_EQ(m->bvh.nodes[i].count, ref->bvh.nodes[i].count);
+        EXPECT_TRUE(std::ranges::equal(m->bvh.nodes[i].box.lo, ref->bvh.nodes[i].box.lo));
+        EXPECT_TRUE(std::ranges::equal(m->bvh.nodes[i].box.hi, ref->bvh.nodes[i].box.hi));
+      }
+      EXPECT_EQ(m->stats.open_edges, ref->stats.open_edges);
+      EXPECT_EQ(m->mesh.positions.size(), ref->mesh.positions.size());
+    }
+    EXPECT_EQ(clash(a, b).pairs, clash(ra, rb).pairs);
+  }
 }
 
 TEST(Clash, BroadPhasesAgree) {
