@@ -1,0 +1,6 @@
+// Bindings of the library modules, one bind_<module>.cpp each, registered from module.cpp's
+// PYBIND11_MODULE. Each function adds its classes and functions to the extension module `m`.
+#pragma once
+#include <pybind11/pybind11.h>
+
+namespace interfere::python {}  // namespace interfere::python
