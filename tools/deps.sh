@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages interfere needs (build, tests, benchmarks, peers). Run as root.
+# Installs the Debian 12 packages interfere needs (build, tests, benchmarks, peers; gmsh makes test meshes and is a reader peer). Run as root.
 set -euo pipefail
 export DEBIAN_FRONTEND=noninteractive
 pkgs=(build-essential cmake ninja-build python3 git
       libtbb-dev libeigen3-dev libcli11-dev nlohmann-json3-dev libfmt-dev
       libgtest-dev googletest libbenchmark-dev
       libcgal-dev libgmp-dev libmpfr-dev libfcl-dev
-      pybind11-dev python3-dev python3-numpy)
+      pybind11-dev python3-dev python3-numpy
+      zlib1g-dev gmsh libgmsh-dev)
 missing=()
 for p in "${pkgs[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
 if ((${#missing[@]})); then
