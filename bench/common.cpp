@@ -13,6 +13,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "interfere/np/distance.h"
+#include "interfere/np/tri_tri.h"
 #include "interfere/query/clash.h"
 
 namespace interfere::bench {
@@ -254,6 +256,29 @@ PairDiff diff_pairs(const std::vector<std::pair<std::uint32_t, std::uint32_t>>& 
     }
   }
   return d;
+}
+
+/// pairs / reference_pairs / extra / missing counters plus one example of each disagreement.
+void set_diff_counters(benchmark::State& state, const PairList& pairs, const PairList& reference,
+                       const TriMesh& a, const TriMesh& b) {
+  const PairDiff d = diff_pairs(pairs, reference);
+  state.counters["pairs"] = static_cast<double>(pairs.size());
+  state.counters["reference_pairs"] = static_cast<double>(reference.size());
+  state.counters["extra"] = static_cast<double>(d.extra);
+  state.counters["missing"] = static_cast<double>(d.missing);
+  if (d.extra) {  // one example for the report: (triangle of A, triangle of B)
+    state.counters["first_extra_a"] = d.first_extra.first;
+    state.counters["first_extra_b"] = d.first_extra.second;
+    state.counters["first_extra_distance"] =
+        triangle_triangle_closest(a.corners(d.first_extra.first), b.corners(d.first_extra.second))
+            .distance;
+  }
+  if (d.missing) {
+    state.counters["first_missing_a"] = d.first_missing.first;
+    state.counters["first_missing_b"] = d.first_missing.second;
+    state.counters["first_missing_kind"] = static_cast<double>(static_cast<int>(
+        tri_tri_exact(a.corners(d.first_missing.first), b.corners(d.first_missing.second)).kind));
+  }
 }
 
 }  // namespace interfere::bench

@@ -17,6 +17,8 @@
 //   INTERFERE_BENCH_EXACT_SPHERE  triangles per sphere of the containment and rotated-copy scenes,
 //   default 1e5
 #pragma once
+#include <benchmark/benchmark.h>
+
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -70,6 +72,12 @@ PairDiff diff_pairs(const std::vector<std::pair<std::uint32_t, std::uint32_t>>& 
 
 /// Sorted, duplicate-free (triangle of A, triangle of B) pairs.
 using PairList = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
+
+/// Counters pairs / reference_pairs / extra / missing of a peer's pair list against the exact
+/// reference, plus one example of each disagreement (first_extra_a/b/distance,
+/// first_missing_a/b/kind) for the report.
+void set_diff_counters(benchmark::State& state, const PairList& pairs, const PairList& reference,
+                       const TriMesh& a, const TriMesh& b);
 
 /// The engine's exact pair list for any two meshes (binned-SAH trees, exact test), sorted.
 PairList exact_pairs(const TriMesh& a, const TriMesh& b);

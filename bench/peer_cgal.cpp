@@ -63,29 +63,12 @@ PairList cgal_pairs(const TriMesh& a, const TriMesh& b, std::size_t& candidates)
 
 void report(benchmark::State& state, const TriMesh& a, const TriMesh& b, const PairList& pairs,
             std::size_t candidates, const PairList& reference) {
-  const PairDiff d = diff_pairs(pairs, reference);
   state.SetItemsProcessed(
       static_cast<std::int64_t>(state.iterations() * (a.num_triangles() + b.num_triangles())));
-  state.counters["pairs"] = static_cast<double>(pairs.size());
+  set_diff_counters(state, pairs, reference, a, b);
   state.counters["candidates"] = static_cast<double>(candidates);
-  state.counters["reference_pairs"] = static_cast<double>(reference.size());
-  state.counters["extra"] = static_cast<double>(d.extra);
-  state.counters["missing"] = static_cast<double>(d.missing);
   state.counters["tris_a"] = static_cast<double>(a.num_triangles());
   state.counters["tris_b"] = static_cast<double>(b.num_triangles());
-  if (d.extra) {  // one example for the report: (triangle of A, triangle of B)
-    state.counters["first_extra_a"] = d.first_extra.first;
-    state.counters["first_extra_b"] = d.first_extra.second;
-    state.counters["first_extra_distance"] =
-        triangle_triangle_closest(a.corners(d.first_extra.first), b.corners(d.first_extra.second))
-            .distance;
-  }
-  if (d.missing) {
-    state.counters["first_missing_a"] = d.first_missing.first;
-    state.counters["first_missing_b"] = d.first_missing.second;
-    state.counters["first_missing_kind"] = static_cast<double>(static_cast<int>(
-        tri_tri_exact(a.corners(d.first_missing.first), b.corners(d.first_missing.second)).kind));
-  }
 }
 
 void bm_cgal(benchmark::State& state, std::size_t n) {

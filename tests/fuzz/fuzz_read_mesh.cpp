@@ -90,25 +90,8 @@ void put_file(const fs::path& p, const std::uint8_t* data, std::size_t size) {
   }
 }
 
-enum class Family { stl, obj, ply, off, unknown };
-
-Family family_of(MeshFormat f) {
-  switch (f) {
-    case MeshFormat::stl_ascii:
-    case MeshFormat::stl_binary:
-      return Family::stl;
-    case MeshFormat::obj:
-      return Family::obj;
-    case MeshFormat::ply_ascii:
-    case MeshFormat::ply_binary_le:
-    case MeshFormat::ply_binary_be:
-      return Family::ply;
-    case MeshFormat::off:
-      return Family::off;
-    default:
-      return Family::unknown;
-  }
-}
+using Family = interfere::MeshFamily;
+Family family_of(MeshFormat f) { return interfere::mesh_family(f); }
 
 struct Read {
   bool ok = false;
@@ -319,7 +302,7 @@ int entry(const std::uint8_t* data, std::size_t size) {
                                   {"in.ply", Family::ply},
                                   {"in.off", Family::off},
                                   {"in.bin", Family::unknown}};
-  Read welded_by_family[4];
+  Read welded_by_family[5];  // indexed by MeshFamily (unknown stays empty)
   const TriMesh* first_ok = nullptr;
   for (const Input& in : kInputs) {
     const fs::path path = work_dir() / in.file;

@@ -41,6 +41,10 @@ enum class MeshFormat {
   off
 };
 
+/// The file family of a format (STL, OBJ, PLY, OFF), without the ASCII/binary flavour.
+enum class MeshFamily { unknown, stl, obj, ply, off };
+MeshFamily mesh_family(MeshFormat f);
+
 /// "stl" (= binary), "stl-ascii"/"stla", "stl-binary"/"stlb", "obj", "ply" (= binary LE),
 /// "ply-ascii", "ply-le", "ply-be", "off", "auto" -> MeshFormat ('_' may replace '-', case is
 /// ignored); automatic if unknown.

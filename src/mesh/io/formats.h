@@ -74,6 +74,25 @@ class OutputBuffer {
   /// Shortest representation that reads back to the same float.
   void write_float(float v);
   void write_uint(std::uint64_t v);
+  /// "x y z\n", shortest round-trip doubles (ASCII vertex lines of every text format).
+  void write_xyz_line(const Vec3& p) {
+    write_double(p.x);
+    write_char(' ');
+    write_double(p.y);
+    write_char(' ');
+    write_double(p.z);
+    write_char('\n');
+  }
+  /// "<prefix>i j k\n" with `base` added to each index (1 for OBJ).
+  void write_tri_line(std::string_view prefix, const Tri& t, std::uint64_t base = 0) {
+    write(prefix);
+    write_uint(t[0] + base);
+    write_char(' ');
+    write_uint(t[1] + base);
+    write_char(' ');
+    write_uint(t[2] + base);
+    write_char('\n');
+  }
   /// Writes what is buffered; false once any write failed.
   bool flush() {
     if (!buf_.empty()) put(buf_.data(), buf_.size());

@@ -115,25 +115,7 @@ Expected<FileBytes> read_file(const std::filesystem::path& path, const std::stri
   return out;
 }
 
-enum class Family { unknown, stl, obj, ply, off };
-
-Family family_of(MeshFormat f) {
-  switch (f) {
-    case MeshFormat::stl_ascii:
-    case MeshFormat::stl_binary:
-      return Family::stl;
-    case MeshFormat::obj:
-      return Family::obj;
-    case MeshFormat::ply_ascii:
-    case MeshFormat::ply_binary_le:
-    case MeshFormat::ply_binary_be:
-      return Family::ply;
-    case MeshFormat::off:
-      return Family::off;
-    default:
-      return Family::unknown;
-  }
-}
+using Family = MeshFamily;
 
 Family family_from_extension(const std::filesystem::path& path) {
   const std::string ext = lower(path.extension().string());
@@ -183,7 +165,7 @@ Status check_writable(const std::string& name, const TriMesh& m, MeshFormat f, b
       }
     }
   }
-  const bool stl = family_of(f) == Family::stl;
+  const bool stl = mesh_family(f) == Family::stl;
   const bool to_float = stl || float_coords;
   if (stl && m.triangles.size() > std::numeric_limits<std::uint32_t>::max()) {
     return fail("binary STL holds at most 2^32-1 triangles");
@@ -207,6 +189,25 @@ Status check_writable(const std::string& name, const TriMesh& m, MeshFormat f, b
 }
 
 }  // namespace
+
+MeshFamily mesh_family(MeshFormat f) {
+  switch (f) {
+    case MeshFormat::stl_ascii:
+    case MeshFormat::stl_binary:
+      return MeshFamily::stl;
+    case MeshFormat::obj:
+      return MeshFamily::obj;
+    case MeshFormat::ply_ascii:
+    case MeshFormat::ply_binary_le:
+    case MeshFormat::ply_binary_be:
+      return MeshFamily::ply;
+    case MeshFormat::off:
+      return MeshFamily::off;
+    case MeshFormat::automatic:
+      break;
+  }
+  return MeshFamily::unknown;
+}
 
 MeshFormat mesh_format_from_name(const std::string& raw) {
   std::string n = lower(raw);
@@ -261,7 +262,7 @@ Expected<TriMesh> read_mesh_impl(const std::filesystem::path& path, const std::s
     const std::string_view d = bytes->view();
     if (d.empty()) return Error{name, -1, 0, "file is empty"};
 
-    Family fam = family_of(options.format);
+    Family fam = mesh_family(options.format);
     if (fam == Family::unknown) fam = family_from_extension(path);
     if (fam == Family::unknown) fam = family_from_content(d);
     switch (fam) {
@@ -338,7 +339,7 @@ Status write_mesh_impl(const std::filesystem::path& path, const std::string& nam
                          path.extension().string() + "'; set WriteOptions::format"};
     }
   }
-  const bool ply_float = options.ply_float && family_of(f) == Family::ply;
+  const bool ply_float = options.ply_float && mesh_family(f) == Family::ply;
   if (Status s = check_writable(name, mesh, f, ply_float); !s) return s;
 
   return write_file_atomic(path, [&](std::FILE* file) {

@@ -102,22 +102,9 @@ void write_obj(OutputBuffer& out, const TriMesh& mesh) {
   out.write("# written by interfere\n");
   for (const Vec3& p : mesh.positions) {
     out.write("v ");
-    out.write_double(p.x);
-    out.write_char(' ');
-    out.write_double(p.y);
-    out.write_char(' ');
-    out.write_double(p.z);
-    out.write_char('\n');
+    out.write_xyz_line(p);
   }
-  for (const Tri& t : mesh.triangles) {
-    out.write("f ");
-    out.write_uint(std::uint64_t{t[0]} + 1);
-    out.write_char(' ');
-    out.write_uint(std::uint64_t{t[1]} + 1);
-    out.write_char(' ');
-    out.write_uint(std::uint64_t{t[2]} + 1);
-    out.write_char('\n');
-  }
+  for (const Tri& t : mesh.triangles) out.write_tri_line("f ", t, 1);
 }
 
 }  // namespace interfere::io_detail

@@ -170,23 +170,8 @@ void write_off(OutputBuffer& out, const TriMesh& mesh) {
   out.write_char(' ');
   out.write_uint(mesh.triangles.size());
   out.write(" 0\n");
-  for (const Vec3& p : mesh.positions) {
-    out.write_double(p.x);
-    out.write_char(' ');
-    out.write_double(p.y);
-    out.write_char(' ');
-    out.write_double(p.z);
-    out.write_char('\n');
-  }
-  for (const Tri& t : mesh.triangles) {
-    out.write("3 ");
-    out.write_uint(t[0]);
-    out.write_char(' ');
-    out.write_uint(t[1]);
-    out.write_char(' ');
-    out.write_uint(t[2]);
-    out.write_char('\n');
-  }
+  for (const Vec3& p : mesh.positions) out.write_xyz_line(p);
+  for (const Tri& t : mesh.triangles) out.write_tri_line("3 ", t);
 }
 
 }  // namespace interfere::io_detail

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <limits>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "formats.h"
@@ -106,46 +107,33 @@ T load(const char* p, bool swap) {
   return v;
 }
 
-double load_double(const char* p, PlyType t, bool swap) {
+// A scalar of PLY type t at p as R (double for coordinates, int64 for counts and indices: callers
+// check that index types are integers, so the float cases are never taken for R = int64).
+template <class R>
+R load_as(const char* p, PlyType t, bool swap) {
   switch (t) {
     case PlyType::i8:
-      return load<std::int8_t>(p, swap);
+      return static_cast<R>(load<std::int8_t>(p, swap));
     case PlyType::u8:
-      return load<std::uint8_t>(p, swap);
+      return static_cast<R>(load<std::uint8_t>(p, swap));
     case PlyType::i16:
-      return load<std::int16_t>(p, swap);
+      return static_cast<R>(load<std::int16_t>(p, swap));
     case PlyType::u16:
-      return load<std::uint16_t>(p, swap);
+      return static_cast<R>(load<std::uint16_t>(p, swap));
     case PlyType::i32:
-      return load<std::int32_t>(p, swap);
+      return static_cast<R>(load<std::int32_t>(p, swap));
     case PlyType::u32:
-      return load<std::uint32_t>(p, swap);
+      return static_cast<R>(load<std::uint32_t>(p, swap));
     case PlyType::f32:
-      return load<float>(p, swap);
+      if constexpr (std::is_floating_point_v<R>) return static_cast<R>(load<float>(p, swap));
+      break;
     case PlyType::f64:
-      return load<double>(p, swap);
+      if constexpr (std::is_floating_point_v<R>) return static_cast<R>(load<double>(p, swap));
+      break;
     default:
-      return 0;
+      break;
   }
-}
-
-std::int64_t load_int(const char* p, PlyType t, bool swap) {
-  switch (t) {
-    case PlyType::i8:
-      return load<std::int8_t>(p, swap);
-    case PlyType::u8:
-      return load<std::uint8_t>(p, swap);
-    case PlyType::i16:
-      return load<std::int16_t>(p, swap);
-    case PlyType::u16:
-      return load<std::uint16_t>(p, swap);
-    case PlyType::i32:
-      return load<std::int32_t>(p, swap);
-    case PlyType::u32:
-      return load<std::uint32_t>(p, swap);
-    default:
-      return 0;
-  }
+  return 0;
 }
 
 bool int_in_range(std::int64_t v, PlyType t) {
@@ -486,7 +474,7 @@ Expected<TriMesh> read_ply(const std::string& path, std::string_view d, MeshRead
           for (std::uint64_t i = 0; i < e.count; ++i, pos += stride) {
             Vec3& v = m.positions[i];
             for (std::size_t a = 0; a < 3; ++a) {
-              v[a] = load_double(base + pos + off[a], type[a], swap);
+              v[a] = load_as<double>(base + pos + off[a], type[a], swap);
               if (!std::isfinite(v[a])) {
                 return byte_error(path, static_cast<std::int64_t>(pos + off[a]),
                                   std::string("non-finite coordinate (") +
@@ -516,7 +504,7 @@ Expected<TriMesh> read_ply(const std::string& path, std::string_view d, MeshRead
             if (d.size() - pos < s) return eof(s);
             if (role >= Role::x && role <= Role::z) {
               const auto a = static_cast<std::size_t>(role) - static_cast<std::size_t>(Role::x);
-              const double v = load_double(base + pos, p.type, swap);
+              const double v = load_as<double>(base + pos, p.type, swap);
               if (!std::isfinite(v)) {
                 return byte_error(path, static_cast<std::int64_t>(pos),
                                   std::string("non-finite coordinate (") +
@@ -530,7 +518,7 @@ Expected<TriMesh> read_ply(const std::string& path, std::string_view d, MeshRead
           }
           const std::size_t cs = size_of(p.count_type);
           if (d.size() - pos < cs) return eof(cs);
-          const std::int64_t n = load_int(base + pos, p.count_type, swap);
+          const std::int64_t n = load_as<std::int64_t>(base + pos, p.count_type, swap);
           if (n < 0)
             return byte_error(path, static_cast<std::int64_t>(pos),
                               "negative list count " + std::to_string(n));
@@ -550,7 +538,7 @@ Expected<TriMesh> read_ply(const std::string& path, std::string_view d, MeshRead
           }
           corners.clear();
           for (std::int64_t j = 0; j < n; ++j, pos += is) {
-            const std::int64_t v = load_int(base + pos, p.type, swap);
+            const std::int64_t v = load_as<std::int64_t>(base + pos, p.type, swap);
             if (v < 0 || v >= nv) {
               return byte_error(path, static_cast<std::int64_t>(pos),
                                 "vertex index " + std::to_string(v) + " out of range [0, " +
@@ -604,15 +592,7 @@ void write_ply(OutputBuffer& out, const TriMesh& mesh, PlyEncoding enc, bool flo
       }
       out.write_char('\n');
     }
-    for (const Tri& f : mesh.triangles) {
-      out.write("3 ");
-      out.write_uint(f[0]);
-      out.write_char(' ');
-      out.write_uint(f[1]);
-      out.write_char(' ');
-      out.write_uint(f[2]);
-      out.write_char('\n');
-    }
+    for (const Tri& f : mesh.triangles) out.write_tri_line("3 ", f);
     return;
   }
   const bool swap = (enc == PlyEncoding::binary_be) != (std::endian::native == std::endian::big);

@@ -354,12 +354,7 @@ void write_stl_ascii(OutputBuffer& out, const TriMesh& mesh) {
     out.write("\n  outer loop\n");
     for (const Vec3& p : c) {
       out.write("    vertex ");
-      out.write_double(p.x);
-      out.write_char(' ');
-      out.write_double(p.y);
-      out.write_char(' ');
-      out.write_double(p.z);
-      out.write_char('\n');
+      out.write_xyz_line(p);
     }
     out.write("  endloop\nendfacet\n");
   }
