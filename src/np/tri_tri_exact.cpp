@@ -47,11 +47,13 @@
 
 #include "interfere/core/predicates.h"
 #include "interfere/np/tri_tri.h"
+#include "tri_tri_internal.h"
 
 namespace interfere {
 namespace {
 
 using Tri = std::array<Vec3, 3>;
+using np_detail::alone_index;
 
 bool lex_less(const Vec3& a, const Vec3& b) {
   if (a.x != b.x) return a.x < b.x;
@@ -198,16 +200,6 @@ bool flat_case(const Tri& a, const Tri& b, bool b_on_plane_a, bool a_on_plane_b,
   return segment_triangle(r, s, a);
 }
 
-/// Index of the corner alone on its side (see the method, step 3). h: signed heights, not all
-/// zero and not all of one strict sign.
-int alone_index(const int h[3]) {
-  int pos = 0, neg = 0;
-  for (int i = 0; i < 3; ++i) pos += h[i] > 0, neg += h[i] < 0;
-  const int want = pos == 1 ? 1 : (neg == 1 ? -1 : 0);
-  for (int i = 0; i < 3; ++i)
-    if (h[i] == want) return i;
-  return 0;
-}
 
 /// Point where edge {p,q} crosses the plane of triangle t (the plane built from t's corners in
 /// input order); canonical in the edge's ends. The heights are accurate values

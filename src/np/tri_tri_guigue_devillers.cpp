@@ -13,11 +13,13 @@
 #include <cmath>
 
 #include "interfere/np/tri_tri.h"
+#include "tri_tri_internal.h"
 
 namespace interfere {
 namespace {
 
 using Tri = std::array<Vec3, 3>;
+using np_detail::alone_index;
 
 inline int sign_of(double v) {
   return (v > 0) - (v < 0);
@@ -48,15 +50,6 @@ bool coplanar_2d(const Tri& a, const Tri& b, const Vec3& n) {
     return false;
   };
   return !separated(a, b) && !separated(b, a);
-}
-
-int alone_index(const int h[3]) {
-  int pos = 0, neg = 0;
-  for (int i = 0; i < 3; ++i) pos += h[i] > 0, neg += h[i] < 0;
-  const int want = pos == 1 ? 1 : (neg == 1 ? -1 : 0);
-  for (int i = 0; i < 3; ++i)
-    if (h[i] == want) return i;
-  return 0;
 }
 
 }  // namespace

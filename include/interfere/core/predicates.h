@@ -39,16 +39,15 @@ double orient2d_exact_value(double ax, double ay, double bx, double by, double c
 /// A filtered value is accepted by the *_value functions when its error bound is below this
 /// fraction of its magnitude.
 inline constexpr double kValueRelTol = 0x1p-40;
-}  // namespace detail
 
-/// Sign (-1, 0, +1) of det[a-d, b-d, c-d] = -det[b-a, c-a, d-a] (Shewchuk's orient3d): +1 when d
-/// lies on the side of the plane (a,b,c) that the normal (b-a)x(c-a) points away from, i.e.
-/// orient3d(a,b,c,d) > 0 iff d is BELOW the counter-clockwise triangle abc (positive when a,b,c
-/// appear clockwise seen from d). Note: CGAL::orientation(a,b,c,d) is the opposite sign.
-inline int orient3d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
-  // det[b-a, c-a, d-a] expanded along the last row, w . (u x v); the same structure (three rounded
-  // differences per row, 2x2 minors times an entry) as Shewchuk's expansion, so the same bound
-  // holds.
+/// det[b-a, c-a, d-a] in double and its permanent (the sum of the magnitudes of its terms) for the
+/// static filter: |det| > kOrient3dErrA * permanent certifies the sign. Expanded along the last
+/// row, w . (u x v): the same structure (three rounded differences per row, 2x2 minors times an
+/// entry) as Shewchuk's expansion, so the same bound holds.
+struct Orient3dFilter {
+  double det, permanent;
+};
+inline Orient3dFilter orient3d_filter(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   const double ux = b.x - a.x, uy = b.y - a.y, uz = b.z - a.z;
   const double vx = c.x - a.x, vy = c.y - a.y, vz = c.z - a.z;
   const double wx = d.x - a.x, wy = d.y - a.y, wz = d.z - a.z;
@@ -59,6 +58,16 @@ inline int orient3d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) 
   const double permanent = (std::fabs(uyvz) + std::fabs(uzvy)) * std::fabs(wx) +
                            (std::fabs(uzvx) + std::fabs(uxvz)) * std::fabs(wy) +
                            (std::fabs(uxvy) + std::fabs(uyvx)) * std::fabs(wz);
+  return {det, permanent};
+}
+}  // namespace detail
+
+/// Sign (-1, 0, +1) of det[a-d, b-d, c-d] = -det[b-a, c-a, d-a] (Shewchuk's orient3d): +1 when d
+/// lies on the side of the plane (a,b,c) that the normal (b-a)x(c-a) points away from, i.e.
+/// orient3d(a,b,c,d) > 0 iff d is BELOW the counter-clockwise triangle abc (positive when a,b,c
+/// appear clockwise seen from d). Note: CGAL::orientation(a,b,c,d) is the opposite sign.
+inline int orient3d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const auto [det, permanent] = detail::orient3d_filter(a, b, c, d);
   // One rarely taken branch; the sign itself is computed without branching (random signs would
   // otherwise mispredict).
   if (!(std::fabs(det) > detail::kOrient3dErrA * permanent)) [[unlikely]] {
@@ -87,16 +96,7 @@ inline int orient2d(double ax, double ay, double bx, double by, double cx, doubl
 /// of such values keep their accuracy where the plain double determinant is all rounding noise
 /// (nearly coplanar input).
 inline double orient3d_value(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
-  const double ux = b.x - a.x, uy = b.y - a.y, uz = b.z - a.z;
-  const double vx = c.x - a.x, vy = c.y - a.y, vz = c.z - a.z;
-  const double wx = d.x - a.x, wy = d.y - a.y, wz = d.z - a.z;
-  const double uyvz = uy * vz, uzvy = uz * vy;
-  const double uzvx = uz * vx, uxvz = ux * vz;
-  const double uxvy = ux * vy, uyvx = uy * vx;
-  const double det = wx * (uyvz - uzvy) + wy * (uzvx - uxvz) + wz * (uxvy - uyvx);
-  const double permanent = (std::fabs(uyvz) + std::fabs(uzvy)) * std::fabs(wx) +
-                           (std::fabs(uzvx) + std::fabs(uxvz)) * std::fabs(wy) +
-                           (std::fabs(uxvy) + std::fabs(uyvx)) * std::fabs(wz);
+  const auto [det, permanent] = detail::orient3d_filter(a, b, c, d);
   if (detail::kOrient3dErrA * permanent <= detail::kValueRelTol * std::fabs(det)) return -det;
   return detail::orient3d_exact_value(a, b, c, d);
 }
