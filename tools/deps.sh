@@ -7,7 +7,10 @@ pkgs=(build-essential cmake ninja-build python3 git
       libgtest-dev googletest libbenchmark-dev
       libcgal-dev libgmp-dev libmpfr-dev libfcl-dev
       pybind11-dev python3-dev python3-numpy
-      zlib1g-dev gmsh libgmsh-dev)
+      zlib1g-dev gmsh libgmsh-dev
+      libocct-data-exchange-dev libocct-ocaf-dev libocct-modeling-algorithms-dev
+      libocct-modeling-data-dev libocct-foundation-dev libocct-visualization-dev
+      libmeshoptimizer-dev libopenmesh-dev)
 missing=()
 for p in "${pkgs[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
 if ((${#missing[@]})); then
