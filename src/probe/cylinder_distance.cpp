@@ -73,7 +73,8 @@ double edge_distance(const Cylinder& c, const Vec3& p, const Vec3& q, Vec3& best
 
 }  // namespace
 
-CylinderTriangleDistance cylinder_triangle_distance(const Cylinder& c, const std::array<Vec3, 3>& t) {
+CylinderTriangleDistance cylinder_triangle_distance(const Cylinder& c, const std::array<Vec3, 3>& t,
+                                                    double upper_bound) {
   CylinderTriangleDistance r;
   if (cylinder_triangle_intersect(c, t)) {
     r.intersecting = true;
@@ -120,7 +121,7 @@ CylinderTriangleDistance cylinder_triangle_distance(const Cylinder& c, const std
   for (int i = 0; i < 3; ++i) {
     const Vec3& p = t[i];
     const Vec3& q = t[(i + 1) % 3];
-    if (segment_cylinder_lower_bound(c, p, q) >= best) continue;
+    if (segment_cylinder_lower_bound(c, p, q) >= std::min(best, upper_bound)) continue;
     Vec3 pt;
     const double v = edge_distance(c, p, q, pt);
     if (v < best) {
@@ -128,6 +129,10 @@ CylinderTriangleDistance cylinder_triangle_distance(const Cylinder& c, const std
       r.on_triangle = pt;
       point_cylinder_distance(c, pt, &r.on_cylinder);
     }
+  }
+  if (!std::isfinite(best)) {  // every candidate pruned by upper_bound
+    r.distance = upper_bound;
+    return r;
   }
   // Never report 0 for a pair the exact test separates.
   r.distance = best > 0 ? best : std::numeric_limits<double>::denorm_min();

@@ -16,10 +16,12 @@
 // on T's edges (B) would hold), and there (C) holds. Every quantity is a polynomial in the input
 // doubles (degree <= 14): signs come from exact_poly.h (double filter, exact expansion fallback).
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "exact_poly.h"
 #include "interfere/core/predicates.h"
+#include "interfere/np/distance.h"
 #include "interfere/probe/cylinder.h"
 
 namespace interfere::probe {
@@ -35,10 +37,13 @@ V3<N> mk(const Vec3& p) {
 }
 
 /// Sign of the polynomial `poly` (a generic lambda taking a number type): filtered, then exact.
+std::atomic<unsigned long long> g_fallbacks{0};
+
 template <class P>
 int sign_of(const P& poly) {
   const int s = poly.template operator()<Filtered>().sign();
   if (s != 2) return s;
+  g_fallbacks.fetch_add(1, std::memory_order_relaxed);
   return poly.template operator()<Expansion>().sign();
 }
 
@@ -78,8 +83,17 @@ bool parallel_to_axis(const Cylinder& c, const Vec3& p, const Vec3& q) {
   return true;
 }
 
+/// Double filter for (B): the edge is farther than r from the axis segment (C lies in that
+/// capsule) by a margin of 1e-9 x the coordinate scale, >= 10^6 times the rounding error of the
+/// closest-point computation (np/distance.h, Ericson §5.1.9).
+bool edge_clearly_missed(const Cylinder& c, const Vec3& p, const Vec3& q) {
+  const double scale = std::max({norm(p - c.c0), norm(q - c.c0), norm(c.c1 - c.c0), c.radius});
+  return segment_segment_closest(p, q, c.c0, c.c1).distance > c.radius + 1e-9 * scale;
+}
+
 /// (B) for the segment [p, q] (endpoints already known to be outside C).
 bool edge_meets(const Cylinder& c, const Vec3& p, const Vec3& q) {
+  if (edge_clearly_missed(c, p, q)) return false;
   const int p0 = slab_sign(c, c.c0, p), q0 = slab_sign(c, c.c0, q);
   const int p1 = slab_sign(c, c.c1, p), q1 = slab_sign(c, c.c1, q);
   if ((p0 < 0 && q0 < 0) || (p1 > 0 && q1 > 0)) return false;  // both beyond the same cap plane
@@ -135,8 +149,26 @@ bool edge_meets(const Cylinder& c, const Vec3& p, const Vec3& q) {
   return true;
 }
 
+/// Sound double filter for (C): the in-plane distance from the cap centre to the line T ∩ cap
+/// plane, |n·(v0 - ck)| / |n × d/|d||, clearly exceeds r. The margins (1e-12 |e1||e2| ...) are
+/// ~10^3 times the rounding bounds of n (componentwise 2u|e1||e2|), of the dot and cross products.
+/// Well conditioned where the exact polynomials are not (T nearly parallel to the cap).
+bool cap_clearly_missed(const Cylinder& c, const Vec3& ck, const std::array<Vec3, 3>& t) {
+  const Vec3 e1 = t[1] - t[0], e2 = t[2] - t[0];
+  const Vec3 n = cross(e1, e2);
+  const Vec3 d = c.c1 - c.c0;
+  const double dl = norm(d);
+  if (!(dl > 0)) return false;
+  const double s = norm(cross(n, d / dl));
+  const double ee = norm(e1) * norm(e2);
+  const double a = std::fabs(dot(n, t[0] - ck));
+  const double err_a = 1e-12 * ee * norm(t[0] - ck), err_s = 1e-12 * ee;
+  return a - err_a > c.radius * (s + err_s) * (1 + 1e-12);
+}
+
 /// (C) for cap k: the point of T ∩ cap plane nearest the cap centre is in T and within r.
 bool cap_meets_interior(const Cylinder& c, const Vec3& ck, const std::array<Vec3, 3>& t) {
+  if (cap_clearly_missed(c, ck, t)) return false;
   // n × d == 0: T parallel to the cap plane (or degenerate); then (C) adds nothing to (A), (B).
   bool parallel = true;
   for (int k = 0; k < 3 && parallel; ++k) {
@@ -149,21 +181,27 @@ bool cap_meets_interior(const Cylinder& c, const Vec3& ck, const std::array<Vec3
                }) == 0;
   }
   if (parallel) return false;
+  // With w = n × d: m = d × w = |d|^2 n - (n·d) d is the in-plane direction normal to the line
+  // L = T ∩ cap plane, n·m = |w|^2, |m|^2 = |d|^2 |w|^2, and the nearest point of L to ck is
+  // q = ck + (a / |w|^2) m with a = n·(v0 - ck). Written with cross products and sums of squares
+  // (no |n|^2|d|^2 - (n·d)^2 cancellation), so the filter stays sharp when T is nearly parallel
+  // to the cap, the usual situation of a probe held normal to the surface.
   auto poly = [&](int which) {
     return sign_of([&]<class N>() {
       const V3<N> d = mk<N>(c.c1) - mk<N>(c.c0);
       const V3<N> V0 = mk<N>(t[0]);
       const V3<N> n = detail::cross(mk<N>(t[1]) - V0, mk<N>(t[2]) - V0);
-      const V3<N> m = detail::scale(detail::dot(d, d), n) - detail::scale(detail::dot(n, d), d);
-      const N nm = detail::dot(n, m);
+      const V3<N> w = detail::cross(n, d);
       const V3<N> Ck = mk<N>(ck);
       const N a = detail::dot(n, V0 - Ck);
-      if (which == 3) {
+      const N ww = detail::dot(w, w);
+      if (which == 3) {  // |q - ck| <= r  <=>  a^2 |d|^2 <= r^2 |w|^2
         const N r(c.radius);
-        return r * r * nm * nm - a * a * detail::dot(m, m);
+        return r * r * ww - a * a * detail::dot(d, d);
       }
+      const V3<N> m = detail::cross(d, w);
       const V3<N> Vi = mk<N>(t[which]), Vj = mk<N>(t[(which + 1) % 3]);
-      const V3<N> qi = detail::scale(nm, Ck - Vi) + detail::scale(a, m);  // nm * (q - Vi)
+      const V3<N> qi = detail::scale(ww, Ck - Vi) + detail::scale(a, m);  // |w|^2 (q - Vi)
       return detail::dot(detail::cross(Vj - Vi, qi), n);
     });
   };
@@ -203,6 +241,8 @@ bool plane_separates(const Cylinder& c, const std::array<Vec3, 3>& t) {
 }  // namespace
 
 bool point_in_cylinder(const Cylinder& c, const Vec3& p) { return point_inside(c, p); }
+
+unsigned long long cylinder_exact_fallbacks() { return g_fallbacks.load(std::memory_order_relaxed); }
 
 bool cylinder_triangle_intersect(const Cylinder& c, const std::array<Vec3, 3>& t) {
   // Exact slab rejection: every vertex strictly beyond the same cap plane.

@@ -165,7 +165,7 @@ double clearance_of(const Workpiece& w, const std::vector<Cylinder>& cyls, doubl
           const double pd2 = box_distance_squared(cb, bvh.prim_boxes[j]);
           if (std::isfinite(best) && !(pd2 < best * best)) continue;
           const std::uint32_t t = bvh.prims[j];
-          const CylinderTriangleDistance r = cylinder_triangle_distance(c, w.mesh.corners(t));
+          const CylinderTriangleDistance r = cylinder_triangle_distance(c, w.mesh.corners(t), best);
           if (r.distance < best || (r.distance == best && t < tri)) {
             best = r.distance, tri = t, on_probe = r.on_cylinder, on_work = r.on_triangle;
           }

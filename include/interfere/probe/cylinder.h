@@ -4,6 +4,7 @@
 // three_projection_test below and docs/probe.md), ours is exact in every configuration.
 #pragma once
 #include <array>
+#include <limits>
 
 #include "interfere/core/aabb.h"
 #include "interfere/core/vec.h"
@@ -35,6 +36,9 @@ bool point_in_cylinder(const Cylinder& c, const Vec3& p);
 /// and, when that cannot decide, in exact expansion arithmetic.
 bool cylinder_triangle_intersect(const Cylinder& c, const std::array<Vec3, 3>& t);
 
+/// Polynomial signs that the double filter could not decide and exact arithmetic did (diagnostics).
+unsigned long long cylinder_exact_fallbacks();
+
 struct CylinderTriangleDistance {
   double distance = 0;  ///< 0 exactly when cylinder_triangle_intersect is true
   Vec3 on_cylinder;     ///< closest point on the cylinder (construction, double)
@@ -47,7 +51,11 @@ struct CylinderTriangleDistance {
 /// by a point of the triangle (the plane-support candidate of the triangle's interior and a convex
 /// 1D minimisation along each edge), so it is never below the true distance by more than rounding
 /// and never above it by more than 1e-9 times the edge length (docs/probe.md).
-CylinderTriangleDistance cylinder_triangle_distance(const Cylinder& c, const std::array<Vec3, 3>& t);
+/// With `upper_bound` finite, candidates whose lower bound is >= upper_bound are skipped: the result
+/// is exact as above when the distance is < upper_bound, and some value >= upper_bound otherwise
+/// (a best-first search passes its current best).
+CylinderTriangleDistance cylinder_triangle_distance(const Cylinder& c, const std::array<Vec3, 3>& t,
+                                                    double upper_bound = std::numeric_limits<double>::infinity());
 
 /// Distance from a point to the solid cylinder (0 inside), in double; `closest` receives the
 /// closest point of the cylinder when not null.

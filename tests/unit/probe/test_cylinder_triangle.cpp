@@ -224,3 +224,59 @@ TEST(ProbeCylinderTriangle, GrownContainsMinkowskiSum) {
     EXPECT_TRUE(box.contains(c.c0) && box.contains(c.c1));
   }
 }
+
+// The two evaluation stages of the exact signs (src/probe/exact_poly.h): the running-error filter
+// never returns a wrong sign, and the expansion arithmetic is exact where double rounding is not.
+#include "../../../src/probe/exact_poly.h"
+
+TEST(ProbeExactPoly, ExpansionIsExactAndFilterIsSound) {
+  using probe::detail::Expansion;
+  using probe::detail::Filtered;
+  std::mt19937_64 g(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int undecided = 0;
+  for (int it = 0; it < 2000; ++it) {
+    const double a = u(g) * std::ldexp(1.0, static_cast<int>(g() % 40) - 20), b = u(g), c = u(g) * 1e-9;
+    // (a + b)^2 - a^2 - 2ab - b^2 == 0 exactly; plus c^3 gives a known sign.
+    auto poly = [&]<class N>() {
+      const N A(a), B(b), C(c), two(2.0);
+      return (A + B) * (A + B) - A * A - two * A * B - B * B + C * C * C;
+    };
+    const int exact = poly.operator()<Expansion>().sign();
+    EXPECT_EQ(exact, (c > 0) - (c < 0)) << it;
+    const int f = poly.operator()<Filtered>().sign();
+    if (f == 2) ++undecided;
+    else EXPECT_EQ(f, exact) << it;
+    // Pure cancellation: exactly zero.
+    auto zero = [&]<class N>() {
+      const N A(a), B(b), two(2.0);
+      return (A + B) * (A - B) - A * A + B * B;
+    };
+    EXPECT_EQ(zero.operator()<Expansion>().sign(), 0);
+    const int fz = zero.operator()<Filtered>().sign();
+    EXPECT_TRUE(fz == 0 || fz == 2);
+  }
+  EXPECT_GT(undecided, 0);  // the filter does hand hard cases to the exact stage
+}
+
+TEST(ProbeCylinderTriangle, ExactStageDecidesNearTouching) {
+  // Tilted cylinder, triangles moved through the touching position in steps of a few ulps: the
+  // decision flips exactly once, at the contact, and agrees with the exact point test of the vertex.
+  const Cylinder c{{0.1, 0.2, 0.3}, {3.1, 4.2, 0.3}, 5.0};
+  const unsigned long long before = cylinder_exact_fallbacks();
+  const Vec3 d = c.c1 - c.c0;
+  const Vec3 side = cross(d, Vec3{0, 0, 1}) / norm(d);  // unit, normal to the axis (rounded)
+  const Vec3 mid = (c.c0 + c.c1) * 0.5;
+  int flips = 0;
+  bool last = true;
+  for (int k = -40; k <= 40; ++k) {
+    const double s = 5.0 + k * 4e-15;
+    const Vec3 v = mid + side * s;
+    const bool hit = cylinder_triangle_intersect(c, {v, v + Vec3{0, 0, 3}, v + side * 2.0});
+    EXPECT_EQ(hit, point_in_cylinder(c, v)) << k;
+    if (k > -40 && hit != last) ++flips;
+    last = hit;
+  }
+  EXPECT_EQ(flips, 1);
+  EXPECT_GT(cylinder_exact_fallbacks(), before);
+}
