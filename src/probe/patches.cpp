@@ -24,8 +24,10 @@ Patches make_patches(const TriMesh& mesh, const PatchOptions& options) {
   out.patch_of.assign(n, kNone);
   if (n == 0) return out;
   std::vector<Vec3> centroid(n), normal(n);
+  std::vector<Aabb> tbox(n);
   for (std::size_t t = 0; t < n; ++t) {
     const auto c = mesh.corners(t);
+    tbox[t] = mesh.triangle_box(t);
     centroid[t] = (c[0] + c[1] + c[2]) / 3.0;
     const Vec3 nn = cross(c[1] - c[0], c[2] - c[0]);
     const double l = norm(nn);
@@ -45,7 +47,7 @@ Patches make_patches(const TriMesh& mesh, const PatchOptions& options) {
     Aabb box, cbox;
     Vec3 mean{};
     for (std::size_t i = r.lo; i < r.hi; ++i) {
-      box.expand(mesh.triangle_box(ids[i]));
+      box.expand(tbox[ids[i]]);
       cbox.expand(centroid[ids[i]]);
       mean += normal[ids[i]];
     }
@@ -81,7 +83,7 @@ Patches make_patches(const TriMesh& mesh, const PatchOptions& options) {
   for (std::size_t p = 0; p < out.tris.size(); ++p) {
     Aabb b;
     for (std::uint32_t t : out.tris[p]) {
-      b.expand(mesh.triangle_box(t));
+      b.expand(tbox[t]);
       out.patch_of[t] = static_cast<std::uint32_t>(p);
     }
     out.boxes.push_back(b);

@@ -18,22 +18,51 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-/// Calls f(triangle) for every triangle whose box overlaps `box` in the BVH; stops when f returns
-/// true (then returns true).
+/// Conservative cylinder-vs-box culling for BVH nodes and triangle boxes (double, with a margin of
+/// 1e-9 x the coordinate scale, far above the rounding of these few operations): the box is
+/// rejected when its projection on the axis misses [0, len], or when its bounding sphere is
+/// farther than r from the axis line. A tilted probe's AABB overlaps many boxes that lie beside
+/// the probe; this keeps them away from the exact test.
+struct CylinderCull {
+  Vec3 c0, u;
+  double len = 0, r = 0, margin = 0;
+  explicit CylinderCull(const Cylinder& c) : c0(c.c0), r(c.radius) {
+    const Vec3 d = c.c1 - c.c0;
+    len = norm(d);
+    u = len > 0 ? d / len : Vec3{0, 0, 1};
+    const double scale = std::max({std::fabs(c.c0.x), std::fabs(c.c0.y), std::fabs(c.c0.z), std::fabs(c.c1.x),
+                                   std::fabs(c.c1.y), std::fabs(c.c1.z), len, r});
+    margin = 1e-9 * scale;
+  }
+  bool rejects(const AabbF& b) const {
+    const Vec3 h{0.5 * (double(b.hi[0]) - b.lo[0]), 0.5 * (double(b.hi[1]) - b.lo[1]), 0.5 * (double(b.hi[2]) - b.lo[2])};
+    const Vec3 c{0.5 * (double(b.hi[0]) + b.lo[0]), 0.5 * (double(b.hi[1]) + b.lo[1]), 0.5 * (double(b.hi[2]) + b.lo[2])};
+    const Vec3 w = c - c0;
+    const double t = dot(w, u);
+    const double ext = h.x * std::fabs(u.x) + h.y * std::fabs(u.y) + h.z * std::fabs(u.z);
+    if (t + ext < -margin || t - ext > len + margin) return true;
+    const double line = norm(w - u * t);
+    return line - norm(h) > r + margin;
+  }
+};
+
+/// Calls f(triangle) for every triangle whose box overlaps `box` in the BVH and is not culled by
+/// the cylinder; stops when f returns true (then returns true).
 template <class F>
-bool bvh_visit(const Bvh& bvh, const AabbF& box, F&& f) {
-  if (bvh.empty() || !boxes_overlap(box, bvh.nodes[0].box, 0.0f)) return false;
+bool bvh_visit(const Bvh& bvh, const AabbF& box, const CylinderCull& cull, F&& f) {
+  auto keep = [&](const AabbF& b) { return boxes_overlap(box, b, 0.0f) && !cull.rejects(b); };
+  if (bvh.empty() || !keep(bvh.nodes[0].box)) return false;
   detail::SmallStack<std::uint32_t> stack;
   stack.push(0);
   while (!stack.empty()) {
     const BvhNode& n = bvh.nodes[stack.pop()];
     if (n.is_leaf()) {
       for (std::uint32_t j = n.first; j < n.first + n.count; ++j) {
-        if (boxes_overlap(box, bvh.prim_boxes[j], 0.0f) && f(bvh.prims[j])) return true;
+        if (keep(bvh.prim_boxes[j]) && f(bvh.prims[j])) return true;
       }
     } else {
-      if (boxes_overlap(box, bvh.nodes[n.first + 1].box, 0.0f)) stack.push(n.first + 1);
-      if (boxes_overlap(box, bvh.nodes[n.first].box, 0.0f)) stack.push(n.first);
+      if (keep(bvh.nodes[n.first + 1].box)) stack.push(n.first + 1);
+      if (keep(bvh.nodes[n.first].box)) stack.push(n.first);
     }
   }
   return false;
@@ -89,7 +118,7 @@ template <class F>
 bool for_each_candidate(const Workpiece& w, const Cylinder& cyl, const Aabb& box, F&& f) {
   switch (w.hierarchy) {
     case Hierarchy::bvh:
-      return bvh_visit(w.bvh, to_float_outward(box), f);
+      return bvh_visit(w.bvh, to_float_outward(box), CylinderCull(cyl), f);
     case Hierarchy::patches:
       for (std::size_t p = 0; p < w.patches.size(); ++p) {
         if (!box_overlap(w.patches.boxes[p], box)) continue;
@@ -264,8 +293,12 @@ ProbePose pose_at(const ProbePath& path, const Robot* robot, std::uint32_t from,
   return p;
 }
 
-double motion_bound(const ProbePath& path, const Robot* robot, const ProbeShape& probe, std::uint32_t from,
-                    double t0, double t1) {
+namespace {
+
+/// The midpoint pose of [t0, t1] on segment `from` and the motion bound around it (one forward
+/// kinematics evaluation for both).
+double midpoint_and_bound(const ProbePath& path, const Robot* robot, const ProbeShape& probe, std::uint32_t from,
+                          double t0, double t1, ProbePose& mid) {
   const double h = 0.5 * (t1 - t0);
   const double tm = 0.5 * (t0 + t1);
   double bound = 0, scale = 1;
@@ -275,8 +308,12 @@ double motion_bound(const ProbePath& path, const Robot* robot, const ProbeShape&
     std::vector<double> q(a.size());
     for (std::size_t j = 0; j < q.size(); ++j) q[j] = (1 - tm) * a[j] + tm * b[j];
     const std::vector<Transform> frames = forward_frames(*robot, q);
-    const ProbePose pose = forward_kinematics(*robot, q);
-    const std::vector<Cylinder> cyls = probe_cylinders(probe, pose);
+    const Transform& last = frames.back();
+    Vec3 axis{last.r[0][0] * robot->tool_axis.x + last.r[0][1] * robot->tool_axis.y + last.r[0][2] * robot->tool_axis.z,
+              last.r[1][0] * robot->tool_axis.x + last.r[1][1] * robot->tool_axis.y + last.r[1][2] * robot->tool_axis.z,
+              last.r[2][0] * robot->tool_axis.x + last.r[2][1] * robot->tool_axis.y + last.r[2][2] * robot->tool_axis.z};
+    mid = {last.apply(robot->tool_tip), axis / norm(axis)};
+    const std::vector<Cylinder> cyls = probe_cylinders(probe, mid);
     for (const Cylinder& c : cyls) scale = std::max({scale, norm(c.c0), norm(c.c1)});
     // Distal to proximal: D_j = D_{j+1} + (prismatic: h |dq|; revolute: h |dq| rho_j), rho_j the
     // largest distance of the probe to joint j's axis (z of frame j-1) at the midpoint pose.
@@ -296,6 +333,7 @@ double motion_bound(const ProbePath& path, const Robot* robot, const ProbeShape&
       }
     }
   } else {
+    mid = pose_at(path, robot, from, tm);
     const ProbePose& a = path.poses[from];
     const ProbePose& b = path.poses[from + 1];
     const double theta = std::acos(std::clamp(dot(a.axis, b.axis), -1.0, 1.0));
@@ -305,6 +343,14 @@ double motion_bound(const ProbePath& path, const Robot* robot, const ProbeShape&
   }
   // Rounding of the midpoint pose and of the bound itself.
   return bound * (1 + 1e-9) + 1e-12 * scale;
+}
+
+}  // namespace
+
+double motion_bound(const ProbePath& path, const Robot* robot, const ProbeShape& probe, std::uint32_t from,
+                    double t0, double t1) {
+  ProbePose mid;
+  return midpoint_and_bound(path, robot, probe, from, t0, t1, mid);
 }
 
 SweepResult sweep(const Workpiece& w, const ProbePath& path, const Robot* robot, const SweepRequest& req) {
@@ -370,8 +416,8 @@ SweepResult sweep(const Workpiece& w, const ProbePath& path, const Robot* robot,
         }
         const double tm = 0.5 * (t0 + t1);
         ++seg.poses_tested;
-        const ProbePose pm = pose_at(path, robot, seg.from, tm);
-        const double delta = motion_bound(path, robot, req.probe, seg.from, t0, t1);
+        ProbePose pm;
+        const double delta = midpoint_and_bound(path, robot, req.probe, seg.from, t0, t1, pm);
         std::vector<Cylinder> big = probe_cylinders(req.probe, pm);
         for (Cylinder& c : big) c = grown(c, delta);
         if (!cylinders_collide(w, big, nullptr, nullptr, nullptr)) return;  // swept volume clear
