@@ -1,6 +1,6 @@
 // Exact solid-cylinder / triangle intersection (issue #5, item 3c). The paper (Li, Zhou & Zheng
 // 2008, §3.3) projects both shapes on three planes; that is not a complete separating test. Here
-// T ∩ C ≠ ∅ is decided as the disjunction of four sound and jointly complete conditions
+// T ∩ C ≠ ∅ is decided as the disjunction of three sound and jointly complete conditions
 // (docs/probe.md, "The exact cylinder-triangle test"), with C the solid cylinder of axis segment
 // [c0, c1], d = c1 - c0, radius r, and Q(p) = |(p - c0) × d|^2 the squared distance to the axis
 // line times |d|^2:
@@ -14,7 +14,7 @@
 // Completeness: if T ∩ C ≠ ∅ but (A) and (B) fail, the minimum of Q over T ∩ slab is attained on a
 // cap-plane section of T (interior minima need the axis to pierce T inside the slab, which is (A);
 // on T's edges (B) would hold), and there (C) holds. Every quantity is a polynomial in the input
-// doubles (degree <= 14): signs come from exact_poly.h (double filter, exact expansion fallback).
+// doubles (degree <= 10): signs come from exact_poly.h (double filter, exact expansion fallback).
 #include <algorithm>
 #include <atomic>
 #include <cmath>

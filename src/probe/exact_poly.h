@@ -1,7 +1,7 @@
 // Exact signs of polynomials in double inputs, for the probe module's cylinder predicates.
 //
 // The cylinder-triangle decision (cylinder_triangle.cpp) is a Boolean combination of signs of
-// polynomials (degree <= 14) in the input doubles. Each polynomial is written once, as a template
+// polynomials (degree <= 10) in the input doubles. Each polynomial is written once, as a template
 // over a number type, and evaluated twice at most:
 //  - Filtered: value in double plus a running bound on |value - exact| (running error analysis,
 //    below); the sign is returned when |value| exceeds the bound;

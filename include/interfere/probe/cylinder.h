@@ -14,7 +14,8 @@ namespace interfere::probe {
 /// Solid closed cylinder: the points whose projection on the line c0c1 lies on the segment [c0, c1]
 /// and whose distance to that line is <= radius. c0, c1 and radius are the exact doubles stored here:
 /// every decision below is exact for this cylinder (docs/probe.md, "exact to rounding"). The probe's
-/// tip end circle is centred at c0.
+/// tip end circle is centred at c0. Precondition of every function below: c0 != c1 (a probe of
+/// positive length; the CLI and the Python bindings reject non-positive sizes).
 struct Cylinder {
   Vec3 c0;
   Vec3 c1;
@@ -32,7 +33,7 @@ bool point_in_cylinder(const Cylinder& c, const Vec3& p);
 
 /// Exact: do the closed solid cylinder and the closed triangle `t` share a point. Degenerate
 /// triangles (segments, points) are handled. The decision is a Boolean combination of signs of
-/// polynomials in the input doubles (degree <= 14), each evaluated with a certified double filter
+/// polynomials in the input doubles (degree <= 10), each evaluated with a certified double filter
 /// and, when that cannot decide, in exact expansion arithmetic.
 bool cylinder_triangle_intersect(const Cylinder& c, const std::array<Vec3, 3>& t);
 
