@@ -36,7 +36,7 @@ double point_cylinder_distance(const Cylinder& c, const Vec3& p, Vec3* closest) 
     const Vec3 rc = rho > c.radius ? radial * (c.radius / rho) : radial;
     *closest = c.c0 + u * zc + rc;
   }
-  return std::hypot(dz, dr);
+  return std::sqrt(dz * dz + dr * dr);
 }
 
 double segment_cylinder_lower_bound(const Cylinder& c, const Vec3& p, const Vec3& q) {
@@ -44,6 +44,26 @@ double segment_cylinder_lower_bound(const Cylinder& c, const Vec3& p, const Vec3
 }
 
 namespace {
+
+/// Axial lower bound: distance from the points' hull to the slab between the cap planes (0 when
+/// the points are not all beyond the same cap plane). Any point of the hull is at least that far
+/// from the cylinder, which lies inside the slab.
+template <std::size_t N>
+double slab_lower_bound(const Cylinder& c, const std::array<Vec3, N>& pts) {
+  const Vec3 d = c.c1 - c.c0;
+  const double len = norm(d);
+  if (!(len > 0)) return 0;
+  const Vec3 u = d / len;
+  double below = std::numeric_limits<double>::infinity(), above = below;
+  for (const Vec3& p : pts) {
+    const double z = dot(p - c.c0, u);
+    below = std::min(below, -z);
+    above = std::min(above, z - len);
+  }
+  // Relative slack for the rounding of u and the dot products.
+  const double bound = std::max({below, above, 0.0});
+  return bound > 0 ? bound * (1 - 1e-12) - 1e-12 * len : 0.0;
+}
 
 /// Minimum of dist(p + t (q - p), C) over t in [0, 1] (convex): golden-section search.
 double edge_distance(const Cylinder& c, const Vec3& p, const Vec3& q, Vec3& best_point) {
@@ -76,6 +96,10 @@ double edge_distance(const Cylinder& c, const Vec3& p, const Vec3& q, Vec3& best
 CylinderTriangleDistance cylinder_triangle_distance(const Cylinder& c, const std::array<Vec3, 3>& t,
                                                     double upper_bound) {
   CylinderTriangleDistance r;
+  if (std::isfinite(upper_bound) && slab_lower_bound(c, t) >= upper_bound) {
+    r.distance = upper_bound;  // cannot beat the caller's best
+    return r;
+  }
   if (cylinder_triangle_intersect(c, t)) {
     r.intersecting = true;
     r.distance = 0;
@@ -121,7 +145,9 @@ CylinderTriangleDistance cylinder_triangle_distance(const Cylinder& c, const std
   for (int i = 0; i < 3; ++i) {
     const Vec3& p = t[i];
     const Vec3& q = t[(i + 1) % 3];
-    if (segment_cylinder_lower_bound(c, p, q) >= std::min(best, upper_bound)) continue;
+    const double limit = std::min(best, upper_bound);
+    if (slab_lower_bound(c, std::array<Vec3, 2>{p, q}) >= limit) continue;
+    if (segment_cylinder_lower_bound(c, p, q) >= limit) continue;
     Vec3 pt;
     const double v = edge_distance(c, p, q, pt);
     if (v < best) {
