@@ -140,6 +140,21 @@ class Sweep(unittest.TestCase):
             self.assertEqual(results[h], results["bvh"], h)
         self.assertEqual(sum(results["bvh"][0]), 5)
 
+    def test_patch_options(self):
+        work = plate_obj("plate7.obj", 0.0, n=16)
+        p = write("patch.csv", "x,y,z,a,b\n0,0,170,0,0\n0,0,148,0,0\n")
+        counts = []
+        for args in (["--patch-rule", "8"], ["--patch-rule", "33"], ["--patch-rule", "100"], ["--patch-size", "1e9"]):
+            rc, out, err = run("--workpiece", work, "--robot", ROBOT, "--path", p, *BASE, "--hierarchy", "patches",
+                               *args, "--json", path("patch.json"), "--no-continuous")
+            self.assertEqual(rc, 1, err)
+            j = load(path("patch.json"))
+            self.assertEqual(j["colliding_points"], [1])
+            counts.append(j["workpiece"]["patches"])
+        self.assertGreater(counts[0], counts[1])
+        self.assertGreaterEqual(counts[1], counts[2])
+        self.assertEqual(counts[3], 1)  # one box holds the whole plate
+
     def test_bad_inputs_name_file_row_field(self):
         work = plate_obj("plate5.obj", 0.0)
         good = write("good.csv", "x,y,z,a,b\n0,0,170,0,0\n")

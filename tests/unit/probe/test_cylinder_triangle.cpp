@@ -69,6 +69,15 @@ TEST(ProbeCylinderTriangle, RandomAgainstBruteForce) {
     const bool exact = cylinder_triangle_intersect(c, t);
     const CylinderTriangleDistance dist = cylinder_triangle_distance(c, t);
     EXPECT_EQ(dist.intersecting, exact);
+    // Exact oracle for misses: a sampled triangle point inside the cylinder (exact point test)
+    // proves contact.
+    bool sampled_inside = false;
+    for (int i = 0; i <= 60 && !sampled_inside; ++i) {
+      for (int j = 0; i + j <= 60 && !sampled_inside; ++j) {
+        sampled_inside = point_in_cylinder(c, t[0] + (t[1] - t[0]) * (i / 60.0) + (t[2] - t[0]) * (j / 60.0));
+      }
+    }
+    if (sampled_inside) EXPECT_TRUE(exact) << "it " << it;
     const double ref = sampled_distance(c, t, 120);
     const double ref2 = sampled_cylinder_to_triangle(c, t, 24);
     const double scale = norm(t[1] - t[0]) + norm(t[2] - t[0]) + norm(c.c1 - c.c0) + c.radius;
