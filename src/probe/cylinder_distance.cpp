@@ -65,15 +65,24 @@ double slab_lower_bound(const Cylinder& c, const std::array<Vec3, N>& pts) {
   return bound > 0 ? bound * (1 - 1e-12) - 1e-12 * len : 0.0;
 }
 
-/// Minimum of dist(p + t (q - p), C) over t in [0, 1] (convex): golden-section search.
-double edge_distance(const Cylinder& c, const Vec3& p, const Vec3& q, Vec3& best_point) {
+/// Minimum of dist(p + t (q - p), C) over t in [0, 1] (convex): golden-section search. f is
+/// |q - p|-Lipschitz in t and its minimum stays inside the bracket [a, b], whose points are within
+/// (1 - phi)(b - a) of a sample x1 or x2, so the minimum is >= min(f1, f2) - |q - p| (1 - phi)(b - a):
+/// once that bound reaches `limit` (the caller's best) the edge cannot win and the search stops
+/// early, returning a value >= limit.
+double edge_distance(const Cylinder& c, const Vec3& p, const Vec3& q, Vec3& best_point,
+                     double limit = std::numeric_limits<double>::infinity()) {
   const Vec3 e = q - p;
+  const double lip = norm(e);
   auto f = [&](double t) { return point_cylinder_distance(c, p + e * t); };
   constexpr double kPhi = 0.6180339887498949;
   double a = 0, b = 1;
+  const double fa = f(0.0), fb = f(1.0);
   double x1 = b - kPhi * (b - a), x2 = a + kPhi * (b - a);
   double f1 = f(x1), f2 = f(x2);
   for (int i = 0; i < 64; ++i) {
+    const double smallest = std::min(f1, f2);
+    if (smallest - lip * (1 - kPhi) * (b - a) >= limit) return smallest;
     if (f1 <= f2) {
       b = x2, x2 = x1, f2 = f1;
       x1 = b - kPhi * (b - a), f1 = f(x1);
@@ -83,10 +92,8 @@ double edge_distance(const Cylinder& c, const Vec3& p, const Vec3& q, Vec3& best
     }
   }
   double best_t = f1 <= f2 ? x1 : x2, best = std::min(f1, f2);
-  for (double t : {0.0, 1.0}) {
-    const double v = f(t);
-    if (v < best) best = v, best_t = t;
-  }
+  if (fa < best) best = fa, best_t = 0;
+  if (fb < best) best = fb, best_t = 1;
   best_point = p + e * best_t;
   return best;
 }
@@ -149,8 +156,8 @@ CylinderTriangleDistance cylinder_triangle_distance(const Cylinder& c, const std
     if (slab_lower_bound(c, std::array<Vec3, 2>{p, q}) >= limit) continue;
     if (segment_cylinder_lower_bound(c, p, q) >= limit) continue;
     Vec3 pt;
-    const double v = edge_distance(c, p, q, pt);
-    if (v < best) {
+    const double v = edge_distance(c, p, q, pt, limit);
+    if (v < best && v < limit) {
       best = v;
       r.on_triangle = pt;
       point_cylinder_distance(c, pt, &r.on_cylinder);
