@@ -147,10 +147,16 @@ void resolve_poses(ProbePath& path, const Robot& robot) {
 std::string path_to_csv(const ProbePath& path) {
   std::string out;
   if (path.joint_space) {
-    for (std::size_t i = 0; i < path.columns.size(); ++i) out += (i ? "," : "") + path.columns[i];
+    for (std::size_t i = 0; i < path.columns.size(); ++i) {
+      if (i) out += ',';
+      out += path.columns[i];
+    }
     out += "\n";
     for (const auto& row : path.joints) {
-      for (std::size_t i = 0; i < row.size(); ++i) out += (i ? "," : "") + fmt(row[i]);
+      for (std::size_t i = 0; i < row.size(); ++i) {
+        if (i) out += ',';
+        out += fmt(row[i]);
+      }
       out += "\n";
     }
   } else {

@@ -112,7 +112,9 @@ Expected<Robot> parse_robot_json(std::string_view text, const std::string& file_
     const std::int64_t jline = i < offsets.size() ? line_of(text, at) : -1;
     if (!j.is_object()) return p.fail(where, "expected an object", jline);
     DhJoint dj;
-    dj.name = j.value("name", "J" + std::to_string(i + 1));
+    std::string default_name = "J";
+    default_name += std::to_string(i + 1);
+    dj.name = j.value("name", default_name);
     auto type = j.find("type");
     if (type == j.end()) return p.fail(where + ".type", "missing (prismatic or revolute)", jline);
     if (!type->is_string()) return p.fail(where + ".type", "expected a string", find_key_line(text, "type", at));

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <random>
 
 #include "interfere/probe/kinematics.h"
@@ -67,7 +68,7 @@ TEST(ProbeKinematics, PaperMachineMatchesEndCircleFormula) {
 }
 
 TEST(ProbeKinematics, BundledRobotFileIsThePaperMachine) {
-  auto r = read_robot_json(std::string(INTERFERE_SOURCE_DIR) + "/data/examples/probe_5axis.json");
+  auto r = read_robot_json(std::filesystem::path(INTERFERE_SOURCE_DIR) / "data" / "examples" / "probe_5axis.json");
   ASSERT_TRUE(r) << r.error().message();
   const Robot ref = paper_machine(150);
   ASSERT_EQ(r->joints.size(), 5u);
