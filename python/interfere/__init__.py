@@ -75,3 +75,5 @@ __all__ = [
     "write_mesh",
     "write_polylines",
 ]
+
+from ._interfere import probe  # noqa: F401,E402  (issue #5: interfere.probe)

@@ -13,6 +13,8 @@
 //    different limits get the smallest).
 //  - Library errors (Error values) become interfere.InputError / interfere.OutputError carrying
 //    .file, .line, .byte, .reason; bad arguments raise ValueError / TypeError.
+#include "bindings.h"
+
 #include <pybind11/numpy.h>
 #include <pybind11/operators.h>
 #include <pybind11/pybind11.h>
@@ -960,4 +962,5 @@ PYBIND11_MODULE(_interfere, m) {
 
   m.def("exact_fallback_count", &exact_fallback_count,
         "Exact-arithmetic fallbacks taken by the predicates since the process started.");
+  interfere::python::bind_probe(m);
 }

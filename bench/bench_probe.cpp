@@ -1,0 +1,212 @@
+// Probe path checking benchmarks (issue #5, item 6 and targets), its own executable
+// `interfere_bench_probe` (bench/CMakeLists.txt, last block; the file compiles to nothing inside
+// interfere_bench). bench/probe_tables.py runs it and regenerates docs/probe.md's tables.
+//
+// Cases: the three generated panels and paths of probe/generate.h (576 / 1,152 / 2,784 triangles,
+// 872 / 1,430 / 2,366 points), a probe of radius 5 and length 40 with a holder (radius 12, length
+// 30). Rows (all wall time, oneTBB default threads unless the name says threads:1):
+//   ProbeDiscrete/<case>/<hierarchy>    all path points, decisions only (the paper's measurement)
+//   ProbeContinuous/<case>              decisions + continuous check between points (BVH)
+//   ProbeFull/<case>                    decisions + continuous + clearance of every point (BVH)
+//   ProbeBuild/<case>/<hierarchy>       building the hierarchy
+//   ProbePatches/<case>/<ratio>         the paper's patches at box/probe volume 8, 33, 100
+//   ProbeScaling                        10^6-triangle saddle, 10^5 points: build + decisions +
+//                                       continuous check (INTERFERE_PROBE_SCALING_TRIANGLES /
+//                                       _POINTS override the sizes)
+#ifdef INTERFERE_BENCH_PROBE
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <memory>
+
+#include "interfere/probe/generate.h"
+#include "interfere/probe/sweep.h"
+
+using namespace interfere;
+using namespace interfere::probe;
+
+namespace {
+
+const ProbeShape kProbe{.radius = 5, .length = 40, .holder_radius = 12, .holder_length = 30};
+
+struct Case {
+  PanelCase spec;
+  TriMesh mesh;
+  ProbePath path;
+  Robot robot;
+};
+
+const Case& get_case(int i) {
+  static std::map<int, std::unique_ptr<Case>> cache;
+  auto& c = cache[i];
+  if (!c) {
+    c = std::make_unique<Case>();
+    c->spec = paper_cases()[i];
+    c->mesh = make_panel(c->spec.kind, c->spec.nu, c->spec.nv);
+    c->path = make_panel_path(c->spec.kind, c->spec.path);
+    c->robot = paper_machine(c->spec.path.pivot_to_tip);
+  }
+  return *c;
+}
+
+const Workpiece& get_workpiece(int i, Hierarchy h, double ratio = 33) {
+  static std::map<std::tuple<int, int, double>, std::unique_ptr<Workpiece>> cache;
+  auto& w = cache[{i, static_cast<int>(h), ratio}];
+  if (!w) {
+    w = std::make_unique<Workpiece>(
+        prepare_workpiece(get_case(i).mesh, kProbe, {.hierarchy = h, .patch_volume_ratio = ratio}));
+  }
+  return *w;
+}
+
+void counters(benchmark::State& state, const Case& c, const Workpiece& w, const SweepResult& r) {
+  state.counters["triangles"] = static_cast<double>(c.mesh.num_triangles());
+  state.counters["points"] = static_cast<double>(c.path.size());
+  state.counters["colliding_points"] = static_cast<double>(r.colliding_points);
+  state.counters["colliding_segments"] = static_cast<double>(r.colliding_segments);
+  state.counters["between_samples"] = static_cast<double>(r.between_samples_segments);
+  state.counters["candidate_tests"] = static_cast<double>(r.candidate_tests);
+  state.counters["patches"] = static_cast<double>(w.patches.size());
+  state.counters["exact_fallbacks"] = static_cast<double>(cylinder_exact_fallbacks());
+}
+
+void BM_ProbeDiscrete(benchmark::State& state) {
+  const int i = static_cast<int>(state.range(0));
+  const auto h = static_cast<Hierarchy>(state.range(1));
+  const Case& c = get_case(i);
+  const Workpiece& w = get_workpiece(i, h);
+  SweepResult r;
+  for (auto _ : state) {
+    r = sweep(w, c.path, &c.robot, {.probe = kProbe, .continuous = false, .clearance = false});
+    benchmark::DoNotOptimize(r.colliding_points);
+  }
+  counters(state, c, w, r);
+  state.SetLabel(c.spec.name + "/" + hierarchy_name(h));
+}
+
+void BM_ProbeContinuous(benchmark::State& state) {
+  const int i = static_cast<int>(state.range(0));
+  const Case& c = get_case(i);
+  const Workpiece& w = get_workpiece(i, Hierarchy::bvh);
+  SweepResult r;
+  for (auto _ : state) {
+    r = sweep(w, c.path, &c.robot, {.probe = kProbe, .continuous = true, .clearance = false});
+    benchmark::DoNotOptimize(r.colliding_segments);
+  }
+  counters(state, c, w, r);
+  state.SetLabel(c.spec.name);
+}
+
+void BM_ProbeFull(benchmark::State& state) {
+  const int i = static_cast<int>(state.range(0));
+  const Case& c = get_case(i);
+  const Workpiece& w = get_workpiece(i, Hierarchy::bvh);
+  SweepResult r;
+  for (auto _ : state) {
+    r = sweep(w, c.path, &c.robot, {.probe = kProbe, .continuous = true, .clearance = true});
+    benchmark::DoNotOptimize(r.colliding_segments);
+  }
+  counters(state, c, w, r);
+  double min_clear = INFINITY;
+  for (const PointResult& p : r.points) min_clear = std::min(min_clear, p.collides ? 0.0 : p.clearance);
+  state.counters["clearance_seconds"] = r.clearance_seconds;
+  state.SetLabel(c.spec.name);
+}
+
+void BM_ProbeBuild(benchmark::State& state) {
+  const int i = static_cast<int>(state.range(0));
+  const auto h = static_cast<Hierarchy>(state.range(1));
+  const Case& c = get_case(i);
+  for (auto _ : state) {
+    Workpiece w = prepare_workpiece(c.mesh, kProbe, {.hierarchy = h});
+    benchmark::DoNotOptimize(w.bvh.nodes.data());
+  }
+  state.SetLabel(c.spec.name + "/" + hierarchy_name(h));
+}
+
+void BM_ProbePatches(benchmark::State& state) {
+  const int i = static_cast<int>(state.range(0));
+  const double ratio = static_cast<double>(state.range(1));
+  const Case& c = get_case(i);
+  const Workpiece& w = get_workpiece(i, Hierarchy::patches, ratio);
+  SweepResult r;
+  for (auto _ : state) {
+    r = sweep(w, c.path, &c.robot, {.probe = kProbe, .continuous = false, .clearance = false});
+    benchmark::DoNotOptimize(r.colliding_points);
+  }
+  counters(state, c, w, r);
+  state.counters["ratio"] = ratio;
+  double tris = 0;
+  for (const auto& t : w.patches.tris) tris += static_cast<double>(t.size());
+  state.counters["triangles_per_patch"] = tris / static_cast<double>(std::max<std::size_t>(1, w.patches.size()));
+  state.SetLabel(c.spec.name + "/" + std::to_string(state.range(1)));
+}
+
+std::size_t env_size(const char* name, std::size_t fallback) {
+  const char* v = std::getenv(name);
+  return v ? static_cast<std::size_t>(std::atof(v)) : fallback;
+}
+
+void BM_ProbeScaling(benchmark::State& state) {
+  const std::size_t tris = env_size("INTERFERE_PROBE_SCALING_TRIANGLES", 1000000);
+  const std::size_t pts = env_size("INTERFERE_PROBE_SCALING_POINTS", 100000);
+  // Saddle of 2 nu nv triangles with nu = nv; raster of 100 lines.
+  const int nu = static_cast<int>(std::lround(std::sqrt(tris / 2.0)));
+  const TriMesh mesh = make_panel(PanelKind::saddle, nu, nu);
+  const int lines = 100;
+  const ProbePath path = make_panel_path(
+      PanelKind::saddle, {.lines = lines, .points_per_line = static_cast<int>(pts / lines), .collide_every = 997});
+  const Robot robot = paper_machine(150);
+  double build = 0, discrete = 0, continuous = 0;
+  SweepResult r;
+  for (auto _ : state) {
+    const auto t0 = std::chrono::steady_clock::now();
+    Workpiece w = prepare_workpiece(mesh, kProbe);
+    build = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    r = sweep(w, path, &robot, {.probe = kProbe, .continuous = true, .clearance = false});
+    discrete = r.discrete_seconds, continuous = r.continuous_seconds;
+    benchmark::DoNotOptimize(r.colliding_points);
+  }
+  state.counters["triangles"] = static_cast<double>(mesh.num_triangles());
+  state.counters["points"] = static_cast<double>(path.size());
+  state.counters["build_seconds"] = build;
+  state.counters["discrete_seconds"] = discrete;
+  state.counters["continuous_seconds"] = continuous;
+  state.counters["colliding_points"] = static_cast<double>(r.colliding_points);
+  state.counters["colliding_segments"] = static_cast<double>(r.colliding_segments);
+}
+
+void register_all() {
+  const Hierarchy hs[] = {Hierarchy::bvh, Hierarchy::patches, Hierarchy::grid, Hierarchy::distance_field,
+                          Hierarchy::brute_force};
+  for (int i = 0; i < 3; ++i) {
+    for (Hierarchy h : hs) {
+      benchmark::RegisterBenchmark("ProbeDiscrete", BM_ProbeDiscrete)
+          ->Args({i, static_cast<long>(h)})
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime()
+          ->MinTime(0.3);
+    }
+    benchmark::RegisterBenchmark("ProbeContinuous", BM_ProbeContinuous)->Arg(i)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(0.3);
+    benchmark::RegisterBenchmark("ProbeFull", BM_ProbeFull)->Arg(i)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(0.3);
+    for (Hierarchy h : hs) {
+      benchmark::RegisterBenchmark("ProbeBuild", BM_ProbeBuild)
+          ->Args({i, static_cast<long>(h)})
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime()
+          ->Iterations(h == Hierarchy::distance_field ? 1 : 20);
+    }
+    for (long ratio : {8L, 33L, 100L}) {
+      benchmark::RegisterBenchmark("ProbePatches", BM_ProbePatches)->Args({i, ratio})->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(0.2);
+    }
+  }
+  benchmark::RegisterBenchmark("ProbeScaling", BM_ProbeScaling)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+}
+
+const bool registered = (register_all(), true);
+
+}  // namespace
+#endif  // INTERFERE_BENCH_PROBE

@@ -1,0 +1,79 @@
+// Robot kinematics for the inspection probe (issue #5, item 1): a serial chain in standard
+// (distal) Denavit-Hartenberg convention, read from JSON, and the paper's 5-axis machine
+// (Li, Zhou & Zheng 2008, §3.1: prismatic A1-A3 = x, y, z; revolute A4 = a about the vertical,
+// A5 = b tilting the probe) as a bundled example (data/examples/probe_5axis.json).
+//
+// Convention (standard DH, Craig's "distal" variant as in Spong & Vidyasagar):
+//   T_i = Rot_z(theta_i) * Trans_z(d_i) * Trans_x(a_i) * Rot_x(alpha_i),   world <- base * T_1 ... T_n,
+// joint i moves along / about z_{i-1}: a prismatic joint adds its value to d_i, a revolute joint to
+// theta_i. Units: lengths in the file's unit (mm for the bundled machine), angles in DEGREES in the
+// JSON file, in path files and in every joint-value vector of this API.
+#pragma once
+#include <array>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "interfere/core/error.h"
+#include "interfere/core/transform.h"
+#include "interfere/core/vec.h"
+
+namespace interfere::probe {
+
+enum class JointType { prismatic, revolute };
+
+struct DhJoint {
+  std::string name;
+  JointType type = JointType::revolute;
+  double a = 0;      ///< link length (along x_i)
+  double alpha = 0;  ///< link twist, degrees
+  double d = 0;      ///< link offset (along z_{i-1}); the prismatic joint value is added to it
+  double theta = 0;  ///< joint angle, degrees; the revolute joint value is added to it
+  double min = -1e300, max = 1e300;  ///< joint limits in joint units (length or degrees)
+};
+
+/// Probe pose: centre of the probe's end circle (the tip) and the unit direction it points to.
+struct ProbePose {
+  Vec3 tip;
+  Vec3 axis{0, 0, -1};
+};
+
+struct Robot {
+  std::string name;
+  Transform base;  ///< world <- DH frame 0
+  std::vector<DhJoint> joints;
+  Vec3 tool_tip{};          ///< end-circle centre in the last DH frame
+  Vec3 tool_axis{0, 0, 1};  ///< probe direction in the last DH frame (unit)
+};
+
+/// Frames world <- i for i = 0..n (frames[0] = base). `q` in joint units (degrees for revolute).
+std::vector<Transform> forward_frames(const Robot& robot, const std::vector<double>& q);
+
+/// The probe pose at joint values `q` (q.size() == joints.size()).
+ProbePose forward_kinematics(const Robot& robot, const std::vector<double>& q);
+
+/// Joint values outside [min, max]: an error naming the joint (file/line left for the caller).
+Status check_joint_limits(const Robot& robot, const std::vector<double>& q);
+
+/// Parses a robot JSON document (docs/probe.md, "Robot file"); errors name the file, the line and
+/// the field (e.g. "joints[3].alpha: missing").
+Expected<Robot> parse_robot_json(std::string_view text, const std::string& file_name);
+Expected<Robot> read_robot_json(const std::filesystem::path& path);
+std::string robot_to_json(const Robot& robot);
+
+/// The paper's 5-axis machine: pivot (intersection of the A4 and A5 axes) at base_origin + (x, y,
+/// z); A4 rotates by a about the vertical z; A5 tilts by b about the rotated y axis; the probe's
+/// end circle is `pivot_to_tip` from the pivot along the probe axis, which points down (-z) at
+/// a = b = 0. Limits: x, y, z in [-2000, 2000], a in [-360, 360], b in [-120, 120].
+Robot paper_machine(double pivot_to_tip = 150.0, const Vec3& base_origin = {});
+
+/// §3.1's closed form of the end-circle centre for that machine:
+///   P = (x, y, z) + L (-sin b cos a, -sin b sin a, -cos b),  axis = (P - pivot) / L.
+ProbePose paper_end_circle(const std::array<double, 5>& xyzab, double pivot_to_tip, const Vec3& base_origin = {});
+
+/// Inverse of paper_end_circle: joint values (x, y, z, a, b) putting the end circle at pose.tip with
+/// direction pose.axis (b in [0, 180], a in (-180, 180]; a = 0 when the axis is vertical).
+std::array<double, 5> paper_inverse(const ProbePose& pose, double pivot_to_tip, const Vec3& base_origin = {});
+
+}  // namespace interfere::probe

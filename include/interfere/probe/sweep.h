@@ -1,0 +1,173 @@
+// Probe path checking (issue #5, items 3-5): for every path point, does the probe (and its optional
+// holder) touch the workpiece, its clearance, the triangles and patch involved; and between
+// consecutive points a conservative continuous check of the swept probe.
+//
+// Hierarchy (item 3, after Li, Zhou & Zheng 2008, §3.2): candidates come from the project's BVH
+// (default), from the paper's workpiece patches (boxes of about `volume_ratio` x probe volume),
+// from a uniform grid or a distance field (the paper's comparison methods, §4), or from all
+// triangles; then triangle box vs probe box; then the exact cylinder-triangle test
+// (probe/cylinder.h). Every hierarchy gives the same decisions (tests check it).
+//
+// Continuous check (item 4): consecutive points are joined by linear interpolation of the joint
+// values (joint paths) or of the tip position plus a slerp of the axis (pose paths). On a parameter
+// interval [t0, t1] the probe moves at most delta from its pose at the midpoint (a bound derived
+// from the joint increments and the distances of the probe to the joint axes, docs/probe.md), so
+// the swept volume lies inside the cylinder grown by delta. If that grown cylinder touches no
+// triangle the interval is clear; otherwise the midpoint pose is tested exactly and the interval is
+// halved, down to 2^-max_depth. Intervals that are never cleared are reported as colliding: the
+// check never misses a collision, and over-reports by at most the final resolution (plus intervals
+// whose both ends collide, which are reported whole).
+#pragma once
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "interfere/bvh/bvh.h"
+#include "interfere/mesh/tri_mesh.h"
+#include "interfere/probe/cylinder.h"
+#include "interfere/probe/kinematics.h"
+#include "interfere/probe/path.h"
+
+namespace interfere::probe {
+
+inline constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+
+/// Probe body: a cylinder of `radius` and `length` going back from the end circle (the tip), and an
+/// optional holder cylinder behind it (used when holder_radius > 0 and holder_length > 0).
+struct ProbeShape {
+  double radius = 5.0;
+  double length = 40.0;
+  double holder_radius = 0.0;
+  double holder_length = 0.0;
+  bool has_holder() const { return holder_radius > 0 && holder_length > 0; }
+  double volume() const;  ///< pi r^2 l of the probe (the holder is not counted)
+};
+
+/// The probe (index 0) and holder (index 1, when present) cylinders at `pose`.
+std::vector<Cylinder> probe_cylinders(const ProbeShape& shape, const ProbePose& pose);
+
+/// Workpiece patches (§3.2): triangles split recursively at the centroid median of the longest
+/// box axis until a patch's box volume (each extent floored at `min_extent`, so flat patches are
+/// not volume-free) is at most `target_volume` and its normals spread less than `max_normal_angle`
+/// degrees (the curvature criterion). The paper's rule is target_volume = 30..35 x probe volume.
+struct PatchOptions {
+  double target_volume = 0;       ///< required > 0
+  double min_extent = 0;          ///< e.g. the probe diameter
+  double max_normal_angle = 60;   ///< degrees
+};
+struct Patches {
+  std::vector<Aabb> boxes;                       ///< one per patch
+  std::vector<std::vector<std::uint32_t>> tris;  ///< triangles of each patch (sorted)
+  std::vector<std::uint32_t> patch_of;           ///< patch of each triangle
+  std::size_t size() const { return boxes.size(); }
+};
+Patches make_patches(const TriMesh& mesh, const PatchOptions& options);
+
+/// Uniform spatial subdivision (the paper's first comparison method): cells of size `cell` holding
+/// the triangles whose boxes overlap them (CSR layout).
+struct UniformGrid {
+  Aabb bounds;
+  double cell = 1;
+  int nx = 1, ny = 1, nz = 1;
+  std::vector<std::uint32_t> start;  ///< size cells + 1
+  std::vector<std::uint32_t> items;
+};
+UniformGrid make_uniform_grid(const TriMesh& mesh, double cell);
+
+/// Distance field (the paper's second comparison method): unsigned distance to the surface at the
+/// nodes of a regular lattice of spacing `spacing` covering the workpiece box grown by `margin`.
+/// Far from the surface a probe is cleared by the field alone; near it, the grid supplies
+/// candidates for the exact test.
+struct DistanceField {
+  Aabb bounds;
+  double spacing = 1;
+  int nx = 1, ny = 1, nz = 1;
+  std::vector<float> values;  ///< rounded down to float (lower bounds)
+  UniformGrid grid;
+};
+DistanceField make_distance_field(const TriMesh& mesh, const Bvh& bvh, double spacing, double margin);
+
+enum class Hierarchy { bvh, patches, grid, distance_field, brute_force };
+const char* hierarchy_name(Hierarchy h);
+
+/// The prepared workpiece: mesh, BVH (always: clearance uses it), patches (always: reported per
+/// point) and the optional baseline structures.
+struct Workpiece {
+  TriMesh mesh;
+  Bvh bvh;
+  Patches patches;
+  UniformGrid grid;        ///< built for Hierarchy::grid
+  DistanceField field;     ///< built for Hierarchy::distance_field
+  Hierarchy hierarchy = Hierarchy::bvh;
+  double build_seconds = 0;
+};
+
+struct WorkpieceOptions {
+  Hierarchy hierarchy = Hierarchy::bvh;
+  /// Patch size: box volume = patch_volume_ratio x probe volume (the paper's rule: 30-35; 33 by
+  /// default), or an absolute box volume when patch_volume > 0.
+  double patch_volume_ratio = 33;
+  double patch_volume = 0;
+  double patch_max_normal_angle = 60;
+  double grid_cell = 0;       ///< 0: twice the probe diameter
+  double field_spacing = 0;   ///< 0: the probe radius
+};
+Workpiece prepare_workpiece(TriMesh mesh, const ProbeShape& probe, const WorkpieceOptions& options = {});
+
+struct SweepRequest {
+  ProbeShape probe;
+  bool continuous = true;   ///< check the motion between consecutive points
+  bool clearance = true;    ///< compute the clearance of non-colliding points
+  double max_clearance = std::numeric_limits<double>::infinity();  ///< farther: reported as inf
+  int max_depth = 12;       ///< continuous check resolution 2^-max_depth of a segment
+  bool parallel = true;     ///< oneTBB over path points and segments
+};
+
+struct PointResult {
+  bool collides = false;
+  bool holder = false;                 ///< the holder (not the probe) is involved
+  double clearance = 0;                ///< 0 when colliding; inf beyond max_clearance
+  std::uint32_t triangle = kNone;      ///< closest triangle, or the lowest-index hit triangle
+  std::uint32_t patch = kNone;         ///< patch of `triangle`
+  std::vector<std::uint32_t> hits;     ///< every triangle touching the probe or holder, sorted
+  Vec3 point_probe, point_workpiece;   ///< closest points (non-colliding, finite clearance)
+};
+
+struct SegmentResult {
+  std::uint32_t from = 0;                            ///< segment between points from and from+1
+  std::vector<std::array<double, 2>> intervals;      ///< colliding parameter intervals, sorted, disjoint
+  bool between_samples = false;                      ///< neither end point collides
+  std::vector<std::uint32_t> triangles;              ///< hit at tested interior poses, sorted
+  std::uint32_t poses_tested = 0;                    ///< interior sub-intervals examined
+};
+
+struct SweepResult {
+  std::vector<PointResult> points;
+  std::vector<SegmentResult> segments;  ///< only segments with a colliding interval, by `from`
+  std::size_t colliding_points = 0;
+  std::size_t colliding_segments = 0;
+  std::size_t between_samples_segments = 0;
+  std::size_t candidate_tests = 0;      ///< exact cylinder-triangle tests at the path points
+  double discrete_seconds = 0, continuous_seconds = 0, clearance_seconds = 0;
+  bool any_collision() const { return colliding_points + colliding_segments > 0; }
+};
+
+/// Checks `path` (poses resolved; `robot` non-null for joint paths, used by the continuous check)
+/// against the workpiece. Results do not depend on the thread count.
+SweepResult sweep(const Workpiece& workpiece, const ProbePath& path, const Robot* robot, const SweepRequest& request);
+
+/// Exact: does the probe (or holder) at `pose` touch the workpiece; appends the hit triangles to
+/// `hits` (sorted, unique) when not null, else returns at the first hit.
+bool pose_collides(const Workpiece& workpiece, const ProbeShape& probe, const ProbePose& pose,
+                   std::vector<std::uint32_t>* hits = nullptr, std::size_t* tests = nullptr);
+
+/// Bound on how far any probe point moves on [t0, t1] of segment `from` away from its position at
+/// the midpoint (docs/probe.md, "Motion bound").
+double motion_bound(const ProbePath& path, const Robot* robot, const ProbeShape& probe, std::uint32_t from,
+                    double t0, double t1);
+/// The probe pose at parameter t of segment `from`.
+ProbePose pose_at(const ProbePath& path, const Robot* robot, std::uint32_t from, double t);
+
+}  // namespace interfere::probe

@@ -1,0 +1,253 @@
+// Python bindings of the probe module (issue #5): submodule `interfere.probe` with the DH robot,
+// forward kinematics, the exact cylinder-triangle test and distance, the generated panels and
+// paths, and the sweep. Results are plain Python values (tuples, dicts, lists); no geometry here.
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <tbb/global_control.h>
+
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <optional>
+
+#include "bindings.h"
+#include "interfere/probe/generate.h"
+#include "interfere/probe/sweep.h"
+
+namespace py = pybind11;
+
+namespace interfere::python {
+namespace {
+
+using namespace interfere::probe;
+
+[[noreturn]] void raise_input_error(const Error& e) {
+  py::object type = py::module_::import("interfere._interfere").attr("InputError");
+  py::object exc = type(e.message());
+  exc.attr("file") = e.file.empty() ? py::object(py::none()) : py::object(py::str(e.file));
+  exc.attr("line") = e.line >= 0 ? py::object(py::int_(e.line)) : py::object(py::none());
+  exc.attr("byte") = py::none();
+  exc.attr("reason") = py::str(e.reason);
+  PyErr_SetObject(type.ptr(), exc.ptr());
+  throw py::error_already_set();
+}
+
+Vec3 vec(const py::handle& h, const char* what) {
+  const auto s = py::cast<std::vector<double>>(h);
+  if (s.size() != 3) throw py::value_error(std::string(what) + ": expected 3 numbers");
+  return {s[0], s[1], s[2]};
+}
+py::tuple tup(const Vec3& v) { return py::make_tuple(v.x, v.y, v.z); }
+
+std::array<Vec3, 3> tri(const py::handle& h) {
+  const auto rows = py::cast<std::vector<py::object>>(h);
+  if (rows.size() != 3) throw py::value_error("triangle: expected 3 points");
+  return {vec(rows[0], "triangle[0]"), vec(rows[1], "triangle[1]"), vec(rows[2], "triangle[2]")};
+}
+
+Cylinder cyl(const py::handle& c0, const py::handle& c1, double r) {
+  if (!(r >= 0) || !std::isfinite(r)) throw py::value_error("radius must be a finite number >= 0");
+  return {vec(c0, "c0"), vec(c1, "c1"), r};
+}
+
+PanelKind panel_from(const std::string& s) {
+  if (s == "sheet") return PanelKind::sheet;
+  if (s == "shell") return PanelKind::shell;
+  if (s == "saddle") return PanelKind::saddle;
+  throw py::value_error("kind: 'sheet', 'shell' or 'saddle'");
+}
+
+Hierarchy hierarchy_from(const std::string& s) {
+  if (s == "bvh") return Hierarchy::bvh;
+  if (s == "patches") return Hierarchy::patches;
+  if (s == "grid") return Hierarchy::grid;
+  if (s == "distance_field" || s == "distance-field") return Hierarchy::distance_field;
+  if (s == "brute" || s == "brute_force") return Hierarchy::brute_force;
+  throw py::value_error("hierarchy: 'bvh', 'patches', 'grid', 'distance_field' or 'brute'");
+}
+
+py::object num(double v) { return std::isfinite(v) ? py::object(py::float_(v)) : py::object(py::none()); }
+
+}  // namespace
+
+void bind_probe(py::module_& m) {
+  py::module_ p = m.def_submodule("probe", "Inspection-probe path checking (docs/probe.md).");
+
+  py::class_<Robot>(p, "Robot", "Serial DH chain (standard DH, angles in degrees) with the probe tool frame.")
+      .def_readonly("name", &Robot::name)
+      .def_property_readonly("joint_names",
+                             [](const Robot& r) {
+                               std::vector<std::string> n;
+                               for (const DhJoint& j : r.joints) n.push_back(j.name);
+                               return n;
+                             })
+      .def("to_json", &robot_to_json)
+      .def("__repr__", [](const Robot& r) {
+        return "Robot(name='" + r.name + "', joints=" + std::to_string(r.joints.size()) + ")";
+      });
+
+  p.def(
+      "read_robot",
+      [](const std::filesystem::path& path) {
+        auto r = read_robot_json(path);
+        if (!r) raise_input_error(r.error());
+        return std::move(r.value());
+      },
+      py::arg("path"), "Reads a robot JSON file; raises InputError naming file, line and field.");
+  p.def(
+      "parse_robot",
+      [](const std::string& text) {
+        auto r = parse_robot_json(text, "<string>");
+        if (!r) raise_input_error(r.error());
+        return std::move(r.value());
+      },
+      py::arg("text"));
+  p.def("paper_machine", [](double l) { return paper_machine(l); }, py::arg("pivot_to_tip") = 150.0,
+        "The paper's 5-axis machine (x, y, z, a, b).");
+  p.def(
+      "forward_kinematics",
+      [](const Robot& r, const std::vector<double>& q) {
+        if (q.size() != r.joints.size()) {
+          throw py::value_error("q: expected " + std::to_string(r.joints.size()) + " joint values");
+        }
+        const ProbePose pose = forward_kinematics(r, q);
+        return py::make_tuple(tup(pose.tip), tup(pose.axis));
+      },
+      py::arg("robot"), py::arg("q"), "(tip, axis) of the probe at joint values q (degrees for revolute joints).");
+  p.def(
+      "paper_end_circle",
+      [](const std::array<double, 5>& q, double l) {
+        const ProbePose pose = paper_end_circle(q, l);
+        return py::make_tuple(tup(pose.tip), tup(pose.axis));
+      },
+      py::arg("xyzab"), py::arg("pivot_to_tip") = 150.0, "§3.1's closed-form end-circle centre and axis.");
+
+  p.def(
+      "cylinder_triangle_intersect",
+      [](py::handle c0, py::handle c1, double r, py::handle t) { return cylinder_triangle_intersect(cyl(c0, c1, r), tri(t)); },
+      py::arg("c0"), py::arg("c1"), py::arg("radius"), py::arg("triangle"),
+      "Exact: does the solid cylinder (axis segment c0-c1, radius) touch the triangle ((3, 3) points).");
+  p.def(
+      "cylinder_triangle_distance",
+      [](py::handle c0, py::handle c1, double r, py::handle t) {
+        const CylinderTriangleDistance d = cylinder_triangle_distance(cyl(c0, c1, r), tri(t));
+        return py::make_tuple(d.distance, tup(d.on_cylinder), tup(d.on_triangle));
+      },
+      py::arg("c0"), py::arg("c1"), py::arg("radius"), py::arg("triangle"),
+      "(distance, point on cylinder, point on triangle); distance 0 exactly when they touch.");
+  p.def(
+      "three_projection_test",
+      [](py::handle c0, py::handle c1, double r, py::handle t) { return three_projection_test(cyl(c0, c1, r), tri(t)); },
+      py::arg("c0"), py::arg("c1"), py::arg("radius"), py::arg("triangle"),
+      "The paper's (incomplete) three-projection test, for comparison.");
+
+  p.def("make_panel", [](const std::string& kind, int nu, int nv) { return make_panel(panel_from(kind), nu, nv); },
+        py::arg("kind"), py::arg("nu"), py::arg("nv"), "Curved panel ('sheet', 'shell', 'saddle'): 2 nu nv triangles.");
+
+  py::class_<ProbePath>(p, "ProbePath", "Path points: joint values or probe poses, with their poses resolved.")
+      .def_readonly("joint_space", &ProbePath::joint_space)
+      .def_readonly("columns", &ProbePath::columns)
+      .def_readonly("joints", &ProbePath::joints)
+      .def_property_readonly("poses",
+                             [](const ProbePath& path) {
+                               py::list l;
+                               for (const ProbePose& q : path.poses) l.append(py::make_tuple(tup(q.tip), tup(q.axis)));
+                               return l;
+                             })
+      .def("__len__", &ProbePath::size)
+      .def("to_csv", &path_to_csv);
+  p.def(
+      "make_panel_path",
+      [](const std::string& kind, int lines, int points_per_line, double standoff, int collide_every) {
+        return make_panel_path(panel_from(kind), {.lines = lines,
+                                                  .points_per_line = points_per_line,
+                                                  .standoff = standoff,
+                                                  .collide_every = collide_every});
+      },
+      py::arg("kind"), py::arg("lines") = 8, py::arg("points_per_line") = 109, py::arg("standoff") = 10.0,
+      py::arg("collide_every") = 97, "Raster joint path of the paper machine (pivot_to_tip 150) over a panel.");
+  p.def(
+      "read_path",
+      [](const std::filesystem::path& file, std::optional<Robot> robot) {
+        auto r = read_path_csv(file, robot ? &*robot : nullptr);
+        if (!r) raise_input_error(r.error());
+        if (r->joint_space) resolve_poses(*r, *robot);
+        return std::move(r.value());
+      },
+      py::arg("path"), py::arg("robot") = py::none(), "Reads a path CSV; raises InputError naming file, line and field.");
+  p.def(
+      "pose_path",
+      [](const std::vector<std::pair<std::array<double, 3>, std::array<double, 3>>>& poses) {
+        ProbePath path;
+        path.joint_space = false;
+        path.columns = {"px", "py", "pz", "ax", "ay", "az"};
+        std::int64_t line = 2;
+        for (const auto& [t, a] : poses) {
+          const Vec3 axis{a[0], a[1], a[2]};
+          if (!(norm(axis) > 0)) throw py::value_error("zero probe axis");
+          path.poses.push_back({{t[0], t[1], t[2]}, axis / norm(axis)});
+          path.lines.push_back(line++);
+        }
+        return path;
+      },
+      py::arg("poses"), "A pose path from [((px, py, pz), (ax, ay, az)), ...].");
+
+  p.def(
+      "sweep",
+      [](const TriMesh& mesh, const ProbePath& path, std::optional<Robot> robot, double radius, double length,
+         double holder_radius, double holder_length, const std::string& hierarchy, double patch_rule, bool continuous,
+         bool clearance, int depth, int threads) {
+        if (!(radius > 0) || !(length > 0)) throw py::value_error("probe radius and length must be > 0");
+        if (path.joint_space && !robot) throw py::value_error("a joint path needs a robot");
+        const ProbeShape shape{.radius = radius, .length = length, .holder_radius = holder_radius,
+                               .holder_length = holder_length};
+        std::optional<tbb::global_control> limit;
+        if (threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, threads);
+        SweepResult r;
+        Workpiece w;
+        {
+          py::gil_scoped_release release;
+          w = prepare_workpiece(mesh, shape, {.hierarchy = hierarchy_from(hierarchy), .patch_volume_ratio = patch_rule});
+          r = sweep(w, path, robot ? &*robot : nullptr,
+                    {.probe = shape, .continuous = continuous, .clearance = clearance, .max_depth = depth});
+        }
+        py::list points;
+        for (const PointResult& q : r.points) {
+          py::dict d;
+          d["collides"] = q.collides;
+          d["holder"] = q.holder;
+          d["clearance"] = num(q.clearance);
+          d["triangle"] = q.triangle == kNone ? py::object(py::none()) : py::object(py::int_(q.triangle));
+          d["patch"] = q.patch == kNone ? py::object(py::none()) : py::object(py::int_(q.patch));
+          d["hits"] = q.hits;
+          points.append(d);
+        }
+        py::list segs;
+        for (const SegmentResult& s : r.segments) {
+          py::dict d;
+          d["from"] = s.from;
+          d["intervals"] = s.intervals;
+          d["between_samples"] = s.between_samples;
+          d["triangles"] = s.triangles;
+          segs.append(d);
+        }
+        py::dict out;
+        out["points"] = points;
+        out["segments"] = segs;
+        out["colliding_points"] = r.colliding_points;
+        out["colliding_segments"] = r.colliding_segments;
+        out["between_samples_segments"] = r.between_samples_segments;
+        out["patches"] = w.patches.size();
+        out["collision"] = r.any_collision();
+        return out;
+      },
+      py::arg("workpiece"), py::arg("path"), py::arg("robot") = py::none(), py::arg("probe_radius") = 5.0,
+      py::arg("probe_length") = 40.0, py::arg("holder_radius") = 0.0, py::arg("holder_length") = 0.0,
+      py::arg("hierarchy") = "bvh", py::arg("patch_rule") = 33.0, py::arg("continuous") = true,
+      py::arg("clearance") = true, py::arg("depth") = 12, py::arg("threads") = 0,
+      "Checks the path against the workpiece mesh; returns a dict (points, segments, counts). Releases the GIL.");
+}
+
+}  // namespace interfere::python

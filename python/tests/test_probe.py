@@ -1,0 +1,109 @@
+"""Tests of `interfere.probe` (issue #5): forward kinematics against the §3.1 closed form and a
+hand-computed pose, the exact cylinder-triangle test (touching configurations, the paper's
+three-projection counterexample), a small sweep (hierarchies agree, a collision between samples).
+
+Run:  PYTHONPATH=<build>/python python3 -m unittest discover -s python/tests -p 'test_probe.py'
+"""
+
+import math
+import os
+import tempfile
+import unittest
+
+import interfere as itf
+
+probe = itf.probe
+ROBOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "data", "examples", "probe_5axis.json")
+
+
+class Kinematics(unittest.TestCase):
+    def test_bundled_robot_matches_closed_form(self):
+        r = probe.read_robot(ROBOT)
+        self.assertEqual(r.joint_names, ["x", "y", "z", "a", "b"])
+        for q in ([0, 0, 0, 0, 0], [10, -20, 300, 35, 50], [-5, 7, 1, -170, -100]):
+            tip, axis = probe.forward_kinematics(r, q)
+            tip2, axis2 = probe.paper_end_circle(q, 150.0)
+            for a, b in zip(tip + axis, tip2 + axis2):
+                self.assertAlmostEqual(a, b, places=9)
+
+    def test_hand_computed_pose(self):
+        r = probe.paper_machine(100.0)
+        tip, axis = probe.forward_kinematics(r, [1, 2, 3, 0, 90])  # b = 90: probe along -x
+        self.assertAlmostEqual(axis[0], -1.0, places=12)
+        self.assertAlmostEqual(tip[0], 1 - 100.0, places=9)
+        self.assertAlmostEqual(tip[2], 3.0, places=9)
+
+    def test_bad_robot_names_field(self):
+        with self.assertRaises(itf.InputError) as cm:
+            probe.parse_robot('{"joints": [\n{"type": "cam", "a": 0, "alpha": 0, "d": 0, "theta": 0}],'
+                              '"tool": {"tip": [0,0,0], "axis": [0,0,1]}}')
+        self.assertEqual(cm.exception.line, 2)
+        self.assertIn("joints[0].type", cm.exception.reason)
+
+    def test_bad_path_names_row_and_field(self):
+        r = probe.paper_machine()
+        with tempfile.TemporaryDirectory() as d:
+            f = os.path.join(d, "p.csv")
+            with open(f, "w") as out:
+                out.write("x,y,z,a,b\n0,0,0,0,0\n0,0,0,0,150\n")
+            with self.assertRaises(itf.InputError) as cm:
+                probe.read_path(f, r)
+            self.assertEqual(cm.exception.line, 3)
+            self.assertIn("field 'b'", cm.exception.reason)
+
+
+class CylinderTriangle(unittest.TestCase):
+    C0, C1, R = (0, 0, 0), (0, 0, 2), 1.0
+
+    def test_touching_and_one_ulp_apart(self):
+        self.assertTrue(probe.cylinder_triangle_intersect(self.C0, self.C1, self.R, [(1, 0, -5), (1, 0, 5), (4, 0, 0)]))
+        x = math.nextafter(1.0, 2.0)
+        self.assertFalse(probe.cylinder_triangle_intersect(self.C0, self.C1, self.R, [(x, 0, -5), (x, 0, 5), (4, 0, 0)]))
+        self.assertTrue(probe.cylinder_triangle_intersect(self.C0, self.C1, self.R, [(-3, -3, 0), (3, -3, 0), (0, 3, 0)]))
+        z = math.nextafter(0.0, -1.0)
+        self.assertFalse(probe.cylinder_triangle_intersect(self.C0, self.C1, self.R, [(-3, -3, z), (3, -3, z), (0, 3, z)]))
+
+    def test_three_projection_counterexample(self):
+        s = 1 / math.sqrt(2)
+        t = [(3, -3, 2.1), (-3, 3, 2.1), (2, 2, 2.1 - 4 * s)]
+        c1 = (0, 0, 1)
+        self.assertTrue(probe.three_projection_test(self.C0, c1, self.R, t))
+        self.assertFalse(probe.cylinder_triangle_intersect(self.C0, c1, self.R, t))
+        d, pc, pt = probe.cylinder_triangle_distance(self.C0, c1, self.R, t)
+        self.assertAlmostEqual(d, 0.1 / math.sqrt(2), places=9)
+        self.assertAlmostEqual(math.dist(pc, pt), d, places=9)
+
+
+class Sweep(unittest.TestCase):
+    def test_small_sweep_hierarchies_agree(self):
+        mesh = probe.make_panel("saddle", 20, 12)
+        path = probe.make_panel_path("saddle", lines=3, points_per_line=30, collide_every=11)
+        robot = probe.paper_machine()
+        ref = probe.sweep(mesh, path, robot, hierarchy="brute", clearance=False, continuous=False)
+        self.assertGreater(ref["colliding_points"], 0)
+        for h in ("bvh", "patches", "grid", "distance_field"):
+            r = probe.sweep(mesh, path, robot, hierarchy=h, clearance=False, continuous=False, threads=1)
+            self.assertEqual([p["hits"] for p in r["points"]], [p["hits"] for p in ref["points"]], h)
+        full = probe.sweep(mesh, path, robot)
+        clear = [p["clearance"] for p in full["points"] if not p["collides"]]
+        self.assertTrue(all(7.0 < c < 10.5 for c in clear), min(clear))  # stand-off 10 minus facet sag
+
+    def test_collision_between_samples(self):
+        mesh = itf.make_box((-500, -500, 70), (500, 500, 80), 1)
+        path = probe.read_path(self._swing(), probe.paper_machine())
+        r = probe.sweep(mesh, path, probe.paper_machine())
+        self.assertEqual(r["colliding_points"], 0)
+        self.assertEqual(r["between_samples_segments"], 1)
+        lo, hi = r["segments"][0]["intervals"][0]
+        self.assertTrue(0.1 < lo < 0.5 < hi < 0.9)
+
+    def _swing(self):
+        d = tempfile.mkdtemp()
+        f = os.path.join(d, "swing.csv")
+        with open(f, "w") as out:
+            out.write("x,y,z,a,b\n0,0,200,0,-60\n0,0,200,0,60\n")
+        return f
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,459 @@
+// Probe path checking (issue #5, items 3-5; Li, Zhou & Zheng 2008, §3.2-3.4): candidates from the
+// chosen hierarchy, box rejection, the exact cylinder-triangle test at every path point, the
+// clearance by best-first search over the BVH, and the conservative continuous check between
+// consecutive points (motion bound + grown cylinder + bisection). See sweep.h.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <queue>
+
+#include <tbb/parallel_for.h>
+
+#include "interfere/bvh/traverse.h"
+#include "interfere/probe/sweep.h"
+
+namespace interfere::probe {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+/// Conservative cylinder-vs-box culling for BVH nodes and triangle boxes (double, with a margin of
+/// 1e-9 x the coordinate scale, far above the rounding of these few operations): the box is
+/// rejected when its projection on the axis misses [0, len], or when its bounding sphere is
+/// farther than r from the axis line. A tilted probe's AABB overlaps many boxes that lie beside
+/// the probe; this keeps them away from the exact test.
+struct CylinderCull {
+  Vec3 c0, u;
+  double len = 0, r = 0, margin = 0;
+  explicit CylinderCull(const Cylinder& c) : c0(c.c0), r(c.radius) {
+    const Vec3 d = c.c1 - c.c0;
+    len = norm(d);
+    u = len > 0 ? d / len : Vec3{0, 0, 1};
+    const double scale = std::max({std::fabs(c.c0.x), std::fabs(c.c0.y), std::fabs(c.c0.z), std::fabs(c.c1.x),
+                                   std::fabs(c.c1.y), std::fabs(c.c1.z), len, r});
+    margin = 1e-9 * scale;
+  }
+  bool rejects(const AabbF& b) const {
+    const Vec3 h{0.5 * (double(b.hi[0]) - b.lo[0]), 0.5 * (double(b.hi[1]) - b.lo[1]), 0.5 * (double(b.hi[2]) - b.lo[2])};
+    const Vec3 c{0.5 * (double(b.hi[0]) + b.lo[0]), 0.5 * (double(b.hi[1]) + b.lo[1]), 0.5 * (double(b.hi[2]) + b.lo[2])};
+    const Vec3 w = c - c0;
+    const double t = dot(w, u);
+    const double ext = h.x * std::fabs(u.x) + h.y * std::fabs(u.y) + h.z * std::fabs(u.z);
+    if (t + ext < -margin || t - ext > len + margin) return true;
+    const double line = norm(w - u * t);
+    return line - norm(h) > r + margin;
+  }
+};
+
+/// Calls f(triangle) for every triangle whose box overlaps `box` in the BVH and is not culled by
+/// the cylinder; stops when f returns true (then returns true).
+template <class F>
+bool bvh_visit(const Bvh& bvh, const AabbF& box, const CylinderCull& cull, F&& f) {
+  auto keep = [&](const AabbF& b) { return boxes_overlap(box, b, 0.0f) && !cull.rejects(b); };
+  if (bvh.empty() || !keep(bvh.nodes[0].box)) return false;
+  detail::SmallStack<std::uint32_t> stack;
+  stack.push(0);
+  while (!stack.empty()) {
+    const BvhNode& n = bvh.nodes[stack.pop()];
+    if (n.is_leaf()) {
+      for (std::uint32_t j = n.first; j < n.first + n.count; ++j) {
+        if (keep(bvh.prim_boxes[j]) && f(bvh.prims[j])) return true;
+      }
+    } else {
+      if (keep(bvh.nodes[n.first + 1].box)) stack.push(n.first + 1);
+      if (keep(bvh.nodes[n.first].box)) stack.push(n.first);
+    }
+  }
+  return false;
+}
+
+bool box_overlap(const Aabb& a, const Aabb& b) { return a.overlaps(b); }
+
+/// Grid candidates (sorted, unique) for `box`.
+void grid_candidates(const UniformGrid& g, const Aabb& box, std::vector<std::uint32_t>& out) {
+  out.clear();
+  if (!box_overlap(box, g.bounds)) return;
+  const int n[3] = {g.nx, g.ny, g.nz};
+  int lo[3], hi[3];
+  for (int k = 0; k < 3; ++k) {
+    lo[k] = std::clamp(static_cast<int>(std::floor((box.lo[k] - g.bounds.lo[k]) / g.cell)), 0, n[k] - 1);
+    hi[k] = std::clamp(static_cast<int>(std::floor((box.hi[k] - g.bounds.lo[k]) / g.cell)), 0, n[k] - 1);
+  }
+  for (int z = lo[2]; z <= hi[2]; ++z) {
+    for (int y = lo[1]; y <= hi[1]; ++y) {
+      for (int x = lo[0]; x <= hi[0]; ++x) {
+        const std::size_t c = (static_cast<std::size_t>(z) * g.ny + y) * g.nx + x;
+        out.insert(out.end(), g.items.begin() + g.start[c], g.items.begin() + g.start[c + 1]);
+      }
+    }
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+}
+
+/// Distance field: true when the samples along the axis prove the cylinder clear of the surface.
+bool field_clears(const DistanceField& f, const Cylinder& c) {
+  const Vec3 d = c.c1 - c.c0;
+  const double len = norm(d);
+  const int n = std::max(2, static_cast<int>(std::ceil(len / f.spacing)) + 1);
+  const double h = len / (n - 1);
+  const double cover = std::sqrt(c.radius * c.radius + 0.25 * h * h) * (1 + 1e-9);
+  for (int i = 0; i < n; ++i) {
+    const Vec3 s = c.c0 + d * (double(i) / (n - 1));
+    const double fx = (s.x - f.bounds.lo.x) / f.spacing, fy = (s.y - f.bounds.lo.y) / f.spacing,
+                 fz = (s.z - f.bounds.lo.z) / f.spacing;
+    const long ix = std::lround(fx), iy = std::lround(fy), iz = std::lround(fz);
+    if (ix < 0 || iy < 0 || iz < 0 || ix >= f.nx || iy >= f.ny || iz >= f.nz) return false;
+    const Vec3 node = f.bounds.lo + Vec3{ix * f.spacing, iy * f.spacing, iz * f.spacing};
+    const double lower = f.values[(static_cast<std::size_t>(iz) * f.ny + iy) * f.nx + ix] - distance(s, node);
+    if (!(lower > cover)) return false;
+  }
+  return true;
+}
+
+/// Calls f(triangle) for the candidates of `box` under the workpiece's hierarchy (box-filtered);
+/// stops at the first f returning true.
+template <class F>
+bool for_each_candidate(const Workpiece& w, const Cylinder& cyl, const Aabb& box, F&& f) {
+  switch (w.hierarchy) {
+    case Hierarchy::bvh:
+      return bvh_visit(w.bvh, to_float_outward(box), CylinderCull(cyl), f);
+    case Hierarchy::patches:
+      for (std::size_t p = 0; p < w.patches.size(); ++p) {
+        if (!box_overlap(w.patches.boxes[p], box)) continue;
+        for (std::uint32_t t : w.patches.tris[p]) {
+          if (box_overlap(w.mesh.triangle_box(t), box) && f(t)) return true;
+        }
+      }
+      return false;
+    case Hierarchy::distance_field:
+      if (field_clears(w.field, cyl)) return false;
+      [[fallthrough]];
+    case Hierarchy::grid: {
+      thread_local std::vector<std::uint32_t> cand;
+      grid_candidates(w.hierarchy == Hierarchy::grid ? w.grid : w.field.grid, box, cand);
+      const std::vector<std::uint32_t> local = cand;  // f may recurse into another query
+      for (std::uint32_t t : local) {
+        if (box_overlap(w.mesh.triangle_box(t), box) && f(t)) return true;
+      }
+      return false;
+    }
+    case Hierarchy::brute_force:
+      for (std::uint32_t t = 0; t < w.mesh.num_triangles(); ++t) {
+        if (box_overlap(w.mesh.triangle_box(t), box) && f(t)) return true;
+      }
+      return false;
+  }
+  return false;
+}
+
+/// Exact test of the given cylinders; collects hits (or stops at the first when hits is null).
+bool cylinders_collide(const Workpiece& w, const std::vector<Cylinder>& cyls, std::vector<std::uint32_t>* hits,
+                       std::size_t* tests, bool* holder_hit) {
+  bool any = false;
+  for (std::size_t k = 0; k < cyls.size(); ++k) {
+    const Cylinder& c = cyls[k];
+    const bool stop = for_each_candidate(w, c, cylinder_box(c), [&](std::uint32_t t) {
+      if (tests) ++*tests;
+      if (!cylinder_triangle_intersect(c, w.mesh.corners(t))) return false;
+      any = true;
+      if (k == 1 && holder_hit) *holder_hit = true;
+      if (!hits) return true;
+      hits->push_back(t);
+      return false;
+    });
+    if (stop) return true;
+  }
+  if (hits) {
+    std::sort(hits->begin(), hits->end());
+    hits->erase(std::unique(hits->begin(), hits->end()), hits->end());
+  }
+  return any;
+}
+
+/// Minimum distance from the cylinders to the workpiece by best-first search over the BVH.
+double clearance_of(const Workpiece& w, const std::vector<Cylinder>& cyls, double max_clearance,
+                    std::uint32_t& tri, Vec3& on_probe, Vec3& on_work) {
+  double best = max_clearance;
+  tri = kNone;
+  const Bvh& bvh = w.bvh;
+  if (bvh.empty()) return std::numeric_limits<double>::infinity();
+  for (const Cylinder& c : cyls) {
+    const AabbF cb = to_float_outward(cylinder_box(c));
+    using Item = std::pair<double, std::uint32_t>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> q;
+    q.push({box_distance_squared(cb, bvh.nodes[0].box), 0});
+    while (!q.empty()) {
+      const auto [d2, ni] = q.top();
+      q.pop();
+      if (!(d2 < best * best) && std::isfinite(best)) break;
+      const BvhNode& n = bvh.nodes[ni];
+      if (n.is_leaf()) {
+        for (std::uint32_t j = n.first; j < n.first + n.count; ++j) {
+          const double pd2 = box_distance_squared(cb, bvh.prim_boxes[j]);
+          if (std::isfinite(best) && !(pd2 < best * best)) continue;
+          const std::uint32_t t = bvh.prims[j];
+          const CylinderTriangleDistance r = cylinder_triangle_distance(c, w.mesh.corners(t), best);
+          if (r.distance < best || (r.distance == best && t < tri)) {
+            best = r.distance, tri = t, on_probe = r.on_cylinder, on_work = r.on_triangle;
+          }
+        }
+      } else {
+        for (std::uint32_t ch = n.first; ch < n.first + 2; ++ch) {
+          const double cd2 = box_distance_squared(cb, bvh.nodes[ch].box);
+          if (!std::isfinite(best) || cd2 < best * best) q.push({cd2, ch});
+        }
+      }
+    }
+  }
+  return tri == kNone ? std::numeric_limits<double>::infinity() : best;
+}
+
+double line_distance(const Vec3& p, const Vec3& o, const Vec3& dir) {
+  const Vec3 w = p - o;
+  return norm(w - dir * dot(w, dir));
+}
+
+}  // namespace
+
+double ProbeShape::volume() const { return M_PI * radius * radius * length; }
+
+std::vector<Cylinder> probe_cylinders(const ProbeShape& s, const ProbePose& pose) {
+  std::vector<Cylinder> out;
+  out.push_back(cylinder_from_tip(pose.tip, pose.axis, s.length, s.radius));
+  if (s.has_holder()) out.push_back(cylinder_from_tip(out[0].c1, pose.axis, s.holder_length, s.holder_radius));
+  return out;
+}
+
+const char* hierarchy_name(Hierarchy h) {
+  switch (h) {
+    case Hierarchy::bvh: return "bvh";
+    case Hierarchy::patches: return "patches";
+    case Hierarchy::grid: return "grid";
+    case Hierarchy::distance_field: return "distance_field";
+    case Hierarchy::brute_force: return "brute_force";
+  }
+  return "?";
+}
+
+Workpiece prepare_workpiece(TriMesh mesh, const ProbeShape& probe, const WorkpieceOptions& o) {
+  const auto start = Clock::now();
+  Workpiece w;
+  w.mesh = std::move(mesh);
+  w.hierarchy = o.hierarchy;
+  w.bvh = build_bvh(w.mesh);
+  const double target = o.patch_volume > 0 ? o.patch_volume : o.patch_volume_ratio * probe.volume();
+  w.patches = make_patches(w.mesh, {.target_volume = target,
+                                    .min_extent = 2 * probe.radius,
+                                    .max_normal_angle = o.patch_max_normal_angle});
+  if (o.hierarchy == Hierarchy::grid) {
+    w.grid = make_uniform_grid(w.mesh, o.grid_cell > 0 ? o.grid_cell : 4 * probe.radius);
+  }
+  if (o.hierarchy == Hierarchy::distance_field) {
+    const double spacing = o.field_spacing > 0 ? o.field_spacing : probe.radius;
+    w.field = make_distance_field(w.mesh, w.bvh, spacing, probe.length + probe.holder_length + 2 * spacing);
+  }
+  w.build_seconds = seconds_since(start);
+  return w;
+}
+
+bool pose_collides(const Workpiece& w, const ProbeShape& probe, const ProbePose& pose,
+                   std::vector<std::uint32_t>* hits, std::size_t* tests) {
+  return cylinders_collide(w, probe_cylinders(probe, pose), hits, tests, nullptr);
+}
+
+ProbePose pose_at(const ProbePath& path, const Robot* robot, std::uint32_t from, double t) {
+  if (path.joint_space && robot) {
+    const auto& a = path.joints[from];
+    const auto& b = path.joints[from + 1];
+    std::vector<double> q(a.size());
+    for (std::size_t j = 0; j < q.size(); ++j) q[j] = (1 - t) * a[j] + t * b[j];
+    return forward_kinematics(*robot, q);
+  }
+  const ProbePose& a = path.poses[from];
+  const ProbePose& b = path.poses[from + 1];
+  ProbePose p;
+  p.tip = a.tip * (1 - t) + b.tip * t;
+  const double c = std::clamp(dot(a.axis, b.axis), -1.0, 1.0);
+  const double theta = std::acos(c);
+  if (theta < 1e-12) {
+    p.axis = a.axis;
+  } else {
+    Vec3 n = cross(a.axis, b.axis);
+    if (norm(n) < 1e-12) {  // opposite: any perpendicular
+      n = cross(a.axis, std::fabs(a.axis.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0});
+    }
+    n = n / norm(n);
+    const double phi = theta * t;
+    // Rodrigues: rotate a.axis about n by phi (n is perpendicular to a.axis).
+    p.axis = a.axis * std::cos(phi) + cross(n, a.axis) * std::sin(phi);
+  }
+  p.axis = p.axis / norm(p.axis);
+  return p;
+}
+
+namespace {
+
+/// The midpoint pose of [t0, t1] on segment `from` and the motion bound around it (one forward
+/// kinematics evaluation for both).
+double midpoint_and_bound(const ProbePath& path, const Robot* robot, const ProbeShape& probe, std::uint32_t from,
+                          double t0, double t1, ProbePose& mid) {
+  const double h = 0.5 * (t1 - t0);
+  const double tm = 0.5 * (t0 + t1);
+  double bound = 0, scale = 1;
+  if (path.joint_space && robot) {
+    const auto& a = path.joints[from];
+    const auto& b = path.joints[from + 1];
+    std::vector<double> q(a.size());
+    for (std::size_t j = 0; j < q.size(); ++j) q[j] = (1 - tm) * a[j] + tm * b[j];
+    const std::vector<Transform> frames = forward_frames(*robot, q);
+    const Transform& last = frames.back();
+    Vec3 axis{last.r[0][0] * robot->tool_axis.x + last.r[0][1] * robot->tool_axis.y + last.r[0][2] * robot->tool_axis.z,
+              last.r[1][0] * robot->tool_axis.x + last.r[1][1] * robot->tool_axis.y + last.r[1][2] * robot->tool_axis.z,
+              last.r[2][0] * robot->tool_axis.x + last.r[2][1] * robot->tool_axis.y + last.r[2][2] * robot->tool_axis.z};
+    mid = {last.apply(robot->tool_tip), axis / norm(axis)};
+    const std::vector<Cylinder> cyls = probe_cylinders(probe, mid);
+    for (const Cylinder& c : cyls) scale = std::max({scale, norm(c.c0), norm(c.c1)});
+    // Distal to proximal: D_j = D_{j+1} + (prismatic: h |dq|; revolute: h |dq| rho_j), rho_j the
+    // largest distance of the probe to joint j's axis (z of frame j-1) at the midpoint pose.
+    for (std::size_t j = robot->joints.size(); j-- > 0;) {
+      const double dq = std::fabs(b[j] - a[j]) * h;
+      if (dq == 0) continue;
+      if (robot->joints[j].type == JointType::prismatic) {
+        bound += dq;
+      } else {
+        const Transform& f = frames[j];
+        const Vec3 o = f.t, z{f.r[0][2], f.r[1][2], f.r[2][2]};
+        double rho = 0;
+        for (const Cylinder& c : cyls) {
+          rho = std::max(rho, std::max(line_distance(c.c0, o, z), line_distance(c.c1, o, z)) + c.radius);
+        }
+        bound += dq * (M_PI / 180.0) * rho;
+      }
+    }
+  } else {
+    mid = pose_at(path, robot, from, tm);
+    const ProbePose& a = path.poses[from];
+    const ProbePose& b = path.poses[from + 1];
+    const double theta = std::acos(std::clamp(dot(a.axis, b.axis), -1.0, 1.0));
+    const double reach = std::hypot(probe.length + probe.holder_length, std::max(probe.radius, probe.holder_radius));
+    bound = h * (distance(a.tip, b.tip) + theta * reach);
+    scale = std::max({1.0, norm(a.tip), norm(b.tip), reach});
+  }
+  // Rounding of the midpoint pose and of the bound itself.
+  return bound * (1 + 1e-9) + 1e-12 * scale;
+}
+
+}  // namespace
+
+double motion_bound(const ProbePath& path, const Robot* robot, const ProbeShape& probe, std::uint32_t from,
+                    double t0, double t1) {
+  ProbePose mid;
+  return midpoint_and_bound(path, robot, probe, from, t0, t1, mid);
+}
+
+SweepResult sweep(const Workpiece& w, const ProbePath& path, const Robot* robot, const SweepRequest& req) {
+  SweepResult res;
+  const std::size_t n = path.poses.size();
+  res.points.resize(n);
+  std::vector<std::size_t> tests(n, 0);
+  auto loop = [&](std::size_t count, auto&& body) {
+    if (req.parallel) {
+      tbb::parallel_for(std::size_t(0), count, [&](std::size_t i) { body(i); });
+    } else {
+      for (std::size_t i = 0; i < count; ++i) body(i);
+    }
+  };
+  // Discrete points.
+  auto start = Clock::now();
+  loop(n, [&](std::size_t i) {
+    PointResult& r = res.points[i];
+    const std::vector<Cylinder> cyls = probe_cylinders(req.probe, path.poses[i]);
+    r.collides = cylinders_collide(w, cyls, &r.hits, &tests[i], &r.holder);
+    if (r.collides) {
+      r.clearance = 0;
+      r.triangle = r.hits.front();
+      r.patch = w.patches.patch_of[r.triangle];
+    }
+  });
+  res.discrete_seconds = seconds_since(start);
+  for (std::size_t i = 0; i < n; ++i) {
+    res.candidate_tests += tests[i];
+    res.colliding_points += res.points[i].collides;
+  }
+  // Clearance.
+  start = Clock::now();
+  if (req.clearance) {
+    loop(n, [&](std::size_t i) {
+      PointResult& r = res.points[i];
+      if (r.collides) return;
+      const std::vector<Cylinder> cyls = probe_cylinders(req.probe, path.poses[i]);
+      r.clearance = clearance_of(w, cyls, req.max_clearance, r.triangle, r.point_probe, r.point_workpiece);
+      if (r.triangle != kNone) r.patch = w.patches.patch_of[r.triangle];
+    });
+  } else {
+    for (PointResult& r : res.points) {
+      if (!r.collides) r.clearance = std::numeric_limits<double>::quiet_NaN();
+    }
+  }
+  res.clearance_seconds = seconds_since(start);
+  // Continuous check between consecutive points.
+  start = Clock::now();
+  if (req.continuous && n > 1) {
+    std::vector<SegmentResult> segs(n - 1);
+    loop(n - 1, [&](std::size_t s) {
+      SegmentResult& seg = segs[s];
+      seg.from = static_cast<std::uint32_t>(s);
+      std::vector<std::array<double, 2>> iv;
+      const bool ca = res.points[s].collides, cb = res.points[s + 1].collides;
+      if (ca) iv.push_back({0.0, 0.0});
+      if (cb) iv.push_back({1.0, 1.0});
+      auto refine = [&](auto&& self, double t0, double t1, bool c0, bool c1, int depth) -> void {
+        if (c0 && c1) {
+          iv.push_back({t0, t1});
+          return;
+        }
+        const double tm = 0.5 * (t0 + t1);
+        ++seg.poses_tested;
+        ProbePose pm;
+        const double delta = midpoint_and_bound(path, robot, req.probe, seg.from, t0, t1, pm);
+        std::vector<Cylinder> big = probe_cylinders(req.probe, pm);
+        for (Cylinder& c : big) c = grown(c, delta);
+        if (!cylinders_collide(w, big, nullptr, nullptr, nullptr)) return;  // swept volume clear
+        std::vector<std::uint32_t> hits;
+        const bool cm = cylinders_collide(w, probe_cylinders(req.probe, pm), &hits, nullptr, nullptr);
+        seg.triangles.insert(seg.triangles.end(), hits.begin(), hits.end());
+        if (cm) iv.push_back({tm, tm});
+        if (depth >= req.max_depth) {
+          iv.push_back({t0, t1});
+          return;
+        }
+        self(self, t0, tm, c0, cm, depth + 1);
+        self(self, tm, t1, cm, c1, depth + 1);
+      };
+      refine(refine, 0.0, 1.0, ca, cb, 0);
+      std::sort(iv.begin(), iv.end());
+      for (const auto& x : iv) {
+        if (!seg.intervals.empty() && x[0] <= seg.intervals.back()[1]) {
+          seg.intervals.back()[1] = std::max(seg.intervals.back()[1], x[1]);
+        } else {
+          seg.intervals.push_back(x);
+        }
+      }
+      std::sort(seg.triangles.begin(), seg.triangles.end());
+      seg.triangles.erase(std::unique(seg.triangles.begin(), seg.triangles.end()), seg.triangles.end());
+      seg.between_samples = !ca && !cb && !seg.intervals.empty();
+    });
+    for (SegmentResult& s : segs) {
+      if (s.intervals.empty()) continue;
+      ++res.colliding_segments;
+      res.between_samples_segments += s.between_samples;
+      res.segments.push_back(std::move(s));
+    }
+  }
+  res.continuous_seconds = seconds_since(start);
+  return res;
+}
+
+}  // namespace interfere::probe
