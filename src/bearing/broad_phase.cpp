@@ -80,7 +80,7 @@ class LooseOctree final : public BroadPhase {
     for (const Box3& b : boxes) world.lo = min(world.lo, b.lo), world.hi = max(world.hi, b.hi);
     const Vec3 size = world.hi - world.lo;
     const double edge = std::max({size.x, size.y, size.z, 1e-300});
-    nodes_.push_back({world.lo + Vec3{edge, edge, edge} * 0.5, 0.5 * edge, {}, {}});
+    nodes_.push_back(make_node(world.lo + Vec3{edge, edge, edge} * 0.5, 0.5 * edge));
     for (std::uint32_t i = 0; i < boxes.size(); ++i) insert(boxes[i], i);
     for (std::uint32_t i = 0; i < boxes.size(); ++i) query(0, boxes, i, out);
     finish(out);
@@ -97,6 +97,12 @@ class LooseOctree final : public BroadPhase {
   std::vector<Node> nodes_;
   static constexpr int kMaxDepth = 10;
 
+  static Node make_node(const Vec3& center, double half) {
+    Node n;
+    n.center = center, n.half = half;
+    return n;
+  }
+
   void insert(const Box3& b, std::uint32_t id) {
     const Vec3 c = (b.lo + b.hi) * 0.5;
     const Vec3 e = (b.hi - b.lo) * 0.5;
@@ -111,7 +117,7 @@ class LooseOctree final : public BroadPhase {
         const Vec3 off{(k & 1) ? child_half : -child_half, (k & 2) ? child_half : -child_half,
                        (k & 4) ? child_half : -child_half};
         nodes_[cur].child[static_cast<std::size_t>(k)] = static_cast<std::int32_t>(nodes_.size());
-        nodes_.push_back({nc + off, child_half, {}, {}});
+        nodes_.push_back(make_node(nc + off, child_half));
       }
       cur = static_cast<std::size_t>(nodes_[cur].child[static_cast<std::size_t>(k)]);
     }

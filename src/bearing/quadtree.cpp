@@ -100,6 +100,7 @@ struct Builder {
     {
       QuadNode& node = tree.nodes[static_cast<std::size_t>(id)];
       node.i0 = i0, node.i1 = i1, node.j0 = j, node.j1 = j + 1;
+      for (int i = i0; i < i1; ++i) node.scar |= roller.scar[roller.side_vertex(i, j)];
       bound(node, column_angle(0.5 * (i0 + i1)), [&](auto&& f) {
         f(roller.mesh.positions[center]);
         for (int i = i0; i <= i1; ++i) f(roller.mesh.positions[roller.side_vertex(i, j)]);
