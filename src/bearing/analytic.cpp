@@ -44,8 +44,28 @@ std::pair<double, double> golden_min(F&& f, double lo, double hi, int iterations
 }
 
 double get_root(double r0, double z0, double z1, double g) {
+  // Root of G(s) = (n0/(s+r0))^2 + (z1/(s+1))^2 - 1 on [s0, s1] (G(s0) >= 0 >= G(s1)). G is convex
+  // and decreasing there, so Newton's method started at the left end increases monotonically to
+  // the root without overshooting (a handful of steps) until rounding stalls it; should it ever leave
+  // the bracket, Eberly's bisection finishes the job.
   const double n0 = r0 * z0;
-  double s0 = z1 - 1, s1 = g < 0 ? 0 : std::hypot(n0, z1) - 1, s = 0;
+  double s0 = z1 - 1, s1 = g < 0 ? 0 : std::hypot(n0, z1) - 1;
+  double s = s0;
+  for (int i = 0; i < 60; ++i) {
+    const double a = n0 / (s + r0), b = z1 / (s + 1);
+    const double gs = a * a + b * b - 1;
+    if (!(gs > 0)) {
+      if (gs == 0) return s;
+      s1 = std::min(s1, s);
+      break;
+    }
+    s0 = s;
+    const double dg = -2 * (a * a / (s + r0) + b * b / (s + 1));
+    const double next = s - gs / dg;
+    if (!(next > s)) return s;  // converged: rounding stalls the monotone iteration at the root
+    if (!(next < s1)) break;    // past the bracket (rounding): bisect
+    s = next;
+  }
   for (int i = 0; i < 2200; ++i) {
     s = 0.5 * (s0 + s1);
     if (s == s0 || s == s1) break;

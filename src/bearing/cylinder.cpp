@@ -27,7 +27,8 @@ RadialAxial radial_axial(const Cylinder& c, const Vec3& p) {
 double signed_distance_rz(double rho, double z, double radius, double half_height) {
   const double dr = rho - radius, dz = std::fabs(z) - half_height;
   if (dr <= 0 && dz <= 0) return std::max(dr, dz);
-  return std::hypot(std::max(dr, 0.0), std::max(dz, 0.0));
+  const double a = std::max(dr, 0.0), b = std::max(dz, 0.0);
+  return std::sqrt(a * a + b * b);
 }
 
 double point_signed_distance(const Cylinder& c, const Vec3& p) {

@@ -67,7 +67,7 @@ struct LocalFrame {
             m[2][0] * p.x + m[2][1] * p.y + m[2][2] * p.z + o.z};
   }
   Vec3 world(const Vec3& q) const { return c + bx * q.x + by * q.y + u * q.z; }
-  double sd(const Vec3& q) const { return signed_distance_rz(std::hypot(q.x, q.y), q.z, R, hh); }
+  double sd(const Vec3& q) const { return signed_distance_rz(std::sqrt(q.x * q.x + q.y * q.y), q.z, R, hh); }
 };
 
 /// Exact minimum of sd_B over a triangle given in B's local frame.
@@ -95,7 +95,7 @@ TriangleMin local_triangle_min(const LocalFrame& f, const Vec3& a, const Vec3& b
         t = dz != 0 ? std::clamp(-e0.z / dz, 0.0, 1.0) : 0.0;
       }
       const Vec3 q = e0 + (e1 - e0) * t;
-      const double r = std::hypot(q.x, q.y);
+      const double r = std::sqrt(q.x * q.x + q.y * q.y);
       if (r < rho || (r == rho && std::fabs(q.z) < std::fabs(p.z))) rho = r, p = q;
     }
   }
@@ -150,7 +150,7 @@ struct Evaluator {
 double node_lower_bound(const LocalFrame& f, const QuadNode& n) {
   if (n.half_r < 0) return kInf;  // no triangles
   const Vec3 c = f.local(n.box_center);
-  const double rho = std::hypot(c.x, c.y);
+  const double rho = std::sqrt(c.x * c.x + c.y * c.y);
   if (!(rho > 0)) return -kInf;
   const double nx = c.x / rho, ny = c.y / rho;
   const double erx = f.m[0][0] * n.cos_mid + f.m[0][1] * n.sin_mid;
@@ -185,11 +185,33 @@ MeshPairResult surface_reference(const Roller& roller, const Transform& pose, co
   return ev.finish(b);
 }
 
-MeshPairResult ScarredSolver::solve(const Transform& pose, const Cylinder& b) {
+MeshPairResult ScarredSolver::solve(const Transform& pose, const Cylinder& b) { return run(pose, b, nullptr); }
+
+MeshPairResult ScarredSolver::solve(const Transform& pose, const Cylinder& b, const Vec3& hint) {
+  return run(pose, b, &hint);
+}
+
+MeshPairResult ScarredSolver::run(const Transform& pose, const Cylinder& b, const Vec3* hint) {
   Evaluator ev{*roller_, LocalFrame(pose, b), {}};
   ev.best.distance = kInf;
   ev.best.triangle = 0xffffffffu;
   if (previous_ != kNone) ev.triangle(previous_);  // temporal coherence: a tight first bound
+  std::uint32_t hinted = kNone;
+  if (hint) {  // the side cell under the hint (body-frame angle and height)
+    const Vec3 w = *hint - pose.t;
+    const double x = pose.r[0][0] * w.x + pose.r[1][0] * w.y + pose.r[2][0] * w.z;
+    const double y = pose.r[0][1] * w.x + pose.r[1][1] * w.y + pose.r[2][1] * w.z;
+    const double z = pose.r[0][2] * w.x + pose.r[1][2] * w.y + pose.r[2][2] * w.z;
+    const int n = roller_->n(), m = roller_->m();
+    const double u = wrap_pi(std::atan2(y, x)) / (2 * std::numbers::pi) * n;
+    const double v = z / roller_->params.height * m;
+    if (std::isfinite(u) && std::isfinite(v)) {
+      const int i = std::clamp(static_cast<int>(u), 0, n - 1), j = std::clamp(static_cast<int>(v), 0, m - 1);
+      hinted = roller_->side_triangle(i, j);
+      if (hinted != previous_) ev.triangle(hinted);
+      if (hinted + 1 != previous_) ev.triangle(hinted + 1);
+    }
+  }
   struct Item {
     std::int32_t node;
     double lb;
@@ -206,8 +228,10 @@ MeshPairResult ScarredSolver::solve(const Transform& pose, const Cylinder& b) {
     const QuadNode& n = nodes[static_cast<std::size_t>(it.node)];
     ++ev.best.nodes_visited;
     if (n.child_count == 0) {
-      for (std::uint32_t k = 0; k < n.tri_count; ++k)
-        if (n.tri_first + k != previous_) ev.triangle(n.tri_first + k);
+      for (std::uint32_t k = 0; k < n.tri_count; ++k) {
+        const std::uint32_t id = n.tri_first + k;
+        if (id != previous_ && (hinted == kNone || (id != hinted && id != hinted + 1))) ev.triangle(id);
+      }
       continue;
     }
     Item kids[4];

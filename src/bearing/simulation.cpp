@@ -192,7 +192,7 @@ Expected<SimulationResult> simulate(const SceneParams& p, bool keep_rows) {
         }
         row.scar_in_range = in_range;
         if (in_range) {
-          const MeshPairResult mr = s.solver.solve(poses[k], cyl_b[k]);
+          const MeshPairResult mr = s.solver.solve(poses[k], cyl_b[k], pd.point_a);
           row.distance = mr.distance, row.point_a = mr.point_a, row.point_b = mr.point_b;
           row.solver = 1, row.evaluated = mr.evaluated;
         }

@@ -53,6 +53,11 @@ class ScarredSolver {
   ScarredSolver() = default;
   ScarredSolver(const Roller* roller, const RollerQuadtree* tree) : roller_(roller), tree_(tree) {}
   MeshPairResult solve(const Transform& pose, const Cylinder& b);
+  /// Same, with a hint: a world point near the expected minimiser (e.g. the standard solver's
+  /// witness on the intact cylinder); the side cell under it is evaluated first, tightening the
+  /// first upper bound when the motion since the previous frame is large. The result does not
+  /// depend on the hint (only the work does).
+  MeshPairResult solve(const Transform& pose, const Cylinder& b, const Vec3& hint);
   void reset() { previous_ = kNone; }
   std::uint32_t previous_triangle() const { return previous_; }
 
@@ -61,6 +66,7 @@ class ScarredSolver {
   const Roller* roller_ = nullptr;
   const RollerQuadtree* tree_ = nullptr;
   std::uint32_t previous_ = kNone;
+  MeshPairResult run(const Transform& pose, const Cylinder& b, const Vec3* hint);
 };
 
 /// Vertex methods: min over (some) vertices of sd_B. `window` = theta of Eq. (1) (radians).

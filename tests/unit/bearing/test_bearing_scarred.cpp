@@ -162,7 +162,7 @@ TEST(BearingScarred, CoherentSolverEqualsSurfaceReference) {
   for (const std::uint64_t seed : {1ull, 2ull, 3ull}) {
     const Roller r = scarred_roller(32, 31, seed, 0.3);
     const RollerQuadtree t = build_quadtree(r);
-    ScarredSolver solver(&r, &t);
+    ScarredSolver solver(&r, &t), hinted(&r, &t);
     SplitMix64 g{seed};
     for (int frame = 0; frame < 40; ++frame) {
       // the scar (centred at 180 degrees) faces B (at -x) when the spin is near 0
@@ -173,6 +173,9 @@ TEST(BearingScarred, CoherentSolverEqualsSurfaceReference) {
       const MeshPairResult ref = surface_reference(r, pose, b);
       EXPECT_NEAR(fast.distance, ref.distance, 1e-9 * std::max(1.0, std::fabs(ref.distance))) << frame;
       EXPECT_LT(fast.evaluated, ref.evaluated);
+      // with the standard solver's witness as a hint (as the simulation does): same value
+      const PairDistance pd = cylinder_pair_distance(posed_cylinder(10, -1, 40, pose), b);
+      EXPECT_NEAR(hinted.solve(pose, b, pd.point_a).distance, ref.distance, 1e-9 * std::max(1.0, std::fabs(ref.distance)));
       EXPECT_NEAR(point_signed_distance(b, fast.point_a), fast.distance, 1e-9);
       // vertices lie on the surface: a vertex method can only overestimate
       EXPECT_GE(vertex_brute_force(r, pose, b).distance, ref.distance - 1e-12);
