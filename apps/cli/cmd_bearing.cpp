@@ -240,7 +240,6 @@ int run_bearing(const BearingOptions& o) {
     const Status s = write_file_atomic(o.out, [&](std::FILE* f) { return write_csv(f, res); });
     if (!s) throw InputError(s.error());
   }
-  // the worst row (smallest distance; the first in frame, pair order on ties)
   if (!o.json.empty()) {
     nlohmann::json j;
     j["version"] = INTERFERE_VERSION;
@@ -259,11 +258,18 @@ int run_bearing(const BearingOptions& o) {
                     {"general_solves", res.general_solves},
                     {"broad_pairs_total", res.broad_pairs_total},
                     {"cross_pairs", res.cross_pairs}};
+    j["worst"] = {{"frame", res.worst.frame},
+                  {"pair", res.worst.pair},
+                  {"distance", res.worst.distance},
+                  {"point_a", vec_json(res.worst.point_a)},
+                  {"point_b", vec_json(res.worst.point_b)},
+                  {"solver", res.worst.solver == 1 ? "scarred" : "standard"}};
     j["timing"] = {{"setup_seconds", res.setup_seconds},
                    {"broad_seconds", res.broad_seconds},
                    {"narrow_seconds", res.narrow_seconds},
                    {"total_seconds", res.total_seconds},
-                   {"frames_per_second", res.frames_per_second}};
+                   {"frames_per_second", res.frames_per_second},
+                   {"cpu_seconds", res.cpu_seconds}};
     j["exit_status"] = status;
     const Status s = write_file_atomic(o.json, j.dump(2) + "\n");
     if (!s) throw InputError(s.error());

