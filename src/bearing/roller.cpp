@@ -15,10 +15,11 @@ Error param_error(const std::string& prefix, const char* name, const std::string
 }  // namespace
 
 Status validate(const RollerParams& p, const std::string& prefix) {
-  if (!(std::isfinite(p.radius) && p.radius > 0)) return param_error(prefix, "radius", "> 0", p.radius);
-  if (!(std::isfinite(p.top_radius) && (p.top_radius > 0 || p.top_radius < 0)))
-    return param_error(prefix, "top_radius", "> 0 (or negative for 'same as radius')", p.top_radius);
-  if (!(std::isfinite(p.height) && p.height > 0)) return param_error(prefix, "height", "> 0", p.height);
+  // lengths up to 1e9 (any unit): far beyond any bearing, and far from overflow in the solvers
+  if (!(p.radius > 0 && p.radius <= 1e9)) return param_error(prefix, "radius", "> 0 (and <= 1e9)", p.radius);
+  if (!(std::isfinite(p.top_radius) && (p.top_radius < 0 || (p.top_radius > 0 && p.top_radius <= 1e9))))
+    return param_error(prefix, "top_radius", "> 0 and <= 1e9 (or negative for 'same as radius')", p.top_radius);
+  if (!(p.height > 0 && p.height <= 1e9)) return param_error(prefix, "height", "> 0 (and <= 1e9)", p.height);
   if (p.radial_segments < 3 || p.radial_segments > 1 << 14)
     return param_error(prefix, "radial_segments", "in [3, 16384]", p.radial_segments);
   if (p.height_segments < 1 || p.height_segments > 1 << 14)

@@ -54,13 +54,13 @@ Status validate(const SceneParams& p) {
   if (p.pairs < 1 || p.pairs > 1 << 22) return param_error("pairs", "in [1, 4194304]", p.pairs);
   if (p.frames < 1 || p.frames > 1 << 24) return param_error("frames", "in [1, 16777216]", p.frames);
   if (Status s = validate(p.roller, "roller"); !s) return s;
-  if (!(std::isfinite(p.partner_radius) && p.partner_radius > 0))
-    return param_error("partner.radius", "> 0", p.partner_radius);
-  if (!(std::isfinite(p.partner_height) && p.partner_height > 0))
-    return param_error("partner.height", "> 0", p.partner_height);
+  if (!(p.partner_radius > 0 && p.partner_radius <= 1e9))
+    return param_error("partner.radius", "> 0 (and <= 1e9)", p.partner_radius);
+  if (!(p.partner_height > 0 && p.partner_height <= 1e9))
+    return param_error("partner.height", "> 0 (and <= 1e9)", p.partner_height);
   const double rmax = std::max(p.roller.radius, p.roller.top());
-  if (!(std::isfinite(p.gap) && p.gap > -(rmax + p.partner_radius)))
-    return param_error("gap", "finite and > -(roller radius + partner radius)", p.gap);
+  if (!(p.gap > -(rmax + p.partner_radius) && p.gap <= 1e9))
+    return param_error("gap", "> -(roller radius + partner radius) (and <= 1e9)", p.gap);
   if (!(p.max_tilt_deg >= 0)) return param_error("max_tilt_deg", ">= 0", p.max_tilt_deg);
   const WindowParams w{.roller_radius = p.roller.radius, .partner_radius = p.partner_radius,
                        .height = p.roller.height, .max_tilt = p.max_tilt_deg * kDeg};
@@ -72,7 +72,7 @@ Status validate(const SceneParams& p) {
   if (p.scar_fraction > 0) {
     if (Status s = validate(p.scar, p.roller, "scar"); !s) return s;
   }
-  if (!(std::isfinite(p.spacing) && p.spacing >= 0)) return param_error("spacing", ">= 0 (0 = automatic)", p.spacing);
+  if (!(p.spacing >= 0 && p.spacing <= 1e9)) return param_error("spacing", ">= 0 and <= 1e9 (0 = automatic)", p.spacing);
   return {};
 }
 

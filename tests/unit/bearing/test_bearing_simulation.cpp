@@ -5,6 +5,7 @@
 #include <tbb/global_control.h>
 
 #include <cmath>
+#include <limits>
 
 #include "interfere/bearing/simulation.h"
 #include "interfere/bearing/scarred.h"
@@ -124,6 +125,21 @@ TEST(BearingSimulation, RowsMatchIndependentRecomputation) {
   EXPECT_GT(checked, 5);
 }
 
+TEST(BearingSimulation, FixedSeedIsReproducibleOtherSeedsDiffer) {
+  SceneParams p = small_scene();
+  p.pairs = 6, p.frames = 12;
+  const auto a = simulate(p), b = simulate(p);
+  p.seed += 1;
+  const auto c = simulate(p);
+  ASSERT_TRUE(a.has_value() && b.has_value() && c.has_value());
+  bool any_difference = false;
+  for (std::size_t k = 0; k < a->rows.size(); ++k) {
+    EXPECT_TRUE(same(a->rows[k], b->rows[k]));
+    any_difference |= a->rows[k].distance != c->rows[k].distance;
+  }
+  EXPECT_TRUE(any_difference);
+}
+
 TEST(BearingSimulation, BadParametersAreErrorsNamingThem) {
   SceneParams p = small_scene();
   p.max_tilt_deg = 95;
@@ -140,4 +156,10 @@ TEST(BearingSimulation, BadParametersAreErrorsNamingThem) {
   p = small_scene();
   p.partner_radius = 0;
   EXPECT_NE(simulate(p).error().reason.find("partner.radius"), std::string::npos);
+  p = small_scene();
+  p.gap = std::numeric_limits<double>::infinity();
+  EXPECT_NE(simulate(p).error().reason.find("gap"), std::string::npos);
+  p = small_scene();
+  p.roller.height = std::nan("");
+  EXPECT_NE(simulate(p).error().reason.find("roller.height"), std::string::npos);
 }
