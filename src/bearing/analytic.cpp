@@ -91,6 +91,7 @@ const char* analytic_path_name(AnalyticPath p) {
     case AnalyticPath::side: return "side";
     case AnalyticPath::end: return "end";
     case AnalyticPath::parallel: return "parallel";
+    case AnalyticPath::tapered: return "tapered";
     case AnalyticPath::general: return "general";
   }
   return "?";
@@ -253,10 +254,45 @@ PairDistance cylinder_pair_distance_general(const Cylinder& a, const Cylinder& b
   return out;
 }
 
+namespace {
+/// min over a tapered A of the distance to the line (c, u): the disk at axis parameter t projects to
+/// an ellipse of semi-axes r(t), r(t)|cos gamma| centred on the projected axis point; the distance to
+/// it is convex in t (partial minimisation of a convex function over a convex set).
+RadialMin min_axis_distance_tapered(const Cylinder& a, const Vec3& c, const Vec3& u) {
+  const Vec3 d = a.axis;
+  const double h = a.height;
+  const Vec3 v0 = a.base - c;
+  const double cg = dot(d, u);
+  const Vec3 cr = cross(d, u);
+  const double sl = norm(cr);
+  const Vec3 f1 = sl > 1e-150 ? cr / sl : any_perpendicular(d);
+  const Vec3 e2 = cross(u, f1);
+  const Vec3 g2 = cross(d, f1);
+  const double xa = dot(v0, f1), y0 = dot(v0, e2), dy = h * dot(d, e2);
+  const auto radius = [&](double t) { return a.radius + (a.top() - a.radius) * (t / h); };
+  const auto at = [&](double t) {
+    const double r = radius(t);
+    return point_ellipse_distance(r, r * std::fabs(cg), -xa, -(y0 + dy * (t / h)));
+  };
+  const auto [t, rho] = golden_min([&](double tt) { return at(tt).distance; }, 0.0, h, 90);
+  RadialMin out;
+  out.path = AnalyticPath::tapered;
+  const EllipsePoint ep = at(t);
+  const double r = radius(t);
+  out.rho = ep.distance;
+  double cs = ep.x0 / r, sn = cg != 0 ? ep.x1 / (r * cg) : std::sqrt(std::max(0.0, 1 - cs * cs));
+  if (ep.distance == 0) cs = -xa / r, sn = cg != 0 ? -(y0 + dy * (t / h)) / (r * cg) : 0.0;
+  const double len = std::hypot(cs, sn);
+  if (len > 0 && ep.distance > 0) cs /= len, sn /= len;
+  out.point = a.base + d * t + f1 * (r * cs) + g2 * (r * sn);
+  (void)rho;
+  return out;
+}
+}  // namespace
+
 PairDistance cylinder_pair_distance(const Cylinder& a, const Cylinder& b) {
-  if (a.tapered()) return cylinder_pair_distance_general(a, b);
   const Vec3 bc = b.center();
-  const RadialMin rm = min_axis_distance(a, bc, b.axis);
+  const RadialMin rm = a.tapered() ? min_axis_distance_tapered(a, bc, b.axis) : min_axis_distance(a, bc, b.axis);
   const double R = b.radius, hh = 0.5 * b.height;
   const double z = dot(rm.point - bc, b.axis);
   const double dr = rm.rho - R, dz = std::fabs(z) - hh;

@@ -16,9 +16,12 @@
 // distance (end-circle contact; Eberly, "Distance from a point to an ellipse", robust bisection),
 // which is Eberly's circle-to-line case of "Distance to Circles in 3D". When sd_B(p*) = rho_B(p*) -
 // R at that minimiser p* (B's side is the nearest part of B: a certificate checked explicitly), the
-// value is exact to rounding in O(1). Otherwise (B's end face or rim involved, deep overlap where
-// B's axis crosses A, tapered A) a general exact-to-rounding fallback minimises the convex sd_B over
-// the convex A by nested golden-section searches (partial minimisation keeps convexity).
+// value is exact to rounding in O(1). A tapered A projects onto the convex hull of ellipses of
+// linearly varying size: the distance is a convex function of the axis parameter, minimised by a
+// golden-section search with a point-to-ellipse distance per step (then the same certificate).
+// Otherwise (B's end face or rim involved, deep overlap where B's axis crosses A) a general
+// exact-to-rounding fallback minimises the convex sd_B over the convex A by nested golden-section
+// searches (partial minimisation keeps convexity).
 #pragma once
 #include <cstdint>
 
@@ -30,7 +33,8 @@ enum class AnalyticPath : std::uint8_t {
   side,      ///< axis-segment closest points, side of A against side of B (closed form)
   end,       ///< end circle of A against side of B (point-to-ellipse)
   parallel,  ///< parallel axes (the projected segment is a point), closed form
-  general,   ///< nested convex minimisation (end faces of B, deep overlap, tapered rollers)
+  tapered,   ///< tapered roller: 1-D convex search over the axis, point-to-ellipse per disk
+  general,   ///< nested convex minimisation (end faces of B, deep overlap)
 };
 const char* analytic_path_name(AnalyticPath p);
 

@@ -180,14 +180,27 @@ TEST(BearingAnalytic, StandardMatchesGeneralAndDenseBruteForce) {
   EXPECT_EQ(checked, 60);
 }
 
-TEST(BearingAnalytic, TaperedRollerUsesGeneralPath) {
+TEST(BearingAnalytic, TaperedRollers) {
   const Cylinder b = cyl({0, 0, 0}, {0, 0, 1}, 60, 30);
   Cylinder a = cyl({41, 0, 10}, {0, 0, 1}, 40, 10);
   a.top_radius = 8;  // cone frustum: its generator facing B leans away, nearest at the bottom rim
   const PairDistance pd = cylinder_pair_distance(a, b);
-  EXPECT_EQ(pd.path, AnalyticPath::general);
+  EXPECT_EQ(pd.path, AnalyticPath::tapered);
   expect_rel(pd.distance, 1.0);
   EXPECT_NEAR(pd.point_a.z, 10, 1e-6);
+  // random tilted frustums: the 1-D search equals the nested 3-D minimisation and dense sampling
+  SplitMix64 g{17};
+  for (int trial = 0; trial < 30; ++trial) {
+    const double al = 0.3 * g.uniform(), az = 2 * std::numbers::pi * g.uniform();
+    Cylinder t = cyl({40 + 2 * g.symmetric(), 2 * g.symmetric(), 10 + 5 * g.symmetric()},
+                     {std::sin(al) * std::cos(az), std::sin(al) * std::sin(az), std::cos(al)}, 40, 10);
+    t.top_radius = 6 + 6 * g.uniform();
+    const PairDistance fast = cylinder_pair_distance(t, b);
+    const PairDistance slow = cylinder_pair_distance_general(t, b);
+    EXPECT_NEAR(fast.distance, slow.distance, 1e-9 * std::max(1.0, std::fabs(slow.distance))) << trial;
+    EXPECT_NEAR(point_signed_distance(b, fast.point_a), fast.distance, 1e-9) << trial;
+    EXPECT_LE(fast.distance, brute(t, b, 200) + 1e-12) << trial;
+  }
 }
 
 TEST(BearingAnalytic, DegenerateNeverNaN) {
