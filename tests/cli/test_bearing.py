@@ -16,6 +16,7 @@ import unittest
 
 EXE = None
 WORK = None
+EXAMPLE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "data", "examples", "bearing.parameters")
 
 COLUMNS = ["frame", "pair", "distance", "interference", "ax", "ay", "az", "bx", "by", "bz", "solver", "path",
            "scarred", "scar_in_range", "box_overlap", "tilt_deg", "azimuth_deg", "spin_deg", "evaluated"]
@@ -105,6 +106,15 @@ class Bearing(unittest.TestCase):
         # command-line values override the file
         rc, _, err = run("--params", path("bearing.parameters"), "--pairs", "2", "--json", path("p2.json"))
         self.assertEqual(load("p2.json")["parameters"]["pairs"], 2)
+
+    def test_example_parameters_file(self):
+        rc, out, err = run("--params", EXAMPLE, "--frames", "10", "--json", path("ex.json"), "--out", path("ex.csv"))
+        self.assertEqual(rc, 1, err)  # the example is preloaded (gap -0.05): interference
+        s = load("ex.json")
+        self.assertEqual(s["parameters"]["pairs"], 16)
+        self.assertEqual(s["parameters"]["frames"], 10)
+        self.assertEqual(s["results"]["scarred_rollers"], 4)
+        self.assertEqual(len(read_csv("ex.csv")), 160)
 
     def test_bad_input_names_the_parameter_and_writes_nothing(self):
         with open(path("keep.csv"), "w") as f:
