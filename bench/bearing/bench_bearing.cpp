@@ -130,8 +130,9 @@ void BM_Simulation(benchmark::State& state) {
     state.SetIterationTime(r->broad_seconds + r->narrow_seconds);
     // best of the runs: on a shared machine the fastest run is the least disturbed one
     fps = std::max(fps, r->frames_per_second);
-    // frames per second of dedicated cores: frames * threads / CPU seconds (spin-waiting included)
-    if (r->cpu_seconds > 0) fps_cpu = std::max(fps_cpu, p.frames * r->threads / r->cpu_seconds);
+    // a lower bound of the frames per second on dedicated cores: frames / CPU seconds of all threads
+    // (as if nothing ran in parallel; oneTBB's spin-waiting counts as CPU time too)
+    if (r->cpu_seconds > 0) fps_cpu = std::max(fps_cpu, p.frames / r->cpu_seconds);
     scarred = static_cast<double>(r->scarred_solves) / p.frames;
     ++runs;
   }
