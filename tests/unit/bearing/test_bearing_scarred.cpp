@@ -225,3 +225,30 @@ TEST(BearingWindow, Eq1AgainstDirectGeometry) {
     EXPECT_GE(worst, theta * (1 - 1e-6));
   }
 }
+
+TEST(BearingWindow, ContactPointBodyAngleWithinTheta) {
+  // The quantity the window is used for: the body-frame angle of the exact maximum-interference
+  // point (standard solver witness) relative to the centre-line direction (contact_direction_angle)
+  // never exceeds theta of Eq. (1), over tilts up to alpha, all azimuths and spins; and it gets
+  // close to theta (the bound is tight to second order in alpha).
+  const Cylinder b = partner();
+  for (const double deg : {0.5, 1.0, 3.0, 10.0}) {
+    const double al = deg * std::numbers::pi / 180;
+    const double th = interference_window({.roller_radius = 10, .partner_radius = 30, .height = 40, .max_tilt = al});
+    double worst = 0;
+    for (int k = 0; k < 4000; ++k) {
+      const double az = 2 * std::numbers::pi * k / 4000, spin = 0.37 * k;
+      for (const double f : {1.0, 0.5}) {
+        const Transform T = roller_pose({40, 0, 0}, al * f, az, spin);
+        const PairDistance pd = cylinder_pair_distance(posed_cylinder(10, -1, 40, T), b);
+        const Vec3 v = pd.point_a - T.t;
+        const double x = T.r[0][0] * v.x + T.r[1][0] * v.y + T.r[2][0] * v.z;
+        const double y = T.r[0][1] * v.x + T.r[1][1] * v.y + T.r[2][1] * v.z;
+        const double d = std::remainder(std::atan2(y, x) - contact_direction_angle(T, b, 40), 2 * std::numbers::pi);
+        worst = std::max(worst, std::fabs(d));
+      }
+    }
+    EXPECT_LE(worst, th) << deg;
+    EXPECT_GE(worst, th * (1 - 0.02 * deg)) << deg;
+  }
+}
