@@ -10,6 +10,7 @@
 #include "interfere/bearing/scar.h"
 #include "interfere/bearing/window.h"
 #include "interfere/core/predicates.h"
+#include "interfere/query/distance.h"
 
 using namespace interfere;
 using namespace interfere::bearing;
@@ -250,5 +251,35 @@ TEST(BearingWindow, ContactPointBodyAngleWithinTheta) {
     }
     EXPECT_LE(worst, th) << deg;
     EXPECT_GE(worst, th * (1 - 0.02 * deg)) << deg;
+  }
+}
+
+TEST(BearingScarred, AgreesWithTheEngineMeshDistance) {
+  // Independent oracle: the engine's own mesh distance (query/distance.h, exact tri-tri intersection
+  // test) between the posed scarred roller mesh and a finely tessellated partner. The tessellated
+  // partner lies inside the true one by at most its sagitta, so for separated parts the engine's
+  // distance is within [s, s + sagitta]; for interpenetrating parts the engine reports intersection.
+  const Cylinder b = partner();
+  Roller pr = *make_roller({.radius = 30, .height = 60, .radial_segments = 2048, .height_segments = 1});
+  TriMesh partner_mesh = transformed(pr.mesh, Transform{.t = b.base});
+  const Model partner_model = make_model(partner_mesh);
+  const double sagitta = 30 * (1 - std::cos(std::numbers::pi / 2048));
+  const Roller r = scarred_roller(48, 47, 4, 0.2);
+  SplitMix64 g{21};
+  for (int k = 0; k < 12; ++k) {
+    const bool apart = k % 2 == 0;
+    const Transform pose = roller_pose({40 + (apart ? 0.5 : -0.3), 0, 0}, 0.02 * g.uniform(), 6.3 * g.uniform(),
+                                       6.3 * g.uniform());
+    const MeshPairResult s = surface_reference(r, pose, b);
+    const DistanceResult d = distance(make_model(transformed(r.mesh, pose)), partner_model);
+    if (apart) {
+      ASSERT_GT(s.distance, 0);
+      EXPECT_FALSE(d.intersecting);
+      EXPECT_GE(d.distance, s.distance - 1e-9);
+      EXPECT_LE(d.distance, s.distance + sagitta + 1e-9);
+    } else {
+      EXPECT_LT(s.distance, -0.1);
+      EXPECT_TRUE(d.intersecting);
+    }
   }
 }
