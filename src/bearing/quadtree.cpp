@@ -41,9 +41,8 @@ struct Builder {
 
   double column_angle(double i) const { return 2.0 * std::numbers::pi * i / roller.n(); }
 
-  std::int32_t side(std::int32_t i0, std::int32_t i1, std::int32_t j0, std::int32_t j1, std::int32_t level) {
-    const auto id = static_cast<std::int32_t>(tree.nodes.size());
-    tree.nodes.emplace_back();
+  // Fills the (already allocated) slot `id`; children get contiguous slots allocated here.
+  void side(std::int32_t id, std::int32_t i0, std::int32_t i1, std::int32_t j0, std::int32_t j1, std::int32_t level) {
     tree.depth = std::max(tree.depth, level);
     {
       QuadNode& node = tree.nodes[static_cast<std::size_t>(id)];
@@ -71,7 +70,7 @@ struct Builder {
     if (i1 - i0 == 1 && j1 - j0 == 1) {
       QuadNode& node = tree.nodes[static_cast<std::size_t>(id)];
       if (j0 < roller.m()) node.tri_first = roller.side_triangle(i0, j0), node.tri_count = 2;
-      return id;
+      return;
     }
     const std::int32_t im = i1 - i0 > 1 ? (i0 + i1) / 2 : i1;
     const std::int32_t jm = j1 - j0 > 1 ? (j0 + j1) / 2 : j1;
@@ -79,22 +78,16 @@ struct Builder {
     for (auto [a0, a1] : {std::pair{i0, im}, std::pair{im, i1}})
       for (auto [b0, b1] : {std::pair{j0, jm}, std::pair{jm, j1}})
         if (a1 > a0 && b1 > b0) parts.push_back({a0, a1, b0, b1});
-    // children are contiguous: reserve their slots first, then fill them depth-first
+    // children are contiguous: allocate their slots first, then fill them depth-first
     const auto first = static_cast<std::int32_t>(tree.nodes.size());
     tree.nodes.resize(tree.nodes.size() + parts.size());
     tree.nodes[static_cast<std::size_t>(id)].first_child = first;
     tree.nodes[static_cast<std::size_t>(id)].child_count = static_cast<std::int32_t>(parts.size());
-    for (std::size_t k = 0; k < parts.size(); ++k) {
-      const std::int32_t built = side(parts[k][0], parts[k][1], parts[k][2], parts[k][3], level + 1);
-      tree.nodes[static_cast<std::size_t>(first) + k] = tree.nodes[static_cast<std::size_t>(built)];
-      // the subtree's own root copy stays unused at `built`; its children still point correctly
-    }
-    return id;
+    for (std::size_t k = 0; k < parts.size(); ++k)
+      side(first + static_cast<std::int32_t>(k), parts[k][0], parts[k][1], parts[k][2], parts[k][3], level + 1);
   }
 
-  std::int32_t cap(std::int32_t i0, std::int32_t i1, bool top) {
-    const auto id = static_cast<std::int32_t>(tree.nodes.size());
-    tree.nodes.emplace_back();
+  void cap(std::int32_t id, std::int32_t i0, std::int32_t i1, bool top) {
     const int j = top ? roller.m() : 0;
     const std::size_t center = static_cast<std::size_t>(roller.n()) * (roller.m() + 1) + (top ? 1 : 0);
     {
@@ -110,18 +103,20 @@ struct Builder {
       QuadNode& node = tree.nodes[static_cast<std::size_t>(id)];
       node.tri_first = top ? roller.top_triangle(i0) : roller.bottom_triangle(i0);
       node.tri_count = static_cast<std::uint32_t>(i1 - i0);
-      return id;
+      return;
     }
     const std::int32_t im = (i0 + i1) / 2;
     const auto first = static_cast<std::int32_t>(tree.nodes.size());
     tree.nodes.resize(tree.nodes.size() + 2);
     tree.nodes[static_cast<std::size_t>(id)].first_child = first;
     tree.nodes[static_cast<std::size_t>(id)].child_count = 2;
-    const std::int32_t a = cap(i0, im, top);
-    tree.nodes[static_cast<std::size_t>(first)] = tree.nodes[static_cast<std::size_t>(a)];
-    const std::int32_t b = cap(im, i1, top);
-    tree.nodes[static_cast<std::size_t>(first) + 1] = tree.nodes[static_cast<std::size_t>(b)];
-    return id;
+    cap(first, i0, im, top);
+    cap(first + 1, im, i1, top);
+  }
+
+  std::int32_t root() {
+    tree.nodes.emplace_back();
+    return static_cast<std::int32_t>(tree.nodes.size() - 1);
   }
 };
 
@@ -140,11 +135,14 @@ std::int32_t RollerQuadtree::calculation_layer(double theta, int radial_segments
 
 RollerQuadtree build_quadtree(const Roller& roller) {
   RollerQuadtree tree;
-  tree.nodes.reserve(static_cast<std::size_t>(roller.n()) * (roller.m() + 1) * 3);
+  tree.nodes.reserve(static_cast<std::size_t>(roller.n()) * (roller.m() + 1) * 2 + 2 * roller.n());
   Builder b{roller, tree};
-  tree.side_root = b.side(0, roller.n(), 0, roller.m() + 1, 0);
-  tree.bottom_root = b.cap(0, roller.n(), false);
-  tree.top_root = b.cap(0, roller.n(), true);
+  tree.side_root = b.root();
+  b.side(tree.side_root, 0, roller.n(), 0, roller.m() + 1, 0);
+  tree.bottom_root = b.root();
+  b.cap(tree.bottom_root, 0, roller.n(), false);
+  tree.top_root = b.root();
+  b.cap(tree.top_root, 0, roller.n(), true);
   return tree;
 }
 

@@ -112,9 +112,11 @@ TEST(BearingQuadtree, LabelsBoundsAndLayers) {
   // scar labels propagate to ancestors; bounds contain every vertex of their cells
   std::vector<std::int32_t> stack{t.side_root, t.bottom_root, t.top_root};
   int leaves = 0;
+  std::size_t reached = 0;
   while (!stack.empty()) {
     const QuadNode& q = t.nodes[static_cast<std::size_t>(stack.back())];
     stack.pop_back();
+    ++reached;
     bool any_scar = false;
     for (int j = q.j0; j < q.j1; ++j)
       for (int i = q.i0; i < q.i1; ++i) any_scar |= r.scar[r.side_vertex(i, j)] != 0;
@@ -132,6 +134,7 @@ TEST(BearingQuadtree, LabelsBoundsAndLayers) {
     for (std::int32_t k = 0; k < q.child_count; ++k) stack.push_back(q.first_child + k);
   }
   EXPECT_EQ(leaves, 32 * 32 + 2 * 16);  // one leaf per side vertex, fan leaves of 2 triangles
+  EXPECT_EQ(reached, t.nodes.size());   // every node is reachable (no orphans)
   // calculation layer: nodes at that level still span 2*theta, the next level does not
   const double theta = 0.3;
   const std::int32_t L = t.calculation_layer(theta, 32);
