@@ -10,6 +10,7 @@ lists of tuples. ``HAVE_NUMPY`` says which. See docs/python.md.
     print(r.interference, len(r.pairs), r.regions[0].curve_length)
 """
 
+from ._interfere import bearing  # noqa: F401  (submodule: issue #4, docs/bearing.md)
 from ._interfere import (  # noqa: F401
     HAVE_NUMPY,
     KIND_CROSS,

@@ -5,4 +5,5 @@
 
 namespace interfere::python {
 void bind_probe(pybind11::module_& m);
+void bind_bearing(pybind11::module_& m);
 }  // namespace interfere::python

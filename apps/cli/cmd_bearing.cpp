@@ -1,0 +1,319 @@
+// `interfere bearing`: dynamic interference of cylindrical roller bearings with scars (issue #4;
+// Jia & Zheng, J. System Simulation 31(3), 2019). Parses options and the parameters file, runs the
+// simulation (bearing/simulation.h), writes the per-frame CSV and the JSON summary
+// (docs/bearing.md). Outputs are written atomically and only after every input is validated.
+#include <CLI/CLI.hpp>
+
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <numbers>
+#include <optional>
+#include <set>
+#include <sstream>
+
+#include "commands.h"
+#include "common.h"
+#include "interfere/bearing/analytic.h"
+#include "interfere/bearing/simulation.h"
+#include "interfere/core/atomic_file.h"
+
+namespace interfere::cli {
+namespace {
+
+using namespace interfere::bearing;
+
+struct BearingOptions {
+  std::string params_file, out, json, broad_phase, scar;
+  std::optional<int> pairs, frames, vertices, threads_opt, border;
+  std::optional<double> tilt, radius, top_radius, height, partner_radius, partner_height, gap, spin, tilt_step,
+      scar_fraction, roughness, spacing;
+  std::optional<std::uint64_t> seed, scar_seed;
+  bool no_scar = false;
+};
+
+void check_output_path(const std::string& path, const char* flag) {
+  if (path.empty()) return;
+  const std::filesystem::path p(path);
+  const std::filesystem::path dir = p.parent_path().empty() ? std::filesystem::path(".") : p.parent_path();
+  if (!std::filesystem::is_directory(dir)) throw InputError(std::string(flag) + ": " + path + ": directory does not exist");
+  if (std::filesystem::is_directory(p)) throw InputError(std::string(flag) + ": " + path + ": is a directory");
+}
+
+// ---- parameters file (JSON, the paper's bearing.parameters) ----
+
+[[noreturn]] void file_error(const std::string& file, const std::string& reason) {
+  throw InputError(Error{.file = file, .reason = reason});
+}
+
+double number(const nlohmann::json& j, const std::string& file, const std::string& key) {
+  if (!j.is_number()) file_error(file, "'" + key + "' must be a number");
+  return j.get<double>();
+}
+int integer(const nlohmann::json& j, const std::string& file, const std::string& key) {
+  if (!j.is_number_integer()) file_error(file, "'" + key + "' must be an integer");
+  const auto v = j.get<std::int64_t>();
+  if (v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max())
+    file_error(file, "'" + key + "' is out of range");
+  return static_cast<int>(v);
+}
+std::uint64_t unsigned_integer(const nlohmann::json& j, const std::string& file, const std::string& key) {
+  if (!j.is_number_unsigned()) file_error(file, "'" + key + "' must be a non-negative integer");
+  return j.get<std::uint64_t>();
+}
+
+void apply_params_file(const std::string& file, SceneParams& p) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) file_error(file, "cannot open the parameters file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string text = ss.str();
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError(Error{.file = file, .byte = static_cast<std::int64_t>(e.byte), .reason = "invalid JSON"});
+  }
+  if (!j.is_object()) file_error(file, "the parameters file must hold a JSON object");
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    const std::string& k = it.key();
+    const nlohmann::json& v = it.value();
+    if (k == "pairs") p.pairs = integer(v, file, k);
+    else if (k == "frames") p.frames = integer(v, file, k);
+    else if (k == "seed") p.seed = unsigned_integer(v, file, k);
+    else if (k == "gap") p.gap = number(v, file, k);
+    else if (k == "max_tilt_deg") p.max_tilt_deg = number(v, file, k);
+    else if (k == "tilt_step") p.tilt_step = number(v, file, k);
+    else if (k == "spin_deg_per_frame") p.spin_deg_per_frame = number(v, file, k);
+    else if (k == "spacing") p.spacing = number(v, file, k);
+    else if (k == "broad_phase") {
+      if (!v.is_string() || !parse_broad_phase(v.get<std::string>(), p.broad_phase))
+        file_error(file, "'broad_phase' must be one of \"brute\", \"sap\", \"octree\", \"bvh\"");
+    } else if (k == "roller") {
+      if (!v.is_object()) file_error(file, "'roller' must be an object");
+      for (auto r = v.begin(); r != v.end(); ++r) {
+        const std::string key = "roller." + r.key();
+        if (r.key() == "radius") p.roller.radius = number(*r, file, key);
+        else if (r.key() == "top_radius") p.roller.top_radius = number(*r, file, key);
+        else if (r.key() == "height") p.roller.height = number(*r, file, key);
+        else if (r.key() == "radial_segments") p.roller.radial_segments = integer(*r, file, key);
+        else if (r.key() == "height_segments") p.roller.height_segments = integer(*r, file, key);
+        else file_error(file, "unknown key '" + key + "'");
+      }
+    } else if (k == "partner") {
+      if (!v.is_object()) file_error(file, "'partner' must be an object");
+      for (auto r = v.begin(); r != v.end(); ++r) {
+        const std::string key = "partner." + r.key();
+        if (r.key() == "radius") p.partner_radius = number(*r, file, key);
+        else if (r.key() == "height") p.partner_height = number(*r, file, key);
+        else file_error(file, "unknown key '" + key + "'");
+      }
+    } else if (k == "scar") {
+      if (v.is_null()) { p.scar_fraction = 0; continue; }
+      if (!v.is_object()) file_error(file, "'scar' must be an object or null");
+      for (auto r = v.begin(); r != v.end(); ++r) {
+        const std::string key = "scar." + r.key();
+        if (r.key() == "fraction") p.scar_fraction = number(*r, file, key);
+        else if (r.key() == "angle_center_deg") p.scar.angle_center_deg = number(*r, file, key);
+        else if (r.key() == "angle_width_deg") p.scar.angle_width_deg = number(*r, file, key);
+        else if (r.key() == "z_min") p.scar.z_min = number(*r, file, key);
+        else if (r.key() == "z_max") p.scar.z_max = number(*r, file, key);
+        else if (r.key() == "depth") p.scar.depth = number(*r, file, key);
+        else if (r.key() == "roughness") p.scar.roughness = number(*r, file, key);
+        else if (r.key() == "border") p.scar.border = integer(*r, file, key);
+        else if (r.key() == "seed") p.scar.seed = unsigned_integer(*r, file, key);
+        else file_error(file, "unknown key '" + key + "'");
+      }
+    } else {
+      file_error(file, "unknown key '" + k + "'");
+    }
+  }
+}
+
+void parse_scar_spec(const std::string& spec, ScarParams& s) {
+  // CENTER,WIDTH,ZMIN,ZMAX,DEPTH (degrees, degrees, length, length, length)
+  std::vector<double> v;
+  std::stringstream ss(spec);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    char* end = nullptr;
+    const double d = std::strtod(item.c_str(), &end);
+    if (item.empty() || end == item.c_str() || *end != '\0' || !std::isfinite(d))
+      throw InputError("--scar: '" + item + "' is not a number (expected CENTER,WIDTH,ZMIN,ZMAX,DEPTH)");
+    v.push_back(d);
+  }
+  if (v.size() != 5) throw InputError("--scar: expected 5 numbers CENTER,WIDTH,ZMIN,ZMAX,DEPTH, got " + std::to_string(v.size()));
+  s.angle_center_deg = v[0], s.angle_width_deg = v[1], s.z_min = v[2], s.z_max = v[3], s.depth = v[4];
+}
+
+nlohmann::json vec_json(const Vec3& v) { return {v.x, v.y, v.z}; }
+
+nlohmann::json params_json(const SceneParams& p) {
+  return {{"pairs", p.pairs},
+          {"frames", p.frames},
+          {"seed", p.seed},
+          {"roller",
+           {{"radius", p.roller.radius},
+            {"top_radius", p.roller.top()},
+            {"height", p.roller.height},
+            {"radial_segments", p.roller.radial_segments},
+            {"height_segments", p.roller.height_segments}}},
+          {"partner", {{"radius", p.partner_radius}, {"height", p.partner_height}}},
+          {"gap", p.gap},
+          {"max_tilt_deg", p.max_tilt_deg},
+          {"tilt_step", p.tilt_step},
+          {"spin_deg_per_frame", p.spin_deg_per_frame},
+          {"scar",
+           {{"fraction", p.scar_fraction},
+            {"angle_center_deg", p.scar.angle_center_deg},
+            {"angle_width_deg", p.scar.angle_width_deg},
+            {"z_min", p.scar.z_min},
+            {"z_max", p.scar.z_max},
+            {"depth", p.scar.depth},
+            {"roughness", p.scar.roughness},
+            {"border", p.scar.border},
+            {"seed", p.scar.seed}}},
+          {"broad_phase", broad_phase_name(p.broad_phase)},
+          {"spacing", p.spacing}};
+}
+
+int write_csv(std::FILE* f, const SimulationResult& r) {
+  std::fputs("frame,pair,distance,interference,ax,ay,az,bx,by,bz,solver,path,scarred,scar_in_range,box_overlap,"
+             "tilt_deg,azimuth_deg,spin_deg,evaluated\n", f);
+  for (const PairFrame& row : r.rows) {
+    std::fprintf(f, "%d,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%s,%s,%d,%d,%d,%.17g,%.17g,%.17g,%u\n",
+                 row.frame, row.pair, row.distance, row.distance < 0 ? -row.distance : 0.0, row.point_a.x,
+                 row.point_a.y, row.point_a.z, row.point_b.x, row.point_b.y, row.point_b.z,
+                 row.solver == 1 ? "scarred" : "standard",
+                 row.solver == 1 ? "mesh" : analytic_path_name(static_cast<AnalyticPath>(row.path)),
+                 row.scarred_roller ? 1 : 0, row.scar_in_range ? 1 : 0, row.box_overlap ? 1 : 0, row.tilt_deg,
+                 row.azimuth_deg, row.spin_deg, row.evaluated);
+  }
+  return std::ferror(f) ? 1 : 0;
+}
+
+int run_bearing(const BearingOptions& o) {
+  SceneParams p;
+  if (!o.params_file.empty()) apply_params_file(o.params_file, p);
+  if (o.pairs) p.pairs = *o.pairs;
+  if (o.frames) p.frames = *o.frames;
+  if (o.vertices) {
+    if (*o.vertices < 3) throw InputError("--vertices must be >= 3, got " + std::to_string(*o.vertices));
+    p.roller.radial_segments = *o.vertices, p.roller.height_segments = *o.vertices - 1;
+  }
+  if (o.tilt) p.max_tilt_deg = *o.tilt;
+  if (o.radius) p.roller.radius = *o.radius;
+  if (o.top_radius) p.roller.top_radius = *o.top_radius;
+  if (o.height) p.roller.height = *o.height;
+  if (o.partner_radius) p.partner_radius = *o.partner_radius;
+  if (o.partner_height) p.partner_height = *o.partner_height;
+  if (o.gap) p.gap = *o.gap;
+  if (o.spin) p.spin_deg_per_frame = *o.spin;
+  if (o.tilt_step) p.tilt_step = *o.tilt_step;
+  if (o.spacing) p.spacing = *o.spacing;
+  if (o.seed) p.seed = *o.seed;
+  if (!o.scar.empty()) parse_scar_spec(o.scar, p.scar);
+  if (o.scar_fraction) p.scar_fraction = *o.scar_fraction;
+  if (o.roughness) p.scar.roughness = *o.roughness;
+  if (o.border) p.scar.border = *o.border;
+  if (o.scar_seed) p.scar.seed = *o.scar_seed;
+  if (o.no_scar) p.scar_fraction = 0;
+  if (!o.broad_phase.empty() && !parse_broad_phase(o.broad_phase, p.broad_phase))
+    throw InputError("--broad-phase: unknown broad phase '" + o.broad_phase + "' (brute, sap, octree, bvh)");
+  if (Status s = validate(p); !s) throw InputError(s.error());
+  check_output_path(o.out, "--out");
+  check_output_path(o.json, "--json");
+  set_threads(o.threads_opt.value_or(0));
+
+  Progress total("bearing");
+  Expected<SimulationResult> r = Error{.reason = "not run"};
+  {
+    Progress progress("simulating " + std::to_string(p.pairs) + " pairs x " + std::to_string(p.frames) + " frames");
+    r = simulate(p, !o.out.empty());
+  }
+  if (!r) throw InputError(r.error());
+  const SimulationResult& res = *r;
+  const int status = res.interfering_rows > 0 ? kInterference : kClear;
+  if (!o.out.empty()) {
+    const Status s = write_file_atomic(o.out, [&](std::FILE* f) { return write_csv(f, res); });
+    if (!s) throw InputError(s.error());
+  }
+  if (!o.json.empty()) {
+    nlohmann::json j;
+    j["version"] = INTERFERE_VERSION;
+    j["command"] = "bearing";
+    j["parameters"] = params_json(p);
+    j["spacing"] = res.spacing;
+    j["theta_deg"] = res.theta * 180 / std::numbers::pi;
+    j["threads"] = active_threads();
+    j["results"] = {{"rows", static_cast<std::uint64_t>(p.pairs) * static_cast<std::uint64_t>(p.frames)},
+                    {"colliders", 2 * p.pairs},
+                    {"interfering_rows", res.interfering_rows},
+                    {"min_distance", res.min_distance},
+                    {"max_interference", res.min_distance < 0 ? -res.min_distance : 0.0},
+                    {"scarred_rollers", res.scarred_rollers},
+                    {"scarred_solves", res.scarred_solves},
+                    {"general_solves", res.general_solves},
+                    {"broad_pairs_total", res.broad_pairs_total},
+                    {"cross_pairs", res.cross_pairs}};
+    j["worst"] = {{"frame", res.worst.frame},
+                  {"pair", res.worst.pair},
+                  {"distance", res.worst.distance},
+                  {"point_a", vec_json(res.worst.point_a)},
+                  {"point_b", vec_json(res.worst.point_b)},
+                  {"solver", res.worst.solver == 1 ? "scarred" : "standard"}};
+    j["timing"] = {{"setup_seconds", res.setup_seconds},
+                   {"broad_seconds", res.broad_seconds},
+                   {"narrow_seconds", res.narrow_seconds},
+                   {"total_seconds", res.total_seconds},
+                   {"frames_per_second", res.frames_per_second},
+                   {"cpu_seconds", res.cpu_seconds}};
+    j["exit_status"] = status;
+    const Status s = write_file_atomic(o.json, j.dump(2) + "\n");
+    if (!s) throw InputError(s.error());
+  }
+  std::printf("%s: %d pairs x %d frames, %llu interfering pair-frames, max interference %.17g, min distance %.17g, "
+              "%.1f frames/s\n",
+              res.interfering_rows > 0 ? "INTERFERENCE" : "clear", p.pairs, p.frames,
+              static_cast<unsigned long long>(res.interfering_rows), res.min_distance < 0 ? -res.min_distance : 0.0,
+              res.min_distance, res.frames_per_second);
+  return status;
+}
+
+}  // namespace
+
+void add_bearing_command(CLI::App& app, int& exit_code) {
+  auto o = std::make_shared<BearingOptions>();
+  CLI::App* c = app.add_subcommand(
+      "bearing", "Dynamic interference of cylindrical roller bearings with scars (per-frame maximum interference)");
+  c->add_option("--params", o->params_file, "parameters file (JSON, like the paper's bearing.parameters)");
+  c->add_option("--pairs", o->pairs, "number of roller/partner pairs N (colliders = 2N)");
+  c->add_option("--frames", o->frames, "number of frames F");
+  c->add_option("--vertices", o->vertices, "side vertices per ring and rings per roller (n x n)");
+  c->add_option("--scar", o->scar, "scar window CENTER_DEG,WIDTH_DEG,ZMIN,ZMAX,DEPTH");
+  c->add_option("--scar-fraction", o->scar_fraction, "fraction of scarred rollers (default 0.25)");
+  c->add_option("--roughness", o->roughness, "diamond-square roughness in (0, 1]");
+  c->add_option("--border", o->border, "median-filter border band in grid cells");
+  c->add_option("--scar-seed", o->scar_seed, "seed of the scar height maps");
+  c->add_flag("--no-scar", o->no_scar, "no scarred rollers");
+  c->add_option("--tilt", o->tilt, "maximum tilt alpha in degrees (default 1)");
+  c->add_option("--tilt-step", o->tilt_step, "tilt random-walk step, fraction of alpha (default 0.25)");
+  c->add_option("--spin", o->spin, "roller spin per frame in degrees (default 3)");
+  c->add_option("--radius", o->radius, "roller radius r (default 10)");
+  c->add_option("--top-radius", o->top_radius, "roller top radius (tapered roller; default = radius)");
+  c->add_option("--height", o->height, "roller length h_b (default 40)");
+  c->add_option("--partner-radius", o->partner_radius, "partner radius R (default 30)");
+  c->add_option("--partner-height", o->partner_height, "partner height (default 60)");
+  c->add_option("--gap", o->gap, "nominal surface gap between roller and partner (default 0; < 0 = preload)");
+  c->add_option("--spacing", o->spacing, "grid pitch between pairs (default 0 = automatic)");
+  c->add_option("--seed", o->seed, "seed of the tilt random walk and spin phases (default 1)");
+  c->add_option("--broad-phase", o->broad_phase, "brute, sap (default), octree or bvh");
+  c->add_option("--threads", o->threads_opt, "worker threads (0 = all cores)");
+  c->add_option("--out", o->out, "per-frame CSV (one row per pair and frame)");
+  c->add_option("--json", o->json, "JSON summary");
+  c->callback([o, &exit_code] { exit_code = run_bearing(*o); });
+}
+
+}  // namespace interfere::cli

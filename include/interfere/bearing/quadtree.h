@@ -1,0 +1,47 @@
+// Vertex quadtree over the unrolled side surface (angle x height) of a roller (Jia & Zheng 2019,
+// §2.4): every node is a rectangle of side vertices; scar labels are propagated to the ancestors;
+// inner nodes carry a virtual vertex (the average of their vertices); the "calculation layer" is
+// the deepest level whose nodes still span the window 2*theta of Eq. (1).
+//
+// The same tree carries, for the exact solver (scarred.h), a conservative bound of the node's
+// triangles: an oriented box in the node's own (radial, tangential, axial) frame at its middle angle,
+// containing every vertex of every triangle of the node's cells (so the triangles too). The two end
+// caps get binary trees over their fan triangles with the same bounds.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "interfere/bearing/roller.h"
+
+namespace interfere::bearing {
+
+struct QuadNode {
+  // vertex rectangle [i0, i1) x [j0, j1) (columns wrap at n: i1 may equal n)
+  std::int32_t i0 = 0, i1 = 0, j0 = 0, j1 = 0;
+  std::int32_t level = 0;
+  std::int32_t first_child = -1;  ///< children are contiguous: first_child .. first_child+child_count-1
+  std::int32_t child_count = 0;
+  std::uint8_t scar = 0;          ///< some vertex below is labelled scar
+  Vec3 virtual_vertex;            ///< average of the node's vertices (body frame)
+  // exact bound of the node's triangles (cells [i0, i1) x [j0, min(j1, m)) for the side tree;
+  // fan triangles [i0, i1) for a cap tree)
+  std::uint32_t tri_first = 0, tri_count = 0;  ///< leaves only: triangle ids tri_first + k*stride
+  Vec3 box_center;                ///< body frame
+  double half_r = 0, half_t = 0, half_z = 0;
+  double cos_mid = 1, sin_mid = 0;  ///< the frame's radial direction (cos, sin, 0)
+};
+
+struct RollerQuadtree {
+  std::vector<QuadNode> nodes;
+  std::int32_t side_root = 0, bottom_root = -1, top_root = -1;
+  std::int32_t depth = 0;  ///< deepest level of the side tree
+  /// The calculation layer for a window half-width theta (radians).
+  std::int32_t calculation_layer(double theta, int radial_segments) const;
+};
+
+/// Builds the tree of a meshed (possibly scarred) roller. Side leaves are single vertices for the
+/// vertex methods; the exact bound of a leaf (i, j) covers side cell (i, j) (its 2 triangles) when
+/// j < m. O(n*m).
+RollerQuadtree build_quadtree(const Roller& roller);
+
+}  // namespace interfere::bearing

@@ -1,0 +1,192 @@
+// Python bindings of the bearing module (issue #4): rollers and scars, the analytic cylinder pair
+// distance, Eq. (1), the exact surface reference and the dynamic simulation. Submodule
+// `interfere.bearing`. Points are (x, y, z) tuples; bad parameters raise ValueError naming them.
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "bindings.h"
+#include "interfere/bearing/analytic.h"
+#include "interfere/bearing/scarred.h"
+#include "interfere/bearing/simulation.h"
+#include "interfere/bearing/window.h"
+
+namespace py = pybind11;
+
+namespace interfere::python {
+namespace {
+using namespace interfere::bearing;
+using P3 = std::array<double, 3>;
+P3 tup(const Vec3& v) { return {v.x, v.y, v.z}; }
+Vec3 vec(const P3& p) { return {p[0], p[1], p[2]}; }
+void check(const Status& s) {
+  if (!s) throw py::value_error(s.error().message());
+}
+constexpr double kDeg = std::numbers::pi / 180.0;
+}  // namespace
+
+void bind_bearing(py::module_& parent) {
+  py::module_ m = parent.def_submodule("bearing", "Dynamic interference of cylindrical roller bearings with scars");
+
+  py::class_<RollerParams>(m, "RollerParams")
+      .def(py::init([](double radius, double top_radius, double height, int radial_segments, int height_segments) {
+             return RollerParams{radius, top_radius, height, radial_segments, height_segments};
+           }),
+           py::arg("radius") = 10.0, py::arg("top_radius") = -1.0, py::arg("height") = 40.0,
+           py::arg("radial_segments") = 64, py::arg("height_segments") = 63)
+      .def_readwrite("radius", &RollerParams::radius)
+      .def_readwrite("top_radius", &RollerParams::top_radius)
+      .def_readwrite("height", &RollerParams::height)
+      .def_readwrite("radial_segments", &RollerParams::radial_segments)
+      .def_readwrite("height_segments", &RollerParams::height_segments);
+
+  py::class_<ScarParams>(m, "ScarParams")
+      .def(py::init([](double c, double w, double z0, double z1, double depth, double roughness, int border,
+                       std::uint64_t seed) { return ScarParams{c, w, z0, z1, depth, roughness, border, seed}; }),
+           py::arg("angle_center_deg") = 0.0, py::arg("angle_width_deg") = 40.0, py::arg("z_min") = 10.0,
+           py::arg("z_max") = 30.0, py::arg("depth") = 0.05, py::arg("roughness") = 0.6, py::arg("border") = 2,
+           py::arg("seed") = 1)
+      .def_readwrite("angle_center_deg", &ScarParams::angle_center_deg)
+      .def_readwrite("angle_width_deg", &ScarParams::angle_width_deg)
+      .def_readwrite("z_min", &ScarParams::z_min)
+      .def_readwrite("z_max", &ScarParams::z_max)
+      .def_readwrite("depth", &ScarParams::depth)
+      .def_readwrite("roughness", &ScarParams::roughness)
+      .def_readwrite("border", &ScarParams::border)
+      .def_readwrite("seed", &ScarParams::seed);
+
+  py::class_<Roller>(m, "Roller", "A meshed roller (body frame: axis +z from the bottom end centre)")
+      .def_readonly("params", &Roller::params)
+      .def_readonly("mesh", &Roller::mesh)
+      .def_readonly("displacement", &Roller::displacement)
+      .def_readonly("scar", &Roller::scar)
+      .def_readonly("has_scar", &Roller::has_scar);
+
+  m.def(
+      "make_roller",
+      [](const RollerParams& p, std::optional<ScarParams> scar) {
+        Expected<Roller> r = make_roller(p);
+        if (!r) throw py::value_error(r.error().message());
+        if (scar) {
+          Expected<int> k = apply_scar(*r, *scar);
+          if (!k) throw py::value_error(k.error().message());
+        }
+        return std::move(*r);
+      },
+      py::arg("params") = RollerParams{}, py::arg("scar") = std::nullopt,
+      "Mesh a roller (cylinder or tapered), optionally with a diamond-square scar.");
+
+  py::class_<Cylinder>(m, "Cylinder")
+      .def(py::init([](P3 base, P3 axis, double height, double radius, double top_radius) {
+             const Vec3 a = vec(axis);
+             const double l = norm(a);
+             if (!(l > 0) || !std::isfinite(l)) throw py::value_error("axis must be a finite nonzero vector");
+             if (!(height > 0) || !(radius > 0)) throw py::value_error("height and radius must be > 0");
+             return Cylinder{vec(base), a / l, height, radius, top_radius};
+           }),
+           py::arg("base") = P3{0, 0, 0}, py::arg("axis") = P3{0, 0, 1}, py::arg("height") = 1.0,
+           py::arg("radius") = 1.0, py::arg("top_radius") = -1.0)
+      .def_property_readonly("base", [](const Cylinder& c) { return tup(c.base); })
+      .def_property_readonly("axis", [](const Cylinder& c) { return tup(c.axis); })
+      .def_readonly("height", &Cylinder::height)
+      .def_readonly("radius", &Cylinder::radius)
+      .def_property_readonly("top_radius", &Cylinder::top);
+
+  py::class_<PairDistance>(m, "PairDistance")
+      .def_readonly("distance", &PairDistance::distance)
+      .def_property_readonly("point_a", [](const PairDistance& d) { return tup(d.point_a); })
+      .def_property_readonly("point_b", [](const PairDistance& d) { return tup(d.point_b); })
+      .def_property_readonly("path", [](const PairDistance& d) { return analytic_path_name(d.path); })
+      .def_property_readonly("interference", [](const PairDistance& d) { return d.distance < 0 ? -d.distance : 0.0; });
+
+  m.def("max_interference_distance", &cylinder_pair_distance, py::arg("a"), py::arg("b"),
+        "Signed distance s(A, B) = min over solid A of sd_B (> 0 clearance, < 0: -s is the maximum interference "
+        "distance), with the point pair. Exact to rounding (standard solver).");
+  m.def("point_signed_distance", [](const Cylinder& c, P3 p) { return point_signed_distance(c, vec(p)); });
+  m.def("barbier_galin_signed_distance", [](const Cylinder& c, P3 p) { return barbier_galin_signed_distance(c, vec(p)); });
+  m.def(
+      "interference_window",
+      [](double r, double R, double hb, double max_tilt_deg) {
+        const WindowParams w{r, R, hb, max_tilt_deg * kDeg};
+        check(validate(w));
+        return interference_window(w) / kDeg;
+      },
+      py::arg("roller_radius"), py::arg("partner_radius"), py::arg("height"), py::arg("max_tilt_deg"),
+      "theta of Eq. (1) in degrees: asin(h_b sin(alpha) / (R + r)).");
+  m.def(
+      "roller_pose",
+      [](P3 pivot, double tilt_deg, double azimuth_deg, double spin_deg) {
+        return roller_pose(vec(pivot), tilt_deg * kDeg, azimuth_deg * kDeg, spin_deg * kDeg);
+      },
+      py::arg("pivot"), py::arg("tilt_deg") = 0.0, py::arg("azimuth_deg") = 0.0, py::arg("spin_deg") = 0.0);
+  m.def(
+      "posed_cylinder",
+      [](const RollerParams& p, const Transform& pose) { return posed_cylinder(p.radius, p.top_radius, p.height, pose); },
+      py::arg("params"), py::arg("pose"));
+
+  py::class_<MeshPairResult>(m, "MeshPairResult")
+      .def_readonly("distance", &MeshPairResult::distance)
+      .def_property_readonly("point_a", [](const MeshPairResult& d) { return tup(d.point_a); })
+      .def_property_readonly("point_b", [](const MeshPairResult& d) { return tup(d.point_b); })
+      .def_readonly("triangle", &MeshPairResult::triangle)
+      .def_readonly("evaluated", &MeshPairResult::evaluated);
+  m.def("surface_reference", &surface_reference, py::arg("roller"), py::arg("pose"), py::arg("partner"),
+        "Exact minimum of the partner's signed distance over the roller's (scarred) triangle surface.");
+  m.def(
+      "scarred_distance",
+      [](const Roller& roller, const Transform& pose, const Cylinder& b) {
+        const RollerQuadtree tree = build_quadtree(roller);
+        ScarredSolver s(&roller, &tree);
+        return s.solve(pose, b);
+      },
+      py::arg("roller"), py::arg("pose"), py::arg("partner"), "The quadtree branch-and-bound solver (one frame).");
+
+  py::class_<PairFrame>(m, "PairFrame")
+      .def_readonly("frame", &PairFrame::frame)
+      .def_readonly("pair", &PairFrame::pair)
+      .def_readonly("distance", &PairFrame::distance)
+      .def_property_readonly("point_a", [](const PairFrame& r) { return tup(r.point_a); })
+      .def_property_readonly("point_b", [](const PairFrame& r) { return tup(r.point_b); })
+      .def_property_readonly("solver", [](const PairFrame& r) { return r.solver == 1 ? "scarred" : "standard"; })
+      .def_readonly("scar_in_range", &PairFrame::scar_in_range)
+      .def_readonly("tilt_deg", &PairFrame::tilt_deg);
+  py::class_<SimulationResult>(m, "SimulationResult")
+      .def_readonly("rows", &SimulationResult::rows)
+      .def_readonly("min_distance", &SimulationResult::min_distance)
+      .def_readonly("interfering_rows", &SimulationResult::interfering_rows)
+      .def_readonly("scarred_solves", &SimulationResult::scarred_solves)
+      .def_readonly("scarred_rollers", &SimulationResult::scarred_rollers)
+      .def_readonly("cross_pairs", &SimulationResult::cross_pairs)
+      .def_property_readonly("theta_deg", [](const SimulationResult& r) { return r.theta / kDeg; })
+      .def_readonly("frames_per_second", &SimulationResult::frames_per_second);
+  m.def(
+      "simulate",
+      [](int pairs, int frames, const RollerParams& roller, double partner_radius, double partner_height, double gap,
+         double max_tilt_deg, double spin_deg_per_frame, double scar_fraction, const ScarParams& scar,
+         std::uint64_t seed, const std::string& broad_phase) {
+        SceneParams p;
+        p.pairs = pairs, p.frames = frames, p.roller = roller, p.partner_radius = partner_radius;
+        p.partner_height = partner_height, p.gap = gap, p.max_tilt_deg = max_tilt_deg;
+        p.spin_deg_per_frame = spin_deg_per_frame, p.scar_fraction = scar_fraction, p.scar = scar, p.seed = seed;
+        if (!parse_broad_phase(broad_phase, p.broad_phase))
+          throw py::value_error("broad_phase must be one of brute, sap, octree, bvh");
+        Expected<SimulationResult> r = Error{};
+        {
+          py::gil_scoped_release release;
+          r = simulate(p);
+        }
+        if (!r) throw py::value_error(r.error().message());
+        return std::move(*r);
+      },
+      py::arg("pairs") = 4, py::arg("frames") = 10, py::arg("roller") = RollerParams{}, py::arg("partner_radius") = 30.0,
+      py::arg("partner_height") = 60.0, py::arg("gap") = 0.0, py::arg("max_tilt_deg") = 1.0,
+      py::arg("spin_deg_per_frame") = 3.0, py::arg("scar_fraction") = 0.25, py::arg("scar") = ScarParams{},
+      py::arg("seed") = 1, py::arg("broad_phase") = "sap",
+      "Run the dynamic simulation (interfere bearing) and return every pair's per-frame result.");
+}
+
+}  // namespace interfere::python

@@ -1,0 +1,71 @@
+"""Python API of the bearing module (issue #4): make a roller, compute the maximum interference
+distance of a pair, run a small simulation, bad parameters raise ValueError naming them."""
+import math
+import unittest
+
+import interfere
+from interfere import bearing
+
+
+class BearingTest(unittest.TestCase):
+    def test_make_roller(self):
+        r = bearing.make_roller(bearing.RollerParams(radius=5, height=20, radial_segments=16, height_segments=7))
+        self.assertEqual(len(r.mesh.triangles), 2 * 16 * 7 + 2 * 16)
+        self.assertFalse(r.has_scar)
+        s = bearing.make_roller(bearing.RollerParams(radius=5, height=20, radial_segments=16, height_segments=7),
+                                bearing.ScarParams(angle_center_deg=0, angle_width_deg=90, z_min=5, z_max=15,
+                                                   depth=0.5, seed=3))
+        self.assertTrue(s.has_scar)
+        self.assertGreater(max(s.displacement), 0)
+        self.assertLessEqual(max(s.displacement), 0.5)
+
+    def test_max_interference_distance_of_a_pair(self):
+        b = bearing.Cylinder(base=(0, 0, 0), axis=(0, 0, 1), height=60, radius=30)
+        a = bearing.Cylinder(base=(39.5, 0, 10), axis=(0, 0, 1), height=40, radius=10)
+        d = bearing.max_interference_distance(a, b)
+        self.assertAlmostEqual(d.distance, -0.5, delta=1e-12)
+        self.assertAlmostEqual(d.interference, 0.5, delta=1e-12)
+        self.assertAlmostEqual(math.dist(d.point_a, d.point_b), 0.5, delta=1e-12)
+        # tilted by alpha about the bottom rim contact: interference h_b tan(alpha)
+        al = math.radians(2)
+        a = bearing.Cylinder(base=(30 + 10 * math.cos(al), 0, 10 * math.sin(al)), axis=(-math.sin(al), 0, math.cos(al)),
+                             height=40 / math.cos(al), radius=10)
+        b = bearing.Cylinder(base=(0, 0, -100), axis=(0, 0, 1), height=300, radius=30)
+        self.assertAlmostEqual(bearing.max_interference_distance(a, b).distance, -40 * math.tan(al), delta=1e-12)
+
+    def test_window_and_surface_reference(self):
+        th = bearing.interference_window(10, 30, 40, 1.0)
+        self.assertAlmostEqual(th, math.degrees(math.asin(40 * math.sin(math.radians(1)) / 40)), delta=1e-12)
+        with self.assertRaisesRegex(ValueError, "max_tilt"):
+            bearing.interference_window(10, 30, 40, 95)
+        p = bearing.RollerParams(radius=10, height=40, radial_segments=24, height_segments=23)
+        r = bearing.make_roller(p, bearing.ScarParams(angle_center_deg=180, angle_width_deg=60, z_min=0, z_max=40,
+                                                      depth=0.3, seed=2))
+        pose = bearing.roller_pose((39.8, 0, 0), tilt_deg=0.5, azimuth_deg=30, spin_deg=0)
+        partner = bearing.Cylinder(base=(0, 0, -10), axis=(0, 0, 1), height=60, radius=30)
+        ref = bearing.surface_reference(r, pose, partner)
+        fast = bearing.scarred_distance(r, pose, partner)
+        self.assertAlmostEqual(fast.distance, ref.distance, delta=1e-12)
+        self.assertLess(fast.evaluated, ref.evaluated)
+
+    def test_small_simulation(self):
+        res = bearing.simulate(pairs=6, frames=8, roller=bearing.RollerParams(radial_segments=24, height_segments=23),
+                               gap=-0.05, scar_fraction=0.5,
+                               scar=bearing.ScarParams(angle_center_deg=0, angle_width_deg=120, z_min=0, z_max=40,
+                                                       depth=0.2), seed=4)
+        self.assertEqual(len(res.rows), 48)
+        self.assertEqual(res.scarred_rollers, 3)
+        self.assertEqual(res.min_distance, min(r.distance for r in res.rows))
+        again = bearing.simulate(pairs=6, frames=8, roller=bearing.RollerParams(radial_segments=24, height_segments=23),
+                                 gap=-0.05, scar_fraction=0.5,
+                                 scar=bearing.ScarParams(angle_center_deg=0, angle_width_deg=120, z_min=0, z_max=40,
+                                                         depth=0.2), seed=4, broad_phase="bvh")
+        self.assertEqual([r.distance for r in res.rows], [r.distance for r in again.rows])
+        with self.assertRaisesRegex(ValueError, "roller.radius"):
+            bearing.simulate(roller=bearing.RollerParams(radius=-1))
+        with self.assertRaisesRegex(ValueError, "scar.z_max"):
+            bearing.simulate(scar=bearing.ScarParams(z_max=99))
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,310 @@
+// Standard solver (Jia & Zheng 2019, §3.1): analytic signed distance between two finite cylinders.
+// Axis-segment closest points (side contact) and the end-circle case reduced to a planar
+// point-to-ellipse distance (Eberly, "Distance to Circles in 3D" and "Distance from a Point to an
+// Ellipse, an Ellipsoid, or a Hyperellipsoid", Geometric Tools), with a certificate that B's side
+// is what is nearest; a nested golden-section fallback for the general convex problem.
+#include "interfere/bearing/analytic.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace interfere::bearing {
+namespace {
+
+constexpr double kGolden = 0.61803398874989484820;
+
+/// Golden-section minimisation of a convex f on [lo, hi]; returns (argmin, min) over every point
+/// evaluated (the end points included).
+template <class F>
+std::pair<double, double> golden_min(F&& f, double lo, double hi, int iterations) {
+  double best_x = lo, best = f(lo);
+  if (!(hi > lo)) return {best_x, best};
+  if (const double fh = f(hi); fh < best) best = fh, best_x = hi;
+  double a = lo, b = hi;
+  double c = b - kGolden * (b - a), d = a + kGolden * (b - a);
+  double fc = f(c), fd = f(d);
+  for (int k = 0; k < iterations; ++k) {
+    if (fc < best) best = fc, best_x = c;
+    if (fd < best) best = fd, best_x = d;
+    if (fc <= fd) {
+      b = d, d = c, fd = fc;
+      c = b - kGolden * (b - a);
+      fc = f(c);
+    } else {
+      a = c, c = d, fc = fd;
+      d = a + kGolden * (b - a);
+      fd = f(d);
+    }
+    if (!(b - a > 0)) break;
+  }
+  if (fc < best) best = fc, best_x = c;
+  if (fd < best) best = fd, best_x = d;
+  return {best_x, best};
+}
+
+double get_root(double r0, double z0, double z1, double g) {
+  // Root of G(s) = (n0/(s+r0))^2 + (z1/(s+1))^2 - 1 on [s0, s1] (G(s0) >= 0 >= G(s1)). G is convex
+  // and decreasing there, so Newton's method started at the left end increases monotonically to
+  // the root without overshooting (a handful of steps) until rounding stalls it; should it ever leave
+  // the bracket, Eberly's bisection finishes the job.
+  const double n0 = r0 * z0;
+  double s0 = z1 - 1, s1 = g < 0 ? 0 : std::hypot(n0, z1) - 1;
+  double s = s0;
+  for (int i = 0; i < 60; ++i) {
+    const double a = n0 / (s + r0), b = z1 / (s + 1);
+    const double gs = a * a + b * b - 1;
+    if (!(gs > 0)) {
+      if (gs == 0) return s;
+      s1 = std::min(s1, s);
+      break;
+    }
+    s0 = s;
+    const double dg = -2 * (a * a / (s + r0) + b * b / (s + 1));
+    const double next = s - gs / dg;
+    if (!(next > s)) return s;  // converged: rounding stalls the monotone iteration at the root
+    if (!(next < s1)) break;    // past the bracket (rounding): bisect
+    s = next;
+  }
+  for (int i = 0; i < 2200; ++i) {
+    s = 0.5 * (s0 + s1);
+    if (s == s0 || s == s1) break;
+    const double ratio0 = n0 / (s + r0), ratio1 = z1 / (s + 1);
+    g = ratio0 * ratio0 + ratio1 * ratio1 - 1;
+    if (g > 0) s0 = s;
+    else if (g < 0) s1 = s;
+    else break;
+  }
+  return s;
+}
+
+Vec3 any_perpendicular(const Vec3& u) {
+  const Vec3 t = std::fabs(u.x) < 0.6 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+  const Vec3 p = cross(u, t);
+  return p / norm(p);
+}
+
+}  // namespace
+
+const char* analytic_path_name(AnalyticPath p) {
+  switch (p) {
+    case AnalyticPath::side: return "side";
+    case AnalyticPath::end: return "end";
+    case AnalyticPath::parallel: return "parallel";
+    case AnalyticPath::tapered: return "tapered";
+    case AnalyticPath::general: return "general";
+  }
+  return "?";
+}
+
+EllipsePoint point_ellipse_distance(double e0, double e1, double y0, double y1) {
+  const double s0 = y0 < 0 ? -1.0 : 1.0, s1 = y1 < 0 ? -1.0 : 1.0;
+  y0 = std::fabs(y0), y1 = std::fabs(y1);
+  EllipsePoint out;
+  if (e1 <= 0) {  // degenerate: the segment [-e0, e0] x {0}
+    out.x0 = std::min(y0, e0), out.x1 = 0;
+    out.distance = std::hypot(y0 - out.x0, y1);
+  } else if ((y0 / e0) * (y0 / e0) + (y1 / e1) * (y1 / e1) <= 1) {  // inside the solid ellipse
+    out.x0 = y0, out.x1 = y1, out.distance = 0;
+  } else if (y1 > 0) {
+    if (y0 > 0) {
+      const double z0 = y0 / e0, z1 = y1 / e1, g = z0 * z0 + z1 * z1 - 1;
+      const double r0 = (e0 / e1) * (e0 / e1);
+      const double sbar = get_root(r0, z0, z1, g);
+      out.x0 = r0 * y0 / (sbar + r0);
+      out.x1 = y1 / (sbar + 1);
+      out.distance = std::hypot(out.x0 - y0, out.x1 - y1);
+    } else {
+      out.x0 = 0, out.x1 = e1, out.distance = std::fabs(y1 - e1);
+    }
+  } else {
+    const double numer0 = e0 * y0, denom0 = e0 * e0 - e1 * e1;
+    if (numer0 < denom0) {
+      const double xde0 = numer0 / denom0;
+      out.x0 = e0 * xde0;
+      out.x1 = e1 * std::sqrt(std::max(0.0, 1 - xde0 * xde0));
+      out.distance = std::hypot(out.x0 - y0, out.x1);
+    } else {
+      out.x0 = e0, out.x1 = 0, out.distance = std::fabs(y0 - e0);
+    }
+  }
+  out.x0 *= s0, out.x1 *= s1;
+  return out;
+}
+
+RadialMin min_axis_distance(const Cylinder& a, const Vec3& c, const Vec3& u) {
+  const Vec3 d = a.axis;
+  const double r = a.radius, h = a.height;
+  const Vec3 v0 = a.base - c;
+  const double cg = dot(d, u);
+  const Vec3 cr = cross(d, u);
+  const double sl = norm(cr);
+  RadialMin out;
+  if (!(sl > 1e-150)) {  // parallel axes: the projected shape is one circle
+    out.path = AnalyticPath::parallel;
+    const Vec3 perp = v0 - u * dot(v0, u);
+    const double rho_axis = norm(perp);
+    // every t is a minimiser: take the one whose height on B's axis is nearest B's centre (c)
+    const double z0 = dot(v0, u), dz = h * cg;
+    double t = dz != 0 ? -z0 / dz : 0.5;
+    t = std::clamp(t, 0.0, 1.0);
+    const Vec3 at = a.base + d * (t * h);
+    if (rho_axis > r) {
+      out.rho = rho_axis - r;
+      out.point = at - perp * (r / rho_axis);
+    } else {
+      out.rho = 0;
+      out.point = at - perp;
+    }
+    return out;
+  }
+  const Vec3 f1 = cr / sl;         // in A's end-disk plane and perpendicular to u
+  const Vec3 e2 = cross(u, f1);    // completes (f1, e2) in the plane perpendicular to u
+  const Vec3 g2 = cross(d, f1);    // in A's disk plane; g2 . e2 = cg
+  const double xa = dot(v0, f1);
+  const double y0 = dot(v0, e2), y1 = y0 + h * sl;  // projected axis: from y0 up to y1
+  const double px = -xa;
+  if (y0 <= 0 && 0 <= y1) {  // the straight part: axis-segment closest points (side contact)
+    out.path = AnalyticPath::side;
+    const double t = std::clamp(-y0 / (h * sl), 0.0, 1.0);
+    const Vec3 at = a.base + d * (t * h);
+    if (std::fabs(px) > r) {
+      out.rho = std::fabs(px) - r;
+      out.point = at + f1 * (px > 0 ? r : -r);
+    } else {
+      out.rho = 0;
+      out.point = at + f1 * px;
+    }
+    return out;
+  }
+  out.path = AnalyticPath::end;
+  const bool bottom = 0 < y0;
+  const double py = bottom ? -y0 : -y1;
+  const Vec3 center = bottom ? a.base : a.top_center();
+  const EllipsePoint ep = point_ellipse_distance(r, r * std::fabs(cg), px, py);
+  out.rho = ep.distance;
+  if (ep.distance == 0) {
+    // B's axis crosses the end disk: the point of the disk on B's axis
+    const double cs = px / r;
+    const double sn = cg != 0 ? py / (r * cg) : 0.0;
+    out.point = center + f1 * (r * cs) + g2 * (r * sn);
+    return out;
+  }
+  double cs = ep.x0 / r, sn;
+  if (cg != 0) {
+    sn = ep.x1 / (r * cg);
+  } else {  // perpendicular axes: both signs project alike; take the one nearer B's centre
+    sn = std::sqrt(std::max(0.0, 1 - cs * cs));
+    if (dot(center - c + g2 * sn, u) * dot(g2, u) > 0) sn = -sn;
+  }
+  const double len = std::hypot(cs, sn);
+  cs /= len, sn /= len;
+  out.point = center + f1 * (r * cs) + g2 * (r * sn);
+  return out;
+}
+
+Vec3 nearest_on_cylinder_boundary(const Cylinder& b, const Vec3& p) {
+  const Vec3 m = b.center();
+  const Vec3 v = p - m;
+  const double z = dot(v, b.axis);
+  Vec3 radial = v - b.axis * z;
+  const double rho = norm(radial);
+  const Vec3 ur = rho > 0 ? radial / rho : any_perpendicular(b.axis);
+  const double hh = 0.5 * b.height, R = b.radius;
+  const double dr = rho - R, dz = std::fabs(z) - hh;
+  double rr = rho, zz = z;
+  if (dr <= 0 && dz <= 0) {  // inside: to the nearer of side and cap
+    if (dr >= dz) rr = R;
+    else zz = z < 0 ? -hh : hh;
+  } else {
+    rr = std::min(rho, R);
+    zz = std::clamp(z, -hh, hh);
+  }
+  return m + b.axis * zz + ur * rr;
+}
+
+PairDistance cylinder_pair_distance_general(const Cylinder& a, const Cylinder& b) {
+  const Vec3 f1 = any_perpendicular(a.axis);
+  const Vec3 f2 = cross(a.axis, f1);
+  const double hh = 0.5 * b.height;
+  const Vec3 bc = b.center();
+  const auto sd = [&](const Vec3& p) {
+    const Vec3 v = p - bc;
+    return signed_distance_rz(norm(cross(v, b.axis)), dot(v, b.axis), b.radius, hh);
+  };
+  const auto point = [&](double t, double x, double y) { return a.base + a.axis * t + f1 * x + f2 * y; };
+  constexpr int kIter = 64;
+  const auto over_y = [&](double t, double x, double r) {
+    const double ym = std::sqrt(std::max(0.0, r * r - x * x));
+    return golden_min([&](double y) { return sd(point(t, x, y)); }, -ym, ym, kIter);
+  };
+  const auto over_x = [&](double t) {
+    const double r = a.radius + (a.top() - a.radius) * (t / a.height);
+    return golden_min([&](double x) { return over_y(t, x, r).second; }, -r, r, kIter);
+  };
+  const auto [t, value] = golden_min([&](double tt) { return over_x(tt).second; }, 0.0, a.height, kIter);
+  const double r = a.radius + (a.top() - a.radius) * (t / a.height);
+  const double x = over_x(t).first;
+  const double y = over_y(t, x, r).first;
+  PairDistance out;
+  out.point_a = point(t, x, y);
+  out.distance = value;
+  out.point_b = nearest_on_cylinder_boundary(b, out.point_a);
+  out.path = AnalyticPath::general;
+  return out;
+}
+
+namespace {
+/// min over a tapered A of the distance to the line (c, u): the disk at axis parameter t projects to
+/// an ellipse of semi-axes r(t), r(t)|cos gamma| centred on the projected axis point; the distance to
+/// it is convex in t (partial minimisation of a convex function over a convex set).
+RadialMin min_axis_distance_tapered(const Cylinder& a, const Vec3& c, const Vec3& u) {
+  const Vec3 d = a.axis;
+  const double h = a.height;
+  const Vec3 v0 = a.base - c;
+  const double cg = dot(d, u);
+  const Vec3 cr = cross(d, u);
+  const double sl = norm(cr);
+  const Vec3 f1 = sl > 1e-150 ? cr / sl : any_perpendicular(d);
+  const Vec3 e2 = cross(u, f1);
+  const Vec3 g2 = cross(d, f1);
+  const double xa = dot(v0, f1), y0 = dot(v0, e2), dy = h * dot(d, e2);
+  const auto radius = [&](double t) { return a.radius + (a.top() - a.radius) * (t / h); };
+  const auto at = [&](double t) {
+    const double r = radius(t);
+    return point_ellipse_distance(r, r * std::fabs(cg), -xa, -(y0 + dy * (t / h)));
+  };
+  const auto [t, rho] = golden_min([&](double tt) { return at(tt).distance; }, 0.0, h, 90);
+  RadialMin out;
+  out.path = AnalyticPath::tapered;
+  const EllipsePoint ep = at(t);
+  const double r = radius(t);
+  out.rho = ep.distance;
+  double cs = ep.x0 / r, sn = cg != 0 ? ep.x1 / (r * cg) : std::sqrt(std::max(0.0, 1 - cs * cs));
+  if (ep.distance == 0) cs = -xa / r, sn = cg != 0 ? -(y0 + dy * (t / h)) / (r * cg) : 0.0;
+  const double len = std::hypot(cs, sn);
+  if (len > 0 && ep.distance > 0) cs /= len, sn /= len;
+  out.point = a.base + d * t + f1 * (r * cs) + g2 * (r * sn);
+  (void)rho;
+  return out;
+}
+}  // namespace
+
+PairDistance cylinder_pair_distance(const Cylinder& a, const Cylinder& b) {
+  const Vec3 bc = b.center();
+  const RadialMin rm = a.tapered() ? min_axis_distance_tapered(a, bc, b.axis) : min_axis_distance(a, bc, b.axis);
+  const double R = b.radius, hh = 0.5 * b.height;
+  const double z = dot(rm.point - bc, b.axis);
+  const double dr = rm.rho - R, dz = std::fabs(z) - hh;
+  // certificate: at the minimiser of rho_B over A, sd_B = rho_B - R (B's side is nearest)
+  const bool certified = rm.rho > 0 && (dr >= 0 ? dz <= 0 : dz <= dr);
+  if (!certified) return cylinder_pair_distance_general(a, b);
+  PairDistance out;
+  out.distance = dr;
+  out.point_a = rm.point;
+  out.point_b = nearest_on_cylinder_boundary(b, rm.point);
+  out.path = rm.path;
+  return out;
+}
+
+}  // namespace interfere::bearing

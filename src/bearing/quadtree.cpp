@@ -1,0 +1,149 @@
+// Vertex quadtree over the unrolled side of a roller (Jia & Zheng 2019, §2.4): scar labels
+// propagated to ancestors, virtual (averaged) vertices, calculation layer from Eq. (1); plus, for
+// the exact solver, oriented boxes (radial, tangential, axial at the node's middle angle) that
+// contain the node's triangles, and binary trees over the end-cap fans.
+#include "interfere/bearing/quadtree.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace interfere::bearing {
+namespace {
+
+struct Builder {
+  const Roller& roller;
+  RollerQuadtree& tree;
+
+  // Oriented bound of a set of body-frame points in the frame at angle phi.
+  template <class Points>
+  void bound(QuadNode& node, double phi, Points&& for_points) {
+    node.cos_mid = std::cos(phi), node.sin_mid = std::sin(phi);
+    const double c = node.cos_mid, s = node.sin_mid;
+    double lo[3] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+                    std::numeric_limits<double>::infinity()};
+    double hi[3] = {-lo[0], -lo[1], -lo[2]};
+    for_points([&](const Vec3& p) {
+      const double q[3] = {c * p.x + s * p.y, -s * p.x + c * p.y, p.z};
+      for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], q[k]), hi[k] = std::max(hi[k], q[k]);
+    });
+    const double mid[3] = {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])};
+    // a relative margin covers the rounding of the projections (the bound must contain the points)
+    const double scale = std::max({std::fabs(lo[0]), std::fabs(hi[0]), std::fabs(lo[1]), std::fabs(hi[1]),
+                                   std::fabs(lo[2]), std::fabs(hi[2])});
+    const double margin = 8 * std::numeric_limits<double>::epsilon() * scale;
+    node.half_r = 0.5 * (hi[0] - lo[0]) + margin;
+    node.half_t = 0.5 * (hi[1] - lo[1]) + margin;
+    node.half_z = 0.5 * (hi[2] - lo[2]) + margin;
+    node.box_center = {c * mid[0] - s * mid[1], s * mid[0] + c * mid[1], mid[2]};
+  }
+
+  double column_angle(double i) const { return 2.0 * std::numbers::pi * i / roller.n(); }
+
+  // Fills the (already allocated) slot `id`; children get contiguous slots allocated here.
+  void side(std::int32_t id, std::int32_t i0, std::int32_t i1, std::int32_t j0, std::int32_t j1, std::int32_t level) {
+    tree.depth = std::max(tree.depth, level);
+    {
+      QuadNode& node = tree.nodes[static_cast<std::size_t>(id)];
+      node.i0 = i0, node.i1 = i1, node.j0 = j0, node.j1 = j1, node.level = level;
+      Vec3 sum;
+      int count = 0;
+      for (int j = j0; j < j1; ++j)
+        for (int i = i0; i < i1; ++i) {
+          const std::uint32_t v = roller.side_vertex(i, j);
+          sum += roller.mesh.positions[v];
+          ++count;
+          node.scar |= roller.scar[v];
+        }
+      node.virtual_vertex = sum / count;
+      const int jc1 = std::min(j1, roller.m());  // cells [j0, jc1)
+      if (jc1 > j0) {
+        bound(node, column_angle(0.5 * (i0 + i1)), [&](auto&& f) {
+          for (int j = j0; j <= jc1; ++j)
+            for (int i = i0; i <= i1; ++i) f(roller.mesh.positions[roller.side_vertex(i, j)]);
+        });
+      } else {
+        node.half_r = -1;  // no cell (the top ring's leaves)
+      }
+    }
+    if (i1 - i0 == 1 && j1 - j0 == 1) {
+      QuadNode& node = tree.nodes[static_cast<std::size_t>(id)];
+      if (j0 < roller.m()) node.tri_first = roller.side_triangle(i0, j0), node.tri_count = 2;
+      return;
+    }
+    const std::int32_t im = i1 - i0 > 1 ? (i0 + i1) / 2 : i1;
+    const std::int32_t jm = j1 - j0 > 1 ? (j0 + j1) / 2 : j1;
+    std::vector<std::array<std::int32_t, 4>> parts;
+    for (auto [a0, a1] : {std::pair{i0, im}, std::pair{im, i1}})
+      for (auto [b0, b1] : {std::pair{j0, jm}, std::pair{jm, j1}})
+        if (a1 > a0 && b1 > b0) parts.push_back({a0, a1, b0, b1});
+    // children are contiguous: allocate their slots first, then fill them depth-first
+    const auto first = static_cast<std::int32_t>(tree.nodes.size());
+    tree.nodes.resize(tree.nodes.size() + parts.size());
+    tree.nodes[static_cast<std::size_t>(id)].first_child = first;
+    tree.nodes[static_cast<std::size_t>(id)].child_count = static_cast<std::int32_t>(parts.size());
+    for (std::size_t k = 0; k < parts.size(); ++k)
+      side(first + static_cast<std::int32_t>(k), parts[k][0], parts[k][1], parts[k][2], parts[k][3], level + 1);
+  }
+
+  void cap(std::int32_t id, std::int32_t i0, std::int32_t i1, bool top) {
+    const int j = top ? roller.m() : 0;
+    const std::size_t center = static_cast<std::size_t>(roller.n()) * (roller.m() + 1) + (top ? 1 : 0);
+    {
+      QuadNode& node = tree.nodes[static_cast<std::size_t>(id)];
+      node.i0 = i0, node.i1 = i1, node.j0 = j, node.j1 = j + 1;
+      for (int i = i0; i < i1; ++i) node.scar |= roller.scar[roller.side_vertex(i, j)];
+      bound(node, column_angle(0.5 * (i0 + i1)), [&](auto&& f) {
+        f(roller.mesh.positions[center]);
+        for (int i = i0; i <= i1; ++i) f(roller.mesh.positions[roller.side_vertex(i, j)]);
+      });
+    }
+    if (i1 - i0 <= 2) {
+      QuadNode& node = tree.nodes[static_cast<std::size_t>(id)];
+      node.tri_first = top ? roller.top_triangle(i0) : roller.bottom_triangle(i0);
+      node.tri_count = static_cast<std::uint32_t>(i1 - i0);
+      return;
+    }
+    const std::int32_t im = (i0 + i1) / 2;
+    const auto first = static_cast<std::int32_t>(tree.nodes.size());
+    tree.nodes.resize(tree.nodes.size() + 2);
+    tree.nodes[static_cast<std::size_t>(id)].first_child = first;
+    tree.nodes[static_cast<std::size_t>(id)].child_count = 2;
+    cap(first, i0, im, top);
+    cap(first + 1, im, i1, top);
+  }
+
+  std::int32_t root() {
+    tree.nodes.emplace_back();
+    return static_cast<std::int32_t>(tree.nodes.size() - 1);
+  }
+};
+
+}  // namespace
+
+std::int32_t RollerQuadtree::calculation_layer(double theta, int radial_segments) const {
+  // deepest level whose nodes still span 2*theta in angle (node width 2*pi/2^level, capped by n)
+  std::int32_t level = 0;
+  while (level < depth) {
+    const double cols = std::max(1.0, std::ceil(radial_segments / std::pow(2.0, level + 1)));
+    if (2.0 * std::numbers::pi * cols / radial_segments < 2.0 * theta) break;
+    ++level;
+  }
+  return level;
+}
+
+RollerQuadtree build_quadtree(const Roller& roller) {
+  RollerQuadtree tree;
+  tree.nodes.reserve(static_cast<std::size_t>(roller.n()) * (roller.m() + 1) * 2 + 2 * roller.n());
+  Builder b{roller, tree};
+  tree.side_root = b.root();
+  b.side(tree.side_root, 0, roller.n(), 0, roller.m() + 1, 0);
+  tree.bottom_root = b.root();
+  b.cap(tree.bottom_root, 0, roller.n(), false);
+  tree.top_root = b.root();
+  b.cap(tree.top_root, 0, roller.n(), true);
+  return tree;
+}
+
+}  // namespace interfere::bearing

@@ -1,0 +1,363 @@
+// Scarred solver (Jia & Zheng 2019, §3.2): temporally coherent branch and bound down the roller's
+// quadtree, exact on the scarred triangle surface; the exact surface reference; and the vertex
+// methods the paper compares (brute force, Barbier–Galin 2004 point-to-cylinder distance, the
+// paper's quadtree method over the window of Eq. (1)).
+#include "interfere/bearing/scarred.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "interfere/core/predicates.h"
+
+namespace interfere::bearing {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kGolden = 0.61803398874989484820;
+
+template <class F>
+std::pair<double, double> golden_min(F&& f, double lo, double hi, int iterations) {
+  double best_x = lo, best = f(lo);
+  if (!(hi > lo)) return {best_x, best};
+  if (const double fh = f(hi); fh < best) best = fh, best_x = hi;
+  double a = lo, b = hi, c = b - kGolden * (b - a), d = a + kGolden * (b - a);
+  double fc = f(c), fd = f(d);
+  for (int k = 0; k < iterations && b - a > 0; ++k) {
+    if (fc < best) best = fc, best_x = c;
+    if (fd < best) best = fd, best_x = d;
+    if (fc <= fd) {
+      b = d, d = c, fd = fc, c = b - kGolden * (b - a), fc = f(c);
+    } else {
+      a = c, c = d, fc = fd, d = a + kGolden * (b - a), fd = f(d);
+    }
+  }
+  if (fc < best) best = fc, best_x = c;
+  if (fd < best) best = fd, best_x = d;
+  return {best_x, best};
+}
+
+/// B's local frame (centre at the origin, axis +z) and the map body(A) -> local(B).
+struct LocalFrame {
+  Vec3 c, bx, by, u;
+  double R = 1, hh = 1;
+  double m[3][3];  // local = m * body + o
+  Vec3 o;
+
+  LocalFrame(const Transform& pose, const Cylinder& b) {
+    c = b.center(), u = b.axis;
+    const Vec3 t = std::fabs(u.x) < 0.6 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+    bx = cross(u, t);
+    bx = bx / norm(bx);
+    by = cross(u, bx);
+    R = b.radius, hh = 0.5 * b.height;
+    const Vec3 rows[3] = {bx, by, u};
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j)
+        m[i][j] = rows[i].x * pose.r[0][j] + rows[i].y * pose.r[1][j] + rows[i].z * pose.r[2][j];
+    }
+    const Vec3 d = pose.t - c;
+    o = {dot(bx, d), dot(by, d), dot(u, d)};
+  }
+  Vec3 local(const Vec3& p) const {
+    return {m[0][0] * p.x + m[0][1] * p.y + m[0][2] * p.z + o.x,
+            m[1][0] * p.x + m[1][1] * p.y + m[1][2] * p.z + o.y,
+            m[2][0] * p.x + m[2][1] * p.y + m[2][2] * p.z + o.z};
+  }
+  Vec3 world(const Vec3& q) const { return c + bx * q.x + by * q.y + u * q.z; }
+  double sd(const Vec3& q) const { return signed_distance_rz(std::sqrt(q.x * q.x + q.y * q.y), q.z, R, hh); }
+};
+
+/// Exact minimum of sd_B over a triangle given in B's local frame.
+TriangleMin local_triangle_min(const LocalFrame& f, const Vec3& a, const Vec3& b, const Vec3& c) {
+  TriangleMin out;
+  // planar distance from B's axis (the origin) to the projected triangle
+  const std::array<Vec3, 3> v = {a, b, c};
+  const int s0 = orient2d(v[0].x, v[0].y, v[1].x, v[1].y, 0, 0);
+  const int s1 = orient2d(v[1].x, v[1].y, v[2].x, v[2].y, 0, 0);
+  const int s2 = orient2d(v[2].x, v[2].y, v[0].x, v[0].y, 0, 0);
+  const bool pierced = (s0 >= 0 && s1 >= 0 && s2 >= 0 && (s0 | s1 | s2)) ||
+                       (s0 <= 0 && s1 <= 0 && s2 <= 0 && (s0 | s1 | s2));
+  double rho = kInf;
+  Vec3 p;
+  if (!pierced) {
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& e0 = v[static_cast<std::size_t>(k)];
+      const Vec3& e1 = v[static_cast<std::size_t>((k + 1) % 3)];
+      const double dx = e1.x - e0.x, dy = e1.y - e0.y, l2 = dx * dx + dy * dy;
+      double t;
+      if (l2 > 0) {
+        t = std::clamp(-(e0.x * dx + e0.y * dy) / l2, 0.0, 1.0);
+      } else {  // the edge is parallel to B's axis: every t is a minimiser, take |z| smallest
+        const double dz = e1.z - e0.z;
+        t = dz != 0 ? std::clamp(-e0.z / dz, 0.0, 1.0) : 0.0;
+      }
+      const Vec3 q = e0 + (e1 - e0) * t;
+      const double r = std::sqrt(q.x * q.x + q.y * q.y);
+      if (r < rho || (r == rho && std::fabs(q.z) < std::fabs(p.z))) rho = r, p = q;
+    }
+  }
+  if (!pierced && rho > 0) {
+    const double dr = rho - f.R, dz = std::fabs(p.z) - f.hh;
+    if (dr >= 0 ? dz <= 0 : dz <= dr) {  // certificate: B's side is what is nearest
+      out.value = dr, out.point = p, out.certified = true;
+      return out;
+    }
+  }
+  // general: nested golden-section over the barycentric coordinates (sd_B is convex)
+  constexpr int kIter = 64;
+  const Vec3 ab = b - a, ac = c - a;
+  const auto inner = [&](double s) {
+    return golden_min([&](double t) { return f.sd(a + ab * s + ac * t); }, 0.0, 1.0 - s, kIter);
+  };
+  const auto [s, value] = golden_min([&](double ss) { return inner(ss).second; }, 0.0, 1.0, kIter);
+  const double t = inner(s).first;
+  out.value = value;
+  out.point = a + ab * s + ac * t;
+  out.certified = false;
+  return out;
+}
+
+struct Evaluator {
+  const Roller& roller;
+  LocalFrame frame;
+  MeshPairResult best;
+
+  void triangle(std::uint32_t id) {
+    const Tri& t = roller.mesh.triangles[id];
+    const TriangleMin tm = local_triangle_min(frame, frame.local(roller.mesh.positions[t[0]]),
+                                              frame.local(roller.mesh.positions[t[1]]),
+                                              frame.local(roller.mesh.positions[t[2]]));
+    ++best.evaluated;
+    best.fallbacks += tm.certified ? 0 : 1;
+    if (tm.value < best.distance || (tm.value == best.distance && id < best.triangle)) {
+      best.distance = tm.value;
+      best.triangle = id;
+      best.point_a = tm.point;  // local for now
+    }
+  }
+  MeshPairResult finish(const Cylinder& b) {
+    MeshPairResult out = best;
+    out.point_a = frame.world(best.point_a);
+    out.point_b = nearest_on_cylinder_boundary(b, out.point_a);
+    return out;
+  }
+};
+
+/// Lower bound of sd_B over a node's oriented box (see quadtree.h).
+double node_lower_bound(const LocalFrame& f, const QuadNode& n) {
+  if (n.half_r < 0) return kInf;  // no triangles
+  const Vec3 c = f.local(n.box_center);
+  const double rho = std::sqrt(c.x * c.x + c.y * c.y);
+  if (!(rho > 0)) return -kInf;
+  const double nx = c.x / rho, ny = c.y / rho;
+  const double erx = f.m[0][0] * n.cos_mid + f.m[0][1] * n.sin_mid;
+  const double ery = f.m[1][0] * n.cos_mid + f.m[1][1] * n.sin_mid;
+  const double etx = -f.m[0][0] * n.sin_mid + f.m[0][1] * n.cos_mid;
+  const double ety = -f.m[1][0] * n.sin_mid + f.m[1][1] * n.cos_mid;
+  const double ezx = f.m[0][2], ezy = f.m[1][2];
+  return rho - n.half_r * std::fabs(nx * erx + ny * ery) - n.half_t * std::fabs(nx * etx + ny * ety) -
+         n.half_z * std::fabs(nx * ezx + ny * ezy) - f.R;
+}
+
+double wrap_pi(double a) {
+  const double two_pi = 2 * std::numbers::pi;
+  a = std::fmod(a, two_pi);
+  if (a < 0) a += two_pi;
+  return a;
+}
+
+}  // namespace
+
+TriangleMin triangle_min_signed_distance(const Cylinder& b, const Vec3& t0, const Vec3& t1, const Vec3& t2) {
+  const LocalFrame f(Transform::identity(), b);
+  TriangleMin tm = local_triangle_min(f, f.local(t0), f.local(t1), f.local(t2));
+  tm.point = f.world(tm.point);
+  return tm;
+}
+
+MeshPairResult surface_reference(const Roller& roller, const Transform& pose, const Cylinder& b) {
+  Evaluator ev{roller, LocalFrame(pose, b), {}};
+  ev.best.distance = kInf;
+  for (std::uint32_t t = 0; t < roller.mesh.triangles.size(); ++t) ev.triangle(t);
+  return ev.finish(b);
+}
+
+MeshPairResult ScarredSolver::solve(const Transform& pose, const Cylinder& b) { return run(pose, b, nullptr); }
+
+MeshPairResult ScarredSolver::solve(const Transform& pose, const Cylinder& b, const Vec3& hint) {
+  return run(pose, b, &hint);
+}
+
+MeshPairResult ScarredSolver::run(const Transform& pose, const Cylinder& b, const Vec3* hint) {
+  Evaluator ev{*roller_, LocalFrame(pose, b), {}};
+  ev.best.distance = kInf;
+  ev.best.triangle = 0xffffffffu;
+  if (previous_ != kNone) ev.triangle(previous_);  // temporal coherence: a tight first bound
+  std::uint32_t hinted = kNone;
+  if (hint) {  // the side cell under the hint (body-frame angle and height)
+    const Vec3 w = *hint - pose.t;
+    const double x = pose.r[0][0] * w.x + pose.r[1][0] * w.y + pose.r[2][0] * w.z;
+    const double y = pose.r[0][1] * w.x + pose.r[1][1] * w.y + pose.r[2][1] * w.z;
+    const double z = pose.r[0][2] * w.x + pose.r[1][2] * w.y + pose.r[2][2] * w.z;
+    const int n = roller_->n(), m = roller_->m();
+    const double u = wrap_pi(std::atan2(y, x)) / (2 * std::numbers::pi) * n;
+    const double v = z / roller_->params.height * m;
+    if (std::isfinite(u) && std::isfinite(v)) {
+      const int i = std::clamp(static_cast<int>(u), 0, n - 1), j = std::clamp(static_cast<int>(v), 0, m - 1);
+      hinted = roller_->side_triangle(i, j);
+      if (hinted != previous_) ev.triangle(hinted);
+      if (hinted + 1 != previous_) ev.triangle(hinted + 1);
+    }
+  }
+  struct Item {
+    std::int32_t node;
+    double lb;
+  };
+  // depth-first: at most 3 pending siblings per level plus the roots (a few dozen entries)
+  Item stack[1024];
+  int top = 0;
+  const auto& nodes = tree_->nodes;
+  for (const std::int32_t root : {tree_->side_root, tree_->bottom_root, tree_->top_root}) {
+    stack[top++] = {root, node_lower_bound(ev.frame, nodes[static_cast<std::size_t>(root)])};
+  }
+  while (top > 0) {
+    const Item it = stack[--top];
+    if (it.lb >= ev.best.distance) continue;
+    const QuadNode& n = nodes[static_cast<std::size_t>(it.node)];
+    ++ev.best.nodes_visited;
+    if (n.child_count == 0) {
+      for (std::uint32_t k = 0; k < n.tri_count; ++k) {
+        const std::uint32_t id = n.tri_first + k;
+        if (id != previous_ && (hinted == kNone || (id != hinted && id != hinted + 1))) ev.triangle(id);
+      }
+      continue;
+    }
+    Item kids[4];
+    int count = 0;
+    for (std::int32_t k = 0; k < n.child_count; ++k) {
+      const std::int32_t id = n.first_child + k;
+      const double lb = node_lower_bound(ev.frame, nodes[static_cast<std::size_t>(id)]);
+      if (lb < ev.best.distance) kids[count++] = {id, lb};
+    }
+    for (int a = 1; a < count; ++a)  // descending lower bound: the smallest is popped first
+      for (int c = a; c > 0 && kids[c - 1].lb < kids[c].lb; --c) std::swap(kids[c - 1], kids[c]);
+    for (int k = 0; k < count && top < 1024; ++k) stack[top++] = kids[k];
+  }
+  previous_ = ev.best.triangle;
+  return ev.finish(b);
+}
+
+namespace {
+template <class Sd>
+MeshPairResult vertex_min(const Roller& roller, const Transform& pose, const Cylinder& b, Sd&& sd) {
+  MeshPairResult out;
+  out.distance = kInf;
+  for (std::uint32_t v = 0; v < roller.mesh.positions.size(); ++v) {
+    const Vec3 p = pose.apply(roller.mesh.positions[v]);
+    const double d = sd(b, p);
+    ++out.evaluated;
+    if (d < out.distance) out.distance = d, out.triangle = v, out.point_a = p;
+  }
+  out.point_b = nearest_on_cylinder_boundary(b, out.point_a);
+  return out;
+}
+}  // namespace
+
+MeshPairResult vertex_brute_force(const Roller& roller, const Transform& pose, const Cylinder& b) {
+  return vertex_min(roller, pose, b, [](const Cylinder& c, const Vec3& p) { return point_signed_distance(c, p); });
+}
+
+MeshPairResult vertex_barbier_galin(const Roller& roller, const Transform& pose, const Cylinder& b) {
+  return vertex_min(roller, pose, b,
+                    [](const Cylinder& c, const Vec3& p) { return barbier_galin_signed_distance(c, p); });
+}
+
+double contact_direction_angle(const Transform& pose, const Cylinder& b, double /*height*/) {
+  const Vec3 a0 = pose.t;  // the pivot: the nominal centre line starts there
+  const Vec3 bc = b.center();
+  const Vec3 foot = bc + b.axis * dot(a0 - bc, b.axis);
+  const Vec3 w = foot - a0;
+  // body coordinates (R^T w); the axial component is dropped (projection on the disk plane)
+  const double x = pose.r[0][0] * w.x + pose.r[1][0] * w.y + pose.r[2][0] * w.z;
+  const double y = pose.r[0][1] * w.x + pose.r[1][1] * w.y + pose.r[2][1] * w.z;
+  return wrap_pi(std::atan2(y, x));
+}
+
+MeshPairResult vertex_quadtree_method(const Roller& roller, const RollerQuadtree& tree, const Transform& pose,
+                                      const Cylinder& b, double window) {
+  MeshPairResult out;
+  out.distance = kInf;
+  const auto eval = [&](const Vec3& body, std::uint32_t id) {
+    const Vec3 p = pose.apply(body);
+    const double d = barbier_galin_signed_distance(b, p);
+    ++out.evaluated;
+    if (d < out.distance) out.distance = d, out.triangle = id, out.point_a = p;
+    return d;
+  };
+  const int n = roller.n();
+  const double phi = contact_direction_angle(pose, b, roller.params.height);
+  const double col = 2 * std::numbers::pi / n;
+  const double lo = phi - window, hi = phi + window;  // in radians, may wrap
+  const auto intersects = [&](const QuadNode& q) {
+    const double a0 = q.i0 * col, a1 = q.i1 * col;  // node spans [a0, a1) (cells up to the next column)
+    for (int k = -1; k <= 1; ++k) {
+      const double s = k * 2 * std::numbers::pi;
+      if (a0 + s <= hi + col && lo - col <= a1 + s) return true;
+    }
+    return false;
+  };
+  const std::int32_t layer = tree.calculation_layer(window, n);
+  // collect the calculation layer's nodes in the window
+  std::vector<std::int32_t> frontier{tree.side_root}, next;
+  for (std::int32_t level = 0; level < layer; ++level) {
+    next.clear();
+    for (const std::int32_t id : frontier) {
+      const QuadNode& q = tree.nodes[static_cast<std::size_t>(id)];
+      if (q.child_count == 0) { next.push_back(id); continue; }
+      for (std::int32_t k = 0; k < q.child_count; ++k)
+        if (intersects(tree.nodes[static_cast<std::size_t>(q.first_child + k)])) next.push_back(q.first_child + k);
+    }
+    frontier.swap(next);
+  }
+  std::vector<std::int32_t> stack;
+  for (const std::int32_t id : frontier) {
+    const QuadNode& q = tree.nodes[static_cast<std::size_t>(id)];
+    if (q.scar) {  // scarred nodes: every vertex
+      stack.push_back(id);
+      while (!stack.empty()) {
+        const QuadNode& s = tree.nodes[static_cast<std::size_t>(stack.back())];
+        stack.pop_back();
+        if (s.child_count == 0) {
+          eval(roller.mesh.positions[roller.side_vertex(s.i0, s.j0)], roller.side_vertex(s.i0, s.j0));
+          continue;
+        }
+        for (std::int32_t k = 0; k < s.child_count; ++k) stack.push_back(s.first_child + k);
+      }
+      continue;
+    }
+    // intact nodes: greedy descent along the smallest virtual vertex
+    std::int32_t cur = id;
+    while (tree.nodes[static_cast<std::size_t>(cur)].child_count > 0) {
+      const QuadNode& s = tree.nodes[static_cast<std::size_t>(cur)];
+      double best = kInf;
+      std::int32_t pick = s.first_child;
+      for (std::int32_t k = 0; k < s.child_count; ++k) {
+        const QuadNode& c = tree.nodes[static_cast<std::size_t>(s.first_child + k)];
+        const double d = c.child_count == 0
+                             ? eval(roller.mesh.positions[roller.side_vertex(c.i0, c.j0)], roller.side_vertex(c.i0, c.j0))
+                             : barbier_galin_signed_distance(b, pose.apply(c.virtual_vertex));
+        if (d < best) best = d, pick = s.first_child + k;
+      }
+      cur = pick;
+    }
+    const QuadNode& leaf = tree.nodes[static_cast<std::size_t>(cur)];
+    eval(roller.mesh.positions[roller.side_vertex(leaf.i0, leaf.j0)], roller.side_vertex(leaf.i0, leaf.j0));
+  }
+  out.point_b = nearest_on_cylinder_boundary(b, out.point_a);
+  return out;
+}
+
+}  // namespace interfere::bearing

@@ -1,0 +1,223 @@
+// Dynamic simulation of N bearing pairs (Jia & Zheng 2019, §4): seeded spin and tilt random walk,
+// broad phase over all parts, per pair the standard solver (§3.1) or, with a scar in the window of
+// Eq. (1), the temporally coherent scarred solver (§3.2).
+#include "interfere/bearing/simulation.h"
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <chrono>
+#include <ctime>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "interfere/bearing/analytic.h"
+#include "interfere/bearing/quadtree.h"
+#include "interfere/bearing/scarred.h"
+#include "interfere/bearing/window.h"
+
+namespace interfere::bearing {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr int kScarVariants = 8;  // distinct scarred meshes shared round-robin by the scarred pairs
+
+Error param_error(const char* name, const std::string& what, double got) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.17g", got);
+  return Error{.reason = std::string(name) + " must be " + what + ", got " + buf};
+}
+
+std::uint64_t mix(std::uint64_t a, std::uint64_t b, std::uint64_t c) {
+  SplitMix64 g{a ^ (b * 0x9E3779B97F4A7C15ull) ^ (c * 0xC2B2AE3D27D4EB4Full)};
+  g.next();
+  return g.next();
+}
+
+struct PairState {
+  double tx = 0, ty = 0;  // tilt in units of alpha (inside the unit disk)
+  double spin0 = 0;
+  bool scarred = false;
+  int variant = -1;
+  ScarredSolver solver;
+};
+
+double now() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+}  // namespace
+
+Status validate(const SceneParams& p) {
+  if (p.pairs < 1 || p.pairs > 1 << 22) return param_error("pairs", "in [1, 4194304]", p.pairs);
+  if (p.frames < 1 || p.frames > 1 << 24) return param_error("frames", "in [1, 16777216]", p.frames);
+  if (Status s = validate(p.roller, "roller"); !s) return s;
+  if (!(p.partner_radius > 0 && p.partner_radius <= 1e9))
+    return param_error("partner.radius", "> 0 (and <= 1e9)", p.partner_radius);
+  if (!(p.partner_height > 0 && p.partner_height <= 1e9))
+    return param_error("partner.height", "> 0 (and <= 1e9)", p.partner_height);
+  const double rmax = std::max(p.roller.radius, p.roller.top());
+  if (!(p.gap > -(rmax + p.partner_radius) && p.gap <= 1e9))
+    return param_error("gap", "> -(roller radius + partner radius) (and <= 1e9)", p.gap);
+  if (!(p.max_tilt_deg >= 0)) return param_error("max_tilt_deg", ">= 0", p.max_tilt_deg);
+  const WindowParams w{.roller_radius = p.roller.radius, .partner_radius = p.partner_radius,
+                       .height = p.roller.height, .max_tilt = p.max_tilt_deg * kDeg};
+  if (Status s = validate(w); !s) return Error{.reason = "max_tilt_deg: " + s.error().reason};
+  if (!(p.tilt_step >= 0 && p.tilt_step <= 1)) return param_error("tilt_step", "in [0, 1]", p.tilt_step);
+  if (!std::isfinite(p.spin_deg_per_frame)) return param_error("spin_deg_per_frame", "finite", p.spin_deg_per_frame);
+  if (!(p.scar_fraction >= 0 && p.scar_fraction <= 1))
+    return param_error("scar_fraction", "in [0, 1]", p.scar_fraction);
+  if (p.scar_fraction > 0) {
+    if (Status s = validate(p.scar, p.roller, "scar"); !s) return s;
+  }
+  if (!(p.spacing >= 0 && p.spacing <= 1e9)) return param_error("spacing", ">= 0 and <= 1e9 (0 = automatic)", p.spacing);
+  return {};
+}
+
+Expected<SimulationResult> simulate(const SceneParams& p, bool keep_rows) {
+  if (Status s = validate(p); !s) return s.error();
+  const double t_start = now();
+  SimulationResult res;
+  const double r = p.roller.radius, rmax = std::max(r, p.roller.top()), hb = p.roller.height;
+  const double R = p.partner_radius, D = R + r + p.gap;
+  const double alpha = p.max_tilt_deg * kDeg;
+  res.theta = interference_window({.roller_radius = r, .partner_radius = R, .height = hb, .max_tilt = alpha});
+  const double reach = D + rmax + hb;
+  const double auto_spacing = 1.05 * std::max(R + reach, 2 * std::max(R, rmax + hb)) + 1e-3 * reach;
+  const double S = p.spacing > 0 ? p.spacing : auto_spacing;
+  res.spacing = S;
+  const int cols = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(p.pairs))));
+
+  // scarred roller variants (meshes and quadtrees) shared by the scarred pairs
+  std::vector<Roller> variants;
+  std::vector<RollerQuadtree> trees;
+  std::vector<PairState> st(static_cast<std::size_t>(p.pairs));
+  int scarred = 0;
+  for (int k = 0; k < p.pairs; ++k) {
+    PairState& s = st[static_cast<std::size_t>(k)];
+    s.scarred = std::floor((k + 1) * p.scar_fraction) > std::floor(k * p.scar_fraction);
+    if (s.scarred) s.variant = scarred++ % kScarVariants;
+    SplitMix64 g{mix(p.seed, static_cast<std::uint64_t>(k), 0xA11CEull)};
+    do {
+      s.tx = g.symmetric(), s.ty = g.symmetric();
+    } while (s.tx * s.tx + s.ty * s.ty > 1);
+    s.spin0 = 2 * std::numbers::pi * g.uniform();
+  }
+  res.scarred_rollers = scarred;
+  const int nvariants = std::min(scarred, kScarVariants);
+  variants.reserve(static_cast<std::size_t>(nvariants));
+  for (int v = 0; v < nvariants; ++v) {
+    Expected<Roller> roller = make_roller(p.roller);
+    if (!roller) return roller.error();
+    ScarParams sp = p.scar;
+    sp.seed = p.scar.seed + static_cast<std::uint64_t>(v);
+    if (Expected<int> e = apply_scar(*roller, sp); !e) return e.error();
+    variants.push_back(std::move(*roller));
+  }
+  for (const Roller& v : variants) trees.push_back(build_quadtree(v));
+  for (PairState& s : st)
+    if (s.scarred) {
+      const auto vi = static_cast<std::size_t>(s.variant);
+      s.solver = ScarredSolver(&variants[vi], &trees[vi]);
+    }
+  const double col = 2 * std::numbers::pi / p.roller.radial_segments;
+  const double cell_z = hb / p.roller.height_segments;
+
+  std::unique_ptr<BroadPhase> broad = make_broad_phase(p.broad_phase);
+  const auto n = static_cast<std::size_t>(p.pairs);
+  std::vector<Box3> boxes(2 * n);
+  std::vector<Transform> poses(n);
+  std::vector<Cylinder> cyl_a(n), cyl_b(n);
+  std::vector<PairFrame> frame_rows(n);
+  std::vector<std::uint8_t> overlapping(n);
+  if (keep_rows) res.rows.reserve(n * static_cast<std::size_t>(p.frames));
+  res.min_distance = std::numeric_limits<double>::infinity();
+  res.setup_seconds = now() - t_start;
+  res.threads = tbb::this_task_arena::max_concurrency();
+  const std::clock_t cpu_start = std::clock();
+
+  for (int f = 0; f < p.frames; ++f) {
+    const double t0 = now();
+    tbb::parallel_for(std::size_t{0}, n, [&](std::size_t k) {
+      PairState& s = st[k];
+      if (f > 0 && p.tilt_step > 0) {
+        SplitMix64 g{mix(p.seed, k, static_cast<std::uint64_t>(f))};
+        s.tx += p.tilt_step * g.symmetric(), s.ty += p.tilt_step * g.symmetric();
+        const double l = std::hypot(s.tx, s.ty);
+        if (l > 1) s.tx /= l, s.ty /= l;
+      }
+      const double ox = (static_cast<int>(k) % cols) * S, oy = (static_cast<int>(k) / cols) * S;
+      const double tilt = alpha * std::min(1.0, std::hypot(s.tx, s.ty));
+      const double az = std::atan2(s.ty, s.tx);
+      const double spin = s.spin0 + f * p.spin_deg_per_frame * kDeg;
+      poses[k] = roller_pose({ox + D, oy, 0}, tilt, az, spin);
+      cyl_a[k] = posed_cylinder(r, p.roller.top_radius, hb, poses[k]);
+      Transform tb;
+      tb.t = {ox, oy, 0.5 * hb - 0.5 * p.partner_height};
+      cyl_b[k] = posed_cylinder(R, -1, p.partner_height, tb);
+      boxes[2 * k] = cylinder_box(cyl_a[k]);
+      boxes[2 * k + 1] = cylinder_box(cyl_b[k]);
+      PairFrame& row = frame_rows[k];
+      row.frame = f, row.pair = static_cast<std::int32_t>(k);
+      row.tilt_deg = tilt / kDeg, row.azimuth_deg = az / kDeg;
+      row.spin_deg = std::fmod(spin / kDeg, 360.0);
+      row.scarred_roller = s.scarred;
+    });
+    const std::vector<IndexPair> pairs = broad->update(boxes);
+    std::fill(overlapping.begin(), overlapping.end(), 0);
+    for (const auto& [i, j] : pairs) {
+      if (i / 2 == j / 2) overlapping[i / 2] = 1;
+      else ++res.cross_pairs;
+    }
+    res.broad_pairs_total += pairs.size();
+    const double t1 = now();
+    tbb::parallel_for(std::size_t{0}, n, [&](std::size_t k) {
+      PairState& s = st[k];
+      PairFrame& row = frame_rows[k];
+      row.box_overlap = overlapping[k] != 0;
+      const PairDistance pd = cylinder_pair_distance(cyl_a[k], cyl_b[k]);
+      row.distance = pd.distance, row.point_a = pd.point_a, row.point_b = pd.point_b;
+      row.path = static_cast<std::uint8_t>(pd.path);
+      row.solver = 0, row.evaluated = 0, row.scar_in_range = false;
+      if (s.scarred) {
+        const ScarParams& sp = p.scar;
+        const double phi = contact_direction_angle(poses[k], cyl_b[k], hb);
+        bool in_range = scar_angle_contains(sp, phi, res.theta + 2 * col);
+        if (!in_range) {  // exactness guard: the standard witness itself on the scar window
+          const Transform& T = poses[k];
+          const Vec3 w = pd.point_a - T.t;
+          const double bx = T.r[0][0] * w.x + T.r[1][0] * w.y + T.r[2][0] * w.z;
+          const double by = T.r[0][1] * w.x + T.r[1][1] * w.y + T.r[2][1] * w.z;
+          const double bz = T.r[0][2] * w.x + T.r[1][2] * w.y + T.r[2][2] * w.z;
+          in_range = scar_angle_contains(sp, std::atan2(by, bx), 2 * col) && bz >= sp.z_min - cell_z &&
+                     bz <= sp.z_max + cell_z;
+        }
+        row.scar_in_range = in_range;
+        if (in_range) {
+          const MeshPairResult mr = s.solver.solve(poses[k], cyl_b[k], pd.point_a);
+          row.distance = mr.distance, row.point_a = mr.point_a, row.point_b = mr.point_b;
+          row.solver = 1, row.evaluated = mr.evaluated;
+        }
+      }
+    });
+    const double t2 = now();
+    res.broad_seconds += t1 - t0;
+    res.narrow_seconds += t2 - t1;
+    for (const PairFrame& row : frame_rows) {
+      if (row.distance < res.min_distance) res.min_distance = row.distance, res.worst = row;
+      res.interfering_rows += row.distance < 0;
+      res.scarred_solves += row.solver == 1;
+      res.general_solves += row.solver == 0 && row.path == static_cast<std::uint8_t>(AnalyticPath::general);
+      if (keep_rows) res.rows.push_back(row);
+    }
+  }
+  res.cpu_seconds = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+  const double busy = res.broad_seconds + res.narrow_seconds;
+  res.frames_per_second = busy > 0 ? p.frames / busy : 0;
+  res.total_seconds = now() - t_start;
+  return res;
+}
+
+}  // namespace interfere::bearing

@@ -1,0 +1,157 @@
+#!/usr/bin/env python3
+"""End-to-end tests of `interfere bearing` (issue #4): exit status, CSV columns, JSON summary,
+parameters file, determinism across thread counts, bad input (named parameter, exit 2, no output
+written or overwritten).
+
+Usage: test_bearing.py PATH_TO_INTERFERE WORK_DIR   (run by ctest). Standard library only.
+"""
+import csv
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+import unittest
+
+EXE = None
+WORK = None
+EXAMPLE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "data", "examples", "bearing.parameters")
+
+COLUMNS = ["frame", "pair", "distance", "interference", "ax", "ay", "az", "bx", "by", "bz", "solver", "path",
+           "scarred", "scar_in_range", "box_overlap", "tilt_deg", "azimuth_deg", "spin_deg", "evaluated"]
+
+
+def run(*args):
+    p = subprocess.run([EXE, "--quiet", "bearing", *args], capture_output=True, text=True, timeout=120)
+    return p.returncode, p.stdout, p.stderr
+
+
+def path(name):
+    return os.path.join(WORK, name)
+
+
+def slurp(name):
+    with open(path(name)) as f:
+        return f.read()
+
+
+def load(name):
+    with open(path(name)) as f:
+        return json.load(f)
+
+
+def read_csv(name):
+    with open(path(name), newline="") as f:
+        return list(csv.DictReader(f))
+
+
+class Bearing(unittest.TestCase):
+    def test_simulation_outputs(self):
+        rc, out, err = run("--pairs", "12", "--frames", "20", "--vertices", "32", "--scar", "0,90,0,40,0.2",
+                           "--gap", "-0.05", "--spin", "9", "--seed", "3", "--out", path("f.csv"), "--json",
+                           path("s.json"))
+        self.assertEqual(rc, 1, err)  # preload: interference
+        self.assertIn("INTERFERENCE", out)
+        rows = read_csv("f.csv")
+        self.assertEqual(len(rows), 12 * 20)
+        self.assertEqual(slurp("f.csv").split("\n", 1)[0].split(","), COLUMNS)
+        s = load("s.json")
+        self.assertEqual(s["command"], "bearing")
+        self.assertEqual(s["results"]["rows"], 240)
+        self.assertEqual(s["results"]["colliders"], 24)
+        self.assertEqual(s["parameters"]["roller"]["radial_segments"], 32)
+        self.assertEqual(s["parameters"]["roller"]["height_segments"], 31)
+        dmin = min(float(r["distance"]) for r in rows)
+        self.assertEqual(s["results"]["min_distance"], dmin)
+        self.assertEqual(s["worst"]["distance"], dmin)
+        worst = [r for r in rows if float(r["distance"]) == dmin][0]
+        self.assertEqual((s["worst"]["frame"], s["worst"]["pair"]), (int(worst["frame"]), int(worst["pair"])))
+        self.assertEqual(s["results"]["interfering_rows"], sum(float(r["distance"]) < 0 for r in rows))
+        self.assertEqual(s["results"]["scarred_solves"], sum(r["solver"] == "scarred" for r in rows))
+        self.assertGreater(s["results"]["scarred_solves"], 0)
+        for r in rows:
+            d = float(r["distance"])
+            self.assertTrue(math.isfinite(d))
+            self.assertEqual(float(r["interference"]), max(0.0, -d))
+            # the witness pair: |a - b| is |distance| (b is the nearest boundary point of the partner)
+            a = [float(r[k]) for k in ("ax", "ay", "az")]
+            b = [float(r[k]) for k in ("bx", "by", "bz")]
+            self.assertAlmostEqual(math.dist(a, b), abs(d), delta=1e-9)
+            self.assertLessEqual(float(r["tilt_deg"]), 1.0 + 1e-12)
+
+    def test_identical_for_one_and_two_threads_and_all_broad_phases(self):
+        base = ["--pairs", "9", "--frames", "15", "--vertices", "24", "--scar", "0,120,0,40,0.2", "--gap", "-0.05"]
+        self.assertEqual(run(*base, "--threads", "1", "--out", path("t1.csv"))[0], 1)
+        ref = slurp("t1.csv")
+        for extra in (["--threads", "2"], ["--broad-phase", "brute"], ["--broad-phase", "octree"],
+                      ["--broad-phase", "bvh"]):
+            rc, _, err = run(*base, *extra, "--out", path("t2.csv"))
+            self.assertEqual(rc, 1, err)
+            self.assertEqual(slurp("t2.csv"), ref, extra)
+
+    def test_clear_when_apart_and_parameters_file(self):
+        params = {"pairs": 4, "frames": 5, "seed": 9, "gap": 5.0, "max_tilt_deg": 0.5,
+                  "roller": {"radius": 8, "height": 30, "radial_segments": 16, "height_segments": 15},
+                  "partner": {"radius": 20, "height": 40}, "scar": None, "broad_phase": "octree"}
+        with open(path("bearing.parameters"), "w") as f:
+            json.dump(params, f)
+        rc, out, err = run("--params", path("bearing.parameters"), "--json", path("p.json"))
+        self.assertEqual(rc, 0, err)
+        s = load("p.json")
+        self.assertEqual(s["parameters"]["pairs"], 4)
+        self.assertEqual(s["parameters"]["broad_phase"], "octree")
+        self.assertEqual(s["results"]["scarred_rollers"], 0)
+        self.assertGreater(s["results"]["min_distance"], 0)
+        # command-line values override the file
+        rc, _, err = run("--params", path("bearing.parameters"), "--pairs", "2", "--json", path("p2.json"))
+        self.assertEqual(load("p2.json")["parameters"]["pairs"], 2)
+
+    def test_example_parameters_file(self):
+        rc, out, err = run("--params", EXAMPLE, "--frames", "10", "--json", path("ex.json"), "--out", path("ex.csv"))
+        self.assertEqual(rc, 1, err)  # the example is preloaded (gap -0.05): interference
+        s = load("ex.json")
+        self.assertEqual(s["parameters"]["pairs"], 16)
+        self.assertEqual(s["parameters"]["frames"], 10)
+        self.assertEqual(s["results"]["scarred_rollers"], 4)
+        self.assertEqual(len(read_csv("ex.csv")), 160)
+
+    def test_bad_input_names_the_parameter_and_writes_nothing(self):
+        with open(path("keep.csv"), "w") as f:
+            f.write("old\n")
+        cases = [(["--radius", "-1"], "roller.radius"),
+                 (["--height", "0"], "roller.height"),
+                 (["--vertices", "2"], "--vertices"),
+                 (["--tilt", "95"], "max_tilt"),
+                 (["--tilt", "80", "--radius", "1", "--partner-radius", "1"], "Eq. (1)"),
+                 (["--scar", "0,40,30,50,0.1"], "scar.z_max"),
+                 (["--scar", "0,40,-5,10,0.1"], "scar.z_min"),
+                 (["--scar", "0,40,10"], "--scar"),
+                 (["--scar", "0,400,10,20,0.1"], "angle_width"),
+                 (["--pairs", "0"], "pairs"),
+                 (["--broad-phase", "kd"], "--broad-phase"),
+                 (["--partner-radius", "nan"], "partner.radius")]
+        for args, needle in cases:
+            rc, out, err = run(*args, "--out", path("keep.csv"), "--json", path("none.json"))
+            self.assertEqual(rc, 2, (args, err))
+            self.assertIn(needle, err, args)
+            self.assertEqual(slurp("keep.csv"), "old\n")
+            self.assertFalse(os.path.exists(path("none.json")))
+        with open(path("bad.parameters"), "w") as f:
+            f.write('{"pairs": 3, "roller": {"radius": 10, "colour": 1}}')
+        rc, _, err = run("--params", path("bad.parameters"))
+        self.assertEqual(rc, 2)
+        self.assertIn("roller.colour", err)
+        self.assertIn("bad.parameters", err)
+        with open(path("broken.parameters"), "w") as f:
+            f.write('{"pairs": 3,, }')
+        rc, _, err = run("--params", path("broken.parameters"))
+        self.assertEqual(rc, 2)
+        self.assertIn("byte", err)
+
+
+if __name__ == "__main__":
+    EXE, WORK = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
+    shutil.rmtree(WORK, ignore_errors=True)
+    os.makedirs(WORK)
+    unittest.main(argv=sys.argv[:1], verbosity=2)
