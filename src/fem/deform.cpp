@@ -115,6 +115,7 @@ Expected<SeriesResult> clash_series(const SeriesPart& a, const SeriesPart& b, co
       result.first_clash_step = static_cast<std::int64_t>(s);
       if (request.keep_first_clash) result.first_clash = r;
     }
+    if (request.keep_last && s == steps.back()) result.last = r;
     if (request.keep_all) result.results.push_back(std::move(r));
   }
   return result;

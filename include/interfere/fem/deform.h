@@ -37,6 +37,7 @@ struct SeriesRequest {
   std::vector<std::size_t> steps;  ///< 0-based steps to check, increasing; empty = every step
   bool keep_first_clash = true;    ///< keep the full ClashResult of the first clashing step
   bool keep_all = false;           ///< keep the full ClashResult of every checked step
+  bool keep_last = false;          ///< keep the full ClashResult of the last checked step
 };
 
 struct StepSummary {
@@ -56,6 +57,7 @@ struct SeriesResult {
   std::int64_t first_clash_step = -1;  ///< 0-based; -1 when no checked step interferes
   ClashResult first_clash;            ///< the first clashing step's result (keep_first_clash)
   std::vector<ClashResult> results;   ///< per checked step (keep_all)
+  ClashResult last;                   ///< the last checked step's result (keep_last)
   double build_seconds = 0;           ///< both trees, once
 };
 
