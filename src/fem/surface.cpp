@@ -27,6 +27,14 @@ using namespace fem_detail;
 namespace {
 
 constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+constexpr int kShellFace = 7;                // face index of a shell's own record
+constexpr std::uint8_t kDroppedShell = 0x80;  // flag of a shell that lies on a volume face
+
+// Faces matched: a volume element's faces, or a shell as its one face.
+inline ElemFaces faces_of(ElemType t) {
+  if (is_shell(t)) return {1, elem_info(t).corners == 3 ? &kTriShell : &kQuadShell, elem_info(t).corners};
+  return volume_faces(t);
+}
 
 template <class F>
 void for_chunks(bool parallel, std::size_t n, std::size_t grain, const F& f) {
@@ -191,7 +199,7 @@ Expected<SurfaceResult> extract_surface(const FemMesh& mesh, const SurfaceOption
   std::vector<std::uint32_t> count(nn, 0);
   for_chunks(par, ne, 8192, [&](std::size_t lo, std::size_t hi) {
     for (std::size_t e = lo; e < hi; ++e) {
-      const ElemFaces ef = volume_faces(mesh.elem_types[e]);
+      const ElemFaces ef = faces_of(mesh.elem_types[e]);
       const std::uint32_t* v = mesh.element_nodes(e);
       for (int f = 0; f < ef.count; ++f) {
         std::atomic_ref<std::uint32_t>(count[min_corner(ef.faces[f], v)]).fetch_add(1, std::memory_order_relaxed);
@@ -207,15 +215,16 @@ Expected<SurfaceResult> extract_surface(const FemMesh& mesh, const SurfaceOption
   std::vector<FaceRec> recs(num_faces);
   for_chunks(par, ne, 8192, [&](std::size_t lo, std::size_t hi) {
     for (std::size_t e = lo; e < hi; ++e) {
-      const ElemFaces ef = volume_faces(mesh.elem_types[e]);
+      const ElemFaces ef = faces_of(mesh.elem_types[e]);
       const std::uint32_t* v = mesh.element_nodes(e);
+      const int shell = is_shell(mesh.elem_types[e]) ? kShellFace : 0;
       for (int f = 0; f < ef.count; ++f) {
         const FaceDef& fd = ef.faces[f];
         std::uint32_t k[4] = {v[fd.c[0]], v[fd.c[1]], v[fd.c[2]], fd.n == 4 ? v[fd.c[3]] : kNone};
         sort_key(k, fd.n);
         const std::uint32_t slot =
             std::atomic_ref<std::uint32_t>(count[k[0]]).fetch_sub(1, std::memory_order_relaxed) - 1;
-        recs[begin[k[0]] + slot] = {k[1], k[2], k[3], static_cast<std::uint32_t>(e * 8 + f)};
+        recs[begin[k[0]] + slot] = {k[1], k[2], k[3], static_cast<std::uint32_t>(e * 8 + (f | shell))};
       }
     }
   });
@@ -224,8 +233,9 @@ Expected<SurfaceResult> extract_surface(const FemMesh& mesh, const SurfaceOption
   // 4. Sort each bucket; a (key, part) that occurs once is a boundary face.
   std::vector<std::uint8_t> flags(ne, 0);
   struct Counts {
-    std::size_t boundary = 0, interior = 0, nonmanifold = 0;
+    std::size_t boundary = 0, interior = 0, nonmanifold = 0, dropped = 0;
   };
+  const bool drop_shells = options.drop_boundary_shells;
   auto match = [&](std::size_t lo, std::size_t hi) {
     Counts c;
     auto less = [&](const FaceRec& x, const FaceRec& y) {
@@ -255,15 +265,28 @@ Expected<SurfaceResult> extract_surface(const FemMesh& mesh, const SurfaceOption
         FaceRec* j = i + 1;
         const std::uint32_t pi = part[i->code >> 3];
         while (j < last && j->b == i->b && j->c == i->c && j->d == i->d && part[j->code >> 3] == pi) ++j;
-        const std::size_t k = static_cast<std::size_t>(j - i);
-        if (k == 1) {
+        // Shell records sort after the volume faces of the same key (code & 7 == 7 is larger only
+        // within one element, so count them explicitly).
+        std::size_t volumes = 0;
+        const FaceRec* volume = nullptr;
+        for (const FaceRec* r = i; r < j; ++r) {
+          if ((r->code & 7) != kShellFace) ++volumes, volume = r;
+        }
+        if (volumes == 1) {
           ++c.boundary;
-          std::atomic_ref<std::uint8_t>(flags[i->code >> 3])
-              .fetch_or(static_cast<std::uint8_t>(1u << (i->code & 7)), std::memory_order_relaxed);
-        } else if (k == 2) {
+          std::atomic_ref<std::uint8_t>(flags[volume->code >> 3])
+              .fetch_or(static_cast<std::uint8_t>(1u << (volume->code & 7)), std::memory_order_relaxed);
+        } else if (volumes == 2) {
           ++c.interior;
-        } else {
+        } else if (volumes > 2) {
           ++c.nonmanifold;
+        }
+        if (volumes > 0 && drop_shells) {
+          for (const FaceRec* r = i; r < j; ++r) {
+            if ((r->code & 7) != kShellFace) continue;
+            ++c.dropped;
+            flags[r->code >> 3] = kDroppedShell;  // a shell has one record: no other writer
+          }
         }
         i = j;
       }
@@ -271,7 +294,7 @@ Expected<SurfaceResult> extract_surface(const FemMesh& mesh, const SurfaceOption
     return c;
   };
   auto add = [](Counts a, const Counts& b) {
-    a.boundary += b.boundary, a.interior += b.interior, a.nonmanifold += b.nonmanifold;
+    a.boundary += b.boundary, a.interior += b.interior, a.nonmanifold += b.nonmanifold, a.dropped += b.dropped;
     return a;
   };
   Counts totals;
@@ -288,13 +311,14 @@ Expected<SurfaceResult> extract_surface(const FemMesh& mesh, const SurfaceOption
   result.boundary_faces = totals.boundary;
   result.interior_faces = totals.interior;
   result.nonmanifold_faces = totals.nonmanifold;
+  result.dropped_shells = totals.dropped;
 
   // 5. Triangles in element order: count per chunk, prefix, fill.
   const bool sub = options.subdivide_quadratic;
   auto element_triangles = [&](std::size_t e) {
     const ElemType t = mesh.elem_types[e];
     const FaceNodes kinds = face_nodes(t);
-    if (is_shell(t)) return face_triangle_count(elem_info(t).corners, kinds, sub);
+    if (is_shell(t)) return flags[e] == kDroppedShell ? 0 : face_triangle_count(elem_info(t).corners, kinds, sub);
     const std::uint8_t fl = flags[e];
     if (fl == 0) return 0;
     const ElemFaces ef = volume_faces(t);
@@ -336,6 +360,7 @@ Expected<SurfaceResult> extract_surface(const FemMesh& mesh, const SurfaceOption
           }
         };
         if (is_shell(t)) {
+          if (flags[e] == kDroppedShell) continue;
           const FaceDef& fd = elem_info(t).corners == 3 ? kTriShell : kQuadShell;
           emit(triangulate(fd, v, kinds, sub, false, pos, buf), 1);
           continue;
@@ -362,7 +387,6 @@ Expected<SurfaceResult> extract_surface(const FemMesh& mesh, const SurfaceOption
     result.degenerate_faces += chunk_flat[c];
     result.skipped_elements += chunk_skipped[c];
   }
-  flags = {};
 
   // 6. Split by part (stable), then each part's vertices in order of first use.
   const std::size_t np = parts.names.size();
@@ -407,8 +431,11 @@ Expected<SurfaceResult> extract_surface(const FemMesh& mesh, const SurfaceOption
   }
   for (std::size_t e = 0; e < ne; ++e) {
     if (part[e] == kNoPart) continue;
-    if (is_shell(mesh.elem_types[e])) ++result.parts[part[e]].shell_elements;
-    else ++result.parts[part[e]].volume_elements;
+    if (!is_shell(mesh.elem_types[e])) {
+      ++result.parts[part[e]].volume_elements;
+    } else if (flags[e] != kDroppedShell) {
+      ++result.parts[part[e]].shell_elements;
+    }
   }
   return result;
 }

@@ -37,6 +37,10 @@ struct SurfaceOptions {
   /// triangles fanned around the centre node. False: corners only (tri -> 1, quad -> 2).
   bool subdivide_quadratic = true;
   PartSplit split = PartSplit::automatic;
+  /// Leave out shell elements that lie on a face of a volume element of the same part (matched by
+  /// corner nodes): Gmsh files hold the 2D boundary elements of their volumes, which are not
+  /// shells. Other shells are always taken.
+  bool drop_boundary_shells = true;
   bool parallel = true;  ///< oneTBB; the result is identical for any thread count
 };
 
@@ -64,12 +68,13 @@ struct SurfaceResult {
   std::size_t inverted_faces = 0;
   std::size_t degenerate_faces = 0;   ///< boundary faces whose orientation was undecidable (flat)
   std::size_t skipped_elements = 0;   ///< points and lines (no surface)
+  std::size_t dropped_shells = 0;     ///< shells on volume faces (drop_boundary_shells)
 };
 
 /// Extracts the boundary surface of every part. Method: every face of every volume element gets
 /// a key (its sorted corner nodes); the faces are bucketed by their smallest corner node (a
 /// parallel counting sort), each small bucket is sorted by (key, part, element, face), and a face
-/// whose key occurs once in its part is on the boundary. Faces between two parts are boundary
+/// whose key occurs once among the volume faces of its part is on the boundary. Faces between two parts are boundary
 /// faces of both. Triangles come out in element order, then face order (deterministic for any
 /// thread count).
 ///

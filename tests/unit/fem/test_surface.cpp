@@ -324,6 +324,45 @@ TEST(FemSurface, ShellsAreTakenAsTheyAre) {
   expect_faces_named(p, m);
 }
 
+TEST(FemSurface, ShellsOnVolumeFacesAreDroppedLikeGmshBoundaryElements) {
+  // A hex box plus quad4 shells on its boundary faces (as Gmsh writes them) and one free shell.
+  GeneratedFem g = make_fem_box({.type = ElemType::hex8, .nx = 2, .ny = 2, .nz = 2});
+  FemMesh& m = g.mesh;
+  auto solid = extract_surface(m);
+  ASSERT_TRUE(solid);
+  const std::size_t boundary_tris = solid->parts[0].mesh.num_triangles();
+  std::size_t shells = 0;
+  for (std::size_t e = 0, ne = m.num_elements(); e < ne; ++e) {
+    for (int f = 1; f <= 6; ++f) {
+      std::vector<std::uint32_t> q = element_face_nodes(m, e, f);
+      bool on_boundary = false;
+      for (std::size_t t = 0; t < solid->parts[0].mesh.num_triangles(); ++t) {
+        on_boundary |= solid->parts[0].tri_element[t] == e && solid->parts[0].tri_face[t] == f;
+      }
+      if (!on_boundary) continue;
+      m.add_element(ElemType::quad4, static_cast<std::int64_t>(1000 + shells++), -1, q.data(), 4);
+    }
+  }
+  const std::uint32_t on_face[4] = {0, 1, 4, 3};  // the bottom face of cell (0,0,0) again
+  m.add_element(ElemType::quad4, 5000, -1, on_face, 4);
+  const auto n0 = static_cast<std::uint32_t>(m.num_nodes());  // a free shell touching the box at node 0
+  m.nodes.insert(m.nodes.end(), {{-1, 0, 0}, {-1, -1, 0}, {0, -1, 0}});
+  m.node_ids.insert(m.node_ids.end(), {9001, 9002, 9003});
+  const std::uint32_t free_quad[4] = {0, n0 + 2, n0 + 1, n0};
+  m.add_element(ElemType::quad4, 5001, -1, free_quad, 4);
+  EXPECT_EQ(shells, 24u);
+  auto r = extract_surface(m);
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->parts.size(), 1u);  // connected through node 0
+  EXPECT_EQ(r->dropped_shells, 25u);
+  EXPECT_EQ(r->parts[0].mesh.num_triangles(), boundary_tris + 2);
+  EXPECT_EQ(r->parts[0].shell_elements, 1u);
+  auto kept = extract_surface(m, {.drop_boundary_shells = false});
+  ASSERT_TRUE(kept);
+  EXPECT_EQ(kept->parts[0].mesh.num_triangles(), boundary_tris + 2 * 26);
+  EXPECT_EQ(kept->parts[0].shell_elements, 26u);
+}
+
 TEST(FemSurface, QuadsAreSplitAlongTheShorterDiagonal) {
   FemMesh m;
   m.nodes = {{0, 0, 0}, {3, 0, 0}, {1, 1, 0}, {0, 1, 0}};  // diagonal 1-3 is longer than 0-2
