@@ -3,4 +3,9 @@
 #pragma once
 #include <pybind11/pybind11.h>
 
-namespace interfere::python {}  // namespace interfere::python
+namespace interfere::python {
+
+/// FEM module (bind_fem.cpp): FemMesh, read_fem, generators, extract_surface, clash_series.
+void bind_fem(pybind11::module_& m);
+
+}  // namespace interfere::python
