@@ -98,7 +98,10 @@ int run_fem_clash(const ClashOptions& o, const ResolvedParts& parts, const Clash
                           .field = pick(o.field_b, o.field), .linear_faces = o.linear_faces, .split = o.split,
                           .transform = parts.b.transform};
   const FemPart a = load_fem_part(parts.a.file, oa, "A", false);
-  const FemPart b = load_fem_part(parts.b.file, ob, "B", false);
+  // Two bodies of one file with the same displacement, pose and options: read and extract once.
+  const bool same = parts.a.file == parts.b.file && oa.disp == ob.disp && oa.field == ob.field &&
+                    oa.transform == ob.transform;
+  const FemPart b = same ? other_part(a, ob.part, "B") : load_fem_part(parts.b.file, ob, "B", false);
   for (const FemPart* p : {&a, &b}) {
     for (const std::string& w : p->warnings) {
       if (!Progress::quiet()) std::fprintf(stderr, "[interfere] warning: %s\n", w.c_str());
@@ -227,8 +230,8 @@ int run_fem_clash(const ClashOptions& o, const ResolvedParts& parts, const Clash
         {"warnings", result.warnings},
         {"exit_status", status},
         {"timings_s",
-         {{"read", a.read_seconds + b.read_seconds},
-          {"extract", a.extract_seconds + b.extract_seconds},
+         {{"read", a.read_seconds + (same ? 0.0 : b.read_seconds)},
+          {"extract", a.extract_seconds + (same ? 0.0 : b.extract_seconds)},
           {"build", sres.build_seconds},
           {"query", query},
           {"total", total.seconds()}}}};

@@ -56,7 +56,7 @@ int run_surface(const SurfaceOptions& o) {
   nlohmann::json parts_json = nlohmann::json::array();
   std::size_t index = 0;
   for (std::size_t k : p.chosen) {
-    const SurfacePart& sp = p.surface.parts[k];
+    const SurfacePart& sp = p.surface().parts[k];
     std::vector<Vec3> pos;
     deformed_positions(sp, *p.mesh, p.displacement, step, o.scale, pos);
     const auto base = static_cast<std::uint32_t>(merged.positions.size());

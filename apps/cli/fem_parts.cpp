@@ -43,6 +43,27 @@ std::string names_of(const SurfaceResult& s) {
   return n;
 }
 
+void choose_part(FemPart& p, const std::string& part, bool all_parts_ok) {
+  const std::string& file = p.file;
+  const std::string flag = p.label == "A" ? "-a" : p.label == "B" ? "-b" : "";
+  const SurfaceResult& surface = *p.surface_;
+  p.chosen.clear();
+  if (surface.parts.empty()) throw InputError(file + ": no surface or volume elements");
+  if (!part.empty()) {
+    for (std::size_t i = 0; i < surface.parts.size(); ++i) {
+      if (surface.parts[i].name == part) p.chosen.push_back(i);
+    }
+    if (p.chosen.empty()) {
+      throw InputError("--part" + flag + ": " + file + " has no body '" + part + "' (bodies: " + names_of(surface) + ")");
+    }
+  } else if (surface.parts.size() == 1 || all_parts_ok) {
+    for (std::size_t i = 0; i < surface.parts.size(); ++i) p.chosen.push_back(i);
+  } else {
+    throw InputError(file + ": " + std::to_string(surface.parts.size()) + " bodies (" + names_of(surface) +
+                     "): choose one with --part" + flag);
+  }
+}
+
 }  // namespace
 
 bool is_fem_file(const std::string& path) {
@@ -81,13 +102,13 @@ FemPart load_fem_part(const std::string& file, const FemPartOptions& o, const st
     if (is_fem_file(file)) {
       auto m = read_fem(file);
       if (!m) throw InputError(m.error());
-      p.mesh = std::make_unique<FemMesh>(std::move(*m));
+      p.mesh = std::make_shared<FemMesh>(std::move(*m));
       p.format = fem_format_name(fem_format_from_path(file));
     } else {
       MeshReadInfo info;
       auto m = read_mesh(file, {}, &info);
       if (!m) throw InputError(m.error());
-      p.mesh = std::make_unique<FemMesh>(mesh_as_shells(*m, file));
+      p.mesh = std::make_shared<FemMesh>(mesh_as_shells(*m, file));
       p.format = mesh_format_name(info.format);
       p.from_triangle_mesh = true;
     }
@@ -104,7 +125,7 @@ FemPart load_fem_part(const std::string& file, const FemPartOptions& o, const st
     CsvDisplacementInfo info;
     auto u = read_displacements_csv(o.disp, mesh, &info);
     if (!u) throw InputError(u.error());
-    p.csv = std::make_unique<NodalSeries>(std::move(*u));
+    p.csv = std::make_shared<NodalSeries>(std::move(*u));
     p.displacement = p.csv.get();
     p.displacement_source = "csv";
     if (info.missing_nodes > 0) {
@@ -144,39 +165,47 @@ FemPart load_fem_part(const std::string& file, const FemPartOptions& o, const st
     Progress progress("extracting surface " + label + " (" + std::to_string(mesh.num_elements()) + " elements)");
     auto s = extract_surface(mesh, {.subdivide_quadratic = !o.linear_faces, .split = split});
     if (!s) throw InputError(s.error());
-    p.surface = std::move(*s);
+    p.surface_ = std::make_shared<SurfaceResult>(std::move(*s));
     p.extract_seconds = progress.seconds();
   }
-  if (p.surface.parts.empty()) throw InputError(file + ": no surface or volume elements");
-  if (!o.part.empty()) {
-    for (std::size_t i = 0; i < p.surface.parts.size(); ++i) {
-      if (p.surface.parts[i].name == o.part) p.chosen.push_back(i);
-    }
-    if (p.chosen.empty()) {
-      throw InputError("--part" + flag + ": " + file + " has no body '" + o.part + "' (bodies: " + names_of(p.surface) + ")");
-    }
-  } else if (p.surface.parts.size() == 1 || all_parts_ok) {
-    for (std::size_t i = 0; i < p.surface.parts.size(); ++i) p.chosen.push_back(i);
-  } else {
-    throw InputError(file + ": " + std::to_string(p.surface.parts.size()) + " bodies (" + names_of(p.surface) +
-                     "): choose one with --part" + flag);
-  }
-  if (p.surface.nonmanifold_faces > 0) {
-    p.warnings.push_back("part " + label + " (" + file + "): " + std::to_string(p.surface.nonmanifold_faces) +
+  choose_part(p, o.part, all_parts_ok);
+  if (p.surface().nonmanifold_faces > 0) {
+    p.warnings.push_back("part " + label + " (" + file + "): " + std::to_string(p.surface().nonmanifold_faces) +
                          " faces shared by more than two elements (left out of the surface)");
   }
-  if (p.surface.inverted_faces > 0) {
-    p.warnings.push_back("part " + label + " (" + file + "): " + std::to_string(p.surface.inverted_faces) +
+  if (p.surface().inverted_faces > 0) {
+    p.warnings.push_back("part " + label + " (" + file + "): " + std::to_string(p.surface().inverted_faces) +
                          " boundary faces of inverted (negative-Jacobian) elements (oriented outward by geometry)");
   }
   return p;
 }
 
+FemPart other_part(const FemPart& loaded, const std::string& part, const std::string& label) {
+  FemPart p;
+  p.file = loaded.file;
+  p.label = label;
+  p.format = loaded.format;
+  p.from_triangle_mesh = loaded.from_triangle_mesh;
+  p.mesh = loaded.mesh;
+  p.surface_ = loaded.surface_;
+  p.csv = loaded.csv;
+  p.displacement = loaded.displacement;
+  p.displacement_source = loaded.displacement_source;
+  p.transform = loaded.transform;
+  p.warnings = loaded.warnings;
+  for (std::string& w : p.warnings) {
+    const std::string from = "part " + loaded.label + " ", to = "part " + label + " ";
+    if (w.rfind(from, 0) == 0) w = to + w.substr(from.size());
+  }
+  choose_part(p, part, false);
+  return p;
+}
+
 nlohmann::json fem_part_json(const FemPart& p) {
   nlohmann::json bodies = nlohmann::json::array();
-  for (const SurfacePart& s : p.surface.parts) bodies.push_back(s.name);
+  for (const SurfacePart& s : p.surface().parts) bodies.push_back(s.name);
   nlohmann::json chosen = nlohmann::json::array();
-  for (std::size_t i : p.chosen) chosen.push_back(p.surface.parts[i].name);
+  for (std::size_t i : p.chosen) chosen.push_back(p.surface().parts[i].name);
   return {{"file", p.file},
           {"format", p.format},
           {"fem", !p.from_triangle_mesh},
@@ -188,9 +217,9 @@ nlohmann::json fem_part_json(const FemPart& p) {
           {"shell_elements", p.part().shell_elements},
           {"surface_vertices", p.part().mesh.num_vertices()},
           {"surface_triangles", p.part().mesh.num_triangles()},
-          {"boundary_faces", p.surface.boundary_faces},
-          {"nonmanifold_faces", p.surface.nonmanifold_faces},
-          {"inverted_faces", p.surface.inverted_faces},
+          {"boundary_faces", p.surface().boundary_faces},
+          {"nonmanifold_faces", p.surface().nonmanifold_faces},
+          {"inverted_faces", p.surface().inverted_faces},
           {"displacement",
            p.displacement ? nlohmann::json{{"source", p.displacement_source},
                                            {"name", p.displacement->name},

@@ -31,17 +31,18 @@ struct FemPart {
   std::string file, label;  ///< label: "A", "B" or "input" (for messages)
   std::string format;       ///< "msh", "vtu", ..., or the mesh format for STL/PLY/OBJ/OFF input
   bool from_triangle_mesh = false;  ///< a triangle mesh file taken as tri3 shells (ids = index + 1)
-  std::unique_ptr<FemMesh> mesh;
-  SurfaceResult surface;
+  std::shared_ptr<FemMesh> mesh;           ///< shared when A and B come from one file
+  std::shared_ptr<SurfaceResult> surface_;  ///< every body's surface
+  const SurfaceResult& surface() const { return *surface_; }
   std::vector<std::size_t> chosen;  ///< indices into surface.parts
-  std::unique_ptr<NodalSeries> csv;  ///< (a pointer: `displacement` may point into it)
+  std::shared_ptr<NodalSeries> csv;  ///< (a pointer: `displacement` may point into it)
   const NodalSeries* displacement = nullptr;  ///< points into csv or mesh->fields; null = none
   std::string displacement_source;            ///< "csv", "field" or ""
   Transform transform;
   double read_seconds = 0, extract_seconds = 0;
   std::vector<std::string> warnings;
 
-  const SurfacePart& part() const { return surface.parts[chosen.front()]; }
+  const SurfacePart& part() const { return surface_->parts[chosen.front()]; }
   SeriesPart series() const { return {mesh.get(), &part(), displacement}; }
   std::size_t num_steps() const { return displacement ? displacement->num_steps() : 0; }
 };
@@ -50,6 +51,10 @@ struct FemPart {
 /// --part every body is chosen (surface command); otherwise exactly one body must result.
 FemPart load_fem_part(const std::string& file, const FemPartOptions& options, const std::string& label,
                       bool all_parts_ok);
+
+/// Another body of an already loaded file (same displacement, pose and options): shares the mesh,
+/// the surfaces and the displacements; throws InputError when `part` is unknown or ambiguous.
+FemPart other_part(const FemPart& loaded, const std::string& part, const std::string& label);
 
 /// Input description for the JSON report (docs/report.md, "FEM inputs").
 nlohmann::json fem_part_json(const FemPart& p);
