@@ -191,6 +191,23 @@ class FemCli(unittest.TestCase):
         if os.path.exists(path("regions.vtu")):
             self.assertIn(b"fem_element_id", read_bytes(path("regions.vtu")))
 
+    def test_regions_file_holds_the_region_triangles(self):
+        # Written through write_fem (.msh here: the MSH writer is merged; .vtu is the same code path).
+        rc, out, err = run("clash", self.model, self.model, "--part-a", "left", "--part-b", "right", "--field", "disp",
+                           "--step", "5", "--regions-vtu", path("regions.msh"), "--json", path("r5.json"))
+        self.assertEqual(rc, 1, err)
+        rep = load_json(path("r5.json"))
+        tris = sum(r["triangle_count_a"] + r["triangle_count_b"] for r in rep["result"]["regions"])
+        text = read_bytes(path("regions.msh")).decode()
+        lines = text.split("\n")
+        count = int(lines[lines.index("$Elements") + 1].split()[-1 if "2.2" in text[:40] else 1])
+        self.assertEqual(count, tris)
+        # No region at step 2: no file, a note.
+        rc, out, err = run("clash", self.model, self.model, "--part-a", "left", "--part-b", "right", "--field", "disp",
+                           "--step", "2", "--regions-vtu", path("none.vtu"))
+        self.assertEqual(rc, 0, err)
+        self.assertFalse(os.path.exists(path("none.vtu")))
+
     def test_clash_single_steps(self):
         rc, out, err = run("clash", self.model, self.model, "--part-a", "left", "--part-b", "right", "--field", "disp",
                            "--step", "3")
