@@ -171,6 +171,7 @@ Expected<SurfaceResult> extract_surface(const FemMesh& mesh, const SurfaceOption
     for (std::size_t e = lo; e < hi; ++e) {
       const std::uint8_t t = static_cast<std::uint8_t>(mesh.elem_types[e]);
       bool ok = t < kNumElemTypes && mesh.elem_offsets[e + 1] >= mesh.elem_offsets[e] &&
+                mesh.elem_offsets[e + 1] <= mesh.elem_nodes.size() &&
                 mesh.element_size(e) == elem_info(mesh.elem_types[e]).nodes;
       if (ok) {
         const std::uint32_t* v = mesh.element_nodes(e);
