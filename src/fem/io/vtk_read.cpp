@@ -60,17 +60,23 @@ struct Reader {
     Bytes in(s, start, true);
     if (n > in.remaining() / static_cast<std::size_t>(size)) return byte_error(file, static_cast<std::int64_t>(start), "truncated binary block (" + std::to_string(n) + " values of " + std::string(ty) + ")");
     const std::string lt = to_lower(ty);
-    for (std::size_t i = 0; i < n; ++i) {
-      if (lt == "float") { float v; in.get(v); a.reals[i] = v; }
-      else if (lt == "double") { double v; in.get(v); a.reals[i] = v; }
-      else if (lt == "char") { std::int8_t v; in.get(v); a.ints[i] = v; }
-      else if (lt == "unsigned_char") { std::uint8_t v; in.get(v); a.ints[i] = v; }
-      else if (lt == "short") { std::int16_t v; in.get(v); a.ints[i] = v; }
-      else if (lt == "unsigned_short") { std::uint16_t v; in.get(v); a.ints[i] = v; }
-      else if (lt == "int") { std::int32_t v; in.get(v); a.ints[i] = v; }
-      else if (lt == "unsigned_int") { std::uint32_t v; in.get(v); a.ints[i] = v; }
-      else { std::int64_t v; in.get(v); a.ints[i] = v; }
-    }
+    auto take = [&](auto zero) {
+      for (std::size_t i = 0; i < n; ++i) {
+        decltype(zero) v = zero;
+        in.get(v);
+        if (integer) a.ints[i] = static_cast<std::int64_t>(v); else a.reals[i] = static_cast<double>(v);
+      }
+    };
+    if (lt == "float") take(0.0f);
+    else if (lt == "double") take(0.0);
+    else if (lt == "char") take(std::int8_t{0});
+    else if (lt == "unsigned_char") take(std::uint8_t{0});
+    else if (lt == "short") take(std::int16_t{0});
+    else if (lt == "unsigned_short") take(std::uint16_t{0});
+    else if (lt == "int") take(std::int32_t{0});
+    else if (lt == "unsigned_int") take(std::uint32_t{0});
+    else if (lt == "vtktypeuint64" || lt == "unsigned_long") take(std::uint64_t{0});
+    else take(std::int64_t{0});
     const std::int64_t lines = line_of(s.substr(start), in.pos() - start) - 1;
     t.set_pos(in.pos(), t.cur_line() + lines);
     return {};
@@ -153,8 +159,12 @@ struct Reader {
         d.cells_where = t.line();
         std::int64_t n = 0, size = 0;
         if (!(st = count(n, "number of cells")) || !(st = count(size, "cells size"))) return st;
-        tok = t.token();
-        if (iequals(tok, "OFFSETS")) {  // 5.1: n = cells + 1 offsets, size = connectivity length
+        // 5.1 layout when the next token is OFFSETS (peeked without consuming binary data).
+        const std::size_t after = t.pos();
+        std::size_t q = after;
+        while (q < s.size() && is_space(s[q])) ++q;
+        if (istarts_with(s.substr(q, 7), "OFFSETS")) {
+          tok = t.token();  // 5.1: n = cells + 1 offsets, size = connectivity length
           if (n < 1) return at_line("OFFSETS needs at least one value");
           const std::string_view ty = t.token();
           VtkArray off, conn;
@@ -170,7 +180,6 @@ struct Reader {
           nc = n - 1;
         } else {
           // Old layout: n records "count i0 i1 ...", size values in all.
-          t.set_pos(static_cast<std::size_t>(tok.data() - s.data()), t.line());
           VtkArray all;
           if (binary) {
             if (!(st = values(static_cast<std::size_t>(size), "int", all))) return st;
