@@ -157,7 +157,7 @@ Status array_bytes(const Ctx& c, const XmlNode& da, std::string& out) {
     std::int64_t o = 0;
     if (!off || !parse_int(*off, o) || o < 0) return c.err(da.offset, "appended DataArray without a valid offset");
     src_at = c.doc->appended + static_cast<std::size_t>(o);
-    if (src_at > c.s.size()) return c.err(da.offset, "appended data offset " + std::to_string(o) + " is past the end of the file");
+    if (src_at > c.s.size()) return c.err(da.offset, "truncated appended data: offset " + std::to_string(o) + " is past the end of the file");
     src = c.s.substr(src_at);
   } else {
     src = da.text;
