@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes the committed seed corpus of the fuzz targets (standard library only, deterministic).
 
-    python3 tests/fuzz/make_corpus.py            # rewrites tests/fuzz/corpus/{read_mesh,tri_tri}/
+    python3 tests/fuzz/make_corpus.py            # rewrites tests/fuzz/corpus/{read_mesh,tri_tri,read_fem}/
 
 corpus/read_mesh/: small valid and broken samples of every format the readers accept (the fuzz
 target writes each input under every extension, so the file names are only descriptive).
@@ -321,8 +321,23 @@ REGRESSIONS = [
 ]
 
 
+def fem_seeds():
+    """corpus/read_fem/: the committed FEM test files (tests/data/fem, see its README) and a few
+    broken variants."""
+    src = os.path.join(HERE, "..", "data", "fem")
+    seeds = {}
+    for name in sorted(os.listdir(src)):
+        if name.endswith((".py", ".md")):
+            continue
+        with open(os.path.join(src, name), "rb") as f:
+            data = f.read()
+        seeds[name] = data
+        seeds["trunc_" + name] = data[: len(data) * 2 // 3]
+    return seeds
+
+
 def main():
-    for target, seeds in (("read_mesh", mesh_seeds()), ("tri_tri", tri_seeds())):
+    for target, seeds in (("read_mesh", mesh_seeds()), ("tri_tri", tri_seeds()), ("read_fem", fem_seeds())):
         d = os.path.join(CORPUS, target)
         if os.path.isdir(d):
             shutil.rmtree(d)

@@ -74,7 +74,7 @@ struct Reader {
       return false;
     }
     if (!parse_int(tok, v)) {
-      err = at_line("malformed " + std::string(what) + " " + quoted(tok));
+      err = at_line("malformed " + std::string(what) + " " + quote_tok(tok));
       return false;
     }
     return true;
@@ -86,11 +86,11 @@ struct Reader {
       return false;
     }
     if (!parse_double(tok, v)) {
-      err = at_line("malformed " + std::string(what) + " " + quoted(tok));
+      err = at_line("malformed " + std::string(what) + " " + quote_tok(tok));
       return false;
     }
     if (!std::isfinite(v)) {
-      err = at_line("non-finite " + std::string(what) + " " + quoted(tok));
+      err = at_line("non-finite " + std::string(what) + " " + quote_tok(tok));
       return false;
     }
     return true;
@@ -109,7 +109,7 @@ struct Reader {
     const std::string_view tok = t.token();
     if (tok.size() != name.size() + 4 || tok.substr(0, 4) != "$End" || tok.substr(4) != name) {
       err = tok.empty() ? line_error(file, t.cur_line(), "unexpected end of file, expected $End" + std::string(name))
-                        : at_line("expected $End" + std::string(name) + ", found " + quoted(tok) + " (wrong count?)");
+                        : at_line("expected $End" + std::string(name) + ", found " + quote_tok(tok) + " (wrong count?)");
       return false;
     }
     return true;
@@ -143,8 +143,8 @@ Status Reader::run() {
   for (;;) {
     const std::string_view tok = t.token();
     if (tok.empty()) break;
-    if (tok.front() != '$') return at_line("expected a section ($Name), found " + quoted(tok));
-    if (!have_format && tok != "$MeshFormat") return at_line("not a Gmsh MSH file: first section must be $MeshFormat, found " + quoted(tok));
+    if (tok.front() != '$') return at_line("expected a section ($Name), found " + quote_tok(tok));
+    if (!have_format && tok != "$MeshFormat") return at_line("not a Gmsh MSH file: first section must be $MeshFormat, found " + quote_tok(tok));
     Status st;
     if (tok == "$MeshFormat") {
       st = mesh_format();
@@ -172,7 +172,7 @@ Status Reader::mesh_format() {
   Error err;
   const std::string_view ver = t.token();
   double v = 0;
-  if (!parse_double(ver, v)) return at_line("malformed MSH version " + quoted(ver));
+  if (!parse_double(ver, v)) return at_line("malformed MSH version " + quote_tok(ver));
   std::int64_t ft = 0, ds = 0;
   if (!int_token(ft, "file type", err) || !int_token(ds, "data size", err)) return err;
   if (v >= 2 && v < 3) {
@@ -182,7 +182,7 @@ Status Reader::mesh_format() {
   } else if (v >= 4 && v < 4.1) {
     return at_line("MSH 4.0 is not supported (save as 4.1 or 2.2)");
   } else {
-    return at_line("unsupported MSH version " + quoted(ver) + " (2.x and 4.1 are supported)");
+    return at_line("unsupported MSH version " + quote_tok(ver) + " (2.x and 4.1 are supported)");
   }
   if (ft != 0 && ft != 1) return at_line("file type must be 0 (ASCII) or 1 (binary), found " + std::to_string(ft));
   binary = ft == 1;

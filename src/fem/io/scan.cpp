@@ -37,7 +37,7 @@ Expected<std::string> read_file_bytes(const std::filesystem::path& path) {
   return data;
 }
 
-std::string quoted(std::string_view t) {
+std::string quote_tok(std::string_view t) {
   constexpr std::size_t kMax = 40;
   std::string s = "'";
   for (std::size_t i = 0; i < t.size() && i < kMax; ++i) {

@@ -36,7 +36,7 @@ inline Error file_error(const std::string& file, std::string reason) {
   return Error{.file = file, .reason = std::move(reason)};
 }
 /// Token quoted for an error message, shortened, control bytes escaped.
-std::string quoted(std::string_view token);
+std::string quote_tok(std::string_view token);
 
 // ---------------------------------------------------------------- text
 
