@@ -150,19 +150,22 @@ class FemCli(unittest.TestCase):
 
     def test_surface_vtu_has_element_ids(self):
         rc, out, err = run("surface", self.model, path("left.vtu"), "--part", "left")
-        if rc == 2 and "todo" in err:
-            self.skipTest("VTU writer not merged yet (fem-io branch)")
         self.assertEqual(rc, 0, err)
         text = read_bytes(path("left.vtu"))
-        self.assertIn(b"fem_element_id", text)
-        self.assertIn(b"fem_face", text)
+        self.assertIn(b'Name="fem_element_id"', text)
+        self.assertIn(b'Name="fem_face"', text)
+        self.assertIn(b'Name="fem_node_id"', text)
+        # The VTU reads back (as tri3 shells, taken as they are): the same closed surface.
+        rc, out, err = run("surface", path("left.vtu"), path("back.stl"), "--json", path("back.json"))
+        self.assertEqual(rc, 0, err)
+        rep = load_json(path("back.json"))
+        self.assertEqual(rep["triangles"], 48)
+        self.assertTrue(rep["parts"][0]["closed"])
+        self.assertAlmostEqual(signed_volume(read_binary_stl(path("back.stl"))), 1.0, places=6)
 
     def test_clash_series_finds_the_analytic_onset_step(self):
         rc, out, err = run("clash", self.model, self.model, "--part-a", "left", "--part-b", "right", "--field", "disp",
                            "--json", path("series.json"), "--regions-vtu", path("regions.vtu"))
-        if rc == 2 and "todo" in err:  # the VTU writer is not merged yet: run without it
-            rc, out, err = run("clash", self.model, self.model, "--part-a", "left", "--part-b", "right", "--field",
-                               "disp", "--json", path("series.json"))
         self.assertEqual(rc, 1, err)
         self.assertIn("first clash at step 4", out)
         rep = load_json(path("series.json"))
@@ -188,11 +191,10 @@ class FemCli(unittest.TestCase):
             self.assertTrue(all(1001 <= n <= 1027 for n in fem["nodes_b"]))
             for e, face in fem["faces_a"]:
                 self.assertEqual(face, 4)  # hex face S4 = (1,5,6,2): the +x face
-        if os.path.exists(path("regions.vtu")):
-            self.assertIn(b"fem_element_id", read_bytes(path("regions.vtu")))
+        self.assertIn(b'Name="fem_element_id"', read_bytes(path("regions.vtu")))
 
     def test_regions_file_holds_the_region_triangles(self):
-        # Written through write_fem (.msh here: the MSH writer is merged; .vtu is the same code path).
+        # Written through write_fem (.msh here, .vtu in the series test: the same code path).
         rc, out, err = run("clash", self.model, self.model, "--part-a", "left", "--part-b", "right", "--field", "disp",
                            "--step", "5", "--regions-vtu", path("regions.msh"), "--json", path("r5.json"))
         self.assertEqual(rc, 1, err)
@@ -248,10 +250,17 @@ class FemCli(unittest.TestCase):
                     f.write("%d,%d,%r,0,0\n" % (s, nid, -V * s))
         rc, out, err = run("clash", self.model, self.model, "--part-a", "left", "--part-b", "right", "--disp-b",
                            path("disp.csv"), "--json", path("csv.json"))
-        if rc == 2 and "not implemented yet" in err:
-            self.skipTest("displacement CSV reader not merged yet (fem-io branch)")
         self.assertEqual(rc, 1, err)
         self.assertIn("first clash at step 4", out)
+        rep = load_json(path("csv.json"))
+        self.assertEqual(rep["inputs"]["b"]["displacement"]["source"], "csv")
+        self.assertEqual(rep["series"]["first_clash_step"], 4)
+        # A row for a node the mesh does not have: exit 2 naming the file and the line.
+        with open(path("disp_bad.csv"), "w") as f:
+            f.write("node_id,ux,uy,uz\n1001,0,0,0\n424242,0,0,0\n")
+        self.assert_input_error(["clash", self.model, self.model, "--part-a", "left", "--part-b", "right",
+                                 "--disp-b", path("disp_bad.csv"), "--json", path("csv_bad.json")],
+                                ["disp_bad.csv:3"], [path("csv_bad.json")])
 
     def test_bad_inputs_exit_2_without_output(self):
         js = path("bad.json")
