@@ -63,6 +63,52 @@ class FemPython(unittest.TestCase):
         with self.assertRaises(ValueError):
             itf.clash_series(a, "nobody", None, b, "", steps)
 
+    def test_read_fem_fields_and_csv(self):
+        # Two unit hexes 0.5 apart in one MSH 2.2 file (bodies "left", "right"); "right" moves by -0.25
+        # per step (field "disp" and the same values as CSV): touching at step 2.
+        nodes = []
+        for b, x0 in ((0, 0.0), (1, 1.5)):
+            for k in range(2):
+                for j in range(2):
+                    for i in range(2):
+                        nodes.append((100 * b + 1 + i + 2 * j + 4 * k, (x0 + i, float(j), float(k))))
+        hexes = [[1, 2, 4, 3, 5, 6, 8, 7], [101, 102, 104, 103, 105, 106, 108, 107]]
+        lines = ["$MeshFormat", "2.2 0 8", "$EndMeshFormat", "$PhysicalNames", "2", '3 1 "left"', '3 2 "right"',
+                 "$EndPhysicalNames", "$Nodes", str(len(nodes))]
+        lines += ["%d %r %r %r" % (n, *p) for n, p in nodes]
+        lines += ["$EndNodes", "$Elements", "2"]
+        lines += ["%d 5 2 %d %d %s" % (e + 1, e + 1, e + 1, " ".join(map(str, h))) for e, h in enumerate(hexes)]
+        lines += ["$EndElements"]
+        csv = ["step,node_id,ux,uy,uz"]
+        for s in range(4):
+            lines += ["$NodeData", "1", '"disp"', "1", repr(float(s)), "3", str(s), "3", str(len(nodes))]
+            for n, _ in nodes:
+                ux = -0.25 * s if n > 100 else 0.0
+                lines.append("%d %r 0 0" % (n, ux))
+                csv.append("%d,%d,%r,0,0" % (s, n, ux))
+            lines.append("$EndNodeData")
+        with tempfile.TemporaryDirectory() as d:
+            p = os.path.join(d, "two.msh")
+            with open(p, "w") as f:
+                f.write("\n".join(lines) + "\n")
+            c = os.path.join(d, "disp.csv")
+            with open(c, "w") as f:
+                f.write("\n".join(csv) + "\n")
+            mesh = itf.read_fem(p)
+            self.assertEqual(mesh.num_elements, 2)
+            self.assertEqual(mesh.fields, ["disp"])
+            self.assertEqual(len(mesh.field("disp")["values"]), 4)
+            parts = itf.extract_surface(mesh)["parts"]
+            self.assertEqual([q["name"] for q in parts], ["left", "right"])
+            self.assertEqual(sorted(set(int(i) for i in parts[1]["tri_element_id"])), [2])
+            r = itf.clash_series(mesh, "left", None, mesh, "right", "disp")
+            self.assertEqual(r["first_clash_step"], 2)
+            self.assertEqual([int(x) for x in r["first_clash_regions"][0]["elements_b"]], [2])
+            u = itf.read_displacements_csv(c, mesh)
+            self.assertEqual(len(u["values"]), 4)
+            r = itf.clash_series(mesh, "left", None, mesh, "right", u)
+            self.assertEqual(r["first_clash_step"], 2)
+
     def test_read_fem_and_errors(self):
         with tempfile.TemporaryDirectory() as d:
             p = os.path.join(d, "bad.msh")
