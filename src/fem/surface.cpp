@@ -207,10 +207,15 @@ Expected<SurfaceResult> extract_surface(const FemMesh& mesh, const SurfaceOption
       }
     }
   });
+  // begin[v] starts as the end of bucket v; the scatter counts it down to the bucket's start.
   std::vector<std::uint64_t> begin(nn + 1);
-  begin[0] = 0;
-  for (std::size_t i = 0; i < nn; ++i) begin[i + 1] = begin[i] + count[i];
+  {
+    std::uint64_t sum = 0;
+    for (std::size_t i = 0; i < nn; ++i) begin[i] = sum += count[i];
+    begin[nn] = sum;
+  }
   const std::uint64_t num_faces = begin[nn];
+  count = {};
 
   // 3. Scatter (the order inside a bucket depends on the schedule; step 4 sorts it).
   std::vector<FaceRec> recs(num_faces);
@@ -223,13 +228,12 @@ Expected<SurfaceResult> extract_surface(const FemMesh& mesh, const SurfaceOption
         const FaceDef& fd = ef.faces[f];
         std::uint32_t k[4] = {v[fd.c[0]], v[fd.c[1]], v[fd.c[2]], fd.n == 4 ? v[fd.c[3]] : kNone};
         sort_key(k, fd.n);
-        const std::uint32_t slot =
-            std::atomic_ref<std::uint32_t>(count[k[0]]).fetch_sub(1, std::memory_order_relaxed) - 1;
-        recs[begin[k[0]] + slot] = {k[1], k[2], k[3], static_cast<std::uint32_t>(e * 8 + (f | shell))};
+        const std::uint64_t slot =
+            std::atomic_ref<std::uint64_t>(begin[k[0]]).fetch_sub(1, std::memory_order_relaxed) - 1;
+        recs[slot] = {k[1], k[2], k[3], static_cast<std::uint32_t>(e * 8 + (f | shell))};
       }
     }
   });
-  count = {};
 
   // 4. Sort each bucket; a (key, part) that occurs once is a boundary face.
   std::vector<std::uint8_t> flags(ne, 0);
