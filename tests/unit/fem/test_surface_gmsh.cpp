@@ -106,6 +106,9 @@ const char* kBox = "SetFactory(\"OpenCASCADE\");\nBox(1) = {0, 0, 0, 1, 2, 3};\n
 const char* kCylinder =
     "SetFactory(\"OpenCASCADE\");\nCylinder(1) = {0, 0, 0, 0, 0, 2, 1};\nMesh.CharacteristicLengthMax = 0.2;\n";
 const char* kSphere = "SetFactory(\"OpenCASCADE\");\nSphere(1) = {0, 0, 0, 1};\nMesh.CharacteristicLengthMax = 0.2;\n";
+// All-hex meshes of curved shapes: Gmsh's subdivision of every tet into 4 hexes (and, with
+// SecondOrderIncomplete, hex20).
+const std::string kHexSubdivision = "Mesh.SubdivisionAlgorithm = 2;\nMesh.SecondOrderIncomplete = 1;\n";
 // Structured hexes (extruded, recombined) of the box [0,1]x[0,2]x[0,3]; without the recombination
 // of the extruded surface, wedges.
 std::string extruded_box(bool hexes) {
@@ -157,7 +160,7 @@ TEST(FemSurfaceGmsh, CylinderAndSphereMatchTheirAnalyticAreaWithinTheDiscretisat
   const double pi = std::numbers::pi;
   struct Case {
     const char* name;
-    const char* geo;
+    std::string geo;
     const char* args;
     double volume, area, tol;  // relative tolerance: chordal error (h / R)^2 / 8-ish, h = 0.2 R
   };
@@ -166,12 +169,17 @@ TEST(FemSurfaceGmsh, CylinderAndSphereMatchTheirAnalyticAreaWithinTheDiscretisat
       {"cyl_tet10", kCylinder, "-3 -order 2 -format msh41", 2 * pi, 6 * pi, 0.005},
       {"sph_tet4", kSphere, "-3 -format msh41", 4 * pi / 3, 4 * pi, 0.03},
       {"sph_tet10", kSphere, "-3 -order 2 -format msh22", 4 * pi / 3, 4 * pi, 0.005},
+      {"cyl_hex8", kCylinder + kHexSubdivision, "-3 -format msh41", 2 * pi, 6 * pi, 0.02},
+      {"sph_hex20", kSphere + kHexSubdivision, "-3 -order 2 -format msh41 -bin", 4 * pi / 3, 4 * pi, 0.005},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.name);
     const fs::path f = gmsh(c.name, c.geo, c.args);
     ASSERT_FALSE(f.empty());
-    const Measures m = measure(f);
+    std::size_t seen[kNumElemTypes] = {};
+    const Measures m = measure(f, seen);
+    if (std::string(c.name).find("hex8") != std::string::npos) EXPECT_GT(seen[static_cast<int>(ElemType::hex8)], 0u);
+    if (std::string(c.name).find("hex20") != std::string::npos) EXPECT_GT(seen[static_cast<int>(ElemType::hex20)], 0u);
     EXPECT_TRUE(m.closed);
     EXPECT_EQ(m.components, 1u);
     EXPECT_NEAR(m.volume, c.volume, c.tol * c.volume);
