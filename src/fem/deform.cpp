@@ -92,6 +92,17 @@ Expected<SeriesResult> clash_series(const SeriesPart& a, const SeriesPart& b, co
     t0 = std::chrono::steady_clock::now();
     deformed_positions(*a.part, *a.mesh, a.displacement, s, request.scale, pa);
     deformed_positions(*b.part, *b.mesh, b.displacement, s, request.scale, pb);
+    for (int side = 0; side < 2; ++side) {
+      const std::vector<Vec3>& p = side == 0 ? pa : pb;
+      const SeriesPart& sp = side == 0 ? a : b;
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        if (!is_finite(p[i])) {
+          return fail(sp.mesh->file, "step " + std::to_string(s) + ": node " +
+                                         std::to_string(sp.mesh->node_ids[sp.part->vertex_node[i]]) +
+                                         " has a non-finite deformed position");
+        }
+      }
+    }
     refit(models.first, std::move(pa));
     refit(models.second, std::move(pb));
     pa = {};

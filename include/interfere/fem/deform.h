@@ -63,7 +63,7 @@ struct SeriesResult {
 
 /// Checks every requested step. Errors (as values): a part or mesh missing, displacement fields
 /// of the two parts with different step counts, a field with the wrong node count, a step out
-/// of range, a non-finite scale.
+/// of range, a non-finite scale, a non-finite deformed position (names the node id and step).
 Expected<SeriesResult> clash_series(const SeriesPart& a, const SeriesPart& b, const SeriesRequest& request = {});
 
 /// A clash region named by the solver: the element ids of its triangles, and the node ids of the

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "interfere/fem/deform.h"
 #include "interfere/fem/generate.h"
@@ -108,6 +109,11 @@ TEST(FemDeform, ScaleAndSelectedStepsAndMismatchedSeries) {
   auto bad = clash_series({&p.a.mesh, &p.sa.parts[0], &ua}, {&p.b.mesh, &p.sb.parts[0], &p.u});
   ASSERT_FALSE(bad);
   EXPECT_NE(bad.error().reason.find("mismatched step counts"), std::string::npos);
+  NodalSeries nan = p.u;
+  nan.values[3][5].y = std::numeric_limits<double>::quiet_NaN();
+  auto bad_value = clash_series({&p.a.mesh, &p.sa.parts[0], nullptr}, {&p.b.mesh, &p.sb.parts[0], &nan});
+  ASSERT_FALSE(bad_value);
+  EXPECT_NE(bad_value.error().reason.find("step 3: node"), std::string::npos) << bad_value.error().reason;
   auto out_of_range = clash_series({&p.a.mesh, &p.sa.parts[0], nullptr}, {&p.b.mesh, &p.sb.parts[0], &p.u},
                                    {.steps = {14}});
   ASSERT_FALSE(out_of_range);
