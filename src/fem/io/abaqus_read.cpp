@@ -272,6 +272,9 @@ Expected<FemMesh> read_abaqus(const std::filesystem::path& path, std::string_vie
       cur_instance.clear();
     } else if (kw.name == "node") {
       const std::string* ns = kw.get("nset");
+      if (const std::string* sys = kw.get("system"); sys && !iequals(*sys, "R")) {
+        return r.err(kw_line, "*NODE, SYSTEM=" + *sys + " is not supported (only rectangular coordinates)");
+      }
       for (; i < n && !is_kw(i); ++i) {
         record(i, f, 0);
         std::int64_t id = 0;

@@ -334,6 +334,26 @@ Expected<FemMesh> read_vtu(const std::string& file, std::string_view bytes) {
   const XmlNode* grid = root.child("UnstructuredGrid");
   if (!grid) return c.err(root.offset, "no <UnstructuredGrid>");
   VtkData d;
+  if (const XmlNode* fd = grid->child("FieldData")) {
+    for (const auto& da : fd->children) {
+      const std::string* n = da->attr("Name");
+      const std::string* t = da->attr("type");
+      const std::string* f = da->attr("format");
+      if (!n || *n != "group_names" || !t || *t != "String" || !f || *f != "ascii") continue;
+      Text tx(da->text);
+      std::string cur;
+      for (std::string_view tok = tx.token(); !tok.empty(); tok = tx.token()) {
+        std::int64_t code = 0;
+        if (!parse_int(tok, code) || code < 0 || code > 255) return Error{.file = file, .byte = static_cast<std::int64_t>(da->offset), .reason = "group_names: malformed character code"};
+        if (code == 0) {
+          d.group_names.push_back(cur);
+          cur.clear();
+        } else {
+          cur += static_cast<char>(code);
+        }
+      }
+    }
+  }
   std::size_t pieces = 0;
   std::map<std::string, std::size_t> parr_count, carr_count;
   for (const auto& piece : grid->children) {

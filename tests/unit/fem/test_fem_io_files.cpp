@@ -210,6 +210,7 @@ TEST(FemIoFiles, CorruptedInputsOfEveryFormat) {
   EXPECT_TRUE(bad_input("missing.inp", nodes + "*ELEMENT, TYPE=C3D4\n1,1,2,3,7\n", "node 7 is not defined"));
   EXPECT_TRUE(bad_input("short.inp", nodes + "*ELEMENT, TYPE=C3D4\n1,1,2,3\n", "needs 4 nodes"));
   EXPECT_TRUE(bad_input("nan.inp", "*NODE\n1,0,nan,0\n", "non-finite"));
+  EXPECT_TRUE(bad_input("system.inp", "*NODE, SYSTEM=C\n1,1,0,0\n", "SYSTEM=C is not supported"));
   EXPECT_TRUE(bad_input("instance.inp", "*ASSEMBLY\n*INSTANCE, NAME=a, PART=nope\n*END INSTANCE\n", "unknown part"));
   EXPECT_TRUE(bad_input("dup.inp", nodes + "*ELEMENT, TYPE=C3D4\n1,1,2,3,4\n1,1,2,4,3\n", "duplicate element id 1", false));
   // Legacy VTK.
