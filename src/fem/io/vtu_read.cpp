@@ -117,6 +117,18 @@ bool inflate_blocks(const std::vector<std::uint64_t>& h, std::string_view data, 
   const std::uint64_t nb = h[0], bs = h[1], last = h[2];
   std::uint64_t pos = 0;
   out.clear();
+  // zlib cannot expand more than ~1032:1: refuse headers announcing more (corrupt or hostile).
+  {
+    std::uint64_t in_total = 0, out_total = 0;
+    for (std::uint64_t b = 0; b < nb; ++b) {
+      in_total += h[3 + b];
+      out_total += (b + 1 == nb && last != 0) ? last : bs;
+    }
+    if (out_total > 1100 * in_total + 4096) {
+      why = "zlib header announces " + std::to_string(out_total) + " bytes from " + std::to_string(in_total) + " compressed bytes";
+      return false;
+    }
+  }
   for (std::uint64_t b = 0; b < nb; ++b) {
     const std::uint64_t cs = h[3 + b];
     const std::uint64_t us = (b + 1 == nb && last != 0) ? last : bs;

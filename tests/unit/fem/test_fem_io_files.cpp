@@ -238,6 +238,9 @@ TEST(FemIoFiles, CorruptedInputsOfEveryFormat) {
   const std::size_t us = x.find("   _") + 4;
   for (std::size_t k = us + 52; k < us + 70 && k < x.size(); ++k) x[k] = static_cast<char>(x[k] ^ 0x5a);
   EXPECT_TRUE(bad_input("zlib.vtu", x, "zlib"));
+  x = read_text(data("tets_appended_raw_zlib.vtu"));
+  for (int k = 4; k < 12; ++k) x[us + static_cast<std::size_t>(k)] = k % 4 == 3 ? '\x7f' : '\xff';  // block sizes 2^31-1
+  EXPECT_TRUE(bad_input("bomb.vtu", x, "zlib header announces"));
   x = read_text(data("tets_appended_raw_big_endian.vtu"));
   EXPECT_TRUE(bad_input("trunc.vtu", x.substr(0, x.find("   _") + 30), "truncated"));
   x = good;
