@@ -267,7 +267,11 @@ Expected<FemMesh> read_nastran(const std::filesystem::path& path, std::string_vi
     auto f = [&](std::size_t k) { return k < c->fields.size() ? c->fields[k] : std::string_view(); };
     std::int64_t eid = 0, pid = 0;
     if (!parse_int(f(0), eid) || eid <= 0) return r.err(*c, c->name + ": bad element id " + quote_tok(f(0)));
-    if (!parse_int(f(1), pid)) return r.err(*c, c->name + " " + std::to_string(eid) + ": bad property id " + quote_tok(f(1)));
+    if (f(1).empty()) {
+      pid = eid;  // Nastran: a blank PID defaults to the element id
+    } else if (!parse_int(f(1), pid)) {
+      return r.err(*c, c->name + " " + std::to_string(eid) + ": bad property id " + quote_tok(f(1)));
+    }
     int n = 0, given = 0;
     for (int k = 0; k < maxf; ++k) {
       const std::string_view g = f(2 + static_cast<std::size_t>(k));
