@@ -28,6 +28,13 @@ fs::path temp_dir() {
     if (!::mkdtemp(t.data())) std::abort();
     return fs::path(t);
   }();
+  // Registered after `dir` is constructed, so it runs before `dir` is destroyed.
+  static const bool cleanup = (std::atexit([] {
+                                 std::error_code ec;
+                                 fs::remove_all(temp_dir(), ec);
+                               }),
+                               true);
+  (void)cleanup;
   return dir;
 }
 

@@ -272,6 +272,9 @@ Expected<FemMesh> read_abaqus(const std::filesystem::path& path, std::string_vie
       cur_instance.clear();
     } else if (kw.name == "node") {
       const std::string* ns = kw.get("nset");
+      if (const std::string* sys = kw.get("system"); sys && !iequals(*sys, "R")) {
+        return r.err(kw_line, "*NODE, SYSTEM=" + *sys + " is not supported (only rectangular coordinates)");
+      }
       for (; i < n && !is_kw(i); ++i) {
         record(i, f, 0);
         std::int64_t id = 0;
@@ -346,7 +349,10 @@ Expected<FemMesh> read_abaqus(const std::filesystem::path& path, std::string_vie
           std::int64_t a = 0, b = 0, s = 1;
           if (f.size() < 2 || !parse_int(f[0], a) || !parse_int(f[1], b) || (f.size() > 2 && !f[2].empty() && !parse_int(f[2], s)) || s <= 0 || b < a)
             return r.err(i, "GENERATE needs first, last[, step] with first <= last and step > 0");
-          if ((b - a) / s > 100000000) return r.err(i, "GENERATE range too large");
+          std::size_t input_bytes = text.size();
+          for (const auto& b2 : r.bytes) input_bytes += b2->size();
+          if (static_cast<std::uint64_t>((b - a) / s) > std::max<std::uint64_t>(1000000, 4 * static_cast<std::uint64_t>(input_bytes)))
+            return r.err(i, "GENERATE range too large for the model (" + std::to_string((b - a) / s + 1) + " ids)");
           for (std::int64_t x = a; x <= b; x += s) members.push_back(x);
           continue;
         }

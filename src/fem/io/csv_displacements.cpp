@@ -92,6 +92,9 @@ Expected<NodalSeries> read_displacements_csv(const std::filesystem::path& path, 
   for (const Row& r : rows) steps.push_back(r.step);
   std::sort(steps.begin(), steps.end());
   steps.erase(std::unique(steps.begin(), steps.end()), steps.end());
+  if (static_cast<double>(steps.size()) * static_cast<double>(mesh.num_nodes()) > 2e9) {
+    return file_error(file, std::to_string(steps.size()) + " distinct steps for " + std::to_string(mesh.num_nodes()) + " nodes: more than 2e9 displacement values");
+  }
   NodalSeries s;
   s.name = path.stem().string();
   s.times = steps;

@@ -66,17 +66,16 @@ struct Reader {
   }
   static void append_free(Card& c, std::string_view line, bool large) {
     const std::size_t per = large ? 4 : 8;
-    Fields f(line, false);
-    // Split on commas, keeping empty fields.
-    std::vector<std::string_view> parts;
-    std::size_t b = 0;
-    for (;;) {
-      const std::size_t comma = line.find(',', b);
-      parts.push_back(trim(line.substr(b, comma == std::string_view::npos ? std::string_view::npos : comma - b)));
-      if (comma == std::string_view::npos) break;
-      b = comma + 1;
+    // Fields between commas (empty ones kept); the first is the name or continuation marker.
+    std::size_t b = line.find(',');
+    std::size_t k = 0;
+    while (b != std::string_view::npos && k < per) {
+      const std::size_t e = line.find(',', b + 1);
+      c.fields.push_back(trim(line.substr(b + 1, e == std::string_view::npos ? std::string_view::npos : e - b - 1)));
+      ++k;
+      b = e;
     }
-    for (std::size_t k = 1; k <= per; ++k) c.fields.push_back(k < parts.size() ? parts[k] : std::string_view());
+    for (; k < per; ++k) c.fields.emplace_back();
   }
 
   /// Reads the cards of one file into `cards`.
@@ -164,6 +163,7 @@ struct Reader {
         continue;
       }
       have = true;
+      cur.fields.reserve(16);
       cur.name = std::move(up);
       cur.file = fi;
       cur.line = t.line();
@@ -267,7 +267,11 @@ Expected<FemMesh> read_nastran(const std::filesystem::path& path, std::string_vi
     auto f = [&](std::size_t k) { return k < c->fields.size() ? c->fields[k] : std::string_view(); };
     std::int64_t eid = 0, pid = 0;
     if (!parse_int(f(0), eid) || eid <= 0) return r.err(*c, c->name + ": bad element id " + quote_tok(f(0)));
-    if (!parse_int(f(1), pid)) return r.err(*c, c->name + " " + std::to_string(eid) + ": bad property id " + quote_tok(f(1)));
+    if (f(1).empty()) {
+      pid = eid;  // Nastran: a blank PID defaults to the element id
+    } else if (!parse_int(f(1), pid)) {
+      return r.err(*c, c->name + " " + std::to_string(eid) + ": bad property id " + quote_tok(f(1)));
+    }
     int n = 0, given = 0;
     for (int k = 0; k < maxf; ++k) {
       const std::string_view g = f(2 + static_cast<std::size_t>(k));

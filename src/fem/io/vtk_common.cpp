@@ -124,9 +124,12 @@ Expected<FemMesh> build_vtk_mesh(const std::string& file, VtkData&& d, bool byte
     std::map<std::int64_t, std::int32_t> index;
     int top = 0;
     for (ElemType t : m.elem_types) top = std::max(top, elem_info(t).dim);
+    const bool named = ours && d.group_names.size() == distinct.size();
+    std::size_t k = 0;
     for (std::int64_t x : distinct) {
       index[x] = static_cast<std::int32_t>(m.groups.size());
-      m.groups.push_back(FemGroup{.name = groups->name + " " + std::to_string(x), .id = x, .dim = top});
+      m.groups.push_back(FemGroup{.name = named ? d.group_names[k] : groups->name + " " + std::to_string(x), .id = x, .dim = top});
+      ++k;
     }
     for (std::size_t e = 0; e < m.num_elements(); ++e) {
       auto it = index.find(kept[e]);
@@ -189,6 +192,10 @@ VtkOutArrays vtk_out_arrays(const FemMesh& m, const FemWriteOptions& o) {
       g.ints[e] = k < 0 ? -1 : (ok ? m.groups[static_cast<std::size_t>(k)].id : k + 1);
     }
     out.cell.push_back(std::move(g));
+    std::vector<std::pair<std::int64_t, std::string>> named;
+    for (std::size_t k = 0; k < m.groups.size(); ++k) named.emplace_back(ok ? m.groups[k].id : static_cast<std::int64_t>(k + 1), m.groups[k].name);
+    std::sort(named.begin(), named.end());
+    for (auto& [v, n] : named) out.group_names.push_back(n);
   }
   VtkArray nid{.name = "node_id", .integer = true, .ints = m.node_ids};
   out.point.push_back(std::move(nid));

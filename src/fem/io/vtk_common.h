@@ -28,6 +28,8 @@ struct VtkData {
   std::vector<std::int64_t> types;         ///< VTK cell type of each cell
   std::vector<VtkArray> point_arrays, cell_arrays;
   std::int64_t cells_where = -1, types_where = -1;  ///< locations for errors
+  /// Names of our "group" array's values in increasing value order (VTU FieldData "group_names").
+  std::vector<std::string> group_names;
 };
 
 /// Builds the mesh; `bytes` tells whether `where` values are byte offsets (else lines).
@@ -44,6 +46,7 @@ int group_array_rank(const std::string& name);
 /// none), the caller's FemWriteOptions arrays, and the fields' last step.
 struct VtkOutArrays {
   std::vector<VtkArray> point, cell;
+  std::vector<std::string> group_names;  ///< in increasing order of the "group" values
 };
 VtkOutArrays vtk_out_arrays(const FemMesh& m, const FemWriteOptions& o);
 

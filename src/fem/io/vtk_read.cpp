@@ -239,6 +239,22 @@ struct Reader {
         VtkArray a{.name = std::string(name), .components = static_cast<int>(comps), .where = line};
         if (!(st = values(data_n * static_cast<std::size_t>(comps), ty, a))) return st;
         data->push_back(std::move(a));
+      } else if (key == "tensors" || key == "texture_coordinates" || key == "color_scalars") {
+        // Read past (not used): 9 values per tuple, `dim` per tuple, or `n` per tuple.
+        if (!data) return at_line(std::string(tok) + " outside CELL_DATA/POINT_DATA");
+        t.token();  // name
+        std::int64_t per = 9;
+        std::string ty = "float";
+        if (key == "tensors") {
+          ty = std::string(t.token());
+        } else {
+          if (!(st = count(per, key == "color_scalars" ? "number of color values" : "texture dimension"))) return st;
+          if (per < 1 || per > 16) return at_line("bad component count " + std::to_string(per));
+          if (key == "texture_coordinates") ty = std::string(t.token());
+          else if (binary) ty = "unsigned_char";
+        }
+        VtkArray skip;
+        if (!(st = values(data_n * static_cast<std::size_t>(per), ty, skip))) return st;
       } else if (key == "field") {
         if (!(st = field(data ? data_n : static_cast<std::size_t>(-1), data))) return st;
       } else if (key == "metadata") {

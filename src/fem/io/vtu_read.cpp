@@ -117,6 +117,18 @@ bool inflate_blocks(const std::vector<std::uint64_t>& h, std::string_view data, 
   const std::uint64_t nb = h[0], bs = h[1], last = h[2];
   std::uint64_t pos = 0;
   out.clear();
+  // zlib cannot expand more than ~1032:1: refuse headers announcing more (corrupt or hostile).
+  {
+    std::uint64_t in_total = 0, out_total = 0;
+    for (std::uint64_t b = 0; b < nb; ++b) {
+      in_total += h[3 + b];
+      out_total += (b + 1 == nb && last != 0) ? last : bs;
+    }
+    if (out_total > 1100 * in_total + 4096) {
+      why = "zlib header announces " + std::to_string(out_total) + " bytes from " + std::to_string(in_total) + " compressed bytes";
+      return false;
+    }
+  }
   for (std::uint64_t b = 0; b < nb; ++b) {
     const std::uint64_t cs = h[3 + b];
     const std::uint64_t us = (b + 1 == nb && last != 0) ? last : bs;
@@ -334,6 +346,26 @@ Expected<FemMesh> read_vtu(const std::string& file, std::string_view bytes) {
   const XmlNode* grid = root.child("UnstructuredGrid");
   if (!grid) return c.err(root.offset, "no <UnstructuredGrid>");
   VtkData d;
+  if (const XmlNode* fd = grid->child("FieldData")) {
+    for (const auto& da : fd->children) {
+      const std::string* n = da->attr("Name");
+      const std::string* t = da->attr("type");
+      const std::string* f = da->attr("format");
+      if (!n || *n != "group_names" || !t || *t != "String" || !f || *f != "ascii") continue;
+      Text tx(da->text);
+      std::string cur;
+      for (std::string_view tok = tx.token(); !tok.empty(); tok = tx.token()) {
+        std::int64_t code = 0;
+        if (!parse_int(tok, code) || code < 0 || code > 255) return Error{.file = file, .byte = static_cast<std::int64_t>(da->offset), .reason = "group_names: malformed character code"};
+        if (code == 0) {
+          d.group_names.push_back(cur);
+          cur.clear();
+        } else {
+          cur += static_cast<char>(code);
+        }
+      }
+    }
+  }
   std::size_t pieces = 0;
   std::map<std::string, std::size_t> parr_count, carr_count;
   for (const auto& piece : grid->children) {

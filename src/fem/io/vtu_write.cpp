@@ -121,8 +121,22 @@ Status write_vtu(const FemMesh& m, const FemWriteOptions& o, std::string& result
   std::string& x = out.xml;
   x += "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\"";
   if (o.vtu_encoding == VtuEncoding::zlib) x += " compressor=\"vtkZLibDataCompressor\"";
-  x += ">\n<UnstructuredGrid>\n<Piece NumberOfPoints=\"" + std::to_string(m.num_nodes()) + "\" NumberOfCells=\"" + std::to_string(m.num_elements()) + "\">\n";
+  x += ">\n<UnstructuredGrid>\n";
   const VtkOutArrays arrays = vtk_out_arrays(m, o);
+  if (!arrays.group_names.empty()) {
+    // Group names as a VTK string array (ASCII: the characters' codes, each string ended by 0),
+    // so that a read back names the groups; other readers show it as field data.
+    x += "<FieldData>\n<DataArray type=\"String\" Name=\"group_names\" NumberOfTuples=\"" + std::to_string(arrays.group_names.size()) + "\" format=\"ascii\">\n";
+    for (const std::string& n : arrays.group_names) {
+      for (char c : n) {
+        put_int(x, static_cast<unsigned char>(c));
+        x += ' ';
+      }
+      x += "0\n";
+    }
+    x += "</DataArray>\n</FieldData>\n";
+  }
+  x += "<Piece NumberOfPoints=\"" + std::to_string(m.num_nodes()) + "\" NumberOfCells=\"" + std::to_string(m.num_elements()) + "\">\n";
   auto emit = [&](const VtkArray& a) {
     std::string raw, t;
     if (a.integer) {

@@ -50,7 +50,9 @@ Expected<XmlDocument> parse_xml(const std::string& file, std::string_view s) {
       if (!trim(s.substr(i)).empty() && !stack.empty()) return fail(i, "unexpected end of file inside <" + stack.back()->name + ">");
       break;
     }
-    if (!stack.empty() && stack.back()->text.empty() && lt > i) {
+    // Character content: the first run that is not only white space (VTK writes InformationKey
+    // children before the data of a DataArray).
+    if (!stack.empty() && trim(stack.back()->text).empty() && lt > i && (stack.back()->text.empty() || !trim(s.substr(i, lt - i)).empty())) {
       stack.back()->text = s.substr(i, lt - i);
       stack.back()->text_offset = i;
     } else if (stack.empty() && !trim(s.substr(i, lt - i)).empty()) {

@@ -22,12 +22,20 @@ namespace interfere::fem_test {
 
 namespace fs = std::filesystem;
 
+/// A private temporary directory, removed at exit.
 inline fs::path temp_dir() {
   static fs::path dir = [] {
     std::string t = (fs::temp_directory_path() / "interfere_fem_io_XXXXXX").string();
     if (!::mkdtemp(t.data())) std::abort();
     return fs::path(t);
   }();
+  // Registered after `dir` is constructed, so it runs before `dir` is destroyed.
+  static const bool cleanup = (std::atexit([] {
+                                 std::error_code ec;
+                                 fs::remove_all(temp_dir(), ec);
+                               }),
+                               true);
+  (void)cleanup;
   return dir;
 }
 

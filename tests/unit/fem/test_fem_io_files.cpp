@@ -127,6 +127,17 @@ TEST(FemIoFiles, LegacyVtk51AndBinary) {
   EXPECT_EQ(w.fields[0].name, "displacement");
   EXPECT_EQ(w.fields[0].values[0][3], (Vec3{0, 0, 0.5}));
   EXPECT_EQ(w.elem_ids, (std::vector<std::int64_t>{1, 2}));  // 1-based positions
+  // Arrays we do not use are read past.
+  const fs::path extra = temp_dir() / "extra.vtk";
+  std::string tensors;
+  for (int k = 0; k < 36; ++k) tensors += "0.5 ";
+  write_text(extra, "# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 float\n0 0 0 1 0 0 0 1 0 0 0 1\n"
+                    "CELLS 1 5\n4 0 1 2 3\nCELL_TYPES 1\n10\nPOINT_DATA 4\nTENSORS t float\n" + tensors +
+                    "\nTEXTURE_COORDINATES uv 2 float\n0 0 1 0 0 1 1 1\nCOLOR_SCALARS c 1\n0 0.5 1 1\nVECTORS u float\n1 2 3 1 2 3 1 2 3 1 2 3\n");
+  Expected<FemMesh> e = read_fem(extra);
+  ASSERT_TRUE(e) << e.error().message();
+  ASSERT_EQ(e->fields.size(), 1u);
+  EXPECT_EQ(e->fields[0].values[0][3], (Vec3{1, 2, 3}));
   const FemMesh t = must_read("tet_binary.vtk");
   ASSERT_EQ(t.num_elements(), 1u);
   EXPECT_EQ(t.elem_ids[0], 77);
@@ -154,6 +165,23 @@ TEST(FemIoFiles, VtuEveryEncodingGivesTheSameMesh) {
     const double x = std::string(f) == "tets_ascii.vtu" ? 0.1 * 13 : static_cast<double>(static_cast<float>(0.1 * 13));
     EXPECT_EQ(m.fields[0].values[0][4].y, x);
   }
+}
+
+TEST(FemIoFiles, VtuInformationKeysCommentsAndEntities) {
+  std::string x = read_text(data("tets_ascii.vtu"));
+  const std::string tag = "Name=\"DISPL\" NumberOfComponents=\"3\" format=\"ascii\">";
+  const std::size_t at = x.find(tag);
+  ASSERT_NE(at, std::string::npos);
+  x.insert(at + tag.size(), "\n  <InformationKey name=\"L2_NORM_RANGE\" location=\"vtkDataArray\" length=\"2\">\n"
+                            "<Value index=\"0\">0</Value></InformationKey>\n  <!-- a comment -->\n");
+  x.replace(x.find("Name=\"DISPL\""), 13, "Name=\"D&amp;U\"");
+  const fs::path p = temp_dir() / "info.vtu";
+  write_text(p, x);
+  Expected<FemMesh> m = read_fem(p);
+  ASSERT_TRUE(m) << m.error().message();
+  ASSERT_EQ(m->fields.size(), 1u);
+  EXPECT_EQ(m->fields[0].name, "D&U");
+  EXPECT_EQ(m->fields[0].values[0][4].y, 0.1 * 13);
 }
 
 TEST(FemIoFiles, DisplacementCsvStepsAnyOrder) {
@@ -210,6 +238,7 @@ TEST(FemIoFiles, CorruptedInputsOfEveryFormat) {
   EXPECT_TRUE(bad_input("missing.inp", nodes + "*ELEMENT, TYPE=C3D4\n1,1,2,3,7\n", "node 7 is not defined"));
   EXPECT_TRUE(bad_input("short.inp", nodes + "*ELEMENT, TYPE=C3D4\n1,1,2,3\n", "needs 4 nodes"));
   EXPECT_TRUE(bad_input("nan.inp", "*NODE\n1,0,nan,0\n", "non-finite"));
+  EXPECT_TRUE(bad_input("system.inp", "*NODE, SYSTEM=C\n1,1,0,0\n", "SYSTEM=C is not supported"));
   EXPECT_TRUE(bad_input("instance.inp", "*ASSEMBLY\n*INSTANCE, NAME=a, PART=nope\n*END INSTANCE\n", "unknown part"));
   EXPECT_TRUE(bad_input("dup.inp", nodes + "*ELEMENT, TYPE=C3D4\n1,1,2,3,4\n1,1,2,4,3\n", "duplicate element id 1", false));
   // Legacy VTK.
@@ -237,6 +266,9 @@ TEST(FemIoFiles, CorruptedInputsOfEveryFormat) {
   const std::size_t us = x.find("   _") + 4;
   for (std::size_t k = us + 52; k < us + 70 && k < x.size(); ++k) x[k] = static_cast<char>(x[k] ^ 0x5a);
   EXPECT_TRUE(bad_input("zlib.vtu", x, "zlib"));
+  x = read_text(data("tets_appended_raw_zlib.vtu"));
+  for (int k = 4; k < 12; ++k) x[us + static_cast<std::size_t>(k)] = k % 4 == 3 ? '\x7f' : '\xff';  // block sizes 2^31-1
+  EXPECT_TRUE(bad_input("bomb.vtu", x, "zlib header announces"));
   x = read_text(data("tets_appended_raw_big_endian.vtu"));
   EXPECT_TRUE(bad_input("trunc.vtu", x.substr(0, x.find("   _") + 30), "truncated"));
   x = good;

@@ -68,9 +68,12 @@ TEST(FemIoSharedData, VtuDisplacementsAndIdsAreRead) {
   ASSERT_TRUE(notch) << notch.error().message();
   ASSERT_FALSE(notch->fields.empty());
   EXPECT_EQ(notch->fields[0].name, "Nodal Displacement");
-  // Quadratic hexes: mid-edge nodes on their corner pairs (straight-edged notch plate), i.e. the
-  // file's order is VTK's and nothing was permuted on the way.
-  EXPECT_LT(midside_error(*notch), 1e-6);
+  // Quadratic hexes and wedges: each mid-edge node near its corner pair's midpoint (the notch's
+  // curved edges bow them by under 1 % of the element size; a node paired with the wrong edge
+  // would be off by a quarter of it or more), i.e. the file's order is VTK's and kept as is.
+  std::size_t checked = 0;
+  EXPECT_LT(midside_error(*notch, &checked), 0.05);
+  EXPECT_EQ(checked, notch->num_elements());
 }
 
 }  // namespace
