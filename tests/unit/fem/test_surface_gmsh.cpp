@@ -21,13 +21,23 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path work_dir() {
-  static fs::path dir = [] {
+// A private temporary directory, removed at exit.
+struct TempDir {
+  fs::path path;
+  TempDir() {
     std::string t = (fs::temp_directory_path() / "interfere_fem_surface_XXXXXX").string();
     if (!::mkdtemp(t.data())) std::abort();
-    return fs::path(t);
-  }();
-  return dir;
+    path = t;
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+};
+
+const fs::path& work_dir() {
+  static TempDir dir;
+  return dir.path;
 }
 
 bool have_gmsh() { return std::system("gmsh --version > /dev/null 2>&1") == 0; }
