@@ -140,6 +140,109 @@ int triangulate(const FaceDef& f, const std::uint32_t* v, FaceNodes kinds, bool 
   return static_cast<int>(out - start);
 }
 
+struct Counts {
+  std::size_t boundary = 0, interior = 0, nonmanifold = 0, dropped = 0;
+};
+
+// Records with the fourth corner (quad faces) or without it (meshes whose faces are all triangles:
+// 12 instead of 16 bytes per face, less memory traffic in the scatter and the bucket sort).
+struct FaceRec3 {
+  std::uint32_t b, c, code;
+};
+inline std::uint32_t fourth(const FaceRec& r) { return r.d; }
+inline std::uint32_t fourth(const FaceRec3&) { return kNone; }
+inline void store(FaceRec& r, const std::uint32_t* k, std::uint32_t code) { r = {k[1], k[2], k[3], code}; }
+inline void store(FaceRec3& r, const std::uint32_t* k, std::uint32_t code) { r = {k[1], k[2], code}; }
+
+// Steps 3 and 4 of extract_surface: scatter the faces into their buckets (begin[v] = end of bucket
+// v on entry, its start on return), sort each bucket, flag the boundary faces and dropped shells.
+template <class Rec>
+Counts match_faces(const FemMesh& mesh, std::vector<std::uint64_t>& begin, const std::uint32_t* part,
+                   std::vector<std::uint8_t>& flags, bool par, bool drop_shells) {
+  const std::size_t ne = mesh.num_elements(), nn = mesh.num_nodes();
+  std::vector<Rec> recs(begin[nn]);
+  for_chunks(par, ne, 8192, [&](std::size_t lo, std::size_t hi) {
+    for (std::size_t e = lo; e < hi; ++e) {
+      const ElemFaces ef = faces_of(mesh.elem_types[e]);
+      const std::uint32_t* v = mesh.element_nodes(e);
+      const int shell = is_shell(mesh.elem_types[e]) ? kShellFace : 0;
+      for (int f = 0; f < ef.count; ++f) {
+        const FaceDef& fd = ef.faces[f];
+        std::uint32_t k[4] = {v[fd.c[0]], v[fd.c[1]], v[fd.c[2]], fd.n == 4 ? v[fd.c[3]] : kNone};
+        sort_key(k, fd.n);
+        const std::uint64_t slot =
+            std::atomic_ref<std::uint64_t>(begin[k[0]]).fetch_sub(1, std::memory_order_relaxed) - 1;
+        store(recs[slot], k, static_cast<std::uint32_t>(e * 8 + (f | shell)));
+      }
+    }
+  });
+  auto match = [&](std::size_t lo, std::size_t hi) {
+    Counts c;
+    auto less = [&](const Rec& x, const Rec& y) {
+      if (x.b != y.b) return x.b < y.b;
+      if (x.c != y.c) return x.c < y.c;
+      if (fourth(x) != fourth(y)) return fourth(x) < fourth(y);
+      const std::uint32_t px = part[x.code >> 3], py = part[y.code >> 3];
+      if (px != py) return px < py;
+      return x.code < y.code;
+    };
+    for (std::size_t v = lo; v < hi; ++v) {
+      Rec* first = recs.data() + begin[v];
+      Rec* last = recs.data() + begin[v + 1];
+      const std::size_t n = static_cast<std::size_t>(last - first);
+      if (n == 0) continue;
+      if (n <= 24) {
+        for (Rec* i = first + 1; i < last; ++i) {  // insertion sort: buckets are short
+          const Rec r = *i;
+          Rec* j = i;
+          for (; j > first && less(r, *(j - 1)); --j) *j = *(j - 1);
+          *j = r;
+        }
+      } else {
+        std::sort(first, last, less);
+      }
+      for (Rec* i = first; i < last;) {
+        Rec* j = i + 1;
+        const std::uint32_t pi = part[i->code >> 3];
+        while (j < last && j->b == i->b && j->c == i->c && fourth(*j) == fourth(*i) && part[j->code >> 3] == pi) ++j;
+        // Shell records are counted apart from the volume faces of the same key.
+        std::size_t volumes = 0;
+        const Rec* volume = nullptr;
+        for (const Rec* r = i; r < j; ++r) {
+          if ((r->code & 7) != kShellFace) ++volumes, volume = r;
+        }
+        if (volumes == 1) {
+          ++c.boundary;
+          std::atomic_ref<std::uint8_t>(flags[volume->code >> 3])
+              .fetch_or(static_cast<std::uint8_t>(1u << (volume->code & 7)), std::memory_order_relaxed);
+        } else if (volumes == 2) {
+          ++c.interior;
+        } else if (volumes > 2) {
+          ++c.nonmanifold;
+        }
+        if (volumes > 0 && drop_shells) {
+          for (const Rec* r = i; r < j; ++r) {
+            if ((r->code & 7) != kShellFace) continue;
+            ++c.dropped;
+            flags[r->code >> 3] = kDroppedShell;  // a shell has one record: no other writer
+          }
+        }
+        i = j;
+      }
+    }
+    return c;
+  };
+  auto add = [](Counts a, const Counts& b) {
+    a.boundary += b.boundary, a.interior += b.interior, a.nonmanifold += b.nonmanifold, a.dropped += b.dropped;
+    return a;
+  };
+  if (!par) return match(0, nn);
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, nn, 4096), Counts{},
+      [&](const tbb::blocked_range<std::size_t>& r, Counts acc) { return add(acc, match(r.begin(), r.end())); },
+      add);
+}
+
 Error make_error(const FemMesh& mesh, std::string reason) { return Error{.file = mesh.file, .reason = std::move(reason)}; }
 
 }  // namespace
@@ -214,104 +317,20 @@ Expected<SurfaceResult> extract_surface(const FemMesh& mesh, const SurfaceOption
     for (std::size_t i = 0; i < nn; ++i) begin[i] = sum += count[i];
     begin[nn] = sum;
   }
-  const std::uint64_t num_faces = begin[nn];
   count = {};
 
-  // 3. Scatter (the order inside a bucket depends on the schedule; step 4 sorts it).
-  std::vector<FaceRec> recs(num_faces);
-  for_chunks(par, ne, 8192, [&](std::size_t lo, std::size_t hi) {
-    for (std::size_t e = lo; e < hi; ++e) {
-      const ElemFaces ef = faces_of(mesh.elem_types[e]);
-      const std::uint32_t* v = mesh.element_nodes(e);
-      const int shell = is_shell(mesh.elem_types[e]) ? kShellFace : 0;
-      for (int f = 0; f < ef.count; ++f) {
-        const FaceDef& fd = ef.faces[f];
-        std::uint32_t k[4] = {v[fd.c[0]], v[fd.c[1]], v[fd.c[2]], fd.n == 4 ? v[fd.c[3]] : kNone};
-        sort_key(k, fd.n);
-        const std::uint64_t slot =
-            std::atomic_ref<std::uint64_t>(begin[k[0]]).fetch_sub(1, std::memory_order_relaxed) - 1;
-        recs[slot] = {k[1], k[2], k[3], static_cast<std::uint32_t>(e * 8 + (f | shell))};
-      }
-    }
-  });
-
-  // 4. Sort each bucket; a (key, part) that occurs once is a boundary face.
-  std::vector<std::uint8_t> flags(ne, 0);
-  struct Counts {
-    std::size_t boundary = 0, interior = 0, nonmanifold = 0, dropped = 0;
-  };
-  const bool drop_shells = options.drop_boundary_shells;
-  auto match = [&](std::size_t lo, std::size_t hi) {
-    Counts c;
-    auto less = [&](const FaceRec& x, const FaceRec& y) {
-      if (x.b != y.b) return x.b < y.b;
-      if (x.c != y.c) return x.c < y.c;
-      if (x.d != y.d) return x.d < y.d;
-      const std::uint32_t px = part[x.code >> 3], py = part[y.code >> 3];
-      if (px != py) return px < py;
-      return x.code < y.code;
-    };
-    for (std::size_t v = lo; v < hi; ++v) {
-      FaceRec* first = recs.data() + begin[v];
-      FaceRec* last = recs.data() + begin[v + 1];
-      const std::size_t n = static_cast<std::size_t>(last - first);
-      if (n == 0) continue;
-      if (n <= 24) {
-        for (FaceRec* i = first + 1; i < last; ++i) {  // insertion sort: buckets are short
-          const FaceRec r = *i;
-          FaceRec* j = i;
-          for (; j > first && less(r, *(j - 1)); --j) *j = *(j - 1);
-          *j = r;
-        }
-      } else {
-        std::sort(first, last, less);
-      }
-      for (FaceRec* i = first; i < last;) {
-        FaceRec* j = i + 1;
-        const std::uint32_t pi = part[i->code >> 3];
-        while (j < last && j->b == i->b && j->c == i->c && j->d == i->d && part[j->code >> 3] == pi) ++j;
-        // Shell records sort after the volume faces of the same key (code & 7 == 7 is larger only
-        // within one element, so count them explicitly).
-        std::size_t volumes = 0;
-        const FaceRec* volume = nullptr;
-        for (const FaceRec* r = i; r < j; ++r) {
-          if ((r->code & 7) != kShellFace) ++volumes, volume = r;
-        }
-        if (volumes == 1) {
-          ++c.boundary;
-          std::atomic_ref<std::uint8_t>(flags[volume->code >> 3])
-              .fetch_or(static_cast<std::uint8_t>(1u << (volume->code & 7)), std::memory_order_relaxed);
-        } else if (volumes == 2) {
-          ++c.interior;
-        } else if (volumes > 2) {
-          ++c.nonmanifold;
-        }
-        if (volumes > 0 && drop_shells) {
-          for (const FaceRec* r = i; r < j; ++r) {
-            if ((r->code & 7) != kShellFace) continue;
-            ++c.dropped;
-            flags[r->code >> 3] = kDroppedShell;  // a shell has one record: no other writer
-          }
-        }
-        i = j;
-      }
-    }
-    return c;
-  };
-  auto add = [](Counts a, const Counts& b) {
-    a.boundary += b.boundary, a.interior += b.interior, a.nonmanifold += b.nonmanifold, a.dropped += b.dropped;
-    return a;
-  };
-  Counts totals;
-  if (par) {
-    totals = tbb::parallel_reduce(
-        tbb::blocked_range<std::size_t>(0, nn, 4096), Counts{},
-        [&](const tbb::blocked_range<std::size_t>& r, Counts acc) { return add(acc, match(r.begin(), r.end())); },
-        add);
-  } else {
-    totals = match(0, nn);
+  // 3-4. Scatter into the buckets, sort each bucket; a (key, part) that occurs once among the volume
+  // faces is a boundary face.
+  bool has_quad[kNumElemTypes] = {};
+  for (int t = 0; t < kNumElemTypes; ++t) {
+    const ElemFaces ef = faces_of(static_cast<ElemType>(t));
+    for (int f = 0; f < ef.count; ++f) has_quad[t] |= ef.faces[f].n == 4;
   }
-  recs = {};
+  bool quads = false;
+  for (std::size_t e = 0; e < ne && !quads; ++e) quads = has_quad[static_cast<int>(mesh.elem_types[e])];
+  std::vector<std::uint8_t> flags(ne, 0);
+  const Counts totals = quads ? match_faces<FaceRec>(mesh, begin, part, flags, par, options.drop_boundary_shells)
+                              : match_faces<FaceRec3>(mesh, begin, part, flags, par, options.drop_boundary_shells);
   begin = {};
   result.boundary_faces = totals.boundary;
   result.interior_faces = totals.interior;
