@@ -70,11 +70,11 @@ void add_fem_clash_options(CLI::App& c, ClashOptions& o) {
   c.add_option("--part-a", o.part_a, "FEM: body of part A (overrides --part)");
   c.add_option("--part-b", o.part_b, "FEM: body of part B (overrides --part)");
   c.add_option("--disp", o.disp, "FEM: nodal displacement CSV for both parts");
-  c.add_option("--disp-a", o.disp_a, "FEM: displacement CSV of part A (overrides --disp)");
-  c.add_option("--disp-b", o.disp_b, "FEM: displacement CSV of part B (overrides --disp)");
+  c.add_option("--disp-a", o.disp_a, "FEM: displacement CSV of part A (overrides --disp/--field)");
+  c.add_option("--disp-b", o.disp_b, "FEM: displacement CSV of part B (overrides --disp/--field)");
   c.add_option("--field", o.field, "FEM: nodal vector field of the mesh file(s) used as displacement");
-  c.add_option("--field-a", o.field_a, "FEM: field of part A (overrides --field)");
-  c.add_option("--field-b", o.field_b, "FEM: field of part B (overrides --field)");
+  c.add_option("--field-a", o.field_a, "FEM: field of part A (overrides --disp/--field)");
+  c.add_option("--field-b", o.field_b, "FEM: field of part B (overrides --disp/--field)");
   c.add_option("--scale", o.scale, "FEM: displacement scale, position = node + scale * u (default 1)");
   c.add_option("--step", o.step, "FEM: check only this step (0-based); default every step");
   c.add_flag("--linear-faces", o.linear_faces, "FEM: quadratic faces by their corners only");
@@ -91,12 +91,18 @@ int run_fem_clash(const ClashOptions& o, const ResolvedParts& parts, const Clash
   Progress total("clash");
 
   auto pick = [](const std::string& own, const std::string& both) { return own.empty() ? both : own; };
-  const FemPartOptions oa{.part = pick(o.part_a, o.part), .disp = pick(o.disp_a, o.disp),
-                          .field = pick(o.field_a, o.field), .linear_faces = o.linear_faces, .split = o.split,
-                          .transform = parts.a.transform};
-  const FemPartOptions ob{.part = pick(o.part_b, o.part), .disp = pick(o.disp_b, o.disp),
-                          .field = pick(o.field_b, o.field), .linear_faces = o.linear_faces, .split = o.split,
-                          .transform = parts.b.transform};
+  // A part's own displacement flag (--disp-a or --field-a) replaces both shared ones.
+  auto displacement = [&](const std::string& disp_own, const std::string& field_own, FemPartOptions& p) {
+    const bool own = !disp_own.empty() || !field_own.empty();
+    p.disp = own ? disp_own : o.disp;
+    p.field = own ? field_own : o.field;
+  };
+  FemPartOptions oa{.part = pick(o.part_a, o.part), .linear_faces = o.linear_faces, .split = o.split,
+                    .transform = parts.a.transform};
+  FemPartOptions ob{.part = pick(o.part_b, o.part), .linear_faces = o.linear_faces, .split = o.split,
+                    .transform = parts.b.transform};
+  displacement(o.disp_a, o.field_a, oa);
+  displacement(o.disp_b, o.field_b, ob);
   const FemPart a = load_fem_part(parts.a.file, oa, "A", false);
   // Two bodies of one file with the same displacement, pose and options: read and extract once.
   const bool same = parts.a.file == parts.b.file && oa.disp == ob.disp && oa.field == ob.field &&

@@ -255,6 +255,14 @@ class FemCli(unittest.TestCase):
         rep = load_json(path("csv.json"))
         self.assertEqual(rep["inputs"]["b"]["displacement"]["source"], "csv")
         self.assertEqual(rep["series"]["first_clash_step"], 4)
+        # B's own --disp-b replaces the shared --field for B; A keeps the field.
+        rc, out, err = run("clash", self.model, self.model, "--part-a", "left", "--part-b", "right", "--field", "disp",
+                           "--disp-b", path("disp.csv"), "--json", path("csv2.json"))
+        self.assertEqual(rc, 1, err)
+        rep = load_json(path("csv2.json"))
+        self.assertEqual(rep["inputs"]["a"]["displacement"]["source"], "field")
+        self.assertEqual(rep["inputs"]["b"]["displacement"]["source"], "csv")
+        self.assertEqual(rep["series"]["first_clash_step"], 4)
         # A row for a node the mesh does not have: exit 2 naming the file and the line.
         with open(path("disp_bad.csv"), "w") as f:
             f.write("node_id,ux,uy,uz\n1001,0,0,0\n424242,0,0,0\n")
