@@ -479,6 +479,7 @@ Expected<FemMesh> read_abaqus(const std::filesystem::path& path, std::string_vie
       if (!st) return st.error();
     }
   }
+  if (m.elem_types.empty()) return file_error(file, "no elements (the instantiated parts have none)");
   // Duplicate ids (across *ELEMENT blocks).
   {
     std::int64_t first = -1;

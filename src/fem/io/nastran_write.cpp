@@ -4,6 +4,7 @@
 // and unique, else the group index + 1 (0 for elements without a group). Reals always carry a
 // decimal point; node order converted back from VTK's (scan.cpp, nastran_to_vtk).
 #include <algorithm>
+#include <charconv>
 #include <set>
 
 #include "scan.h"
@@ -12,12 +13,22 @@ namespace interfere::fem_io {
 namespace {
 
 void put_real(std::string& out, double v) {
-  const std::size_t at = out.size();
-  put_double(out, v);
-  const std::string_view s(out.data() + at, out.size() - at);
-  if (s.find_first_of(".ni") != std::string_view::npos) return;
+  char b[40];
+  const auto r = std::to_chars(b, b + 32, v);
+  std::string_view s(b, static_cast<std::size_t>(r.ptr - b));
+  if (s.find_first_of(".ni") != std::string_view::npos) {
+    out += s;
+    return;
+  }
   const std::size_t e = s.find('e');
-  if (e == std::string_view::npos) out += '.'; else out.insert(at + e, ".");
+  if (e == std::string_view::npos) {
+    out += s;
+    out += '.';
+  } else {
+    out += s.substr(0, e);
+    out += '.';
+    out += s.substr(e);
+  }
 }
 
 const char* card_of(ElemType t) {
@@ -52,7 +63,11 @@ Status write_nastran(const FemMesh& m, const FemWriteOptions&, std::string& out)
   }
   out += "$ written by interfere\nBEGIN BULK\n";
   for (std::size_t g = 0; g < m.groups.size(); ++g) {
-    out += "$ PID " + std::to_string(pid[g]) + ": " + m.groups[g].name + "\n";
+    out += "$ PID ";
+    put_int(out, pid[g]);
+    out += ": ";
+    out += m.groups[g].name;
+    out += '\n';
     out += m.groups[g].dim == 3 ? "PSOLID," : "PSHELL,";
     put_int(out, pid[g]);
     out += ",1\n";

@@ -104,28 +104,6 @@ class Text {
   std::int64_t line_, tok_line_;
 };
 
-/// Splits one line into tokens separated by blanks (and optionally commas).
-class Fields {
- public:
-  explicit Fields(std::string_view s, bool commas = false) : s_(s), commas_(commas) {}
-  bool sep(char c) const { return is_space(c) || (commas_ && c == ','); }
-  std::string_view next() {
-    while (p_ < s_.size() && sep(s_[p_])) ++p_;
-    const std::size_t b = p_;
-    while (p_ < s_.size() && !sep(s_[p_])) ++p_;
-    return s_.substr(b, p_ - b);
-  }
-  bool done() {
-    while (p_ < s_.size() && sep(s_[p_])) ++p_;
-    return p_ >= s_.size();
-  }
-
- private:
-  std::string_view s_;
-  bool commas_;
-  std::size_t p_ = 0;
-};
-
 // ---------------------------------------------------------------- binary
 
 /// Bounds-checked cursor over bytes; values in the file's byte order (`big` for legacy VTK).

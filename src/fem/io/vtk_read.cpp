@@ -187,6 +187,7 @@ struct Reader {
             if (!(st = values(static_cast<std::size_t>(size), "vtkIdType", all))) return st;
           }
           std::size_t p = 0;
+          if (size < n) return line_error(file, d.cells_where, "CELLS: size " + std::to_string(size) + " is smaller than the " + std::to_string(n) + " cell counts it must hold");
           d.connectivity.reserve(static_cast<std::size_t>(size - n));
           for (std::int64_t c = 0; c < n; ++c) {
             if (p >= all.ints.size()) return line_error(file, d.cells_where, "CELLS: size " + std::to_string(size) + " is too small for " + std::to_string(n) + " cells");

@@ -324,3 +324,61 @@ write("tets_appended_raw_big_endian.vtu", vtu("appended_raw", "UInt64", order=">
 # ---------------------------------------------------------------- displacements CSV
 write("tets_disp.csv", "# step-wise displacements of tets_*.vtu (node ids 101-105)\nstep,node_id,ux,uy,uz\n"
       "2,105,0.5,0,0\n1,101,1e-3,0,0\n1,105,0.25,0,0\n2,101,2e-3,0,-1\n")
+
+
+# ---------------------------------------------------------------- quadratic solids in the solvers'
+# own mid-side orders (Nastran QRG: CTETRA G5-G10 on edges 1-2 2-3 3-1 1-4 2-4 3-4; CHEXA G9-G12
+# bottom, G13-G16 vertical 1-5 .. 4-8, G17-G20 top; CPENTA G7-G9 bottom, G10-G12 vertical, G13-G15
+# top; CPYRAM G6-G9 base, G10-G13 to the apex. Abaqus: C3D10 as CTETRA; C3D15 G7-G9 bottom,
+# G10-G12 top, G13-G15 vertical; C3D20 9-12 bottom, 13-16 top, 17-20 vertical).
+def quad_element(corners, edges, offset):
+    pts = list(corners) + [tuple((a + b) / 2 for a, b in zip(corners[i], corners[j])) for i, j in edges]
+    return pts, [offset + k + 1 for k in range(len(pts))]
+
+
+TET = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)]
+PYR = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0.5, 0.5, 1)]
+NAS = {
+    "CTETRA": (TET, [(0, 1), (1, 2), (2, 0), (0, 3), (1, 3), (2, 3)]),
+    "CHEXA": (CUBE, [(0, 1), (1, 2), (2, 3), (3, 0), (0, 4), (1, 5), (2, 6), (3, 7), (4, 5), (5, 6), (6, 7), (7, 4)]),
+    "CPENTA": (W, [(0, 1), (1, 2), (2, 0), (0, 3), (1, 4), (2, 5), (3, 4), (4, 5), (5, 3)]),
+    "CPYRAM": (PYR, [(0, 1), (1, 2), (2, 3), (3, 0), (0, 4), (1, 4), (2, 4), (3, 4)]),
+}
+lines = ["$ quadratic solids, Nastran mid-side order (CC0)", "BEGIN BULK"]
+elems = []
+offset = 0
+for k, (card, (corners, edges)) in enumerate(NAS.items()):
+    shifted = [(x + 3 * k, y, z) for x, y, z in corners]
+    pts, ids = quad_element(shifted, edges, offset)
+    for gid, p in zip(ids, pts):
+        lines.append("GRID,%d,,%r,%r,%r" % ((gid,) + tuple(float(c) for c in p)))
+    fields = [str(100 + k), str(k + 1)] + [str(g) for g in ids]
+    rec = card + "," + ",".join(fields[:8])
+    rest = fields[8:]
+    while rest:
+        rec += "\n," + ",".join(rest[:8])
+        rest = rest[8:]
+    elems.append(rec)
+    offset += len(pts)
+write("quadratic.bdf", "\n".join(lines + elems + ["ENDDATA"]) + "\n")
+
+ABQ = {
+    "C3D10": (TET, [(0, 1), (1, 2), (2, 0), (0, 3), (1, 3), (2, 3)]),
+    "C3D15": (W, [(0, 1), (1, 2), (2, 0), (3, 4), (4, 5), (5, 3), (0, 3), (1, 4), (2, 5)]),
+    "C3D20": (CUBE, VTK_HEX20_EDGES),
+}
+out = ["** quadratic solids, Abaqus node order (CC0)", "*NODE"]
+blocks = []
+offset = 0
+for k, (ty, (corners, edges)) in enumerate(ABQ.items()):
+    shifted = [(x + 3 * k, y, z) for x, y, z in corners]
+    pts, ids = quad_element(shifted, edges, offset)
+    out += ["%d, %r, %r, %r" % ((g,) + tuple(float(c) for c in p)) for g, p in zip(ids, pts)]
+    rec = [str(100 + k)] + [str(g) for g in ids]
+    text = ""
+    while rec:
+        text += ", ".join(rec[:16]) + (",\n" if len(rec) > 16 else "\n")
+        rec = rec[16:]
+    blocks.append("*ELEMENT, TYPE=%s, ELSET=%s\n%s" % (ty, ty.lower(), text))
+    offset += len(pts)
+write("quadratic.inp", "\n".join(out) + "\n" + "".join(blocks))

@@ -60,6 +60,21 @@ TEST(FemIoFiles, NastranLargeAndFreeFieldWedge15InVtkOrder) {
   EXPECT_EQ(m.groups[0].name, "PID 5");
 }
 
+TEST(FemIoFiles, QuadraticSolidsInTheSolversOrdersComeOutInVtkOrder) {
+  // Files written from the solvers' manuals' mid-side orders (make_fem_files.py): every mid-side
+  // node must sit at the midpoint of the VTK corner pair of its position.
+  const FemMesh nas = must_read("quadratic.bdf");
+  EXPECT_EQ(nas.elem_types, (std::vector<ElemType>{ElemType::tet10, ElemType::hex20, ElemType::wedge15, ElemType::pyr13}));
+  std::size_t checked = 0;
+  EXPECT_EQ(midside_error(nas, &checked), 0.0);
+  EXPECT_EQ(checked, 4u);
+  const FemMesh abq = must_read("quadratic.inp");
+  EXPECT_EQ(abq.elem_types, (std::vector<ElemType>{ElemType::tet10, ElemType::wedge15, ElemType::hex20}));
+  EXPECT_EQ(midside_error(abq, &checked), 0.0);
+  EXPECT_EQ(checked, 3u);
+  EXPECT_EQ(abq.groups.size(), 3u);
+}
+
 TEST(FemIoFiles, AbaqusInstancesAreTranslatedThenRotatedWithOffsetIds) {
   const FemMesh m = must_read("assembly.inp");
   ASSERT_EQ(m.num_nodes(), 16u);
