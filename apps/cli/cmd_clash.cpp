@@ -2,8 +2,10 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "clash_options.h"
 #include "commands.h"
 #include "common.h"
+#include "fem_parts.h"
 #include "interfere/core/atomic_file.h"
 #include "interfere/mesh/polyline.h"
 #include "interfere/query/clash.h"
@@ -11,14 +13,6 @@
 
 namespace interfere::cli {
 namespace {
-
-struct ClashOptions : TwoPartOptions {
-  std::string pairs, region_a, region_b, test = "exact", broadphase = "bvh";
-  std::vector<std::string> curves;
-  double clearance = 0;
-  bool no_containment = false;
-  std::size_t max_clearance_pairs = 100000;
-};
 
 TriTest parse_test(const std::string& s) {
   if (s == "exact") return TriTest::exact;
@@ -32,24 +26,6 @@ Broadphase parse_broadphase(const std::string& s) {
   if (s == "brute") return Broadphase::brute_force;
   if (s == "box") return Broadphase::box_pretest;
   throw InputError("--broadphase: unknown broad phase '" + s + "' (bvh, brute, box)");
-}
-
-void check_output(const std::string& path, const std::vector<std::string>& extensions, const char* flag) {
-  if (path.empty()) return;
-  const std::filesystem::path p(path);
-  std::string ext = p.extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  bool ok = extensions.empty();
-  for (const std::string& e : extensions) ok |= ext == e;
-  if (!ok) throw InputError(std::string(flag) + ": " + path + ": unsupported extension '" + ext + "'");
-  const std::filesystem::path dir = p.parent_path().empty() ? std::filesystem::path(".") : p.parent_path();
-  if (!std::filesystem::is_directory(dir)) {
-    throw InputError(std::string(flag) + ": " + path + ": directory does not exist");
-  }
-}
-
-void write_or_throw(const Status& s) {
-  if (!s) throw InputError(s.error());
 }
 
 int run_clash(const ClashOptions& o) {
@@ -67,6 +43,9 @@ int run_clash(const ClashOptions& o) {
   check_output(o.region_a, mesh_ext, "--region-a");
   check_output(o.region_b, mesh_ext, "--region-b");
   for (const std::string& c : o.curves) check_output(c, {".obj", ".vtk"}, "--curves");
+  if (o.fem_requested() || is_fem_file(parts.a.file) || is_fem_file(parts.b.file)) {
+    return run_fem_clash(o, parts, request);  // FEM inputs: clash_fem.cpp
+  }
   set_threads(o.threads);
 
   Progress total("clash");
@@ -155,6 +134,7 @@ void add_clash_command(CLI::App& app, int& exit_code) {
   c->add_option("--broadphase", o->broadphase, "bvh (default), brute, box");
   c->add_option("--max-clearance-pairs", o->max_clearance_pairs, "cap on clearance pairs listed in JSON");
   c->add_flag("--no-containment", o->no_containment, "skip the containment test");
+  add_fem_clash_options(*c, *o);
   c->callback([o, &exit_code] { exit_code = run_clash(*o); });
 }
 

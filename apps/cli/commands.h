@@ -10,4 +10,5 @@ void add_distance_command(CLI::App& app, int& exit_code);
 void add_check_command(CLI::App& app, int& exit_code);
 void add_sweep_command(CLI::App& app, int& exit_code);
 void add_bearing_command(CLI::App& app, int& exit_code);
+void add_surface_command(CLI::App& app, int& exit_code);
 }  // namespace interfere::cli

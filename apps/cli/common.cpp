@@ -1,7 +1,9 @@
 #include "common.h"
 
 #include <CLI/CLI.hpp>
+#include <cctype>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <memory>
 
@@ -154,6 +156,24 @@ void check_units(const std::string& units) {
   throw InputError("--units: unknown unit '" + units + "' (mm, cm, m, um, in, ft)");
 }
 
+void check_output(const std::string& path, const std::vector<std::string>& extensions, const char* flag) {
+  if (path.empty()) return;
+  const std::filesystem::path p(path);
+  std::string ext = p.extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  bool ok = extensions.empty();
+  for (const std::string& e : extensions) ok |= ext == e;
+  if (!ok) throw InputError(std::string(flag) + ": " + path + ": unsupported extension '" + ext + "'");
+  const std::filesystem::path dir = p.parent_path().empty() ? std::filesystem::path(".") : p.parent_path();
+  if (!std::filesystem::is_directory(dir)) {
+    throw InputError(std::string(flag) + ": " + path + ": directory does not exist");
+  }
+}
+
+void write_or_throw(const Status& s) {
+  if (!s) throw InputError(s.error());
+}
+
 namespace {
 std::unique_ptr<tbb::global_control> g_threads;
 }
@@ -190,7 +210,7 @@ nlohmann::json part_json(const LoadedPart& p) {
 }
 
 void add_two_part_options(CLI::App& c, TwoPartOptions& o) {
-  c.add_option("A", o.a.file, "mesh file of part A (STL, OBJ, PLY, OFF)");
+  c.add_option("A", o.a.file, "mesh file of part A (STL, OBJ, PLY, OFF; clash also takes FEM files: .msh .bdf .nas .dat .vtk .vtu .inp)");
   c.add_option("B", o.b.file, "mesh file of part B");
   c.add_option("--scene", o.scene, "JSON scene giving both parts and their transforms");
   c.add_option("--transform-a", o.a.transform, "pose of A: \"r00 r01 r02 tx r10 r11 r12 ty r20 r21 r22 tz\"");

@@ -75,6 +75,12 @@ void apply_scene(const std::string& scene_path, PartSpec& a, PartSpec& b, std::s
 BvhBuilder parse_builder(const std::string& name);
 void check_units(const std::string& units);
 
+/// Checks an output path before any work: its extension (one of `extensions`, lower case with the
+/// dot; empty = any) and that its directory exists. Throws InputError naming `flag`.
+void check_output(const std::string& path, const std::vector<std::string>& extensions, const char* flag);
+/// Throws InputError when a write failed.
+void write_or_throw(const Status& s);
+
 /// Sets the oneTBB thread count for the rest of the process (0 = all cores).
 void set_threads(int threads);
 int active_threads();

@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   add_check_command(app, exit_code);
   add_sweep_command(app, exit_code);
   add_bearing_command(app, exit_code);
+  add_surface_command(app, exit_code);
   app.parse_complete_callback([&] { Progress::set_quiet(quiet); });
   try {
     app.parse(argc, argv);

@@ -78,3 +78,25 @@ __all__ = [
 ]
 
 from ._interfere import probe  # noqa: F401,E402  (issue #5: interfere.probe)
+# FEM models (docs/fem.md, "Python"): read_fem, generators, surface extraction, clash per step.
+from ._interfere import (  # noqa: F401,E402
+    FemMesh,
+    clash_series,
+    extract_surface,
+    make_fem_box,
+    make_fem_cylinder,
+    make_fem_sphere,
+    read_displacements_csv,
+    read_fem,
+)
+
+__all__ += [
+    "FemMesh",
+    "clash_series",
+    "extract_surface",
+    "make_fem_box",
+    "make_fem_cylinder",
+    "make_fem_sphere",
+    "read_displacements_csv",
+    "read_fem",
+]

@@ -6,4 +6,8 @@
 namespace interfere::python {
 void bind_probe(pybind11::module_& m);
 void bind_bearing(pybind11::module_& m);
+
+/// FEM module (bind_fem.cpp): FemMesh, read_fem, generators, extract_surface, clash_series.
+void bind_fem(pybind11::module_& m);
+
 }  // namespace interfere::python

@@ -965,4 +965,6 @@ PYBIND11_MODULE(_interfere, m) {
         "Exact-arithmetic fallbacks taken by the predicates since the process started.");
   interfere::python::bind_probe(m);
   interfere::python::bind_bearing(m);
+
+  interfere::python::bind_fem(m);
 }

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes the committed seed corpus of the fuzz targets (standard library only, deterministic).
 
-    python3 tests/fuzz/make_corpus.py            # rewrites tests/fuzz/corpus/{read_mesh,tri_tri}/
+    python3 tests/fuzz/make_corpus.py            # rewrites tests/fuzz/corpus/{read_mesh,tri_tri,read_fem}/
 
 corpus/read_mesh/: small valid and broken samples of every format the readers accept (the fuzz
 target writes each input under every extension, so the file names are only descriptive).
@@ -281,6 +281,17 @@ X = float.fromhex
 # Minimised fuzzer findings: (target, file name, bytes). Keep them until the library is fixed,
 # then keep them as regression tests.
 REGRESSIONS = [
+    # read_fem (src/fem/io/vtk_read.cpp): classic CELLS with a size smaller than the cell count
+    # reserved size - n < 0 entries (std::length_error, uncaught). Found by fuzz_read_fem.
+    ("read_fem", "regression_vtk_cells_size_below_count",
+     b"# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 1 float\n0 0 0\n"
+     b"CELLS 3 1\n1\nCELL_TYPES 3\n1 1 1\n"),
+    # read_fem (src/fem/io/abaqus_read.cpp): an assembly whose instantiated part has nodes but no
+    # elements was read "successfully" as a mesh without elements (fuzz_read_fem: "success without
+    # elements"); now "no elements". Found by fuzz_read_fem from assembly.inp.
+    ("read_fem", "regression_abaqus_instance_without_elements",
+     b"*PART, NAME=p\n*NODE\n1, 0., 0., 0.\n*END PART\n*ASSEMBLY, NAME=a\n"
+     b"*INSTANCE, NAME=i, PART=p\n*END INSTANCE\n*END ASSEMBLY\n"),
     # closest_point_on_triangle (src/np/distance.cpp) returns NaN: the cross end p = (-4.8, -4.8, -4.8)
     # against A, a needle with a 2^-60-long edge AB at a right angle to AC. p - a and p - b round to
     # the same vector, so d1 = d3 = 0, the edge-AB branch is taken and returns a + ab * (0 / 0).
@@ -321,8 +332,23 @@ REGRESSIONS = [
 ]
 
 
+def fem_seeds():
+    """corpus/read_fem/: the committed FEM test files (tests/data/fem, see its README) and a few
+    broken variants."""
+    src = os.path.join(HERE, "..", "data", "fem")
+    seeds = {}
+    for name in sorted(os.listdir(src)):
+        if name.endswith((".py", ".md")):
+            continue
+        with open(os.path.join(src, name), "rb") as f:
+            data = f.read()
+        seeds[name] = data
+        seeds["trunc_" + name] = data[: len(data) * 2 // 3]
+    return seeds
+
+
 def main():
-    for target, seeds in (("read_mesh", mesh_seeds()), ("tri_tri", tri_seeds())):
+    for target, seeds in (("read_mesh", mesh_seeds()), ("tri_tri", tri_seeds()), ("read_fem", fem_seeds())):
         d = os.path.join(CORPUS, target)
         if os.path.isdir(d):
             shutil.rmtree(d)

@@ -1,0 +1,272 @@
+// `interfere clash` on FEM parts: read_fem + surface extraction per part, displacements per step,
+// refit + clash per step (fem/deform.h), results named by the solver's element and node ids.
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "clash_options.h"
+#include "fem_parts.h"
+#include "interfere/core/atomic_file.h"
+#include "interfere/fem/io.h"
+#include "interfere/mesh/io.h"
+#include "interfere/mesh/polyline.h"
+#include "report_json.h"
+
+namespace interfere::cli {
+namespace {
+
+// The clash-region triangles of both parts as a tri3 FemMesh (nodes at the step's positions) with
+// cell data fem_element_id, fem_face, part (0 = A, 1 = B), region, and point data fem_node_id.
+struct RegionMesh {
+  FemMesh mesh;
+  FemWriteOptions options;
+};
+
+RegionMesh region_mesh(const ClashResult& r, const FemPart* parts[2], const std::vector<Vec3>* positions[2]) {
+  RegionMesh out;
+  FemMesh& m = out.mesh;
+  m.groups = {{.name = "A", .id = 1, .dim = 2}, {.name = "B", .id = 2, .dim = 2}};
+  FemArray elem{.name = "fem_element_id"}, face{.name = "fem_face"}, part{.name = "part"}, region{.name = "region"};
+  FemArray node_id{.name = "fem_node_id"};
+  for (int side = 0; side < 2; ++side) {
+    const SurfacePart& sp = parts[side]->part();
+    const FemMesh& fm = *parts[side]->mesh;
+    std::vector<std::uint32_t> local(sp.mesh.num_vertices(), ~0u);
+    for (std::size_t g = 0; g < r.regions.size(); ++g) {
+      const auto& tris = side == 0 ? r.regions[g].triangles_a : r.regions[g].triangles_b;
+      for (std::uint32_t t : tris) {
+        std::uint32_t v[3];
+        for (int k = 0; k < 3; ++k) {
+          std::uint32_t& l = local[sp.mesh.triangles[t][k]];
+          if (l == ~0u) {
+            l = static_cast<std::uint32_t>(m.nodes.size());
+            m.nodes.push_back((*positions[side])[sp.mesh.triangles[t][k]]);
+            m.node_ids.push_back(static_cast<std::int64_t>(m.nodes.size()));
+            node_id.ints.push_back(fm.node_ids[sp.vertex_node[sp.mesh.triangles[t][k]]]);
+          }
+          v[k] = l;
+        }
+        m.add_element(ElemType::tri3, static_cast<std::int64_t>(m.num_elements() + 1), side, v, 3);
+        elem.ints.push_back(fm.elem_ids[sp.tri_element[t]]);
+        face.ints.push_back(sp.tri_face[t]);
+        part.ints.push_back(side);
+        region.ints.push_back(static_cast<std::int64_t>(g));
+      }
+    }
+  }
+  out.options.cell_data = {elem, face, part, region};
+  out.options.point_data = {node_id};
+  return out;
+}
+
+std::string step_label(const StepSummary& s) { return fmt::format("{} (time {:g})", s.step, s.time); }
+
+}  // namespace
+
+void add_fem_clash_options(CLI::App& c, ClashOptions& o) {
+  c.add_option("--part", o.part, "FEM: body of both parts (group name, or 'body N' by connectivity)");
+  c.add_option("--part-a", o.part_a, "FEM: body of part A (overrides --part)");
+  c.add_option("--part-b", o.part_b, "FEM: body of part B (overrides --part)");
+  c.add_option("--disp", o.disp, "FEM: nodal displacement CSV for both parts");
+  c.add_option("--disp-a", o.disp_a, "FEM: displacement CSV of part A (overrides --disp/--field)");
+  c.add_option("--disp-b", o.disp_b, "FEM: displacement CSV of part B (overrides --disp/--field)");
+  c.add_option("--field", o.field, "FEM: nodal vector field of the mesh file(s) used as displacement");
+  c.add_option("--field-a", o.field_a, "FEM: field of part A (overrides --disp/--field)");
+  c.add_option("--field-b", o.field_b, "FEM: field of part B (overrides --disp/--field)");
+  c.add_option("--scale", o.scale, "FEM: displacement scale, position = node + scale * u (default 1)");
+  c.add_option("--step", o.step, "FEM: check only this step (0-based); default every step");
+  c.add_flag("--linear-faces", o.linear_faces, "FEM: quadratic faces by their corners only");
+  c.add_option("--split", o.split, "FEM: bodies by auto (default), group, connectivity, single");
+  c.add_option("--regions-vtu", o.regions_vtu,
+               "FEM: write the clash regions (.vtu; cell data fem_element_id, fem_face, part, region)");
+}
+
+int run_fem_clash(const ClashOptions& o, const ResolvedParts& parts, const ClashRequest& request) {
+  if (!std::isfinite(o.scale)) throw InputError("--scale must be a finite number");
+  check_output(o.regions_vtu, {".vtu", ".vtk", ".msh"}, "--regions-vtu");
+  if (o.step < -1) throw InputError("--step must be >= 0");
+  set_threads(o.threads);
+  Progress total("clash");
+
+  auto pick = [](const std::string& own, const std::string& both) { return own.empty() ? both : own; };
+  // A part's own displacement flag (--disp-a or --field-a) replaces both shared ones.
+  auto displacement = [&](const std::string& disp_own, const std::string& field_own, FemPartOptions& p) {
+    const bool own = !disp_own.empty() || !field_own.empty();
+    p.disp = own ? disp_own : o.disp;
+    p.field = own ? field_own : o.field;
+  };
+  FemPartOptions oa{.part = pick(o.part_a, o.part), .linear_faces = o.linear_faces, .split = o.split,
+                    .transform = parts.a.transform};
+  FemPartOptions ob{.part = pick(o.part_b, o.part), .linear_faces = o.linear_faces, .split = o.split,
+                    .transform = parts.b.transform};
+  displacement(o.disp_a, o.field_a, oa);
+  displacement(o.disp_b, o.field_b, ob);
+  const FemPart a = load_fem_part(parts.a.file, oa, "A", false);
+  // Two bodies of one file with the same displacement, pose and options: read and extract once.
+  const bool same = parts.a.file == parts.b.file && oa.disp == ob.disp && oa.field == ob.field &&
+                    oa.transform == ob.transform;
+  const FemPart b = same ? other_part(a, ob.part, "B") : load_fem_part(parts.b.file, ob, "B", false);
+  for (const FemPart* p : {&a, &b}) {
+    for (const std::string& w : p->warnings) {
+      if (!Progress::quiet()) std::fprintf(stderr, "[interfere] warning: %s\n", w.c_str());
+    }
+  }
+  const std::size_t na = a.num_steps(), nb = b.num_steps();
+  if (na && nb && na != nb) {
+    throw InputError("mismatched step counts: displacements of A have " + std::to_string(na) + " steps, of B " +
+                     std::to_string(nb));
+  }
+  const std::size_t num_steps = std::max<std::size_t>({na, nb, 1});
+  SeriesRequest sr{.clash = request, .bvh = parts.bvh, .scale = o.scale, .keep_first_clash = true, .keep_last = true};
+  const bool series = o.step < 0 && num_steps > 1;
+  if (o.step >= 0) sr.steps = {check_step(o.step, num_steps)};
+
+  Expected<SeriesResult> run = Error{};
+  {
+    Progress progress(series ? "clash per step (" + std::to_string(num_steps) + " steps)" : std::string("clash query"));
+    run = clash_series(a.series(), b.series(), sr);
+  }
+  if (!run) throw InputError(run.error());
+  const SeriesResult& sres = *run;
+  const bool clashed = sres.first_clash_step >= 0;
+  // The step whose full result is reported: the first clashing step, else the last checked one.
+  const ClashResult& result = clashed ? sres.first_clash : sres.last;
+  const StepSummary& shown = clashed ? *std::find_if(sres.steps.begin(), sres.steps.end(), [&](const StepSummary& s) {
+    return static_cast<std::int64_t>(s.step) == sres.first_clash_step;
+  })
+                                     : sres.steps.back();
+  for (const std::string& w : result.warnings) {
+    if (!Progress::quiet()) std::fprintf(stderr, "[interfere] warning: %s\n", w.c_str());
+  }
+
+  // Outputs (inputs fully validated above).
+  std::vector<Vec3> pos_a, pos_b;
+  deformed_positions(a.part(), *a.mesh, a.displacement, shown.step, o.scale, pos_a);
+  deformed_positions(b.part(), *b.mesh, b.displacement, shown.step, o.scale, pos_b);
+  if (!o.pairs.empty()) {
+    std::string s;
+    for (const TrianglePair& p : result.pairs) s += fmt::format("{} {} {}\n", p.a, p.b, kind_name(p.kind));
+    write_or_throw(write_file_atomic(o.pairs, s));
+  }
+  auto write_region = [&](const std::string& path, const FemPart& p, const std::vector<Vec3>& pos, bool part_a) {
+    if (path.empty()) return;
+    std::vector<std::uint32_t> tris;
+    for (const ClashRegion& g : result.regions) {
+      const auto& v = part_a ? g.triangles_a : g.triangles_b;
+      tris.insert(tris.end(), v.begin(), v.end());
+    }
+    std::sort(tris.begin(), tris.end());
+    if (tris.empty()) {
+      std::fprintf(stderr, "[interfere] note: part %s has no clash region; %s not written\n", part_a ? "A" : "B",
+                   path.c_str());
+      return;
+    }
+    TriMesh m = p.part().mesh;
+    m.positions = pos;
+    write_or_throw(write_mesh(path, submesh(m, tris)));
+  };
+  write_region(o.region_a, a, pos_a, true);
+  write_region(o.region_b, b, pos_b, false);
+  if (!o.curves.empty()) {
+    std::vector<Polyline> all;
+    for (const ClashRegion& g : result.regions) all.insert(all.end(), g.curves.begin(), g.curves.end());
+    for (const std::string& c : o.curves) write_or_throw(write_polylines(c, all));
+  }
+  if (!o.regions_vtu.empty()) {
+    if (result.regions.empty()) {
+      std::fprintf(stderr, "[interfere] note: no clash region; %s not written\n", o.regions_vtu.c_str());
+    } else {
+      const FemPart* ps[2] = {&a, &b};
+      const std::vector<Vec3>* pp[2] = {&pos_a, &pos_b};
+      RegionMesh rm = region_mesh(result, ps, pp);
+      write_or_throw(write_fem(rm.mesh, o.regions_vtu, rm.options));
+    }
+  }
+
+  const int status = clashed ? kInterference : kClear;
+  auto summary_json = [](const StepSummary& s) {
+    return nlohmann::json{{"step", s.step},
+                          {"time", s.time},
+                          {"interference", s.interference},
+                          {"pairs", s.pairs},
+                          {"cross_pairs", s.cross_pairs},
+                          {"touch_pairs", s.touch_pairs},
+                          {"regions", s.regions},
+                          {"max_curve_length", s.max_curve_length},
+                          {"curve_length", s.total_curve_length},
+                          {"containment", containment_name(s.containment)},
+                          {"refit_seconds", s.refit_seconds},
+                          {"clash_seconds", s.clash_seconds}};
+  };
+  if (!o.json.empty()) {
+    nlohmann::json steps = nlohmann::json::array();
+    double query = 0;
+    for (const StepSummary& s : sres.steps) {
+      steps.push_back(summary_json(s));
+      query += s.refit_seconds + s.clash_seconds;
+    }
+    nlohmann::json res = clash_result_json(result, o.max_clearance_pairs);
+    for (std::size_t i = 0; i < result.regions.size(); ++i) {
+      res["regions"][i]["fem"] = region_ids_json(region_ids(result.regions[i], a.part(), *a.mesh, b.part(), *b.mesh));
+    }
+    std::vector<std::string> input_warnings = a.warnings;
+    input_warnings.insert(input_warnings.end(), b.warnings.begin(), b.warnings.end());
+    nlohmann::json j = {
+        {"interfere_version", INTERFERE_VERSION},
+        {"command", "clash"},
+        {"units", parts.units},
+        {"inputs", {{"a", fem_part_json(a)}, {"b", fem_part_json(b)}}},
+        {"input_warnings", input_warnings},
+        {"options",
+         {{"test", o.test}, {"broadphase", o.broadphase}, {"builder", o.builder}, {"threads", active_threads()},
+          {"clearance", o.clearance}, {"containment", !o.no_containment}, {"scale", o.scale},
+          {"step", o.step >= 0 ? nlohmann::json(o.step) : nlohmann::json(nullptr)},
+          {"linear_faces", o.linear_faces}, {"split", o.split}}},
+        {"series",
+         {{"steps_total", num_steps},
+          {"steps_checked", sres.steps.size()},
+          {"first_clash_step", clashed ? nlohmann::json(sres.first_clash_step) : nlohmann::json(nullptr)},
+          {"first_clash_time", clashed ? nlohmann::json(shown.time) : nlohmann::json(nullptr)},
+          {"steps", steps}}},
+        {"result_step", shown.step},
+        {"result_time", shown.time},
+        {"result", res},
+        {"warnings", result.warnings},
+        {"exit_status", status},
+        {"timings_s",
+         {{"read", a.read_seconds + (same ? 0.0 : b.read_seconds)},
+          {"extract", a.extract_seconds + (same ? 0.0 : b.extract_seconds)},
+          {"build", sres.build_seconds},
+          {"query", query},
+          {"total", total.seconds()}}}};
+    write_or_throw(write_file_atomic(o.json, j.dump(2) + "\n"));
+  }
+
+  if (series) {
+    std::printf("%6s %12s %8s %8s %8s %8s %12s %s\n", "step", "time", "pairs", "cross", "touch", "regions",
+                "max_curve", "containment");
+    for (const StepSummary& s : sres.steps) {
+      std::printf("%6zu %12.6g %8zu %8zu %8zu %8zu %12.6g %s\n", s.step, s.time, s.pairs, s.cross_pairs, s.touch_pairs,
+                  s.regions, s.max_curve_length, containment_name(s.containment));
+    }
+    if (clashed) {
+      std::printf("INTERFERENCE: first clash at step %s of %zu\n", step_label(shown).c_str(), num_steps);
+    } else {
+      std::printf("clear: no clash in %zu steps\n", num_steps);
+    }
+  } else {
+    double curve_length = 0;
+    for (const ClashRegion& g : result.regions) curve_length += g.curve_length;
+    std::printf("%s: %zu pairs (%zu cross, %zu touch), %zu regions, curve length %.6g %s, containment %s",
+                result.interference() ? "INTERFERENCE" : "clear", result.pairs.size(), result.cross_pairs,
+                result.touch_pairs, result.regions.size(), curve_length, parts.units.c_str(),
+                containment_name(result.containment));
+    if (num_steps > 1) std::printf(", step %s", step_label(shown).c_str());
+    std::printf("\n");
+  }
+  return status;
+}
+
+}  // namespace interfere::cli

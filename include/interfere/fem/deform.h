@@ -1,0 +1,83 @@
+// Deformed configurations of FEM parts and the clash per load step (issue #3, item 3), and the
+// clash results named by the solver's element and node ids (item 5).
+//
+// A part's deformed vertex positions are node + scale × displacement[step] of the FEM nodes it uses.
+// For a time series the two parts' trees are built once (reference positions) and refitted per
+// step (same topology; refit_bvh keeps the tree and recomputes its boxes), then the clash runs.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "interfere/core/error.h"
+#include "interfere/fem/fem_mesh.h"
+#include "interfere/fem/surface.h"
+#include "interfere/query/clash.h"
+
+namespace interfere {
+
+/// Vertex positions of `part` at `step` of `displacement` (nullptr: the reference positions):
+/// p = node + scale × u. `out` is resized to the part's vertex count. Preconditions: the part was
+/// extracted from `mesh`; step < displacement->num_steps().
+void deformed_positions(const SurfacePart& part, const FemMesh& mesh, const NodalSeries* displacement,
+                        std::size_t step, double scale, std::vector<Vec3>& out);
+
+/// One side of a series clash: the mesh, the extracted part, and its displacements (may be null:
+/// the part stays at its reference position).
+struct SeriesPart {
+  const FemMesh* mesh = nullptr;
+  const SurfacePart* part = nullptr;
+  const NodalSeries* displacement = nullptr;
+};
+
+struct SeriesRequest {
+  ClashRequest clash;
+  BvhBuildOptions bvh;
+  double scale = 1.0;
+  std::vector<std::size_t> steps;  ///< 0-based steps to check, increasing; empty = every step
+  bool keep_first_clash = true;    ///< keep the full ClashResult of the first clashing step
+  bool keep_all = false;           ///< keep the full ClashResult of every checked step
+  bool keep_last = false;          ///< keep the full ClashResult of the last checked step
+};
+
+struct StepSummary {
+  std::size_t step = 0;  ///< 0-based
+  double time = 0;       ///< the series' time of the step (step number when it has none)
+  std::size_t pairs = 0, cross_pairs = 0, touch_pairs = 0, regions = 0;
+  double max_curve_length = 0;    ///< longest region curve length
+  double total_curve_length = 0;  ///< sum over regions
+  Containment containment = Containment::not_checked;
+  bool interference = false;
+  double refit_seconds = 0, clash_seconds = 0;
+};
+
+struct SeriesResult {
+  std::size_t num_steps = 0;          ///< steps in the series (1 when neither part has a field)
+  std::vector<StepSummary> steps;     ///< one per checked step, in step order
+  std::int64_t first_clash_step = -1;  ///< 0-based; -1 when no checked step interferes
+  ClashResult first_clash;            ///< the first clashing step's result (keep_first_clash)
+  std::vector<ClashResult> results;   ///< per checked step (keep_all)
+  ClashResult last;                   ///< the last checked step's result (keep_last)
+  double build_seconds = 0;           ///< both trees, once
+};
+
+/// Checks every requested step. Errors (as values): a part or mesh missing, displacement fields
+/// of the two parts with different step counts, a field with the wrong node count, a step out
+/// of range, a non-finite scale, a non-finite deformed position (names the node id and step).
+Expected<SeriesResult> clash_series(const SeriesPart& a, const SeriesPart& b, const SeriesRequest& request = {});
+
+/// A clash region named by the solver: the element ids of its triangles, and the node ids of the
+/// element faces they come from (all nodes of each face, mid-side nodes included); sorted, unique.
+struct RegionIds {
+  std::vector<std::int64_t> elements_a, elements_b;
+  std::vector<std::int64_t> nodes_a, nodes_b;
+  std::vector<std::pair<std::int64_t, int>> faces_a, faces_b;  ///< (element id, local face)
+};
+RegionIds region_ids(const ClashRegion& region, const SurfacePart& a, const FemMesh& mesh_a, const SurfacePart& b,
+                     const FemMesh& mesh_b);
+
+/// Node indices of local face `face` (1-based, surface.h numbering; 1 for shells) of element `e`:
+/// corners, then mid-side nodes, then the centre node.
+std::vector<std::uint32_t> element_face_nodes(const FemMesh& mesh, std::size_t e, int face);
+
+}  // namespace interfere
