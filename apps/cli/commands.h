@@ -8,4 +8,5 @@ namespace interfere::cli {
 void add_clash_command(CLI::App& app, int& exit_code);
 void add_distance_command(CLI::App& app, int& exit_code);
 void add_check_command(CLI::App& app, int& exit_code);
+void add_simplify_command(CLI::App& app, int& exit_code);
 }  // namespace interfere::cli

@@ -1,0 +1,212 @@
+// `interfere simplify IN OUT --target N | --ratio R`: feature-preserving QEM simplification
+// (issue #6, items 5-7). IN is a mesh file (STL/OBJ/PLY/OFF; optional per-triangle regions and
+// feature regions, or a dihedral-angle mask) or, when built with OpenCASCADE, a STEP file whose
+// assembly features are recognised and selected for a process step (--step P --process FILE).
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <sstream>
+
+#include "commands.h"
+#include "common.h"
+#include "interfere/core/atomic_file.h"
+#include "interfere/simplify/budget.h"
+#include "interfere/simplify/hausdorff.h"
+#include "interfere/simplify/qem.h"
+#include "interfere/simplify/tagged_io.h"
+#ifdef INTERFERE_HAS_CAD
+#include "interfere/cad/pipeline.h"
+#endif
+
+namespace interfere::cli {
+namespace {
+
+struct SimplifyCliOptions {
+  std::string input, output, json, regions, features, step, process, format = "auto";
+  std::size_t target = 0;
+  double ratio = 0;
+  double sharp_angle = 0;
+  double linear_deflection = 0, angular_deflection = 0.5;
+  std::size_t renderer_max = 0;
+  bool lock = false, check_self = false, no_error = false;
+  int threads = 0;
+};
+
+std::vector<std::uint32_t> parse_id_list(const std::string& s, const std::string& flag) {
+  std::vector<std::uint32_t> out;
+  std::stringstream ss(s);
+  std::string tok;
+  while (std::getline(ss, tok, ',')) {
+    if (tok.empty()) continue;
+    try {
+      std::size_t used = 0;
+      const unsigned long v = std::stoul(tok, &used);
+      if (used != tok.size() || v > 0xffffffffUL) throw std::invalid_argument(tok);
+      out.push_back(static_cast<std::uint32_t>(v));
+    } catch (const std::exception&) {
+      throw InputError(flag + ": not a face/region id: '" + tok + "'");
+    }
+  }
+  return out;
+}
+
+bool is_step(const std::string& file) {
+  std::string e = std::filesystem::path(file).extension().string();
+  for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return e == ".step" || e == ".stp";
+}
+
+int run_simplify(const SimplifyCliOptions& o) {
+  if (o.target == 0 && o.ratio == 0) throw InputError("simplify: give --target N (> 0) or --ratio R");
+  if (o.ratio != 0 && !(o.ratio > 0 && o.ratio <= 1)) throw InputError("--ratio must lie in (0, 1]");
+  if (!o.step.empty() && o.process.empty()) throw InputError("--step needs --process FILE");
+  const MeshFormat out_format = mesh_format_from_name(o.format);
+  if (out_format == MeshFormat::automatic && o.format != "auto" && o.format != "AUTO")
+    throw InputError("--format: unknown mesh format '" + o.format + "'");
+  set_threads(o.threads);
+  Progress total("simplify");
+  nlohmann::json report;
+  report["command"] = "simplify";
+  report["version"] = INTERFERE_VERSION;
+  report["input"] = o.input;
+  report["output"] = o.output;
+
+  TriMesh mesh;
+  SimplifyOptions so;
+  so.target_triangles = o.target;
+  so.ratio = o.ratio;
+  so.feature_mode = o.lock ? FeatureMode::lock : FeatureMode::weight;
+  so.measure_error = !o.no_error;
+  if (is_step(o.input)) {
+#ifdef INTERFERE_HAS_CAD
+    cad::PipelineOptions po;
+    po.linear_deflection = o.linear_deflection;
+    po.angular_deflection = o.angular_deflection;
+    po.process_file = o.process;
+    po.step = o.step;
+    Progress progress("importing " + o.input);
+    auto prepared = cad::prepare_for_simplify(o.input, po);
+    if (!prepared) throw InputError(prepared.error());
+    mesh = std::move(prepared->mesh);
+    so.face_ids = std::move(prepared->face_ids);
+    so.feature_faces = prepared->feature_faces;
+    report["cad"] = nlohmann::json::parse(prepared->report_json);
+    for (const auto& w : prepared->warnings)
+      if (!Progress::quiet()) std::fprintf(stderr, "[interfere] warning: %s\n", w.c_str());
+#else
+    throw InputError(o.input + ": STEP input needs interfere built with OpenCASCADE (INTERFERE_WITH_OCCT)");
+#endif
+  } else {
+    if (!o.step.empty() || !o.process.empty())
+      throw InputError("--step/--process need a STEP input (features are recognised on the B-Rep)");
+    Progress progress("reading " + o.input);
+    auto m = read_mesh(o.input);
+    if (!m) throw InputError(m.error());
+    mesh = std::move(*m);
+    if (!o.regions.empty()) {
+      auto r = read_region_file(o.regions, mesh.num_triangles());
+      if (!r) throw InputError(r.error());
+      so.face_ids = std::move(*r);
+    }
+    so.sharp_angle_deg = o.sharp_angle;
+  }
+  if (!o.features.empty()) {
+    const auto extra = parse_id_list(o.features, "--features");
+    so.feature_faces.insert(so.feature_faces.end(), extra.begin(), extra.end());
+  }
+  if (o.renderer_max > 0) {  // one part: its budget is the renderer's maximum (docs/simplify.md)
+    std::size_t feature_tris = 0;
+    std::vector<std::uint32_t> ff = so.feature_faces;
+    std::sort(ff.begin(), ff.end());
+    for (auto f : so.face_ids) feature_tris += std::binary_search(ff.begin(), ff.end(), f);
+    const auto b = triangle_budgets({{mesh.num_triangles(), feature_tris}}, o.renderer_max);
+    so.target_triangles = std::max<std::size_t>(1, b.budgets[0]);
+    so.ratio = 0;
+  }
+  SimplifyResult r;
+  double seconds = 0;
+  {
+    Progress progress("simplifying " + std::to_string(mesh.num_triangles()) + " triangles");
+    auto res = simplify(mesh, so);
+    if (!res) {
+      Error e = res.error();
+      e.file = o.input;
+      throw InputError(e);
+    }
+    r = std::move(*res);
+    seconds = progress.seconds();
+  }
+  std::size_t self = 0;
+  if (o.check_self) {
+    Progress progress("self-intersection check");
+    self = count_self_intersections(r.mesh);
+  }
+  {
+    Progress progress("writing " + o.output);
+    const Status s = write_tagged_mesh(o.output, r.mesh, r.face_ids, so.feature_faces, out_format);
+    if (!s) throw InputError(s.error());
+  }
+  report["input_triangles"] = r.input_triangles;
+  report["target_triangles"] = r.target_triangles;
+  report["output_triangles"] = r.mesh.num_triangles();
+  report["output_vertices"] = r.mesh.num_vertices();
+  report["reached"] = r.reached;
+  report["collapses"] = r.collapses;
+  report["rejected"] = {{"link_condition", r.rejected_link}, {"flipped_normal", r.rejected_flip}};
+  report["vertices"] = {{"welded_input", r.input_vertices_welded}, {"seam", r.seam_vertices},
+                        {"corner", r.corner_vertices}, {"locked", r.locked_vertices}};
+  report["feature_mode"] = o.lock ? "lock" : "weight";
+  std::vector<std::uint32_t> ff = so.feature_faces;
+  std::sort(ff.begin(), ff.end());
+  ff.erase(std::unique(ff.begin(), ff.end()), ff.end());
+  report["feature_faces"] = ff;
+  report["feature_triangles"] = {{"input", r.feature_triangles_in}, {"output", r.feature_triangles_out}};
+  report["max_unmodified_cost"] = r.max_unmodified_cost;
+  report["bbox_diagonal"] = r.bbox_diagonal;
+  report["hausdorff"] = r.hausdorff;
+  report["hausdorff_features"] = r.hausdorff_features < 0 ? nlohmann::json(nullptr) : nlohmann::json(r.hausdorff_features);
+  report["error_bound"] = r.error_bound;
+  if (o.check_self) report["self_intersections"] = self;
+  report["seconds"] = {{"simplify", seconds}, {"total", total.seconds()}};
+  report["warnings"] = r.warnings;
+  for (const auto& w : r.warnings)
+    if (!Progress::quiet()) std::fprintf(stderr, "[interfere] warning: %s\n", w.c_str());
+  if (!o.json.empty()) {
+    const Status s = write_file_atomic(o.json, report.dump(2) + "\n");
+    if (!s) throw InputError(s.error());
+  }
+  std::printf("simplified %zu -> %zu triangles (target %zu%s), Hausdorff %.6g (features %.6g), %.3f s\n",
+              r.input_triangles, r.mesh.num_triangles(), r.target_triangles, r.reached ? "" : ", not reached",
+              r.hausdorff, r.hausdorff_features, seconds);
+  return kClear;
+}
+
+}  // namespace
+
+void add_simplify_command(CLI::App& app, int& exit_code) {
+  auto o = std::make_shared<SimplifyCliOptions>();
+  CLI::App* c = app.add_subcommand("simplify", "Feature-preserving QEM simplification to a triangle budget");
+  c->add_option("IN", o->input, "input mesh (STL/OBJ/PLY/OFF) or STEP file")->required()->check(CLI::ExistingFile);
+  c->add_option("OUT", o->output, "output mesh (.ply/.obj keep face ids, .stl in the attribute word, .off)")->required();
+  auto* target = c->add_option("--target", o->target, "triangle budget N (> 0, at most the input's count)");
+  auto* ratio = c->add_option("--ratio", o->ratio, "budget as a fraction of the input's triangles, in (0, 1]");
+  target->excludes(ratio);
+  c->add_option("--renderer-max", o->renderer_max,
+                "renderer's maximum triangle count: budget from the formula of docs/simplify.md (overrides --target/--ratio)");
+  c->add_option("--step", o->step, "process step id whose assembly features are kept (STEP input, needs --process)");
+  c->add_option("--process", o->process, "process description JSON (steps, parts, constraint types)");
+  c->add_option("--regions", o->regions, "per-triangle region ids (text, one unsigned integer per triangle)");
+  c->add_option("--features", o->features, "comma-separated face/region ids to keep (added to the step's features)");
+  c->add_flag("--lock", o->lock, "hard-lock feature faces (bit-identical) instead of the paper's cost weighting");
+  c->add_option("--sharp-angle", o->sharp_angle, "plain meshes: keep edges whose dihedral angle exceeds DEG degrees");
+  c->add_option("--linear-deflection", o->linear_deflection, "STEP tessellation: linear deflection (0 = 0.1 % of the diagonal)");
+  c->add_option("--angular-deflection", o->angular_deflection, "STEP tessellation: angular deflection in radians");
+  c->add_option("--format", o->format, "output format (stl, stl-ascii, obj, ply, ply-ascii, off; default by extension)");
+  c->add_flag("--check-self-intersections", o->check_self, "count self-intersections of the result (engine clash)");
+  c->add_flag("--no-error", o->no_error, "skip the Hausdorff measurement (error_bound is then -1)");
+  c->add_option("--json", o->json, "write the JSON report here");
+  c->add_option("--threads", o->threads, "worker threads (0 = all cores)");
+  c->callback([o, &exit_code] { exit_code = run_simplify(*o); });
+}
+
+}  // namespace interfere::cli

@@ -1,0 +1,698 @@
+// QEM edge collapse after Garland & Heckbert, "Surface Simplification Using Quadric Error Metrics"
+// (SIGGRAPH 1997): §4 (area-weighted plane quadrics, optimal placement by solving the 3x3 system,
+// fallback to the endpoints and the midpoint), §6.1 (penalty planes through constrained edges), a
+// min-heap of candidate collapses invalidated lazily by per-vertex stamps; the link condition
+// (Dey et al. 1999) keeps the mesh manifold; moved triangles must not flip. Assembly features as in
+// He & Xu (SJTU 2023, §3.3): edges touching feature faces get the maximum unmodified cost added.
+#include "interfere/simplify/qem.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <queue>
+
+#include "interfere/simplify/hausdorff.h"
+
+namespace interfere {
+namespace {
+
+constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+
+struct Quadric {
+  // Symmetric 4x4 (a b c d)^T (a b c d): xx xy xz xw yy yz yw zz zw ww.
+  double q[10] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+  void add_plane(const Vec3& n, double d, double w) {
+    q[0] += w * n.x * n.x, q[1] += w * n.x * n.y, q[2] += w * n.x * n.z, q[3] += w * n.x * d;
+    q[4] += w * n.y * n.y, q[5] += w * n.y * n.z, q[6] += w * n.y * d;
+    q[7] += w * n.z * n.z, q[8] += w * n.z * d, q[9] += w * d * d;
+  }
+  Quadric& operator+=(const Quadric& o) {
+    for (int i = 0; i < 10; ++i) q[i] += o.q[i];
+    return *this;
+  }
+  double eval(const Vec3& p) const {
+    const double x = p.x, y = p.y, z = p.z;
+    const double e = q[0] * x * x + 2 * q[1] * x * y + 2 * q[2] * x * z + 2 * q[3] * x + q[4] * y * y +
+                     2 * q[5] * y * z + 2 * q[6] * y + q[7] * z * z + 2 * q[8] * z + q[9];
+    return e > 0 ? e : 0;
+  }
+  /// Minimiser of eval: solves A p = -b by the cofactor inverse; false when A is near singular
+  /// (relative determinant test), then the caller falls back to endpoints/midpoint.
+  bool optimum(Vec3& p) const {
+    const double a = q[0], b = q[1], c = q[2], d = q[4], e = q[5], f = q[7];
+    const double c00 = d * f - e * e, c01 = c * e - b * f, c02 = b * e - c * d;
+    const double det = a * c00 + b * c01 + c * c02;
+    const double scale = std::max({std::abs(a), std::abs(d), std::abs(f)});
+    if (!(std::abs(det) > 1e-10 * scale * scale * scale) || scale == 0) return false;
+    const double c11 = a * f - c * c, c12 = b * c - a * e, c22 = a * d - b * b;
+    const double inv = 1.0 / det;
+    const double rx = -q[3], ry = -q[6], rz = -q[8];
+    p = {(c00 * rx + c01 * ry + c02 * rz) * inv, (c01 * rx + c11 * ry + c12 * rz) * inv,
+         (c02 * rx + c12 * ry + c22 * rz) * inv};
+    return is_finite(p);
+  }
+};
+
+enum VertexClass : std::uint8_t { kInterior = 0, kSeam = 1, kCorner = 2 };
+
+struct Candidate {
+  double cost;
+  Vec3 p;
+  std::uint32_t keep, remove;
+  std::uint32_t stamp_keep, stamp_remove;
+  bool operator>(const Candidate& o) const {
+    if (cost != o.cost) return cost > o.cost;
+    if (keep != o.keep) return keep > o.keep;
+    return remove > o.remove;
+  }
+};
+
+struct Ref {
+  std::uint32_t tri;
+};
+
+class Simplifier {
+ public:
+  Simplifier(TriMesh mesh, std::vector<std::uint32_t> face, std::vector<std::uint8_t> feature_tri,
+             const SimplifyOptions& o)
+      : pos_(std::move(mesh.positions)),
+        tris_(std::move(mesh.triangles)),
+        face_(std::move(face)),
+        feature_tri_(std::move(feature_tri)),
+        o_(o) {}
+
+  void run(std::size_t target, SimplifyResult& r);
+  std::vector<Vec3> pos_;
+  std::vector<Tri> tris_;
+  std::vector<std::uint32_t> face_;
+  std::vector<std::uint8_t> feature_tri_;
+  std::vector<std::uint8_t> dead_;
+
+ private:
+  void build_fans();
+  void set_fan(std::uint32_t v, const std::vector<std::uint32_t>& tris);
+  bool seam_edge(std::uint32_t a, std::uint32_t b, int* shared) const;
+  bool evaluate(std::uint32_t a, std::uint32_t b, Candidate& out);
+  bool direction(std::uint32_t keep, std::uint32_t remove, bool seam, Candidate& out);
+  bool link_ok(std::uint32_t a, std::uint32_t b, int shared);
+  bool flip_ok(std::uint32_t keep, std::uint32_t remove, const Vec3& p) const;
+  void push_edges_of(std::uint32_t v);
+  bool movable(std::uint32_t v) const { return cls_[v] == kInterior && !locked_[v]; }
+
+  const SimplifyOptions& o_;
+  std::vector<std::uint32_t> fan_start_, fan_count_;
+  std::vector<std::uint32_t> refs_;
+  std::vector<Quadric> quad_;
+  std::vector<std::uint8_t> cls_, locked_, touches_feature_, vdead_;
+  std::vector<std::uint32_t> stamp_;
+  std::vector<std::uint32_t> mark_a_, mark_b_;
+  std::uint32_t mark_id_ = 0;
+  double feature_offset_ = 0;
+  std::priority_queue<Candidate, std::vector<Candidate>, std::greater<>> heap_;
+  std::vector<std::uint32_t> scratch_;
+  std::size_t rejected_link_ = 0, rejected_flip_ = 0;
+};
+
+
+void Simplifier::build_fans() {
+  const std::size_t nv = pos_.size();
+  fan_start_.assign(nv + 1, 0);
+  fan_count_.assign(nv, 0);
+  for (const Tri& t : tris_)
+    for (std::uint32_t v : t) ++fan_count_[v];
+  for (std::size_t v = 0; v < nv; ++v) fan_start_[v + 1] = fan_start_[v] + fan_count_[v];
+  refs_.assign(fan_start_[nv], 0);
+  std::vector<std::uint32_t> fill(fan_start_.begin(), fan_start_.end() - 1);
+  for (std::uint32_t t = 0; t < tris_.size(); ++t)
+    for (std::uint32_t v : tris_[t]) refs_[fill[v]++] = t;
+  fan_start_.pop_back();
+}
+
+void Simplifier::set_fan(std::uint32_t v, const std::vector<std::uint32_t>& tris) {
+  if (tris.size() <= fan_count_[v]) {  // shrinking: reuse the slot
+    std::copy(tris.begin(), tris.end(), refs_.begin() + fan_start_[v]);
+  } else {
+    fan_start_[v] = static_cast<std::uint32_t>(refs_.size());
+    refs_.insert(refs_.end(), tris.begin(), tris.end());
+  }
+  fan_count_[v] = static_cast<std::uint32_t>(tris.size());
+}
+
+// Constrained (seam) edge: not exactly two live triangles, or two with different face ids.
+bool Simplifier::seam_edge(std::uint32_t a, std::uint32_t b, int* shared) const {
+  int n = 0;
+  std::uint32_t f0 = kNone;
+  bool differ = false;
+  for (std::uint32_t i = 0; i < fan_count_[a]; ++i) {
+    const std::uint32_t t = refs_[fan_start_[a] + i];
+    if (dead_[t]) continue;
+    const Tri& tr = tris_[t];
+    if (tr[0] != b && tr[1] != b && tr[2] != b) continue;
+    ++n;
+    if (f0 == kNone) f0 = face_[t];
+    else if (face_[t] != f0) differ = true;
+  }
+  if (shared) *shared = n;
+  return n != 2 || differ;
+}
+
+bool Simplifier::direction(std::uint32_t keep, std::uint32_t remove, bool seam, Candidate& out) {
+  if (locked_[remove] || cls_[remove] == kCorner) return false;
+  if (cls_[remove] == kSeam && (!seam || cls_[keep] == kInterior)) return false;
+  Quadric q = quad_[keep];
+  q += quad_[remove];
+  Vec3 p = pos_[keep];
+  if (movable(keep) && movable(remove)) {
+    // Optimal placement, else the best of the endpoints and the midpoint.
+    if (!q.optimum(p)) {
+      const Vec3 mid = (pos_[keep] + pos_[remove]) * 0.5;
+      const Vec3 cand[3] = {pos_[keep], pos_[remove], mid};
+      double best = std::numeric_limits<double>::infinity();
+      for (const Vec3& c : cand) {
+        const double e = q.eval(c);
+        if (e < best) best = e, p = c;
+      }
+    }
+  }
+  out.cost = q.eval(p);
+  out.p = p;
+  out.keep = keep, out.remove = remove;
+  out.stamp_keep = stamp_[keep], out.stamp_remove = stamp_[remove];
+  if (touches_feature_[keep] || touches_feature_[remove]) out.cost += feature_offset_;
+  return true;
+}
+
+bool Simplifier::evaluate(std::uint32_t a, std::uint32_t b, Candidate& out) {
+  const bool seam = seam_edge(a, b, nullptr);
+  Candidate c1, c2;
+  const bool ok1 = direction(a, b, seam, c1);
+  // Both movable: one symmetric placement, no second direction needed.
+  const bool ok2 = !(ok1 && movable(a) && movable(b)) && direction(b, a, seam, c2);
+  if (!ok1 && !ok2) return false;
+  out = (ok1 && (!ok2 || c1.cost <= c2.cost)) ? c1 : c2;
+  return true;
+}
+
+void Simplifier::push_edges_of(std::uint32_t v) {
+  ++mark_id_;
+  for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
+    const std::uint32_t t = refs_[fan_start_[v] + i];
+    if (dead_[t]) continue;
+    for (std::uint32_t w : tris_[t]) {
+      if (w == v || mark_a_[w] == mark_id_) continue;
+      mark_a_[w] = mark_id_;
+      Candidate c;
+      if (evaluate(v, w, c)) heap_.push(c);
+    }
+  }
+}
+
+// Link condition: the common neighbours of a and b are exactly the apexes of the triangles on ab.
+bool Simplifier::link_ok(std::uint32_t a, std::uint32_t b, int shared) {
+  ++mark_id_;
+  const std::uint32_t id = mark_id_;
+  for (std::uint32_t i = 0; i < fan_count_[a]; ++i) {
+    const std::uint32_t t = refs_[fan_start_[a] + i];
+    if (dead_[t]) continue;
+    for (std::uint32_t w : tris_[t]) mark_a_[w] = id;
+  }
+  int common = 0;
+  for (std::uint32_t i = 0; i < fan_count_[b]; ++i) {
+    const std::uint32_t t = refs_[fan_start_[b] + i];
+    if (dead_[t]) continue;
+    for (std::uint32_t w : tris_[t]) {
+      if (w == a || w == b || mark_b_[w] == id) continue;
+      mark_b_[w] = id;
+      if (mark_a_[w] == id) ++common;
+    }
+  }
+  return common == shared;
+}
+
+bool normal_ok(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& pa, const Vec3& pb,
+               const Vec3& pc, double min_cos) {
+  const Vec3 n0 = cross(b - a, c - a);
+  const Vec3 n1 = cross(pb - pa, pc - pa);
+  const double l0 = squared_norm(n0), l1 = squared_norm(n1);
+  if (!(l1 > 0)) return false;
+  if (!(l0 > 0)) return true;  // a degenerate triangle becoming non-degenerate is no flip
+  const double d = dot(n0, n1);
+  if (d <= 0) return false;
+  return d * d >= min_cos * min_cos * l0 * l1 || min_cos <= 0;
+}
+
+// Every live triangle moved by the collapse (those of `remove` that do not contain `keep`, and, if
+// `keep` moves, those of `keep` that do not contain `remove`) keeps its orientation.
+bool Simplifier::flip_ok(std::uint32_t keep, std::uint32_t remove, const Vec3& p) const {
+  const double mc = o_.min_normal_cos;
+  for (int side = 0; side < 2; ++side) {
+    const std::uint32_t v = side == 0 ? remove : keep;
+    const std::uint32_t other = side == 0 ? keep : remove;
+    if (side == 1 && p == pos_[keep]) break;
+    for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
+      const std::uint32_t t = refs_[fan_start_[v] + i];
+      if (dead_[t]) continue;
+      const Tri& tr = tris_[t];
+      if (tr[0] == other || tr[1] == other || tr[2] == other) continue;
+      Vec3 q[3];
+      for (int k = 0; k < 3; ++k) q[k] = tr[k] == v ? p : pos_[tr[k]];
+      if (!normal_ok(pos_[tr[0]], pos_[tr[1]], pos_[tr[2]], q[0], q[1], q[2], mc)) return false;
+    }
+  }
+  return true;
+}
+
+void Simplifier::run(std::size_t target, SimplifyResult& r) {
+  const std::size_t nv = pos_.size(), nt = tris_.size();
+  dead_.assign(nt, 0);
+  vdead_.assign(nv, 0);
+  build_fans();
+  // Degenerate input triangles (repeated index) are dropped first.
+  std::size_t live = nt;
+  for (std::size_t t = 0; t < nt; ++t) {
+    const Tri& tr = tris_[t];
+    if (tr[0] == tr[1] || tr[1] == tr[2] || tr[0] == tr[2]) dead_[t] = 1, --live;
+  }
+  quad_.assign(nv, Quadric{});
+  for (std::size_t t = 0; t < nt; ++t) {
+    if (dead_[t]) continue;
+    const auto& tr = tris_[t];
+    const Vec3 n2 = cross(pos_[tr[1]] - pos_[tr[0]], pos_[tr[2]] - pos_[tr[0]]);
+    const double len = norm(n2);
+    if (!(len > 0)) continue;
+    const Vec3 n = n2 / len;
+    const double area = 0.5 * len;
+    const double d = -dot(n, pos_[tr[0]]);
+    for (std::uint32_t v : tr) quad_[v].add_plane(n, d, area);
+  }
+  mark_a_.assign(nv, 0), mark_b_.assign(nv, 0);
+  stamp_.assign(nv, 0);
+  cls_.assign(nv, kInterior);
+  locked_.assign(nv, 0);
+  touches_feature_.assign(nv, 0);
+  for (std::size_t t = 0; t < nt; ++t) {
+    if (dead_[t] || !feature_tri_[t]) continue;
+    for (std::uint32_t v : tris_[t]) touches_feature_[v] = 1;
+  }
+  if (o_.feature_mode == FeatureMode::lock) locked_ = touches_feature_;
+  // Constrained edges: count per vertex, penalty planes.
+  std::vector<std::uint8_t> seam_count(nv, 0);
+  for (std::uint32_t v = 0; v < nv; ++v) {
+    ++mark_id_;
+    for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
+      const std::uint32_t t = refs_[fan_start_[v] + i];
+      if (dead_[t]) continue;
+      for (std::uint32_t w : tris_[t]) {
+        if (w <= v || mark_a_[w] == mark_id_) continue;
+        mark_a_[w] = mark_id_;
+        int shared = 0;
+        if (!seam_edge(v, w, &shared)) continue;
+        seam_count[v] = static_cast<std::uint8_t>(std::min(255, seam_count[v] + 1));
+        seam_count[w] = static_cast<std::uint8_t>(std::min(255, seam_count[w] + 1));
+        if (shared > 2) seam_count[v] = seam_count[w] = 255;  // non-manifold edge: corners
+        // Penalty planes through the edge, perpendicular to each triangle on it.
+        const Vec3 e = pos_[w] - pos_[v];
+        for (std::uint32_t j = 0; j < fan_count_[v]; ++j) {
+          const std::uint32_t u = refs_[fan_start_[v] + j];
+          if (dead_[u]) continue;
+          const Tri& tr = tris_[u];
+          if (tr[0] != w && tr[1] != w && tr[2] != w) continue;
+          const Vec3 fn = cross(pos_[tr[1]] - pos_[tr[0]], pos_[tr[2]] - pos_[tr[0]]);
+          Vec3 n = cross(e, fn);
+          const double l = norm(n);
+          if (!(l > 0)) continue;
+          n = n / l;
+          const double d = -dot(n, pos_[v]);
+          const double w8 = o_.seam_weight * squared_norm(e);
+          quad_[v].add_plane(n, d, w8);
+          quad_[w].add_plane(n, d, w8);
+        }
+      }
+    }
+  }
+  for (std::uint32_t v = 0; v < nv; ++v) {
+    if (fan_count_[v] == 0) continue;
+    if (seam_count[v] == 2) cls_[v] = kSeam, ++r.seam_vertices;
+    else if (seam_count[v] != 0) cls_[v] = kCorner, ++r.corner_vertices;
+    if (locked_[v]) ++r.locked_vertices;
+  }
+  // Initial candidates; the maximum unmodified cost is the feature offset (weight mode).
+  std::vector<Candidate> initial;
+  initial.reserve(nv * 3);
+  for (std::uint32_t v = 0; v < nv; ++v) {
+    ++mark_id_;
+    for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
+      const std::uint32_t t = refs_[fan_start_[v] + i];
+      if (dead_[t]) continue;
+      for (std::uint32_t w : tris_[t]) {
+        if (w <= v || mark_a_[w] == mark_id_) continue;
+        mark_a_[w] = mark_id_;
+        Candidate c;
+        if (evaluate(v, w, c)) initial.push_back(c);
+      }
+    }
+  }
+  double max_cost = 0;
+  for (const Candidate& c : initial) max_cost = std::max(max_cost, c.cost);
+  r.max_unmodified_cost = max_cost;
+  if (o_.feature_mode == FeatureMode::weight) {
+    // Strictly above every unmodified cost even when that maximum is 0 (a flat mesh).
+    feature_offset_ = max_cost > 0 ? max_cost : std::numeric_limits<double>::min();
+    for (Candidate& c : initial)
+      if (touches_feature_[c.keep] || touches_feature_[c.remove]) c.cost += feature_offset_;
+  }
+  heap_ = decltype(heap_)(std::greater<>{}, std::move(initial));
+
+  std::vector<std::uint32_t>& merged = scratch_;
+  // Collapses that would overshoot the budget are kept aside; if the budget cannot be met exactly
+  // (only 2-triangle collapses left at budget + 1) they are retried to end at budget - 1.
+  std::vector<Candidate> deferred;
+  std::size_t floor = target;
+  for (;;) {
+    if (live <= target) break;
+    if (heap_.empty()) {
+      if (floor == target && target > 1 && live == target + 1 && !deferred.empty()) {
+        floor = target - 1;
+        for (const Candidate& d : deferred) heap_.push(d);
+        deferred.clear();
+        continue;
+      }
+      break;
+    }
+    const Candidate c = heap_.top();
+    heap_.pop();
+    const std::uint32_t a = c.keep, b = c.remove;
+    if (vdead_[a] || vdead_[b] || stamp_[a] != c.stamp_keep || stamp_[b] != c.stamp_remove) continue;
+    int shared = 0;
+    seam_edge(a, b, &shared);
+    if (shared == 0) continue;  // no longer an edge
+    if (live - static_cast<std::size_t>(shared) < floor) {  // would overshoot the budget
+      deferred.push_back(c);
+      continue;
+    }
+    if (!link_ok(a, b, shared)) {
+      ++rejected_link_;
+      continue;
+    }
+    if (!flip_ok(a, b, c.p)) {
+      ++rejected_flip_;
+      continue;
+    }
+    // Collapse b into a at c.p.
+    merged.clear();
+    for (std::uint32_t i = 0; i < fan_count_[b]; ++i) {
+      const std::uint32_t t = refs_[fan_start_[b] + i];
+      if (dead_[t]) continue;
+      Tri& tr = tris_[t];
+      if (tr[0] == a || tr[1] == a || tr[2] == a) {
+        dead_[t] = 1;
+        --live;
+        continue;
+      }
+      for (std::uint32_t& w : tr)
+        if (w == b) w = a;
+      merged.push_back(t);
+    }
+    bool feat = false;
+    for (std::uint32_t i = 0; i < fan_count_[a]; ++i) {
+      const std::uint32_t t = refs_[fan_start_[a] + i];
+      if (!dead_[t]) merged.push_back(t);
+    }
+    for (std::uint32_t t : merged) feat = feat || feature_tri_[t];
+    set_fan(a, merged);
+    fan_count_[b] = 0;
+    vdead_[b] = 1;
+    pos_[a] = c.p;
+    quad_[a] += quad_[b];
+    touches_feature_[a] = feat;
+    ++stamp_[a];
+    ++r.collapses;
+    push_edges_of(a);
+    if (refs_.size() > 8 * tris_.size() + 1024) {  // compact the fan pool
+      std::vector<std::uint32_t> pool;
+      pool.reserve(tris_.size() * 3);
+      for (std::uint32_t v = 0; v < nv; ++v) {
+        const std::uint32_t s = static_cast<std::uint32_t>(pool.size());
+        for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
+          const std::uint32_t t = refs_[fan_start_[v] + i];
+          if (!dead_[t]) pool.push_back(t);
+        }
+        fan_start_[v] = s;
+        fan_count_[v] = static_cast<std::uint32_t>(pool.size() - s);
+      }
+      refs_.swap(pool);
+    }
+  }
+  r.rejected_link = rejected_link_, r.rejected_flip = rejected_flip_;
+}
+
+std::size_t budget_of(const TriMesh& mesh, const SimplifyOptions& o, Error& err) {
+  const std::size_t n = mesh.num_triangles();
+  if (o.target_triangles > 0) {
+    if (o.target_triangles > n) {
+      err.reason = "triangle budget " + std::to_string(o.target_triangles) + " is larger than the mesh (" +
+                   std::to_string(n) + " triangles)";
+      return 0;
+    }
+    return o.target_triangles;
+  }
+  if (!(o.ratio > 0 && o.ratio <= 1)) {
+    err.reason = o.ratio == 0 ? "no triangle budget: give target_triangles > 0 or a ratio in (0, 1]"
+                              : "ratio must lie in (0, 1], got " + std::to_string(o.ratio);
+    return 0;
+  }
+  const auto t = static_cast<std::size_t>(std::llround(o.ratio * static_cast<double>(n)));
+  if (t == 0) {
+    err.reason = "ratio " + std::to_string(o.ratio) + " leaves no triangle of " + std::to_string(n);
+    return 0;
+  }
+  return t;
+}
+
+}  // namespace
+
+TriMesh weld_positions(const TriMesh& mesh, std::vector<std::uint32_t>* map) {
+  const std::size_t nv = mesh.num_vertices();
+  std::vector<std::uint32_t> order(nv);
+  for (std::uint32_t i = 0; i < nv; ++i) order[i] = i;
+  const auto& p = mesh.positions;
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    if (p[a].x != p[b].x) return p[a].x < p[b].x;
+    if (p[a].y != p[b].y) return p[a].y < p[b].y;
+    if (p[a].z != p[b].z) return p[a].z < p[b].z;
+    return a < b;
+  });
+  // Representative: the smallest index of each group; new ids in order of first use.
+  std::vector<std::uint32_t> rep(nv);
+  for (std::size_t i = 0; i < nv;) {
+    std::size_t j = i;
+    while (j < nv && p[order[j]] == p[order[i]]) ++j;
+    for (std::size_t k = i; k < j; ++k) rep[order[k]] = order[i];
+    i = j;
+  }
+  TriMesh out;
+  std::vector<std::uint32_t> id(nv, kNone);
+  out.triangles.reserve(mesh.num_triangles());
+  for (const Tri& t : mesh.triangles) {
+    Tri n;
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t r = rep[t[k]];
+      if (id[r] == kNone) {
+        id[r] = static_cast<std::uint32_t>(out.positions.size());
+        out.positions.push_back(p[r]);
+      }
+      n[k] = id[r];
+    }
+    out.triangles.push_back(n);
+  }
+  if (map) {
+    map->assign(nv, kNone);
+    for (std::size_t v = 0; v < nv; ++v) (*map)[v] = id[rep[v]];
+  }
+  return out;
+}
+
+TriMesh split_by_face(const TriMesh& mesh, const std::vector<std::uint32_t>& face_ids) {
+  TriMesh out;
+  out.triangles.reserve(mesh.num_triangles());
+  // (vertex, face) -> new index, through a per-vertex list (few faces per vertex).
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> copies(mesh.num_vertices());
+  for (std::size_t t = 0; t < mesh.num_triangles(); ++t) {
+    const std::uint32_t f = face_ids.empty() ? 0 : face_ids[t];
+    Tri n;
+    for (int k = 0; k < 3; ++k) {
+      auto& list = copies[mesh.triangles[t][k]];
+      std::uint32_t id = kNone;
+      for (const auto& [face, idx] : list)
+        if (face == f) id = idx;
+      if (id == kNone) {
+        id = static_cast<std::uint32_t>(out.positions.size());
+        out.positions.push_back(mesh.positions[mesh.triangles[t][k]]);
+        list.emplace_back(f, id);
+      }
+      n[k] = id;
+    }
+    out.triangles.push_back(n);
+  }
+  return out;
+}
+
+std::vector<std::uint32_t> sharp_edge_regions(const TriMesh& input, double angle_deg) {
+  const TriMesh mesh = weld_positions(input);
+  const std::size_t nt = mesh.num_triangles();
+  // Edge -> triangles through sorted (min, max, tri) records.
+  struct E {
+    std::uint32_t a, b, t;
+  };
+  std::vector<E> edges;
+  edges.reserve(nt * 3);
+  for (std::uint32_t t = 0; t < nt; ++t)
+    for (int k = 0; k < 3; ++k) {
+      std::uint32_t a = mesh.triangles[t][k], b = mesh.triangles[t][(k + 1) % 3];
+      if (a > b) std::swap(a, b);
+      edges.push_back({a, b, t});
+    }
+  std::sort(edges.begin(), edges.end(),
+            [](const E& x, const E& y) { return x.a != y.a ? x.a < y.a : (x.b != y.b ? x.b < y.b : x.t < y.t); });
+  std::vector<Vec3> normal(nt);
+  for (std::size_t t = 0; t < nt; ++t) {
+    const auto c = mesh.corners(t);
+    const Vec3 n = cross(c[1] - c[0], c[2] - c[0]);
+    const double l = norm(n);
+    normal[t] = l > 0 ? n / l : Vec3{};
+  }
+  const double cos_limit = std::cos(angle_deg * std::numbers::pi / 180.0);
+  // Union-find over smooth manifold edges.
+  std::vector<std::uint32_t> parent(nt);
+  for (std::uint32_t t = 0; t < nt; ++t) parent[t] = t;
+  auto find = [&](std::uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i;
+    while (j < edges.size() && edges[j].a == edges[i].a && edges[j].b == edges[i].b) ++j;
+    if (j - i == 2) {
+      const std::uint32_t s = edges[i].t, t = edges[i + 1].t;
+      if (dot(normal[s], normal[t]) >= cos_limit) {
+        const std::uint32_t rs = find(s), rt = find(t);
+        if (rs != rt) parent[std::max(rs, rt)] = std::min(rs, rt);
+      }
+    }
+    i = j;
+  }
+  std::vector<std::uint32_t> id(nt, kNone), out(nt);
+  std::uint32_t next = 0;
+  for (std::uint32_t t = 0; t < nt; ++t) {
+    const std::uint32_t r = find(t);
+    if (id[r] == kNone) id[r] = next++;
+    out[t] = id[r];
+  }
+  return out;
+}
+
+Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& options) {
+  const std::size_t nt = mesh.num_triangles();
+  if (nt == 0) return Error{.reason = "the mesh has no triangles"};
+  for (const Vec3& p : mesh.positions)
+    if (!is_finite(p)) return Error{.reason = "the mesh has a non-finite vertex position"};
+  for (std::size_t t = 0; t < nt; ++t)
+    for (std::uint32_t v : mesh.triangles[t])
+      if (v >= mesh.num_vertices())
+        return Error{.reason = "triangle " + std::to_string(t) + " has a vertex index out of range"};
+  if (!options.face_ids.empty() && options.face_ids.size() != nt)
+    return Error{.reason = "face_ids has " + std::to_string(options.face_ids.size()) + " entries for " +
+                           std::to_string(nt) + " triangles"};
+  Error err;
+  const std::size_t target = budget_of(mesh, options, err);
+  if (target == 0) return err;
+
+  SimplifyResult r;
+  r.input_triangles = nt;
+  r.target_triangles = target;
+  const Aabb box = mesh.bounds();
+  r.bbox_diagonal = norm(box.extent());
+
+  std::vector<std::uint32_t> face = options.face_ids;
+  const bool have_faces = !face.empty();
+  if (!have_faces) {
+    face = options.sharp_angle_deg > 0 ? sharp_edge_regions(mesh, options.sharp_angle_deg)
+                                       : std::vector<std::uint32_t>(nt, 0);
+  }
+  std::vector<std::uint32_t> features = options.feature_faces;
+  std::sort(features.begin(), features.end());
+  std::vector<std::uint8_t> feature_tri(nt, 0);
+  for (std::size_t t = 0; t < nt; ++t) {
+    feature_tri[t] = std::binary_search(features.begin(), features.end(), face[t]) ? 1 : 0;
+    r.feature_triangles_in += feature_tri[t];
+  }
+  if (!features.empty() && r.feature_triangles_in == 0)
+    r.warnings.push_back("no triangle carries one of the feature face ids");
+
+  TriMesh welded = weld_positions(mesh);
+  r.input_vertices_welded = welded.num_vertices();
+  Simplifier s(std::move(welded), face, feature_tri, options);
+  s.run(target, r);
+
+  // Surviving triangles in input order.
+  TriMesh out;
+  out.positions = s.pos_;
+  std::vector<std::uint32_t> out_face;
+  for (std::size_t t = 0; t < nt; ++t) {
+    if (s.dead_[t]) continue;
+    out.triangles.push_back(s.tris_[t]);
+    out_face.push_back(face[t]);
+    r.feature_triangles_out += feature_tri[t];
+  }
+  // Drop unused vertices (and split along faces when face ids were given or regions were made).
+  if (have_faces || options.sharp_angle_deg > 0) {
+    r.mesh = split_by_face(out, out_face);
+  } else {
+    std::vector<std::uint32_t> used(out.positions.size(), kNone);
+    for (Tri& t : out.triangles)
+      for (std::uint32_t& v : t) {
+        if (used[v] == kNone) {
+          used[v] = static_cast<std::uint32_t>(r.mesh.positions.size());
+          r.mesh.positions.push_back(out.positions[v]);
+        }
+        v = used[v];
+      }
+    r.mesh.triangles = std::move(out.triangles);
+  }
+  if (have_faces) r.face_ids = std::move(out_face);
+  r.reached = r.mesh.num_triangles() == target;
+  if (!r.reached)
+    r.warnings.push_back("budget " + std::to_string(target) + " not reached: " +
+                         std::to_string(r.mesh.num_triangles()) +
+                         " triangles remain (constrained seams/corners, locks, parity of a closed mesh, or "
+                         "rejected collapses)");
+  if (options.measure_error) {
+    r.hausdorff = hausdorff(mesh, r.mesh).symmetric();
+    r.error_bound = r.hausdorff;
+    if (r.feature_triangles_in > 0) {
+      std::vector<std::uint32_t> fin, fout;
+      for (std::uint32_t t = 0; t < nt; ++t)
+        if (feature_tri[t]) fin.push_back(t);
+      const std::vector<std::uint32_t>& of = have_faces ? r.face_ids : std::vector<std::uint32_t>{};
+      for (std::uint32_t t = 0; t < r.mesh.num_triangles(); ++t)
+        if (!of.empty() && std::binary_search(features.begin(), features.end(), of[t])) fout.push_back(t);
+      if (!have_faces) {  // regions from sharp edges: recompute the output's region of each triangle
+        std::uint32_t i = 0;
+        for (std::uint32_t t = 0; t < nt; ++t) {
+          if (s.dead_[t]) continue;
+          if (feature_tri[t]) fout.push_back(i);
+          ++i;
+        }
+      }
+      if (fout.empty()) {
+        r.hausdorff_features = std::numeric_limits<double>::infinity();
+      } else {
+        r.hausdorff_features = hausdorff(submesh(mesh, fin), submesh(r.mesh, fout)).symmetric();
+      }
+    }
+  }
+  return r;
+}
+
+}  // namespace interfere
