@@ -28,7 +28,7 @@ struct SimplifyCliOptions {
   double sharp_angle = 0;
   double linear_deflection = 0, angular_deflection = 0.5;
   std::size_t renderer_max = 0;
-  bool lock = false, check_self = false, no_error = false;
+  bool lock = false, check_self = false, no_error = false, no_guard = false;
   int threads = 0;
 };
 
@@ -77,6 +77,7 @@ int run_simplify(const SimplifyCliOptions& o) {
   so.ratio = o.ratio;
   so.feature_mode = o.lock ? FeatureMode::lock : FeatureMode::weight;
   so.measure_error = !o.no_error;
+  so.prevent_self_intersections = !o.no_guard;
   if (is_step(o.input)) {
 #ifdef INTERFERE_HAS_CAD
     cad::PipelineOptions po;
@@ -152,7 +153,8 @@ int run_simplify(const SimplifyCliOptions& o) {
   report["output_vertices"] = r.mesh.num_vertices();
   report["reached"] = r.reached;
   report["collapses"] = r.collapses;
-  report["rejected"] = {{"link_condition", r.rejected_link}, {"flipped_normal", r.rejected_flip}};
+  report["rejected"] = {{"link_condition", r.rejected_link}, {"flipped_normal", r.rejected_flip},
+                        {"self_intersection", r.rejected_intersection}};
   report["vertices"] = {{"welded_input", r.input_vertices_welded}, {"seam", r.seam_vertices},
                         {"corner", r.corner_vertices}, {"locked", r.locked_vertices}};
   report["feature_mode"] = o.lock ? "lock" : "weight";
@@ -203,6 +205,7 @@ void add_simplify_command(CLI::App& app, int& exit_code) {
   c->add_option("--angular-deflection", o->angular_deflection, "STEP tessellation: angular deflection in radians");
   c->add_option("--format", o->format, "output format (stl, stl-ascii, obj, ply, ply-ascii, off; default by extension)");
   c->add_flag("--check-self-intersections", o->check_self, "count self-intersections of the result (engine clash)");
+  c->add_flag("--no-intersection-guard", o->no_guard, "plain QEM: skip the exact check that collapses create no self-intersection");
   c->add_flag("--no-error", o->no_error, "skip the Hausdorff measurement (error_bound is then -1)");
   c->add_option("--json", o->json, "write the JSON report here");
   c->add_option("--threads", o->threads, "worker threads (0 = all cores)");

@@ -9,4 +9,5 @@ void add_clash_command(CLI::App& app, int& exit_code);
 void add_distance_command(CLI::App& app, int& exit_code);
 void add_check_command(CLI::App& app, int& exit_code);
 void add_simplify_command(CLI::App& app, int& exit_code);
+void add_features_command(CLI::App& app, int& exit_code);
 }  // namespace interfere::cli

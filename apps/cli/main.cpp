@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   add_distance_command(app, exit_code);
   add_check_command(app, exit_code);
   add_simplify_command(app, exit_code);
+  add_features_command(app, exit_code);
   app.parse_complete_callback([&] { Progress::set_quiet(quiet); });
   try {
     app.parse(argc, argv);

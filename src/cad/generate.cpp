@@ -9,6 +9,9 @@
 #include <BRepPrimAPI_MakeCone.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <IFSelect_ReturnStatus.hxx>
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
+#include <Message_PrinterOStream.hxx>
 #include <STEPControl_Writer.hxx>
 #include <ShapeUpgrade_UnifySameDomain.hxx>
 #include <Standard_Failure.hxx>
@@ -98,6 +101,8 @@ Status write_test_part(TestPart part, const std::filesystem::path& step_file) {
   try {
     const TopoDS_Shape s = build(part);
     if (s.IsNull()) return Error{.file = step_file.string(), .reason = "solid construction failed"};
+    // The writer's transfer statistics go to the default messenger's stdout printer: mute it.
+    Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
     STEPControl_Writer w;
     if (w.Transfer(s, STEPControl_AsIs) != IFSelect_RetDone)
       return Error{.file = step_file.string(), .reason = "STEP transfer failed"};

@@ -11,6 +11,9 @@
 #include <limits>
 #include <numbers>
 #include <queue>
+#include <unordered_map>
+
+#include "interfere/np/tri_tri.h"
 
 #include "interfere/simplify/hausdorff.h"
 
@@ -97,6 +100,11 @@ class Simplifier {
   bool direction(std::uint32_t keep, std::uint32_t remove, bool seam, Candidate& out);
   bool link_ok(std::uint32_t a, std::uint32_t b, int shared);
   bool flip_ok(std::uint32_t keep, std::uint32_t remove, const Vec3& p) const;
+  bool intersection_ok(std::uint32_t keep, std::uint32_t remove, const Vec3& p);
+  void grid_insert(std::uint32_t t);
+  void rebuild_grid(std::size_t live);
+  template <class F>
+  void grid_cells(const Aabb& box, F&& f);
   void push_edges_of(std::uint32_t v);
   bool movable(std::uint32_t v) const { return cls_[v] == kInterior && !locked_[v]; }
 
@@ -111,8 +119,103 @@ class Simplifier {
   double feature_offset_ = 0;
   std::priority_queue<Candidate, std::vector<Candidate>, std::greater<>> heap_;
   std::vector<std::uint32_t> scratch_;
-  std::size_t rejected_link_ = 0, rejected_flip_ = 0;
+  std::size_t rejected_link_ = 0, rejected_flip_ = 0, rejected_intersection_ = 0;
+  // Self-intersection guard: a uniform hash grid of triangle boxes (entries may be stale: every
+  // candidate is re-checked against the current mesh).
+  bool guard_ = false;
+  double cell_ = 1;
+  Vec3 origin_;
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> grid_;
+  std::vector<std::uint32_t> tri_mark_;
+  std::uint32_t tri_mark_id_ = 0;
+  double surface_area_ = 0;
+  std::size_t grid_live_ = 0;  ///< live triangles when the grid was last built
 };
+
+// Cells about twice the current mean triangle size; rebuilt whenever the live count halves, so a
+// cell holds a few triangles throughout and stale entries are dropped.
+void Simplifier::rebuild_grid(std::size_t live) {
+  Aabb all;
+  for (std::size_t v = 0; v < pos_.size(); ++v)
+    if (!vdead_[v] && fan_count_[v] > 0) all.expand(pos_[v]);
+  const double diag = norm(all.extent());
+  cell_ = std::max(2.0 * std::sqrt(surface_area_ / double(std::max<std::size_t>(live, 1))), 1e-9 * diag);
+  if (!(cell_ > 0) || !std::isfinite(cell_)) cell_ = 1;
+  origin_ = all.lo;
+  grid_.clear();
+  grid_.reserve(live / 2 + 16);
+  for (std::uint32_t t = 0; t < tris_.size(); ++t)
+    if (!dead_[t]) grid_insert(t);
+  grid_live_ = live;
+}
+
+template <class F>
+void Simplifier::grid_cells(const Aabb& box, F&& f) {
+  auto cell = [&](double v, double o) { return static_cast<std::int64_t>(std::floor((v - o) / cell_)); };
+  const std::int64_t x0 = cell(box.lo.x, origin_.x), x1 = cell(box.hi.x, origin_.x);
+  const std::int64_t y0 = cell(box.lo.y, origin_.y), y1 = cell(box.hi.y, origin_.y);
+  const std::int64_t z0 = cell(box.lo.z, origin_.z), z1 = cell(box.hi.z, origin_.z);
+  for (std::int64_t x = x0; x <= x1; ++x)
+    for (std::int64_t y = y0; y <= y1; ++y)
+      for (std::int64_t z = z0; z <= z1; ++z)
+        f((static_cast<std::uint64_t>(x & 0x1fffff) << 42) | (static_cast<std::uint64_t>(y & 0x1fffff) << 21) |
+          static_cast<std::uint64_t>(z & 0x1fffff));
+}
+
+void Simplifier::grid_insert(std::uint32_t t) {
+  Aabb b;
+  for (std::uint32_t v : tris_[t]) b.expand(pos_[v]);
+  grid_cells(b, [&](std::uint64_t key) { grid_[key].push_back(t); });
+}
+
+// The triangles a collapse creates or moves must not meet any other triangle of the mesh except
+// through shared vertices (exact test: np/tri_tri.h).
+bool Simplifier::intersection_ok(std::uint32_t keep, std::uint32_t remove, const Vec3& p) {
+  ++tri_mark_id_;
+  for (int side = 0; side < 2; ++side) {
+    const std::uint32_t v = side == 0 ? remove : keep;
+    const std::uint32_t other = side == 0 ? keep : remove;
+    if (side == 1 && p == pos_[keep]) break;
+    for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
+      const std::uint32_t t = refs_[fan_start_[v] + i];
+      if (dead_[t]) continue;
+      Tri tr = tris_[t];
+      if (tr[0] == other || tr[1] == other || tr[2] == other) continue;
+      std::array<Vec3, 3> c;
+      Aabb box;
+      for (int k = 0; k < 3; ++k) {
+        if (tr[k] == v) tr[k] = keep;
+        c[k] = tr[k] == keep ? p : pos_[tr[k]];
+        box.expand(c[k]);
+      }
+      bool ok = true;
+      grid_cells(box, [&](std::uint64_t key) {
+        if (!ok) return;
+        auto it = grid_.find(key);
+        if (it == grid_.end()) return;
+        for (std::uint32_t s : it->second) {
+          if (dead_[s] || tri_mark_[s] == tri_mark_id_) continue;
+          tri_mark_[s] = tri_mark_id_;
+          const Tri& q = tris_[s];
+          bool share = false;
+          for (std::uint32_t w : q) share = share || w == keep || w == remove || w == tr[0] || w == tr[1] || w == tr[2];
+          if (share) continue;
+          Aabb qb;
+          for (std::uint32_t w : q) qb.expand(pos_[w]);
+          if (!qb.overlaps(box)) continue;
+          if (tri_tri_exact_intersects(c, {pos_[q[0]], pos_[q[1]], pos_[q[2]]})) {
+            ok = false;
+            return;
+          }
+        }
+      });
+      if (!ok) return false;
+      // Candidates of one moved triangle were marked: the next moved triangle re-examines them.
+      ++tri_mark_id_;
+    }
+  }
+  return true;
+}
 
 
 void Simplifier::build_fans() {
@@ -286,6 +389,15 @@ void Simplifier::run(std::size_t target, SimplifyResult& r) {
     const double d = -dot(n, pos_[tr[0]]);
     for (std::uint32_t v : tr) quad_[v].add_plane(n, d, area);
   }
+  if (o_.prevent_self_intersections) {
+    guard_ = true;
+    for (std::size_t t = 0; t < nt; ++t) {
+      const auto& tr = tris_[t];
+      surface_area_ += 0.5 * norm(cross(pos_[tr[1]] - pos_[tr[0]], pos_[tr[2]] - pos_[tr[0]]));
+    }
+    tri_mark_.assign(nt, 0);
+    rebuild_grid(live);
+  }
   mark_a_.assign(nv, 0), mark_b_.assign(nv, 0);
   stamp_.assign(nv, 0);
   cls_.assign(nv, kInterior);
@@ -399,6 +511,10 @@ void Simplifier::run(std::size_t target, SimplifyResult& r) {
       ++rejected_flip_;
       continue;
     }
+    if (guard_ && !intersection_ok(a, b, c.p)) {
+      ++rejected_intersection_;
+      continue;
+    }
     // Collapse b into a at c.p.
     merged.clear();
     for (std::uint32_t i = 0; i < fan_count_[b]; ++i) {
@@ -428,6 +544,11 @@ void Simplifier::run(std::size_t target, SimplifyResult& r) {
     touches_feature_[a] = feat;
     ++stamp_[a];
     ++r.collapses;
+    if (guard_) {
+      if (live * 2 < grid_live_) rebuild_grid(live);
+      else
+        for (std::uint32_t t : merged) grid_insert(t);
+    }
     push_edges_of(a);
     if (refs_.size() > 8 * tris_.size() + 1024) {  // compact the fan pool
       std::vector<std::uint32_t> pool;
@@ -445,6 +566,7 @@ void Simplifier::run(std::size_t target, SimplifyResult& r) {
     }
   }
   r.rejected_link = rejected_link_, r.rejected_flip = rejected_flip_;
+  r.rejected_intersection = rejected_intersection_;
 }
 
 std::size_t budget_of(const TriMesh& mesh, const SimplifyOptions& o, Error& err) {

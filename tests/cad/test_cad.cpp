@@ -16,6 +16,7 @@
 #include "interfere/cad/features.h"
 #include "interfere/cad/model.h"
 #include "interfere/cad/semantics.h"
+#include "interfere/simplify/hausdorff.h"
 #include "interfere/simplify/qem.h"
 
 namespace interfere::cad {
@@ -302,7 +303,16 @@ TEST(CadSimplify, CasingToBudgetWithLockedScrewFeaturesBitIdentical) {
     EXPECT_EQ(r->mesh.num_triangles(), target) << "mode " << int(mode);
     EXPECT_LE(r->hausdorff_features, 1e-6 * r->bbox_diagonal);
     if (mode == FeatureMode::lock) EXPECT_EQ(r->feature_triangles_out, r->feature_triangles_in);
+    EXPECT_EQ(count_self_intersections(r->mesh), 0u);
   }
+  // Far beyond what the locks allow, the rest of the casing collapses as far as it can: large
+  // errors, but still no self-intersection (plain QEM created some here before the guard existed).
+  auto deep = simplify(casing.mesh, {.target_triangles = n / 4, .face_ids = casing.face_ids,
+                                     .feature_faces = sel->faces, .feature_mode = FeatureMode::lock});
+  ASSERT_TRUE(deep.has_value());
+  EXPECT_FALSE(deep->reached);
+  EXPECT_EQ(count_self_intersections(deep->mesh), 0u);
+  EXPECT_LE(deep->hausdorff_features, 1e-12);
 }
 
 }  // namespace
