@@ -3,4 +3,6 @@
 #pragma once
 #include <pybind11/pybind11.h>
 
-namespace interfere::python {}  // namespace interfere::python
+namespace interfere::python {
+void bind_simplify(pybind11::module_& m);
+}  // namespace interfere::python

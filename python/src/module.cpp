@@ -32,6 +32,7 @@
 #include <utility>
 #include <vector>
 
+#include "bindings.h"
 #include "interfere/core/error.h"
 #include "interfere/core/predicates.h"
 #include "interfere/core/transform.h"
@@ -960,4 +961,5 @@ PYBIND11_MODULE(_interfere, m) {
 
   m.def("exact_fallback_count", &exact_fallback_count,
         "Exact-arithmetic fallbacks taken by the predicates since the process started.");
+  interfere::python::bind_simplify(m);
 }

@@ -14,6 +14,7 @@
 #include <Message_PrinterOStream.hxx>
 #include <STEPControl_Writer.hxx>
 #include <ShapeUpgrade_UnifySameDomain.hxx>
+#include <TopTools_ListOfShape.hxx>
 #include <Standard_Failure.hxx>
 #include <TopoDS_Shape.hxx>
 #include <gp_Ax2.hxx>
@@ -57,6 +58,24 @@ TopoDS_Shape casing() {
   return unify(s);
 }
 
+// 400 x 400 x 10 plate with a 13 x 13 grid of counterbored holes (169 x 3 + 6 = 513 faces), cut
+// in one Boolean with all tools as arguments.
+TopoDS_Shape perforated_plate() {
+  TopTools_ListOfShape args, tools;
+  args.Append(box(0, 0, 0, 400, 400, 10));
+  for (int i = 0; i < 13; ++i)
+    for (int j = 0; j < 13; ++j) {
+      const double x = 20 + 30 * i, y = 20 + 30 * j;
+      tools.Append(cyl(x, y, -1, 4, 12));
+      tools.Append(cyl(x, y, 6, 8, 5));
+    }
+  BRepAlgoAPI_Cut c;
+  c.SetArguments(args);
+  c.SetTools(tools);
+  c.Build();
+  return unify(c.Shape());
+}
+
 TopoDS_Shape build(TestPart p) {
   switch (p) {
     case TestPart::box_through_hole: return cut(box(0, 0, 0, 40, 30, 10), cyl(20, 15, -1, 4, 12));
@@ -73,6 +92,7 @@ TopoDS_Shape build(TestPart p) {
     case TestPart::near_miss_plate:
       return unify(cut(cut(box(0, 0, 0, 40, 30, 10), cyl(20, 15, -1, 3, 12)), cyl(22, 15, 6, 6, 5)));
     case TestPart::casing: return casing();
+    case TestPart::perforated_plate: return perforated_plate();
     case TestPart::box_through_hole_nurbs:
       return BRepBuilderAPI_NurbsConvert(build(TestPart::box_through_hole)).Shape();
   }
@@ -93,6 +113,7 @@ const char* test_part_name(TestPart p) {
     case TestPart::near_miss_plate: return "near_miss_plate";
     case TestPart::casing: return "casing";
     case TestPart::box_through_hole_nurbs: return "box_through_hole_nurbs";
+    case TestPart::perforated_plate: return "perforated_plate";
   }
   return "?";
 }

@@ -7,6 +7,8 @@
 #include "interfere/simplify/qem.h"
 
 #include <algorithm>
+#include <bit>
+#include <cstring>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -71,8 +73,74 @@ struct Candidate {
   }
 };
 
-struct Ref {
-  std::uint32_t tri;
+// Heap entry: 16 bytes (the heap's cache misses dominate large runs). Placement is recomputed when
+// an entry is popped; the 16-bit stamps invalidate entries whose end vertices changed since.
+struct HeapEntry {
+  float cost;
+  std::uint32_t keep, remove;
+  std::uint16_t stamp_keep, stamp_remove;
+  bool before(const HeapEntry& o) const {
+    if (cost != o.cost) return cost < o.cost;
+    if (keep != o.keep) return keep < o.keep;
+    return remove < o.remove;
+  }
+};
+static_assert(sizeof(HeapEntry) == 16);
+
+HeapEntry entry_of(const Candidate& c) {
+  // Costs are >= 0 (eval clamps); +0.0f so that -0.0 cannot appear; its bits order like the value.
+  return {static_cast<float>(c.cost) + 0.0f, c.keep, c.remove, static_cast<std::uint16_t>(c.stamp_keep),
+          static_cast<std::uint16_t>(c.stamp_remove)};
+}
+
+/// Radix heap (Ahuja, Mehlhorn, Orlin & Tarjan 1990) on the bits of the non-negative float cost,
+/// which order like the floats: pushes are O(1) appends, a pop redistributes one bucket
+/// sequentially, so the lazy queue's millions of entries are touched in cache-friendly sweeps.
+/// Keys must not decrease below the last popped key: a cheaper candidate created by a collapse is
+/// clamped to it, i.e. it is taken next (the order is otherwise the exact cost order; equal keys
+/// come out last-in first-out, deterministically).
+class RadixHeap {
+ public:
+  bool empty() const { return size_ == 0; }
+  void push(HeapEntry e) {
+    std::uint32_t k = key(e);
+    if (k < last_) k = last_;
+    std::memcpy(&e.cost, &k, 4);
+    buckets_[bucket(k)].push_back(e);
+    ++size_;
+  }
+  HeapEntry pop() {
+    if (buckets_[0].empty()) {
+      std::size_t i = 1;
+      while (buckets_[i].empty()) ++i;
+      std::uint32_t m = std::numeric_limits<std::uint32_t>::max();
+      for (const HeapEntry& e : buckets_[i]) m = std::min(m, key(e));
+      last_ = m;
+      std::vector<HeapEntry> moving;
+      moving.swap(buckets_[i]);
+      for (const HeapEntry& e : moving) buckets_[bucket(key(e))].push_back(e);
+      moving.clear();
+      moving.swap(buckets_[i]);  // keep the capacity
+    }
+    const HeapEntry e = buckets_[0].back();
+    buckets_[0].pop_back();
+    --size_;
+    return e;
+  }
+  void assign(const std::vector<HeapEntry>& all) {
+    for (const HeapEntry& e : all) push(e);
+  }
+
+ private:
+  static std::uint32_t key(const HeapEntry& e) {
+    std::uint32_t k;
+    std::memcpy(&k, &e.cost, 4);
+    return k;
+  }
+  std::size_t bucket(std::uint32_t k) const { return k == last_ ? 0 : 32 - std::countl_zero(k ^ last_); }
+  std::vector<HeapEntry> buckets_[33];
+  std::uint32_t last_ = 0;
+  std::size_t size_ = 0;
 };
 
 class Simplifier {
@@ -117,7 +185,7 @@ class Simplifier {
   std::vector<std::uint32_t> mark_a_, mark_b_;
   std::uint32_t mark_id_ = 0;
   double feature_offset_ = 0;
-  std::priority_queue<Candidate, std::vector<Candidate>, std::greater<>> heap_;
+  RadixHeap heap_;
   std::vector<std::uint32_t> scratch_;
   std::size_t rejected_link_ = 0, rejected_flip_ = 0, rejected_intersection_ = 0;
   // Self-intersection guard: a uniform hash grid of triangle boxes (entries may be stale: every
@@ -306,7 +374,7 @@ void Simplifier::push_edges_of(std::uint32_t v) {
       if (w == v || mark_a_[w] == mark_id_) continue;
       mark_a_[w] = mark_id_;
       Candidate c;
-      if (evaluate(v, w, c)) heap_.push(c);
+      if (evaluate(v, w, c)) heap_.push(entry_of(c));
     }
   }
 }
@@ -474,33 +542,42 @@ void Simplifier::run(std::size_t target, SimplifyResult& r) {
     for (Candidate& c : initial)
       if (touches_feature_[c.keep] || touches_feature_[c.remove]) c.cost += feature_offset_;
   }
-  heap_ = decltype(heap_)(std::greater<>{}, std::move(initial));
+  {
+    std::vector<HeapEntry> entries;
+    entries.reserve(initial.size());
+    for (const Candidate& c : initial) entries.push_back(entry_of(c));
+    std::vector<Candidate>().swap(initial);
+    heap_.assign(entries);
+  }
 
   std::vector<std::uint32_t>& merged = scratch_;
   // Collapses that would overshoot the budget are kept aside; if the budget cannot be met exactly
   // (only 2-triangle collapses left at budget + 1) they are retried to end at budget - 1.
-  std::vector<Candidate> deferred;
+  std::vector<HeapEntry> deferred;
   std::size_t floor = target;
   for (;;) {
     if (live <= target) break;
     if (heap_.empty()) {
       if (floor == target && target > 1 && live == target + 1 && !deferred.empty()) {
         floor = target - 1;
-        for (const Candidate& d : deferred) heap_.push(d);
+        for (const HeapEntry& d : deferred) heap_.push(d);
         deferred.clear();
         continue;
       }
       break;
     }
-    const Candidate c = heap_.top();
-    heap_.pop();
-    const std::uint32_t a = c.keep, b = c.remove;
-    if (vdead_[a] || vdead_[b] || stamp_[a] != c.stamp_keep || stamp_[b] != c.stamp_remove) continue;
+    const HeapEntry e = heap_.pop();
+    const std::uint32_t a = e.keep, b = e.remove;
+    if (vdead_[a] || vdead_[b] || static_cast<std::uint16_t>(stamp_[a]) != e.stamp_keep ||
+        static_cast<std::uint16_t>(stamp_[b]) != e.stamp_remove)
+      continue;
     int shared = 0;
-    seam_edge(a, b, &shared);
+    const bool seam = seam_edge(a, b, &shared);
     if (shared == 0) continue;  // no longer an edge
+    Candidate c;
+    if (!direction(a, b, seam, c)) continue;  // placement recomputed (same quadrics: same result)
     if (live - static_cast<std::size_t>(shared) < floor) {  // would overshoot the budget
-      deferred.push_back(c);
+      deferred.push_back(e);
       continue;
     }
     if (!link_ok(a, b, shared)) {

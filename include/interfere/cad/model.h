@@ -105,6 +105,7 @@ enum class TestPart {
   near_miss_plate,      ///< counterbored_plate with the counterbore 2 mm off the bore axis: no match
   casing,               ///< flanged ring with bolt holes and counterbores (the paper's casing)
   box_through_hole_nurbs,  ///< box_through_hole with every face converted to B-spline
+  perforated_plate,     ///< 400x400x10 plate, 13x13 counterbored holes: 513 faces (recognition timing)
 };
 const char* test_part_name(TestPart p);
 Status write_test_part(TestPart part, const std::filesystem::path& step_file);
