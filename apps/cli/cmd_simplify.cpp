@@ -155,6 +155,7 @@ int run_simplify(const SimplifyCliOptions& o) {
   report["collapses"] = r.collapses;
   report["rejected"] = {{"link_condition", r.rejected_link}, {"flipped_normal", r.rejected_flip},
                         {"self_intersection", r.rejected_intersection}};
+  report["guard_rerun"] = r.guard_rerun;
   report["vertices"] = {{"welded_input", r.input_vertices_welded}, {"seam", r.seam_vertices},
                         {"corner", r.corner_vertices}, {"locked", r.locked_vertices}};
   report["feature_mode"] = o.lock ? "lock" : "weight";
@@ -205,7 +206,7 @@ void add_simplify_command(CLI::App& app, int& exit_code) {
   c->add_option("--angular-deflection", o->angular_deflection, "STEP tessellation: angular deflection in radians");
   c->add_option("--format", o->format, "output format (stl, stl-ascii, obj, ply, ply-ascii, off; default by extension)");
   c->add_flag("--check-self-intersections", o->check_self, "count self-intersections of the result (engine clash)");
-  c->add_flag("--no-intersection-guard", o->no_guard, "plain QEM: skip the exact check that collapses create no self-intersection");
+  c->add_flag("--no-intersection-guard", o->no_guard, "plain QEM: no self-intersection check of the result and no guarded rerun");
   c->add_flag("--no-error", o->no_error, "skip the Hausdorff measurement (error_bound is then -1)");
   c->add_option("--json", o->json, "write the JSON report here");
   c->add_option("--threads", o->threads, "worker threads (0 = all cores)");

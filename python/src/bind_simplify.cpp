@@ -31,6 +31,7 @@ void bind_simplify(py::module_& m) {
       .def_readonly("rejected_link", &SimplifyResult::rejected_link)
       .def_readonly("rejected_flip", &SimplifyResult::rejected_flip)
       .def_readonly("rejected_intersection", &SimplifyResult::rejected_intersection)
+      .def_readonly("guard_rerun", &SimplifyResult::guard_rerun)
       .def_readonly("seam_vertices", &SimplifyResult::seam_vertices)
       .def_readonly("corner_vertices", &SimplifyResult::corner_vertices)
       .def_readonly("locked_vertices", &SimplifyResult::locked_vertices)
@@ -109,7 +110,7 @@ void bind_simplify(py::module_& m) {
           py::gil_scoped_release release;
           r = cad::import_step(path, {.linear_deflection = linear_deflection, .angular_deflection = angular_deflection});
         }
-        if (!r) throw py::value_error(r->warnings.empty() ? r.error().message() : r.error().message());
+        if (!r) throw py::value_error(r.error().message());
         py::dict out;
         py::list parts;
         for (const cad::Part& p : r->parts) {

@@ -313,6 +313,14 @@ TEST(CadSimplify, CasingToBudgetWithLockedScrewFeaturesBitIdentical) {
   EXPECT_FALSE(deep->reached);
   EXPECT_EQ(count_self_intersections(deep->mesh), 0u);
   EXPECT_LE(deep->hausdorff_features, 1e-12);
+  // The per-collapse guard alone (no plain run first) also leaves none.
+  SimplifyOptions guarded{.target_triangles = n / 4, .face_ids = casing.face_ids, .feature_faces = sel->faces,
+                          .feature_mode = FeatureMode::lock};
+  guarded.guard_every_collapse = true;
+  auto g = simplify(casing.mesh, guarded);
+  ASSERT_TRUE(g.has_value());
+  EXPECT_EQ(count_self_intersections(g->mesh), 0u);
+  EXPECT_FALSE(g->guard_rerun);
 }
 
 }  // namespace

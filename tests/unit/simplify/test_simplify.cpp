@@ -91,6 +91,17 @@ TEST(Simplify, ClosedSphereMeetsEvenBudgetExactlyStaysManifoldAndFreeOfSelfInter
   }
 }
 
+TEST(Simplify, GuardEveryCollapseGivesTheSameBudgetWithoutSelfIntersections) {
+  const TriMesh s = make_sphere({.target_triangles = 6000, .bump_amplitude = 0.2, .bump_frequency = 9});
+  SimplifyOptions o{.target_triangles = 300};
+  o.guard_every_collapse = true;
+  auto r = simplify(s, o);
+  ASSERT_TRUE(r.has_value());
+  EXPECT_EQ(r->mesh.num_triangles(), 300u);
+  EXPECT_EQ(count_self_intersections(r->mesh), 0u);
+  EXPECT_TRUE(closed_manifold(r->mesh));
+}
+
 TEST(Simplify, OddBudgetOnAClosedMeshStopsOneShortOnAnOpenMeshIsExact) {
   const TriMesh s = make_sphere({.target_triangles = 4000});
   auto closed = simplify(s, {.target_triangles = 401, .measure_error = false});
