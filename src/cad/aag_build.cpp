@@ -194,14 +194,64 @@ void describe_surface(const TopoDS_Face& f, AagNode& node, double tol) {
   }
 }
 
-CurveType curve_type(const TopoDS_Edge& e) {
+// Free-form edges (B-spline/Bezier/offset) that are geometrically lines or circular arcs, as exported
+// files often carry them: 17 samples; a line when every sample lies within tol * length of the chord,
+// a circle when they lie in a plane (PCA) and on a circle of that plane (Kasa fit) within tol * size.
+CurveType canonical_curve(const BRepAdaptor_Curve& c, double tol) {
+  std::vector<Vec3> pts;
+  const double t0 = c.FirstParameter(), t1 = c.LastParameter();
+  for (int i = 0; i <= 16; ++i) pts.push_back(v3(c.Value(t0 + (t1 - t0) * i / 16)));
+  const Vec3 a = pts.front(), b = pts.back();
+  double size = 0;
+  Vec3 centre{};
+  for (const Vec3& p : pts) centre += p;
+  centre = centre / double(pts.size());
+  for (const Vec3& p : pts) size = std::max(size, norm(p - centre));
+  if (!(size > 0)) return CurveType::other;
+  const Vec3 d = b - a;
+  const double len = norm(d);
+  if (len > 0) {
+    double dev = 0;
+    for (const Vec3& p : pts) dev = std::max(dev, norm(cross(p - a, d)) / len);
+    if (dev <= tol * size) return CurveType::line;
+  }
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (const Vec3& p : pts) {
+    const Eigen::Vector3d q(p.x - centre.x, p.y - centre.y, p.z - centre.z);
+    cov += q * q.transpose();
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(cov);
+  const Eigen::Vector3d n0 = es.eigenvectors().col(0), e10 = es.eigenvectors().col(2);
+  const Vec3 n{n0.x(), n0.y(), n0.z()}, e1{e10.x(), e10.y(), e10.z()};
+  const Vec3 e2 = cross(n, e1);
+  for (const Vec3& p : pts)
+    if (std::abs(dot(p - centre, n)) > tol * size) return CurveType::other;
+  Eigen::MatrixXd A(pts.size(), 3);
+  Eigen::VectorXd rhs(pts.size());
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const double x = dot(pts[i] - centre, e1), y = dot(pts[i] - centre, e2);
+    A(i, 0) = x, A(i, 1) = y, A(i, 2) = 1;
+    rhs(i) = -(x * x + y * y);
+  }
+  const Eigen::Vector3d sol = A.colPivHouseholderQr().solve(rhs);
+  const double cx = -sol(0) / 2, cy = -sol(1) / 2, r2 = cx * cx + cy * cy - sol(2);
+  if (!(r2 > 0)) return CurveType::other;
+  const double r = std::sqrt(r2);
+  for (const Vec3& p : pts) {
+    const double x = dot(p - centre, e1) - cx, y = dot(p - centre, e2) - cy;
+    if (std::abs(std::sqrt(x * x + y * y) - r) > tol * std::max(size, r)) return CurveType::other;
+  }
+  return CurveType::circle;
+}
+
+CurveType curve_type(const TopoDS_Edge& e, double tol) {
   if (BRep_Tool::Degenerated(e)) return CurveType::other;
   BRepAdaptor_Curve c(e);
   switch (c.GetType()) {
     case GeomAbs_Line: return CurveType::line;
     case GeomAbs_Circle: return CurveType::circle;
     case GeomAbs_Ellipse: return CurveType::ellipse;
-    default: return CurveType::other;
+    default: return canonical_curve(c, tol);
   }
 }
 
@@ -261,7 +311,7 @@ Aag build_aag(const TopoDS_Shape& shape, const TopTools_IndexedMapOfShape& faces
     arc.a = static_cast<std::uint32_t>(std::min(fids[0], fids[1]));
     arc.b = static_cast<std::uint32_t>(std::max(fids[0], fids[1]));
     arc.edge = static_cast<std::uint32_t>(edges.FindIndex(e) - 1);
-    arc.curve = curve_type(e);
+    arc.curve = curve_type(e, tol);
     arc.inner_loop_a = on_inner(int(arc.a), e);
     arc.inner_loop_b = on_inner(int(arc.b), e);
     GProp_GProps lp;

@@ -283,7 +283,58 @@ std::vector<std::vector<std::uint32_t>> minimal_subgraphs(const Aag& aag) {
   return out;
 }
 
-std::vector<Feature> recognize_features(const Aag& aag, const FeatureLibrary& library, double tolerance) {
+namespace {
+bool same_surface(const AagNode& a, const AagNode& b, double tol) {
+  if (a.type != b.type || a.hole != b.hole) return false;
+  if (a.type == SurfaceType::plane)
+    return dot(a.normal, b.normal) >= 1 - tol &&
+           std::abs(dot(b.axis_point - a.axis_point, a.normal)) <= tol * std::max(1.0, norm(b.axis_point - a.axis_point));
+  if (!axial(a) && a.type != SurfaceType::sphere) return false;
+  const double scale = std::max({1.0, a.radius, b.radius});
+  if (std::abs(a.radius - b.radius) > tol * scale) return false;
+  if (a.type == SurfaceType::sphere) return norm(a.axis_point - b.axis_point) <= tol * scale;
+  if (norm(cross(a.axis, b.axis)) > tol) return false;
+  const Vec3 d = b.axis_point - a.axis_point;
+  return norm(d - a.axis * dot(d, a.axis)) <= tol * scale;
+}
+}  // namespace
+
+std::vector<Feature> recognize_features(const Aag& input, const FeatureLibrary& library, double tolerance) {
+  // Faces split by the modeller (a hole as two half cylinders) are one surface: faces joined by a
+  // smooth arc and lying on the same plane/cylinder/cone/sphere are merged into one node first; the
+  // features are reported with every member face.
+  const std::size_t n_in = input.nodes.size();
+  std::vector<std::uint32_t> parent(n_in);
+  for (std::uint32_t i = 0; i < n_in; ++i) parent[i] = i;
+  auto find = [&](std::uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  const double merge_tol = std::max(tolerance, 1e-6);
+  for (const AagArc& a : input.arcs)
+    if (a.convexity == Convexity::smooth && same_surface(input.nodes[a.a], input.nodes[a.b], merge_tol)) {
+      const std::uint32_t x = find(a.a), y = find(a.b);
+      if (x != y) parent[std::max(x, y)] = std::min(x, y);
+    }
+  std::vector<std::uint32_t> group_of(n_in), rep;
+  std::vector<std::vector<std::uint32_t>> members;
+  for (std::uint32_t i = 0; i < n_in; ++i) {
+    const std::uint32_t r = find(i);
+    if (r == i) group_of[i] = static_cast<std::uint32_t>(rep.size()), rep.push_back(i), members.emplace_back();
+  }
+  for (std::uint32_t i = 0; i < n_in; ++i) group_of[i] = group_of[find(i)], members[group_of[i]].push_back(i);
+  Aag aag;
+  for (std::uint32_t g = 0; g < rep.size(); ++g) {
+    aag.nodes.push_back(input.nodes[rep[g]]);
+    aag.nodes.back().face = g;
+  }
+  for (const AagArc& a : input.arcs) {
+    const std::uint32_t x = group_of[a.a], y = group_of[a.b];
+    if (x == y) continue;
+    AagArc m = a;
+    m.a = std::min(x, y), m.b = std::max(x, y);
+    aag.arcs.push_back(m);
+  }
   Ctx c{aag, tolerance, {}, {}, {}};
   const std::size_t n = aag.nodes.size();
   c.arcs_of.resize(n);
@@ -332,6 +383,16 @@ std::vector<Feature> recognize_features(const Aag& aag, const FeatureLibrary& li
       f.faces.erase(std::unique(f.faces.begin(), f.faces.end()), f.faces.end());
       out.push_back(std::move(f));
     }
+  }
+  for (Feature& f : out) {
+    for (auto& [role, id] : f.roles) {
+      f.role_faces[role] = members[id];
+      id = rep[id];
+    }
+    std::vector<std::uint32_t> faces;
+    for (std::uint32_t g : f.faces) faces.insert(faces.end(), members[g].begin(), members[g].end());
+    std::sort(faces.begin(), faces.end());
+    f.faces = std::move(faces);
   }
   std::sort(out.begin(), out.end(), [](const Feature& a, const Feature& b) {
     return a.type != b.type ? a.type < b.type : a.faces < b.faces;

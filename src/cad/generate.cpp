@@ -1,18 +1,35 @@
 // Generated test and benchmark solids (issue #6, items 8-9): OCCT primitives (BRepPrimAPI) and
 // Booleans (BRepAlgoAPI_Cut/Fuse, then ShapeUpgrade_UnifySameDomain), written to STEP with
-// STEPControl_Writer. The casing is the paper's case (He & Xu, SJTU 2023, §4): a flanged ring with
-// counterbored bolt holes on the lower flange and plain bolt holes on the upper one.
+// STEPControl_Writer. The casing is the paper's case (He & Xu, SJTU 2023, §4): a flanged ring (wall of
+// revolution with a B-spline bulge) with counterbored bolt holes on the lower flange and plain bolt
+// holes on the upper one.
 #include <BRepAlgoAPI_Cut.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepBuilderAPI_NurbsConvert.hxx>
+#include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakeWire.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeRevol.hxx>
+#include <GeomAPI_PointsToBSpline.hxx>
+#include <Geom_BSplineCurve.hxx>
+#include <TColgp_Array1OfPnt.hxx>
 #include <BRepPrimAPI_MakeCone.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <IFSelect_ReturnStatus.hxx>
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
 #include <Message_PrinterOStream.hxx>
+#include <STEPCAFControl_Writer.hxx>
 #include <STEPControl_Writer.hxx>
+#include <TDataStd_Name.hxx>
+#include <TDocStd_Document.hxx>
+#include <TopLoc_Location.hxx>
+#include <XCAFApp_Application.hxx>
+#include <XCAFDoc_DocumentTool.hxx>
+#include <XCAFDoc_ShapeTool.hxx>
+#include <gp_Trsf.hxx>
+#include <ShapeUpgrade_ShapeDivideClosed.hxx>
 #include <ShapeUpgrade_UnifySameDomain.hxx>
 #include <TopTools_ListOfShape.hxx>
 #include <Standard_Failure.hxx>
@@ -41,12 +58,31 @@ TopoDS_Shape unify(const TopoDS_Shape& s) {
   return u.Shape();
 }
 
+// Body: a solid of revolution whose outer wall is a B-spline bulge (r 100 -> 112 -> 100 over the
+// height; double curvature, so it tessellates into a fine grid like an aero-engine casing wall) around
+// a cylindrical bore r = 88.
+TopoDS_Shape casing_body(double h, double r_in, double r_out) {
+  TColgp_Array1OfPnt pts(1, 5);
+  pts.SetValue(1, gp_Pnt(r_out, 0, 0));
+  pts.SetValue(2, gp_Pnt(r_out + 8, 0, 0.25 * h));
+  pts.SetValue(3, gp_Pnt(r_out + 12, 0, 0.5 * h));
+  pts.SetValue(4, gp_Pnt(r_out + 8, 0, 0.75 * h));
+  pts.SetValue(5, gp_Pnt(r_out, 0, h));
+  Handle(Geom_BSplineCurve) spline = GeomAPI_PointsToBSpline(pts).Curve();
+  BRepBuilderAPI_MakeWire w;
+  w.Add(BRepBuilderAPI_MakeEdge(gp_Pnt(r_in, 0, 0), gp_Pnt(r_out, 0, 0)).Edge());
+  w.Add(BRepBuilderAPI_MakeEdge(spline).Edge());
+  w.Add(BRepBuilderAPI_MakeEdge(gp_Pnt(r_out, 0, h), gp_Pnt(r_in, 0, h)).Edge());
+  w.Add(BRepBuilderAPI_MakeEdge(gp_Pnt(r_in, 0, h), gp_Pnt(r_in, 0, 0)).Edge());
+  const TopoDS_Face profile = BRepBuilderAPI_MakeFace(w.Wire(), Standard_True).Face();
+  return BRepPrimAPI_MakeRevol(profile, gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1))).Shape();
+}
+
 TopoDS_Shape casing() {
   const double h = 60, r_out = 100, r_in = 88, r_flange = 130, t = 12;
-  TopoDS_Shape s = cyl(0, 0, 0, r_out, h);
-  s = fuse(s, cyl(0, 0, 0, r_flange, t));           // lower flange
-  s = fuse(s, cyl(0, 0, h - t, r_flange, t));       // upper flange
-  s = cut(s, cyl(0, 0, -1, r_in, h + 2));           // bore
+  TopoDS_Shape s = casing_body(h, r_in, r_out);
+  s = fuse(s, cut(cyl(0, 0, 0, r_flange, t), cyl(0, 0, -1, r_in, t + 2)));          // lower flange
+  s = fuse(s, cut(cyl(0, 0, h - t, r_flange, t), cyl(0, 0, h - t - 1, r_in, t + 2)));  // upper flange
   const int n = 12;
   for (int i = 0; i < n; ++i) {
     const double a = 2 * std::numbers::pi * (i + 0.5) / n;
@@ -93,6 +129,12 @@ TopoDS_Shape build(TestPart p) {
       return unify(cut(cut(box(0, 0, 0, 40, 30, 10), cyl(20, 15, -1, 3, 12)), cyl(22, 15, 6, 6, 5)));
     case TestPart::casing: return casing();
     case TestPart::perforated_plate: return perforated_plate();
+    case TestPart::box_through_hole_split: {
+      ShapeUpgrade_ShapeDivideClosed split(build(TestPart::box_through_hole));
+      split.SetNbSplitPoints(1);
+      split.Perform();
+      return split.Result();
+    }
     case TestPart::box_through_hole_nurbs:
       return BRepBuilderAPI_NurbsConvert(build(TestPart::box_through_hole)).Shape();
   }
@@ -114,6 +156,7 @@ const char* test_part_name(TestPart p) {
     case TestPart::casing: return "casing";
     case TestPart::box_through_hole_nurbs: return "box_through_hole_nurbs";
     case TestPart::perforated_plate: return "perforated_plate";
+    case TestPart::box_through_hole_split: return "box_through_hole_split";
   }
   return "?";
 }
@@ -127,6 +170,38 @@ Status write_test_part(TestPart part, const std::filesystem::path& step_file) {
     STEPControl_Writer w;
     if (w.Transfer(s, STEPControl_AsIs) != IFSelect_RetDone)
       return Error{.file = step_file.string(), .reason = "STEP transfer failed"};
+    if (w.Write(step_file.string().c_str()) != IFSelect_RetDone)
+      return Error{.file = step_file.string(), .reason = "cannot write the STEP file"};
+    return {};
+  } catch (const Standard_Failure& e) {
+    return Error{.file = step_file.string(), .reason = std::string("OpenCASCADE failure: ") + e.GetMessageString()};
+  }
+}
+
+Status write_test_assembly(const std::filesystem::path& step_file) {
+  try {
+    Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
+    Handle(TDocStd_Document) doc;
+    XCAFApp_Application::GetApplication()->NewDocument("MDTV-XCAF", doc);
+    Handle(XCAFDoc_ShapeTool) st = XCAFDoc_DocumentTool::ShapeTool(doc->Main());
+    const TDF_Label plate = st->AddShape(build(TestPart::counterbored_plate), Standard_False);
+    TDataStd_Name::Set(plate, "plate");
+    const TDF_Label shaft = st->AddShape(build(TestPart::stepped_shaft), Standard_False);
+    TDataStd_Name::Set(shaft, "shaft");
+    const TDF_Label assembly = st->NewShape();
+    TDataStd_Name::Set(assembly, "assembly");
+    gp_Trsf t2, r2, t3;
+    r2.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), std::numbers::pi / 2);
+    t2.SetTranslation(gp_Vec(0, 0, 20));
+    t2.Multiply(r2);  // rotate 90 degrees about z, then lift by 20
+    t3.SetTranslation(gp_Vec(100, 0, 0));
+    TDataStd_Name::Set(st->AddComponent(assembly, plate, TopLoc_Location(gp_Trsf())), "plate_1");
+    TDataStd_Name::Set(st->AddComponent(assembly, plate, TopLoc_Location(t2)), "plate_2");
+    TDataStd_Name::Set(st->AddComponent(assembly, shaft, TopLoc_Location(t3)), "shaft_1");
+    st->UpdateAssemblies();
+    STEPCAFControl_Writer w;
+    w.SetNameMode(Standard_True);
+    if (!w.Transfer(doc, STEPControl_AsIs)) return Error{.file = step_file.string(), .reason = "STEP transfer failed"};
     if (w.Write(step_file.string().c_str()) != IFSelect_RetDone)
       return Error{.file = step_file.string(), .reason = "cannot write the STEP file"};
     return {};

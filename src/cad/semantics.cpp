@@ -110,8 +110,8 @@ Expected<Selection> select_assembly_features(const Process& process, const std::
           sel.faces.insert(sel.faces.end(), f.faces.begin(), f.faces.end());
         } else {
           for (const std::string& role : n.roles) {
-            auto it = f.roles.find(role);
-            if (it != f.roles.end()) sel.faces.push_back(it->second);
+            auto it = f.role_faces.find(role);
+            if (it != f.role_faces.end()) sel.faces.insert(sel.faces.end(), it->second.begin(), it->second.end());
             else sel.warnings.push_back("rule '" + r.name + "': feature '" + f.type + "' has no role '" + role + "'");
           }
         }

@@ -88,6 +88,54 @@ TEST(CadImport, EveryTriangleCarriesItsFaceAndFacesMeetWatertight) {
   EXPECT_NEAR(vol, 40 * 30 * 10 - M_PI * 16 * 10, 0.02 * 12000);
 }
 
+TEST(CadImport, AssemblyKeepsNamesInstancesAndPlacements) {
+  const auto file = work_dir() / "assembly.step";
+  const Status s = write_test_assembly(file);
+  ASSERT_TRUE(s.ok()) << s.error().message();
+  auto m = import_step(file);
+  ASSERT_TRUE(m.has_value()) << m.error().message();
+  ASSERT_EQ(m->parts.size(), 2u);  // the plate is shared by two instances
+  ASSERT_EQ(m->instances.size(), 3u);
+  std::map<std::string, const Instance*> by_name;
+  for (const Instance& i : m->instances) by_name[i.name] = &i;
+  // (OCCT 7.6 reads the identity-placed component's name back as "1": only the moved ones are checked.)
+  ASSERT_TRUE(by_name.count("plate_2") && by_name.count("shaft_1"));
+  EXPECT_EQ(m->parts[by_name["plate_2"]->part].name, "plate");
+  const Instance* plate_1 = nullptr;
+  for (const Instance& i : m->instances)
+    if (i.part == by_name["plate_2"]->part && i.name != "plate_2") plate_1 = &i;
+  ASSERT_NE(plate_1, nullptr);
+  EXPECT_TRUE(plate_1->placement.is_identity());
+  by_name["plate_1"] = plate_1;
+  EXPECT_EQ(m->parts[by_name["shaft_1"]->part].name, "shaft");
+  EXPECT_NE(by_name["plate_2"]->path.find("assembly"), std::string::npos);
+  // plate_2: rotation by 90 degrees about z, then (0, 0, 20): (1, 0, 0) -> (0, 1, 20).
+  const Vec3 q = by_name["plate_2"]->placement.apply({1, 0, 0});
+  EXPECT_NEAR(q.x, 0, 1e-12);
+  EXPECT_NEAR(q.y, 1, 1e-12);
+  EXPECT_NEAR(q.z, 20, 1e-12);
+  const Vec3 r = by_name["shaft_1"]->placement.apply({0, 0, 0});
+  EXPECT_NEAR(r.x, 100, 1e-12);
+  std::vector<std::uint32_t> faces;
+  const TriMesh w = world_mesh(*m, &faces);
+  const std::size_t plate = m->parts[by_name["plate_1"]->part].mesh.num_triangles();
+  const std::size_t shaft = m->parts[by_name["shaft_1"]->part].mesh.num_triangles();
+  EXPECT_EQ(w.num_triangles(), 2 * plate + shaft);
+  EXPECT_EQ(faces.size(), w.num_triangles());
+  EXPECT_EQ(std::set<std::uint32_t>(faces.begin(), faces.end()).size(), 2u * 9u + 5u);  // unique per instance
+}
+
+TEST(CadImport, SharedDataAssemblyIfPresent) {
+  // Extended check on a real exported assembly (skipped when the shared data set is absent).
+  const auto file = std::filesystem::path(INTERFERE_SOURCE_DIR) / ".." / "shared" / "data" / "step" / "as1-oc-214.stp";
+  if (!std::filesystem::exists(file)) GTEST_SKIP() << "no " << file;
+  auto m = import_step(file);
+  ASSERT_TRUE(m.has_value()) << m.error().message();
+  EXPECT_GT(m->parts.size(), 1u);
+  EXPECT_GE(m->instances.size(), m->parts.size());
+  for (const Part& p : m->parts) EXPECT_EQ(p.face_ids.size(), p.mesh.num_triangles());
+}
+
 TEST(CadImport, BadFilesAreErrors) {
   const auto d = work_dir();
   EXPECT_FALSE(import_step(d / "missing.step").has_value());
@@ -184,11 +232,27 @@ TEST(Features, EachLibraryFeatureOnItsPartAndNotOnNearMisses) {
   EXPECT_EQ(feature_types(TestPart::stepped_shaft), (std::multiset<std::string>{"boss", "boss", "ring_face"}));
   EXPECT_EQ(feature_types(TestPart::slot_block), (std::multiset<std::string>{"slot"}));
   EXPECT_EQ(feature_types(TestPart::step_block), (std::multiset<std::string>{"through_step"}));
+  // Exporter variants: every face and edge as B-spline (recognised as planes, cylinders, circles),
+  // and the hole split in two half cylinders (merged through their smooth edges).
+  EXPECT_EQ(feature_types(TestPart::box_through_hole_nurbs), (std::multiset<std::string>{"through_hole"}));
+  EXPECT_EQ(feature_types(TestPart::box_through_hole_split), (std::multiset<std::string>{"through_hole"}));
   // Eccentric counterbore (same topology, axes 2 mm apart): no counterbored hole; the bore is a
   // through hole from the seat to the bottom.
   const auto near = feature_types(TestPart::near_miss_plate);
   EXPECT_EQ(near.count("counterbored_hole"), 0u);
   EXPECT_EQ(near.count("through_hole"), 1u);
+}
+
+TEST(Features, SplitHoleReportsBothHalvesInItsRole) {
+  auto lib = default_feature_library();
+  ASSERT_TRUE(lib.has_value());
+  const Aag& g = load(TestPart::box_through_hole_split).parts[0].aag;
+  ASSERT_EQ(g.nodes.size(), 8u);  // 6 planes + 2 half cylinders
+  const auto f = recognize_features(g, *lib);
+  ASSERT_EQ(f.size(), 1u);
+  ASSERT_EQ(f[0].role_faces.at("wall").size(), 2u);
+  for (auto id : f[0].role_faces.at("wall")) EXPECT_EQ(g.nodes[id].type, SurfaceType::cylinder);
+  EXPECT_EQ(f[0].faces.size(), 4u);
 }
 
 TEST(Features, CounterboreRolesAxesAndRadii) {

@@ -50,7 +50,10 @@ Expected<FeatureLibrary> default_feature_library();
 
 struct Feature {
   std::string type;
-  std::map<std::string, std::uint32_t> roles;  ///< role -> face id
+  std::map<std::string, std::uint32_t> roles;  ///< role -> face id (the first of its faces)
+  /// role -> every face of it (a surface split by the modeller, e.g. two half cylinders joined by
+  /// smooth edges on the same axis and radius, is matched as one node)
+  std::map<std::string, std::vector<std::uint32_t>> role_faces;
   std::vector<std::uint32_t> faces;            ///< sorted face ids
   Vec3 axis_point, axis;                       ///< rotational features (zero axis otherwise)
   std::vector<double> radii;                   ///< of the cylinders/cones, in role order

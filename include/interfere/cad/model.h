@@ -106,8 +106,14 @@ enum class TestPart {
   casing,               ///< flanged ring with bolt holes and counterbores (the paper's casing)
   box_through_hole_nurbs,  ///< box_through_hole with every face converted to B-spline
   perforated_plate,     ///< 400x400x10 plate, 13x13 counterbored holes: 513 faces (recognition timing)
+  box_through_hole_split,  ///< box_through_hole with the closed hole face split in two half cylinders
 };
 const char* test_part_name(TestPart p);
 Status write_test_part(TestPart part, const std::filesystem::path& step_file);
+
+/// An XCAF assembly "assembly" written with STEPCAFControl_Writer (names kept): part "plate"
+/// (counterbored_plate) as component "plate_1" at the identity and "plate_2" rotated 90 degrees about
+/// z then lifted by (0, 0, 20); part "shaft" (stepped_shaft) as "shaft_1" moved by (100, 0, 0).
+Status write_test_assembly(const std::filesystem::path& step_file);
 
 }  // namespace interfere::cad
