@@ -226,7 +226,7 @@ const CasingCase& casing_case() {
   return c;
 }
 
-void bm_casing(benchmark::State& state, const std::string& step, bool guard) {
+void bm_casing(benchmark::State& state, const std::string& step, bool guard, FeatureMode mode) {
   const CasingCase& c = casing_case();
   if (!c.ok) {
     state.SkipWithError("casing generation/import failed");
@@ -235,7 +235,7 @@ void bm_casing(benchmark::State& state, const std::string& step, bool guard) {
   const cad::Part& part = c.model.parts[0];
   const std::size_t budget = env_list("INTERFERE_BENCH_CASING_BUDGET", {5200})[0];
   SimplifyOptions o{.target_triangles = std::min(budget, part.mesh.num_triangles()), .face_ids = part.face_ids,
-                    .feature_faces = c.step_faces.at(step)};
+                    .feature_faces = c.step_faces.at(step), .feature_mode = mode};
   o.measure_error = false;
   o.prevent_self_intersections = guard;
   TriMesh out;
@@ -308,10 +308,17 @@ int main(int argc, char** argv) {
     }
 #ifdef INTERFERE_BENCH_HAS_CAD
   for (const char* step : {"P1", "P2"}) {
-    benchmark::RegisterBenchmark((std::string("Casing/interfere/") + step).c_str(), bm_casing, std::string(step), true)
+    benchmark::RegisterBenchmark((std::string("Casing/interfere/") + step).c_str(), bm_casing, std::string(step), true,
+                                 FeatureMode::weight)
         ->Unit(benchmark::kMillisecond)->Iterations(5);
     benchmark::RegisterBenchmark((std::string("Casing/interfere_unchecked/") + step).c_str(), bm_casing,
-                                 std::string(step), false)
+                                 std::string(step), false, FeatureMode::weight)
+        ->Unit(benchmark::kMillisecond)->Iterations(5);
+    benchmark::RegisterBenchmark((std::string("Casing/interfere_last/") + step).c_str(), bm_casing, std::string(step),
+                                 true, FeatureMode::last)
+        ->Unit(benchmark::kMillisecond)->Iterations(5);
+    benchmark::RegisterBenchmark((std::string("Casing/interfere_lock/") + step).c_str(), bm_casing, std::string(step),
+                                 true, FeatureMode::lock)
         ->Unit(benchmark::kMillisecond)->Iterations(5);
   }
   benchmark::RegisterBenchmark("Recognition/perforated_plate", bm_recognition)->Unit(benchmark::kMillisecond);

@@ -22,7 +22,7 @@ namespace interfere::cli {
 namespace {
 
 struct SimplifyCliOptions {
-  std::string input, output, json, regions, features, step, process, format = "auto";
+  std::string input, output, json, regions, features, step, process, format = "auto", feature_mode = "weight";
   std::size_t target = 0;
   double ratio = 0;
   double sharp_angle = 0;
@@ -75,7 +75,11 @@ int run_simplify(const SimplifyCliOptions& o) {
   SimplifyOptions so;
   so.target_triangles = o.target;
   so.ratio = o.ratio;
-  so.feature_mode = o.lock ? FeatureMode::lock : FeatureMode::weight;
+  if (o.feature_mode == "weight") so.feature_mode = FeatureMode::weight;
+  else if (o.feature_mode == "last") so.feature_mode = FeatureMode::last;
+  else if (o.feature_mode == "lock") so.feature_mode = FeatureMode::lock;
+  else throw InputError("--feature-mode must be weight, last or lock, not '" + o.feature_mode + "'");
+  if (o.lock) so.feature_mode = FeatureMode::lock;
   so.measure_error = !o.no_error;
   so.prevent_self_intersections = !o.no_guard;
   if (is_step(o.input)) {
@@ -144,7 +148,7 @@ int run_simplify(const SimplifyCliOptions& o) {
   }
   {
     Progress progress("writing " + o.output);
-    const Status s = write_tagged_mesh(o.output, r.mesh, r.face_ids, so.feature_faces, out_format);
+    const Status s = write_tagged_mesh(o.output, r.mesh, r.face_ids, so.feature_faces, out_format, r.error_bound);
     if (!s) throw InputError(s.error());
   }
   report["input_triangles"] = r.input_triangles;
@@ -158,7 +162,7 @@ int run_simplify(const SimplifyCliOptions& o) {
   report["guard_rerun"] = r.guard_rerun;
   report["vertices"] = {{"welded_input", r.input_vertices_welded}, {"seam", r.seam_vertices},
                         {"corner", r.corner_vertices}, {"locked", r.locked_vertices}};
-  report["feature_mode"] = o.lock ? "lock" : "weight";
+  report["feature_mode"] = so.feature_mode == FeatureMode::lock ? "lock" : so.feature_mode == FeatureMode::last ? "last" : "weight";
   std::vector<std::uint32_t> ff = so.feature_faces;
   std::sort(ff.begin(), ff.end());
   ff.erase(std::unique(ff.begin(), ff.end()), ff.end());
@@ -201,6 +205,8 @@ void add_simplify_command(CLI::App& app, int& exit_code) {
   c->add_option("--regions", o->regions, "per-triangle region ids (text, one unsigned integer per triangle)");
   c->add_option("--features", o->features, "comma-separated face/region ids to keep (added to the step's features)");
   c->add_flag("--lock", o->lock, "hard-lock feature faces (bit-identical) instead of the paper's cost weighting");
+  c->add_option("--feature-mode", o->feature_mode,
+                "weight (paper: + maximum unmodified cost), last (feature edges strictly last) or lock");
   c->add_option("--sharp-angle", o->sharp_angle, "plain meshes: keep edges whose dihedral angle exceeds DEG degrees");
   c->add_option("--linear-deflection", o->linear_deflection, "STEP tessellation: linear deflection (0 = 0.1 % of the diagonal)");
   c->add_option("--angular-deflection", o->angular_deflection, "STEP tessellation: angular deflection in radians");

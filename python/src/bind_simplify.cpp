@@ -48,13 +48,17 @@ void bind_simplify(py::module_& m) {
       "simplify",
       [](const TriMesh& mesh, std::size_t target, double ratio, std::vector<std::uint32_t> face_ids,
          std::vector<std::uint32_t> feature_faces, bool lock, double sharp_angle, bool prevent_self_intersections,
-         bool measure_error) {
+         bool measure_error, const std::string& feature_mode) {
         SimplifyOptions o;
         o.target_triangles = target;
         o.ratio = ratio;
         o.face_ids = std::move(face_ids);
         o.feature_faces = std::move(feature_faces);
-        o.feature_mode = lock ? FeatureMode::lock : FeatureMode::weight;
+        if (feature_mode == "weight") o.feature_mode = FeatureMode::weight;
+        else if (feature_mode == "last") o.feature_mode = FeatureMode::last;
+        else if (feature_mode == "lock") o.feature_mode = FeatureMode::lock;
+        else throw py::value_error("feature_mode must be weight, last or lock");
+        if (lock) o.feature_mode = FeatureMode::lock;
         o.sharp_angle_deg = sharp_angle;
         o.prevent_self_intersections = prevent_self_intersections;
         o.measure_error = measure_error;
@@ -69,6 +73,7 @@ void bind_simplify(py::module_& m) {
       py::arg("mesh"), py::arg("target") = 0, py::arg("ratio") = 0.0, py::arg("face_ids") = std::vector<std::uint32_t>{},
       py::arg("feature_faces") = std::vector<std::uint32_t>{}, py::arg("lock") = false, py::arg("sharp_angle") = 0.0,
       py::arg("prevent_self_intersections") = true, py::arg("measure_error") = true,
+      py::arg("feature_mode") = std::string("weight"),
       "Feature-preserving QEM simplification to `target` triangles (or `ratio` of them). face_ids: per-triangle "
       "face/region ids; feature_faces: ids kept (cost-weighted, or hard-locked with lock=True). ValueError on bad "
       "input (budget <= 0 or larger than the mesh, ...).");

@@ -83,7 +83,7 @@ TopoDS_Shape casing() {
   TopoDS_Shape s = casing_body(h, r_in, r_out);
   s = fuse(s, cut(cyl(0, 0, 0, r_flange, t), cyl(0, 0, -1, r_in, t + 2)));          // lower flange
   s = fuse(s, cut(cyl(0, 0, h - t, r_flange, t), cyl(0, 0, h - t - 1, r_in, t + 2)));  // upper flange
-  const int n = 12;
+  const int n = 6;
   for (int i = 0; i < n; ++i) {
     const double a = 2 * std::numbers::pi * (i + 0.5) / n;
     const double x = 115 * std::cos(a), y = 115 * std::sin(a);

@@ -67,6 +67,7 @@ struct Candidate {
   Vec3 p;
   std::uint32_t keep, remove;
   std::uint32_t stamp_keep, stamp_remove;
+  bool last_tier = false;  ///< FeatureMode::last: ordered after every non-feature candidate
   bool operator>(const Candidate& o) const {
     if (cost != o.cost) return cost > o.cost;
     if (keep != o.keep) return keep > o.keep;
@@ -89,9 +90,17 @@ struct HeapEntry {
 static_assert(sizeof(HeapEntry) == 16);
 
 HeapEntry entry_of(const Candidate& c) {
-  // Costs are >= 0 (eval clamps); +0.0f so that -0.0 cannot appear; its bits order like the value.
-  return {static_cast<float>(c.cost) + 0.0f, c.keep, c.remove, static_cast<std::uint16_t>(c.stamp_keep),
-          static_cast<std::uint16_t>(c.stamp_remove)};
+  // Costs are >= 0 (eval clamps); +0.0f so that -0.0 cannot appear; the bits of a non-negative float
+  // order like its value and leave the top bit free: set, it puts the entry in the last tier.
+  HeapEntry e{static_cast<float>(c.cost) + 0.0f, c.keep, c.remove, static_cast<std::uint16_t>(c.stamp_keep),
+              static_cast<std::uint16_t>(c.stamp_remove)};
+  if (c.last_tier) {
+    std::uint32_t k;
+    std::memcpy(&k, &e.cost, 4);
+    k |= 0x80000000u;
+    std::memcpy(&e.cost, &k, 4);
+  }
+  return e;
 }
 
 /// Radix heap (Ahuja, Mehlhorn, Orlin & Tarjan 1990) on the bits of the non-negative float cost,
@@ -351,7 +360,10 @@ bool Simplifier::direction(std::uint32_t keep, std::uint32_t remove, bool seam, 
   out.p = p;
   out.keep = keep, out.remove = remove;
   out.stamp_keep = stamp_[keep], out.stamp_remove = stamp_[remove];
-  if (touches_feature_[keep] || touches_feature_[remove]) out.cost += feature_offset_;
+  if (touches_feature_[keep] || touches_feature_[remove]) {
+    out.cost += feature_offset_;
+    out.last_tier = o_.feature_mode == FeatureMode::last;
+  }
   return true;
 }
 

@@ -25,34 +25,41 @@ std::string lower_ext(const std::filesystem::path& p) {
 
 Status write_tagged_mesh(const std::filesystem::path& path, const TriMesh& mesh,
                          const std::vector<std::uint32_t>& face_ids,
-                         const std::vector<std::uint32_t>& feature_faces, MeshFormat format) {
-  if (face_ids.empty()) return write_mesh(path, mesh, {.format = format});
-  if (face_ids.size() != mesh.num_triangles())
+                         const std::vector<std::uint32_t>& feature_faces, MeshFormat format, double error_bound) {
+  const bool untagged = face_ids.empty();
+  if (!untagged && face_ids.size() != mesh.num_triangles())
     return Error{.file = path.string(), .reason = "face id count differs from the triangle count"};
   if (mesh.num_triangles() == 0) return Error{.file = path.string(), .reason = "no triangles to write"};
   for (const Vec3& p : mesh.positions)
     if (!is_finite(p)) return Error{.file = path.string(), .reason = "non-finite vertex position"};
+  for (const Tri& t : mesh.triangles)
+    for (std::uint32_t v : t)
+      if (v >= mesh.num_vertices()) return Error{.file = path.string(), .reason = "vertex index out of range"};
   MeshFamily family = mesh_family(format);
   const std::string ext = lower_ext(path);
   if (format == MeshFormat::automatic) {
     family = ext == ".ply" ? MeshFamily::ply : ext == ".obj" ? MeshFamily::obj : ext == ".stl" ? MeshFamily::stl : MeshFamily::unknown;
   }
+  if (untagged && (error_bound < 0 || (family != MeshFamily::ply && family != MeshFamily::obj)))
+    return write_mesh(path, mesh, {.format = format});
   std::vector<std::uint32_t> feat = feature_faces;
   std::sort(feat.begin(), feat.end());
   auto is_feature = [&](std::uint32_t f) { return std::binary_search(feat.begin(), feat.end(), f); };
   if (family == MeshFamily::ply) {
     const bool ascii = format == MeshFormat::ply_ascii;
     return write_file_atomic(path, [&](std::FILE* f) -> int {
-      std::fprintf(f, "ply\nformat %s 1.0\ncomment interfere simplify: face_id = B-Rep face / region, feature = 1 on assembly-feature faces\n",
-                   ascii ? "ascii" : "binary_little_endian");
+      std::fprintf(f, "ply\nformat %s 1.0\n", ascii ? "ascii" : "binary_little_endian");
+      if (!untagged) std::fprintf(f, "comment interfere simplify: face_id = B-Rep face / region, feature = 1 on assembly-feature faces\n");
+      if (error_bound >= 0) std::fprintf(f, "comment error_bound %.17g\n", error_bound);
       std::fprintf(f, "element vertex %zu\nproperty double x\nproperty double y\nproperty double z\n", mesh.num_vertices());
-      std::fprintf(f, "element face %zu\nproperty list uchar uint vertex_indices\nproperty uint face_id\nproperty uchar feature\nend_header\n",
-                   mesh.num_triangles());
+      std::fprintf(f, "element face %zu\nproperty list uchar uint vertex_indices\n%send_header\n", mesh.num_triangles(),
+                   untagged ? "" : "property uint face_id\nproperty uchar feature\n");
       if (ascii) {
         for (const Vec3& p : mesh.positions) std::fprintf(f, "%.17g %.17g %.17g\n", p.x, p.y, p.z);
         for (std::size_t t = 0; t < mesh.num_triangles(); ++t) {
           const Tri& tr = mesh.triangles[t];
-          std::fprintf(f, "3 %u %u %u %u %d\n", tr[0], tr[1], tr[2], face_ids[t], is_feature(face_ids[t]) ? 1 : 0);
+          if (untagged) std::fprintf(f, "3 %u %u %u\n", tr[0], tr[1], tr[2]);
+          else std::fprintf(f, "3 %u %u %u %u %d\n", tr[0], tr[1], tr[2], face_ids[t], is_feature(face_ids[t]) ? 1 : 0);
         }
       } else {
         for (const Vec3& p : mesh.positions) {
@@ -63,9 +70,11 @@ Status write_tagged_mesh(const std::filesystem::path& path, const TriMesh& mesh,
           unsigned char rec[18];
           rec[0] = 3;
           std::memcpy(rec + 1, mesh.triangles[t].data(), 12);
-          std::memcpy(rec + 13, &face_ids[t], 4);
-          rec[17] = is_feature(face_ids[t]) ? 1 : 0;
-          std::fwrite(rec, 1, sizeof rec, f);
+          if (!untagged) {
+            std::memcpy(rec + 13, &face_ids[t], 4);
+            rec[17] = is_feature(face_ids[t]) ? 1 : 0;
+          }
+          std::fwrite(rec, 1, untagged ? 13 : sizeof rec, f);
         }
       }
       return std::ferror(f) ? EIO : 0;
@@ -73,11 +82,12 @@ Status write_tagged_mesh(const std::filesystem::path& path, const TriMesh& mesh,
   }
   if (family == MeshFamily::obj) {
     return write_file_atomic(path, [&](std::FILE* f) -> int {
-      std::fprintf(f, "# interfere simplify: one group per face id (feature_face_<id> for assembly features)\n");
+      if (!untagged) std::fprintf(f, "# interfere simplify: one group per face id (feature_face_<id> for assembly features)\n");
+      if (error_bound >= 0) std::fprintf(f, "# error_bound %.17g\n", error_bound);
       for (const Vec3& p : mesh.positions) std::fprintf(f, "v %.17g %.17g %.17g\n", p.x, p.y, p.z);
       std::int64_t current = -1;
       for (std::size_t t = 0; t < mesh.num_triangles(); ++t) {
-        if (static_cast<std::int64_t>(face_ids[t]) != current) {
+        if (!untagged && static_cast<std::int64_t>(face_ids[t]) != current) {
           current = face_ids[t];
           std::fprintf(f, "g %sface_%u\n", is_feature(face_ids[t]) ? "feature_" : "", face_ids[t]);
         }

@@ -301,13 +301,13 @@ TEST(Semantics, EachStepSelectsItsAssemblyFeaturesOnTheCasing) {
   const auto feats = recognize_features(casing.aag, *lib);
   std::map<std::string, int> count;
   for (const Feature& f : feats) ++count[f.type];
-  EXPECT_EQ(count["counterbored_hole"], 12);
-  EXPECT_EQ(count["through_hole"], 13);  // 12 upper bolt holes and the casing's own bore
+  EXPECT_EQ(count["counterbored_hole"], 6);
+  EXPECT_EQ(count["through_hole"], 7);  // 6 upper bolt holes and the casing's own bore
   auto p1 = select_assembly_features(*process, "P1", *rules, casing.name, feats);
   auto p2 = select_assembly_features(*process, "P2", *rules, casing.name, feats);
   auto p3 = select_assembly_features(*process, "P3", *rules, casing.name, feats);
   ASSERT_TRUE(p1.has_value() && p2.has_value() && p3.has_value());
-  // P1 bolt connection: the 12 upper bolt-hole walls (r = 6) with the upper flange's top and bottom
+  // P1 bolt connection: the 6 upper bolt-hole walls (r = 6) with the upper flange's top and bottom
   // faces, and (a through hole too) the casing's bore r = 88 with the casing's bottom face.
   std::map<int, int> p1_radii;
   int planes = 0;
@@ -320,9 +320,9 @@ TEST(Semantics, EachStepSelectsItsAssemblyFeaturesOnTheCasing) {
       ++planes;
     }
   }
-  EXPECT_EQ(p1_radii, (std::map<int, int>{{6, 12}, {88, 1}}));
+  EXPECT_EQ(p1_radii, (std::map<int, int>{{6, 6}, {88, 1}}));
   EXPECT_EQ(planes, 3);
-  // P2 screw tightening: 12 x (bore r=5, counterbore r=9, seat).
+  // P2 screw tightening: 6 x (bore r=5, counterbore r=9, seat).
   std::map<int, int> radii;
   int seats = 0;
   for (auto f : p2->faces) {
@@ -330,8 +330,8 @@ TEST(Semantics, EachStepSelectsItsAssemblyFeaturesOnTheCasing) {
     if (n.type == SurfaceType::cylinder) ++radii[int(std::lround(n.radius))];
     else ++seats;
   }
-  EXPECT_EQ(radii, (std::map<int, int>{{5, 12}, {9, 12}}));
-  EXPECT_EQ(seats, 12);
+  EXPECT_EQ(radii, (std::map<int, int>{{5, 6}, {9, 6}}));
+  EXPECT_EQ(seats, 6);
   EXPECT_TRUE(p3->faces.empty());  // the casing is not in P3
   EXPECT_FALSE(select_assembly_features(*process, "P9", *rules, casing.name, feats).has_value());
 }

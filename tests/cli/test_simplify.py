@@ -113,6 +113,8 @@ class Simplify(unittest.TestCase):
         header, verts, faces = read_ply_ascii("lock.ply")
         self.assertIn("property uint face_id", header)
         self.assertIn("property uchar feature", header)
+        bound = [l for l in header if l.startswith("comment error_bound ")]
+        self.assertEqual(len(bound), 1)
         out_cap = sorted(tuple(sorted(verts[i] for i in face[1:4])) for face in faces if face[4] == 1)
         in_cap = sorted(tuple(sorted(v[i] for i in t)) for t, reg in zip(f, regions) if reg == 1)
         self.assertEqual(out_cap, in_cap)
@@ -121,6 +123,7 @@ class Simplify(unittest.TestCase):
         self.assertEqual(r["feature_faces"], [1])
         self.assertEqual(r["feature_mode"], "lock")
         self.assertLessEqual(r["hausdorff_features"], 1e-12)
+        self.assertEqual(float(bound[0].split()[2]), r["error_bound"])
 
     def assert_input_error(self, *args, output=None, message=None):
         if output and os.path.exists(output):

@@ -103,7 +103,7 @@ enum class TestPart {
   slot_block,           ///< 40x30x20 block, through slot 10 wide 8 deep along x
   step_block,           ///< 40x30x20 block, through step 10 x 8 along x
   near_miss_plate,      ///< counterbored_plate with the counterbore 2 mm off the bore axis: no match
-  casing,               ///< flanged ring with bolt holes and counterbores (the paper's casing)
+  casing,               ///< flanged ring (B-spline wall of revolution), 6 counterbored bolt holes on the lower flange, 6 plain ones on the upper (the paper's casing)
   box_through_hole_nurbs,  ///< box_through_hole with every face converted to B-spline
   perforated_plate,     ///< 400x400x10 plate, 13x13 counterbored holes: 513 faces (recognition timing)
   box_through_hole_split,  ///< box_through_hole with the closed hole face split in two half cylinders

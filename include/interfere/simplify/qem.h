@@ -27,6 +27,7 @@ namespace interfere {
 
 enum class FeatureMode {
   weight,  ///< the paper's rule: cost of edges touching feature faces += maximum unmodified cost
+  last,    ///< strict: feature edges are ordered after every other candidate (an infinite offset)
   lock,    ///< vertices of feature faces never move: feature triangles stay bit-identical
 };
 

@@ -191,6 +191,19 @@ TEST(Simplify, WeightedFeatureFacesCollapseLastAndStayWithinTolerance) {
   EXPECT_LT(t->feature_triangles_out, t->feature_triangles_in);
 }
 
+TEST(Simplify, LastModeOrdersFeatureEdgesAfterAllOthers) {
+  const TriMesh s = make_sphere({.target_triangles = 8000, .bump_amplitude = 0.03});
+  const auto faces = cap_faces(s);
+  SimplifyOptions o{.target_triangles = 1600, .face_ids = faces, .feature_faces = {1}, .feature_mode = FeatureMode::last};
+  auto r = simplify(s, o);
+  ASSERT_TRUE(r.has_value());
+  ASSERT_LT(r->feature_triangles_in, 1300u);
+  EXPECT_EQ(r->mesh.num_triangles(), 1600u);
+  // Every non-feature collapse the constraints allow comes first: the cap is untouched.
+  EXPECT_EQ(r->feature_triangles_out, r->feature_triangles_in);
+  EXPECT_LE(r->hausdorff_features, 1e-12);
+}
+
 TEST(Simplify, BadInputIsAnErrorNotACrash) {
   const TriMesh s = make_sphere({.target_triangles = 200});
   EXPECT_FALSE(simplify(TriMesh{}, {.target_triangles = 1}).has_value());
