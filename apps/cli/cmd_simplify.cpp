@@ -57,7 +57,8 @@ bool is_step(const std::string& file) {
 }
 
 int run_simplify(const SimplifyCliOptions& o) {
-  if (o.target == 0 && o.ratio == 0) throw InputError("simplify: give --target N (> 0) or --ratio R");
+  if (o.target == 0 && o.ratio == 0 && o.renderer_max == 0)
+    throw InputError("simplify: give --target N (> 0), --ratio R or --renderer-max N");
   if (o.ratio != 0 && !(o.ratio > 0 && o.ratio <= 1)) throw InputError("--ratio must lie in (0, 1]");
   if (!o.step.empty() && o.process.empty()) throw InputError("--step needs --process FILE");
   const MeshFormat out_format = mesh_format_from_name(o.format);

@@ -101,6 +101,17 @@ class Simplify(unittest.TestCase):
         r = load_json("r.json")
         self.assertEqual(r["target_triangles"], round(0.25 * self.n))
 
+    def test_renderer_max_budget(self):
+        code, _, err = run("simplify", path("sphere.obj"), path("rm.obj"), "--renderer-max", "500", "--json", path("rm.json"))
+        self.assertEqual(code, 0, err)
+        r = load_json("rm.json")
+        self.assertEqual(r["target_triangles"], 500)
+        self.assertEqual(r["output_triangles"], 500)
+        with open(path("rm.obj")) as f:
+            self.assertTrue(any(l.startswith("# error_bound ") for l in f))
+        code, _, err = run("simplify", path("sphere.obj"), path("rm2.obj"), "--renderer-max", str(10 * self.n))
+        self.assertEqual(code, 0, err)  # budget above the mesh: nothing to simplify, the mesh is kept
+
     def test_regions_locked_features_are_bit_identical_in_tagged_ply(self):
         v, f = self.mesh
         regions = [1 if sum(v[i][2] for i in t) / 3 > 0.8 else 0 for t in f]
