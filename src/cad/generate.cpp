@@ -35,6 +35,7 @@
 #include <Standard_Failure.hxx>
 #include <TopoDS_Shape.hxx>
 #include <gp_Ax2.hxx>
+#include <gp_Pln.hxx>
 
 #include <cmath>
 #include <numbers>
@@ -129,6 +130,8 @@ TopoDS_Shape build(TestPart p) {
       return unify(cut(cut(box(0, 0, 0, 40, 30, 10), cyl(20, 15, -1, 3, 12)), cyl(22, 15, 6, 6, 5)));
     case TestPart::casing: return casing();
     case TestPart::perforated_plate: return perforated_plate();
+    case TestPart::single_face:
+      return BRepBuilderAPI_MakeFace(gp_Pln(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 0, 10, 0, 10).Face();
     case TestPart::box_through_hole_split: {
       ShapeUpgrade_ShapeDivideClosed split(build(TestPart::box_through_hole));
       split.SetNbSplitPoints(1);
@@ -157,6 +160,7 @@ const char* test_part_name(TestPart p) {
     case TestPart::box_through_hole_nurbs: return "box_through_hole_nurbs";
     case TestPart::perforated_plate: return "perforated_plate";
     case TestPart::box_through_hole_split: return "box_through_hole_split";
+    case TestPart::single_face: return "single_face";
   }
   return "?";
 }

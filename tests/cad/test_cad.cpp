@@ -136,6 +136,17 @@ TEST(CadImport, SharedDataAssemblyIfPresent) {
   for (const Part& p : m->parts) EXPECT_EQ(p.face_ids.size(), p.mesh.num_triangles());
 }
 
+TEST(CadImport, NonSolidShapesAreImportedWithAWarningNamingThePart) {
+  const CadModel& m = load(TestPart::single_face);
+  ASSERT_EQ(m.parts.size(), 1u);
+  EXPECT_EQ(m.parts[0].solids, 0u);
+  EXPECT_EQ(m.parts[0].faces, 1u);
+  EXPECT_GT(m.parts[0].mesh.num_triangles(), 0u);
+  ASSERT_FALSE(m.warnings.empty());
+  EXPECT_NE(m.warnings[0].find("no solid"), std::string::npos);
+  EXPECT_NE(m.warnings[0].find(m.parts[0].name), std::string::npos);
+}
+
 TEST(CadImport, BadFilesAreErrors) {
   const auto d = work_dir();
   EXPECT_FALSE(import_step(d / "missing.step").has_value());
