@@ -146,6 +146,11 @@ quadric-error-metric edge collapses while the faces that take part in the curren
    adding the two parts' bounds to its clearance (or growing the boxes by them): the distance between simplified
    parts differs from the original distance by at most the sum of the two Hausdorff distances.
 
+**STEP input** is simplified part by part (an assembly's touching parts are contacts, not self-intersections
+of one mesh): each part prototype gets its share of the total budget from the formula below (instances counted,
+the step's feature triangles reserved), is simplified in part coordinates, and its instances are placed in the
+output; the error bound is the largest part's (rigid placements keep distances).
+
 **Budget.** A collapse removes the two triangles of an inner edge or the one of a boundary edge, so the budget is
 met exactly whenever it is reachable; on a closed mesh (even triangle count) an odd budget ends one below
 (never above), and locks or constraints can stop earlier (`reached: false` plus a warning).
@@ -202,7 +207,10 @@ written atomically and only after every input was validated.
 `max_unmodified_cost`, `bbox_diagonal`, `hausdorff`, `hausdorff_features` (null without features), `error_bound`,
 `self_intersections` (with the flag), `seconds` {`simplify`, `total`}, `warnings`; for STEP input `cad` {`parts`
 [{`name`, `faces`, `triangles`, `features`, `assembly_feature_faces`}], `instances` [{`name`, `part`, `path`,
-`face_id_offset`}], `step`, `warnings`}. Face ids of a multi-instance STEP are offset per instance.
+`face_id_offset`}], `step`, `warnings`} and `parts_simplified` [{`name`, `instances`, `input_triangles`,
+`target_triangles`, `output_triangles`, `feature_triangles`, `hausdorff`, `hausdorff_features`, `guard_rerun`,
+`self_intersections` (with the flag; for STEP input the report's count is the sum over parts × instances)}]. Face
+ids of a multi-instance STEP are offset per instance.
 
 **`features` report**: `parts` [{`name`, `solids`, `faces`, `triangles`, `untessellated_faces`, `features`
 [{`type`, `faces`, `roles` {role: face}, `radii`, `axis` {`point`, `direction`}}], `assembly_feature_faces`,

@@ -5,6 +5,8 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <memory>
 #include <sstream>
 
 #include "commands.h"
@@ -56,6 +58,81 @@ bool is_step(const std::string& file) {
   return e == ".step" || e == ".stp";
 }
 
+#ifdef INTERFERE_HAS_CAD
+// STEP input: every part is simplified on its own (an assembly's touching parts are not
+// self-intersections of one mesh) to its share of the total budget (triangle_budgets: instances
+// counted, the step's feature triangles reserved), then the instances are placed in the world mesh.
+Expected<SimplifyResult> simplify_parts(const cad::Prepared& prep, std::size_t total, SimplifyOptions so,
+                                        nlohmann::json& parts_report, bool count_self, std::size_t& self_total) {
+  std::vector<PartBudgetInput> in;
+  std::vector<std::size_t> feature_tris(prep.parts.size(), 0);
+  for (std::size_t i = 0; i < prep.parts.size(); ++i) {
+    const cad::PreparedPart& p = prep.parts[i];
+    std::vector<std::uint32_t> ff = p.feature_faces;
+    std::sort(ff.begin(), ff.end());
+    for (auto f : p.face_ids) feature_tris[i] += std::binary_search(ff.begin(), ff.end(), f);
+    in.push_back({p.instances * p.mesh.num_triangles(), p.instances * feature_tris[i]});
+  }
+  const BudgetResult budgets = triangle_budgets(in, total);
+  SimplifyResult all;
+  std::vector<SimplifyResult> done(prep.parts.size());
+  for (std::size_t i = 0; i < prep.parts.size(); ++i) {
+    const cad::PreparedPart& p = prep.parts[i];
+    if (p.instances == 0 || p.mesh.num_triangles() == 0) continue;
+    const std::size_t n = std::clamp<std::size_t>(budgets.budgets[i] / p.instances, 1, p.mesh.num_triangles());
+    SimplifyOptions po = so;
+    po.target_triangles = n;
+    po.ratio = 0;
+    po.face_ids = p.face_ids;
+    po.feature_faces = p.feature_faces;
+    auto r = simplify(p.mesh, po);
+    if (!r) {
+      Error e = r.error();
+      e.reason = "part '" + p.name + "': " + e.reason;
+      return e;
+    }
+    done[i] = std::move(*r);
+    const SimplifyResult& d = done[i];
+    parts_report.push_back({{"name", p.name}, {"instances", p.instances}, {"input_triangles", d.input_triangles},
+                            {"target_triangles", n}, {"output_triangles", d.mesh.num_triangles()},
+                            {"feature_triangles", {{"input", d.feature_triangles_in}, {"output", d.feature_triangles_out}}},
+                            {"hausdorff", d.hausdorff}, {"hausdorff_features", d.hausdorff_features < 0 ? nlohmann::json(nullptr) : nlohmann::json(d.hausdorff_features)},
+                            {"guard_rerun", d.guard_rerun}});
+    if (count_self) {
+      const std::size_t x = count_self_intersections(d.mesh);
+      parts_report.back()["self_intersections"] = x;
+      self_total += x * p.instances;
+    }
+    all.collapses += d.collapses, all.rejected_link += d.rejected_link, all.rejected_flip += d.rejected_flip;
+    all.rejected_intersection += d.rejected_intersection, all.guard_rerun = all.guard_rerun || d.guard_rerun;
+    all.seam_vertices += d.seam_vertices, all.corner_vertices += d.corner_vertices, all.locked_vertices += d.locked_vertices;
+    all.input_vertices_welded += d.input_vertices_welded;
+    all.max_unmodified_cost = std::max(all.max_unmodified_cost, d.max_unmodified_cost);
+    all.hausdorff = std::max(all.hausdorff, d.hausdorff);
+    all.hausdorff_features = std::max(all.hausdorff_features, d.hausdorff_features);
+    for (const auto& w : d.warnings) all.warnings.push_back("part '" + p.name + "': " + w);
+  }
+  for (const cad::PreparedInstance& inst : prep.instances) {
+    const SimplifyResult& d = done[inst.part];
+    const auto base = static_cast<std::uint32_t>(all.mesh.positions.size());
+    for (const Vec3& v : d.mesh.positions) all.mesh.positions.push_back(inst.placement.apply(v));
+    for (const Tri& t : d.mesh.triangles) all.mesh.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+    for (auto f : d.face_ids) all.face_ids.push_back(f + inst.face_offset);
+    all.feature_triangles_in += d.feature_triangles_in, all.feature_triangles_out += d.feature_triangles_out;
+    all.input_triangles += d.input_triangles;
+  }
+  all.target_triangles = total;
+  all.reached = all.mesh.num_triangles() == total;
+  if (!all.reached)
+    all.warnings.push_back("total budget " + std::to_string(total) + ": " + std::to_string(all.mesh.num_triangles()) +
+                           " triangles (per-part budgets are rounded down per instance, parts may stop early)");
+  if (budgets.features_exceed_budget) all.warnings.push_back("the step's feature triangles alone exceed the budget");
+  all.bbox_diagonal = norm(prep.mesh.bounds().extent());
+  all.error_bound = all.hausdorff;  // rigid placements keep distances: the largest part error
+  return all;
+}
+#endif
+
 int run_simplify(const SimplifyCliOptions& o) {
   if (o.target == 0 && o.ratio == 0 && o.renderer_max == 0)
     throw InputError("simplify: give --target N (> 0), --ratio R or --renderer-max N");
@@ -74,6 +151,9 @@ int run_simplify(const SimplifyCliOptions& o) {
 
   TriMesh mesh;
   SimplifyOptions so;
+#ifdef INTERFERE_HAS_CAD
+  std::unique_ptr<cad::Prepared> cad_prepared;
+#endif
   so.target_triangles = o.target;
   so.ratio = o.ratio;
   if (o.feature_mode == "weight") so.feature_mode = FeatureMode::weight;
@@ -93,11 +173,12 @@ int run_simplify(const SimplifyCliOptions& o) {
     Progress progress("importing " + o.input);
     auto prepared = cad::prepare_for_simplify(o.input, po);
     if (!prepared) throw InputError(prepared.error());
-    mesh = std::move(prepared->mesh);
-    so.face_ids = std::move(prepared->face_ids);
+    mesh = prepared->mesh;
+    so.face_ids = prepared->face_ids;
     so.feature_faces = prepared->feature_faces;
-    report["cad"] = nlohmann::json::parse(prepared->report_json);
-    for (const auto& w : prepared->warnings)
+    cad_prepared = std::make_unique<cad::Prepared>(std::move(*prepared));
+    report["cad"] = nlohmann::json::parse(cad_prepared->report_json);
+    for (const auto& w : cad_prepared->warnings)
       if (!Progress::quiet()) std::fprintf(stderr, "[interfere] warning: %s\n", w.c_str());
 #else
     throw InputError(o.input + ": STEP input needs interfere built with OpenCASCADE (INTERFERE_WITH_OCCT)");
@@ -131,9 +212,28 @@ int run_simplify(const SimplifyCliOptions& o) {
   }
   SimplifyResult r;
   double seconds = 0;
+  std::size_t self_parts = 0;
+  bool per_part = false;
   {
     Progress progress("simplifying " + std::to_string(mesh.num_triangles()) + " triangles");
-    auto res = simplify(mesh, so);
+    Expected<SimplifyResult> res = Error{};
+#ifdef INTERFERE_HAS_CAD
+    if (cad_prepared) {
+      const std::size_t n = mesh.num_triangles();
+      std::size_t total = so.target_triangles;
+      if (total == 0 && so.ratio > 0) total = static_cast<std::size_t>(std::llround(so.ratio * double(n)));
+      if (total == 0 || total > n)
+        throw InputError(o.input + ": triangle budget " + std::to_string(total) + " must lie in [1, " + std::to_string(n) + "]");
+      nlohmann::json parts = nlohmann::json::array();
+      res = simplify_parts(*cad_prepared, total, so, parts, o.check_self, self_parts);
+      per_part = true;
+      report["parts_simplified"] = parts;
+    } else {
+      res = simplify(mesh, so);
+    }
+#else
+    res = simplify(mesh, so);
+#endif
     if (!res) {
       Error e = res.error();
       e.file = o.input;
@@ -145,7 +245,8 @@ int run_simplify(const SimplifyCliOptions& o) {
   std::size_t self = 0;
   if (o.check_self) {
     Progress progress("self-intersection check");
-    self = count_self_intersections(r.mesh);
+    // STEP: per part (an assembly's touching parts are contacts, not self-intersections).
+    self = per_part ? self_parts : count_self_intersections(r.mesh);
   }
   {
     Progress progress("writing " + o.output);

@@ -51,6 +51,7 @@ Expected<Prepared> prepare_for_simplify(const std::string& step_file, const Pipe
       for (const auto& w : sel->warnings) out.warnings.push_back(w);
     }
     rep["parts"].push_back(jp);
+    out.parts.push_back({part.name, part.mesh, part.face_ids, part_features[i], part.faces, 0});
   }
   // World mesh; feature face ids shifted like world_mesh shifts the instance's faces.
   out.mesh = world_mesh(*model, &out.face_ids);
@@ -58,6 +59,8 @@ Expected<Prepared> prepare_for_simplify(const std::string& step_file, const Pipe
   rep["instances"] = nlohmann::json::array();
   for (const Instance& inst : model->instances) {
     for (std::uint32_t f : part_features[inst.part]) out.feature_faces.push_back(f + base);
+    out.instances.push_back({inst.part, inst.placement, base});
+    ++out.parts[inst.part].instances;
     rep["instances"].push_back({{"name", inst.name}, {"part", inst.part}, {"path", inst.path}, {"face_id_offset", base}});
     base += model->parts[inst.part].faces;
   }

@@ -738,7 +738,10 @@ Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& op
     live.positions = sp->pos_;
     for (std::size_t t = 0; t < nt; ++t)
       if (!sp->dead_[t]) live.triangles.push_back(sp->tris_[t]);
-    if (count_self_intersections(live) > 0) {
+    // The input's own intersections (touching parts of an assembly, say) cannot be removed: rerun
+    // only when the plain result has more than the input.
+    const std::size_t out_x = count_self_intersections(live);
+    if (out_x > 0 && out_x > count_self_intersections(welded)) {
       r = before;
       r.guard_rerun = true;
       sp = std::make_unique<Simplifier>(std::move(welded), face, feature_tri, options);

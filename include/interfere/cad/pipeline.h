@@ -15,7 +15,23 @@ struct PipelineOptions {
   std::string process_file, step;        ///< both empty = no semantics (no features kept)
 };
 
+struct PreparedPart {
+  std::string name;
+  TriMesh mesh;                              ///< part coordinates
+  std::vector<std::uint32_t> face_ids;       ///< per triangle, the part's B-Rep face
+  std::vector<std::uint32_t> feature_faces;  ///< assembly-feature faces of the step (part's ids)
+  std::uint32_t faces = 0;
+  std::size_t instances = 0;
+};
+struct PreparedInstance {
+  std::uint32_t part = 0;
+  Transform placement;
+  std::uint32_t face_offset = 0;  ///< added to the part's face ids in the world mesh
+};
+
 struct Prepared {
+  std::vector<PreparedPart> parts;  ///< for per-part simplification
+  std::vector<PreparedInstance> instances;
   TriMesh mesh;                         ///< every instance in world coordinates
   std::vector<std::uint32_t> face_ids;  ///< unique per instance
   std::vector<std::uint32_t> feature_faces;

@@ -54,7 +54,8 @@ struct SimplifyOptions {
   /// cosine allows (dot(n_before, n_after) < min_normal_cos) or the triangle degenerates.
   double min_normal_cos = 0.2;
   /// No self-intersection the input did not have: the plain QEM result is checked with the
-  /// engine's exact self-clash, and only if it has an intersection the run is repeated with a guard
+  /// engine's exact self-clash, and only if it has more intersecting pairs than the input (whose
+  /// own intersections, e.g. touching parts, cannot be removed) the run is repeated with a guard
   /// that rejects every collapse whose moved triangles would meet a non-adjacent triangle (exact
   /// test against a hash grid; about 10x slower). Off: plain QEM, unchecked.
   bool prevent_self_intersections = true;
