@@ -11,4 +11,6 @@ void add_check_command(CLI::App& app, int& exit_code);
 void add_sweep_command(CLI::App& app, int& exit_code);
 void add_bearing_command(CLI::App& app, int& exit_code);
 void add_surface_command(CLI::App& app, int& exit_code);
+void add_simplify_command(CLI::App& app, int& exit_code);
+void add_features_command(CLI::App& app, int& exit_code);
 }  // namespace interfere::cli

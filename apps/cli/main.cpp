@@ -22,6 +22,8 @@ int main(int argc, char** argv) {
   add_sweep_command(app, exit_code);
   add_bearing_command(app, exit_code);
   add_surface_command(app, exit_code);
+  add_simplify_command(app, exit_code);
+  add_features_command(app, exit_code);
   app.parse_complete_callback([&] { Progress::set_quiet(quiet); });
   try {
     app.parse(argc, argv);

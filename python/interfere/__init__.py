@@ -100,3 +100,18 @@ __all__ += [
     "read_displacements_csv",
     "read_fem",
 ]
+# Simplification (issue #6) and, when built with OpenCASCADE, the CAD pipeline (docs/simplify.md).
+from ._interfere import (  # noqa: F401,E402
+    HAVE_CAD,
+    SimplifyResult,
+    count_self_intersections,
+    hausdorff,
+    simplify,
+    triangle_budgets,
+)
+
+__all__ += ["HAVE_CAD", "SimplifyResult", "count_self_intersections", "hausdorff", "simplify", "triangle_budgets"]
+if HAVE_CAD:
+    from ._interfere import import_step, step_features  # noqa: F401,E402
+
+    __all__ += ["import_step", "step_features"]

@@ -10,4 +10,5 @@ void bind_bearing(pybind11::module_& m);
 /// FEM module (bind_fem.cpp): FemMesh, read_fem, generators, extract_surface, clash_series.
 void bind_fem(pybind11::module_& m);
 
+void bind_simplify(pybind11::module_& m);
 }  // namespace interfere::python

@@ -967,4 +967,5 @@ PYBIND11_MODULE(_interfere, m) {
   interfere::python::bind_bearing(m);
 
   interfere::python::bind_fem(m);
+  interfere::python::bind_simplify(m);
 }

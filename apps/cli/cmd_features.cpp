@@ -1,0 +1,162 @@
+// `interfere features PART.step`: machining features recognised on the B-Rep (issue #6, items 2-4,
+// 7): the AAG of every part, the features of the library with their face ids, axes and radii, and,
+// with --process/--step, the assembly-feature faces that step selects.
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "commands.h"
+#include "common.h"
+#include "interfere/core/atomic_file.h"
+#ifdef INTERFERE_HAS_CAD
+#include "interfere/cad/features.h"
+#include "interfere/cad/model.h"
+#include "interfere/cad/semantics.h"
+#endif
+
+namespace interfere::cli {
+namespace {
+
+struct FeaturesCliOptions {
+  std::string input, json, library, rules, process, step;
+  double linear_deflection = 0, angular_deflection = 0.5;
+  bool aag = false;
+};
+
+#ifdef INTERFERE_HAS_CAD
+nlohmann::json vec_json(const Vec3& v) { return {v.x, v.y, v.z}; }
+std::string fmt_double(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.6g", v);
+  return b;
+}
+
+int run_features(const FeaturesCliOptions& o) {
+  using namespace interfere::cad;
+  if (!o.step.empty() && o.process.empty()) throw InputError("--step needs --process FILE");
+  if (o.step.empty() && !o.process.empty()) throw InputError("--process needs --step ID");
+  Progress total("features");
+  auto lib = o.library.empty() ? default_feature_library() : load_feature_library(o.library);
+  if (!lib) throw InputError(lib.error());
+  std::optional<SemanticRules> rules;
+  std::optional<Process> process;
+  if (!o.process.empty()) {
+    Expected<SemanticRules> r = SemanticRules{};
+    if (o.rules.empty()) {
+      r = default_semantic_rules(*lib);
+    } else {
+      std::ifstream in(o.rules);
+      if (!in) throw InputError(o.rules + ": cannot open the semantic rules");
+      std::stringstream ss;
+      ss << in.rdbuf();
+      r = parse_semantic_rules(ss.str(), *lib, o.rules);
+    }
+    if (!r) throw InputError(r.error());
+    rules = std::move(*r);
+    auto p = load_process(o.process);
+    if (!p) throw InputError(p.error());
+    process = std::move(*p);
+  }
+  Expected<CadModel> model = CadModel{};
+  {
+    Progress progress("importing " + o.input);
+    model = import_step(o.input, {.linear_deflection = o.linear_deflection, .angular_deflection = o.angular_deflection});
+    if (!model) throw InputError(model.error());
+  }
+  for (const auto& w : model->warnings)
+    if (!Progress::quiet()) std::fprintf(stderr, "[interfere] warning: %s\n", w.c_str());
+  nlohmann::json report{{"command", "features"}, {"version", INTERFERE_VERSION}, {"input", o.input}};
+  report["parts"] = nlohmann::json::array();
+  double recognition_seconds = 0;
+  for (const Part& part : model->parts) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto feats = recognize_features(part.aag, *lib);
+    recognition_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    nlohmann::json jp{{"name", part.name}, {"solids", part.solids}, {"faces", part.faces},
+                      {"triangles", part.mesh.num_triangles()}, {"untessellated_faces", part.untessellated_faces}};
+    jp["features"] = nlohmann::json::array();
+    std::printf("part '%s': %u faces, %zu triangles, %zu features\n", part.name.c_str(), part.faces,
+                part.mesh.num_triangles(), feats.size());
+    for (const Feature& f : feats) {
+      nlohmann::json jf{{"type", f.type}, {"faces", f.faces}, {"roles", f.roles}, {"radii", f.radii}};
+      if (norm(f.axis) > 0) jf["axis"] = {{"point", vec_json(f.axis_point)}, {"direction", vec_json(f.axis)}};
+      jp["features"].push_back(jf);
+      std::string faces;
+      for (auto id : f.faces) faces += (faces.empty() ? "" : ",") + std::to_string(id);
+      std::string radii;
+      for (double r : f.radii) radii += (radii.empty() ? "" : ",") + fmt_double(r);
+      std::printf("  %-18s faces [%s]%s%s\n", f.type.c_str(), faces.c_str(), radii.empty() ? "" : " radii ",
+                  radii.c_str());
+    }
+    if (process) {
+      auto sel = select_assembly_features(*process, o.step, *rules, part.name, feats);
+      if (!sel) throw InputError(o.process + ": " + sel.error().reason);
+      jp["assembly_feature_faces"] = sel->faces;
+      jp["semantics_warnings"] = sel->warnings;
+      std::printf("  step %s: %zu assembly-feature faces\n", o.step.c_str(), sel->faces.size());
+    }
+    if (o.aag) {
+      nlohmann::json nodes = nlohmann::json::array(), arcs = nlohmann::json::array();
+      for (const AagNode& n : part.aag.nodes) {
+        nlohmann::json jn{{"face", n.face}, {"type", surface_type_name(n.type)}, {"from_bspline", n.from_bspline},
+                          {"area", n.area}, {"outer_loops", n.outer_loops}, {"inner_loops", n.inner_loops},
+                          {"triangles", n.triangles}};
+        if (n.type == SurfaceType::plane) jn["normal"] = vec_json(n.normal);
+        else if (n.type != SurfaceType::bspline && n.type != SurfaceType::other) {
+          jn["axis"] = {{"point", vec_json(n.axis_point)}, {"direction", vec_json(n.axis)}};
+          jn["radius"] = n.radius;
+          jn["hole"] = n.hole;
+          if (n.type == SurfaceType::cone) jn["half_angle"] = n.half_angle;
+          if (n.type == SurfaceType::torus) jn["minor_radius"] = n.minor_radius;
+        }
+        nodes.push_back(jn);
+      }
+      for (const AagArc& a : part.aag.arcs)
+        arcs.push_back({{"faces", {a.a, a.b}}, {"edge", a.edge}, {"curve", curve_type_name(a.curve)},
+                        {"convexity", convexity_name(a.convexity)}, {"angle", a.angle}, {"length", a.length},
+                        {"inner_loop", {a.inner_loop_a, a.inner_loop_b}}});
+      jp["aag"] = {{"nodes", nodes}, {"arcs", arcs}, {"minimal_subgraphs", minimal_subgraphs(part.aag)}};
+    }
+    report["parts"].push_back(jp);
+  }
+  report["instances"] = nlohmann::json::array();
+  for (const Instance& i : model->instances) {
+    nlohmann::json m = nlohmann::json::array();
+    for (int r = 0; r < 3; ++r) m.push_back({i.placement.r[r][0], i.placement.r[r][1], i.placement.r[r][2], (r == 0 ? i.placement.t.x : r == 1 ? i.placement.t.y : i.placement.t.z)});
+    report["instances"].push_back({{"name", i.name}, {"part", i.part}, {"path", i.path}, {"placement", m}});
+  }
+  report["warnings"] = model->warnings;
+  report["seconds"] = {{"recognition", recognition_seconds}, {"total", total.seconds()}};
+  if (!o.json.empty()) {
+    const Status s = write_file_atomic(o.json, report.dump(2) + "\n");
+    if (!s) throw InputError(s.error());
+  }
+  return kClear;
+}
+#else
+int run_features(const FeaturesCliOptions& o) {
+  throw InputError(o.input + ": `interfere features` needs interfere built with OpenCASCADE (INTERFERE_WITH_OCCT)");
+}
+#endif
+
+}  // namespace
+
+void add_features_command(CLI::App& app, int& exit_code) {
+  auto o = std::make_shared<FeaturesCliOptions>();
+  CLI::App* c = app.add_subcommand("features", "Machining features of a STEP part (AAG + feature library)");
+  c->add_option("IN", o->input, "STEP file")->required()->check(CLI::ExistingFile);
+  c->add_option("--json", o->json, "write the JSON report here");
+  c->add_flag("--aag", o->aag, "include the attributed adjacency graph in the JSON report");
+  c->add_option("--library", o->library, "feature library JSON (default: the installed data/features/library.json)");
+  c->add_option("--rules", o->rules, "assembly-semantics rules JSON (default: data/features/semantics.json)");
+  c->add_option("--process", o->process, "process description JSON (steps, parts, constraint types)");
+  c->add_option("--step", o->step, "process step whose assembly-feature faces are listed");
+  c->add_option("--linear-deflection", o->linear_deflection, "tessellation linear deflection (0 = 0.1 % of the diagonal)");
+  c->add_option("--angular-deflection", o->angular_deflection, "tessellation angular deflection, radians");
+  c->callback([o, &exit_code] { exit_code = run_features(*o); });
+}
+
+}  // namespace interfere::cli

@@ -1,0 +1,324 @@
+// `interfere simplify IN OUT --target N | --ratio R`: feature-preserving QEM simplification
+// (issue #6, items 5-7). IN is a mesh file (STL/OBJ/PLY/OFF; optional per-triangle regions and
+// feature regions, or a dihedral-angle mask) or, when built with OpenCASCADE, a STEP file whose
+// assembly features are recognised and selected for a process step (--step P --process FILE).
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <sstream>
+
+#include "commands.h"
+#include "common.h"
+#include "interfere/core/atomic_file.h"
+#include "interfere/simplify/budget.h"
+#include "interfere/simplify/hausdorff.h"
+#include "interfere/simplify/qem.h"
+#include "interfere/simplify/tagged_io.h"
+#ifdef INTERFERE_HAS_CAD
+#include "interfere/cad/pipeline.h"
+#endif
+
+namespace interfere::cli {
+namespace {
+
+struct SimplifyCliOptions {
+  std::string input, output, json, regions, features, step, process, format = "auto", feature_mode = "weight";
+  std::size_t target = 0;
+  double ratio = 0;
+  double sharp_angle = 0;
+  double linear_deflection = 0, angular_deflection = 0.5;
+  std::size_t renderer_max = 0;
+  bool lock = false, check_self = false, no_error = false, no_guard = false;
+  int threads = 0;
+};
+
+std::vector<std::uint32_t> parse_id_list(const std::string& s, const std::string& flag) {
+  std::vector<std::uint32_t> out;
+  std::stringstream ss(s);
+  std::string tok;
+  while (std::getline(ss, tok, ',')) {
+    if (tok.empty()) continue;
+    try {
+      std::size_t used = 0;
+      const unsigned long v = std::stoul(tok, &used);
+      if (used != tok.size() || v > 0xffffffffUL) throw std::invalid_argument(tok);
+      out.push_back(static_cast<std::uint32_t>(v));
+    } catch (const std::exception&) {
+      throw InputError(flag + ": not a face/region id: '" + tok + "'");
+    }
+  }
+  return out;
+}
+
+bool is_step(const std::string& file) {
+  std::string e = std::filesystem::path(file).extension().string();
+  for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return e == ".step" || e == ".stp";
+}
+
+#ifdef INTERFERE_HAS_CAD
+// STEP input: every part is simplified on its own (an assembly's touching parts are not
+// self-intersections of one mesh) to its share of the total budget (triangle_budgets: instances
+// counted, the step's feature triangles reserved), then the instances are placed in the world mesh.
+Expected<SimplifyResult> simplify_parts(const cad::Prepared& prep, std::size_t total, SimplifyOptions so,
+                                        nlohmann::json& parts_report, bool count_self, std::size_t& self_total) {
+  std::vector<PartBudgetInput> in;
+  std::vector<std::size_t> feature_tris(prep.parts.size(), 0);
+  for (std::size_t i = 0; i < prep.parts.size(); ++i) {
+    const cad::PreparedPart& p = prep.parts[i];
+    std::vector<std::uint32_t> ff = p.feature_faces;
+    std::sort(ff.begin(), ff.end());
+    for (auto f : p.face_ids) feature_tris[i] += std::binary_search(ff.begin(), ff.end(), f);
+    in.push_back({p.instances * p.mesh.num_triangles(), p.instances * feature_tris[i]});
+  }
+  const BudgetResult budgets = triangle_budgets(in, total);
+  SimplifyResult all;
+  std::vector<SimplifyResult> done(prep.parts.size());
+  for (std::size_t i = 0; i < prep.parts.size(); ++i) {
+    const cad::PreparedPart& p = prep.parts[i];
+    if (p.instances == 0 || p.mesh.num_triangles() == 0) continue;
+    const std::size_t n = std::clamp<std::size_t>(budgets.budgets[i] / p.instances, 1, p.mesh.num_triangles());
+    SimplifyOptions po = so;
+    po.target_triangles = n;
+    po.ratio = 0;
+    po.face_ids = p.face_ids;
+    po.feature_faces = p.feature_faces;
+    auto r = simplify(p.mesh, po);
+    if (!r) {
+      Error e = r.error();
+      e.reason = "part '" + p.name + "': " + e.reason;
+      return e;
+    }
+    done[i] = std::move(*r);
+    const SimplifyResult& d = done[i];
+    parts_report.push_back({{"name", p.name}, {"instances", p.instances}, {"input_triangles", d.input_triangles},
+                            {"target_triangles", n}, {"output_triangles", d.mesh.num_triangles()},
+                            {"feature_triangles", {{"input", d.feature_triangles_in}, {"output", d.feature_triangles_out}}},
+                            {"hausdorff", d.hausdorff}, {"hausdorff_features", d.hausdorff_features < 0 ? nlohmann::json(nullptr) : nlohmann::json(d.hausdorff_features)},
+                            {"guard_rerun", d.guard_rerun}});
+    if (count_self) {
+      const std::size_t x = count_self_intersections(d.mesh);
+      parts_report.back()["self_intersections"] = x;
+      self_total += x * p.instances;
+    }
+    all.collapses += d.collapses, all.rejected_link += d.rejected_link, all.rejected_flip += d.rejected_flip;
+    all.rejected_intersection += d.rejected_intersection, all.guard_rerun = all.guard_rerun || d.guard_rerun;
+    all.seam_vertices += d.seam_vertices, all.corner_vertices += d.corner_vertices, all.locked_vertices += d.locked_vertices;
+    all.input_vertices_welded += d.input_vertices_welded;
+    all.max_unmodified_cost = std::max(all.max_unmodified_cost, d.max_unmodified_cost);
+    all.hausdorff = std::max(all.hausdorff, d.hausdorff);
+    all.hausdorff_features = std::max(all.hausdorff_features, d.hausdorff_features);
+    for (const auto& w : d.warnings) all.warnings.push_back("part '" + p.name + "': " + w);
+  }
+  for (const cad::PreparedInstance& inst : prep.instances) {
+    const SimplifyResult& d = done[inst.part];
+    const auto base = static_cast<std::uint32_t>(all.mesh.positions.size());
+    for (const Vec3& v : d.mesh.positions) all.mesh.positions.push_back(inst.placement.apply(v));
+    for (const Tri& t : d.mesh.triangles) all.mesh.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+    for (auto f : d.face_ids) all.face_ids.push_back(f + inst.face_offset);
+    all.feature_triangles_in += d.feature_triangles_in, all.feature_triangles_out += d.feature_triangles_out;
+    all.input_triangles += d.input_triangles;
+  }
+  all.target_triangles = total;
+  all.reached = all.mesh.num_triangles() == total;
+  if (!all.reached)
+    all.warnings.push_back("total budget " + std::to_string(total) + ": " + std::to_string(all.mesh.num_triangles()) +
+                           " triangles (per-part budgets are rounded down per instance, parts may stop early)");
+  if (budgets.features_exceed_budget) all.warnings.push_back("the step's feature triangles alone exceed the budget");
+  all.bbox_diagonal = norm(prep.mesh.bounds().extent());
+  all.error_bound = all.hausdorff;  // rigid placements keep distances: the largest part error
+  return all;
+}
+#endif
+
+int run_simplify(const SimplifyCliOptions& o) {
+  if (o.target == 0 && o.ratio == 0 && o.renderer_max == 0)
+    throw InputError("simplify: give --target N (> 0), --ratio R or --renderer-max N");
+  if (o.ratio != 0 && !(o.ratio > 0 && o.ratio <= 1)) throw InputError("--ratio must lie in (0, 1]");
+  if (!o.step.empty() && o.process.empty()) throw InputError("--step needs --process FILE");
+  const MeshFormat out_format = mesh_format_from_name(o.format);
+  if (out_format == MeshFormat::automatic && o.format != "auto" && o.format != "AUTO")
+    throw InputError("--format: unknown mesh format '" + o.format + "'");
+  set_threads(o.threads);
+  Progress total("simplify");
+  nlohmann::json report;
+  report["command"] = "simplify";
+  report["version"] = INTERFERE_VERSION;
+  report["input"] = o.input;
+  report["output"] = o.output;
+
+  TriMesh mesh;
+  SimplifyOptions so;
+#ifdef INTERFERE_HAS_CAD
+  std::unique_ptr<cad::Prepared> cad_prepared;
+#endif
+  so.target_triangles = o.target;
+  so.ratio = o.ratio;
+  if (o.feature_mode == "weight") so.feature_mode = FeatureMode::weight;
+  else if (o.feature_mode == "last") so.feature_mode = FeatureMode::last;
+  else if (o.feature_mode == "lock") so.feature_mode = FeatureMode::lock;
+  else throw InputError("--feature-mode must be weight, last or lock, not '" + o.feature_mode + "'");
+  if (o.lock) so.feature_mode = FeatureMode::lock;
+  so.measure_error = !o.no_error;
+  so.prevent_self_intersections = !o.no_guard;
+  if (is_step(o.input)) {
+#ifdef INTERFERE_HAS_CAD
+    cad::PipelineOptions po;
+    po.linear_deflection = o.linear_deflection;
+    po.angular_deflection = o.angular_deflection;
+    po.process_file = o.process;
+    po.step = o.step;
+    Progress progress("importing " + o.input);
+    auto prepared = cad::prepare_for_simplify(o.input, po);
+    if (!prepared) throw InputError(prepared.error());
+    mesh = prepared->mesh;
+    so.face_ids = prepared->face_ids;
+    so.feature_faces = prepared->feature_faces;
+    cad_prepared = std::make_unique<cad::Prepared>(std::move(*prepared));
+    report["cad"] = nlohmann::json::parse(cad_prepared->report_json);
+    for (const auto& w : cad_prepared->warnings)
+      if (!Progress::quiet()) std::fprintf(stderr, "[interfere] warning: %s\n", w.c_str());
+#else
+    throw InputError(o.input + ": STEP input needs interfere built with OpenCASCADE (INTERFERE_WITH_OCCT)");
+#endif
+  } else {
+    if (!o.step.empty() || !o.process.empty())
+      throw InputError("--step/--process need a STEP input (features are recognised on the B-Rep)");
+    Progress progress("reading " + o.input);
+    auto m = read_mesh(o.input);
+    if (!m) throw InputError(m.error());
+    mesh = std::move(*m);
+    if (!o.regions.empty()) {
+      auto r = read_region_file(o.regions, mesh.num_triangles());
+      if (!r) throw InputError(r.error());
+      so.face_ids = std::move(*r);
+    }
+    so.sharp_angle_deg = o.sharp_angle;
+  }
+  if (!o.features.empty()) {
+    const auto extra = parse_id_list(o.features, "--features");
+    so.feature_faces.insert(so.feature_faces.end(), extra.begin(), extra.end());
+  }
+  if (o.renderer_max > 0) {  // one part: its budget is the renderer's maximum (docs/simplify.md)
+    std::size_t feature_tris = 0;
+    std::vector<std::uint32_t> ff = so.feature_faces;
+    std::sort(ff.begin(), ff.end());
+    for (auto f : so.face_ids) feature_tris += std::binary_search(ff.begin(), ff.end(), f);
+    const auto b = triangle_budgets({{mesh.num_triangles(), feature_tris}}, o.renderer_max);
+    so.target_triangles = std::max<std::size_t>(1, b.budgets[0]);
+    so.ratio = 0;
+  }
+  SimplifyResult r;
+  double seconds = 0;
+  std::size_t self_parts = 0;
+  bool per_part = false;
+  {
+    Progress progress("simplifying " + std::to_string(mesh.num_triangles()) + " triangles");
+    Expected<SimplifyResult> res = Error{};
+#ifdef INTERFERE_HAS_CAD
+    if (cad_prepared) {
+      const std::size_t n = mesh.num_triangles();
+      std::size_t total = so.target_triangles;
+      if (total == 0 && so.ratio > 0) total = static_cast<std::size_t>(std::llround(so.ratio * double(n)));
+      if (total == 0 || total > n)
+        throw InputError(o.input + ": triangle budget " + std::to_string(total) + " must lie in [1, " + std::to_string(n) + "]");
+      nlohmann::json parts = nlohmann::json::array();
+      res = simplify_parts(*cad_prepared, total, so, parts, o.check_self, self_parts);
+      per_part = true;
+      report["parts_simplified"] = parts;
+    } else {
+      res = simplify(mesh, so);
+    }
+#else
+    res = simplify(mesh, so);
+#endif
+    if (!res) {
+      Error e = res.error();
+      e.file = o.input;
+      throw InputError(e);
+    }
+    r = std::move(*res);
+    seconds = progress.seconds();
+  }
+  std::size_t self = 0;
+  if (o.check_self) {
+    Progress progress("self-intersection check");
+    // STEP: per part (an assembly's touching parts are contacts, not self-intersections).
+    self = per_part ? self_parts : count_self_intersections(r.mesh);
+  }
+  {
+    Progress progress("writing " + o.output);
+    const Status s = write_tagged_mesh(o.output, r.mesh, r.face_ids, so.feature_faces, out_format, r.error_bound);
+    if (!s) throw InputError(s.error());
+  }
+  report["input_triangles"] = r.input_triangles;
+  report["target_triangles"] = r.target_triangles;
+  report["output_triangles"] = r.mesh.num_triangles();
+  report["output_vertices"] = r.mesh.num_vertices();
+  report["reached"] = r.reached;
+  report["collapses"] = r.collapses;
+  report["rejected"] = {{"link_condition", r.rejected_link}, {"flipped_normal", r.rejected_flip},
+                        {"self_intersection", r.rejected_intersection}};
+  report["guard_rerun"] = r.guard_rerun;
+  report["vertices"] = {{"welded_input", r.input_vertices_welded}, {"seam", r.seam_vertices},
+                        {"corner", r.corner_vertices}, {"locked", r.locked_vertices}};
+  report["feature_mode"] = so.feature_mode == FeatureMode::lock ? "lock" : so.feature_mode == FeatureMode::last ? "last" : "weight";
+  std::vector<std::uint32_t> ff = so.feature_faces;
+  std::sort(ff.begin(), ff.end());
+  ff.erase(std::unique(ff.begin(), ff.end()), ff.end());
+  report["feature_faces"] = ff;
+  report["feature_triangles"] = {{"input", r.feature_triangles_in}, {"output", r.feature_triangles_out}};
+  report["max_unmodified_cost"] = r.max_unmodified_cost;
+  report["bbox_diagonal"] = r.bbox_diagonal;
+  report["hausdorff"] = r.hausdorff;
+  report["hausdorff_features"] = r.hausdorff_features < 0 ? nlohmann::json(nullptr) : nlohmann::json(r.hausdorff_features);
+  report["error_bound"] = r.error_bound;
+  if (o.check_self) report["self_intersections"] = self;
+  report["seconds"] = {{"simplify", seconds}, {"total", total.seconds()}};
+  report["warnings"] = r.warnings;
+  for (const auto& w : r.warnings)
+    if (!Progress::quiet()) std::fprintf(stderr, "[interfere] warning: %s\n", w.c_str());
+  if (!o.json.empty()) {
+    const Status s = write_file_atomic(o.json, report.dump(2) + "\n");
+    if (!s) throw InputError(s.error());
+  }
+  std::printf("simplified %zu -> %zu triangles (target %zu%s), Hausdorff %.6g (features %.6g), %.3f s\n",
+              r.input_triangles, r.mesh.num_triangles(), r.target_triangles, r.reached ? "" : ", not reached",
+              r.hausdorff, r.hausdorff_features, seconds);
+  return kClear;
+}
+
+}  // namespace
+
+void add_simplify_command(CLI::App& app, int& exit_code) {
+  auto o = std::make_shared<SimplifyCliOptions>();
+  CLI::App* c = app.add_subcommand("simplify", "Feature-preserving QEM simplification to a triangle budget");
+  c->add_option("IN", o->input, "input mesh (STL/OBJ/PLY/OFF) or STEP file")->required()->check(CLI::ExistingFile);
+  c->add_option("OUT", o->output, "output mesh (.ply/.obj keep face ids, .stl in the attribute word, .off)")->required();
+  auto* target = c->add_option("--target", o->target, "triangle budget N (> 0, at most the input's count)");
+  auto* ratio = c->add_option("--ratio", o->ratio, "budget as a fraction of the input's triangles, in (0, 1]");
+  target->excludes(ratio);
+  c->add_option("--renderer-max", o->renderer_max,
+                "renderer's maximum triangle count: budget from the formula of docs/simplify.md (overrides --target/--ratio)");
+  c->add_option("--step", o->step, "process step id whose assembly features are kept (STEP input, needs --process)");
+  c->add_option("--process", o->process, "process description JSON (steps, parts, constraint types)");
+  c->add_option("--regions", o->regions, "per-triangle region ids (text, one unsigned integer per triangle)");
+  c->add_option("--features", o->features, "comma-separated face/region ids to keep (added to the step's features)");
+  c->add_flag("--lock", o->lock, "hard-lock feature faces (bit-identical) instead of the paper's cost weighting");
+  c->add_option("--feature-mode", o->feature_mode,
+                "weight (paper: + maximum unmodified cost), last (feature edges strictly last) or lock");
+  c->add_option("--sharp-angle", o->sharp_angle, "plain meshes: keep edges whose dihedral angle exceeds DEG degrees");
+  c->add_option("--linear-deflection", o->linear_deflection, "STEP tessellation: linear deflection (0 = 0.1 % of the diagonal)");
+  c->add_option("--angular-deflection", o->angular_deflection, "STEP tessellation: angular deflection in radians");
+  c->add_option("--format", o->format, "output format (stl, stl-ascii, obj, ply, ply-ascii, off; default by extension)");
+  c->add_flag("--check-self-intersections", o->check_self, "count self-intersections of the result (engine clash)");
+  c->add_flag("--no-intersection-guard", o->no_guard, "plain QEM: no self-intersection check of the result and no guarded rerun");
+  c->add_flag("--no-error", o->no_error, "skip the Hausdorff measurement (error_bound is then -1)");
+  c->add_option("--json", o->json, "write the JSON report here");
+  c->add_option("--threads", o->threads, "worker threads (0 = all cores)");
+  c->callback([o, &exit_code] { exit_code = run_simplify(*o); });
+}
+
+}  // namespace interfere::cli

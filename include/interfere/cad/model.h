@@ -1,0 +1,120 @@
+// CAD models (issue #6, items 1-2), OCCT-free: a STEP file as parts (one solid or shell each,
+// tessellated, every triangle tagged with its B-Rep face id), instances with their placement in
+// the product tree (XCAF), and each part's attributed adjacency graph (AAG). Only src/cad/ sees
+// OpenCASCADE; these plain structs are what the CLI, the Python module and the tests use.
+#pragma once
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "interfere/core/error.h"
+#include "interfere/core/transform.h"
+#include "interfere/mesh/tri_mesh.h"
+
+namespace interfere::cad {
+
+enum class SurfaceType : std::uint8_t { plane, cylinder, cone, sphere, torus, bspline, other };
+enum class CurveType : std::uint8_t { line, circle, ellipse, other };
+enum class Convexity : std::uint8_t { convex, concave, smooth };
+const char* surface_type_name(SurfaceType t);
+const char* curve_type_name(CurveType t);
+const char* convexity_name(Convexity c);
+
+/// AAG node: one B-Rep face with its surface type and parameters.
+struct AagNode {
+  std::uint32_t face = 0;       ///< face id (index in the part's face map, TopExp::MapShapes order)
+  SurfaceType type = SurfaceType::other;
+  bool from_bspline = false;    ///< a B-spline/Bezier/other face recognised as plane/cylinder/...
+  Vec3 normal;                  ///< plane: outward unit normal (material side is behind it)
+  Vec3 axis_point, axis;        ///< cylinder/cone/sphere/torus: axis (unit direction) and a point
+  double radius = 0;            ///< cylinder, sphere, torus (major); cone: radius at axis_point
+  double minor_radius = 0;      ///< torus
+  double half_angle = 0;        ///< cone, radians
+  bool hole = false;            ///< cylinder/cone/sphere: outward normal points to the axis (a bore)
+  double area = 0;
+  std::uint32_t outer_loops = 0, inner_loops = 0;
+  std::uint32_t triangles = 0;  ///< of the tessellation
+};
+
+/// AAG arc: one B-Rep edge shared by two different faces.
+struct AagArc {
+  std::uint32_t a = 0, b = 0;  ///< node (= face) ids, a < b
+  std::uint32_t edge = 0;      ///< edge id (TopExp::MapShapes order)
+  CurveType curve = CurveType::other;
+  Convexity convexity = Convexity::smooth;
+  double angle = 0;            ///< angle between the outward normals at the edge's middle, radians
+  bool inner_loop_a = false, inner_loop_b = false;  ///< the edge lies on an inner loop of a / b
+  double length = 0;
+};
+
+struct Aag {
+  std::vector<AagNode> nodes;  ///< nodes[i].face == i
+  std::vector<AagArc> arcs;    ///< sorted by (a, b, edge)
+};
+
+struct Part {
+  std::string name;
+  TriMesh mesh;                         ///< part coordinates; vertices duplicated along face boundaries
+  std::vector<std::uint32_t> face_ids;  ///< per triangle: its B-Rep face
+  Aag aag;
+  std::uint32_t solids = 0, shells = 0, faces = 0;
+  std::vector<std::uint32_t> untessellated_faces;  ///< faces that failed to tessellate
+};
+
+struct Instance {
+  std::string name;         ///< component or product name
+  std::uint32_t part = 0;   ///< index into CadModel::parts
+  Transform placement;      ///< part coordinates -> world
+  std::string path;         ///< product-tree path, "/"-separated names
+};
+
+struct CadModel {
+  std::vector<Part> parts;
+  std::vector<Instance> instances;
+  std::vector<std::string> warnings;
+};
+
+struct ImportOptions {
+  /// BRepMesh_IncrementalMesh linear deflection, model units; 0 = 0.1 % of the bounding-box diagonal.
+  double linear_deflection = 0;
+  double angular_deflection = 0.5;  ///< radians
+  /// Tolerance (relative to the face's size) of the canonical-surface recognition of B-spline faces.
+  double canonical_tolerance = 1e-4;
+};
+
+/// Reads a STEP file (parts, assemblies, names, instance transforms; XCAF), tessellates every part
+/// and builds its AAG. Errors: unreadable or empty file, no solid/shell; faces that fail to
+/// tessellate are warnings naming the face.
+Expected<CadModel> import_step(const std::filesystem::path& path, const ImportOptions& options = {});
+
+/// All instances' meshes in world coordinates, concatenated; face ids made unique per instance
+/// (offset by the running face count) when `face_ids` is given.
+TriMesh world_mesh(const CadModel& model, std::vector<std::uint32_t>* face_ids = nullptr);
+
+/// Test and benchmark solids built with OCCT primitives and Booleans, written to STEP
+/// (STEPControl_Writer). Sizes in mm.
+enum class TestPart {
+  box_through_hole,     ///< 40x30x10 box, through hole r=4 along z at the centre
+  box_blind_hole,       ///< same box, blind hole r=4 depth 6
+  counterbored_plate,   ///< 40x30x10 plate, bore r=3 through, counterbore r=6 depth 4
+  countersunk_plate,    ///< 40x30x10 plate, bore r=3 through, 90-degree countersink to r=6
+  stepped_shaft,        ///< cylinder r=10 h=30 + cylinder r=6 h=25 on top (shoulder ring)
+  slot_block,           ///< 40x30x20 block, through slot 10 wide 8 deep along x
+  step_block,           ///< 40x30x20 block, through step 10 x 8 along x
+  near_miss_plate,      ///< counterbored_plate with the counterbore 2 mm off the bore axis: no match
+  casing,               ///< flanged ring (B-spline wall of revolution), 6 counterbored bolt holes on the lower flange, 6 plain ones on the upper (the paper's casing)
+  box_through_hole_nurbs,  ///< box_through_hole with every face converted to B-spline
+  perforated_plate,     ///< 400x400x10 plate, 13x13 counterbored holes: 513 faces (recognition timing)
+  box_through_hole_split,  ///< box_through_hole with the closed hole face split in two half cylinders
+  single_face,          ///< one planar 10 x 10 face, no solid (bad-input test: a warning, not an error)
+};
+const char* test_part_name(TestPart p);
+Status write_test_part(TestPart part, const std::filesystem::path& step_file);
+
+/// An XCAF assembly "assembly" written with STEPCAFControl_Writer (names kept): part "plate"
+/// (counterbored_plate) as component "plate_1" at the identity and "plate_2" rotated 90 degrees about
+/// z then lifted by (0, 0, 20); part "shaft" (stepped_shaft) as "shaft_1" moved by (100, 0, 0).
+Status write_test_assembly(const std::filesystem::path& step_file);
+
+}  // namespace interfere::cad

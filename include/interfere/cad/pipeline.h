@@ -1,0 +1,44 @@
+// STEP -> features -> assembly features of a step -> one mesh with face ids ready for
+// interfere::simplify (issue #6): the glue used by `interfere simplify` and `interfere features`.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "interfere/cad/features.h"
+#include "interfere/cad/semantics.h"
+
+namespace interfere::cad {
+
+struct PipelineOptions {
+  double linear_deflection = 0, angular_deflection = 0.5;
+  std::string library_file, rules_file;  ///< empty = installed defaults
+  std::string process_file, step;        ///< both empty = no semantics (no features kept)
+};
+
+struct PreparedPart {
+  std::string name;
+  TriMesh mesh;                              ///< part coordinates
+  std::vector<std::uint32_t> face_ids;       ///< per triangle, the part's B-Rep face
+  std::vector<std::uint32_t> feature_faces;  ///< assembly-feature faces of the step (part's ids)
+  std::uint32_t faces = 0;
+  std::size_t instances = 0;
+};
+struct PreparedInstance {
+  std::uint32_t part = 0;
+  Transform placement;
+  std::uint32_t face_offset = 0;  ///< added to the part's face ids in the world mesh
+};
+
+struct Prepared {
+  std::vector<PreparedPart> parts;  ///< for per-part simplification
+  std::vector<PreparedInstance> instances;
+  TriMesh mesh;                         ///< every instance in world coordinates
+  std::vector<std::uint32_t> face_ids;  ///< unique per instance
+  std::vector<std::uint32_t> feature_faces;
+  std::string report_json;              ///< parts, instances, features, selection
+  std::vector<std::string> warnings;
+};
+
+Expected<Prepared> prepare_for_simplify(const std::string& step_file, const PipelineOptions& options);
+
+}  // namespace interfere::cad

@@ -1,0 +1,58 @@
+// Assembly semantics (issue #6, item 4), after He & Xu (SJTU 2023) §3: rules (JSON) map a
+// constraint type of an assembly step to the feature types and the feature roles whose faces take
+// part in it (bolt connection -> through hole + top and bottom faces; gear on shaft -> outer
+// cylinder + adjacent ring face; screw tightening -> counterbored hole + seat face); a process
+// description (JSON) lists the steps with their parts and constraint type, so the assembly features
+// of step P_i are selected automatically. OCCT-free.
+#pragma once
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "interfere/cad/features.h"
+
+namespace interfere::cad {
+
+struct SemanticRule {
+  std::string name;        ///< e.g. "bolt_connection"
+  std::string constraint;  ///< the constraint type it applies to
+  struct Need {
+    std::string feature;             ///< feature type (must exist in the library)
+    std::vector<std::string> roles;  ///< roles whose faces are assembly features (empty = all)
+  };
+  std::vector<Need> needs;
+};
+struct SemanticRules {
+  std::vector<SemanticRule> rules;
+};
+
+struct ProcessStep {
+  std::string id;
+  std::vector<std::string> parts;  ///< part names ("*" = every part)
+  std::string constraint;
+};
+struct Process {
+  std::vector<ProcessStep> steps;
+};
+
+/// Parses rules and checks every feature type against `library`: a rule referring to an unknown
+/// feature type is an error naming the rule and the type.
+Expected<SemanticRules> parse_semantic_rules(const std::string& json_text, const FeatureLibrary& library,
+                                             const std::string& source = "");
+Expected<SemanticRules> default_semantic_rules(const FeatureLibrary& library);
+Expected<Process> parse_process(const std::string& json_text, const std::string& source = "");
+Expected<Process> load_process(const std::filesystem::path& path);
+
+struct Selection {
+  std::vector<std::uint32_t> faces;  ///< sorted face ids that are assembly features of the step
+  std::vector<const Feature*> features_used;
+  std::vector<std::string> warnings;  ///< e.g. a constraint with no rule, a rule with no feature found
+};
+
+/// Assembly-feature faces of `part_name` (with its recognised `features`) in step `step_id`.
+/// Errors: unknown step id. A part not in the step selects nothing.
+Expected<Selection> select_assembly_features(const Process& process, const std::string& step_id,
+                                             const SemanticRules& rules, const std::string& part_name,
+                                             const std::vector<Feature>& features);
+
+}  // namespace interfere::cad

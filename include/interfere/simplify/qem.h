@@ -1,0 +1,107 @@
+// Feature-preserving QEM simplification (issue #6, item 5): Garland & Heckbert, "Surface
+// Simplification Using Quadric Error Metrics", SIGGRAPH 1997, with the assembly-feature rule of
+// He & Xu (Shanghai Jiao Tong University, 2023): the cost of every edge touching an assembly-feature
+// face is raised by the maximum unmodified edge cost, so that those edges collapse last; hard locks
+// as an option. Plain geometry on TriMesh (no OCCT).
+//
+// Faces and seams. Each triangle may carry a face id (the B-Rep face it was tessellated from, or a
+// region of a plain mesh). The input is welded by exact position internally, so vertices that are
+// duplicated along face boundaries (as the STEP importer writes them) become one; the seams (edges
+// whose two triangles have different face ids), open boundaries and non-manifold edges are then
+// constrained edges: a vertex on exactly two constrained edges (a seam vertex) may only be removed
+// along one of them onto the other end, which stays where it is, so seams are simplified as
+// polylines through original vertices and stay shared by the faces on both sides; a vertex on one
+// or three and more constrained edges (a corner, where three faces meet) is never removed. The
+// output duplicates vertices again along face boundaries when face ids were given, so faces stay
+// separable.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "interfere/core/error.h"
+#include "interfere/mesh/tri_mesh.h"
+
+namespace interfere {
+
+enum class FeatureMode {
+  weight,  ///< the paper's rule: cost of edges touching feature faces += maximum unmodified cost
+  last,    ///< strict: feature edges are ordered after every other candidate (an infinite offset)
+  lock,    ///< vertices of feature faces never move: feature triangles stay bit-identical
+};
+
+struct SimplifyOptions {
+  /// Triangle budget. > 0: the result has exactly this many triangles when it can be reached (a
+  /// collapse removes the 2 triangles of an inner edge or the 1 of a boundary edge, so on a closed
+  /// mesh, whose triangle count is even, an odd budget gives budget - 1), else as few as the
+  /// constraints allow (result.reached false). 0: use `ratio`.
+  std::size_t target_triangles = 0;
+  double ratio = 0;  ///< target = round(ratio * input triangles) when target_triangles is 0
+  /// Per-triangle face id (B-Rep face or region); empty = one face. Size must equal the triangles.
+  std::vector<std::uint32_t> face_ids;
+  /// Face ids whose triangles are assembly features (weighted or locked, see `feature_mode`).
+  std::vector<std::uint32_t> feature_faces;
+  FeatureMode feature_mode = FeatureMode::weight;
+  /// > 0 (degrees): plain meshes without face ids are split into regions at edges whose dihedral
+  /// angle (between the two triangles' normals) exceeds this, and the region borders are kept like
+  /// face seams. Ignored when face_ids are given.
+  double sharp_angle_deg = 0;
+  /// Weight of the penalty planes through constrained edges (perpendicular to their triangles),
+  /// relative to the area-weighted face quadrics (Garland & Heckbert §6.1).
+  double seam_weight = 10.0;
+  /// A collapse is rejected when a moved triangle's unit normal changes by more than this angle's
+  /// cosine allows (dot(n_before, n_after) < min_normal_cos) or the triangle degenerates.
+  double min_normal_cos = 0.2;
+  /// No self-intersection the input did not have: the plain QEM result is checked with the
+  /// engine's exact self-clash, and only if it has more intersecting pairs than the input (whose
+  /// own intersections, e.g. touching parts, cannot be removed) the run is repeated with a guard
+  /// that rejects every collapse whose moved triangles would meet a non-adjacent triangle (exact
+  /// test against a hash grid; about 10x slower). Off: plain QEM, unchecked.
+  bool prevent_self_intersections = true;
+  /// With prevent_self_intersections: guard every collapse from the start (skip the plain run).
+  bool guard_every_collapse = false;
+  /// Measure the symmetric Hausdorff distance (sampled, see hausdorff.h) overall and on the
+  /// feature faces, and store it as the error bound.
+  bool measure_error = true;
+};
+
+struct SimplifyResult {
+  TriMesh mesh;                         ///< the simplified mesh (surviving triangles in input order)
+  std::vector<std::uint32_t> face_ids;  ///< per output triangle (empty when none were given)
+  std::size_t input_triangles = 0, input_vertices_welded = 0;
+  std::size_t target_triangles = 0;     ///< the budget asked for
+  bool reached = false;                 ///< mesh has exactly target_triangles triangles
+  std::size_t collapses = 0;
+  std::size_t rejected_link = 0, rejected_flip = 0;  ///< candidates refused by the checks
+  std::size_t rejected_intersection = 0;             ///< refused by the self-intersection guard
+  bool guard_rerun = false;  ///< plain QEM created a self-intersection: the guarded run was used
+  std::size_t seam_vertices = 0, corner_vertices = 0, locked_vertices = 0;
+  std::size_t feature_triangles_in = 0, feature_triangles_out = 0;
+  double max_unmodified_cost = 0;  ///< the largest initial edge cost: the feature offset (weight mode)
+  double bbox_diagonal = 0;        ///< of the input
+  /// Symmetric Hausdorff distance input <-> output (sampled: vertices, edge midpoints, centroids),
+  /// and restricted to the feature faces (their input triangles <-> their output triangles); -1 when
+  /// not measured. `error_bound` = hausdorff: grow boxes or the clearance of a clash check on the
+  /// simplified mesh by it to make the check conservative.
+  double hausdorff = -1, hausdorff_features = -1, error_bound = -1;
+  std::vector<std::string> warnings;
+};
+
+/// Simplifies `mesh`. Errors (returned, never thrown): no triangles, a non-finite position, an
+/// index out of range, face_ids of the wrong size, a budget <= 0 or larger than the mesh, a ratio
+/// outside (0, 1].
+Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& options);
+
+/// Regions of a plain mesh split at sharp edges (dihedral angle > angle_deg) and non-manifold or
+/// boundary edges: flood fill over the remaining edges; region ids in order of first triangle.
+std::vector<std::uint32_t> sharp_edge_regions(const TriMesh& mesh, double angle_deg);
+
+/// Welds vertices with bit-identical positions; map[i] is the new index of old vertex i.
+TriMesh weld_positions(const TriMesh& mesh, std::vector<std::uint32_t>* map = nullptr);
+
+/// Duplicates vertices so that no vertex is shared by triangles of different face ids (faces stay
+/// separable); triangle order is kept.
+TriMesh split_by_face(const TriMesh& mesh, const std::vector<std::uint32_t>& face_ids);
+
+}  // namespace interfere

@@ -1,0 +1,186 @@
+// Python bindings of the simplification module (issue #6) and, when built with OpenCASCADE, of the
+// CAD pipeline (STEP import, AAG, features, assembly semantics). Only argument parsing, requests
+// and result conversion here; the GIL is released around the simplification.
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <stdexcept>
+
+#include "bindings.h"
+#include "interfere/simplify/budget.h"
+#include "interfere/simplify/hausdorff.h"
+#include "interfere/simplify/qem.h"
+#ifdef INTERFERE_HAS_CAD
+#include "interfere/cad/features.h"
+#include "interfere/cad/model.h"
+#include "interfere/cad/semantics.h"
+#endif
+
+namespace py = pybind11;
+
+namespace interfere::python {
+
+void bind_simplify(py::module_& m) {
+  py::class_<SimplifyResult>(m, "SimplifyResult", "Result of interfere.simplify (see docs/simplify.md).")
+      .def_readonly("mesh", &SimplifyResult::mesh)
+      .def_readonly("face_ids", &SimplifyResult::face_ids)
+      .def_readonly("input_triangles", &SimplifyResult::input_triangles)
+      .def_readonly("target_triangles", &SimplifyResult::target_triangles)
+      .def_readonly("reached", &SimplifyResult::reached)
+      .def_readonly("collapses", &SimplifyResult::collapses)
+      .def_readonly("rejected_link", &SimplifyResult::rejected_link)
+      .def_readonly("rejected_flip", &SimplifyResult::rejected_flip)
+      .def_readonly("rejected_intersection", &SimplifyResult::rejected_intersection)
+      .def_readonly("guard_rerun", &SimplifyResult::guard_rerun)
+      .def_readonly("seam_vertices", &SimplifyResult::seam_vertices)
+      .def_readonly("corner_vertices", &SimplifyResult::corner_vertices)
+      .def_readonly("locked_vertices", &SimplifyResult::locked_vertices)
+      .def_readonly("feature_triangles_in", &SimplifyResult::feature_triangles_in)
+      .def_readonly("feature_triangles_out", &SimplifyResult::feature_triangles_out)
+      .def_readonly("max_unmodified_cost", &SimplifyResult::max_unmodified_cost)
+      .def_readonly("bbox_diagonal", &SimplifyResult::bbox_diagonal)
+      .def_readonly("hausdorff", &SimplifyResult::hausdorff)
+      .def_readonly("hausdorff_features", &SimplifyResult::hausdorff_features)
+      .def_readonly("error_bound", &SimplifyResult::error_bound)
+      .def_readonly("warnings", &SimplifyResult::warnings);
+
+  m.def(
+      "simplify",
+      [](const TriMesh& mesh, std::size_t target, double ratio, std::vector<std::uint32_t> face_ids,
+         std::vector<std::uint32_t> feature_faces, bool lock, double sharp_angle, bool prevent_self_intersections,
+         bool measure_error, const std::string& feature_mode) {
+        SimplifyOptions o;
+        o.target_triangles = target;
+        o.ratio = ratio;
+        o.face_ids = std::move(face_ids);
+        o.feature_faces = std::move(feature_faces);
+        if (feature_mode == "weight") o.feature_mode = FeatureMode::weight;
+        else if (feature_mode == "last") o.feature_mode = FeatureMode::last;
+        else if (feature_mode == "lock") o.feature_mode = FeatureMode::lock;
+        else throw py::value_error("feature_mode must be weight, last or lock");
+        if (lock) o.feature_mode = FeatureMode::lock;
+        o.sharp_angle_deg = sharp_angle;
+        o.prevent_self_intersections = prevent_self_intersections;
+        o.measure_error = measure_error;
+        Expected<SimplifyResult> r = Error{};
+        {
+          py::gil_scoped_release release;
+          r = simplify(mesh, o);
+        }
+        if (!r) throw py::value_error(r.error().message());
+        return std::move(*r);
+      },
+      py::arg("mesh"), py::arg("target") = 0, py::arg("ratio") = 0.0, py::arg("face_ids") = std::vector<std::uint32_t>{},
+      py::arg("feature_faces") = std::vector<std::uint32_t>{}, py::arg("lock") = false, py::arg("sharp_angle") = 0.0,
+      py::arg("prevent_self_intersections") = true, py::arg("measure_error") = true,
+      py::arg("feature_mode") = std::string("weight"),
+      "Feature-preserving QEM simplification to `target` triangles (or `ratio` of them). face_ids: per-triangle "
+      "face/region ids; feature_faces: ids kept (cost-weighted, or hard-locked with lock=True). ValueError on bad "
+      "input (budget <= 0 or larger than the mesh, ...).");
+  m.def(
+      "hausdorff",
+      [](const TriMesh& a, const TriMesh& b) {
+        py::gil_scoped_release release;
+        const HausdorffResult h = hausdorff(a, b);
+        return std::make_pair(h.a_to_b, h.b_to_a);
+      },
+      py::arg("a"), py::arg("b"), "Sampled one-sided distances (a->b, b->a); the symmetric Hausdorff is their max.");
+  m.def(
+      "count_self_intersections",
+      [](const TriMesh& mesh) {
+        py::gil_scoped_release release;
+        return count_self_intersections(mesh);
+      },
+      py::arg("mesh"), "Pairs of non-adjacent intersecting triangles (the engine's exact clash of the mesh with itself).");
+  m.def(
+      "triangle_budgets",
+      [](const std::vector<std::pair<std::size_t, std::size_t>>& parts, std::size_t renderer_max) {
+        std::vector<PartBudgetInput> in;
+        for (const auto& [t, f] : parts) {
+          if (f > t) throw py::value_error("feature triangles exceed the part's triangles");
+          in.push_back({t, f});
+        }
+        return triangle_budgets(in, renderer_max).budgets;
+      },
+      py::arg("parts"), py::arg("renderer_max"),
+      "Per-part triangle budgets N_i from [(T_i, F_i)] and the renderer's maximum (docs/simplify.md).");
+
+#ifdef INTERFERE_HAS_CAD
+  m.attr("HAVE_CAD") = true;
+  m.def(
+      "import_step",
+      [](const std::filesystem::path& path, double linear_deflection, double angular_deflection) {
+        Expected<cad::CadModel> r = Error{};
+        {
+          py::gil_scoped_release release;
+          r = cad::import_step(path, {.linear_deflection = linear_deflection, .angular_deflection = angular_deflection});
+        }
+        if (!r) throw py::value_error(r.error().message());
+        py::dict out;
+        py::list parts;
+        for (const cad::Part& p : r->parts) {
+          py::dict d;
+          d["name"] = p.name;
+          d["mesh"] = p.mesh;
+          d["face_ids"] = p.face_ids;
+          d["faces"] = p.faces;
+          d["solids"] = p.solids;
+          py::list nodes, arcs;
+          for (const cad::AagNode& n : p.aag.nodes)
+            nodes.append(py::dict(py::arg("face") = n.face, py::arg("type") = cad::surface_type_name(n.type),
+                                  py::arg("radius") = n.radius, py::arg("hole") = n.hole,
+                                  py::arg("from_bspline") = n.from_bspline, py::arg("inner_loops") = n.inner_loops));
+          for (const cad::AagArc& a : p.aag.arcs)
+            arcs.append(py::dict(py::arg("faces") = py::make_tuple(a.a, a.b), py::arg("curve") = cad::curve_type_name(a.curve),
+                                 py::arg("convexity") = cad::convexity_name(a.convexity), py::arg("angle") = a.angle));
+          d["aag_nodes"] = nodes;
+          d["aag_arcs"] = arcs;
+          parts.append(d);
+        }
+        out["parts"] = parts;
+        py::list inst;
+        for (const cad::Instance& i : r->instances)
+          inst.append(py::dict(py::arg("name") = i.name, py::arg("part") = i.part, py::arg("path") = i.path));
+        out["instances"] = inst;
+        out["warnings"] = r->warnings;
+        return out;
+      },
+      py::arg("path"), py::arg("linear_deflection") = 0.0, py::arg("angular_deflection") = 0.5,
+      "Reads a STEP file: parts (name, mesh, per-triangle face_ids, AAG nodes/arcs), instances, warnings.");
+  m.def(
+      "step_features",
+      [](const std::filesystem::path& path, const std::string& process_file, const std::string& step) {
+        auto lib = cad::default_feature_library();
+        if (!lib) throw py::value_error(lib.error().message());
+        auto model = cad::import_step(path);
+        if (!model) throw py::value_error(model.error().message());
+        py::list out;
+        for (const cad::Part& p : model->parts) {
+          const auto feats = cad::recognize_features(p.aag, *lib);
+          py::list fl;
+          for (const cad::Feature& f : feats)
+            fl.append(py::dict(py::arg("type") = f.type, py::arg("faces") = f.faces, py::arg("roles") = f.roles,
+                               py::arg("radii") = f.radii));
+          py::dict d(py::arg("part") = p.name, py::arg("features") = fl);
+          if (!process_file.empty()) {
+            auto rules = cad::default_semantic_rules(*lib);
+            if (!rules) throw py::value_error(rules.error().message());
+            auto proc = cad::load_process(process_file);
+            if (!proc) throw py::value_error(proc.error().message());
+            auto sel = cad::select_assembly_features(*proc, step, *rules, p.name, feats);
+            if (!sel) throw py::value_error(sel.error().message());
+            d["assembly_feature_faces"] = sel->faces;
+          }
+          out.append(d);
+        }
+        return out;
+      },
+      py::arg("path"), py::arg("process") = std::string(), py::arg("step") = std::string(),
+      "Features of every part of a STEP file (library types, face ids, roles, radii) and, with process/step, "
+      "the assembly-feature faces of that step.");
+#else
+  m.attr("HAVE_CAD") = false;
+#endif
+}
+
+}  // namespace interfere::python

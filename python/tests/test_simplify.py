@@ -1,0 +1,79 @@
+"""Python bindings of the simplification module and the CAD pipeline (issue #6).
+
+Run: PYTHONPATH=build/python python3 -m unittest discover -s python/tests -p 'test_simplify.py'
+"""
+import json
+import os
+import tempfile
+import unittest
+
+import interfere as itf
+
+DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tests", "cli", "data")
+
+
+def cap_faces(mesh):
+    pos = [tuple(p) for p in mesh.positions]
+    return [1 if sum(pos[i][2] for i in t) / 3 > 0.9 else 0 for t in (tuple(int(x) for x in tri) for tri in mesh.triangles)]
+
+
+class Simplify(unittest.TestCase):
+    def test_budget_error_bound_and_no_self_intersections(self):
+        s = itf.make_sphere(4000)
+        r = itf.simplify(s, target=400)
+        self.assertEqual(len(r.mesh.triangles), 400)
+        self.assertTrue(r.reached)
+        self.assertGreater(r.hausdorff, 0)
+        self.assertEqual(r.error_bound, r.hausdorff)
+        self.assertEqual(itf.count_self_intersections(r.mesh), 0)
+        a_to_b, b_to_a = itf.hausdorff(s, r.mesh)
+        self.assertAlmostEqual(max(a_to_b, b_to_a), r.hausdorff)
+
+    def test_locked_features_keep_their_triangles(self):
+        s = itf.make_sphere(4000)
+        faces = cap_faces(s)
+        r = itf.simplify(s, target=1500, face_ids=faces, feature_faces=[1], lock=True)
+        self.assertEqual(r.feature_triangles_in, r.feature_triangles_out)
+        self.assertLessEqual(r.hausdorff_features, 1e-12)
+        self.assertEqual(len(r.face_ids), len(r.mesh.triangles))
+
+    def test_bad_budgets_raise(self):
+        s = itf.make_sphere(200)
+        with self.assertRaises(ValueError):
+            itf.simplify(s, target=10**6)
+        with self.assertRaises(ValueError):
+            itf.simplify(s)
+        with self.assertRaises(ValueError):
+            itf.simplify(s, ratio=2.0)
+
+    def test_triangle_budgets(self):
+        b = itf.triangle_budgets([(35548, 4000), (10000, 0)], 12000)
+        self.assertEqual(sum(b), 12000)
+        self.assertGreaterEqual(b[0], 4000)
+        with self.assertRaises(ValueError):
+            itf.triangle_budgets([(10, 20)], 5)
+
+
+@unittest.skipUnless(getattr(itf, "HAVE_CAD", False), "built without OpenCASCADE")
+class Cad(unittest.TestCase):
+    def test_import_and_features(self):
+        step = os.path.join(DATA, "counterbored_plate.step")
+        m = itf.import_step(step)
+        self.assertEqual(len(m["parts"]), 1)
+        part = m["parts"][0]
+        self.assertEqual(len(part["face_ids"]), len(part["mesh"].triangles))
+        self.assertEqual(len(part["aag_nodes"]), 9)
+        f = itf.step_features(step)
+        self.assertEqual([x["type"] for x in f[0]["features"]], ["counterbored_hole"])
+        with tempfile.TemporaryDirectory() as d:
+            proc = os.path.join(d, "p.json")
+            with open(proc, "w") as out:
+                json.dump({"steps": [{"id": "P1", "constraint": "screw"}]}, out)
+            f = itf.step_features(step, process=proc, step="P1")
+            self.assertEqual(len(f[0]["assembly_feature_faces"]), 3)
+        with self.assertRaises(ValueError):
+            itf.import_step(os.path.join(DATA, "missing.step"))
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,217 @@
+// Generated test and benchmark solids (issue #6, items 8-9): OCCT primitives (BRepPrimAPI) and
+// Booleans (BRepAlgoAPI_Cut/Fuse, then ShapeUpgrade_UnifySameDomain), written to STEP with
+// STEPControl_Writer. The casing is the paper's case (He & Xu, SJTU 2023, §4): a flanged ring (wall of
+// revolution with a B-spline bulge) with counterbored bolt holes on the lower flange and plain bolt
+// holes on the upper one.
+#include <BRepAlgoAPI_Cut.hxx>
+#include <BRepAlgoAPI_Fuse.hxx>
+#include <BRepBuilderAPI_NurbsConvert.hxx>
+#include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakeWire.hxx>
+#include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeRevol.hxx>
+#include <GeomAPI_PointsToBSpline.hxx>
+#include <Geom_BSplineCurve.hxx>
+#include <TColgp_Array1OfPnt.hxx>
+#include <BRepPrimAPI_MakeCone.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
+#include <IFSelect_ReturnStatus.hxx>
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
+#include <Message_PrinterOStream.hxx>
+#include <STEPCAFControl_Writer.hxx>
+#include <STEPControl_Writer.hxx>
+#include <TDataStd_Name.hxx>
+#include <TDocStd_Document.hxx>
+#include <TopLoc_Location.hxx>
+#include <XCAFApp_Application.hxx>
+#include <XCAFDoc_DocumentTool.hxx>
+#include <XCAFDoc_ShapeTool.hxx>
+#include <gp_Trsf.hxx>
+#include <ShapeUpgrade_ShapeDivideClosed.hxx>
+#include <ShapeUpgrade_UnifySameDomain.hxx>
+#include <TopTools_ListOfShape.hxx>
+#include <Standard_Failure.hxx>
+#include <TopoDS_Shape.hxx>
+#include <gp_Ax2.hxx>
+#include <gp_Pln.hxx>
+
+#include <cmath>
+#include <numbers>
+
+#include "interfere/cad/model.h"
+
+namespace interfere::cad {
+namespace {
+
+TopoDS_Shape cyl(double x, double y, double z0, double r, double h) {
+  return BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(x, y, z0), gp_Dir(0, 0, 1)), r, h).Shape();
+}
+TopoDS_Shape box(double x0, double y0, double z0, double x1, double y1, double z1) {
+  return BRepPrimAPI_MakeBox(gp_Pnt(x0, y0, z0), gp_Pnt(x1, y1, z1)).Shape();
+}
+TopoDS_Shape cut(const TopoDS_Shape& a, const TopoDS_Shape& b) { return BRepAlgoAPI_Cut(a, b).Shape(); }
+TopoDS_Shape fuse(const TopoDS_Shape& a, const TopoDS_Shape& b) { return BRepAlgoAPI_Fuse(a, b).Shape(); }
+TopoDS_Shape unify(const TopoDS_Shape& s) {
+  ShapeUpgrade_UnifySameDomain u(s, Standard_True, Standard_True, Standard_False);
+  u.Build();
+  return u.Shape();
+}
+
+// Body: a solid of revolution whose outer wall is a B-spline bulge (r 100 -> 112 -> 100 over the
+// height; double curvature, so it tessellates into a fine grid like an aero-engine casing wall) around
+// a cylindrical bore r = 88.
+TopoDS_Shape casing_body(double h, double r_in, double r_out) {
+  TColgp_Array1OfPnt pts(1, 5);
+  pts.SetValue(1, gp_Pnt(r_out, 0, 0));
+  pts.SetValue(2, gp_Pnt(r_out + 8, 0, 0.25 * h));
+  pts.SetValue(3, gp_Pnt(r_out + 12, 0, 0.5 * h));
+  pts.SetValue(4, gp_Pnt(r_out + 8, 0, 0.75 * h));
+  pts.SetValue(5, gp_Pnt(r_out, 0, h));
+  Handle(Geom_BSplineCurve) spline = GeomAPI_PointsToBSpline(pts).Curve();
+  BRepBuilderAPI_MakeWire w;
+  w.Add(BRepBuilderAPI_MakeEdge(gp_Pnt(r_in, 0, 0), gp_Pnt(r_out, 0, 0)).Edge());
+  w.Add(BRepBuilderAPI_MakeEdge(spline).Edge());
+  w.Add(BRepBuilderAPI_MakeEdge(gp_Pnt(r_out, 0, h), gp_Pnt(r_in, 0, h)).Edge());
+  w.Add(BRepBuilderAPI_MakeEdge(gp_Pnt(r_in, 0, h), gp_Pnt(r_in, 0, 0)).Edge());
+  const TopoDS_Face profile = BRepBuilderAPI_MakeFace(w.Wire(), Standard_True).Face();
+  return BRepPrimAPI_MakeRevol(profile, gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1))).Shape();
+}
+
+TopoDS_Shape casing() {
+  const double h = 60, r_out = 100, r_in = 88, r_flange = 130, t = 12;
+  TopoDS_Shape s = casing_body(h, r_in, r_out);
+  s = fuse(s, cut(cyl(0, 0, 0, r_flange, t), cyl(0, 0, -1, r_in, t + 2)));          // lower flange
+  s = fuse(s, cut(cyl(0, 0, h - t, r_flange, t), cyl(0, 0, h - t - 1, r_in, t + 2)));  // upper flange
+  const int n = 6;
+  for (int i = 0; i < n; ++i) {
+    const double a = 2 * std::numbers::pi * (i + 0.5) / n;
+    const double x = 115 * std::cos(a), y = 115 * std::sin(a);
+    s = cut(s, cyl(x, y, -1, 5, t + 2));            // lower: bolt hole r=5 ...
+    s = cut(s, cyl(x, y, t - 4, 9, 5));             // ... counterbore r=9, depth 4 from the flange top
+    s = cut(s, cyl(x, y, h - t - 1, 6, t + 2));     // upper: plain through hole r=6
+  }
+  return unify(s);
+}
+
+// 400 x 400 x 10 plate with a 13 x 13 grid of counterbored holes (169 x 3 + 6 = 513 faces), cut
+// in one Boolean with all tools as arguments.
+TopoDS_Shape perforated_plate() {
+  TopTools_ListOfShape args, tools;
+  args.Append(box(0, 0, 0, 400, 400, 10));
+  for (int i = 0; i < 13; ++i)
+    for (int j = 0; j < 13; ++j) {
+      const double x = 20 + 30 * i, y = 20 + 30 * j;
+      tools.Append(cyl(x, y, -1, 4, 12));
+      tools.Append(cyl(x, y, 6, 8, 5));
+    }
+  BRepAlgoAPI_Cut c;
+  c.SetArguments(args);
+  c.SetTools(tools);
+  c.Build();
+  return unify(c.Shape());
+}
+
+TopoDS_Shape build(TestPart p) {
+  switch (p) {
+    case TestPart::box_through_hole: return cut(box(0, 0, 0, 40, 30, 10), cyl(20, 15, -1, 4, 12));
+    case TestPart::box_blind_hole: return cut(box(0, 0, 0, 40, 30, 10), cyl(20, 15, 4, 4, 7));
+    case TestPart::counterbored_plate:
+      return unify(cut(cut(box(0, 0, 0, 40, 30, 10), cyl(20, 15, -1, 3, 12)), cyl(20, 15, 6, 6, 5)));
+    case TestPart::countersunk_plate: {
+      const TopoDS_Shape cone = BRepPrimAPI_MakeCone(gp_Ax2(gp_Pnt(20, 15, 7), gp_Dir(0, 0, 1)), 3, 7, 4).Shape();
+      return unify(cut(cut(box(0, 0, 0, 40, 30, 10), cyl(20, 15, -1, 3, 12)), cone));
+    }
+    case TestPart::stepped_shaft: return unify(fuse(cyl(0, 0, 0, 10, 30), cyl(0, 0, 30, 6, 25)));
+    case TestPart::slot_block: return unify(cut(box(0, 0, 0, 40, 30, 20), box(-1, 10, 12, 41, 20, 21)));
+    case TestPart::step_block: return unify(cut(box(0, 0, 0, 40, 30, 20), box(-1, 20, 12, 41, 31, 21)));
+    case TestPart::near_miss_plate:
+      return unify(cut(cut(box(0, 0, 0, 40, 30, 10), cyl(20, 15, -1, 3, 12)), cyl(22, 15, 6, 6, 5)));
+    case TestPart::casing: return casing();
+    case TestPart::perforated_plate: return perforated_plate();
+    case TestPart::single_face:
+      return BRepBuilderAPI_MakeFace(gp_Pln(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 0, 10, 0, 10).Face();
+    case TestPart::box_through_hole_split: {
+      ShapeUpgrade_ShapeDivideClosed split(build(TestPart::box_through_hole));
+      split.SetNbSplitPoints(1);
+      split.Perform();
+      return split.Result();
+    }
+    case TestPart::box_through_hole_nurbs:
+      return BRepBuilderAPI_NurbsConvert(build(TestPart::box_through_hole)).Shape();
+  }
+  return {};
+}
+
+}  // namespace
+
+const char* test_part_name(TestPart p) {
+  switch (p) {
+    case TestPart::box_through_hole: return "box_through_hole";
+    case TestPart::box_blind_hole: return "box_blind_hole";
+    case TestPart::counterbored_plate: return "counterbored_plate";
+    case TestPart::countersunk_plate: return "countersunk_plate";
+    case TestPart::stepped_shaft: return "stepped_shaft";
+    case TestPart::slot_block: return "slot_block";
+    case TestPart::step_block: return "step_block";
+    case TestPart::near_miss_plate: return "near_miss_plate";
+    case TestPart::casing: return "casing";
+    case TestPart::box_through_hole_nurbs: return "box_through_hole_nurbs";
+    case TestPart::perforated_plate: return "perforated_plate";
+    case TestPart::box_through_hole_split: return "box_through_hole_split";
+    case TestPart::single_face: return "single_face";
+  }
+  return "?";
+}
+
+Status write_test_part(TestPart part, const std::filesystem::path& step_file) {
+  try {
+    const TopoDS_Shape s = build(part);
+    if (s.IsNull()) return Error{.file = step_file.string(), .reason = "solid construction failed"};
+    // The writer's transfer statistics go to the default messenger's stdout printer: mute it.
+    Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
+    STEPControl_Writer w;
+    if (w.Transfer(s, STEPControl_AsIs) != IFSelect_RetDone)
+      return Error{.file = step_file.string(), .reason = "STEP transfer failed"};
+    if (w.Write(step_file.string().c_str()) != IFSelect_RetDone)
+      return Error{.file = step_file.string(), .reason = "cannot write the STEP file"};
+    return {};
+  } catch (const Standard_Failure& e) {
+    return Error{.file = step_file.string(), .reason = std::string("OpenCASCADE failure: ") + e.GetMessageString()};
+  }
+}
+
+Status write_test_assembly(const std::filesystem::path& step_file) {
+  try {
+    Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
+    Handle(TDocStd_Document) doc;
+    XCAFApp_Application::GetApplication()->NewDocument("MDTV-XCAF", doc);
+    Handle(XCAFDoc_ShapeTool) st = XCAFDoc_DocumentTool::ShapeTool(doc->Main());
+    const TDF_Label plate = st->AddShape(build(TestPart::counterbored_plate), Standard_False);
+    TDataStd_Name::Set(plate, "plate");
+    const TDF_Label shaft = st->AddShape(build(TestPart::stepped_shaft), Standard_False);
+    TDataStd_Name::Set(shaft, "shaft");
+    const TDF_Label assembly = st->NewShape();
+    TDataStd_Name::Set(assembly, "assembly");
+    gp_Trsf t2, r2, t3;
+    r2.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), std::numbers::pi / 2);
+    t2.SetTranslation(gp_Vec(0, 0, 20));
+    t2.Multiply(r2);  // rotate 90 degrees about z, then lift by 20
+    t3.SetTranslation(gp_Vec(100, 0, 0));
+    TDataStd_Name::Set(st->AddComponent(assembly, plate, TopLoc_Location(gp_Trsf())), "plate_1");
+    TDataStd_Name::Set(st->AddComponent(assembly, plate, TopLoc_Location(t2)), "plate_2");
+    TDataStd_Name::Set(st->AddComponent(assembly, shaft, TopLoc_Location(t3)), "shaft_1");
+    st->UpdateAssemblies();
+    STEPCAFControl_Writer w;
+    w.SetNameMode(Standard_True);
+    if (!w.Transfer(doc, STEPControl_AsIs)) return Error{.file = step_file.string(), .reason = "STEP transfer failed"};
+    if (w.Write(step_file.string().c_str()) != IFSelect_RetDone)
+      return Error{.file = step_file.string(), .reason = "cannot write the STEP file"};
+    return {};
+  } catch (const Standard_Failure& e) {
+    return Error{.file = step_file.string(), .reason = std::string("OpenCASCADE failure: ") + e.GetMessageString()};
+  }
+}
+
+}  // namespace interfere::cad

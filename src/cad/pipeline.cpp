@@ -1,0 +1,73 @@
+// STEP -> AAG -> features -> assembly features of a process step -> mesh with face ids (issue #6):
+// the glue of `interfere simplify` (STEP input) and `interfere features`.
+#include "interfere/cad/pipeline.h"
+
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+#include <optional>
+#include <sstream>
+
+namespace interfere::cad {
+
+Expected<Prepared> prepare_for_simplify(const std::string& step_file, const PipelineOptions& o) {
+  auto lib = o.library_file.empty() ? default_feature_library() : load_feature_library(o.library_file);
+  if (!lib) return lib.error();
+  Expected<SemanticRules> rules = SemanticRules{};
+  std::optional<Process> process;
+  if (!o.process_file.empty()) {
+    if (o.rules_file.empty()) {
+      rules = default_semantic_rules(*lib);
+    } else {
+      std::ifstream in(o.rules_file);
+      if (!in) return Error{.file = o.rules_file, .reason = "cannot open the semantic rules"};
+      std::stringstream ss;
+      ss << in.rdbuf();
+      rules = parse_semantic_rules(ss.str(), *lib, o.rules_file);
+    }
+    if (!rules) return rules.error();
+    auto p = load_process(o.process_file);
+    if (!p) return p.error();
+    process = std::move(*p);
+  }
+  auto model = import_step(step_file, {.linear_deflection = o.linear_deflection, .angular_deflection = o.angular_deflection});
+  if (!model) return model.error();
+  Prepared out;
+  out.warnings = model->warnings;
+  nlohmann::json rep;
+  rep["parts"] = nlohmann::json::array();
+  std::vector<std::vector<std::uint32_t>> part_features(model->parts.size());
+  for (std::size_t i = 0; i < model->parts.size(); ++i) {
+    const Part& part = model->parts[i];
+    const auto feats = recognize_features(part.aag, *lib);
+    nlohmann::json jp{{"name", part.name}, {"faces", part.faces}, {"triangles", part.mesh.num_triangles()},
+                      {"features", nlohmann::json::array()}};
+    for (const Feature& f : feats) jp["features"].push_back({{"type", f.type}, {"faces", f.faces}});
+    if (process) {
+      auto sel = select_assembly_features(*process, o.step, *rules, part.name, feats);
+      if (!sel) return Error{.file = o.process_file, .reason = sel.error().reason};
+      part_features[i] = sel->faces;
+      jp["assembly_feature_faces"] = sel->faces;
+      for (const auto& w : sel->warnings) out.warnings.push_back(w);
+    }
+    rep["parts"].push_back(jp);
+    out.parts.push_back({part.name, part.mesh, part.face_ids, part_features[i], part.faces, 0});
+  }
+  // World mesh; feature face ids shifted like world_mesh shifts the instance's faces.
+  out.mesh = world_mesh(*model, &out.face_ids);
+  std::uint32_t base = 0;
+  rep["instances"] = nlohmann::json::array();
+  for (const Instance& inst : model->instances) {
+    for (std::uint32_t f : part_features[inst.part]) out.feature_faces.push_back(f + base);
+    out.instances.push_back({inst.part, inst.placement, base});
+    ++out.parts[inst.part].instances;
+    rep["instances"].push_back({{"name", inst.name}, {"part", inst.part}, {"path", inst.path}, {"face_id_offset", base}});
+    base += model->parts[inst.part].faces;
+  }
+  if (!o.step.empty()) rep["step"] = o.step;
+  rep["warnings"] = out.warnings;
+  out.report_json = rep.dump();
+  return out;
+}
+
+}  // namespace interfere::cad

@@ -1,0 +1,130 @@
+// Assembly semantics (issue #6, item 4), after He & Xu (SJTU 2023) §3: JSON rules from constraint
+// types to feature types and roles, a JSON process description, and the selection of the assembly
+// features of one process step.
+#include "interfere/cad/semantics.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
+#include "data_dir.h"
+
+namespace interfere::cad {
+namespace {
+using json = nlohmann::json;
+
+Expected<std::string> slurp(const std::filesystem::path& p, const char* what) {
+  std::ifstream in(p);
+  if (!in) return Error{.file = p.string(), .reason = std::string("cannot open the ") + what};
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+}  // namespace
+
+Expected<SemanticRules> parse_semantic_rules(const std::string& text, const FeatureLibrary& library,
+                                             const std::string& source) {
+  SemanticRules out;
+  try {
+    const json j = json::parse(text);
+    if (!j.is_object() || !j.contains("rules") || !j["rules"].is_array())
+      return Error{.file = source, .reason = "semantic rules are an object with a \"rules\" array"};
+    for (const json& jr : j["rules"]) {
+      SemanticRule r;
+      r.name = jr.at("name").get<std::string>();
+      r.constraint = jr.at("constraint").get<std::string>();
+      for (const json& jf : jr.at("features")) {
+        SemanticRule::Need n;
+        n.feature = jf.at("type").get<std::string>();
+        n.roles = jf.value("roles", std::vector<std::string>{});
+        if (!library.has(n.feature))
+          return Error{.file = source, .reason = "rule '" + r.name + "' refers to unknown feature type '" + n.feature + "'"};
+        r.needs.push_back(n);
+      }
+      out.rules.push_back(std::move(r));
+    }
+  } catch (const json::exception& e) {
+    return Error{.file = source, .reason = std::string("malformed semantic rules: ") + e.what()};
+  }
+  return out;
+}
+
+Expected<SemanticRules> default_semantic_rules(const FeatureLibrary& library) {
+  const auto p = data_file("semantics.json");
+  auto t = slurp(p, "semantic rules");
+  if (!t) return t.error();
+  return parse_semantic_rules(*t, library, p.string());
+}
+
+Expected<Process> parse_process(const std::string& text, const std::string& source) {
+  Process out;
+  try {
+    const json j = json::parse(text);
+    if (!j.is_object() || !j.contains("steps") || !j["steps"].is_array())
+      return Error{.file = source, .reason = "a process is an object with a \"steps\" array"};
+    for (const json& js : j["steps"]) {
+      ProcessStep s;
+      s.id = js.at("id").get<std::string>();
+      s.parts = js.value("parts", std::vector<std::string>{"*"});
+      s.constraint = js.at("constraint").get<std::string>();
+      for (const ProcessStep& o : out.steps)
+        if (o.id == s.id) return Error{.file = source, .reason = "step id '" + s.id + "' appears twice"};
+      out.steps.push_back(std::move(s));
+    }
+  } catch (const json::exception& e) {
+    return Error{.file = source, .reason = std::string("malformed process description: ") + e.what()};
+  }
+  return out;
+}
+
+Expected<Process> load_process(const std::filesystem::path& path) {
+  auto t = slurp(path, "process description");
+  if (!t) return t.error();
+  return parse_process(*t, path.string());
+}
+
+Expected<Selection> select_assembly_features(const Process& process, const std::string& step_id,
+                                             const SemanticRules& rules, const std::string& part_name,
+                                             const std::vector<Feature>& features) {
+  const ProcessStep* step = nullptr;
+  for (const ProcessStep& s : process.steps)
+    if (s.id == step_id) step = &s;
+  if (!step) return Error{.reason = "unknown process step '" + step_id + "'"};
+  Selection sel;
+  const bool in_step = std::any_of(step->parts.begin(), step->parts.end(),
+                                   [&](const std::string& p) { return p == "*" || p == part_name; });
+  if (!in_step) return sel;
+  bool any_rule = false;
+  for (const SemanticRule& r : rules.rules) {
+    if (r.constraint != step->constraint) continue;
+    any_rule = true;
+    for (const SemanticRule::Need& n : r.needs) {
+      bool found = false;
+      for (const Feature& f : features) {
+        if (f.type != n.feature) continue;
+        found = true;
+        sel.features_used.push_back(&f);
+        if (n.roles.empty()) {
+          sel.faces.insert(sel.faces.end(), f.faces.begin(), f.faces.end());
+        } else {
+          for (const std::string& role : n.roles) {
+            auto it = f.role_faces.find(role);
+            if (it != f.role_faces.end()) sel.faces.insert(sel.faces.end(), it->second.begin(), it->second.end());
+            else sel.warnings.push_back("rule '" + r.name + "': feature '" + f.type + "' has no role '" + role + "'");
+          }
+        }
+      }
+      if (!found)
+        sel.warnings.push_back("step '" + step_id + "', part '" + part_name + "': rule '" + r.name + "' found no '" +
+                               n.feature + "'");
+    }
+  }
+  if (!any_rule) sel.warnings.push_back("step '" + step_id + "': no rule for constraint '" + step->constraint + "'");
+  std::sort(sel.faces.begin(), sel.faces.end());
+  sel.faces.erase(std::unique(sel.faces.begin(), sel.faces.end()), sel.faces.end());
+  return sel;
+}
+
+}  // namespace interfere::cad

@@ -1,0 +1,45 @@
+// Triangle budgets per part for an assembly step (issue #6, item 5): the renderer's maximum split
+// over the parts by their share of the non-feature triangles after the step's assembly-feature
+// triangles are reserved (formula in include/interfere/simplify/budget.h and docs/simplify.md).
+#include "interfere/simplify/budget.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <numeric>
+
+namespace interfere {
+
+BudgetResult triangle_budgets(const std::vector<PartBudgetInput>& parts, std::size_t renderer_max) {
+  BudgetResult r;
+  std::size_t total = 0, features = 0;
+  for (const PartBudgetInput& p : parts) total += p.triangles, features += std::min(p.feature_triangles, p.triangles);
+  r.budgets.resize(parts.size());
+  if (total <= renderer_max) {
+    for (std::size_t i = 0; i < parts.size(); ++i) r.budgets[i] = parts[i].triangles;
+    return r;
+  }
+  if (features >= renderer_max) {
+    r.features_exceed_budget = features > renderer_max;
+    for (std::size_t i = 0; i < parts.size(); ++i) r.budgets[i] = std::min(parts[i].feature_triangles, parts[i].triangles);
+    return r;
+  }
+  const std::size_t rest = renderer_max - features;
+  const std::size_t free_total = total - features;  // > rest since total > renderer_max
+  std::vector<std::pair<std::size_t, std::size_t>> remainder;  // (remainder numerator, index)
+  std::size_t given = 0;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    const std::size_t f = std::min(parts[i].feature_triangles, parts[i].triangles);
+    const std::size_t free_i = parts[i].triangles - f;
+    const std::uint64_t num = static_cast<std::uint64_t>(rest) * free_i;  // < 2^64 below 4e9 triangles
+    const auto share = static_cast<std::size_t>(num / free_total);
+    r.budgets[i] = f + share;
+    given += share;
+    remainder.emplace_back(static_cast<std::size_t>(num % free_total), i);
+  }
+  std::stable_sort(remainder.begin(), remainder.end(),
+                   [](const auto& x, const auto& y) { return x.first != y.first ? x.first > y.first : x.second < y.second; });
+  for (std::size_t k = 0; given < rest && k < remainder.size(); ++k, ++given) ++r.budgets[remainder[k].second];
+  return r;
+}
+
+}  // namespace interfere

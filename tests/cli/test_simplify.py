@@ -1,0 +1,251 @@
+#!/usr/bin/env python3
+"""End-to-end tests of `interfere simplify` and `interfere features` (issue #6): budgets, tagged
+outputs, feature locks, JSON reports, bad input (exit 2, no output written).
+
+Usage: test_simplify.py PATH_TO_INTERFERE WORK_DIR   (run by ctest). Standard library only.
+"""
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+import unittest
+
+EXE = None
+WORK = None
+DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data")
+
+
+def run(*args):
+    p = subprocess.run([EXE, "--quiet", *args], capture_output=True, text=True, timeout=120)
+    return p.returncode, p.stdout, p.stderr
+
+
+def path(name):
+    return os.path.join(WORK, name)
+
+
+def uv_sphere(lon=40, lat=21, bump=0.05):
+    v = [(0.0, 0.0, 1.0)]
+    for i in range(1, lat):
+        th = math.pi * i / lat
+        for j in range(lon):
+            ph = 2 * math.pi * j / lon
+            r = 1 + bump * math.sin(5 * th) * math.sin(5 * ph)
+            v.append((r * math.sin(th) * math.cos(ph), r * math.sin(th) * math.sin(ph), r * math.cos(th)))
+    v.append((0.0, 0.0, -1.0))
+    idx = lambda i, j: 1 + (i - 1) * lon + (j % lon)
+    f = []
+    for j in range(lon):
+        f.append((0, idx(1, j), idx(1, j + 1)))
+        f.append((len(v) - 1, idx(lat - 1, j + 1), idx(lat - 1, j)))
+    for i in range(1, lat - 1):
+        for j in range(lon):
+            a, b, c, d = idx(i, j), idx(i, j + 1), idx(i + 1, j), idx(i + 1, j + 1)
+            f.append((a, c, b))
+            f.append((b, c, d))
+    return v, f
+
+
+def write_obj(name, mesh):
+    v, f = mesh
+    with open(path(name), "w") as out:
+        for p in v:
+            out.write("v %r %r %r\n" % p)
+        for t in f:
+            out.write("f %d %d %d\n" % (t[0] + 1, t[1] + 1, t[2] + 1))
+
+
+def load_json(name):
+    with open(path(name)) as f:
+        return json.load(f)
+
+
+def read_ply_ascii(name):
+    with open(path(name)) as f:
+        lines = f.read().split("\n")
+    header_end = lines.index("end_header")
+    header = lines[:header_end]
+    nv = int([l for l in header if l.startswith("element vertex")][0].split()[2])
+    nf = int([l for l in header if l.startswith("element face")][0].split()[2])
+    body = lines[header_end + 1:]
+    verts = [tuple(float(x) for x in body[i].split()) for i in range(nv)]
+    faces = [tuple(int(x) for x in body[nv + i].split()) for i in range(nf)]
+    return header, verts, faces
+
+
+class Simplify(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.mesh = uv_sphere()
+        write_obj("sphere.obj", cls.mesh)
+        cls.n = len(cls.mesh[1])
+
+    def test_target_exact_report_and_output(self):
+        code, out, err = run("simplify", path("sphere.obj"), path("s.ply"), "--target", "400", "--json", path("s.json"),
+                             "--check-self-intersections")
+        self.assertEqual(code, 0, err)
+        r = load_json("s.json")
+        self.assertEqual(r["input_triangles"], self.n)
+        self.assertEqual(r["output_triangles"], 400)
+        self.assertTrue(r["reached"])
+        self.assertEqual(r["self_intersections"], 0)
+        self.assertGreater(r["hausdorff"], 0)
+        self.assertEqual(r["error_bound"], r["hausdorff"])
+        self.assertIn("400 triangles", out)
+
+    def test_ratio(self):
+        code, _, err = run("simplify", path("sphere.obj"), path("r.obj"), "--ratio", "0.25", "--json", path("r.json"))
+        self.assertEqual(code, 0, err)
+        r = load_json("r.json")
+        self.assertEqual(r["target_triangles"], round(0.25 * self.n))
+
+    def test_renderer_max_budget(self):
+        code, _, err = run("simplify", path("sphere.obj"), path("rm.obj"), "--renderer-max", "500", "--json", path("rm.json"))
+        self.assertEqual(code, 0, err)
+        r = load_json("rm.json")
+        self.assertEqual(r["target_triangles"], 500)
+        self.assertEqual(r["output_triangles"], 500)
+        with open(path("rm.obj")) as f:
+            self.assertTrue(any(l.startswith("# error_bound ") for l in f))
+        code, _, err = run("simplify", path("sphere.obj"), path("rm2.obj"), "--renderer-max", str(10 * self.n))
+        self.assertEqual(code, 0, err)  # budget above the mesh: nothing to simplify, the mesh is kept
+
+    def test_regions_locked_features_are_bit_identical_in_tagged_ply(self):
+        v, f = self.mesh
+        regions = [1 if sum(v[i][2] for i in t) / 3 > 0.8 else 0 for t in f]
+        with open(path("regions.txt"), "w") as out:
+            out.write("# region per triangle\n" + "\n".join(map(str, regions)) + "\n")
+        code, _, err = run("simplify", path("sphere.obj"), path("lock.ply"), "--target", "600", "--regions",
+                           path("regions.txt"), "--features", "1", "--lock", "--format", "ply-ascii", "--json",
+                           path("lock.json"))
+        self.assertEqual(code, 0, err)
+        header, verts, faces = read_ply_ascii("lock.ply")
+        self.assertIn("property uint face_id", header)
+        self.assertIn("property uchar feature", header)
+        bound = [l for l in header if l.startswith("comment error_bound ")]
+        self.assertEqual(len(bound), 1)
+        out_cap = sorted(tuple(sorted(verts[i] for i in face[1:4])) for face in faces if face[4] == 1)
+        in_cap = sorted(tuple(sorted(v[i] for i in t)) for t, reg in zip(f, regions) if reg == 1)
+        self.assertEqual(out_cap, in_cap)
+        self.assertTrue(all(face[5] == (1 if face[4] == 1 else 0) for face in faces))
+        r = load_json("lock.json")
+        self.assertEqual(r["feature_faces"], [1])
+        self.assertEqual(r["feature_mode"], "lock")
+        self.assertLessEqual(r["hausdorff_features"], 1e-12)
+        self.assertEqual(float(bound[0].split()[2]), r["error_bound"])
+
+    def assert_input_error(self, *args, output=None, message=None):
+        if output and os.path.exists(output):
+            os.remove(output)
+        code, _, err = run(*args)
+        self.assertEqual(code, 2, err)
+        if output:
+            self.assertFalse(os.path.exists(output), "an output was written on bad input")
+        if message:
+            self.assertIn(message, err)
+
+    def test_bad_budgets_and_inputs(self):
+        o = path("bad.ply")
+        s = path("sphere.obj")
+        self.assert_input_error("simplify", s, o, "--target", str(self.n + 1), output=o, message="larger than the mesh")
+        self.assert_input_error("simplify", s, o, "--target", "0", output=o)
+        self.assert_input_error("simplify", s, o, output=o, message="--target")
+        self.assert_input_error("simplify", s, o, "--ratio", "1.5", output=o)
+        self.assert_input_error("simplify", s, o, "--ratio", "0", output=o)
+        self.assert_input_error("simplify", s, o, "--target", "10", "--ratio", "0.5", output=o)
+        with open(path("short.txt"), "w") as out:
+            out.write("0\n1\n")
+        self.assert_input_error("simplify", s, o, "--target", "10", "--regions", path("short.txt"), output=o,
+                                message="region ids for")
+        with open(path("junk.txt"), "w") as out:
+            out.write("0\nx1\n")
+        self.assert_input_error("simplify", s, o, "--target", "10", "--regions", path("junk.txt"), output=o,
+                                message=":2:")
+        self.assert_input_error("simplify", s, o, "--target", "10", "--step", "P1", output=o)
+        with open(path("empty.obj"), "w") as out:
+            out.write("# nothing\n")
+        self.assert_input_error("simplify", path("empty.obj"), o, "--target", "10", output=o)
+
+    def test_existing_output_untouched_on_error(self):
+        with open(path("keep.ply"), "w") as out:
+            out.write("precious")
+        code, _, _ = run("simplify", path("sphere.obj"), path("keep.ply"), "--target", str(self.n + 5))
+        self.assertEqual(code, 2)
+        with open(path("keep.ply")) as f:
+            self.assertEqual(f.read(), "precious")
+
+
+HAVE_CAD = None
+
+
+def have_cad():
+    global HAVE_CAD
+    if HAVE_CAD is None:
+        code, _, err = run("features", os.path.join(DATA, "counterbored_plate.step"))
+        HAVE_CAD = code == 0
+    return HAVE_CAD
+
+
+class Features(unittest.TestCase):
+    def setUp(self):
+        if not have_cad():
+            self.skipTest("built without OpenCASCADE")
+
+    def test_features_lists_the_counterbore(self):
+        code, out, err = run("features", os.path.join(DATA, "counterbored_plate.step"), "--json", path("f.json"), "--aag")
+        self.assertEqual(code, 0, err)
+        self.assertIn("counterbored_hole", out)
+        r = load_json("f.json")
+        feats = r["parts"][0]["features"]
+        self.assertEqual([f["type"] for f in feats], ["counterbored_hole"])
+        self.assertEqual(sorted(round(x, 9) for x in feats[0]["radii"]), [3.0, 6.0])
+        self.assertEqual(len(r["parts"][0]["aag"]["nodes"]), 9)
+        self.assertAlmostEqual(feats[0]["axis"]["point"][0], 20.0)
+
+    def test_simplify_step_with_process_keeps_the_step_features(self):
+        with open(path("process.json"), "w") as out:
+            json.dump({"steps": [{"id": "P1", "parts": ["*"], "constraint": "screw"},
+                                 {"id": "P2", "parts": ["*"], "constraint": "bolt"}]}, out)
+        code, out, err = run("simplify", os.path.join(DATA, "counterbored_plate.step"), path("cb.ply"), "--ratio",
+                             "0.6", "--step", "P1", "--process", path("process.json"), "--lock", "--json",
+                             path("cb.json"), "--check-self-intersections")
+        self.assertEqual(code, 0, err)
+        r = load_json("cb.json")
+        self.assertEqual(len(r["feature_faces"]), 3)  # bore, counterbore, seat
+        self.assertEqual(r["feature_triangles"]["input"], r["feature_triangles"]["output"])
+        self.assertLessEqual(r["hausdorff_features"], 1e-12)
+        self.assertEqual(r["self_intersections"], 0)
+        code, _, err = run("simplify", os.path.join(DATA, "counterbored_plate.step"), path("cb9.ply"), "--ratio",
+                           "0.6", "--step", "P9", "--process", path("process.json"))
+        self.assertEqual(code, 2)
+        self.assertIn("P9", err)
+        self.assertFalse(os.path.exists(path("cb9.ply")))
+
+    def test_bad_step_files(self):
+        with open(path("empty.step"), "w"):
+            pass
+        code, _, err = run("features", path("empty.step"))
+        self.assertEqual(code, 2)
+        self.assertIn("empty", err)
+        with open(path("junk.step"), "w") as out:
+            out.write("not a step file\n")
+        code, _, err = run("features", path("junk.step"))
+        self.assertEqual(code, 2)
+        with open(path("rules.json"), "w") as out:
+            json.dump({"rules": [{"name": "weld", "constraint": "w", "features": [{"type": "weld_seam"}]}]}, out)
+        with open(path("p.json"), "w") as out:
+            json.dump({"steps": [{"id": "P1", "constraint": "w"}]}, out)
+        code, _, err = run("features", os.path.join(DATA, "counterbored_plate.step"), "--rules", path("rules.json"),
+                           "--process", path("p.json"), "--step", "P1")
+        self.assertEqual(code, 2)
+        self.assertIn("weld_seam", err)
+
+
+if __name__ == "__main__":
+    EXE = os.path.abspath(sys.argv[1])
+    WORK = os.path.abspath(sys.argv[2])
+    shutil.rmtree(WORK, ignore_errors=True)
+    os.makedirs(WORK)
+    unittest.main(argv=sys.argv[:1], verbosity=2)

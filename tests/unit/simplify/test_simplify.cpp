@@ -1,0 +1,284 @@
+// QEM simplification (issue #6, items 5, 6, 9): exact budgets, locked feature faces bit-identical,
+// weighted feature faces within tolerance, seams kept, no self-intersections (the engine's own
+// clash of the result against itself), manifold closed output, bad input, the Hausdorff measure
+// against brute force, and the budget formula.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <random>
+#include <set>
+
+#include "interfere/mesh/generate.h"
+#include "interfere/np/distance.h"
+#include "interfere/query/clash.h"
+#include "interfere/query/distance.h"
+#include "interfere/simplify/budget.h"
+#include "interfere/simplify/hausdorff.h"
+#include "interfere/simplify/qem.h"
+
+namespace interfere {
+namespace {
+
+// Number of triangles on each undirected edge of the position-welded mesh.
+std::map<std::pair<std::uint32_t, std::uint32_t>, int> edge_use(const TriMesh& m) {
+  const TriMesh w = weld_positions(m);
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> use;
+  for (const Tri& t : w.triangles)
+    for (int k = 0; k < 3; ++k) {
+      auto a = t[k], b = t[(k + 1) % 3];
+      ++use[{std::min(a, b), std::max(a, b)}];
+    }
+  return use;
+}
+
+bool closed_manifold(const TriMesh& m) {
+  for (const auto& [e, n] : edge_use(m))
+    if (n != 2) return false;
+  return true;
+}
+
+// Open height field z = f(x, y) on an n x n grid (2 n^2 triangles).
+TriMesh grid(int n, double amp) {
+  TriMesh m;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const double x = double(i) / n, y = double(j) / n;
+      m.positions.push_back({x, y, amp * std::sin(3 * x) * std::cos(2 * y)});
+    }
+  auto id = [n](int i, int j) { return static_cast<std::uint32_t>(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return m;
+}
+
+using Corners = std::array<Vec3, 3>;
+std::vector<Corners> triangles_of_faces(const TriMesh& m, const std::vector<std::uint32_t>& face,
+                                        std::uint32_t f) {
+  std::vector<Corners> out;
+  for (std::size_t t = 0; t < m.num_triangles(); ++t)
+    if (face[t] == f) out.push_back(m.corners(t));
+  auto less = [](const Corners& a, const Corners& b) {
+    for (int k = 0; k < 3; ++k) {
+      if (a[k].x != b[k].x) return a[k].x < b[k].x;
+      if (a[k].y != b[k].y) return a[k].y < b[k].y;
+      if (a[k].z != b[k].z) return a[k].z < b[k].z;
+    }
+    return false;
+  };
+  std::sort(out.begin(), out.end(), less);
+  return out;
+}
+
+TEST(Simplify, ClosedSphereMeetsEvenBudgetExactlyStaysManifoldAndFreeOfSelfIntersections) {
+  const TriMesh s = make_sphere({.target_triangles = 20000, .bump_amplitude = 0.05});
+  ASSERT_TRUE(closed_manifold(s));
+  for (std::size_t target : {2000u, 200u}) {
+    auto r = simplify(s, {.target_triangles = target});
+    ASSERT_TRUE(r.has_value()) << r.error().message();
+    EXPECT_EQ(r->mesh.num_triangles(), target);
+    EXPECT_TRUE(r->reached);
+    EXPECT_TRUE(closed_manifold(r->mesh));
+    EXPECT_EQ(count_self_intersections(r->mesh), 0u);
+    EXPECT_GT(r->hausdorff, 0);
+    EXPECT_LT(r->hausdorff, 0.1 * r->bbox_diagonal);
+    EXPECT_EQ(r->error_bound, r->hausdorff);
+  }
+}
+
+TEST(Simplify, GuardEveryCollapseGivesTheSameBudgetWithoutSelfIntersections) {
+  const TriMesh s = make_sphere({.target_triangles = 6000, .bump_amplitude = 0.2, .bump_frequency = 9});
+  SimplifyOptions o{.target_triangles = 300};
+  o.guard_every_collapse = true;
+  auto r = simplify(s, o);
+  ASSERT_TRUE(r.has_value());
+  EXPECT_EQ(r->mesh.num_triangles(), 300u);
+  EXPECT_EQ(count_self_intersections(r->mesh), 0u);
+  EXPECT_TRUE(closed_manifold(r->mesh));
+}
+
+TEST(Simplify, OddBudgetOnAClosedMeshStopsOneShortOnAnOpenMeshIsExact) {
+  const TriMesh s = make_sphere({.target_triangles = 4000});
+  auto closed = simplify(s, {.target_triangles = 401, .measure_error = false});
+  ASSERT_TRUE(closed.has_value());
+  EXPECT_EQ(closed->mesh.num_triangles(), 400u);  // a closed manifold has an even triangle count
+  EXPECT_FALSE(closed->reached);
+  const TriMesh g = grid(40, 0.2);
+  for (std::size_t target : {801u, 333u, 100u}) {
+    auto open = simplify(g, {.target_triangles = target, .measure_error = false});
+    ASSERT_TRUE(open.has_value());
+    EXPECT_EQ(open->mesh.num_triangles(), target);
+    EXPECT_EQ(count_self_intersections(open->mesh), 0u);
+  }
+}
+
+TEST(Simplify, BoxWithSharpEdgesKeepsItsShapeExactly) {
+  const TriMesh box = make_box({0, 0, 0}, {1, 2, 3}, 12);
+  auto r = simplify(box, {.target_triangles = 150, .sharp_angle_deg = 30});
+  ASSERT_TRUE(r.has_value());
+  EXPECT_EQ(r->mesh.num_triangles(), 150u);
+  EXPECT_TRUE(closed_manifold(r->mesh));
+  EXPECT_LE(r->hausdorff, 1e-12);  // flat faces, straight seams, corners never move
+  // Without the sharp-edge mask the box's edges are not protected: rounding costs error.
+  auto plain = simplify(box, {.target_triangles = 40});
+  ASSERT_TRUE(plain.has_value());
+  EXPECT_TRUE(closed_manifold(plain->mesh));
+}
+
+// A sphere split in faces: the polar cap z > 0.9 is face 1 (the feature), the rest face 0.
+std::vector<std::uint32_t> cap_faces(const TriMesh& s) {
+  std::vector<std::uint32_t> f(s.num_triangles());
+  for (std::size_t t = 0; t < s.num_triangles(); ++t) {
+    const auto c = s.corners(t);
+    f[t] = (c[0].z + c[1].z + c[2].z) / 3 > 0.9 ? 1 : 0;
+  }
+  return f;
+}
+
+TEST(Simplify, LockedFeatureFacesStayBitIdentical) {
+  const TriMesh s = make_sphere({.target_triangles = 8000, .bump_amplitude = 0.03});
+  const auto faces = cap_faces(s);
+  auto r = simplify(s, {.target_triangles = 2000, .face_ids = faces, .feature_faces = {1},
+                        .feature_mode = FeatureMode::lock});
+  ASSERT_TRUE(r.has_value());
+  EXPECT_EQ(r->mesh.num_triangles(), 2000u);
+  ASSERT_LT(r->feature_triangles_in, 1500u);
+  ASSERT_EQ(r->face_ids.size(), r->mesh.num_triangles());
+  EXPECT_EQ(triangles_of_faces(r->mesh, r->face_ids, 1), triangles_of_faces(s, faces, 1));
+  EXPECT_LE(r->hausdorff_features, 1e-12);
+  EXPECT_GT(r->hausdorff, 0.0);
+  EXPECT_EQ(count_self_intersections(r->mesh), 0u);
+  // Faces stay separable: no output vertex is shared by triangles of two faces.
+  std::vector<std::int64_t> face_of(r->mesh.num_vertices(), -1);
+  for (std::size_t t = 0; t < r->mesh.num_triangles(); ++t)
+    for (auto v : r->mesh.triangles[t]) {
+      if (face_of[v] >= 0) EXPECT_EQ(face_of[v], r->face_ids[t]);
+      face_of[v] = r->face_ids[t];
+    }
+  EXPECT_TRUE(closed_manifold(r->mesh));
+}
+
+TEST(Simplify, WeightedFeatureFacesCollapseLastAndStayWithinTolerance) {
+  const TriMesh s = make_sphere({.target_triangles = 8000, .bump_amplitude = 0.03});
+  const auto faces = cap_faces(s);
+  const SimplifyOptions weighted{.target_triangles = 2500, .face_ids = faces, .feature_faces = {1}};
+  auto w = simplify(s, weighted);
+  SimplifyOptions none = weighted;
+  none.feature_faces.clear();
+  auto u = simplify(s, none);
+  ASSERT_TRUE(w.has_value() && u.has_value());
+  EXPECT_EQ(w->mesh.num_triangles(), 2500u);
+  ASSERT_LT(w->feature_triangles_in, 1500u);
+  EXPECT_GT(w->max_unmodified_cost, 0);
+  // The budget is reachable without touching the cap: it stays within 1e-6 of the diagonal.
+  EXPECT_LE(w->hausdorff_features, 1e-6 * w->bbox_diagonal);
+  EXPECT_EQ(w->feature_triangles_out, w->feature_triangles_in);
+  // Unweighted, the cap is simplified like the rest.
+  std::size_t cap_out = 0;
+  for (auto f : u->face_ids) cap_out += f == 1;
+  EXPECT_LT(cap_out, w->feature_triangles_in);
+  // Below what the rest can absorb the feature edges go too (weights are not locks).
+  SimplifyOptions tight = weighted;
+  tight.target_triangles = 300;
+  auto t = simplify(s, tight);
+  ASSERT_TRUE(t.has_value());
+  EXPECT_EQ(t->mesh.num_triangles(), 300u);
+  EXPECT_LT(t->feature_triangles_out, t->feature_triangles_in);
+}
+
+TEST(Simplify, LastModeOrdersFeatureEdgesAfterAllOthers) {
+  const TriMesh s = make_sphere({.target_triangles = 8000, .bump_amplitude = 0.03});
+  const auto faces = cap_faces(s);
+  SimplifyOptions o{.target_triangles = 1600, .face_ids = faces, .feature_faces = {1}, .feature_mode = FeatureMode::last};
+  auto r = simplify(s, o);
+  ASSERT_TRUE(r.has_value());
+  ASSERT_LT(r->feature_triangles_in, 1300u);
+  EXPECT_EQ(r->mesh.num_triangles(), 1600u);
+  // Every non-feature collapse the constraints allow comes first: the cap is untouched.
+  EXPECT_EQ(r->feature_triangles_out, r->feature_triangles_in);
+  EXPECT_LE(r->hausdorff_features, 1e-12);
+}
+
+TEST(Simplify, BadInputIsAnErrorNotACrash) {
+  const TriMesh s = make_sphere({.target_triangles = 200});
+  EXPECT_FALSE(simplify(TriMesh{}, {.target_triangles = 1}).has_value());
+  EXPECT_FALSE(simplify(s, {.target_triangles = s.num_triangles() + 1}).has_value());
+  EXPECT_FALSE(simplify(s, {}).has_value());  // no budget
+  EXPECT_FALSE(simplify(s, {.ratio = 1.5}).has_value());
+  EXPECT_FALSE(simplify(s, {.ratio = -0.1}).has_value());
+  EXPECT_FALSE(simplify(s, {.target_triangles = 10, .face_ids = {1, 2}}).has_value());
+  TriMesh bad = s;
+  bad.triangles[3][1] = 1u << 30;
+  EXPECT_FALSE(simplify(bad, {.target_triangles = 10}).has_value());
+  TriMesh nan = s;
+  nan.positions[0].x = std::nan("");
+  EXPECT_FALSE(simplify(nan, {.target_triangles = 10}).has_value());
+  auto same = simplify(s, {.target_triangles = s.num_triangles()});
+  ASSERT_TRUE(same.has_value());
+  EXPECT_LE(same->hausdorff, 1e-12);
+  EXPECT_EQ(same->mesh.num_triangles(), s.num_triangles());
+}
+
+TEST(Hausdorff, MatchesBruteForceOverTheSamePoints) {
+  const TriMesh a = make_sphere({.target_triangles = 600, .bump_amplitude = 0.1});
+  const TriMesh b = make_sphere({.target_triangles = 300, .radius = 1.05, .twist = 0.3});
+  auto brute = [](const TriMesh& from, const TriMesh& to) {
+    double m = 0;
+    std::vector<Vec3> pts = from.positions;
+    for (std::size_t t = 0; t < from.num_triangles(); ++t) {
+      const auto c = from.corners(t);
+      for (int k = 0; k < 3; ++k) pts.push_back((c[k] + c[(k + 1) % 3]) * 0.5);
+      pts.push_back((c[0] + c[1] + c[2]) / 3.0);
+    }
+    for (const Vec3& p : pts) {
+      double best = 1e300;
+      for (std::size_t t = 0; t < to.num_triangles(); ++t)
+        best = std::min(best, distance(p, closest_point_on_triangle(p, to.corners(t))));
+      m = std::max(m, best);
+    }
+    return m;
+  };
+  const HausdorffResult h = hausdorff(a, b);
+  EXPECT_DOUBLE_EQ(h.a_to_b, brute(a, b));
+  EXPECT_DOUBLE_EQ(h.b_to_a, brute(b, a));
+}
+
+TEST(Simplify, ErrorBoundMakesDistancesOnSimplifiedPartsConservative) {
+  // The distance between simplified parts is at most the original distance plus both error bounds
+  // (triangle inequality through the Hausdorff distances), so a clash check with that clearance
+  // added never misses a contact of the originals.
+  const TriMesh a = make_sphere({.target_triangles = 6000, .bump_amplitude = 0.05});
+  const TriMesh b = make_sphere({.target_triangles = 6000, .center = {2.2, 0.1, 0}, .bump_amplitude = 0.05});
+  auto sa = simplify(a, {.target_triangles = 300});
+  auto sb = simplify(b, {.target_triangles = 300});
+  ASSERT_TRUE(sa.has_value() && sb.has_value());
+  const double d0 = distance(make_model(a), make_model(b)).distance;
+  const double d1 = distance(make_model(sa->mesh), make_model(sb->mesh)).distance;
+  EXPECT_GT(d0, 0);
+  EXPECT_LE(d1, d0 + sa->error_bound + sb->error_bound);
+  EXPECT_GE(d1, d0 - sa->error_bound - sb->error_bound);
+}
+
+TEST(Budget, SharesAddUpToTheRendererMaximumAndReserveFeatures) {
+  const std::vector<PartBudgetInput> parts{{35548, 4000}, {10000, 0}, {2000, 500}};
+  const auto r = triangle_budgets(parts, 12000);
+  ASSERT_EQ(r.budgets.size(), 3u);
+  EXPECT_EQ(r.budgets[0] + r.budgets[1] + r.budgets[2], 12000u);
+  const double rest = 12000.0 - 4500.0, free_total = 31548.0 + 10000.0 + 1500.0;
+  EXPECT_NEAR(double(r.budgets[0]), 4000 + rest * 31548 / free_total, 1.0);
+  EXPECT_NEAR(double(r.budgets[1]), rest * 10000 / free_total, 1.0);
+  EXPECT_NEAR(double(r.budgets[2]), 500 + rest * 1500 / free_total, 1.0);
+  for (std::size_t i = 0; i < 3; ++i) EXPECT_GE(r.budgets[i], parts[i].feature_triangles);
+  EXPECT_EQ(triangle_budgets(parts, 100000).budgets, (std::vector<std::size_t>{35548, 10000, 2000}));
+  const auto over = triangle_budgets(parts, 3000);
+  EXPECT_TRUE(over.features_exceed_budget);
+  EXPECT_EQ(over.budgets, (std::vector<std::size_t>{4000, 0, 500}));
+}
+
+}  // namespace
+}  // namespace interfere
