@@ -281,6 +281,19 @@ X = float.fromhex
 # Minimised fuzzer findings: (target, file name, bytes). Keep them until the library is fixed,
 # then keep them as regression tests.
 REGRESSIONS = [
+    # write_fem MSH (src/fem/io/msh_write.cpp): a VTU array name with a line break became a
+    # $NodeData view name that broke the written file (fuzz_read_fem round trip: "malformed number
+    # of real tags"). Names are now written on one line. Found by fuzz_read_fem.
+    ("read_fem", "regression_msh_view_name_with_newline",
+     b'<?xml version="1.0"?>\n<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian">\n'
+     b'<UnstructuredGrid><Piece NumberOfPoints="4" NumberOfCells="1">\n'
+     b'<PointData><DataArray type="Float64" Name="a\nb" NumberOfComponents="3" format="ascii">'
+     b"0 0 0 1 1 1 2 2 2 3 3 3</DataArray></PointData>\n"
+     b'<Points><DataArray type="Float64" NumberOfComponents="3" format="ascii">0 0 0 1 0 0 0 1 0 0 0 1</DataArray></Points>\n'
+     b'<Cells><DataArray type="Int32" Name="connectivity" format="ascii">0 1 2 3</DataArray>'
+     b'<DataArray type="Int32" Name="offsets" format="ascii">4</DataArray>'
+     b'<DataArray type="UInt8" Name="types" format="ascii">10</DataArray></Cells>\n'
+     b"</Piece></UnstructuredGrid></VTKFile>\n"),
     # read_fem (src/fem/io/vtk_read.cpp): classic CELLS with a size smaller than the cell count
     # reserved size - n < 0 entries (std::length_error, uncaught). Found by fuzz_read_fem.
     ("read_fem", "regression_vtk_cells_size_below_count",

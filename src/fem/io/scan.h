@@ -35,6 +35,14 @@ inline Error byte_error(const std::string& file, std::int64_t byte, std::string 
 inline Error file_error(const std::string& file, std::string reason) {
   return Error{.file = file, .reason = std::move(reason)};
 }
+/// A name safe on one line between double quotes: control characters and '"' become '_'.
+inline std::string one_line_name(std::string_view n) {
+  std::string r(n);
+  for (char& c : r) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f || c == '"') c = '_';
+  }
+  return r;
+}
 /// Token quoted for an error message, shortened, control bytes escaped.
 std::string quote_tok(std::string_view token);
 
