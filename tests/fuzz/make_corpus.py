@@ -281,6 +281,10 @@ X = float.fromhex
 # Minimised fuzzer findings: (target, file name, bytes). Keep them until the library is fixed,
 # then keep them as regression tests.
 REGRESSIONS = [
+    # read_fem (src/fem/io/scan.cpp read_file_bytes): `INCLUDE /` opened the root directory, whose
+    # ftell is huge: std::bad_alloc. Directories (and, for INCLUDE, anything but a regular file) are
+    # now refused. Found by fuzz_read_fem.
+    ("read_fem", "regression_nastran_include_directory", b"BEGIN BULK\nINCLUDE /\nGRID,1,,0.,0.,0.\n"),
     # write_fem MSH (src/fem/io/msh_write.cpp): a VTU array name with a line break became a
     # $NodeData view name that broke the written file (fuzz_read_fem round trip: "malformed number
     # of real tags"). Names are now written on one line. Found by fuzz_read_fem.

@@ -150,7 +150,7 @@ struct Reader {
         if (depth > 20) return line_error(names[static_cast<std::size_t>(fi)], t.line(), "*INCLUDE nested too deeply");
         std::filesystem::path p = *in;
         if (p.is_relative()) p = std::filesystem::path(names[static_cast<std::size_t>(fi)]).parent_path() / p;
-        Expected<std::string> b = read_file_bytes(p);
+        Expected<std::string> b = read_file_bytes(p, true);
         if (!b) return line_error(names[static_cast<std::size_t>(fi)], t.line(), "*INCLUDE " + quote_tok(*in) + ": " + b.error().reason);
         names.push_back(p.string());
         bytes.push_back(std::make_unique<std::string>(std::move(*b)));

@@ -178,7 +178,7 @@ struct Reader {
     if (depth > 20) return line_error(parent, line, "INCLUDE nested too deeply");
     std::filesystem::path p = name;
     if (p.is_relative()) p = std::filesystem::path(parent).parent_path() / p;
-    Expected<std::string> bytes = read_file_bytes(p);
+    Expected<std::string> bytes = read_file_bytes(p, true);
     if (!bytes) return line_error(parent, line, "INCLUDE " + quote_tok(name) + ": " + bytes.error().reason);
     auto sf = std::make_unique<SourceFile>();
     sf->name = p.string();

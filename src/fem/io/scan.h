@@ -23,8 +23,9 @@ namespace interfere::fem_io {
 
 // ---------------------------------------------------------------- files and errors
 
-/// The whole file in memory (one read).
-Expected<std::string> read_file_bytes(const std::filesystem::path& path);
+/// The whole file in memory (one read). Directories are refused; with `regular_only` (files named
+/// by an INCLUDE) anything but a regular file is (a device would never end).
+Expected<std::string> read_file_bytes(const std::filesystem::path& path, bool regular_only = false);
 
 inline Error line_error(const std::string& file, std::int64_t line, std::string reason) {
   return Error{.file = file, .line = line, .reason = std::move(reason)};

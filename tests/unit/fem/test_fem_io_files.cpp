@@ -247,6 +247,8 @@ TEST(FemIoFiles, CorruptedInputsOfEveryFormat) {
   EXPECT_TRUE(bad_input("badreal.bdf", "BEGIN BULK\nGRID,1,,0.,abc,0.\n", "malformed coordinate"));
   EXPECT_TRUE(bad_input("count.bdf", grids + "CTETRA,1,1,1,2,3\n", "corner grid G4 is blank"));
   EXPECT_TRUE(bad_input("include.bdf", "BEGIN BULK\nINCLUDE 'nowhere.bdf'\n", "cannot open"));
+  EXPECT_TRUE(bad_input("include_dir.bdf", "BEGIN BULK\nINCLUDE /\n", "is a directory"));
+  EXPECT_TRUE(bad_input("include_dev.inp", "*INCLUDE, INPUT=/dev/zero\n", "not a regular file"));
   // Abaqus.
   const std::string nodes = "*NODE\n1,0,0,0\n2,1,0,0\n3,0,1,0\n4,0,0,1\n";
   EXPECT_TRUE(bad_input("type.inp", nodes + "*ELEMENT, TYPE=C3D11\n1,1,2,3,4\n", "unsupported element type"));
