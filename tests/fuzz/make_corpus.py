@@ -281,6 +281,13 @@ X = float.fromhex
 # Minimised fuzzer findings: (target, file name, bytes). Keep them until the library is fixed,
 # then keep them as regression tests.
 REGRESSIONS = [
+    # read_fem (src/fem/io/abaqus_read.cpp, abaqus_type): a TYPE= with a long run of digits
+    # overflowed int while parsing the node count (UBSan). Found by fuzz_read_fem.
+    ("read_fem", "regression_abaqus_type_digits_overflow",
+     b"*NODE\n1,0,0,0\n*ELEMENT, TYPE=C3D" + b"7" * 40 + b"\n1,1\n"),
+    # GENERATE over the whole int64 range: first - last overflowed before the size check.
+    ("read_fem", "regression_abaqus_generate_int64_range",
+     b"*NODE\n1,0,0,0\n*NSET, NSET=a, GENERATE\n-9223372036854775807, 9223372036854775807, 1\n"),
     # read_fem (src/fem/io/scan.cpp read_file_bytes): `INCLUDE /` opened the root directory, whose
     # ftell is huge: std::bad_alloc. Directories (and, for INCLUDE, anything but a regular file) are
     # now refused. Found by fuzz_read_fem.

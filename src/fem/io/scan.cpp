@@ -123,7 +123,7 @@ std::int64_t IdMap::build(const std::vector<std::int64_t>& ids) {
   if (dense_) {
     table_.assign(span + 1, kNone);
     for (std::size_t i = 0; i < n; ++i) {
-      std::uint32_t& slot = table_[static_cast<std::uint64_t>(ids[i] - lo_)];
+      std::uint32_t& slot = table_[static_cast<std::uint64_t>(ids[i]) - static_cast<std::uint64_t>(lo_)];
       if (slot != kNone) return static_cast<std::int64_t>(i);
       slot = static_cast<std::uint32_t>(i);
     }

@@ -174,7 +174,7 @@ class IdMap {
   /// Index of `id`, or -1.
   std::int64_t find(std::int64_t id) const {
     if (dense_) {
-      const std::uint64_t k = static_cast<std::uint64_t>(id - lo_);
+      const std::uint64_t k = static_cast<std::uint64_t>(id) - static_cast<std::uint64_t>(lo_);
       if (k >= table_.size()) return -1;
       const std::uint32_t v = table_[k];
       return v == kNone ? -1 : static_cast<std::int64_t>(v);
