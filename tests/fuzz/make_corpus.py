@@ -281,6 +281,12 @@ X = float.fromhex
 # Minimised fuzzer findings: (target, file name, bytes). Keep them until the library is fixed,
 # then keep them as regression tests.
 REGRESSIONS = [
+    # read_fem (src/fem/io/nastran_read.cpp): tab-expanded lines were kept in a std::vector<string>;
+    # its growth moved short strings and left the cards' field views dangling (ASan
+    # heap-use-after-free). Found by fuzz_read_fem.
+    ("read_fem", "regression_nastran_tab_lines_dangling",
+     b"BEGIN BULK\n" + b"".join(b"GRID\t%d\t\t%d.\t0.\t0.\n" % (i, i) for i in range(1, 40))
+     + b"CTETRA\t1\t1\t1\t2\t3\t4\n"),
     # read_fem (src/fem/io/abaqus_read.cpp, abaqus_type): a TYPE= with a long run of digits
     # overflowed int while parsing the node count (UBSan). Found by fuzz_read_fem.
     ("read_fem", "regression_abaqus_type_digits_overflow",
