@@ -281,6 +281,36 @@ X = float.fromhex
 # Minimised fuzzer findings: (target, file name, bytes). Keep them until the library is fixed,
 # then keep them as regression tests.
 REGRESSIONS = [
+    # read_fem (src/fem/io/nastran_read.cpp): tab-expanded lines were kept in a std::vector<string>;
+    # its growth moved short strings and left the cards' field views dangling (ASan
+    # heap-use-after-free). Found by fuzz_read_fem.
+    ("read_fem", "regression_nastran_tab_lines_dangling",
+     b"BEGIN BULK\n" + b"".join(b"GRID\t%d\t\t%d.\t0.\t0.\n" % (i, i) for i in range(1, 40))
+     + b"CTETRA\t1\t1\t1\t2\t3\t4\n"),
+    # read_fem (src/fem/io/abaqus_read.cpp, abaqus_type): a TYPE= with a long run of digits
+    # overflowed int while parsing the node count (UBSan). Found by fuzz_read_fem.
+    ("read_fem", "regression_abaqus_type_digits_overflow",
+     b"*NODE\n1,0,0,0\n*ELEMENT, TYPE=C3D" + b"7" * 40 + b"\n1,1\n"),
+    # GENERATE over the whole int64 range: first - last overflowed before the size check.
+    ("read_fem", "regression_abaqus_generate_int64_range",
+     b"*NODE\n1,0,0,0\n*NSET, NSET=a, GENERATE\n-9223372036854775807, 9223372036854775807, 1\n"),
+    # read_fem (src/fem/io/scan.cpp read_file_bytes): `INCLUDE /` opened the root directory, whose
+    # ftell is huge: std::bad_alloc. Directories (and, for INCLUDE, anything but a regular file) are
+    # now refused. Found by fuzz_read_fem.
+    ("read_fem", "regression_nastran_include_directory", b"BEGIN BULK\nINCLUDE /\nGRID,1,,0.,0.,0.\n"),
+    # write_fem MSH (src/fem/io/msh_write.cpp): a VTU array name with a line break became a
+    # $NodeData view name that broke the written file (fuzz_read_fem round trip: "malformed number
+    # of real tags"). Names are now written on one line. Found by fuzz_read_fem.
+    ("read_fem", "regression_msh_view_name_with_newline",
+     b'<?xml version="1.0"?>\n<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian">\n'
+     b'<UnstructuredGrid><Piece NumberOfPoints="4" NumberOfCells="1">\n'
+     b'<PointData><DataArray type="Float64" Name="a\nb" NumberOfComponents="3" format="ascii">'
+     b"0 0 0 1 1 1 2 2 2 3 3 3</DataArray></PointData>\n"
+     b'<Points><DataArray type="Float64" NumberOfComponents="3" format="ascii">0 0 0 1 0 0 0 1 0 0 0 1</DataArray></Points>\n'
+     b'<Cells><DataArray type="Int32" Name="connectivity" format="ascii">0 1 2 3</DataArray>'
+     b'<DataArray type="Int32" Name="offsets" format="ascii">4</DataArray>'
+     b'<DataArray type="UInt8" Name="types" format="ascii">10</DataArray></Cells>\n'
+     b"</Piece></UnstructuredGrid></VTKFile>\n"),
     # read_fem (src/fem/io/vtk_read.cpp): classic CELLS with a size smaller than the cell count
     # reserved size - n < 0 entries (std::length_error, uncaught). Found by fuzz_read_fem.
     ("read_fem", "regression_vtk_cells_size_below_count",

@@ -58,6 +58,7 @@ bool abaqus_type(std::string_view name, ElemType& t) {
     v = 0;
     std::size_t d = 0;
     while (i < n.size() && n[i] >= '0' && n[i] <= '9') {
+      if (v > 100000) return false;  // no such element type (and no overflow)
       v = v * 10 + (n[i] - '0');
       ++i;
       ++d;
@@ -150,7 +151,7 @@ struct Reader {
         if (depth > 20) return line_error(names[static_cast<std::size_t>(fi)], t.line(), "*INCLUDE nested too deeply");
         std::filesystem::path p = *in;
         if (p.is_relative()) p = std::filesystem::path(names[static_cast<std::size_t>(fi)]).parent_path() / p;
-        Expected<std::string> b = read_file_bytes(p);
+        Expected<std::string> b = read_file_bytes(p, true);
         if (!b) return line_error(names[static_cast<std::size_t>(fi)], t.line(), "*INCLUDE " + quote_tok(*in) + ": " + b.error().reason);
         names.push_back(p.string());
         bytes.push_back(std::make_unique<std::string>(std::move(*b)));
@@ -351,9 +352,10 @@ Expected<FemMesh> read_abaqus(const std::filesystem::path& path, std::string_vie
             return r.err(i, "GENERATE needs first, last[, step] with first <= last and step > 0");
           std::size_t input_bytes = text.size();
           for (const auto& b2 : r.bytes) input_bytes += b2->size();
-          if (static_cast<std::uint64_t>((b - a) / s) > std::max<std::uint64_t>(1000000, 4 * static_cast<std::uint64_t>(input_bytes)))
-            return r.err(i, "GENERATE range too large for the model (" + std::to_string((b - a) / s + 1) + " ids)");
-          for (std::int64_t x = a; x <= b; x += s) members.push_back(x);
+          const std::uint64_t steps = (static_cast<std::uint64_t>(b) - static_cast<std::uint64_t>(a)) / static_cast<std::uint64_t>(s);
+          if (steps > std::max<std::uint64_t>(1000000, 4 * static_cast<std::uint64_t>(input_bytes)))
+            return r.err(i, "GENERATE range too large for the model (" + std::to_string(steps + 1) + " ids)");
+          for (std::uint64_t k = 0; k <= steps; ++k) members.push_back(a + static_cast<std::int64_t>(k) * s);
           continue;
         }
         for (std::string_view x : f) {
@@ -457,12 +459,18 @@ Expected<FemMesh> read_abaqus(const std::filesystem::path& path, std::string_vie
     if (!st) return st.error();
   } else {
     std::int64_t maxid = 0;
+    constexpr std::int64_t kMaxId = 100000000000000000;  // 1e17: S and the offsets stay in range
     for (const auto& [name, p] : parts) {
-      for (std::int64_t id : p.node_ids) maxid = std::max(maxid, std::abs(id));
-      for (std::int64_t id : p.elem_ids) maxid = std::max(maxid, std::abs(id));
+      for (const std::vector<std::int64_t>* ids : {&p.node_ids, &p.elem_ids}) {
+        for (std::int64_t id : *ids) {
+          if (id <= -kMaxId || id >= kMaxId) return file_error(file, "id " + std::to_string(id) + " too large for instance numbering (|id| < 1e17)");
+          maxid = std::max(maxid, id < 0 ? -id : id);
+        }
+      }
     }
     std::int64_t S = 1;
     while (S <= maxid) S *= 10;
+    if (static_cast<double>(instances.size() + 1) * static_cast<double>(S) >= 9e18) return file_error(file, "too many instances for the id offset rule");
     for (std::size_t k = 0; k < instances.size(); ++k) {
       const Instance& in = instances[k];
       auto it = parts.find(in.part);

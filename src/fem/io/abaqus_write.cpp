@@ -28,7 +28,7 @@ const char* abaqus_name(ElemType t) {
 
 std::string set_name(const std::string& n) {
   std::string r;
-  for (char c : n) r += (c == ',' || c == '=' || c == '"' || is_space(c)) ? '_' : c;
+  for (char c : n) r += (c == ',' || c == '=' || c == '"' || c == '*' || is_space(c) || static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? '_' : c;
   return r.empty() ? "unnamed" : r;
 }
 

@@ -81,7 +81,9 @@ Status write_msh(const FemMesh& m, const FemWriteOptions& o, std::string& out) {
       put_int(out, top);
       out += " ";
       put_int(out, ptag[g]);
-      out += " \"" + m.groups[g].name + "\"\n";
+      out += " \"";
+      out += one_line_name(m.groups[g].name);
+      out += "\"\n";
     }
     out += "$EndPhysicalNames\n";
   }
@@ -260,7 +262,9 @@ Status write_msh(const FemMesh& m, const FemWriteOptions& o, std::string& out) {
   if (o.write_fields) {
     for (const NodalSeries& f : m.fields) {
       for (std::size_t s = 0; s < f.values.size(); ++s) {
-        out += "$NodeData\n1\n\"" + f.name + "\"\n1\n";
+        out += "$NodeData\n1\n\"";
+        out += one_line_name(f.name);
+        out += "\"\n1\n";
         put_double(out, f.times[s]);
         out += "\n3\n" + std::to_string(s) + "\n3\n" + std::to_string(m.nodes.size()) + "\n";
         for (std::size_t i = 0; i < m.nodes.size(); ++i) {

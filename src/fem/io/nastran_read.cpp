@@ -7,6 +7,7 @@
 // `-2.5+2` = -250, `1.0D+3`). Groups are property ids ("PID <n>"). CHEXA20/CPENTA15 mid-side
 // grids are reordered to VTK's order (scan.cpp, nastran_to_vtk).
 #include <algorithm>
+#include <deque>
 #include <map>
 
 #include "scan.h"
@@ -52,7 +53,8 @@ struct SourceFile {
 
 struct Reader {
   std::vector<std::unique_ptr<SourceFile>> files;
-  std::vector<std::string> tab_lines;  // tab-expanded copies (kept alive for the views)
+  std::deque<std::string> tab_lines;  // tab-expanded copies; a deque keeps them (and their
+                                      // short-string buffers) in place for the fields' views
   int depth = 0;
 
   Error err(const Card& c, std::string r) const { return line_error(files[static_cast<std::size_t>(c.file)]->name, c.line, std::move(r)); }
@@ -178,7 +180,7 @@ struct Reader {
     if (depth > 20) return line_error(parent, line, "INCLUDE nested too deeply");
     std::filesystem::path p = name;
     if (p.is_relative()) p = std::filesystem::path(parent).parent_path() / p;
-    Expected<std::string> bytes = read_file_bytes(p);
+    Expected<std::string> bytes = read_file_bytes(p, true);
     if (!bytes) return line_error(parent, line, "INCLUDE " + quote_tok(name) + ": " + bytes.error().reason);
     auto sf = std::make_unique<SourceFile>();
     sf->name = p.string();

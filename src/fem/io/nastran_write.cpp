@@ -66,7 +66,7 @@ Status write_nastran(const FemMesh& m, const FemWriteOptions&, std::string& out)
     out += "$ PID ";
     put_int(out, pid[g]);
     out += ": ";
-    out += m.groups[g].name;
+    out += one_line_name(m.groups[g].name);
     out += '\n';
     out += m.groups[g].dim == 3 ? "PSOLID," : "PSHELL,";
     put_int(out, pid[g]);

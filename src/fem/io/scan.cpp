@@ -14,14 +14,18 @@
 
 namespace interfere::fem_io {
 
-Expected<std::string> read_file_bytes(const std::filesystem::path& path) {
+Expected<std::string> read_file_bytes(const std::filesystem::path& path, bool regular_only) {
   const std::string name = path.string();
+  std::error_code ec;
+  const auto st = std::filesystem::status(path, ec);
+  if (!ec && std::filesystem::is_directory(st)) return file_error(name, "cannot open: is a directory");
+  if (!ec && regular_only && std::filesystem::exists(st) && !std::filesystem::is_regular_file(st)) return file_error(name, "cannot open: not a regular file");
   std::FILE* f = std::fopen(name.c_str(), "rb");
   if (!f) return file_error(name, std::string("cannot open: ") + std::strerror(errno));
   std::string data;
   if (std::fseek(f, 0, SEEK_END) == 0) {
     const long size = std::ftell(f);
-    if (size > 0) data.resize(static_cast<std::size_t>(size));
+    if (size > 0 && size < (1L << 42)) data.resize(static_cast<std::size_t>(size));
     std::fseek(f, 0, SEEK_SET);
   }
   std::size_t got = data.empty() ? 0 : std::fread(data.data(), 1, data.size(), f);
@@ -119,7 +123,7 @@ std::int64_t IdMap::build(const std::vector<std::int64_t>& ids) {
   if (dense_) {
     table_.assign(span + 1, kNone);
     for (std::size_t i = 0; i < n; ++i) {
-      std::uint32_t& slot = table_[static_cast<std::uint64_t>(ids[i] - lo_)];
+      std::uint32_t& slot = table_[static_cast<std::uint64_t>(ids[i]) - static_cast<std::uint64_t>(lo_)];
       if (slot != kNone) return static_cast<std::int64_t>(i);
       slot = static_cast<std::uint32_t>(i);
     }

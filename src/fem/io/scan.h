@@ -23,8 +23,9 @@ namespace interfere::fem_io {
 
 // ---------------------------------------------------------------- files and errors
 
-/// The whole file in memory (one read).
-Expected<std::string> read_file_bytes(const std::filesystem::path& path);
+/// The whole file in memory (one read). Directories are refused; with `regular_only` (files named
+/// by an INCLUDE) anything but a regular file is (a device would never end).
+Expected<std::string> read_file_bytes(const std::filesystem::path& path, bool regular_only = false);
 
 inline Error line_error(const std::string& file, std::int64_t line, std::string reason) {
   return Error{.file = file, .line = line, .reason = std::move(reason)};
@@ -34,6 +35,14 @@ inline Error byte_error(const std::string& file, std::int64_t byte, std::string 
 }
 inline Error file_error(const std::string& file, std::string reason) {
   return Error{.file = file, .reason = std::move(reason)};
+}
+/// A name safe on one line between double quotes: control characters and '"' become '_'.
+inline std::string one_line_name(std::string_view n) {
+  std::string r(n);
+  for (char& c : r) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f || c == '"') c = '_';
+  }
+  return r;
 }
 /// Token quoted for an error message, shortened, control bytes escaped.
 std::string quote_tok(std::string_view token);
@@ -165,7 +174,7 @@ class IdMap {
   /// Index of `id`, or -1.
   std::int64_t find(std::int64_t id) const {
     if (dense_) {
-      const std::uint64_t k = static_cast<std::uint64_t>(id - lo_);
+      const std::uint64_t k = static_cast<std::uint64_t>(id) - static_cast<std::uint64_t>(lo_);
       if (k >= table_.size()) return -1;
       const std::uint32_t v = table_[k];
       return v == kNone ? -1 : static_cast<std::int64_t>(v);

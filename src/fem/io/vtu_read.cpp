@@ -409,8 +409,9 @@ Expected<FemMesh> read_vtu(const std::string& file, std::string_view bytes) {
       if (!ca.integer || !oa.integer || !ta.integer) return c.err(cells->offset, "cell arrays must have integer types");
       d.cells_where = static_cast<std::int64_t>(conn->offset);
       d.types_where = static_cast<std::int64_t>(types->offset);
-      for (std::int64_t v : ca.ints) d.connectivity.push_back(v < 0 ? v : v + static_cast<std::int64_t>(p0));
-      for (std::int64_t v : oa.ints) d.offsets.push_back(v + static_cast<std::int64_t>(conn0));
+      // Shifted by the previous pieces (wrapping arithmetic: out-of-range values stay invalid).
+      for (std::int64_t v : ca.ints) d.connectivity.push_back(v < 0 ? v : static_cast<std::int64_t>(static_cast<std::uint64_t>(v) + p0));
+      for (std::int64_t v : oa.ints) d.offsets.push_back(v < 0 ? v : static_cast<std::int64_t>(static_cast<std::uint64_t>(v) + conn0));
       d.types.insert(d.types.end(), ta.ints.begin(), ta.ints.end());
     }
     for (int which = 0; which < 2; ++which) {

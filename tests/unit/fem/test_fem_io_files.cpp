@@ -47,6 +47,20 @@ TEST(FemIoFiles, NastranSmallFieldContinuationsIncludeShorthand) {
   EXPECT_EQ(m.elem_groups, (std::vector<std::int32_t>{0, 1, 1}));
 }
 
+TEST(FemIoFiles, NastranTabsExpandToEightColumns) {
+  std::string text = "BEGIN BULK\n";
+  for (int i = 1; i <= 40; ++i) text += "GRID\t" + std::to_string(i) + "\t\t" + std::to_string(i) + ".\t2.5-1\t0.\n";
+  text += "CTETRA\t7\t3\t1\t2\t3\t40\n";
+  const fs::path p = temp_dir() / "tabs.bdf";
+  write_text(p, text);
+  Expected<FemMesh> m = read_fem(p);
+  ASSERT_TRUE(m) << m.error().message();
+  ASSERT_EQ(m->num_nodes(), 40u);
+  for (std::size_t i = 0; i < 40; ++i) EXPECT_EQ(m->nodes[i], (Vec3{static_cast<double>(i + 1), 0.25, 0})) << i;
+  EXPECT_EQ(m->node_ids[m->element_nodes(0)[3]], 40);
+  EXPECT_EQ(m->groups[0].name, "PID 3");
+}
+
 TEST(FemIoFiles, NastranLargeAndFreeFieldWedge15InVtkOrder) {
   const FemMesh m = must_read("large_free_field.bdf");
   ASSERT_EQ(m.num_nodes(), 15u);
@@ -247,6 +261,8 @@ TEST(FemIoFiles, CorruptedInputsOfEveryFormat) {
   EXPECT_TRUE(bad_input("badreal.bdf", "BEGIN BULK\nGRID,1,,0.,abc,0.\n", "malformed coordinate"));
   EXPECT_TRUE(bad_input("count.bdf", grids + "CTETRA,1,1,1,2,3\n", "corner grid G4 is blank"));
   EXPECT_TRUE(bad_input("include.bdf", "BEGIN BULK\nINCLUDE 'nowhere.bdf'\n", "cannot open"));
+  EXPECT_TRUE(bad_input("include_dir.bdf", "BEGIN BULK\nINCLUDE /\n", "is a directory"));
+  EXPECT_TRUE(bad_input("include_dev.inp", "*INCLUDE, INPUT=/dev/zero\n", "not a regular file"));
   // Abaqus.
   const std::string nodes = "*NODE\n1,0,0,0\n2,1,0,0\n3,0,1,0\n4,0,0,1\n";
   EXPECT_TRUE(bad_input("type.inp", nodes + "*ELEMENT, TYPE=C3D11\n1,1,2,3,4\n", "unsupported element type"));
