@@ -88,7 +88,7 @@ def configure_and_build(build_dir: Path, jobs: int) -> None:
     run(["cmake", "-S", str(ROOT), "-B", str(build_dir), "-DCMAKE_BUILD_TYPE=Release",
          "-DINTERFERE_BUILD_BENCH=ON", "-DINTERFERE_BUILD_TESTS=OFF", "-DINTERFERE_BUILD_CLI=OFF"])
     run(["cmake", "--build", str(build_dir), "-j", str(jobs), "--target", "interfere_bench",
-         "interfere_big_run"])
+         "interfere_big_run", "interfere_fem_big_run"])
 
 
 def run_bench(build_dir: Path, args: argparse.Namespace) -> dict:
@@ -278,6 +278,26 @@ def run_big(build_dir: Path, n: str, threads: str | None) -> dict | None:
     return result
 
 
+def run_fem_big(build_dir: Path, n: str, threads: str | None) -> dict | None:
+    """interfere_fem_big_run: a generated 1e7-tet MSH read, extracted and clashed (issue #3)."""
+    exe = build_dir / "bench" / "interfere_fem_big_run"
+    if not exe.exists():
+        log(f"{exe} not found; FEM big run skipped")
+        return None
+    cmd = [str(exe), n] + ([threads] if threads else [])
+    log(f"running interfere_fem_big_run at {n} tets ...")
+    try:
+        cp = run(cmd, capture=True)
+    except subprocess.CalledProcessError as e:
+        log(f"FEM big run {n} failed: exit {e.returncode}")
+        return {"elements": float(n), "error": f"exit status {e.returncode}"}
+    result = json.loads(cp.stdout)
+    result["date_utc"] = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    log(f"      done: read {result.get('read_s', 0):.3g} s, extract {result.get('extract_s', 0):.3g} s, "
+        f"peak {result.get('peak_rss_gb', {}).get('end', 0):.2f} GB")
+    return result
+
+
 # ----------------------------------------------------------------------------- helpers
 class Results:
     """Benchmarks by name (without the /real_time suffix). Rows run with repetitions are represented
@@ -294,6 +314,13 @@ class Results:
                 continue
             self.by_name.setdefault(name, b)  # first repetition, until a median replaces it
         self.by_name.update(medians)
+
+    def find(self, pattern: str) -> dict | None:
+        """The first benchmark whose name matches the regex `pattern` (re.search)."""
+        for name, b in self.by_name.items():
+            if re.search(pattern, name) and not b.get("error_occurred"):
+                return b
+        return None
 
     def get(self, name: str) -> dict | None:
         b = self.by_name.get(name)
@@ -579,7 +606,7 @@ def threads_in(res: Results) -> list[int]:
 
 
 def make_markdown(data: dict, machine: dict, big: dict | None, big_small: dict | None,
-                  big_note: str) -> tuple[str, list[dict]]:
+                  big_note: str, fem_big: dict | None = None, fem_big_note: str = "") -> tuple[str, list[dict]]:
     res = Results(data)
     ctx = data.get("context", {})
     sizes = sizes_in(res)
@@ -660,6 +687,25 @@ def make_markdown(data: dict, machine: dict, big: dict | None, big_small: dict |
     v = counter(rd, "bytes_per_second")
     target("binary STL read (with exact weld) ≥ 1 GB/s", "—" if v is None else f"{v / GB:.2f} GB/s",
            None if v is None else v >= GB, v)
+
+    # Issue #3 (FEM) targets, from bench_fem.cpp and interfere_fem_big_run.
+    fem_x = res.find(rf"BM_FemExtract/tet4/\d+/1000000/{it}(/|$)")
+    v = counter(fem_x, "elements_per_s")
+    target(f"FEM surface extraction, linear tets (~1e6), {it} threads ≥ 5 M elements/s (issue #3)",
+           missing if v is None else fmt_rate(v, "elements/s"), None if v is None else v >= 5e6, v)
+    fem_s = res.find(rf"BM_FemSeriesStep/1000000/{it}(/|$)")
+    s = seconds(fem_s)
+    target(f"FEM per step refit + clash, two ~1e6-element parts, {it} threads ≤ 20 ms (issue #3)",
+           missing if s is None else fmt_time(s), None if s is None else s <= 0.020, s)
+    if fem_big and "peak_rss_gb" in fem_big and fem_big.get("elements", 0) >= 1e7:
+        peak = max(fem_big["peak_rss_gb"].values())
+        target("FEM 1e7-tet model read, extracted and clashed within 8 GB (issue #3)",
+               f"{peak:.2f} GB peak (read {fmt_time(fem_big.get('read_s'))}, extract "
+               f"{fmt_time(fem_big.get('extract_s'))}, clash {fmt_time(fem_big.get('clash_s'))})",
+               peak <= 8, peak, fem_big_note)
+    else:
+        target("FEM 1e7-tet model read, extracted and clashed within 8 GB (issue #3)",
+               "not run (use --big)", None, None)
 
     # Information rows: the same measurements on other thread counts / builders.
     def plural(t: int) -> str:
@@ -844,6 +890,37 @@ def make_markdown(data: dict, machine: dict, big: dict | None, big_small: dict |
     exact_make_section(w, res, data)
 
     # ---- microbenchmarks
+    fem_rows = [(n, b) for n, b in res.by_name.items() if n.startswith(("BM_FemExtract/", "BM_FemSeriesStep/",
+                                                                          "BM_FemRead_"))]
+    if fem_rows:
+        w("## FEM models (issue #3)")
+        w("")
+        w("Surface extraction (`bench/bench_fem.cpp`): generated boxes (`make_fem_box`) of each element type, "
+          "`extract_surface` with the default options (quadratic faces subdivided), wall time per call. "
+          "Series: two tet4 parts (a cube and a ball moving into it over 100 steps), one step = deformed "
+          "positions + refit of both trees + the default `clash()`. Reading: a generated box of about 1e6 tets "
+          "(`bench/bench_fem_io.cpp`, one thread), the gmsh SDK as the peer where built.")
+        w("")
+        w("| benchmark | elements | threads | time | throughput |")
+        w("|---|---|---|---|---|")
+        for n, b in fem_rows:
+            el = b.get("elements") or b.get("elements_a")
+            th = b.get("threads", "—")
+            rate = b.get("elements_per_s")
+            label = n.split("/min_time")[0]
+            w(f"| `{label}` | {'—' if el is None else f'{el:,.0f}'} | "
+              f"{'—' if th == '—' else int(th)} | {fmt_time(seconds(b))} | "
+              f"{'—' if rate is None else fmt_rate(rate, 'elements/s')} |")
+        if fem_big and "peak_rss_gb" in fem_big:
+            w("")
+            w(f"1e7 run (`interfere_fem_big_run`{', ' + fem_big_note if fem_big_note else ''}): "
+              f"{fem_big.get('elements', 0):,.0f} tets written as binary MSH 4.1 and read back in "
+              f"{fmt_time(fem_big.get('read_s'))}, surface of {fem_big.get('surface_triangles', 0):,} triangles "
+              f"extracted in {fmt_time(fem_big.get('extract_s'))}, trees built in {fmt_time(fem_big.get('build_s'))} "
+              f"and clashed against a 1e6-tet ball in {fmt_time(fem_big.get('clash_s'))}; peak resident set "
+              f"{max(fem_big['peak_rss_gb'].values()):.2f} GB.")
+        w("")
+
     w("## Microbenchmarks")
     w("")
     tt = [("BM_TriTri_exact_intersects", "exact, yes/no (`tri_tri_exact_intersects`)"),
@@ -1053,9 +1130,21 @@ def main() -> int:
         except (OSError, ValueError):
             pass
 
-    md, targets, info = make_markdown(data, machine, big, big_small, big_note)
+    fem_big, fem_big_note = None, ""
+    if args.big:
+        fem_big = run_fem_big(build_dir, args.big_n, threads)
+    elif old_json.exists():
+        try:
+            prev = json.loads(old_json.read_text()).get("fem_big_run")
+            if prev and "error" not in prev:
+                fem_big, fem_big_note = prev, f"from the run of {prev.get('date_utc', 'an earlier date')}"
+        except (OSError, ValueError):
+            pass
+
+    md, targets, info = make_markdown(data, machine, big, big_small, big_note, fem_big, fem_big_note)
     docs.mkdir(parents=True, exist_ok=True)
     raw = {"machine": machine, "google_benchmark": data, "big_run_1e6": big_small, "big_run": big,
+           "fem_big_run": fem_big,
            "big_run_note": big_note, "targets": targets, "target_information": info}
     (docs / "benchmarks.json").write_text(json.dumps(raw, indent=1) + "\n")
     (docs / "benchmarks.md").write_text(md + "\n")
