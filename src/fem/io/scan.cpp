@@ -58,13 +58,6 @@ std::string quote_tok(std::string_view t) {
   return s + "'";
 }
 
-bool iequals(std::string_view a, std::string_view b) {
-  if (a.size() != b.size()) return false;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    if (lower(a[i]) != lower(b[i])) return false;
-  }
-  return true;
-}
 bool istarts_with(std::string_view s, std::string_view p) { return s.size() >= p.size() && iequals(s.substr(0, p.size()), p); }
 std::string to_lower(std::string_view s) {
   std::string r(s);
@@ -78,29 +71,7 @@ std::string_view trim(std::string_view s) {
   return s.substr(b, e - b);
 }
 
-bool parse_double(std::string_view t, double& out) {
-  if (t.empty()) return false;
-  const char* b = t.data();
-  const char* e = b + t.size();
-  if (*b == '+') {
-    ++b;
-    if (b == e || *b == '-' || *b == '+') return false;
-  }
-  const auto r = std::from_chars(b, e, out, std::chars_format::general);
-  return r.ec == std::errc() && r.ptr == e;
-}
 
-bool parse_int(std::string_view t, std::int64_t& out) {
-  if (t.empty()) return false;
-  const char* b = t.data();
-  const char* e = b + t.size();
-  if (*b == '+') {
-    ++b;
-    if (b == e || *b == '-' || *b == '+') return false;
-  }
-  const auto r = std::from_chars(b, e, out, 10);
-  return r.ec == std::errc() && r.ptr == e;
-}
 
 std::int64_t line_of(std::string_view s, std::size_t pos) {
   pos = std::min(pos, s.size());

@@ -18,6 +18,7 @@
 #include "interfere/core/error.h"
 #include "interfere/fem/fem_mesh.h"
 #include "interfere/fem/io.h"
+#include "../../mesh/io/text_reader.h"  // the number and keyword scanning shared with the mesh readers
 
 namespace interfere::fem_io {
 
@@ -49,17 +50,17 @@ std::string quote_tok(std::string_view token);
 
 // ---------------------------------------------------------------- text
 
-inline bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f'; }
+using io_detail::iequals;
+using io_detail::is_space;
 inline char lower(char c) { return c >= 'A' && c <= 'Z' ? static_cast<char>(c - 'A' + 'a') : c; }
-bool iequals(std::string_view a, std::string_view b);
 bool istarts_with(std::string_view s, std::string_view prefix);
 std::string to_lower(std::string_view s);
 std::string_view trim(std::string_view s);
 
-/// Whole token as double / integer (leading '+' allowed). NaN/Inf spellings parse as such: the
-/// callers reject non-finite values with their own message.
-bool parse_double(std::string_view t, double& out);
-bool parse_int(std::string_view t, std::int64_t& out);
+/// Whole token as double / integer (leading '+' allowed; the mesh readers' parsers). NaN/Inf
+/// spellings parse as such: the callers reject non-finite values with their own message.
+using io_detail::parse_double;
+using io_detail::parse_int;
 
 /// Cursor over a text: tokens (crossing line ends) and lines, with 1-based line numbers.
 class Text {
