@@ -7,13 +7,17 @@
 // INTERFERE_FUZZ_TARGET(name, entry). Built as a libFuzzer binary (INTERFERE_LIBFUZZER defined),
 // the same macro also defines LLVMFuzzerTestOneInput.
 #pragma once
+#include <unistd.h>
+
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <system_error>
 
 namespace interfere::fuzz {
 
@@ -56,6 +60,50 @@ inline bool ignored(const char* tag) {
   std::fprintf(stderr, "%s\n", msg.c_str());
   std::fflush(stderr);
   std::abort();
+}
+
+/// A private directory for a target's input files: $INTERFERE_FUZZ_TMPDIR, else /dev/shm (the
+/// writers fsync; tmpfs keeps that cheap), else the system temp directory. One per tag, removed at
+/// exit.
+inline const std::filesystem::path& work_dir(const std::string& tag) {
+  namespace fs = std::filesystem;
+  struct Dir {
+    fs::path path;
+    ~Dir() {
+      std::error_code ec;
+      if (!path.empty()) fs::remove_all(path, ec);
+    }
+  };
+  static std::map<std::string, Dir> dirs;
+  Dir& d = dirs[tag];
+  if (!d.path.empty()) return d.path;
+  std::error_code ec;
+  fs::path base;
+  if (const char* env = std::getenv("INTERFERE_FUZZ_TMPDIR"); env && *env) {
+    base = env;
+  } else if (fs::is_directory("/dev/shm", ec) && ::access("/dev/shm", W_OK) == 0) {
+    base = "/dev/shm";
+  } else {
+    base = fs::temp_directory_path();
+  }
+  std::string templ = (base / ("interfere_fuzz_" + tag + "_XXXXXX")).string();
+  if (!::mkdtemp(templ.data())) {
+    std::fprintf(stderr, "fuzz: cannot create a directory under %s\n", base.c_str());
+    std::abort();
+  }
+  d.path = templ;
+  return d.path;
+}
+
+/// Writes the fuzz input to `p` (aborts if it cannot: the harness itself is broken then).
+inline void put_file(const std::filesystem::path& p, const std::uint8_t* data, std::size_t size) {
+  std::FILE* f = std::fopen(p.c_str(), "wb");
+  const bool ok = f && (size == 0 || std::fwrite(data, 1, size, f) == size);
+  if (f) std::fclose(f);
+  if (!ok) {
+    std::fprintf(stderr, "fuzz: cannot write %s\n", p.c_str());
+    std::abort();
+  }
 }
 
 }  // namespace interfere::fuzz

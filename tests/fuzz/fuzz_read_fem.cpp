@@ -31,37 +31,8 @@ using interfere::Error;
 using interfere::Expected;
 using interfere::FemMesh;
 
-fs::path g_fem_dir;
-
-void remove_fem_dir() {
-  std::error_code ec;
-  if (!g_fem_dir.empty()) fs::remove_all(g_fem_dir, ec);
-}
-
-const fs::path& fem_work_dir() {
-  if (!g_fem_dir.empty()) return g_fem_dir;
-  std::error_code ec;
-  fs::path base;
-  if (const char* env = std::getenv("INTERFERE_FUZZ_TMPDIR"); env && *env) {
-    base = env;
-  } else if (fs::is_directory("/dev/shm", ec) && ::access("/dev/shm", W_OK) == 0) {
-    base = "/dev/shm";
-  } else {
-    base = fs::temp_directory_path();
-  }
-  std::string templ = (base / "interfere_fuzz_fem_XXXXXX").string();
-  if (!::mkdtemp(templ.data())) std::abort();
-  g_fem_dir = templ;
-  std::atexit(remove_fem_dir);
-  return g_fem_dir;
-}
-
-void put(const fs::path& p, const std::uint8_t* data, std::size_t size) {
-  std::FILE* f = std::fopen(p.c_str(), "wb");
-  const bool ok = f && (size == 0 || std::fwrite(data, 1, size, f) == size);
-  if (f) std::fclose(f);
-  if (!ok) std::abort();
-}
+const fs::path& fem_work_dir() { return interfere::fuzz::work_dir("fem"); }
+void put(const fs::path& p, const std::uint8_t* data, std::size_t size) { interfere::fuzz::put_file(p, data, size); }
 
 void check_error(const Error& e, const fs::path& path, std::int64_t lines, std::size_t size) {
   const std::string at = " [" + path.filename().string() + "]: " + e.message();

@@ -50,45 +50,8 @@ using interfere::ReadOptions;
 using interfere::TriMesh;
 using interfere::Vec3;
 
-fs::path g_dir;
-
-void remove_work_dir() {
-  std::error_code ec;
-  if (!g_dir.empty()) fs::remove_all(g_dir, ec);
-}
-
-/// A private directory for the input files: $INTERFERE_FUZZ_TMPDIR, else /dev/shm (write_mesh
-/// fsyncs; tmpfs keeps that cheap), else the system temp directory. Removed at exit.
-const fs::path& work_dir() {
-  if (!g_dir.empty()) return g_dir;
-  std::error_code ec;
-  fs::path base;
-  if (const char* env = std::getenv("INTERFERE_FUZZ_TMPDIR"); env && *env) {
-    base = env;
-  } else if (fs::is_directory("/dev/shm", ec) && ::access("/dev/shm", W_OK) == 0) {
-    base = "/dev/shm";
-  } else {
-    base = fs::temp_directory_path();
-  }
-  std::string templ = (base / "interfere_fuzz_XXXXXX").string();
-  if (!::mkdtemp(templ.data())) {
-    std::fprintf(stderr, "fuzz_read_mesh: cannot create a directory under %s\n", base.c_str());
-    std::abort();
-  }
-  g_dir = templ;
-  std::atexit(remove_work_dir);
-  return g_dir;
-}
-
-void put_file(const fs::path& p, const std::uint8_t* data, std::size_t size) {
-  std::FILE* f = std::fopen(p.c_str(), "wb");
-  const bool ok = f && (size == 0 || std::fwrite(data, 1, size, f) == size);
-  if (f) std::fclose(f);
-  if (!ok) {
-    std::fprintf(stderr, "fuzz_read_mesh: cannot write %s\n", p.c_str());
-    std::abort();
-  }
-}
+const fs::path& work_dir() { return interfere::fuzz::work_dir("mesh"); }
+using interfere::fuzz::put_file;
 
 using Family = interfere::MeshFamily;
 Family family_of(MeshFormat f) { return interfere::mesh_family(f); }
