@@ -257,12 +257,7 @@ int run_fem_clash(const ClashOptions& o, const ResolvedParts& parts, const Clash
       std::printf("clear: no clash in %zu steps\n", num_steps);
     }
   } else {
-    double curve_length = 0;
-    for (const ClashRegion& g : result.regions) curve_length += g.curve_length;
-    std::printf("%s: %zu pairs (%zu cross, %zu touch), %zu regions, curve length %.6g %s, containment %s",
-                result.interference() ? "INTERFERENCE" : "clear", result.pairs.size(), result.cross_pairs,
-                result.touch_pairs, result.regions.size(), curve_length, parts.units.c_str(),
-                containment_name(result.containment));
+    print_clash_summary(result, parts.units);
     if (num_steps > 1) std::printf(", step %s", step_label(shown).c_str());
     std::printf("\n");
   }

@@ -106,12 +106,7 @@ int run_clash(const ClashOptions& o) {
     write_or_throw(write_file_atomic(o.json, j.dump(2) + "\n"));
   }
 
-  double curve_length = 0;
-  for (const ClashRegion& g : result.regions) curve_length += g.curve_length;
-  std::printf("%s: %zu pairs (%zu cross, %zu touch), %zu regions, curve length %.6g %s, containment %s",
-              result.interference() ? "INTERFERENCE" : "clear", result.pairs.size(), result.cross_pairs,
-              result.touch_pairs, result.regions.size(), curve_length, parts.units.c_str(),
-              containment_name(result.containment));
+  print_clash_summary(result, parts.units);
   if (o.clearance > 0) std::printf(", %zu pairs closer than %g", result.clearance.size(), o.clearance);
   std::printf("\n");
   return status;

@@ -29,17 +29,6 @@ struct SweepOptions {
   bool no_continuous = false, no_clearance = false;
 };
 
-void check_output_file(const std::string& path, const std::vector<std::string>& extensions, const char* flag) {
-  if (path.empty()) return;
-  const std::filesystem::path p(path);
-  std::string ext = p.extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  bool ok = extensions.empty();
-  for (const std::string& e : extensions) ok |= ext == e;
-  if (!ok) throw InputError(std::string(flag) + ": " + path + ": unsupported extension '" + ext + "'");
-  const std::filesystem::path dir = p.parent_path().empty() ? std::filesystem::path(".") : p.parent_path();
-  if (!std::filesystem::is_directory(dir)) throw InputError(std::string(flag) + ": " + path + ": directory does not exist");
-}
 
 void positive(double v, const char* flag, bool allow_zero = false) {
   if (!std::isfinite(v) || v < 0 || (!allow_zero && v == 0)) {
@@ -82,10 +71,10 @@ int run_sweep(const SweepOptions& o) {
   if (o.depth < 1 || o.depth > 40) throw InputError("--depth: must be in [1, 40]");
   check_units(o.units);
   const Hierarchy hierarchy = parse_hierarchy(o.hierarchy);
-  check_output_file(o.json, {}, "--json");
-  check_output_file(o.csv, {}, "--csv");
-  check_output_file(o.hits_obj, {".obj", ".vtk"}, "--hits-obj");
-  check_output_file(o.probes_vtk, {".vtk", ".obj"}, "--probes-vtk");
+  check_output(o.json, {}, "--json");
+  check_output(o.csv, {}, "--csv");
+  check_output(o.hits_obj, {".obj", ".vtk"}, "--hits-obj");
+  check_output(o.probes_vtk, {".vtk", ".obj"}, "--probes-vtk");
   set_threads(o.threads);
   const ProbeShape shape{.radius = o.probe_radius,
                          .length = o.probe_length,

@@ -1,5 +1,7 @@
 #include "common.h"
 
+#include "interfere/query/clash.h"
+
 #include <CLI/CLI.hpp>
 #include <cctype>
 #include <cstdio>
@@ -154,6 +156,15 @@ void check_units(const std::string& units) {
     if (units == u) return;
   }
   throw InputError("--units: unknown unit '" + units + "' (mm, cm, m, um, in, ft)");
+}
+
+void print_clash_summary(const ClashResult& result, const std::string& units) {
+  double curve_length = 0;
+  for (const ClashRegion& g : result.regions) curve_length += g.curve_length;
+  std::printf("%s: %zu pairs (%zu cross, %zu touch), %zu regions, curve length %.6g %s, containment %s",
+              result.interference() ? "INTERFERENCE" : "clear", result.pairs.size(), result.cross_pairs,
+              result.touch_pairs, result.regions.size(), curve_length, units.c_str(),
+              containment_name(result.containment));
 }
 
 void check_output(const std::string& path, const std::vector<std::string>& extensions, const char* flag) {

@@ -77,6 +77,16 @@ void check_units(const std::string& units);
 
 /// Checks an output path before any work: its extension (one of `extensions`, lower case with the
 /// dot; empty = any) and that its directory exists. Throws InputError naming `flag`.
+}  // namespace interfere::cli
+namespace interfere {
+struct ClashResult;
+}  // namespace interfere
+namespace interfere::cli {
+
+/// The one-line result of a clash on stdout, without the line end ("INTERFERENCE: 878 pairs (878
+/// cross, 0 touch), 1 regions, curve length 1.25 mm, containment none"); callers append details.
+void print_clash_summary(const ClashResult& result, const std::string& units);
+
 void check_output(const std::string& path, const std::vector<std::string>& extensions, const char* flag);
 /// Throws InputError when a write failed.
 void write_or_throw(const Status& s);

@@ -4,6 +4,7 @@
 // Ellipse, an Ellipsoid, or a Hyperellipsoid", Geometric Tools), with a certificate that B's side
 // is what is nearest; a nested golden-section fallback for the general convex problem.
 #include "interfere/bearing/analytic.h"
+#include "golden.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,36 +13,8 @@
 namespace interfere::bearing {
 namespace {
 
-constexpr double kGolden = 0.61803398874989484820;
+using detail::golden_min;
 
-/// Golden-section minimisation of a convex f on [lo, hi]; returns (argmin, min) over every point
-/// evaluated (the end points included).
-template <class F>
-std::pair<double, double> golden_min(F&& f, double lo, double hi, int iterations) {
-  double best_x = lo, best = f(lo);
-  if (!(hi > lo)) return {best_x, best};
-  if (const double fh = f(hi); fh < best) best = fh, best_x = hi;
-  double a = lo, b = hi;
-  double c = b - kGolden * (b - a), d = a + kGolden * (b - a);
-  double fc = f(c), fd = f(d);
-  for (int k = 0; k < iterations; ++k) {
-    if (fc < best) best = fc, best_x = c;
-    if (fd < best) best = fd, best_x = d;
-    if (fc <= fd) {
-      b = d, d = c, fd = fc;
-      c = b - kGolden * (b - a);
-      fc = f(c);
-    } else {
-      a = c, c = d, fc = fd;
-      d = a + kGolden * (b - a);
-      fd = f(d);
-    }
-    if (!(b - a > 0)) break;
-  }
-  if (fc < best) best = fc, best_x = c;
-  if (fd < best) best = fd, best_x = d;
-  return {best_x, best};
-}
 
 double get_root(double r0, double z0, double z1, double g) {
   // Root of G(s) = (n0/(s+r0))^2 + (z1/(s+1))^2 - 1 on [s0, s1] (G(s0) >= 0 >= G(s1)). G is convex

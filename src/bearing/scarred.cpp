@@ -11,33 +11,14 @@
 #include <numbers>
 
 #include "interfere/core/predicates.h"
+#include "golden.h"
 
 namespace interfere::bearing {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kGolden = 0.61803398874989484820;
+using detail::golden_min;
 
-template <class F>
-std::pair<double, double> golden_min(F&& f, double lo, double hi, int iterations) {
-  double best_x = lo, best = f(lo);
-  if (!(hi > lo)) return {best_x, best};
-  if (const double fh = f(hi); fh < best) best = fh, best_x = hi;
-  double a = lo, b = hi, c = b - kGolden * (b - a), d = a + kGolden * (b - a);
-  double fc = f(c), fd = f(d);
-  for (int k = 0; k < iterations && b - a > 0; ++k) {
-    if (fc < best) best = fc, best_x = c;
-    if (fd < best) best = fd, best_x = d;
-    if (fc <= fd) {
-      b = d, d = c, fd = fc, c = b - kGolden * (b - a), fc = f(c);
-    } else {
-      a = c, c = d, fc = fd, d = a + kGolden * (b - a), fd = f(d);
-    }
-  }
-  if (fc < best) best = fc, best_x = c;
-  if (fd < best) best = fd, best_x = d;
-  return {best_x, best};
-}
 
 /// B's local frame (centre at the origin, axis +z) and the map body(A) -> local(B).
 struct LocalFrame {
