@@ -15,6 +15,10 @@
 #include <queue>
 #include <unordered_map>
 
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
 #include "interfere/np/tri_tri.h"
 
 #include "interfere/simplify/hausdorff.h"
@@ -152,6 +156,19 @@ class RadixHeap {
   std::size_t size_ = 0;
 };
 
+constexpr std::uint32_t kBlock = 4096;  ///< vertices per parallel block (fixed: deterministic output)
+
+std::size_t num_blocks(std::size_t n) { return (n + kBlock - 1) / kBlock; }
+
+/// f(first, last, block) over fixed vertex blocks, in parallel.
+template <class F>
+void for_vertex_blocks(std::size_t n, F&& f) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_blocks(n)), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t b = r.begin(); b < r.end(); ++b)
+      f(static_cast<std::uint32_t>(b * kBlock), static_cast<std::uint32_t>(std::min(n, (b + 1) * kBlock)), b);
+  });
+}
+
 class Simplifier {
  public:
   Simplifier(TriMesh mesh, std::vector<std::uint32_t> face, std::vector<std::uint8_t> feature_tri,
@@ -174,6 +191,7 @@ class Simplifier {
   void set_fan(std::uint32_t v, const std::vector<std::uint32_t>& tris);
   bool seam_edge(std::uint32_t a, std::uint32_t b, int* shared) const;
   bool evaluate(std::uint32_t a, std::uint32_t b, Candidate& out);
+  bool evaluate(std::uint32_t a, std::uint32_t b, bool seam, Candidate& out);
   bool direction(std::uint32_t keep, std::uint32_t remove, bool seam, Candidate& out);
   bool link_ok(std::uint32_t a, std::uint32_t b, int shared);
   bool flip_ok(std::uint32_t keep, std::uint32_t remove, const Vec3& p) const;
@@ -191,7 +209,12 @@ class Simplifier {
   std::vector<Quadric> quad_;
   std::vector<std::uint8_t> cls_, locked_, touches_feature_, vdead_;
   std::vector<std::uint32_t> stamp_;
-  std::vector<std::uint32_t> mark_a_, mark_b_;
+  std::vector<std::uint32_t> mark_a_, mark_b_, slot_;
+  struct Neighbour {
+    std::uint32_t w, count, face;
+    bool differ;
+  };
+  std::vector<Neighbour> nbr_;
   std::uint32_t mark_id_ = 0;
   double feature_offset_ = 0;
   RadixHeap heap_;
@@ -367,7 +390,10 @@ bool Simplifier::direction(std::uint32_t keep, std::uint32_t remove, bool seam, 
 }
 
 bool Simplifier::evaluate(std::uint32_t a, std::uint32_t b, Candidate& out) {
-  const bool seam = seam_edge(a, b, nullptr);
+  return evaluate(a, b, seam_edge(a, b, nullptr), out);
+}
+
+bool Simplifier::evaluate(std::uint32_t a, std::uint32_t b, bool seam, Candidate& out) {
   Candidate c1, c2;
   const bool ok1 = direction(a, b, seam, c1);
   // Both movable: one symmetric placement, no second direction needed.
@@ -377,17 +403,32 @@ bool Simplifier::evaluate(std::uint32_t a, std::uint32_t b, Candidate& out) {
   return true;
 }
 
+// One sweep over v's fan gathers every neighbour w with the number of live triangles on (v, w) and
+// whether their face ids differ (the seam test of seam_edge for all edges at once), in order of
+// first appearance.
 void Simplifier::push_edges_of(std::uint32_t v) {
   ++mark_id_;
+  nbr_.clear();
   for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
     const std::uint32_t t = refs_[fan_start_[v] + i];
     if (dead_[t]) continue;
+    const std::uint32_t f = face_[t];
     for (std::uint32_t w : tris_[t]) {
-      if (w == v || mark_a_[w] == mark_id_) continue;
-      mark_a_[w] = mark_id_;
-      Candidate c;
-      if (evaluate(v, w, c)) heap_.push(entry_of(c));
+      if (w == v) continue;
+      if (mark_a_[w] != mark_id_) {
+        mark_a_[w] = mark_id_;
+        slot_[w] = static_cast<std::uint32_t>(nbr_.size());
+        nbr_.push_back({w, 1, f, false});
+      } else {
+        Neighbour& n = nbr_[slot_[w]];
+        ++n.count;
+        n.differ = n.differ || n.face != f;
+      }
     }
+  }
+  for (const Neighbour& n : nbr_) {
+    Candidate c;
+    if (evaluate(v, n.w, n.count != 2 || n.differ, c)) heap_.push(entry_of(c));
   }
 }
 
@@ -457,18 +498,24 @@ void Simplifier::run(std::size_t target, SimplifyResult& r) {
     const Tri& tr = tris_[t];
     if (tr[0] == tr[1] || tr[1] == tr[2] || tr[0] == tr[2]) dead_[t] = 1, --live;
   }
+  // Per-vertex quadrics in parallel: each vertex sums the planes of its fan in triangle order, the
+  // same order (and bits) as a serial sweep over the triangles, for any thread count.
   quad_.assign(nv, Quadric{});
-  for (std::size_t t = 0; t < nt; ++t) {
-    if (dead_[t]) continue;
-    const auto& tr = tris_[t];
-    const Vec3 n2 = cross(pos_[tr[1]] - pos_[tr[0]], pos_[tr[2]] - pos_[tr[0]]);
-    const double len = norm(n2);
-    if (!(len > 0)) continue;
-    const Vec3 n = n2 / len;
-    const double area = 0.5 * len;
-    const double d = -dot(n, pos_[tr[0]]);
-    for (std::uint32_t v : tr) quad_[v].add_plane(n, d, area);
-  }
+  for_vertex_blocks(nv, [&](std::uint32_t v0, std::uint32_t v1, std::size_t) {
+    for (std::uint32_t v = v0; v < v1; ++v)
+      for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
+        const std::uint32_t t = refs_[fan_start_[v] + i];
+        if (dead_[t]) continue;
+        const auto& tr = tris_[t];
+        const Vec3 n2 = cross(pos_[tr[1]] - pos_[tr[0]], pos_[tr[2]] - pos_[tr[0]]);
+        const double len = norm(n2);
+        if (!(len > 0)) continue;
+        const Vec3 n = n2 / len;
+        const double area = 0.5 * len;
+        const double d = -dot(n, pos_[tr[0]]);
+        quad_[v].add_plane(n, d, area);
+      }
+  });
   if (o_.prevent_self_intersections) {
     guard_ = true;
     for (std::size_t t = 0; t < nt; ++t) {
@@ -478,7 +525,7 @@ void Simplifier::run(std::size_t target, SimplifyResult& r) {
     tri_mark_.assign(nt, 0);
     rebuild_grid(live);
   }
-  mark_a_.assign(nv, 0), mark_b_.assign(nv, 0);
+  mark_a_.assign(nv, 0), mark_b_.assign(nv, 0), slot_.assign(nv, 0);
   stamp_.assign(nv, 0);
   cls_.assign(nv, kInterior);
   locked_.assign(nv, 0);
@@ -488,78 +535,107 @@ void Simplifier::run(std::size_t target, SimplifyResult& r) {
     for (std::uint32_t v : tris_[t]) touches_feature_[v] = 1;
   }
   if (o_.feature_mode == FeatureMode::lock) locked_ = touches_feature_;
-  // Constrained edges: count per vertex, penalty planes.
-  std::vector<std::uint8_t> seam_count(nv, 0);
-  for (std::uint32_t v = 0; v < nv; ++v) {
-    ++mark_id_;
-    for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
-      const std::uint32_t t = refs_[fan_start_[v] + i];
-      if (dead_[t]) continue;
-      for (std::uint32_t w : tris_[t]) {
-        if (w <= v || mark_a_[w] == mark_id_) continue;
-        mark_a_[w] = mark_id_;
-        int shared = 0;
-        if (!seam_edge(v, w, &shared)) continue;
-        seam_count[v] = static_cast<std::uint8_t>(std::min(255, seam_count[v] + 1));
-        seam_count[w] = static_cast<std::uint8_t>(std::min(255, seam_count[w] + 1));
-        if (shared > 2) seam_count[v] = seam_count[w] = 255;  // non-manifold edge: corners
-        // Penalty planes through the edge, perpendicular to each triangle on it.
-        const Vec3 e = pos_[w] - pos_[v];
-        for (std::uint32_t j = 0; j < fan_count_[v]; ++j) {
-          const std::uint32_t u = refs_[fan_start_[v] + j];
-          if (dead_[u]) continue;
-          const Tri& tr = tris_[u];
-          if (tr[0] != w && tr[1] != w && tr[2] != w) continue;
-          const Vec3 fn = cross(pos_[tr[1]] - pos_[tr[0]], pos_[tr[2]] - pos_[tr[0]]);
-          Vec3 n = cross(e, fn);
-          const double l = norm(n);
-          if (!(l > 0)) continue;
-          n = n / l;
-          const double d = -dot(n, pos_[v]);
-          const double w8 = o_.seam_weight * squared_norm(e);
-          quad_[v].add_plane(n, d, w8);
-          quad_[w].add_plane(n, d, w8);
+  // Constrained edges: found in parallel (per vertex v, its edges to w > v in fan order), then
+  // counted and given their penalty planes serially in that order (deterministic sums).
+  struct SeamEdge {
+    std::uint32_t v, w;
+    int shared;
+  };
+  std::vector<std::vector<SeamEdge>> seam_blocks(num_blocks(nv));
+  tbb::enumerable_thread_specific<std::vector<std::uint32_t>> seen_tls(
+      [&] { return std::vector<std::uint32_t>(nv, kNone); });
+  for_vertex_blocks(nv, [&](std::uint32_t v0, std::uint32_t v1, std::size_t block) {
+    std::vector<std::uint32_t>& seen = seen_tls.local();
+    for (std::uint32_t v = v0; v < v1; ++v)
+      for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
+        const std::uint32_t t = refs_[fan_start_[v] + i];
+        if (dead_[t]) continue;
+        for (std::uint32_t w : tris_[t]) {
+          if (w <= v || seen[w] == v) continue;
+          seen[w] = v;
+          int shared = 0;
+          if (seam_edge(v, w, &shared)) seam_blocks[block].push_back({v, w, shared});
         }
       }
+  });
+  std::vector<std::uint8_t> seam_count(nv, 0);
+  for (const auto& block : seam_blocks)
+    for (const SeamEdge& se : block) {
+      const std::uint32_t v = se.v, w = se.w;
+      seam_count[v] = static_cast<std::uint8_t>(std::min(255, seam_count[v] + 1));
+      seam_count[w] = static_cast<std::uint8_t>(std::min(255, seam_count[w] + 1));
+      if (se.shared > 2) seam_count[v] = seam_count[w] = 255;  // non-manifold edge: corners
+      // Penalty planes through the edge, perpendicular to each triangle on it.
+      const Vec3 e = pos_[w] - pos_[v];
+      for (std::uint32_t j = 0; j < fan_count_[v]; ++j) {
+        const std::uint32_t u = refs_[fan_start_[v] + j];
+        if (dead_[u]) continue;
+        const Tri& tr = tris_[u];
+        if (tr[0] != w && tr[1] != w && tr[2] != w) continue;
+        const Vec3 fn = cross(pos_[tr[1]] - pos_[tr[0]], pos_[tr[2]] - pos_[tr[0]]);
+        Vec3 n = cross(e, fn);
+        const double l = norm(n);
+        if (!(l > 0)) continue;
+        n = n / l;
+        const double d = -dot(n, pos_[v]);
+        const double w8 = o_.seam_weight * squared_norm(e);
+        quad_[v].add_plane(n, d, w8);
+        quad_[w].add_plane(n, d, w8);
+      }
     }
-  }
+  std::vector<std::vector<SeamEdge>>().swap(seam_blocks);
   for (std::uint32_t v = 0; v < nv; ++v) {
     if (fan_count_[v] == 0) continue;
     if (seam_count[v] == 2) cls_[v] = kSeam, ++r.seam_vertices;
     else if (seam_count[v] != 0) cls_[v] = kCorner, ++r.corner_vertices;
     if (locked_[v]) ++r.locked_vertices;
   }
-  // Initial candidates; the maximum unmodified cost is the feature offset (weight mode).
-  std::vector<Candidate> initial;
-  initial.reserve(nv * 3);
-  for (std::uint32_t v = 0; v < nv; ++v) {
-    ++mark_id_;
-    for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
-      const std::uint32_t t = refs_[fan_start_[v] + i];
-      if (dead_[t]) continue;
-      for (std::uint32_t w : tris_[t]) {
-        if (w <= v || mark_a_[w] == mark_id_) continue;
-        mark_a_[w] = mark_id_;
-        Candidate c;
-        if (evaluate(v, w, c)) initial.push_back(c);
+  // Initial candidates in parallel (evaluate only reads the mesh), concatenated in vertex order so
+  // the heap sees the same sequence for any thread count; the maximum unmodified cost is the
+  // feature offset (weight mode).
+  struct Initial {  // 24 bytes: the placement is recomputed when the entry is popped
+    double cost;
+    std::uint32_t keep, remove;
+    bool last_tier;
+  };
+  std::vector<std::vector<Initial>> blocks(num_blocks(nv));
+  tbb::enumerable_thread_specific<std::vector<std::uint32_t>> cand_seen_tls(
+      [&] { return std::vector<std::uint32_t>(nv, kNone); });
+  for_vertex_blocks(nv, [&](std::uint32_t v0, std::uint32_t v1, std::size_t block) {
+    std::vector<std::uint32_t>& seen = cand_seen_tls.local();
+    std::vector<Initial>& out = blocks[block];
+    out.reserve(3 * (v1 - v0));
+    for (std::uint32_t v = v0; v < v1; ++v) {
+      for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
+        const std::uint32_t t = refs_[fan_start_[v] + i];
+        if (dead_[t]) continue;
+        for (std::uint32_t w : tris_[t]) {
+          if (w <= v || seen[w] == v) continue;
+          seen[w] = v;
+          Candidate c;
+          if (evaluate(v, w, c)) out.push_back({c.cost, c.keep, c.remove, c.last_tier});
+        }
       }
     }
-  }
+  });
   double max_cost = 0;
-  for (const Candidate& c : initial) max_cost = std::max(max_cost, c.cost);
+  for (const auto& bl : blocks)
+    for (const Initial& c : bl) max_cost = std::max(max_cost, c.cost);
   r.max_unmodified_cost = max_cost;
-  if (o_.feature_mode == FeatureMode::weight) {
-    // Strictly above every unmodified cost even when that maximum is 0 (a flat mesh).
-    feature_offset_ = max_cost > 0 ? max_cost : std::numeric_limits<double>::min();
-    for (Candidate& c : initial)
-      if (touches_feature_[c.keep] || touches_feature_[c.remove]) c.cost += feature_offset_;
-  }
-  {
-    std::vector<HeapEntry> entries;
-    entries.reserve(initial.size());
-    for (const Candidate& c : initial) entries.push_back(entry_of(c));
-    std::vector<Candidate>().swap(initial);
-    heap_.assign(entries);
+  const bool weight = o_.feature_mode == FeatureMode::weight;
+  // Strictly above every unmodified cost even when that maximum is 0 (a flat mesh).
+  if (weight) feature_offset_ = max_cost > 0 ? max_cost : std::numeric_limits<double>::min();
+  for (auto& bl : blocks) {
+    for (const Initial& i : bl) {
+      Candidate c;
+      c.cost = i.cost;
+      if (weight && (touches_feature_[i.keep] || touches_feature_[i.remove])) c.cost += feature_offset_;
+      c.keep = i.keep, c.remove = i.remove;
+      c.stamp_keep = c.stamp_remove = 0;  // no vertex changed yet
+      c.last_tier = i.last_tier;
+      heap_.push(entry_of(c));
+    }
+    std::vector<Initial>().swap(bl);
   }
 
   std::vector<std::uint32_t>& merged = scratch_;
@@ -729,51 +805,54 @@ Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& op
   SimplifyOptions plain = options;
   plain.prevent_self_intersections = options.prevent_self_intersections && options.guard_every_collapse;
   const SimplifyResult before = r;
-  const bool may_rerun = options.prevent_self_intersections && !options.guard_every_collapse;
-  auto sp = std::make_unique<Simplifier>(may_rerun ? welded : std::move(welded), face,
-                                         feature_tri, plain);
+  // The welded input is not copied for a possible rerun (rare): it is welded again then.
+  auto sp = std::make_unique<Simplifier>(std::move(welded), face, feature_tri, plain);
   sp->run(target, r);
-  if (options.prevent_self_intersections && !options.guard_every_collapse) {
-    TriMesh live;
-    live.positions = sp->pos_;
-    for (std::size_t t = 0; t < nt; ++t)
-      if (!sp->dead_[t]) live.triangles.push_back(sp->tris_[t]);
-    // The input's own intersections (touching parts of an assembly, say) cannot be removed: rerun
-    // only when the plain result has more than the input.
-    const std::size_t out_x = count_self_intersections(live);
-    if (out_x > 0 && out_x > count_self_intersections(welded)) {
-      r = before;
-      r.guard_rerun = true;
-      sp = std::make_unique<Simplifier>(std::move(welded), face, feature_tri, options);
-      sp->run(target, r);
-    }
-  }
-  Simplifier& s = *sp;
-
-  // Surviving triangles in input order.
-  TriMesh out;
-  out.positions = s.pos_;
-  std::vector<std::uint32_t> out_face;
-  for (std::size_t t = 0; t < nt; ++t) {
-    if (s.dead_[t]) continue;
-    out.triangles.push_back(s.tris_[t]);
-    out_face.push_back(face[t]);
-    r.feature_triangles_out += feature_tri[t];
-  }
-  // Drop unused vertices (and split along faces when face ids were given or regions were made).
-  if (have_faces || options.sharp_angle_deg > 0) {
-    r.mesh = split_by_face(out, out_face);
-  } else {
-    std::vector<std::uint32_t> used(out.positions.size(), kNone);
-    for (Tri& t : out.triangles)
-      for (std::uint32_t& v : t) {
+  // Surviving triangles in input order, unused vertices dropped (new ids in order of first use).
+  auto compact = [&](const Simplifier& s, std::vector<std::uint32_t>* out_face) {
+    TriMesh m;
+    std::vector<std::uint32_t> used(s.pos_.size(), kNone);
+    for (std::size_t t = 0; t < nt; ++t) {
+      if (s.dead_[t]) continue;
+      Tri tr = s.tris_[t];
+      for (std::uint32_t& v : tr) {
         if (used[v] == kNone) {
-          used[v] = static_cast<std::uint32_t>(r.mesh.positions.size());
-          r.mesh.positions.push_back(out.positions[v]);
+          used[v] = static_cast<std::uint32_t>(m.positions.size());
+          m.positions.push_back(s.pos_[v]);
         }
         v = used[v];
       }
-    r.mesh.triangles = std::move(out.triangles);
+      m.triangles.push_back(tr);
+      if (out_face) out_face->push_back(face[t]);
+    }
+    return m;
+  };
+  std::vector<std::uint32_t> out_face;
+  TriMesh out = compact(*sp, &out_face);
+  if (options.prevent_self_intersections && !options.guard_every_collapse) {
+    // The input's own intersections (touching parts of an assembly, say) cannot be removed: rerun
+    // only when the plain result has more than the input.
+    const std::size_t out_x = count_self_intersections(out);
+    if (out_x > 0) {
+      TriMesh input = weld_positions(mesh);
+      if (out_x > count_self_intersections(input)) {
+        r = before;
+        r.guard_rerun = true;
+        sp = std::make_unique<Simplifier>(std::move(input), face, feature_tri, options);
+        sp->run(target, r);
+        out_face.clear();
+        out = compact(*sp, &out_face);
+      }
+    }
+  }
+  Simplifier& s = *sp;
+  for (std::size_t t = 0; t < nt; ++t)
+    if (!s.dead_[t]) r.feature_triangles_out += feature_tri[t];
+  // Split along faces when face ids were given or regions were made.
+  if (have_faces || options.sharp_angle_deg > 0) {
+    r.mesh = split_by_face(out, out_face);
+  } else {
+    r.mesh = std::move(out);
   }
   if (have_faces) r.face_ids = std::move(out_face);
   r.reached = r.mesh.num_triangles() == target;
