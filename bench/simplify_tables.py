@@ -5,6 +5,7 @@
     python3 bench/simplify_tables.py --quick      # 1e5 meshes only (no 1e6 rows)
     python3 bench/simplify_tables.py --no-run     # rewrite the doc from docs/simplify_bench.json
     python3 bench/simplify_tables.py --filter 'Casing|Recognition'   # rerun some rows, merged into the kept results
+    python3 bench/simplify_tables.py --exe build/bench/interfere_bench_simplify   # use an existing build
 
 Issue #6 targets are judged with PASS/MISS verdicts: 1e6 -> 1e4 in <= 0.6 s with symmetric Hausdorff
 <= OpenMesh's and feature faces within 1e-6 of the diagonal; the casing case in <= 15 ms; feature
@@ -32,15 +33,19 @@ def log(msg):
     print(f"[simplify_tables] {msg}", file=sys.stderr, flush=True)
 
 
-def build_and_run(quick: bool, bench_filter: str | None = None):
-    subprocess.run(["cmake", "-S", str(ROOT), "-B", str(BUILD), "-G", "Ninja", "-DCMAKE_BUILD_TYPE=Release",
-                    "-DINTERFERE_BUILD_TESTS=OFF", "-DINTERFERE_BUILD_CLI=OFF", "-DINTERFERE_BUILD_BENCH=ON",
-                    "-DINTERFERE_BUILD_PYTHON=OFF"], check=True)
-    subprocess.run(["nice", "cmake", "--build", str(BUILD), "-j2", "--target", "interfere_bench_simplify"], check=True)
+def build_and_run(quick: bool, bench_filter: str | None = None, exe: str | None = None):
+    if exe:
+        exe = Path(exe).resolve()
+    else:
+        subprocess.run(["cmake", "-S", str(ROOT), "-B", str(BUILD), "-G", "Ninja", "-DCMAKE_BUILD_TYPE=Release",
+                        "-DINTERFERE_BUILD_TESTS=OFF", "-DINTERFERE_BUILD_CLI=OFF", "-DINTERFERE_BUILD_BENCH=ON",
+                        "-DINTERFERE_BUILD_PYTHON=OFF"], check=True)
+        subprocess.run(["nice", "cmake", "--build", str(BUILD), "-j2", "--target", "interfere_bench_simplify"],
+                       check=True)
+        exe = BUILD / "bench" / "interfere_bench_simplify"
     env = dict(os.environ)
     if quick:
         env["INTERFERE_BENCH_SIMPLIFY_SIZES"] = "1e5"
-    exe = BUILD / "bench" / "interfere_bench_simplify"
     log(f"running {exe}")
     out = RAW if not bench_filter else RAW.with_suffix(".part.json")
     cmd = [str(exe), "--benchmark_format=console", f"--benchmark_out={out}", "--benchmark_out_format=json"]
@@ -62,7 +67,7 @@ def rows(raw):
     out = {}
     for b in raw["benchmarks"]:
         b = dict(b)
-        b["name"] = re.sub(r"/iterations:\d+$", "", b["name"])
+        b["name"] = re.sub(r"(/iterations:\d+)?(/process_time)?$", "", b["name"])
         if b.get("error_occurred"):
             out[b["name"]] = {"error": b.get("error_message", "error")}
             continue
@@ -338,9 +343,10 @@ def main():
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--no-run", action="store_true")
     ap.add_argument("--filter", default=None)
+    ap.add_argument("--exe", default=None, help="run this interfere_bench_simplify instead of building build-bench/")
     a = ap.parse_args()
     if not a.no_run:
-        build_and_run(a.quick, a.filter)
+        build_and_run(a.quick, a.filter, a.exe)
     write_doc(json.loads(RAW.read_text()))
 
 
