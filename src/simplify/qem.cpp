@@ -18,6 +18,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include "interfere/np/tri_tri.h"
 
@@ -201,6 +202,9 @@ class Simplifier {
   template <class F>
   void grid_cells(const Aabb& box, F&& f);
   void push_edges_of(std::uint32_t v);
+  void collapse(std::uint32_t a, std::uint32_t b, const Vec3& p, std::size_t& live);
+  void compact_fans();
+  void batched_passes(std::vector<HeapEntry>& list, std::size_t handoff, std::size_t& live, SimplifyResult& r);
   bool movable(std::uint32_t v) const { return cls_[v] == kInterior && !locked_[v]; }
 
   const SimplifyOptions& o_;
@@ -495,6 +499,205 @@ bool Simplifier::flip_ok(std::uint32_t keep, std::uint32_t remove, const Vec3& p
   return true;
 }
 
+// Collapses b into a at p: triangles on ab die, b's others take a, a's fan becomes the union
+// (its triangles in scratch_ afterwards).
+void Simplifier::collapse(std::uint32_t a, std::uint32_t b, const Vec3& p, std::size_t& live) {
+  std::vector<std::uint32_t>& merged = scratch_;
+  merged.clear();
+  for (std::uint32_t i = 0; i < fan_count_[b]; ++i) {
+    const std::uint32_t t = refs_[fan_start_[b] + i];
+    if (dead_[t]) continue;
+    Tri& tr = tris_[t];
+    if (tr[0] == a || tr[1] == a || tr[2] == a) {
+      dead_[t] = 1;
+      --live;
+      continue;
+    }
+    for (std::uint32_t& w : tr)
+      if (w == b) w = a;
+    merged.push_back(t);
+  }
+  bool feat = false;
+  for (std::uint32_t i = 0; i < fan_count_[a]; ++i) {
+    const std::uint32_t t = refs_[fan_start_[a] + i];
+    if (!dead_[t]) merged.push_back(t);
+  }
+  for (std::uint32_t t : merged) feat = feat || feature_tri_[t];
+  set_fan(a, merged);
+  fan_count_[b] = 0;
+  vdead_[b] = 1;
+  pos_[a] = p;
+  quad_[a] += quad_[b];
+  touches_feature_[a] = feat;
+  ++stamp_[a];
+}
+
+void Simplifier::compact_fans() {
+  if (refs_.size() <= 8 * tris_.size() + 1024) return;
+  std::vector<std::uint32_t> pool;
+  pool.reserve(tris_.size() * 3);
+  for (std::uint32_t v = 0; v < pos_.size(); ++v) {
+    const std::uint32_t s = static_cast<std::uint32_t>(pool.size());
+    for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
+      const std::uint32_t t = refs_[fan_start_[v] + i];
+      if (!dead_[t]) pool.push_back(t);
+    }
+    fan_start_[v] = s;
+    fan_count_[v] = static_cast<std::uint32_t>(pool.size() - s);
+  }
+  refs_.swap(pool);
+}
+
+std::uint32_t key_bits(const HeapEntry& e) {
+  std::uint32_t k;
+  std::memcpy(&k, &e.cost, 4);
+  return k;
+}
+
+/// Total order of the pass lists: the radix heap's key (cost bits, last tier on top), then the ends
+/// and stamps, so sorting gives one result for any thread count.
+bool key_before(const HeapEntry& x, const HeapEntry& y) {
+  const std::uint32_t a = key_bits(x), b = key_bits(y);
+  if (a != b) return a < b;
+  if (x.keep != y.keep) return x.keep < y.keep;
+  if (x.remove != y.remove) return x.remove < y.remove;
+  if (x.stamp_keep != y.stamp_keep) return x.stamp_keep < y.stamp_keep;
+  return x.stamp_remove < y.stamp_remove;
+}
+
+// Batched passes (the scheme of meshoptimizer's simplifier, Kapoulkine 2017-2023, and of the
+// independent-set parallel decimation of Franc & Skala 2001 / Papageorgiou & Platis 2015): the
+// candidate list, sorted by cost, is walked from the cheapest; a candidate is selected when none of
+// the triangles around its two ends was taken by an earlier selection of the pass (so the selected
+// collapses touch disjoint triangle sets and are independent: the checks of one see none of the
+// others' changes), up to 1.5x the cost at the pass's half goal (meshoptimizer's error limit) and
+// at most `live - handoff` triangles. The selected collapses are then checked (link, flips) and
+// applied in vertex order (memory locality instead of the heap's random cost order); the edges of
+// the changed vertices are evaluated again, sorted and merged into the list. Below `handoff`
+// triangles the heap takes over for the exact budget. Everything is a fixed function of the list
+// order: results do not depend on timing or thread count.
+void Simplifier::batched_passes(std::vector<HeapEntry>& list, std::size_t handoff, std::size_t& live,
+                                SimplifyResult& r) {
+  tbb::parallel_sort(list.begin(), list.end(), key_before);
+  std::vector<std::uint32_t> taken(pos_.size(), 0);  // pass that used the vertex as an end
+  struct Scratch {
+    std::vector<std::uint32_t> mark, slot;
+    std::vector<Neighbour> nbr;
+    std::uint32_t id = 0;
+  };
+  const std::size_t nv = pos_.size();
+  tbb::enumerable_thread_specific<Scratch> scratch_tls([nv] {
+    Scratch sc;
+    sc.mark.assign(nv, 0), sc.slot.assign(nv, 0);
+    return sc;
+  });
+  std::uint32_t pass = 0;
+  std::vector<HeapEntry> kept, fresh, merged_list;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> selected;  // (keep, remove)
+  while (live > handoff && !list.empty()) {
+    ++pass;
+    const std::size_t goal = live - handoff;
+    const HeapEntry& at = list[std::min(list.size() - 1, goal / 2)];
+    std::uint32_t limit = std::numeric_limits<std::uint32_t>::max();
+    if (!(key_bits(at) & 0x80000000u)) {
+      const float lim = at.cost * 1.5f;
+      std::memcpy(&limit, &lim, 4);
+      if (!std::isfinite(lim)) limit = 0x7fffffffu;
+    }
+    kept.clear();
+    kept.reserve(list.size());
+    selected.clear();
+    std::size_t planned = 0;
+    std::size_t i = 0;
+    for (; i < list.size(); ++i) {
+      const HeapEntry& e = list[i];
+      if (planned >= goal || key_bits(e) > limit) break;
+      const std::uint32_t a = e.keep, b = e.remove;
+      if (vdead_[a] || vdead_[b] || static_cast<std::uint16_t>(stamp_[a]) != e.stamp_keep ||
+          static_cast<std::uint16_t>(stamp_[b]) != e.stamp_remove)
+        continue;  // stale: dropped
+      if (taken[a] == pass || taken[b] == pass) {
+        kept.push_back(e);
+        continue;
+      }
+      taken[a] = taken[b] = pass;
+      selected.push_back({a, b});
+      planned += 2;
+    }
+    kept.insert(kept.end(), list.begin() + static_cast<std::ptrdiff_t>(i), list.end());
+    if (selected.empty()) break;
+    // Independent collapses: checked and applied in vertex order.
+    std::sort(selected.begin(), selected.end());
+    std::vector<std::uint32_t> changed;
+    for (const auto& [a, b] : selected) {
+      int shared = 0;
+      const bool seam = seam_edge(a, b, &shared);
+      if (shared == 0) continue;
+      Candidate c;
+      if (!direction(a, b, seam, c)) continue;
+      if (!link_ok(a, b, shared)) {
+        ++rejected_link_;
+        continue;
+      }
+      if (!flip_ok(a, b, c.p)) {
+        ++rejected_flip_;
+        continue;
+      }
+      collapse(a, b, c.p, live);
+      ++r.collapses;
+      changed.push_back(a);
+    }
+    if (changed.empty()) {
+      list.swap(kept);
+      break;
+    }
+    compact_fans();
+    // New candidates of the changed vertices (in vertex order), sorted and merged into the list.
+    // Evaluation only reads the mesh: in parallel over fixed chunks of `changed`, concatenated in
+    // order (the list is sorted afterwards anyway; the chunks keep it independent of threads).
+    constexpr std::size_t kChunk = 1024;
+    std::vector<std::vector<HeapEntry>> chunks((changed.size() + kChunk - 1) / kChunk);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks.size()), [&](const tbb::blocked_range<std::size_t>& rg) {
+      Scratch& sc = scratch_tls.local();
+      for (std::size_t ci = rg.begin(); ci < rg.end(); ++ci) {
+        std::vector<HeapEntry>& out = chunks[ci];
+        for (std::size_t k0 = ci * kChunk; k0 < std::min(changed.size(), (ci + 1) * kChunk); ++k0) {
+          const std::uint32_t v = changed[k0];
+          ++sc.id;
+          sc.nbr.clear();
+          for (std::uint32_t k = 0; k < fan_count_[v]; ++k) {
+            const std::uint32_t t = refs_[fan_start_[v] + k];
+            if (dead_[t]) continue;
+            const std::uint32_t f = face_[t];
+            for (std::uint32_t w : tris_[t]) {
+              if (w == v) continue;
+              if (sc.mark[w] != sc.id) {
+                sc.mark[w] = sc.id;
+                sc.slot[w] = static_cast<std::uint32_t>(sc.nbr.size());
+                sc.nbr.push_back({w, 1, f, false});
+              } else {
+                Neighbour& n = sc.nbr[sc.slot[w]];
+                ++n.count;
+                n.differ = n.differ || n.face != f;
+              }
+            }
+          }
+          for (const Neighbour& n : sc.nbr) {
+            Candidate c;
+            if (evaluate(v, n.w, n.count != 2 || n.differ, c)) out.push_back(entry_of(c));
+          }
+        }
+      }
+    });
+    fresh.clear();
+    for (const auto& ch : chunks) fresh.insert(fresh.end(), ch.begin(), ch.end());
+    tbb::parallel_sort(fresh.begin(), fresh.end(), key_before);
+    merged_list.resize(kept.size() + fresh.size());
+    std::merge(kept.begin(), kept.end(), fresh.begin(), fresh.end(), merged_list.begin(), key_before);
+    list.swap(merged_list);
+  }
+}
+
 void Simplifier::run(std::size_t target, SimplifyResult& r) {
   const std::size_t nv = pos_.size(), nt = tris_.size();
   dead_.assign(nt, 0);
@@ -633,6 +836,10 @@ void Simplifier::run(std::size_t target, SimplifyResult& r) {
   const bool weight = o_.feature_mode == FeatureMode::weight;
   // Strictly above every unmodified cost even when that maximum is 0 (a flat mesh).
   if (weight) feature_offset_ = max_cost > 0 ? max_cost : std::numeric_limits<double>::min();
+  const std::size_t handoff = target + std::max<std::size_t>(target, 1024);
+  const bool batched =
+      !guard_ && o_.batched_passes && live >= o_.batched_min_triangles && live > handoff + handoff / 2;
+  std::vector<HeapEntry> list;
   for (auto& bl : blocks) {
     for (const Initial& i : bl) {
       Candidate c;
@@ -641,12 +848,17 @@ void Simplifier::run(std::size_t target, SimplifyResult& r) {
       c.keep = i.keep, c.remove = i.remove;
       c.stamp_keep = c.stamp_remove = 0;  // no vertex changed yet
       c.last_tier = i.last_tier;
-      heap_.push(entry_of(c));
+      if (batched) list.push_back(entry_of(c));
+      else heap_.push(entry_of(c));
     }
     std::vector<Initial>().swap(bl);
   }
+  if (batched) {
+    batched_passes(list, handoff, live, r);
+    for (const HeapEntry& e : list) heap_.push(e);
+    std::vector<HeapEntry>().swap(list);
+  }
 
-  std::vector<std::uint32_t>& merged = scratch_;
   // Collapses that would overshoot the budget are kept aside; if the budget cannot be met exactly
   // (only 2-triangle collapses left at budget + 1) they are retried to end at budget - 1.
   std::vector<HeapEntry> deferred;
@@ -689,54 +901,15 @@ void Simplifier::run(std::size_t target, SimplifyResult& r) {
       continue;
     }
     // Collapse b into a at c.p.
-    merged.clear();
-    for (std::uint32_t i = 0; i < fan_count_[b]; ++i) {
-      const std::uint32_t t = refs_[fan_start_[b] + i];
-      if (dead_[t]) continue;
-      Tri& tr = tris_[t];
-      if (tr[0] == a || tr[1] == a || tr[2] == a) {
-        dead_[t] = 1;
-        --live;
-        continue;
-      }
-      for (std::uint32_t& w : tr)
-        if (w == b) w = a;
-      merged.push_back(t);
-    }
-    bool feat = false;
-    for (std::uint32_t i = 0; i < fan_count_[a]; ++i) {
-      const std::uint32_t t = refs_[fan_start_[a] + i];
-      if (!dead_[t]) merged.push_back(t);
-    }
-    for (std::uint32_t t : merged) feat = feat || feature_tri_[t];
-    set_fan(a, merged);
-    fan_count_[b] = 0;
-    vdead_[b] = 1;
-    pos_[a] = c.p;
-    quad_[a] += quad_[b];
-    touches_feature_[a] = feat;
-    ++stamp_[a];
+    collapse(a, b, c.p, live);
     ++r.collapses;
     if (guard_) {
       if (live * 2 < grid_live_) rebuild_grid(live);
       else
-        for (std::uint32_t t : merged) grid_insert(t);
+        for (std::uint32_t t : scratch_) grid_insert(t);
     }
     push_edges_of(a);
-    if (refs_.size() > 8 * tris_.size() + 1024) {  // compact the fan pool
-      std::vector<std::uint32_t> pool;
-      pool.reserve(tris_.size() * 3);
-      for (std::uint32_t v = 0; v < nv; ++v) {
-        const std::uint32_t s = static_cast<std::uint32_t>(pool.size());
-        for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
-          const std::uint32_t t = refs_[fan_start_[v] + i];
-          if (!dead_[t]) pool.push_back(t);
-        }
-        fan_start_[v] = s;
-        fan_count_[v] = static_cast<std::uint32_t>(pool.size() - s);
-      }
-      refs_.swap(pool);
-    }
+    compact_fans();
   }
   r.rejected_link = rejected_link_, r.rejected_flip = rejected_flip_;
   r.rejected_intersection = rejected_intersection_;

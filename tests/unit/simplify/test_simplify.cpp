@@ -197,7 +197,8 @@ TEST(Simplify, OneAndManyThreadsGiveBitIdenticalResults) {
   // outputs are concatenated in a fixed order: the result must not depend on the thread count.
   const TriMesh s = make_sphere({.target_triangles = 60000, .bump_amplitude = 0.05});
   const auto faces = cap_faces(s);
-  const SimplifyOptions o{.target_triangles = 3000, .face_ids = faces, .feature_faces = {1}};
+  SimplifyOptions o{.target_triangles = 3000, .face_ids = faces, .feature_faces = {1}};
+  o.batched_min_triangles = 0;  // the batched passes (parallel evaluation, parallel sorts) too
   auto run_with = [&](int threads) {
     tbb::task_arena arena(threads);
     Expected<SimplifyResult> r = Error{};
@@ -217,6 +218,34 @@ TEST(Simplify, OneAndManyThreadsGiveBitIdenticalResults) {
   EXPECT_EQ(one->face_ids, many->face_ids);
   EXPECT_EQ(one->collapses, many->collapses);
   EXPECT_EQ(one->hausdorff, many->hausdorff);
+}
+
+TEST(Simplify, BatchedPassesKeepEveryGuarantee) {
+  // Batched passes forced on a small mesh: exact budget, closed manifold, no self-intersections,
+  // locked feature faces bit-identical, weighted ones untouched while the rest can absorb the budget.
+  const TriMesh s = make_sphere({.target_triangles = 30000, .bump_amplitude = 0.05});
+  const auto faces = cap_faces(s);
+  for (FeatureMode mode : {FeatureMode::weight, FeatureMode::lock}) {
+    SimplifyOptions o{.target_triangles = 6000, .face_ids = faces, .feature_faces = {1}, .feature_mode = mode};
+    o.batched_min_triangles = 0;
+    auto r = simplify(s, o);
+    ASSERT_TRUE(r.has_value());
+    ASSERT_LT(r->feature_triangles_in, 4500u);  // the rest can absorb the budget
+    EXPECT_EQ(r->mesh.num_triangles(), 6000u);
+    EXPECT_TRUE(closed_manifold(r->mesh));
+    EXPECT_EQ(count_self_intersections(r->mesh), 0u);
+    SimplifyOptions heap = o;
+    heap.batched_passes = false;
+    auto h = simplify(s, heap);
+    ASSERT_TRUE(h.has_value());
+    EXPECT_LE(r->hausdorff, 2 * h->hausdorff);  // comparable quality
+    if (mode == FeatureMode::lock) {
+      EXPECT_EQ(triangles_of_faces(r->mesh, r->face_ids, 1), triangles_of_faces(s, faces, 1));
+    } else {
+      EXPECT_EQ(r->feature_triangles_out, r->feature_triangles_in);
+      EXPECT_LE(r->hausdorff_features, 1e-6 * r->bbox_diagonal);
+    }
+  }
 }
 
 TEST(Simplify, LastModeOrdersFeatureEdgesAfterAllOthers) {
