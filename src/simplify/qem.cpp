@@ -624,7 +624,13 @@ void Simplifier::batched_passes(std::vector<HeapEntry>& list, std::size_t handof
       selected.push_back({a, b});
       planned += 2;
     }
-    kept.insert(kept.end(), list.begin() + static_cast<std::ptrdiff_t>(i), list.end());
+    // The rest is kept without its stale entries (ends removed or changed since evaluation).
+    for (; i < list.size(); ++i) {
+      const HeapEntry& e = list[i];
+      if (!vdead_[e.keep] && !vdead_[e.remove] && static_cast<std::uint16_t>(stamp_[e.keep]) == e.stamp_keep &&
+          static_cast<std::uint16_t>(stamp_[e.remove]) == e.stamp_remove)
+        kept.push_back(e);
+    }
     if (selected.empty()) break;
     // Independent collapses: checked and applied in vertex order.
     std::sort(selected.begin(), selected.end());
