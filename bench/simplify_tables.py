@@ -129,8 +129,23 @@ quadric-error-metric edge collapses while the faces that take part in the curren
    constrained edges (weight 10·|e|²), a min-heap of candidate collapses invalidated lazily by per-vertex stamps,
    optimal placement by the 3×3 system (cofactor inverse, relative determinant test) with fallback to the
    endpoints and the midpoint; the link condition keeps the mesh manifold; a collapse is refused when a moved
-   triangle's normal turns by more than acos(0.2) or degenerates. **No self-intersections**: by default the result
-   is checked with the engine's exact self-clash (non-adjacent triangle pairs) and, only if plain QEM created an
+   triangle's normal turns by more than acos(0.2) or degenerates. **Large meshes** (≥ 200,000 input triangles,
+   `batched_min_triangles`; `batched_passes = false` turns it off): the heap is preceded by batched passes, the
+   scheme of meshoptimizer's simplifier (Kapoulkine, `meshopt_simplify`: sorted collapses, an error limit of 1.5×
+   the cost at half the pass's goal, each vertex in at most one collapse per pass) and of independent-set
+   decimation (Franc & Skala 2001; Papageorgiou & Platis 2015): the candidate list sorted by the heap's key is
+   walked from the cheapest, a candidate is selected when neither end was used by an earlier selection of the
+   pass, the selected collapses are checked (link condition, flips, against the current mesh) and applied in vertex
+   order — memory locality instead of the heap's random cost order, which left the serial loop waiting on cache
+   misses — and the edges of the changed vertices are evaluated again (in parallel), sorted and merged into the
+   list; below budget + max(budget, 1024) triangles the heap finishes with the exact budget. The setup is
+   parallel with oneTBB (weld sort, per-vertex quadrics in fan order, seam detection, initial candidates in fixed
+   vertex blocks concatenated in order) and every result is bit-identical for 1 and N threads (unit test
+   `Simplify.OneAndManyThreadsGiveBitIdenticalResults`). **No self-intersections**: by default the result
+   is checked for intersecting non-adjacent triangle pairs with the engine's BVH traversed against itself and
+   the exact triangle test of `np/tri_tri.h` (the decision of the engine's clash query; pairs sharing a vertex
+   position are skipped before the exact test, which made `clash(m, m)` slow here; unit test
+   `Hausdorff.SelfIntersectionCountMatchesBruteForceAndTheEngineClash`) and, only if plain QEM created an
    intersection, the run is repeated with a guard that refuses every collapse whose moved triangles would meet a
    non-adjacent triangle (exact test of `np/tri_tri.h` against a hash grid rebuilt whenever the live triangle
    count halves; about 10× slower), so the result never has a self-intersection the input did not have
@@ -260,8 +275,15 @@ def write_doc(raw):
                  "`hausdorff_rel`: symmetric sampled Hausdorff / bounding-box diagonal; `feature_err_rel`: largest "
                  "distance from the original feature faces' samples to the result / diagonal; `self_x`: pairs of "
                  "non-adjacent intersecting triangles. `interfere`: default options (features weighted, result "
-                 "checked for self-intersections and rerun with the per-collapse guard if needed, `guard_rerun`); "
-                 "`interfere_unchecked`: without that check; `interfere_plain`: no feature region. OpenMesh's half-edge construction is not timed.")
+                 "checked for self-intersections and rerun with the per-collapse guard if needed, `guard_rerun`) "
+                 "except the Hausdorff report (`measure_error = false`, as the peers report no error either); "
+                 "`interfere_error`: the same plus the report's sampled Hausdorff measurement (what `interfere "
+                 "simplify` does without `--no-error`); `interfere_unchecked`: without the self-intersection check; "
+                 "`interfere_plain`: no feature region. Every interfere row times the whole `simplify()` call: "
+                 "welding, setup, collapses, the check, output. The 0.6 s target is judged on the `interfere` row "
+                 "(checked, no error report): the check is a guarantee of the result, the Hausdorff report is a "
+                 "measurement that meshoptimizer does not make; `interfere_error` shows its cost. `cpu` is the "
+                 "process's CPU time (all threads). OpenMesh's half-edge construction is not timed.")
     lines.append("")
     lines.append("| case | tool | time (ms) | cpu (ms) | triangles out | hausdorff_rel | feature_err_rel | self_x |")
     lines.append("|---|---|---:|---:|---:|---:|---:|---:|")
@@ -330,10 +352,23 @@ def write_doc(raw):
         lines.append(f"| feature recognition, {int(rec['faces'])}-face part, ≤ 50 ms | {rec['ms']:.2f} ms | "
                      f"{verdict(rec['ms'] <= 50)} |")
     lines.append("")
+    mo = r.get("Simplify/meshoptimizer/1e6/1pct")
+    if ours and mo and "error" not in ours and "error" not in mo:
+        lines.append(f"Same run, same load: interfere {ours['ms']/1000:.2f} s vs meshoptimizer {mo['ms']/1000:.2f} s "
+                     f"(ratio {ours['ms']/mo['ms']:.2f}); the issue's 0.6 s is meshoptimizer's time on a quiet machine.")
+        lines.append("")
     lines.append("Verdicts use wall time. Timings come from a shared 2-core machine with other builds running "
-                 "(see the load average above; `cpu` is the benchmark's CPU time of the process); rerun "
-                 "`python3 bench/simplify_tables.py` on a quiet machine for reference numbers. The QEM is serial: "
-                 "the 0.6 s target for 1e6 → 1e4 would need a parallel (batched, independent-set) collapse scheme.")
+                 "(see the load average above; `cpu` is the process's CPU time, all threads); rerun "
+                 "`python3 bench/simplify_tables.py` on a quiet machine for reference numbers. Where the time goes "
+                 "(1e6 → 1e4, before the batched passes, measured with phase timers and perf): about 84 % in the "
+                 "serial heap loop (≈ 3.5 µs per collapse, bound by cache misses: the cost order is spatially "
+                 "random), 15 % setup, < 1 % check and output. The batched passes cut the loop to about 0.7 µs per "
+                 "applied collapse, but re-evaluating and merging the candidate list each pass is now the larger "
+                 "part; remaining options: applying the independent collapses of a pass in parallel, cheaper "
+                 "re-evaluation (float quadrics for ranking), and fewer passes. The casing (35k triangles) stays on "
+                 "the heap: the passes did not pay off there (same time, larger Hausdorff); its time is about 60 % "
+                 "heap loop (≈ 1.1 µs per collapse, 8–9 heap entries per collapse), the rest welding, seams, initial "
+                 "candidates, the check and the face split.")
     DOC.write_text("\n".join(lines) + "\n")
     log(f"wrote {DOC}")
 
