@@ -555,15 +555,18 @@ std::uint32_t key_bits(const HeapEntry& e) {
 }
 
 /// Total order of the pass lists: the radix heap's key (cost bits, last tier on top), then the ends
-/// and stamps, so sorting gives one result for any thread count.
-bool key_before(const HeapEntry& x, const HeapEntry& y) {
-  const std::uint32_t a = key_bits(x), b = key_bits(y);
-  if (a != b) return a < b;
-  if (x.keep != y.keep) return x.keep < y.keep;
-  if (x.remove != y.remove) return x.remove < y.remove;
-  if (x.stamp_keep != y.stamp_keep) return x.stamp_keep < y.stamp_keep;
-  return x.stamp_remove < y.stamp_remove;
-}
+/// and stamps, so sorting gives one result for any thread count. A functor, so sorts inline it.
+struct KeyBefore {
+  bool operator()(const HeapEntry& x, const HeapEntry& y) const {
+    const std::uint64_t a = (std::uint64_t{key_bits(x)} << 32) | x.keep;
+    const std::uint64_t b = (std::uint64_t{key_bits(y)} << 32) | y.keep;
+    if (a != b) return a < b;
+    const std::uint64_t c = (std::uint64_t{x.remove} << 32) | (std::uint32_t{x.stamp_keep} << 16) | x.stamp_remove;
+    const std::uint64_t d = (std::uint64_t{y.remove} << 32) | (std::uint32_t{y.stamp_keep} << 16) | y.stamp_remove;
+    return c < d;
+  }
+};
+constexpr KeyBefore key_before{};
 
 // Batched passes (the scheme of meshoptimizer's simplifier, Kapoulkine 2017-2023, and of the
 // independent-set parallel decimation of Franc & Skala 2001 / Papageorgiou & Platis 2015): the
