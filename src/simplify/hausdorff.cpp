@@ -15,8 +15,7 @@
 
 #include "interfere/bvh/bvh.h"
 #include "interfere/np/distance.h"
-#include "interfere/query/clash.h"
-#include "interfere/query/model.h"
+#include "interfere/np/tri_tri.h"
 
 namespace interfere {
 namespace {
@@ -98,23 +97,57 @@ HausdorffResult hausdorff(const TriMesh& a, const TriMesh& b) {
   return r;
 }
 
+// Self-intersections with the engine's BVH (bvh/bvh.h) traversed against itself, each unordered
+// node pair once, and the exact triangle-triangle test of np/tri_tri.h (the decision the engine's
+// clash query makes for a pair). Pairs sharing a vertex position are excluded before the exact test
+// (they touch by construction), which is what made clash(m, m) slow on a freshly simplified mesh:
+// every adjacent pair went through the exact (degenerate, touching) path, twice.
 std::size_t count_self_intersections(const TriMesh& mesh) {
-  if (mesh.num_triangles() == 0) return 0;
-  const Model m = make_model(mesh, {}, false);
-  ClashRequest req;
-  req.regions = false;
-  req.containment = false;
-  const ClashResult r = clash(m, m, req);
-  std::size_t count = 0;
-  for (const TrianglePair& p : r.pairs) {
-    if (p.a >= p.b) continue;
-    const auto ca = mesh.corners(p.a), cb = mesh.corners(p.b);
-    bool share = false;
-    for (const Vec3& x : ca)
-      for (const Vec3& y : cb) share = share || x == y;
-    if (!share) ++count;
+  const std::size_t nt = mesh.num_triangles();
+  if (nt < 2) return 0;
+  const Bvh bvh = build_bvh(mesh);
+  // Leaf pairs whose boxes overlap (serial sweep of node pairs, each unordered pair once).
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> leaves, stack{{0u, 0u}};
+  while (!stack.empty()) {
+    const auto [i, j] = stack.back();
+    stack.pop_back();
+    const BvhNode& a = bvh.nodes[i];
+    const BvhNode& b = bvh.nodes[j];
+    if (i != j && !a.box.overlaps(b.box)) continue;
+    if (a.is_leaf() && b.is_leaf()) {
+      leaves.push_back({i, j});
+    } else if (i == j) {
+      stack.push_back({a.first, a.first});
+      stack.push_back({a.first + 1, a.first + 1});
+      stack.push_back({a.first, a.first + 1});
+    } else if (!a.is_leaf()) {
+      stack.push_back({a.first, j});
+      stack.push_back({a.first + 1, j});
+    } else {
+      stack.push_back({i, b.first});
+      stack.push_back({i, b.first + 1});
+    }
   }
-  return count;
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, leaves.size(), 256), std::size_t{0},
+      [&](const tbb::blocked_range<std::size_t>& r, std::size_t count) {
+        for (std::size_t k = r.begin(); k < r.end(); ++k) {
+          const BvhNode& na = bvh.nodes[leaves[k].first];
+          const BvhNode& nb = bvh.nodes[leaves[k].second];
+          const bool same = leaves[k].first == leaves[k].second;
+          for (std::uint32_t x = na.first; x < na.first + na.count; ++x)
+            for (std::uint32_t y = same ? x + 1 : nb.first; y < nb.first + nb.count; ++y) {
+              if (!bvh.prim_boxes[x].overlaps(bvh.prim_boxes[y])) continue;
+              const auto ca = mesh.corners(bvh.prims[x]), cb = mesh.corners(bvh.prims[y]);
+              bool share = false;
+              for (const Vec3& p : ca)
+                for (const Vec3& q : cb) share = share || p == q;
+              if (!share && tri_tri_exact_intersects(ca, cb)) ++count;
+            }
+        }
+        return count;
+      },
+      [](std::size_t x, std::size_t y) { return x + y; });
 }
 
 }  // namespace interfere

@@ -2,6 +2,8 @@
 // along B-Rep boundaries become one topological mesh), splitting back per face id (faces stay
 // separable in the output), and regions of a plain mesh split at sharp edges (dihedral-angle
 // feature mask) by union-find over the smooth manifold edges.
+#include <tbb/parallel_sort.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -21,7 +23,8 @@ TriMesh weld_positions(const TriMesh& mesh, std::vector<std::uint32_t>* map) {
   std::vector<std::uint32_t> order(nv);
   for (std::uint32_t i = 0; i < nv; ++i) order[i] = i;
   const auto& p = mesh.positions;
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+  // A strict total order (ties broken by index): the parallel sort's result is unique.
+  tbb::parallel_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
     if (p[a].x != p[b].x) return p[a].x < p[b].x;
     if (p[a].y != p[b].y) return p[a].y < p[b].y;
     if (p[a].z != p[b].z) return p[a].z < p[b].z;

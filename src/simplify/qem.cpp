@@ -15,6 +15,11 @@
 #include <queue>
 #include <unordered_map>
 
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
 #include "interfere/np/tri_tri.h"
 
 #include "interfere/simplify/hausdorff.h"
@@ -152,6 +157,19 @@ class RadixHeap {
   std::size_t size_ = 0;
 };
 
+constexpr std::uint32_t kBlock = 4096;  ///< vertices per parallel block (fixed: deterministic output)
+
+std::size_t num_blocks(std::size_t n) { return (n + kBlock - 1) / kBlock; }
+
+/// f(first, last, block) over fixed vertex blocks, in parallel.
+template <class F>
+void for_vertex_blocks(std::size_t n, F&& f) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_blocks(n)), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t b = r.begin(); b < r.end(); ++b)
+      f(static_cast<std::uint32_t>(b * kBlock), static_cast<std::uint32_t>(std::min(n, (b + 1) * kBlock)), b);
+  });
+}
+
 class Simplifier {
  public:
   Simplifier(TriMesh mesh, std::vector<std::uint32_t> face, std::vector<std::uint8_t> feature_tri,
@@ -174,6 +192,7 @@ class Simplifier {
   void set_fan(std::uint32_t v, const std::vector<std::uint32_t>& tris);
   bool seam_edge(std::uint32_t a, std::uint32_t b, int* shared) const;
   bool evaluate(std::uint32_t a, std::uint32_t b, Candidate& out);
+  bool evaluate(std::uint32_t a, std::uint32_t b, bool seam, Candidate& out);
   bool direction(std::uint32_t keep, std::uint32_t remove, bool seam, Candidate& out);
   bool link_ok(std::uint32_t a, std::uint32_t b, int shared);
   bool flip_ok(std::uint32_t keep, std::uint32_t remove, const Vec3& p) const;
@@ -183,6 +202,9 @@ class Simplifier {
   template <class F>
   void grid_cells(const Aabb& box, F&& f);
   void push_edges_of(std::uint32_t v);
+  void collapse(std::uint32_t a, std::uint32_t b, const Vec3& p, std::size_t& live);
+  void compact_fans();
+  void batched_passes(std::vector<HeapEntry>& list, std::size_t handoff, std::size_t& live, SimplifyResult& r);
   bool movable(std::uint32_t v) const { return cls_[v] == kInterior && !locked_[v]; }
 
   const SimplifyOptions& o_;
@@ -191,7 +213,12 @@ class Simplifier {
   std::vector<Quadric> quad_;
   std::vector<std::uint8_t> cls_, locked_, touches_feature_, vdead_;
   std::vector<std::uint32_t> stamp_;
-  std::vector<std::uint32_t> mark_a_, mark_b_;
+  std::vector<std::uint32_t> mark_a_, mark_b_, slot_;
+  struct Neighbour {
+    std::uint32_t w, count, face;
+    bool differ;
+  };
+  std::vector<Neighbour> nbr_;
   std::uint32_t mark_id_ = 0;
   double feature_offset_ = 0;
   RadixHeap heap_;
@@ -367,7 +394,10 @@ bool Simplifier::direction(std::uint32_t keep, std::uint32_t remove, bool seam, 
 }
 
 bool Simplifier::evaluate(std::uint32_t a, std::uint32_t b, Candidate& out) {
-  const bool seam = seam_edge(a, b, nullptr);
+  return evaluate(a, b, seam_edge(a, b, nullptr), out);
+}
+
+bool Simplifier::evaluate(std::uint32_t a, std::uint32_t b, bool seam, Candidate& out) {
   Candidate c1, c2;
   const bool ok1 = direction(a, b, seam, c1);
   // Both movable: one symmetric placement, no second direction needed.
@@ -377,17 +407,40 @@ bool Simplifier::evaluate(std::uint32_t a, std::uint32_t b, Candidate& out) {
   return true;
 }
 
+// One sweep over v's fan gathers every neighbour w with the number of live triangles on (v, w) and
+// whether their face ids differ (the seam test of seam_edge for all edges at once), in order of
+// first appearance.
 void Simplifier::push_edges_of(std::uint32_t v) {
   ++mark_id_;
+  nbr_.clear();
   for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
     const std::uint32_t t = refs_[fan_start_[v] + i];
     if (dead_[t]) continue;
+    const std::uint32_t f = face_[t];
     for (std::uint32_t w : tris_[t]) {
-      if (w == v || mark_a_[w] == mark_id_) continue;
-      mark_a_[w] = mark_id_;
-      Candidate c;
-      if (evaluate(v, w, c)) heap_.push(entry_of(c));
+      if (w == v) continue;
+      if (mark_a_[w] != mark_id_) {
+        mark_a_[w] = mark_id_;
+        slot_[w] = static_cast<std::uint32_t>(nbr_.size());
+        nbr_.push_back({w, 1, f, false});
+      } else {
+        Neighbour& n = nbr_[slot_[w]];
+        ++n.count;
+        n.differ = n.differ || n.face != f;
+      }
     }
+  }
+  // The neighbours' quadrics and positions are scattered (cost order is spatially random): fetch
+  // them all before the evaluations so that the cache misses overlap.
+  for (const Neighbour& n : nbr_) {
+    __builtin_prefetch(&quad_[n.w]);
+    __builtin_prefetch(reinterpret_cast<const char*>(&quad_[n.w]) + 64);
+    __builtin_prefetch(&pos_[n.w]);
+    __builtin_prefetch(&stamp_[n.w]);
+  }
+  for (const Neighbour& n : nbr_) {
+    Candidate c;
+    if (evaluate(v, n.w, n.count != 2 || n.differ, c)) heap_.push(entry_of(c));
   }
 }
 
@@ -446,6 +499,214 @@ bool Simplifier::flip_ok(std::uint32_t keep, std::uint32_t remove, const Vec3& p
   return true;
 }
 
+// Collapses b into a at p: triangles on ab die, b's others take a, a's fan becomes the union
+// (its triangles in scratch_ afterwards).
+void Simplifier::collapse(std::uint32_t a, std::uint32_t b, const Vec3& p, std::size_t& live) {
+  std::vector<std::uint32_t>& merged = scratch_;
+  merged.clear();
+  for (std::uint32_t i = 0; i < fan_count_[b]; ++i) {
+    const std::uint32_t t = refs_[fan_start_[b] + i];
+    if (dead_[t]) continue;
+    Tri& tr = tris_[t];
+    if (tr[0] == a || tr[1] == a || tr[2] == a) {
+      dead_[t] = 1;
+      --live;
+      continue;
+    }
+    for (std::uint32_t& w : tr)
+      if (w == b) w = a;
+    merged.push_back(t);
+  }
+  bool feat = false;
+  for (std::uint32_t i = 0; i < fan_count_[a]; ++i) {
+    const std::uint32_t t = refs_[fan_start_[a] + i];
+    if (!dead_[t]) merged.push_back(t);
+  }
+  for (std::uint32_t t : merged) feat = feat || feature_tri_[t];
+  set_fan(a, merged);
+  fan_count_[b] = 0;
+  vdead_[b] = 1;
+  pos_[a] = p;
+  quad_[a] += quad_[b];
+  touches_feature_[a] = feat;
+  ++stamp_[a];
+}
+
+void Simplifier::compact_fans() {
+  if (refs_.size() <= 8 * tris_.size() + 1024) return;
+  std::vector<std::uint32_t> pool;
+  pool.reserve(tris_.size() * 3);
+  for (std::uint32_t v = 0; v < pos_.size(); ++v) {
+    const std::uint32_t s = static_cast<std::uint32_t>(pool.size());
+    for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
+      const std::uint32_t t = refs_[fan_start_[v] + i];
+      if (!dead_[t]) pool.push_back(t);
+    }
+    fan_start_[v] = s;
+    fan_count_[v] = static_cast<std::uint32_t>(pool.size() - s);
+  }
+  refs_.swap(pool);
+}
+
+std::uint32_t key_bits(const HeapEntry& e) {
+  std::uint32_t k;
+  std::memcpy(&k, &e.cost, 4);
+  return k;
+}
+
+/// Total order of the pass lists: the radix heap's key (cost bits, last tier on top), then the ends
+/// and stamps, so sorting gives one result for any thread count. A functor, so sorts inline it.
+struct KeyBefore {
+  bool operator()(const HeapEntry& x, const HeapEntry& y) const {
+    const std::uint64_t a = (std::uint64_t{key_bits(x)} << 32) | x.keep;
+    const std::uint64_t b = (std::uint64_t{key_bits(y)} << 32) | y.keep;
+    if (a != b) return a < b;
+    const std::uint64_t c = (std::uint64_t{x.remove} << 32) | (std::uint32_t{x.stamp_keep} << 16) | x.stamp_remove;
+    const std::uint64_t d = (std::uint64_t{y.remove} << 32) | (std::uint32_t{y.stamp_keep} << 16) | y.stamp_remove;
+    return c < d;
+  }
+};
+constexpr KeyBefore key_before{};
+
+// Batched passes (the scheme of meshoptimizer's simplifier, Kapoulkine 2017-2023, and of the
+// independent-set parallel decimation of Franc & Skala 2001 / Papageorgiou & Platis 2015): the
+// candidate list, sorted by cost, is walked from the cheapest; a candidate is selected when none of
+// the triangles around its two ends was taken by an earlier selection of the pass (so the selected
+// collapses touch disjoint triangle sets and are independent: the checks of one see none of the
+// others' changes), up to 1.5x the cost at the pass's half goal (meshoptimizer's error limit) and
+// at most `live - handoff` triangles. The selected collapses are then checked (link, flips) and
+// applied in vertex order (memory locality instead of the heap's random cost order); the edges of
+// the changed vertices are evaluated again, sorted and merged into the list. Below `handoff`
+// triangles the heap takes over for the exact budget. Everything is a fixed function of the list
+// order: results do not depend on timing or thread count.
+void Simplifier::batched_passes(std::vector<HeapEntry>& list, std::size_t handoff, std::size_t& live,
+                                SimplifyResult& r) {
+  tbb::parallel_sort(list.begin(), list.end(), key_before);
+  std::vector<std::uint32_t> taken(pos_.size(), 0);  // pass that used the vertex as an end
+  struct Scratch {
+    std::vector<std::uint32_t> mark, slot;
+    std::vector<Neighbour> nbr;
+    std::uint32_t id = 0;
+  };
+  const std::size_t nv = pos_.size();
+  tbb::enumerable_thread_specific<Scratch> scratch_tls([nv] {
+    Scratch sc;
+    sc.mark.assign(nv, 0), sc.slot.assign(nv, 0);
+    return sc;
+  });
+  std::uint32_t pass = 0;
+  std::vector<HeapEntry> kept, fresh, merged_list;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> selected;  // (keep, remove)
+  while (live > handoff && !list.empty()) {
+    ++pass;
+    const std::size_t goal = live - handoff;
+    const HeapEntry& at = list[std::min(list.size() - 1, goal / 2)];
+    std::uint32_t limit = std::numeric_limits<std::uint32_t>::max();
+    if (!(key_bits(at) & 0x80000000u)) {
+      const float lim = at.cost * 1.5f;
+      std::memcpy(&limit, &lim, 4);
+      if (!std::isfinite(lim)) limit = 0x7fffffffu;
+    }
+    kept.clear();
+    kept.reserve(list.size());
+    selected.clear();
+    std::size_t planned = 0;
+    std::size_t i = 0;
+    for (; i < list.size(); ++i) {
+      const HeapEntry& e = list[i];
+      if (planned >= goal || key_bits(e) > limit) break;
+      const std::uint32_t a = e.keep, b = e.remove;
+      if (vdead_[a] || vdead_[b] || static_cast<std::uint16_t>(stamp_[a]) != e.stamp_keep ||
+          static_cast<std::uint16_t>(stamp_[b]) != e.stamp_remove)
+        continue;  // stale: dropped
+      if (taken[a] == pass || taken[b] == pass) {
+        kept.push_back(e);
+        continue;
+      }
+      taken[a] = taken[b] = pass;
+      selected.push_back({a, b});
+      planned += 2;
+    }
+    // The rest is kept without its stale entries (ends removed or changed since evaluation).
+    for (; i < list.size(); ++i) {
+      const HeapEntry& e = list[i];
+      if (!vdead_[e.keep] && !vdead_[e.remove] && static_cast<std::uint16_t>(stamp_[e.keep]) == e.stamp_keep &&
+          static_cast<std::uint16_t>(stamp_[e.remove]) == e.stamp_remove)
+        kept.push_back(e);
+    }
+    if (selected.empty()) break;
+    // Independent collapses: checked and applied in vertex order.
+    std::sort(selected.begin(), selected.end());
+    std::vector<std::uint32_t> changed;
+    for (const auto& [a, b] : selected) {
+      int shared = 0;
+      const bool seam = seam_edge(a, b, &shared);
+      if (shared == 0) continue;
+      Candidate c;
+      if (!direction(a, b, seam, c)) continue;
+      if (!link_ok(a, b, shared)) {
+        ++rejected_link_;
+        continue;
+      }
+      if (!flip_ok(a, b, c.p)) {
+        ++rejected_flip_;
+        continue;
+      }
+      collapse(a, b, c.p, live);
+      ++r.collapses;
+      changed.push_back(a);
+    }
+    if (changed.empty()) {
+      list.swap(kept);
+      break;
+    }
+    compact_fans();
+    // New candidates of the changed vertices (in vertex order), sorted and merged into the list.
+    // Evaluation only reads the mesh: in parallel over fixed chunks of `changed`, concatenated in
+    // order (the list is sorted afterwards anyway; the chunks keep it independent of threads).
+    constexpr std::size_t kChunk = 1024;
+    std::vector<std::vector<HeapEntry>> chunks((changed.size() + kChunk - 1) / kChunk);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks.size()), [&](const tbb::blocked_range<std::size_t>& rg) {
+      Scratch& sc = scratch_tls.local();
+      for (std::size_t ci = rg.begin(); ci < rg.end(); ++ci) {
+        std::vector<HeapEntry>& out = chunks[ci];
+        for (std::size_t k0 = ci * kChunk; k0 < std::min(changed.size(), (ci + 1) * kChunk); ++k0) {
+          const std::uint32_t v = changed[k0];
+          ++sc.id;
+          sc.nbr.clear();
+          for (std::uint32_t k = 0; k < fan_count_[v]; ++k) {
+            const std::uint32_t t = refs_[fan_start_[v] + k];
+            if (dead_[t]) continue;
+            const std::uint32_t f = face_[t];
+            for (std::uint32_t w : tris_[t]) {
+              if (w == v) continue;
+              if (sc.mark[w] != sc.id) {
+                sc.mark[w] = sc.id;
+                sc.slot[w] = static_cast<std::uint32_t>(sc.nbr.size());
+                sc.nbr.push_back({w, 1, f, false});
+              } else {
+                Neighbour& n = sc.nbr[sc.slot[w]];
+                ++n.count;
+                n.differ = n.differ || n.face != f;
+              }
+            }
+          }
+          for (const Neighbour& n : sc.nbr) {
+            Candidate c;
+            if (evaluate(v, n.w, n.count != 2 || n.differ, c)) out.push_back(entry_of(c));
+          }
+        }
+      }
+    });
+    fresh.clear();
+    for (const auto& ch : chunks) fresh.insert(fresh.end(), ch.begin(), ch.end());
+    tbb::parallel_sort(fresh.begin(), fresh.end(), key_before);
+    merged_list.resize(kept.size() + fresh.size());
+    std::merge(kept.begin(), kept.end(), fresh.begin(), fresh.end(), merged_list.begin(), key_before);
+    list.swap(merged_list);
+  }
+}
+
 void Simplifier::run(std::size_t target, SimplifyResult& r) {
   const std::size_t nv = pos_.size(), nt = tris_.size();
   dead_.assign(nt, 0);
@@ -457,18 +718,24 @@ void Simplifier::run(std::size_t target, SimplifyResult& r) {
     const Tri& tr = tris_[t];
     if (tr[0] == tr[1] || tr[1] == tr[2] || tr[0] == tr[2]) dead_[t] = 1, --live;
   }
+  // Per-vertex quadrics in parallel: each vertex sums the planes of its fan in triangle order, the
+  // same order (and bits) as a serial sweep over the triangles, for any thread count.
   quad_.assign(nv, Quadric{});
-  for (std::size_t t = 0; t < nt; ++t) {
-    if (dead_[t]) continue;
-    const auto& tr = tris_[t];
-    const Vec3 n2 = cross(pos_[tr[1]] - pos_[tr[0]], pos_[tr[2]] - pos_[tr[0]]);
-    const double len = norm(n2);
-    if (!(len > 0)) continue;
-    const Vec3 n = n2 / len;
-    const double area = 0.5 * len;
-    const double d = -dot(n, pos_[tr[0]]);
-    for (std::uint32_t v : tr) quad_[v].add_plane(n, d, area);
-  }
+  for_vertex_blocks(nv, [&](std::uint32_t v0, std::uint32_t v1, std::size_t) {
+    for (std::uint32_t v = v0; v < v1; ++v)
+      for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
+        const std::uint32_t t = refs_[fan_start_[v] + i];
+        if (dead_[t]) continue;
+        const auto& tr = tris_[t];
+        const Vec3 n2 = cross(pos_[tr[1]] - pos_[tr[0]], pos_[tr[2]] - pos_[tr[0]]);
+        const double len = norm(n2);
+        if (!(len > 0)) continue;
+        const Vec3 n = n2 / len;
+        const double area = 0.5 * len;
+        const double d = -dot(n, pos_[tr[0]]);
+        quad_[v].add_plane(n, d, area);
+      }
+  });
   if (o_.prevent_self_intersections) {
     guard_ = true;
     for (std::size_t t = 0; t < nt; ++t) {
@@ -478,7 +745,7 @@ void Simplifier::run(std::size_t target, SimplifyResult& r) {
     tri_mark_.assign(nt, 0);
     rebuild_grid(live);
   }
-  mark_a_.assign(nv, 0), mark_b_.assign(nv, 0);
+  mark_a_.assign(nv, 0), mark_b_.assign(nv, 0), slot_.assign(nv, 0);
   stamp_.assign(nv, 0);
   cls_.assign(nv, kInterior);
   locked_.assign(nv, 0);
@@ -488,81 +755,119 @@ void Simplifier::run(std::size_t target, SimplifyResult& r) {
     for (std::uint32_t v : tris_[t]) touches_feature_[v] = 1;
   }
   if (o_.feature_mode == FeatureMode::lock) locked_ = touches_feature_;
-  // Constrained edges: count per vertex, penalty planes.
-  std::vector<std::uint8_t> seam_count(nv, 0);
-  for (std::uint32_t v = 0; v < nv; ++v) {
-    ++mark_id_;
-    for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
-      const std::uint32_t t = refs_[fan_start_[v] + i];
-      if (dead_[t]) continue;
-      for (std::uint32_t w : tris_[t]) {
-        if (w <= v || mark_a_[w] == mark_id_) continue;
-        mark_a_[w] = mark_id_;
-        int shared = 0;
-        if (!seam_edge(v, w, &shared)) continue;
-        seam_count[v] = static_cast<std::uint8_t>(std::min(255, seam_count[v] + 1));
-        seam_count[w] = static_cast<std::uint8_t>(std::min(255, seam_count[w] + 1));
-        if (shared > 2) seam_count[v] = seam_count[w] = 255;  // non-manifold edge: corners
-        // Penalty planes through the edge, perpendicular to each triangle on it.
-        const Vec3 e = pos_[w] - pos_[v];
-        for (std::uint32_t j = 0; j < fan_count_[v]; ++j) {
-          const std::uint32_t u = refs_[fan_start_[v] + j];
-          if (dead_[u]) continue;
-          const Tri& tr = tris_[u];
-          if (tr[0] != w && tr[1] != w && tr[2] != w) continue;
-          const Vec3 fn = cross(pos_[tr[1]] - pos_[tr[0]], pos_[tr[2]] - pos_[tr[0]]);
-          Vec3 n = cross(e, fn);
-          const double l = norm(n);
-          if (!(l > 0)) continue;
-          n = n / l;
-          const double d = -dot(n, pos_[v]);
-          const double w8 = o_.seam_weight * squared_norm(e);
-          quad_[v].add_plane(n, d, w8);
-          quad_[w].add_plane(n, d, w8);
+  // Constrained edges: found in parallel (per vertex v, its edges to w > v in fan order), then
+  // counted and given their penalty planes serially in that order (deterministic sums).
+  struct SeamEdge {
+    std::uint32_t v, w;
+    int shared;
+  };
+  std::vector<std::vector<SeamEdge>> seam_blocks(num_blocks(nv));
+  tbb::enumerable_thread_specific<std::vector<std::uint32_t>> seen_tls(
+      [&] { return std::vector<std::uint32_t>(nv, kNone); });
+  for_vertex_blocks(nv, [&](std::uint32_t v0, std::uint32_t v1, std::size_t block) {
+    std::vector<std::uint32_t>& seen = seen_tls.local();
+    for (std::uint32_t v = v0; v < v1; ++v)
+      for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
+        const std::uint32_t t = refs_[fan_start_[v] + i];
+        if (dead_[t]) continue;
+        for (std::uint32_t w : tris_[t]) {
+          if (w <= v || seen[w] == v) continue;
+          seen[w] = v;
+          int shared = 0;
+          if (seam_edge(v, w, &shared)) seam_blocks[block].push_back({v, w, shared});
         }
       }
+  });
+  std::vector<std::uint8_t> seam_count(nv, 0);
+  for (const auto& block : seam_blocks)
+    for (const SeamEdge& se : block) {
+      const std::uint32_t v = se.v, w = se.w;
+      seam_count[v] = static_cast<std::uint8_t>(std::min(255, seam_count[v] + 1));
+      seam_count[w] = static_cast<std::uint8_t>(std::min(255, seam_count[w] + 1));
+      if (se.shared > 2) seam_count[v] = seam_count[w] = 255;  // non-manifold edge: corners
+      // Penalty planes through the edge, perpendicular to each triangle on it.
+      const Vec3 e = pos_[w] - pos_[v];
+      for (std::uint32_t j = 0; j < fan_count_[v]; ++j) {
+        const std::uint32_t u = refs_[fan_start_[v] + j];
+        if (dead_[u]) continue;
+        const Tri& tr = tris_[u];
+        if (tr[0] != w && tr[1] != w && tr[2] != w) continue;
+        const Vec3 fn = cross(pos_[tr[1]] - pos_[tr[0]], pos_[tr[2]] - pos_[tr[0]]);
+        Vec3 n = cross(e, fn);
+        const double l = norm(n);
+        if (!(l > 0)) continue;
+        n = n / l;
+        const double d = -dot(n, pos_[v]);
+        const double w8 = o_.seam_weight * squared_norm(e);
+        quad_[v].add_plane(n, d, w8);
+        quad_[w].add_plane(n, d, w8);
+      }
     }
-  }
+  std::vector<std::vector<SeamEdge>>().swap(seam_blocks);
   for (std::uint32_t v = 0; v < nv; ++v) {
     if (fan_count_[v] == 0) continue;
     if (seam_count[v] == 2) cls_[v] = kSeam, ++r.seam_vertices;
     else if (seam_count[v] != 0) cls_[v] = kCorner, ++r.corner_vertices;
     if (locked_[v]) ++r.locked_vertices;
   }
-  // Initial candidates; the maximum unmodified cost is the feature offset (weight mode).
-  std::vector<Candidate> initial;
-  initial.reserve(nv * 3);
-  for (std::uint32_t v = 0; v < nv; ++v) {
-    ++mark_id_;
-    for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
-      const std::uint32_t t = refs_[fan_start_[v] + i];
-      if (dead_[t]) continue;
-      for (std::uint32_t w : tris_[t]) {
-        if (w <= v || mark_a_[w] == mark_id_) continue;
-        mark_a_[w] = mark_id_;
-        Candidate c;
-        if (evaluate(v, w, c)) initial.push_back(c);
+  // Initial candidates in parallel (evaluate only reads the mesh), concatenated in vertex order so
+  // the heap sees the same sequence for any thread count; the maximum unmodified cost is the
+  // feature offset (weight mode).
+  struct Initial {  // 24 bytes: the placement is recomputed when the entry is popped
+    double cost;
+    std::uint32_t keep, remove;
+    bool last_tier;
+  };
+  std::vector<std::vector<Initial>> blocks(num_blocks(nv));
+  tbb::enumerable_thread_specific<std::vector<std::uint32_t>> cand_seen_tls(
+      [&] { return std::vector<std::uint32_t>(nv, kNone); });
+  for_vertex_blocks(nv, [&](std::uint32_t v0, std::uint32_t v1, std::size_t block) {
+    std::vector<std::uint32_t>& seen = cand_seen_tls.local();
+    std::vector<Initial>& out = blocks[block];
+    out.reserve(3 * (v1 - v0));
+    for (std::uint32_t v = v0; v < v1; ++v) {
+      for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
+        const std::uint32_t t = refs_[fan_start_[v] + i];
+        if (dead_[t]) continue;
+        for (std::uint32_t w : tris_[t]) {
+          if (w <= v || seen[w] == v) continue;
+          seen[w] = v;
+          Candidate c;
+          if (evaluate(v, w, c)) out.push_back({c.cost, c.keep, c.remove, c.last_tier});
+        }
       }
     }
-  }
+  });
   double max_cost = 0;
-  for (const Candidate& c : initial) max_cost = std::max(max_cost, c.cost);
+  for (const auto& bl : blocks)
+    for (const Initial& c : bl) max_cost = std::max(max_cost, c.cost);
   r.max_unmodified_cost = max_cost;
-  if (o_.feature_mode == FeatureMode::weight) {
-    // Strictly above every unmodified cost even when that maximum is 0 (a flat mesh).
-    feature_offset_ = max_cost > 0 ? max_cost : std::numeric_limits<double>::min();
-    for (Candidate& c : initial)
-      if (touches_feature_[c.keep] || touches_feature_[c.remove]) c.cost += feature_offset_;
+  const bool weight = o_.feature_mode == FeatureMode::weight;
+  // Strictly above every unmodified cost even when that maximum is 0 (a flat mesh).
+  if (weight) feature_offset_ = max_cost > 0 ? max_cost : std::numeric_limits<double>::min();
+  const std::size_t handoff = target + std::max<std::size_t>(target, 1024);
+  const bool batched =
+      !guard_ && o_.batched_passes && live >= o_.batched_min_triangles && live > handoff + handoff / 2;
+  std::vector<HeapEntry> list;
+  for (auto& bl : blocks) {
+    for (const Initial& i : bl) {
+      Candidate c;
+      c.cost = i.cost;
+      if (weight && (touches_feature_[i.keep] || touches_feature_[i.remove])) c.cost += feature_offset_;
+      c.keep = i.keep, c.remove = i.remove;
+      c.stamp_keep = c.stamp_remove = 0;  // no vertex changed yet
+      c.last_tier = i.last_tier;
+      if (batched) list.push_back(entry_of(c));
+      else heap_.push(entry_of(c));
+    }
+    std::vector<Initial>().swap(bl);
   }
-  {
-    std::vector<HeapEntry> entries;
-    entries.reserve(initial.size());
-    for (const Candidate& c : initial) entries.push_back(entry_of(c));
-    std::vector<Candidate>().swap(initial);
-    heap_.assign(entries);
+  if (batched) {
+    batched_passes(list, handoff, live, r);
+    for (const HeapEntry& e : list) heap_.push(e);
+    std::vector<HeapEntry>().swap(list);
   }
 
-  std::vector<std::uint32_t>& merged = scratch_;
   // Collapses that would overshoot the budget are kept aside; if the budget cannot be met exactly
   // (only 2-triangle collapses left at budget + 1) they are retried to end at budget - 1.
   std::vector<HeapEntry> deferred;
@@ -605,54 +910,15 @@ void Simplifier::run(std::size_t target, SimplifyResult& r) {
       continue;
     }
     // Collapse b into a at c.p.
-    merged.clear();
-    for (std::uint32_t i = 0; i < fan_count_[b]; ++i) {
-      const std::uint32_t t = refs_[fan_start_[b] + i];
-      if (dead_[t]) continue;
-      Tri& tr = tris_[t];
-      if (tr[0] == a || tr[1] == a || tr[2] == a) {
-        dead_[t] = 1;
-        --live;
-        continue;
-      }
-      for (std::uint32_t& w : tr)
-        if (w == b) w = a;
-      merged.push_back(t);
-    }
-    bool feat = false;
-    for (std::uint32_t i = 0; i < fan_count_[a]; ++i) {
-      const std::uint32_t t = refs_[fan_start_[a] + i];
-      if (!dead_[t]) merged.push_back(t);
-    }
-    for (std::uint32_t t : merged) feat = feat || feature_tri_[t];
-    set_fan(a, merged);
-    fan_count_[b] = 0;
-    vdead_[b] = 1;
-    pos_[a] = c.p;
-    quad_[a] += quad_[b];
-    touches_feature_[a] = feat;
-    ++stamp_[a];
+    collapse(a, b, c.p, live);
     ++r.collapses;
     if (guard_) {
       if (live * 2 < grid_live_) rebuild_grid(live);
       else
-        for (std::uint32_t t : merged) grid_insert(t);
+        for (std::uint32_t t : scratch_) grid_insert(t);
     }
     push_edges_of(a);
-    if (refs_.size() > 8 * tris_.size() + 1024) {  // compact the fan pool
-      std::vector<std::uint32_t> pool;
-      pool.reserve(tris_.size() * 3);
-      for (std::uint32_t v = 0; v < nv; ++v) {
-        const std::uint32_t s = static_cast<std::uint32_t>(pool.size());
-        for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
-          const std::uint32_t t = refs_[fan_start_[v] + i];
-          if (!dead_[t]) pool.push_back(t);
-        }
-        fan_start_[v] = s;
-        fan_count_[v] = static_cast<std::uint32_t>(pool.size() - s);
-      }
-      refs_.swap(pool);
-    }
+    compact_fans();
   }
   r.rejected_link = rejected_link_, r.rejected_flip = rejected_flip_;
   r.rejected_intersection = rejected_intersection_;
@@ -729,51 +995,54 @@ Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& op
   SimplifyOptions plain = options;
   plain.prevent_self_intersections = options.prevent_self_intersections && options.guard_every_collapse;
   const SimplifyResult before = r;
-  const bool may_rerun = options.prevent_self_intersections && !options.guard_every_collapse;
-  auto sp = std::make_unique<Simplifier>(may_rerun ? welded : std::move(welded), face,
-                                         feature_tri, plain);
+  // The welded input is not copied for a possible rerun (rare): it is welded again then.
+  auto sp = std::make_unique<Simplifier>(std::move(welded), face, feature_tri, plain);
   sp->run(target, r);
-  if (options.prevent_self_intersections && !options.guard_every_collapse) {
-    TriMesh live;
-    live.positions = sp->pos_;
-    for (std::size_t t = 0; t < nt; ++t)
-      if (!sp->dead_[t]) live.triangles.push_back(sp->tris_[t]);
-    // The input's own intersections (touching parts of an assembly, say) cannot be removed: rerun
-    // only when the plain result has more than the input.
-    const std::size_t out_x = count_self_intersections(live);
-    if (out_x > 0 && out_x > count_self_intersections(welded)) {
-      r = before;
-      r.guard_rerun = true;
-      sp = std::make_unique<Simplifier>(std::move(welded), face, feature_tri, options);
-      sp->run(target, r);
-    }
-  }
-  Simplifier& s = *sp;
-
-  // Surviving triangles in input order.
-  TriMesh out;
-  out.positions = s.pos_;
-  std::vector<std::uint32_t> out_face;
-  for (std::size_t t = 0; t < nt; ++t) {
-    if (s.dead_[t]) continue;
-    out.triangles.push_back(s.tris_[t]);
-    out_face.push_back(face[t]);
-    r.feature_triangles_out += feature_tri[t];
-  }
-  // Drop unused vertices (and split along faces when face ids were given or regions were made).
-  if (have_faces || options.sharp_angle_deg > 0) {
-    r.mesh = split_by_face(out, out_face);
-  } else {
-    std::vector<std::uint32_t> used(out.positions.size(), kNone);
-    for (Tri& t : out.triangles)
-      for (std::uint32_t& v : t) {
+  // Surviving triangles in input order, unused vertices dropped (new ids in order of first use).
+  auto compact = [&](const Simplifier& s, std::vector<std::uint32_t>* out_face) {
+    TriMesh m;
+    std::vector<std::uint32_t> used(s.pos_.size(), kNone);
+    for (std::size_t t = 0; t < nt; ++t) {
+      if (s.dead_[t]) continue;
+      Tri tr = s.tris_[t];
+      for (std::uint32_t& v : tr) {
         if (used[v] == kNone) {
-          used[v] = static_cast<std::uint32_t>(r.mesh.positions.size());
-          r.mesh.positions.push_back(out.positions[v]);
+          used[v] = static_cast<std::uint32_t>(m.positions.size());
+          m.positions.push_back(s.pos_[v]);
         }
         v = used[v];
       }
-    r.mesh.triangles = std::move(out.triangles);
+      m.triangles.push_back(tr);
+      if (out_face) out_face->push_back(face[t]);
+    }
+    return m;
+  };
+  std::vector<std::uint32_t> out_face;
+  TriMesh out = compact(*sp, &out_face);
+  if (options.prevent_self_intersections && !options.guard_every_collapse) {
+    // The input's own intersections (touching parts of an assembly, say) cannot be removed: rerun
+    // only when the plain result has more than the input.
+    const std::size_t out_x = count_self_intersections(out);
+    if (out_x > 0) {
+      TriMesh input = weld_positions(mesh);
+      if (out_x > count_self_intersections(input)) {
+        r = before;
+        r.guard_rerun = true;
+        sp = std::make_unique<Simplifier>(std::move(input), face, feature_tri, options);
+        sp->run(target, r);
+        out_face.clear();
+        out = compact(*sp, &out_face);
+      }
+    }
+  }
+  Simplifier& s = *sp;
+  for (std::size_t t = 0; t < nt; ++t)
+    if (!s.dead_[t]) r.feature_triangles_out += feature_tri[t];
+  // Split along faces when face ids were given or regions were made.
+  if (have_faces || options.sharp_angle_deg > 0) {
+    r.mesh = split_by_face(out, out_face);
+  } else {
+    r.mesh = std::move(out);
   }
   if (have_faces) r.face_ids = std::move(out_face);
   r.reached = r.mesh.num_triangles() == target;

@@ -61,6 +61,14 @@ struct SimplifyOptions {
   bool prevent_self_intersections = true;
   /// With prevent_self_intersections: guard every collapse from the start (skip the plain run).
   bool guard_every_collapse = false;
+  /// Large reductions: batched passes of collapses with disjoint end vertices (cheapest first up to
+  /// an error limit, checked and applied in vertex order) down to budget + max(budget, 1024)
+  /// triangles, then the heap for the rest; deterministic. Off (or with the per-collapse
+  /// intersection guard): the heap throughout.
+  bool batched_passes = true;
+  /// Batched passes only from this many input triangles: they pay off on large meshes (memory
+  /// locality); on the 35k-triangle casing the heap alone was as fast and more accurate.
+  std::size_t batched_min_triangles = 200000;
   /// Measure the symmetric Hausdorff distance (sampled, see hausdorff.h) overall and on the
   /// feature faces, and store it as the error bound.
   bool measure_error = true;

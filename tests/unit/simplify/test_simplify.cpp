@@ -3,6 +3,7 @@
 // clash of the result against itself), manifold closed output, bad input, the Hausdorff measure
 // against brute force, and the budget formula.
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <array>
@@ -191,6 +192,62 @@ TEST(Simplify, WeightedFeatureFacesCollapseLastAndStayWithinTolerance) {
   EXPECT_LT(t->feature_triangles_out, t->feature_triangles_in);
 }
 
+TEST(Simplify, OneAndManyThreadsGiveBitIdenticalResults) {
+  // The setup phases (weld sort, quadrics, seams, initial candidates) run in parallel blocks whose
+  // outputs are concatenated in a fixed order: the result must not depend on the thread count.
+  const TriMesh s = make_sphere({.target_triangles = 60000, .bump_amplitude = 0.05});
+  const auto faces = cap_faces(s);
+  SimplifyOptions o{.target_triangles = 3000, .face_ids = faces, .feature_faces = {1}};
+  o.batched_min_triangles = 0;  // the batched passes (parallel evaluation, parallel sorts) too
+  auto run_with = [&](int threads) {
+    tbb::task_arena arena(threads);
+    Expected<SimplifyResult> r = Error{};
+    arena.execute([&] { r = simplify(s, o); });
+    return r;
+  };
+  auto one = run_with(1), many = run_with(4);
+  ASSERT_TRUE(one.has_value() && many.has_value());
+  EXPECT_EQ(one->mesh.num_triangles(), 3000u);
+  EXPECT_EQ(one->mesh.triangles, many->mesh.triangles);
+  ASSERT_EQ(one->mesh.positions.size(), many->mesh.positions.size());
+  for (std::size_t i = 0; i < one->mesh.positions.size(); ++i) {
+    EXPECT_EQ(one->mesh.positions[i].x, many->mesh.positions[i].x);
+    EXPECT_EQ(one->mesh.positions[i].y, many->mesh.positions[i].y);
+    EXPECT_EQ(one->mesh.positions[i].z, many->mesh.positions[i].z);
+  }
+  EXPECT_EQ(one->face_ids, many->face_ids);
+  EXPECT_EQ(one->collapses, many->collapses);
+  EXPECT_EQ(one->hausdorff, many->hausdorff);
+}
+
+TEST(Simplify, BatchedPassesKeepEveryGuarantee) {
+  // Batched passes forced on a small mesh: exact budget, closed manifold, no self-intersections,
+  // locked feature faces bit-identical, weighted ones untouched while the rest can absorb the budget.
+  const TriMesh s = make_sphere({.target_triangles = 30000, .bump_amplitude = 0.05});
+  const auto faces = cap_faces(s);
+  for (FeatureMode mode : {FeatureMode::weight, FeatureMode::lock}) {
+    SimplifyOptions o{.target_triangles = 6000, .face_ids = faces, .feature_faces = {1}, .feature_mode = mode};
+    o.batched_min_triangles = 0;
+    auto r = simplify(s, o);
+    ASSERT_TRUE(r.has_value());
+    ASSERT_LT(r->feature_triangles_in, 4500u);  // the rest can absorb the budget
+    EXPECT_EQ(r->mesh.num_triangles(), 6000u);
+    EXPECT_TRUE(closed_manifold(r->mesh));
+    EXPECT_EQ(count_self_intersections(r->mesh), 0u);
+    SimplifyOptions heap = o;
+    heap.batched_passes = false;
+    auto h = simplify(s, heap);
+    ASSERT_TRUE(h.has_value());
+    EXPECT_LE(r->hausdorff, 2 * h->hausdorff);  // comparable quality
+    if (mode == FeatureMode::lock) {
+      EXPECT_EQ(triangles_of_faces(r->mesh, r->face_ids, 1), triangles_of_faces(s, faces, 1));
+    } else {
+      EXPECT_EQ(r->feature_triangles_out, r->feature_triangles_in);
+      EXPECT_LE(r->hausdorff_features, 1e-6 * r->bbox_diagonal);
+    }
+  }
+}
+
 TEST(Simplify, LastModeOrdersFeatureEdgesAfterAllOthers) {
   const TriMesh s = make_sphere({.target_triangles = 8000, .bump_amplitude = 0.03});
   const auto faces = cap_faces(s);
@@ -246,6 +303,42 @@ TEST(Hausdorff, MatchesBruteForceOverTheSamePoints) {
   const HausdorffResult h = hausdorff(a, b);
   EXPECT_DOUBLE_EQ(h.a_to_b, brute(a, b));
   EXPECT_DOUBLE_EQ(h.b_to_a, brute(b, a));
+}
+
+TEST(Hausdorff, SelfIntersectionCountMatchesBruteForceAndTheEngineClash) {
+  // Two overlapping spheres in one mesh (plus a copy of one triangle moved onto its neighbour's
+  // plane): every pair of triangles not sharing a vertex position, tested exactly, against the
+  // BVH-pruned count, and against the engine's clash of the mesh with itself.
+  TriMesh m = make_sphere({.target_triangles = 800, .bump_amplitude = 0.05});
+  const TriMesh b = make_sphere({.target_triangles = 600, .center = {1.3, 0.2, 0.1}, .twist = 0.2});
+  const auto base = static_cast<std::uint32_t>(m.positions.size());
+  m.positions.insert(m.positions.end(), b.positions.begin(), b.positions.end());
+  for (Tri t : b.triangles) m.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  std::size_t brute = 0;
+  for (std::size_t i = 0; i < m.num_triangles(); ++i)
+    for (std::size_t j = i + 1; j < m.num_triangles(); ++j) {
+      const auto ca = m.corners(i), cb = m.corners(j);
+      bool share = false;
+      for (const Vec3& p : ca)
+        for (const Vec3& q : cb) share = share || p == q;
+      if (!share && tri_tri_exact_intersects(ca, cb)) ++brute;
+    }
+  ASSERT_GT(brute, 20u);
+  EXPECT_EQ(count_self_intersections(m), brute);
+  const Model model = make_model(m, {}, false);
+  ClashRequest req;
+  req.regions = false, req.containment = false;
+  std::size_t engine = 0;
+  for (const TrianglePair& p : clash(model, model, req).pairs) {
+    if (p.a >= p.b) continue;
+    const auto ca = m.corners(p.a), cb = m.corners(p.b);
+    bool share = false;
+    for (const Vec3& x : ca)
+      for (const Vec3& y : cb) share = share || x == y;
+    engine += !share;
+  }
+  EXPECT_EQ(engine, brute);
+  EXPECT_EQ(count_self_intersections(make_sphere({.target_triangles = 800})), 0u);
 }
 
 TEST(Simplify, ErrorBoundMakesDistancesOnSimplifiedPartsConservative) {
