@@ -1,14 +1,15 @@
 // Linear BVH (Lauterbach et al. 2009, "Fast BVH Construction on GPUs"; Karras 2012): triangles are
 // sorted along a 30-bit Morton curve of their centroids (10 bits per axis on the cube around the
-// centroid bounds, so elongated parts are cut across their long axis first), and every node is
+// vertex bounds, so elongated parts are cut across their long axis first), and every node is
 // split where its highest differing Morton bit flips (binary search in the sorted codes). Ranges
 // whose codes are all equal fall back to the object-median split of the longest axis; ranges of at
 // most max_leaf_size triangles become leaves.
 //
 // Sorting: keys (code << 32 | triangle index) are unique, so the parallel radix sort (one MSD pass
 // in fixed blocks, then in-cache LSD passes per bucket) has one possible result, whatever the
-// thread count. Passes: (1) triangle boxes in input order (sequential mesh access; the corners of a
-// Morton-ordered sweep would be random accesses) with their centroid bounds, (2) keys and sort, (3)
+// thread count. Passes: (1) vertex bounds, (2) triangle boxes in input order (sequential mesh access;
+// the corners of a Morton-ordered sweep would be random accesses) and their keys in one sweep, then
+// the sort, (3)
 // boxes gathered into sorted order with software prefetch, (4) the tree (TopDownBuilder, binary
 // searches over 32-bit codes). Scratch per triangle: 24 + 8 + 8 + 4 bytes; fresh pages are a large
 // part of the cost at 10^6 triangles, hence few buffers.
@@ -25,6 +26,8 @@
 
 namespace interfere::detail {
 namespace {
+
+constexpr double kInfD = std::numeric_limits<double>::infinity();
 
 inline std::uint32_t spread10(std::uint32_t v) {  // bits ...ba -> ..b00a
   v &= 0x3ffu;
@@ -162,40 +165,48 @@ Bvh build_lbvh(const TriMesh& mesh, std::uint32_t max_leaf_size) {
   Bvh bvh;
   const std::size_t n = mesh.num_triangles();
   if (n == 0) return bvh;
-  // Pass 1: triangle boxes in input order (sequential mesh access) and the bounds of their
-  // centroids.
-  Buffer<AabbF> boxes(n);
-  const AabbF cb = tbb::parallel_reduce(
-      tbb::blocked_range<std::size_t>(0, n, 1 << 14), AabbF{},
-      [&](const auto& r, AabbF acc) {
-        for (std::size_t t = r.begin(); t < r.end(); ++t) {
-          const AabbF b = triangle_box_f(mesh, t);
-          boxes[t] = b;
-          for (int k = 0; k < 3; ++k) {
-            const float c2 = b.lo[k] + b.hi[k];
-            acc.lo[k] = std::min(acc.lo[k], c2), acc.hi[k] = std::max(acc.hi[k], c2);
-          }
+  // Pass 1: the bounds of the vertices (half the bytes of a pass over the triangles), which bound
+  // every triangle's doubled centroid by [2 lo, 2 hi]; min/max are exact, so the result does not
+  // depend on how the range is split.
+  struct Bounds {
+    Vec3 lo{kInfD, kInfD, kInfD}, hi{-kInfD, -kInfD, -kInfD};
+  };
+  const Bounds vb = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, mesh.positions.size(), 1 << 15), Bounds{},
+      [&](const auto& r, Bounds acc) {
+        for (std::size_t v = r.begin(); v < r.end(); ++v) {
+          acc.lo = min(acc.lo, mesh.positions[v]);
+          acc.hi = max(acc.hi, mesh.positions[v]);
         }
         return acc;
       },
-      [](AabbF x, const AabbF& y) {
-        x.expand(y);
+      [](Bounds x, const Bounds& y) {
+        x.lo = min(x.lo, y.lo);
+        x.hi = max(x.hi, y.hi);
         return x;
       });
+  float lo2[3];
   float ext = 0;
-  for (int k = 0; k < 3; ++k) ext = std::max(ext, cb.hi[k] - cb.lo[k]);
+  for (int k = 0; k < 3; ++k) {
+    lo2[k] = static_cast<float>(2 * vb.lo[k]);
+    ext = std::max(ext, static_cast<float>(2 * vb.hi[k]) - lo2[k]);
+  }
   const float scale =
       ext > 0 && ext < std::numeric_limits<float>::infinity() ? 1024.0f / ext : 0.0f;
 
-  // Pass 2: keys (code << 32 | triangle), computed into tmp and sorted into keys.
+  // Pass 2: triangle boxes in input order (sequential mesh access) and their keys
+  // (code << 32 | triangle) in the same sweep, then the sort.
+  Buffer<AabbF> boxes(n);
   Buffer<std::uint64_t> keys(n);
   {
     Buffer<std::uint64_t> tmp(n);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1 << 14), [&](const auto& r) {
       for (std::size_t t = r.begin(); t < r.end(); ++t) {
+        const AabbF b = triangle_box_f(mesh, t);
+        boxes[t] = b;
         std::uint32_t code = 0;
         for (int k = 0; k < 3; ++k) {
-          float v = (boxes[t].lo[k] + boxes[t].hi[k] - cb.lo[k]) * scale;
+          float v = (b.lo[k] + b.hi[k] - lo2[k]) * scale;
           v = v >= 0 ? v : 0;  // also NaN -> 0
           v = v < 1023.0f ? v : 1023.0f;
           code |= spread10(static_cast<std::uint32_t>(v)) << (2 - k);
