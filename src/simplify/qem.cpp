@@ -191,6 +191,20 @@ class Simplifier {
   void build_fans();
   void set_fan(std::uint32_t v, const std::vector<std::uint32_t>& tris);
   bool seam_edge(std::uint32_t a, std::uint32_t b, int* shared) const;
+  /// Calls f(w) once for every neighbour w > v of v on its live triangles (each undirected edge is
+  /// visited from its smaller end only); `seen` is per-thread scratch of size nv.
+  template <class F>
+  void for_each_upper_neighbour(std::uint32_t v, std::vector<std::uint32_t>& seen, F&& f) const {
+    for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
+      const std::uint32_t t = refs_[fan_start_[v] + i];
+      if (dead_[t]) continue;
+      for (std::uint32_t w : tris_[t]) {
+        if (w <= v || seen[w] == v) continue;
+        seen[w] = v;
+        f(w);
+      }
+    }
+  }
   bool evaluate(std::uint32_t a, std::uint32_t b, Candidate& out);
   bool evaluate(std::uint32_t a, std::uint32_t b, bool seam, Candidate& out);
   bool direction(std::uint32_t keep, std::uint32_t remove, bool seam, Candidate& out);
@@ -767,16 +781,10 @@ void Simplifier::run(std::size_t target, SimplifyResult& r) {
   for_vertex_blocks(nv, [&](std::uint32_t v0, std::uint32_t v1, std::size_t block) {
     std::vector<std::uint32_t>& seen = seen_tls.local();
     for (std::uint32_t v = v0; v < v1; ++v)
-      for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
-        const std::uint32_t t = refs_[fan_start_[v] + i];
-        if (dead_[t]) continue;
-        for (std::uint32_t w : tris_[t]) {
-          if (w <= v || seen[w] == v) continue;
-          seen[w] = v;
-          int shared = 0;
-          if (seam_edge(v, w, &shared)) seam_blocks[block].push_back({v, w, shared});
-        }
-      }
+      for_each_upper_neighbour(v, seen, [&](std::uint32_t w) {
+        int shared = 0;
+        if (seam_edge(v, w, &shared)) seam_blocks[block].push_back({v, w, shared});
+      });
   });
   std::vector<std::uint8_t> seam_count(nv, 0);
   for (const auto& block : seam_blocks)
@@ -826,16 +834,10 @@ void Simplifier::run(std::size_t target, SimplifyResult& r) {
     std::vector<Initial>& out = blocks[block];
     out.reserve(3 * (v1 - v0));
     for (std::uint32_t v = v0; v < v1; ++v) {
-      for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
-        const std::uint32_t t = refs_[fan_start_[v] + i];
-        if (dead_[t]) continue;
-        for (std::uint32_t w : tris_[t]) {
-          if (w <= v || seen[w] == v) continue;
-          seen[w] = v;
-          Candidate c;
-          if (evaluate(v, w, c)) out.push_back({c.cost, c.keep, c.remove, c.last_tier});
-        }
-      }
+      for_each_upper_neighbour(v, seen, [&](std::uint32_t w) {
+        Candidate c;
+        if (evaluate(v, w, c)) out.push_back({c.cost, c.keep, c.remove, c.last_tier});
+      });
     }
   });
   double max_cost = 0;
