@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "../unit/fem/fem_io_test_util.h"
 #include "interfere/fem/io.h"
 
 namespace interfere {
@@ -22,21 +23,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path temp_dir() {
-  static fs::path dir = [] {
-    std::string t = (fs::temp_directory_path() / "interfere_gmsh_XXXXXX").string();
-    if (!::mkdtemp(t.data())) std::abort();
-    return fs::path(t);
-  }();
-  // Registered after `dir` is constructed, so it runs before `dir` is destroyed.
-  static const bool cleanup = (std::atexit([] {
-                                 std::error_code ec;
-                                 fs::remove_all(temp_dir(), ec);
-                               }),
-                               true);
-  (void)cleanup;
-  return dir;
-}
+using fem_test::temp_dir;  // the FEM I/O tests' private directory, removed at exit
 
 struct GmshSession {
   GmshSession() {
