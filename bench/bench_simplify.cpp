@@ -97,6 +97,12 @@ void report(benchmark::State& state, const TriMesh& in, const TriMesh& feature, 
   state.counters["self_x"] = double(count_self_intersections(out));
 }
 
+// Wall time of each phase of simplify() (ms, averaged over the iterations): "phase:<name>".
+void phase_counters(benchmark::State& state, const SimplifyResult& r) {
+  for (const auto& [name, sec] : r.phases)
+    state.counters["phase:" + name] = benchmark::Counter(sec * 1e3, benchmark::Counter::kAvgIterations);
+}
+
 void bm_interfere(benchmark::State& state, std::size_t n, double ratio, bool guard, bool features,
                   bool measure) {
   const Case& c = sphere_case(n);
@@ -114,6 +120,7 @@ void bm_interfere(benchmark::State& state, std::size_t n, double ratio, bool gua
     }
     out = std::move(r->mesh);
     state.counters["guard_rerun"] = r->guard_rerun;
+    phase_counters(state, *r);
   }
   report(state, c.mesh, c.feature, out, c.diag);
 }
@@ -253,6 +260,7 @@ void bm_casing(benchmark::State& state, const std::string& step, bool guard, Fea
     }
     out = std::move(r->mesh);
     state.counters["guard_rerun"] = r->guard_rerun;
+    phase_counters(state, *r);
   }
   report(state, part.mesh, c.step_feature.at(step), out, norm(part.mesh.bounds().extent()));
   state.counters["deflection"] = c.deflection;

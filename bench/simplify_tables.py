@@ -129,18 +129,21 @@ quadric-error-metric edge collapses while the faces that take part in the curren
    constrained edges (weight 10·|e|²), a min-heap of candidate collapses invalidated lazily by per-vertex stamps,
    optimal placement by the 3×3 system (cofactor inverse, relative determinant test) with fallback to the
    endpoints and the midpoint; the link condition keeps the mesh manifold; a collapse is refused when a moved
-   triangle's normal turns by more than acos(0.2) or degenerates. **Large meshes** (≥ 200,000 input triangles,
+   triangle's normal turns by more than acos(0.2) or degenerates. **Large meshes** (≥ 20,000 input triangles,
    `batched_min_triangles`; `batched_passes = false` turns it off): the heap is preceded by batched passes, the
    scheme of meshoptimizer's simplifier (Kapoulkine, `meshopt_simplify`: sorted collapses, an error limit of 1.5×
    the cost at half the pass's goal, each vertex in at most one collapse per pass) and of independent-set
-   decimation (Franc & Skala 2001; Papageorgiou & Platis 2015): the candidate list sorted by the heap's key is
-   walked from the cheapest, a candidate is selected when neither end was used by an earlier selection of the
-   pass, the selected collapses are checked (link condition, flips, against the current mesh) and applied in vertex
-   order — memory locality instead of the heap's random cost order, which left the serial loop waiting on cache
-   misses — and the edges of the changed vertices are evaluated again (in parallel), sorted and merged into the
-   list; below budget + max(budget, 1024) triangles the heap finishes with the exact budget. The setup is
-   parallel with oneTBB (weld sort, per-vertex quadrics in fan order, seam detection, initial candidates in fixed
-   vertex blocks concatenated in order) and every result is bit-identical for 1 and N threads (unit test
+   decimation (Franc & Skala 2001; Papageorgiou & Platis 2015): each pass sorts the candidates (one per edge) by
+   the heap's key with a stable parallel radix sort and walks them from the cheapest, selecting a candidate when
+   neither end was used by an earlier selection of the pass; the selected collapses are sorted by vertex, checked
+   (link condition, flips, against the current mesh) and applied in 16 contiguous vertex ranges in parallel — a
+   collapse whose triangles hold an end of another range's collapse is deferred to a serial sweep afterwards, so
+   the ranges touch disjoint triangles and the result is the same as a serial application in vertex order — and
+   the candidates of the changed vertices are dropped and their edges evaluated again (in parallel); the others
+   keep their cost. Below about budget + max(budget, 1024) triangles the heap finishes with the exact budget. The
+   setup is parallel with oneTBB (weld: 32-bit position hashes radix-sorted, exact comparison within equal
+   hashes; per-vertex quadrics in fan order, seam detection, initial candidates in fixed vertex blocks
+   concatenated in order) and every result is bit-identical for 1 and N threads (unit test
    `Simplify.OneAndManyThreadsGiveBitIdenticalResults`). **No self-intersections**: by default the result
    is checked for intersecting non-adjacent triangle pairs with the engine's BVH traversed against itself and
    the exact triangle test of `np/tri_tri.h` (the decision of the engine's clash query; pairs sharing a vertex
@@ -225,7 +228,8 @@ written atomically and only after every input was validated.
 `collapses`, `rejected` {`link_condition`, `flipped_normal`, `self_intersection`}, `guard_rerun`, `vertices` {`welded_input`,
 `seam`, `corner`, `locked`}, `feature_mode`, `feature_faces`, `feature_triangles` {`input`, `output`},
 `max_unmodified_cost`, `bbox_diagonal`, `hausdorff`, `hausdorff_features` (null without features), `error_bound`,
-`self_intersections` (with the flag), `seconds` {`simplify`, `total`}, `warnings`; for STEP input `cad` {`parts`
+`self_intersections` (with the flag), `seconds` {`simplify`, `total`, `phases` [{`phase`, `seconds`}] (wall time
+of simplify()'s phases, in order; summed over the parts of a STEP input)}, `warnings`; for STEP input `cad` {`parts`
 [{`name`, `faces`, `triangles`, `features`, `assembly_feature_faces`}], `instances` [{`name`, `part`, `path`,
 `face_id_offset`}], `step`, `warnings`} and `parts_simplified` [{`name`, `instances`, `input_triangles`,
 `target_triangles`, `output_triangles`, `feature_triangles`, `hausdorff`, `hausdorff_features`, `guard_rerun`,
@@ -357,18 +361,32 @@ def write_doc(raw):
         lines.append(f"Same run, same load: interfere {ours['ms']/1000:.2f} s vs meshoptimizer {mo['ms']/1000:.2f} s "
                      f"(ratio {ours['ms']/mo['ms']:.2f}); the issue's 0.6 s is meshoptimizer's time on a quiet machine.")
         lines.append("")
-    lines.append("Verdicts use wall time. Timings come from a shared 2-core machine with other builds running "
-                 "(see the load average above; `cpu` is the process's CPU time, all threads); rerun "
-                 "`python3 bench/simplify_tables.py` on a quiet machine for reference numbers. Where the time goes "
-                 "(1e6 → 1e4, before the batched passes, measured with phase timers and perf): about 84 % in the "
-                 "serial heap loop (≈ 3.5 µs per collapse, bound by cache misses: the cost order is spatially "
-                 "random), 15 % setup, < 1 % check and output. The batched passes cut the loop to about 0.7 µs per "
-                 "applied collapse, but re-evaluating and merging the candidate list each pass is now the larger "
-                 "part; remaining options: applying the independent collapses of a pass in parallel, cheaper "
-                 "re-evaluation (float quadrics for ranking), and fewer passes. The casing (35k triangles) stays on "
-                 "the heap: the passes did not pay off there (same time, larger Hausdorff); its time is about 60 % "
-                 "heap loop (≈ 1.1 µs per collapse, 8–9 heap entries per collapse), the rest welding, seams, initial "
-                 "candidates, the check and the face split.")
+    lines.append("Verdicts use wall time. Timings come from a shared 2-core machine (see the load average above; "
+                 "`cpu` is the process's CPU time, all threads); rerun `python3 bench/simplify_tables.py` on a quiet "
+                 "machine for reference numbers.")
+    lines.append("")
+    # Where the time goes: simplify()'s own phase timers (SimplifyResult::phases, the report's
+    # seconds.phases), recorded by the benchmark as phase:<name> counters.
+    ph_rows = [n for n in ("Simplify/interfere/1e6/1pct", "Casing/interfere/P1") if n in r and "error" not in r[n]]
+    if ph_rows:
+        names = []
+        for n in ph_rows:
+            for k in r[n]:
+                if k.startswith("phase:") and k[6:] not in names:
+                    names.append(k[6:])
+        lines.append("Where the time goes (ms, wall; `seconds.phases` of the report, same run):")
+        lines.append("")
+        lines.append("| phase | " + " | ".join(ph_rows) + " |")
+        lines.append("|---|" + "---:|" * len(ph_rows))
+        for name in names:
+            lines.append(f"| {name} | " + " | ".join(fmt(r[n].get('phase:' + name), '.2f') for n in ph_rows) + " |")
+        lines.append("")
+        lines.append("`weld`: exact-position welding (hash + radix sort); `setup`: fans, quadrics, feature marks; "
+                     "`seams`: constrained edges and their penalty planes; `initial candidates`: one evaluated "
+                     "collapse per edge; `passes: *`: the batched passes (radix sort, selection walk, checks and "
+                     "collapses in parallel vertex ranges, dropping candidates of changed vertices, re-evaluation of "
+                     "the changed vertices' edges); `heap`: the min-heap to the exact budget; `output`, `check` "
+                     "(the result's self-intersection count), `split` (faces made separable again).")
     DOC.write_text("\n".join(lines) + "\n")
     log(f"wrote {DOC}")
 

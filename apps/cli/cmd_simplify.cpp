@@ -107,6 +107,11 @@ Expected<SimplifyResult> simplify_parts(const cad::Prepared& prep, std::size_t t
     all.rejected_intersection += d.rejected_intersection, all.guard_rerun = all.guard_rerun || d.guard_rerun;
     all.seam_vertices += d.seam_vertices, all.corner_vertices += d.corner_vertices, all.locked_vertices += d.locked_vertices;
     all.input_vertices_welded += d.input_vertices_welded;
+    for (const auto& [name, sec] : d.phases) {  // summed over the parts
+      auto it = std::find_if(all.phases.begin(), all.phases.end(), [&](const auto& x) { return x.first == name; });
+      if (it == all.phases.end()) all.phases.emplace_back(name, sec);
+      else it->second += sec;
+    }
     all.max_unmodified_cost = std::max(all.max_unmodified_cost, d.max_unmodified_cost);
     all.hausdorff = std::max(all.hausdorff, d.hausdorff);
     all.hausdorff_features = std::max(all.hausdorff_features, d.hausdorff_features);
@@ -277,6 +282,9 @@ int run_simplify(const SimplifyCliOptions& o) {
   report["error_bound"] = r.error_bound;
   if (o.check_self) report["self_intersections"] = self;
   report["seconds"] = {{"simplify", seconds}, {"total", total.seconds()}};
+  nlohmann::json phases = nlohmann::json::array();  // wall time per phase of simplify(), in order
+  for (const auto& [name, sec] : r.phases) phases.push_back({{"phase", name}, {"seconds", sec}});
+  report["seconds"]["phases"] = phases;
   report["warnings"] = r.warnings;
   for (const auto& w : r.warnings)
     if (!Progress::quiet()) std::fprintf(stderr, "[interfere] warning: %s\n", w.c_str());

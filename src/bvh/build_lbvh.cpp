@@ -23,20 +23,12 @@
 #include <limits>
 
 #include "build_internal.h"
+#include "interfere/core/morton.h"
 
 namespace interfere::detail {
 namespace {
 
 constexpr double kInfD = std::numeric_limits<double>::infinity();
-
-inline std::uint32_t spread10(std::uint32_t v) {  // bits ...ba -> ..b00a
-  v &= 0x3ffu;
-  v = (v | (v << 16)) & 0x030000FFu;
-  v = (v | (v << 8)) & 0x0300F00Fu;
-  v = (v | (v << 4)) & 0x030C30C3u;
-  v = (v | (v << 2)) & 0x09249249u;
-  return v;
-}
 
 // Radix sort of the 64-bit keys on their code bits [32, 62) (the keys are unique, so every correct
 // sort gives the same order). One parallel MSD pass on the top 10 code bits (fixed blocks, stable
@@ -209,7 +201,7 @@ Bvh build_lbvh(const TriMesh& mesh, std::uint32_t max_leaf_size) {
           float v = (b.lo[k] + b.hi[k] - lo2[k]) * scale;
           v = v >= 0 ? v : 0;  // also NaN -> 0
           v = v < 1023.0f ? v : 1023.0f;
-          code |= spread10(static_cast<std::uint32_t>(v)) << (2 - k);
+          code |= morton_spread10(static_cast<std::uint32_t>(v)) << (2 - k);
         }
         tmp[t] = (static_cast<std::uint64_t>(code) << 32) | t;
       }

@@ -18,6 +18,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "interfere/core/error.h"
@@ -62,13 +63,12 @@ struct SimplifyOptions {
   /// With prevent_self_intersections: guard every collapse from the start (skip the plain run).
   bool guard_every_collapse = false;
   /// Large reductions: batched passes of collapses with disjoint end vertices (cheapest first up to
-  /// an error limit, checked and applied in vertex order) down to budget + max(budget, 1024)
-  /// triangles, then the heap for the rest; deterministic. Off (or with the per-collapse
-  /// intersection guard): the heap throughout.
+  /// an error limit, checked and applied in vertex order, contiguous vertex ranges in parallel)
+  /// down to about budget + max(budget, 1024) triangles, then the heap for the rest;
+  /// deterministic. Off (or with the per-collapse intersection guard): the heap throughout.
   bool batched_passes = true;
-  /// Batched passes only from this many input triangles: they pay off on large meshes (memory
-  /// locality); on the 35k-triangle casing the heap alone was as fast and more accurate.
-  std::size_t batched_min_triangles = 200000;
+  /// Batched passes only from this many input triangles (below, the heap alone is as fast).
+  std::size_t batched_min_triangles = 20000;
   /// Measure the symmetric Hausdorff distance (sampled, see hausdorff.h) overall and on the
   /// feature faces, and store it as the error bound.
   bool measure_error = true;
@@ -93,6 +93,10 @@ struct SimplifyResult {
   /// not measured. `error_bound` = hausdorff: grow boxes or the clearance of a clash check on the
   /// simplified mesh by it to make the check conservative.
   double hausdorff = -1, hausdorff_features = -1, error_bound = -1;
+  /// Wall time (s) of the phases, in order of first appearance: weld, setup, seams, initial
+  /// candidates, passes: sort/select/apply/filter/evaluate (large meshes), heap, output, check
+  /// (a guarded rerun adds to setup..heap), split, error.
+  std::vector<std::pair<std::string, double>> phases;
   std::vector<std::string> warnings;
 };
 

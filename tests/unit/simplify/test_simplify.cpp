@@ -11,6 +11,7 @@
 #include <map>
 #include <random>
 #include <set>
+#include <tuple>
 
 #include "interfere/mesh/generate.h"
 #include "interfere/np/distance.h"
@@ -190,6 +191,49 @@ TEST(Simplify, WeightedFeatureFacesCollapseLastAndStayWithinTolerance) {
   ASSERT_TRUE(t.has_value());
   EXPECT_EQ(t->mesh.num_triangles(), 300u);
   EXPECT_LT(t->feature_triangles_out, t->feature_triangles_in);
+}
+
+TEST(Simplify, WeldPositionsMatchesAnOrderedMapReference) {
+  // Positions drawn from a small pool (many exact duplicates, one position 200 times, signed
+  // zeros): the hash-and-radix weld must give the groups of an ordered map keyed by position, with
+  // new ids in order of first use, for any thread count.
+  std::mt19937 rng(7);
+  std::vector<Vec3> pool;
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int i = 0; i < 300; ++i) pool.push_back({u(rng), u(rng), u(rng)});
+  pool.push_back({0.0, -0.0, 0.0});
+  TriMesh m;
+  std::uniform_int_distribution<int> pick(0, int(pool.size()) - 1);
+  for (int i = 0; i < 3000; ++i) m.positions.push_back(pool[pick(rng)]);
+  for (int i = 0; i < 200; ++i) m.positions.push_back(pool[5]);
+  m.positions.push_back({-0.0, 0.0, -0.0});
+  std::uniform_int_distribution<std::uint32_t> vid(0, std::uint32_t(m.positions.size()) - 1);
+  for (int i = 0; i < 2000; ++i) m.triangles.push_back({vid(rng), vid(rng), vid(rng)});
+  m.triangles.push_back({3000, 3199, std::uint32_t(m.positions.size() - 1)});
+  auto less = [](const Vec3& a, const Vec3& b) { return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z); };
+  std::map<Vec3, std::uint32_t, decltype(less)> first(less);
+  std::vector<Vec3> want_pos;
+  std::vector<Tri> want_tri;
+  for (const Tri& t : m.triangles) {
+    Tri n;
+    for (int k = 0; k < 3; ++k) {
+      auto [it, fresh] = first.emplace(m.positions[t[k]], std::uint32_t(want_pos.size()));
+      if (fresh) want_pos.push_back(m.positions[t[k]]);
+      n[k] = it->second;
+    }
+    want_tri.push_back(n);
+  }
+  for (int threads : {1, 3}) {
+    tbb::task_arena arena(threads);
+    TriMesh w;
+    std::vector<std::uint32_t> map;
+    arena.execute([&] { w = weld_positions(m, &map); });
+    EXPECT_EQ(w.triangles, want_tri);
+    ASSERT_EQ(w.positions.size(), want_pos.size());
+    for (std::size_t i = 0; i < want_pos.size(); ++i) EXPECT_TRUE(w.positions[i] == want_pos[i]);
+    for (std::size_t v = 0; v < m.positions.size(); ++v)
+      if (map[v] != std::numeric_limits<std::uint32_t>::max()) EXPECT_TRUE(w.positions[map[v]] == m.positions[v]);
+  }
 }
 
 TEST(Simplify, OneAndManyThreadsGiveBitIdenticalResults) {

@@ -1,0 +1,98 @@
+// Self-intersection guard of the QEM simplifier (issue #6, item 6: simplification introduces no
+// self-intersections): a uniform hash grid of the live triangles' boxes, and the exact test
+// (np/tri_tri.h, Shewchuk-style filtered predicates) of every triangle a collapse creates or moves
+// against the non-adjacent triangles near it.
+#include <array>
+#include <cmath>
+
+#include "interfere/np/tri_tri.h"
+#include "qem_internal.h"
+
+namespace interfere::qem {
+
+// Cells about twice the current mean triangle size; rebuilt whenever the live count halves, so a
+// cell holds a few triangles throughout and stale entries are dropped.
+void Simplifier::rebuild_grid(std::size_t live) {
+  Aabb all;
+  for (std::size_t v = 0; v < pos_.size(); ++v)
+    if (!vdead_[v] && fan_count_[v] > 0) all.expand(pos_[v]);
+  const double diag = norm(all.extent());
+  cell_ = std::max(2.0 * std::sqrt(surface_area_ / double(std::max<std::size_t>(live, 1))), 1e-9 * diag);
+  if (!(cell_ > 0) || !std::isfinite(cell_)) cell_ = 1;
+  origin_ = all.lo;
+  grid_.clear();
+  grid_.reserve(live / 2 + 16);
+  for (std::uint32_t t = 0; t < tris_.size(); ++t)
+    if (!dead_[t]) grid_insert(t);
+  grid_live_ = live;
+}
+
+template <class F>
+void Simplifier::grid_cells(const Aabb& box, F&& f) const {
+  auto cell = [&](double v, double o) { return static_cast<std::int64_t>(std::floor((v - o) / cell_)); };
+  const std::int64_t x0 = cell(box.lo.x, origin_.x), x1 = cell(box.hi.x, origin_.x);
+  const std::int64_t y0 = cell(box.lo.y, origin_.y), y1 = cell(box.hi.y, origin_.y);
+  const std::int64_t z0 = cell(box.lo.z, origin_.z), z1 = cell(box.hi.z, origin_.z);
+  for (std::int64_t x = x0; x <= x1; ++x)
+    for (std::int64_t y = y0; y <= y1; ++y)
+      for (std::int64_t z = z0; z <= z1; ++z)
+        f((static_cast<std::uint64_t>(x & 0x1fffff) << 42) | (static_cast<std::uint64_t>(y & 0x1fffff) << 21) |
+          static_cast<std::uint64_t>(z & 0x1fffff));
+}
+
+void Simplifier::grid_insert(std::uint32_t t) {
+  Aabb b;
+  for (std::uint32_t v : tris_[t]) b.expand(pos_[v]);
+  grid_cells(b, [&](std::uint64_t key) { grid_[key].push_back(t); });
+}
+
+// The triangles a collapse creates or moves must not meet any other triangle of the mesh except
+// through shared vertices (exact test: np/tri_tri.h).
+bool Simplifier::intersection_ok(std::uint32_t keep, std::uint32_t remove, const Vec3& p) {
+  ++tri_mark_id_;
+  for (int side = 0; side < 2; ++side) {
+    const std::uint32_t v = side == 0 ? remove : keep;
+    const std::uint32_t other = side == 0 ? keep : remove;
+    if (side == 1 && p == pos_[keep]) break;
+    for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
+      const std::uint32_t t = refs_[fan_start_[v] + i];
+      if (dead_[t]) continue;
+      Tri tr = tris_[t];
+      if (tr[0] == other || tr[1] == other || tr[2] == other) continue;
+      std::array<Vec3, 3> c;
+      Aabb box;
+      for (int k = 0; k < 3; ++k) {
+        if (tr[k] == v) tr[k] = keep;
+        c[k] = tr[k] == keep ? p : pos_[tr[k]];
+        box.expand(c[k]);
+      }
+      bool ok = true;
+      grid_cells(box, [&](std::uint64_t key) {
+        if (!ok) return;
+        auto it = grid_.find(key);
+        if (it == grid_.end()) return;
+        for (std::uint32_t s : it->second) {
+          if (dead_[s] || tri_mark_[s] == tri_mark_id_) continue;
+          tri_mark_[s] = tri_mark_id_;
+          const Tri& q = tris_[s];
+          bool share = false;
+          for (std::uint32_t w : q) share = share || w == keep || w == remove || w == tr[0] || w == tr[1] || w == tr[2];
+          if (share) continue;
+          Aabb qb;
+          for (std::uint32_t w : q) qb.expand(pos_[w]);
+          if (!qb.overlaps(box)) continue;
+          if (tri_tri_exact_intersects(c, {pos_[q[0]], pos_[q[1]], pos_[q[2]]})) {
+            ok = false;
+            return;
+          }
+        }
+      });
+      if (!ok) return false;
+      // Candidates of one moved triangle were marked: the next moved triangle re-examines them.
+      ++tri_mark_id_;
+    }
+  }
+  return true;
+}
+
+}  // namespace interfere::qem

@@ -1,0 +1,286 @@
+// Internals of the QEM simplifier (issue #6, item 5), shared by the qem_*.cpp files: the quadric of
+// Garland & Heckbert (SIGGRAPH 1997, §4), the 16-byte candidate entries, the radix heap and the
+// Simplifier state. Not installed.
+#pragma once
+#include <algorithm>
+#include <bit>
+#include <memory>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include "interfere/simplify/qem.h"
+
+namespace interfere::qem {
+
+constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+
+struct Quadric {
+  // Symmetric 4x4 (a b c d)^T (a b c d): xx xy xz xw yy yz yw zz zw ww.
+  double q[10] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+  void add_plane(const Vec3& n, double d, double w) {
+    q[0] += w * n.x * n.x, q[1] += w * n.x * n.y, q[2] += w * n.x * n.z, q[3] += w * n.x * d;
+    q[4] += w * n.y * n.y, q[5] += w * n.y * n.z, q[6] += w * n.y * d;
+    q[7] += w * n.z * n.z, q[8] += w * n.z * d, q[9] += w * d * d;
+  }
+  Quadric& operator+=(const Quadric& o) {
+    for (int i = 0; i < 10; ++i) q[i] += o.q[i];
+    return *this;
+  }
+  double eval(const Vec3& p) const {
+    const double x = p.x, y = p.y, z = p.z;
+    const double e = q[0] * x * x + 2 * q[1] * x * y + 2 * q[2] * x * z + 2 * q[3] * x + q[4] * y * y +
+                     2 * q[5] * y * z + 2 * q[6] * y + q[7] * z * z + 2 * q[8] * z + q[9];
+    return e > 0 ? e : 0;
+  }
+  /// Minimiser of eval (§4): solves A p = -b by the cofactor inverse; false when A is near singular
+  /// (relative determinant test), then the caller falls back to endpoints/midpoint.
+  bool optimum(Vec3& p) const {
+    const double a = q[0], b = q[1], c = q[2], d = q[4], e = q[5], f = q[7];
+    const double c00 = d * f - e * e, c01 = c * e - b * f, c02 = b * e - c * d;
+    const double det = a * c00 + b * c01 + c * c02;
+    const double scale = std::max({std::abs(a), std::abs(d), std::abs(f)});
+    if (!(std::abs(det) > 1e-10 * scale * scale * scale) || scale == 0) return false;
+    const double c11 = a * f - c * c, c12 = b * c - a * e, c22 = a * d - b * b;
+    const double inv = 1.0 / det;
+    const double rx = -q[3], ry = -q[6], rz = -q[8];
+    p = {(c00 * rx + c01 * ry + c02 * rz) * inv, (c01 * rx + c11 * ry + c12 * rz) * inv,
+         (c02 * rx + c12 * ry + c22 * rz) * inv};
+    return is_finite(p);
+  }
+};
+
+enum VertexClass : std::uint8_t { kInterior = 0, kSeam = 1, kCorner = 2 };
+
+struct Candidate {
+  double cost;
+  Vec3 p;
+  std::uint32_t keep, remove;
+  std::uint32_t stamp_keep, stamp_remove;
+  bool last_tier = false;  ///< FeatureMode::last: ordered after every non-feature candidate
+};
+
+// Candidate entry: 16 bytes (the queue's cache misses dominate large runs). The placement is
+// recomputed when an entry is taken; the 16-bit stamps invalidate entries whose end vertices
+// changed since. `cost` holds the key bits: a non-negative float, top bit set for the last tier.
+struct HeapEntry {
+  float cost;
+  std::uint32_t keep, remove;
+  std::uint16_t stamp_keep, stamp_remove;
+};
+static_assert(sizeof(HeapEntry) == 16);
+
+inline std::uint32_t key_bits(const HeapEntry& e) {
+  std::uint32_t k;
+  std::memcpy(&k, &e.cost, 4);
+  return k;
+}
+
+inline HeapEntry entry_of(const Candidate& c) {
+  // Costs are >= 0 (eval clamps); +0.0f so that -0.0 cannot appear; the bits of a non-negative float
+  // order like its value and leave the top bit free: set, it puts the entry in the last tier.
+  HeapEntry e{static_cast<float>(c.cost) + 0.0f, c.keep, c.remove, static_cast<std::uint16_t>(c.stamp_keep),
+              static_cast<std::uint16_t>(c.stamp_remove)};
+  if (c.last_tier) {
+    const std::uint32_t k = key_bits(e) | 0x80000000u;
+    std::memcpy(&e.cost, &k, 4);
+  }
+  return e;
+}
+
+/// Radix heap (Ahuja, Mehlhorn, Orlin & Tarjan 1990) on the key bits: pushes are O(1) appends, a
+/// pop redistributes one bucket sequentially. Keys must not decrease below the last popped key: a
+/// cheaper candidate created by a collapse is clamped to it, i.e. it is taken next (the order is
+/// otherwise the exact cost order; equal keys come out last-in first-out, deterministically).
+class RadixHeap {
+ public:
+  bool empty() const { return size_ == 0; }
+  void push(HeapEntry e) {
+    std::uint32_t k = key_bits(e);
+    if (k < last_) k = last_;
+    std::memcpy(&e.cost, &k, 4);
+    buckets_[bucket(k)].push_back(e);
+    ++size_;
+  }
+  HeapEntry pop() {
+    if (buckets_[0].empty()) {
+      std::size_t i = 1;
+      while (buckets_[i].empty()) ++i;
+      std::uint32_t m = std::numeric_limits<std::uint32_t>::max();
+      for (const HeapEntry& e : buckets_[i]) m = std::min(m, key_bits(e));
+      last_ = m;
+      std::vector<HeapEntry> moving;
+      moving.swap(buckets_[i]);
+      for (const HeapEntry& e : moving) buckets_[bucket(key_bits(e))].push_back(e);
+      moving.clear();
+      moving.swap(buckets_[i]);  // keep the capacity
+    }
+    const HeapEntry e = buckets_[0].back();
+    buckets_[0].pop_back();
+    --size_;
+    return e;
+  }
+
+ private:
+  std::size_t bucket(std::uint32_t k) const { return k == last_ ? 0 : 32 - std::countl_zero(k ^ last_); }
+  std::vector<HeapEntry> buckets_[33];
+  std::uint32_t last_ = 0;
+  std::size_t size_ = 0;
+};
+
+constexpr std::uint32_t kBlock = 4096;  ///< vertices per parallel block (fixed: deterministic output)
+
+inline std::size_t num_blocks(std::size_t n) { return (n + kBlock - 1) / kBlock; }
+
+/// f(first, last, block) over fixed blocks of [0, n), in parallel.
+template <class F>
+void for_blocks(std::size_t n, F&& f) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_blocks(n)), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t b = r.begin(); b < r.end(); ++b)
+      f(static_cast<std::uint32_t>(b * kBlock), static_cast<std::uint32_t>(std::min(n, (b + 1) * kBlock)), b);
+  });
+}
+
+/// Wall time of the phases of one run, appended to SimplifyResult::phases.
+class PhaseClock {
+ public:
+  explicit PhaseClock(SimplifyResult& r) : r_(r) {}
+  void restart() { last_ = std::chrono::steady_clock::now(); }
+  void lap(const char* phase) {
+    const auto now = std::chrono::steady_clock::now();
+    const double s = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    for (auto& [name, sec] : r_.phases)
+      if (name == phase) {
+        sec += s;
+        return;
+      }
+    r_.phases.emplace_back(phase, s);
+  }
+
+ private:
+  SimplifyResult& r_;
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+/// Per-thread scratch of the local operations: marks over the vertices (a fresh `id` per use
+/// instead of clearing) and the gathered neighbours of a vertex.
+struct Scratch {
+  struct Neighbour {
+    std::uint32_t w, count, face;
+    bool differ;
+  };
+  std::vector<std::uint32_t> mark_a, mark_b, slot;
+  std::vector<Neighbour> nbr;
+  std::uint32_t id = 0;
+  explicit Scratch(std::size_t nv) : mark_a(nv, 0), mark_b(nv, 0), slot(nv, 0) {}
+};
+
+class Simplifier {
+ public:
+  Simplifier(TriMesh mesh, std::vector<std::uint32_t> face, std::vector<std::uint8_t> feature_tri,
+             const SimplifyOptions& o)
+      : pos_(std::move(mesh.positions)),
+        tris_(std::move(mesh.triangles)),
+        face_(std::move(face)),
+        feature_tri_(std::move(feature_tri)),
+        o_(o) {}
+
+  void run(std::size_t target, SimplifyResult& r);
+  std::vector<Vec3> pos_;
+  std::vector<Tri> tris_;
+  std::vector<std::uint32_t> face_;
+  std::vector<std::uint8_t> feature_tri_;
+  std::vector<std::uint8_t> dead_;
+
+ private:
+  // Setup (qem_run.cpp).
+  void build_fans();
+  void vertex_quadrics();
+  void classify_vertices(SimplifyResult& r);
+  /// One candidate per live edge (from its smaller end), in vertex order; in parallel.
+  std::vector<HeapEntry> edge_candidates() const;
+  void heap_loop(std::size_t target, std::size_t& live, SimplifyResult& r);
+  // Local operations (qem_local.cpp); `sc` is the calling thread's scratch.
+  bool seam_edge(std::uint32_t a, std::uint32_t b, int* shared) const;
+  void gather_neighbours(std::uint32_t v, Scratch& sc) const;
+  /// Candidates of the edges at v (of those to larger neighbours only with upper_only).
+  void candidates_of(std::uint32_t v, Scratch& sc, std::vector<HeapEntry>& out, bool upper_only = false) const;
+  bool evaluate(std::uint32_t a, std::uint32_t b, bool seam, Candidate& out) const;
+  bool direction(std::uint32_t keep, std::uint32_t remove, bool seam, Candidate& out) const;
+  bool link_ok(std::uint32_t a, std::uint32_t b, int shared, Scratch& sc) const;
+  bool flip_ok(std::uint32_t keep, std::uint32_t remove, const Vec3& p) const;
+  /// Collapses b into a at p: the triangles on ab die (counted in `died`), b's others take a; a's
+  /// new fan (live triangles) is left in `merged` for the caller to store.
+  void collapse(std::uint32_t a, std::uint32_t b, const Vec3& p, std::vector<std::uint32_t>& merged,
+                std::size_t& died);
+  void set_fan(std::uint32_t v, const std::vector<std::uint32_t>& tris);
+  void compact_fans();
+  bool movable(std::uint32_t v) const { return cls_[v] == kInterior && !locked_[v]; }
+  /// Evaluates the edges from v to the gathered neighbours w with keep(w) (see gather_neighbours).
+  template <class Keep>
+  void evaluate_gathered(std::uint32_t v, const Scratch& sc, std::vector<HeapEntry>& out, Keep keep) const {
+    // The neighbours' quadrics and positions are scattered: fetch them all before the evaluations
+    // so that the cache misses overlap.
+    for (const Scratch::Neighbour& n : sc.nbr) {
+      __builtin_prefetch(&quad_[n.w]);
+      __builtin_prefetch(reinterpret_cast<const char*>(&quad_[n.w]) + 64);
+      __builtin_prefetch(&pos_[n.w]);
+    }
+    for (const Scratch::Neighbour& n : sc.nbr) {
+      if (!keep(n.w)) continue;
+      Candidate c;
+      if (evaluate(v, n.w, n.count != 2 || n.differ, c)) out.push_back(entry_of(c));
+    }
+  }
+  // Batched passes (qem_passes.cpp).
+  std::size_t apply_selected(const std::vector<std::pair<std::uint32_t, std::uint32_t>>& selected,
+                             std::size_t& live, std::vector<std::uint32_t>& changed);
+  void batched_passes(std::vector<HeapEntry>& list, std::size_t handoff, std::size_t& live, SimplifyResult& r,
+                      PhaseClock& clock);
+  // Self-intersection guard (qem_guard.cpp).
+  bool intersection_ok(std::uint32_t keep, std::uint32_t remove, const Vec3& p);
+  void grid_insert(std::uint32_t t);
+  void rebuild_grid(std::size_t live);
+  template <class F>
+  void grid_cells(const Aabb& box, F&& f) const;
+
+  const SimplifyOptions& o_;
+  std::vector<std::uint32_t> fan_start_, fan_count_;
+  std::vector<std::uint32_t> refs_;
+  std::vector<Quadric> quad_;
+  std::vector<std::uint8_t> cls_, locked_, touches_feature_, vdead_;
+  std::vector<std::uint32_t> stamp_;
+  std::unique_ptr<tbb::enumerable_thread_specific<Scratch>> tls_;  ///< per-thread Scratch
+  struct Owner {
+    std::uint32_t pass = 0, range = 0;
+  };
+  std::vector<Owner> owner_;  ///< range of the selected collapse a vertex is an end of (batched passes)
+  std::uint32_t owner_pass_ = 0;
+  double feature_offset_ = 0;
+  RadixHeap heap_;
+  std::vector<std::uint32_t> merged_;
+  std::size_t rejected_link_ = 0, rejected_flip_ = 0, rejected_intersection_ = 0;
+  // Self-intersection guard: a uniform hash grid of triangle boxes (entries may be stale: every
+  // candidate is re-checked against the current mesh).
+  bool guard_ = false;
+  double cell_ = 1;
+  Vec3 origin_;
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> grid_;
+  std::vector<std::uint32_t> tri_mark_;
+  std::uint32_t tri_mark_id_ = 0;
+  double surface_area_ = 0;
+  std::size_t grid_live_ = 0;  ///< live triangles when the grid was last built
+};
+
+}  // namespace interfere::qem

@@ -1,0 +1,243 @@
+// Local operations of the QEM edge collapse (Garland & Heckbert, SIGGRAPH 1997): candidate
+// evaluation with optimal placement and endpoint/midpoint fallback (§4), the constrained-edge
+// (seam) test, the link condition (Dey, Edelsbrunner, Guha & Nekhayev 1999) that keeps the mesh
+// manifold, the normal-flip test, and the collapse itself on per-vertex triangle fans. Feature
+// weighting after He & Xu (SJTU 2023, §3.3). All but collapse/set_fan only read the mesh.
+#include <algorithm>
+
+#include "qem_internal.h"
+
+namespace interfere::qem {
+
+void Simplifier::build_fans() {
+  const std::size_t nv = pos_.size();
+  fan_start_.assign(nv + 1, 0);
+  fan_count_.assign(nv, 0);
+  for (const Tri& t : tris_)
+    for (std::uint32_t v : t) ++fan_count_[v];
+  for (std::size_t v = 0; v < nv; ++v) fan_start_[v + 1] = fan_start_[v] + fan_count_[v];
+  refs_.assign(fan_start_[nv], 0);
+  std::vector<std::uint32_t> fill(fan_start_.begin(), fan_start_.end() - 1);
+  for (std::uint32_t t = 0; t < tris_.size(); ++t)
+    for (std::uint32_t v : tris_[t]) refs_[fill[v]++] = t;
+  fan_start_.pop_back();
+}
+
+void Simplifier::set_fan(std::uint32_t v, const std::vector<std::uint32_t>& tris) {
+  if (tris.size() <= fan_count_[v]) {  // shrinking: reuse the slot
+    std::copy(tris.begin(), tris.end(), refs_.begin() + fan_start_[v]);
+  } else {
+    fan_start_[v] = static_cast<std::uint32_t>(refs_.size());
+    refs_.insert(refs_.end(), tris.begin(), tris.end());
+  }
+  fan_count_[v] = static_cast<std::uint32_t>(tris.size());
+}
+
+void Simplifier::compact_fans() {
+  if (refs_.size() <= 8 * tris_.size() + 1024) return;
+  std::vector<std::uint32_t> pool;
+  pool.reserve(tris_.size() * 3);
+  for (std::uint32_t v = 0; v < pos_.size(); ++v) {
+    const std::uint32_t s = static_cast<std::uint32_t>(pool.size());
+    for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
+      const std::uint32_t t = refs_[fan_start_[v] + i];
+      if (!dead_[t]) pool.push_back(t);
+    }
+    fan_start_[v] = s;
+    fan_count_[v] = static_cast<std::uint32_t>(pool.size() - s);
+  }
+  refs_.swap(pool);
+}
+
+// Constrained (seam) edge: not exactly two live triangles, or two with different face ids.
+bool Simplifier::seam_edge(std::uint32_t a, std::uint32_t b, int* shared) const {
+  int n = 0;
+  std::uint32_t f0 = kNone;
+  bool differ = false;
+  for (std::uint32_t i = 0; i < fan_count_[a]; ++i) {
+    const std::uint32_t t = refs_[fan_start_[a] + i];
+    if (dead_[t]) continue;
+    const Tri& tr = tris_[t];
+    if (tr[0] != b && tr[1] != b && tr[2] != b) continue;
+    ++n;
+    if (f0 == kNone) f0 = face_[t];
+    else if (face_[t] != f0) differ = true;
+  }
+  if (shared) *shared = n;
+  return n != 2 || differ;
+}
+
+// One sweep over v's fan gathers every neighbour w with the number of live triangles on (v, w) and
+// whether their face ids differ (the seam test of seam_edge for all edges at once), in order of
+// first appearance.
+void Simplifier::gather_neighbours(std::uint32_t v, Scratch& sc) const {
+  sc.nbr.clear();
+  // Small fans: a linear search of the few neighbours found so far (no scattered marks); from 16
+  // neighbours on, marks over the vertices.
+  constexpr std::size_t kLinear = 16;
+  std::uint32_t id = 0;
+  for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
+    const std::uint32_t t = refs_[fan_start_[v] + i];
+    if (dead_[t]) continue;
+    const std::uint32_t f = face_[t];
+    for (std::uint32_t w : tris_[t]) {
+      if (w == v) continue;
+      Scratch::Neighbour* found = nullptr;
+      if (id == 0) {
+        for (Scratch::Neighbour& n : sc.nbr)
+          if (n.w == w) {
+            found = &n;
+            break;
+          }
+      } else if (sc.mark_a[w] == id) {
+        found = &sc.nbr[sc.slot[w]];
+      }
+      if (found) {
+        ++found->count;
+        found->differ = found->differ || found->face != f;
+        continue;
+      }
+      sc.nbr.push_back({w, 1, f, false});
+      if (id != 0) {
+        sc.mark_a[w] = id, sc.slot[w] = static_cast<std::uint32_t>(sc.nbr.size() - 1);
+      } else if (sc.nbr.size() == kLinear) {
+        id = ++sc.id;
+        for (std::uint32_t k = 0; k < sc.nbr.size(); ++k) sc.mark_a[sc.nbr[k].w] = id, sc.slot[sc.nbr[k].w] = k;
+      }
+    }
+  }
+}
+
+// The candidates of every edge at v (both directions considered, the cheaper kept).
+void Simplifier::candidates_of(std::uint32_t v, Scratch& sc, std::vector<HeapEntry>& out, bool upper_only) const {
+  gather_neighbours(v, sc);
+  evaluate_gathered(v, sc, out, [&](std::uint32_t w) { return !upper_only || w > v; });
+}
+
+bool Simplifier::direction(std::uint32_t keep, std::uint32_t remove, bool seam, Candidate& out) const {
+  if (locked_[remove] || cls_[remove] == kCorner) return false;
+  if (cls_[remove] == kSeam && (!seam || cls_[keep] == kInterior)) return false;
+  Quadric q = quad_[keep];
+  q += quad_[remove];
+  Vec3 p = pos_[keep];
+  if (movable(keep) && movable(remove)) {
+    // Optimal placement, else the best of the endpoints and the midpoint (§4).
+    if (!q.optimum(p)) {
+      const Vec3 mid = (pos_[keep] + pos_[remove]) * 0.5;
+      const Vec3 cand[3] = {pos_[keep], pos_[remove], mid};
+      double best = std::numeric_limits<double>::infinity();
+      for (const Vec3& c : cand) {
+        const double e = q.eval(c);
+        if (e < best) best = e, p = c;
+      }
+    }
+  }
+  out.cost = q.eval(p);
+  out.p = p;
+  out.keep = keep, out.remove = remove;
+  out.stamp_keep = stamp_[keep], out.stamp_remove = stamp_[remove];
+  out.last_tier = false;
+  if (touches_feature_[keep] || touches_feature_[remove]) {
+    out.cost += feature_offset_;
+    out.last_tier = o_.feature_mode == FeatureMode::last;
+  }
+  return true;
+}
+
+bool Simplifier::evaluate(std::uint32_t a, std::uint32_t b, bool seam, Candidate& out) const {
+  Candidate c1, c2;
+  const bool ok1 = direction(a, b, seam, c1);
+  // Both movable: one symmetric placement, no second direction needed.
+  const bool ok2 = !(ok1 && movable(a) && movable(b)) && direction(b, a, seam, c2);
+  if (!ok1 && !ok2) return false;
+  out = (ok1 && (!ok2 || c1.cost <= c2.cost)) ? c1 : c2;
+  return true;
+}
+
+// Link condition: the common neighbours of a and b are exactly the apexes of the triangles on ab.
+bool Simplifier::link_ok(std::uint32_t a, std::uint32_t b, int shared, Scratch& sc) const {
+  const std::uint32_t id = ++sc.id;
+  for (std::uint32_t i = 0; i < fan_count_[a]; ++i) {
+    const std::uint32_t t = refs_[fan_start_[a] + i];
+    if (dead_[t]) continue;
+    for (std::uint32_t w : tris_[t]) sc.mark_a[w] = id;
+  }
+  int common = 0;
+  for (std::uint32_t i = 0; i < fan_count_[b]; ++i) {
+    const std::uint32_t t = refs_[fan_start_[b] + i];
+    if (dead_[t]) continue;
+    for (std::uint32_t w : tris_[t]) {
+      if (w == a || w == b || sc.mark_b[w] == id) continue;
+      sc.mark_b[w] = id;
+      if (sc.mark_a[w] == id) ++common;
+    }
+  }
+  return common == shared;
+}
+
+namespace {
+bool normal_ok(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& pa, const Vec3& pb, const Vec3& pc,
+               double min_cos) {
+  const Vec3 n0 = cross(b - a, c - a);
+  const Vec3 n1 = cross(pb - pa, pc - pa);
+  const double l0 = squared_norm(n0), l1 = squared_norm(n1);
+  if (!(l1 > 0)) return false;
+  if (!(l0 > 0)) return true;  // a degenerate triangle becoming non-degenerate is no flip
+  const double d = dot(n0, n1);
+  if (d <= 0) return false;
+  return d * d >= min_cos * min_cos * l0 * l1 || min_cos <= 0;
+}
+}  // namespace
+
+// Every live triangle moved by the collapse (those of `remove` that do not contain `keep`, and, if
+// `keep` moves, those of `keep` that do not contain `remove`) keeps its orientation.
+bool Simplifier::flip_ok(std::uint32_t keep, std::uint32_t remove, const Vec3& p) const {
+  const double mc = o_.min_normal_cos;
+  for (int side = 0; side < 2; ++side) {
+    const std::uint32_t v = side == 0 ? remove : keep;
+    const std::uint32_t other = side == 0 ? keep : remove;
+    if (side == 1 && p == pos_[keep]) break;
+    for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
+      const std::uint32_t t = refs_[fan_start_[v] + i];
+      if (dead_[t]) continue;
+      const Tri& tr = tris_[t];
+      if (tr[0] == other || tr[1] == other || tr[2] == other) continue;
+      Vec3 q[3];
+      for (int k = 0; k < 3; ++k) q[k] = tr[k] == v ? p : pos_[tr[k]];
+      if (!normal_ok(pos_[tr[0]], pos_[tr[1]], pos_[tr[2]], q[0], q[1], q[2], mc)) return false;
+    }
+  }
+  return true;
+}
+
+void Simplifier::collapse(std::uint32_t a, std::uint32_t b, const Vec3& p, std::vector<std::uint32_t>& merged,
+                          std::size_t& died) {
+  merged.clear();
+  for (std::uint32_t i = 0; i < fan_count_[b]; ++i) {
+    const std::uint32_t t = refs_[fan_start_[b] + i];
+    if (dead_[t]) continue;
+    Tri& tr = tris_[t];
+    if (tr[0] == a || tr[1] == a || tr[2] == a) {
+      dead_[t] = 1;
+      ++died;
+      continue;
+    }
+    for (std::uint32_t& w : tr)
+      if (w == b) w = a;
+    merged.push_back(t);
+  }
+  for (std::uint32_t i = 0; i < fan_count_[a]; ++i) {
+    const std::uint32_t t = refs_[fan_start_[a] + i];
+    if (!dead_[t]) merged.push_back(t);
+  }
+  bool feat = false;
+  for (std::uint32_t t : merged) feat = feat || feature_tri_[t];
+  fan_count_[b] = 0;
+  vdead_[b] = 1;
+  pos_[a] = p;
+  quad_[a] += quad_[b];
+  touches_feature_[a] = feat;
+  ++stamp_[a];
+}
+
+}  // namespace interfere::qem

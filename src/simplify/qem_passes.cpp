@@ -1,0 +1,177 @@
+// Batched passes for large meshes, before the heap finishes with the exact budget: the scheme of
+// meshoptimizer's simplifier (Kapoulkine, meshopt_simplify): candidates sorted by cost (stable
+// parallel radix sort), walked from the cheapest up to an error limit of 1.5x the cost at half the
+// pass's goal, a collapse selected when neither end was used by an earlier selection of the pass
+// (independent-set decimation, Franc & Skala 2001). The selected collapses are checked against the
+// current mesh (link condition, flips) and applied in vertex order, in parallel over a fixed number
+// of contiguous vertex ranges: a collapse whose triangles touch an end of another range's collapse
+// is deferred to a serial sweep afterwards, so the ranges own disjoint triangle fans. Candidates of
+// edges whose ends did not change are kept; those of the changed ends are evaluated again (in
+// parallel). Every step is a fixed function of the mesh: results do not depend on the thread count
+// or on timing.
+#include "qem_internal.h"
+#include "radix_sort.h"
+
+namespace interfere::qem {
+namespace {
+constexpr std::size_t kRanges = 16;        ///< vertex ranges applied in parallel (fixed: deterministic)
+constexpr std::size_t kMinRange = 1024;  ///< collapses per range at least
+}  // namespace
+
+// Applies the selected collapses (sorted by kept end); returns how many were applied. Ranges run in
+// parallel; a collapse whose triangles hold an end of another range's collapse is deferred (so no
+// triangle is read by one range while another writes it: the writer would have been deferred too),
+// and the deferred ones are applied serially afterwards, in vertex order.
+std::size_t Simplifier::apply_selected(const std::vector<std::pair<std::uint32_t, std::uint32_t>>& selected,
+                                       std::size_t& live, std::vector<std::uint32_t>& changed) {
+  const std::size_t n = selected.size();
+  const std::size_t per = std::max(kMinRange, (n + kRanges - 1) / kRanges);
+  const std::size_t ranges = (n + per - 1) / per;
+  ++owner_pass_;
+  std::vector<std::size_t> bound(ranges + 1, 0);  // refs_ space for the grown fans of each range
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ranges, 1), [&](const tbb::blocked_range<std::size_t>& rg) {
+    for (std::size_t c = rg.begin(); c < rg.end(); ++c)
+      for (std::size_t k = c * per; k < std::min(n, (c + 1) * per); ++k) {
+        const auto [a, b] = selected[k];
+        owner_[a] = owner_[b] = {owner_pass_, static_cast<std::uint32_t>(c)};
+        bound[c + 1] += fan_count_[a] + fan_count_[b];
+      }
+  });
+  const std::size_t base = refs_.size();
+  for (std::size_t c = 0; c < ranges; ++c) bound[c + 1] += bound[c];
+  refs_.resize(base + bound[ranges]);
+  struct RangeResult {
+    std::size_t died = 0, link = 0, flip = 0;
+    std::vector<std::uint32_t> changed, deferred;
+  };
+  std::vector<RangeResult> res(ranges + 1);
+  // One collapse: checks, then b into a; a's grown fan goes to `*end` (the range's own space).
+  auto apply_one = [&](std::uint32_t a, std::uint32_t b, Scratch& sc, std::vector<std::uint32_t>& merged,
+                       RangeResult& out, std::size_t* end) {
+    int shared = 0;
+    const bool seam = seam_edge(a, b, &shared);
+    if (shared == 0) return;
+    Candidate c;
+    if (!direction(a, b, seam, c)) return;
+    if (!link_ok(a, b, shared, sc)) {
+      ++out.link;
+      return;
+    }
+    if (!flip_ok(a, b, c.p)) {
+      ++out.flip;
+      return;
+    }
+    collapse(a, b, c.p, merged, out.died);
+    if (end && merged.size() > fan_count_[a]) {
+      fan_start_[a] = static_cast<std::uint32_t>(*end);
+      std::copy(merged.begin(), merged.end(), refs_.begin() + *end);
+      fan_count_[a] = static_cast<std::uint32_t>(merged.size());
+      *end += merged.size();
+    } else {
+      set_fan(a, merged);
+    }
+    out.changed.push_back(a);
+  };
+  auto foreign = [&](std::uint32_t v, std::uint32_t c) {
+    for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
+      const std::uint32_t t = refs_[fan_start_[v] + i];
+      if (dead_[t]) continue;
+      for (std::uint32_t w : tris_[t])
+        if (owner_[w].pass == owner_pass_ && owner_[w].range != c) return true;
+    }
+    return false;
+  };
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ranges, 1), [&](const tbb::blocked_range<std::size_t>& rg) {
+    Scratch& sc = tls_->local();
+    std::vector<std::uint32_t> merged;
+    for (std::size_t c = rg.begin(); c < rg.end(); ++c) {
+      std::size_t end = base + bound[c];
+      const auto cc = static_cast<std::uint32_t>(c);
+      for (std::size_t k = c * per; k < std::min(n, (c + 1) * per); ++k) {
+        const auto [a, b] = selected[k];
+        if (foreign(a, cc) || foreign(b, cc)) res[c].deferred.push_back(static_cast<std::uint32_t>(k));
+        else apply_one(a, b, sc, merged, res[c], &end);
+      }
+    }
+  });
+  Scratch& sc = tls_->local();
+  for (std::size_t c = 0; c < ranges; ++c)
+    for (std::uint32_t k : res[c].deferred) apply_one(selected[k].first, selected[k].second, sc, merged_, res[ranges], nullptr);
+  std::size_t applied = 0;
+  changed.clear();
+  for (RangeResult& r : res) {
+    live -= r.died;
+    rejected_link_ += r.link, rejected_flip_ += r.flip;
+    applied += r.changed.size();
+    changed.insert(changed.end(), r.changed.begin(), r.changed.end());
+  }
+  return applied;
+}
+
+void Simplifier::batched_passes(std::vector<HeapEntry>& list, std::size_t handoff, std::size_t& live,
+                                SimplifyResult& r, PhaseClock& clock) {
+  std::vector<HeapEntry> tmp;
+  std::vector<std::uint32_t> taken(pos_.size(), 0);  // pass that used the vertex as an end
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> selected, selected_tmp;  // (keep, remove)
+  std::vector<std::uint32_t> changed, mark(pos_.size(), 0);
+  owner_.assign(pos_.size(), Owner{});
+  std::uint32_t pass = 0;
+  // The last few percent are left to the heap (small passes cost a sort and a sweep each).
+  while (live > handoff + handoff / 8 && !list.empty()) {
+    ++pass;
+    radix_sort_u32(list, tmp, [](const HeapEntry& e) { return key_bits(e); });
+    clock.lap("passes: sort");
+    const std::size_t goal = live - handoff;
+    // meshoptimizer's error limit: 1.5x the cost at half the goal (no limit in the last tier).
+    const HeapEntry& at = list[std::min(list.size() - 1, goal / 2)];
+    std::uint32_t limit = std::numeric_limits<std::uint32_t>::max();
+    if (!(key_bits(at) & 0x80000000u)) {
+      const float lim = at.cost * 1.5f;
+      std::memcpy(&limit, &lim, 4);
+      if (!std::isfinite(lim)) limit = 0x7fffffffu;
+    }
+    selected.clear();
+    std::size_t planned = 0;
+    for (const HeapEntry& e : list) {
+      if (planned >= goal || key_bits(e) > limit) break;
+      if (taken[e.keep] == pass || taken[e.remove] == pass) continue;
+      taken[e.keep] = taken[e.remove] = pass;
+      selected.push_back({e.keep, e.remove});
+      planned += 2;
+    }
+    // Vertex order: memory locality, and contiguous ranges for the parallel application.
+    radix_sort_u32(selected, selected_tmp, [](const std::pair<std::uint32_t, std::uint32_t>& s) { return s.first; });
+    clock.lap("passes: select");
+    const std::size_t applied = apply_selected(selected, live, changed);
+    r.collapses += applied;
+    compact_fans();
+    clock.lap("passes: apply");
+    if (applied == 0) break;
+    // Next list: the entries whose ends did not change (same cost), then the edges of the changed
+    // ends, each edge once (from its smaller end when both changed), in a fixed order.
+    for (std::uint32_t v : changed) mark[v] = pass;
+    const auto stale = [&](const HeapEntry& e) {
+      return vdead_[e.keep] || vdead_[e.remove] || mark[e.keep] == pass || mark[e.remove] == pass;
+    };
+    tmp.clear();
+    for (const HeapEntry& e : list)
+      if (!stale(e)) tmp.push_back(e);
+    clock.lap("passes: filter");
+    constexpr std::size_t kChunk = 1024;
+    std::vector<std::vector<HeapEntry>> fresh((changed.size() + kChunk - 1) / kChunk);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, fresh.size(), 1), [&](const tbb::blocked_range<std::size_t>& rg) {
+      Scratch& sc = tls_->local();
+      for (std::size_t ci = rg.begin(); ci < rg.end(); ++ci)
+        for (std::size_t k = ci * kChunk; k < std::min(changed.size(), (ci + 1) * kChunk); ++k) {
+          const std::uint32_t v = changed[k];
+          gather_neighbours(v, sc);
+          evaluate_gathered(v, sc, fresh[ci], [&](std::uint32_t w) { return mark[w] != pass || w > v; });
+        }
+    });
+    for (const auto& f : fresh) tmp.insert(tmp.end(), f.begin(), f.end());
+    list.swap(tmp);
+    clock.lap("passes: evaluate");
+  }
+}
+
+}  // namespace interfere::qem

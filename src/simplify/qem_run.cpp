@@ -1,0 +1,236 @@
+// One simplification run (Garland & Heckbert, SIGGRAPH 1997): per-vertex area-weighted plane
+// quadrics (§4), penalty planes through constrained edges (§6.1), vertex classes (interior, seam,
+// corner), the initial candidates with the assembly-feature offset of He & Xu (SJTU 2023, §3.3),
+// the batched passes for large meshes (qem_passes.cpp) and the min-heap loop to the exact budget.
+// The setup is parallel over fixed vertex blocks; every sum is taken in a fixed order, so results
+// are bit-identical for any thread count.
+#include <numeric>
+
+#include "qem_internal.h"
+#include "radix_sort.h"
+
+namespace interfere::qem {
+
+// Per-vertex quadrics in parallel: each vertex sums the planes of its fan in triangle order, the
+// same order (and bits) as a serial sweep over the triangles, for any thread count.
+void Simplifier::vertex_quadrics() {
+  quad_.assign(pos_.size(), Quadric{});
+  for_blocks(pos_.size(), [&](std::uint32_t v0, std::uint32_t v1, std::size_t) {
+    for (std::uint32_t v = v0; v < v1; ++v)
+      for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
+        const std::uint32_t t = refs_[fan_start_[v] + i];
+        if (dead_[t]) continue;
+        const auto& tr = tris_[t];
+        const Vec3 n2 = cross(pos_[tr[1]] - pos_[tr[0]], pos_[tr[2]] - pos_[tr[0]]);
+        const double len = norm(n2);
+        if (!(len > 0)) continue;
+        const Vec3 n = n2 / len;
+        quad_[v].add_plane(n, -dot(n, pos_[tr[0]]), 0.5 * len);
+      }
+  });
+}
+
+// Constrained edges: found in parallel (per vertex v, its edges to w > v in fan order), then
+// counted and given their penalty planes serially in that order (deterministic sums). A vertex on
+// two constrained edges is a seam vertex, on one or three and more (or on a non-manifold edge) a
+// corner.
+void Simplifier::classify_vertices(SimplifyResult& r) {
+  const std::size_t nv = pos_.size();
+  struct SeamEdge {
+    std::uint32_t v, w;
+    int shared;
+  };
+  std::vector<std::vector<SeamEdge>> seam_blocks(num_blocks(nv));
+  for_blocks(nv, [&](std::uint32_t v0, std::uint32_t v1, std::size_t block) {
+    Scratch& sc = tls_->local();
+    for (std::uint32_t v = v0; v < v1; ++v) {
+      gather_neighbours(v, sc);
+      for (const Scratch::Neighbour& n : sc.nbr)
+        if (n.w > v && (n.count != 2 || n.differ)) seam_blocks[block].push_back({v, n.w, int(n.count)});
+    }
+  });
+  std::vector<std::uint8_t> seam_count(nv, 0);
+  for (const auto& block : seam_blocks)
+    for (const SeamEdge& se : block) {
+      const std::uint32_t v = se.v, w = se.w;
+      seam_count[v] = static_cast<std::uint8_t>(std::min(255, seam_count[v] + 1));
+      seam_count[w] = static_cast<std::uint8_t>(std::min(255, seam_count[w] + 1));
+      if (se.shared > 2) seam_count[v] = seam_count[w] = 255;  // non-manifold edge: corners
+      // Penalty planes through the edge, perpendicular to each triangle on it.
+      const Vec3 e = pos_[w] - pos_[v];
+      for (std::uint32_t j = 0; j < fan_count_[v]; ++j) {
+        const std::uint32_t u = refs_[fan_start_[v] + j];
+        if (dead_[u]) continue;
+        const Tri& tr = tris_[u];
+        if (tr[0] != w && tr[1] != w && tr[2] != w) continue;
+        const Vec3 fn = cross(pos_[tr[1]] - pos_[tr[0]], pos_[tr[2]] - pos_[tr[0]]);
+        Vec3 n = cross(e, fn);
+        const double l = norm(n);
+        if (!(l > 0)) continue;
+        n = n / l;
+        const double d = -dot(n, pos_[v]);
+        const double w8 = o_.seam_weight * squared_norm(e);
+        quad_[v].add_plane(n, d, w8);
+        quad_[w].add_plane(n, d, w8);
+      }
+    }
+  for (std::uint32_t v = 0; v < nv; ++v) {
+    if (fan_count_[v] == 0) continue;
+    if (seam_count[v] == 2) cls_[v] = kSeam, ++r.seam_vertices;
+    else if (seam_count[v] != 0) cls_[v] = kCorner, ++r.corner_vertices;
+    if (locked_[v]) ++r.locked_vertices;
+  }
+}
+
+// One candidate per live edge, evaluated in parallel from the edge's smaller end (evaluation only
+// reads the mesh) and concatenated in vertex-block order: the same sequence for any thread count.
+std::vector<HeapEntry> Simplifier::edge_candidates() const {
+  const std::size_t nv = pos_.size();
+  std::vector<std::vector<HeapEntry>> blocks(num_blocks(nv));
+  for_blocks(nv, [&](std::uint32_t v0, std::uint32_t v1, std::size_t block) {
+    Scratch& sc = tls_->local();
+    std::vector<HeapEntry>& out = blocks[block];
+    for (std::uint32_t v = v0; v < v1; ++v)
+      if (fan_count_[v] > 0) candidates_of(v, sc, out, /*upper_only=*/true);
+  });
+  std::vector<std::size_t> offset(blocks.size() + 1, 0);
+  for (std::size_t b = 0; b < blocks.size(); ++b) offset[b + 1] = offset[b] + blocks[b].size();
+  std::vector<HeapEntry> list(offset.back());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks.size(), 1), [&](const tbb::blocked_range<std::size_t>& rg) {
+    for (std::size_t b = rg.begin(); b < rg.end(); ++b) {
+      std::copy(blocks[b].begin(), blocks[b].end(), list.begin() + offset[b]);
+      std::vector<HeapEntry>().swap(blocks[b]);
+    }
+  });
+  return list;
+}
+
+void Simplifier::run(std::size_t target, SimplifyResult& r) {
+  PhaseClock clock(r);
+  const std::size_t nv = pos_.size(), nt = tris_.size();
+  dead_.assign(nt, 0);
+  vdead_.assign(nv, 0);
+  tls_ = std::make_unique<tbb::enumerable_thread_specific<Scratch>>([nv] { return Scratch(nv); });
+  build_fans();
+  // Degenerate input triangles (repeated index) are dropped first.
+  std::size_t live = nt;
+  for (std::size_t t = 0; t < nt; ++t) {
+    const Tri& tr = tris_[t];
+    if (tr[0] == tr[1] || tr[1] == tr[2] || tr[0] == tr[2]) dead_[t] = 1, --live;
+  }
+  vertex_quadrics();
+  if (o_.prevent_self_intersections) {
+    guard_ = true;
+    for (std::size_t t = 0; t < nt; ++t) {
+      const auto& tr = tris_[t];
+      surface_area_ += 0.5 * norm(cross(pos_[tr[1]] - pos_[tr[0]], pos_[tr[2]] - pos_[tr[0]]));
+    }
+    tri_mark_.assign(nt, 0);
+    rebuild_grid(live);
+  }
+  stamp_.assign(nv, 0);
+  cls_.assign(nv, kInterior);
+  locked_.assign(nv, 0);
+  touches_feature_.assign(nv, 0);
+  for (std::size_t t = 0; t < nt; ++t) {
+    if (dead_[t] || !feature_tri_[t]) continue;
+    for (std::uint32_t v : tris_[t]) touches_feature_[v] = 1;
+  }
+  if (o_.feature_mode == FeatureMode::lock) locked_ = touches_feature_;
+  clock.lap("setup");
+  classify_vertices(r);
+  clock.lap("seams");
+  // The initial candidates without the feature offset give the maximum unmodified cost, the
+  // offset (weight mode, He & Xu §3.3); then the feature edges get it.
+  std::vector<HeapEntry> list = edge_candidates();
+  std::uint32_t max_bits = 0;
+  for (const HeapEntry& e : list) max_bits = std::max(max_bits, key_bits(e) & 0x7fffffffu);
+  float max_cost;
+  std::memcpy(&max_cost, &max_bits, 4);
+  r.max_unmodified_cost = max_cost;
+  if (o_.feature_mode == FeatureMode::weight) {
+    // Strictly above every unmodified cost even when that maximum is 0 (a flat mesh).
+    feature_offset_ = max_cost > 0 ? double(max_cost) : std::numeric_limits<double>::min();
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, list.size(), 1 << 16), [&](const tbb::blocked_range<std::size_t>& rg) {
+      for (std::size_t i = rg.begin(); i < rg.end(); ++i) {
+        HeapEntry& e = list[i];
+        if (touches_feature_[e.keep] || touches_feature_[e.remove])
+          e.cost = static_cast<float>(double(e.cost) + feature_offset_) + 0.0f;
+      }
+    });
+  }
+  clock.lap("initial candidates");
+  const std::size_t handoff = target + std::max<std::size_t>(target, 1024);
+  const bool batched =
+      !guard_ && o_.batched_passes && live >= o_.batched_min_triangles && live > handoff + handoff / 2;
+  if (batched) batched_passes(list, handoff, live, r, clock);
+  for (const HeapEntry& e : list) heap_.push(e);
+  std::vector<HeapEntry>().swap(list);
+  heap_loop(target, live, r);
+  clock.lap("heap");
+  r.rejected_link = rejected_link_, r.rejected_flip = rejected_flip_;
+  r.rejected_intersection = rejected_intersection_;
+}
+
+// The min-heap loop (§4): the cheapest valid candidate is collapsed, its end's edges evaluated
+// again. Collapses that would overshoot the budget are kept aside; if the budget cannot be met
+// exactly (only 2-triangle collapses left at budget + 1) they are retried to end at budget - 1.
+void Simplifier::heap_loop(std::size_t target, std::size_t& live, SimplifyResult& r) {
+  Scratch& sc = tls_->local();
+  std::vector<HeapEntry> deferred, fresh;
+  std::size_t floor = target;
+  for (;;) {
+    if (live <= target) break;
+    if (heap_.empty()) {
+      if (floor == target && target > 1 && live == target + 1 && !deferred.empty()) {
+        floor = target - 1;
+        for (const HeapEntry& d : deferred) heap_.push(d);
+        deferred.clear();
+        continue;
+      }
+      break;
+    }
+    const HeapEntry e = heap_.pop();
+    const std::uint32_t a = e.keep, b = e.remove;
+    if (vdead_[a] || vdead_[b] || static_cast<std::uint16_t>(stamp_[a]) != e.stamp_keep ||
+        static_cast<std::uint16_t>(stamp_[b]) != e.stamp_remove)
+      continue;
+    int shared = 0;
+    const bool seam = seam_edge(a, b, &shared);
+    if (shared == 0) continue;  // no longer an edge
+    Candidate c;
+    if (!direction(a, b, seam, c)) continue;  // placement recomputed (same quadrics: same result)
+    if (live - static_cast<std::size_t>(shared) < floor) {  // would overshoot the budget
+      deferred.push_back(e);
+      continue;
+    }
+    if (!link_ok(a, b, shared, sc)) {
+      ++rejected_link_;
+      continue;
+    }
+    if (!flip_ok(a, b, c.p)) {
+      ++rejected_flip_;
+      continue;
+    }
+    if (guard_ && !intersection_ok(a, b, c.p)) {
+      ++rejected_intersection_;
+      continue;
+    }
+    std::size_t died = 0;
+    collapse(a, b, c.p, merged_, died);
+    set_fan(a, merged_);
+    live -= died;
+    ++r.collapses;
+    if (guard_) {
+      if (live * 2 < grid_live_) rebuild_grid(live);
+      else
+        for (std::uint32_t t : merged_) grid_insert(t);
+    }
+    fresh.clear();
+    candidates_of(a, sc, fresh);
+    for (const HeapEntry& f : fresh) heap_.push(f);
+    compact_fans();
+  }
+}
+
+}  // namespace interfere::qem

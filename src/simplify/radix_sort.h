@@ -1,0 +1,62 @@
+// Parallel stable LSD radix sort (issue #6 speed targets: the batched QEM passes sort millions of
+// 16-byte candidate entries by a 32-bit key several times per run). Fixed blocks: per-block digit
+// histograms, exclusive offsets in (digit, block) order, scatter in parallel; the result is the
+// stable order, identical for any thread count. Digits whose histogram has a single bucket are
+// skipped. Not installed.
+#pragma once
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+namespace interfere {
+
+/// Sorts `v` stably by key(x) (uint32) ascending; `tmp` is scratch (resized).
+template <class T, class Key>
+void radix_sort_u32(std::vector<T>& v, std::vector<T>& tmp, Key key) {
+  constexpr int kBits = 11;
+  constexpr std::size_t kBuckets = std::size_t{1} << kBits;
+  constexpr std::size_t kBlock = 1 << 16;
+  const std::size_t n = v.size();
+  if (n < 2) return;
+  tmp.resize(n);
+  const std::size_t nb = (n + kBlock - 1) / kBlock;
+  std::vector<std::array<std::uint32_t, kBuckets>> hist(nb);
+  for (int shift = 0; shift < 32; shift += kBits) {
+    auto digit = [&](const T& x) { return (key(x) >> shift) & (kBuckets - 1); };
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nb, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t b = r.begin(); b < r.end(); ++b) {
+        auto& h = hist[b];
+        h.fill(0);
+        const std::size_t e = std::min(n, (b + 1) * kBlock);
+        for (std::size_t i = b * kBlock; i < e; ++i) ++h[digit(v[i])];
+      }
+    });
+    // Exclusive offsets, digit-major then block: stable. A digit shared by all keys is skipped.
+    std::size_t sum = 0, used = 0;
+    for (std::size_t d = 0; d < kBuckets; ++d) {
+      std::size_t total = 0;
+      for (std::size_t b = 0; b < nb; ++b) {
+        const std::uint32_t c = hist[b][d];
+        hist[b][d] = static_cast<std::uint32_t>(sum);
+        sum += c, total += c;
+      }
+      used += total > 0;
+    }
+    if (used == 1) continue;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nb, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t b = r.begin(); b < r.end(); ++b) {
+        auto& h = hist[b];
+        const std::size_t e = std::min(n, (b + 1) * kBlock);
+        for (std::size_t i = b * kBlock; i < e; ++i) tmp[h[digit(v[i])]++] = v[i];
+      }
+    });
+    v.swap(tmp);
+  }
+}
+
+}  // namespace interfere
