@@ -1,6 +1,5 @@
 // 30-bit Morton codes (Morton 1966; as in Karras 2012 for LBVH construction): 10 bits per axis
-// interleaved, x in the highest position. Used by the LBVH builder (bvh/build_lbvh.cpp) and the
-// simplifier's spatial vertex order (simplify/qem.cpp).
+// interleaved, x in the highest position. Used by the LBVH builder (bvh/build_lbvh.cpp).
 #pragma once
 #include <cstdint>
 
