@@ -149,10 +149,14 @@ quadric-error-metric edge collapses while the faces that take part in the curren
    the exact triangle test of `np/tri_tri.h` (the decision of the engine's clash query; pairs sharing a vertex
    position are skipped before the exact test, which made `clash(m, m)` slow here; unit test
    `Hausdorff.SelfIntersectionCountMatchesBruteForceAndTheEngineClash`) and, only if plain QEM created an
-   intersection, the run is repeated with a guard that refuses every collapse whose moved triangles would meet a
+   intersection, the run is repeated with a guard that refuses collapses whose moved triangles would meet a
    non-adjacent triangle (exact test of `np/tri_tri.h` against a hash grid rebuilt whenever the live triangle
-   count halves; about 10× slower), so the result never has a self-intersection the input did not have
-   (`guard_rerun` says which run was used). The input is welded by exact position;
+   count halves): first only near the intersecting pairs found (each pair's box grown by its diagonal; the grid
+   then holds only that neighbourhood's triangles, guarded collapses are applied in the serial sweep of the
+   batched passes, and one reaching beyond the neighbourhood is refused), up to 3 such reruns with the region
+   growing, then, as a last resort, on every collapse (about 10× slower); so the result never has a
+   self-intersection the input did not have (`guard_rerun`, `guard_reruns` say which run was used; unit test
+   `Simplify.IntersectionsOfThePlainRunAreRepairedByRegionalGuardedReruns`). The input is welded by exact position;
    seams (edges between different face ids), open boundaries and non-manifold edges are constrained: a vertex on
    two of them (a seam vertex) is only removed along one of them onto the other end, which stays put, so seams
    stay shared and are simplified as polylines through original vertices; a vertex on one or three or more
@@ -225,14 +229,14 @@ Exit status 0 on success, 2 on a usage or input error (the message names the fil
 written atomically and only after every input was validated.
 
 **`simplify` report**: `input_triangles`, `target_triangles`, `output_triangles`, `output_vertices`, `reached`,
-`collapses`, `rejected` {`link_condition`, `flipped_normal`, `self_intersection`}, `guard_rerun`, `vertices` {`welded_input`,
+`collapses`, `rejected` {`link_condition`, `flipped_normal`, `self_intersection`}, `guard_rerun`, `guard_reruns`, `vertices` {`welded_input`,
 `seam`, `corner`, `locked`}, `feature_mode`, `feature_faces`, `feature_triangles` {`input`, `output`},
 `max_unmodified_cost`, `bbox_diagonal`, `hausdorff`, `hausdorff_features` (null without features), `error_bound`,
 `self_intersections` (with the flag), `seconds` {`simplify`, `total`, `phases` [{`phase`, `seconds`}] (wall time
 of simplify()'s phases, in order; summed over the parts of a STEP input)}, `warnings`; for STEP input `cad` {`parts`
 [{`name`, `faces`, `triangles`, `features`, `assembly_feature_faces`}], `instances` [{`name`, `part`, `path`,
 `face_id_offset`}], `step`, `warnings`} and `parts_simplified` [{`name`, `instances`, `input_triangles`,
-`target_triangles`, `output_triangles`, `feature_triangles`, `hausdorff`, `hausdorff_features`, `guard_rerun`,
+`target_triangles`, `output_triangles`, `feature_triangles`, `hausdorff`, `hausdorff_features`, `guard_rerun`, `guard_reruns`,
 `self_intersections` (with the flag; for STEP input the report's count is the sum over parts × instances)}]. Face
 ids of a multi-instance STEP are offset per instance.
 

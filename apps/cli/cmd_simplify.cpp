@@ -97,7 +97,7 @@ Expected<SimplifyResult> simplify_parts(const cad::Prepared& prep, std::size_t t
                             {"target_triangles", n}, {"output_triangles", d.mesh.num_triangles()},
                             {"feature_triangles", {{"input", d.feature_triangles_in}, {"output", d.feature_triangles_out}}},
                             {"hausdorff", d.hausdorff}, {"hausdorff_features", d.hausdorff_features < 0 ? nlohmann::json(nullptr) : nlohmann::json(d.hausdorff_features)},
-                            {"guard_rerun", d.guard_rerun}});
+                            {"guard_rerun", d.guard_rerun}, {"guard_reruns", d.guard_reruns}});
     if (count_self) {
       const std::size_t x = count_self_intersections(d.mesh);
       parts_report.back()["self_intersections"] = x;
@@ -105,6 +105,7 @@ Expected<SimplifyResult> simplify_parts(const cad::Prepared& prep, std::size_t t
     }
     all.collapses += d.collapses, all.rejected_link += d.rejected_link, all.rejected_flip += d.rejected_flip;
     all.rejected_intersection += d.rejected_intersection, all.guard_rerun = all.guard_rerun || d.guard_rerun;
+    all.guard_reruns = std::max(all.guard_reruns, d.guard_reruns);
     all.seam_vertices += d.seam_vertices, all.corner_vertices += d.corner_vertices, all.locked_vertices += d.locked_vertices;
     all.input_vertices_welded += d.input_vertices_welded;
     for (const auto& [name, sec] : d.phases) {  // summed over the parts
@@ -267,6 +268,7 @@ int run_simplify(const SimplifyCliOptions& o) {
   report["rejected"] = {{"link_condition", r.rejected_link}, {"flipped_normal", r.rejected_flip},
                         {"self_intersection", r.rejected_intersection}};
   report["guard_rerun"] = r.guard_rerun;
+  report["guard_reruns"] = r.guard_reruns;
   report["vertices"] = {{"welded_input", r.input_vertices_welded}, {"seam", r.seam_vertices},
                         {"corner", r.corner_vertices}, {"locked", r.locked_vertices}};
   report["feature_mode"] = so.feature_mode == FeatureMode::lock ? "lock" : so.feature_mode == FeatureMode::last ? "last" : "weight";

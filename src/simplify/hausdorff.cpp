@@ -102,9 +102,10 @@ HausdorffResult hausdorff(const TriMesh& a, const TriMesh& b) {
 // clash query makes for a pair). Pairs sharing a vertex position are excluded before the exact test
 // (they touch by construction), which is what made clash(m, m) slow on a freshly simplified mesh:
 // every adjacent pair went through the exact (degenerate, touching) path, twice.
-std::size_t count_self_intersections(const TriMesh& mesh) {
+std::vector<std::pair<std::uint32_t, std::uint32_t>> self_intersecting_pairs(const TriMesh& mesh) {
+  using Pairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
   const std::size_t nt = mesh.num_triangles();
-  if (nt < 2) return 0;
+  if (nt < 2) return {};
   const Bvh bvh = build_bvh(mesh);
   // Leaf pairs whose boxes overlap (serial sweep of node pairs, each unordered pair once).
   std::vector<std::pair<std::uint32_t, std::uint32_t>> leaves, stack{{0u, 0u}};
@@ -128,9 +129,9 @@ std::size_t count_self_intersections(const TriMesh& mesh) {
       stack.push_back({i, b.first + 1});
     }
   }
-  return tbb::parallel_reduce(
-      tbb::blocked_range<std::size_t>(0, leaves.size(), 256), std::size_t{0},
-      [&](const tbb::blocked_range<std::size_t>& r, std::size_t count) {
+  Pairs pairs = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, leaves.size(), 256), Pairs{},
+      [&](const tbb::blocked_range<std::size_t>& r, Pairs found) {
         for (std::size_t k = r.begin(); k < r.end(); ++k) {
           const BvhNode& na = bvh.nodes[leaves[k].first];
           const BvhNode& nb = bvh.nodes[leaves[k].second];
@@ -142,12 +143,20 @@ std::size_t count_self_intersections(const TriMesh& mesh) {
               bool share = false;
               for (const Vec3& p : ca)
                 for (const Vec3& q : cb) share = share || p == q;
-              if (!share && tri_tri_exact_intersects(ca, cb)) ++count;
+              if (!share && tri_tri_exact_intersects(ca, cb))
+                found.emplace_back(std::min(bvh.prims[x], bvh.prims[y]), std::max(bvh.prims[x], bvh.prims[y]));
             }
         }
-        return count;
+        return found;
       },
-      [](std::size_t x, std::size_t y) { return x + y; });
+      [](Pairs x, const Pairs& y) {
+        x.insert(x.end(), y.begin(), y.end());
+        return x;
+      });
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
 }
+
+std::size_t count_self_intersections(const TriMesh& mesh) { return self_intersecting_pairs(mesh).size(); }
 
 }  // namespace interfere

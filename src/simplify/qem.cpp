@@ -115,19 +115,37 @@ Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& op
   clock.lap("output");
   if (options.prevent_self_intersections && !options.guard_every_collapse) {
     // The input's own intersections (touching parts of an assembly, say) cannot be removed: rerun
-    // only when the plain result has more than the input.
-    const std::size_t out_x = count_self_intersections(out);
-    if (out_x > 0) {
+    // only when the plain result has more than the input. The reruns guard the neighbourhoods of
+    // the intersecting pairs found so far (each pair's box grown by its diagonal), which keeps the
+    // batched passes; should a rerun still add an intersection elsewhere, its neighbourhood joins
+    // the region, and the last resort guards every collapse (then none can be added).
+    auto pairs = self_intersecting_pairs(out);
+    if (!pairs.empty()) {
       TriMesh input = weld_positions(mesh);
-      if (out_x > count_self_intersections(input)) {
+      const std::size_t input_x = count_self_intersections(input);
+      std::vector<Aabb> region;
+      constexpr int kRegionalReruns = 3;
+      for (int attempt = 0; pairs.size() > input_x && attempt <= kRegionalReruns; ++attempt) {
+        for (const auto& [x, y] : pairs) {
+          Aabb b;
+          for (const auto& t : {x, y})
+            for (const Vec3& c : out.corners(t)) b.expand(c);
+          const Vec3 grow = b.extent();
+          const double g = norm(grow);
+          region.push_back({b.lo - Vec3{g, g, g}, b.hi + Vec3{g, g, g}});
+        }
         auto phases = std::move(r.phases);
         r = before;
         r.phases = std::move(phases);
         r.guard_rerun = true;
-        sp = std::make_unique<qem::Simplifier>(std::move(input), face, feature_tri, options);
+        r.guard_reruns = static_cast<std::size_t>(attempt) + 1;
+        sp = std::make_unique<qem::Simplifier>(attempt == 0 ? TriMesh(input) : weld_positions(mesh), face, feature_tri,
+                                               options);
+        if (attempt < kRegionalReruns) sp->set_guard_region(region);
         sp->run(target, r);
         out_face.clear();
         out = compact(*sp, &out_face);
+        pairs = self_intersecting_pairs(out);
       }
     }
   }

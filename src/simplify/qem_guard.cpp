@@ -43,12 +43,16 @@ void Simplifier::grid_cells(const Aabb& box, F&& f) const {
 void Simplifier::grid_insert(std::uint32_t t) {
   Aabb b;
   for (std::uint32_t v : tris_[t]) b.expand(pos_[v]);
+  if (!near_region(b)) return;
   grid_cells(b, [&](std::uint64_t key) { grid_[key].push_back(t); });
 }
 
 // The triangles a collapse creates or moves must not meet any other triangle of the mesh except
 // through shared vertices (exact test: np/tri_tri.h).
 bool Simplifier::intersection_ok(std::uint32_t keep, std::uint32_t remove, const Vec3& p) {
+  // With a guard region the grid holds only the triangles near it: a collapse reaching beyond that
+  // neighbourhood cannot be checked and is refused.
+  if (!guard_boxes_.empty() && !within_region(moved_box(keep, remove, p))) return false;
   ++tri_mark_id_;
   for (int side = 0; side < 2; ++side) {
     const std::uint32_t v = side == 0 ? remove : keep;
@@ -93,6 +97,50 @@ bool Simplifier::intersection_ok(std::uint32_t keep, std::uint32_t remove, const
     }
   }
   return true;
+}
+
+// The box of the triangles the collapse moves, at their new place.
+Aabb Simplifier::moved_box(std::uint32_t keep, std::uint32_t remove, const Vec3& p) const {
+  Aabb moved;
+  for (const std::uint32_t v : {remove, keep})
+    for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
+      const std::uint32_t t = refs_[fan_start_[v] + i];
+      if (dead_[t]) continue;
+      for (std::uint32_t w : tris_[t]) moved.expand(w == remove || w == keep ? p : pos_[w]);
+    }
+  return moved;
+}
+
+bool Simplifier::near_region(const Aabb& b) const {
+  if (guard_boxes_.empty()) return true;
+  if (!b.overlaps(guard_outer_all_)) return false;
+  for (const Aabb& o : guard_outer_)
+    if (b.overlaps(o)) return true;
+  return false;
+}
+
+bool Simplifier::within_region(const Aabb& b) const {
+  if (guard_boxes_.empty()) return true;
+  for (const Aabb& o : guard_outer_)
+    if (o.contains(b.lo) && o.contains(b.hi)) return true;
+  return false;
+}
+
+// The moved triangles reach a guard box.
+bool Simplifier::guarded(std::uint32_t keep, std::uint32_t remove, const Vec3& p) const {
+  if (guard_boxes_.empty()) return true;
+  const Aabb moved = moved_box(keep, remove, p);
+  if (!moved.overlaps(guard_all_)) return false;
+  for (const Aabb& b : guard_boxes_)
+    if (moved.overlaps(b)) return true;
+  return false;
+}
+
+void Simplifier::grid_insert_fan(std::uint32_t v) {
+  for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
+    const std::uint32_t t = refs_[fan_start_[v] + i];
+    if (!dead_[t]) grid_insert(t);
+  }
 }
 
 }  // namespace interfere::qem

@@ -197,6 +197,21 @@ class Simplifier {
         o_(o) {}
 
   void run(std::size_t target, SimplifyResult& r);
+  /// With prevent_self_intersections: only collapses whose moved triangles reach one of these boxes
+  /// are checked by the guard (empty: every collapse).
+  /// The grid then holds only the triangles near the region (each box grown by its diagonal), and
+  /// a guarded collapse whose moved triangles leave that neighbourhood is refused (conservative).
+  void set_guard_region(std::vector<Aabb> boxes) {
+    guard_boxes_ = std::move(boxes);
+    guard_all_ = guard_outer_all_ = Aabb{};
+    guard_outer_.clear();
+    for (const Aabb& b : guard_boxes_) {
+      guard_all_.expand(b);
+      const double g = norm(b.extent());
+      guard_outer_.push_back({b.lo - Vec3{g, g, g}, b.hi + Vec3{g, g, g}});
+      guard_outer_all_.expand(guard_outer_.back());
+    }
+  }
   std::vector<Vec3> pos_;
   std::vector<Tri> tris_;
   std::vector<std::uint32_t> face_;
@@ -250,6 +265,10 @@ class Simplifier {
                       PhaseClock& clock);
   // Self-intersection guard (qem_guard.cpp).
   bool intersection_ok(std::uint32_t keep, std::uint32_t remove, const Vec3& p);
+  /// The guard checks this collapse (its moved triangles reach the guard region).
+  bool guarded(std::uint32_t keep, std::uint32_t remove, const Vec3& p) const;
+  /// Registers the live triangles of v's fan at their current positions.
+  void grid_insert_fan(std::uint32_t v);
   void grid_insert(std::uint32_t t);
   void rebuild_grid(std::size_t live);
   template <class F>
@@ -274,6 +293,12 @@ class Simplifier {
   // Self-intersection guard: a uniform hash grid of triangle boxes (entries may be stale: every
   // candidate is re-checked against the current mesh).
   bool guard_ = false;
+  std::vector<Aabb> guard_boxes_;  ///< guard region (empty: everywhere)
+  std::vector<Aabb> guard_outer_;  ///< its neighbourhood, where the grid is kept
+  Aabb guard_all_, guard_outer_all_;
+  bool near_region(const Aabb& b) const;    ///< overlaps the neighbourhood (always without a region)
+  bool within_region(const Aabb& b) const;  ///< inside one neighbourhood box (always without a region)
+  Aabb moved_box(std::uint32_t keep, std::uint32_t remove, const Vec3& p) const;
   double cell_ = 1;
   Vec3 origin_;
   std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> grid_;

@@ -41,11 +41,13 @@ std::size_t Simplifier::apply_selected(const std::vector<std::pair<std::uint32_t
   for (std::size_t c = 0; c < ranges; ++c) bound[c + 1] += bound[c];
   refs_.resize(base + bound[ranges]);
   struct RangeResult {
-    std::size_t died = 0, link = 0, flip = 0;
+    std::size_t died = 0, link = 0, flip = 0, intersection = 0;
     std::vector<std::uint32_t> changed, deferred;
   };
   std::vector<RangeResult> res(ranges + 1);
-  // One collapse: checks, then b into a; a's grown fan goes to `*end` (the range's own space).
+  // One collapse: checks, then b into a; a's grown fan goes to `*end` (the range's own space). The
+  // self-intersection guard runs only in the serial sweep (end == nullptr): it reads and extends
+  // the shared grid.
   auto apply_one = [&](std::uint32_t a, std::uint32_t b, Scratch& sc, std::vector<std::uint32_t>& merged,
                        RangeResult& out, std::size_t* end) {
     int shared = 0;
@@ -61,6 +63,10 @@ std::size_t Simplifier::apply_selected(const std::vector<std::pair<std::uint32_t
       ++out.flip;
       return;
     }
+    if (!end && guard_ && guarded(a, b, c.p) && !intersection_ok(a, b, c.p)) {
+      ++out.intersection;
+      return;
+    }
     collapse(a, b, c.p, merged, out.died);
     if (end && merged.size() > fan_count_[a]) {
       fan_start_[a] = static_cast<std::uint32_t>(*end);
@@ -71,6 +77,13 @@ std::size_t Simplifier::apply_selected(const std::vector<std::pair<std::uint32_t
       set_fan(a, merged);
     }
     out.changed.push_back(a);
+  };
+  // Guarded collapses go to the serial sweep.
+  auto needs_guard = [&](std::uint32_t a, std::uint32_t b) {
+    if (!guard_) return false;
+    int shared = 0;
+    Candidate c;
+    return direction(a, b, seam_edge(a, b, &shared), c) && guarded(a, b, c.p);
   };
   auto foreign = [&](std::uint32_t v, std::uint32_t c) {
     for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
@@ -89,19 +102,27 @@ std::size_t Simplifier::apply_selected(const std::vector<std::pair<std::uint32_t
       const auto cc = static_cast<std::uint32_t>(c);
       for (std::size_t k = c * per; k < std::min(n, (c + 1) * per); ++k) {
         const auto [a, b] = selected[k];
-        if (foreign(a, cc) || foreign(b, cc)) res[c].deferred.push_back(static_cast<std::uint32_t>(k));
+        if (foreign(a, cc) || foreign(b, cc) || needs_guard(a, b)) res[c].deferred.push_back(static_cast<std::uint32_t>(k));
         else apply_one(a, b, sc, merged, res[c], &end);
       }
     }
   });
   Scratch& sc = tls_->local();
+  if (guard_) {  // the triangles moved in parallel enter the grid before the guarded checks
+    for (std::size_t c = 0; c < ranges; ++c)
+      for (std::uint32_t v : res[c].changed) grid_insert_fan(v);
+  }
   for (std::size_t c = 0; c < ranges; ++c)
-    for (std::uint32_t k : res[c].deferred) apply_one(selected[k].first, selected[k].second, sc, merged_, res[ranges], nullptr);
+    for (std::uint32_t k : res[c].deferred) {
+      const std::size_t before = res[ranges].changed.size();
+      apply_one(selected[k].first, selected[k].second, sc, merged_, res[ranges], nullptr);
+      if (guard_ && res[ranges].changed.size() > before) grid_insert_fan(res[ranges].changed.back());
+    }
   std::size_t applied = 0;
   changed.clear();
   for (RangeResult& r : res) {
     live -= r.died;
-    rejected_link_ += r.link, rejected_flip_ += r.flip;
+    rejected_link_ += r.link, rejected_flip_ += r.flip, rejected_intersection_ += r.intersection;
     applied += r.changed.size();
     changed.insert(changed.end(), r.changed.begin(), r.changed.end());
   }
@@ -145,6 +166,7 @@ void Simplifier::batched_passes(std::vector<HeapEntry>& list, std::size_t handof
     const std::size_t applied = apply_selected(selected, live, changed);
     r.collapses += applied;
     compact_fans();
+    if (guard_ && live * 2 < grid_live_) rebuild_grid(live);
     clock.lap("passes: apply");
     if (applied == 0) break;
     // Next list: the entries whose ends did not change (same cost), then the edges of the changed

@@ -161,8 +161,9 @@ void Simplifier::run(std::size_t target, SimplifyResult& r) {
   }
   clock.lap("initial candidates");
   const std::size_t handoff = target + std::max<std::size_t>(target, 1024);
-  const bool batched =
-      !guard_ && o_.batched_passes && live >= o_.batched_min_triangles && live > handoff + handoff / 2;
+  // With a guard everywhere (every collapse checked serially) the heap alone is as fast.
+  const bool batched = !(guard_ && guard_boxes_.empty()) && o_.batched_passes && live >= o_.batched_min_triangles &&
+                       live > handoff + handoff / 2;
   if (batched) batched_passes(list, handoff, live, r, clock);
   for (const HeapEntry& e : list) heap_.push(e);
   std::vector<HeapEntry>().swap(list);
@@ -212,7 +213,7 @@ void Simplifier::heap_loop(std::size_t target, std::size_t& live, SimplifyResult
       ++rejected_flip_;
       continue;
     }
-    if (guard_ && !intersection_ok(a, b, c.p)) {
+    if (guard_ && guarded(a, b, c.p) && !intersection_ok(a, b, c.p)) {
       ++rejected_intersection_;
       continue;
     }

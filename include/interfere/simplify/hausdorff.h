@@ -6,6 +6,9 @@
 // true Hausdorff distance that is tight where the error is largest at vertices, as it is for QEM).
 #pragma once
 #include <cstddef>
+#include <cstdint>
+#include <utility>
+#include <vector>
 
 #include "interfere/mesh/tri_mesh.h"
 
@@ -27,5 +30,8 @@ HausdorffResult hausdorff(const TriMesh& a, const TriMesh& b);
 /// Pairs of triangles of `mesh` that intersect without sharing a vertex position (the engine's
 /// exact clash of the mesh against itself): 0 for a mesh free of self-intersections.
 std::size_t count_self_intersections(const TriMesh& mesh);
+
+/// The intersecting pairs themselves (triangle indices, smaller first), sorted.
+std::vector<std::pair<std::uint32_t, std::uint32_t>> self_intersecting_pairs(const TriMesh& mesh);
 
 }  // namespace interfere

@@ -104,6 +104,61 @@ TEST(Simplify, GuardEveryCollapseGivesTheSameBudgetWithoutSelfIntersections) {
   EXPECT_TRUE(closed_manifold(r->mesh));
 }
 
+// Two wavy sheets 0.004 apart (open, 2 x 28,800 triangles): simplified to 200 triangles, plain QEM
+// pushes one through the other.
+TriMesh two_close_sheets() {
+  TriMesh m;
+  for (double z0 : {0.0, 0.004}) {
+    const int n = 120;
+    const auto base = static_cast<std::uint32_t>(m.positions.size());
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) {
+        const double x = double(i) / n, y = double(j) / n;
+        m.positions.push_back({x, y, z0 + 0.03 * std::sin(17 * x) * std::cos(5 * y)});
+      }
+    auto id = [&](int i, int j) { return base + static_cast<std::uint32_t>(j * (n + 1) + i); };
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+        m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+      }
+  }
+  return m;
+}
+
+TEST(Simplify, IntersectionsOfThePlainRunAreRepairedByRegionalGuardedReruns) {
+  const TriMesh m = two_close_sheets();
+  ASSERT_EQ(count_self_intersections(m), 0u);
+  SimplifyOptions plain{.target_triangles = 200, .prevent_self_intersections = false, .measure_error = false};
+  auto p = simplify(m, plain);
+  ASSERT_TRUE(p.has_value());
+  ASSERT_GT(count_self_intersections(p->mesh), 0u);  // the case this test is about
+  SimplifyOptions o = plain;
+  o.prevent_self_intersections = true;
+  auto run_with = [&](int threads) {
+    tbb::task_arena arena(threads);
+    Expected<SimplifyResult> r = Error{};
+    arena.execute([&] { r = simplify(m, o); });
+    return r;
+  };
+  auto r = run_with(2), one = run_with(1);
+  ASSERT_TRUE(r.has_value() && one.has_value());
+  EXPECT_TRUE(r->guard_rerun);
+  EXPECT_GE(r->guard_reruns, 1u);
+  EXPECT_LE(r->guard_reruns, 4u);
+  EXPECT_GT(r->rejected_intersection, 0u);
+  EXPECT_EQ(r->mesh.num_triangles(), 200u);
+  EXPECT_EQ(count_self_intersections(r->mesh), 0u);
+  EXPECT_EQ(one->mesh.triangles, r->mesh.triangles);  // the reruns are deterministic too
+  EXPECT_EQ(one->guard_reruns, r->guard_reruns);
+  // The last resort, a guard on every collapse, leaves none either.
+  o.guard_every_collapse = true;
+  auto g = simplify(m, o);
+  ASSERT_TRUE(g.has_value());
+  EXPECT_EQ(count_self_intersections(g->mesh), 0u);
+  EXPECT_EQ(g->mesh.num_triangles(), 200u);
+}
+
 TEST(Simplify, OddBudgetOnAClosedMeshStopsOneShortOnAnOpenMeshIsExact) {
   const TriMesh s = make_sphere({.target_triangles = 4000});
   auto closed = simplify(s, {.target_triangles = 401, .measure_error = false});
@@ -359,16 +414,18 @@ TEST(Hausdorff, SelfIntersectionCountMatchesBruteForceAndTheEngineClash) {
   m.positions.insert(m.positions.end(), b.positions.begin(), b.positions.end());
   for (Tri t : b.triangles) m.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
   std::size_t brute = 0;
-  for (std::size_t i = 0; i < m.num_triangles(); ++i)
-    for (std::size_t j = i + 1; j < m.num_triangles(); ++j) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> brute_pairs;
+  for (std::uint32_t i = 0; i < m.num_triangles(); ++i)
+    for (std::uint32_t j = i + 1; j < m.num_triangles(); ++j) {
       const auto ca = m.corners(i), cb = m.corners(j);
       bool share = false;
       for (const Vec3& p : ca)
         for (const Vec3& q : cb) share = share || p == q;
-      if (!share && tri_tri_exact_intersects(ca, cb)) ++brute;
+      if (!share && tri_tri_exact_intersects(ca, cb)) ++brute, brute_pairs.emplace_back(i, j);
     }
   ASSERT_GT(brute, 20u);
   EXPECT_EQ(count_self_intersections(m), brute);
+  EXPECT_EQ(self_intersecting_pairs(m), brute_pairs);  // the same pairs, sorted
   const Model model = make_model(m, {}, false);
   ClashRequest req;
   req.regions = false, req.containment = false;
