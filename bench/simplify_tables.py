@@ -373,9 +373,11 @@ def write_doc(raw):
     # seconds.phases), recorded by the benchmark as phase:<name> counters.
     ph_rows = [n for n in ("Simplify/interfere/1e6/1pct", "Casing/interfere/P1") if n in r and "error" not in r[n]]
     if ph_rows:
-        names = []
-        for n in ph_rows:
-            for k in r[n]:
+        order = ["weld", "setup", "seams", "initial candidates", "passes: sort", "passes: select", "passes: apply",
+                 "passes: filter", "passes: evaluate", "heap", "output", "check", "split", "error"]
+        names = [p for p in order if any("phase:" + p in r[n] for n in ph_rows)]
+        for n in ph_rows:  # phases this list does not know yet, after it
+            for k in sorted(r[n]):
                 if k.startswith("phase:") and k[6:] not in names:
                     names.append(k[6:])
         lines.append("Where the time goes (ms, wall; `seconds.phases` of the report, same run):")

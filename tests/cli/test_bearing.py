@@ -5,45 +5,25 @@ written or overwritten).
 
 Usage: test_bearing.py PATH_TO_INTERFERE WORK_DIR   (run by ctest). Standard library only.
 """
-import csv
 import json
 import math
 import os
-import shutil
-import subprocess
 import sys
 import unittest
 
-EXE = None
-WORK = None
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import cli_common  # noqa: E402
+from cli_common import path, read_csv, load_json as load, read_text as slurp  # noqa: E402
+
+
+def run(*args):
+    return cli_common.run(*args, command=("bearing",))
+
+
 EXAMPLE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "data", "examples", "bearing.parameters")
 
 COLUMNS = ["frame", "pair", "distance", "interference", "ax", "ay", "az", "bx", "by", "bz", "solver", "path",
            "scarred", "scar_in_range", "box_overlap", "tilt_deg", "azimuth_deg", "spin_deg", "evaluated"]
-
-
-def run(*args):
-    p = subprocess.run([EXE, "--quiet", "bearing", *args], capture_output=True, text=True, timeout=120)
-    return p.returncode, p.stdout, p.stderr
-
-
-def path(name):
-    return os.path.join(WORK, name)
-
-
-def slurp(name):
-    with open(path(name)) as f:
-        return f.read()
-
-
-def load(name):
-    with open(path(name)) as f:
-        return json.load(f)
-
-
-def read_csv(name):
-    with open(path(name), newline="") as f:
-        return list(csv.DictReader(f))
 
 
 class Bearing(unittest.TestCase):
@@ -151,7 +131,4 @@ class Bearing(unittest.TestCase):
 
 
 if __name__ == "__main__":
-    EXE, WORK = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
-    shutil.rmtree(WORK, ignore_errors=True)
-    os.makedirs(WORK)
-    unittest.main(argv=sys.argv[:1], verbosity=2)
+    cli_common.main()

@@ -4,26 +4,16 @@
 Usage: test_cli.py PATH_TO_INTERFERE WORK_DIR   (run by ctest). Standard library only.
 """
 import json
-import math
 import os
-import shutil
 import struct
-import subprocess
 import sys
 import unittest
 
-EXE = None
-WORK = None
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import cli_common  # noqa: E402
+from cli_common import path, run, write_obj  # noqa: E402
+
 EXAMPLES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "data", "examples")
-
-
-def run(*args):
-    p = subprocess.run([EXE, "--quiet", *args], capture_output=True, text=True, timeout=120)
-    return p.returncode, p.stdout, p.stderr
-
-
-def path(name):
-    return os.path.join(WORK, name)
 
 
 def box(lo, hi):
@@ -31,16 +21,6 @@ def box(lo, hi):
     v = [(x0, y0, z0), (x1, y0, z0), (x1, y1, z0), (x0, y1, z0), (x0, y0, z1), (x1, y0, z1), (x1, y1, z1), (x0, y1, z1)]
     f = [(0, 2, 1), (0, 3, 2), (4, 5, 6), (4, 6, 7), (0, 1, 5), (0, 5, 4), (1, 2, 6), (1, 6, 5), (2, 3, 7), (2, 7, 6), (3, 0, 4), (3, 4, 7)]
     return v, f
-
-
-def write_obj(name, mesh):
-    v, f = mesh
-    with open(path(name), "w") as out:
-        for p in v:
-            out.write("v %r %r %r\n" % p)
-        for t in f:
-            out.write("f %d %d %d\n" % (t[0] + 1, t[1] + 1, t[2] + 1))
-    return path(name)
 
 
 def write_stl(name, mesh):
@@ -175,7 +155,7 @@ class Cli(unittest.TestCase):
             self.assertIn(m, err)
         self.assertFalse(os.path.exists(target))
         self.assertEqual(open(keep).read(), "precious\n")
-        self.assertEqual([n for n in os.listdir(WORK) if ".tmp-" in n], [])
+        self.assertEqual([n for n in os.listdir(cli_common.WORK) if ".tmp-" in n], [])
 
     def test_missing_file(self):
         self.assert_input_error(["clash", path("nope.stl"), os.path.join(EXAMPLES, "pin.obj")], ["nope.stl"])
@@ -227,8 +207,4 @@ class Cli(unittest.TestCase):
 
 
 if __name__ == "__main__":
-    EXE, WORK = sys.argv[1], sys.argv[2]
-    shutil.rmtree(WORK, ignore_errors=True)
-    os.makedirs(WORK)
-    prog = unittest.main(argv=[sys.argv[0], "-v"], exit=False)
-    sys.exit(0 if prog.result.wasSuccessful() else 1)
+    cli_common.main()

@@ -5,25 +5,14 @@ bodies over a displacement time series, results named by element ids, bad input.
 Usage: test_fem.py PATH_TO_INTERFERE WORK_DIR   (run by ctest). Standard library only. The meshes
 are written here as Gmsh MSH 2.2 ASCII (hexahedra, type 5) with a $NodeData time series.
 """
-import json
 import os
-import shutil
 import struct
-import subprocess
 import sys
 import unittest
 
-EXE = None
-WORK = None
-
-
-def run(*args):
-    p = subprocess.run([EXE, "--quiet", *args], capture_output=True, text=True, timeout=120)
-    return p.returncode, p.stdout, p.stderr
-
-
-def path(name):
-    return os.path.join(WORK, name)
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import cli_common  # noqa: E402
+from cli_common import path, run, load_json  # noqa: E402
 
 
 def hex_box(lo, hi, n, first_node, first_elem):
@@ -85,11 +74,6 @@ def write_model(name, steps=STEPS, extra_field_steps=None, corrupt=False):
 def read_bytes(p):
     with open(p, "rb") as f:
         return f.read()
-
-
-def load_json(p):
-    with open(p) as f:
-        return json.load(f)
 
 
 def read_binary_stl(p):
@@ -299,8 +283,4 @@ class FemCli(unittest.TestCase):
 
 
 if __name__ == "__main__":
-    EXE, WORK = sys.argv[1], sys.argv[2]
-    shutil.rmtree(WORK, ignore_errors=True)
-    os.makedirs(WORK)
-    prog = unittest.main(argv=[sys.argv[0], "-v"], exit=False)
-    sys.exit(0 if prog.result.wasSuccessful() else 1)
+    cli_common.main()

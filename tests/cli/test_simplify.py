@@ -7,23 +7,14 @@ Usage: test_simplify.py PATH_TO_INTERFERE WORK_DIR   (run by ctest). Standard li
 import json
 import math
 import os
-import shutil
-import subprocess
 import sys
 import unittest
 
-EXE = None
-WORK = None
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import cli_common  # noqa: E402
+from cli_common import path, run, write_obj, load_json  # noqa: E402
+
 DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data")
-
-
-def run(*args):
-    p = subprocess.run([EXE, "--quiet", *args], capture_output=True, text=True, timeout=120)
-    return p.returncode, p.stdout, p.stderr
-
-
-def path(name):
-    return os.path.join(WORK, name)
 
 
 def uv_sphere(lon=40, lat=21, bump=0.05):
@@ -46,20 +37,6 @@ def uv_sphere(lon=40, lat=21, bump=0.05):
             f.append((a, c, b))
             f.append((b, c, d))
     return v, f
-
-
-def write_obj(name, mesh):
-    v, f = mesh
-    with open(path(name), "w") as out:
-        for p in v:
-            out.write("v %r %r %r\n" % p)
-        for t in f:
-            out.write("f %d %d %d\n" % (t[0] + 1, t[1] + 1, t[2] + 1))
-
-
-def load_json(name):
-    with open(path(name)) as f:
-        return json.load(f)
 
 
 def read_ply_ascii(name):
@@ -244,8 +221,4 @@ class Features(unittest.TestCase):
 
 
 if __name__ == "__main__":
-    EXE = os.path.abspath(sys.argv[1])
-    WORK = os.path.abspath(sys.argv[2])
-    shutil.rmtree(WORK, ignore_errors=True)
-    os.makedirs(WORK)
-    unittest.main(argv=sys.argv[:1], verbosity=2)
+    cli_common.main()

@@ -5,47 +5,20 @@ output behind).
 
 Usage: test_sweep.py PATH_TO_INTERFERE WORK_DIR   (run by ctest). Standard library only.
 """
-import csv
-import json
 import os
-import shutil
-import subprocess
 import sys
 import unittest
 
-EXE = None
-WORK = None
-ROBOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "data", "examples", "probe_5axis.json")
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import cli_common  # noqa: E402
+from cli_common import path, write_text as write, load_json as load, read_text as text, read_csv as table  # noqa: E402
 
 
 def run(*args):
-    p = subprocess.run([EXE, "--quiet", "sweep", *args], capture_output=True, text=True, timeout=120)
-    return p.returncode, p.stdout, p.stderr
+    return cli_common.run(*args, command=("sweep",))
 
 
-def path(name):
-    return os.path.join(WORK, name)
-
-
-def write(name, text):
-    with open(path(name), "w") as f:
-        f.write(text)
-    return path(name)
-
-
-def load(name):
-    with open(name) as f:
-        return json.load(f)
-
-
-def text(name):
-    with open(name) as f:
-        return f.read()
-
-
-def table(name):
-    with open(name) as f:
-        return list(csv.DictReader(f))
+ROBOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "data", "examples", "probe_5axis.json")
 
 
 def plate_obj(name, z, half=500.0, n=4):
@@ -196,8 +169,4 @@ class Sweep(unittest.TestCase):
 
 
 if __name__ == "__main__":
-    EXE = os.path.abspath(sys.argv[1])
-    WORK = os.path.abspath(sys.argv[2])
-    shutil.rmtree(WORK, ignore_errors=True)
-    os.makedirs(WORK)
-    unittest.main(argv=[sys.argv[0], "-v"])
+    cli_common.main()

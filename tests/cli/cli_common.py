@@ -1,0 +1,66 @@
+"""Shared plumbing of the CLI end-to-end tests (tests/cli/test_*.py, run by ctest as
+`test_X.py PATH_TO_INTERFERE WORK_DIR`): the executable and a fresh work directory from the command
+line, running the CLI, paths in the work directory, readers and writers. Standard library only."""
+import csv
+import json
+import os
+import shutil
+import subprocess
+import sys
+import unittest
+
+EXE = None   # path of the interfere executable (set by main)
+WORK = None  # fresh work directory of the test module (set by main)
+
+
+def run(*args, command=()):
+    """Runs `interfere --quiet [command...] args...`; returns (exit status, stdout, stderr)."""
+    p = subprocess.run([EXE, "--quiet", *command, *args], capture_output=True, text=True, timeout=120)
+    return p.returncode, p.stdout, p.stderr
+
+
+def path(name):
+    """`name` inside the work directory (an absolute path is returned as it is)."""
+    return os.path.join(WORK, name)
+
+
+def read_text(name):
+    with open(path(name)) as f:
+        return f.read()
+
+
+def load_json(name):
+    with open(path(name)) as f:
+        return json.load(f)
+
+
+def read_csv(name):
+    with open(path(name), newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def write_text(name, text):
+    with open(path(name), "w") as f:
+        f.write(text)
+    return path(name)
+
+
+def write_obj(name, mesh):
+    """Writes (vertices, triangles with 0-based indices) as OBJ; returns its path."""
+    v, f = mesh
+    with open(path(name), "w") as out:
+        for p in v:
+            out.write("v %r %r %r\n" % tuple(p))
+        for t in f:
+            out.write("f %d %d %d\n" % (t[0] + 1, t[1] + 1, t[2] + 1))
+    return path(name)
+
+
+def main():
+    """Reads EXE and WORK from the command line, empties WORK, runs the calling module's tests."""
+    global EXE, WORK
+    EXE, WORK = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
+    shutil.rmtree(WORK, ignore_errors=True)
+    os.makedirs(WORK)
+    prog = unittest.main(module="__main__", argv=[sys.argv[0], "-v"], exit=False)
+    sys.exit(0 if prog.result.wasSuccessful() else 1)
