@@ -138,7 +138,7 @@ quadric-error-metric edge collapses while the faces that take part in the curren
    neither end was used by an earlier selection of the pass; the selected collapses are sorted by vertex, checked
    (link condition, flips, against the current mesh) and applied in 16 contiguous vertex ranges in parallel — a
    collapse whose triangles hold an end of another range's collapse is deferred to a serial sweep afterwards, so
-   the ranges touch disjoint triangles and the result is the same as a serial application in vertex order — and
+   the ranges touch disjoint triangles and the result does not depend on the thread count — and
    the candidates of the changed vertices are dropped and their edges evaluated again (in parallel); the others
    keep their cost. Below about budget + max(budget, 1024) triangles the heap finishes with the exact budget. The
    setup is parallel with oneTBB (weld: 32-bit position hashes radix-sorted, exact comparison within equal

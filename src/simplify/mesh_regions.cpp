@@ -10,6 +10,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -98,25 +99,31 @@ TriMesh weld_positions(const TriMesh& mesh, std::vector<std::uint32_t>* map) {
 
 TriMesh split_by_face(const TriMesh& mesh, const std::vector<std::uint32_t>& face_ids) {
   TriMesh out;
-  out.triangles.reserve(mesh.num_triangles());
-  // (vertex, face) -> new index, through a per-vertex list (few faces per vertex).
-  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> copies(mesh.num_vertices());
+  out.triangles.resize(mesh.num_triangles());
+  out.positions.reserve(mesh.num_vertices() + mesh.num_vertices() / 8);
+  // (vertex, face) -> new index: the first face seen at a vertex in flat arrays, further faces (the
+  // vertices on face boundaries) in a hash map. New ids in order of first use.
+  const std::size_t nv = mesh.num_vertices();
+  std::vector<std::uint32_t> first_face(nv, kNone), first_id(nv, kNone);
+  std::unordered_map<std::uint64_t, std::uint32_t> more;
   for (std::size_t t = 0; t < mesh.num_triangles(); ++t) {
     const std::uint32_t f = face_ids.empty() ? 0 : face_ids[t];
-    Tri n;
     for (int k = 0; k < 3; ++k) {
-      auto& list = copies[mesh.triangles[t][k]];
-      std::uint32_t id = kNone;
-      for (const auto& [face, idx] : list)
-        if (face == f) id = idx;
-      if (id == kNone) {
-        id = static_cast<std::uint32_t>(out.positions.size());
-        out.positions.push_back(mesh.positions[mesh.triangles[t][k]]);
-        list.emplace_back(f, id);
+      const std::uint32_t v = mesh.triangles[t][k];
+      std::uint32_t id;
+      if (first_id[v] == kNone) {
+        first_face[v] = f;
+        id = first_id[v] = static_cast<std::uint32_t>(out.positions.size());
+        out.positions.push_back(mesh.positions[v]);
+      } else if (first_face[v] == f) {
+        id = first_id[v];
+      } else {
+        auto [it, fresh] = more.try_emplace((std::uint64_t{v} << 32) | f, static_cast<std::uint32_t>(out.positions.size()));
+        if (fresh) out.positions.push_back(mesh.positions[v]);
+        id = it->second;
       }
-      n[k] = id;
+      out.triangles[t][k] = id;
     }
-    out.triangles.push_back(n);
   }
   return out;
 }

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <memory>
 
+#include <tbb/parallel_invoke.h>
+
 #include "interfere/simplify/hausdorff.h"
 #include "qem_internal.h"
 
@@ -113,13 +115,21 @@ Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& op
   std::vector<std::uint32_t> out_face;
   TriMesh out = compact(*sp, &out_face);
   clock.lap("output");
+  // Split along faces when face ids were given or regions were made; done beside the check (a
+  // rerun, rare, splits its own result again).
+  const bool splitting = have_faces || options.sharp_angle_deg > 0;
+  TriMesh split;
   if (options.prevent_self_intersections && !options.guard_every_collapse) {
     // The input's own intersections (touching parts of an assembly, say) cannot be removed: rerun
     // only when the plain result has more than the input. The reruns guard the neighbourhoods of
     // the intersecting pairs found so far (each pair's box grown by its diagonal), which keeps the
     // batched passes; should a rerun still add an intersection elsewhere, its neighbourhood joins
     // the region, and the last resort guards every collapse (then none can be added).
-    auto pairs = self_intersecting_pairs(out);
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+    tbb::parallel_invoke([&] { pairs = self_intersecting_pairs(out); },
+                         [&] {
+                           if (splitting) split = split_by_face(out, out_face);
+                         });
     if (!pairs.empty()) {
       TriMesh input = weld_positions(mesh);
       const std::size_t input_x = count_self_intersections(input);
@@ -146,6 +156,7 @@ Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& op
         out_face.clear();
         out = compact(*sp, &out_face);
         pairs = self_intersecting_pairs(out);
+        split = TriMesh{};
       }
     }
   }
@@ -153,9 +164,8 @@ Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& op
   qem::Simplifier& s = *sp;
   for (std::size_t t = 0; t < nt; ++t)
     if (!s.dead_[t]) r.feature_triangles_out += feature_tri[t];
-  // Split along faces when face ids were given or regions were made.
-  if (have_faces || options.sharp_angle_deg > 0) {
-    r.mesh = split_by_face(out, out_face);
+  if (splitting) {
+    r.mesh = split.num_triangles() == out.num_triangles() ? std::move(split) : split_by_face(out, out_face);
   } else {
     r.mesh = std::move(out);
   }

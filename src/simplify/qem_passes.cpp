@@ -102,7 +102,8 @@ std::size_t Simplifier::apply_selected(const std::vector<std::pair<std::uint32_t
       const auto cc = static_cast<std::uint32_t>(c);
       for (std::size_t k = c * per; k < std::min(n, (c + 1) * per); ++k) {
         const auto [a, b] = selected[k];
-        if (foreign(a, cc) || foreign(b, cc) || needs_guard(a, b)) res[c].deferred.push_back(static_cast<std::uint32_t>(k));
+        if ((ranges > 1 && (foreign(a, cc) || foreign(b, cc))) || needs_guard(a, b))
+          res[c].deferred.push_back(static_cast<std::uint32_t>(k));
         else apply_one(a, b, sc, merged, res[c], &end);
       }
     }

@@ -291,6 +291,32 @@ TEST(Simplify, WeldPositionsMatchesAnOrderedMapReference) {
   }
 }
 
+TEST(Simplify, SplitByFaceSeparatesFacesAndKeepsSharingWithinAFace) {
+  // A welded grid with random face ids: every corner keeps its position, no vertex is shared by two
+  // faces, a vertex is shared by all triangles of one face that shared it before (one copy per
+  // (vertex, face) pair), new ids in order of first use.
+  const TriMesh g = grid(12, 0.1);
+  std::mt19937 rng(3);
+  std::vector<std::uint32_t> face(g.num_triangles());
+  for (auto& f : face) f = rng() % 4;
+  const TriMesh s = split_by_face(g, face);
+  ASSERT_EQ(s.num_triangles(), g.num_triangles());
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> copy;  // (old vertex, face) -> new
+  std::vector<std::uint32_t> face_of(s.num_vertices(), ~0u);
+  std::uint32_t next = 0;
+  for (std::size_t t = 0; t < g.num_triangles(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t v = g.triangles[t][k], n = s.triangles[t][k];
+      EXPECT_TRUE(s.positions[n] == g.positions[v]);
+      auto [it, fresh] = copy.emplace(std::make_pair(v, face[t]), n);
+      if (fresh) EXPECT_EQ(n, next++);  // first use
+      EXPECT_EQ(it->second, n);
+      if (face_of[n] == ~0u) face_of[n] = face[t];
+      EXPECT_EQ(face_of[n], face[t]);
+    }
+  EXPECT_EQ(s.num_vertices(), copy.size());
+}
+
 TEST(Simplify, OneAndManyThreadsGiveBitIdenticalResults) {
   // The setup phases (weld sort, quadrics, seams, initial candidates) run in parallel blocks whose
   // outputs are concatenated in a fixed order: the result must not depend on the thread count.
