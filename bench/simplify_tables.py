@@ -264,7 +264,8 @@ C++: `interfere/simplify/qem.h` (`simplify`, `SimplifyOptions`, `SimplifyResult`
 `cad/model.h` (`import_step`, `world_mesh`, `write_test_part`), `cad/features.h`, `cad/semantics.h`,
 `cad/pipeline.h`. Python: `interfere.simplify(mesh, target=0, ratio=0, face_ids=[], feature_faces=[],
 lock=False, sharp_angle=0, prevent_self_intersections=True, measure_error=True, feature_mode="weight")` → `SimplifyResult` (`.mesh`,
-`.face_ids`, `.hausdorff`, `.hausdorff_features`, `.error_bound`, counters), `interfere.hausdorff(a, b)`,
+`.face_ids`, `.hausdorff`, `.hausdorff_features`, `.error_bound`, `.guard_rerun`, `.guard_reruns`, `.phases`
+[(phase, seconds)], counters), `interfere.hausdorff(a, b)`,
 `interfere.count_self_intersections(mesh)`, `interfere.triangle_budgets([(T, F), ...], renderer_max)`; when
 `interfere.HAVE_CAD`: `interfere.import_step(path, linear_deflection=0, angular_deflection=0.5)` and
 `interfere.step_features(path, process="", step="")`.

@@ -43,6 +43,7 @@ void bind_simplify(py::module_& m) {
       .def_readonly("hausdorff", &SimplifyResult::hausdorff)
       .def_readonly("hausdorff_features", &SimplifyResult::hausdorff_features)
       .def_readonly("error_bound", &SimplifyResult::error_bound)
+      .def_readonly("phases", &SimplifyResult::phases, "[(phase, seconds)] wall time of simplify()'s phases, in order")
       .def_readonly("warnings", &SimplifyResult::warnings);
 
   m.def(

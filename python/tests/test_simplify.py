@@ -26,6 +26,12 @@ class Simplify(unittest.TestCase):
         self.assertGreater(r.hausdorff, 0)
         self.assertEqual(r.error_bound, r.hausdorff)
         self.assertEqual(itf.count_self_intersections(r.mesh), 0)
+        names = [name for name, _ in r.phases]  # wall time per phase, in order
+        self.assertEqual(names[0], "weld")
+        self.assertIn("heap", names)
+        self.assertTrue(all(sec >= 0 for _, sec in r.phases))
+        self.assertFalse(r.guard_rerun)
+        self.assertEqual(r.guard_reruns, 0)
         a_to_b, b_to_a = itf.hausdorff(s, r.mesh)
         self.assertAlmostEqual(max(a_to_b, b_to_a), r.hausdorff)
 
