@@ -3,7 +3,9 @@
 // atomically. Exit status: 0 clear, 1 a point or a segment collides, 2 input error.
 #include <CLI/CLI.hpp>
 
+#include <array>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <limits>
 
@@ -20,7 +22,7 @@ namespace {
 using namespace interfere::probe;
 
 struct SweepOptions {
-  std::string workpiece, robot, path, json, csv, hits_obj, probes_vtk, hierarchy = "bvh", units = "mm";
+  std::string workpiece, robot, path, json, csv, hits_obj, probes_vtk, hierarchy = "bvh", units = "mm", holder_box;
   double probe_radius = std::numeric_limits<double>::quiet_NaN();
   double probe_length = std::numeric_limits<double>::quiet_NaN();
   double holder_radius = 0, holder_length = 0;
@@ -35,6 +37,26 @@ void positive(double v, const char* flag, bool allow_zero = false) {
     throw InputError(std::string(flag) + ": must be a finite number " + (allow_zero ? ">= 0" : "> 0") + ", got " +
                      (std::isnan(v) ? std::string("nothing") : std::to_string(v)));
   }
+}
+
+/// --holder-box W,D,L: three finite numbers > 0 (width, depth, length).
+std::array<double, 3> parse_holder_box(const std::string& s) {
+  std::array<double, 3> v{};
+  std::size_t start = 0, k = 0;
+  bool ok = true;
+  for (std::size_t i = 0; i <= s.size() && ok; ++i) {
+    if (i < s.size() && s[i] != ',') continue;
+    const std::string field = s.substr(start, i - start);
+    start = i + 1;
+    char* end = nullptr;
+    const double x = field.empty() ? NAN : std::strtod(field.c_str(), &end);
+    ok = k < 3 && end && *end == 0 && std::isfinite(x) && x > 0;
+    if (ok) v[k++] = x;
+  }
+  if (!ok || k != 3) {
+    throw InputError("--holder-box: expected three numbers > 0 as W,D,L (width, depth, length), got '" + s + "'");
+  }
+  return v;
 }
 
 Hierarchy parse_hierarchy(const std::string& s) {
@@ -65,6 +87,13 @@ int run_sweep(const SweepOptions& o) {
   if ((o.holder_radius > 0) != (o.holder_length > 0)) {
     throw InputError("--holder-radius and --holder-length: give both (> 0) or neither");
   }
+  std::array<double, 3> box{};
+  if (!o.holder_box.empty()) {
+    box = parse_holder_box(o.holder_box);
+    if (o.holder_radius > 0 || o.holder_length > 0) {
+      throw InputError("--holder-box and --holder-radius/--holder-length: give one holder, a box or a cylinder");
+    }
+  }
   positive(o.patch_size, "--patch-size", true);
   positive(o.patch_rule, "--patch-rule");
   positive(o.max_clearance, "--max-clearance", true);
@@ -79,7 +108,10 @@ int run_sweep(const SweepOptions& o) {
   const ProbeShape shape{.radius = o.probe_radius,
                          .length = o.probe_length,
                          .holder_radius = o.holder_radius,
-                         .holder_length = o.holder_length};
+                         .holder_length = o.holder_length,
+                         .holder_box_width = box[0],
+                         .holder_box_depth = box[1],
+                         .holder_box_length = box[2]};
 
   Progress total("sweep");
   const auto t_read = std::chrono::steady_clock::now();
@@ -93,6 +125,10 @@ int run_sweep(const SweepOptions& o) {
   if (!path_r) throw InputError(path_r.error());
   ProbePath path = std::move(path_r.value());
   if (path.joint_space) resolve_poses(path, *robot);
+  if (shape.has_holder_box()) {
+    const Status frames = check_reference_frames(path, o.path);
+    if (!frames) throw InputError(frames.error());
+  }
   MeshReadInfo info;
   auto mesh = read_mesh(o.workpiece, {}, &info);
   if (!mesh) throw InputError(mesh.error());
@@ -136,8 +172,14 @@ int run_sweep(const SweepOptions& o) {
     if (robot) {
       j["inputs"]["robot"] = {{"file", o.robot}, {"name", robot->name}, {"joints", robot->joints.size()}};
     }
-    j["probe"] = {{"radius", shape.radius}, {"length", shape.length}, {"holder_radius", shape.holder_radius},
-                  {"holder_length", shape.holder_length}};
+    j["probe"] = {{"radius", shape.radius},
+                  {"length", shape.length},
+                  {"holder_kind", shape.has_holder_box() ? "box" : shape.has_holder() ? "cylinder" : "none"},
+                  {"holder_radius", shape.holder_radius},
+                  {"holder_length", shape.holder_length},
+                  {"holder_box_width", shape.holder_box_width},
+                  {"holder_box_depth", shape.holder_box_depth},
+                  {"holder_box_length", shape.holder_box_length}};
     j["options"] = {{"hierarchy", hierarchy_name(hierarchy)},
                     {"patch_rule", o.patch_rule},
                     {"patch_size", o.patch_size},
@@ -233,13 +275,16 @@ void add_sweep_command(CLI::App& app, int& exit_code) {
   c->add_option("--workpiece", o->workpiece, "workpiece mesh (STL, OBJ, PLY, OFF)")->required()->check(CLI::ExistingFile);
   c->add_option("--robot", o->robot, "robot DH chain (JSON; needed for joint paths)")->check(CLI::ExistingFile);
   c->add_option("--path", o->path, "path CSV: joint values (header = one name per joint) or poses "
-                                   "(header px,py,pz,ax,ay,az)")
+                                   "(header px,py,pz,ax,ay,az[,rx,ry,rz])")
       ->required()
       ->check(CLI::ExistingFile);
   c->add_option("--probe-radius", o->probe_radius, "probe cylinder radius (> 0)")->required();
   c->add_option("--probe-length", o->probe_length, "probe cylinder length from the tip back (> 0)")->required();
   c->add_option("--holder-radius", o->holder_radius, "optional holder cylinder behind the probe: radius");
   c->add_option("--holder-length", o->holder_length, "holder length");
+  c->add_option("--holder-box", o->holder_box,
+                "optional holder box behind the probe instead: W,D,L = width (along the pose's reference "
+                "direction), depth, length; pose paths then need columns rx,ry,rz");
   c->add_option("--json", o->json, "JSON report");
   c->add_option("--csv", o->csv, "per-point CSV table");
   c->add_option("--hits-obj", o->hits_obj, "hit triangles + probe at colliding poses (.obj or .vtk)");

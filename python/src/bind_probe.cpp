@@ -1,6 +1,7 @@
 // Python bindings of the probe module (issue #5): submodule `interfere.probe` with the DH robot,
-// forward kinematics, the exact cylinder-triangle test and distance, the generated panels and
-// paths, and the sweep. Results are plain Python values (tuples, dicts, lists); no geometry here.
+// forward kinematics, the exact cylinder-triangle and box-triangle (box holder) tests and distances,
+// the generated panels and paths, and the sweep. Results are plain Python values (tuples, dicts,
+// lists); no geometry here.
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
@@ -45,6 +46,19 @@ std::array<Vec3, 3> tri(const py::handle& h) {
   const auto rows = py::cast<std::vector<py::object>>(h);
   if (rows.size() != 3) throw py::value_error("triangle: expected 3 points");
   return {vec(rows[0], "triangle[0]"), vec(rows[1], "triangle[1]"), vec(rows[2], "triangle[2]")};
+}
+
+OrientedBox oriented_box(const py::handle& centre, const py::handle& axes, const std::array<double, 3>& half) {
+  const auto rows = py::cast<std::vector<py::object>>(axes);
+  if (rows.size() != 3) throw py::value_error("axes: expected 3 vectors");
+  const std::array<Vec3, 3> a{vec(rows[0], "axes[0]"), vec(rows[1], "axes[1]"), vec(rows[2], "axes[2]")};
+  for (int i = 0; i < 3; ++i) {
+    if (!(half[i] > 0) || !std::isfinite(half[i])) throw py::value_error("half extents must be finite numbers > 0");
+    for (int j = 0; j < 3; ++j) {
+      if (std::fabs(dot(a[i], a[j]) - (i == j ? 1.0 : 0.0)) > 1e-12) throw py::value_error("axes must be orthonormal");
+    }
+  }
+  return make_box(vec(centre, "centre"), a, half);
 }
 
 Cylinder cyl(const py::handle& c0, const py::handle& c1, double r) {
@@ -117,6 +131,18 @@ void bind_probe(py::module_& m) {
       },
       py::arg("robot"), py::arg("q"), "(tip, axis) of the probe at joint values q (degrees for revolute joints).");
   p.def(
+      "forward_pose",
+      [](const Robot& r, const std::vector<double>& q) {
+        if (q.size() != r.joints.size()) {
+          throw py::value_error("q: expected " + std::to_string(r.joints.size()) + " joint values");
+        }
+        const ProbePose pose = forward_kinematics(r, q);
+        return py::make_tuple(tup(pose.tip), tup(pose.axis), pose.has_ref() ? py::object(tup(pose.ref)) : py::object(py::none()));
+      },
+      py::arg("robot"), py::arg("q"),
+      "(tip, axis, ref): forward_kinematics plus the holder reference direction (the tool's ref, default the "
+      "last frame's x axis, made perpendicular to the axis; None when parallel).");
+  p.def(
       "paper_end_circle",
       [](const std::array<double, 5>& q, double l) {
         const ProbePose pose = paper_end_circle(q, l);
@@ -143,6 +169,47 @@ void bind_probe(py::module_& m) {
       py::arg("c0"), py::arg("c1"), py::arg("radius"), py::arg("triangle"),
       "The paper's (incomplete) three-projection test, for comparison.");
 
+  p.def(
+      "box_triangle_intersect",
+      [](py::handle centre, py::handle axes, const std::array<double, 3>& half, py::handle t) {
+        return box_triangle_intersect(oriented_box(centre, axes, half), tri(t));
+      },
+      py::arg("centre"), py::arg("axes"), py::arg("half"), py::arg("triangle"),
+      "Exact: does the solid oriented box (centre, 3 orthonormal axes, 3 half extents; the convex hull of its "
+      "8 rounded corners) touch the triangle.");
+  p.def(
+      "box_triangle_distance",
+      [](py::handle centre, py::handle axes, const std::array<double, 3>& half, py::handle t) {
+        const BoxTriangleDistance d = box_triangle_distance(oriented_box(centre, axes, half), tri(t));
+        return py::make_tuple(d.distance, tup(d.on_box), tup(d.on_triangle));
+      },
+      py::arg("centre"), py::arg("axes"), py::arg("half"), py::arg("triangle"),
+      "(distance, point on box, point on triangle); distance 0 exactly when they touch.");
+  p.def(
+      "holder_box",
+      [](py::handle tip, py::handle axis, py::handle ref, double probe_length, double width, double depth,
+         double length) {
+        const ProbeShape s{.length = probe_length, .holder_box_width = width, .holder_box_depth = depth,
+                           .holder_box_length = length};
+        if (!(probe_length > 0) || !s.has_holder_box() || !std::isfinite(probe_length + width + depth + length)) {
+          throw py::value_error("holder_box: probe_length, width, depth and length must be finite numbers > 0");
+        }
+        ProbePose pose{vec(tip, "tip"), vec(axis, "axis")};
+        if (!(norm(pose.axis) > 0)) throw py::value_error("axis: zero vector");
+        pose.axis = pose.axis / norm(pose.axis);
+        pose.ref = perpendicular_reference(vec(ref, "ref"), pose.axis);
+        if (!pose.has_ref()) throw py::value_error("ref: zero or parallel to the axis");
+        const OrientedBox b = probe_holder_box(s, pose);
+        py::list corners;
+        for (const Vec3& c : b.corners) corners.append(tup(c));
+        return corners;
+      },
+      py::arg("tip"), py::arg("axis"), py::arg("ref"), py::arg("probe_length"), py::arg("width"), py::arg("depth"),
+      py::arg("length"),
+      "The 8 corners of the holder box (as sweep's holder_box_width/depth/length) behind a probe of "
+      "probe_length at the pose (tip, axis, ref); corner i: bit 0 = +width (along ref), bit 1 = +depth "
+      "(along axis x ref), bit 2 = front (the probe's back end circle).");
+
   p.def("make_panel", [](const std::string& kind, int nu, int nv) { return make_panel(panel_from(kind), nu, nv); },
         py::arg("kind"), py::arg("nu"), py::arg("nv"), "Curved panel ('sheet', 'shell', 'saddle'): 2 nu nv triangles.");
 
@@ -156,6 +223,15 @@ void bind_probe(py::module_& m) {
                                for (const ProbePose& q : path.poses) l.append(py::make_tuple(tup(q.tip), tup(q.axis)));
                                return l;
                              })
+      .def_property_readonly("refs",
+                             [](const ProbePath& path) {
+                               py::list l;
+                               for (const ProbePose& q : path.poses) {
+                                 l.append(q.has_ref() ? py::object(tup(q.ref)) : py::object(py::none()));
+                               }
+                               return l;
+                             },
+                             "Holder reference direction of every pose (None when unknown).")
       .def("__len__", &ProbePath::size)
       .def("to_csv", &path_to_csv);
   p.def(
@@ -179,30 +255,53 @@ void bind_probe(py::module_& m) {
       py::arg("path"), py::arg("robot") = py::none(), "Reads a path CSV; raises InputError naming file, line and field.");
   p.def(
       "pose_path",
-      [](const std::vector<std::pair<std::array<double, 3>, std::array<double, 3>>>& poses) {
+      [](const std::vector<std::vector<std::array<double, 3>>>& poses) {
         ProbePath path;
         path.joint_space = false;
         path.columns = {"px", "py", "pz", "ax", "ay", "az"};
+        const bool refs = !poses.empty() && poses[0].size() == 3;
+        if (refs) path.columns.insert(path.columns.end(), {"rx", "ry", "rz"});
         std::int64_t line = 2;
-        for (const auto& [t, a] : poses) {
-          const Vec3 axis{a[0], a[1], a[2]};
+        for (const auto& p : poses) {
+          if (p.size() != (refs ? 3u : 2u)) {
+            throw py::value_error("poses: every pose is (tip, axis) or every pose is (tip, axis, ref)");
+          }
+          const Vec3 axis{p[1][0], p[1][1], p[1][2]};
           if (!(norm(axis) > 0)) throw py::value_error("zero probe axis");
-          path.poses.push_back({{t[0], t[1], t[2]}, axis / norm(axis)});
+          ProbePose pose{{p[0][0], p[0][1], p[0][2]}, axis / norm(axis)};
+          if (refs) {
+            pose.ref = perpendicular_reference({p[2][0], p[2][1], p[2][2]}, pose.axis);
+            if (!pose.has_ref()) throw py::value_error("reference direction zero or parallel to the probe axis");
+          }
+          path.poses.push_back(pose);
           path.lines.push_back(line++);
         }
         return path;
       },
-      py::arg("poses"), "A pose path from [((px, py, pz), (ax, ay, az)), ...].");
+      py::arg("poses"),
+      "A pose path from [((px, py, pz), (ax, ay, az)), ...], or with the holder reference direction "
+      "[((px, py, pz), (ax, ay, az), (rx, ry, rz)), ...].");
 
   p.def(
       "sweep",
       [](const TriMesh& mesh, const ProbePath& path, std::optional<Robot> robot, double radius, double length,
-         double holder_radius, double holder_length, const std::string& hierarchy, double patch_rule, bool continuous,
-         bool clearance, int depth, int threads) {
+         double holder_radius, double holder_length, double box_width, double box_depth, double box_length,
+         const std::string& hierarchy, double patch_rule, bool continuous, bool clearance, int depth, int threads) {
         if (!(radius > 0) || !(length > 0)) throw py::value_error("probe radius and length must be > 0");
         if (path.joint_space && !robot) throw py::value_error("a joint path needs a robot");
         const ProbeShape shape{.radius = radius, .length = length, .holder_radius = holder_radius,
-                               .holder_length = holder_length};
+                               .holder_length = holder_length, .holder_box_width = box_width,
+                               .holder_box_depth = box_depth, .holder_box_length = box_length};
+        const bool none = box_width == 0 && box_depth == 0 && box_length == 0;
+        if (!none && !shape.has_holder_box()) {
+          throw py::value_error("holder_box_width, holder_box_depth, holder_box_length: all > 0 or all 0");
+        }
+        if (shape.has_holder_box()) {
+          if (!(std::isfinite(box_width) && std::isfinite(box_depth) && std::isfinite(box_length))) {
+            throw py::value_error("holder box sizes must be finite");
+          }
+          if (const Status st = check_reference_frames(path, "path"); !st) throw py::value_error(st.error().message());
+        }
         std::optional<tbb::global_control> limit;
         if (threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, threads);
         SweepResult r;
@@ -245,6 +344,7 @@ void bind_probe(py::module_& m) {
       },
       py::arg("workpiece"), py::arg("path"), py::arg("robot") = py::none(), py::arg("probe_radius") = 5.0,
       py::arg("probe_length") = 40.0, py::arg("holder_radius") = 0.0, py::arg("holder_length") = 0.0,
+      py::arg("holder_box_width") = 0.0, py::arg("holder_box_depth") = 0.0, py::arg("holder_box_length") = 0.0,
       py::arg("hierarchy") = "bvh", py::arg("patch_rule") = 33.0, py::arg("continuous") = true,
       py::arg("clearance") = true, py::arg("depth") = 12, py::arg("threads") = 0,
       "Checks the path against the workpiece mesh; returns a dict (points, segments, counts). Releases the GIL.");

@@ -1,6 +1,7 @@
 """Tests of `interfere.probe` (issue #5): forward kinematics against the §3.1 closed form and a
 hand-computed pose, the exact cylinder-triangle test (touching configurations, the paper's
-three-projection counterexample), a small sweep (hierarchies agree, a collision between samples).
+three-projection counterexample), the box holder (reference direction, exact box-triangle test, a
+pose only the box hits), a small sweep (hierarchies agree, a collision between samples).
 
 Run:  PYTHONPATH=<build>/python python3 -m unittest discover -s python/tests -p 'test_probe.py'
 """
@@ -72,6 +73,44 @@ class CylinderTriangle(unittest.TestCase):
         d, pc, pt = probe.cylinder_triangle_distance(self.C0, c1, self.R, t)
         self.assertAlmostEqual(d, 0.1 / math.sqrt(2), places=9)
         self.assertAlmostEqual(math.dist(pc, pt), d, places=9)
+
+
+class HolderBox(unittest.TestCase):
+    # Probe down from tip z = 100, length 40; box 40 wide (along ref), 20 deep, 30 long behind it.
+    WALL = itf.TriMesh([[18, -100, -100], [18, 100, -100], [18, 100, 300], [18, -100, 300]], [[0, 1, 2], [0, 2, 3]])
+
+    def test_forward_pose_reference(self):
+        tip, axis, ref = probe.forward_pose(probe.paper_machine(), [1, 2, 3, 90, 30])  # x5 = (0, cos b, -sin b)
+        for a, b in zip(ref, (0.0, math.sqrt(0.75), -0.5)):
+            self.assertAlmostEqual(a, b, places=14)
+        self.assertAlmostEqual(sum(a * b for a, b in zip(ref, axis)), 0.0, places=14)
+
+    def test_exact_box_triangle(self):
+        box = ((0, 0, 0), ((1, 0, 0), (0, 1, 0), (0, 0, 1)), (1, 2, 3))
+        self.assertTrue(probe.box_triangle_intersect(*box, [(1, 0.5, 0.5), (4, 0, 0), (4, 1, 1)]))
+        x = math.nextafter(1.0, 2.0)
+        self.assertFalse(probe.box_triangle_intersect(*box, [(x, 0.5, 0.5), (4, 0, 0), (4, 1, 1)]))
+        d, on_box, on_tri = probe.box_triangle_distance(*box, [(3, 0, 0), (4, 0, 0), (4, 1, 1)])
+        self.assertAlmostEqual(d, 2.0, places=12)
+        self.assertAlmostEqual(on_box[0], 1.0, places=12)
+        corners = probe.holder_box((0, 0, 100), (0, 0, -1), (1, 0, 0), 40, 40, 20, 30)
+        self.assertEqual(len(corners), 8)
+        self.assertAlmostEqual(max(c[0] for c in corners), 20.0, places=12)
+        self.assertAlmostEqual(max(c[2] for c in corners), 170.0, places=12)
+
+    def test_sweep_box_holder(self):
+        path = probe.pose_path([((0, 0, 100), (0, 0, -1), (1, 0, 0)), ((0, 0, 100), (0, 0, -1), (0, 1, 0))])
+        self.assertEqual(path.refs, [(1.0, 0.0, 0.0), (0.0, 1.0, 0.0)])
+        r = probe.sweep(self.WALL, path, probe_radius=5, probe_length=40, holder_box_width=40, holder_box_depth=20,
+                        holder_box_length=30, continuous=False)
+        self.assertEqual([p["collides"] for p in r["points"]], [True, False])
+        self.assertTrue(r["points"][0]["holder"])
+        self.assertAlmostEqual(r["points"][1]["clearance"], 8.0, places=9)
+        with self.assertRaises(ValueError):  # no reference directions
+            probe.sweep(self.WALL, probe.pose_path([((0, 0, 100), (0, 0, -1))]), holder_box_width=40,
+                        holder_box_depth=20, holder_box_length=30)
+        with self.assertRaises(ValueError):  # partly given
+            probe.sweep(self.WALL, path, holder_box_width=40)
 
 
 class Sweep(unittest.TestCase):

@@ -57,6 +57,13 @@ TriMesh cylinder_mesh(const Cylinder& c, int sides) {
   return m;
 }
 
+TriMesh box_mesh(const OrientedBox& b) {
+  TriMesh m;
+  m.positions.assign(b.corners.begin(), b.corners.end());
+  for (const auto& f : b.faces) m.triangles.push_back({f[0], f[1], f[2]});
+  return m;
+}
+
 CollisionGeometry collision_geometry(const Workpiece& w, const ProbePath& path, const Robot* robot,
                                      const ProbeShape& probe, const SweepResult& result, int sides) {
   CollisionGeometry g;
@@ -70,6 +77,7 @@ CollisionGeometry collision_geometry(const Workpiece& w, const ProbePath& path, 
   for (std::size_t i = 0; i < result.points.size(); ++i) {
     if (!result.points[i].collides) continue;
     for (const Cylinder& c : probe_cylinders(probe, path.poses[i])) append(g, cylinder_mesh(c, sides), 1, static_cast<long>(i));
+    if (probe.has_holder_box()) append(g, box_mesh(probe_holder_box(probe, path.poses[i])), 1, static_cast<long>(i));
     ++g.probe_poses;
   }
   for (const SegmentResult& s : result.segments) {
@@ -77,6 +85,7 @@ CollisionGeometry collision_geometry(const Workpiece& w, const ProbePath& path, 
     for (const auto& iv : s.intervals) {
       const ProbePose pose = pose_at(path, robot, s.from, 0.5 * (iv[0] + iv[1]));
       for (const Cylinder& c : probe_cylinders(probe, pose)) append(g, cylinder_mesh(c, sides), 2, s.from);
+      if (probe.has_holder_box()) append(g, box_mesh(probe_holder_box(probe, pose)), 2, s.from);
       ++g.probe_poses;
     }
   }

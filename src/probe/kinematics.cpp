@@ -66,11 +66,24 @@ std::vector<Transform> forward_frames(const Robot& robot, const std::vector<doub
   return frames;
 }
 
-ProbePose forward_kinematics(const Robot& robot, const std::vector<double>& q) {
-  const Transform last = forward_frames(robot, q).back();
+Vec3 perpendicular_reference(const Vec3& ref, const Vec3& axis) {
+  const double n = norm(ref);
+  if (!(n > 0) || !std::isfinite(n)) return {};
+  const Vec3 r = ref / n;
+  const Vec3 p = r - axis * dot(r, axis);
+  const double s = norm(p);
+  if (!(s >= kMinReferenceSine)) return {};
+  return p / s;
+}
+
+ProbePose tool_pose(const Robot& robot, const Transform& last) {
   Vec3 axis = rotate(last, robot.tool_axis);
   axis = axis / norm(axis);
-  return {last.apply(robot.tool_tip), axis};
+  return {last.apply(robot.tool_tip), axis, perpendicular_reference(rotate(last, robot.tool_ref), axis)};
+}
+
+ProbePose forward_kinematics(const Robot& robot, const std::vector<double>& q) {
+  return tool_pose(robot, forward_frames(robot, q).back());
 }
 
 Status check_joint_limits(const Robot& robot, const std::vector<double>& q) {

@@ -1,4 +1,5 @@
 // Probe path CSV reader/writer (issue #5, item 2); format in path.h and docs/probe.md.
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -62,11 +63,13 @@ Expected<ProbePath> parse_path_csv(std::string_view text, const std::string& fil
       have_header = true;
       for (auto s : f) path.columns.emplace_back(s);
       const std::vector<std::string> pose_cols{"px", "py", "pz", "ax", "ay", "az"};
-      path.joint_space = path.columns != pose_cols;
+      const std::vector<std::string> frame_cols{"px", "py", "pz", "ax", "ay", "az", "rx", "ry", "rz"};
+      path.joint_space = path.columns != pose_cols && path.columns != frame_cols;
       if (path.joint_space) {
         if (!robot) {
           return Error{.file = file, .line = line_no,
-                       .reason = "header: a joint path needs a robot (--robot); a pose path has the header px,py,pz,ax,ay,az"};
+                       .reason = "header: a joint path needs a robot (--robot); a pose path has the header "
+                                 "px,py,pz,ax,ay,az (optionally followed by rx,ry,rz)"};
         }
         if (path.columns.size() != robot->joints.size()) {
           return Error{.file = file, .line = line_no,
@@ -120,7 +123,19 @@ Expected<ProbePath> parse_path_csv(std::string_view text, const std::string& fil
       if (!(n > 0)) {
         return Error{.file = file, .line = line_no, .reason = "field 'ax,ay,az': zero probe axis"};
       }
-      path.poses.push_back({{v[0], v[1], v[2]}, axis / n});
+      ProbePose pose{{v[0], v[1], v[2]}, axis / n};
+      if (v.size() == 9) {
+        const Vec3 ref{v[6], v[7], v[8]};
+        pose.ref = perpendicular_reference(ref, pose.axis);
+        if (!pose.has_ref()) {
+          return Error{.file = file, .line = line_no,
+                       .reason = std::string("field 'rx,ry,rz': ") +
+                                 (norm(ref) > 0 ? "reference direction parallel to the probe axis"
+                                                : "zero reference direction") +
+                                 " (it fixes the holder's width direction)"};
+        }
+      }
+      path.poses.push_back(pose);
     }
     path.lines.push_back(line_no);
     if (end == text.size()) break;
@@ -136,6 +151,22 @@ Expected<ProbePath> read_path_csv(const std::filesystem::path& p, const Robot* r
   std::stringstream ss;
   ss << in.rdbuf();
   return parse_path_csv(ss.str(), p.string(), robot);
+}
+
+Status check_reference_frames(const ProbePath& path, const std::string& file_name) {
+  for (std::size_t i = 0; i < path.poses.size(); ++i) {
+    if (path.poses[i].has_ref()) continue;
+    const std::int64_t line = i < path.lines.size() ? path.lines[i] : -1;
+    if (path.joint_space) {
+      return Error{.file = file_name, .line = line,
+                   .reason = "a box holder needs the holder's reference direction: the robot's tool.ref is "
+                             "parallel to tool.axis (field 'tool.ref' of the robot file)"};
+    }
+    return Error{.file = file_name, .line = line,
+                 .reason = "field 'rx,ry,rz': missing: a box holder needs the holder's reference direction "
+                           "(header px,py,pz,ax,ay,az,rx,ry,rz)"};
+  }
+  return {};
 }
 
 void resolve_poses(ProbePath& path, const Robot& robot) {
@@ -160,10 +191,14 @@ std::string path_to_csv(const ProbePath& path) {
       out += "\n";
     }
   } else {
-    out += "px,py,pz,ax,ay,az\n";
+    const bool refs = !path.poses.empty() &&
+                      std::all_of(path.poses.begin(), path.poses.end(), [](const ProbePose& p) { return p.has_ref(); });
+    out += refs ? "px,py,pz,ax,ay,az,rx,ry,rz\n" : "px,py,pz,ax,ay,az\n";
     for (const ProbePose& p : path.poses) {
       out += fmt(p.tip.x) + "," + fmt(p.tip.y) + "," + fmt(p.tip.z) + "," + fmt(p.axis.x) + "," + fmt(p.axis.y) +
-             "," + fmt(p.axis.z) + "\n";
+             "," + fmt(p.axis.z);
+      if (refs) out += "," + fmt(p.ref.x) + "," + fmt(p.ref.y) + "," + fmt(p.ref.z);
+      out += "\n";
     }
   }
   return out;

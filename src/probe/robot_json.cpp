@@ -151,6 +151,20 @@ Expected<Robot> parse_robot_json(std::string_view text, const std::string& file_
     }
     if (!(norm(robot.tool_axis) > 0)) return p.fail("tool.axis", "zero vector", tline);
     robot.tool_axis = robot.tool_axis / norm(robot.tool_axis);
+    // Optional holder reference direction (box holders): default x of the last frame, y when the
+    // tool axis is along x.
+    if (auto it = tool->find("ref"); it != tool->end()) {
+      if (!it->is_array() || it->size() != 3 || !(*it)[0].is_number() || !(*it)[1].is_number() || !(*it)[2].is_number()) {
+        return p.fail("tool.ref", "expected 3 numbers", find_key_line(text, "ref"));
+      }
+      robot.tool_ref = {(*it)[0].get<double>(), (*it)[1].get<double>(), (*it)[2].get<double>()};
+      if (perpendicular_reference(robot.tool_ref, robot.tool_axis) == Vec3{}) {
+        return p.fail("tool.ref", "zero, or parallel to tool.axis (it fixes the holder's width direction)",
+                      find_key_line(text, "ref"));
+      }
+    } else if (perpendicular_reference(robot.tool_ref, robot.tool_axis) == Vec3{}) {
+      robot.tool_ref = {0, 1, 0};
+    }
   } else {
     return p.fail("tool", "missing ({\"tip\": [x,y,z], \"axis\": [x,y,z]} in the last DH frame)", 1);
   }
@@ -182,7 +196,8 @@ std::string robot_to_json(const Robot& robot) {
     j["joints"].push_back(o);
   }
   j["tool"] = {{"tip", {robot.tool_tip.x, robot.tool_tip.y, robot.tool_tip.z}},
-               {"axis", {robot.tool_axis.x, robot.tool_axis.y, robot.tool_axis.z}}};
+               {"axis", {robot.tool_axis.x, robot.tool_axis.y, robot.tool_axis.z}},
+               {"ref", {robot.tool_ref.x, robot.tool_ref.y, robot.tool_ref.z}}};
   return j.dump(2) + "\n";
 }
 

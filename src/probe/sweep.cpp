@@ -1,11 +1,15 @@
 // Probe path checking (issue #5, items 3-5; Li, Zhou & Zheng 2008, §3.2-3.4): candidates from the
 // chosen hierarchy, box rejection, the exact cylinder-triangle test at every path point, the
 // clearance by best-first search over the BVH, and the conservative continuous check between
-// consecutive points (motion bound + grown cylinder + bisection). See sweep.h.
+// consecutive points (motion bound + grown bodies + bisection). See sweep.h. The holder box
+// (probe/box.h) is one more body: exact box-triangle test, culled as its bounding cylinder.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <queue>
+#include <stdexcept>
+#include <tuple>
 
 #include <tbb/parallel_for.h>
 
@@ -148,22 +152,53 @@ bool for_each_candidate(const Workpiece& w, const Cylinder& cyl, const Aabb& box
   return false;
 }
 
-/// Exact test of the given cylinders; collects hits (or stops at the first when hits is null).
-bool cylinders_collide(const Workpiece& w, const std::vector<Cylinder>& cyls, std::vector<std::uint32_t>* hits,
-                       std::size_t* tests, bool* holder_hit) {
+/// The solid bodies at one pose: the probe cylinder, the optional holder cylinder (index 1) and the
+/// optional holder box.
+struct Bodies {
+  std::vector<Cylinder> cylinders;
+  std::optional<OrientedBox> box;
+};
+
+Bodies bodies_at(const ProbeShape& s, const ProbePose& pose) {
+  Bodies b{probe_cylinders(s, pose), std::nullopt};
+  if (s.has_holder_box()) b.box = probe_holder_box(s, pose);
+  return b;
+}
+
+/// Every body grown by delta (contains every point within delta of it).
+Bodies grown_bodies(Bodies b, double delta) {
+  for (Cylinder& c : b.cylinders) c = grown(c, delta);
+  if (b.box) b.box = grown(*b.box, delta);
+  return b;
+}
+
+/// Exact test of the bodies; collects hits (or stops at the first when hits is null).
+bool bodies_collide(const Workpiece& w, const Bodies& bodies, std::vector<std::uint32_t>* hits, std::size_t* tests,
+                    bool* holder_hit) {
   bool any = false;
-  for (std::size_t k = 0; k < cyls.size(); ++k) {
-    const Cylinder& c = cyls[k];
-    const bool stop = for_each_candidate(w, c, cylinder_box(c), [&](std::uint32_t t) {
+  // Candidates of one body (`cull`: a cylinder containing it), tested by `touches`.
+  auto body = [&](const Cylinder& cull, const Aabb& box, bool holder, auto&& touches) {
+    return for_each_candidate(w, cull, box, [&](std::uint32_t t) {
       if (tests) ++*tests;
-      if (!cylinder_triangle_intersect(c, w.mesh.corners(t))) return false;
+      if (!touches(w.mesh.corners(t))) return false;
       any = true;
-      if (k == 1 && holder_hit) *holder_hit = true;
+      if (holder && holder_hit) *holder_hit = true;
       if (!hits) return true;
       hits->push_back(t);
       return false;
     });
-    if (stop) return true;
+  };
+  for (std::size_t k = 0; k < bodies.cylinders.size(); ++k) {
+    const Cylinder& c = bodies.cylinders[k];
+    if (body(c, cylinder_box(c), k == 1, [&](const std::array<Vec3, 3>& t) { return cylinder_triangle_intersect(c, t); })) {
+      return true;
+    }
+  }
+  if (bodies.box) {
+    const OrientedBox& b = *bodies.box;
+    if (body(bounding_cylinder(b), box_aabb(b), true, [&](const std::array<Vec3, 3>& t) { return box_triangle_intersect(b, t); })) {
+      return true;
+    }
   }
   if (hits) {
     std::sort(hits->begin(), hits->end());
@@ -172,40 +207,62 @@ bool cylinders_collide(const Workpiece& w, const std::vector<Cylinder>& cyls, st
   return any;
 }
 
-/// Minimum distance from the cylinders to the workpiece by best-first search over the BVH.
-double clearance_of(const Workpiece& w, const std::vector<Cylinder>& cyls, double max_clearance,
-                    std::uint32_t& tri, Vec3& on_probe, Vec3& on_work) {
-  double best = max_clearance;
-  tri = kNone;
+/// Best-first search over the BVH for the triangle nearest one body (bounded by `body_box`), with
+/// `dist(t, best)` returning {distance, point on the body, point on the triangle}; improves best.
+template <class Dist>
+void nearest_triangle(const Workpiece& w, const Aabb& body_box, Dist&& dist, double& best, std::uint32_t& tri,
+                      Vec3& on_probe, Vec3& on_work) {
   const Bvh& bvh = w.bvh;
-  if (bvh.empty()) return std::numeric_limits<double>::infinity();
-  for (const Cylinder& c : cyls) {
-    const AabbF cb = to_float_outward(cylinder_box(c));
-    using Item = std::pair<double, std::uint32_t>;
-    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> q;
-    q.push({box_distance_squared(cb, bvh.nodes[0].box), 0});
-    while (!q.empty()) {
-      const auto [d2, ni] = q.top();
-      q.pop();
-      if (!(d2 < best * best) && std::isfinite(best)) break;
-      const BvhNode& n = bvh.nodes[ni];
-      if (n.is_leaf()) {
-        for (std::uint32_t j = n.first; j < n.first + n.count; ++j) {
-          const double pd2 = box_distance_squared(cb, bvh.prim_boxes[j]);
-          if (std::isfinite(best) && !(pd2 < best * best)) continue;
-          const std::uint32_t t = bvh.prims[j];
-          const CylinderTriangleDistance r = cylinder_triangle_distance(c, w.mesh.corners(t), best);
-          if (r.distance < best || (r.distance == best && t < tri)) {
-            best = r.distance, tri = t, on_probe = r.on_cylinder, on_work = r.on_triangle;
-          }
-        }
-      } else {
-        for (std::uint32_t ch = n.first; ch < n.first + 2; ++ch) {
-          const double cd2 = box_distance_squared(cb, bvh.nodes[ch].box);
-          if (!std::isfinite(best) || cd2 < best * best) q.push({cd2, ch});
-        }
+  const AabbF cb = to_float_outward(body_box);
+  using Item = std::pair<double, std::uint32_t>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> q;
+  q.push({box_distance_squared(cb, bvh.nodes[0].box), 0});
+  while (!q.empty()) {
+    const auto [d2, ni] = q.top();
+    q.pop();
+    if (!(d2 < best * best) && std::isfinite(best)) break;
+    const BvhNode& n = bvh.nodes[ni];
+    if (n.is_leaf()) {
+      for (std::uint32_t j = n.first; j < n.first + n.count; ++j) {
+        const double pd2 = box_distance_squared(cb, bvh.prim_boxes[j]);
+        if (std::isfinite(best) && !(pd2 < best * best)) continue;
+        const std::uint32_t t = bvh.prims[j];
+        const auto [d, p, q2] = dist(w.mesh.corners(t), best);
+        if (d < best || (d == best && t < tri)) best = d, tri = t, on_probe = p, on_work = q2;
+      }
+    } else {
+      for (std::uint32_t ch = n.first; ch < n.first + 2; ++ch) {
+        const double cd2 = box_distance_squared(cb, bvh.nodes[ch].box);
+        if (!std::isfinite(best) || cd2 < best * best) q.push({cd2, ch});
       }
     }
+  }
+}
+
+/// Minimum distance from the bodies to the workpiece by best-first search over the BVH.
+double clearance_of(const Workpiece& w, const Bodies& bodies, double max_clearance, std::uint32_t& tri,
+                    Vec3& on_probe, Vec3& on_work) {
+  double best = max_clearance;
+  tri = kNone;
+  if (w.bvh.empty()) return std::numeric_limits<double>::infinity();
+  for (const Cylinder& c : bodies.cylinders) {
+    nearest_triangle(
+        w, cylinder_box(c),
+        [&](const std::array<Vec3, 3>& t, double ub) {
+          const CylinderTriangleDistance r = cylinder_triangle_distance(c, t, ub);
+          return std::tuple{r.distance, r.on_cylinder, r.on_triangle};
+        },
+        best, tri, on_probe, on_work);
+  }
+  if (bodies.box) {
+    const OrientedBox& b = *bodies.box;
+    nearest_triangle(
+        w, box_aabb(b),
+        [&](const std::array<Vec3, 3>& t, double ub) {
+          const BoxTriangleDistance r = box_triangle_distance(b, t, ub);
+          return std::tuple{r.distance, r.on_box, r.on_triangle};
+        },
+        best, tri, on_probe, on_work);
   }
   return tri == kNone ? std::numeric_limits<double>::infinity() : best;
 }
@@ -219,11 +276,30 @@ double line_distance(const Vec3& p, const Vec3& o, const Vec3& dir) {
 
 double ProbeShape::volume() const { return M_PI * radius * radius * length; }
 
+double ProbeShape::reach() const {
+  double r = std::hypot(length + holder_length, std::max(radius, holder_radius));
+  if (has_holder_box()) {
+    r = std::max(r, std::hypot(length + holder_box_length, std::hypot(0.5 * holder_box_width, 0.5 * holder_box_depth)));
+  }
+  return r;
+}
+
+double ProbeShape::axis_reach() const {
+  double r = std::max(radius, has_holder() ? holder_radius : 0.0);
+  if (has_holder_box()) r = std::max(r, std::hypot(0.5 * holder_box_width, 0.5 * holder_box_depth));
+  return r;
+}
+
 std::vector<Cylinder> probe_cylinders(const ProbeShape& s, const ProbePose& pose) {
   std::vector<Cylinder> out;
   out.push_back(cylinder_from_tip(pose.tip, pose.axis, s.length, s.radius));
   if (s.has_holder()) out.push_back(cylinder_from_tip(out[0].c1, pose.axis, s.holder_length, s.holder_radius));
   return out;
+}
+
+OrientedBox probe_holder_box(const ProbeShape& s, const ProbePose& pose) {
+  const Vec3 back = cylinder_from_tip(pose.tip, pose.axis, s.length, s.radius).c1;
+  return holder_box(back, pose.axis, pose.ref, s.holder_box_width, s.holder_box_depth, s.holder_box_length);
 }
 
 const char* hierarchy_name(Hierarchy h) {
@@ -252,7 +328,7 @@ Workpiece prepare_workpiece(TriMesh mesh, const ProbeShape& probe, const Workpie
   }
   if (o.hierarchy == Hierarchy::distance_field) {
     const double spacing = o.field_spacing > 0 ? o.field_spacing : probe.radius;
-    w.field = make_distance_field(w.mesh, w.bvh, spacing, probe.length + probe.holder_length + 2 * spacing);
+    w.field = make_distance_field(w.mesh, w.bvh, spacing, probe.reach() + 2 * spacing);
   }
   w.build_seconds = seconds_since(start);
   return w;
@@ -260,8 +336,46 @@ Workpiece prepare_workpiece(TriMesh mesh, const ProbeShape& probe, const Workpie
 
 bool pose_collides(const Workpiece& w, const ProbeShape& probe, const ProbePose& pose,
                    std::vector<std::uint32_t>* hits, std::size_t* tests) {
-  return cylinders_collide(w, probe_cylinders(probe, pose), hits, tests, nullptr);
+  return bodies_collide(w, bodies_at(probe, pose), hits, tests, nullptr);
 }
+
+namespace {
+
+/// Rodrigues' rotation of v about the unit n by phi.
+Vec3 rotate_about(const Vec3& v, const Vec3& n, double phi) {
+  const double c = std::cos(phi), s = std::sin(phi);
+  return v * c + cross(n, v) * s + n * (dot(n, v) * (1 - c));
+}
+
+/// The motion of a pose-path segment a -> b: the frame at t is R(t) applied to a's, with
+/// R(t) = Rot(n, theta t) Rot(a.axis, psi t): the axis turns by the smallest rotation (theta about
+/// n = a.axis x b.axis), the reference direction also twists by psi about the axis, so that R(1)
+/// carries a.ref to b.ref (psi = 0 without reference directions).
+struct SegmentRotation {
+  Vec3 n{0, 0, 1};
+  double theta = 0, psi = 0;
+  bool turns = false;  ///< theta >= 1e-12 (otherwise the axis is kept)
+};
+
+SegmentRotation segment_rotation(const ProbePose& a, const ProbePose& b) {
+  SegmentRotation r;
+  r.theta = std::acos(std::clamp(dot(a.axis, b.axis), -1.0, 1.0));
+  r.turns = r.theta >= 1e-12;
+  if (r.turns) {
+    Vec3 n = cross(a.axis, b.axis);
+    if (norm(n) < 1e-12) {  // opposite: any perpendicular
+      n = cross(a.axis, std::fabs(a.axis.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0});
+    }
+    r.n = n / norm(n);
+  }
+  if (a.has_ref() && b.has_ref()) {
+    const Vec3 r1 = r.turns ? rotate_about(a.ref, r.n, r.theta) : a.ref;
+    r.psi = std::atan2(dot(cross(r1, b.ref), b.axis), dot(r1, b.ref));
+  }
+  return r;
+}
+
+}  // namespace
 
 ProbePose pose_at(const ProbePath& path, const Robot* robot, std::uint32_t from, double t) {
   if (path.joint_space && robot) {
@@ -273,23 +387,23 @@ ProbePose pose_at(const ProbePath& path, const Robot* robot, std::uint32_t from,
   }
   const ProbePose& a = path.poses[from];
   const ProbePose& b = path.poses[from + 1];
+  const SegmentRotation rot = segment_rotation(a, b);
   ProbePose p;
   p.tip = a.tip * (1 - t) + b.tip * t;
-  const double c = std::clamp(dot(a.axis, b.axis), -1.0, 1.0);
-  const double theta = std::acos(c);
-  if (theta < 1e-12) {
+  if (!rot.turns) {
     p.axis = a.axis;
   } else {
-    Vec3 n = cross(a.axis, b.axis);
-    if (norm(n) < 1e-12) {  // opposite: any perpendicular
-      n = cross(a.axis, std::fabs(a.axis.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0});
-    }
-    n = n / norm(n);
-    const double phi = theta * t;
+    const double phi = rot.theta * t;
     // Rodrigues: rotate a.axis about n by phi (n is perpendicular to a.axis).
-    p.axis = a.axis * std::cos(phi) + cross(n, a.axis) * std::sin(phi);
+    p.axis = a.axis * std::cos(phi) + cross(rot.n, a.axis) * std::sin(phi);
   }
   p.axis = p.axis / norm(p.axis);
+  if (a.has_ref() && b.has_ref()) {
+    const double psi = rot.psi * t;
+    Vec3 r = a.ref * std::cos(psi) + cross(a.axis, a.ref) * std::sin(psi);  // twist about a.axis
+    if (rot.turns) r = rotate_about(r, rot.n, rot.theta * t);
+    p.ref = perpendicular_reference(r, p.axis);
+  }
   return p;
 }
 
@@ -308,13 +422,12 @@ double midpoint_and_bound(const ProbePath& path, const Robot* robot, const Probe
     std::vector<double> q(a.size());
     for (std::size_t j = 0; j < q.size(); ++j) q[j] = (1 - tm) * a[j] + tm * b[j];
     const std::vector<Transform> frames = forward_frames(*robot, q);
-    const Transform& last = frames.back();
-    Vec3 axis{last.r[0][0] * robot->tool_axis.x + last.r[0][1] * robot->tool_axis.y + last.r[0][2] * robot->tool_axis.z,
-              last.r[1][0] * robot->tool_axis.x + last.r[1][1] * robot->tool_axis.y + last.r[1][2] * robot->tool_axis.z,
-              last.r[2][0] * robot->tool_axis.x + last.r[2][1] * robot->tool_axis.y + last.r[2][2] * robot->tool_axis.z};
-    mid = {last.apply(robot->tool_tip), axis / norm(axis)};
-    const std::vector<Cylinder> cyls = probe_cylinders(probe, mid);
-    for (const Cylinder& c : cyls) scale = std::max({scale, norm(c.c0), norm(c.c1)});
+    mid = tool_pose(*robot, frames.back());
+    const Bodies bodies = bodies_at(probe, mid);
+    for (const Cylinder& c : bodies.cylinders) scale = std::max({scale, norm(c.c0), norm(c.c1)});
+    if (bodies.box) {
+      for (const Vec3& v : bodies.box->corners) scale = std::max(scale, norm(v));
+    }
     // Distal to proximal: D_j = D_{j+1} + (prismatic: h |dq|; revolute: h |dq| rho_j), rho_j the
     // largest distance of the probe to joint j's axis (z of frame j-1) at the midpoint pose.
     for (std::size_t j = robot->joints.size(); j-- > 0;) {
@@ -326,8 +439,11 @@ double midpoint_and_bound(const ProbePath& path, const Robot* robot, const Probe
         const Transform& f = frames[j];
         const Vec3 o = f.t, z{f.r[0][2], f.r[1][2], f.r[2][2]};
         double rho = 0;
-        for (const Cylinder& c : cyls) {
+        for (const Cylinder& c : bodies.cylinders) {
           rho = std::max(rho, std::max(line_distance(c.c0, o, z), line_distance(c.c1, o, z)) + c.radius);
+        }
+        if (bodies.box) {  // convex: the farthest point from a line is a corner
+          for (const Vec3& v : bodies.box->corners) rho = std::max(rho, line_distance(v, o, z));
         }
         bound += dq * (M_PI / 180.0) * rho;
       }
@@ -336,9 +452,12 @@ double midpoint_and_bound(const ProbePath& path, const Robot* robot, const Probe
     mid = pose_at(path, robot, from, tm);
     const ProbePose& a = path.poses[from];
     const ProbePose& b = path.poses[from + 1];
-    const double theta = std::acos(std::clamp(dot(a.axis, b.axis), -1.0, 1.0));
-    const double reach = std::hypot(probe.length + probe.holder_length, std::max(probe.radius, probe.holder_radius));
-    bound = h * (distance(a.tip, b.tip) + theta * reach);
+    // R(t) = Rot(n, theta t) Rot(a.axis, psi t) (segment_rotation): a body point p (from the tip)
+    // moves by at most |t - tm| (theta |p| + |psi| dist(p, axis)), plus the tip's motion.
+    const SegmentRotation rot = segment_rotation(a, b);
+    const double reach = probe.reach();
+    const double twist = probe.has_holder_box() ? std::fabs(rot.psi) * probe.axis_reach() : 0.0;
+    bound = h * (distance(a.tip, b.tip) + rot.theta * reach + twist);
     scale = std::max({1.0, norm(a.tip), norm(b.tip), reach});
   }
   // Rounding of the midpoint pose and of the bound itself.
@@ -356,6 +475,11 @@ double motion_bound(const ProbePath& path, const Robot* robot, const ProbeShape&
 SweepResult sweep(const Workpiece& w, const ProbePath& path, const Robot* robot, const SweepRequest& req) {
   SweepResult res;
   const std::size_t n = path.poses.size();
+  if (req.probe.has_holder_box()) {
+    for (const ProbePose& p : path.poses) {
+      if (!p.has_ref()) throw std::invalid_argument("sweep: a box holder needs a reference direction at every pose");
+    }
+  }
   res.points.resize(n);
   std::vector<std::size_t> tests(n, 0);
   auto loop = [&](std::size_t count, auto&& body) {
@@ -369,8 +493,7 @@ SweepResult sweep(const Workpiece& w, const ProbePath& path, const Robot* robot,
   auto start = Clock::now();
   loop(n, [&](std::size_t i) {
     PointResult& r = res.points[i];
-    const std::vector<Cylinder> cyls = probe_cylinders(req.probe, path.poses[i]);
-    r.collides = cylinders_collide(w, cyls, &r.hits, &tests[i], &r.holder);
+    r.collides = bodies_collide(w, bodies_at(req.probe, path.poses[i]), &r.hits, &tests[i], &r.holder);
     if (r.collides) {
       r.clearance = 0;
       r.triangle = r.hits.front();
@@ -388,8 +511,8 @@ SweepResult sweep(const Workpiece& w, const ProbePath& path, const Robot* robot,
     loop(n, [&](std::size_t i) {
       PointResult& r = res.points[i];
       if (r.collides) return;
-      const std::vector<Cylinder> cyls = probe_cylinders(req.probe, path.poses[i]);
-      r.clearance = clearance_of(w, cyls, req.max_clearance, r.triangle, r.point_probe, r.point_workpiece);
+      r.clearance = clearance_of(w, bodies_at(req.probe, path.poses[i]), req.max_clearance, r.triangle,
+                                 r.point_probe, r.point_workpiece);
       if (r.triangle != kNone) r.patch = w.patches.patch_of[r.triangle];
     });
   } else {
@@ -418,11 +541,10 @@ SweepResult sweep(const Workpiece& w, const ProbePath& path, const Robot* robot,
         ++seg.poses_tested;
         ProbePose pm;
         const double delta = midpoint_and_bound(path, robot, req.probe, seg.from, t0, t1, pm);
-        std::vector<Cylinder> big = probe_cylinders(req.probe, pm);
-        for (Cylinder& c : big) c = grown(c, delta);
-        if (!cylinders_collide(w, big, nullptr, nullptr, nullptr)) return;  // swept volume clear
+        const Bodies at_mid = bodies_at(req.probe, pm);
+        if (!bodies_collide(w, grown_bodies(at_mid, delta), nullptr, nullptr, nullptr)) return;  // swept volume clear
         std::vector<std::uint32_t> hits;
-        const bool cm = cylinders_collide(w, probe_cylinders(req.probe, pm), &hits, nullptr, nullptr);
+        const bool cm = bodies_collide(w, at_mid, &hits, nullptr, nullptr);
         seg.triangles.insert(seg.triangles.end(), hits.begin(), hits.end());
         if (cm) iv.push_back({tm, tm});
         if (depth >= req.max_depth) {

@@ -159,6 +159,75 @@ class Sweep(unittest.TestCase):
         bad(["--workpiece", work, "--path", good, *BASE], "needs a robot")
         bad(["--workpiece", work, "--robot", ROBOT, "--path", good, *BASE, "--hierarchy", "octree"], "--hierarchy")
 
+    def test_holder_box(self):
+        # Probe down from tip z = 100, length 40; the box (40 wide along ref, 20 deep, 30 long) spans
+        # z in [140, 170] and x in [-20, 20] with ref = x: the wall x = 18 is hit by the box only.
+        # Turned by 90 degrees (ref = y) it spans x in [-10, 10]: clear by 8.
+        work = write("wall.obj", "v 18 -100 -100\nv 18 100 -100\nv 18 100 300\nv 18 -100 300\nf 1 2 3\nf 1 3 4\n")
+        p = write("frames.csv", "px,py,pz,ax,ay,az,rx,ry,rz\n0,0,100,0,0,-1,1,0,0\n0,0,100,0,0,-1,0,1,0\n")
+        rc, out, err = run("--workpiece", work, "--path", p, *BASE, "--holder-box", "40,20,30", "--json",
+                           path("box.json"), "--csv", path("box.csv"), "--hits-obj", path("box.obj"))
+        self.assertEqual(rc, 1, err + out)
+        j = load(path("box.json"))
+        self.assertEqual(j["probe"]["holder_kind"], "box")
+        self.assertEqual([j["probe"][k] for k in ("holder_box_width", "holder_box_depth", "holder_box_length")],
+                         [40, 20, 30])
+        self.assertEqual(j["probe"]["holder_radius"], 0)
+        self.assertEqual(j["colliding_points"], [0])
+        self.assertTrue(j["points"][0]["holder"])
+        self.assertEqual(j["points"][0]["hits"], [1])
+        self.assertAlmostEqual(j["points"][1]["clearance"], 8.0, places=9)
+        self.assertAlmostEqual(j["points"][1]["point_probe"][0], 10.0, places=9)
+        rows = table(path("box.csv"))
+        self.assertEqual([r["holder"] for r in rows], ["1", "0"])
+        self.assertEqual(list(rows[0].keys())[:5], ["index", "line", "collides", "holder", "clearance"])
+        obj = text(path("box.obj"))
+        self.assertIn("g probe_0", obj)
+        self.assertEqual(obj.count("\nf "), 1 + 4 * 24 + 12)  # hit triangle, probe cylinder, box
+        # A holder cylinder inscribed in the box (radius 10) misses the wall.
+        rc, out, err = run("--workpiece", work, "--path", p, *BASE, "--holder-radius", "10", "--holder-length", "30")
+        self.assertEqual(rc, 0, err + out)
+
+    def test_holder_box_joint_path_between_samples(self):
+        # The paper machine turns a from 0 to 90 degrees (probe down, tip at z = 50): the box's width
+        # direction (the last frame's x axis) turns with it and sweeps through a post at radius 15,
+        # azimuth 45 degrees, that both samples clear.
+        c = 15 * 0.5 ** 0.5
+        work = write("post.obj", "v %r %r 100\nv %r %r 110\nv %r %r 105\nf 1 2 3\n" % (c, c, c, c, c + 0.01, c - 0.01))
+        p = write("turn.csv", "x,y,z,a,b\n0,0,200,0,0\n0,0,200,90,0\n")
+        rc, out, err = run("--workpiece", work, "--robot", ROBOT, "--path", p, *BASE, "--holder-box", "40,10,30",
+                           "--json", path("turn.json"))
+        self.assertEqual(rc, 1, err + out)
+        j = load(path("turn.json"))
+        self.assertEqual(j["summary"]["colliding_points"], 0)
+        self.assertEqual(j["summary"]["between_samples_segments"], 1)
+        lo, hi = j["colliding_segments"][0]["intervals"][0]
+        self.assertTrue(0.27 < lo < 0.29 and 0.71 < hi < 0.73, (lo, hi))  # 0.5 -+ asin(1/3) / (pi/2)
+
+    def test_holder_box_bad_inputs(self):
+        work = plate_obj("plate8.obj", 0.0)
+        frames = write("f.csv", "px,py,pz,ax,ay,az,rx,ry,rz\n0,0,100,0,0,-1,1,0,0\n")
+        out_json = path("bad_box.json")
+
+        def bad(args, *expect):
+            rc, out, err = run("--workpiece", work, *BASE, *args, "--json", out_json)
+            self.assertEqual(rc, 2, err + out)
+            for e in expect:
+                self.assertIn(e, err)
+            self.assertFalse(os.path.exists(out_json), "a bad input must not write the report")
+
+        bad(["--path", frames, "--holder-box", "40,0,30"], "--holder-box", "> 0", "40,0,30")
+        bad(["--path", frames, "--holder-box", "40,-2,30"], "--holder-box")
+        bad(["--path", frames, "--holder-box", "40,20"], "--holder-box", "W,D,L")
+        bad(["--path", frames, "--holder-box", "40,20,30,5"], "--holder-box")
+        bad(["--path", frames, "--holder-box", "40,x,30"], "--holder-box")
+        bad(["--path", frames, "--holder-box", "40,20,30", "--holder-radius", "10", "--holder-length", "30"],
+            "--holder-box", "--holder-radius", "one holder")
+        bare = write("bare.csv", "# poses without reference directions\npx,py,pz,ax,ay,az\n0,0,100,0,0,-1\n")
+        bad(["--path", bare, "--holder-box", "40,20,30"], "bare.csv:3", "field 'rx,ry,rz'", "missing")
+        par = write("par.csv", "px,py,pz,ax,ay,az,rx,ry,rz\n0,0,100,0,0,-1,1,0,0\n0,0,100,0,0,-1,0,0,5\n")
+        bad(["--path", par, "--holder-box", "40,20,30"], "par.csv:3", "field 'rx,ry,rz'", "parallel")
+
     def test_bad_input_keeps_existing_output(self):
         work = plate_obj("plate6.obj", 0.0)
         keep = write("keep.json", "previous\n")

@@ -13,9 +13,12 @@ namespace interfere::probe {
 /// Closed triangulated cylinder (`sides` around, capped).
 TriMesh cylinder_mesh(const Cylinder& c, int sides = 24);
 
-/// One tagged mesh: hit triangles of the workpiece (tag kind 0) and the probe/holder meshes at the
-/// colliding points (kind 1) and at the midpoint of each colliding segment interval (kind 2);
-/// `point` is the path point (or segment start) index, -1 for workpiece triangles.
+/// The box's 8 corners and its 12 boundary triangles (outward), exactly the solid that is tested.
+TriMesh box_mesh(const OrientedBox& b);
+
+/// One tagged mesh: hit triangles of the workpiece (tag kind 0) and the probe/holder (cylinder or
+/// box) meshes at the colliding points (kind 1) and at the midpoint of each colliding segment
+/// interval (kind 2); `point` is the path point (or segment start) index, -1 for workpiece triangles.
 struct CollisionGeometry {
   TriMesh mesh;
   std::vector<int> kind;

@@ -33,11 +33,21 @@ struct DhJoint {
   double min = -1e300, max = 1e300;  ///< joint limits in joint units (length or degrees)
 };
 
-/// Probe pose: centre of the probe's end circle (the tip) and the unit direction it points to.
+/// Probe pose: centre of the probe's end circle (the tip), the unit direction it points to, and the
+/// holder's reference direction `ref`: unit and perpendicular to `axis`, or zero when unknown. Only
+/// a box holder needs it (its width runs along ref, its depth along axis x ref; docs/probe.md).
 struct ProbePose {
   Vec3 tip;
   Vec3 axis{0, 0, -1};
+  Vec3 ref{};
+  bool has_ref() const { return !(ref == Vec3{}); }
 };
+
+/// The unit component of `ref` perpendicular to the unit `axis`; the zero vector when `ref` is zero,
+/// not finite, or makes less than kMinReferenceSine (sine of the angle) with `axis` (no usable
+/// reference direction).
+inline constexpr double kMinReferenceSine = 1e-6;
+Vec3 perpendicular_reference(const Vec3& ref, const Vec3& axis);
 
 struct Robot {
   std::string name;
@@ -45,13 +55,20 @@ struct Robot {
   std::vector<DhJoint> joints;
   Vec3 tool_tip{};          ///< end-circle centre in the last DH frame
   Vec3 tool_axis{0, 0, 1};  ///< probe direction in the last DH frame (unit)
+  /// Holder reference direction in the last DH frame (its component perpendicular to tool_axis is
+  /// used): the frame's x axis by default, or its y axis when tool_axis is along x.
+  Vec3 tool_ref{1, 0, 0};
 };
 
 /// Frames world <- i for i = 0..n (frames[0] = base). `q` in joint units (degrees for revolute).
 std::vector<Transform> forward_frames(const Robot& robot, const std::vector<double>& q);
 
-/// The probe pose at joint values `q` (q.size() == joints.size()).
+/// The probe pose at joint values `q` (q.size() == joints.size()), `ref` included (zero when
+/// tool_ref is parallel to tool_axis).
 ProbePose forward_kinematics(const Robot& robot, const std::vector<double>& q);
+
+/// The probe pose carried by the last DH frame `last` (world <- n): tip, axis and ref of the tool.
+ProbePose tool_pose(const Robot& robot, const Transform& last);
 
 /// Joint values outside [min, max]: an error naming the joint (file/line left for the caller).
 Status check_joint_limits(const Robot& robot, const std::vector<double>& q);

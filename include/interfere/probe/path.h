@@ -2,7 +2,9 @@
 //  - Joint path: one column per robot joint, in chain order (names free, e.g. "x,y,z,a,b" for the
 //    paper's machine); values in joint units (length, or degrees for revolute joints).
 //  - Pose path: header exactly "px,py,pz,ax,ay,az": the end-circle centre and the probe direction
-//    (normalised on reading; a zero vector is an error).
+//    (normalised on reading; a zero vector is an error), optionally followed by "rx,ry,rz": the
+//    holder's reference direction (needed by a box holder; its component perpendicular to the axis
+//    is used; zero or parallel to the axis is an error).
 // '#' starts a comment line; blank lines are skipped; separators are commas (spaces around values
 // are allowed). Errors name the file, the 1-based line and the column (field).
 #pragma once
@@ -35,6 +37,11 @@ Expected<ProbePath> read_path_csv(const std::filesystem::path& path, const Robot
 
 /// Fills path.poses from path.joints by forward kinematics (no-op for pose paths).
 void resolve_poses(ProbePath& path, const Robot& robot);
+
+/// Every pose (resolved) has a reference direction, as a box holder needs: otherwise an error naming
+/// `file_name`, the line of the first pose without one and the field (rx,ry,rz of a pose path, or
+/// the robot's tool.ref for a joint path).
+Status check_reference_frames(const ProbePath& path, const std::string& file_name);
 
 /// CSV text of a joint path (header = the robot's joint names) or of a pose path.
 std::string path_to_csv(const ProbePath& path);

@@ -6,13 +6,15 @@
 // (default), from the paper's workpiece patches (boxes of about `volume_ratio` x probe volume),
 // from a uniform grid or a distance field (the paper's comparison methods, §4), or from all
 // triangles; then triangle box vs probe box; then the exact cylinder-triangle test
-// (probe/cylinder.h). Every hierarchy gives the same decisions (tests check it).
+// (probe/cylinder.h), or box-triangle test for a box holder (probe/box.h). Every hierarchy gives
+// the same decisions (tests check it).
 //
 // Continuous check (item 4): consecutive points are joined by linear interpolation of the joint
-// values (joint paths) or of the tip position plus a slerp of the axis (pose paths). On a parameter
-// interval [t0, t1] the probe moves at most delta from its pose at the midpoint (a bound derived
-// from the joint increments and the distances of the probe to the joint axes, docs/probe.md), so
-// the swept volume lies inside the cylinder grown by delta. If that grown cylinder touches no
+// values (joint paths) or of the tip position plus a slerp of the axis and a twist of the
+// reference direction about it (pose paths). On a parameter interval [t0, t1] the probe moves at
+// most delta from its pose at the midpoint (a bound derived from the joint increments and the
+// distances of the probe to the joint axes, docs/probe.md), so the swept volume lies inside the
+// cylinders (and holder box) grown by delta. If those grown bodies touch no
 // triangle the interval is clear; otherwise the midpoint pose is tested exactly and the interval is
 // halved, down to 2^-max_depth. Intervals that are never cleared are reported as colliding: the
 // check never misses a collision, and over-reports by at most the final resolution (plus intervals
@@ -26,6 +28,7 @@
 
 #include "interfere/bvh/bvh.h"
 #include "interfere/mesh/tri_mesh.h"
+#include "interfere/probe/box.h"
 #include "interfere/probe/cylinder.h"
 #include "interfere/probe/kinematics.h"
 #include "interfere/probe/path.h"
@@ -35,18 +38,34 @@ namespace interfere::probe {
 inline constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
 
 /// Probe body: a cylinder of `radius` and `length` going back from the end circle (the tip), and an
-/// optional holder cylinder behind it (used when holder_radius > 0 and holder_length > 0).
+/// optional holder behind it: a cylinder (used when holder_radius > 0 and holder_length > 0) or a
+/// box (used when its width, depth and length are > 0; docs/probe.md, "Box holder"). The box's
+/// front face is centred on the probe's back end circle, it extends holder_box_length further back,
+/// holder_box_width along the pose's reference direction and holder_box_depth along axis x ref, so
+/// poses need a reference direction (ProbePose::ref). The CLI accepts one holder kind; the library
+/// checks both when both are given.
 struct ProbeShape {
   double radius = 5.0;
   double length = 40.0;
   double holder_radius = 0.0;
   double holder_length = 0.0;
+  double holder_box_width = 0.0;
+  double holder_box_depth = 0.0;
+  double holder_box_length = 0.0;
   bool has_holder() const { return holder_radius > 0 && holder_length > 0; }
+  bool has_holder_box() const { return holder_box_width > 0 && holder_box_depth > 0 && holder_box_length > 0; }
   double volume() const;  ///< pi r^2 l of the probe (the holder is not counted)
+  /// Bound on the distance of any body point from the tip (motion bound of pose paths).
+  double reach() const;
+  /// Bound on the distance of any body point from the probe axis line (twist about the axis).
+  double axis_reach() const;
 };
 
 /// The probe (index 0) and holder (index 1, when present) cylinders at `pose`.
 std::vector<Cylinder> probe_cylinders(const ProbeShape& shape, const ProbePose& pose);
+
+/// The holder box at `pose`. Preconditions: shape.has_holder_box() and pose.has_ref().
+OrientedBox probe_holder_box(const ProbeShape& shape, const ProbePose& pose);
 
 /// Workpiece patches (§3.2): triangles split recursively at the centroid median of the longest
 /// box axis until a patch's box volume (each extent floored at `min_extent`, so flat patches are
@@ -149,13 +168,14 @@ struct SweepResult {
   std::size_t colliding_points = 0;
   std::size_t colliding_segments = 0;
   std::size_t between_samples_segments = 0;
-  std::size_t candidate_tests = 0;      ///< exact cylinder-triangle tests at the path points
+  std::size_t candidate_tests = 0;      ///< exact cylinder/box-triangle tests at the path points
   double discrete_seconds = 0, continuous_seconds = 0, clearance_seconds = 0;
   bool any_collision() const { return colliding_points + colliding_segments > 0; }
 };
 
 /// Checks `path` (poses resolved; `robot` non-null for joint paths, used by the continuous check)
-/// against the workpiece. Results do not depend on the thread count.
+/// against the workpiece. Results do not depend on the thread count. With a box holder every pose
+/// needs a reference direction (check_reference_frames); std::invalid_argument otherwise.
 SweepResult sweep(const Workpiece& workpiece, const ProbePath& path, const Robot* robot, const SweepRequest& request);
 
 /// Exact: does the probe (or holder) at `pose` touch the workpiece; appends the hit triangles to
