@@ -119,7 +119,10 @@ py::array as_rows_of_3(py::handle obj, const std::string& what, const char* kind
   }
   if (a.ndim() != 2 || a.shape(1) != 3) {
     std::string shape = "(";
-    for (py::ssize_t k = 0; k < a.ndim(); ++k) shape += (k ? ", " : "") + std::to_string(a.shape(k));
+    for (py::ssize_t k = 0; k < a.ndim(); ++k) {
+      if (k) shape += ", ";
+      shape += std::to_string(a.shape(k));
+    }
     throw py::value_error(what + ": expected shape (n, 3), got " + shape + (a.ndim() == 1 ? ",)" : ")"));
   }
   return a;
