@@ -106,7 +106,9 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> self_intersecting_pairs(con
   using Pairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
   const std::size_t nt = mesh.num_triangles();
   if (nt < 2) return {};
-  const Bvh bvh = build_bvh(mesh);
+  // Leaves of 8: fewer leaf pairs; the box tests inside a leaf pair are cheap (1.2x faster than 4
+  // from 5e3 to 1e6 triangles).
+  const Bvh bvh = build_bvh(mesh, {.max_leaf_size = 8});
   // Leaf pairs whose boxes overlap (serial sweep of node pairs, each unordered pair once).
   std::vector<std::pair<std::uint32_t, std::uint32_t>> leaves, stack{{0u, 0u}};
   while (!stack.empty()) {
@@ -139,8 +141,12 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> self_intersecting_pairs(con
           for (std::uint32_t x = na.first; x < na.first + na.count; ++x)
             for (std::uint32_t y = same ? x + 1 : nb.first; y < nb.first + nb.count; ++y) {
               if (!bvh.prim_boxes[x].overlaps(bvh.prim_boxes[y])) continue;
-              const auto ca = mesh.corners(bvh.prims[x]), cb = mesh.corners(bvh.prims[y]);
+              // Adjacent by index (a welded mesh) first, else by position (a soup).
+              const Tri &ta = mesh.triangles[bvh.prims[x]], &tb = mesh.triangles[bvh.prims[y]];
               bool share = false;
+              for (std::uint32_t i : ta) share = share || i == tb[0] || i == tb[1] || i == tb[2];
+              if (share) continue;
+              const auto ca = mesh.corners(bvh.prims[x]), cb = mesh.corners(bvh.prims[y]);
               for (const Vec3& p : ca)
                 for (const Vec3& q : cb) share = share || p == q;
               if (!share && tri_tri_exact_intersects(ca, cb))
