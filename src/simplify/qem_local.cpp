@@ -76,35 +76,40 @@ void Simplifier::gather_neighbours(std::uint32_t v, Scratch& sc) const {
   // neighbours on, marks over the vertices.
   constexpr std::size_t kLinear = 16;
   std::uint32_t id = 0;
-  for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
-    const std::uint32_t t = refs_[fan_start_[v] + i];
+  const auto add = [&](std::uint32_t w, std::uint32_t f) {
+    Scratch::Neighbour* found = nullptr;
+    if (id == 0) {
+      for (Scratch::Neighbour& n : sc.nbr)
+        if (n.w == w) {
+          found = &n;
+          break;
+        }
+    } else if (sc.mark_a[w] == id) {
+      found = &sc.nbr[sc.slot[w]];
+    }
+    if (found) {
+      ++found->count;
+      found->differ = found->differ || found->face != f;
+      return;
+    }
+    sc.nbr.push_back({w, 1, f, false});
+    if (id != 0) {
+      sc.mark_a[w] = id, sc.slot[w] = static_cast<std::uint32_t>(sc.nbr.size() - 1);
+    } else if (sc.nbr.size() == kLinear) {
+      id = ++sc.id;
+      for (std::uint32_t k = 0; k < sc.nbr.size(); ++k) sc.mark_a[sc.nbr[k].w] = id, sc.slot[sc.nbr[k].w] = k;
+    }
+  };
+  const std::uint32_t* fan = refs_.data() + fan_start_[v];
+  for (std::uint32_t i = 0, n = fan_count_[v]; i < n; ++i) {
+    const std::uint32_t t = fan[i];
     if (dead_[t]) continue;
     const std::uint32_t f = face_[t];
-    for (std::uint32_t w : tris_[t]) {
-      if (w == v) continue;
-      Scratch::Neighbour* found = nullptr;
-      if (id == 0) {
-        for (Scratch::Neighbour& n : sc.nbr)
-          if (n.w == w) {
-            found = &n;
-            break;
-          }
-      } else if (sc.mark_a[w] == id) {
-        found = &sc.nbr[sc.slot[w]];
-      }
-      if (found) {
-        ++found->count;
-        found->differ = found->differ || found->face != f;
-        continue;
-      }
-      sc.nbr.push_back({w, 1, f, false});
-      if (id != 0) {
-        sc.mark_a[w] = id, sc.slot[w] = static_cast<std::uint32_t>(sc.nbr.size() - 1);
-      } else if (sc.nbr.size() == kLinear) {
-        id = ++sc.id;
-        for (std::uint32_t k = 0; k < sc.nbr.size(); ++k) sc.mark_a[sc.nbr[k].w] = id, sc.slot[sc.nbr[k].w] = k;
-      }
-    }
+    const Tri& tr = tris_[t];
+    // The two other corners, in the triangle's order after v.
+    const int k = tr[0] == v ? 0 : tr[1] == v ? 1 : 2;
+    add(tr[(k + 1) % 3], f);
+    add(tr[(k + 2) % 3], f);
   }
 }
 
