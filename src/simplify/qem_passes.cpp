@@ -14,7 +14,7 @@
 
 namespace interfere::qem {
 namespace {
-constexpr std::size_t kRanges = 16;        ///< vertex ranges applied in parallel (fixed: deterministic)
+constexpr std::size_t kRanges = 16;      ///< vertex ranges applied in parallel (fixed: deterministic)
 constexpr std::size_t kMinRange = 1024;  ///< collapses per range at least
 }  // namespace
 
