@@ -141,8 +141,7 @@ quadric-error-metric edge collapses while the faces that take part in the curren
    the ranges touch disjoint triangles and the result does not depend on the thread count — and
    the candidates of the changed vertices are dropped and their edges evaluated again (in parallel); the others
    keep their cost. Below about budget + max(budget, 1024) triangles the heap finishes with the exact budget. The
-   setup is parallel with oneTBB (weld: 32-bit position hashes radix-sorted, exact comparison within equal
-   hashes; per-vertex quadrics in fan order, seam detection, initial candidates in fixed vertex blocks
+   setup is parallel with oneTBB (weld: the mesh module's hash-partitioned `weld_exact`; per-vertex quadrics in fan order, seam detection, initial candidates in fixed vertex blocks
    concatenated in order) and every result is bit-identical for 1 and N threads (unit test
    `Simplify.OneAndManyThreadsGiveBitIdenticalResults`). **No self-intersections**: by default the result
    is checked for intersecting non-adjacent triangle pairs with the engine's BVH traversed against itself and
@@ -388,7 +387,7 @@ def write_doc(raw):
         for name in names:
             lines.append(f"| {name} | " + " | ".join(fmt(r[n].get('phase:' + name), '.2f') for n in ph_rows) + " |")
         lines.append("")
-        lines.append("`weld`: exact-position welding (hash + radix sort); `setup`: fans, quadrics, feature marks; "
+        lines.append("`weld`: exact-position welding (the mesh module's hash-partitioned `weld_exact`); `setup`: fans, quadrics, feature marks; "
                      "`seams`: constrained edges and their penalty planes; `initial candidates`: one evaluated "
                      "collapse per edge; `passes: *`: the batched passes (radix sort, selection walk, checks and "
                      "collapses in parallel vertex ranges, dropping candidates of changed vertices, re-evaluation of "

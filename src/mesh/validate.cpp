@@ -50,7 +50,8 @@ Buckets bucketize(std::size_t num_buckets, const Emit& emit) {
 
 }  // namespace
 
-std::size_t weld_exact(TriMesh& mesh) {
+std::size_t weld_exact(TriMesh& mesh, std::vector<std::uint32_t>* map) {
+  if (map) map->clear();
   const std::size_t nv = mesh.positions.size();
   if (nv > kNone) return 0;
   for (const Tri& t : mesh.triangles) {
@@ -78,6 +79,10 @@ std::size_t weld_exact(TriMesh& mesh) {
     if (rep[v] == v && id[v] != kNone) positions[id[v]] = mesh.positions[v];
   }
   mesh.positions = std::move(positions);
+  if (map) {
+    map->resize(nv);
+    for (std::size_t v = 0; v < nv; ++v) (*map)[v] = id[rep[v]];
+  }
   return nv - next;
 }
 

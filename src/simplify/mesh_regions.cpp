@@ -1,12 +1,8 @@
-// Mesh helpers of the simplifier (issue #6, item 5): exact-position welding (faces duplicated
-// along B-Rep boundaries become one topological mesh), splitting back per face id (faces stay
+// Mesh helpers of the simplifier (issue #6, item 5): exact-position welding (the mesh module's
+// weld_exact on a copy: faces duplicated along B-Rep boundaries become one topological mesh), splitting back per face id (faces stay
 // separable in the output), and regions of a plain mesh split at sharp edges (dihedral-angle
 // feature mask) by union-find over the smooth manifold edges.
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
-#include <cstring>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -14,86 +10,17 @@
 #include <utility>
 #include <vector>
 
+#include "interfere/mesh/validate.h"
 #include "interfere/simplify/qem.h"
-#include "radix_sort.h"
 
 namespace interfere {
 namespace {
 constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
 }  // namespace
 
-// Positions are grouped by a 32-bit hash of their bits (-0.0 taken as 0.0, which compares equal),
-// sorted stably by hash (parallel radix sort, so indices ascend within a hash), and compared
-// exactly within each run of equal hashes: the representative of a group is its smallest index.
 TriMesh weld_positions(const TriMesh& mesh, std::vector<std::uint32_t>* map) {
-  const std::size_t nv = mesh.num_vertices();
-  const auto& p = mesh.positions;
-  struct Keyed {
-    std::uint32_t hash, index;
-  };
-  std::vector<Keyed> order(nv), tmp;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, 1 << 15), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i < r.end(); ++i) {
-      std::uint64_t h = 0x9e3779b97f4a7c15ull;
-      for (double c : {p[i].x + 0.0, p[i].y + 0.0, p[i].z + 0.0}) {
-        std::uint64_t bits;
-        std::memcpy(&bits, &c, 8);
-        h = (h ^ bits) * 0xff51afd7ed558ccdull;
-        h ^= h >> 32;
-      }
-      order[i] = {static_cast<std::uint32_t>(h), static_cast<std::uint32_t>(i)};
-    }
-  });
-  radix_sort_u32(order, tmp, [](const Keyed& k) { return k.hash; });
-  std::vector<std::uint32_t> rep(nv);
-  for (std::size_t i = 0; i < nv;) {
-    std::size_t j = i + 1;
-    while (j < nv && order[j].hash == order[i].hash) ++j;
-    if (j - i <= 16) {  // a collision or a few duplicates: pairwise
-      for (std::size_t k = i; k < j; ++k) {
-        const std::uint32_t v = order[k].index;
-        rep[v] = v;
-        for (std::size_t m = i; m < k; ++m)
-          if (p[order[m].index] == p[v]) {
-            rep[v] = rep[order[m].index];
-            break;
-          }
-      }
-    } else {  // many copies of one position: sorted by (position, index)
-      std::sort(order.begin() + i, order.begin() + j, [&](const Keyed& a, const Keyed& b) {
-        const Vec3 &u = p[a.index], &w = p[b.index];
-        if (u.x != w.x) return u.x < w.x;
-        if (u.y != w.y) return u.y < w.y;
-        if (u.z != w.z) return u.z < w.z;
-        return a.index < b.index;
-      });
-      for (std::size_t k = i; k < j; ++k) {
-        const std::uint32_t v = order[k].index;
-        rep[v] = k > i && p[order[k - 1].index] == p[v] ? rep[order[k - 1].index] : v;
-      }
-    }
-    i = j;
-  }
-  TriMesh out;
-  std::vector<std::uint32_t> id(nv, kNone);
-  out.triangles.resize(mesh.num_triangles());
-  out.positions.reserve(nv);
-  for (std::size_t t = 0; t < mesh.num_triangles(); ++t) {
-    const Tri& tr = mesh.triangles[t];
-    Tri& n = out.triangles[t];
-    for (int k = 0; k < 3; ++k) {
-      const std::uint32_t r = rep[tr[k]];
-      if (id[r] == kNone) {
-        id[r] = static_cast<std::uint32_t>(out.positions.size());
-        out.positions.push_back(p[r]);
-      }
-      n[k] = id[r];
-    }
-  }
-  if (map) {
-    map->assign(nv, kNone);
-    for (std::size_t v = 0; v < nv; ++v) (*map)[v] = id[rep[v]];
-  }
+  TriMesh out = mesh;
+  weld_exact(out, map);
   return out;
 }
 

@@ -149,8 +149,7 @@ Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& op
         r.phases = std::move(phases);
         r.guard_rerun = true;
         r.guard_reruns = static_cast<std::size_t>(attempt) + 1;
-        sp = std::make_unique<qem::Simplifier>(attempt == 0 ? TriMesh(input) : weld_positions(mesh), face, feature_tri,
-                                               options);
+        sp = std::make_unique<qem::Simplifier>(TriMesh(input), face, feature_tri, options);
         if (attempt < kRegionalReruns) sp->set_guard_region(region);
         sp->run(target, r);
         out_face.clear();

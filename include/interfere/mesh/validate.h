@@ -1,6 +1,8 @@
 // Welding and validation of triangle meshes (issue #2, item 2).
 #pragma once
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 #include "interfere/mesh/tri_mesh.h"
 
@@ -12,8 +14,9 @@ namespace interfere {
 /// Each kept vertex keeps the position of its lowest-numbered duplicate. Returns the number of
 /// vertices removed (duplicates plus unreferenced). A mesh with an index out of range is left
 /// unchanged (returns 0). Cost: O(n) expected, parallel (hash-partitioned), deterministic for any
-/// thread count.
-std::size_t weld_exact(TriMesh& mesh);
+/// thread count. With `map`, map[v] is the new index of old vertex v (of its class: none when no
+/// vertex of the class is referenced); left empty when the mesh is left unchanged.
+std::size_t weld_exact(TriMesh& mesh, std::vector<std::uint32_t>* map = nullptr);
 
 struct MeshStats {
   std::size_t vertices = 0;
