@@ -105,6 +105,22 @@ void phase_counters(benchmark::State& state, const SimplifyResult& r) {
   for (const auto& [name, sec] : r.phases) state.counters["phase:" + name] = sec * 1e3;
 }
 
+// The timed loop of every interfere row: simplify() per iteration, the last result in `out`;
+// false (row skipped with the error) when simplify() fails.
+bool timed_simplify(benchmark::State& state, const TriMesh& mesh, const SimplifyOptions& o, TriMesh& out) {
+  for (auto _ : state) {
+    auto r = simplify(mesh, o);
+    if (!r) {
+      state.SkipWithError(r.error().reason.c_str());
+      return false;
+    }
+    out = std::move(r->mesh);
+    state.counters["guard_rerun"] = r->guard_rerun;
+    phase_counters(state, *r);
+  }
+  return true;
+}
+
 void bm_interfere(benchmark::State& state, std::size_t n, double ratio, bool guard, bool features,
                   bool measure) {
   const Case& c = sphere_case(n);
@@ -114,16 +130,7 @@ void bm_interfere(benchmark::State& state, std::size_t n, double ratio, bool gua
   o.measure_error = measure;  // interfere_error: the report's Hausdorff measurement timed too
   o.prevent_self_intersections = guard;
   TriMesh out;
-  for (auto _ : state) {
-    auto r = simplify(c.mesh, o);
-    if (!r) {
-      state.SkipWithError(r.error().reason.c_str());
-      return;
-    }
-    out = std::move(r->mesh);
-    state.counters["guard_rerun"] = r->guard_rerun;
-    phase_counters(state, *r);
-  }
+  if (!timed_simplify(state, c.mesh, o, out)) return;
   report(state, c.mesh, c.feature, out, c.diag);
 }
 
@@ -254,16 +261,7 @@ void bm_casing(benchmark::State& state, const std::string& step, bool guard, Fea
   o.measure_error = false;
   o.prevent_self_intersections = guard;
   TriMesh out;
-  for (auto _ : state) {
-    auto r = simplify(part.mesh, o);
-    if (!r) {
-      state.SkipWithError(r.error().reason.c_str());
-      return;
-    }
-    out = std::move(r->mesh);
-    state.counters["guard_rerun"] = r->guard_rerun;
-    phase_counters(state, *r);
-  }
+  if (!timed_simplify(state, part.mesh, o, out)) return;
   report(state, part.mesh, c.step_feature.at(step), out, norm(part.mesh.bounds().extent()));
   state.counters["deflection"] = c.deflection;
   state.counters["feature_faces"] = double(c.step_faces.at(step).size());
