@@ -16,6 +16,7 @@
 #include <sstream>
 
 #include "interfere/probe/box.h"
+#include "unit/probe/random_axes.h"
 
 namespace interfere::probe {
 namespace {
@@ -48,15 +49,7 @@ std::string describe(const OrientedBox& b, const Tri& t) {
   return s.str();
 }
 
-std::array<Vec3, 3> random_axes(std::mt19937_64& g) {
-  std::normal_distribution<double> n;
-  double w = n(g), x = n(g), y = n(g), z = n(g);
-  const double s = std::sqrt(w * w + x * x + y * y + z * z);
-  w /= s, x /= s, y /= s, z /= s;
-  return {Vec3{1 - 2 * (y * y + z * z), 2 * (x * y + w * z), 2 * (x * z - w * y)},
-          Vec3{2 * (x * y - w * z), 1 - 2 * (x * x + z * z), 2 * (y * z + w * x)},
-          Vec3{2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)}};
-}
+using test::random_axes;
 
 Vec3 nudge(const Vec3& v, std::mt19937_64& g) {
   Vec3 r = v;

@@ -12,6 +12,7 @@
 #include "interfere/core/predicates.h"
 #include "interfere/np/distance.h"
 #include "interfere/probe/box.h"
+#include "unit/probe/random_axes.h"
 
 using namespace interfere;
 using namespace interfere::probe;
@@ -25,16 +26,7 @@ Vec3 rnd(std::mt19937_64& g, double s) {
   return {u(g), u(g), u(g)};
 }
 
-/// Random rotation (unit quaternion, Shoemake 1992) as three orthonormal right-handed axes.
-std::array<Vec3, 3> random_axes(std::mt19937_64& g) {
-  std::normal_distribution<double> n;
-  double w = n(g), x = n(g), y = n(g), z = n(g);
-  const double s = std::sqrt(w * w + x * x + y * y + z * z);
-  w /= s, x /= s, y /= s, z /= s;
-  return {Vec3{1 - 2 * (y * y + z * z), 2 * (x * y + w * z), 2 * (x * z - w * y)},
-          Vec3{2 * (x * y - w * z), 1 - 2 * (x * x + z * z), 2 * (y * z + w * x)},
-          Vec3{2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)}};
-}
+using test::random_axes;
 
 OrientedBox random_box(std::mt19937_64& g) {
   std::uniform_real_distribution<double> h(0.2, 2.0);
