@@ -140,8 +140,8 @@ quadric-error-metric edge collapses while the faces that take part in the curren
    collapse whose triangles hold an end of another range's collapse is deferred to a serial sweep afterwards, so
    the ranges touch disjoint triangles and the result does not depend on the thread count — and
    the candidates of the changed vertices are dropped and their edges evaluated again (in parallel); the others
-   keep their cost. Below about budget + max(budget, 1024) triangles the heap finishes with the exact budget. The
-   setup is parallel with oneTBB (weld: the mesh module's hash-partitioned `weld_exact`; per-vertex quadrics in fan order, seam detection, initial candidates in fixed vertex blocks
+   keep their cost. Below about budget + max(budget / 2, 1024) triangles the heap finishes with the exact budget. The
+   setup is parallel with oneTBB (weld: the mesh module's hash-partitioned `weld_exact`; per-triangle planes once, per-vertex quadrics summed in fan order, seam detection, initial candidates in fixed vertex blocks
    concatenated in order) and every result is bit-identical for 1 and N threads (unit test
    `Simplify.OneAndManyThreadsGiveBitIdenticalResults`). **No self-intersections**: by default the result
    is checked for intersecting non-adjacent triangle pairs with the engine's BVH traversed against itself and

@@ -11,21 +11,33 @@
 
 namespace interfere::qem {
 
-// Per-vertex quadrics in parallel: each vertex sums the planes of its fan in triangle order, the
-// same order (and bits) as a serial sweep over the triangles, for any thread count.
+// Per-vertex quadrics in parallel: the plane of each triangle is computed once, then each vertex
+// sums the planes of its fan in triangle order, the same order (and bits) as a serial sweep over
+// the triangles, for any thread count.
 void Simplifier::vertex_quadrics() {
+  struct Plane {
+    Vec3 n;
+    double d, w;  ///< w = area; 0: degenerate or dead (skipped)
+  };
+  std::vector<Plane> plane(tris_.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tris_.size(), 1 << 13), [&](const tbb::blocked_range<std::size_t>& rg) {
+    for (std::size_t t = rg.begin(); t < rg.end(); ++t) {
+      plane[t].w = 0;
+      if (dead_[t]) continue;
+      const auto& tr = tris_[t];
+      const Vec3 n2 = cross(pos_[tr[1]] - pos_[tr[0]], pos_[tr[2]] - pos_[tr[0]]);
+      const double len = norm(n2);
+      if (!(len > 0)) continue;
+      const Vec3 n = n2 / len;
+      plane[t] = {n, -dot(n, pos_[tr[0]]), 0.5 * len};
+    }
+  });
   quad_.assign(pos_.size(), Quadric{});
   for_blocks(pos_.size(), [&](std::uint32_t v0, std::uint32_t v1, std::size_t) {
     for (std::uint32_t v = v0; v < v1; ++v)
       for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
-        const std::uint32_t t = refs_[fan_start_[v] + i];
-        if (dead_[t]) continue;
-        const auto& tr = tris_[t];
-        const Vec3 n2 = cross(pos_[tr[1]] - pos_[tr[0]], pos_[tr[2]] - pos_[tr[0]]);
-        const double len = norm(n2);
-        if (!(len > 0)) continue;
-        const Vec3 n = n2 / len;
-        quad_[v].add_plane(n, -dot(n, pos_[tr[0]]), 0.5 * len);
+        const Plane& p = plane[refs_[fan_start_[v] + i]];
+        if (p.w > 0) quad_[v].add_plane(p.n, p.d, p.w);
       }
   });
 }
@@ -160,7 +172,9 @@ void Simplifier::run(std::size_t target, SimplifyResult& r) {
     });
   }
   clock.lap("initial candidates");
-  const std::size_t handoff = target + std::max<std::size_t>(target, 1024);
+  // The heap takes over at 1.5x the budget (at least budget + 1024): the passes are cheaper per
+  // collapse (casing 35,516 -> 5,200: about 2 ms less than handing over at 2x, same Hausdorff).
+  const std::size_t handoff = target + std::max<std::size_t>(target / 2, 1024);
   // With a guard everywhere (every collapse checked serially) the heap alone is as fast.
   const bool batched = !(guard_ && guard_boxes_.empty()) && o_.batched_passes && live >= o_.batched_min_triangles &&
                        live > handoff + handoff / 2;

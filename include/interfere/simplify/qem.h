@@ -66,7 +66,7 @@ struct SimplifyOptions {
   bool guard_every_collapse = false;
   /// Large reductions: batched passes of collapses with disjoint end vertices (cheapest first up to
   /// an error limit, checked and applied in vertex order, contiguous vertex ranges in parallel)
-  /// down to about budget + max(budget, 1024) triangles, then the heap for the rest;
+  /// down to about budget + max(budget / 2, 1024) triangles, then the heap for the rest;
   /// deterministic. Off (or with the per-collapse intersection guard): the heap throughout.
   bool batched_passes = true;
   /// Batched passes only from this many input triangles (below, the heap alone is as fast).
