@@ -224,7 +224,7 @@ class Simplifier {
   void vertex_quadrics();
   void classify_vertices(SimplifyResult& r);
   /// One candidate per live edge (from its smaller end), in vertex order; in parallel.
-  std::vector<HeapEntry> edge_candidates() const;
+  std::vector<HeapEntry> edge_candidates();
   void heap_loop(std::size_t target, std::size_t& live, SimplifyResult& r);
   // Local operations (qem_local.cpp); `sc` is the calling thread's scratch.
   bool seam_edge(std::uint32_t a, std::uint32_t b, int* shared) const;
@@ -245,17 +245,23 @@ class Simplifier {
   /// Evaluates the edges from v to the gathered neighbours w with keep(w) (see gather_neighbours).
   template <class Keep>
   void evaluate_gathered(std::uint32_t v, const Scratch& sc, std::vector<HeapEntry>& out, Keep keep) const {
+    evaluate_neighbours(v, sc.nbr.data(), sc.nbr.data() + sc.nbr.size(), out, keep);
+  }
+  /// Evaluates the edges from v to the neighbours [first, last) with keep(w).
+  template <class Keep>
+  void evaluate_neighbours(std::uint32_t v, const Scratch::Neighbour* first, const Scratch::Neighbour* last,
+                           std::vector<HeapEntry>& out, Keep keep) const {
     // The neighbours' quadrics and positions are scattered: fetch them all before the evaluations
     // so that the cache misses overlap.
-    for (const Scratch::Neighbour& n : sc.nbr) {
-      __builtin_prefetch(&quad_[n.w]);
-      __builtin_prefetch(reinterpret_cast<const char*>(&quad_[n.w]) + 64);
-      __builtin_prefetch(&pos_[n.w]);
+    for (const Scratch::Neighbour* n = first; n != last; ++n) {
+      __builtin_prefetch(&quad_[n->w]);
+      __builtin_prefetch(reinterpret_cast<const char*>(&quad_[n->w]) + 64);
+      __builtin_prefetch(&pos_[n->w]);
     }
-    for (const Scratch::Neighbour& n : sc.nbr) {
-      if (!keep(n.w)) continue;
+    for (const Scratch::Neighbour* n = first; n != last; ++n) {
+      if (!keep(n->w)) continue;
       Candidate c;
-      if (evaluate(v, n.w, n.count != 2 || n.differ, c)) out.push_back(entry_of(c));
+      if (evaluate(v, n->w, n->count != 2 || n->differ, c)) out.push_back(entry_of(c));
     }
   }
   // Batched passes (qem_passes.cpp).
@@ -276,6 +282,10 @@ class Simplifier {
 
   const SimplifyOptions& o_;
   std::vector<std::uint32_t> fan_start_, fan_count_;
+  /// Per vertex block: the neighbours w > v of its vertices in order (classify_vertices ->
+  /// edge_candidates), upper_count_[v] of them for v.
+  std::vector<std::vector<Scratch::Neighbour>> upper_;
+  std::vector<std::uint32_t> upper_count_;
   std::vector<std::uint32_t> refs_;
   std::vector<Quadric> quad_;
   std::vector<std::uint8_t> cls_, locked_, touches_feature_, vdead_;

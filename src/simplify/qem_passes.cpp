@@ -16,6 +16,7 @@ namespace interfere::qem {
 namespace {
 constexpr std::size_t kRanges = 16;      ///< vertex ranges applied in parallel (fixed: deterministic)
 constexpr std::size_t kMinRange = 1024;  ///< collapses per range at least
+constexpr std::size_t kMergeMax = std::size_t{1} << 20;  ///< longer lists are sorted whole each pass
 }  // namespace
 
 // Applies the selected collapses (sorted by kept end); returns how many were applied. Ranges run in
@@ -138,10 +139,25 @@ void Simplifier::batched_passes(std::vector<HeapEntry>& list, std::size_t handof
   std::vector<std::uint32_t> changed, mark(pos_.size(), 0);
   owner_.assign(pos_.size(), Owner{});
   std::uint32_t pass = 0;
+  std::size_t sorted = 0;  // list[0, sorted) is in key order (the entries kept from the last pass)
+  std::vector<HeapEntry> fresh_list, fresh_tmp;
+  const auto key = [](const HeapEntry& e) { return key_bits(e); };
   // The last few percent are left to the heap (small passes cost a sort and a sweep each).
   while (live > handoff + handoff / 8 && !list.empty()) {
     ++pass;
-    radix_sort_u32(list, tmp, [](const HeapEntry& e) { return key_bits(e); });
+    // Long lists: the full parallel sort (a serial merge would be the longer step on 2 cores).
+    if (sorted == 0 || list.size() > kMergeMax) {
+      radix_sort_u32(list, tmp, key);
+    } else {
+      // Only the fresh entries are sorted, then merged after the kept ones (std::merge is stable,
+      // the kept entries first among equal keys): the same order as a stable sort of the list.
+      fresh_list.assign(list.begin() + static_cast<std::ptrdiff_t>(sorted), list.end());
+      radix_sort_u32(fresh_list, fresh_tmp, key);
+      tmp.resize(list.size());
+      std::merge(list.begin(), list.begin() + static_cast<std::ptrdiff_t>(sorted), fresh_list.begin(),
+                 fresh_list.end(), tmp.begin(), [](const HeapEntry& x, const HeapEntry& y) { return key_bits(x) < key_bits(y); });
+      list.swap(tmp);
+    }
     clock.lap("passes: sort");
     const std::size_t goal = live - handoff;
     // meshoptimizer's error limit: 1.5x the cost at half the goal (no limit in the last tier).
@@ -179,6 +195,7 @@ void Simplifier::batched_passes(std::vector<HeapEntry>& list, std::size_t handof
     tmp.clear();
     for (const HeapEntry& e : list)
       if (!stale(e)) tmp.push_back(e);
+    sorted = tmp.size();
     clock.lap("passes: filter");
     constexpr std::size_t kChunk = 1024;
     std::vector<std::vector<HeapEntry>> fresh((changed.size() + kChunk - 1) / kChunk);

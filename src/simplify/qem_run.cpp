@@ -53,12 +53,20 @@ void Simplifier::classify_vertices(SimplifyResult& r) {
     int shared;
   };
   std::vector<std::vector<SeamEdge>> seam_blocks(num_blocks(nv));
+  // The same sweep keeps each vertex's larger neighbours for edge_candidates (no second gather).
+  upper_.assign(num_blocks(nv), {});
+  upper_count_.assign(nv, 0);
   for_blocks(nv, [&](std::uint32_t v0, std::uint32_t v1, std::size_t block) {
     Scratch& sc = tls_->local();
+    std::vector<Scratch::Neighbour>& upper = upper_[block];
     for (std::uint32_t v = v0; v < v1; ++v) {
       gather_neighbours(v, sc);
-      for (const Scratch::Neighbour& n : sc.nbr)
-        if (n.w > v && (n.count != 2 || n.differ)) seam_blocks[block].push_back({v, n.w, int(n.count)});
+      for (const Scratch::Neighbour& n : sc.nbr) {
+        if (n.w <= v) continue;
+        upper.push_back(n);
+        ++upper_count_[v];
+        if (n.count != 2 || n.differ) seam_blocks[block].push_back({v, n.w, int(n.count)});
+      }
     }
   });
   std::vector<std::uint8_t> seam_count(nv, 0);
@@ -95,16 +103,21 @@ void Simplifier::classify_vertices(SimplifyResult& r) {
 }
 
 // One candidate per live edge, evaluated in parallel from the edge's smaller end (evaluation only
-// reads the mesh) and concatenated in vertex-block order: the same sequence for any thread count.
-std::vector<HeapEntry> Simplifier::edge_candidates() const {
+// reads the mesh; the neighbours are those kept by classify_vertices) and concatenated in
+// vertex-block order: the same sequence for any thread count.
+std::vector<HeapEntry> Simplifier::edge_candidates() {
   const std::size_t nv = pos_.size();
   std::vector<std::vector<HeapEntry>> blocks(num_blocks(nv));
   for_blocks(nv, [&](std::uint32_t v0, std::uint32_t v1, std::size_t block) {
-    Scratch& sc = tls_->local();
     std::vector<HeapEntry>& out = blocks[block];
-    for (std::uint32_t v = v0; v < v1; ++v)
-      if (fan_count_[v] > 0) candidates_of(v, sc, out, /*upper_only=*/true);
+    const Scratch::Neighbour* n = upper_[block].data();
+    for (std::uint32_t v = v0; v < v1; ++v) {
+      evaluate_neighbours(v, n, n + upper_count_[v], out, [](std::uint32_t) { return true; });
+      n += upper_count_[v];
+    }
+    std::vector<Scratch::Neighbour>().swap(upper_[block]);
   });
+  std::vector<std::uint32_t>().swap(upper_count_);
   std::vector<std::size_t> offset(blocks.size() + 1, 0);
   for (std::size_t b = 0; b < blocks.size(); ++b) offset[b + 1] = offset[b] + blocks[b].size();
   std::vector<HeapEntry> list(offset.back());
