@@ -7,7 +7,7 @@
 // simplify_tables.py runs it and regenerates docs/simplify.md.
 //
 // Repetitions: interfere and meshoptimizer rows are the mean of 3 (1e6) or 5 (1e5) runs, the casing
-// rows of 20, OpenMesh runs once.
+// rows (interfere's modes and meshoptimizer on the welded part) of 20, OpenMesh runs once.
 //
 // Timed region: simplify() with the options of the row (weld, quadrics, collapses, the result's
 // self-intersection check and guarded rerun when needed, output); measure_error is off except in
@@ -134,27 +134,32 @@ void bm_interfere(benchmark::State& state, std::size_t n, double ratio, bool gua
   report(state, c.mesh, c.feature, out, c.diag);
 }
 
-void bm_meshopt(benchmark::State& state, std::size_t n, double ratio) {
-  const Case& c = sphere_case(n);
-  const std::size_t target = std::size_t(std::llround(ratio * double(c.mesh.num_triangles()))) & ~std::size_t{1};
+// meshopt_simplify (no error limit) to `target` triangles, timed; the result as a triangle soup.
+TriMesh timed_meshopt(benchmark::State& state, const TriMesh& mesh, std::size_t target) {
   std::vector<float> pos;
-  for (const Vec3& p : c.mesh.positions) pos.insert(pos.end(), {float(p.x), float(p.y), float(p.z)});
+  for (const Vec3& p : mesh.positions) pos.insert(pos.end(), {float(p.x), float(p.y), float(p.z)});
   std::vector<unsigned> idx;
-  for (const Tri& t : c.mesh.triangles) idx.insert(idx.end(), t.begin(), t.end());
+  for (const Tri& t : mesh.triangles) idx.insert(idx.end(), t.begin(), t.end());
   std::vector<unsigned> dst(idx.size());
   std::size_t count = 0;
   for (auto _ : state) {
     float err = 0;
-    count = meshopt_simplify(dst.data(), idx.data(), idx.size(), pos.data(), c.mesh.num_vertices(), 12, target * 3,
+    count = meshopt_simplify(dst.data(), idx.data(), idx.size(), pos.data(), mesh.num_vertices(), 12, target * 3,
                              1e30f, 0, &err);
     benchmark::DoNotOptimize(count);
   }
   TriMesh out;
-  out.positions = c.mesh.positions;
+  out.positions = mesh.positions;
   for (std::size_t i = 0; i < count; i += 3) out.triangles.push_back({dst[i], dst[i + 1], dst[i + 2]});
   std::vector<std::uint32_t> all(out.num_triangles());
   for (std::uint32_t i = 0; i < all.size(); ++i) all[i] = i;
-  report(state, c.mesh, c.feature, submesh(out, all), c.diag);
+  return submesh(out, all);
+}
+
+void bm_meshopt(benchmark::State& state, std::size_t n, double ratio) {
+  const Case& c = sphere_case(n);
+  const std::size_t target = std::size_t(std::llround(ratio * double(c.mesh.num_triangles()))) & ~std::size_t{1};
+  report(state, c.mesh, c.feature, timed_meshopt(state, c.mesh, target), c.diag);
 }
 
 struct OmTraits : OpenMesh::DefaultTraits {
@@ -267,6 +272,23 @@ void bm_casing(benchmark::State& state, const std::string& step, bool guard, Fea
   state.counters["feature_faces"] = double(c.step_faces.at(step).size());
 }
 
+// The peer on the casing: meshoptimizer on the welded part (it knows neither faces nor features;
+// its time is the reference for the casing target on the same machine and load).
+void bm_casing_meshopt(benchmark::State& state, const std::string& step) {
+  const CasingCase& c = casing_case();
+  if (!c.ok) {
+    state.SkipWithError("casing generation/import failed");
+    return;
+  }
+  const cad::Part& part = c.model.parts[0];
+  const std::size_t budget = env_list("INTERFERE_BENCH_CASING_BUDGET", {5200})[0];
+  const TriMesh welded = weld_positions(part.mesh);
+  const TriMesh out = timed_meshopt(state, welded, std::min(budget, welded.num_triangles()));
+  report(state, part.mesh, c.step_feature.at(step), out, norm(part.mesh.bounds().extent()));
+  state.counters["deflection"] = c.deflection;
+  state.counters["feature_faces"] = double(c.step_faces.at(step).size());
+}
+
 void bm_recognition(benchmark::State& state) {
   static cad::CadModel model;
   static bool ok = false;
@@ -338,6 +360,9 @@ int main(int argc, char** argv) {
         ->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->Iterations(20);
     benchmark::RegisterBenchmark((std::string("Casing/interfere_lock/") + step).c_str(), bm_casing, std::string(step),
                                  true, FeatureMode::lock)
+        ->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->Iterations(20);
+    benchmark::RegisterBenchmark((std::string("Casing/meshoptimizer/") + step).c_str(), bm_casing_meshopt,
+                                 std::string(step))
         ->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->Iterations(20);
   }
   benchmark::RegisterBenchmark("Recognition/perforated_plate", bm_recognition)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime();
