@@ -253,40 +253,45 @@ const CasingCase& casing_case() {
   return c;
 }
 
-void bm_casing(benchmark::State& state, const std::string& step, bool guard, FeatureMode mode) {
+// The casing of a row, or nullptr after skipping the row with an error.
+const CasingCase* casing_or_skip(benchmark::State& state) {
   const CasingCase& c = casing_case();
-  if (!c.ok) {
-    state.SkipWithError("casing generation/import failed");
-    return;
-  }
-  const cad::Part& part = c.model.parts[0];
-  const std::size_t budget = env_list("INTERFERE_BENCH_CASING_BUDGET", {5200})[0];
-  SimplifyOptions o{.target_triangles = std::min(budget, part.mesh.num_triangles()), .face_ids = part.face_ids,
-                    .feature_faces = c.step_faces.at(step), .feature_mode = mode};
+  if (c.ok) return &c;
+  state.SkipWithError("casing generation/import failed");
+  return nullptr;
+}
+
+std::size_t casing_budget(const TriMesh& mesh) {
+  return std::min<std::size_t>(env_list("INTERFERE_BENCH_CASING_BUDGET", {5200})[0], mesh.num_triangles());
+}
+
+void casing_report(benchmark::State& state, const CasingCase& c, const std::string& step, const TriMesh& out) {
+  const TriMesh& mesh = c.model.parts[0].mesh;
+  report(state, mesh, c.step_feature.at(step), out, norm(mesh.bounds().extent()));
+  state.counters["deflection"] = c.deflection;
+  state.counters["feature_faces"] = double(c.step_faces.at(step).size());
+}
+
+void bm_casing(benchmark::State& state, const std::string& step, bool guard, FeatureMode mode) {
+  const CasingCase* c = casing_or_skip(state);
+  if (!c) return;
+  const cad::Part& part = c->model.parts[0];
+  SimplifyOptions o{.target_triangles = casing_budget(part.mesh), .face_ids = part.face_ids,
+                    .feature_faces = c->step_faces.at(step), .feature_mode = mode};
   o.measure_error = false;
   o.prevent_self_intersections = guard;
   TriMesh out;
   if (!timed_simplify(state, part.mesh, o, out)) return;
-  report(state, part.mesh, c.step_feature.at(step), out, norm(part.mesh.bounds().extent()));
-  state.counters["deflection"] = c.deflection;
-  state.counters["feature_faces"] = double(c.step_faces.at(step).size());
+  casing_report(state, *c, step, out);
 }
 
 // The peer on the casing: meshoptimizer on the welded part (it knows neither faces nor features;
 // its time is the reference for the casing target on the same machine and load).
 void bm_casing_meshopt(benchmark::State& state, const std::string& step) {
-  const CasingCase& c = casing_case();
-  if (!c.ok) {
-    state.SkipWithError("casing generation/import failed");
-    return;
-  }
-  const cad::Part& part = c.model.parts[0];
-  const std::size_t budget = env_list("INTERFERE_BENCH_CASING_BUDGET", {5200})[0];
-  const TriMesh welded = weld_positions(part.mesh);
-  const TriMesh out = timed_meshopt(state, welded, std::min(budget, welded.num_triangles()));
-  report(state, part.mesh, c.step_feature.at(step), out, norm(part.mesh.bounds().extent()));
-  state.counters["deflection"] = c.deflection;
-  state.counters["feature_faces"] = double(c.step_faces.at(step).size());
+  const CasingCase* c = casing_or_skip(state);
+  if (!c) return;
+  const TriMesh welded = weld_positions(c->model.parts[0].mesh);
+  casing_report(state, *c, step, timed_meshopt(state, welded, casing_budget(welded)));
 }
 
 void bm_recognition(benchmark::State& state) {
