@@ -138,7 +138,9 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> self_intersecting_pairs(con
           const BvhNode& na = bvh.nodes[leaves[k].first];
           const BvhNode& nb = bvh.nodes[leaves[k].second];
           const bool same = leaves[k].first == leaves[k].second;
-          for (std::uint32_t x = na.first; x < na.first + na.count; ++x)
+          for (std::uint32_t x = na.first; x < na.first + na.count; ++x) {
+            // A triangle away from the other leaf's box meets none of its triangles.
+            if (!same && !bvh.prim_boxes[x].overlaps(nb.box)) continue;
             for (std::uint32_t y = same ? x + 1 : nb.first; y < nb.first + nb.count; ++y) {
               if (!bvh.prim_boxes[x].overlaps(bvh.prim_boxes[y])) continue;
               // Adjacent by index (a welded mesh) first, else by position (a soup).
@@ -152,6 +154,7 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> self_intersecting_pairs(con
               if (!share && tri_tri_exact_intersects(ca, cb))
                 found.emplace_back(std::min(bvh.prims[x], bvh.prims[y]), std::max(bvh.prims[x], bvh.prims[y]));
             }
+          }
         }
         return found;
       },
