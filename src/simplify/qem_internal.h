@@ -229,8 +229,8 @@ class Simplifier {
   // Local operations (qem_local.cpp); `sc` is the calling thread's scratch.
   bool seam_edge(std::uint32_t a, std::uint32_t b, int* shared) const;
   void gather_neighbours(std::uint32_t v, Scratch& sc) const;
-  /// Candidates of the edges at v (of those to larger neighbours only with upper_only).
-  void candidates_of(std::uint32_t v, Scratch& sc, std::vector<HeapEntry>& out, bool upper_only = false) const;
+  /// Candidates of every edge at v.
+  void candidates_of(std::uint32_t v, Scratch& sc, std::vector<HeapEntry>& out) const;
   bool evaluate(std::uint32_t a, std::uint32_t b, bool seam, Candidate& out) const;
   bool direction(std::uint32_t keep, std::uint32_t remove, bool seam, Candidate& out) const;
   bool link_ok(std::uint32_t a, std::uint32_t b, int shared, Scratch& sc) const;

@@ -114,9 +114,9 @@ void Simplifier::gather_neighbours(std::uint32_t v, Scratch& sc) const {
 }
 
 // The candidates of every edge at v (both directions considered, the cheaper kept).
-void Simplifier::candidates_of(std::uint32_t v, Scratch& sc, std::vector<HeapEntry>& out, bool upper_only) const {
+void Simplifier::candidates_of(std::uint32_t v, Scratch& sc, std::vector<HeapEntry>& out) const {
   gather_neighbours(v, sc);
-  evaluate_gathered(v, sc, out, [&](std::uint32_t w) { return !upper_only || w > v; });
+  evaluate_gathered(v, sc, out, [](std::uint32_t) { return true; });
 }
 
 bool Simplifier::direction(std::uint32_t keep, std::uint32_t remove, bool seam, Candidate& out) const {

@@ -155,7 +155,7 @@ void Simplifier::batched_passes(std::vector<HeapEntry>& list, std::size_t handof
       radix_sort_u32(fresh_list, fresh_tmp, key);
       tmp.resize(list.size());
       std::merge(list.begin(), list.begin() + static_cast<std::ptrdiff_t>(sorted), fresh_list.begin(),
-                 fresh_list.end(), tmp.begin(), [](const HeapEntry& x, const HeapEntry& y) { return key_bits(x) < key_bits(y); });
+                 fresh_list.end(), tmp.begin(), [&](const HeapEntry& x, const HeapEntry& y) { return key(x) < key(y); });
       list.swap(tmp);
     }
     clock.lap("passes: sort");
