@@ -12,6 +12,7 @@
 #include <limits>
 #include <string>
 #include <unordered_map>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -25,9 +26,29 @@ namespace interfere::qem {
 
 constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
 
+/// Allocator whose default construction leaves trivial elements uninitialised: large arrays are
+/// first touched by the parallel loop that fills them instead of a serial zeroing pass (on this
+/// project's 2-core VMs a fresh page costs about 2 us to fault in).
+template <class T>
+struct NoInitAllocator : std::allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = NoInitAllocator<U>;
+  };
+  NoInitAllocator() = default;
+  template <class U>
+  NoInitAllocator(const NoInitAllocator<U>&) noexcept {}
+  template <class U, class... A>
+  void construct(U* p, A&&... a) {
+    if constexpr (sizeof...(A) == 0) ::new (static_cast<void*>(p)) U;
+    else ::new (static_cast<void*>(p)) U(std::forward<A>(a)...);
+  }
+};
+
+/// Trivial (no member initialiser: see NoInitAllocator); `Quadric{}` is the zero quadric.
 struct Quadric {
   // Symmetric 4x4 (a b c d)^T (a b c d): xx xy xz xw yy yz yw zz zw ww.
-  double q[10] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+  double q[10];
   void add_plane(const Vec3& n, double d, double w) {
     q[0] += w * n.x * n.x, q[1] += w * n.x * n.y, q[2] += w * n.x * n.z, q[3] += w * n.x * d;
     q[4] += w * n.y * n.y, q[5] += w * n.y * n.z, q[6] += w * n.y * d;
@@ -59,6 +80,8 @@ struct Quadric {
     return is_finite(p);
   }
 };
+
+static_assert(std::is_trivially_default_constructible_v<Quadric>);
 
 enum VertexClass : std::uint8_t { kInterior = 0, kSeam = 1, kCorner = 2 };
 
@@ -180,8 +203,16 @@ struct Scratch {
     std::uint32_t w, count, face;
     bool differ;
   };
+  /// A live triangle of a fan with its corners (snapshot of one collapse's two fans).
+  struct FanTri {
+    std::uint32_t t;
+    Tri tr;
+  };
   std::vector<std::uint32_t> mark_a, mark_b, slot;
   std::vector<Neighbour> nbr;
+  std::vector<FanTri> fan_a, fan_b;  ///< live fans of the collapse's keep and remove ends
+  int shared = 0;                    ///< live triangles on the collapsed edge
+  bool seam = false;                 ///< the edge is constrained (see seam_edge)
   std::uint32_t id = 0;
   explicit Scratch(std::size_t nv) : mark_a(nv, 0), mark_b(nv, 0), slot(nv, 0) {}
 };
@@ -219,6 +250,12 @@ class Simplifier {
   std::vector<std::uint8_t> dead_;
 
  private:
+  // Compaction (qem_compact.cpp): the live vertices and triangles renumbered densely in order (the
+  // candidates' ends too; `sorted`, the length of the list's sorted prefix, follows);
+  // uncompact_triangles restores the input's triangle numbering at the end.
+  void compact_mesh(std::vector<HeapEntry>& list, std::size_t& sorted, std::size_t live);
+  void uncompact_triangles(std::size_t input_triangles);
+  std::vector<std::uint32_t> tri_origin_;  ///< input index of each triangle (empty: not compacted)
   // Setup (qem_run.cpp).
   void build_fans();
   void vertex_quadrics();
@@ -233,12 +270,17 @@ class Simplifier {
   void candidates_of(std::uint32_t v, Scratch& sc, std::vector<HeapEntry>& out) const;
   bool evaluate(std::uint32_t a, std::uint32_t b, bool seam, Candidate& out) const;
   bool direction(std::uint32_t keep, std::uint32_t remove, bool seam, Candidate& out) const;
-  bool link_ok(std::uint32_t a, std::uint32_t b, int shared, Scratch& sc) const;
-  bool flip_ok(std::uint32_t keep, std::uint32_t remove, const Vec3& p) const;
+  // One collapse (a keeps, b goes) works on one snapshot of both fans, taken by `snapshot`, which
+  // also counts the triangles on ab (sc.shared) and tests the seam (sc.seam). With range != kNone
+  // (batched passes) it returns false, taking nothing, when a triangle of either fan holds an end
+  // of another range's selected collapse.
+  bool snapshot(std::uint32_t a, std::uint32_t b, Scratch& sc, std::uint32_t range = kNone) const;
+  bool link_ok(std::uint32_t a, std::uint32_t b, Scratch& sc) const;
+  bool flip_ok(std::uint32_t keep, std::uint32_t remove, const Vec3& p, const Scratch& sc) const;
   /// Collapses b into a at p: the triangles on ab die (counted in `died`), b's others take a; a's
   /// new fan (live triangles) is left in `merged` for the caller to store.
-  void collapse(std::uint32_t a, std::uint32_t b, const Vec3& p, std::vector<std::uint32_t>& merged,
-                std::size_t& died);
+  void collapse(std::uint32_t a, std::uint32_t b, const Vec3& p, const Scratch& sc,
+                std::vector<std::uint32_t>& merged, std::size_t& died);
   void set_fan(std::uint32_t v, const std::vector<std::uint32_t>& tris);
   void compact_fans();
   bool movable(std::uint32_t v) const { return cls_[v] == kInterior && !locked_[v]; }
@@ -287,7 +329,7 @@ class Simplifier {
   std::vector<std::vector<Scratch::Neighbour>> upper_;
   std::vector<std::uint32_t> upper_count_;
   std::vector<std::uint32_t> refs_;
-  std::vector<Quadric> quad_;
+  std::vector<Quadric, NoInitAllocator<Quadric>> quad_;
   std::vector<std::uint8_t> cls_, locked_, touches_feature_, vdead_;
   std::vector<std::uint32_t> stamp_;
   std::unique_ptr<tbb::enumerable_thread_specific<Scratch>> tls_;  ///< per-thread Scratch

@@ -159,25 +159,55 @@ bool Simplifier::evaluate(std::uint32_t a, std::uint32_t b, bool seam, Candidate
   return true;
 }
 
-// Link condition: the common neighbours of a and b are exactly the apexes of the triangles on ab.
-bool Simplifier::link_ok(std::uint32_t a, std::uint32_t b, int shared, Scratch& sc) const {
-  const std::uint32_t id = ++sc.id;
-  for (std::uint32_t i = 0; i < fan_count_[a]; ++i) {
+// The live triangles of a's and b's fans with their corners, read once for all the checks and the
+// collapse; the triangles on ab are those of b's fan holding a (the seam test of seam_edge).
+bool Simplifier::snapshot(std::uint32_t a, std::uint32_t b, Scratch& sc, std::uint32_t range) const {
+  const auto foreign = [&](const Tri& tr) {
+    if (range == kNone) return false;
+    for (std::uint32_t w : tr)
+      if (owner_[w].pass == owner_pass_ && owner_[w].range != range) return true;
+    return false;
+  };
+  sc.fan_a.clear();
+  sc.fan_b.clear();
+  for (std::uint32_t i = 0, n = fan_count_[a]; i < n; ++i) {
     const std::uint32_t t = refs_[fan_start_[a] + i];
     if (dead_[t]) continue;
-    for (std::uint32_t w : tris_[t]) sc.mark_a[w] = id;
+    if (foreign(tris_[t])) return false;
+    sc.fan_a.push_back({t, tris_[t]});
   }
-  int common = 0;
-  for (std::uint32_t i = 0; i < fan_count_[b]; ++i) {
+  int shared = 0;
+  std::uint32_t f0 = kNone;
+  bool differ = false;
+  for (std::uint32_t i = 0, n = fan_count_[b]; i < n; ++i) {
     const std::uint32_t t = refs_[fan_start_[b] + i];
     if (dead_[t]) continue;
-    for (std::uint32_t w : tris_[t]) {
+    const Tri& tr = tris_[t];
+    if (foreign(tr)) return false;
+    sc.fan_b.push_back({t, tr});
+    if (tr[0] != a && tr[1] != a && tr[2] != a) continue;
+    ++shared;
+    if (f0 == kNone) f0 = face_[t];
+    else if (face_[t] != f0) differ = true;
+  }
+  sc.shared = shared;
+  sc.seam = shared != 2 || differ;
+  return true;
+}
+
+// Link condition: the common neighbours of a and b are exactly the apexes of the triangles on ab.
+bool Simplifier::link_ok(std::uint32_t a, std::uint32_t b, Scratch& sc) const {
+  const std::uint32_t id = ++sc.id;
+  for (const Scratch::FanTri& f : sc.fan_a)
+    for (std::uint32_t w : f.tr) sc.mark_a[w] = id;
+  int common = 0;
+  for (const Scratch::FanTri& f : sc.fan_b)
+    for (std::uint32_t w : f.tr) {
       if (w == a || w == b || sc.mark_b[w] == id) continue;
       sc.mark_b[w] = id;
       if (sc.mark_a[w] == id) ++common;
     }
-  }
-  return common == shared;
+  return common == sc.shared;
 }
 
 namespace {
@@ -196,16 +226,14 @@ bool normal_ok(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& pa, cons
 
 // Every live triangle moved by the collapse (those of `remove` that do not contain `keep`, and, if
 // `keep` moves, those of `keep` that do not contain `remove`) keeps its orientation.
-bool Simplifier::flip_ok(std::uint32_t keep, std::uint32_t remove, const Vec3& p) const {
+bool Simplifier::flip_ok(std::uint32_t keep, std::uint32_t remove, const Vec3& p, const Scratch& sc) const {
   const double mc = o_.min_normal_cos;
   for (int side = 0; side < 2; ++side) {
     const std::uint32_t v = side == 0 ? remove : keep;
     const std::uint32_t other = side == 0 ? keep : remove;
     if (side == 1 && p == pos_[keep]) break;
-    for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
-      const std::uint32_t t = refs_[fan_start_[v] + i];
-      if (dead_[t]) continue;
-      const Tri& tr = tris_[t];
+    for (const Scratch::FanTri& f : side == 0 ? sc.fan_b : sc.fan_a) {
+      const Tri& tr = f.tr;
       if (tr[0] == other || tr[1] == other || tr[2] == other) continue;
       Vec3 q[3];
       for (int k = 0; k < 3; ++k) q[k] = tr[k] == v ? p : pos_[tr[k]];
@@ -215,28 +243,26 @@ bool Simplifier::flip_ok(std::uint32_t keep, std::uint32_t remove, const Vec3& p
   return true;
 }
 
-void Simplifier::collapse(std::uint32_t a, std::uint32_t b, const Vec3& p, std::vector<std::uint32_t>& merged,
-                          std::size_t& died) {
+void Simplifier::collapse(std::uint32_t a, std::uint32_t b, const Vec3& p, const Scratch& sc,
+                          std::vector<std::uint32_t>& merged, std::size_t& died) {
   merged.clear();
-  for (std::uint32_t i = 0; i < fan_count_[b]; ++i) {
-    const std::uint32_t t = refs_[fan_start_[b] + i];
-    if (dead_[t]) continue;
-    Tri& tr = tris_[t];
-    if (tr[0] == a || tr[1] == a || tr[2] == a) {
-      dead_[t] = 1;
+  bool feat = false;
+  for (const Scratch::FanTri& f : sc.fan_b) {
+    if (f.tr[0] == a || f.tr[1] == a || f.tr[2] == a) {
+      dead_[f.t] = 1;
       ++died;
       continue;
     }
-    for (std::uint32_t& w : tr)
+    for (std::uint32_t& w : tris_[f.t])
       if (w == b) w = a;
-    merged.push_back(t);
+    merged.push_back(f.t);
+    feat = feat || feature_tri_[f.t];
   }
-  for (std::uint32_t i = 0; i < fan_count_[a]; ++i) {
-    const std::uint32_t t = refs_[fan_start_[a] + i];
-    if (!dead_[t]) merged.push_back(t);
+  for (const Scratch::FanTri& f : sc.fan_a) {
+    if (f.tr[0] == b || f.tr[1] == b || f.tr[2] == b) continue;  // on ab: died above
+    merged.push_back(f.t);
+    feat = feat || feature_tri_[f.t];
   }
-  bool feat = false;
-  for (std::uint32_t t : merged) feat = feat || feature_tri_[t];
   fan_count_[b] = 0;
   vdead_[b] = 1;
   pos_[a] = p;

@@ -11,34 +11,27 @@
 
 namespace interfere::qem {
 
-// Per-vertex quadrics in parallel: the plane of each triangle is computed once, then each vertex
-// sums the planes of its fan in triangle order, the same order (and bits) as a serial sweep over
-// the triangles, for any thread count.
+// Per-vertex quadrics in parallel: each vertex sums the planes of its fan's triangles in fan order
+// (each plane computed by each of its three corners, the same bits each time: cheaper here than
+// an array of planes, whose fresh pages cost more than the arithmetic), the same order and bits as
+// a serial sweep, for any thread count.
 void Simplifier::vertex_quadrics() {
-  struct Plane {
-    Vec3 n;
-    double d, w;  ///< w = area; 0: degenerate or dead (skipped)
-  };
-  std::vector<Plane> plane(tris_.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tris_.size(), 1 << 13), [&](const tbb::blocked_range<std::size_t>& rg) {
-    for (std::size_t t = rg.begin(); t < rg.end(); ++t) {
-      plane[t].w = 0;
-      if (dead_[t]) continue;
-      const auto& tr = tris_[t];
-      const Vec3 n2 = cross(pos_[tr[1]] - pos_[tr[0]], pos_[tr[2]] - pos_[tr[0]]);
-      const double len = norm(n2);
-      if (!(len > 0)) continue;
-      const Vec3 n = n2 / len;
-      plane[t] = {n, -dot(n, pos_[tr[0]]), 0.5 * len};
-    }
-  });
-  quad_.assign(pos_.size(), Quadric{});
+  quad_.resize(pos_.size());  // first touched in parallel below (no zeroing pass)
   for_blocks(pos_.size(), [&](std::uint32_t v0, std::uint32_t v1, std::size_t) {
-    for (std::uint32_t v = v0; v < v1; ++v)
+    for (std::uint32_t v = v0; v < v1; ++v) {
+      Quadric q{};
       for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
-        const Plane& p = plane[refs_[fan_start_[v] + i]];
-        if (p.w > 0) quad_[v].add_plane(p.n, p.d, p.w);
+        const std::uint32_t t = refs_[fan_start_[v] + i];
+        if (dead_[t]) continue;
+        const auto& tr = tris_[t];
+        const Vec3 n2 = cross(pos_[tr[1]] - pos_[tr[0]], pos_[tr[2]] - pos_[tr[0]]);
+        const double len = norm(n2);
+        if (!(len > 0)) continue;
+        const Vec3 n = n2 / len;
+        q.add_plane(n, -dot(n, pos_[tr[0]]), 0.5 * len);
       }
+      quad_[v] = q;
+    }
   });
 }
 
@@ -195,6 +188,7 @@ void Simplifier::run(std::size_t target, SimplifyResult& r) {
   for (const HeapEntry& e : list) heap_.push(e);
   std::vector<HeapEntry>().swap(list);
   heap_loop(target, live, r);
+  uncompact_triangles(nt);
   clock.lap("heap");
   r.rejected_link = rejected_link_, r.rejected_flip = rejected_flip_;
   r.rejected_intersection = rejected_intersection_;
@@ -223,20 +217,19 @@ void Simplifier::heap_loop(std::size_t target, std::size_t& live, SimplifyResult
     if (vdead_[a] || vdead_[b] || static_cast<std::uint16_t>(stamp_[a]) != e.stamp_keep ||
         static_cast<std::uint16_t>(stamp_[b]) != e.stamp_remove)
       continue;
-    int shared = 0;
-    const bool seam = seam_edge(a, b, &shared);
-    if (shared == 0) continue;  // no longer an edge
+    snapshot(a, b, sc);
+    if (sc.shared == 0) continue;  // no longer an edge
     Candidate c;
-    if (!direction(a, b, seam, c)) continue;  // placement recomputed (same quadrics: same result)
-    if (live - static_cast<std::size_t>(shared) < floor) {  // would overshoot the budget
+    if (!direction(a, b, sc.seam, c)) continue;  // placement recomputed (same quadrics: same result)
+    if (live - static_cast<std::size_t>(sc.shared) < floor) {  // would overshoot the budget
       deferred.push_back(e);
       continue;
     }
-    if (!link_ok(a, b, shared, sc)) {
+    if (!link_ok(a, b, sc)) {
       ++rejected_link_;
       continue;
     }
-    if (!flip_ok(a, b, c.p)) {
+    if (!flip_ok(a, b, c.p, sc)) {
       ++rejected_flip_;
       continue;
     }
@@ -245,7 +238,7 @@ void Simplifier::heap_loop(std::size_t target, std::size_t& live, SimplifyResult
       continue;
     }
     std::size_t died = 0;
-    collapse(a, b, c.p, merged_, died);
+    collapse(a, b, c.p, sc, merged_, died);
     set_fan(a, merged_);
     live -= died;
     ++r.collapses;

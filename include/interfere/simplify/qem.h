@@ -71,6 +71,10 @@ struct SimplifyOptions {
   bool batched_passes = true;
   /// Batched passes only from this many input triangles (below, the heap alone is as fast).
   std::size_t batched_min_triangles = 20000;
+  /// Between batched passes, once fewer than half the triangles live, renumber the live vertices
+  /// and triangles densely (in order) so the later passes stay in cache: speed only, the result is
+  /// bit-identical either way (10^6 -> 10^4 triangles: about 12 % faster).
+  bool compact_between_passes = true;
   /// Measure the symmetric Hausdorff distance (sampled, see hausdorff.h) overall and on the
   /// feature faces, and store it as the error bound.
   bool measure_error = true;
