@@ -17,6 +17,7 @@ namespace {
 constexpr std::size_t kRanges = 16;      ///< vertex ranges applied in parallel (fixed: deterministic)
 constexpr std::size_t kMinRange = 1024;  ///< collapses per range at least
 constexpr std::size_t kMergeMax = std::size_t{1} << 20;  ///< longer lists are sorted whole each pass
+
 }  // namespace
 
 // Applies the selected collapses (sorted by kept end); returns how many were applied. Ranges run in
@@ -202,7 +203,9 @@ void Simplifier::batched_passes(std::vector<HeapEntry>& list, std::size_t handof
     list.swap(tmp);
     clock.lap("passes: evaluate");
     // Most of the arrays dead: renumbered densely (same results, far fewer cache misses).
-    if (o_.compact_between_passes && live * 2 < tris_.size()) {
+    // (From SimplifyOptions::compact_min_triangles: a casing of 35,516 triangles ran about 3 % more
+    // instructions with it, for no fewer cache misses.)
+    if (tris_.size() >= o_.compact_min_triangles && live * 2 < tris_.size()) {
       compact_mesh(list, sorted, live);
       taken.assign(pos_.size(), 0);
       mark.assign(pos_.size(), 0);

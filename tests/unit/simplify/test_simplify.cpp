@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <random>
 #include <set>
@@ -346,13 +347,14 @@ TEST(Simplify, OneAndManyThreadsGiveBitIdenticalResults) {
 }
 
 TEST(Simplify, CompactionBetweenPassesChangesNothing) {
-  // The dense renumbering between batched passes (compact_between_passes) is for speed only: with
+  // The dense renumbering between batched passes (compact_min_triangles) is for speed only: with
   // and without it the result is the same to the bit, on a feature-weighted sphere and on two close
   // sheets whose plain result intersects (the guarded rerun's grid is rebuilt after each compaction).
   auto same = [](const SimplifyOptions& o, const TriMesh& m, bool rerun) {
-    SimplifyOptions off = o;
-    off.compact_between_passes = false;
-    auto a = simplify(m, o), b = simplify(m, off);
+    SimplifyOptions on = o, off = o;
+    on.compact_min_triangles = 0;
+    off.compact_min_triangles = std::numeric_limits<std::size_t>::max();
+    auto a = simplify(m, on), b = simplify(m, off);
     ASSERT_TRUE(a.has_value() && b.has_value());
     EXPECT_EQ(a->mesh.triangles, b->mesh.triangles);
     ASSERT_EQ(a->mesh.positions.size(), b->mesh.positions.size());
