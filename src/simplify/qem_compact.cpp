@@ -43,7 +43,7 @@ void gather(Vector& a, const std::vector<std::uint32_t>& map, std::size_t m) {
 
 }  // namespace
 
-void Simplifier::compact_mesh(std::vector<HeapEntry>& list, std::size_t& sorted, std::size_t live) {
+void Simplifier::compact_mesh(EntryList& list, std::size_t& sorted, std::size_t live) {
   const std::size_t nv = pos_.size(), nt = tris_.size();
   std::vector<std::uint32_t> vnew, tnew;
   const std::uint32_t mv = renumber(nv, vnew, [&](std::uint32_t v) { return !vdead_[v]; });

@@ -102,6 +102,8 @@ struct HeapEntry {
   std::uint16_t stamp_keep, stamp_remove;
 };
 static_assert(sizeof(HeapEntry) == 16);
+/// Candidate lists of the batched passes (millions of entries: written in parallel, never zeroed).
+using EntryList = std::vector<HeapEntry, NoInitAllocator<HeapEntry>>;
 
 inline std::uint32_t key_bits(const HeapEntry& e) {
   std::uint32_t k;
@@ -253,7 +255,7 @@ class Simplifier {
   // Compaction (qem_compact.cpp): the live vertices and triangles renumbered densely in order (the
   // candidates' ends too; `sorted`, the length of the list's sorted prefix, follows);
   // uncompact_triangles restores the input's triangle numbering at the end.
-  void compact_mesh(std::vector<HeapEntry>& list, std::size_t& sorted, std::size_t live);
+  void compact_mesh(EntryList& list, std::size_t& sorted, std::size_t live);
   void uncompact_triangles(std::size_t input_triangles);
   std::vector<std::uint32_t> tri_origin_;  ///< input index of each triangle (empty: not compacted)
   // Setup (qem_run.cpp).
@@ -261,7 +263,7 @@ class Simplifier {
   void vertex_quadrics();
   void classify_vertices(SimplifyResult& r);
   /// One candidate per live edge (from its smaller end), in vertex order; in parallel.
-  std::vector<HeapEntry> edge_candidates();
+  EntryList edge_candidates();
   void heap_loop(std::size_t target, std::size_t& live, SimplifyResult& r);
   // Local operations (qem_local.cpp); `sc` is the calling thread's scratch.
   bool seam_edge(std::uint32_t a, std::uint32_t b, int* shared) const;
@@ -285,14 +287,14 @@ class Simplifier {
   void compact_fans();
   bool movable(std::uint32_t v) const { return cls_[v] == kInterior && !locked_[v]; }
   /// Evaluates the edges from v to the gathered neighbours w with keep(w) (see gather_neighbours).
-  template <class Keep>
-  void evaluate_gathered(std::uint32_t v, const Scratch& sc, std::vector<HeapEntry>& out, Keep keep) const {
+  template <class Out, class Keep>
+  void evaluate_gathered(std::uint32_t v, const Scratch& sc, Out& out, Keep keep) const {
     evaluate_neighbours(v, sc.nbr.data(), sc.nbr.data() + sc.nbr.size(), out, keep);
   }
-  /// Evaluates the edges from v to the neighbours [first, last) with keep(w).
-  template <class Keep>
+  /// Evaluates the edges from v to the neighbours [first, last) with keep(w), out.push_back(entry).
+  template <class Out, class Keep>
   void evaluate_neighbours(std::uint32_t v, const Scratch::Neighbour* first, const Scratch::Neighbour* last,
-                           std::vector<HeapEntry>& out, Keep keep) const {
+                           Out& out, Keep keep) const {
     // The neighbours' quadrics and positions are scattered: fetch them all before the evaluations
     // so that the cache misses overlap.
     for (const Scratch::Neighbour* n = first; n != last; ++n) {
@@ -309,7 +311,7 @@ class Simplifier {
   // Batched passes (qem_passes.cpp).
   std::size_t apply_selected(const std::vector<std::pair<std::uint32_t, std::uint32_t>>& selected,
                              std::size_t& live, std::vector<std::uint32_t>& changed);
-  void batched_passes(std::vector<HeapEntry>& list, std::size_t handoff, std::size_t& live, SimplifyResult& r,
+  void batched_passes(EntryList& list, std::size_t handoff, std::size_t& live, SimplifyResult& r,
                       PhaseClock& clock);
   // Self-intersection guard (qem_guard.cpp).
   bool intersection_ok(std::uint32_t keep, std::uint32_t remove, const Vec3& p);

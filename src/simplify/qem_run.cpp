@@ -96,30 +96,37 @@ void Simplifier::classify_vertices(SimplifyResult& r) {
 }
 
 // One candidate per live edge, evaluated in parallel from the edge's smaller end (evaluation only
-// reads the mesh; the neighbours are those kept by classify_vertices) and concatenated in
-// vertex-block order: the same sequence for any thread count.
-std::vector<HeapEntry> Simplifier::edge_candidates() {
-  const std::size_t nv = pos_.size();
-  std::vector<std::vector<HeapEntry>> blocks(num_blocks(nv));
+// reads the mesh; the neighbours are those kept by classify_vertices), written straight into the
+// list at each vertex block's offset (its count of larger neighbours bounds its candidates); the
+// gaps left by edges with no valid direction are closed up in order: the same sequence for any
+// thread count.
+EntryList Simplifier::edge_candidates() {
+  const std::size_t nv = pos_.size(), nb = num_blocks(nv);
+  std::vector<std::size_t> offset(nb + 1, 0), written(nb, 0);
+  for (std::size_t b = 0; b < nb; ++b) offset[b + 1] = offset[b] + upper_[b].size();
+  EntryList list(offset.back());
+  struct Writer {
+    HeapEntry* p;
+    std::size_t n = 0;
+    void push_back(const HeapEntry& e) { p[n++] = e; }
+  };
   for_blocks(nv, [&](std::uint32_t v0, std::uint32_t v1, std::size_t block) {
-    std::vector<HeapEntry>& out = blocks[block];
+    Writer out{list.data() + offset[block]};
     const Scratch::Neighbour* n = upper_[block].data();
     for (std::uint32_t v = v0; v < v1; ++v) {
       evaluate_neighbours(v, n, n + upper_count_[v], out, [](std::uint32_t) { return true; });
       n += upper_count_[v];
     }
+    written[block] = out.n;
     std::vector<Scratch::Neighbour>().swap(upper_[block]);
   });
   std::vector<std::uint32_t>().swap(upper_count_);
-  std::vector<std::size_t> offset(blocks.size() + 1, 0);
-  for (std::size_t b = 0; b < blocks.size(); ++b) offset[b + 1] = offset[b] + blocks[b].size();
-  std::vector<HeapEntry> list(offset.back());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks.size(), 1), [&](const tbb::blocked_range<std::size_t>& rg) {
-    for (std::size_t b = rg.begin(); b < rg.end(); ++b) {
-      std::copy(blocks[b].begin(), blocks[b].end(), list.begin() + offset[b]);
-      std::vector<HeapEntry>().swap(blocks[b]);
-    }
-  });
+  std::size_t k = 0;
+  for (std::size_t b = 0; b < nb; ++b) {
+    if (k != offset[b]) std::copy_n(list.begin() + offset[b], written[b], list.begin() + k);  // k < offset[b]
+    k += written[b];
+  }
+  list.resize(k);
   return list;
 }
 
@@ -160,7 +167,7 @@ void Simplifier::run(std::size_t target, SimplifyResult& r) {
   clock.lap("seams");
   // The initial candidates without the feature offset give the maximum unmodified cost, the
   // offset (weight mode, He & Xu §3.3); then the feature edges get it.
-  std::vector<HeapEntry> list = edge_candidates();
+  EntryList list = edge_candidates();
   std::uint32_t max_bits = 0;
   for (const HeapEntry& e : list) max_bits = std::max(max_bits, key_bits(e) & 0x7fffffffu);
   float max_cost;
@@ -186,7 +193,7 @@ void Simplifier::run(std::size_t target, SimplifyResult& r) {
                        live > handoff + handoff / 2;
   if (batched) batched_passes(list, handoff, live, r, clock);
   for (const HeapEntry& e : list) heap_.push(e);
-  std::vector<HeapEntry>().swap(list);
+  EntryList().swap(list);
   heap_loop(target, live, r);
   uncompact_triangles(nt);
   clock.lap("heap");

@@ -15,9 +15,11 @@
 
 namespace interfere {
 
-/// Sorts `v` stably by key(x) (uint32) ascending; `tmp` is scratch (resized).
-template <class T, class Key>
-void radix_sort_u32(std::vector<T>& v, std::vector<T>& tmp, Key key) {
+/// Sorts `v` (a std::vector of any allocator) stably by key(x) (uint32) ascending; `tmp` is scratch
+/// (resized).
+template <class Vector, class Key>
+void radix_sort_u32(Vector& v, Vector& tmp, Key key) {
+  using T = typename Vector::value_type;
   constexpr int kBits = 11;
   constexpr std::size_t kBuckets = std::size_t{1} << kBits;
   constexpr std::size_t kBlock = 1 << 16;
