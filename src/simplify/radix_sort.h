@@ -15,9 +15,9 @@
 
 namespace interfere {
 
-/// Sorts `v` (a std::vector of any allocator) stably by key(x) (uint32) ascending; `tmp` is scratch
-/// (resized).
-template <class Vector, class Key>
+/// Sorts `v` (a std::vector of any allocator) stably by key(x) (uint32 below 2^KeyBits) ascending;
+/// `tmp` is scratch (resized).
+template <int KeyBits = 32, class Vector, class Key>
 void radix_sort_u32(Vector& v, Vector& tmp, Key key) {
   using T = typename Vector::value_type;
   constexpr int kBits = 11;
@@ -28,7 +28,7 @@ void radix_sort_u32(Vector& v, Vector& tmp, Key key) {
   tmp.resize(n);
   const std::size_t nb = (n + kBlock - 1) / kBlock;
   std::vector<std::array<std::uint32_t, kBuckets>> hist(nb);
-  for (int shift = 0; shift < 32; shift += kBits) {
+  for (int shift = 0; shift < KeyBits; shift += kBits) {
     auto digit = [&](const T& x) { return (key(x) >> shift) & (kBuckets - 1); };
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nb, 1), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t b = r.begin(); b < r.end(); ++b) {
