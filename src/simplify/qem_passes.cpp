@@ -262,8 +262,9 @@ void Simplifier::batched_passes(EntryList& list, std::size_t handoff, std::size_
     // In parallel over fixed blocks: each copies its kept entries to the start of its own span of
     // tmp, then the spans are joined in order.
     {
-      constexpr std::size_t kFilterBlock = std::size_t{1} << 16;
-      const std::size_t n = list.size(), nb = (n + kFilterBlock - 1) / kFilterBlock;
+      const std::size_t n = list.size();
+      const std::size_t kFilterBlock = std::max<std::size_t>(std::size_t{1} << 12, std::min<std::size_t>(std::size_t{1} << 16, (n + 15) / 16));
+      const std::size_t nb = (n + kFilterBlock - 1) / kFilterBlock;
       tmp.resize(n);
       std::vector<std::size_t> kept(nb + 1, 0);
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nb, 1), [&](const tbb::blocked_range<std::size_t>& rg) {

@@ -11,24 +11,41 @@
 
 namespace interfere::qem {
 
-// Per-vertex quadrics in parallel: each vertex sums the planes of its fan's triangles in fan order
-// (each plane computed by each of its three corners, the same bits each time: cheaper here than
-// an array of planes, whose fresh pages cost more than the arithmetic), the same order and bits as
-// a serial sweep, for any thread count.
+// Per-vertex quadrics in parallel: each vertex sums the planes of its fan's triangles in fan order,
+// the same order and bits as a serial sweep, for any thread count. Small meshes compute each
+// triangle's plane once into an array; large ones compute it at each of its three corners (the same
+// bits), since the array's fresh pages cost more than the arithmetic (10^6 triangles: 40 MB).
 void Simplifier::vertex_quadrics() {
+  struct Plane {
+    Vec3 n;
+    double d, w;  ///< w = area; 0: degenerate or dead (skipped)
+  };
+  const auto plane_of = [&](std::uint32_t t) {
+    Plane p{{0, 0, 0}, 0, 0};
+    if (dead_[t]) return p;
+    const auto& tr = tris_[t];
+    const Vec3 n2 = cross(pos_[tr[1]] - pos_[tr[0]], pos_[tr[2]] - pos_[tr[0]]);
+    const double len = norm(n2);
+    if (!(len > 0)) return p;
+    const Vec3 n = n2 / len;
+    return Plane{n, -dot(n, pos_[tr[0]]), 0.5 * len};
+  };
+  constexpr std::size_t kPlaneArrayMax = std::size_t{1} << 18;
+  std::vector<Plane> plane(tris_.size() <= kPlaneArrayMax ? tris_.size() : 0);
+  if (!plane.empty()) {
+    tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, static_cast<std::uint32_t>(plane.size()), 1 << 12),
+                      [&](const tbb::blocked_range<std::uint32_t>& rg) {
+                        for (std::uint32_t t = rg.begin(); t < rg.end(); ++t) plane[t] = plane_of(t);
+                      });
+  }
   quad_.resize(pos_.size());  // first touched in parallel below (no zeroing pass)
   for_blocks(pos_.size(), [&](std::uint32_t v0, std::uint32_t v1, std::size_t) {
     for (std::uint32_t v = v0; v < v1; ++v) {
       Quadric q{};
       for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
         const std::uint32_t t = refs_[fan_start_[v] + i];
-        if (dead_[t]) continue;
-        const auto& tr = tris_[t];
-        const Vec3 n2 = cross(pos_[tr[1]] - pos_[tr[0]], pos_[tr[2]] - pos_[tr[0]]);
-        const double len = norm(n2);
-        if (!(len > 0)) continue;
-        const Vec3 n = n2 / len;
-        q.add_plane(n, -dot(n, pos_[tr[0]]), 0.5 * len);
+        const Plane p = plane.empty() ? plane_of(t) : plane[t];
+        if (p.w > 0) q.add_plane(p.n, p.d, p.w);
       }
       quad_[v] = q;
     }

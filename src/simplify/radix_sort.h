@@ -22,9 +22,11 @@ void radix_sort_u32(Vector& v, Vector& tmp, Key key) {
   using T = typename Vector::value_type;
   constexpr int kBits = 11;
   constexpr std::size_t kBuckets = std::size_t{1} << kBits;
-  constexpr std::size_t kBlock = 1 << 16;
   const std::size_t n = v.size();
   if (n < 2) return;
+  // Blocks of 2^16, smaller for short lists so both threads of a small machine take part (at most
+  // 16 blocks then: the offset sweep stays cheap).
+  const std::size_t kBlock = std::max<std::size_t>(std::size_t{1} << 12, std::min<std::size_t>(std::size_t{1} << 16, (n + 15) / 16));
   tmp.resize(n);
   const std::size_t nb = (n + kBlock - 1) / kBlock;
   std::vector<std::array<std::uint32_t, kBuckets>> hist(nb);
