@@ -64,7 +64,10 @@ void Simplifier::compact_mesh(EntryList& list, std::size_t& sorted, std::size_t 
     offset[b + 1] = sum;
   });
   for (std::size_t b = 1; b < offset.size(); ++b) offset[b] += offset[b - 1];
-  std::vector<std::uint32_t> refs(offset.back());
+  Refs& refs = refs_spare_;
+  refs.clear();
+  refs.reserve(2 * offset.back() + 1024);  // room for grown fans (reserve_fans)
+  refs.resize(offset.back());
   for_blocks(nv, [&](std::uint32_t v0, std::uint32_t v1, std::size_t b) {
     std::size_t k = offset[b];
     for (std::uint32_t v = v0; v < v1; ++v) {

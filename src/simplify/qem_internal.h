@@ -284,7 +284,7 @@ class Simplifier {
   void collapse(std::uint32_t a, std::uint32_t b, const Vec3& p, const Scratch& sc,
                 std::vector<std::uint32_t>& merged, std::size_t& died);
   void set_fan(std::uint32_t v, const std::vector<std::uint32_t>& tris);
-  void compact_fans();
+  void reserve_fans(std::size_t extra);
   bool movable(std::uint32_t v) const { return cls_[v] == kInterior && !locked_[v]; }
   /// Evaluates the edges from v to the gathered neighbours w with keep(w) (see gather_neighbours).
   template <class Out, class Keep>
@@ -330,7 +330,8 @@ class Simplifier {
   /// edge_candidates), upper_count_[v] of them for v.
   std::vector<std::vector<Scratch::Neighbour>> upper_;
   std::vector<std::uint32_t> upper_count_;
-  std::vector<std::uint32_t> refs_;
+  using Refs = std::vector<std::uint32_t, NoInitAllocator<std::uint32_t>>;
+  Refs refs_, refs_spare_;  ///< the fans' triangle lists (and the buffer reserve_fans packs into)
   std::vector<Quadric, NoInitAllocator<Quadric>> quad_;
   std::vector<std::uint8_t> cls_, locked_, touches_feature_, vdead_;
   std::vector<std::uint32_t> stamp_;

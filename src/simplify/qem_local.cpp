@@ -16,7 +16,9 @@ void Simplifier::build_fans() {
   for (const Tri& t : tris_)
     for (std::uint32_t v : t) ++fan_count_[v];
   for (std::size_t v = 0; v < nv; ++v) fan_start_[v + 1] = fan_start_[v] + fan_count_[v];
-  refs_.assign(fan_start_[nv], 0);
+  // Room for the fans that grow (appended): reserved, so untouched pages cost nothing.
+  refs_.reserve(2 * std::size_t{fan_start_[nv]} + 1024);
+  refs_.resize(fan_start_[nv]);
   std::vector<std::uint32_t> fill(fan_start_.begin(), fan_start_.end() - 1);
   for (std::uint32_t t = 0; t < tris_.size(); ++t)
     for (std::uint32_t v : tris_[t]) refs_[fill[v]++] = t;
@@ -27,26 +29,30 @@ void Simplifier::set_fan(std::uint32_t v, const std::vector<std::uint32_t>& tris
   if (tris.size() <= fan_count_[v]) {  // shrinking: reuse the slot
     std::copy(tris.begin(), tris.end(), refs_.begin() + fan_start_[v]);
   } else {
+    reserve_fans(tris.size());
     fan_start_[v] = static_cast<std::uint32_t>(refs_.size());
     refs_.insert(refs_.end(), tris.begin(), tris.end());
   }
   fan_count_[v] = static_cast<std::uint32_t>(tris.size());
 }
 
-void Simplifier::compact_fans() {
-  if (refs_.size() <= 8 * tris_.size() + 1024) return;
-  std::vector<std::uint32_t> pool;
-  pool.reserve(tris_.size() * 3);
+// Grown fans are appended to refs_; when its capacity would be exceeded, the live entries of every
+// fan are packed into the spare buffer instead of reallocating (fresh pages cost more than the
+// copy: two buffers, each touched once).
+void Simplifier::reserve_fans(std::size_t extra) {
+  if (refs_.size() + extra <= refs_.capacity()) return;
+  refs_spare_.clear();
+  refs_spare_.reserve(std::max(refs_.capacity(), 2 * (3 * tris_.size() + extra) + 1024));
   for (std::uint32_t v = 0; v < pos_.size(); ++v) {
-    const std::uint32_t s = static_cast<std::uint32_t>(pool.size());
+    const auto s = static_cast<std::uint32_t>(refs_spare_.size());
     for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
       const std::uint32_t t = refs_[fan_start_[v] + i];
-      if (!dead_[t]) pool.push_back(t);
+      if (!dead_[t]) refs_spare_.push_back(t);
     }
     fan_start_[v] = s;
-    fan_count_[v] = static_cast<std::uint32_t>(pool.size() - s);
+    fan_count_[v] = static_cast<std::uint32_t>(refs_spare_.size() - s);
   }
-  refs_.swap(pool);
+  refs_.swap(refs_spare_);
 }
 
 // Constrained (seam) edge: not exactly two live triangles, or two with different face ids.

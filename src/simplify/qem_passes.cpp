@@ -56,8 +56,9 @@ std::size_t Simplifier::apply_selected(const std::vector<std::pair<std::uint32_t
         bound[c + 1] += fan_count_[a] + fan_count_[b];
       }
   });
-  const std::size_t base = refs_.size();
   for (std::size_t c = 0; c < ranges; ++c) bound[c + 1] += bound[c];
+  reserve_fans(bound[ranges]);
+  const std::size_t base = refs_.size();
   refs_.resize(base + bound[ranges]);
   struct RangeResult {
     std::size_t died = 0, link = 0, flip = 0, intersection = 0;
@@ -249,7 +250,6 @@ void Simplifier::batched_passes(EntryList& list, std::size_t handoff, std::size_
     clock.lap("passes: select");
     const std::size_t applied = apply_selected(selected, live, changed);
     r.collapses += applied;
-    compact_fans();
     if (guard_ && live * 2 < grid_live_) rebuild_grid(live);
     clock.lap("passes: apply");
     if (applied == 0) break;
