@@ -274,7 +274,6 @@ void Simplifier::heap_loop(std::size_t target, std::size_t& live, SimplifyResult
     fresh.clear();
     candidates_of(a, sc, fresh);
     for (const HeapEntry& f : fresh) heap_.push(f);
-    compact_fans();
   }
 }
 
