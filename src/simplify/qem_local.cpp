@@ -131,19 +131,21 @@ bool Simplifier::direction(std::uint32_t keep, std::uint32_t remove, bool seam, 
   Quadric q = quad_[keep];
   q += quad_[remove];
   Vec3 p = pos_[keep];
-  if (movable(keep) && movable(remove)) {
-    // Optimal placement, else the best of the endpoints and the midpoint (§4).
-    if (!q.optimum(p)) {
-      const Vec3 mid = (pos_[keep] + pos_[remove]) * 0.5;
-      const Vec3 cand[3] = {pos_[keep], pos_[remove], mid};
-      double best = std::numeric_limits<double>::infinity();
-      for (const Vec3& c : cand) {
-        const double e = q.eval(c);
-        if (e < best) best = e, p = c;
-      }
+  double cost;
+  if (!(movable(keep) && movable(remove))) {
+    cost = q.eval(p);
+  } else if (q.optimum(p)) {  // optimal placement (§4)
+    cost = q.eval(p);
+  } else {  // else the best of the endpoints and the midpoint
+    const Vec3 mid = (pos_[keep] + pos_[remove]) * 0.5;
+    const Vec3 cand[3] = {pos_[keep], pos_[remove], mid};
+    cost = std::numeric_limits<double>::infinity();
+    for (const Vec3& c : cand) {
+      const double e = q.eval(c);
+      if (e < cost) cost = e, p = c;
     }
   }
-  out.cost = q.eval(p);
+  out.cost = cost;
   out.p = p;
   out.keep = keep, out.remove = remove;
   out.stamp_keep = stamp_[keep], out.stamp_remove = stamp_[remove];
