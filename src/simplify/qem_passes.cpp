@@ -237,8 +237,13 @@ void Simplifier::batched_passes(EntryList& list, std::size_t handoff, std::size_
     }
     sel.clear();
     std::size_t planned = 0;
-    for (const HeapEntry& e : list) {
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const HeapEntry& e = list[i];
       if (planned >= goal || key_bits(e) > limit) break;
+      if (i + 16 < list.size()) {  // scattered vertices: fetched ahead
+        __builtin_prefetch(&vsel[list[i + 16].keep]);
+        __builtin_prefetch(&vsel[list[i + 16].remove]);
+      }
       if (vsel[e.keep].taken == pass || vsel[e.remove].taken == pass) continue;
       vsel[e.keep].taken = vsel[e.remove].taken = pass;
       sel.push_back({vsel[e.keep].code, e.keep, e.remove});
@@ -302,6 +307,7 @@ void Simplifier::batched_passes(EntryList& list, std::size_t handoff, std::size_
       Scratch& sc = tls_->local();
       for (std::size_t ci = rg.begin(); ci < rg.end(); ++ci)
         for (std::size_t k = ci * kChunk; k < std::min(changed.size(), (ci + 1) * kChunk); ++k) {
+          if (k + 4 < changed.size()) __builtin_prefetch(&refs_[fan_start_[changed[k + 4]]]);
           const std::uint32_t v = changed[k];
           gather_neighbours(v, sc);
           evaluate_gathered(v, sc, fresh[ci], [&](std::uint32_t w) { return mark[w] != pass || w > v; });
