@@ -286,27 +286,19 @@ class Simplifier {
   void set_fan(std::uint32_t v, const std::vector<std::uint32_t>& tris);
   void reserve_fans(std::size_t extra);
   bool movable(std::uint32_t v) const { return cls_[v] == kInterior && !locked_[v]; }
-  /// Evaluates the edges from v to the gathered neighbours w with keep(w) (see gather_neighbours).
-  template <class Out, class Keep>
-  void evaluate_gathered(std::uint32_t v, const Scratch& sc, Out& out, Keep keep) const {
-    evaluate_neighbours(v, sc.nbr.data(), sc.nbr.data() + sc.nbr.size(), out, keep);
-  }
-  /// Evaluates the edges from v to the neighbours [first, last) with keep(w), out.push_back(entry).
-  template <class Out, class Keep>
-  void evaluate_neighbours(std::uint32_t v, const Scratch::Neighbour* first, const Scratch::Neighbour* last,
-                           Out& out, Keep keep) const {
-    // The neighbours' quadrics and positions are scattered: fetch them all before the evaluations
-    // so that the cache misses overlap.
-    for (const Scratch::Neighbour* n = first; n != last; ++n) {
-      __builtin_prefetch(&quad_[n->w]);
-      __builtin_prefetch(reinterpret_cast<const char*>(&quad_[n->w]) + 64);
-      __builtin_prefetch(&pos_[n->w]);
-    }
-    for (const Scratch::Neighbour* n = first; n != last; ++n) {
-      if (!keep(n->w)) continue;
-      Candidate c;
-      if (evaluate(v, n->w, n->count != 2 || n->differ, c)) out.push_back(entry_of(c));
-    }
+  /// Evaluates the edges from v to the neighbours [first, last) into out (room for last - first
+  /// entries), returns how many were written; with `mark`, only the neighbours w with
+  /// mark[w] != pass or w > v (an edge between two marked vertices is evaluated from its smaller
+  /// end).
+  std::size_t evaluate_neighbours(std::uint32_t v, const Scratch::Neighbour* first, const Scratch::Neighbour* last,
+                                  HeapEntry* out, const std::uint32_t* mark = nullptr, std::uint32_t pass = 0) const;
+  /// The same for the gathered neighbours (see gather_neighbours), appended to out.
+  template <class Vector>
+  void evaluate_gathered(std::uint32_t v, const Scratch& sc, Vector& out, const std::uint32_t* mark = nullptr,
+                         std::uint32_t pass = 0) const {
+    const std::size_t n0 = out.size();
+    out.resize(n0 + sc.nbr.size());
+    out.resize(n0 + evaluate_neighbours(v, sc.nbr.data(), sc.nbr.data() + sc.nbr.size(), out.data() + n0, mark, pass));
   }
   // Batched passes (qem_passes.cpp).
   std::size_t apply_selected(const std::vector<std::pair<std::uint32_t, std::uint32_t>>& selected,

@@ -122,7 +122,7 @@ void Simplifier::gather_neighbours(std::uint32_t v, Scratch& sc) const {
 // The candidates of every edge at v (both directions considered, the cheaper kept).
 void Simplifier::candidates_of(std::uint32_t v, Scratch& sc, std::vector<HeapEntry>& out) const {
   gather_neighbours(v, sc);
-  evaluate_gathered(v, sc, out, [](std::uint32_t) { return true; });
+  evaluate_gathered(v, sc, out);
 }
 
 bool Simplifier::direction(std::uint32_t keep, std::uint32_t remove, bool seam, Candidate& out) const {
@@ -165,6 +165,25 @@ bool Simplifier::evaluate(std::uint32_t a, std::uint32_t b, bool seam, Candidate
   if (!ok1 && !ok2) return false;
   out = (ok1 && (!ok2 || c1.cost <= c2.cost)) ? c1 : c2;
   return true;
+}
+
+std::size_t Simplifier::evaluate_neighbours(std::uint32_t v, const Scratch::Neighbour* first,
+                                            const Scratch::Neighbour* last, HeapEntry* out,
+                                            const std::uint32_t* mark, std::uint32_t pass) const {
+  // The neighbours' quadrics and positions are scattered: fetch them all before the evaluations
+  // so that the cache misses overlap.
+  for (const Scratch::Neighbour* n = first; n != last; ++n) {
+    __builtin_prefetch(&quad_[n->w]);
+    __builtin_prefetch(reinterpret_cast<const char*>(&quad_[n->w]) + 64);
+    __builtin_prefetch(&pos_[n->w]);
+  }
+  std::size_t k = 0;
+  for (const Scratch::Neighbour* n = first; n != last; ++n) {
+    if (mark && mark[n->w] == pass && n->w < v) continue;
+    Candidate c;
+    if (evaluate(v, n->w, n->count != 2 || n->differ, c)) out[k++] = entry_of(c);
+  }
+  return k;
 }
 
 // The live triangles of a's and b's fans with their corners, read once for all the checks and the

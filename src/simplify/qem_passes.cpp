@@ -310,7 +310,7 @@ void Simplifier::batched_passes(EntryList& list, std::size_t handoff, std::size_
           if (k + 4 < changed.size()) __builtin_prefetch(&refs_[fan_start_[changed[k + 4]]]);
           const std::uint32_t v = changed[k];
           gather_neighbours(v, sc);
-          evaluate_gathered(v, sc, fresh[ci], [&](std::uint32_t w) { return mark[w] != pass || w > v; });
+          evaluate_gathered(v, sc, fresh[ci], mark.data(), pass);
         }
     });
     for (const auto& f : fresh) list.insert(list.end(), f.begin(), f.end());

@@ -122,19 +122,15 @@ EntryList Simplifier::edge_candidates() {
   std::vector<std::size_t> offset(nb + 1, 0), written(nb, 0);
   for (std::size_t b = 0; b < nb; ++b) offset[b + 1] = offset[b] + upper_[b].size();
   EntryList list(offset.back());
-  struct Writer {
-    HeapEntry* p;
-    std::size_t n = 0;
-    void push_back(const HeapEntry& e) { p[n++] = e; }
-  };
   for_blocks(nv, [&](std::uint32_t v0, std::uint32_t v1, std::size_t block) {
-    Writer out{list.data() + offset[block]};
-    const Scratch::Neighbour* n = upper_[block].data();
+    HeapEntry* out = list.data() + offset[block];
+    std::size_t n = 0;
+    const Scratch::Neighbour* upper = upper_[block].data();
     for (std::uint32_t v = v0; v < v1; ++v) {
-      evaluate_neighbours(v, n, n + upper_count_[v], out, [](std::uint32_t) { return true; });
-      n += upper_count_[v];
+      n += evaluate_neighbours(v, upper, upper + upper_count_[v], out + n);
+      upper += upper_count_[v];
     }
-    written[block] = out.n;
+    written[block] = n;
     std::vector<Scratch::Neighbour>().swap(upper_[block]);
   });
   std::vector<std::uint32_t>().swap(upper_count_);
