@@ -20,7 +20,6 @@ namespace interfere::qem {
 namespace {
 constexpr std::size_t kRanges = 16;      ///< vertex ranges applied in parallel (fixed: deterministic)
 constexpr std::size_t kMinRange = 1024;  ///< collapses per range at least
-constexpr std::size_t kMergeMax = std::size_t{1} << 20;  ///< longer lists are sorted whole each pass
 
 /// Collapses per range of apply_selected (fixed by their count: deterministic).
 std::size_t range_length(std::size_t n) { return std::max(kMinRange, (n + kRanges - 1) / kRanges); }
@@ -212,17 +211,16 @@ void Simplifier::batched_passes(EntryList& list, std::size_t handoff, std::size_
   // The last few percent are left to the heap (small passes cost a sort and a sweep each).
   while (live > handoff + handoff / 8 && !list.empty()) {
     ++pass;
-    // Long lists: the full parallel sort (a serial merge would be the longer step on 2 cores).
-    if (sorted == 0 || list.size() > kMergeMax) {
+    if (sorted == 0) {
       radix_sort_u32<22>(list, tmp, key);
     } else {
-      // Only the fresh entries are sorted, then merged after the kept ones (std::merge is stable,
-      // the kept entries first among equal keys): the same order as a stable sort of the list.
+      // Only the fresh entries are sorted, then merged after the kept ones (a stable merge, the
+      // kept entries first among equal keys): the same order as a stable sort of the list.
       fresh_list.assign(list.begin() + static_cast<std::ptrdiff_t>(sorted), list.end());
       radix_sort_u32<22>(fresh_list, fresh_tmp, key);
       tmp.resize(list.size());
-      std::merge(list.begin(), list.begin() + static_cast<std::ptrdiff_t>(sorted), fresh_list.begin(),
-                 fresh_list.end(), tmp.begin(), [&](const HeapEntry& x, const HeapEntry& y) { return key(x) < key(y); });
+      parallel_merge(list.data(), sorted, fresh_list.data(), fresh_list.size(), tmp.data(),
+                     [&](const HeapEntry& x, const HeapEntry& y) { return key(x) < key(y); });
       list.swap(tmp);
     }
     clock.lap("passes: sort");

@@ -63,4 +63,34 @@ void radix_sort_u32(Vector& v, Vector& tmp, Key key) {
   }
 }
 
+/// Stable merge of the sorted ranges [a, a + na) and [b, b + nb) into out (entries of a first among
+/// equivalent ones): the result of std::merge, computed in parallel over fixed output chunks whose
+/// boundaries are found by the merge-path binary search (Odeh, Green, Mwassi, Shmueli & Birk 2012).
+template <class T, class Less>
+void parallel_merge(const T* a, std::size_t na, const T* b, std::size_t nb, T* out, Less less) {
+  const std::size_t n = na + nb;
+  constexpr std::size_t kChunks = 16;
+  if (n < (std::size_t{1} << 15)) {
+    std::merge(a, a + na, b, b + nb, out, less);
+    return;
+  }
+  // Entries of a among the first k of the output: the smallest i with b[k - i - 1] < a[i].
+  const auto split = [&](std::size_t k) {
+    std::size_t lo = k > nb ? k - nb : 0, hi = std::min(k, na);
+    while (lo < hi) {
+      const std::size_t i = lo + (hi - lo) / 2;
+      if (!less(b[k - i - 1], a[i])) lo = i + 1;
+      else hi = i;
+    }
+    return lo;
+  };
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, kChunks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t c = r.begin(); c < r.end(); ++c) {
+      const std::size_t k0 = n * c / kChunks, k1 = n * (c + 1) / kChunks;
+      const std::size_t i0 = split(k0), i1 = split(k1);
+      std::merge(a + i0, a + i1, b + (k0 - i0), b + (k1 - i1), out + k0, less);
+    }
+  });
+}
+
 }  // namespace interfere
