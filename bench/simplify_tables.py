@@ -288,7 +288,7 @@ def write_doc(raw):
     lines = [STATIC_HEAD, "## Benchmarks", ""]
     lines.append(f"Run {_dt.datetime.now(_dt.timezone.utc).strftime('%Y-%m-%d %H:%M UTC')} on {platform.node()} "
                  f"({ctx.get('num_cpus', '?')} CPUs, load average {ctx.get('load_avg', '?')}), "
-                 "`bench/bench_simplify.cpp`, wall time per run: the mean of 3 runs (1e6) or 5 (1e5) for interfere and meshoptimizer, one for OpenMesh, 20 for the casing rows. Meshes: `make_sphere` with 5 % "
+                 "`bench/bench_simplify.cpp`, wall time per run: the mean of 3 runs (1e6) or 5 (1e5) for interfere and meshoptimizer after one untimed warm-up call each (the steady state of a process that simplifies repeatedly; a process's first call is about 10 % slower: thread pool start, heap growth), one for OpenMesh, 20 for the casing rows. Meshes: `make_sphere` with 5 % "
                  "bumps; the equatorial patch x > 0.98, |z| < 0.05 (about 0.25 % of the triangles) is the feature region "
                  "(weighted by interfere, unknown to the peers). "
                  "`hausdorff_rel`: symmetric sampled Hausdorff / bounding-box diagonal; `feature_err_rel`: largest "

@@ -94,7 +94,9 @@ Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& op
   sp->run(target, r);
   clock.restart();
   // Surviving triangles in input order, unused vertices dropped (new ids in order of first use).
-  auto compact = [&](const qem::Simplifier& s, std::vector<std::uint32_t>* out_face) {
+  // out_origin: the input triangle of each output triangle.
+  auto compact = [&](const qem::Simplifier& s, std::vector<std::uint32_t>* out_face,
+                     std::vector<std::uint32_t>* out_origin) {
     TriMesh m;
     std::vector<std::uint32_t> used(s.pos_.size(), kNone);
     for (std::size_t t = 0; t < nt; ++t) {
@@ -109,33 +111,40 @@ Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& op
       }
       m.triangles.push_back(tr);
       if (out_face) out_face->push_back(face[t]);
+      out_origin->push_back(static_cast<std::uint32_t>(t));
     }
     return m;
   };
-  std::vector<std::uint32_t> out_face;
-  TriMesh out = compact(*sp, &out_face);
+  std::vector<std::uint32_t> out_face, out_origin;
+  TriMesh out = compact(*sp, &out_face, &out_origin);
   clock.lap("output");
   // Split along faces when face ids were given or regions were made; done beside the check (a
   // rerun, rare, splits its own result again).
   const bool splitting = have_faces || options.sharp_angle_deg > 0;
   TriMesh split;
   if (options.prevent_self_intersections && !options.guard_every_collapse) {
-    // The input's own intersections (touching parts of an assembly, say) cannot be removed: rerun
-    // only when the plain result has more than the input. The reruns guard the neighbourhoods of
-    // the intersecting pairs found so far (each pair's box grown by its diagonal), which keeps the
-    // batched passes; should a rerun still add an intersection elsewhere, its neighbourhood joins
-    // the region, and the last resort guards every collapse (then none can be added).
+    // The input's own intersections (touching parts of an assembly, say) cannot be removed: a pair
+    // of output triangles both identical to their input triangles (same corner positions) was in
+    // the input; every other intersecting pair is new and calls for a rerun. The reruns guard the
+    // neighbourhoods of the new pairs found so far (each pair's box grown by its diagonal), which
+    // keeps the batched passes; should a rerun still add an intersection elsewhere, its
+    // neighbourhood joins the region, and the last resort guards every collapse (a moved triangle
+    // then meets no other: none can be added).
     std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
     tbb::parallel_invoke([&] { pairs = self_intersecting_pairs(out); },
                          [&] {
                            if (splitting) split = split_by_face(out, out_face);
                          });
+    const auto drop_input_pairs = [&] {
+      const auto unmodified = [&](std::uint32_t i) { return out.corners(i) == mesh.corners(out_origin[i]); };
+      std::erase_if(pairs, [&](const auto& p) { return unmodified(p.first) && unmodified(p.second); });
+    };
+    drop_input_pairs();
     if (!pairs.empty()) {
-      TriMesh input = weld_positions(mesh);
-      const std::size_t input_x = count_self_intersections(input);
+      const TriMesh input = weld_positions(mesh);
       std::vector<Aabb> region;
       constexpr int kRegionalReruns = 3;
-      for (int attempt = 0; pairs.size() > input_x && attempt <= kRegionalReruns; ++attempt) {
+      for (int attempt = 0; !pairs.empty() && attempt <= kRegionalReruns; ++attempt) {
         for (const auto& [x, y] : pairs) {
           Aabb b;
           for (const auto& t : {x, y})
@@ -152,9 +161,10 @@ Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& op
         sp = std::make_unique<qem::Simplifier>(TriMesh(input), face, feature_tri, options);
         if (attempt < kRegionalReruns) sp->set_guard_region(region);
         sp->run(target, r);
-        out_face.clear();
-        out = compact(*sp, &out_face);
+        out_face.clear(), out_origin.clear();
+        out = compact(*sp, &out_face, &out_origin);
         pairs = self_intersecting_pairs(out);
+        drop_input_pairs();
         split = TriMesh{};
       }
     }
