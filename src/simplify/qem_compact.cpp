@@ -124,7 +124,7 @@ void Simplifier::compact_mesh(EntryList& list, std::size_t& sorted, std::size_t 
   }
   owner_.assign(mv, Owner{});
   if (guard_) {  // the grid holds triangle numbers: built again (the guard's answers are exact either way)
-    tri_mark_.assign(mt, 0);
+    guard_mark_.assign(mt, GuardMark{});
     rebuild_grid(live);
   }
 }

@@ -10,8 +10,14 @@
 
 namespace interfere::qem {
 
-// Cells about twice the current mean triangle size; rebuilt whenever the live count halves, so a
-// cell holds a few triangles throughout and stale entries are dropped.
+// Cells about twice the current mean triangle size; rebuilt whenever the live count halves or the
+// entries added since the last build (moved triangles, re-inserted) outnumber twice the entries it
+// was built with and a quarter of the live triangles (a build scans them all): so a cell holds a
+// few triangles throughout and stale entries do not pile up where the collapses concentrate.
+bool Simplifier::grid_stale(std::size_t live) const {
+  return live * 2 < grid_live_ || (grid_inserted_ > 2 * grid_size_ && grid_inserted_ > live / 4);
+}
+
 void Simplifier::rebuild_grid(std::size_t live) {
   Aabb all;
   for (std::size_t v = 0; v < pos_.size(); ++v)
@@ -21,10 +27,13 @@ void Simplifier::rebuild_grid(std::size_t live) {
   if (!(cell_ > 0) || !std::isfinite(cell_)) cell_ = 1;
   origin_ = all.lo;
   grid_.clear();
+  grid_inserted_ = 0;
   grid_.reserve(live / 2 + 16);
   for (std::uint32_t t = 0; t < tris_.size(); ++t)
     if (!dead_[t]) grid_insert(t);
   grid_live_ = live;
+  grid_size_ = grid_inserted_;
+  grid_inserted_ = 0;
 }
 
 template <class F>
@@ -44,16 +53,24 @@ void Simplifier::grid_insert(std::uint32_t t) {
   Aabb b;
   for (std::uint32_t v : tris_[t]) b.expand(pos_[v]);
   if (!near_region(b)) return;
-  grid_cells(b, [&](std::uint64_t key) { grid_[key].push_back(t); });
+  grid_cells(b, [&](std::uint64_t key) {
+    grid_[key].push_back(t);
+    ++grid_inserted_;
+  });
 }
 
 // The triangles a collapse creates or moves must not meet any other triangle of the mesh except
-// through shared vertices (exact test: np/tri_tri.h).
+// through shared vertices (exact test: np/tri_tri.h). The grid is scanned once per collapse, over
+// the cells of the box of all the moved triangles (they surround one vertex and share their cells:
+// scanning per moved triangle read the same entries about ten times, which dominated guarded runs
+// next to finely tessellated kept features); each candidate is then tested against each moved
+// triangle whose box it overlaps.
 bool Simplifier::intersection_ok(std::uint32_t keep, std::uint32_t remove, const Vec3& p) {
+  const Aabb all = moved_box(keep, remove, p);
   // With a guard region the grid holds only the triangles near it: a collapse reaching beyond that
   // neighbourhood cannot be checked and is refused.
-  if (!guard_boxes_.empty() && !within_region(moved_box(keep, remove, p))) return false;
-  ++tri_mark_id_;
+  if (!guard_boxes_.empty() && !within_region(all)) return false;
+  guard_moved_.clear();
   for (int side = 0; side < 2; ++side) {
     const std::uint32_t v = side == 0 ? remove : keep;
     const std::uint32_t other = side == 0 ? keep : remove;
@@ -63,40 +80,55 @@ bool Simplifier::intersection_ok(std::uint32_t keep, std::uint32_t remove, const
       if (dead_[t]) continue;
       Tri tr = tris_[t];
       if (tr[0] == other || tr[1] == other || tr[2] == other) continue;
-      std::array<Vec3, 3> c;
-      Aabb box;
+      GuardMoved m;
       for (int k = 0; k < 3; ++k) {
         if (tr[k] == v) tr[k] = keep;
-        c[k] = tr[k] == keep ? p : pos_[tr[k]];
-        box.expand(c[k]);
+        m.c[k] = tr[k] == keep ? p : pos_[tr[k]];
+        m.box.expand(m.c[k]);
       }
-      bool ok = true;
-      grid_cells(box, [&](std::uint64_t key) {
-        if (!ok) return;
-        auto it = grid_.find(key);
-        if (it == grid_.end()) return;
-        for (std::uint32_t s : it->second) {
-          if (dead_[s] || tri_mark_[s] == tri_mark_id_) continue;
-          tri_mark_[s] = tri_mark_id_;
-          const Tri& q = tris_[s];
-          bool share = false;
-          for (std::uint32_t w : q) share = share || w == keep || w == remove || w == tr[0] || w == tr[1] || w == tr[2];
-          if (share) continue;
-          Aabb qb;
-          for (std::uint32_t w : q) qb.expand(pos_[w]);
-          if (!qb.overlaps(box)) continue;
-          if (tri_tri_exact_intersects(c, {pos_[q[0]], pos_[q[1]], pos_[q[2]]})) {
-            ok = false;
-            return;
-          }
-        }
-      });
-      if (!ok) return false;
-      // Candidates of one moved triangle were marked: the next moved triangle re-examines them.
-      ++tri_mark_id_;
+      m.tr = tr;
+      guard_moved_.push_back(m);
     }
   }
-  return true;
+  if (guard_moved_.empty()) return true;
+  ++tri_mark_id_;
+  bool ok = true;
+  grid_cells(all, [&](std::uint64_t key) {
+    if (!ok) return;
+    auto it = grid_.find(key);
+    if (it == grid_.end()) return;
+    // The cell sheds its entries of dead triangles and its repeated entries while it is scanned
+    // (a moved triangle is inserted again, its old entries stay): they were half of the entries.
+    std::vector<std::uint32_t>& cell = it->second;
+    const std::uint32_t cell_id = ++cell_mark_id_;
+    std::size_t kept = 0, i = 0;
+    for (; i < cell.size() && ok; ++i) {
+      const std::uint32_t s = cell[i];
+      if (dead_[s]) continue;
+      GuardMark& mark = guard_mark_[s];
+      if (mark.cell == cell_id) continue;
+      mark.cell = cell_id;
+      cell[kept++] = s;
+      if (mark.tri == tri_mark_id_) continue;
+      mark.tri = tri_mark_id_;
+      const Tri& q = tris_[s];
+      if (q[0] == keep || q[1] == keep || q[2] == keep || q[0] == remove || q[1] == remove || q[2] == remove) continue;
+      Aabb qb;
+      for (std::uint32_t w : q) qb.expand(pos_[w]);
+      if (!qb.overlaps(all)) continue;
+      for (const GuardMoved& m : guard_moved_) {
+        bool share = false;
+        for (std::uint32_t w : q) share = share || w == m.tr[0] || w == m.tr[1] || w == m.tr[2];
+        if (share || !qb.overlaps(m.box)) continue;
+        if (tri_tri_exact_intersects(m.c, {pos_[q[0]], pos_[q[1]], pos_[q[2]]})) {
+          ok = false;
+          break;
+        }
+      }
+    }
+    cell.erase(cell.begin() + static_cast<std::ptrdiff_t>(kept), cell.begin() + static_cast<std::ptrdiff_t>(i));
+  });
+  return ok;
 }
 
 // The box of the triangles the collapse moves, at their new place.

@@ -3,6 +3,7 @@
 // Simplifier state. Not installed.
 #pragma once
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <memory>
 #include <chrono>
@@ -349,10 +350,21 @@ class Simplifier {
   double cell_ = 1;
   Vec3 origin_;
   std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> grid_;
-  std::vector<std::uint32_t> tri_mark_;
-  std::uint32_t tri_mark_id_ = 0;
+  struct GuardMark {  ///< per triangle: last scan that examined it, last cell scan that kept it
+    std::uint32_t tri = 0, cell = 0;
+  };
+  std::vector<GuardMark> guard_mark_;
+  std::uint32_t tri_mark_id_ = 0, cell_mark_id_ = 0;
+  struct GuardMoved {  ///< a triangle a guarded collapse moves, at its new place
+    Tri tr;
+    std::array<Vec3, 3> c;
+    Aabb box;
+  };
+  std::vector<GuardMoved> guard_moved_;
   double surface_area_ = 0;
   std::size_t grid_live_ = 0;  ///< live triangles when the grid was last built
+  std::size_t grid_size_ = 0, grid_inserted_ = 0;  ///< entries then, entries added since
+  bool grid_stale(std::size_t live) const;        ///< time to rebuild the grid
 };
 
 }  // namespace interfere::qem

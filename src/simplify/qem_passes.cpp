@@ -265,7 +265,7 @@ void Simplifier::batched_passes(EntryList& list, std::size_t handoff, std::size_
     clock.lap("passes: select");
     const std::size_t applied = apply_selected(selected, live, changed);
     r.collapses += applied;
-    if (guard_ && live * 2 < grid_live_) rebuild_grid(live);
+    if (guard_ && grid_stale(live)) rebuild_grid(live);
     clock.lap("passes: apply");
     if (applied == 0) break;
     // Next list: the entries whose ends did not change (same cost), then the edges of the changed

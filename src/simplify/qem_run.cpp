@@ -163,7 +163,7 @@ void Simplifier::run(std::size_t target, SimplifyResult& r) {
       const auto& tr = tris_[t];
       surface_area_ += 0.5 * norm(cross(pos_[tr[1]] - pos_[tr[0]], pos_[tr[2]] - pos_[tr[0]]));
     }
-    tri_mark_.assign(nt, 0);
+    guard_mark_.assign(nt, GuardMark{});
     rebuild_grid(live);
   }
   stamp_.assign(nv, 0);
@@ -263,7 +263,7 @@ void Simplifier::heap_loop(std::size_t target, std::size_t& live, SimplifyResult
     live -= died;
     ++r.collapses;
     if (guard_) {
-      if (live * 2 < grid_live_) rebuild_grid(live);
+      if (grid_stale(live)) rebuild_grid(live);
       else
         for (std::uint32_t t : merged_) grid_insert(t);
     }
