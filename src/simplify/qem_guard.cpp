@@ -65,8 +65,8 @@ void Simplifier::grid_insert(std::uint32_t t) {
 // scanning per moved triangle read the same entries about ten times, which dominated guarded runs
 // next to finely tessellated kept features); each candidate is then tested against each moved
 // triangle whose box it overlaps.
-bool Simplifier::intersection_ok(std::uint32_t keep, std::uint32_t remove, const Vec3& p) {
-  const Aabb all = moved_box(keep, remove, p);
+bool Simplifier::intersection_ok(std::uint32_t keep, std::uint32_t remove, const Vec3& p, const Scratch& sc) {
+  const Aabb all = moved_box(keep, remove, p, sc);
   // With a guard region the grid holds only the triangles near it: a collapse reaching beyond that
   // neighbourhood cannot be checked and is refused.
   if (!guard_boxes_.empty() && !within_region(all)) return false;
@@ -75,10 +75,8 @@ bool Simplifier::intersection_ok(std::uint32_t keep, std::uint32_t remove, const
     const std::uint32_t v = side == 0 ? remove : keep;
     const std::uint32_t other = side == 0 ? keep : remove;
     if (side == 1 && p == pos_[keep]) break;
-    for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
-      const std::uint32_t t = refs_[fan_start_[v] + i];
-      if (dead_[t]) continue;
-      Tri tr = tris_[t];
+    for (const Scratch::FanTri& f : side == 0 ? sc.fan_b : sc.fan_a) {
+      Tri tr = f.tr;
       if (tr[0] == other || tr[1] == other || tr[2] == other) continue;
       GuardMoved m;
       for (int k = 0; k < 3; ++k) {
@@ -132,14 +130,11 @@ bool Simplifier::intersection_ok(std::uint32_t keep, std::uint32_t remove, const
 }
 
 // The box of the triangles the collapse moves, at their new place.
-Aabb Simplifier::moved_box(std::uint32_t keep, std::uint32_t remove, const Vec3& p) const {
+Aabb Simplifier::moved_box(std::uint32_t keep, std::uint32_t remove, const Vec3& p, const Scratch& sc) const {
   Aabb moved;
-  for (const std::uint32_t v : {remove, keep})
-    for (std::uint32_t i = 0; i < fan_count_[v]; ++i) {
-      const std::uint32_t t = refs_[fan_start_[v] + i];
-      if (dead_[t]) continue;
-      for (std::uint32_t w : tris_[t]) moved.expand(w == remove || w == keep ? p : pos_[w]);
-    }
+  for (const auto* fan : {&sc.fan_b, &sc.fan_a})
+    for (const Scratch::FanTri& f : *fan)
+      for (std::uint32_t w : f.tr) moved.expand(w == remove || w == keep ? p : pos_[w]);
   return moved;
 }
 
@@ -159,9 +154,9 @@ bool Simplifier::within_region(const Aabb& b) const {
 }
 
 // The moved triangles reach a guard box.
-bool Simplifier::guarded(std::uint32_t keep, std::uint32_t remove, const Vec3& p) const {
+bool Simplifier::guarded(std::uint32_t keep, std::uint32_t remove, const Vec3& p, const Scratch& sc) const {
   if (guard_boxes_.empty()) return true;
-  const Aabb moved = moved_box(keep, remove, p);
+  const Aabb moved = moved_box(keep, remove, p, sc);
   if (!moved.overlaps(guard_all_)) return false;
   for (const Aabb& b : guard_boxes_)
     if (moved.overlaps(b)) return true;

@@ -215,7 +215,7 @@ struct Scratch {
   std::vector<Neighbour> nbr;
   std::vector<FanTri> fan_a, fan_b;  ///< live fans of the collapse's keep and remove ends
   int shared = 0;                    ///< live triangles on the collapsed edge
-  bool seam = false;                 ///< the edge is constrained (see seam_edge)
+  bool seam = false;                 ///< the edge is constrained (see gather_neighbours)
   std::uint32_t id = 0;
   explicit Scratch(std::size_t nv) : mark_a(nv, 0), mark_b(nv, 0), slot(nv, 0) {}
 };
@@ -267,7 +267,6 @@ class Simplifier {
   EntryList edge_candidates();
   void heap_loop(std::size_t target, std::size_t& live, SimplifyResult& r);
   // Local operations (qem_local.cpp); `sc` is the calling thread's scratch.
-  bool seam_edge(std::uint32_t a, std::uint32_t b, int* shared) const;
   void gather_neighbours(std::uint32_t v, Scratch& sc) const;
   /// Candidates of every edge at v.
   void candidates_of(std::uint32_t v, Scratch& sc, std::vector<HeapEntry>& out) const;
@@ -307,9 +306,9 @@ class Simplifier {
   void batched_passes(EntryList& list, std::size_t handoff, std::size_t& live, SimplifyResult& r,
                       PhaseClock& clock);
   // Self-intersection guard (qem_guard.cpp).
-  bool intersection_ok(std::uint32_t keep, std::uint32_t remove, const Vec3& p);
+  bool intersection_ok(std::uint32_t keep, std::uint32_t remove, const Vec3& p, const Scratch& sc);
   /// The guard checks this collapse (its moved triangles reach the guard region).
-  bool guarded(std::uint32_t keep, std::uint32_t remove, const Vec3& p) const;
+  bool guarded(std::uint32_t keep, std::uint32_t remove, const Vec3& p, const Scratch& sc) const;
   /// Registers the live triangles of v's fan at their current positions.
   void grid_insert_fan(std::uint32_t v);
   void grid_insert(std::uint32_t t);
@@ -346,7 +345,7 @@ class Simplifier {
   Aabb guard_all_, guard_outer_all_;
   bool near_region(const Aabb& b) const;    ///< overlaps the neighbourhood (always without a region)
   bool within_region(const Aabb& b) const;  ///< inside one neighbourhood box (always without a region)
-  Aabb moved_box(std::uint32_t keep, std::uint32_t remove, const Vec3& p) const;
+  Aabb moved_box(std::uint32_t keep, std::uint32_t remove, const Vec3& p, const Scratch& sc) const;
   double cell_ = 1;
   Vec3 origin_;
   std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> grid_;

@@ -55,26 +55,9 @@ void Simplifier::reserve_fans(std::size_t extra) {
   refs_.swap(refs_spare_);
 }
 
-// Constrained (seam) edge: not exactly two live triangles, or two with different face ids.
-bool Simplifier::seam_edge(std::uint32_t a, std::uint32_t b, int* shared) const {
-  int n = 0;
-  std::uint32_t f0 = kNone;
-  bool differ = false;
-  for (std::uint32_t i = 0; i < fan_count_[a]; ++i) {
-    const std::uint32_t t = refs_[fan_start_[a] + i];
-    if (dead_[t]) continue;
-    const Tri& tr = tris_[t];
-    if (tr[0] != b && tr[1] != b && tr[2] != b) continue;
-    ++n;
-    if (f0 == kNone) f0 = face_[t];
-    else if (face_[t] != f0) differ = true;
-  }
-  if (shared) *shared = n;
-  return n != 2 || differ;
-}
-
 // One sweep over v's fan gathers every neighbour w with the number of live triangles on (v, w) and
-// whether their face ids differ (the seam test of seam_edge for all edges at once), in order of
+// whether their face ids differ (the seam test for all edges at once: an edge is constrained when
+// it has not exactly two live triangles, or two with different face ids), in order of
 // first appearance.
 void Simplifier::gather_neighbours(std::uint32_t v, Scratch& sc) const {
   sc.nbr.clear();
@@ -187,7 +170,8 @@ std::size_t Simplifier::evaluate_neighbours(std::uint32_t v, const Scratch::Neig
 }
 
 // The live triangles of a's and b's fans with their corners, read once for all the checks and the
-// collapse; the triangles on ab are those of b's fan holding a (the seam test of seam_edge).
+// collapse; the triangles on ab are those of b's fan holding a (the seam test as in
+// gather_neighbours).
 bool Simplifier::snapshot(std::uint32_t a, std::uint32_t b, Scratch& sc, std::uint32_t range) const {
   const auto foreign = [&](const Tri& tr) {
     if (range == kNone) return false;

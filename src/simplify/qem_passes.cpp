@@ -73,6 +73,8 @@ std::size_t Simplifier::apply_selected(const std::vector<std::pair<std::uint32_t
     if (sc.shared == 0) return true;
     Candidate c;
     if (!direction(a, b, sc.seam, c)) return true;
+    // Guarded collapses go to the serial sweep.
+    if (end && guard_ && guarded(a, b, c.p, sc)) return false;
     if (!link_ok(a, b, sc)) {
       ++out.link;
       return true;
@@ -81,7 +83,7 @@ std::size_t Simplifier::apply_selected(const std::vector<std::pair<std::uint32_t
       ++out.flip;
       return true;
     }
-    if (!end && guard_ && guarded(a, b, c.p) && !intersection_ok(a, b, c.p)) {
+    if (!end && guard_ && guarded(a, b, c.p, sc) && !intersection_ok(a, b, c.p, sc)) {
       ++out.intersection;
       return true;
     }
@@ -96,13 +98,6 @@ std::size_t Simplifier::apply_selected(const std::vector<std::pair<std::uint32_t
     }
     out.changed.push_back(a);
     return true;
-  };
-  // Guarded collapses go to the serial sweep.
-  auto needs_guard = [&](std::uint32_t a, std::uint32_t b) {
-    if (!guard_) return false;
-    int shared = 0;
-    Candidate c;
-    return direction(a, b, seam_edge(a, b, &shared), c) && guarded(a, b, c.p);
   };
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ranges, 1), [&](const tbb::blocked_range<std::size_t>& rg) {
     Scratch& sc = tls_->local();
@@ -124,7 +119,7 @@ std::size_t Simplifier::apply_selected(const std::vector<std::pair<std::uint32_t
           __builtin_prefetch(&refs_[fan_start_[pa]]), __builtin_prefetch(&refs_[fan_start_[pb]]);
         }
         const auto [a, b] = selected[k];
-        if (needs_guard(a, b) || !apply_one(a, b, sc, merged, res[c], &end, range))
+        if (!apply_one(a, b, sc, merged, res[c], &end, range))
           res[c].deferred.push_back(static_cast<std::uint32_t>(k));
       }
     }
