@@ -13,6 +13,7 @@
 
 #include <tbb/parallel_reduce.h>
 
+#include "interfere/core/morton.h"
 #include "qem_internal.h"
 #include "radix_sort.h"
 
@@ -23,16 +24,6 @@ constexpr std::size_t kMinRange = 1024;  ///< collapses per range at least
 
 /// Collapses per range of apply_selected (fixed by their count: deterministic).
 std::size_t range_length(std::size_t n) { return std::max(kMinRange, (n + kRanges - 1) / kRanges); }
-
-/// 7 bits spread to every third bit (Morton code on a 128^3 grid: 21 bits, two radix passes).
-std::uint32_t spread7(std::uint32_t x) {
-  x &= 0x7fu;
-  x = (x | (x << 16)) & 0x030000ffu;
-  x = (x | (x << 8)) & 0x0300f00fu;
-  x = (x | (x << 4)) & 0x030c30c3u;
-  x = (x | (x << 2)) & 0x09249249u;
-  return x;
-}
 
 }  // namespace
 
@@ -189,7 +180,8 @@ void Simplifier::batched_passes(EntryList& list, std::size_t handoff, std::size_
       for (std::size_t v = rg.begin(); v < rg.end(); ++v) {
         const Vec3& p = pos_[v];
         auto q = [&](double x, double lo) { return static_cast<std::uint32_t>(std::clamp((x - lo) * box_scale, 0.0, 127.0)); };
-        vsel[v] = {0, spatial ? spread7(q(p.x, box.lo.x)) | (spread7(q(p.y, box.lo.y)) << 1) | (spread7(q(p.z, box.lo.z)) << 2) : 0};
+        // A 128^3 grid: 21-bit codes, two radix passes.
+        vsel[v] = {0, spatial ? morton30(q(p.z, box.lo.z), q(p.y, box.lo.y), q(p.x, box.lo.x)) : 0};
       }
     });
   };

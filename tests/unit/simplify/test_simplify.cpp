@@ -105,6 +105,27 @@ TEST(Simplify, GuardEveryCollapseGivesTheSameBudgetWithoutSelfIntersections) {
   EXPECT_TRUE(closed_manifold(r->mesh));
 }
 
+// simplify() in an arena of `threads` threads.
+Expected<SimplifyResult> simplify_with_threads(const TriMesh& m, const SimplifyOptions& o, int threads) {
+  tbb::task_arena arena(threads);
+  Expected<SimplifyResult> r = Error{};
+  arena.execute([&] { r = simplify(m, o); });
+  return r;
+}
+
+// Two results equal to the bit: triangles, positions, face ids, collapses.
+void expect_same_result(const SimplifyResult& a, const SimplifyResult& b) {
+  EXPECT_EQ(a.mesh.triangles, b.mesh.triangles);
+  ASSERT_EQ(a.mesh.positions.size(), b.mesh.positions.size());
+  for (std::size_t i = 0; i < a.mesh.positions.size(); ++i) {
+    EXPECT_EQ(a.mesh.positions[i].x, b.mesh.positions[i].x);
+    EXPECT_EQ(a.mesh.positions[i].y, b.mesh.positions[i].y);
+    EXPECT_EQ(a.mesh.positions[i].z, b.mesh.positions[i].z);
+  }
+  EXPECT_EQ(a.face_ids, b.face_ids);
+  EXPECT_EQ(a.collapses, b.collapses);
+}
+
 // Two wavy sheets 0.004 apart (open, 2 x 28,800 triangles): simplified to 200 triangles, plain QEM
 // pushes one through the other.
 TriMesh two_close_sheets() {
@@ -136,13 +157,7 @@ TEST(Simplify, IntersectionsOfThePlainRunAreRepairedByRegionalGuardedReruns) {
   ASSERT_GT(count_self_intersections(p->mesh), 0u);  // the case this test is about
   SimplifyOptions o = plain;
   o.prevent_self_intersections = true;
-  auto run_with = [&](int threads) {
-    tbb::task_arena arena(threads);
-    Expected<SimplifyResult> r = Error{};
-    arena.execute([&] { r = simplify(m, o); });
-    return r;
-  };
-  auto r = run_with(2), one = run_with(1);
+  auto r = simplify_with_threads(m, o, 2), one = simplify_with_threads(m, o, 1);
   ASSERT_TRUE(r.has_value() && one.has_value());
   EXPECT_TRUE(r->guard_rerun);
   EXPECT_GE(r->guard_reruns, 1u);
@@ -325,24 +340,10 @@ TEST(Simplify, OneAndManyThreadsGiveBitIdenticalResults) {
   const auto faces = cap_faces(s);
   SimplifyOptions o{.target_triangles = 3000, .face_ids = faces, .feature_faces = {1}};
   o.batched_min_triangles = 0;  // the batched passes (parallel evaluation, parallel sorts) too
-  auto run_with = [&](int threads) {
-    tbb::task_arena arena(threads);
-    Expected<SimplifyResult> r = Error{};
-    arena.execute([&] { r = simplify(s, o); });
-    return r;
-  };
-  auto one = run_with(1), many = run_with(4);
+  auto one = simplify_with_threads(s, o, 1), many = simplify_with_threads(s, o, 4);
   ASSERT_TRUE(one.has_value() && many.has_value());
   EXPECT_EQ(one->mesh.num_triangles(), 3000u);
-  EXPECT_EQ(one->mesh.triangles, many->mesh.triangles);
-  ASSERT_EQ(one->mesh.positions.size(), many->mesh.positions.size());
-  for (std::size_t i = 0; i < one->mesh.positions.size(); ++i) {
-    EXPECT_EQ(one->mesh.positions[i].x, many->mesh.positions[i].x);
-    EXPECT_EQ(one->mesh.positions[i].y, many->mesh.positions[i].y);
-    EXPECT_EQ(one->mesh.positions[i].z, many->mesh.positions[i].z);
-  }
-  EXPECT_EQ(one->face_ids, many->face_ids);
-  EXPECT_EQ(one->collapses, many->collapses);
+  expect_same_result(*one, *many);
   EXPECT_EQ(one->hausdorff, many->hausdorff);
 }
 
@@ -391,18 +392,10 @@ TEST(Simplify, ScrambledVertexNumbersGiveThreadIndependentResults) {
   for (Tri& t : scrambled.triangles)
     for (std::uint32_t& v : t) v = perm[v];
   SimplifyOptions o{.target_triangles = 3000, .measure_error = false};
-  auto run_with = [&](int threads) {
-    tbb::task_arena arena(threads);
-    Expected<SimplifyResult> r = Error{};
-    arena.execute([&] { r = simplify(scrambled, o); });
-    return r;
-  };
-  auto one = run_with(1), many = run_with(4);
+  auto one = simplify_with_threads(scrambled, o, 1), many = simplify_with_threads(scrambled, o, 4);
   ASSERT_TRUE(one.has_value() && many.has_value());
   EXPECT_EQ(one->mesh.num_triangles(), 3000u);
-  EXPECT_EQ(one->mesh.triangles, many->mesh.triangles);
-  ASSERT_EQ(one->mesh.positions.size(), many->mesh.positions.size());
-  for (std::size_t i = 0; i < one->mesh.positions.size(); ++i) EXPECT_TRUE(one->mesh.positions[i] == many->mesh.positions[i]);
+  expect_same_result(*one, *many);
   EXPECT_EQ(count_self_intersections(one->mesh), 0u);
 }
 
@@ -416,11 +409,7 @@ TEST(Simplify, CompactionBetweenPassesChangesNothing) {
     off.compact_min_triangles = std::numeric_limits<std::size_t>::max();
     auto a = simplify(m, on), b = simplify(m, off);
     ASSERT_TRUE(a.has_value() && b.has_value());
-    EXPECT_EQ(a->mesh.triangles, b->mesh.triangles);
-    ASSERT_EQ(a->mesh.positions.size(), b->mesh.positions.size());
-    for (std::size_t i = 0; i < a->mesh.positions.size(); ++i) EXPECT_TRUE(a->mesh.positions[i] == b->mesh.positions[i]);
-    EXPECT_EQ(a->face_ids, b->face_ids);
-    EXPECT_EQ(a->collapses, b->collapses);
+    expect_same_result(*a, *b);
     EXPECT_EQ(a->guard_reruns, b->guard_reruns);
     EXPECT_EQ(a->guard_rerun, rerun);  // the path this case is about
     EXPECT_EQ(count_self_intersections(a->mesh), 0u);
