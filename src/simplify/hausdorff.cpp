@@ -102,7 +102,8 @@ HausdorffResult hausdorff(const TriMesh& a, const TriMesh& b) {
 // clash query makes for a pair). Pairs sharing a vertex position are excluded before the exact test
 // (they touch by construction), which is what made clash(m, m) slow on a freshly simplified mesh:
 // every adjacent pair went through the exact (degenerate, touching) path, twice.
-std::vector<std::pair<std::uint32_t, std::uint32_t>> self_intersecting_pairs(const TriMesh& mesh) {
+std::vector<std::pair<std::uint32_t, std::uint32_t>> self_intersecting_pairs(const TriMesh& mesh,
+                                                                     const std::vector<std::uint8_t>* skip) {
   using Pairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
   const std::size_t nt = mesh.num_triangles();
   if (nt < 2) return {};
@@ -143,6 +144,7 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> self_intersecting_pairs(con
             if (!same && !bvh.prim_boxes[x].overlaps(nb.box)) continue;
             for (std::uint32_t y = same ? x + 1 : nb.first; y < nb.first + nb.count; ++y) {
               if (!bvh.prim_boxes[x].overlaps(bvh.prim_boxes[y])) continue;
+              if (skip && (*skip)[bvh.prims[x]] && (*skip)[bvh.prims[y]]) continue;
               // Adjacent by index (a welded mesh) first, else by position (a soup).
               const Tri &ta = mesh.triangles[bvh.prims[x]], &tb = mesh.triangles[bvh.prims[y]];
               bool share = false;

@@ -130,16 +130,17 @@ Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& op
     // keeps the batched passes; should a rerun still add an intersection elsewhere, its
     // neighbourhood joins the region, and the last resort guards every collapse (a moved triangle
     // then meets no other: none can be added).
+    const auto new_pairs = [&] {  // pairs of two unmodified triangles are not tested
+      std::vector<std::uint8_t> unmodified(out.num_triangles());
+      for (std::uint32_t i = 0; i < unmodified.size(); ++i)
+        unmodified[i] = out.corners(i) == mesh.corners(out_origin[i]) ? 1 : 0;
+      return self_intersecting_pairs(out, &unmodified);
+    };
     std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
-    tbb::parallel_invoke([&] { pairs = self_intersecting_pairs(out); },
+    tbb::parallel_invoke([&] { pairs = new_pairs(); },
                          [&] {
                            if (splitting) split = split_by_face(out, out_face);
                          });
-    const auto drop_input_pairs = [&] {
-      const auto unmodified = [&](std::uint32_t i) { return out.corners(i) == mesh.corners(out_origin[i]); };
-      std::erase_if(pairs, [&](const auto& p) { return unmodified(p.first) && unmodified(p.second); });
-    };
-    drop_input_pairs();
     if (!pairs.empty()) {
       const TriMesh input = weld_positions(mesh);
       std::vector<Aabb> region;
@@ -163,8 +164,7 @@ Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& op
         sp->run(target, r);
         out_face.clear(), out_origin.clear();
         out = compact(*sp, &out_face, &out_origin);
-        pairs = self_intersecting_pairs(out);
-        drop_input_pairs();
+        pairs = new_pairs();
         split = TriMesh{};
       }
     }

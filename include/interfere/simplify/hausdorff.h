@@ -31,7 +31,10 @@ HausdorffResult hausdorff(const TriMesh& a, const TriMesh& b);
 /// exact clash of the mesh against itself): 0 for a mesh free of self-intersections.
 std::size_t count_self_intersections(const TriMesh& mesh);
 
-/// The intersecting pairs themselves (triangle indices, smaller first), sorted.
-std::vector<std::pair<std::uint32_t, std::uint32_t>> self_intersecting_pairs(const TriMesh& mesh);
+/// The intersecting pairs themselves (triangle indices, smaller first), sorted. With `skip` (one
+/// flag per triangle), pairs whose triangles are both flagged are not tested (a simplification's
+/// result: triangles left as in the input, whose mutual intersections were the input's own).
+std::vector<std::pair<std::uint32_t, std::uint32_t>> self_intersecting_pairs(
+    const TriMesh& mesh, const std::vector<std::uint8_t>* skip = nullptr);
 
 }  // namespace interfere

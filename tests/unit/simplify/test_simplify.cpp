@@ -531,6 +531,14 @@ TEST(Hausdorff, SelfIntersectionCountMatchesBruteForceAndTheEngineClash) {
   ASSERT_GT(brute, 20u);
   EXPECT_EQ(count_self_intersections(m), brute);
   EXPECT_EQ(self_intersecting_pairs(m), brute_pairs);  // the same pairs, sorted
+  // Skip flags: exactly the pairs with both triangles flagged are left out.
+  std::vector<std::uint8_t> skip(m.num_triangles());
+  for (std::size_t t = 0; t < skip.size(); ++t) skip[t] = t % 3 != 0 ? 1 : 0;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> kept;
+  for (const auto& p : brute_pairs)
+    if (!(skip[p.first] && skip[p.second])) kept.push_back(p);
+  ASSERT_LT(kept.size(), brute_pairs.size());  // the flags do leave pairs out here
+  EXPECT_EQ(self_intersecting_pairs(m, &skip), kept);
   const Model model = make_model(m, {}, false);
   ClashRequest req;
   req.regions = false, req.containment = false;
