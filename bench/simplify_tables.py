@@ -158,10 +158,14 @@ quadric-error-metric edge collapses while the faces that take part in the curren
    is checked for intersecting non-adjacent triangle pairs with the engine's BVH traversed against itself and
    the exact triangle test of `np/tri_tri.h` (the decision of the engine's clash query; pairs sharing a vertex
    position are skipped before the exact test, which made `clash(m, m)` slow here; unit test
-   `Hausdorff.SelfIntersectionCountMatchesBruteForceAndTheEngineClash`) and, only if plain QEM created an
-   intersection, the run is repeated with a guard that refuses collapses whose moved triangles would meet a
-   non-adjacent triangle (exact test of `np/tri_tri.h` against a hash grid rebuilt whenever the live triangle
-   count halves): first only near the intersecting pairs found (each pair's box grown by its diagonal; the grid
+   `Hausdorff.SelfIntersectionCountMatchesBruteForceAndTheEngineClash`); a pair of triangles both left exactly
+   as in the input (same corner positions) is not tested, its intersection being the input's own (unit test
+   `Simplify.InputIntersectionsAreKeptButNoneIsAdded`: two interpenetrating spheres). Only if plain QEM created
+   an intersection is the run repeated with a guard that refuses collapses whose moved triangles would meet a
+   non-adjacent triangle (exact test of `np/tri_tri.h` against a hash grid, scanned once per collapse over the
+   cells of all its moved triangles, cells shedding dead and repeated entries as they are scanned, rebuilt
+   whenever the live triangle count halves or re-inserted entries pile up): first only near the intersecting
+   pairs found (each pair's box grown by its diagonal; the grid
    then holds only that neighbourhood's triangles, guarded collapses are applied in the serial sweep of the
    batched passes, and one reaching beyond the neighbourhood is refused), up to 3 such reruns with the region
    growing, then, as a last resort, on every collapse (about 10× slower); so the result never has a
@@ -286,7 +290,8 @@ def write_doc(raw):
     r = rows(raw)
     ctx = raw.get("context", {})
     lines = [STATIC_HEAD, "## Benchmarks", ""]
-    lines.append(f"Run {_dt.datetime.now(_dt.timezone.utc).strftime('%Y-%m-%d %H:%M UTC')} on {platform.node()} "
+    when = ctx.get("date") or _dt.datetime.now(_dt.timezone.utc).strftime('%Y-%m-%d %H:%M UTC')  # the run's own date
+    lines.append(f"Run {when} on {platform.node()} "
                  f"({ctx.get('num_cpus', '?')} CPUs, load average {ctx.get('load_avg', '?')}), "
                  "`bench/bench_simplify.cpp`, wall time per run: the mean of 3 runs (1e6) or 5 (1e5) for interfere and meshoptimizer after one untimed warm-up call each (the steady state of a process that simplifies repeatedly; a process's first call is about 10 % slower: thread pool start, heap growth), one for OpenMesh, 20 for the casing rows. Meshes: `make_sphere` with 5 % "
                  "bumps; the equatorial patch x > 0.98, |z| < 0.05 (about 0.25 % of the triangles) is the feature region "
