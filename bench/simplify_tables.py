@@ -407,7 +407,10 @@ def write_doc(raw):
         lines.append("")
     lines.append("Verdicts use wall time. Timings come from a shared 2-core machine (see the load average above; "
                  "`cpu` is the process's CPU time, all threads); rerun `python3 bench/simplify_tables.py` on a quiet "
-                 "machine for reference numbers.")
+                 "machine for reference numbers. The VM these pages were made on goes through slow phases: on "
+                 "2026-11-24 meshoptimizer took from 0.56 to 0.98 s on the same 1e6 input, and the two-threaded "
+                 "interfere suffers more there (one filtered run in such a phase: 1e6 → 1e4 0.67 s vs "
+                 "meshoptimizer 0.91 s, casing P1 23.8 ms vs 12.9 ms), so compare rows of one run only.")
     lines.append("")
     # Where the time goes: simplify()'s own phase timers (SimplifyResult::phases, the report's
     # seconds.phases), recorded by the benchmark as phase:<name> counters.
