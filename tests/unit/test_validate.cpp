@@ -92,46 +92,49 @@ TEST(Weld, InvalidIndexLeavesTheMeshUnchanged) {
 }
 
 TEST(Weld, RandomSoupMatchesAMapReferenceForAnyThreadCount) {
-  // 90k corners drawn from 5k distinct points (several chunks and hash partitions), signed zeros.
-  std::mt19937_64 rng(7);
-  std::uniform_int_distribution<int> pick(0, 4999);
-  std::uniform_int_distribution<int> coord(-3, 3);
-  std::vector<Vec3> pool(5000);
-  for (Vec3& p : pool) p = {coord(rng) * 0.1, coord(rng) * 0.25, static_cast<double>(pick(rng))};
-  pool[17] = {0.0, 0.0, 0.0};
-  TriMesh m;
-  for (int t = 0; t < 30000; ++t) {
-    const auto v = static_cast<std::uint32_t>(m.positions.size());
-    for (int k = 0; k < 3; ++k) {
-      Vec3 p = pool[static_cast<std::size_t>(pick(rng))];
-      if (p.x == 0 && (t + k) % 2) p.x = -0.0;
-      m.positions.push_back(p);
+  // 90k corners drawn from 5k distinct points (several chunks and hash partitions), signed zeros;
+  // then 18k corners (the serial table of small inputs).
+  for (const int triangles : {30000, 6000}) {
+    std::mt19937_64 rng(7);
+    std::uniform_int_distribution<int> pick(0, 4999);
+    std::uniform_int_distribution<int> coord(-3, 3);
+    std::vector<Vec3> pool(5000);
+    for (Vec3& p : pool) p = {coord(rng) * 0.1, coord(rng) * 0.25, static_cast<double>(pick(rng))};
+    pool[17] = {0.0, 0.0, 0.0};
+    TriMesh m;
+    for (int t = 0; t < triangles; ++t) {
+      const auto v = static_cast<std::uint32_t>(m.positions.size());
+      for (int k = 0; k < 3; ++k) {
+        Vec3 p = pool[static_cast<std::size_t>(pick(rng))];
+        if (p.x == 0 && (t + k) % 2) p.x = -0.0;
+        m.positions.push_back(p);
+      }
+      m.triangles.push_back({v, v + 1, v + 2});
     }
-    m.triangles.push_back({v, v + 1, v + 2});
-  }
-  // Reference: std::map on values (== treats -0 and +0 alike), numbering in order of first use.
-  std::map<std::array<double, 3>, std::uint32_t> ids;
-  std::vector<Tri> expected;
-  for (const Tri& t : m.triangles) {
-    Tri e;
-    for (std::size_t k = 0; k < 3; ++k) {
-      const Vec3& p = m.positions[t[k]];
-      e[k] =
-          ids.try_emplace({p.x + 0.0, p.y + 0.0, p.z + 0.0}, static_cast<std::uint32_t>(ids.size()))
-              .first->second;
+    // Reference: std::map on values (== treats -0 and +0 alike), numbering in order of first use.
+    std::map<std::array<double, 3>, std::uint32_t> ids;
+    std::vector<Tri> expected;
+    for (const Tri& t : m.triangles) {
+      Tri e;
+      for (std::size_t k = 0; k < 3; ++k) {
+        const Vec3& p = m.positions[t[k]];
+        e[k] = ids.try_emplace({p.x + 0.0, p.y + 0.0, p.z + 0.0},
+                               static_cast<std::uint32_t>(ids.size()))
+                   .first->second;
+      }
+      expected.push_back(e);
     }
-    expected.push_back(e);
-  }
-  for (int threads : {1, 2, 4}) {
-    tbb::global_control gc(tbb::global_control::max_allowed_parallelism,
-                           static_cast<std::size_t>(threads));
-    TriMesh w = m;
-    EXPECT_EQ(weld_exact(w), m.num_vertices() - ids.size());
-    EXPECT_EQ(w.triangles, expected);
-    for (std::size_t t = 0; t < w.num_triangles(); ++t) {
-      const auto a = w.corners(t), b = m.corners(t);
-      for (std::size_t k = 0; k < 3; ++k)
-        EXPECT_TRUE(a[k].x == b[k].x && a[k].y == b[k].y && a[k].z == b[k].z);
+    for (int threads : {1, 2, 4}) {
+      tbb::global_control gc(tbb::global_control::max_allowed_parallelism,
+                             static_cast<std::size_t>(threads));
+      TriMesh w = m;
+      EXPECT_EQ(weld_exact(w), m.num_vertices() - ids.size());
+      EXPECT_EQ(w.triangles, expected);
+      for (std::size_t t = 0; t < w.num_triangles(); ++t) {
+        const auto a = w.corners(t), b = m.corners(t);
+        for (std::size_t k = 0; k < 3; ++k)
+          EXPECT_TRUE(a[k].x == b[k].x && a[k].y == b[k].y && a[k].z == b[k].z);
+      }
     }
   }
 }
