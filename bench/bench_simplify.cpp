@@ -7,7 +7,8 @@
 // simplify_tables.py runs it and regenerates docs/simplify.md.
 //
 // Repetitions: interfere and meshoptimizer rows are the mean of 3 (1e6) or 5 (1e5) runs, the casing
-// rows (interfere's modes and meshoptimizer on the welded part) of 20, OpenMesh runs once.
+// rows (interfere's modes and meshoptimizer on the welded part) of 20, OpenMesh runs once; the
+// interfere and meshoptimizer rows make one untimed warm-up call first.
 //
 // Timed region: simplify() with the options of the row (weld, quadrics, collapses, the result's
 // self-intersection check and guarded rerun when needed, output); measure_error is off except in

@@ -126,6 +126,35 @@ struct Entry {  // the key travels with its index so that partitions are scanned
   std::uint32_t index;
 };
 
+/// Small inputs: one open-addressing table, serially (the chunk cache and the partitions cost more
+/// than they save below about 2^16 keys: a 22,000-vertex CAD part welded in 1.5 ms before).
+template <class Key, class KeyOf>
+void small_representatives(std::size_t n, const KeyOf& key_of, std::uint32_t* rep) {
+  constexpr std::uint32_t kEmpty = std::numeric_limits<std::uint32_t>::max();
+  std::size_t size = 16;
+  while (size < 2 * n) size *= 2;
+  const std::size_t mask = size - 1;
+  // Indices only (4 bytes a slot: a small table, few fresh pages); a probed key is read again.
+  std::vector<std::uint32_t> table(size, kEmpty);
+  Key k, other;
+  for (std::size_t i = 0; i < n; ++i) {
+    key_of(i, k);
+    for (std::size_t s = hash_key(k) & mask;; s = (s + 1) & mask) {
+      const std::uint32_t j = table[s];
+      if (j == kEmpty) {
+        table[s] = static_cast<std::uint32_t>(i);
+        rep[i] = static_cast<std::uint32_t>(i);
+        break;
+      }
+      key_of(j, other);
+      if (other[0] == k[0] && other[1] == k[1] && other[2] == k[2]) {
+        rep[i] = j;  // the first of its class (keys are visited in index order)
+        break;
+      }
+    }
+  }
+}
+
 /// rep[i] = lowest j < n with key(j) == key(i), by hash partitioning; key_of(i, Key&) is called
 /// twice per index, from several threads. n must be < 2^32.
 template <class Key, class KeyOf>
@@ -207,36 +236,8 @@ void partitioned_representatives(std::size_t n, const KeyOf& key_of, std::uint32
 /// Mesh files list neighbouring triangles close together, so most repeated keys are found first in
 /// a small direct-mapped cache of recent keys per chunk (links to an earlier equal key); only the
 /// remaining candidates, which include every class's first occurrence, go through the global
-/// partitioned pass. Links stay inside a chunk, so both ends run chunk-parallel.
-/// Small inputs: one open-addressing table, serially (the chunk cache and the partitions cost more
-/// than they save below about 2^16 keys: a 22,000-vertex CAD part welded in 1.5 ms before).
-template <class Key, class KeyOf>
-void small_representatives(std::size_t n, const KeyOf& key_of, std::uint32_t* rep) {
-  constexpr std::uint32_t kEmpty = std::numeric_limits<std::uint32_t>::max();
-  std::size_t size = 16;
-  while (size < 2 * n) size *= 2;
-  const std::size_t mask = size - 1;
-  // Indices only (4 bytes a slot: a small table, few fresh pages); a probed key is read again.
-  std::vector<std::uint32_t> table(size, kEmpty);
-  Key k, other;
-  for (std::size_t i = 0; i < n; ++i) {
-    key_of(i, k);
-    for (std::size_t s = hash_key(k) & mask;; s = (s + 1) & mask) {
-      const std::uint32_t j = table[s];
-      if (j == kEmpty) {
-        table[s] = static_cast<std::uint32_t>(i);
-        rep[i] = static_cast<std::uint32_t>(i);
-        break;
-      }
-      key_of(j, other);
-      if (other[0] == k[0] && other[1] == k[1] && other[2] == k[2]) {
-        rep[i] = j;  // the first of its class (keys are visited in index order)
-        break;
-      }
-    }
-  }
-}
-
+/// partitioned pass. Links stay inside a chunk, so both ends run chunk-parallel. Up to 2^16 keys:
+/// small_representatives.
 template <class Key, class KeyOf>
 void representatives(std::size_t n, const KeyOf& key_of, std::uint32_t* rep) {
   if (n == 0) return;

@@ -95,8 +95,8 @@ Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& op
   clock.restart();
   // Surviving triangles in input order, unused vertices dropped (new ids in order of first use).
   // out_origin: the input triangle of each output triangle.
-  auto compact = [&](const qem::Simplifier& s, std::vector<std::uint32_t>* out_face,
-                     std::vector<std::uint32_t>* out_origin) {
+  auto compact = [&](const qem::Simplifier& s, std::vector<std::uint32_t>& out_face,
+                     std::vector<std::uint32_t>& out_origin) {
     TriMesh m;
     std::vector<std::uint32_t> used(s.pos_.size(), kNone);
     for (std::size_t t = 0; t < nt; ++t) {
@@ -110,13 +110,13 @@ Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& op
         v = used[v];
       }
       m.triangles.push_back(tr);
-      if (out_face) out_face->push_back(face[t]);
-      out_origin->push_back(static_cast<std::uint32_t>(t));
+      out_face.push_back(face[t]);
+      out_origin.push_back(static_cast<std::uint32_t>(t));
     }
     return m;
   };
   std::vector<std::uint32_t> out_face, out_origin;
-  TriMesh out = compact(*sp, &out_face, &out_origin);
+  TriMesh out = compact(*sp, out_face, out_origin);
   clock.lap("output");
   // Split along faces when face ids were given or regions were made; done beside the check (a
   // rerun, rare, splits its own result again).
@@ -163,7 +163,7 @@ Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& op
         if (attempt < kRegionalReruns) sp->set_guard_region(region);
         sp->run(target, r);
         out_face.clear(), out_origin.clear();
-        out = compact(*sp, &out_face, &out_origin);
+        out = compact(*sp, out_face, out_origin);
         pairs = new_pairs();
         split = TriMesh{};
       }

@@ -65,8 +65,8 @@ void Simplifier::grid_insert(std::uint32_t t) {
 // scanning per moved triangle read the same entries about ten times, which dominated guarded runs
 // next to finely tessellated kept features); each candidate is then tested against each moved
 // triangle whose box it overlaps.
-bool Simplifier::intersection_ok(std::uint32_t keep, std::uint32_t remove, const Vec3& p, const Scratch& sc) {
-  const Aabb all = moved_box(keep, remove, p, sc);
+bool Simplifier::intersection_ok(std::uint32_t keep, std::uint32_t remove, const Vec3& p, const Scratch& sc,
+                                 const Aabb& all) {
   // With a guard region the grid holds only the triangles near it: a collapse reaching beyond that
   // neighbourhood cannot be checked and is refused.
   if (!guard_boxes_.empty() && !within_region(all)) return false;
@@ -153,14 +153,18 @@ bool Simplifier::within_region(const Aabb& b) const {
   return false;
 }
 
-// The moved triangles reach a guard box.
-bool Simplifier::guarded(std::uint32_t keep, std::uint32_t remove, const Vec3& p, const Scratch& sc) const {
+// The moved triangles (their box `moved`) reach a guard box.
+bool Simplifier::guarded(const Aabb& moved) const {
   if (guard_boxes_.empty()) return true;
-  const Aabb moved = moved_box(keep, remove, p, sc);
   if (!moved.overlaps(guard_all_)) return false;
   for (const Aabb& b : guard_boxes_)
     if (moved.overlaps(b)) return true;
   return false;
+}
+
+bool Simplifier::guard_refuses(std::uint32_t keep, std::uint32_t remove, const Vec3& p, const Scratch& sc) {
+  const Aabb moved = moved_box(keep, remove, p, sc);
+  return guarded(moved) && !intersection_ok(keep, remove, p, sc, moved);
 }
 
 void Simplifier::grid_insert_fan(std::uint32_t v) {

@@ -306,9 +306,13 @@ class Simplifier {
   void batched_passes(EntryList& list, std::size_t handoff, std::size_t& live, SimplifyResult& r,
                       PhaseClock& clock);
   // Self-intersection guard (qem_guard.cpp).
-  bool intersection_ok(std::uint32_t keep, std::uint32_t remove, const Vec3& p, const Scratch& sc);
-  /// The guard checks this collapse (its moved triangles reach the guard region).
-  bool guarded(std::uint32_t keep, std::uint32_t remove, const Vec3& p, const Scratch& sc) const;
+  /// The collapse of remove into keep at p (fans in sc) would make a moved triangle meet another:
+  /// it reaches the guard region and fails the intersection test. Only with guard_.
+  bool guard_refuses(std::uint32_t keep, std::uint32_t remove, const Vec3& p, const Scratch& sc);
+  /// The moved triangles (box `moved`, see moved_box) meet no other triangle.
+  bool intersection_ok(std::uint32_t keep, std::uint32_t remove, const Vec3& p, const Scratch& sc, const Aabb& moved);
+  /// The guard checks a collapse whose moved triangles have the box `moved` (it reaches the region).
+  bool guarded(const Aabb& moved) const;
   /// Registers the live triangles of v's fan at their current positions.
   void grid_insert_fan(std::uint32_t v);
   void grid_insert(std::uint32_t t);

@@ -65,7 +65,7 @@ std::size_t Simplifier::apply_selected(const std::vector<std::pair<std::uint32_t
     Candidate c;
     if (!direction(a, b, sc.seam, c)) return true;
     // Guarded collapses go to the serial sweep.
-    if (end && guard_ && guarded(a, b, c.p, sc)) return false;
+    if (end && guard_ && guarded(moved_box(a, b, c.p, sc))) return false;
     if (!link_ok(a, b, sc)) {
       ++out.link;
       return true;
@@ -74,7 +74,7 @@ std::size_t Simplifier::apply_selected(const std::vector<std::pair<std::uint32_t
       ++out.flip;
       return true;
     }
-    if (!end && guard_ && guarded(a, b, c.p, sc) && !intersection_ok(a, b, c.p, sc)) {
+    if (!end && guard_ && guard_refuses(a, b, c.p, sc)) {
       ++out.intersection;
       return true;
     }
@@ -265,7 +265,7 @@ void Simplifier::batched_passes(EntryList& list, std::size_t handoff, std::size_
     // tmp, then the spans are joined in order.
     {
       const std::size_t n = list.size();
-      const std::size_t kFilterBlock = std::max<std::size_t>(std::size_t{1} << 12, std::min<std::size_t>(std::size_t{1} << 16, (n + 15) / 16));
+      const std::size_t kFilterBlock = parallel_block_length(n);
       const std::size_t nb = (n + kFilterBlock - 1) / kFilterBlock;
       tmp.resize(n);
       std::vector<std::size_t> kept(nb + 1, 0);

@@ -253,7 +253,7 @@ void Simplifier::heap_loop(std::size_t target, std::size_t& live, SimplifyResult
       ++rejected_flip_;
       continue;
     }
-    if (guard_ && guarded(a, b, c.p, sc) && !intersection_ok(a, b, c.p, sc)) {
+    if (guard_ && guard_refuses(a, b, c.p, sc)) {
       ++rejected_intersection_;
       continue;
     }

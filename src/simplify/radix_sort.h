@@ -15,6 +15,12 @@
 
 namespace interfere {
 
+/// Block length for splitting a list of n entries over threads: 2^16, smaller for short lists so
+/// both threads of a small machine take part (at most 16 blocks then; at least 2^12 entries each).
+inline std::size_t parallel_block_length(std::size_t n) {
+  return std::max<std::size_t>(std::size_t{1} << 12, std::min<std::size_t>(std::size_t{1} << 16, (n + 15) / 16));
+}
+
 /// Sorts `v` (a std::vector of any allocator) stably by key(x) (uint32 below 2^KeyBits) ascending;
 /// `tmp` is scratch (resized).
 template <int KeyBits = 32, class Vector, class Key>
@@ -24,9 +30,7 @@ void radix_sort_u32(Vector& v, Vector& tmp, Key key) {
   constexpr std::size_t kBuckets = std::size_t{1} << kBits;
   const std::size_t n = v.size();
   if (n < 2) return;
-  // Blocks of 2^16, smaller for short lists so both threads of a small machine take part (at most
-  // 16 blocks then: the offset sweep stays cheap).
-  const std::size_t kBlock = std::max<std::size_t>(std::size_t{1} << 12, std::min<std::size_t>(std::size_t{1} << 16, (n + 15) / 16));
+  const std::size_t kBlock = parallel_block_length(n);  // few blocks: the offset sweep stays cheap
   tmp.resize(n);
   const std::size_t nb = (n + kBlock - 1) / kBlock;
   std::vector<std::array<std::uint32_t, kBuckets>> hist(nb);
