@@ -516,6 +516,7 @@ TEST(Hausdorff, SelfIntersectionCountMatchesBruteForceAndTheEngineClash) {
   TriMesh m = make_sphere({.target_triangles = 800, .bump_amplitude = 0.05});
   const TriMesh b = make_sphere({.target_triangles = 600, .center = {1.3, 0.2, 0.1}, .twist = 0.2});
   const auto base = static_cast<std::uint32_t>(m.positions.size());
+  const std::size_t first_sphere = m.num_triangles();
   m.positions.insert(m.positions.end(), b.positions.begin(), b.positions.end());
   for (Tri t : b.triangles) m.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
   std::size_t brute = 0;
@@ -538,6 +539,15 @@ TEST(Hausdorff, SelfIntersectionCountMatchesBruteForceAndTheEngineClash) {
   for (const auto& p : brute_pairs)
     if (!(skip[p.first] && skip[p.second])) kept.push_back(p);
   ASSERT_LT(kept.size(), brute_pairs.size());  // the flags do leave pairs out here
+  EXPECT_EQ(self_intersecting_pairs(m, &skip), kept);
+  // Spatially coherent flags (the first sphere, and the second's lower half): whole subtrees are
+  // then skipped, and only the pairs of two flagged triangles may go.
+  for (std::uint32_t t = 0; t < skip.size(); ++t) skip[t] = t < first_sphere || m.corners(t)[0].z < 0 ? 1 : 0;
+  kept.clear();
+  for (const auto& p : brute_pairs)
+    if (!(skip[p.first] && skip[p.second])) kept.push_back(p);
+  ASSERT_LT(kept.size(), brute_pairs.size());
+  ASSERT_GT(kept.size(), 0u);
   EXPECT_EQ(self_intersecting_pairs(m, &skip), kept);
   const Model model = make_model(m, {}, false);
   ClashRequest req;
