@@ -115,9 +115,10 @@ bool Simplifier::intersection_ok(std::uint32_t keep, std::uint32_t remove, const
       for (std::uint32_t w : q) qb.expand(pos_[w]);
       if (!qb.overlaps(all)) continue;
       for (const GuardMoved& m : guard_moved_) {
+        if (!qb.overlaps(m.box)) continue;  // the cheaper test first: most fail it
         bool share = false;
         for (std::uint32_t w : q) share = share || w == m.tr[0] || w == m.tr[1] || w == m.tr[2];
-        if (share || !qb.overlaps(m.box)) continue;
+        if (share) continue;
         if (tri_tri_exact_intersects(m.c, {pos_[q[0]], pos_[q[1]], pos_[q[2]]})) {
           ok = false;
           break;
