@@ -202,8 +202,8 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> self_intersecting_pairs(con
     frontier.swap(next);
     if (!grew) break;
   }
-  pairs = tbb::parallel_reduce(
-      tbb::blocked_range<std::size_t>(0, frontier.size(), 4), std::move(pairs),
+  Pairs deep = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, frontier.size(), 4), Pairs{},  // the identity of the join
       [&](const tbb::blocked_range<std::size_t>& r, Pairs found) {
         std::vector<NodePair> stack;
         for (std::size_t k = r.begin(); k < r.end(); ++k) {
@@ -220,6 +220,7 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> self_intersecting_pairs(con
         x.insert(x.end(), y.begin(), y.end());
         return x;
       });
+  pairs.insert(pairs.end(), deep.begin(), deep.end());
   std::sort(pairs.begin(), pairs.end());
   return pairs;
 }
