@@ -143,4 +143,26 @@ void Simplifier::uncompact_triangles(std::size_t input_triangles) {
   tri_origin_.clear();
 }
 
+// The live triangles as a mesh of their own (unused vertices dropped) and, per triangle, its input
+// number (through tri_origin_ when compacted): the mesh at the handoff of a heap-guarded rerun.
+TriMesh Simplifier::live_mesh(std::vector<std::uint32_t>& origin) const {
+  TriMesh m;
+  origin.clear();
+  std::vector<std::uint32_t> used(pos_.size(), kNone);
+  for (std::size_t t = 0; t < tris_.size(); ++t) {
+    if (dead_[t]) continue;
+    Tri tr = tris_[t];
+    for (std::uint32_t& v : tr) {
+      if (used[v] == kNone) {
+        used[v] = static_cast<std::uint32_t>(m.positions.size());
+        m.positions.push_back(pos_[v]);
+      }
+      v = used[v];
+    }
+    m.triangles.push_back(tr);
+    origin.push_back(tri_origin_.empty() ? static_cast<std::uint32_t>(t) : tri_origin_[t]);
+  }
+  return m;
+}
+
 }  // namespace interfere::qem

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <functional>
 #include <memory>
 #include <chrono>
 #include <cmath>
@@ -246,6 +247,13 @@ class Simplifier {
       guard_outer_all_.expand(guard_outer_.back());
     }
   }
+  /// Rerun that guards the heap phase only: the batched passes run as in the plain run (same
+  /// options: the same collapses), then `clean()` judges the mesh at the handoff (see live_mesh);
+  /// if it holds, every heap collapse is guarded, else the run stops there with handoff_failed().
+  void set_handoff_check(std::function<bool()> clean) { handoff_check_ = std::move(clean); }
+  bool handoff_failed() const { return handoff_failed_; }
+  /// The live triangles as a mesh (unused vertices dropped) and each one's input triangle number.
+  TriMesh live_mesh(std::vector<std::uint32_t>& origin) const;
   std::vector<Vec3> pos_;
   std::vector<Tri> tris_;
   std::vector<std::uint32_t> face_;
@@ -306,6 +314,9 @@ class Simplifier {
   void batched_passes(EntryList& list, std::size_t handoff, std::size_t& live, SimplifyResult& r,
                       PhaseClock& clock);
   // Self-intersection guard (qem_guard.cpp).
+  void start_guard(std::size_t live);
+  std::function<bool()> handoff_check_;
+  bool handoff_failed_ = false;
   /// The collapse of remove into keep at p (fans in sc) would make a moved triangle meet another:
   /// it reaches the guard region and fails the intersection test. Only with guard_.
   bool guard_refuses(std::uint32_t keep, std::uint32_t remove, const Vec3& p, const Scratch& sc);

@@ -157,15 +157,7 @@ void Simplifier::run(std::size_t target, SimplifyResult& r) {
     if (tr[0] == tr[1] || tr[1] == tr[2] || tr[0] == tr[2]) dead_[t] = 1, --live;
   }
   vertex_quadrics();
-  if (o_.prevent_self_intersections) {
-    guard_ = true;
-    for (std::size_t t = 0; t < nt; ++t) {
-      const auto& tr = tris_[t];
-      surface_area_ += 0.5 * norm(cross(pos_[tr[1]] - pos_[tr[0]], pos_[tr[2]] - pos_[tr[0]]));
-    }
-    guard_mark_.assign(nt, GuardMark{});
-    rebuild_grid(live);
-  }
+  if (o_.prevent_self_intersections) start_guard(live);
   stamp_.assign(nv, 0);
   cls_.assign(nv, kInterior);
   locked_.assign(nv, 0);
@@ -205,6 +197,14 @@ void Simplifier::run(std::size_t target, SimplifyResult& r) {
   const bool batched = !(guard_ && guard_boxes_.empty()) && o_.batched_passes && live >= o_.batched_min_triangles &&
                        live > handoff + handoff / 2;
   if (batched) batched_passes(list, handoff, live, r, clock);
+  if (handoff_check_) {  // a rerun that guards the heap only (see set_handoff_check)
+    if (!handoff_check_()) {
+      handoff_failed_ = true;
+      return;
+    }
+    start_guard(live);
+    clock.lap("check");
+  }
   for (const HeapEntry& e : list) heap_.push(e);
   EntryList().swap(list);
   heap_loop(target, live, r);
@@ -212,6 +212,19 @@ void Simplifier::run(std::size_t target, SimplifyResult& r) {
   clock.lap("heap");
   r.rejected_link = rejected_link_, r.rejected_flip = rejected_flip_;
   r.rejected_intersection = rejected_intersection_;
+}
+
+// The guard's grid over the live triangles (cells from their mean area).
+void Simplifier::start_guard(std::size_t live) {
+  guard_ = true;
+  surface_area_ = 0;
+  for (std::size_t t = 0; t < tris_.size(); ++t) {
+    if (dead_[t]) continue;
+    const auto& tr = tris_[t];
+    surface_area_ += 0.5 * norm(cross(pos_[tr[1]] - pos_[tr[0]], pos_[tr[2]] - pos_[tr[0]]));
+  }
+  guard_mark_.assign(tris_.size(), GuardMark{});
+  rebuild_grid(live);
 }
 
 // The min-heap loop (§4): the cheapest valid candidate is collapsed, its end's edges evaluated

@@ -58,9 +58,9 @@ struct SimplifyOptions {
   /// engine's exact self-clash, and only if it has more intersecting pairs than the input (whose
   /// own intersections, e.g. touching parts, cannot be removed) the run is repeated with a guard
   /// that rejects every collapse whose moved triangles would meet a non-adjacent triangle (exact
-  /// test against a hash grid), first only near the intersections found (up to 3 reruns, the
-  /// region growing), then, as a last resort, for every collapse (about 10x slower). Off: plain
-  /// QEM, unchecked.
+  /// test against a hash grid): first in the heap phase only, when the batched passes left no new
+  /// intersection, then only near the intersections found (up to 3 reruns, the region growing),
+  /// then, as a last resort, for every collapse (about 10x slower). Off: plain QEM, unchecked.
   bool prevent_self_intersections = true;
   /// With prevent_self_intersections: guard every collapse from the start (skip the plain run).
   bool guard_every_collapse = false;
@@ -91,8 +91,9 @@ struct SimplifyResult {
   std::size_t rejected_link = 0, rejected_flip = 0;  ///< candidates refused by the checks
   std::size_t rejected_intersection = 0;             ///< refused by the self-intersection guard
   bool guard_rerun = false;  ///< plain QEM created a self-intersection: a guarded run was used
-  /// Guarded reruns made: 1..3 guard the neighbourhoods of the intersections found so far, 4 guards
-  /// every collapse (0 without a rerun).
+  /// Guarded reruns made (0 without a rerun): the first repeats the batched passes and guards the
+  /// heap phase (if the passes left no intersection; else it stops at the handoff); then up to 4
+  /// more: 3 guard the neighbourhoods of the intersections found so far, the last every collapse.
   std::size_t guard_reruns = 0;
   std::size_t seam_vertices = 0, corner_vertices = 0, locked_vertices = 0;
   std::size_t feature_triangles_in = 0, feature_triangles_out = 0;
