@@ -129,8 +129,8 @@ Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& op
     // The first rerun repeats the plain run's batched passes, which make the same collapses, checks
     // the mesh they leave at the handoff, and if it has no new pair guards every collapse of the
     // heap phase: the coarsest collapses, the last ones, are where intersections usually appear
-    // (casing, P1 with strict features: 102 -> 40 ms). Otherwise, or for large meshes, the reruns
-    // guard the neighbourhoods of the new pairs found so far (each pair's box grown by its
+    // (casing, P1 with strict features: 102 -> 48 ms). Otherwise the next reruns guard the
+    // neighbourhoods of the new pairs found so far (each pair's box grown by its
     // diagonal), which keeps the batched passes; should a rerun still add an intersection
     // elsewhere, its neighbourhood joins the region, and the last resort guards every collapse (a
     // moved triangle then meets no other: none can be added).
