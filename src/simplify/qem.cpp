@@ -14,7 +14,6 @@
 
 namespace interfere {
 namespace {
-using qem::kNone;
 
 std::size_t budget_of(const TriMesh& mesh, const SimplifyOptions& o, Error& err) {
   const std::size_t n = mesh.num_triangles();
@@ -97,22 +96,9 @@ Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& op
   // out_origin: the input triangle of each output triangle.
   auto compact = [&](const qem::Simplifier& s, std::vector<std::uint32_t>& out_face,
                      std::vector<std::uint32_t>& out_origin) {
-    TriMesh m;
-    std::vector<std::uint32_t> used(s.pos_.size(), kNone);
-    for (std::size_t t = 0; t < nt; ++t) {
-      if (s.dead_[t]) continue;
-      Tri tr = s.tris_[t];
-      for (std::uint32_t& v : tr) {
-        if (used[v] == kNone) {
-          used[v] = static_cast<std::uint32_t>(m.positions.size());
-          m.positions.push_back(s.pos_[v]);
-        }
-        v = used[v];
-      }
-      m.triangles.push_back(tr);
-      out_face.push_back(face[t]);
-      out_origin.push_back(static_cast<std::uint32_t>(t));
-    }
+    TriMesh m = s.live_mesh(out_origin);  // after the run: input triangle numbers, in order
+    out_face.resize(out_origin.size());
+    for (std::size_t i = 0; i < out_origin.size(); ++i) out_face[i] = face[out_origin[i]];
     return m;
   };
   std::vector<std::uint32_t> out_face, out_origin;
@@ -168,7 +154,6 @@ Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& op
         hp->run(target, r);
         if (!hp->handoff_failed()) {
           sp = std::move(hp);
-          out_face.clear(), out_origin.clear();
           out = compact(*sp, out_face, out_origin);
           pairs = new_pairs();
           split = TriMesh{};
@@ -189,7 +174,6 @@ Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& op
         sp = std::make_unique<qem::Simplifier>(TriMesh(input), face, feature_tri, options);
         if (attempt < kRegionalReruns) sp->set_guard_region(region);
         sp->run(target, r);
-        out_face.clear(), out_origin.clear();
         out = compact(*sp, out_face, out_origin);
         pairs = new_pairs();
         split = TriMesh{};
