@@ -252,7 +252,7 @@ written atomically and only after every input was validated.
 `self_intersections` (with the flag), `seconds` {`simplify`, `total`, `phases` [{`phase`, `seconds`}] (wall time
 of simplify()'s phases, in order; summed over the parts of a STEP input)}, `warnings`; for STEP input `cad` {`parts`
 [{`name`, `faces`, `triangles`, `features`, `assembly_feature_faces`}], `instances` [{`name`, `part`, `path`,
-`face_id_offset`}], `step`, `warnings`} and `parts_simplified` [{`name`, `instances`, `input_triangles`,
+`face_id_offset`}], `step`, `units`, `file_length_units`, `warnings`} and `parts_simplified` [{`name`, `instances`, `input_triangles`,
 `target_triangles`, `output_triangles`, `feature_triangles`, `hausdorff`, `hausdorff_features`, `guard_rerun`, `guard_reruns`,
 `self_intersections` (with the flag; for STEP input the report's count is the sum over parts × instances)}]. Face
 ids of a multi-instance STEP are offset per instance.
@@ -262,7 +262,9 @@ ids of a multi-instance STEP are offset per instance.
 `semantics_warnings`, with `--aag`: `aag` {`nodes` [{`face`, `type`, `from_bspline`, `area`, `outer_loops`,
 `inner_loops`, `triangles`, `normal` | `axis`, `radius`, `hole`, `half_angle`, `minor_radius`}], `arcs` [{`faces`,
 `edge`, `curve`, `convexity`, `angle`, `length`, `inner_loop`}], `minimal_subgraphs`}}], `instances` [{`name`,
-`part`, `path`, `placement` (3×4)}], `warnings`, `seconds` {`recognition`, `total`}.
+`part`, `path`, `placement` (3×4)}], `units` (always `mm`: OCCT converts the file's lengths to millimetres;
+every coordinate, radius, area and distance of both reports is in it), `file_length_units` (the length units
+the file declares, e.g. `["INCH"]`), `warnings`, `seconds` {`recognition`, `total`}.
 
 ## Feature library and rules (JSON)
 

@@ -68,6 +68,12 @@ int run_features(const FeaturesCliOptions& o) {
   }
   for (const auto& w : model->warnings)
     if (!Progress::quiet()) std::fprintf(stderr, "[interfere] warning: %s\n", w.c_str());
+  {
+    std::string declared;
+    for (const auto& u : model->file_length_units) declared += (declared.empty() ? "" : ", ") + u;
+    std::printf("lengths in %s%s%s%s\n", model->units.c_str(), declared.empty() ? "" : " (the file declares ",
+                declared.c_str(), declared.empty() ? "" : ")");
+  }
   nlohmann::json report{{"command", "features"}, {"version", INTERFERE_VERSION}, {"input", o.input}};
   report["parts"] = nlohmann::json::array();
   double recognition_seconds = 0;
@@ -128,6 +134,8 @@ int run_features(const FeaturesCliOptions& o) {
     for (int r = 0; r < 3; ++r) m.push_back({i.placement.r[r][0], i.placement.r[r][1], i.placement.r[r][2], (r == 0 ? i.placement.t.x : r == 1 ? i.placement.t.y : i.placement.t.z)});
     report["instances"].push_back({{"name", i.name}, {"part", i.part}, {"path", i.path}, {"placement", m}});
   }
+  report["units"] = model->units;
+  report["file_length_units"] = model->file_length_units;
   report["warnings"] = model->warnings;
   report["seconds"] = {{"recognition", recognition_seconds}, {"total", total.seconds()}};
   if (!o.json.empty()) {

@@ -145,10 +145,13 @@ void bind_simplify(py::module_& m) {
           inst.append(py::dict(py::arg("name") = i.name, py::arg("part") = i.part, py::arg("path") = i.path));
         out["instances"] = inst;
         out["warnings"] = r->warnings;
+        out["units"] = r->units;
+        out["file_length_units"] = r->file_length_units;
         return out;
       },
       py::arg("path"), py::arg("linear_deflection") = 0.0, py::arg("angular_deflection") = 0.5,
-      "Reads a STEP file: parts (name, mesh, per-triangle face_ids, AAG nodes/arcs), instances, warnings.");
+      "Reads a STEP file: parts (name, mesh, per-triangle face_ids, AAG nodes/arcs), instances, warnings, units "
+      "(always 'mm') and file_length_units (the units the file declares).");
   m.def(
       "step_features",
       [](const std::filesystem::path& path, const std::string& process_file, const std::string& step) {

@@ -69,6 +69,8 @@ class Cad(unittest.TestCase):
         part = m["parts"][0]
         self.assertEqual(len(part["face_ids"]), len(part["mesh"].triangles))
         self.assertEqual(len(part["aag_nodes"]), 9)
+        self.assertEqual(m["units"], "mm")
+        self.assertEqual(len(m["file_length_units"]), 1)  # written by OCCT in millimetres
         f = itf.step_features(step)
         self.assertEqual([x["type"] for x in f[0]["features"]], ["counterbored_hole"])
         with tempfile.TemporaryDirectory() as d:

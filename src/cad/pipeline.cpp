@@ -65,6 +65,8 @@ Expected<Prepared> prepare_for_simplify(const std::string& step_file, const Pipe
     base += model->parts[inst.part].faces;
   }
   if (!o.step.empty()) rep["step"] = o.step;
+  rep["units"] = model->units;
+  rep["file_length_units"] = model->file_length_units;
   rep["warnings"] = out.warnings;
   out.report_json = rep.dump();
   return out;

@@ -9,6 +9,8 @@
 #include <IFSelect_ReturnStatus.hxx>
 #include <Poly_Triangulation.hxx>
 #include <STEPCAFControl_Reader.hxx>
+#include <STEPControl_Reader.hxx>
+#include <TColStd_SequenceOfAsciiString.hxx>
 #include <Standard_Failure.hxx>
 #include <TDF_Label.hxx>
 #include <TDF_LabelSequence.hxx>
@@ -24,6 +26,7 @@
 #include <XCAFDoc_DocumentTool.hxx>
 #include <XCAFDoc_ShapeTool.hxx>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -178,6 +181,15 @@ Expected<CadModel> import_step(const std::filesystem::path& path, const ImportOp
     TDF_LabelSequence free;
     tool->GetFreeShapes(free);
     CadModel model;
+    {
+      TColStd_SequenceOfAsciiString lengths, angles, solid_angles;
+      reader.ChangeReader().FileUnits(lengths, angles, solid_angles);
+      for (int i = 1; i <= lengths.Length(); ++i) {
+        const std::string u = lengths(i).ToCString();
+        if (std::find(model.file_length_units.begin(), model.file_length_units.end(), u) == model.file_length_units.end())
+          model.file_length_units.push_back(u);
+      }
+    }
     Walker w{tool, options, model, {}, {}};
     for (int i = 1; i <= free.Length(); ++i) w.walk(free(i), TopLoc_Location(), "", "");
     if (model.parts.empty()) return Error{.file = file, .reason = "no solid or shell with faces in the STEP file"};

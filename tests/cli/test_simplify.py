@@ -179,6 +179,9 @@ class Features(unittest.TestCase):
         self.assertEqual([f["type"] for f in feats], ["counterbored_hole"])
         self.assertEqual(sorted(round(x, 9) for x in feats[0]["radii"]), [3.0, 6.0])
         self.assertEqual(len(r["parts"][0]["aag"]["nodes"]), 9)
+        self.assertEqual(r["units"], "mm")
+        self.assertEqual(r["file_length_units"], ["millimetre"])
+        self.assertIn("lengths in mm", out)
         self.assertAlmostEqual(feats[0]["axis"]["point"][0], 20.0)
 
     def test_simplify_step_with_process_keeps_the_step_features(self):

@@ -73,6 +73,12 @@ struct CadModel {
   std::vector<Part> parts;
   std::vector<Instance> instances;
   std::vector<std::string> warnings;
+  /// Length unit of every coordinate, radius and distance above: OCCT converts the file's lengths
+  /// to millimetres on reading.
+  std::string units = "mm";
+  /// The length units the file declares (its contexts' units as OCCT names them, e.g. "MM",
+  /// "INCH"), each once, in order of appearance.
+  std::vector<std::string> file_length_units;
 };
 
 struct ImportOptions {
