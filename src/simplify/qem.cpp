@@ -90,6 +90,7 @@ Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& op
   const SimplifyResult before = r;
   // The welded input is not copied for a possible rerun (rare): it is welded again then.
   auto sp = std::make_unique<qem::Simplifier>(std::move(welded), face, feature_tri, plain);
+  if (options.prevent_self_intersections && !options.guard_every_collapse) sp->keep_handoff();
   sp->run(target, r);
   clock.restart();
   // Surviving triangles in input order, unused vertices dropped (new ids in order of first use).
@@ -112,14 +113,14 @@ Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& op
     // The input's own intersections (touching parts of an assembly, say) cannot be removed: a pair
     // of output triangles both identical to their input triangles (same corner positions) was in
     // the input; every other intersecting pair is new and calls for a rerun.
-    // The first rerun repeats the plain run's batched passes, which make the same collapses, checks
-    // the mesh they leave at the handoff, and if it has no new pair guards every collapse of the
-    // heap phase: the coarsest collapses, the last ones, are where intersections usually appear
-    // (casing, P1 with strict features: 102 -> 48 ms). Otherwise the next reruns guard the
-    // neighbourhoods of the new pairs found so far (each pair's box grown by its
-    // diagonal), which keeps the batched passes; should a rerun still add an intersection
-    // elsewhere, its neighbourhood joins the region, and the last resort guards every collapse (a
-    // moved triangle then meets no other: none can be added).
+    // The first reruns repeat the plain run's batched passes, which make the same collapses, check
+    // the mesh they leave at the handoff, and if it has no new pair guard the heap phase, where the
+    // coarsest, last collapses make most intersections: first near the new pairs only, then every
+    // heap collapse (casing, P1 with strict features: 102 -> 48 ms). Otherwise, or if pairs
+    // remain, the next reruns guard the neighbourhoods of the new pairs found so far in the
+    // batched passes too; should a rerun still add an intersection elsewhere, its neighbourhood
+    // joins the region, and the last resort guards every collapse (a moved triangle then meets no
+    // other: none can be added).
     const auto pairs_of = [&](const TriMesh& m, const std::vector<std::uint32_t>& origin) {
       std::vector<std::uint8_t> unmodified(m.num_triangles());  // pairs of two are not tested
       for (std::uint32_t i = 0; i < unmodified.size(); ++i)
@@ -133,49 +134,81 @@ Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& op
                            if (splitting) split = split_by_face(out, out_face);
                          });
     std::size_t reruns = 0;
+    // The reruns' own phases (setup .. heap) are added to their names; "check" keeps only the
+    // checks and the output between them.
     const auto restart = [&] {
+      clock.lap("check");
       auto phases = std::move(r.phases);
       r = before;
       r.phases = std::move(phases);
       r.guard_rerun = true;
       r.guard_reruns = ++reruns;
     };
+    // The guard region: each new pair's box grown by its diagonal, from every run so far.
+    std::vector<Aabb> region;
+    bool pending = true;  // the current pairs are not in the region yet
+    const auto grow_region = [&] {
+      if (!pending) return;
+      pending = false;
+      for (const auto& [x, y] : pairs) {
+        Aabb b;
+        for (const auto& t : {x, y})
+          for (const Vec3& c : out.corners(t)) b.expand(c);
+        const double g = norm(b.extent());
+        region.push_back({b.lo - Vec3{g, g, g}, b.hi + Vec3{g, g, g}});
+      }
+    };
     if (!pairs.empty()) {
       const TriMesh input = weld_positions(mesh);
-      {
-        restart();
-        auto hp = std::make_unique<qem::Simplifier>(TriMesh(input), face, feature_tri, plain);
-        const qem::Simplifier* h = hp.get();
-        hp->set_handoff_check([&, h] {
+      // Heap-only reruns: the first guards the heap's collapses near the new pairs only (a fold
+      // left by the heap is usually local: 10^6 -> 10 % of the bumpy sphere, 6 pairs around one
+      // vertex), the second every heap collapse.
+      // Large meshes start these from the plain run's state at the handoff (kept by it) instead
+      // of repeating the passes. The handoff mesh is the same each time: checked once.
+      const auto kept = sp->handoff();
+      int handoff_clean = -1;
+      const auto clean = [&](const qem::Simplifier& h) {
+        if (handoff_clean < 0) {
           std::vector<std::uint32_t> handoff_origin;
-          const TriMesh m = h->live_mesh(handoff_origin);
-          return pairs_of(m, handoff_origin).empty();
-        });
-        hp->run(target, r);
-        if (!hp->handoff_failed()) {
-          sp = std::move(hp);
-          out = compact(*sp, out_face, out_origin);
-          pairs = new_pairs();
-          split = TriMesh{};
+          const TriMesh m = h.live_mesh(handoff_origin);
+          handoff_clean = pairs_of(m, handoff_origin).empty() ? 1 : 0;
         }
+        return handoff_clean == 1;
+      };
+      for (int heap_attempt = 0; heap_attempt < 2 && !pairs.empty(); ++heap_attempt) {
+        grow_region();
+        restart();
+        std::unique_ptr<qem::Simplifier> hp;
+        if (kept) {
+          hp = qem::Simplifier::resume(*kept, heap_attempt == 0 ? region : std::vector<Aabb>{}, clean, target, r);
+          r.guard_rerun = true;
+          r.guard_reruns = reruns;
+        } else {
+          hp = std::make_unique<qem::Simplifier>(TriMesh(input), face, feature_tri, plain);
+          if (heap_attempt == 0) hp->set_guard_region(region);
+          const qem::Simplifier* h = hp.get();
+          hp->set_handoff_check([&, h] { return clean(*h); });
+          hp->run(target, r);
+        }
+        clock.restart();
+        if (hp->handoff_failed()) break;
+        sp = std::move(hp);
+        out = compact(*sp, out_face, out_origin);
+        pairs = new_pairs();
+        pending = true;
+        split = TriMesh{};
       }
-      std::vector<Aabb> region;
       constexpr int kRegionalReruns = 3;
       for (int attempt = 0; !pairs.empty() && attempt <= kRegionalReruns; ++attempt) {
-        for (const auto& [x, y] : pairs) {
-          Aabb b;
-          for (const auto& t : {x, y})
-            for (const Vec3& c : out.corners(t)) b.expand(c);
-          const Vec3 grow = b.extent();
-          const double g = norm(grow);
-          region.push_back({b.lo - Vec3{g, g, g}, b.hi + Vec3{g, g, g}});
-        }
+        grow_region();
         restart();
         sp = std::make_unique<qem::Simplifier>(TriMesh(input), face, feature_tri, options);
         if (attempt < kRegionalReruns) sp->set_guard_region(region);
         sp->run(target, r);
+        clock.restart();
         out = compact(*sp, out_face, out_origin);
         pairs = new_pairs();
+        pending = true;
         split = TriMesh{};
       }
     }

@@ -231,7 +231,21 @@ class Simplifier {
         feature_tri_(std::move(feature_tri)),
         o_(o) {}
 
+  Simplifier(const Simplifier&) = default;  ///< a copy (the handoff snapshot) has no scratch yet
+  Simplifier& operator=(const Simplifier&) = delete;
+
   void run(std::size_t target, SimplifyResult& r);
+  /// Large meshes: the run keeps a copy of its state where the batched passes hand over to the
+  /// heap, so that a guarded rerun can start there instead of repeating the passes (resume).
+  void keep_handoff() { keep_handoff_ = true; }
+  /// The state kept at the handoff (null when none was kept: no batched passes, a small mesh).
+  struct Handoff;
+  std::shared_ptr<const Handoff> handoff() const { return handoff_; }
+  /// A run from a kept handoff: the copy's heap phase, with the handoff check and guard of this
+  /// Simplifier (set_guard_region, set_handoff_check); r's counters continue the copy's.
+  static std::unique_ptr<Simplifier> resume(const Handoff& h, std::vector<Aabb> region,
+                                            std::function<bool(const Simplifier&)> clean, std::size_t target,
+                                            SimplifyResult& r);
   /// With prevent_self_intersections: only collapses whose moved triangles reach one of these boxes
   /// are checked by the guard (empty: every collapse).
   /// The grid then holds only the triangles near the region (each box grown by its diagonal), and
@@ -274,6 +288,11 @@ class Simplifier {
   /// One candidate per live edge (from its smaller end), in vertex order; in parallel.
   EntryList edge_candidates();
   void heap_loop(std::size_t target, std::size_t& live, SimplifyResult& r);
+  /// From the handoff on: the handoff check (if any), the guard, the heap to the budget.
+  void finish(EntryList& list, std::size_t live, std::size_t target, SimplifyResult& r, PhaseClock& clock);
+  bool keep_handoff_ = false;
+  std::shared_ptr<const Handoff> handoff_;
+  std::size_t input_triangles_ = 0;
   // Local operations (qem_local.cpp); `sc` is the calling thread's scratch.
   void gather_neighbours(std::uint32_t v, Scratch& sc) const;
   /// Candidates of every edge at v.
@@ -342,7 +361,18 @@ class Simplifier {
   std::vector<Quadric, NoInitAllocator<Quadric>> quad_;
   std::vector<std::uint8_t> cls_, locked_, touches_feature_, vdead_;
   std::vector<std::uint32_t> stamp_;
-  std::unique_ptr<tbb::enumerable_thread_specific<Scratch>> tls_;  ///< per-thread Scratch
+  /// Per-thread Scratch; a copy of the Simplifier starts without (see make_scratch).
+  struct ScratchPool {
+    std::unique_ptr<tbb::enumerable_thread_specific<Scratch>> p;
+    ScratchPool() = default;
+    ScratchPool(const ScratchPool&) {}
+    tbb::enumerable_thread_specific<Scratch>* operator->() const { return p.get(); }
+  };
+  void make_scratch() {
+    const std::size_t nv = pos_.size();
+    tls_.p = std::make_unique<tbb::enumerable_thread_specific<Scratch>>([nv] { return Scratch(nv); });
+  }
+  ScratchPool tls_;
   struct Owner {
     std::uint32_t pass = 0, range = 0;
   };
@@ -379,6 +409,14 @@ class Simplifier {
   std::size_t grid_live_ = 0;  ///< live triangles when the grid was last built
   std::size_t grid_size_ = 0, grid_inserted_ = 0;  ///< entries then, entries added since
   bool grid_stale(std::size_t live) const;        ///< time to rebuild the grid
+};
+
+/// The state of a run where the batched passes handed over to the heap (see keep_handoff).
+struct Simplifier::Handoff {
+  Simplifier state;
+  EntryList list;
+  std::size_t live = 0;
+  SimplifyResult counters;  ///< r at the handoff (its phases are not used)
 };
 
 }  // namespace interfere::qem

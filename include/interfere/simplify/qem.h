@@ -72,9 +72,10 @@ struct SimplifyOptions {
   /// Batched passes only from this many input triangles (below, the heap alone is as fast).
   std::size_t batched_min_triangles = 20000;
   /// Between batched passes, once fewer than half the triangles live, renumber the live vertices
-  /// and triangles densely (in order) so the later passes stay in cache, on meshes of this many
+  /// and triangles densely (in order) so the later passes stay in cache, on inputs of this many
   /// triangles and more (smaller ones stay in cache anyway; SIZE_MAX: never). Speed only: the result
-  /// is bit-identical either way (10^6 -> 10^4 triangles: about 12 % faster).
+  /// is bit-identical either way (10^6 -> 10^4 triangles: about 12 % faster). Such inputs also keep
+  /// a copy of the state at the handoff to the heap for a guarded rerun (see guard_reruns).
   std::size_t compact_min_triangles = std::size_t{1} << 18;
   /// Measure the symmetric Hausdorff distance (sampled, see hausdorff.h) overall and on the
   /// feature faces, and store it as the error bound.
@@ -91,8 +92,10 @@ struct SimplifyResult {
   std::size_t rejected_link = 0, rejected_flip = 0;  ///< candidates refused by the checks
   std::size_t rejected_intersection = 0;             ///< refused by the self-intersection guard
   bool guard_rerun = false;  ///< plain QEM created a self-intersection: a guarded run was used
-  /// Guarded reruns made (0 without a rerun): the first repeats the batched passes and guards the
-  /// heap phase (if the passes left no intersection; else it stops at the handoff); then up to 4
+  /// Guarded reruns made (0 without a rerun): up to 2 repeat the batched passes (inputs of
+  /// compact_min_triangles and more: start from the plain run's copy of its state at the handoff)
+  /// and guard the heap phase, the first near the intersections found, the second every heap
+  /// collapse (if the passes left no intersection; else they stop at the handoff); then up to 4
   /// more: 3 guard the neighbourhoods of the intersections found so far, the last every collapse.
   std::size_t guard_reruns = 0;
   std::size_t seam_vertices = 0, corner_vertices = 0, locked_vertices = 0;

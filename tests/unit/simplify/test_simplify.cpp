@@ -182,6 +182,22 @@ TEST(Simplify, IntersectionsOfThePlainRunAreRepairedByGuardedReruns) {
     EXPECT_EQ(count_self_intersections(r->mesh), 0u);
     EXPECT_EQ(one->mesh.triangles, r->mesh.triangles);  // the reruns are deterministic too
     EXPECT_EQ(one->guard_reruns, r->guard_reruns);
+    // Large inputs (here: every input) start the heap-guarded reruns from the copy of the plain
+    // run's state at the handoff instead of repeating the passes: the same results.
+    SimplifyOptions large = o;
+    large.compact_min_triangles = 0;
+    auto k = simplify_with_threads(m, large, 2);
+    ASSERT_TRUE(k.has_value());
+    const auto has_phase = [](const SimplifyResult& x, const std::string& name) {
+      return std::any_of(x.phases.begin(), x.phases.end(), [&](const auto& p) { return p.first == name; });
+    };
+    EXPECT_TRUE(has_phase(*k, "handoff copy"));
+    EXPECT_FALSE(has_phase(*r, "handoff copy"));
+    EXPECT_EQ(k->mesh.positions, r->mesh.positions);
+    EXPECT_EQ(k->mesh.triangles, r->mesh.triangles);
+    EXPECT_EQ(k->guard_reruns, r->guard_reruns);
+    EXPECT_EQ(k->collapses, r->collapses);
+    EXPECT_EQ(k->rejected_intersection, r->rejected_intersection);
   }
   const TriMesh m = two_close_sheets();
   SimplifyOptions o{.target_triangles = 200, .measure_error = false};
