@@ -13,6 +13,9 @@ struct ClashOptions : TwoPartOptions {
   std::vector<std::string> curves;
   double clearance = 0;
   bool no_containment = false;
+  /// Simplified inputs (interfere simplify): their stored error bounds widen the clearance, and any
+  /// pair within them counts as a possible clash of the original parts.
+  bool conservative = false;
   std::size_t max_clearance_pairs = 100000;
 
   // FEM inputs (docs/fem.md, "CLI"): a flag without -a/-b applies to both parts.

@@ -9,6 +9,7 @@
 #include "interfere/core/atomic_file.h"
 #include "interfere/mesh/polyline.h"
 #include "interfere/query/clash.h"
+#include "interfere/simplify/tagged_io.h"
 #include "report_json.h"
 
 namespace interfere::cli {
@@ -28,13 +29,34 @@ Broadphase parse_broadphase(const std::string& s) {
   throw InputError("--broadphase: unknown broad phase '" + s + "' (bvh, brute, box)");
 }
 
+/// The error bound stored in a simplified mesh file; 0 (exact) when it has none.
+double stored_error_bound(const std::string& file, const char* part) {
+  const Expected<double> e = read_error_bound(file);
+  if (!e) throw InputError(e.error());
+  if (*e < 0) {
+    std::fprintf(stderr, "[interfere] note: part %s (%s) stores no error bound: taken as exact\n", part, file.c_str());
+    return 0;
+  }
+  return *e;
+}
+
 int run_clash(const ClashOptions& o) {
   const ResolvedParts parts = resolve_two_parts(o, "clash");
   if (!(o.clearance >= 0) || !std::isfinite(o.clearance)) throw InputError("--clearance must be a finite number >= 0");
+  // --conservative (issue #6, item 6): two touching originals have points of their simplified
+  // versions within the sum of the bounds, so a pair closer than that is a possible clash.
+  double bound_a = 0, bound_b = 0;
+  if (o.conservative) {
+    if (o.fem_requested() || is_fem_file(parts.a.file) || is_fem_file(parts.b.file))
+      throw InputError("--conservative takes simplified mesh files (interfere simplify outputs), not FEM input");
+    bound_a = stored_error_bound(parts.a.file, "A");
+    bound_b = stored_error_bound(parts.b.file, "B");
+  }
+  const double margin = bound_a + bound_b;
   const ClashRequest request{.test = parse_test(o.test),
                              .broadphase = parse_broadphase(o.broadphase),
                              .parallel = true,
-                             .clearance = o.clearance,
+                             .clearance = o.clearance + margin,
                              .regions = true,
                              .containment = !o.no_containment};
   const std::vector<std::string> mesh_ext{".stl", ".ply", ".obj", ".off"};
@@ -95,19 +117,31 @@ int run_clash(const ClashOptions& o) {
     for (const ClashRegion& g : result.regions) all.insert(all.end(), g.curves.begin(), g.curves.end());
     for (const std::string& c : o.curves) write_or_throw(write_polylines(c, all));
   }
-  const int status = result.interference() ? kInterference : kClear;
+  std::size_t within_margin = 0;
+  for (const ClearancePair& c : result.clearance) within_margin += c.distance < margin ? 1 : 0;
+  const bool possible = result.interference() || within_margin > 0;
+  const int status = (o.conservative ? possible : result.interference()) ? kInterference : kClear;
   if (!o.json.empty()) {
     nlohmann::json j = two_part_report("clash", parts.units, loaded, query_seconds, total.seconds());
     j["options"] = {{"test", o.test}, {"broadphase", o.broadphase}, {"builder", o.builder},
-                    {"threads", active_threads()}, {"clearance", o.clearance}, {"containment", !o.no_containment}};
+                    {"threads", active_threads()}, {"clearance", o.clearance}, {"containment", !o.no_containment},
+                    {"conservative", o.conservative}};
     j["result"] = clash_result_json(result, o.max_clearance_pairs);
+    if (o.conservative)
+      j["conservative"] = {{"error_bound_a", bound_a}, {"error_bound_b", bound_b}, {"margin", margin},
+                           {"clearance", o.clearance + margin}, {"pairs_within_margin", within_margin},
+                           {"possible_clash", possible}};
     j["warnings"] = result.warnings;
     j["exit_status"] = status;
     write_or_throw(write_file_atomic(o.json, j.dump(2) + "\n"));
   }
 
   print_clash_summary(result, parts.units);
-  if (o.clearance > 0) std::printf(", %zu pairs closer than %g", result.clearance.size(), o.clearance);
+  if (o.clearance + margin > 0)
+    std::printf(", %zu pairs closer than %g", result.clearance.size(), o.clearance + margin);
+  if (o.conservative)
+    std::printf("; conservative (error bounds %g + %g): %s", bound_a, bound_b,
+                possible ? "possible clash of the original parts" : "the original parts do not clash");
   std::printf("\n");
   return status;
 }
@@ -129,6 +163,9 @@ void add_clash_command(CLI::App& app, int& exit_code) {
   c->add_option("--broadphase", o->broadphase, "bvh (default), brute, box");
   c->add_option("--max-clearance-pairs", o->max_clearance_pairs, "cap on clearance pairs listed in JSON");
   c->add_flag("--no-containment", o->no_containment, "skip the containment test");
+  c->add_flag("--conservative", o->conservative,
+              "inputs simplified by 'interfere simplify': widen the clearance by their stored error bounds; a pair "
+              "within them is a possible clash of the originals (exit status 1)");
   add_fem_clash_options(*c, *o);
   c->callback([o, &exit_code] { exit_code = run_clash(*o); });
 }

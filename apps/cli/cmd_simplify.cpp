@@ -96,7 +96,7 @@ Expected<SimplifyResult> simplify_parts(const cad::Prepared& prep, std::size_t t
     parts_report.push_back({{"name", p.name}, {"instances", p.instances}, {"input_triangles", d.input_triangles},
                             {"target_triangles", n}, {"output_triangles", d.mesh.num_triangles()},
                             {"feature_triangles", {{"input", d.feature_triangles_in}, {"output", d.feature_triangles_out}}},
-                            {"hausdorff", d.hausdorff}, {"hausdorff_features", d.hausdorff_features < 0 ? nlohmann::json(nullptr) : nlohmann::json(d.hausdorff_features)},
+                            {"hausdorff", d.hausdorff}, {"error_bound", d.error_bound}, {"hausdorff_features", d.hausdorff_features < 0 ? nlohmann::json(nullptr) : nlohmann::json(d.hausdorff_features)},
                             {"guard_rerun", d.guard_rerun}, {"guard_reruns", d.guard_reruns}});
     if (count_self) {
       const std::size_t x = count_self_intersections(d.mesh);
@@ -116,6 +116,7 @@ Expected<SimplifyResult> simplify_parts(const cad::Prepared& prep, std::size_t t
     all.max_unmodified_cost = std::max(all.max_unmodified_cost, d.max_unmodified_cost);
     all.hausdorff = std::max(all.hausdorff, d.hausdorff);
     all.hausdorff_features = std::max(all.hausdorff_features, d.hausdorff_features);
+    all.error_bound = std::max(all.error_bound, d.error_bound);
     for (const auto& w : d.warnings) all.warnings.push_back("part '" + p.name + "': " + w);
   }
   for (const cad::PreparedInstance& inst : prep.instances) {
@@ -134,7 +135,7 @@ Expected<SimplifyResult> simplify_parts(const cad::Prepared& prep, std::size_t t
                            " triangles (per-part budgets are rounded down per instance, parts may stop early)");
   if (budgets.features_exceed_budget) all.warnings.push_back("the step's feature triangles alone exceed the budget");
   all.bbox_diagonal = norm(prep.mesh.bounds().extent());
-  all.error_bound = all.hausdorff;  // rigid placements keep distances: the largest part error
+  // all.error_bound: the largest part's (rigid placements keep distances).
   return all;
 }
 #endif

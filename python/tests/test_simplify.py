@@ -24,7 +24,7 @@ class Simplify(unittest.TestCase):
         self.assertEqual(len(r.mesh.triangles), 400)
         self.assertTrue(r.reached)
         self.assertGreater(r.hausdorff, 0)
-        self.assertEqual(r.error_bound, r.hausdorff)
+        self.assertGreaterEqual(r.error_bound, r.hausdorff)
         self.assertEqual(itf.count_self_intersections(r.mesh), 0)
         names = [name for name, _ in r.phases]  # wall time per phase, in order
         self.assertEqual(names[0], "weld")

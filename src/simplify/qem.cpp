@@ -231,8 +231,12 @@ Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& op
                          " triangles remain (constrained seams/corners, locks, parity of a closed mesh, or "
                          "rejected collapses)");
   if (options.measure_error) {
-    r.hausdorff = hausdorff(mesh, r.mesh).symmetric();
-    r.error_bound = r.hausdorff;
+    const HausdorffResult h = hausdorff(mesh, r.mesh);
+    r.hausdorff = h.symmetric();
+    // An upper bound of the input's distance to the result (the direction a conservative clash
+    // check needs: a point of two touching inputs has a point of each result within it), never
+    // below the measured Hausdorff distance.
+    r.error_bound = std::max(r.hausdorff, h.a_to_b_bound);
     if (r.feature_triangles_in > 0) {
       std::vector<std::uint32_t> fin, fout;
       for (std::uint32_t t = 0; t < nt; ++t)

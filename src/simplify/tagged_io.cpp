@@ -3,7 +3,9 @@
 #include "interfere/simplify/tagged_io.h"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -150,6 +152,33 @@ Expected<std::vector<std::uint32_t>> read_region_file(const std::filesystem::pat
     return Error{.file = path.string(), .line = lineno,
                  .reason = std::to_string(out.size()) + " region ids for " + std::to_string(triangles) + " triangles"};
   return out;
+}
+
+// The comment lines write_tagged_mesh puts before the data: PLY header comments (up to
+// end_header), OBJ comment lines before the first statement.
+Expected<double> read_error_bound(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return Error{.file = path.string(), .reason = "cannot open the mesh file"};
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  const bool ply = ext == ".ply", obj = ext == ".obj";
+  if (!ply && !obj) return -1.0;
+  const std::string key = ply ? "comment error_bound" : "# error_bound";
+  std::string line;
+  for (std::int64_t lineno = 1; lineno <= 4096 && std::getline(in, line); ++lineno) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (ply ? line == "end_header" : (!line.empty() && line[0] != '#')) break;
+    if (line.compare(0, key.size(), key) != 0 || line.size() == key.size() || line[key.size()] != ' ') continue;
+    std::string tok = line.substr(key.size() + 1);
+    while (!tok.empty() && tok.back() == ' ') tok.pop_back();
+    double v = 0;
+    const auto [p, ec] = std::from_chars(tok.data(), tok.data() + tok.size(), v);
+    if (ec != std::errc{} || p != tok.data() + tok.size() || !std::isfinite(v) || v < 0)
+      return Error{.file = path.string(), .line = lineno,
+                   .reason = "error_bound must be a finite number >= 0, not '" + tok + "'"};
+    return v;
+  }
+  return -1.0;
 }
 
 }  // namespace interfere

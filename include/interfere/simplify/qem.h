@@ -104,8 +104,10 @@ struct SimplifyResult {
   double bbox_diagonal = 0;        ///< of the input
   /// Symmetric Hausdorff distance input <-> output (sampled: vertices, edge midpoints, centroids),
   /// and restricted to the feature faces (their input triangles <-> their output triangles); -1 when
-  /// not measured. `error_bound` = hausdorff: grow boxes or the clearance of a clash check on the
-  /// simplified mesh by it to make the check conservative.
+  /// not measured. `error_bound`: an upper bound of the distance from any point of the input's
+  /// surface to the output (OneSidedDistance::bound of hausdorff.h), at least `hausdorff`: grow
+  /// boxes or the clearance of a clash check on the simplified mesh by it to make the check
+  /// conservative (`interfere clash --conservative` reads it from the output file).
   double hausdorff = -1, hausdorff_features = -1, error_bound = -1;
   /// Wall time (s) of the phases, in order of first appearance: weld, setup, seams, initial
   /// candidates, passes: sort/select/apply/filter/evaluate (large meshes), heap, output, check

@@ -20,6 +20,11 @@ Status write_tagged_mesh(const std::filesystem::path& path, const TriMesh& mesh,
                          const std::vector<std::uint32_t>& feature_faces, MeshFormat format = MeshFormat::automatic,
                          double error_bound = -1);
 
+/// The error bound a simplified mesh file carries (see write_tagged_mesh): -1 when it has none
+/// (no such line, or a format that cannot hold one). Errors: an unreadable file, a malformed or
+/// negative value (naming the line).
+Expected<double> read_error_bound(const std::filesystem::path& path);
+
 /// Reads a per-triangle region file: whitespace-separated unsigned integers, one per triangle, `#`
 /// comments. Errors name the line.
 Expected<std::vector<std::uint32_t>> read_region_file(const std::filesystem::path& path, std::size_t triangles);

@@ -90,7 +90,40 @@ TEST(Simplify, ClosedSphereMeetsEvenBudgetExactlyStaysManifoldAndFreeOfSelfInter
     EXPECT_EQ(count_self_intersections(r->mesh), 0u);
     EXPECT_GT(r->hausdorff, 0);
     EXPECT_LT(r->hausdorff, 0.1 * r->bbox_diagonal);
-    EXPECT_EQ(r->error_bound, r->hausdorff);
+    EXPECT_GE(r->error_bound, r->hausdorff);
+  }
+}
+
+TEST(Simplify, ErrorBoundBoundsTheDistanceOfEveryInputPointToTheResult) {
+  // Oracle: random points of the input's triangles, each point's distance to the result by brute
+  // force over all its triangles; none may exceed error_bound (the sampled Hausdorff distance may
+  // be exceeded: it samples only corners, midpoints and centroids).
+  for (std::size_t n : {600u, 3000u}) {
+    const TriMesh s = make_sphere({.target_triangles = n, .bump_amplitude = 0.15, .bump_frequency = 5});
+    auto r = simplify(s, {.target_triangles = 60});
+    ASSERT_TRUE(r.has_value());
+    double longest = 0;
+    for (std::size_t t = 0; t < s.num_triangles(); ++t) {
+      const auto c = s.corners(t);
+      for (int k = 0; k < 3; ++k) longest = std::max(longest, norm(c[(k + 1) % 3] - c[k]));
+    }
+    EXPECT_GE(r->error_bound, r->hausdorff);
+    EXPECT_LE(r->error_bound, r->hausdorff + longest);  // the covering term is at most l / (2 sqrt 3)
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(0, 1);
+    double worst = 0;
+    for (int i = 0; i < 20000; ++i) {
+      const auto c = s.corners(static_cast<std::size_t>(rng() % s.num_triangles()));
+      double x = u(rng), y = u(rng);
+      if (x + y > 1) x = 1 - x, y = 1 - y;
+      const Vec3 p = c[0] + (c[1] - c[0]) * x + (c[2] - c[0]) * y;
+      double best = std::numeric_limits<double>::infinity();
+      for (std::size_t t = 0; t < r->mesh.num_triangles(); ++t)
+        best = std::min(best, norm(closest_point_on_triangle(p, r->mesh.corners(t)) - p));
+      worst = std::max(worst, best);
+    }
+    EXPECT_GT(worst, 0);
+    EXPECT_LE(worst, r->error_bound) << n;
   }
 }
 
@@ -517,6 +550,45 @@ TEST(Simplify, BadInputIsAnErrorNotACrash) {
   ASSERT_TRUE(same.has_value());
   EXPECT_LE(same->hausdorff, 1e-12);
   EXPECT_EQ(same->mesh.num_triangles(), s.num_triangles());
+}
+
+TEST(Hausdorff, BoundCoversThePointsBetweenTheSamples) {
+  // `to` is made of tiny triangles at exactly the samples of one large triangle (corners, edge
+  // midpoints, centroid): the sampled distance is 0, yet points between the samples are far from
+  // `to`. The bound must cover every point (random points, brute force), and stays finite.
+  TriMesh from;
+  from.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  from.triangles = {{0, 1, 2}};
+  const auto c = from.corners(0);
+  std::vector<Vec3> samples{c[0], c[1], c[2], (c[0] + c[1]) * 0.5, (c[1] + c[2]) * 0.5, (c[2] + c[0]) * 0.5,
+                            (c[0] + c[1] + c[2]) / 3.0};
+  TriMesh to;
+  for (const Vec3& p : samples) {
+    const auto b = static_cast<std::uint32_t>(to.positions.size());
+    to.positions.push_back(p);
+    to.positions.push_back(p + Vec3{1e-3, 0, 0});
+    to.positions.push_back(p + Vec3{0, 1e-3, 0});
+    to.triangles.push_back({b, b + 1, b + 2});
+  }
+  const OneSidedDistance d = one_sided(from, to);
+  EXPECT_EQ(d.sampled, 0.0);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(0, 1);
+  double worst = 0;
+  for (int i = 0; i < 20000; ++i) {
+    double x = u(rng), y = u(rng);
+    if (x + y > 1) x = 1 - x, y = 1 - y;
+    const Vec3 p{x, y, 0};
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t t = 0; t < to.num_triangles(); ++t)
+      best = std::min(best, norm(closest_point_on_triangle(p, to.corners(t)) - p));
+    worst = std::max(worst, best);
+  }
+  EXPECT_GT(worst, 0.15);  // the sampled distance misses this
+  EXPECT_LE(worst, d.bound);
+  EXPECT_LE(d.bound, std::sqrt(2.0) / (2 * std::sqrt(3.0)) + 1e-6);  // longest edge sqrt 2
+  const HausdorffResult h = hausdorff(from, to);
+  EXPECT_EQ(h.a_to_b_bound, d.bound);
 }
 
 TEST(Hausdorff, MatchesBruteForceOverTheSamePoints) {
