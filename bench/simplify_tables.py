@@ -346,8 +346,9 @@ def write_doc(raw):
                      f"{fmt(b['feature_err_rel'])} | {int(b['self_x'])} | {rerun} |")
     lines.append("")
     lines.append("`guard rerun` yes: the plain result had a self-intersection (10^6 → 10 %: a few pairs), so the "
-                 "time includes a second, guarded run of the whole simplification (see the casing note below); "
-                 "`interfere_unchecked` shows the plain run alone.")
+                 "time includes a guarded rerun of the heap phase, started from the copy of the state the plain run "
+                 "kept where its batched passes handed over (see the casing note below); `interfere_unchecked` shows "
+                 "the plain run alone.")
     lines.append("")
     lines.append("Casing (generated with OCCT: flanged ring whose wall is a surface of revolution with a B-spline "
                  "bulge, 6 counterbored bolt holes on the lower flange, 6 plain bolt holes on the upper one; linear deflection chosen so the tessellation is closest to the "
@@ -452,7 +453,8 @@ def write_doc(raw):
     ph_rows = [n for n in ("Simplify/interfere/1e6/1pct", "Casing/interfere/P1") if n in r and "error" not in r[n]]
     if ph_rows:
         order = ["weld", "setup", "seams", "initial candidates", "passes: sort", "passes: select", "passes: apply",
-                 "passes: filter", "passes: evaluate", "passes: compact", "heap", "output", "check", "split", "error"]
+                 "passes: filter", "passes: evaluate", "passes: compact", "handoff copy", "heap", "output", "check",
+                 "split", "error"]
         names = [p for p in order if any("phase:" + p in r[n] for n in ph_rows)]
         for n in ph_rows:  # phases this list does not know yet, after it
             for k in sorted(r[n]):
@@ -469,8 +471,9 @@ def write_doc(raw):
                      "`seams`: constrained edges and their penalty planes; `initial candidates`: one evaluated "
                      "collapse per edge; `passes: *`: the batched passes (radix sort, selection walk, checks and "
                      "collapses in parallel vertex ranges, dropping candidates of changed vertices, re-evaluation of "
-                     "the changed vertices' edges, dense renumbering of large meshes); `heap`: the min-heap to the exact budget; `output`, `check` "
-                     "(the result's self-intersection count), `split` (faces made separable again).")
+                     "the changed vertices' edges, dense renumbering of large meshes); `handoff copy`: the state kept for a "
+                     "guarded rerun (inputs of 2^18 triangles and more); `heap`: the min-heap to the exact budget; `output`, `check` "
+                     "(the result's self-intersection count and the checks of reruns), `split` (faces made separable again).")
     DOC.write_text("\n".join(lines) + "\n")
     log(f"wrote {DOC}")
 
