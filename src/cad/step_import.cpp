@@ -30,6 +30,7 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <set>
 
 #include "occt_internal.h"
 
@@ -112,6 +113,7 @@ struct Walker {
   CadModel& model;
   std::map<int, std::uint32_t> part_of_label;  // by label tag path hash
   std::map<std::string, std::uint32_t> part_by_entry;
+  std::set<std::string> skipped;  ///< labels without faces, warned about once
 
   void walk(const TDF_Label& label, const TopLoc_Location& loc, const std::string& path, const std::string& inst_name) {
     TDF_Label ref = label;
@@ -140,8 +142,10 @@ struct Walker {
       const TopoDS_Shape shape = XCAFDoc_ShapeTool::GetShape(ref);
       if (shape.IsNull()) return;
       TopExp_Explorer fx(shape, TopAbs_FACE);
-      if (!fx.More()) {
-        model.warnings.push_back("'" + name + "' has no faces (not a solid or shell): skipped");
+      if (!fx.More()) {  // once per shape, however many instances refer to it
+        if (skipped.insert(entry.ToCString()).second)
+          model.warnings.push_back("'" + name + "' at " + my_path + " (XCAF label " + entry.ToCString() +
+                                   ") has no faces (not a solid or shell): skipped");
         return;
       }
       part_index = static_cast<std::uint32_t>(model.parts.size());
