@@ -3,6 +3,7 @@
 // feature regions, or a dihedral-angle mask) or, when built with OpenCASCADE, a STEP file whose
 // assembly features are recognised and selected for a process step (--step P --process FILE).
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
@@ -295,9 +296,14 @@ int run_simplify(const SimplifyCliOptions& o) {
     const Status s = write_file_atomic(o.json, report.dump(2) + "\n");
     if (!s) throw InputError(s.error());
   }
-  std::printf("simplified %zu -> %zu triangles (target %zu%s), Hausdorff %.6g (features %.6g), %.3f s\n",
-              r.input_triangles, r.mesh.num_triangles(), r.target_triangles, r.reached ? "" : ", not reached",
-              r.hausdorff, r.hausdorff_features, seconds);
+  std::string error = "error not measured";
+  if (r.hausdorff >= 0) {
+    error = fmt::format("Hausdorff {:.6g}", r.hausdorff);
+    if (r.hausdorff_features >= 0) error += fmt::format(" (feature faces {:.6g})", r.hausdorff_features);
+    error += fmt::format(", error bound {:.6g}", r.error_bound);
+  }
+  std::printf("simplified %zu -> %zu triangles (target %zu%s), %s, %.3f s\n", r.input_triangles,
+              r.mesh.num_triangles(), r.target_triangles, r.reached ? "" : ", not reached", error.c_str(), seconds);
   return kClear;
 }
 
