@@ -105,12 +105,16 @@ from ._interfere import (  # noqa: F401,E402
     HAVE_CAD,
     SimplifyResult,
     count_self_intersections,
+    distance_bound,
     hausdorff,
+    read_error_bound,
     simplify,
     triangle_budgets,
+    write_tagged_mesh,
 )
 
-__all__ += ["HAVE_CAD", "SimplifyResult", "count_self_intersections", "hausdorff", "simplify", "triangle_budgets"]
+__all__ += ["HAVE_CAD", "SimplifyResult", "count_self_intersections", "distance_bound", "hausdorff",
+            "read_error_bound", "simplify", "triangle_budgets", "write_tagged_mesh"]
 if HAVE_CAD:
     from ._interfere import import_step, step_features  # noqa: F401,E402
 

@@ -9,6 +9,7 @@
 #include "bindings.h"
 #include "interfere/simplify/budget.h"
 #include "interfere/simplify/hausdorff.h"
+#include "interfere/simplify/tagged_io.h"
 #include "interfere/simplify/qem.h"
 #ifdef INTERFERE_HAS_CAD
 #include "interfere/cad/features.h"
@@ -87,6 +88,36 @@ void bind_simplify(py::module_& m) {
         return std::make_pair(h.a_to_b, h.b_to_a);
       },
       py::arg("a"), py::arg("b"), "Sampled one-sided distances (a->b, b->a); the symmetric Hausdorff is their max.");
+  m.def(
+      "distance_bound",
+      [](const TriMesh& a, const TriMesh& b) {
+        py::gil_scoped_release release;
+        return one_sided(a, b).bound;
+      },
+      py::arg("a"), py::arg("b"),
+      "Upper bound of the distance from every point of a's surface to b (SimplifyResult.error_bound for a = input, "
+      "b = result).");
+  m.def(
+      "write_tagged_mesh",
+      [](const std::filesystem::path& path, const TriMesh& mesh, const std::vector<std::uint32_t>& face_ids,
+         const std::vector<std::uint32_t>& feature_faces, double error_bound) {
+        if (!face_ids.empty() && face_ids.size() != mesh.num_triangles())
+          throw py::value_error("face_ids must have one id per triangle");
+        const Status s = write_tagged_mesh(path, mesh, face_ids, feature_faces, MeshFormat::automatic, error_bound);
+        if (!s) throw py::value_error(s.error().message());
+      },
+      py::arg("path"), py::arg("mesh"), py::arg("face_ids") = std::vector<std::uint32_t>{},
+      py::arg("feature_faces") = std::vector<std::uint32_t>{}, py::arg("error_bound") = -1.0,
+      "Writes a simplified mesh as `interfere simplify` does: PLY/OBJ/STL with per-triangle face ids and feature "
+      "tags where the format allows, and the error bound (>= 0) in PLY/OBJ (read by clash --conservative).");
+  m.def(
+      "read_error_bound",
+      [](const std::filesystem::path& path) {
+        const Expected<double> e = read_error_bound(path);
+        if (!e) throw py::value_error(e.error().message());
+        return *e;
+      },
+      py::arg("path"), "The error bound a simplified PLY/OBJ file stores, -1 when it has none.");
   m.def(
       "count_self_intersections",
       [](const TriMesh& mesh) {

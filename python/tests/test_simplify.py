@@ -52,6 +52,24 @@ class Simplify(unittest.TestCase):
         with self.assertRaises(ValueError):
             itf.simplify(s, ratio=2.0)
 
+    def test_error_bound_round_trip_and_distance_bound(self):
+        s = itf.make_sphere(4000)
+        r = itf.simplify(s, target=400)
+        a_to_b, _ = itf.hausdorff(s, r.mesh)
+        self.assertGreaterEqual(itf.distance_bound(s, r.mesh), a_to_b)
+        self.assertGreaterEqual(r.error_bound, r.hausdorff)
+        with tempfile.TemporaryDirectory() as d:
+            out = os.path.join(d, "s.ply")
+            itf.write_tagged_mesh(out, r.mesh, error_bound=r.error_bound)
+            self.assertEqual(itf.read_error_bound(out), r.error_bound)
+            plain = os.path.join(d, "p.obj")
+            itf.write_tagged_mesh(plain, r.mesh)
+            self.assertEqual(itf.read_error_bound(plain), -1.0)
+            with open(plain, "w") as f:
+                f.write("# error_bound nan\nv 0 0 0\n")
+            with self.assertRaises(ValueError):
+                itf.read_error_bound(plain)
+
     def test_triangle_budgets(self):
         b = itf.triangle_budgets([(35548, 4000), (10000, 0)], 12000)
         self.assertEqual(sum(b), 12000)
