@@ -295,8 +295,8 @@ Pattern: `{"type", "priority", "nodes": [{"role", "types": [...], "hole": bool, 
 ## C++ and Python API
 
 C++: `interfere/simplify/qem.h` (`simplify`, `SimplifyOptions`, `SimplifyResult`, `sharp_edge_regions`,
-`weld_positions`, `split_by_face`), `simplify/hausdorff.h` (`hausdorff`, `one_sided_distance`,
-`count_self_intersections`), `simplify/budget.h`, `simplify/tagged_io.h`; with OCCT (`interfere::cad`):
+`weld_positions`, `split_by_face`), `simplify/hausdorff.h` (`hausdorff`, `one_sided` (sampled distance and bound), `one_sided_distance`,
+`count_self_intersections`), `simplify/budget.h`, `simplify/tagged_io.h` (`write_tagged_mesh`, `read_error_bound`); with OCCT (`interfere::cad`):
 `cad/model.h` (`import_step`, `world_mesh`, `write_test_part`), `cad/features.h`, `cad/semantics.h`,
 `cad/pipeline.h`. Python: `interfere.simplify(mesh, target=0, ratio=0, face_ids=[], feature_faces=[],
 lock=False, sharp_angle=0, prevent_self_intersections=True, measure_error=True, feature_mode="weight")` → `SimplifyResult` (`.mesh`,
