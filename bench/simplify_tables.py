@@ -233,7 +233,7 @@ For process step P with parts j having T_j triangles, F_j of them on the step's 
 ```
 interfere simplify IN OUT (--target N | --ratio R | --renderer-max N) [--step P --process process.json]
                    [--regions FILE] [--features IDS] [--lock | --feature-mode weight|last|lock] [--sharp-angle DEG]
-                   [--linear-deflection D] [--angular-deflection A] [--format F]
+                   [--linear-deflection D] [--angular-deflection A] [--parts-dir DIR] [--format F]
                    [--check-self-intersections] [--no-intersection-guard] [--no-error] [--json REPORT] [--threads N]
 interfere features PART.step [--json REPORT] [--aag] [--library lib.json] [--rules rules.json]
                    [--process process.json --step P] [--linear-deflection D] [--angular-deflection A]
@@ -253,6 +253,7 @@ interfere features PART.step [--json REPORT] [--aag] [--library lib.json] [--rul
 | `--feature-mode M` | `weight` (paper, default), `last` (feature edges strictly last), `lock` |
 | `--sharp-angle DEG` | plain mesh without regions: keep edges sharper than DEG |
 | `--linear-deflection`, `--angular-deflection` | STEP tessellation (0 = 0.1 % of the diagonal; radians) |
+| `--parts-dir DIR` | STEP input: also write each simplified part once, in part coordinates, as `DIR/<part>_<name>.<OUT's extension>` with its own face ids, feature tags and error bound; the report's `cad.instances[].placement` places them (a renderer instances them instead of loading the merged OUT) |
 | `--format F` | output format (stl, stl-ascii, obj, ply, ply-ascii, off) |
 | `--check-self-intersections` | count self-intersections of the result (engine clash), reported |
 | `--no-intersection-guard` | plain QEM: no self-intersection check of the result, no guarded rerun |
@@ -269,8 +270,8 @@ written atomically and only after every input was validated.
 `self_intersections` (with the flag), `seconds` {`simplify`, `total`, `phases` [{`phase`, `seconds`}] (wall time
 of simplify()'s phases, in order; summed over the parts of a STEP input)}, `warnings`; for STEP input `cad` {`parts`
 [{`name`, `faces`, `triangles`, `features`, `assembly_feature_faces`}], `instances` [{`name`, `part`, `path`,
-`face_id_offset`}], `step`, `units`, `file_length_units`, `warnings`} and `parts_simplified` [{`name`, `instances`, `input_triangles`,
-`target_triangles`, `output_triangles`, `feature_triangles`, `hausdorff`, `hausdorff_features`, `guard_rerun`, `guard_reruns`,
+`face_id_offset`, `placement` (3×4 [R|t], part → world)}], `step`, `units`, `file_length_units`, `warnings`} and `parts_simplified` [{`part`, `name`, `file` (with `--parts-dir`), `instances`, `input_triangles`,
+`target_triangles`, `output_triangles`, `feature_triangles`, `hausdorff`, `error_bound`, `hausdorff_features`, `guard_rerun`, `guard_reruns`,
 `self_intersections` (with the flag; for STEP input the report's count is the sum over parts × instances)}]. Face
 ids of a multi-instance STEP are offset per instance.
 

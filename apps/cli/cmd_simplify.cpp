@@ -26,6 +26,7 @@ namespace {
 
 struct SimplifyCliOptions {
   std::string input, output, json, regions, features, step, process, format = "auto", feature_mode = "weight";
+  std::string parts_dir;  ///< STEP input: each simplified part (prototype) also written here
   std::size_t target = 0;
   double ratio = 0;
   double sharp_angle = 0;
@@ -64,7 +65,8 @@ bool is_step(const std::string& file) {
 // self-intersections of one mesh) to its share of the total budget (triangle_budgets: instances
 // counted, the step's feature triangles reserved), then the instances are placed in the world mesh.
 Expected<SimplifyResult> simplify_parts(const cad::Prepared& prep, std::size_t total, SimplifyOptions so,
-                                        nlohmann::json& parts_report, bool count_self, std::size_t& self_total) {
+                                        nlohmann::json& parts_report, bool count_self, std::size_t& self_total,
+                                        std::vector<SimplifyResult>& done) {
   std::vector<PartBudgetInput> in;
   std::vector<std::size_t> feature_tris(prep.parts.size(), 0);
   for (std::size_t i = 0; i < prep.parts.size(); ++i) {
@@ -76,7 +78,7 @@ Expected<SimplifyResult> simplify_parts(const cad::Prepared& prep, std::size_t t
   }
   const BudgetResult budgets = triangle_budgets(in, total);
   SimplifyResult all;
-  std::vector<SimplifyResult> done(prep.parts.size());
+  done.assign(prep.parts.size(), SimplifyResult{});
   for (std::size_t i = 0; i < prep.parts.size(); ++i) {
     const cad::PreparedPart& p = prep.parts[i];
     if (p.instances == 0 || p.mesh.num_triangles() == 0) continue;
@@ -94,7 +96,7 @@ Expected<SimplifyResult> simplify_parts(const cad::Prepared& prep, std::size_t t
     }
     done[i] = std::move(*r);
     const SimplifyResult& d = done[i];
-    parts_report.push_back({{"name", p.name}, {"instances", p.instances}, {"input_triangles", d.input_triangles},
+    parts_report.push_back({{"part", i}, {"name", p.name}, {"instances", p.instances}, {"input_triangles", d.input_triangles},
                             {"target_triangles", n}, {"output_triangles", d.mesh.num_triangles()},
                             {"feature_triangles", {{"input", d.feature_triangles_in}, {"output", d.feature_triangles_out}}},
                             {"hausdorff", d.hausdorff}, {"error_bound", d.error_bound}, {"hausdorff_features", d.hausdorff_features < 0 ? nlohmann::json(nullptr) : nlohmann::json(d.hausdorff_features)},
@@ -146,6 +148,8 @@ int run_simplify(const SimplifyCliOptions& o) {
     throw InputError("simplify: give --target N (> 0), --ratio R or --renderer-max N");
   if (o.ratio != 0 && !(o.ratio > 0 && o.ratio <= 1)) throw InputError("--ratio must lie in (0, 1]");
   if (!o.step.empty() && o.process.empty()) throw InputError("--step needs --process FILE");
+  if (!o.parts_dir.empty() && !is_step(o.input))
+    throw InputError("--parts-dir needs a STEP input (one file per part of the assembly)");
   const MeshFormat out_format = mesh_format_from_name(o.format);
   if (out_format == MeshFormat::automatic && o.format != "auto" && o.format != "AUTO")
     throw InputError("--format: unknown mesh format '" + o.format + "'");
@@ -222,6 +226,7 @@ int run_simplify(const SimplifyCliOptions& o) {
   double seconds = 0;
   std::size_t self_parts = 0;
   bool per_part = false;
+  std::vector<SimplifyResult> part_results;
   {
     Progress progress("simplifying " + std::to_string(mesh.num_triangles()) + " triangles");
     Expected<SimplifyResult> res = Error{};
@@ -233,7 +238,7 @@ int run_simplify(const SimplifyCliOptions& o) {
       if (total == 0 || total > n)
         throw InputError(o.input + ": triangle budget " + std::to_string(total) + " must lie in [1, " + std::to_string(n) + "]");
       nlohmann::json parts = nlohmann::json::array();
-      res = simplify_parts(*cad_prepared, total, so, parts, o.check_self, self_parts);
+      res = simplify_parts(*cad_prepared, total, so, parts, o.check_self, self_parts, part_results);
       per_part = true;
       report["parts_simplified"] = parts;
     } else {
@@ -261,6 +266,28 @@ int run_simplify(const SimplifyCliOptions& o) {
     const Status s = write_tagged_mesh(o.output, r.mesh, r.face_ids, so.feature_faces, out_format, r.error_bound);
     if (!s) throw InputError(s.error());
   }
+#ifdef INTERFERE_HAS_CAD
+  // --parts-dir: each part once, in part coordinates, in OUT's format, with its own error bound; the
+  // report's cad.instances place them (a renderer instances them instead of the merged OUT).
+  if (!o.parts_dir.empty() && cad_prepared) {
+    Progress progress("writing the parts to " + o.parts_dir);
+    std::error_code ec;
+    std::filesystem::create_directories(o.parts_dir, ec);
+    if (ec) throw InputError(Error{.file = o.parts_dir, .reason = "cannot create the directory: " + ec.message()});
+    const std::string ext = std::filesystem::path(o.output).extension().string();
+    for (auto& jp : report["parts_simplified"]) {
+      const std::size_t i = jp["part"].get<std::size_t>();
+      const cad::PreparedPart& p = cad_prepared->parts[i];
+      std::string stem;
+      for (char c : p.name) stem += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' ? c : '_';
+      const std::string file = (std::filesystem::path(o.parts_dir) / fmt::format("{}_{}{}", i, stem, ext)).string();
+      const SimplifyResult& d = part_results[i];
+      const Status s = write_tagged_mesh(file, d.mesh, d.face_ids, p.feature_faces, out_format, d.error_bound);
+      if (!s) throw InputError(s.error());
+      jp["file"] = file;
+    }
+  }
+#endif
   report["input_triangles"] = r.input_triangles;
   report["target_triangles"] = r.target_triangles;
   report["output_triangles"] = r.mesh.num_triangles();
@@ -329,6 +356,9 @@ void add_simplify_command(CLI::App& app, int& exit_code) {
   c->add_option("--sharp-angle", o->sharp_angle, "plain meshes: keep edges whose dihedral angle exceeds DEG degrees");
   c->add_option("--linear-deflection", o->linear_deflection, "STEP tessellation: linear deflection (0 = 0.1 % of the diagonal)");
   c->add_option("--angular-deflection", o->angular_deflection, "STEP tessellation: angular deflection in radians");
+  c->add_option("--parts-dir", o->parts_dir,
+                "STEP input: also write each simplified part once, in part coordinates, to DIR/<part>_<name>.<OUT's "
+                "extension> (the report's cad.instances place them)");
   c->add_option("--format", o->format, "output format (stl, stl-ascii, obj, ply, ply-ascii, off; default by extension)");
   c->add_flag("--check-self-intersections", o->check_self, "count self-intersections of the result (engine clash)");
   c->add_flag("--no-intersection-guard", o->no_guard, "plain QEM: no self-intersection check of the result and no guarded rerun");

@@ -61,7 +61,11 @@ Expected<Prepared> prepare_for_simplify(const std::string& step_file, const Pipe
     for (std::uint32_t f : part_features[inst.part]) out.feature_faces.push_back(f + base);
     out.instances.push_back({inst.part, inst.placement, base});
     ++out.parts[inst.part].instances;
-    rep["instances"].push_back({{"name", inst.name}, {"part", inst.part}, {"path", inst.path}, {"face_id_offset", base}});
+    nlohmann::json placement = nlohmann::json::array();  // 3x4 [R|t], part coordinates -> world
+    for (int r = 0; r < 3; ++r)
+      placement.push_back({inst.placement.r[r][0], inst.placement.r[r][1], inst.placement.r[r][2], inst.placement.t[r]});
+    rep["instances"].push_back({{"name", inst.name}, {"part", inst.part}, {"path", inst.path}, {"face_id_offset", base},
+                                {"placement", placement}});
     base += model->parts[inst.part].faces;
   }
   if (!o.step.empty()) rep["step"] = o.step;

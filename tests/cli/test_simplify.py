@@ -242,6 +242,39 @@ class Features(unittest.TestCase):
         self.assertIn("P9", err)
         self.assertFalse(os.path.exists(path("cb9.ply")))
 
+    def test_assembly_parts_are_written_once_each_with_their_placements(self):
+        code, _, err = run("simplify", os.path.join(DATA, "assembly.step"), path("asm.ply"), "--ratio", "0.5",
+                           "--parts-dir", path("parts"), "--json", path("asm.json"))
+        self.assertEqual(code, 0, err)
+        r = load_json("asm.json")
+        parts = r["parts_simplified"]
+        self.assertEqual(sorted(p["name"] for p in parts), ["plate", "shaft"])
+        out_tris = {}
+        for p in parts:
+            with open(p["file"], "rb") as f:
+                header = []
+                while not header or header[-1] != "end_header":
+                    header.append(f.readline().decode("ascii").strip())
+            faces = int([h for h in header if h.startswith("element face")][0].split()[2])
+            self.assertEqual(faces, p["output_triangles"])
+            bound = [h for h in header if h.startswith("comment error_bound ")]
+            self.assertEqual(float(bound[0].split()[2]), p["error_bound"])
+            self.assertLessEqual(p["error_bound"], r["error_bound"])
+            out_tris[p["part"]] = p["output_triangles"]
+        instances = r["cad"]["instances"]
+        self.assertEqual(len(instances), 3)  # the plate twice, the shaft once
+        for i in instances:
+            self.assertEqual(len(i["placement"]), 3)
+            self.assertEqual(len(i["placement"][0]), 4)
+        self.assertEqual(sum(out_tris[i["part"]] for i in instances), r["output_triangles"])
+        shaft = [i for i in instances if i["name"] == "shaft_1"][0]
+        self.assertEqual(shaft["placement"][0][3], 100.0)  # moved by (100, 0, 0)
+        write_obj("m.obj", uv_sphere())
+        code, _, err = run("simplify", path("m.obj"), path("m.ply"), "--ratio", "0.5", "--parts-dir", path("p2"))
+        self.assertEqual(code, 2)
+        self.assertIn("--parts-dir", err)
+        self.assertFalse(os.path.exists(path("m.ply")))
+
     def test_bad_step_files(self):
         with open(path("empty.step"), "w"):
             pass
