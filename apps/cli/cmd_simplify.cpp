@@ -150,6 +150,13 @@ int run_simplify(const SimplifyCliOptions& o) {
   if (!o.step.empty() && o.process.empty()) throw InputError("--step needs --process FILE");
   if (!o.parts_dir.empty() && !is_step(o.input))
     throw InputError("--parts-dir needs a STEP input (one file per part of the assembly)");
+  if (!o.parts_dir.empty()) {  // before anything is written
+    std::error_code ec;
+    std::filesystem::create_directories(o.parts_dir, ec);
+    if (ec || !std::filesystem::is_directory(o.parts_dir))
+      throw InputError(Error{.file = o.parts_dir, .reason = "--parts-dir: cannot create the directory" +
+                                                             (ec ? ": " + ec.message() : std::string())});
+  }
   const MeshFormat out_format = mesh_format_from_name(o.format);
   if (out_format == MeshFormat::automatic && o.format != "auto" && o.format != "AUTO")
     throw InputError("--format: unknown mesh format '" + o.format + "'");
@@ -271,9 +278,6 @@ int run_simplify(const SimplifyCliOptions& o) {
   // report's cad.instances place them (a renderer instances them instead of the merged OUT).
   if (!o.parts_dir.empty() && cad_prepared) {
     Progress progress("writing the parts to " + o.parts_dir);
-    std::error_code ec;
-    std::filesystem::create_directories(o.parts_dir, ec);
-    if (ec) throw InputError(Error{.file = o.parts_dir, .reason = "cannot create the directory: " + ec.message()});
     const std::string ext = std::filesystem::path(o.output).extension().string();
     for (auto& jp : report["parts_simplified"]) {
       const std::size_t i = jp["part"].get<std::size_t>();

@@ -269,6 +269,13 @@ class Features(unittest.TestCase):
         self.assertEqual(sum(out_tris[i["part"]] for i in instances), r["output_triangles"])
         shaft = [i for i in instances if i["name"] == "shaft_1"][0]
         self.assertEqual(shaft["placement"][0][3], 100.0)  # moved by (100, 0, 0)
+        with open(path("not_a_dir"), "w") as f:
+            f.write("x")
+        code, _, err = run("simplify", os.path.join(DATA, "assembly.step"), path("asm2.ply"), "--ratio", "0.5",
+                           "--parts-dir", path("not_a_dir"))
+        self.assertEqual(code, 2)
+        self.assertIn("not_a_dir", err)
+        self.assertFalse(os.path.exists(path("asm2.ply")))  # nothing written
         write_obj("m.obj", uv_sphere())
         code, _, err = run("simplify", path("m.obj"), path("m.ply"), "--ratio", "0.5", "--parts-dir", path("p2"))
         self.assertEqual(code, 2)
