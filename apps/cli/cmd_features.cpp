@@ -66,6 +66,11 @@ int run_features(const FeaturesCliOptions& o) {
     model = import_step(o.input, {.linear_deflection = o.linear_deflection, .angular_deflection = o.angular_deflection});
     if (!model) throw InputError(model.error());
   }
+  if (process) {
+    std::vector<std::string> names;
+    for (const Part& part : model->parts) names.push_back(part.name);
+    for (auto& w : unknown_step_parts(*process, o.step, names)) model->warnings.push_back(std::move(w));
+  }
   for (const auto& w : model->warnings)
     if (!Progress::quiet()) std::fprintf(stderr, "[interfere] warning: %s\n", w.c_str());
   {

@@ -34,6 +34,11 @@ Expected<Prepared> prepare_for_simplify(const std::string& step_file, const Pipe
   if (!model) return model.error();
   Prepared out;
   out.warnings = model->warnings;
+  if (process) {
+    std::vector<std::string> names;
+    for (const Part& part : model->parts) names.push_back(part.name);
+    for (auto& w : unknown_step_parts(*process, o.step, names)) out.warnings.push_back(std::move(w));
+  }
   nlohmann::json rep;
   rep["parts"] = nlohmann::json::array();
   std::vector<std::vector<std::uint32_t>> part_features(model->parts.size());

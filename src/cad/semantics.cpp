@@ -85,6 +85,22 @@ Expected<Process> load_process(const std::filesystem::path& path) {
   return parse_process(*t, path.string());
 }
 
+std::vector<std::string> unknown_step_parts(const Process& process, const std::string& step_id,
+                                            const std::vector<std::string>& part_names) {
+  std::vector<std::string> out;
+  for (const ProcessStep& s : process.steps) {
+    if (s.id != step_id) continue;
+    for (const std::string& p : s.parts) {
+      if (p == "*" || std::find(part_names.begin(), part_names.end(), p) != part_names.end()) continue;
+      std::string known;
+      for (const std::string& n : part_names) known += (known.empty() ? "'" : ", '") + n + "'";
+      out.push_back("step '" + step_id + "' names part '" + p + "', which is not in the model (parts: " + known +
+                    "): no feature of it is kept");
+    }
+  }
+  return out;
+}
+
 Expected<Selection> select_assembly_features(const Process& process, const std::string& step_id,
                                              const SemanticRules& rules, const std::string& part_name,
                                              const std::vector<Feature>& features) {

@@ -357,6 +357,19 @@ TEST(Semantics, RulesReferringToUnknownFeatureTypesAreErrors) {
   EXPECT_FALSE(parse_process(R"({"steps":[{"id":"a","constraint":"x"},{"id":"a","constraint":"y"}]})").has_value());
 }
 
+TEST(Semantics, StepsNamingPartsNotInTheModelAreWarnings) {
+  auto p = parse_process(
+      R"({"steps":[{"id":"P1","parts":["casing","casnig"],"constraint":"bolt"},{"id":"P2","parts":["*"],"constraint":"screw"}]})");
+  ASSERT_TRUE(p.has_value());
+  const auto w = unknown_step_parts(*p, "P1", {"casing", "shaft"});
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("'casnig'"), std::string::npos);
+  EXPECT_NE(w[0].find("'P1'"), std::string::npos);
+  EXPECT_NE(w[0].find("'shaft'"), std::string::npos);  // the parts there are
+  EXPECT_TRUE(unknown_step_parts(*p, "P2", {"casing"}).empty());  // "*"
+  EXPECT_TRUE(unknown_step_parts(*p, "P9", {"casing"}).empty());  // unknown steps are errors elsewhere
+}
+
 TEST(CadSimplify, CasingToBudgetWithLockedScrewFeaturesBitIdentical) {
   auto lib = default_feature_library();
   auto rules = default_semantic_rules(*lib);

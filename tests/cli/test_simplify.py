@@ -236,6 +236,14 @@ class Features(unittest.TestCase):
         self.assertEqual(r["feature_triangles"]["input"], r["feature_triangles"]["output"])
         self.assertLessEqual(r["hausdorff_features"], 1e-12)
         self.assertEqual(r["self_intersections"], 0)
+        # A step naming a part the model does not have keeps nothing of it: a warning, not silence.
+        with open(path("typo.json"), "w") as out:
+            json.dump({"steps": [{"id": "P1", "parts": ["plaet"], "constraint": "screw"}]}, out)
+        code, _, err = run("simplify", os.path.join(DATA, "counterbored_plate.step"), path("typo.ply"), "--ratio",
+                           "0.6", "--step", "P1", "--process", path("typo.json"), "--json", path("typo_r.json"))
+        self.assertEqual(code, 0, err)
+        self.assertTrue(any("'plaet'" in w for w in load_json("typo_r.json")["cad"]["warnings"]))
+        self.assertEqual(load_json("typo_r.json")["feature_faces"], [])
         code, _, err = run("simplify", os.path.join(DATA, "counterbored_plate.step"), path("cb9.ply"), "--ratio",
                            "0.6", "--step", "P9", "--process", path("process.json"))
         self.assertEqual(code, 2)

@@ -49,6 +49,13 @@ struct Selection {
   std::vector<std::string> warnings;  ///< e.g. a constraint with no rule, a rule with no feature found
 };
 
+/// Warnings for the parts step `step_id` names that are none of `part_names` ("*" matches every
+/// part): such a step would silently keep no feature of a misspelt part. Each names the step, the
+/// part and the parts there are. Unknown step ids give nothing here (select_assembly_features
+/// reports them as errors).
+std::vector<std::string> unknown_step_parts(const Process& process, const std::string& step_id,
+                                            const std::vector<std::string>& part_names);
+
 /// Assembly-feature faces of `part_name` (with its recognised `features`) in step `step_id`.
 /// Errors: unknown step id. A part not in the step selects nothing.
 Expected<Selection> select_assembly_features(const Process& process, const std::string& step_id,
