@@ -148,6 +148,7 @@ int run_simplify(const SimplifyCliOptions& o) {
     throw InputError("simplify: give --target N (> 0), --ratio R or --renderer-max N");
   if (o.ratio != 0 && !(o.ratio > 0 && o.ratio <= 1)) throw InputError("--ratio must lie in (0, 1]");
   if (!o.step.empty() && o.process.empty()) throw InputError("--step needs --process FILE");
+  if (o.step.empty() && !o.process.empty()) throw InputError("--process needs --step ID");
   if (!o.parts_dir.empty() && !is_step(o.input))
     throw InputError("--parts-dir needs a STEP input (one file per part of the assembly)");
   if (!o.parts_dir.empty()) {  // before anything is written
@@ -160,6 +161,11 @@ int run_simplify(const SimplifyCliOptions& o) {
   const MeshFormat out_format = mesh_format_from_name(o.format);
   if (out_format == MeshFormat::automatic && o.format != "auto" && o.format != "AUTO")
     throw InputError("--format: unknown mesh format '" + o.format + "'");
+  // Outputs checked before any work: a known extension (or --format) and an existing directory.
+  check_output(o.output, out_format == MeshFormat::automatic ? std::vector<std::string>{".stl", ".ply", ".obj", ".off"}
+                                                             : std::vector<std::string>{},
+               "OUT (or --format)");
+  check_output(o.json, {}, "--json");
   set_threads(o.threads);
   Progress total("simplify");
   nlohmann::json report;
