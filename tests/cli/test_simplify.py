@@ -144,6 +144,12 @@ class Simplify(unittest.TestCase):
         with open(path("empty.obj"), "w") as out:
             out.write("# nothing\n")
         self.assert_input_error("simplify", path("empty.obj"), o, "--target", "10", output=o)
+        xyz = path("bad.xyz")
+        self.assert_input_error("simplify", s, xyz, "--target", "10", output=xyz, message="unsupported extension")
+        self.assert_input_error("simplify", s, path("no_such_dir/o.ply"), "--target", "10",
+                                output=path("no_such_dir/o.ply"), message="directory does not exist")
+        self.assert_input_error("simplify", s, o, "--target", "10", "--process", path("p.json"), output=o,
+                                message="--step")
 
     def test_existing_output_untouched_on_error(self):
         with open(path("keep.ply"), "w") as out:
