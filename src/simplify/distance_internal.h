@@ -1,0 +1,54 @@
+// Internals of the distance measurements of simplify/hausdorff.h (issue #6, items 5-6): the
+// nearest-triangle query on the engine's BVH and the per-triangle samples (hausdorff.cpp), and the
+// upper bound of the distance from a triangle to a mesh (distance_bound.cpp). Not installed.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "interfere/bvh/bvh.h"
+#include "interfere/mesh/tri_mesh.h"
+
+namespace interfere::detail {
+
+/// Squared distance from p to the nearest triangle of `mesh` (its BVH `bvh`), and that triangle.
+double nearest_d2(const TriMesh& mesh, const Bvh& bvh, const Vec3& p, std::uint32_t* tri = nullptr);
+
+/// A distance at a point and the triangle of `to` nearest to it.
+struct Near {
+  double d = 0;  ///< distance (not squared)
+  std::uint32_t tri = 0;
+};
+
+Near nearest(const TriMesh& to, const Bvh& bvh, const Vec3& p);
+
+/// One triangle c of `from` with its samples: distances at the corners, edge midpoints (m[k] on
+/// edge k, k+1) and centroid, each with its nearest triangle of `to`.
+struct Sampled {
+  std::array<Vec3, 3> c, m;
+  std::array<Near, 3> at, mid;
+  Near centre;
+  double max_sample() const;
+};
+
+/// The samples of triangle c whose corners' distances `at` are known.
+Sampled sample(const TriMesh& to, const Bvh& bvh, const std::array<Vec3, 3>& c, const std::array<Near, 3>& at);
+
+/// Upper bound of the distance from every point of triangle s.c to `to` (distance_bound.cpp),
+/// computed lazily down to `floor` (a bound at or below it is not improved).
+double local_bound(const TriMesh& to, const Sampled& s, double floor);
+
+/// The triangles of a mesh around each vertex (compressed rows).
+struct Fans {
+  std::vector<std::uint32_t> start, tris;
+};
+Fans fans_of(const TriMesh& m);
+
+/// local_bound with more candidates: every triangle around the vertices of the samples' nearest
+/// ones (an input triangle over a vertex of the output where several meet).
+double ring_bound(const TriMesh& to, const Fans& fans, const Sampled& s, double floor);
+
+/// local_bound refined by midpoint subdivision (depth levels) where it exceeds `floor`.
+double refined_bound(const TriMesh& to, const Bvh& bvh, const Sampled& s, double floor, int depth);
+
+}  // namespace interfere::detail
