@@ -108,8 +108,11 @@ quadric-error-metric edge collapses while the faces that take part in the curren
    middle and the convexity: with T the edge tangent oriented as the edge runs in face A, the edge is convex
    when (n_A × n_B) · T > 0, concave when < 0, smooth when the normals agree within 1e-3 rad. Arcs record
    whether the edge lies on an inner loop of either face. B-spline (and other free-form) faces are tested for
-   being planes (PCA of 81 sampled points) or cylinders (axis from the PCA of the normals, Kåsa circle fit
-   across it) within 1e-4 of the face's size, since exported files often carry analytic faces as B-splines.
+   being planes (PCA of 81 sampled points), cylinders (axis from the PCA of the normals, Kåsa circle fit
+   across it) or cones (axis from the PCA of the centred normals, its point where the normal lines meet,
+   radius linear in height: half angle, hole sense; so a countersink exported as a B-spline still makes a
+   `countersunk_hole`) within 1e-4 of the face's size, since exported files often carry analytic faces as
+   B-splines.
    Checked on the public STEP files of `../shared/data/step` when present (`tests/cad/test_cad_shared_data.cpp`):
    face counts and surface types against a text scan of each file (21 files, including NIST test parts), the
    CAx-IF AS1 assembly exported with its 28 cylinders as B-splines recognised exactly like its analytic (inch)

@@ -2,10 +2,11 @@
 // heuristics for recognition of machined features from a 3D solid model", CAD 20(2), 1988, as used
 // by He & Xu (SJTU 2023) §2.1: a node per face (surface type and parameters), an arc per edge shared
 // by two faces (curve type, convexity from the outward normals and the edge's orientation in the
-// first face, inner/outer loop). B-spline faces that are geometrically planes or cylinders are
-// recognised by least-squares fits of sampled points (plane: PCA; cylinder: axis from the normals'
-// PCA, then a circle fit (Kasa 1976) in the plane across it), accepted within a tolerance relative
-// to the face's size.
+// first face, inner/outer loop). B-spline faces that are geometrically planes, cylinders or cones
+// are recognised by least-squares fits of sampled points (plane: PCA; cylinder: axis from the
+// normals' PCA, then a circle fit (Kasa 1976) in the plane across it; cone: axis from the centred
+// normals' PCA and the normal lines' meet, then a line fit of radius against height), accepted
+// within a tolerance relative to the face's size.
 #include <BRepAdaptor_Curve.hxx>
 #include <BRepAdaptor_Surface.hxx>
 #include <BRepGProp.hxx>
@@ -68,7 +69,71 @@ void sample_face(const TopoDS_Face& f, int n, std::vector<Vec3>& pts, std::vecto
     }
 }
 
-// Canonical recognition of a free-form face: plane, then cylinder.
+// Cone (a free-form face that is no plane or cylinder): its normals make one angle with the axis, so
+// the axis is the direction in which the centred normals do not spread (PCA); every normal line
+// meets the axis, which across the axis is a point, the least-squares meet of the projected normal
+// lines; along the axis the distance to it grows linearly (the slope is tan of the half angle).
+// Accepted when that line fits the samples within tol * size and the slope is not that of a
+// cylinder. Like the analytic cones of describe_surface: axis_point on the axis (here at the
+// samples' mean height), radius there; the axis is oriented towards growing radius.
+void recognise_cone(const std::vector<Vec3>& pts, const std::vector<Vec3>& nrm, const Vec3& c, double size,
+                    AagNode& node, double tol) {
+  const double n = double(nrm.size());
+  Vec3 mean{};
+  for (const Vec3& v : nrm) mean += v;
+  mean = mean / n;
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (const Vec3& v : nrm) {
+    const Eigen::Vector3d e(v.x - mean.x, v.y - mean.y, v.z - mean.z);
+    cov += e * e.transpose();
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(cov);
+  if (es.eigenvalues()(0) > 1e-6 * n || !(es.eigenvalues()(1) > 1e-3 * n)) return;  // no spread at all: a plane
+  const Eigen::Vector3d ev = es.eigenvectors().col(0);
+  Vec3 a = unit({ev.x(), ev.y(), ev.z()});
+  const Vec3 e1 = unit(std::abs(a.x) < 0.9 ? cross(a, {1, 0, 0}) : cross(a, {0, 1, 0}));
+  const Vec3 e2 = cross(a, e1);
+  Eigen::Matrix2d m = Eigen::Matrix2d::Zero();
+  Eigen::Vector2d rhs = Eigen::Vector2d::Zero();
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const Eigen::Vector2d d(dot(nrm[i], e1), dot(nrm[i], e2));
+    if (d.norm() < 1e-6) return;
+    const Eigen::Vector2d q(dot(pts[i] - c, e1), dot(pts[i] - c, e2));
+    const Eigen::Vector2d w = Eigen::Vector2d(-d.y(), d.x()) / d.norm();  // across the projected normal line
+    m += w * w.transpose();
+    rhs += w * w.dot(q);
+  }
+  if (!(std::abs(m.determinant()) > 1e-9 * n * n)) return;
+  const Eigen::Vector2d x = m.ldlt().solve(rhs);
+  const Vec3 axis_point = c + e1 * x.x() + e2 * x.y();
+  // radius = r0 + slope * height, least squares.
+  double sh = 0, sr = 0, shh = 0, shr = 0;
+  std::vector<double> hs, rs;
+  for (const Vec3& p : pts) {
+    const Vec3 d = p - axis_point;
+    const double h = dot(d, a), r = norm(d - a * h);
+    hs.push_back(h), rs.push_back(r);
+    sh += h, sr += r, shh += h * h, shr += h * r;
+  }
+  const double den = n * shh - sh * sh;
+  if (!(den > 0)) return;
+  double slope = (n * shr - sh * sr) / den;
+  const double r0 = (sr - slope * sh) / n;
+  double dev = 0;
+  for (std::size_t i = 0; i < hs.size(); ++i) dev = std::max(dev, std::abs(rs[i] - (r0 + slope * hs[i])));
+  if (dev > tol * size || std::abs(slope) < 1e-3 || !(r0 > 0)) return;
+  if (slope < 0) a = -a, slope = -slope;
+  node.type = SurfaceType::cone;
+  node.from_bspline = true;
+  node.axis = a;
+  node.axis_point = axis_point;
+  node.radius = r0;
+  node.half_angle = std::atan(slope);
+  const Vec3 radial = pts[0] - axis_point;
+  node.hole = dot(nrm[0], radial - a * dot(radial, a)) < 0;
+}
+
+// Canonical recognition of a free-form face: plane, then cylinder, then cone.
 void recognise_canonical(const TopoDS_Face& f, AagNode& node, double tol) {
   std::vector<Vec3> pts, nrm;
   sample_face(f, 8, pts, nrm);
@@ -104,7 +169,10 @@ void recognise_canonical(const TopoDS_Face& f, AagNode& node, double tol) {
   }
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> en(nn);
   const Eigen::Vector3d ax = en.eigenvectors().col(0);
-  if (en.eigenvalues()(0) > 1e-6 * double(nrm.size())) return;
+  if (en.eigenvalues()(0) > 1e-6 * double(nrm.size())) {
+    recognise_cone(pts, nrm, c, size, node, tol);
+    return;
+  }
   const Vec3 a = unit({ax.x(), ax.y(), ax.z()});
   // Basis across the axis, Kasa circle fit: x^2 + y^2 + D x + E y + F = 0.
   const Vec3 e1 = unit(std::abs(a.x) < 0.9 ? cross(a, {1, 0, 0}) : cross(a, {0, 1, 0}));

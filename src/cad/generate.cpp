@@ -140,6 +140,8 @@ TopoDS_Shape build(TestPart p) {
     }
     case TestPart::box_through_hole_nurbs:
       return BRepBuilderAPI_NurbsConvert(build(TestPart::box_through_hole)).Shape();
+    case TestPart::countersunk_plate_nurbs:
+      return BRepBuilderAPI_NurbsConvert(build(TestPart::countersunk_plate)).Shape();
   }
   return {};
 }
@@ -161,6 +163,7 @@ const char* test_part_name(TestPart p) {
     case TestPart::perforated_plate: return "perforated_plate";
     case TestPart::box_through_hole_split: return "box_through_hole_split";
     case TestPart::single_face: return "single_face";
+    case TestPart::countersunk_plate_nurbs: return "countersunk_plate_nurbs";
   }
   return "?";
 }

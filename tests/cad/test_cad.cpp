@@ -227,6 +227,34 @@ TEST(Aag, BsplineFacesAreRecognisedAsPlanesAndCylinders) {
   EXPECT_EQ(cylinders, 1);
 }
 
+TEST(Aag, BsplineConesAreRecognisedWithAxisRadiusAndHalfAngle) {
+  // The countersunk plate with every face a B-spline: the 90-degree countersink (r 3 -> 6 over a
+  // depth of 3, at (20, 15)) is a cone again, and the feature is found as on the analytic part.
+  const Aag& g = load(TestPart::countersunk_plate_nurbs).parts[0].aag;
+  int cones = 0, cylinders = 0, planes = 0;
+  for (const AagNode& n : g.nodes) {
+    EXPECT_TRUE(n.from_bspline) << n.face;
+    planes += n.type == SurfaceType::plane;
+    cylinders += n.type == SurfaceType::cylinder;
+    if (n.type != SurfaceType::cone) continue;
+    ++cones;
+    EXPECT_NEAR(n.half_angle, M_PI / 4, 1e-3);
+    EXPECT_NEAR(std::abs(n.axis.z), 1, 1e-6);
+    EXPECT_TRUE(n.hole);
+    // On the axis x = 20, y = 15; the radius at axis_point follows the 45-degree slope.
+    EXPECT_NEAR(n.axis_point.x, 20, 1e-3);
+    EXPECT_NEAR(n.axis_point.y, 15, 1e-3);
+    EXPECT_GT(n.radius, 3 - 1e-3);
+    EXPECT_LT(n.radius, 6 + 1e-3);
+  }
+  EXPECT_EQ(cones, 1);
+  EXPECT_EQ(cylinders, 1);
+  EXPECT_EQ(planes, 6);
+  // A cylinder is not taken for a cone, nor a plane (the box with a hole, all B-spline).
+  for (const AagNode& n : load(TestPart::box_through_hole_nurbs).parts[0].aag.nodes)
+    EXPECT_NE(n.type, SurfaceType::cone);
+}
+
 std::multiset<std::string> feature_types(TestPart p) {
   auto lib = default_feature_library();
   EXPECT_TRUE(lib.has_value()) << lib.error().message();
@@ -238,6 +266,7 @@ std::multiset<std::string> feature_types(TestPart p) {
 TEST(Features, EachLibraryFeatureOnItsPartAndNotOnNearMisses) {
   EXPECT_EQ(feature_types(TestPart::box_through_hole), (std::multiset<std::string>{"through_hole"}));
   EXPECT_EQ(feature_types(TestPart::box_blind_hole), (std::multiset<std::string>{"blind_hole"}));
+  EXPECT_EQ(feature_types(TestPart::countersunk_plate_nurbs), (std::multiset<std::string>{"countersunk_hole"}));
   EXPECT_EQ(feature_types(TestPart::counterbored_plate), (std::multiset<std::string>{"counterbored_hole"}));
   EXPECT_EQ(feature_types(TestPart::countersunk_plate), (std::multiset<std::string>{"countersunk_hole"}));
   EXPECT_EQ(feature_types(TestPart::stepped_shaft), (std::multiset<std::string>{"boss", "boss", "ring_face"}));

@@ -114,6 +114,7 @@ enum class TestPart {
   perforated_plate,     ///< 400x400x10 plate, 13x13 counterbored holes: 513 faces (recognition timing)
   box_through_hole_split,  ///< box_through_hole with the closed hole face split in two half cylinders
   single_face,          ///< one planar 10 x 10 face, no solid (bad-input test: a warning, not an error)
+  countersunk_plate_nurbs,  ///< countersunk_plate with every face converted to B-spline
 };
 const char* test_part_name(TestPart p);
 Status write_test_part(TestPart part, const std::filesystem::path& step_file);
