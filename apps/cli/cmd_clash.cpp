@@ -2,6 +2,9 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "clash_options.h"
 #include "commands.h"
 #include "common.h"
@@ -40,6 +43,25 @@ double stored_error_bound(const std::string& file, const char* part) {
   return *e;
 }
 
+/// An upper bound of how much the pose stretches distances: sqrt of the largest row sum of |R^T R|
+/// (a matrix norm bounds the largest eigenvalue; 1, up to rounding, for a rotation).
+double max_stretch(const std::string& transform) {
+  if (transform.empty()) return 1;
+  const Expected<Transform> t = Transform::parse(transform);
+  if (!t) return 1;  // reported by load_parts
+  double worst = 0;
+  for (int i = 0; i < 3; ++i) {
+    double row = 0;
+    for (int j = 0; j < 3; ++j) {
+      double m = 0;
+      for (int k = 0; k < 3; ++k) m += t->r[k][i] * t->r[k][j];
+      row += std::fabs(m);
+    }
+    worst = std::max(worst, row);
+  }
+  return std::sqrt(worst) * (1 + 1e-12);
+}
+
 int run_clash(const ClashOptions& o) {
   const ResolvedParts parts = resolve_two_parts(o, "clash");
   if (!(o.clearance >= 0) || !std::isfinite(o.clearance)) throw InputError("--clearance must be a finite number >= 0");
@@ -49,8 +71,9 @@ int run_clash(const ClashOptions& o) {
   if (o.conservative) {
     if (o.fem_requested() || is_fem_file(parts.a.file) || is_fem_file(parts.b.file))
       throw InputError("--conservative takes simplified mesh files (interfere simplify outputs), not FEM input");
-    bound_a = stored_error_bound(parts.a.file, "A");
-    bound_b = stored_error_bound(parts.b.file, "B");
+    // Bounds in the files' coordinates; a pose that scales stretches them.
+    bound_a = stored_error_bound(parts.a.file, "A") * max_stretch(parts.a.transform);
+    bound_b = stored_error_bound(parts.b.file, "B") * max_stretch(parts.b.transform);
   }
   const double margin = bound_a + bound_b;
   const ClashRequest request{.test = parse_test(o.test),

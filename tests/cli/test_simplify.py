@@ -191,6 +191,11 @@ class ConservativeClash(unittest.TestCase):
             self.assertAlmostEqual(c["margin"], ea + eb)
             self.assertEqual(c["possible_clash"], touching)
             self.assertIn("possible clash" if touching else "do not clash", out)
+        # A pose that scales the part scales its bound (the largest stretch of the pose).
+        code, _, err = run("clash", path("ca_s.ply"), path("cb_s.ply"), "--conservative", "--transform-a",
+                           "2 0 0 0 0 2 0 0 0 0 2 0", "--json", path("cons2.json"))
+        self.assertIn(code, (0, 1), err)
+        self.assertAlmostEqual(load_json("cons2.json")["conservative"]["error_bound_a"], 2 * ea, places=9)
         # An original (no stored bound) counts as exact; a malformed bound is an input error.
         code, _, err = run("clash", path("ca.obj"), path("cb_s.ply"), "--conservative")
         self.assertIn(code, (0, 1), err)
