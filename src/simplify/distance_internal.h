@@ -11,8 +11,12 @@
 
 namespace interfere::detail {
 
-/// Squared distance from p to the nearest triangle of `mesh` (its BVH `bvh`), and that triangle.
-double nearest_d2(const TriMesh& mesh, const Bvh& bvh, const Vec3& p, std::uint32_t* tri = nullptr);
+constexpr std::uint32_t kNoHint = 0xffffffffu;
+
+/// Squared distance from p to the nearest triangle of `mesh` (its BVH `bvh`), and that triangle;
+/// `hint`, a triangle probably near p, only speeds the search up.
+double nearest_d2(const TriMesh& mesh, const Bvh& bvh, const Vec3& p, std::uint32_t* tri = nullptr,
+                  std::uint32_t hint = kNoHint);
 
 /// A distance at a point and the triangle of `to` nearest to it.
 struct Near {
@@ -20,7 +24,7 @@ struct Near {
   std::uint32_t tri = 0;
 };
 
-Near nearest(const TriMesh& to, const Bvh& bvh, const Vec3& p);
+Near nearest(const TriMesh& to, const Bvh& bvh, const Vec3& p, std::uint32_t hint = kNoHint);
 
 /// One triangle c of `from` with its samples: distances at the corners, edge midpoints (m[k] on
 /// edge k, k+1) and centroid, each with its nearest triangle of `to`.
