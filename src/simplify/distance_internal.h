@@ -11,12 +11,8 @@
 
 namespace interfere::detail {
 
-constexpr std::uint32_t kNoHint = 0xffffffffu;
-
-/// Squared distance from p to the nearest triangle of `mesh` (its BVH `bvh`), and that triangle;
-/// `hint`, a triangle probably near p, only speeds the search up.
-double nearest_d2(const TriMesh& mesh, const Bvh& bvh, const Vec3& p, std::uint32_t* tri = nullptr,
-                  std::uint32_t hint = kNoHint);
+/// Squared distance from p to the nearest triangle of `mesh` (its BVH `bvh`), and that triangle.
+double nearest_d2(const TriMesh& mesh, const Bvh& bvh, const Vec3& p, std::uint32_t* tri = nullptr);
 
 /// A distance at a point and the triangle of `to` nearest to it.
 struct Near {
@@ -24,7 +20,7 @@ struct Near {
   std::uint32_t tri = 0;
 };
 
-Near nearest(const TriMesh& to, const Bvh& bvh, const Vec3& p, std::uint32_t hint = kNoHint);
+Near nearest(const TriMesh& to, const Bvh& bvh, const Vec3& p);
 
 /// One triangle c of `from` with its samples: distances at the corners, edge midpoints (m[k] on
 /// edge k, k+1) and centroid, each with its nearest triangle of `to`.

@@ -33,14 +33,8 @@ double point_box_d2(const Vec3& p, const AabbF& b) {
 
 }  // namespace
 
-double nearest_d2(const TriMesh& mesh, const Bvh& bvh, const Vec3& p, std::uint32_t* tri, std::uint32_t hint) {
+double nearest_d2(const TriMesh& mesh, const Bvh& bvh, const Vec3& p, std::uint32_t* tri) {
   double best = std::numeric_limits<double>::infinity();
-  // A nearby sample's nearest triangle bounds the search from the start (the minimum found is the
-  // same: every triangle nearer than the bound is still visited).
-  if (hint < mesh.num_triangles()) {
-    best = squared_norm(closest_point_on_triangle(p, mesh.corners(hint)) - p);
-    if (tri) *tri = hint;
-  }
   std::uint32_t stack[128];
   int top = 0;
   stack[top++] = 0;
@@ -74,9 +68,9 @@ double nearest_d2(const TriMesh& mesh, const Bvh& bvh, const Vec3& p, std::uint3
 }
 
 
-Near nearest(const TriMesh& to, const Bvh& bvh, const Vec3& p, std::uint32_t hint) {
+Near nearest(const TriMesh& to, const Bvh& bvh, const Vec3& p) {
   Near n;
-  n.d = std::sqrt(nearest_d2(to, bvh, p, &n.tri, hint));
+  n.d = std::sqrt(nearest_d2(to, bvh, p, &n.tri));
   return n;
 }
 
@@ -85,9 +79,9 @@ Sampled sample(const TriMesh& to, const Bvh& bvh, const std::array<Vec3, 3>& c, 
   Sampled s{c, {}, at, {}, {}};
   for (int k = 0; k < 3; ++k) {
     s.m[k] = (c[k] + c[(k + 1) % 3]) * 0.5;
-    s.mid[k] = nearest(to, bvh, s.m[k], at[k].tri);
+    s.mid[k] = nearest(to, bvh, s.m[k]);
   }
-  s.centre = nearest(to, bvh, (c[0] + c[1] + c[2]) / 3.0, s.mid[0].tri);
+  s.centre = nearest(to, bvh, (c[0] + c[1] + c[2]) / 3.0);
   return s;
 }
 
@@ -125,13 +119,8 @@ OneSidedDistance one_sided(const TriMesh& from, const TriMesh& to, bool with_bou
   constexpr double kSlack = 1.25;
   const Bvh bvh = build_bvh(to);
   std::vector<Near> vn(nv);
-  // Fixed blocks, each vertex hinted by the one before it in its block (neighbours in number are
-  // usually near): the same answers for any thread count.
-  constexpr std::size_t kBlock = 1024;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, (nv + kBlock - 1) / kBlock), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t b = r.begin(); b < r.end(); ++b)
-      for (std::size_t v = b * kBlock; v < std::min(nv, (b + 1) * kBlock); ++v)
-        vn[v] = nearest(to, bvh, from.positions[v], v > b * kBlock ? vn[v - 1].tri : detail::kNoHint);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t v = r.begin(); v < r.end(); ++v) vn[v] = nearest(to, bvh, from.positions[v]);
   });
   double vertex_max = 0;
   for (const Near& n : vn) vertex_max = std::max(vertex_max, n.d);  // unused vertices are samples too
