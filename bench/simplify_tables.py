@@ -249,7 +249,7 @@ interfere features PART.step [--json REPORT] [--aag] [--library lib.json] [--rul
 | flag | meaning |
 |---|---|
 | `IN` | mesh (STL/OBJ/PLY/OFF) or, built with OCCT, STEP (`.step`/`.stp`) |
-| `OUT` | `.ply`: face property `uint face_id` + `uchar feature`; `.obj`: `g face_<id>` / `g feature_face_<id>` groups; `.stl` (binary): face id in each facet's attribute word (ids < 65535); `.off`: no ids |
+| `OUT` | `.ply`: face property `uint face_id` + `uchar feature`; `.obj`: `g face_<id>` / `g feature_face_<id>` groups; `.stl` (binary): face id in each facet's attribute word (ids < 65535); `.off`: no ids; `.glb` (binary glTF 2.0, for renderers): one mesh per part and one node per instance with its placement (a part used N times is stored once), per-vertex `_FACE_ID` and `_FEATURE` attributes (vertices split along faces), a root node scaling millimetres to metres for STEP input, `extras.error_bound` per mesh and on the scene (checked with the Khronos glTF validator: no errors or warnings) |
 | `--target N` | triangle budget (> 0, ≤ the input's count) |
 | `--ratio R` | budget as a fraction in (0, 1] |
 | `--renderer-max N` | budget from the formula above (one part: its feature triangles reserved) |

@@ -14,6 +14,7 @@
 #include "common.h"
 #include "interfere/core/atomic_file.h"
 #include "interfere/simplify/budget.h"
+#include "interfere/simplify/gltf_io.h"
 #include "interfere/simplify/hausdorff.h"
 #include "interfere/simplify/qem.h"
 #include "interfere/simplify/tagged_io.h"
@@ -54,9 +55,14 @@ std::vector<std::uint32_t> parse_id_list(const std::string& s, const std::string
   return out;
 }
 
-bool is_step(const std::string& file) {
+std::string lower_extension(const std::string& file) {
   std::string e = std::filesystem::path(file).extension().string();
   for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return e;
+}
+
+bool is_step(const std::string& file) {
+  const std::string e = lower_extension(file);
   return e == ".step" || e == ".stp";
 }
 
@@ -162,9 +168,11 @@ int run_simplify(const SimplifyCliOptions& o) {
   if (out_format == MeshFormat::automatic && o.format != "auto" && o.format != "AUTO")
     throw InputError("--format: unknown mesh format '" + o.format + "'");
   // Outputs checked before any work: a known extension (or --format) and an existing directory.
-  check_output(o.output, out_format == MeshFormat::automatic ? std::vector<std::string>{".stl", ".ply", ".obj", ".off"}
-                                                             : std::vector<std::string>{},
+  check_output(o.output,
+               out_format == MeshFormat::automatic ? std::vector<std::string>{".stl", ".ply", ".obj", ".off", ".glb"}
+                                                   : std::vector<std::string>{},
                "OUT (or --format)");
+  const bool glb = out_format == MeshFormat::automatic && lower_extension(o.output) == ".glb";
   check_output(o.json, {}, "--json");
   set_threads(o.threads);
   Progress total("simplify");
@@ -276,7 +284,39 @@ int run_simplify(const SimplifyCliOptions& o) {
   }
   {
     Progress progress("writing " + o.output);
-    const Status s = write_tagged_mesh(o.output, r.mesh, r.face_ids, so.feature_faces, out_format, r.error_bound);
+    Status s;
+    if (glb) {
+      // glTF: each part once, placed by its instances (STEP), or the one mesh.
+      std::vector<GltfPart> gparts;
+      std::vector<GltfInstance> ginst;
+#ifdef INTERFERE_HAS_CAD
+      if (cad_prepared) {
+        std::vector<std::uint32_t> index(cad_prepared->parts.size(), 0xffffffffu);
+        for (std::size_t i = 0; i < cad_prepared->parts.size(); ++i) {
+          const cad::PreparedPart& p = cad_prepared->parts[i];
+          if (part_results[i].mesh.num_triangles() == 0) continue;
+          index[i] = static_cast<std::uint32_t>(gparts.size());
+          gparts.push_back({p.name, part_results[i].mesh, part_results[i].face_ids, p.feature_faces,
+                            part_results[i].error_bound});
+        }
+        const auto& names = report["cad"]["instances"];
+        for (std::size_t k = 0; k < cad_prepared->instances.size(); ++k) {
+          const cad::PreparedInstance& in = cad_prepared->instances[k];
+          if (index[in.part] == 0xffffffffu) continue;
+          ginst.push_back({k < names.size() ? names[k]["name"].get<std::string>() : std::to_string(k), index[in.part],
+                           in.placement});
+        }
+      }
+#endif
+      if (gparts.empty()) {
+        gparts.push_back({std::filesystem::path(o.input).stem().string(), r.mesh, r.face_ids, so.feature_faces,
+                          r.error_bound});
+        ginst.push_back({gparts[0].name, 0, Transform{}});
+      }
+      s = write_glb(o.output, gparts, ginst, per_part ? "mm" : "");
+    } else {
+      s = write_tagged_mesh(o.output, r.mesh, r.face_ids, so.feature_faces, out_format, r.error_bound);
+    }
     if (!s) throw InputError(s.error());
   }
 #ifdef INTERFERE_HAS_CAD
@@ -292,7 +332,9 @@ int run_simplify(const SimplifyCliOptions& o) {
       for (char c : p.name) stem += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' ? c : '_';
       const std::string file = (std::filesystem::path(o.parts_dir) / fmt::format("{}_{}{}", i, stem, ext)).string();
       const SimplifyResult& d = part_results[i];
-      const Status s = write_tagged_mesh(file, d.mesh, d.face_ids, p.feature_faces, out_format, d.error_bound);
+      const Status s = glb ? write_glb(file, {{p.name, d.mesh, d.face_ids, p.feature_faces, d.error_bound}},
+                                       {{p.name, 0, Transform{}}}, "mm")
+                           : write_tagged_mesh(file, d.mesh, d.face_ids, p.feature_faces, out_format, d.error_bound);
       if (!s) throw InputError(s.error());
       jp["file"] = file;
     }

@@ -39,6 +39,34 @@ def uv_sphere(lon=40, lat=21, bump=0.05):
     return v, f
 
 
+def read_glb(file_name):
+    """GLB (binary glTF 2.0) checked for structure: header, two chunks, aligned views inside the BIN
+    chunk, accessor counts; returns (json, bin bytes, reader(accessor) -> list of numbers)."""
+    import struct
+    with open(file_name, "rb") as f:
+        data = f.read()
+    magic, version, length = struct.unpack_from("<III", data, 0)
+    assert magic == 0x46546C67 and version == 2 and length == len(data), (magic, version, length, len(data))
+    jlen, jtype = struct.unpack_from("<II", data, 12)
+    assert jtype == 0x4E4F534A and jlen % 4 == 0
+    doc = json.loads(data[20:20 + jlen].decode("utf-8"))
+    blen, btype = struct.unpack_from("<II", data, 20 + jlen)
+    assert btype == 0x004E4942 and blen % 4 == 0
+    bin_ = data[28 + jlen:28 + jlen + blen]
+    assert len(bin_) == blen == doc["buffers"][0]["byteLength"]
+    for v in doc["bufferViews"]:
+        assert v["byteOffset"] % 4 == 0 and v["byteOffset"] + v["byteLength"] <= blen
+
+    def read(i):
+        a = doc["accessors"][i]
+        v = doc["bufferViews"][a["bufferView"]]
+        width = {"SCALAR": 1, "VEC3": 3}[a["type"]]
+        fmt = {5126: "f", 5125: "I"}[a["componentType"]]
+        assert a["count"] * width * 4 == v["byteLength"]
+        return list(struct.unpack_from("<%d%s" % (a["count"] * width, fmt), bin_, v["byteOffset"]))
+    return doc, bin_, read
+
+
 def read_ply_ascii(name):
     with open(path(name)) as f:
         lines = f.read().split("\n")
@@ -71,6 +99,17 @@ class Simplify(unittest.TestCase):
         self.assertGreater(r["hausdorff"], 0)
         self.assertGreaterEqual(r["error_bound"], r["hausdorff"])
         self.assertIn("400 triangles", out)
+
+    def test_plain_mesh_as_glb(self):
+        code, _, err = run("simplify", path("sphere.obj"), path("s.glb"), "--ratio", "0.5", "--json", path("s_glb.json"))
+        self.assertEqual(code, 0, err)
+        r = load_json("s_glb.json")
+        doc, _, read = read_glb(path("s.glb"))
+        self.assertEqual(len(doc["meshes"]), 1)
+        self.assertNotIn("scale", doc["nodes"][0])  # a mesh file's unit is unknown: left as is
+        prim = doc["meshes"][0]["primitives"][0]
+        self.assertEqual(len(read(prim["indices"])) // 3, r["output_triangles"])
+        self.assertNotIn("_FACE_ID", prim["attributes"])  # no regions given
 
     def test_ratio(self):
         code, _, err = run("simplify", path("sphere.obj"), path("r.obj"), "--ratio", "0.25", "--json", path("r.json"))
@@ -300,6 +339,45 @@ class Features(unittest.TestCase):
         self.assertEqual(code, 2)
         self.assertIn("--parts-dir", err)
         self.assertFalse(os.path.exists(path("m.ply")))
+
+    def test_assembly_as_glb_stores_each_part_once_with_instances(self):
+        with open(path("screw.json"), "w") as out:
+            json.dump({"steps": [{"id": "P1", "parts": ["*"], "constraint": "screw"}]}, out)
+        code, _, err = run("simplify", os.path.join(DATA, "assembly.step"), path("asm.glb"), "--ratio", "0.5",
+                           "--step", "P1", "--process", path("screw.json"), "--json", path("asm_glb.json"))
+        self.assertEqual(code, 0, err)
+        r = load_json("asm_glb.json")
+        doc, _, read = read_glb(path("asm.glb"))
+        parts = {p["name"]: p for p in r["parts_simplified"]}
+        self.assertEqual(sorted(m["name"] for m in doc["meshes"]), sorted(parts))
+        root = doc["nodes"][0]
+        self.assertEqual(root["scale"], [0.001, 0.001, 0.001])  # mm -> metres
+        self.assertEqual(len(root["children"]), 3)  # plate twice, shaft once
+        triangles = 0
+        for child in root["children"]:
+            node = doc["nodes"][child]
+            mesh = doc["meshes"][node["mesh"]]
+            prim = mesh["primitives"][0]
+            idx = read(prim["indices"])
+            pos = read(prim["attributes"]["POSITION"])
+            face = read(prim["attributes"]["_FACE_ID"])
+            feature = read(prim["attributes"]["_FEATURE"])
+            nv = len(pos) // 3
+            self.assertEqual(len(face), nv)
+            self.assertTrue(all(0 <= i < nv for i in idx))
+            self.assertEqual(len(idx) // 3, parts[mesh["name"]]["output_triangles"])
+            self.assertEqual(mesh["extras"]["error_bound"], parts[mesh["name"]]["error_bound"])
+            a = doc["accessors"][prim["attributes"]["POSITION"]]
+            for k in range(3):
+                self.assertAlmostEqual(a["min"][k], min(pos[k::3]))
+                self.assertAlmostEqual(a["max"][k], max(pos[k::3]))
+            if mesh["name"] == "plate":  # the counterbore's faces are the screw step's features
+                self.assertEqual(sum(1 for x in feature if x == 1.0) > 0, True)
+            triangles += len(idx) // 3
+            if node["name"] == "shaft_1":
+                self.assertEqual(node["matrix"][12:15], [100.0, 0.0, 0.0])  # column-major translation
+        self.assertEqual(triangles, r["output_triangles"])
+        self.assertEqual(doc["scenes"][0]["extras"]["error_bound"], r["error_bound"])
 
     def test_bad_step_files(self):
         with open(path("empty.step"), "w"):

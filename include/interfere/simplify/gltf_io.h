@@ -1,0 +1,39 @@
+// Binary glTF 2.0 (GLB) output of simplified parts for digital-twin renderers (issue #6: real-time
+// rendering of assembly lines): one glTF mesh per part, one node per instance with its placement,
+// so a part used N times is stored once. Per vertex, besides POSITION: `_FACE_ID` (the B-Rep face
+// or region, float: exact below 2^24) and `_FEATURE` (1 on the step's assembly-feature faces);
+// vertices are split along face boundaries first, so every vertex has one face. The scene's
+// `extras` hold `units` and the largest `error_bound`, each mesh's `extras` its own bound and face
+// count. Written atomically (core/atomic_file.h).
+#pragma once
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "interfere/core/error.h"
+#include "interfere/core/transform.h"
+#include "interfere/mesh/tri_mesh.h"
+
+namespace interfere {
+
+struct GltfPart {
+  std::string name;
+  TriMesh mesh;                             ///< part coordinates
+  std::vector<std::uint32_t> face_ids;      ///< per triangle (empty: no ids written)
+  std::vector<std::uint32_t> feature_faces;  ///< face ids tagged _FEATURE = 1
+  double error_bound = -1;                  ///< < 0: not stored
+};
+
+struct GltfInstance {
+  std::string name;
+  std::uint32_t part = 0;  ///< index into the parts
+  Transform placement;     ///< part coordinates -> world
+};
+
+/// Writes `path` (.glb). Errors: no parts, an empty part, an instance of a part that does not
+/// exist, a coordinate or placement that is not finite or overflows float, an id at or above 2^24.
+Status write_glb(const std::filesystem::path& path, const std::vector<GltfPart>& parts,
+                 const std::vector<GltfInstance>& instances, const std::string& units = "mm");
+
+}  // namespace interfere

@@ -1,0 +1,155 @@
+// GLB (binary glTF 2.0, Khronos specification §4.4 "GLB File Format") writer for simplified parts:
+// a 12-byte header, a JSON chunk (padded with spaces) and a BIN chunk (padded with zeros), every
+// buffer view 4-byte aligned. Meshes are stored once per part and placed by one node per instance
+// (glTF node `matrix`, column-major); a root node scales model units to metres (glTF's unit).
+#include "interfere/simplify/gltf_io.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "interfere/core/atomic_file.h"
+#include "interfere/simplify/qem.h"
+
+namespace interfere {
+namespace {
+
+constexpr std::uint32_t kArrayBuffer = 34962, kElementArrayBuffer = 34963;
+constexpr std::uint32_t kFloat = 5126, kUnsignedInt = 5125;
+
+void append(std::string& bin, const void* data, std::size_t bytes) {
+  bin.append(static_cast<const char*>(data), bytes);
+  while (bin.size() % 4 != 0) bin.push_back('\0');
+}
+
+double metres_per(const std::string& units) {
+  if (units == "mm") return 1e-3;
+  if (units == "cm") return 1e-2;
+  if (units == "m") return 1;
+  if (units == "um") return 1e-6;
+  if (units == "in") return 0.0254;
+  if (units == "ft") return 0.3048;
+  return 0;  // unknown: no scaling
+}
+
+}  // namespace
+
+Status write_glb(const std::filesystem::path& path, const std::vector<GltfPart>& parts,
+                 const std::vector<GltfInstance>& instances, const std::string& units) {
+  const std::string file = path.string();
+  if (parts.empty()) return Error{.file = file, .reason = "glTF: no part to write"};
+  nlohmann::json j;
+  j["asset"] = {{"version", "2.0"}, {"generator", "interfere simplify"}};
+  j["meshes"] = nlohmann::json::array();
+  j["accessors"] = nlohmann::json::array();
+  j["bufferViews"] = nlohmann::json::array();
+  std::string bin;
+  const auto view = [&](const void* data, std::size_t bytes, std::uint32_t target) {
+    j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", bin.size()}, {"byteLength", bytes}, {"target", target}});
+    append(bin, data, bytes);
+    return j["bufferViews"].size() - 1;
+  };
+  const auto accessor = [&](std::size_t buffer_view, std::uint32_t component, std::size_t count, const char* type) {
+    j["accessors"].push_back({{"bufferView", buffer_view}, {"componentType", component}, {"count", count}, {"type", type}});
+    return j["accessors"].size() - 1;
+  };
+  double largest_bound = -1;
+  for (std::size_t pi = 0; pi < parts.size(); ++pi) {
+    const GltfPart& part = parts[pi];
+    const std::string what = "glTF: part " + std::to_string(pi) + " ('" + part.name + "')";
+    if (part.mesh.num_triangles() == 0) return Error{.file = file, .reason = what + " has no triangles"};
+    const bool ids = !part.face_ids.empty();
+    if (ids && part.face_ids.size() != part.mesh.num_triangles())
+      return Error{.file = file, .reason = what + ": face ids do not match the triangles"};
+    // Every vertex on one face, so that per-vertex ids are the triangles' ids.
+    const TriMesh m = ids ? split_by_face(part.mesh, part.face_ids) : part.mesh;
+    const std::size_t nv = m.num_vertices();
+    std::vector<float> pos(3 * nv);
+    std::array<float, 3> lo{}, hi{};
+    lo.fill(std::numeric_limits<float>::max()), hi.fill(-std::numeric_limits<float>::max());
+    for (std::size_t v = 0; v < nv; ++v)
+      for (int k = 0; k < 3; ++k) {
+        const double x = m.positions[v][k];
+        if (!std::isfinite(x) || std::fabs(x) > std::numeric_limits<float>::max())
+          return Error{.file = file, .reason = what + ": vertex " + std::to_string(v) + " does not fit a float"};
+        pos[3 * v + k] = static_cast<float>(x);
+        lo[k] = std::min(lo[k], pos[3 * v + k]), hi[k] = std::max(hi[k], pos[3 * v + k]);
+      }
+    nlohmann::json attributes;
+    const std::size_t a_pos = accessor(view(pos.data(), pos.size() * 4, kArrayBuffer), kFloat, nv, "VEC3");
+    j["accessors"][a_pos]["min"] = lo, j["accessors"][a_pos]["max"] = hi;
+    attributes["POSITION"] = a_pos;
+    if (ids) {
+      std::vector<std::uint32_t> feat = part.feature_faces;
+      std::sort(feat.begin(), feat.end());
+      std::vector<float> face(nv, 0.0f), feature(nv, 0.0f);
+      for (std::size_t t = 0; t < m.num_triangles(); ++t) {
+        const std::uint32_t f = part.face_ids[t];
+        if (f >= (1u << 24)) return Error{.file = file, .reason = what + ": face id " + std::to_string(f) + " >= 2^24"};
+        const float is_feature = std::binary_search(feat.begin(), feat.end(), f) ? 1.0f : 0.0f;
+        for (std::uint32_t v : m.triangles[t]) face[v] = static_cast<float>(f), feature[v] = is_feature;
+      }
+      attributes["_FACE_ID"] = accessor(view(face.data(), face.size() * 4, kArrayBuffer), kFloat, nv, "SCALAR");
+      attributes["_FEATURE"] = accessor(view(feature.data(), feature.size() * 4, kArrayBuffer), kFloat, nv, "SCALAR");
+    }
+    std::vector<std::uint32_t> idx;
+    idx.reserve(3 * m.num_triangles());
+    for (const Tri& t : m.triangles) idx.insert(idx.end(), t.begin(), t.end());
+    const std::size_t a_idx = accessor(view(idx.data(), idx.size() * 4, kElementArrayBuffer), kUnsignedInt, idx.size(), "SCALAR");
+    nlohmann::json mesh{{"name", part.name},
+                        {"primitives", {{{"attributes", attributes}, {"indices", a_idx}, {"mode", 4}}}}};
+    if (part.error_bound >= 0) mesh["extras"]["error_bound"] = part.error_bound;
+    j["meshes"].push_back(mesh);
+    largest_bound = std::max(largest_bound, part.error_bound);
+  }
+  // Nodes: a root scaling model units to metres, one child per instance.
+  const double scale = metres_per(units);
+  nlohmann::json root{{"name", "interfere_root"}, {"children", nlohmann::json::array()}};
+  if (scale > 0 && scale != 1) root["scale"] = {scale, scale, scale};
+  j["nodes"] = nlohmann::json::array({root});
+  for (std::size_t i = 0; i < instances.size(); ++i) {
+    const GltfInstance& in = instances[i];
+    if (in.part >= parts.size())
+      return Error{.file = file, .reason = "glTF: instance " + std::to_string(i) + " refers to a missing part"};
+    std::array<double, 16> mat{};  // column-major 4x4
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) mat[c * 4 + r] = in.placement.r[r][c];
+      mat[12 + r] = in.placement.t[r];
+    }
+    mat[15] = 1;
+    for (double x : mat)
+      if (!std::isfinite(x)) return Error{.file = file, .reason = "glTF: instance " + std::to_string(i) + " placement is not finite"};
+    nlohmann::json node{{"name", in.name}, {"mesh", in.part}};
+    if (!in.placement.is_identity()) node["matrix"] = mat;
+    j["nodes"][0]["children"].push_back(j["nodes"].size());
+    j["nodes"].push_back(node);
+  }
+  nlohmann::json scene{{"nodes", {0}}, {"extras", {{"units", units}, {"metres_per_unit", scale}}}};
+  if (largest_bound >= 0) scene["extras"]["error_bound"] = largest_bound;
+  j["scenes"] = nlohmann::json::array({scene});
+  j["scene"] = 0;
+  j["buffers"] = nlohmann::json::array({{{"byteLength", bin.size()}}});
+  std::string text = j.dump();
+  while (text.size() % 4 != 0) text.push_back(' ');
+  const std::size_t length = 12 + 8 + text.size() + 8 + bin.size();
+  if (length > std::numeric_limits<std::uint32_t>::max())
+    return Error{.file = file, .reason = "glTF: " + std::to_string(length) + " bytes exceed GLB's 4 GiB limit"};
+  const auto total = static_cast<std::uint32_t>(length);
+  return write_file_atomic(path, [&](std::FILE* f) -> int {
+    const std::uint32_t header[3] = {0x46546C67u, 2u, total};  // "glTF", version, length
+    const std::uint32_t json_chunk[2] = {static_cast<std::uint32_t>(text.size()), 0x4E4F534Au};  // "JSON"
+    const std::uint32_t bin_chunk[2] = {static_cast<std::uint32_t>(bin.size()), 0x004E4942u};    // "BIN\0"
+    std::fwrite(header, 4, 3, f);
+    std::fwrite(json_chunk, 4, 2, f);
+    std::fwrite(text.data(), 1, text.size(), f);
+    std::fwrite(bin_chunk, 4, 2, f);
+    std::fwrite(bin.data(), 1, bin.size(), f);
+    return std::ferror(f) ? EIO : 0;
+  });
+}
+
+}  // namespace interfere
