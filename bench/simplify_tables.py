@@ -304,14 +304,15 @@ Pattern: `{"type", "priority", "nodes": [{"role", "types": [...], "hole": bool, 
 
 C++: `interfere/simplify/qem.h` (`simplify`, `SimplifyOptions`, `SimplifyResult`, `sharp_edge_regions`,
 `weld_positions`, `split_by_face`), `simplify/hausdorff.h` (`hausdorff`, `one_sided` (sampled distance and bound), `one_sided_distance`,
-`count_self_intersections`), `simplify/budget.h`, `simplify/tagged_io.h` (`write_tagged_mesh`, `read_error_bound`); with OCCT (`interfere::cad`):
+`count_self_intersections`), `simplify/budget.h`, `simplify/tagged_io.h` (`write_tagged_mesh`, `read_error_bound`), `simplify/gltf_io.h` (`write_glb`); with OCCT (`interfere::cad`):
 `cad/model.h` (`import_step`, `world_mesh`, `write_test_part`), `cad/features.h`, `cad/semantics.h`,
 `cad/pipeline.h`. Python: `interfere.simplify(mesh, target=0, ratio=0, face_ids=[], feature_faces=[],
 lock=False, sharp_angle=0, prevent_self_intersections=True, measure_error=True, feature_mode="weight")` → `SimplifyResult` (`.mesh`,
 `.face_ids`, `.hausdorff`, `.hausdorff_features`, `.error_bound`, `.guard_rerun`, `.guard_reruns`, `.phases`
 [(phase, seconds)], counters), `interfere.hausdorff(a, b)` (sampled a→b, b→a), `interfere.distance_bound(a, b)`,
 `interfere.write_tagged_mesh(path, mesh, face_ids=[], feature_faces=[], error_bound=-1)`,
-`interfere.read_error_bound(path)`, `interfere.count_self_intersections(mesh)`, `interfere.triangle_budgets([(T, F), ...], renderer_max)`; when
+`interfere.read_error_bound(path)`, `interfere.write_glb(path, [(name, mesh, face_ids, feature_faces,
+error_bound)], [(name, part, Transform)], units="mm")`, `interfere.count_self_intersections(mesh)`, `interfere.triangle_budgets([(T, F), ...], renderer_max)`; when
 `interfere.HAVE_CAD`: `interfere.import_step(path, linear_deflection=0, angular_deflection=0.5)` and
 `interfere.step_features(path, process="", step="")`.
 """

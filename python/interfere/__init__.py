@@ -110,11 +110,12 @@ from ._interfere import (  # noqa: F401,E402
     read_error_bound,
     simplify,
     triangle_budgets,
+    write_glb,
     write_tagged_mesh,
 )
 
 __all__ += ["HAVE_CAD", "SimplifyResult", "count_self_intersections", "distance_bound", "hausdorff",
-            "read_error_bound", "simplify", "triangle_budgets", "write_tagged_mesh"]
+            "read_error_bound", "simplify", "triangle_budgets", "write_glb", "write_tagged_mesh"]
 if HAVE_CAD:
     from ._interfere import import_step, step_features  # noqa: F401,E402
 

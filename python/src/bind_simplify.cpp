@@ -1,6 +1,8 @@
 // Python bindings of the simplification module (issue #6) and, when built with OpenCASCADE, of the
 // CAD pipeline (STEP import, AAG, features, assembly semantics). Only argument parsing, requests
 // and result conversion here; the GIL is released around the simplification.
+#include <tuple>
+
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
@@ -9,6 +11,7 @@
 #include "bindings.h"
 #include "interfere/simplify/budget.h"
 #include "interfere/simplify/hausdorff.h"
+#include "interfere/simplify/gltf_io.h"
 #include "interfere/simplify/tagged_io.h"
 #include "interfere/simplify/qem.h"
 #ifdef INTERFERE_HAS_CAD
@@ -110,6 +113,24 @@ void bind_simplify(py::module_& m) {
       py::arg("feature_faces") = std::vector<std::uint32_t>{}, py::arg("error_bound") = -1.0,
       "Writes a simplified mesh as `interfere simplify` does: PLY/OBJ/STL with per-triangle face ids and feature "
       "tags where the format allows, and the error bound (>= 0) in PLY/OBJ (read by clash --conservative).");
+  m.def(
+      "write_glb",
+      [](const std::filesystem::path& path,
+         const std::vector<std::tuple<std::string, TriMesh, std::vector<std::uint32_t>, std::vector<std::uint32_t>, double>>& parts,
+         const std::vector<std::tuple<std::string, std::uint32_t, Transform>>& instances, const std::string& units) {
+        std::vector<GltfPart> gp;
+        for (const auto& [name, mesh, ids, feats, bound] : parts) gp.push_back({name, mesh, ids, feats, bound});
+        std::vector<GltfInstance> gi;
+        for (const auto& [name, part, placement] : instances) gi.push_back({name, part, placement});
+        if (gi.empty())
+          for (std::uint32_t i = 0; i < gp.size(); ++i) gi.push_back({gp[i].name, i, Transform{}});
+        const Status s = write_glb(path, gp, gi, units);
+        if (!s) throw py::value_error(s.error().message());
+      },
+      py::arg("path"), py::arg("parts"), py::arg("instances") = std::vector<std::tuple<std::string, std::uint32_t, Transform>>{},
+      py::arg("units") = std::string("mm"),
+      "Binary glTF 2.0: parts [(name, mesh, face_ids, feature_faces, error_bound)], instances [(name, part index, "
+      "Transform)] (default: each part once, unplaced); units (mm, cm, m, um, in, ft) scale the scene to metres.");
   m.def(
       "read_error_bound",
       [](const std::filesystem::path& path) {

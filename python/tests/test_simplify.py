@@ -70,6 +70,24 @@ class Simplify(unittest.TestCase):
             with self.assertRaises(ValueError):
                 itf.read_error_bound(plain)
 
+    def test_write_glb_instances_a_part(self):
+        s = itf.make_sphere(2000)
+        r = itf.simplify(s, target=200)
+        with tempfile.TemporaryDirectory() as d:
+            out = os.path.join(d, "b.glb")
+            moved = itf.Transform("1 0 0 5 0 1 0 0 0 0 1 0")
+            itf.write_glb(out, [("ball", r.mesh, [], [], r.error_bound)],
+                          [("left", 0, itf.Transform("1 0 0 0 0 1 0 0 0 0 1 0")), ("right", 0, moved)], units="m")
+            with open(out, "rb") as f:
+                data = f.read()
+            self.assertEqual(data[:4], b"glTF")
+            n = int.from_bytes(data[12:16], "little")
+            doc = json.loads(data[20:20 + n])
+            self.assertEqual(len(doc["meshes"]), 1)
+            self.assertEqual(len(doc["nodes"]), 3)  # root + 2 instances
+            with self.assertRaises(ValueError):
+                itf.write_glb(out, [("ball", r.mesh, [], [], -1)], [("x", 4, moved)])
+
     def test_triangle_budgets(self):
         b = itf.triangle_budgets([(35548, 4000), (10000, 0)], 12000)
         self.assertEqual(sum(b), 12000)
