@@ -71,10 +71,12 @@ bool separating_plane(const std::array<Vec3, 3>& t1, const std::array<Vec3, 3>& 
 
 // Upper bound of the distance from the points of polygon p to `to`: the distance to one triangle
 // t of `to` is convex, so on p it is largest at a vertex, and the distance to `to` is at most
-// that, for each candidate t. Where the best candidate leaves the bound above `floor`, p is cut by
-// a plane between that candidate and the one nearest to its worst vertex and each part bounded
-// with its own best candidate (any partition gives a bound; this one follows the output's
-// triangles: a triangle of the input straddling an edge of the output).
+// that, for each candidate t. Where the best candidate leaves the bound above `floor`, p is cut
+// (any partition gives a bound) into the piece over that candidate's triangle and the pieces beyond
+// its edges, each bounded with its own best candidate (an input triangle across a fan of output
+// triangles), and, if that is still above `floor`, by a plane between that candidate and the one
+// nearest to its worst vertex (an input triangle straddling an edge of the output); the smallest
+// bound found is kept.
 double convex_bound(const TriMesh& to, const Poly& p, const std::uint32_t* cand, int nc, double floor, int depth) {
   if (p.n == 0) return 0;
   double best = std::numeric_limits<double>::infinity();
@@ -90,6 +92,34 @@ double convex_bound(const TriMesh& to, const Poly& p, const std::uint32_t* cand,
     if (w < best) best = w, bi = i, worst_v = wv;
   }
   if (best <= floor || depth == 0 || nc < 2) return best;
+  // Peel the best candidate t's prism: the piece of p over t (inside the three planes through t's
+  // edges along its normal) is bounded by t alone; the pieces beyond each edge plane in turn go to
+  // the other candidates (an input triangle across a fan of output triangles: one level each).
+  {
+    const auto t = to.corners(cand[bi]);
+    const Vec3 nt = cross(t[1] - t[0], t[2] - t[0]);
+    if (squared_norm(nt) > 0) {
+      Poly rest = p;
+      std::array<Poly, 3> out;
+      int pieces = 0;
+      for (int k = 0; k < 3 && rest.n > 0; ++k) {
+        Vec3 m = cross(nt, t[(k + 1) % 3] - t[k]);
+        if (dot(m, t[(k + 2) % 3] - t[k]) < 0) m = m * -1.0;  // towards the inside
+        out[k] = clip(rest, m * -1.0, t[k]);
+        rest = clip(rest, m, t[k]);
+        pieces += out[k].n > 0;
+      }
+      if (rest.n > 0 || pieces > 1) {  // progress: p is cut (else the pairwise split below)
+        double worst = 0;
+        for (int k = 0; k < rest.n && worst < best; ++k)
+          worst = std::max(worst, norm(closest_point_on_triangle(rest.v[k], t) - rest.v[k]));
+        for (int k = 0; k < 3 && worst < best; ++k)
+          if (out[k].n > 0) worst = std::max(worst, convex_bound(to, out[k], cand, nc, floor, depth - 1));
+        best = std::min(best, worst);
+        if (best <= floor) return best;  // else the pairwise split below may still do better
+      }
+    }
+  }
   const Vec3& x = p.v[worst_v];
   int bj = -1;
   double dj = norm(closest_point_on_triangle(x, to.corners(cand[bi])) - x);
