@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <set>
 #include <tuple>
@@ -16,6 +17,7 @@
 #include "interfere/cad/features.h"
 #include "interfere/cad/model.h"
 #include "interfere/cad/semantics.h"
+#include "interfere/np/distance.h"
 #include "interfere/simplify/hausdorff.h"
 #include "interfere/simplify/qem.h"
 
@@ -397,6 +399,34 @@ TEST(Semantics, StepsNamingPartsNotInTheModelAreWarnings) {
   EXPECT_NE(w[0].find("'shaft'"), std::string::npos);  // the parts there are
   EXPECT_TRUE(unknown_step_parts(*p, "P2", {"casing"}).empty());  // "*"
   EXPECT_TRUE(unknown_step_parts(*p, "P9", {"casing"}).empty());  // unknown steps are errors elsewhere
+}
+
+TEST(CadSimplify, ErrorBoundIsValidAndTightOnACadPart) {
+  // The stepped shaft's end faces are fans of long triangles across a disk; halved, the result's
+  // end polygons lie inside the input's circles. The bound must cover every point (dense samples,
+  // brute force) and stay within 1.5x of the largest distance found (it was 2.5x with the pairwise
+  // cuts alone).
+  const Part& shaft = load(TestPart::stepped_shaft).parts[0];
+  auto r = simplify(shaft.mesh, {.target_triangles = shaft.mesh.num_triangles() / 2, .face_ids = shaft.face_ids});
+  ASSERT_TRUE(r.has_value());
+  const OneSidedDistance d = one_sided(shaft.mesh, r->mesh);
+  double dense = 0;
+  constexpr int kN = 12;
+  for (std::size_t t = 0; t < shaft.mesh.num_triangles(); ++t) {
+    const auto c = shaft.mesh.corners(t);
+    for (int i = 0; i <= kN; ++i)
+      for (int j = 0; i + j <= kN; ++j) {
+        const Vec3 p = c[0] + (c[1] - c[0]) * (double(i) / kN) + (c[2] - c[0]) * (double(j) / kN);
+        double best = std::numeric_limits<double>::infinity();
+        for (std::size_t u = 0; u < r->mesh.num_triangles(); ++u)
+          best = std::min(best, norm(closest_point_on_triangle(p, r->mesh.corners(u)) - p));
+        dense = std::max(dense, best);
+      }
+  }
+  EXPECT_GT(dense, 0);
+  EXPECT_GE(d.bound, dense);
+  EXPECT_LE(d.bound, 1.5 * dense);
+  EXPECT_GE(r->error_bound, d.bound);
 }
 
 TEST(CadSimplify, CasingToBudgetWithLockedScrewFeaturesBitIdentical) {
