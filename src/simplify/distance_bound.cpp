@@ -76,9 +76,12 @@ bool separating_plane(const std::array<Vec3, 3>& t1, const std::array<Vec3, 3>& 
 // its edges, each bounded with its own best candidate (an input triangle across a fan of output
 // triangles), and, if that is still above `floor`, by a plane between that candidate and the one
 // nearest to its worst vertex (an input triangle straddling an edge of the output); the smallest
-// bound found is kept.
-double convex_bound(const TriMesh& to, const Poly& p, const std::uint32_t* cand, int nc, double floor, int depth) {
+// bound found is kept. `budget` caps the polygons examined (a cut stops when it runs out; the bound
+// stays valid, only less tight).
+double convex_bound(const TriMesh& to, const Poly& p, const std::uint32_t* cand, int nc, double floor, int depth,
+                    int& budget) {
   if (p.n == 0) return 0;
+  --budget;
   double best = std::numeric_limits<double>::infinity();
   int bi = -1, worst_v = 0;
   for (int i = 0; i < nc; ++i) {
@@ -91,7 +94,7 @@ double convex_bound(const TriMesh& to, const Poly& p, const std::uint32_t* cand,
     }
     if (w < best) best = w, bi = i, worst_v = wv;
   }
-  if (best <= floor || depth == 0 || nc < 2) return best;
+  if (best <= floor || depth == 0 || nc < 2 || budget <= 0) return best;
   // Peel the best candidate t's prism: the piece of p over t (inside the three planes through t's
   // edges along its normal) is bounded by t alone; the pieces beyond each edge plane in turn go to
   // the other candidates (an input triangle across a fan of output triangles: one level each).
@@ -114,7 +117,7 @@ double convex_bound(const TriMesh& to, const Poly& p, const std::uint32_t* cand,
         for (int k = 0; k < rest.n && worst < best; ++k)
           worst = std::max(worst, norm(closest_point_on_triangle(rest.v[k], t) - rest.v[k]));
         for (int k = 0; k < 3 && worst < best; ++k)
-          if (out[k].n > 0) worst = std::max(worst, convex_bound(to, out[k], cand, nc, floor, depth - 1));
+          if (out[k].n > 0) worst = std::max(worst, convex_bound(to, out[k], cand, nc, floor, depth - 1, budget));
         best = std::min(best, worst);
         if (best <= floor) return best;  // else the pairwise split below may still do better
       }
@@ -132,9 +135,9 @@ double convex_bound(const TriMesh& to, const Poly& p, const std::uint32_t* cand,
   if (bj < 0 || !separating_plane(to.corners(cand[bi]), to.corners(cand[bj]), x, n, o)) return best;
   const Poly p1 = clip(p, n, o), p2 = clip(p, n * -1.0, o);
   if (p1.n == 0 || p2.n == 0) return best;
-  const double b1 = convex_bound(to, p1, cand, nc, floor, depth - 1);
+  const double b1 = convex_bound(to, p1, cand, nc, floor, depth - 1, budget);
   if (b1 >= best) return best;
-  return std::min(best, std::max(b1, convex_bound(to, p2, cand, nc, floor, depth - 1)));
+  return std::min(best, std::max(b1, convex_bound(to, p2, cand, nc, floor, depth - 1, budget)));
 }
 
 }  // namespace
@@ -162,7 +165,8 @@ double local_bound(const TriMesh& to, const Sampled& s, double floor) {
   Poly p;
   p.n = 3;
   std::copy(s.c.begin(), s.c.end(), p.v.begin());
-  return std::min(lips, convex_bound(to, p, cand.data(), nc, std::max(floor, 0.0), 4));
+  int budget = 64;  // polygons examined at most (each cut multiplies them)
+  return std::min(lips, convex_bound(to, p, cand.data(), nc, std::max(floor, 0.0), 4, budget));
 }
 
 Fans fans_of(const TriMesh& m) {
@@ -195,7 +199,8 @@ double ring_bound(const TriMesh& to, const Fans& fans, const Sampled& s, double 
   Poly p;
   p.n = 3;
   std::copy(s.c.begin(), s.c.end(), p.v.begin());
-  return convex_bound(to, p, cand.data(), nc, floor, 6);
+  int budget = 128;
+  return convex_bound(to, p, cand.data(), nc, floor, 6, budget);
 }
 
 // local_bound refined by midpoint subdivision (depth levels) where it exceeds `floor`.
