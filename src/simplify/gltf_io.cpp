@@ -128,7 +128,8 @@ Status write_glb(const std::filesystem::path& path, const std::vector<GltfPart>&
     j["nodes"][0]["children"].push_back(j["nodes"].size());
     j["nodes"].push_back(node);
   }
-  nlohmann::json scene{{"nodes", {0}}, {"extras", {{"units", units}, {"metres_per_unit", scale}}}};
+  nlohmann::json scene{{"nodes", {0}}, {"extras", nlohmann::json::object()}};
+  if (scale > 0) scene["extras"]["units"] = units, scene["extras"]["metres_per_unit"] = scale;
   if (largest_bound >= 0) scene["extras"]["error_bound"] = largest_bound;
   j["scenes"] = nlohmann::json::array({scene});
   j["scene"] = 0;

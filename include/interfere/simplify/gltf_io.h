@@ -31,7 +31,8 @@ struct GltfInstance {
   Transform placement;     ///< part coordinates -> world
 };
 
-/// Writes `path` (.glb). Errors: no parts, an empty part, an instance of a part that does not
+/// Writes `path` (.glb); `units` (mm, cm, m, um, in, ft) scale the scene to metres, anything else
+/// (a mesh file's unknown unit: "") leaves the coordinates as they are. Errors: no parts, an empty part, an instance of a part that does not
 /// exist, a coordinate or placement that is not finite or overflows float, an id at or above 2^24.
 Status write_glb(const std::filesystem::path& path, const std::vector<GltfPart>& parts,
                  const std::vector<GltfInstance>& instances, const std::string& units = "mm");
