@@ -392,7 +392,7 @@ void add_simplify_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<SimplifyCliOptions>();
   CLI::App* c = app.add_subcommand("simplify", "Feature-preserving QEM simplification to a triangle budget");
   c->add_option("IN", o->input, "input mesh (STL/OBJ/PLY/OFF) or STEP file")->required()->check(CLI::ExistingFile);
-  c->add_option("OUT", o->output, "output mesh (.ply/.obj keep face ids, .stl in the attribute word, .off)")->required();
+  c->add_option("OUT", o->output, "output mesh (.ply/.obj keep face ids, .stl in the attribute word, .off; .glb: glTF, parts instanced)")->required();
   auto* target = c->add_option("--target", o->target, "triangle budget N (> 0, at most the input's count)");
   auto* ratio = c->add_option("--ratio", o->ratio, "budget as a fraction of the input's triangles, in (0, 1]");
   target->excludes(ratio);
