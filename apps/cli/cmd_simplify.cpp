@@ -10,6 +10,8 @@
 #include <memory>
 #include <sstream>
 
+#include <unistd.h>
+
 #include "commands.h"
 #include "common.h"
 #include "interfere/core/atomic_file.h"
@@ -250,6 +252,19 @@ int run_simplify(const SimplifyCliOptions& o) {
   std::vector<SimplifyResult> part_results;
   {
     Progress progress("simplifying " + std::to_string(mesh.num_triangles()) + " triangles");
+    // On a terminal, the share of the collapses done, rewritten in place (every 10 %).
+    bool shown = false;
+    if (!Progress::quiet() && ::isatty(::fileno(stderr))) {
+      auto last = std::make_shared<int>(-1);
+      so.progress = [last, &shown](double f) {
+        const int pct = static_cast<int>(f * 10) * 10;
+        if (pct == *last) return;
+        *last = pct;
+        shown = true;
+        std::fprintf(stderr, "\r[interfere] simplifying: %3d %%", pct);
+        std::fflush(stderr);
+      };
+    }
     Expected<SimplifyResult> res = Error{};
 #ifdef INTERFERE_HAS_CAD
     if (cad_prepared) {
@@ -275,6 +290,8 @@ int run_simplify(const SimplifyCliOptions& o) {
     }
     r = std::move(*res);
     seconds = progress.seconds();
+    if (shown) std::fprintf(stderr, "\n");
+    so.progress = nullptr;
   }
   std::size_t self = 0;
   if (o.check_self) {

@@ -290,6 +290,17 @@ class Simplifier {
   void heap_loop(std::size_t target, std::size_t& live, SimplifyResult& r);
   /// From the handoff on: the handoff check (if any), the guard, the heap to the budget.
   void finish(EntryList& list, std::size_t live, std::size_t target, SimplifyResult& r, PhaseClock& clock);
+  /// SimplifyOptions::progress: the fraction of the collapses from `progress_from_` live triangles
+  /// to the target done, reported in steps of 2 %.
+  void report_progress(std::size_t live) {
+    if (!o_.progress || progress_from_ <= progress_target_) return;
+    const double f = double(progress_from_ - std::min(live, progress_from_)) / double(progress_from_ - progress_target_);
+    if (f - progress_last_ < 0.02 && f < 1) return;
+    progress_last_ = f;
+    o_.progress(std::min(1.0, f));
+  }
+  std::size_t progress_from_ = 0, progress_target_ = 0;
+  double progress_last_ = -1;
   bool keep_handoff_ = false;
   std::shared_ptr<const Handoff> handoff_;
   std::size_t input_triangles_ = 0;

@@ -252,6 +252,7 @@ void Simplifier::batched_passes(EntryList& list, std::size_t handoff, std::size_
     clock.lap("passes: select");
     const std::size_t applied = apply_selected(selected, live, changed);
     r.collapses += applied;
+    report_progress(live);
     if (guard_ && grid_stale(live)) rebuild_grid(live);
     clock.lap("passes: apply");
     if (applied == 0) break;

@@ -157,6 +157,8 @@ void Simplifier::run(std::size_t target, SimplifyResult& r) {
     const Tri& tr = tris_[t];
     if (tr[0] == tr[1] || tr[1] == tr[2] || tr[0] == tr[2]) dead_[t] = 1, --live;
   }
+  progress_from_ = live, progress_target_ = target;
+  report_progress(live);
   vertex_quadrics();
   if (o_.prevent_self_intersections) start_guard(live);
   stamp_.assign(nv, 0);
@@ -307,6 +309,7 @@ void Simplifier::heap_loop(std::size_t target, std::size_t& live, SimplifyResult
     set_fan(a, merged_);
     live -= died;
     ++r.collapses;
+    report_progress(live);
     if (guard_) {
       if (grid_stale(live)) rebuild_grid(live);
       else

@@ -17,6 +17,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -78,8 +79,12 @@ struct SimplifyOptions {
   /// a copy of the state at the handoff to the heap for a guarded rerun (see guard_reruns).
   std::size_t compact_min_triangles = std::size_t{1} << 18;
   /// Measure the symmetric Hausdorff distance (sampled, see hausdorff.h) overall and on the
-  /// feature faces, and store it as the error bound.
+  /// feature faces, and an upper bound of the input's distance to the result (error_bound).
   bool measure_error = true;
+  /// Called now and then on the calling thread with the fraction (0 to 1) of the run's collapses
+  /// done (after each batched pass, every 2 % of the heap's); a guarded rerun reports its own
+  /// progress again. Reporting only: results do not depend on it.
+  std::function<void(double)> progress;
 };
 
 struct SimplifyResult {

@@ -94,6 +94,22 @@ TEST(Simplify, ClosedSphereMeetsEvenBudgetExactlyStaysManifoldAndFreeOfSelfInter
   }
 }
 
+TEST(Simplify, ProgressIsReportedWithoutChangingTheResult) {
+  const TriMesh s = make_sphere({.target_triangles = 60000, .bump_amplitude = 0.05});
+  SimplifyOptions o{.target_triangles = 2000, .measure_error = false};
+  auto plain = simplify(s, o);
+  std::vector<double> seen;
+  o.progress = [&](double f) { seen.push_back(f); };
+  auto r = simplify(s, o);
+  ASSERT_TRUE(plain.has_value() && r.has_value());
+  EXPECT_EQ(r->mesh.triangles, plain->mesh.triangles);
+  EXPECT_EQ(r->mesh.positions, plain->mesh.positions);
+  ASSERT_GE(seen.size(), 10u);  // batched passes and heap steps of 2 %
+  EXPECT_EQ(seen.front(), 0.0);
+  EXPECT_EQ(seen.back(), 1.0);
+  for (std::size_t i = 1; i < seen.size(); ++i) EXPECT_GE(seen[i], seen[i - 1]);
+}
+
 TEST(Simplify, ErrorBoundBoundsTheDistanceOfEveryInputPointToTheResult) {
   // Oracle: random points of the input's triangles, each point's distance to the result by brute
   // force over all its triangles; none may exceed error_bound (the sampled Hausdorff distance may
