@@ -268,6 +268,7 @@ interfere features PART.step [--json REPORT] [--aag] [--library lib.json] [--rul
 | `--no-error` | skip the Hausdorff measurement |
 | `--json FILE` | JSON report |
 
+On a terminal the share of the collapses done is shown while it runs (`SimplifyOptions::progress`).
 Exit status 0 on success, 2 on a usage or input error (the message names the file, line or entity); outputs are
 written atomically and only after every input was validated.
 
