@@ -130,8 +130,12 @@ quadric-error-metric edge collapses while the faces that take part in the curren
    `gear_shaft` → ring (shoulder) face + the shaft cylinder it meets; `screw` → counterbored hole (bore,
    counterbore, seat); plus `countersunk_screw`, `key`, `pin`, `locate`. A process description lists the steps
    (`{"steps": [{"id": "P1", "parts": ["casing"], "constraint": "bolt"}, ...]}`, `"*"` = every part); the faces of
-   step P_i are selected automatically. A rule that names a feature type missing from the library is an error
-   naming the rule and the type.
+   step P_i are selected automatically. A step names parts or component instances: a part used several times
+   of which the step names only some instances is simplified twice, `<part> [<step>]` with the step's
+   features for those instances and `<part>` without for the others (a step that mounts one of six
+   identical bolts keeps that bolt's features only; report `cad.instances[].in_step`, `simplified_part`). A
+   name the model does not have is a warning listing the parts there are. A rule that names a feature type
+   missing from the library is an error naming the rule and the type.
 5. **Feature-preserving QEM** (Garland & Heckbert 1997): area-weighted plane quadrics, penalty planes through
    constrained edges (weight 10·|e|²), a min-heap of candidate collapses invalidated lazily by per-vertex stamps,
    optimal placement by the 3×3 system (cofactor inverse, relative determinant test) with fallback to the
@@ -279,7 +283,7 @@ written atomically and only after every input was validated.
 `self_intersections` (with the flag), `seconds` {`simplify`, `total`, `phases` [{`phase`, `seconds`}] (wall time
 of simplify()'s phases, in order; summed over the parts of a STEP input)}, `warnings`; for STEP input `cad` {`parts`
 [{`name`, `faces`, `triangles`, `features`, `assembly_feature_faces`}], `instances` [{`name`, `part`, `path`,
-`face_id_offset`, `placement` (3×4 [R|t], part → world)}], `step`, `units`, `file_length_units`, `warnings`} and `parts_simplified` [{`part`, `name`, `file` (with `--parts-dir`), `instances`, `input_triangles`,
+`face_id_offset`, `placement` (3×4 [R|t], part → world), `in_step`, `simplified_part`}], `step`, `units`, `file_length_units`, `warnings`} and `parts_simplified` [{`part`, `model_part`, `name`, `file` (with `--parts-dir`), `instances`, `input_triangles`,
 `target_triangles`, `output_triangles`, `feature_triangles`, `hausdorff`, `error_bound`, `hausdorff_features`, `guard_rerun`, `guard_reruns`,
 `self_intersections` (with the flag; for STEP input the report's count is the sum over parts × instances)}]. Face
 ids of a multi-instance STEP are offset per instance.

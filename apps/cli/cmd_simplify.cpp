@@ -104,7 +104,7 @@ Expected<SimplifyResult> simplify_parts(const cad::Prepared& prep, std::size_t t
     }
     done[i] = std::move(*r);
     const SimplifyResult& d = done[i];
-    parts_report.push_back({{"part", i}, {"name", p.name}, {"instances", p.instances}, {"input_triangles", d.input_triangles},
+    parts_report.push_back({{"part", i}, {"model_part", p.model_part}, {"name", p.name}, {"instances", p.instances}, {"input_triangles", d.input_triangles},
                             {"target_triangles", n}, {"output_triangles", d.mesh.num_triangles()},
                             {"feature_triangles", {{"input", d.feature_triangles_in}, {"output", d.feature_triangles_out}}},
                             {"hausdorff", d.hausdorff}, {"error_bound", d.error_bound}, {"hausdorff_features", d.hausdorff_features < 0 ? nlohmann::json(nullptr) : nlohmann::json(d.hausdorff_features)},

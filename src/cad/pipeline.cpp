@@ -9,6 +9,9 @@
 #include <sstream>
 
 namespace interfere::cad {
+namespace {
+constexpr std::uint32_t kNoPart = 0xffffffffu;
+}  // namespace
 
 Expected<Prepared> prepare_for_simplify(const std::string& step_file, const PipelineOptions& o) {
   auto lib = o.library_file.empty() ? default_feature_library() : load_feature_library(o.library_file);
@@ -34,14 +37,27 @@ Expected<Prepared> prepare_for_simplify(const std::string& step_file, const Pipe
   if (!model) return model.error();
   Prepared out;
   out.warnings = model->warnings;
+  // Which instances take part in the step: those it names, by part or by instance name ("*": all).
+  std::vector<std::uint8_t> in_step(model->instances.size(), 0);
+  std::vector<std::uint8_t> part_in_step(model->parts.size(), 0), part_out_of_step(model->parts.size(), 0);
   if (process) {
     std::vector<std::string> names;
     for (const Part& part : model->parts) names.push_back(part.name);
+    for (const Instance& inst : model->instances) names.push_back(inst.name);
     for (auto& w : unknown_step_parts(*process, o.step, names)) out.warnings.push_back(std::move(w));
+  }
+  for (std::size_t k = 0; k < model->instances.size(); ++k) {
+    const Instance& inst = model->instances[k];
+    in_step[k] = process && (step_includes(*process, o.step, model->parts[inst.part].name) ||
+                             step_includes(*process, o.step, inst.name));
+    (in_step[k] ? part_in_step : part_out_of_step)[inst.part] = 1;
   }
   nlohmann::json rep;
   rep["parts"] = nlohmann::json::array();
   std::vector<std::vector<std::uint32_t>> part_features(model->parts.size());
+  // Each part once per kind of its instances: with the step's features (instances in the step) and
+  // without (the others), so a step that names one of six identical bolts keeps only that bolt's.
+  std::vector<std::uint32_t> with_features(model->parts.size(), kNoPart), without(model->parts.size(), kNoPart);
   for (std::size_t i = 0; i < model->parts.size(); ++i) {
     const Part& part = model->parts[i];
     const auto feats = recognize_features(part.aag, *lib);
@@ -49,28 +65,42 @@ Expected<Prepared> prepare_for_simplify(const std::string& step_file, const Pipe
                       {"features", nlohmann::json::array()}};
     for (const Feature& f : feats) jp["features"].push_back({{"type", f.type}, {"faces", f.faces}});
     if (process) {
-      auto sel = select_assembly_features(*process, o.step, *rules, part.name, feats);
+      auto sel = select_step_features(*process, o.step, *rules, part.name, feats);
       if (!sel) return Error{.file = o.process_file, .reason = sel.error().reason};
-      part_features[i] = sel->faces;
-      jp["assembly_feature_faces"] = sel->faces;
-      for (const auto& w : sel->warnings) out.warnings.push_back(w);
+      if (part_in_step[i]) {
+        part_features[i] = sel->faces;
+        for (const auto& w : sel->warnings) out.warnings.push_back(w);
+      }
+      jp["assembly_feature_faces"] = part_features[i];
     }
     rep["parts"].push_back(jp);
-    out.parts.push_back({part.name, part.mesh, part.face_ids, part_features[i], part.faces, 0});
+    const bool split = part_in_step[i] && part_out_of_step[i] && !part_features[i].empty();
+    if (part_in_step[i] || !part_out_of_step[i]) {
+      with_features[i] = static_cast<std::uint32_t>(out.parts.size());
+      out.parts.push_back({split ? part.name + " [" + o.step + "]" : part.name, part.mesh, part.face_ids,
+                           part_features[i], part.faces, 0, static_cast<std::uint32_t>(i)});
+    }
+    if (part_out_of_step[i] && (split || !part_in_step[i])) {
+      without[i] = static_cast<std::uint32_t>(out.parts.size());
+      out.parts.push_back({part.name, part.mesh, part.face_ids, {}, part.faces, 0, static_cast<std::uint32_t>(i)});
+    }
+    if (!split && part_in_step[i]) without[i] = with_features[i];
   }
   // World mesh; feature face ids shifted like world_mesh shifts the instance's faces.
   out.mesh = world_mesh(*model, &out.face_ids);
   std::uint32_t base = 0;
   rep["instances"] = nlohmann::json::array();
-  for (const Instance& inst : model->instances) {
-    for (std::uint32_t f : part_features[inst.part]) out.feature_faces.push_back(f + base);
-    out.instances.push_back({inst.part, inst.placement, base});
-    ++out.parts[inst.part].instances;
+  for (std::size_t k = 0; k < model->instances.size(); ++k) {
+    const Instance& inst = model->instances[k];
+    const std::uint32_t variant = in_step[k] ? with_features[inst.part] : without[inst.part];
+    for (std::uint32_t f : out.parts[variant].feature_faces) out.feature_faces.push_back(f + base);
+    out.instances.push_back({variant, inst.placement, base});
+    ++out.parts[variant].instances;
     nlohmann::json placement = nlohmann::json::array();  // 3x4 [R|t], part coordinates -> world
     for (int r = 0; r < 3; ++r)
       placement.push_back({inst.placement.r[r][0], inst.placement.r[r][1], inst.placement.r[r][2], inst.placement.t[r]});
     rep["instances"].push_back({{"name", inst.name}, {"part", inst.part}, {"path", inst.path}, {"face_id_offset", base},
-                                {"placement", placement}});
+                                {"placement", placement}, {"in_step", in_step[k] != 0}, {"simplified_part", variant}});
     base += model->parts[inst.part].faces;
   }
   if (!o.step.empty()) rep["step"] = o.step;

@@ -101,17 +101,29 @@ std::vector<std::string> unknown_step_parts(const Process& process, const std::s
   return out;
 }
 
+bool step_includes(const Process& process, const std::string& step_id, const std::string& name) {
+  for (const ProcessStep& s : process.steps)
+    if (s.id == step_id)
+      return std::any_of(s.parts.begin(), s.parts.end(), [&](const std::string& p) { return p == "*" || p == name; });
+  return false;
+}
+
 Expected<Selection> select_assembly_features(const Process& process, const std::string& step_id,
                                              const SemanticRules& rules, const std::string& part_name,
                                              const std::vector<Feature>& features) {
+  auto sel = select_step_features(process, step_id, rules, part_name, features);
+  if (sel && !step_includes(process, step_id, part_name)) return Selection{};
+  return sel;
+}
+
+Expected<Selection> select_step_features(const Process& process, const std::string& step_id,
+                                         const SemanticRules& rules, const std::string& part_name,
+                                         const std::vector<Feature>& features) {
   const ProcessStep* step = nullptr;
   for (const ProcessStep& s : process.steps)
     if (s.id == step_id) step = &s;
   if (!step) return Error{.reason = "unknown process step '" + step_id + "'"};
   Selection sel;
-  const bool in_step = std::any_of(step->parts.begin(), step->parts.end(),
-                                   [&](const std::string& p) { return p == "*" || p == part_name; });
-  if (!in_step) return sel;
   bool any_rule = false;
   for (const SemanticRule& r : rules.rules) {
     if (r.constraint != step->constraint) continue;

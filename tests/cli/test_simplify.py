@@ -340,6 +340,28 @@ class Features(unittest.TestCase):
         self.assertIn("--parts-dir", err)
         self.assertFalse(os.path.exists(path("m.ply")))
 
+    def test_a_step_naming_one_instance_keeps_the_features_of_that_instance_only(self):
+        # The plate is used twice; the step names the instance plate_2: the plate is simplified once
+        # with the screw features (for plate_2) and once without (for the other instance).
+        with open(path("inst.json"), "w") as out:
+            json.dump({"steps": [{"id": "P1", "parts": ["plate_2"], "constraint": "screw"}]}, out)
+        code, _, err = run("simplify", os.path.join(DATA, "assembly.step"), path("inst.ply"), "--ratio", "0.6",
+                           "--step", "P1", "--process", path("inst.json"), "--json", path("inst.json.out"))
+        self.assertEqual(code, 0, err)
+        r = load_json("inst.json.out")
+        parts = {p["name"]: p for p in r["parts_simplified"]}
+        self.assertEqual(sorted(parts), ["plate", "plate [P1]", "shaft"])
+        self.assertEqual(parts["plate"]["model_part"], parts["plate [P1]"]["model_part"])
+        self.assertGreater(parts["plate [P1]"]["feature_triangles"]["input"], 0)
+        self.assertEqual(parts["plate"]["feature_triangles"]["input"], 0)
+        inst = {i["name"]: i for i in r["cad"]["instances"]}
+        self.assertTrue(inst["plate_2"]["in_step"])
+        self.assertFalse(inst["shaft_1"]["in_step"])
+        by_index = {p["part"]: p["name"] for p in r["parts_simplified"]}
+        self.assertEqual(by_index[inst["plate_2"]["simplified_part"]], "plate [P1]")
+        self.assertEqual(len(r["feature_faces"]), 3)  # bore, counterbore, seat of one plate
+        self.assertEqual(r["cad"]["warnings"], [])  # plate_2 is a known name
+
     def test_assembly_as_glb_stores_each_part_once_with_instances(self):
         with open(path("screw.json"), "w") as out:
             json.dump({"steps": [{"id": "P1", "parts": ["*"], "constraint": "screw"}]}, out)

@@ -22,6 +22,9 @@ struct PreparedPart {
   std::vector<std::uint32_t> feature_faces;  ///< assembly-feature faces of the step (part's ids)
   std::uint32_t faces = 0;
   std::size_t instances = 0;
+  /// Index of the CAD part (a part whose instances differ in taking part in the step is prepared
+  /// twice, with and without the step's features; the first is named "<part> [<step>]").
+  std::uint32_t model_part = 0;
 };
 struct PreparedInstance {
   std::uint32_t part = 0;
