@@ -399,6 +399,25 @@ TEST(Semantics, StepsNamingPartsNotInTheModelAreWarnings) {
   EXPECT_NE(w[0].find("'shaft'"), std::string::npos);  // the parts there are
   EXPECT_TRUE(unknown_step_parts(*p, "P2", {"casing"}).empty());  // "*"
   EXPECT_TRUE(unknown_step_parts(*p, "P9", {"casing"}).empty());  // unknown steps are errors elsewhere
+  EXPECT_TRUE(step_includes(*p, "P1", "casing"));
+  EXPECT_FALSE(step_includes(*p, "P1", "shaft"));
+  EXPECT_TRUE(step_includes(*p, "P2", "anything"));  // "*"
+  EXPECT_FALSE(step_includes(*p, "P9", "casing"));
+}
+
+TEST(Semantics, StepFeaturesIgnoreThePartList) {
+  auto lib = default_feature_library();
+  auto rules = default_semantic_rules(*lib);
+  auto process = parse_process(R"({"steps":[{"id":"P1","parts":["other"],"constraint":"screw"}]})");
+  ASSERT_TRUE(process.has_value());
+  const Part& plate = load(TestPart::counterbored_plate).parts[0];
+  const auto feats = recognize_features(plate.aag, *lib);
+  auto named = select_assembly_features(*process, "P1", *rules, plate.name, feats);
+  auto any = select_step_features(*process, "P1", *rules, plate.name, feats);
+  ASSERT_TRUE(named.has_value() && any.has_value());
+  EXPECT_TRUE(named->faces.empty());  // the step names another part
+  EXPECT_EQ(any->faces.size(), 3u);   // bore, counterbore, seat
+  EXPECT_FALSE(select_step_features(*process, "P9", *rules, plate.name, feats).has_value());
 }
 
 TEST(CadSimplify, ErrorBoundIsValidAndTightOnACadPart) {
