@@ -340,15 +340,19 @@ class Features(unittest.TestCase):
         self.assertIn("--parts-dir", err)
         self.assertFalse(os.path.exists(path("m.ply")))
 
+    def simplify_assembly_step(self, step, out, ratio):
+        """Simplifies the test assembly to `ratio` with the process step `step` (id P1); the report."""
+        with open(path(out + ".process.json"), "w") as f:
+            json.dump({"steps": [step]}, f)
+        code, _, err = run("simplify", os.path.join(DATA, "assembly.step"), path(out), "--ratio", ratio, "--step",
+                           "P1", "--process", path(out + ".process.json"), "--json", path(out + ".json"))
+        self.assertEqual(code, 0, err)
+        return load_json(out + ".json")
+
     def test_a_step_naming_one_instance_keeps_the_features_of_that_instance_only(self):
         # The plate is used twice; the step names the instance plate_2: the plate is simplified once
         # with the screw features (for plate_2) and once without (for the other instance).
-        with open(path("inst.json"), "w") as out:
-            json.dump({"steps": [{"id": "P1", "parts": ["plate_2"], "constraint": "screw"}]}, out)
-        code, _, err = run("simplify", os.path.join(DATA, "assembly.step"), path("inst.ply"), "--ratio", "0.6",
-                           "--step", "P1", "--process", path("inst.json"), "--json", path("inst.json.out"))
-        self.assertEqual(code, 0, err)
-        r = load_json("inst.json.out")
+        r = self.simplify_assembly_step({"id": "P1", "parts": ["plate_2"], "constraint": "screw"}, "inst.ply", "0.6")
         parts = {p["name"]: p for p in r["parts_simplified"]}
         self.assertEqual(sorted(parts), ["plate", "plate [P1]", "shaft"])
         self.assertEqual(parts["plate"]["model_part"], parts["plate [P1]"]["model_part"])
@@ -363,12 +367,7 @@ class Features(unittest.TestCase):
         self.assertEqual(r["cad"]["warnings"], [])  # plate_2 is a known name
 
     def test_assembly_as_glb_stores_each_part_once_with_instances(self):
-        with open(path("screw.json"), "w") as out:
-            json.dump({"steps": [{"id": "P1", "parts": ["*"], "constraint": "screw"}]}, out)
-        code, _, err = run("simplify", os.path.join(DATA, "assembly.step"), path("asm.glb"), "--ratio", "0.5",
-                           "--step", "P1", "--process", path("screw.json"), "--json", path("asm_glb.json"))
-        self.assertEqual(code, 0, err)
-        r = load_json("asm_glb.json")
+        r = self.simplify_assembly_step({"id": "P1", "parts": ["*"], "constraint": "screw"}, "asm.glb", "0.5")
         doc, _, read = read_glb(path("asm.glb"))
         parts = {p["name"]: p for p in r["parts_simplified"]}
         self.assertEqual(sorted(m["name"] for m in doc["meshes"]), sorted(parts))
