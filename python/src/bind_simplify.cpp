@@ -224,9 +224,14 @@ void bind_simplify(py::module_& m) {
             if (!rules) throw py::value_error(rules.error().message());
             auto proc = cad::load_process(process_file);
             if (!proc) throw py::value_error(proc.error().message());
-            auto sel = cad::select_assembly_features(*proc, step, *rules, p.name, feats);
+            // In the step when it names the part or one of its instances.
+            const auto index = static_cast<std::uint32_t>(&p - model->parts.data());
+            bool named = cad::step_includes(*proc, step, p.name);
+            for (const cad::Instance& inst : model->instances)
+              named = named || (inst.part == index && cad::step_includes(*proc, step, inst.name));
+            auto sel = cad::select_step_features(*proc, step, *rules, p.name, feats);
             if (!sel) throw py::value_error(sel.error().message());
-            d["assembly_feature_faces"] = sel->faces;
+            d["assembly_feature_faces"] = named ? sel->faces : std::vector<std::uint32_t>{};
           }
           out.append(d);
         }

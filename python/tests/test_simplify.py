@@ -118,6 +118,16 @@ class Cad(unittest.TestCase):
         with self.assertRaises(ValueError):
             itf.import_step(os.path.join(DATA, "missing.step"))
 
+    def test_step_features_of_an_instance_named_in_the_step(self):
+        asm = os.path.join(DATA, "assembly.step")
+        with tempfile.TemporaryDirectory() as d:
+            proc = os.path.join(d, "p.json")
+            with open(proc, "w") as out:
+                json.dump({"steps": [{"id": "P1", "parts": ["plate_2"], "constraint": "screw"}]}, out)
+            f = {x["part"]: x for x in itf.step_features(asm, process=proc, step="P1")}
+            self.assertEqual(len(f["plate"]["assembly_feature_faces"]), 3)  # via its instance plate_2
+            self.assertEqual(f["shaft"]["assembly_feature_faces"], [])
+
 
 if __name__ == "__main__":
     unittest.main()
