@@ -14,6 +14,7 @@
 #ifdef INTERFERE_HAS_CAD
 #include "interfere/cad/features.h"
 #include "interfere/cad/model.h"
+#include "interfere/cad/pipeline.h"
 #include "interfere/cad/semantics.h"
 #endif
 
@@ -66,11 +67,8 @@ int run_features(const FeaturesCliOptions& o) {
     model = import_step(o.input, {.linear_deflection = o.linear_deflection, .angular_deflection = o.angular_deflection});
     if (!model) throw InputError(model.error());
   }
-  if (process) {
-    std::vector<std::string> names;
-    for (const Part& part : model->parts) names.push_back(part.name);
-    for (auto& w : unknown_step_parts(*process, o.step, names)) model->warnings.push_back(std::move(w));
-  }
+  if (process)
+    for (auto& w : unknown_step_names(*process, o.step, *model)) model->warnings.push_back(std::move(w));
   for (const auto& w : model->warnings)
     if (!Progress::quiet()) std::fprintf(stderr, "[interfere] warning: %s\n", w.c_str());
   {
@@ -103,8 +101,13 @@ int run_features(const FeaturesCliOptions& o) {
                   radii.c_str());
     }
     if (process) {
-      auto sel = select_assembly_features(*process, o.step, *rules, part.name, feats);
+      // In the step when it names the part or one of its instances (then only those instances
+      // keep the features when simplified: `instances[].in_step` of the simplify report).
+      const bool named =
+          part_in_step(*process, o.step, *model, static_cast<std::uint32_t>(&part - model->parts.data()));
+      auto sel = select_step_features(*process, o.step, *rules, part.name, feats);
       if (!sel) throw InputError(o.process + ": " + sel.error().reason);
+      if (!named) *sel = Selection{};
       jp["assembly_feature_faces"] = sel->faces;
       jp["semantics_warnings"] = sel->warnings;
       std::printf("  step %s: %zu assembly-feature faces\n", o.step.c_str(), sel->faces.size());
@@ -135,9 +138,8 @@ int run_features(const FeaturesCliOptions& o) {
   }
   report["instances"] = nlohmann::json::array();
   for (const Instance& i : model->instances) {
-    nlohmann::json m = nlohmann::json::array();
-    for (int r = 0; r < 3; ++r) m.push_back({i.placement.r[r][0], i.placement.r[r][1], i.placement.r[r][2], (r == 0 ? i.placement.t.x : r == 1 ? i.placement.t.y : i.placement.t.z)});
-    report["instances"].push_back({{"name", i.name}, {"part", i.part}, {"path", i.path}, {"placement", m}});
+    report["instances"].push_back(
+        {{"name", i.name}, {"part", i.part}, {"path", i.path}, {"placement", i.placement.to_rows()}});
   }
   report["units"] = model->units;
   report["file_length_units"] = model->file_length_units;

@@ -17,6 +17,7 @@
 #ifdef INTERFERE_HAS_CAD
 #include "interfere/cad/features.h"
 #include "interfere/cad/model.h"
+#include "interfere/cad/pipeline.h"
 #include "interfere/cad/semantics.h"
 #endif
 
@@ -225,10 +226,8 @@ void bind_simplify(py::module_& m) {
             auto proc = cad::load_process(process_file);
             if (!proc) throw py::value_error(proc.error().message());
             // In the step when it names the part or one of its instances.
-            const auto index = static_cast<std::uint32_t>(&p - model->parts.data());
-            bool named = cad::step_includes(*proc, step, p.name);
-            for (const cad::Instance& inst : model->instances)
-              named = named || (inst.part == index && cad::step_includes(*proc, step, inst.name));
+            const bool named =
+                cad::part_in_step(*proc, step, *model, static_cast<std::uint32_t>(&p - model->parts.data()));
             auto sel = cad::select_step_features(*proc, step, *rules, p.name, feats);
             if (!sel) throw py::value_error(sel.error().message());
             d["assembly_feature_faces"] = named ? sel->faces : std::vector<std::uint32_t>{};

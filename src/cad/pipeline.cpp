@@ -13,6 +13,25 @@ namespace {
 constexpr std::uint32_t kNoPart = 0xffffffffu;
 }  // namespace
 
+bool instance_in_step(const Process& process, const std::string& step, const CadModel& model, std::size_t k) {
+  const Instance& inst = model.instances[k];
+  return step_includes(process, step, model.parts[inst.part].name) || step_includes(process, step, inst.name);
+}
+
+bool part_in_step(const Process& process, const std::string& step, const CadModel& model, std::uint32_t part) {
+  if (step_includes(process, step, model.parts[part].name)) return true;
+  for (std::size_t k = 0; k < model.instances.size(); ++k)
+    if (model.instances[k].part == part && instance_in_step(process, step, model, k)) return true;
+  return false;
+}
+
+std::vector<std::string> unknown_step_names(const Process& process, const std::string& step, const CadModel& model) {
+  std::vector<std::string> names;
+  for (const Part& part : model.parts) names.push_back(part.name);
+  for (const Instance& inst : model.instances) names.push_back(inst.name);
+  return unknown_step_parts(process, step, names);
+}
+
 Expected<Prepared> prepare_for_simplify(const std::string& step_file, const PipelineOptions& o) {
   auto lib = o.library_file.empty() ? default_feature_library() : load_feature_library(o.library_file);
   if (!lib) return lib.error();
@@ -40,17 +59,11 @@ Expected<Prepared> prepare_for_simplify(const std::string& step_file, const Pipe
   // Which instances take part in the step: those it names, by part or by instance name ("*": all).
   std::vector<std::uint8_t> in_step(model->instances.size(), 0);
   std::vector<std::uint8_t> part_in_step(model->parts.size(), 0), part_out_of_step(model->parts.size(), 0);
-  if (process) {
-    std::vector<std::string> names;
-    for (const Part& part : model->parts) names.push_back(part.name);
-    for (const Instance& inst : model->instances) names.push_back(inst.name);
-    for (auto& w : unknown_step_parts(*process, o.step, names)) out.warnings.push_back(std::move(w));
-  }
+  if (process)
+    for (auto& w : unknown_step_names(*process, o.step, *model)) out.warnings.push_back(std::move(w));
   for (std::size_t k = 0; k < model->instances.size(); ++k) {
-    const Instance& inst = model->instances[k];
-    in_step[k] = process && (step_includes(*process, o.step, model->parts[inst.part].name) ||
-                             step_includes(*process, o.step, inst.name));
-    (in_step[k] ? part_in_step : part_out_of_step)[inst.part] = 1;
+    in_step[k] = process && instance_in_step(*process, o.step, *model, k);
+    (in_step[k] ? part_in_step : part_out_of_step)[model->instances[k].part] = 1;
   }
   nlohmann::json rep;
   rep["parts"] = nlohmann::json::array();
@@ -96,11 +109,9 @@ Expected<Prepared> prepare_for_simplify(const std::string& step_file, const Pipe
     for (std::uint32_t f : out.parts[variant].feature_faces) out.feature_faces.push_back(f + base);
     out.instances.push_back({variant, inst.placement, base});
     ++out.parts[variant].instances;
-    nlohmann::json placement = nlohmann::json::array();  // 3x4 [R|t], part coordinates -> world
-    for (int r = 0; r < 3; ++r)
-      placement.push_back({inst.placement.r[r][0], inst.placement.r[r][1], inst.placement.r[r][2], inst.placement.t[r]});
     rep["instances"].push_back({{"name", inst.name}, {"part", inst.part}, {"path", inst.path}, {"face_id_offset", base},
-                                {"placement", placement}, {"in_step", in_step[k] != 0}, {"simplified_part", variant}});
+                                {"placement", inst.placement.to_rows()}, {"in_step", in_step[k] != 0},
+                                {"simplified_part", variant}});
     base += model->parts[inst.part].faces;
   }
   if (!o.step.empty()) rep["step"] = o.step;

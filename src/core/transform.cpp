@@ -50,4 +50,10 @@ std::array<double, 12> Transform::to_row_major() const {
   return out;
 }
 
+std::array<std::array<double, 4>, 3> Transform::to_rows() const {
+  std::array<std::array<double, 4>, 3> out{};
+  for (int row = 0; row < 3; ++row) out[row] = {r[row][0], r[row][1], r[row][2], t[row]};
+  return out;
+}
+
 }  // namespace interfere

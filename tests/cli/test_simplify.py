@@ -365,6 +365,14 @@ class Features(unittest.TestCase):
         self.assertEqual(by_index[inst["plate_2"]["simplified_part"]], "plate [P1]")
         self.assertEqual(len(r["feature_faces"]), 3)  # bore, counterbore, seat of one plate
         self.assertEqual(r["cad"]["warnings"], [])  # plate_2 is a known name
+        # `features` lists the plate's step features too (its instance plate_2 is in the step).
+        code, _, err = run("features", os.path.join(DATA, "assembly.step"), "--process", path("inst.ply.process.json"),
+                           "--step", "P1", "--json", path("inst_features.json"))
+        self.assertEqual(code, 0, err)
+        f = {p["name"]: p for p in load_json("inst_features.json")["parts"]}
+        self.assertEqual(len(f["plate"]["assembly_feature_faces"]), 3)
+        self.assertEqual(f["shaft"]["assembly_feature_faces"], [])
+        self.assertEqual(load_json("inst_features.json")["warnings"], [])
 
     def test_assembly_as_glb_stores_each_part_once_with_instances(self):
         r = self.simplify_assembly_step({"id": "P1", "parts": ["*"], "constraint": "screw"}, "asm.glb", "0.5")

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "interfere/cad/features.h"
+#include "interfere/cad/model.h"
 #include "interfere/cad/semantics.h"
 
 namespace interfere::cad {
@@ -43,5 +44,13 @@ struct Prepared {
 };
 
 Expected<Prepared> prepare_for_simplify(const std::string& step_file, const PipelineOptions& options);
+
+/// Whether process step `step` takes in instance `k` of `model`: it names the instance, its part
+/// or "*".
+bool instance_in_step(const Process& process, const std::string& step, const CadModel& model, std::size_t k);
+/// Whether it takes in part `part`: it names the part, "*", or one of the part's instances.
+bool part_in_step(const Process& process, const std::string& step, const CadModel& model, std::uint32_t part);
+/// unknown_step_parts against the names of the model's parts and instances.
+std::vector<std::string> unknown_step_names(const Process& process, const std::string& step, const CadModel& model);
 
 }  // namespace interfere::cad

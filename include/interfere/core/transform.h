@@ -26,6 +26,8 @@ struct Transform {
   static Expected<Transform> parse(std::string_view text);
   /// The same 12 numbers, row-major.
   std::array<double, 12> to_row_major() const;
+  /// As three rows of four: [R|t] (the placement of the CAD reports).
+  std::array<std::array<double, 4>, 3> to_rows() const;
 };
 
 }  // namespace interfere
