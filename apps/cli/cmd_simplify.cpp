@@ -57,12 +57,6 @@ std::vector<std::uint32_t> parse_id_list(const std::string& s, const std::string
   return out;
 }
 
-std::string lower_extension(const std::string& file) {
-  std::string e = std::filesystem::path(file).extension().string();
-  for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return e;
-}
-
 bool is_step(const std::string& file) {
   const std::string e = lower_extension(file);
   return e == ".step" || e == ".stp";

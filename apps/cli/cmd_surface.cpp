@@ -88,8 +88,7 @@ int run_surface(const SurfaceOptions& o) {
     ++index;
   }
 
-  std::string ext = std::filesystem::path(o.out).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = lower_extension(o.out);
   if (std::find(fem_ext.begin(), fem_ext.end(), ext) != fem_ext.end()) {
     FemWriteOptions wo;
     wo.cell_data = {elem, face, part};

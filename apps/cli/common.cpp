@@ -167,11 +167,16 @@ void print_clash_summary(const ClashResult& result, const std::string& units) {
               containment_name(result.containment));
 }
 
+std::string lower_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
 void check_output(const std::string& path, const std::vector<std::string>& extensions, const char* flag) {
   if (path.empty()) return;
   const std::filesystem::path p(path);
-  std::string ext = p.extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = lower_extension(path);
   bool ok = extensions.empty();
   for (const std::string& e : extensions) ok |= ext == e;
   if (!ok) throw InputError(std::string(flag) + ": " + path + ": unsupported extension '" + ext + "'");

@@ -87,6 +87,9 @@ namespace interfere::cli {
 /// cross, 0 touch), 1 regions, curve length 1.25 mm, containment none"); callers append details.
 void print_clash_summary(const ClashResult& result, const std::string& units);
 
+/// The file's extension, lower case, with its dot (".stl"; "" without one).
+std::string lower_extension(const std::string& path);
+
 void check_output(const std::string& path, const std::vector<std::string>& extensions, const char* flag);
 /// Throws InputError when a write failed.
 void write_or_throw(const Status& s);

@@ -11,12 +11,6 @@
 namespace interfere::cli {
 namespace {
 
-std::string lower_extension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
-}
-
 // A triangle mesh file as tri3 shells: node i = vertex i (id i + 1), element t = triangle t (id t + 1).
 FemMesh mesh_as_shells(const TriMesh& m, const std::string& file) {
   FemMesh f;

@@ -159,8 +159,7 @@ Expected<std::vector<std::uint32_t>> read_region_file(const std::filesystem::pat
 Expected<double> read_error_bound(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return Error{.file = path.string(), .reason = "cannot open the mesh file"};
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::string ext = lower_ext(path);
   const bool ply = ext == ".ply", obj = ext == ".obj";
   if (!ply && !obj) return -1.0;
   const std::string key = ply ? "comment error_bound" : "# error_bound";
