@@ -88,7 +88,7 @@ void bind_simplify(py::module_& m) {
       "hausdorff",
       [](const TriMesh& a, const TriMesh& b) {
         py::gil_scoped_release release;
-        const HausdorffResult h = hausdorff(a, b);
+        const HausdorffResult h = hausdorff(a, b, false);
         return std::make_pair(h.a_to_b, h.b_to_a);
       },
       py::arg("a"), py::arg("b"), "Sampled one-sided distances (a->b, b->a); the symmetric Hausdorff is their max.");

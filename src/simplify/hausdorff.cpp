@@ -128,7 +128,7 @@ OneSidedDistance one_sided(const TriMesh& from, const TriMesh& to, bool with_bou
     const Tri& tr = from.triangles[t];
     return std::array<Near, 3>{vn[tr[0]], vn[tr[1]], vn[tr[2]]};
   };
-  std::vector<double> local(nt);
+  std::vector<double> local(with_bound ? nt : 0);
   struct Max {
     double sampled = 0, local = 0;
   };
@@ -137,8 +137,9 @@ OneSidedDistance one_sided(const TriMesh& from, const TriMesh& to, bool with_bou
       [&](const tbb::blocked_range<std::size_t>& r, Max m) {
         for (std::size_t t = r.begin(); t < r.end(); ++t) {
           const Sampled s = sample(to, bvh, from.corners(t), corners_of(t));
-          local[t] = with_bound ? local_bound(to, s, kSlack * vertex_max) : 0.0;
           m.sampled = std::max(m.sampled, s.max_sample());
+          if (!with_bound) continue;
+          local[t] = local_bound(to, s, kSlack * vertex_max);
           m.local = std::max(m.local, local[t]);
         }
         return m;
@@ -180,9 +181,9 @@ double one_sided_distance(const TriMesh& from, const TriMesh& to, std::size_t* s
   return d.sampled;
 }
 
-HausdorffResult hausdorff(const TriMesh& a, const TriMesh& b) {
+HausdorffResult hausdorff(const TriMesh& a, const TriMesh& b, bool with_bound) {
   HausdorffResult r;
-  const OneSidedDistance ab = one_sided(a, b), ba = one_sided(b, a, false);
+  const OneSidedDistance ab = one_sided(a, b, with_bound), ba = one_sided(b, a, false);
   r.a_to_b = ab.sampled, r.b_to_a = ba.sampled;
   r.a_to_b_bound = ab.bound;
   r.samples = ab.samples + ba.samples;

@@ -255,7 +255,7 @@ Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& op
       if (fout.empty()) {
         r.hausdorff_features = std::numeric_limits<double>::infinity();
       } else {
-        r.hausdorff_features = hausdorff(submesh(mesh, fin), submesh(r.mesh, fout)).symmetric();
+        r.hausdorff_features = hausdorff(submesh(mesh, fin), submesh(r.mesh, fout), false).symmetric();
       }
     }
     clock.lap("error");

@@ -46,7 +46,9 @@ OneSidedDistance one_sided(const TriMesh& from, const TriMesh& to, bool with_bou
 /// one_sided(from, to).sampled.
 double one_sided_distance(const TriMesh& from, const TriMesh& to, std::size_t* samples = nullptr);
 
-HausdorffResult hausdorff(const TriMesh& a, const TriMesh& b);
+/// Both sampled directions and, with_bound, a_to_b_bound (else +inf: the bound costs about as much
+/// again as the a -> b samples).
+HausdorffResult hausdorff(const TriMesh& a, const TriMesh& b, bool with_bound = true);
 
 /// Pairs of triangles of `mesh` that intersect without sharing a vertex position (the engine's
 /// exact clash of the mesh against itself): 0 for a mesh free of self-intersections.
