@@ -310,13 +310,8 @@ int run_simplify(const SimplifyCliOptions& o) {
           gparts.push_back({p.name, part_results[i].mesh, part_results[i].face_ids, p.feature_faces,
                             part_results[i].error_bound});
         }
-        const auto& names = report["cad"]["instances"];
-        for (std::size_t k = 0; k < cad_prepared->instances.size(); ++k) {
-          const cad::PreparedInstance& in = cad_prepared->instances[k];
-          if (index[in.part] == 0xffffffffu) continue;
-          ginst.push_back({k < names.size() ? names[k]["name"].get<std::string>() : std::to_string(k), index[in.part],
-                           in.placement});
-        }
+        for (const cad::PreparedInstance& in : cad_prepared->instances)
+          if (index[in.part] != 0xffffffffu) ginst.push_back({in.name, index[in.part], in.placement});
       }
 #endif
       if (gparts.empty()) {

@@ -107,7 +107,7 @@ Expected<Prepared> prepare_for_simplify(const std::string& step_file, const Pipe
     const Instance& inst = model->instances[k];
     const std::uint32_t variant = in_step[k] ? with_features[inst.part] : without[inst.part];
     for (std::uint32_t f : out.parts[variant].feature_faces) out.feature_faces.push_back(f + base);
-    out.instances.push_back({variant, inst.placement, base});
+    out.instances.push_back({inst.name, variant, inst.placement, base});
     ++out.parts[variant].instances;
     rep["instances"].push_back({{"name", inst.name}, {"part", inst.part}, {"path", inst.path}, {"face_id_offset", base},
                                 {"placement", inst.placement.to_rows()}, {"in_step", in_step[k] != 0},

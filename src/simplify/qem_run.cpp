@@ -237,8 +237,7 @@ std::unique_ptr<Simplifier> Simplifier::resume(const Handoff& h, std::vector<Aab
   r = h.counters;
   r.phases = std::move(phases);
   clock.lap("handoff copy");
-  s->make_scratch();
-  s->handoff_ = nullptr;
+  s->make_scratch();  // (the copy was taken before handoff_ was set: it keeps none)
   if (!region.empty()) s->set_guard_region(std::move(region));
   if (clean) {
     const Simplifier* me = s.get();

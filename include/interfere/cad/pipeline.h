@@ -28,7 +28,8 @@ struct PreparedPart {
   std::uint32_t model_part = 0;
 };
 struct PreparedInstance {
-  std::uint32_t part = 0;
+  std::string name;
+  std::uint32_t part = 0;  ///< index into Prepared::parts
   Transform placement;
   std::uint32_t face_offset = 0;  ///< added to the part's face ids in the world mesh
 };
