@@ -7,7 +7,8 @@
 // simplify_tables.py runs it and regenerates docs/simplify.md.
 //
 // Repetitions: interfere and meshoptimizer rows are the mean of 3 (1e6) or 5 (1e5) runs, the casing
-// rows (interfere's modes and meshoptimizer on the welded part) of 20, OpenMesh runs once; the
+// rows (interfere's modes and meshoptimizer on the welded part) of 20, OpenMesh runs once on the
+// spheres and 3 times on the casing (plain, and with the feature faces' vertices locked); the
 // interfere and meshoptimizer rows make one untimed warm-up call first.
 //
 // Timed region: simplify() with the options of the row (weld, quadrics, collapses, the result's
@@ -179,16 +180,27 @@ struct OmTraits : OpenMesh::DefaultTraits {
 };
 using OmMesh = OpenMesh::TriMesh_ArrayKernelT<OmTraits>;
 
-void bm_openmesh(benchmark::State& state, std::size_t n, double ratio) {
-  const Case& c = sphere_case(n);
-  const std::size_t target = std::size_t(std::llround(ratio * double(c.mesh.num_triangles()))) & ~std::size_t{1};
+// The OpenMesh Decimater (ModQuadric, no error limit) to `target` faces, timed (building the
+// half-edge structure is not); `locked` (per vertex, optional) marks vertices the Decimater must
+// keep: its own way of protecting a region (a collapse never removes a locked vertex, so triangles
+// of locked vertices only stay as they are). Triangles OpenMesh refuses as non-manifold are counted
+// in the `om_rejected_faces` counter.
+TriMesh timed_openmesh(benchmark::State& state, const TriMesh& mesh, std::size_t target,
+                       const std::vector<std::uint8_t>* locked = nullptr) {
   TriMesh out;
+  std::size_t rejected = 0;
   for (auto _ : state) {
-    state.PauseTiming();  // building OpenMesh's half-edge structure is not timed
+    state.PauseTiming();
     auto m = std::make_unique<OmMesh>();
     std::vector<OmMesh::VertexHandle> vh;
-    for (const Vec3& p : c.mesh.positions) vh.push_back(m->add_vertex(OmMesh::Point(p.x, p.y, p.z)));
-    for (const Tri& t : c.mesh.triangles) m->add_face(vh[t[0]], vh[t[1]], vh[t[2]]);
+    for (const Vec3& p : mesh.positions) vh.push_back(m->add_vertex(OmMesh::Point(p.x, p.y, p.z)));
+    rejected = 0;
+    for (const Tri& t : mesh.triangles) rejected += !m->add_face(vh[t[0]], vh[t[1]], vh[t[2]]).is_valid();
+    if (locked) {
+      m->request_vertex_status();
+      for (std::size_t v = 0; v < vh.size(); ++v)
+        if ((*locked)[v]) m->status(vh[v]).set_locked(true);
+    }
     state.ResumeTiming();
     OpenMesh::Decimater::DecimaterT<OmMesh> dec(*m);
     OpenMesh::Decimater::ModQuadricT<OmMesh>::Handle hq;
@@ -211,7 +223,14 @@ void bm_openmesh(benchmark::State& state, std::size_t n, double ratio) {
     }
     state.ResumeTiming();
   }
-  report(state, c.mesh, c.feature, out, c.diag);
+  state.counters["om_rejected_faces"] = double(rejected);
+  return out;
+}
+
+void bm_openmesh(benchmark::State& state, std::size_t n, double ratio) {
+  const Case& c = sphere_case(n);
+  const std::size_t target = std::size_t(std::llround(ratio * double(c.mesh.num_triangles()))) & ~std::size_t{1};
+  report(state, c.mesh, c.feature, timed_openmesh(state, c.mesh, target), c.diag);
 }
 
 #ifdef INTERFERE_BENCH_HAS_CAD
@@ -305,6 +324,21 @@ void bm_casing_meshopt(benchmark::State& state, const std::string& step) {
   casing_report(state, *c, step, timed_meshopt(state, welded, casing_budget(welded)));
 }
 
+// OpenMesh on the welded casing: plain (knowing neither faces nor features) or, `lock`, with every
+// vertex of the step's feature faces locked (the Decimater's region protection; it knows no seams).
+void bm_casing_openmesh(benchmark::State& state, const std::string& step, bool lock) {
+  const CasingCase* c = casing_or_skip(state);
+  if (!c) return;
+  const cad::Part& part = c->model.parts[0];
+  const TriMesh welded = weld_positions(part.mesh);  // triangle order kept
+  std::vector<std::uint8_t> locked(welded.num_vertices(), 0);
+  const auto& faces = c->step_faces.at(step);
+  for (std::size_t t = 0; t < welded.num_triangles(); ++t)
+    if (std::binary_search(faces.begin(), faces.end(), part.face_ids[t]))
+      for (std::uint32_t v : welded.triangles[t]) locked[v] = 1;
+  casing_report(state, *c, step, timed_openmesh(state, welded, casing_budget(welded), lock ? &locked : nullptr));
+}
+
 void bm_recognition(benchmark::State& state) {
   static cad::CadModel model;
   static bool ok = false;
@@ -380,6 +414,14 @@ int main(int argc, char** argv) {
     benchmark::RegisterBenchmark((std::string("Casing/meshoptimizer/") + step).c_str(), bm_casing_meshopt,
                                  std::string(step))
         ->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->Iterations(20);
+    if (peers) {  // a few hundred ms a run: 3 runs
+      benchmark::RegisterBenchmark((std::string("Casing/openmesh/") + step).c_str(), bm_casing_openmesh,
+                                   std::string(step), false)
+          ->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->Iterations(3);
+      benchmark::RegisterBenchmark((std::string("Casing/openmesh_lock/") + step).c_str(), bm_casing_openmesh,
+                                   std::string(step), true)
+          ->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->Iterations(3);
+    }
   }
   benchmark::RegisterBenchmark("Recognition/perforated_plate", bm_recognition)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime();
 #endif

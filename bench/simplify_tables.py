@@ -319,8 +319,21 @@ lock=False, sharp_angle=0, prevent_self_intersections=True, measure_error=True, 
 `interfere.write_tagged_mesh(path, mesh, face_ids=[], feature_faces=[], error_bound=-1)`,
 `interfere.read_error_bound(path)`, `interfere.write_glb(path, [(name, mesh, face_ids, feature_faces,
 error_bound)], [(name, part, Transform)], units="mm")`, `interfere.count_self_intersections(mesh)`, `interfere.triangle_budgets([(T, F), ...], renderer_max)`; when
-`interfere.HAVE_CAD`: `interfere.import_step(path, linear_deflection=0, angular_deflection=0.5)` and
-`interfere.step_features(path, process="", step="")`.
+`interfere.HAVE_CAD`: `interfere.import_step(path, linear_deflection=0, angular_deflection=0.5)` (instances with
+their `placement`), `interfere.step_features(path, process="", step="")` and `interfere.prepare_step(path,
+process="", step="", linear_deflection=0, angular_deflection=0.5, library="", rules="")`, the CLI's STEP pipeline
+up to the simplification: `parts` ready for `simplify` (`name`, `mesh` in part coordinates, `face_ids`,
+`feature_faces` of the step, `faces`, `instances`, `model_part`; `<part> [<step>]` variants as in the CLI),
+`instances` (`name`, `part`, `placement`, `face_offset`), `warnings` and `report` (the CLI report's `cad` object):
+
+```python
+prep = itf.prepare_step("line.step", process="process.json", step="P1")
+parts = [(p["name"], itf.simplify(p["mesh"], ratio=0.1, face_ids=p["face_ids"], feature_faces=p["feature_faces"]))
+         for p in prep["parts"]]
+itf.write_glb("line.glb", [(n, r.mesh, r.face_ids, p["feature_faces"], r.error_bound)
+                           for (n, r), p in zip(parts, prep["parts"])],
+              [(i["name"], i["part"], i["placement"]) for i in prep["instances"]])
+```
 """
 
 
@@ -372,7 +385,11 @@ def write_doc(raw):
                  "weighted: P1 bolt connection (through holes + flange faces), P2 screw tightening (counterbored "
                  "holes + seats). `interfere`: the paper's weighting; `interfere_last`: feature edges strictly last; "
                  "`interfere_lock`: hard locks; `meshoptimizer`: the peer on the welded part, knowing neither faces nor "
-                 "features (its time is the reference for the casing target on this machine and load).")
+                 "features (its time is the reference for the casing target on this machine and load); `openmesh`: "
+                 "the OpenMesh Decimater (ModQuadric) on the welded part, 3 runs; `openmesh_lock`: the same with "
+                 "every vertex of the step's feature faces locked, the Decimater's own region protection (it keeps "
+                 "the feature triangles as they are, like `interfere_lock`, but knows no seams and checks no "
+                 "intersections).")
     lines.append("")
     lines.append("| case | time (ms) | cpu (ms) | triangles in → out | feature faces | hausdorff_rel | feature_err_rel | self_x | guard rerun |")
     lines.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
@@ -453,6 +470,15 @@ def write_doc(raw):
                      f"(ratio {cours['ms']/cmo['ms']:.2f}); meshoptimizer keeps no faces or features and checks no "
                      "self-intersections.")
         lines.append("")
+    for step in ("P1", "P2"):
+        ol = r.get(f"Casing/openmesh_lock/{step}")
+        il = r.get(f"Casing/interfere_lock/{step}")
+        if ol and il and "error" not in ol and "error" not in il:
+            lines.append(f"Feature faces locked, {step}: interfere {il['ms']:.1f} ms, {int(il['tri_out'])} triangles, "
+                         f"Hausdorff {fmt(il['hausdorff_rel'])}, {int(il['self_x'])} self-intersections; OpenMesh "
+                         f"{ol['ms']:.0f} ms, {int(ol['tri_out'])} triangles, Hausdorff {fmt(ol['hausdorff_rel'])}, "
+                         f"{int(ol['self_x'])} self-intersections.")
+            lines.append("")
     lines.append("Verdicts use wall time. Timings come from a shared 2-core machine (see the load average above; "
                  "`cpu` is the process's CPU time, all threads); rerun `python3 bench/simplify_tables.py` on a quiet "
                  "machine for reference numbers. The issue's casing target is the paper's method (`interfere`, "

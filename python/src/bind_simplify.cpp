@@ -195,7 +195,8 @@ void bind_simplify(py::module_& m) {
         out["parts"] = parts;
         py::list inst;
         for (const cad::Instance& i : r->instances)
-          inst.append(py::dict(py::arg("name") = i.name, py::arg("part") = i.part, py::arg("path") = i.path));
+          inst.append(py::dict(py::arg("name") = i.name, py::arg("part") = i.part, py::arg("path") = i.path,
+                               py::arg("placement") = i.placement));
         out["instances"] = inst;
         out["warnings"] = r->warnings;
         out["units"] = r->units;
@@ -203,7 +204,8 @@ void bind_simplify(py::module_& m) {
         return out;
       },
       py::arg("path"), py::arg("linear_deflection") = 0.0, py::arg("angular_deflection") = 0.5,
-      "Reads a STEP file: parts (name, mesh, per-triangle face_ids, AAG nodes/arcs), instances, warnings, units "
+      "Reads a STEP file: parts (name, mesh, per-triangle face_ids, AAG nodes/arcs), instances (name, part, path, "
+      "placement: Transform, part -> world), warnings, units "
       "(always 'mm') and file_length_units (the units the file declares).");
   m.def(
       "step_features",
@@ -239,6 +241,46 @@ void bind_simplify(py::module_& m) {
       py::arg("path"), py::arg("process") = std::string(), py::arg("step") = std::string(),
       "Features of every part of a STEP file (library types, face ids, roles, radii) and, with process/step, "
       "the assembly-feature faces of that step.");
+  m.def(
+      "prepare_step",
+      [](const std::filesystem::path& path, const std::string& process_file, const std::string& step,
+         double linear_deflection, double angular_deflection, const std::string& library_file,
+         const std::string& rules_file) {
+        if (process_file.empty() != step.empty()) throw py::value_error("process and step go together");
+        Expected<cad::Prepared> r = Error{};
+        {
+          py::gil_scoped_release release;
+          r = cad::prepare_for_simplify(path.string(), {.linear_deflection = linear_deflection,
+                                                        .angular_deflection = angular_deflection,
+                                                        .library_file = library_file,
+                                                        .rules_file = rules_file,
+                                                        .process_file = process_file,
+                                                        .step = step});
+        }
+        if (!r) throw py::value_error(r.error().message());
+        py::list parts, inst;
+        for (const cad::PreparedPart& p : r->parts)
+          parts.append(py::dict(py::arg("name") = p.name, py::arg("mesh") = p.mesh, py::arg("face_ids") = p.face_ids,
+                                py::arg("feature_faces") = p.feature_faces, py::arg("faces") = p.faces,
+                                py::arg("instances") = p.instances, py::arg("model_part") = p.model_part));
+        for (const cad::PreparedInstance& i : r->instances)
+          inst.append(py::dict(py::arg("name") = i.name, py::arg("part") = i.part, py::arg("placement") = i.placement,
+                               py::arg("face_offset") = i.face_offset));
+        py::dict out;
+        out["parts"] = parts;
+        out["instances"] = inst;
+        out["warnings"] = r->warnings;
+        out["report"] = py::module_::import("json").attr("loads")(r->report_json);
+        return out;
+      },
+      py::arg("path"), py::arg("process") = std::string(), py::arg("step") = std::string(),
+      py::arg("linear_deflection") = 0.0, py::arg("angular_deflection") = 0.5, py::arg("library") = std::string(),
+      py::arg("rules") = std::string(),
+      "The CLI's STEP pipeline up to simplification: parts ready for interfere.simplify (name, mesh in part "
+      "coordinates, face_ids, feature_faces of the step, faces, instances, model_part; a part whose instances "
+      "differ in taking part in the step comes twice, '<part> [<step>]' with the step's features), instances "
+      "(name, part: index into parts, placement: Transform, face_offset), warnings and the CLI report's 'cad' "
+      "object (report). Budgets per part: interfere.triangle_budgets.");
 #else
   m.attr("HAVE_CAD") = false;
 #endif

@@ -128,6 +128,46 @@ class Cad(unittest.TestCase):
             self.assertEqual(len(f["plate"]["assembly_feature_faces"]), 3)  # via its instance plate_2
             self.assertEqual(f["shaft"]["assembly_feature_faces"], [])
 
+    def test_prepare_step_then_simplify_each_part(self):
+        asm = os.path.join(DATA, "assembly.step")
+        with tempfile.TemporaryDirectory() as d:
+            proc = os.path.join(d, "p.json")
+            with open(proc, "w") as out:
+                json.dump({"steps": [{"id": "P1", "parts": ["plate_2"], "constraint": "screw"}]}, out)
+            with self.assertRaises(ValueError):  # a step without its process
+                itf.prepare_step(asm, step="P1")
+            prep = itf.prepare_step(asm, process=proc, step="P1")
+            parts = {p["name"]: p for p in prep["parts"]}
+            self.assertEqual(sorted(parts), ["plate", "plate [P1]", "shaft"])
+            self.assertEqual(len(parts["plate [P1]"]["feature_faces"]), 3)  # bore, counterbore, seat
+            self.assertEqual(parts["plate"]["feature_faces"], [])
+            self.assertEqual(len(prep["instances"]), 3)
+            by_name = {i["name"]: i for i in prep["instances"]}
+            self.assertEqual(prep["parts"][by_name["plate_2"]["part"]]["name"], "plate [P1]")
+            self.assertAlmostEqual(by_name["plate_2"]["placement"].t[2], 20.0)
+            self.assertIn("instances", prep["report"])
+            # Each part to half its triangles, the step's features locked: their triangles stay (on the
+            # plate they are 183 of 260 and the rest lies on seams: the budget cannot be met, a warning).
+            glb_parts = []
+            for p in prep["parts"]:
+                r = itf.simplify(p["mesh"], ratio=0.5, face_ids=p["face_ids"], feature_faces=p["feature_faces"],
+                                 lock=True)
+                feat_in = sum(1 for f in p["face_ids"] if f in p["feature_faces"])
+                self.assertEqual(r.feature_triangles_out, feat_in)
+                if p["feature_faces"]:
+                    self.assertFalse(r.reached)
+                    self.assertTrue(any("not reached" in w for w in r.warnings))
+                else:
+                    self.assertTrue(r.reached)
+                    self.assertEqual(len(r.mesh.triangles), len(p["mesh"].triangles) // 2)
+                glb_parts.append((p["name"], r.mesh, r.face_ids, p["feature_faces"], r.error_bound))
+            glb = os.path.join(d, "asm.glb")
+            itf.write_glb(glb, glb_parts, [(i["name"], i["part"], i["placement"]) for i in prep["instances"]])
+            with open(glb, "rb") as f:
+                self.assertEqual(f.read(4), b"glTF")
+        m = itf.import_step(asm)
+        self.assertTrue(all(hasattr(i["placement"], "t") for i in m["instances"]))
+
 
 if __name__ == "__main__":
     unittest.main()
