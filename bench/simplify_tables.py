@@ -219,6 +219,17 @@ quadric-error-metric edge collapses while the faces that take part in the curren
    assembly's shaft (a fan of long triangles across its end face); computing it adds about 0.1 s to the
    measurement at 10^6 → 1 % and 1 s at 10^6 → 10 % (`interfere_error` rows below).
 
+**Local frame.** QEM costs grow as the fourth power of the size and are ranked as floats, which overflow above
+sizes of about 10^10 and underflow below 10^-9 (every cost inf or 0: collapses in arbitrary order, 15× the
+error), and quadrics lose their precision to cancellation far from the origin (a part 10^6 of its sizes away:
+twice the error; 10^8: garbage). So a mesh whose centre lies beyond 256 sizes from the origin or whose size is
+outside [2^-20, 2^20] is simplified in a local frame p' = (p − c)·2^k, c the centre rounded to a multiple of a
+power of two near the size, used only where both steps are exact for every coordinate (checked; else the mesh
+is simplified as it is): the result is that of the same mesh at the origin and of unit size, mapped back —
+bit for bit for power-of-two scales, kept vertices bit-identical, the error bound grown by the rounding of
+the moved vertices, and (translated frames) the mapped result checked again for self-intersections (unit
+tests `LocalFrame.*`; phase `local frame`).
+
 **STEP input** is simplified part by part (an assembly's touching parts are contacts, not self-intersections
 of one mesh): each part prototype gets its share of the total budget from the formula below (instances counted,
 the step's feature triangles reserved), is simplified in part coordinates, and its instances are placed in the

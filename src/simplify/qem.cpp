@@ -5,11 +5,16 @@
 #include "interfere/simplify/qem.h"
 
 #include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
 #include <memory>
+#include <tuple>
 
 #include <tbb/parallel_invoke.h>
 
 #include "interfere/simplify/hausdorff.h"
+#include "local_frame.h"
 #include "qem_internal.h"
 
 namespace interfere {
@@ -38,6 +43,59 @@ std::size_t budget_of(const TriMesh& mesh, const SimplifyOptions& o, Error& err)
   return t;
 }
 
+// `box`: the mesh's bounds when known (0: computed).
+SimplifyResult simplify_in_frame(const TriMesh& mesh, const SimplifyOptions& options, std::size_t target,
+                                 const Aabb* box = nullptr);
+
+double phase_total(const SimplifyResult& r) {
+  double s = 0;
+  for (const auto& [name, sec] : r.phases) s += sec;
+  return s;
+}
+
+// The result of a run in `frame` back in the input's coordinates: positions (kept vertices map
+// back exactly, moved ones are rounded), lengths (exact), the error bound grown by that rounding.
+// With a translated frame the rounding could in principle make two triangles meet: the result is
+// checked again and false returned (the caller runs in the input's frame) if it has an
+// intersecting pair other than the input's own.
+bool to_world(SimplifyResult& r, const TriMesh& input, const qem::LocalFrame& frame, const SimplifyOptions& o) {
+  for (Vec3& p : r.mesh.positions) p = frame.to_world(p);
+  const auto length = [&](double& d) {
+    if (d > 0) d = frame.length_to_world(d);
+  };
+  length(r.hausdorff);
+  length(r.hausdorff_features);
+  length(r.bbox_diagonal);
+  r.max_unmodified_cost = std::ldexp(r.max_unmodified_cost, -4 * frame.exponent);  // area x distance^2
+  if (r.error_bound >= 0) {
+    length(r.error_bound);
+    if (frame.translated) {  // each coordinate of a moved vertex rounded by at most half an ulp
+      const Aabb b = r.mesh.bounds();
+      const double m = std::max({std::abs(b.lo.x), std::abs(b.lo.y), std::abs(b.lo.z), std::abs(b.hi.x),
+                                 std::abs(b.hi.y), std::abs(b.hi.z)});
+      if (m > 0) r.error_bound += std::ldexp(1.0, std::ilogb(m) - 52);  // >= sqrt(3)/2 ulp
+    }
+  }
+  if (!frame.translated || !o.prevent_self_intersections) return true;
+  const auto pairs = self_intersecting_pairs(r.mesh);
+  if (pairs.empty()) return true;
+  // The input's own pairs: both triangles as in the input (same corners).
+  using Key = std::array<double, 9>;  // the corners, sorted
+  const auto key = [](std::array<Vec3, 3> c) {
+    std::sort(c.begin(), c.end(), [](const Vec3& a, const Vec3& b) {
+      return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z);
+    });
+    return Key{c[0].x, c[0].y, c[0].z, c[1].x, c[1].y, c[1].z, c[2].x, c[2].y, c[2].z};
+  };
+  std::vector<Key> in(input.num_triangles());
+  for (std::size_t t = 0; t < in.size(); ++t) in[t] = key(input.corners(t));
+  std::sort(in.begin(), in.end());
+  const auto kept = [&](std::uint32_t t) { return std::binary_search(in.begin(), in.end(), key(r.mesh.corners(t))); };
+  for (const auto& [x, y] : pairs)
+    if (!kept(x) || !kept(y)) return false;
+  return true;
+}
+
 }  // namespace
 
 Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& options) {
@@ -55,12 +113,31 @@ Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& op
   Error err;
   const std::size_t target = budget_of(mesh, options, err);
   if (target == 0) return err;
+  // Far from the origin, or very large or small: simplified in a local frame (local_frame.h).
+  const Aabb box = mesh.bounds();
+  if (const auto frame = qem::local_frame(mesh, box)) {
+    const auto t0 = std::chrono::steady_clock::now();
+    SimplifyResult r = simplify_in_frame(qem::to_local(mesh, *frame), options, target);
+    if (to_world(r, mesh, *frame, options)) {
+      r.phases.insert(r.phases.begin(),
+                      {"local frame", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() -
+                                          phase_total(r)});
+      return r;
+    }
+  }
+  return simplify_in_frame(mesh, options, target, &box);
+}
 
+namespace {
+
+SimplifyResult simplify_in_frame(const TriMesh& mesh, const SimplifyOptions& options, std::size_t target,
+                                 const Aabb* known_box) {
+  const std::size_t nt = mesh.num_triangles();
   SimplifyResult r;
   qem::PhaseClock clock(r);
   r.input_triangles = nt;
   r.target_triangles = target;
-  const Aabb box = mesh.bounds();
+  const Aabb box = known_box ? *known_box : mesh.bounds();
   r.bbox_diagonal = norm(box.extent());
 
   std::vector<std::uint32_t> face = options.face_ids;
@@ -263,4 +340,5 @@ Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& op
   return r;
 }
 
+}  // namespace
 }  // namespace interfere

@@ -123,7 +123,10 @@ struct SimplifyResult {
 
 /// Simplifies `mesh`. Errors (returned, never thrown): no triangles, a non-finite position, an
 /// index out of range, face_ids of the wrong size, a budget <= 0 or larger than the mesh, a ratio
-/// outside (0, 1].
+/// outside (0, 1]. A mesh far from the origin (centre beyond 256 sizes) or of extreme size (outside
+/// [2^-20, 2^20]) is simplified in a local frame, (p - c) * 2^k, where that is exact for every
+/// coordinate: the result is the one of the same mesh at the origin and of unit size, mapped back
+/// (kept vertices bit-identical; phase "local frame").
 Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& options);
 
 /// Regions of a plain mesh split at sharp edges (dihedral angle > angle_deg) and non-manifold or
