@@ -199,7 +199,7 @@ quadric-error-metric edge collapses while the faces that take part in the curren
    edge strictly after all other candidates (an infinite offset: the top bit of the heap key), and `--lock`
    freezes every vertex of a feature face, which keeps the feature triangles bit-identical. Plain meshes use a per-triangle region file (`--regions`) or a dihedral-angle
    mask (`--sharp-angle DEG`: regions split at edges sharper than DEG, their borders kept like seams).
-6. **Error bound**: the symmetric Hausdorff distance between input and output, sampled at every vertex, edge
+6. **Error bound**: the symmetric Hausdorff distance between input and output, sampled at every vertex used by a triangle, edge
    midpoint and centroid and measured with the engine's BVH and closest-point queries, overall and on the feature
    faces (`hausdorff`, `hausdorff_features`: measurements, lower bounds of the true distances). `error_bound` is an
    upper bound of the distance from every point of the input's surface to the output (`OneSidedDistance::bound`
@@ -288,7 +288,7 @@ Exit status 0 on success, 2 on a usage or input error (the message names the fil
 written atomically and only after every input was validated.
 
 **`simplify` report**: `input_triangles`, `target_triangles`, `output_triangles`, `output_vertices`, `reached`,
-`collapses`, `rejected` {`link_condition`, `flipped_normal`, `self_intersection`}, `guard_rerun`, `guard_reruns`, `vertices` {`welded_input`,
+`collapses`, `rejected` {`link_condition`, `flipped_normal`, `self_intersection`}, `guard_rerun`, `guard_reruns`, `degenerate_triangles` (input triangles with two corners at one position, dropped with a warning; all degenerate is an error), `vertices` {`welded_input`,
 `seam`, `corner`, `locked`}, `feature_mode`, `feature_faces`, `feature_triangles` {`input`, `output`},
 `max_unmodified_cost`, `bbox_diagonal`, `hausdorff`, `hausdorff_features` (null without features), `error_bound`,
 `self_intersections` (with the flag), `seconds` {`simplify`, `total`, `phases` [{`phase`, `seconds`}] (wall time

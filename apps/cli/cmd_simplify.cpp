@@ -112,7 +112,7 @@ Expected<SimplifyResult> simplify_parts(const cad::Prepared& prep, std::size_t t
     all.rejected_intersection += d.rejected_intersection, all.guard_rerun = all.guard_rerun || d.guard_rerun;
     all.guard_reruns = std::max(all.guard_reruns, d.guard_reruns);
     all.seam_vertices += d.seam_vertices, all.corner_vertices += d.corner_vertices, all.locked_vertices += d.locked_vertices;
-    all.input_vertices_welded += d.input_vertices_welded;
+    all.input_vertices_welded += d.input_vertices_welded, all.degenerate_triangles += d.degenerate_triangles;
     for (const auto& [name, sec] : d.phases) {  // summed over the parts
       auto it = std::find_if(all.phases.begin(), all.phases.end(), [&](const auto& x) { return x.first == name; });
       if (it == all.phases.end()) all.phases.emplace_back(name, sec);
@@ -356,6 +356,7 @@ int run_simplify(const SimplifyCliOptions& o) {
                         {"self_intersection", r.rejected_intersection}};
   report["guard_rerun"] = r.guard_rerun;
   report["guard_reruns"] = r.guard_reruns;
+  report["degenerate_triangles"] = r.degenerate_triangles;
   report["vertices"] = {{"welded_input", r.input_vertices_welded}, {"seam", r.seam_vertices},
                         {"corner", r.corner_vertices}, {"locked", r.locked_vertices}};
   report["feature_mode"] = so.feature_mode == FeatureMode::lock ? "lock" : so.feature_mode == FeatureMode::last ? "last" : "weight";

@@ -38,6 +38,7 @@ void bind_simplify(py::module_& m) {
       .def_readonly("rejected_intersection", &SimplifyResult::rejected_intersection)
       .def_readonly("guard_rerun", &SimplifyResult::guard_rerun)
       .def_readonly("guard_reruns", &SimplifyResult::guard_reruns)
+      .def_readonly("degenerate_triangles", &SimplifyResult::degenerate_triangles)
       .def_readonly("seam_vertices", &SimplifyResult::seam_vertices)
       .def_readonly("corner_vertices", &SimplifyResult::corner_vertices)
       .def_readonly("locked_vertices", &SimplifyResult::locked_vertices)

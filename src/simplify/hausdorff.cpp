@@ -102,15 +102,19 @@ using detail::refined_bound;
 using detail::sample;
 using detail::Sampled;
 
-// Samples: every vertex (used by a triangle or not), then per triangle its 3 edge midpoints and
-// its centroid. The bound: per triangle local_bound, computed in the sampling pass down to 1.25x
+// Samples: every vertex used by a triangle (an unused vertex is no point of the surface: an OBJ
+// with stray vertices measured their distance), then per triangle its 3 edge midpoints and its
+// centroid. The bound: per triangle local_bound, computed in the sampling pass down to 1.25x
 // the vertices' largest distance (usually the largest of all: QEM errs most at vertices); the
 // triangles still above 1.25x the largest sampled distance get more candidates (ring_bound), then
 // midpoint subdivision (refined_bound, 2 levels).
 OneSidedDistance one_sided(const TriMesh& from, const TriMesh& to, bool with_bound) {
   OneSidedDistance out;
   const std::size_t nv = from.num_vertices(), nt = from.num_triangles();
-  out.samples = nv + 4 * nt;
+  std::vector<std::uint8_t> used(nv, 0);
+  for (const Tri& t : from.triangles)
+    for (std::uint32_t v : t) used[v] = 1;
+  out.samples = static_cast<std::size_t>(std::count(used.begin(), used.end(), 1)) + 4 * nt;
   if (out.samples == 0) return out;
   if (to.num_triangles() == 0) {
     out.sampled = out.bound = std::numeric_limits<double>::infinity();
@@ -120,10 +124,12 @@ OneSidedDistance one_sided(const TriMesh& from, const TriMesh& to, bool with_bou
   const Bvh bvh = build_bvh(to);
   std::vector<Near> vn(nv);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t v = r.begin(); v < r.end(); ++v) vn[v] = nearest(to, bvh, from.positions[v]);
+    for (std::size_t v = r.begin(); v < r.end(); ++v)
+      if (used[v]) vn[v] = nearest(to, bvh, from.positions[v]);
   });
   double vertex_max = 0;
-  for (const Near& n : vn) vertex_max = std::max(vertex_max, n.d);  // unused vertices are samples too
+  for (std::size_t v = 0; v < nv; ++v)
+    if (used[v]) vertex_max = std::max(vertex_max, vn[v].d);
   const auto corners_of = [&](std::size_t t) {
     const Tri& tr = from.triangles[t];
     return std::array<Near, 3>{vn[tr[0]], vn[tr[1]], vn[tr[2]]};

@@ -44,8 +44,8 @@ std::size_t budget_of(const TriMesh& mesh, const SimplifyOptions& o, Error& err)
 }
 
 // `box`: the mesh's bounds when known (0: computed).
-SimplifyResult simplify_in_frame(const TriMesh& mesh, const SimplifyOptions& options, std::size_t target,
-                                 const Aabb* box = nullptr);
+Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOptions& options, std::size_t target,
+                                           const Aabb* box = nullptr);
 
 double phase_total(const SimplifyResult& r) {
   double s = 0;
@@ -117,11 +117,12 @@ Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& op
   const Aabb box = mesh.bounds();
   if (const auto frame = qem::local_frame(mesh, box)) {
     const auto t0 = std::chrono::steady_clock::now();
-    SimplifyResult r = simplify_in_frame(qem::to_local(mesh, *frame), options, target);
-    if (to_world(r, mesh, *frame, options)) {
-      r.phases.insert(r.phases.begin(),
-                      {"local frame", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() -
-                                          phase_total(r)});
+    auto r = simplify_in_frame(qem::to_local(mesh, *frame), options, target);
+    if (!r) return r;
+    if (to_world(*r, mesh, *frame, options)) {
+      r->phases.insert(r->phases.begin(),
+                       {"local frame", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() -
+                                           phase_total(*r)});
       return r;
     }
   }
@@ -130,8 +131,8 @@ Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& op
 
 namespace {
 
-SimplifyResult simplify_in_frame(const TriMesh& mesh, const SimplifyOptions& options, std::size_t target,
-                                 const Aabb* known_box) {
+Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOptions& options, std::size_t target,
+                                           const Aabb* known_box) {
   const std::size_t nt = mesh.num_triangles();
   SimplifyResult r;
   qem::PhaseClock clock(r);
@@ -169,6 +170,9 @@ SimplifyResult simplify_in_frame(const TriMesh& mesh, const SimplifyOptions& opt
   auto sp = std::make_unique<qem::Simplifier>(std::move(welded), face, feature_tri, plain);
   if (options.prevent_self_intersections && !options.guard_every_collapse) sp->keep_handoff();
   sp->run(target, r);
+  if (r.degenerate_triangles == nt)
+    return Error{.reason = "every triangle of the mesh is degenerate (two corners at one position): nothing to "
+                           "simplify"};
   clock.restart();
   // Surviving triangles in input order, unused vertices dropped (new ids in order of first use).
   // out_origin: the input triangle of each output triangle.
@@ -301,6 +305,9 @@ SimplifyResult simplify_in_frame(const TriMesh& mesh, const SimplifyOptions& opt
   }
   if (have_faces) r.face_ids = std::move(out_face);
   clock.lap("split");
+  if (r.degenerate_triangles > 0)
+    r.warnings.push_back(std::to_string(r.degenerate_triangles) +
+                         " degenerate triangles (two corners at one position) dropped");
   r.reached = r.mesh.num_triangles() == target;
   if (!r.reached)
     r.warnings.push_back("budget " + std::to_string(target) + " not reached: " +

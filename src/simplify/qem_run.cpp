@@ -157,6 +157,7 @@ void Simplifier::run(std::size_t target, SimplifyResult& r) {
     const Tri& tr = tris_[t];
     if (tr[0] == tr[1] || tr[1] == tr[2] || tr[0] == tr[2]) dead_[t] = 1, --live;
   }
+  r.degenerate_triangles = nt - live;
   progress_from_ = live, progress_target_ = target;
   report_progress(live);
   vertex_quadrics();

@@ -2,7 +2,7 @@
 // closest-point queries (np/distance.h): one-sided distances from sample points of one mesh to the
 // other mesh, and the symmetric Hausdorff distance (the larger of the two directions).
 //
-// Sampling: every vertex, every edge midpoint and every triangle centroid (a lower bound of the
+// Sampling: every vertex used by a triangle, every edge midpoint and every triangle centroid (a lower bound of the
 // true Hausdorff distance that is tight where the error is largest at vertices, as it is for QEM);
 // from the same samples, an upper bound of the one-sided distance (OneSidedDistance::bound).
 #pragma once

@@ -91,6 +91,8 @@ struct SimplifyResult {
   TriMesh mesh;                         ///< the simplified mesh (surviving triangles in input order)
   std::vector<std::uint32_t> face_ids;  ///< per output triangle (empty when none were given)
   std::size_t input_triangles = 0, input_vertices_welded = 0;
+  /// Input triangles with two corners at one position (dropped first, with a warning).
+  std::size_t degenerate_triangles = 0;
   std::size_t target_triangles = 0;     ///< the budget asked for
   bool reached = false;                 ///< mesh has exactly target_triangles triangles
   std::size_t collapses = 0;
@@ -123,7 +125,7 @@ struct SimplifyResult {
 
 /// Simplifies `mesh`. Errors (returned, never thrown): no triangles, a non-finite position, an
 /// index out of range, face_ids of the wrong size, a budget <= 0 or larger than the mesh, a ratio
-/// outside (0, 1]. A mesh far from the origin (centre beyond 256 sizes) or of extreme size (outside
+/// outside (0, 1], every triangle degenerate (two corners at one position). A mesh far from the origin (centre beyond 256 sizes) or of extreme size (outside
 /// [2^-20, 2^20]) is simplified in a local frame, (p - c) * 2^k, where that is exact for every
 /// coordinate: the result is the one of the same mesh at the origin and of unit size, mapped back
 /// (kept vertices bit-identical; phase "local frame").

@@ -566,6 +566,40 @@ TEST(Simplify, BadInputIsAnErrorNotACrash) {
   ASSERT_TRUE(same.has_value());
   EXPECT_LE(same->hausdorff, 1e-12);
   EXPECT_EQ(same->mesh.num_triangles(), s.num_triangles());
+  EXPECT_EQ(same->degenerate_triangles, 0u);
+  // Every triangle degenerate (all corners at one point): an error, not an empty result.
+  TriMesh point;
+  point.positions.assign(30, Vec3{1, 1, 1});
+  for (std::uint32_t i = 0; i + 2 < 30; ++i) point.triangles.push_back({i, i + 1, i + 2});
+  auto none = simplify(point, {.ratio = 0.5});
+  ASSERT_FALSE(none.has_value());
+  EXPECT_NE(none.error().reason.find("degenerate"), std::string::npos);
+  // Some degenerate: dropped, counted, a warning.
+  TriMesh some = s;
+  some.triangles.push_back({0, 0, 1});
+  some.triangles.push_back({2, 2, 2});
+  auto dropped = simplify(some, {.target_triangles = 100});
+  ASSERT_TRUE(dropped.has_value());
+  EXPECT_EQ(dropped->degenerate_triangles, 2u);
+  EXPECT_EQ(dropped->mesh.num_triangles(), 100u);
+  EXPECT_TRUE(std::any_of(dropped->warnings.begin(), dropped->warnings.end(),
+                          [](const std::string& w) { return w.find("2 degenerate") != std::string::npos; }));
+}
+
+// Vertices no triangle uses are no points of the surface (an OBJ with stray vertices): they do not
+// count in the measured error.
+TEST(Hausdorff, UnusedVerticesAreNotSampled) {
+  const TriMesh s = make_sphere({.target_triangles = 800, .bump_amplitude = 0.05});
+  TriMesh stray = s;
+  stray.positions.push_back({50, 50, 50});
+  const auto a = simplify(s, {.ratio = 0.2}), b = simplify(stray, {.ratio = 0.2});
+  ASSERT_TRUE(a.has_value() && b.has_value());
+  EXPECT_EQ(a->hausdorff, b->hausdorff);
+  EXPECT_GT(a->error_bound, 0.0);
+  EXPECT_LT(b->error_bound, 1.0);  // the stray vertex is 85 away
+  const HausdorffResult h = hausdorff(stray, s);
+  EXPECT_LE(h.a_to_b, 1e-12);  // closest-point rounding only
+  EXPECT_EQ(h.samples, hausdorff(s, s).samples);
 }
 
 TEST(Hausdorff, BoundCoversThePointsBetweenTheSamples) {
