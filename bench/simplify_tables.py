@@ -100,7 +100,14 @@ quadric-error-metric edge collapses while the faces that take part in the curren
    `BRepMesh_IncrementalMesh` (linear deflection, default 0.1 % of the part's diagonal; angular deflection,
    default 0.5 rad); every triangle keeps its B-Rep face id (index in `TopExp::MapShapes(shape, FACE)`), vertices
    are duplicated along face boundaries so faces stay separable. Faces that fail to tessellate are warnings
-   naming the face; unreadable/empty files and files without solids or shells are errors.
+   naming the face; unreadable/empty files and files without solids or shells are errors. Malformed files are
+   errors naming the line or entity — syntax errors and truncation (the parser's own messages, which OCCT would
+   print to stdout, with their line numbers), unresolved references, reference cycles (found before OCCT's
+   entity checks, which follow them until the stack overflows) — never crashes: signals inside OCCT become
+   exceptions during the import (`OSD::SetSignal`, `OCC_CATCH_SIGNALS`; the host's handlers are restored).
+   Schema check failures of single entities, common in files from CAD systems (NIST test parts), and entities
+   that fail to translate are warnings (`tests/cad/test_cad_malformed.cpp`; 240 mutated files in a manual fuzz
+   run: every one a clean error or a warned result).
 2. **Attributed adjacency graph** (Joshi & Chang 1988, as used by He & Xu 2023 §2.1): a node per face with its
    surface type (plane, cylinder, cone, sphere, torus, B-spline/other) and parameters (outward normal; axis,
    radius, half angle; `hole` = outward normal towards the axis), area and loop counts; an arc per edge shared by
