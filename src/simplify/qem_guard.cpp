@@ -4,6 +4,7 @@
 // against the non-adjacent triangles near it.
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "interfere/np/tri_tri.h"
 #include "qem_internal.h"
@@ -27,6 +28,7 @@ void Simplifier::rebuild_grid(std::size_t live) {
   if (!(cell_ > 0) || !std::isfinite(cell_)) cell_ = 1;
   origin_ = all.lo;
   grid_.clear();
+  grid_big_.clear();
   grid_inserted_ = 0;
   grid_.reserve(live / 2 + 16);
   for (std::uint32_t t = 0; t < tris_.size(); ++t)
@@ -34,6 +36,15 @@ void Simplifier::rebuild_grid(std::size_t live) {
   grid_live_ = live;
   grid_size_ = grid_inserted_;
   grid_inserted_ = 0;
+}
+
+// Cells of a box: their number (in double: a sliver across the part next to tiny triangles spans
+// more cells than an int64 counts) and, when not too many, each key.
+double Simplifier::grid_cell_count(const Aabb& box) const {
+  auto span = [&](double lo, double hi) { return std::floor(hi / cell_) - std::floor(lo / cell_) + 1; };
+  const double n = span(box.lo.x - origin_.x, box.hi.x - origin_.x) * span(box.lo.y - origin_.y, box.hi.y - origin_.y) *
+                   span(box.lo.z - origin_.z, box.hi.z - origin_.z);
+  return std::isfinite(n) ? n : std::numeric_limits<double>::infinity();
 }
 
 template <class F>
@@ -49,10 +60,18 @@ void Simplifier::grid_cells(const Aabb& box, F&& f) const {
           static_cast<std::uint64_t>(z & 0x1fffff));
 }
 
+// A triangle whose box spans more than kMaxCells cells (a sliver across the part beside tiny
+// triangles: a mutated STL with one vertex at 1e28 spanned ~1e40 and never finished inserting)
+// goes to one list scanned by every check instead.
 void Simplifier::grid_insert(std::uint32_t t) {
   Aabb b;
   for (std::uint32_t v : tris_[t]) b.expand(pos_[v]);
   if (!near_region(b)) return;
+  if (grid_cell_count(b) > kMaxCells) {
+    grid_big_.push_back(t);
+    ++grid_inserted_;
+    return;
+  }
   grid_cells(b, [&](std::uint64_t key) {
     grid_[key].push_back(t);
     ++grid_inserted_;
@@ -91,13 +110,10 @@ bool Simplifier::intersection_ok(std::uint32_t keep, std::uint32_t remove, const
   if (guard_moved_.empty()) return true;
   ++tri_mark_id_;
   bool ok = true;
-  grid_cells(all, [&](std::uint64_t key) {
+  // The cell sheds its entries of dead triangles and its repeated entries while it is scanned
+  // (a moved triangle is inserted again, its old entries stay): they were half of the entries.
+  const auto scan = [&](std::vector<std::uint32_t>& cell) {
     if (!ok) return;
-    auto it = grid_.find(key);
-    if (it == grid_.end()) return;
-    // The cell sheds its entries of dead triangles and its repeated entries while it is scanned
-    // (a moved triangle is inserted again, its old entries stay): they were half of the entries.
-    std::vector<std::uint32_t>& cell = it->second;
     const std::uint32_t cell_id = ++cell_mark_id_;
     std::size_t kept = 0, i = 0;
     for (; i < cell.size() && ok; ++i) {
@@ -126,7 +142,15 @@ bool Simplifier::intersection_ok(std::uint32_t keep, std::uint32_t remove, const
       }
     }
     cell.erase(cell.begin() + static_cast<std::ptrdiff_t>(kept), cell.begin() + static_cast<std::ptrdiff_t>(i));
-  });
+  };
+  scan(grid_big_);
+  if (grid_cell_count(all) > std::max<double>(kMaxCells, double(grid_.size()))) {
+    for (auto& [key, cell] : grid_) scan(cell);  // a box larger than the occupied cells: all of them
+  } else {
+    grid_cells(all, [&](std::uint64_t key) {
+      if (auto it = grid_.find(key); it != grid_.end()) scan(it->second);
+    });
+  }
   return ok;
 }
 

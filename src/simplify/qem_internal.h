@@ -360,6 +360,8 @@ class Simplifier {
   void rebuild_grid(std::size_t live);
   template <class F>
   void grid_cells(const Aabb& box, F&& f) const;
+  double grid_cell_count(const Aabb& box) const;
+  static constexpr double kMaxCells = 512;  ///< a triangle spanning more goes to grid_big_
 
   const SimplifyOptions& o_;
   std::vector<std::uint32_t> fan_start_, fan_count_;
@@ -405,6 +407,7 @@ class Simplifier {
   double cell_ = 1;
   Vec3 origin_;
   std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> grid_;
+  std::vector<std::uint32_t> grid_big_;  ///< triangles spanning more than kMaxCells cells
   struct GuardMark {  ///< per triangle: last scan that examined it, last cell scan that kept it
     std::uint32_t tri = 0, cell = 0;
   };
