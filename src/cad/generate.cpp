@@ -1,6 +1,6 @@
 // Generated test and benchmark solids (issue #6, items 8-9): OCCT primitives (BRepPrimAPI) and
 // Booleans (BRepAlgoAPI_Cut/Fuse, then ShapeUpgrade_UnifySameDomain), written to STEP with
-// STEPControl_Writer. The casing is the paper's case (He & Xu, SJTU 2023, §4): a flanged ring (wall of
+// STEPCAFControl_Writer, each product named after its part. The casing is the paper's case (He & Xu, SJTU 2023, §4): a flanged ring (wall of
 // revolution with a B-spline bulge) with counterbored bolt holes on the lower flange and plain bolt
 // holes on the upper one.
 #include <BRepAlgoAPI_Cut.hxx>
@@ -21,7 +21,6 @@
 #include <Message_Messenger.hxx>
 #include <Message_PrinterOStream.hxx>
 #include <STEPCAFControl_Writer.hxx>
-#include <STEPControl_Writer.hxx>
 #include <TDataStd_Name.hxx>
 #include <TDocStd_Document.hxx>
 #include <TopLoc_Location.hxx>
@@ -168,15 +167,22 @@ const char* test_part_name(TestPart p) {
   return "?";
 }
 
-Status write_test_part(TestPart part, const std::filesystem::path& step_file) {
+namespace {
+
+// Writes an XCAF document filled by `fill` (shapes and their names) with STEPCAFControl_Writer, so
+// that products carry those names.
+template <class Fill>
+Status write_xcaf(const std::filesystem::path& step_file, Fill&& fill) {
   try {
-    const TopoDS_Shape s = build(part);
-    if (s.IsNull()) return Error{.file = step_file.string(), .reason = "solid construction failed"};
     // The writer's transfer statistics go to the default messenger's stdout printer: mute it.
     Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
-    STEPControl_Writer w;
-    if (w.Transfer(s, STEPControl_AsIs) != IFSelect_RetDone)
-      return Error{.file = step_file.string(), .reason = "STEP transfer failed"};
+    Handle(TDocStd_Document) doc;
+    XCAFApp_Application::GetApplication()->NewDocument("MDTV-XCAF", doc);
+    if (const Status s = fill(XCAFDoc_DocumentTool::ShapeTool(doc->Main())); !s.ok())
+      return Error{.file = step_file.string(), .reason = s.error().reason};
+    STEPCAFControl_Writer w;
+    w.SetNameMode(Standard_True);
+    if (!w.Transfer(doc, STEPControl_AsIs)) return Error{.file = step_file.string(), .reason = "STEP transfer failed"};
     if (w.Write(step_file.string().c_str()) != IFSelect_RetDone)
       return Error{.file = step_file.string(), .reason = "cannot write the STEP file"};
     return {};
@@ -185,12 +191,20 @@ Status write_test_part(TestPart part, const std::filesystem::path& step_file) {
   }
 }
 
+}  // namespace
+
+// One product named after the part (test_part_name).
+Status write_test_part(TestPart part, const std::filesystem::path& step_file) {
+  return write_xcaf(step_file, [&](const Handle(XCAFDoc_ShapeTool)& st) -> Status {
+    const TopoDS_Shape s = build(part);
+    if (s.IsNull()) return Error{.reason = "solid construction failed"};
+    TDataStd_Name::Set(st->AddShape(s, Standard_False), test_part_name(part));
+    return {};
+  });
+}
+
 Status write_test_assembly(const std::filesystem::path& step_file) {
-  try {
-    Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
-    Handle(TDocStd_Document) doc;
-    XCAFApp_Application::GetApplication()->NewDocument("MDTV-XCAF", doc);
-    Handle(XCAFDoc_ShapeTool) st = XCAFDoc_DocumentTool::ShapeTool(doc->Main());
+  return write_xcaf(step_file, [](const Handle(XCAFDoc_ShapeTool)& st) -> Status {
     const TDF_Label plate = st->AddShape(build(TestPart::counterbored_plate), Standard_False);
     TDataStd_Name::Set(plate, "plate");
     const TDF_Label shaft = st->AddShape(build(TestPart::stepped_shaft), Standard_False);
@@ -206,15 +220,8 @@ Status write_test_assembly(const std::filesystem::path& step_file) {
     TDataStd_Name::Set(st->AddComponent(assembly, plate, TopLoc_Location(t2)), "plate_2");
     TDataStd_Name::Set(st->AddComponent(assembly, shaft, TopLoc_Location(t3)), "shaft_1");
     st->UpdateAssemblies();
-    STEPCAFControl_Writer w;
-    w.SetNameMode(Standard_True);
-    if (!w.Transfer(doc, STEPControl_AsIs)) return Error{.file = step_file.string(), .reason = "STEP transfer failed"};
-    if (w.Write(step_file.string().c_str()) != IFSelect_RetDone)
-      return Error{.file = step_file.string(), .reason = "cannot write the STEP file"};
     return {};
-  } catch (const Standard_Failure& e) {
-    return Error{.file = step_file.string(), .reason = std::string("OpenCASCADE failure: ") + e.GetMessageString()};
-  }
+  });
 }
 
 }  // namespace interfere::cad
