@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes the committed seed corpus of the fuzz targets (standard library only, deterministic).
 
-    python3 tests/fuzz/make_corpus.py            # rewrites tests/fuzz/corpus/{read_mesh,tri_tri,read_fem}/
+    python3 tests/fuzz/make_corpus.py            # rewrites tests/fuzz/corpus/{read_mesh,tri_tri,read_fem,simplify,read_step}/
 
 corpus/read_mesh/: small valid and broken samples of every format the readers accept (the fuzz
 target writes each input under every extension, so the file names are only descriptive).
@@ -377,8 +377,65 @@ def fem_seeds():
     return seeds
 
 
+def simplify_seeds():
+    """corpus/simplify/: byte strings for fuzz_simplify.cpp (byte 0 = shape | feature mode << 2 |
+    sharp angle << 4 | guard every collapse << 5 | no batched passes << 6, byte 1 = ratio, byte 2 =
+    size, then the shape's bytes), from a fixed linear congruential generator: every shape with every
+    feature mode, some with the other flags."""
+    state = [12345]
+
+    def rand_bytes(n):
+        out = bytearray()
+        for _ in range(n):
+            state[0] = (state[0] * 1103515245 + 12345) % (1 << 31)
+            out.append((state[0] >> 16) & 0xFF)
+        return bytes(out)
+
+    seeds = {}
+    for shape in range(4):
+        for mode in range(4):
+            for extra in (0, 1):
+                flags = shape | mode << 2 | (extra * (16 if shape != 1 else 32))
+                ratio = (7 + 31 * mode + 13 * extra) % 100
+                size = (5 + 17 * shape + 3 * mode) % 256
+                n = {0: 500, 1: 40, 2: 600, 3: 500}[shape]
+                body = rand_bytes(n)
+                if shape == 3:  # the exponent byte: very small, very large, moderate
+                    body = bytes([(mode * 70 + extra * 20) % 256]) + body
+                seeds["shape%d_mode%d_%s" % (shape, mode, "extra" if extra else "plain")] = (
+                    bytes([flags, ratio, size]) + body)
+    seeds["height_field_no_passes"] = bytes([0 | 1 << 2 | 64, 20, 11]) + rand_bytes(400)
+    return seeds
+
+
+def step_seeds():
+    """corpus/read_step/: the committed STEP test files (tests/cli/data, see its README) and broken
+    variants: truncated, a syntax error, an unresolved reference, an oriented edge that is its own
+    edge (a reference cycle: OCCT's checks recursed until the stack overflowed), an oriented edge
+    whose edge is a point (a mistyped reference)."""
+    import re
+    src = os.path.join(HERE, "..", "cli", "data")
+    seeds = {}
+    for name in ("counterbored_plate.step", "assembly.step"):
+        with open(os.path.join(src, name), "rb") as f:
+            text = f.read().decode("latin-1")
+        stem = name.split(".")[0]
+        seeds[name] = text
+        seeds[stem + "_truncated.step"] = text[: len(text) * 3 // 5]
+        at = text.index("#30 =")
+        seeds[stem + "_syntax.step"] = text[:at] + "#30 = = FOO;\n" + text[at:]
+        edge = re.search(r"#(\d+) = ORIENTED_EDGE\('',\*,\*,#(\d+)", text)
+        point = re.search(r"#(\d+) = CARTESIAN_POINT", text)
+        swap = lambda new: text[: edge.start(2)] + new + text[edge.end(2):]
+        seeds[stem + "_unresolved.step"] = swap("99999")
+        seeds[stem + "_cycle.step"] = swap(edge.group(1))
+        seeds[stem + "_mistyped.step"] = swap(point.group(1))
+    return {k: v.encode("latin-1") for k, v in seeds.items()}
+
+
 def main():
-    for target, seeds in (("read_mesh", mesh_seeds()), ("tri_tri", tri_seeds()), ("read_fem", fem_seeds())):
+    for target, seeds in (("read_mesh", mesh_seeds()), ("tri_tri", tri_seeds()), ("read_fem", fem_seeds()),
+                          ("simplify", simplify_seeds()), ("read_step", step_seeds())):
         d = os.path.join(CORPUS, target)
         if os.path.isdir(d):
             shutil.rmtree(d)
