@@ -17,6 +17,14 @@ def cap_faces(mesh):
     return [1 if sum(pos[i][2] for i in t) / 3 > 0.9 else 0 for t in (tuple(int(x) for x in tri) for tri in mesh.triangles)]
 
 
+def plate_2_screw_process(d):
+    """A process file in d: step P1 screws instance plate_2 of the test assembly."""
+    proc = os.path.join(d, "p.json")
+    with open(proc, "w") as out:
+        json.dump({"steps": [{"id": "P1", "parts": ["plate_2"], "constraint": "screw"}]}, out)
+    return proc
+
+
 class Simplify(unittest.TestCase):
     def test_budget_error_bound_and_no_self_intersections(self):
         s = itf.make_sphere(4000)
@@ -121,9 +129,7 @@ class Cad(unittest.TestCase):
     def test_step_features_of_an_instance_named_in_the_step(self):
         asm = os.path.join(DATA, "assembly.step")
         with tempfile.TemporaryDirectory() as d:
-            proc = os.path.join(d, "p.json")
-            with open(proc, "w") as out:
-                json.dump({"steps": [{"id": "P1", "parts": ["plate_2"], "constraint": "screw"}]}, out)
+            proc = plate_2_screw_process(d)
             f = {x["part"]: x for x in itf.step_features(asm, process=proc, step="P1")}
             self.assertEqual(len(f["plate"]["assembly_feature_faces"]), 3)  # via its instance plate_2
             self.assertEqual(f["shaft"]["assembly_feature_faces"], [])
@@ -131,9 +137,7 @@ class Cad(unittest.TestCase):
     def test_prepare_step_then_simplify_each_part(self):
         asm = os.path.join(DATA, "assembly.step")
         with tempfile.TemporaryDirectory() as d:
-            proc = os.path.join(d, "p.json")
-            with open(proc, "w") as out:
-                json.dump({"steps": [{"id": "P1", "parts": ["plate_2"], "constraint": "screw"}]}, out)
+            proc = plate_2_screw_process(d)
             with self.assertRaises(ValueError):  # a step without its process
                 itf.prepare_step(asm, step="P1")
             prep = itf.prepare_step(asm, process=proc, step="P1")

@@ -14,6 +14,7 @@
 #include <set>
 #include <tuple>
 
+#include "cad_test_util.h"
 #include "interfere/cad/features.h"
 #include "interfere/cad/model.h"
 #include "interfere/cad/semantics.h"
@@ -24,11 +25,7 @@
 namespace interfere::cad {
 namespace {
 
-std::filesystem::path work_dir() {
-  const auto d = std::filesystem::temp_directory_path() / ("interfere_cad_tests_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(d);
-  return d;
-}
+std::filesystem::path work_dir() { return testing::scratch_dir("interfere_cad_tests"); }
 
 const CadModel& load(TestPart p) {
   static std::map<TestPart, CadModel> cache;

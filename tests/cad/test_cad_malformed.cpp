@@ -3,7 +3,6 @@
 // along reference cycles. Each case is made from a generated part's file and must give a clear
 // error naming the file and the line or entity — not a crash, and not a model missing a part.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -11,16 +10,13 @@
 #include <sstream>
 #include <string>
 
+#include "cad_test_util.h"
 #include "interfere/cad/model.h"
 
 namespace interfere::cad {
 namespace {
 
-std::filesystem::path dir() {
-  const auto d = std::filesystem::temp_directory_path() / ("interfere_cad_malformed_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(d);
-  return d;
-}
+std::filesystem::path dir() { return testing::scratch_dir("interfere_cad_malformed"); }
 
 std::string plate_text() {
   static std::string text;
