@@ -237,6 +237,13 @@ bit for bit for power-of-two scales, kept vertices bit-identical, the error boun
 the moved vertices, and (translated frames) the mapped result checked again for self-intersections (unit
 tests `LocalFrame.*`; phase `local frame`).
 
+**Bad input and fuzzing.** An all-degenerate mesh is an error; degenerate triangles are dropped with a warning
+(`degenerate_triangles`); unused vertices are not sampled by the error measurement; a sliver spanning more than
+512 cells of the guard's grid (one vertex far out beside tiny triangles) goes to a list every check scans. The
+fuzz targets `simplify` and `read_step` (`tests/fuzz/`, replayed by ctest over their seed corpora; `simplify`
+also under libFuzzer with ASan/UBSan) check the guarantees above on decoded meshes with every option, and that
+malformed STEP files give errors naming the file.
+
 **STEP input** is simplified part by part (an assembly's touching parts are contacts, not self-intersections
 of one mesh): each part prototype gets its share of the total budget from the formula below (instances counted,
 the step's feature triangles reserved), is simplified in part coordinates, and its instances are placed in the

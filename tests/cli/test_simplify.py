@@ -427,6 +427,26 @@ class Features(unittest.TestCase):
         self.assertEqual(code, 2)
         self.assertIn("weld_seam", err)
 
+    def test_malformed_step_is_an_error_naming_the_line_with_nothing_on_stdout(self):
+        # OCCT prints its parser's failures to stdout; they belong in the error, stdout stays clean,
+        # and an existing output is left alone.
+        with open(os.path.join(DATA, "counterbored_plate.step")) as f:
+            text = f.read()
+        with open(path("truncated.step"), "w") as out:
+            out.write(text[: len(text) * 3 // 5])
+        code, out_text, err = run("features", path("truncated.step"))
+        self.assertEqual(code, 2)
+        self.assertIn("truncated.step", err)
+        self.assertIn("Line", err)
+        self.assertEqual(out_text.strip(), "")
+        with open(path("keep.ply"), "w") as out:
+            out.write("previous result")
+        code, out_text, err = run("simplify", path("truncated.step"), path("keep.ply"), "--ratio", "0.5")
+        self.assertEqual(code, 2)
+        self.assertNotIn("ERR", out_text)
+        with open(path("keep.ply")) as f:
+            self.assertEqual(f.read(), "previous result")
+
 
 if __name__ == "__main__":
     cli_common.main()
