@@ -53,6 +53,7 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <mutex>
 #include <set>
 
 #include "occt_internal.h"
@@ -320,6 +321,10 @@ Expected<CadModel> import_step(const std::filesystem::path& path, const ImportOp
     in.seekg(0, std::ios::end);
     if (in.tellg() <= 0) return Error{.file = file, .reason = "empty STEP file"};
   }
+  // One import at a time: the signal handlers and the messenger's printers are process-wide, and
+  // OCCT's XCAF application is shared (Python threads call this with the GIL released).
+  static std::mutex one_at_a_time;
+  const std::lock_guard<std::mutex> lock(one_at_a_time);
   const OcctSignals signals;
   const QuietOcct quiet;
   try {
