@@ -51,15 +51,25 @@
 #include <array>
 #include <csignal>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <map>
 #include <mutex>
+#include <numbers>
 #include <set>
 
 #include "occt_internal.h"
 
 namespace interfere::cad {
 namespace {
+
+constexpr double kMinDeflection = 1e-7;  // mm: Precision::Confusion()
+
+std::string fmt_number(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%g", v);
+  return b;
+}
 
 std::string label_name(const TDF_Label& l) {
   Handle(TDataStd_Name) n;
@@ -99,6 +109,7 @@ Part make_part(const TopoDS_Shape& shape, const std::string& name, const ImportO
       lin = 1e-3 * std::sqrt((x1 - x0) * (x1 - x0) + (y1 - y0) * (y1 - y0) + (z1 - z0) * (z1 - z0));
     }
     if (!(lin > 0)) lin = 1e-3;
+    lin = std::max(lin, kMinDeflection);
   }
   BRepMesh_IncrementalMesh mesher(shape, lin, Standard_False, o.angular_deflection, Standard_True);
   for (int i = 1; i <= faces.Extent(); ++i) {
@@ -315,6 +326,14 @@ class QuietOcct {
 
 Expected<CadModel> import_step(const std::filesystem::path& path, const ImportOptions& options) {
   const std::string file = path.string();
+  // BRepMesh refuses deflections below Precision::Confusion() / Precision::Angular().
+  if (!(options.linear_deflection == 0 || (options.linear_deflection >= kMinDeflection &&
+                                           std::isfinite(options.linear_deflection))))
+    return Error{.file = file, .reason = "linear deflection " + fmt_number(options.linear_deflection) +
+                                         ": give 0 (0.1 % of each part's diagonal) or at least 1e-7 mm"};
+  if (!(options.angular_deflection >= 1e-6 && options.angular_deflection <= std::numbers::pi))
+    return Error{.file = file, .reason = "angular deflection " + fmt_number(options.angular_deflection) +
+                                         ": give radians in [1e-6, pi]"};
   {
     std::ifstream in(path, std::ios::binary);
     if (!in) return Error{.file = file, .reason = "cannot open the STEP file"};

@@ -4,6 +4,7 @@
 // error naming the file and the line or entity — not a crash, and not a model missing a part.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -49,6 +50,24 @@ TEST(CadMalformed, TheGeneratedFileReadsCleanly) {
   ASSERT_TRUE(m.has_value()) << m.error().message();
   EXPECT_TRUE(m->warnings.empty());
   EXPECT_EQ(m->parts.size(), 1u);
+}
+
+// BRepMesh throws on deflections below Precision::Confusion() / Precision::Angular(): the options
+// are checked first, with the valid range in the message.
+TEST(CadMalformed, DeflectionsOutOfRangeAreErrors) {
+  const auto f = dir() / "plate_ok.step";
+  std::ofstream(f, std::ios::binary) << plate_text();
+  for (double lin : {-1.0, 1e-9, std::nan("")}) {
+    const auto m = import_step(f, {.linear_deflection = lin});
+    ASSERT_FALSE(m.has_value()) << lin;
+    EXPECT_NE(m.error().reason.find("linear deflection"), std::string::npos);
+  }
+  for (double ang : {0.0, -0.5, 4.0}) {
+    const auto m = import_step(f, {.angular_deflection = ang});
+    ASSERT_FALSE(m.has_value()) << ang;
+    EXPECT_NE(m.error().reason.find("angular deflection"), std::string::npos);
+  }
+  EXPECT_TRUE(import_step(f, {.linear_deflection = 0.05, .angular_deflection = 0.3}).has_value());
 }
 
 TEST(CadMalformed, TruncatedFileNamesTheLine) {

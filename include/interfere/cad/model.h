@@ -82,9 +82,10 @@ struct CadModel {
 };
 
 struct ImportOptions {
-  /// BRepMesh_IncrementalMesh linear deflection, model units; 0 = 0.1 % of the bounding-box diagonal.
+  /// BRepMesh_IncrementalMesh linear deflection, model units; 0 = 0.1 % of the bounding-box diagonal;
+  /// else at least 1e-7 (Precision::Confusion); other values are errors.
   double linear_deflection = 0;
-  double angular_deflection = 0.5;  ///< radians
+  double angular_deflection = 0.5;  ///< radians, in [1e-6, pi]
   /// Tolerance (relative to the face's size) of the canonical-surface recognition of B-spline faces.
   double canonical_tolerance = 1e-4;
 };

@@ -562,6 +562,11 @@ TEST(Simplify, BadInputIsAnErrorNotACrash) {
   TriMesh nan = s;
   nan.positions[0].x = std::nan("");
   EXPECT_FALSE(simplify(nan, {.target_triangles = 10}).has_value());
+  for (double angle : {-5.0, 180.0, 400.0, std::nan("")}) {
+    auto r = simplify(s, {.target_triangles = 10, .sharp_angle_deg = angle});
+    ASSERT_FALSE(r.has_value()) << angle;
+    EXPECT_NE(r.error().reason.find("sharp angle"), std::string::npos);
+  }
   auto same = simplify(s, {.target_triangles = s.num_triangles()});
   ASSERT_TRUE(same.has_value());
   EXPECT_LE(same->hausdorff, 1e-12);
