@@ -2,38 +2,34 @@
 // document (names, assembly structure, instance locations), BRepMesh_IncrementalMesh tessellation
 // per part with every triangle tagged by its B-Rep face (vertices duplicated along face boundaries,
 // taken per face from Poly_Triangulation), then the part's AAG (aag_build.cpp).
-// OCCT's STEP translator dereferences null handles on some malformed files (a reference to a
-// missing or mistyped entity: SIGSEGV in StepToGeom). Signals are converted to Standard_Failure
-// exceptions around the import (OSD::SetSignal + OCC_CATCH_SIGNALS, the OCCT mechanism for Linux).
+// Malformed files (step_guard.h): OCCT's translator dereferences null handles on some (a reference
+// to a missing or mistyped entity: SIGSEGV in StepToGeom) and recurses along reference cycles, so
+// the file is parsed in XSControl_Reader's steps with a cycle check before OCCT's entity checks,
+// and signals become Standard_Failure exceptions at OCC_CATCH_SIGNALS during the import (OSD, the
+// OCCT mechanism for Linux: OCC_CONVERT_SIGNALS below, before Standard_ErrorHandler.hxx).
 #ifndef OCC_CONVERT_SIGNALS
 #define OCC_CONVERT_SIGNALS
 #endif
+#include <Bnd_Box.hxx>
+#include <BRep_Tool.hxx>
 #include <BRepBndLib.hxx>
 #include <BRepMesh_IncrementalMesh.hxx>
-#include <BRep_Tool.hxx>
-#include <Bnd_Box.hxx>
 #include <IFSelect_ReturnStatus.hxx>
-#include <Interface_Check.hxx>
-#include <Interface_CheckIterator.hxx>
-#include <Interface_EntityIterator.hxx>
-#include <Interface_Graph.hxx>
-#include <Interface_Protocol.hxx>
 #include <IFSelect_WorkLibrary.hxx>
+#include <Interface_CheckIterator.hxx>
+#include <Interface_Graph.hxx>
 #include <Interface_InterfaceModel.hxx>
-#include <Message.hxx>
-#include <Message_Messenger.hxx>
-#include <Message_Printer.hxx>
-#include <OSD.hxx>
-#include <Standard_ErrorHandler.hxx>
+#include <Interface_Protocol.hxx>
 #include <Poly_Triangulation.hxx>
+#include <Standard_ErrorHandler.hxx>
+#include <Standard_Failure.hxx>
 #include <STEPCAFControl_Reader.hxx>
 #include <STEPControl_Reader.hxx>
 #include <TColStd_SequenceOfAsciiString.hxx>
-#include <Standard_Failure.hxx>
+#include <TDataStd_Name.hxx>
 #include <TDF_Label.hxx>
 #include <TDF_LabelSequence.hxx>
 #include <TDF_Tool.hxx>
-#include <TDataStd_Name.hxx>
 #include <TDocStd_Document.hxx>
 #include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
@@ -42,14 +38,12 @@
 #include <TopoDS_Face.hxx>
 #include <Transfer_TransientProcess.hxx>
 #include <XCAFApp_Application.hxx>
-#include <XSControl_TransferReader.hxx>
-#include <XSControl_WorkSession.hxx>
 #include <XCAFDoc_DocumentTool.hxx>
 #include <XCAFDoc_ShapeTool.hxx>
+#include <XSControl_TransferReader.hxx>
+#include <XSControl_WorkSession.hxx>
 
 #include <algorithm>
-#include <array>
-#include <csignal>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -59,6 +53,7 @@
 #include <set>
 
 #include "occt_internal.h"
+#include "step_guard.h"
 
 namespace interfere::cad {
 namespace {
@@ -198,130 +193,6 @@ struct Walker {
   }
 };
 
-// The failures OCCT recorded, global ones (the file's syntax, unresolved references: number 0) or
-// those of entities (schema checks, translation): their count and the first few with STEP ids.
-struct Fails {
-  std::size_t count = 0;
-  std::string first;
-  std::string text() const { return first + (count > 3 ? "; ..." : ""); }
-};
-Fails fails_of(const Interface_CheckIterator& checks, const Handle(Interface_InterfaceModel)& model, bool global) {
-  Fails f;
-  Interface_CheckIterator it = checks;  // (copies share the cursor: start it)
-  for (it.Start(); it.More(); it.Next()) {
-    const Handle(Interface_Check)& c = it.Value();
-    if (c.IsNull() || !c->HasFailed() || (it.Number() <= 0) != global) continue;
-    for (int i = 1; i <= c->NbFails(); ++i, ++f.count) {
-      if (f.count >= 3) continue;
-      std::string where;
-      if (it.Number() > 0 && !model.IsNull() && it.Number() <= model->NbEntities()) {
-        const Handle(TCollection_HAsciiString) label = model->StringLabel(model->Value(it.Number()));
-        if (!label.IsNull()) where = std::string("entity ") + label->ToCString() + ": ";
-      }
-      f.first += (f.first.empty() ? "" : "; ") + where + c->CFail(i);
-    }
-  }
-  return f;
-}
-
-// A cycle of references (#a -> #b -> ... -> #a; a mistyped reference can make one, e.g. an
-// oriented edge whose edge is itself): OCCT's translator follows some of them recursively until
-// the stack overflows, which no signal handler can recover from. Iterative depth-first search over
-// the reference graph; the STEP id of an entity on the cycle, or empty.
-std::string reference_cycle(const Interface_Graph& graph, const Handle(Interface_InterfaceModel)& model) {
-  const int n = model->NbEntities();
-  std::vector<int> start(static_cast<std::size_t>(n) + 2, 0), refs;
-  for (int i = 1; i <= n; ++i) {
-    start[i] = static_cast<int>(refs.size());
-    for (Interface_EntityIterator it = graph.Shareds(model->Value(i)); it.More(); it.Next())
-      if (const int j = model->Number(it.Value()); j > 0) refs.push_back(j);
-  }
-  start[n + 1] = static_cast<int>(refs.size());
-  std::vector<std::uint8_t> state(static_cast<std::size_t>(n) + 1, 0);  // 0 new, 1 on the path, 2 done
-  std::vector<std::pair<int, int>> path;                                // entity, next reference
-  for (int root = 1; root <= n; ++root) {
-    if (state[root]) continue;
-    state[root] = 1;
-    path.push_back({root, start[root]});
-    while (!path.empty()) {
-      auto& [e, next] = path.back();
-      if (next == start[e + 1]) {
-        state[e] = 2;
-        path.pop_back();
-        continue;
-      }
-      const int j = refs[next++];
-      if (state[j] == 1) {
-        const Handle(TCollection_HAsciiString) label = model->StringLabel(model->Value(j));
-        return label.IsNull() ? "#?" : label->ToCString();
-      }
-      if (state[j] == 0) {
-        state[j] = 1;
-        path.push_back({j, start[j]});
-      }
-    }
-  }
-  return {};
-}
-
-// OCCT prints the reader's messages to stdout (its default messenger). During the import they are
-// collected instead (the parser's syntax errors name the line), and the printers restored after.
-class CollectingPrinter : public Message_Printer {
- public:
-  mutable std::vector<std::string> fails;
-
- protected:
-  void send(const TCollection_AsciiString& text, const Message_Gravity gravity) const override {
-    if (gravity >= Message_Fail && fails.size() < 8) {
-      std::string t = text.ToCString();
-      const auto junk = [](char c) { return c == '\n' || c == ' ' || c == '*'; };  // "**** ERR ... ****"
-      while (!t.empty() && junk(t.back())) t.pop_back();
-      t.erase(0, std::min(t.size(), static_cast<std::size_t>(std::find_if_not(t.begin(), t.end(), junk) - t.begin())));
-      if (!t.empty()) fails.push_back(t);
-    }
-  }
-};
-
-// OSD::SetSignal for the import only: the previous handlers (the host's: Python's, a GUI's) are
-// restored afterwards.
-class OcctSignals {
- public:
-  OcctSignals() {
-    for (std::size_t i = 0; i < kSignals.size(); ++i) sigaction(kSignals[i], nullptr, &saved_[i]);
-    OSD::SetSignal(OSD_SignalMode_Set, Standard_False);
-  }
-  ~OcctSignals() {
-    for (std::size_t i = 0; i < kSignals.size(); ++i) sigaction(kSignals[i], &saved_[i], nullptr);
-  }
-  OcctSignals(const OcctSignals&) = delete;
-  OcctSignals& operator=(const OcctSignals&) = delete;
-
- private:
-  static constexpr std::array<int, 9> kSignals{SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGINT, SIGQUIT, SIGHUP, SIGTERM, SIGSYS};
-  std::array<struct sigaction, kSignals.size()> saved_{};
-};
-
-class QuietOcct {
- public:
-  QuietOcct() : saved_(Message::DefaultMessenger()->Printers()), printer_(new CollectingPrinter) {
-    Message::DefaultMessenger()->ChangePrinters().Clear();
-    Message::DefaultMessenger()->AddPrinter(printer_);
-  }
-  ~QuietOcct() { Message::DefaultMessenger()->ChangePrinters() = saved_; }
-  QuietOcct(const QuietOcct&) = delete;
-  QuietOcct& operator=(const QuietOcct&) = delete;
-  /// The failures OCCT reported so far, "; "-separated (empty: none).
-  std::string fails() const {
-    std::string out;
-    for (const std::string& f : printer_->fails) out += (out.empty() ? "" : "; ") + f;
-    return out;
-  }
-
- private:
-  Message_SequenceOfPrinters saved_;
-  Handle(CollectingPrinter) printer_;
-};
-
 }  // namespace
 
 Expected<CadModel> import_step(const std::filesystem::path& path, const ImportOptions& options) {
@@ -344,8 +215,8 @@ Expected<CadModel> import_step(const std::filesystem::path& path, const ImportOp
   // OCCT's XCAF application is shared (Python threads call this with the GIL released).
   static std::mutex one_at_a_time;
   const std::lock_guard<std::mutex> lock(one_at_a_time);
-  const OcctSignals signals;
-  const QuietOcct quiet;
+  const detail::OcctSignals signals;
+  const detail::QuietOcct quiet;
   try {
     OCC_CATCH_SIGNALS
     Handle(TDocStd_Document) doc;
@@ -370,7 +241,7 @@ Expected<CadModel> import_step(const std::filesystem::path& path, const ImportOp
       std::string why = said.empty() ? failure : said;
       return Error{.file = file, .reason = "not a readable STEP file" + (why.empty() ? "" : " (" + why + ")")};
     }
-    if (const std::string e = reference_cycle(Interface_Graph(parsed, ws->Protocol()), parsed); !e.empty())
+    if (const std::string e = detail::reference_cycle(Interface_Graph(parsed, ws->Protocol()), parsed); !e.empty())
       return Error{.file = file,
                    .reason = "malformed STEP file: entity " + e + " refers to itself through a cycle of references"};
     ws->SetModel(parsed);
@@ -381,14 +252,14 @@ Expected<CadModel> import_step(const std::filesystem::path& path, const ImportOp
     // check failures of single entities are common in files from CAD systems (NIST test parts)
     // and tolerated by the reader: warnings, as are entities that fail to translate.
     const Interface_CheckIterator checks = step.WS()->ModelCheckList();
-    if (const Fails bad = fails_of(checks, step.Model(), true); bad.count > 0)
+    if (const detail::Fails bad = detail::fails_of(checks, step.Model(), true); bad.count > 0)
       return Error{.file = file, .reason = "malformed STEP file: " + bad.text()};
-    if (const Fails f = fails_of(checks, step.Model(), false); f.count > 0)
+    if (const detail::Fails f = detail::fails_of(checks, step.Model(), false); f.count > 0)
       model.warnings.push_back(std::to_string(f.count) + " schema check failures in the STEP data, read anyway (" +
                                f.text() + ")");
     if (!reader.Transfer(doc)) return Error{.file = file, .reason = "STEP transfer failed (no shape)"};
     if (const auto& tr = step.WS()->TransferReader(); !tr.IsNull() && !tr->TransientProcess().IsNull())
-      if (const Fails f = fails_of(tr->TransientProcess()->CheckList(Standard_True), step.Model(), false); f.count > 0)
+      if (const detail::Fails f = detail::fails_of(tr->TransientProcess()->CheckList(Standard_True), step.Model(), false); f.count > 0)
         model.warnings.push_back(std::to_string(f.count) + " STEP entities failed to translate (" + f.text() +
                                  "): parts may be missing or incomplete");
     Handle(XCAFDoc_ShapeTool) tool = XCAFDoc_DocumentTool::ShapeTool(doc->Main());
