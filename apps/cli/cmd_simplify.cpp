@@ -145,7 +145,14 @@ Expected<SimplifyResult> simplify_parts(const cad::Prepared& prep, std::size_t t
 }
 #endif
 
-int run_simplify(const SimplifyCliOptions& o) {
+#ifdef INTERFERE_HAS_CAD
+using ImportedModel = cad::CadModel;
+#else
+struct ImportedModel {};
+#endif
+
+// One run; `model`: the STEP input already imported (--step all imports it once for every step).
+int run_simplify(const SimplifyCliOptions& o, const ImportedModel* model = nullptr) {
   if (o.target == 0 && o.ratio == 0 && o.renderer_max == 0)
     throw InputError("simplify: give --target N (> 0), --ratio R or --renderer-max N");
   if (o.ratio != 0 && !(o.ratio > 0 && o.ratio <= 1)) throw InputError("--ratio must lie in (0, 1]");
@@ -199,8 +206,8 @@ int run_simplify(const SimplifyCliOptions& o) {
     po.angular_deflection = o.angular_deflection;
     po.process_file = o.process;
     po.step = o.step;
-    Progress progress("importing " + o.input);
-    auto prepared = cad::prepare_for_simplify(o.input, po);
+    Progress progress(model ? "preparing step " + o.step : "importing " + o.input);
+    auto prepared = model ? cad::prepare_for_simplify(*model, po) : cad::prepare_for_simplify(o.input, po);
     if (!prepared) throw InputError(prepared.error());
     mesh = prepared->mesh;
     so.face_ids = prepared->face_ids;
@@ -393,6 +400,63 @@ int run_simplify(const SimplifyCliOptions& o) {
   return kClear;
 }
 
+// A step id as part of a file name (letters, digits, '-' and '_'; others become '_').
+std::string file_id(const std::string& step) {
+  std::string id;
+  for (char c : step) id += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' ? c : '_';
+  return id;
+}
+
+// OUT with "_<step>" before its extension: line.glb -> line_P1.glb.
+std::string with_step(const std::string& file, const std::string& step) {
+  if (file.empty()) return file;
+  const std::filesystem::path p(file);
+  return (p.parent_path() / (p.stem().string() + "_" + file_id(step) + p.extension().string())).string();
+}
+
+// --step all: every step of the process in its order, the STEP file imported once; outputs, JSON
+// reports and parts directories get the step's id (OUT_<step>.ext, JSON_<step>.json, DIR/<step>/).
+int run_all_steps(const SimplifyCliOptions& o) {
+#ifdef INTERFERE_HAS_CAD
+  if (o.process.empty()) throw InputError("--step all needs --process FILE");
+  if (!is_step(o.input)) throw InputError("--step/--process need a STEP input (features are recognised on the B-Rep)");
+  auto process = cad::load_process(o.process);
+  if (!process) throw InputError(process.error());
+  if (process->steps.empty()) throw InputError(Error{.file = o.process, .reason = "the process has no steps"});
+  std::vector<SimplifyCliOptions> runs;
+  for (const cad::ProcessStep& step : process->steps) {
+    SimplifyCliOptions r = o;
+    r.step = step.id;
+    r.output = with_step(o.output, step.id);
+    r.json = with_step(o.json, step.id);
+    if (!o.parts_dir.empty()) r.parts_dir = (std::filesystem::path(o.parts_dir) / file_id(step.id)).string();
+    check_output(r.output, {}, "OUT");
+    if (!r.json.empty()) check_output(r.json, {}, "--json");
+    runs.push_back(std::move(r));
+  }
+  Expected<cad::CadModel> model = Error{};
+  {
+    Progress progress("importing " + o.input);
+    model = cad::import_step(o.input, {.linear_deflection = o.linear_deflection, .angular_deflection = o.angular_deflection});
+  }
+  if (!model) throw InputError(model.error());
+  // Every step's selection first: an error in a later step leaves no output of an earlier one.
+  for (const SimplifyCliOptions& r : runs) {
+    cad::PipelineOptions po;
+    po.process_file = r.process;
+    po.step = r.step;
+    if (auto p = cad::prepare_for_simplify(*model, po); !p) throw InputError(p.error());
+  }
+  for (const SimplifyCliOptions& r : runs) {
+    std::printf("step %s: ", r.step.c_str());
+    run_simplify(r, &*model);
+  }
+  return kClear;
+#else
+  throw InputError(o.input + ": STEP input needs interfere built with OpenCASCADE (INTERFERE_WITH_OCCT)");
+#endif
+}
+
 }  // namespace
 
 void add_simplify_command(CLI::App& app, int& exit_code) {
@@ -405,7 +469,9 @@ void add_simplify_command(CLI::App& app, int& exit_code) {
   target->excludes(ratio);
   c->add_option("--renderer-max", o->renderer_max,
                 "renderer's maximum triangle count: budget from the formula of docs/simplify.md (overrides --target/--ratio)");
-  c->add_option("--step", o->step, "process step id whose assembly features are kept (STEP input, needs --process)");
+  c->add_option("--step", o->step,
+                "process step id whose assembly features are kept (STEP input, needs --process); 'all': every step, "
+                "the STEP file imported once, outputs named OUT_<step>.ext (and JSON_<step>.json, DIR/<step>/)");
   c->add_option("--process", o->process, "process description JSON (steps, parts, constraint types)");
   c->add_option("--regions", o->regions, "per-triangle region ids (text, one unsigned integer per triangle)");
   c->add_option("--features", o->features, "comma-separated face/region ids to keep (added to the step's features)");
@@ -424,7 +490,7 @@ void add_simplify_command(CLI::App& app, int& exit_code) {
   c->add_flag("--no-error", o->no_error, "skip the Hausdorff measurement (error_bound is then -1)");
   c->add_option("--json", o->json, "write the JSON report here");
   c->add_option("--threads", o->threads, "worker threads (0 = all cores)");
-  c->callback([o, &exit_code] { exit_code = run_simplify(*o); });
+  c->callback([o, &exit_code] { exit_code = o->step == "all" ? run_all_steps(*o) : run_simplify(*o); });
 }
 
 }  // namespace interfere::cli

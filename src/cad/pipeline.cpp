@@ -32,28 +32,64 @@ std::vector<std::string> unknown_step_names(const Process& process, const std::s
   return unknown_step_parts(process, step, names);
 }
 
-Expected<Prepared> prepare_for_simplify(const std::string& step_file, const PipelineOptions& o) {
+namespace {
+
+// The feature library, the semantic rules and the process of the options (read before the STEP
+// file: a mistake there is reported without the import's wait).
+struct Semantics {
+  FeatureLibrary library;
+  SemanticRules rules;
+  std::optional<Process> process;
+};
+
+Expected<Semantics> load_semantics(const PipelineOptions& o) {
   auto lib = o.library_file.empty() ? default_feature_library() : load_feature_library(o.library_file);
   if (!lib) return lib.error();
+  Semantics sem{std::move(*lib), {}, std::nullopt};
+  if (o.process_file.empty()) return sem;
   Expected<SemanticRules> rules = SemanticRules{};
-  std::optional<Process> process;
-  if (!o.process_file.empty()) {
-    if (o.rules_file.empty()) {
-      rules = default_semantic_rules(*lib);
-    } else {
-      std::ifstream in(o.rules_file);
-      if (!in) return Error{.file = o.rules_file, .reason = "cannot open the semantic rules"};
-      std::stringstream ss;
-      ss << in.rdbuf();
-      rules = parse_semantic_rules(ss.str(), *lib, o.rules_file);
-    }
-    if (!rules) return rules.error();
-    auto p = load_process(o.process_file);
-    if (!p) return p.error();
-    process = std::move(*p);
+  if (o.rules_file.empty()) {
+    rules = default_semantic_rules(sem.library);
+  } else {
+    std::ifstream in(o.rules_file);
+    if (!in) return Error{.file = o.rules_file, .reason = "cannot open the semantic rules"};
+    std::stringstream ss;
+    ss << in.rdbuf();
+    rules = parse_semantic_rules(ss.str(), sem.library, o.rules_file);
   }
-  auto model = import_step(step_file, {.linear_deflection = o.linear_deflection, .angular_deflection = o.angular_deflection});
-  if (!model) return model.error();
+  if (!rules) return rules.error();
+  sem.rules = std::move(*rules);
+  auto p = load_process(o.process_file);
+  if (!p) return p.error();
+  sem.process = std::move(*p);
+  return sem;
+}
+
+Expected<Prepared> prepare(const CadModel& imported, const PipelineOptions& o, const Semantics& sem);
+
+}  // namespace
+
+Expected<Prepared> prepare_for_simplify(const std::string& step_file, const PipelineOptions& o) {
+  auto sem = load_semantics(o);
+  if (!sem) return sem.error();
+  auto imported = import_step(step_file, {.linear_deflection = o.linear_deflection, .angular_deflection = o.angular_deflection});
+  if (!imported) return imported.error();
+  return prepare(*imported, o, *sem);
+}
+
+Expected<Prepared> prepare_for_simplify(const CadModel& model, const PipelineOptions& o) {
+  auto sem = load_semantics(o);
+  if (!sem) return sem.error();
+  return prepare(model, o, *sem);
+}
+
+namespace {
+
+Expected<Prepared> prepare(const CadModel& imported, const PipelineOptions& o, const Semantics& sem) {
+  const CadModel* model = &imported;
+  const FeatureLibrary* lib = &sem.library;
+  const SemanticRules* rules = &sem.rules;
+  const std::optional<Process>& process = sem.process;
   Prepared out;
   out.warnings = model->warnings;
   // Which instances take part in the step: those it names, by part or by instance name ("*": all).
@@ -122,4 +158,5 @@ Expected<Prepared> prepare_for_simplify(const std::string& step_file, const Pipe
   return out;
 }
 
+}  // namespace
 }  // namespace interfere::cad

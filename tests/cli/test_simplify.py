@@ -349,6 +349,32 @@ class Features(unittest.TestCase):
         self.assertEqual(code, 0, err)
         return load_json(out + ".json")
 
+    def test_step_all_simplifies_every_step_like_single_runs(self):
+        # --step all: one import, one output and report per step, each identical to its own run.
+        steps = [{"id": "P1", "parts": ["plate_2"], "constraint": "screw"},
+                 {"id": "P2", "parts": ["shaft"], "constraint": "gear_shaft"}]
+        with open(path("all.process.json"), "w") as f:
+            json.dump({"steps": steps}, f)
+        asm = os.path.join(DATA, "assembly.step")
+        code, out, err = run("simplify", asm, path("all.ply"), "--ratio", "0.6", "--step", "all", "--process",
+                             path("all.process.json"), "--json", path("all.json"), "--parts-dir", path("all_parts"))
+        self.assertEqual(code, 0, err)
+        self.assertIn("step P1:", out)
+        self.assertIn("step P2:", out)
+        for step in ("P1", "P2"):
+            r = load_json("all_%s.json" % step)
+            self.assertEqual(r["cad"]["step"], step)
+            self.assertTrue(os.path.isdir(path(os.path.join("all_parts", step))))
+            code, _, err = run("simplify", asm, path("one_%s.ply" % step), "--ratio", "0.6", "--step", step,
+                               "--process", path("all.process.json"))
+            self.assertEqual(code, 0, err)
+            with open(path("all_%s.ply" % step), "rb") as a, open(path("one_%s.ply" % step), "rb") as b:
+                self.assertEqual(a.read(), b.read())
+        self.assertNotEqual(load_json("all_P1.json")["feature_faces"], load_json("all_P2.json")["feature_faces"])
+        code, _, err = run("simplify", asm, path("bad.ply"), "--ratio", "0.6", "--step", "all")
+        self.assertEqual(code, 2)
+        self.assertIn("--process", err)
+
     def test_a_step_naming_one_instance_keeps_the_features_of_that_instance_only(self):
         # The plate is used twice; the step names the instance plate_2: the plate is simplified once
         # with the screw features (for plate_2) and once without (for the other instance).

@@ -44,7 +44,11 @@ struct Prepared {
   std::vector<std::string> warnings;
 };
 
+/// Imports `step_file` (options' deflections) and prepares it for process step options.step. The
+/// library, rules and process files are read first.
 Expected<Prepared> prepare_for_simplify(const std::string& step_file, const PipelineOptions& options);
+/// The same for a model already imported (one import for several process steps: `--step all`).
+Expected<Prepared> prepare_for_simplify(const CadModel& model, const PipelineOptions& options);
 
 /// Whether process step `step` takes in instance `k` of `model`: it names the instance, its part
 /// or "*".
