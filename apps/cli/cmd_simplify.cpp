@@ -152,7 +152,7 @@ struct ImportedModel {};
 #endif
 
 // One run; `model`: the STEP input already imported (--step all imports it once for every step).
-int run_simplify(const SimplifyCliOptions& o, const ImportedModel* model = nullptr) {
+int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedModel* model = nullptr) {
   if (o.target == 0 && o.ratio == 0 && o.renderer_max == 0)
     throw InputError("simplify: give --target N (> 0), --ratio R or --renderer-max N");
   if (o.ratio != 0 && !(o.ratio > 0 && o.ratio <= 1)) throw InputError("--ratio must lie in (0, 1]");
