@@ -400,6 +400,7 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
   return kClear;
 }
 
+#ifdef INTERFERE_HAS_CAD
 // A step id as part of a file name (letters, digits, '-' and '_'; others become '_').
 std::string file_id(const std::string& step) {
   std::string id;
@@ -413,6 +414,8 @@ std::string with_step(const std::string& file, const std::string& step) {
   const std::filesystem::path p(file);
   return (p.parent_path() / (p.stem().string() + "_" + file_id(step) + p.extension().string())).string();
 }
+
+#endif
 
 // --step all: every step of the process in its order, the STEP file imported once; outputs, JSON
 // reports and parts directories get the step's id (OUT_<step>.ext, JSON_<step>.json, DIR/<step>/).
