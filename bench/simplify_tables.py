@@ -315,7 +315,7 @@ ids of a multi-instance STEP are offset per instance.
 
 **`features` report**: `parts` [{`name`, `solids`, `faces`, `triangles`, `untessellated_faces`, `features`
 [{`type`, `faces`, `roles` {role: face}, `radii`, `axis` {`point`, `direction`}}], `assembly_feature_faces`,
-`semantics_warnings`, with `--aag`: `aag` {`nodes` [{`face`, `type`, `from_bspline`, `area`, `outer_loops`,
+`semantics_warnings` (with `--step all`: `steps` {step: {`assembly_feature_faces`, `semantics_warnings`}}), with `--aag`: `aag` {`nodes` [{`face`, `type`, `from_bspline`, `area`, `outer_loops`,
 `inner_loops`, `triangles`, `normal` | `axis`, `radius`, `hole`, `half_angle`, `minor_radius`}], `arcs` [{`faces`,
 `edge`, `curve`, `convexity`, `angle`, `length`, `inner_loop`}], `minimal_subgraphs`}}], `instances` [{`name`,
 `part`, `path`, `placement` (3×4)}], `units` (always `mm`: OCCT converts the file's lengths to millimetres;

@@ -2,6 +2,8 @@
 // 7): the AAG of every part, the features of the library with their face ids, axes and radii, and,
 // with --process/--step, the assembly-feature faces that step selects.
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <chrono>
 #include <cstdio>
@@ -67,8 +69,17 @@ int run_features(const FeaturesCliOptions& o) {
     model = import_step(o.input, {.linear_deflection = o.linear_deflection, .angular_deflection = o.angular_deflection});
     if (!model) throw InputError(model.error());
   }
-  if (process)
-    for (auto& w : unknown_step_names(*process, o.step, *model)) model->warnings.push_back(std::move(w));
+  // --step all: every step of the process, in its order.
+  std::vector<std::string> steps;
+  if (process) {
+    if (o.step == "all") {
+      for (const ProcessStep& st : process->steps) steps.push_back(st.id);
+    } else {
+      steps.push_back(o.step);
+    }
+  }
+  for (const std::string& step : steps)
+    for (auto& w : unknown_step_names(*process, step, *model)) model->warnings.push_back(std::move(w));
   for (const auto& w : model->warnings)
     if (!Progress::quiet()) std::fprintf(stderr, "[interfere] warning: %s\n", w.c_str());
   {
@@ -93,24 +104,28 @@ int run_features(const FeaturesCliOptions& o) {
       nlohmann::json jf{{"type", f.type}, {"faces", f.faces}, {"roles", f.roles}, {"radii", f.radii}};
       if (norm(f.axis) > 0) jf["axis"] = {{"point", vec_json(f.axis_point)}, {"direction", vec_json(f.axis)}};
       jp["features"].push_back(jf);
-      std::string faces;
-      for (auto id : f.faces) faces += (faces.empty() ? "" : ",") + std::to_string(id);
-      std::string radii;
-      for (double r : f.radii) radii += (radii.empty() ? "" : ",") + fmt_double(r);
+      const std::string faces = fmt::format("{}", fmt::join(f.faces, ","));
+      std::vector<std::string> radius_texts;
+      for (double r : f.radii) radius_texts.push_back(fmt_double(r));
+      const std::string radii = fmt::format("{}", fmt::join(radius_texts, ","));
       std::printf("  %-18s faces [%s]%s%s\n", f.type.c_str(), faces.c_str(), radii.empty() ? "" : " radii ",
                   radii.c_str());
     }
-    if (process) {
+    for (const std::string& step : steps) {
       // In the step when it names the part or one of its instances (then only those instances
       // keep the features when simplified: `instances[].in_step` of the simplify report).
-      const bool named =
-          part_in_step(*process, o.step, *model, static_cast<std::uint32_t>(&part - model->parts.data()));
-      auto sel = select_step_features(*process, o.step, *rules, part.name, feats);
+      const bool named = part_in_step(*process, step, *model, static_cast<std::uint32_t>(&part - model->parts.data()));
+      auto sel = select_step_features(*process, step, *rules, part.name, feats);
       if (!sel) throw InputError(o.process + ": " + sel.error().reason);
       if (!named) *sel = Selection{};
-      jp["assembly_feature_faces"] = sel->faces;
-      jp["semantics_warnings"] = sel->warnings;
-      std::printf("  step %s: %zu assembly-feature faces\n", o.step.c_str(), sel->faces.size());
+      if (o.step == "all") {
+        jp["steps"][step] = {{"assembly_feature_faces", sel->faces}, {"semantics_warnings", sel->warnings}};
+      } else {
+        jp["assembly_feature_faces"] = sel->faces;
+        jp["semantics_warnings"] = sel->warnings;
+      }
+      const std::string faces = fmt::format("{}", fmt::join(sel->faces, ","));
+      std::printf("  step %s: %zu assembly-feature faces [%s]\n", step.c_str(), sel->faces.size(), faces.c_str());
     }
     if (o.aag) {
       nlohmann::json nodes = nlohmann::json::array(), arcs = nlohmann::json::array();
@@ -168,7 +183,8 @@ void add_features_command(CLI::App& app, int& exit_code) {
   c->add_option("--library", o->library, "feature library JSON (default: the installed data/features/library.json)");
   c->add_option("--rules", o->rules, "assembly-semantics rules JSON (default: data/features/semantics.json)");
   c->add_option("--process", o->process, "process description JSON (steps, parts, constraint types)");
-  c->add_option("--step", o->step, "process step whose assembly-feature faces are listed");
+  c->add_option("--step", o->step,
+                "process step whose assembly-feature faces are listed ('all': every step; JSON parts[].steps)");
   c->add_option("--linear-deflection", o->linear_deflection, "tessellation linear deflection (0 = 0.1 % of the diagonal)");
   c->add_option("--angular-deflection", o->angular_deflection, "tessellation angular deflection, radians");
   c->callback([o, &exit_code] { exit_code = run_features(*o); });

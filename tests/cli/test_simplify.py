@@ -375,6 +375,27 @@ class Features(unittest.TestCase):
         self.assertEqual(code, 2)
         self.assertIn("--process", err)
 
+    def test_features_step_all_lists_every_step(self):
+        steps = [{"id": "P1", "parts": ["plate_2"], "constraint": "screw"},
+                 {"id": "P2", "parts": ["shaft"], "constraint": "gear_shaft"}]
+        with open(path("fall.process.json"), "w") as f:
+            json.dump({"steps": steps}, f)
+        asm = os.path.join(DATA, "assembly.step")
+        code, out, err = run("features", asm, "--process", path("fall.process.json"), "--step", "all", "--json",
+                             path("fall.json"))
+        self.assertEqual(code, 0, err)
+        parts = {p["name"]: p for p in load_json("fall.json")["parts"]}
+        for step in ("P1", "P2"):
+            code, _, err = run("features", asm, "--process", path("fall.process.json"), "--step", step, "--json",
+                               path("f_%s.json" % step))
+            self.assertEqual(code, 0, err)
+            for p in load_json("f_%s.json" % step)["parts"]:
+                self.assertEqual(parts[p["name"]]["steps"][step]["assembly_feature_faces"], p["assembly_feature_faces"])
+        self.assertEqual(len(parts["plate"]["steps"]["P1"]["assembly_feature_faces"]), 3)
+        self.assertEqual(parts["plate"]["steps"]["P2"]["assembly_feature_faces"], [])
+        self.assertGreater(len(parts["shaft"]["steps"]["P2"]["assembly_feature_faces"]), 0)
+        self.assertIn("step P2:", out)
+
     def test_a_step_naming_one_instance_keeps_the_features_of_that_instance_only(self):
         # The plate is used twice; the step names the instance plate_2: the plate is simplified once
         # with the screw features (for plate_2) and once without (for the other instance).
