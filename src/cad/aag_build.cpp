@@ -32,6 +32,8 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "occt_internal.h"
 
@@ -69,6 +71,12 @@ void sample_face(const TopoDS_Face& f, int n, std::vector<Vec3>& pts, std::vecto
     }
 }
 
+// An orthonormal basis of the plane across unit axis a.
+std::pair<Vec3, Vec3> across(const Vec3& a) {
+  const Vec3 e1 = unit(std::abs(a.x) < 0.9 ? cross(a, {1, 0, 0}) : cross(a, {0, 1, 0}));
+  return {e1, cross(a, e1)};
+}
+
 // Cone (a free-form face that is no plane or cylinder): its normals make one angle with the axis, so
 // the axis is the direction in which the centred normals do not spread (PCA); every normal line
 // meets the axis, which across the axis is a point, the least-squares meet of the projected normal
@@ -91,8 +99,7 @@ void recognise_cone(const std::vector<Vec3>& pts, const std::vector<Vec3>& nrm, 
   if (es.eigenvalues()(0) > 1e-6 * n || !(es.eigenvalues()(1) > 1e-3 * n)) return;  // no spread at all: a plane
   const Eigen::Vector3d ev = es.eigenvectors().col(0);
   Vec3 a = unit({ev.x(), ev.y(), ev.z()});
-  const Vec3 e1 = unit(std::abs(a.x) < 0.9 ? cross(a, {1, 0, 0}) : cross(a, {0, 1, 0}));
-  const Vec3 e2 = cross(a, e1);
+  const auto [e1, e2] = across(a);
   Eigen::Matrix2d m = Eigen::Matrix2d::Zero();
   Eigen::Vector2d rhs = Eigen::Vector2d::Zero();
   for (std::size_t i = 0; i < pts.size(); ++i) {
@@ -175,8 +182,7 @@ void recognise_canonical(const TopoDS_Face& f, AagNode& node, double tol) {
   }
   const Vec3 a = unit({ax.x(), ax.y(), ax.z()});
   // Basis across the axis, Kasa circle fit: x^2 + y^2 + D x + E y + F = 0.
-  const Vec3 e1 = unit(std::abs(a.x) < 0.9 ? cross(a, {1, 0, 0}) : cross(a, {0, 1, 0}));
-  const Vec3 e2 = cross(a, e1);
+  const auto [e1, e2] = across(a);
   Eigen::MatrixXd A(pts.size(), 3);
   Eigen::VectorXd b(pts.size());
   for (std::size_t i = 0; i < pts.size(); ++i) {
