@@ -114,10 +114,9 @@ int run_features(const FeaturesCliOptions& o) {
     for (const std::string& step : steps) {
       // In the step when it names the part or one of its instances (then only those instances
       // keep the features when simplified: `instances[].in_step` of the simplify report).
-      const bool named = part_in_step(*process, step, *model, static_cast<std::uint32_t>(&part - model->parts.data()));
-      auto sel = select_step_features(*process, step, *rules, part.name, feats);
+      const auto sel = part_step_selection(*process, step, *rules, *model,
+                                           static_cast<std::uint32_t>(&part - model->parts.data()), feats);
       if (!sel) throw InputError(o.process + ": " + sel.error().reason);
-      if (!named) *sel = Selection{};
       if (o.step == "all") {
         jp["steps"][step] = {{"assembly_feature_faces", sel->faces}, {"semantics_warnings", sel->warnings}};
       } else {

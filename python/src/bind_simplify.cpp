@@ -215,6 +215,14 @@ void bind_simplify(py::module_& m) {
         if (!lib) throw py::value_error(lib.error().message());
         auto model = cad::import_step(path);
         if (!model) throw py::value_error(model.error().message());
+        Expected<cad::SemanticRules> rules = cad::SemanticRules{};
+        Expected<cad::Process> proc = cad::Process{};
+        if (!process_file.empty()) {
+          rules = cad::default_semantic_rules(*lib);
+          if (!rules) throw py::value_error(rules.error().message());
+          proc = cad::load_process(process_file);
+          if (!proc) throw py::value_error(proc.error().message());
+        }
         py::list out;
         for (const cad::Part& p : model->parts) {
           const auto feats = cad::recognize_features(p.aag, *lib);
@@ -223,17 +231,11 @@ void bind_simplify(py::module_& m) {
             fl.append(py::dict(py::arg("type") = f.type, py::arg("faces") = f.faces, py::arg("roles") = f.roles,
                                py::arg("radii") = f.radii));
           py::dict d(py::arg("part") = p.name, py::arg("features") = fl);
-          if (!process_file.empty()) {
-            auto rules = cad::default_semantic_rules(*lib);
-            if (!rules) throw py::value_error(rules.error().message());
-            auto proc = cad::load_process(process_file);
-            if (!proc) throw py::value_error(proc.error().message());
-            // In the step when it names the part or one of its instances.
-            const bool named =
-                cad::part_in_step(*proc, step, *model, static_cast<std::uint32_t>(&p - model->parts.data()));
-            auto sel = cad::select_step_features(*proc, step, *rules, p.name, feats);
+          if (!process_file.empty()) {  // in the step when it names the part or one of its instances
+            const auto sel = cad::part_step_selection(*proc, step, *rules, *model,
+                                                      static_cast<std::uint32_t>(&p - model->parts.data()), feats);
             if (!sel) throw py::value_error(sel.error().message());
-            d["assembly_feature_faces"] = named ? sel->faces : std::vector<std::uint32_t>{};
+            d["assembly_feature_faces"] = sel->faces;
           }
           out.append(d);
         }

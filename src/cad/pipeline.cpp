@@ -25,6 +25,14 @@ bool part_in_step(const Process& process, const std::string& step, const CadMode
   return false;
 }
 
+Expected<Selection> part_step_selection(const Process& process, const std::string& step, const SemanticRules& rules,
+                                        const CadModel& model, std::uint32_t part,
+                                        const std::vector<Feature>& features) {
+  auto sel = select_step_features(process, step, rules, model.parts[part].name, features);
+  if (sel && !part_in_step(process, step, model, part)) return Selection{};
+  return sel;
+}
+
 std::vector<std::string> unknown_step_names(const Process& process, const std::string& step, const CadModel& model) {
   std::vector<std::string> names;
   for (const Part& part : model.parts) names.push_back(part.name);

@@ -55,6 +55,12 @@ Expected<Prepared> prepare_for_simplify(const CadModel& model, const PipelineOpt
 bool instance_in_step(const Process& process, const std::string& step, const CadModel& model, std::size_t k);
 /// Whether it takes in part `part`: it names the part, "*", or one of the part's instances.
 bool part_in_step(const Process& process, const std::string& step, const CadModel& model, std::uint32_t part);
+/// The assembly-feature faces process step `step` selects on part `part` of `model` (recognised
+/// `features`): select_step_features when the step takes the part in (part_in_step: by its name,
+/// "*" or one of its instances), else an empty selection. Errors: unknown step.
+Expected<Selection> part_step_selection(const Process& process, const std::string& step, const SemanticRules& rules,
+                                        const CadModel& model, std::uint32_t part,
+                                        const std::vector<Feature>& features);
 /// unknown_step_parts against the names of the model's parts and instances.
 std::vector<std::string> unknown_step_names(const Process& process, const std::string& step, const CadModel& model);
 
