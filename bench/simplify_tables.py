@@ -283,7 +283,7 @@ interfere features PART.step [--json REPORT] [--aag] [--library lib.json] [--rul
 | `--target N` | triangle budget (> 0, ≤ the input's count) |
 | `--ratio R` | budget as a fraction in (0, 1] |
 | `--renderer-max N` | budget from the formula above (one part: its feature triangles reserved) |
-| `--step P --process F` | STEP input: features of step P's constraint type (rules: installed `semantics.json`) are kept; `--step all`: every step of F in order, the STEP file imported once (`prepare_for_simplify(model, options)`), each step's selection checked before any output is written, outputs `OUT_<step>.ext`, reports `JSON_<step>.json`, parts `DIR/<step>/` (a digital twin's model for each assembly state) |
+| `--step P --process F` | STEP input: features of step P's constraint type (rules: installed `semantics.json`) are kept; `--step all`: every step of F in order, the STEP file imported once (`prepare_for_simplify(model, options)`), a library, rules or process error stopping it before the first output, outputs `OUT_<step>.ext`, reports `JSON_<step>.json`, parts `DIR/<step>/` (a digital twin's model for each assembly state) |
 | `--regions FILE` | plain mesh: one unsigned region id per triangle (whitespace separated, `#` comments) |
 | `--features IDS` | comma-separated face/region ids kept in addition to the step's |
 | `--lock` | hard locks instead of the paper's cost weighting (= `--feature-mode lock`) |

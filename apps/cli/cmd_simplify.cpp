@@ -443,13 +443,9 @@ int run_all_steps(const SimplifyCliOptions& o) {
     model = cad::import_step(o.input, {.linear_deflection = o.linear_deflection, .angular_deflection = o.angular_deflection});
   }
   if (!model) throw InputError(model.error());
-  // Every step's selection first: an error in a later step leaves no output of an earlier one.
-  for (const SimplifyCliOptions& r : runs) {
-    cad::PipelineOptions po;
-    po.process_file = r.process;
-    po.step = r.step;
-    if (auto p = cad::prepare_for_simplify(*model, po); !p) throw InputError(p.error());
-  }
+  // A step's selection fails only for a step id the process lacks (these come from it) or a library,
+  // rules or process error, which is the same for every step: the first step meets it before any
+  // output is written.
   for (const SimplifyCliOptions& r : runs) {
     std::printf("step %s: ", r.step.c_str());
     run_simplify(r, &*model);
