@@ -144,7 +144,8 @@ quadric-error-metric edge collapses while the faces that take part in the curren
    name the model does not have is a warning listing the parts there are. A rule that names a feature type
    missing from the library is an error naming the rule and the type.
 5. **Feature-preserving QEM** (Garland & Heckbert 1997): area-weighted plane quadrics, penalty planes through
-   constrained edges (weight 10·|e|²), a min-heap of candidate collapses invalidated lazily by per-vertex stamps,
+   constrained edges (weight 10·|e|²), a min-heap of candidate collapses (a radix heap, with a binary heap for the keys below the last
+   one taken, so the order is the exact cost order) invalidated lazily by per-vertex stamps,
    optimal placement by the 3×3 system (cofactor inverse, relative determinant test) with fallback to the
    endpoints and the midpoint; the link condition keeps the mesh manifold; a collapse is refused when a moved
    triangle's normal turns by more than acos(0.2) or degenerates. **Large meshes** (≥ 20,000 input triangles,
@@ -251,7 +252,9 @@ output; the error bound is the largest part's (rigid placements keep distances).
 
 **Budget.** A collapse removes the two triangles of an inner edge or the one of a boundary edge, so the budget is
 met exactly whenever it is reachable; on a closed mesh (even triangle count) an odd budget ends one below
-(never above), and locks or constraints can stop earlier (`reached: false` plus a warning).
+(never above; the result of the even budget below, bit for bit: unit test
+`Simplify.OddBudgetOnAClosedMeshStopsOneShortOnAnOpenMeshIsExact`), and locks or constraints can stop earlier
+(`reached: false` plus a warning).
 
 ### Triangle budget per part (renderer share)
 
