@@ -323,11 +323,26 @@ Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOp
     r.warnings.push_back("budget " + std::to_string(target) + " not reached exactly: " +
                          std::to_string(r.mesh.num_triangles()) +
                          " triangles, one below (every collapse left removes two triangles, as on a closed mesh)");
-  else if (!r.reached)
+  else if (!r.reached && r.rejected_intersection > 0 && r.mesh.num_triangles() > target) {
+    // Usually the input's own contacts: CAD exports with cracks (T-junctions, the two sides of a
+    // face border tessellated apart, meeting or overlapping by rounding) or touching bodies, where
+    // any collapse beside them makes a new intersecting pair. Say so, and how to lift the guard.
+    const std::size_t own = count_self_intersections(mesh);
+    r.warnings.push_back(
+        "budget " + std::to_string(target) + " not reached: " + std::to_string(r.mesh.num_triangles()) +
+        " triangles remain; the self-intersection guard refused " + std::to_string(r.rejected_intersection) +
+        " collapses" +
+        (own > 0 ? " next to the input's own " + std::to_string(own) +
+                       " intersecting or touching triangle pairs (cracks, T-junctions, touching bodies)"
+                 : std::string()) +
+        "; without the guard (--no-intersection-guard, prevent_self_intersections = false) it simplifies "
+        "further but may add self-intersections");
+  } else if (!r.reached) {
     r.warnings.push_back("budget " + std::to_string(target) + " not reached: " +
                          std::to_string(r.mesh.num_triangles()) +
                          " triangles remain (constrained seams/corners, locks, parity of a closed mesh, or "
                          "rejected collapses)");
+  }
   if (options.measure_error) {
     const HausdorffResult h = hausdorff(mesh, r.mesh);
     r.hausdorff = h.symmetric();

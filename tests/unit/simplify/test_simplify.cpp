@@ -258,6 +258,32 @@ TEST(Simplify, IntersectionsOfThePlainRunAreRepairedByGuardedReruns) {
   EXPECT_EQ(g->mesh.num_triangles(), 200u);
 }
 
+// A crack as CAD exports leave them: two flat grids side by side, 8 and 13 cells along their
+// common border x = 1, not sharing its vertices and overlapping by 1e-6 (rounding).
+TEST(Simplify, AGuardStoppedByTheInputsOwnContactsSaysSoAndHowToLiftIt) {
+  TriMesh m = grid(8, 0.0);
+  TriMesh right = grid(13, 0.0);
+  const auto base = static_cast<std::uint32_t>(m.positions.size());
+  for (Vec3 p : right.positions) m.positions.push_back({p.x + 1 - 1e-6, p.y, 0});
+  for (Tri t : right.triangles) m.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  const std::size_t own = count_self_intersections(m);
+  ASSERT_GT(own, 0u);  // overlapping pairs along the crack
+  auto r = simplify(m, {.target_triangles = 20, .measure_error = false});
+  ASSERT_TRUE(r.has_value());
+  EXPECT_FALSE(r->reached);
+  EXPECT_GT(r->rejected_intersection, 0u);
+  EXPECT_LE(count_self_intersections(r->mesh), own);
+  ASSERT_FALSE(r->warnings.empty());
+  const std::string& w = r->warnings.back();
+  EXPECT_NE(w.find("self-intersection guard refused"), std::string::npos) << w;
+  EXPECT_NE(w.find("input's own " + std::to_string(own)), std::string::npos) << w;
+  EXPECT_NE(w.find("--no-intersection-guard"), std::string::npos) << w;
+  // Without the guard the budget is met.
+  auto free = simplify(m, {.target_triangles = 20, .prevent_self_intersections = false, .measure_error = false});
+  ASSERT_TRUE(free.has_value());
+  EXPECT_EQ(free->mesh.num_triangles(), 20u);
+}
+
 TEST(Simplify, OddBudgetOnAClosedMeshStopsOneShortOnAnOpenMeshIsExact) {
   const TriMesh s = make_sphere({.target_triangles = 4000});
   auto closed = simplify(s, {.target_triangles = 401, .measure_error = false});
