@@ -273,6 +273,15 @@ For process step P with parts j having T_j triangles, F_j of them on the step's 
 
 `triangle_budgets()` in `simplify/budget.h`; `interfere simplify --renderer-max N` applies it to one part.
 
+The renderer's maximum is a cap, so a STEP input whose parts stop above their N_i (seams, corners, locks, the
+guard: the part's report shows `output_triangles` > `target_triangles`) has them keep what they reached, and
+the other parts share what is left by the same formula (`rebalanced_budgets()`, Python
+`interfere.rebalanced_budgets`) and are simplified again; up to 4 rounds, each fixing at least one more part
+(report `budget_rounds`). The rebalanced parts are kept only if the total budget is then met: when the stopped
+parts alone fill it, or the others stop too, the formula's shares stand (no part loses its shape for a cap
+missed anyway) and a warning gives the total (test assembly of `tests/cli/data`, 800 triangles: 15 % → 120
+exactly, the plate stopping at 42 of its 39 and the shaft taking 36 instead of 42; 10 %: 112 for 80).
+
 ## CLI
 
 ```
@@ -316,7 +325,7 @@ written atomically and only after every input was validated.
 `self_intersections` (with the flag), `seconds` {`simplify`, `total`, `phases` [{`phase`, `seconds`}] (wall time
 of simplify()'s phases, in order; summed over the parts of a STEP input)}, `warnings`; for STEP input `cad` {`parts`
 [{`name`, `faces`, `triangles`, `features`, `assembly_feature_faces`}], `instances` [{`name`, `part`, `path`,
-`face_id_offset`, `placement` (3×4 [R|t], part → world), `in_step`, `simplified_part`}], `step`, `units`, `file_length_units`, `warnings`} and `parts_simplified` [{`part`, `model_part`, `name`, `file` (with `--parts-dir`), `instances`, `input_triangles`,
+`face_id_offset`, `placement` (3×4 [R|t], part → world), `in_step`, `simplified_part`}], `step`, `units`, `file_length_units`, `warnings`}, `budget_rounds` and `parts_simplified` [{`part`, `model_part`, `name`, `file` (with `--parts-dir`), `instances`, `input_triangles`,
 `target_triangles`, `output_triangles`, `feature_triangles`, `hausdorff`, `error_bound`, `hausdorff_features`, `guard_rerun`, `guard_reruns`,
 `self_intersections` (with the flag; for STEP input the report's count is the sum over parts × instances)}]. Face
 ids of a multi-instance STEP are offset per instance.

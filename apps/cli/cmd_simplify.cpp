@@ -8,7 +8,9 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <sstream>
+#include <tuple>
 
 #include <unistd.h>
 
@@ -68,7 +70,7 @@ bool is_step(const std::string& file) {
 // counted, the step's feature triangles reserved), then the instances are placed in the world mesh.
 Expected<SimplifyResult> simplify_parts(const cad::Prepared& prep, std::size_t total, SimplifyOptions so,
                                         nlohmann::json& parts_report, bool count_self, std::size_t& self_total,
-                                        std::vector<SimplifyResult>& done) {
+                                        std::vector<SimplifyResult>& done, int& rounds) {
   std::vector<PartBudgetInput> in;
   std::vector<std::size_t> feature_tris(prep.parts.size(), 0);
   for (std::size_t i = 0; i < prep.parts.size(); ++i) {
@@ -78,25 +80,70 @@ Expected<SimplifyResult> simplify_parts(const cad::Prepared& prep, std::size_t t
     for (auto f : p.face_ids) feature_tris[i] += std::binary_search(ff.begin(), ff.end(), f);
     in.push_back({p.instances * p.mesh.num_triangles(), p.instances * feature_tris[i]});
   }
-  const BudgetResult budgets = triangle_budgets(in, total);
-  SimplifyResult all;
+  // Parts that stop above their share (seams, corners, locks, the guard) keep what they reached and
+  // the others share the rest (rebalanced_budgets; the renderer's maximum is a cap), re-simplified
+  // from their input when their budget drops; a few rounds, each fixing at least one more part, and
+  // kept only if they meet the budget.
+  constexpr int kMaxRounds = 4;
+  BudgetResult budgets = triangle_budgets(in, total);
+  std::vector<std::optional<std::size_t>> fixed(prep.parts.size());
+  std::vector<std::size_t> target(prep.parts.size(), 0);
   done.assign(prep.parts.size(), SimplifyResult{});
+  rounds = 0;
+  bool features_exceed = budgets.features_exceed_budget;
+  std::tuple<std::vector<SimplifyResult>, std::vector<std::size_t>, bool> first;  // round 1
+  for (;;) {
+    ++rounds;
+    for (std::size_t i = 0; i < prep.parts.size(); ++i) {
+      const cad::PreparedPart& p = prep.parts[i];
+      if (p.instances == 0 || p.mesh.num_triangles() == 0 || fixed[i]) continue;
+      const std::size_t n = std::clamp<std::size_t>(budgets.budgets[i] / p.instances, 1, p.mesh.num_triangles());
+      if (target[i] == n) continue;  // same budget: same result
+      SimplifyOptions po = so;
+      po.target_triangles = n;
+      po.ratio = 0;
+      po.face_ids = p.face_ids;
+      po.feature_faces = p.feature_faces;
+      auto r = simplify(p.mesh, po);
+      if (!r) {
+        Error e = r.error();
+        e.reason = "part '" + p.name + "': " + e.reason;
+        return e;
+      }
+      done[i] = std::move(*r);
+      target[i] = n;
+    }
+    bool stalled = false;
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < prep.parts.size(); ++i) {
+      if (target[i] > 0 && !fixed[i] && done[i].mesh.num_triangles() > target[i]) {
+        fixed[i] = prep.parts[i].instances * done[i].mesh.num_triangles();
+        stalled = true;
+      }
+      if (fixed[i]) kept += *fixed[i];
+    }
+    // When the stopped parts alone fill the budget it cannot be met: the others keep their share
+    // instead of being cut to nothing for it.
+    if (!stalled || rounds == kMaxRounds || kept >= total) break;
+    if (rounds == 1) first = {done, target, budgets.features_exceed_budget};
+    budgets = rebalanced_budgets(in, total, fixed);
+    features_exceed = budgets.features_exceed_budget;
+  }
+  // Rebalanced parts are kept only if the budget is met: otherwise the formula's shares (the others
+  // would lose their shape for a cap missed anyway).
+  if (rounds > 1) {
+    std::size_t sum = 0;
+    for (std::size_t i = 0; i < prep.parts.size(); ++i) sum += prep.parts[i].instances * done[i].mesh.num_triangles();
+    if (sum > total) {
+      std::tie(done, target, features_exceed) = std::move(first);
+      rounds = 1;
+    }
+  }
+  SimplifyResult all;
   for (std::size_t i = 0; i < prep.parts.size(); ++i) {
     const cad::PreparedPart& p = prep.parts[i];
-    if (p.instances == 0 || p.mesh.num_triangles() == 0) continue;
-    const std::size_t n = std::clamp<std::size_t>(budgets.budgets[i] / p.instances, 1, p.mesh.num_triangles());
-    SimplifyOptions po = so;
-    po.target_triangles = n;
-    po.ratio = 0;
-    po.face_ids = p.face_ids;
-    po.feature_faces = p.feature_faces;
-    auto r = simplify(p.mesh, po);
-    if (!r) {
-      Error e = r.error();
-      e.reason = "part '" + p.name + "': " + e.reason;
-      return e;
-    }
-    done[i] = std::move(*r);
+    if (target[i] == 0) continue;
+    const std::size_t n = target[i];
     const SimplifyResult& d = done[i];
     parts_report.push_back({{"part", i}, {"model_part", p.model_part}, {"name", p.name}, {"instances", p.instances}, {"input_triangles", d.input_triangles},
                             {"target_triangles", n}, {"output_triangles", d.mesh.num_triangles()},
@@ -138,7 +185,7 @@ Expected<SimplifyResult> simplify_parts(const cad::Prepared& prep, std::size_t t
   if (!all.reached)
     all.warnings.push_back("total budget " + std::to_string(total) + ": " + std::to_string(all.mesh.num_triangles()) +
                            " triangles (per-part budgets are rounded down per instance, parts may stop early)");
-  if (budgets.features_exceed_budget) all.warnings.push_back("the step's feature triangles alone exceed the budget");
+  if (features_exceed) all.warnings.push_back("the step's feature triangles alone exceed the budget");
   all.bbox_diagonal = norm(prep.mesh.bounds().extent());
   // all.error_bound: the largest part's (rigid placements keep distances).
   return all;
@@ -275,9 +322,11 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
       if (total == 0 || total > n)
         throw InputError(o.input + ": triangle budget " + std::to_string(total) + " must lie in [1, " + std::to_string(n) + "]");
       nlohmann::json parts = nlohmann::json::array();
-      res = simplify_parts(*cad_prepared, total, so, parts, o.check_self, self_parts, part_results);
+      int rounds = 0;
+      res = simplify_parts(*cad_prepared, total, so, parts, o.check_self, self_parts, part_results, rounds);
       per_part = true;
       report["parts_simplified"] = parts;
+      report["budget_rounds"] = rounds;
     } else {
       res = simplify(mesh, so);
     }

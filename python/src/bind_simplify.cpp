@@ -160,6 +160,21 @@ void bind_simplify(py::module_& m) {
       },
       py::arg("parts"), py::arg("renderer_max"),
       "Per-part triangle budgets N_i from [(T_i, F_i)] and the renderer's maximum (docs/simplify.md).");
+  m.def(
+      "rebalanced_budgets",
+      [](const std::vector<std::pair<std::size_t, std::size_t>>& parts, std::size_t renderer_max,
+         const std::vector<std::optional<std::size_t>>& fixed) {
+        if (fixed.size() != parts.size()) throw py::value_error("fixed must have one entry (None or a count) per part");
+        std::vector<PartBudgetInput> in;
+        for (const auto& [t, f] : parts) {
+          if (f > t) throw py::value_error("feature triangles exceed the part's triangles");
+          in.push_back({t, f});
+        }
+        return rebalanced_budgets(in, renderer_max, fixed).budgets;
+      },
+      py::arg("parts"), py::arg("renderer_max"), py::arg("fixed"),
+      "Budgets once some parts stopped above theirs: fixed[i] (a count, or None) is kept, the others share the "
+      "rest of renderer_max by the same formula (docs/simplify.md).");
 
 #ifdef INTERFERE_HAS_CAD
   m.attr("HAVE_CAD") = true;

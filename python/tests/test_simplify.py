@@ -106,6 +106,15 @@ class Simplify(unittest.TestCase):
 
 @unittest.skipUnless(getattr(itf, "HAVE_CAD", False), "built without OpenCASCADE")
 class Cad(unittest.TestCase):
+
+    def test_rebalanced_budgets(self):
+        parts = [(35548, 4000), (10000, 0), (2000, 500)]
+        self.assertEqual(itf.rebalanced_budgets(parts, 12000, [None] * 3), itf.triangle_budgets(parts, 12000))
+        b = itf.rebalanced_budgets(parts, 12000, [9000, None, None])
+        self.assertEqual(b, [9000] + itf.triangle_budgets(parts[1:], 3000))
+        self.assertEqual(sum(b), 12000)
+        with self.assertRaises(ValueError):
+            itf.rebalanced_budgets(parts, 12000, [None])
     def test_import_and_features(self):
         step = os.path.join(DATA, "counterbored_plate.step")
         m = itf.import_step(step)

@@ -42,4 +42,21 @@ BudgetResult triangle_budgets(const std::vector<PartBudgetInput>& parts, std::si
   return r;
 }
 
+BudgetResult rebalanced_budgets(const std::vector<PartBudgetInput>& parts, std::size_t renderer_max,
+                                const std::vector<std::optional<std::size_t>>& fixed) {
+  std::size_t kept = 0;
+  std::vector<PartBudgetInput> free_parts;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    if (i < fixed.size() && fixed[i]) kept += *fixed[i];
+    else free_parts.push_back(parts[i]);
+  }
+  const BudgetResult shared = triangle_budgets(free_parts, renderer_max > kept ? renderer_max - kept : 0);
+  BudgetResult r;
+  r.features_exceed_budget = shared.features_exceed_budget;
+  r.budgets.resize(parts.size());
+  for (std::size_t i = 0, k = 0; i < parts.size(); ++i)
+    r.budgets[i] = i < fixed.size() && fixed[i] ? *fixed[i] : shared.budgets[k++];
+  return r;
+}
+
 }  // namespace interfere

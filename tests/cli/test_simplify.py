@@ -340,6 +340,30 @@ class Features(unittest.TestCase):
         self.assertIn("--parts-dir", err)
         self.assertFalse(os.path.exists(path("m.ply")))
 
+    def test_parts_that_stop_early_leave_their_excess_to_the_others(self):
+        # 15 %: the plate (two instances) stops above its share (its seams and corners), the shaft takes
+        # the difference and the total budget is met; 10 %: the plate alone fills it, nothing is cut
+        # further (the formula's shares, a warning).
+        code, _, err = run("simplify", os.path.join(DATA, "assembly.step"), path("rb.ply"), "--ratio", "0.15",
+                           "--json", path("rb.json"))
+        self.assertEqual(code, 0, err)
+        r = load_json("rb.json")
+        parts = {p["name"]: p for p in r["parts_simplified"]}
+        self.assertGreater(parts["plate"]["output_triangles"], parts["plate"]["target_triangles"])
+        self.assertGreaterEqual(r["budget_rounds"], 2)
+        self.assertEqual(r["output_triangles"], r["target_triangles"])
+        self.assertTrue(r["reached"])
+        self.assertEqual(sum(p["instances"] * p["output_triangles"] for p in parts.values()), r["output_triangles"])
+        code, _, err = run("simplify", os.path.join(DATA, "assembly.step"), path("rb2.ply"), "--ratio", "0.1",
+                           "--json", path("rb2.json"))
+        self.assertEqual(code, 0, err)
+        r2 = load_json("rb2.json")
+        self.assertEqual(r2["budget_rounds"], 1)
+        self.assertFalse(r2["reached"])
+        self.assertTrue(any("total budget" in w for w in r2["warnings"]), r2["warnings"])
+        shaft = [p for p in r2["parts_simplified"] if p["name"] == "shaft"][0]
+        self.assertEqual(shaft["output_triangles"], shaft["target_triangles"])
+
     def simplify_assembly_step(self, step, out, ratio):
         """Simplifies the test assembly to `ratio` with the process step `step` (id P1); the report."""
         with open(path(out + ".process.json"), "w") as f:

@@ -10,6 +10,7 @@
 // part keeps only its feature triangles, N_i = F_i (and a warning says so).
 #pragma once
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,5 +27,13 @@ struct BudgetResult {
 };
 
 BudgetResult triangle_budgets(const std::vector<PartBudgetInput>& parts, std::size_t renderer_max);
+
+/// Budgets once some parts stopped above theirs (seams, corners, locks, the self-intersection guard):
+/// a part i with fixed[i] keeps that many triangles, N_i = fixed[i]; the others share what is left,
+/// N_max - sum of the fixed, by the formula above (nothing left: their feature triangles). The
+/// renderer's maximum is a cap, so what one part cannot give up is taken from the others.
+/// fixed.size() must equal parts.size().
+BudgetResult rebalanced_budgets(const std::vector<PartBudgetInput>& parts, std::size_t renderer_max,
+                                const std::vector<std::optional<std::size_t>>& fixed);
 
 }  // namespace interfere

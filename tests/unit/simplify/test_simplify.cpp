@@ -815,5 +815,22 @@ TEST(Budget, SharesAddUpToTheRendererMaximumAndReserveFeatures) {
   EXPECT_EQ(over.budgets, (std::vector<std::size_t>{4000, 0, 500}));
 }
 
+TEST(Budget, PartsThatStoppedAboveTheirShareAreTakenFromTheOthers) {
+  const std::vector<PartBudgetInput> parts{{35548, 4000}, {10000, 0}, {2000, 500}};
+  // Nothing fixed: the plain formula.
+  const std::vector<std::optional<std::size_t>> none(3);
+  EXPECT_EQ(rebalanced_budgets(parts, 12000, none).budgets, triangle_budgets(parts, 12000).budgets);
+  // Part 0 could not go below 9000: the other two share the 3000 left, by the same formula.
+  const auto r = rebalanced_budgets(parts, 12000, {9000, std::nullopt, std::nullopt});
+  const auto shared = triangle_budgets({parts[1], parts[2]}, 3000);
+  EXPECT_EQ(r.budgets, (std::vector<std::size_t>{9000, shared.budgets[0], shared.budgets[1]}));
+  EXPECT_EQ(r.budgets[0] + r.budgets[1] + r.budgets[2], 12000u);
+  EXPECT_FALSE(r.features_exceed_budget);
+  // The fixed parts take it all: the others keep their feature triangles only (a warning case).
+  const auto all = rebalanced_budgets(parts, 12000, {12500, std::nullopt, std::nullopt});
+  EXPECT_EQ(all.budgets, (std::vector<std::size_t>{12500, 0, 500}));
+  EXPECT_TRUE(all.features_exceed_budget);
+}
+
 }  // namespace
 }  // namespace interfere
