@@ -259,7 +259,10 @@ collapses it refused and how many intersecting or touching pairs the input has o
 cracks (T-junctions: the two sides of a face border tessellated apart, meeting or overlapping by rounding)
 stall there (`trimesh_featuretype.STL` of `../shared/data`: 1,216 such pairs, 3,476 → 1,288 triangles at most
 with the guard, 104 without); `--no-intersection-guard` simplifies further without the guarantee (unit test
-`Simplify.AGuardStoppedByTheInputsOwnContactsSaysSoAndHowToLiftIt`).
+`Simplify.AGuardStoppedByTheInputsOwnContactsSaysSoAndHowToLiftIt`). When the budget is met but the guard
+refused collapses next to such pairs, a warning says the error can be larger than without it (the Newell teapot,
+whose spout and handle cross its body, 161 pairs: 6,320 → 316 triangles, Hausdorff 5.3 % of the diagonal with
+the guard, 1.5 % without, the same as meshoptimizer's).
 
 ### Triangle budget per part (renderer share)
 

@@ -319,29 +319,35 @@ Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOp
     r.warnings.push_back(std::to_string(r.degenerate_triangles) +
                          " degenerate triangles (two corners at one position) dropped");
   r.reached = r.mesh.num_triangles() == target;
-  if (!r.reached && r.mesh.num_triangles() + 1 == target && nt - r.degenerate_triangles > target)
+  const bool one_below = !r.reached && r.mesh.num_triangles() + 1 == target && nt - r.degenerate_triangles > target;
+  if (one_below)
     r.warnings.push_back("budget " + std::to_string(target) + " not reached exactly: " +
                          std::to_string(r.mesh.num_triangles()) +
                          " triangles, one below (every collapse left removes two triangles, as on a closed mesh)");
-  else if (!r.reached && r.rejected_intersection > 0 && r.mesh.num_triangles() > target) {
-    // Usually the input's own contacts: CAD exports with cracks (T-junctions, the two sides of a
-    // face border tessellated apart, meeting or overlapping by rounding) or touching bodies, where
-    // any collapse beside them makes a new intersecting pair. Say so, and how to lift the guard.
-    const std::size_t own = count_self_intersections(mesh);
-    r.warnings.push_back(
-        "budget " + std::to_string(target) + " not reached: " + std::to_string(r.mesh.num_triangles()) +
-        " triangles remain; the self-intersection guard refused " + std::to_string(r.rejected_intersection) +
-        " collapses" +
-        (own > 0 ? " next to the input's own " + std::to_string(own) +
-                       " intersecting or touching triangle pairs (cracks, T-junctions, touching bodies)"
-                 : std::string()) +
-        "; without the guard (--no-intersection-guard, prevent_self_intersections = false) it simplifies "
-        "further but may add self-intersections");
-  } else if (!r.reached) {
+  // Collapses refused by the guard are usually next to the input's own contacts: CAD exports with
+  // cracks (T-junctions, the two sides of a face border tessellated apart, meeting or overlapping by
+  // rounding), penetrating or touching bodies (the Newell teapot's spout and body), where any collapse
+  // beside them makes a new intersecting pair. Say so, and how to lift the guard.
+  const std::size_t own = r.rejected_intersection > 0 ? count_self_intersections(mesh) : 0;
+  const std::string own_pairs = own > 0 ? " next to the input's own " + std::to_string(own) +
+                                              " intersecting or touching triangle pairs (cracks, T-junctions, "
+                                              "penetrating or touching bodies)"
+                                        : std::string();
+  const std::string lift = "without the guard (--no-intersection-guard, prevent_self_intersections = false)";
+  if (!r.reached && r.rejected_intersection > 0 && r.mesh.num_triangles() > target) {
+    r.warnings.push_back("budget " + std::to_string(target) + " not reached: " +
+                         std::to_string(r.mesh.num_triangles()) + " triangles remain; the self-intersection guard refused " +
+                         std::to_string(r.rejected_intersection) + " collapses" + own_pairs + "; " + lift +
+                         " it simplifies further but may add self-intersections");
+  } else if (!r.reached && !one_below) {
     r.warnings.push_back("budget " + std::to_string(target) + " not reached: " +
                          std::to_string(r.mesh.num_triangles()) +
                          " triangles remain (constrained seams/corners, locks, parity of a closed mesh, or "
                          "rejected collapses)");
+  } else if (own > 0) {
+    r.warnings.push_back("the self-intersection guard refused " + std::to_string(r.rejected_intersection) +
+                         " collapses" + own_pairs + ", so more were made elsewhere: the error can be larger than " +
+                         lift);
   }
   if (options.measure_error) {
     const HausdorffResult h = hausdorff(mesh, r.mesh);

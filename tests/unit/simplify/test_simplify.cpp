@@ -502,6 +502,11 @@ TEST(Simplify, InputIntersectionsAreKeptButNoneIsAdded) {
         << "intersecting pair " << x << ", " << y << " has a triangle the input did not have";
   }
   EXPECT_LT(r->mesh.num_triangles(), m.num_triangles() / 2);  // and the rest was simplified
+  // The guard kept collapses away from the crossing: a warning says so and names the input's pairs.
+  ASSERT_GT(r->rejected_intersection, 0u);
+  const std::string own = "input's own " + std::to_string(count_self_intersections(m));
+  EXPECT_TRUE(std::any_of(r->warnings.begin(), r->warnings.end(),
+                          [&](const std::string& w) { return w.find(own) != std::string::npos; }));
 }
 
 TEST(Simplify, ScrambledVertexNumbersGiveThreadIndependentResults) {
