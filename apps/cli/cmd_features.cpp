@@ -1,6 +1,7 @@
 // `interfere features PART.step`: machining features recognised on the B-Rep (issue #6, items 2-4,
 // 7): the AAG of every part, the features of the library with their face ids, axes and radii, and,
 // with --process/--step, the assembly-feature faces that step selects.
+#include <cmath>
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -108,8 +109,17 @@ int run_features(const FeaturesCliOptions& o) {
       std::vector<std::string> radius_texts;
       for (double r : f.radii) radius_texts.push_back(fmt_double(r));
       const std::string radii = fmt::format("{}", fmt::join(radius_texts, ","));
-      std::printf("  %-18s faces [%s]%s%s\n", f.type.c_str(), faces.c_str(), radii.empty() ? "" : " radii ",
-                  radii.c_str());
+      // The axis as a point and a direction (display: components within 1e-12 of 0 shown as 0).
+      std::string axis;
+      if (norm(f.axis) > 0) {
+        const auto v = [](const Vec3& p) {
+          const auto c = [](double x) { return fmt_double(std::fabs(x) < 1e-12 ? 0.0 : x); };
+          return "(" + c(p.x) + ", " + c(p.y) + ", " + c(p.z) + ")";
+        };
+        axis = " axis " + v(f.axis_point) + " dir " + v(f.axis);
+      }
+      std::printf("  %-18s faces [%s]%s%s%s\n", f.type.c_str(), faces.c_str(), radii.empty() ? "" : " radii ",
+                  radii.c_str(), axis.c_str());
     }
     for (const std::string& step : steps) {
       // In the step when it names the part or one of its instances (then only those instances
