@@ -132,6 +132,10 @@ inline HeapEntry entry_of(const Candidate& c) {
 /// fixed order: the result is deterministic). Such keys were once raised to the last popped key,
 /// which gave them back last in, first out: the collapses kept aside at budget + 1 then came back
 /// dearest first (fandisk to an odd budget: 35x the Hausdorff distance of the even one below).
+/// Equal keys in the buckets come out first in, first out: on flat regions (every cost 0) last in,
+/// first out took the edges a collapse had just re-evaluated first, so one vertex swallowed its
+/// neighbours one after the other, its fan grew and most candidates were refused as flips (a flat
+/// 80x80 grid to 5 %: 384,363 refused for 6,159 collapses, now 15; fandisk 42 -> 10 ms).
 class RadixHeap {
  public:
   bool empty() const { return size_ == 0 && below_.empty(); }
@@ -152,7 +156,9 @@ class RadixHeap {
       below_.pop_back();
       return e;
     }
-    if (buckets_[0].empty()) {
+    if (head0_ == buckets_[0].size()) {
+      buckets_[0].clear();
+      head0_ = 0;
       std::size_t i = 1;
       while (buckets_[i].empty()) ++i;
       std::uint32_t m = std::numeric_limits<std::uint32_t>::max();
@@ -164,8 +170,7 @@ class RadixHeap {
       moving.clear();
       moving.swap(buckets_[i]);  // keep the capacity
     }
-    const HeapEntry e = buckets_[0].back();
-    buckets_[0].pop_back();
+    const HeapEntry e = buckets_[0][head0_++];
     --size_;
     return e;
   }
@@ -177,6 +182,7 @@ class RadixHeap {
   std::vector<HeapEntry> below_;  ///< keys below last_ (binary min-heap)
   std::uint32_t last_ = 0;
   std::size_t size_ = 0;  ///< entries in the buckets
+  std::size_t head0_ = 0;  ///< next entry of bucket 0 (first in, first out)
 };
 
 constexpr std::uint32_t kBlock = 1024;  ///< vertices per parallel block (results do not depend on it)
