@@ -21,6 +21,11 @@
 // distance from the original feature-face samples to the simplified surface), self_x (pairs of
 // non-adjacent intersecting triangles created).
 //
+// Real meshes (optional, skipped when absent): public models of ../shared/data/mesh
+// (INTERFERE_BENCH_DATA), each to 5 % with interfere (checked and unchecked), meshoptimizer and
+// OpenMesh, no features; self_x_in counts the input's own intersecting pairs (self_x includes those
+// the result keeps).
+//
 // Environment: INTERFERE_BENCH_SIMPLIFY_SIZES (default "1e5,1e6"), INTERFERE_BENCH_SIMPLIFY_RATIOS
 // (percent, default "1,10"), INTERFERE_BENCH_SIMPLIFY_PEERS (default 1), INTERFERE_BENCH_CASING_TRIANGLES
 // (default 35548), INTERFERE_BENCH_CASING_BUDGET (default 5200).
@@ -42,6 +47,7 @@
 #include <vector>
 
 #include "interfere/mesh/generate.h"
+#include "interfere/mesh/io.h"
 #include "interfere/simplify/hausdorff.h"
 #include "interfere/simplify/qem.h"
 #ifdef INTERFERE_BENCH_HAS_CAD
@@ -233,6 +239,57 @@ void bm_openmesh(benchmark::State& state, std::size_t n, double ratio) {
   report(state, c.mesh, c.feature, timed_openmesh(state, c.mesh, target), c.diag);
 }
 
+// A real mesh of the shared data, welded, with its diagonal and its own intersecting pairs.
+struct RealCase {
+  std::string name;
+  TriMesh mesh, none;  // `none`: no feature triangles
+  double diag = 0;
+  std::size_t self_in = 0;
+};
+
+std::size_t real_target(const RealCase& c) { return std::max<std::size_t>(c.mesh.num_triangles() / 20, 4); }
+
+void real_report(benchmark::State& state, const RealCase& c, const TriMesh& out) {
+  report(state, c.mesh, c.none, out, c.diag);
+  state.counters["self_x_in"] = double(c.self_in);
+}
+
+void bm_real(benchmark::State& state, std::shared_ptr<const RealCase> c, int tool) {
+  TriMesh out;
+  if (tool <= 1) {  // 0: interfere (checked), 1: unchecked
+    SimplifyOptions o{.target_triangles = real_target(*c)};
+    o.measure_error = false;
+    o.prevent_self_intersections = tool == 0;
+    if (!timed_simplify(state, c->mesh, o, out)) return;
+  } else if (tool == 2) {
+    out = timed_meshopt(state, c->mesh, real_target(*c));
+  } else {
+    out = timed_openmesh(state, c->mesh, real_target(*c));
+  }
+  real_report(state, *c, out);
+}
+
+std::vector<std::shared_ptr<const RealCase>> real_cases() {
+  const char* env = std::getenv("INTERFERE_BENCH_DATA");
+  const std::filesystem::path dir =
+      env && *env ? std::filesystem::path(env) : std::filesystem::path(INTERFERE_SOURCE_DIR) / ".." / "shared" / "data" / "mesh";
+  std::vector<std::shared_ptr<const RealCase>> out;
+  for (const char* name : {"bunny_closed_hr_odedstein.obj", "armadillo_closed_odedstein.obj", "rocker_arm.obj",
+                           "fandisk.obj", "vtkdata_gears.stl", "teapot_newell.obj", "trimesh_featuretype.STL"}) {
+    const auto file = dir / name;
+    if (!std::filesystem::exists(file)) continue;
+    auto m = read_mesh(file.string());
+    if (!m) continue;
+    auto c = std::make_shared<RealCase>();
+    c->name = std::filesystem::path(name).stem().string();
+    c->mesh = weld_positions(*m);
+    c->diag = norm(c->mesh.bounds().extent());
+    c->self_in = count_self_intersections(c->mesh);
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
 #ifdef INTERFERE_BENCH_HAS_CAD
 struct CasingCase {
   cad::CadModel model;
@@ -397,6 +454,14 @@ int main(int argc, char** argv) {
             ->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->Iterations(1);
       }
     }
+  for (const auto& c : real_cases()) {
+    const char* tools[] = {"interfere", "interfere_unchecked", "meshoptimizer", "openmesh"};
+    for (int t = 0; t < 4; ++t) {
+      if (t == 3 && !peers) continue;
+      benchmark::RegisterBenchmark(("Real/" + std::string(tools[t]) + "/" + c->name).c_str(), bm_real, c, t)
+          ->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->Iterations(t == 3 ? 1 : 5);
+    }
+  }
 #ifdef INTERFERE_BENCH_HAS_CAD
   for (const char* step : {"P1", "P2"}) {
     benchmark::RegisterBenchmark((std::string("Casing/interfere/") + step).c_str(), bm_casing, std::string(step), true,
