@@ -211,7 +211,7 @@ quadric-error-metric edge collapses while the faces that take part in the curren
    freezes every vertex of a feature face, which keeps the feature triangles bit-identical. Plain meshes use a per-triangle region file (`--regions`) or a dihedral-angle
    mask (`--sharp-angle DEG`: regions split at edges sharper than DEG, their borders kept like seams).
 6. **Error bound**: the symmetric Hausdorff distance between input and output, sampled at every vertex used by a triangle, edge
-   midpoint and centroid and measured with the engine's BVH and closest-point queries, overall and on the feature
+   midpoint (once per edge two triangles share) and centroid and measured with the engine's BVH and closest-point queries, overall and on the feature
    faces (`hausdorff`, `hausdorff_features`: measurements, lower bounds of the true distances). `error_bound` is an
    upper bound of the distance from every point of the input's surface to the output (`OneSidedDistance::bound`
    in `simplify/hausdorff.h`), at least `hausdorff`: per input triangle the smaller of a Lipschitz bound (largest

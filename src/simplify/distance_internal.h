@@ -31,8 +31,10 @@ struct Sampled {
   double max_sample() const;
 };
 
-/// The samples of triangle c whose corners' distances `at` are known.
-Sampled sample(const TriMesh& to, const Bvh& bvh, const std::array<Vec3, 3>& c, const std::array<Near, 3>& at);
+/// The samples of triangle c whose corners' distances `at` (and, if given, edge midpoints' `mid`)
+/// are known.
+Sampled sample(const TriMesh& to, const Bvh& bvh, const std::array<Vec3, 3>& c, const std::array<Near, 3>& at,
+               const std::array<Near, 3>* mid = nullptr);
 
 /// Upper bound of the distance from every point of triangle s.c to `to` (distance_bound.cpp),
 /// computed lazily down to `floor` (a bound at or below it is not improved).

@@ -75,11 +75,12 @@ Near nearest(const TriMesh& to, const Bvh& bvh, const Vec3& p) {
 }
 
 
-Sampled sample(const TriMesh& to, const Bvh& bvh, const std::array<Vec3, 3>& c, const std::array<Near, 3>& at) {
+Sampled sample(const TriMesh& to, const Bvh& bvh, const std::array<Vec3, 3>& c, const std::array<Near, 3>& at,
+               const std::array<Near, 3>* mid) {
   Sampled s{c, {}, at, {}, {}};
   for (int k = 0; k < 3; ++k) {
     s.m[k] = (c[k] + c[(k + 1) % 3]) * 0.5;
-    s.mid[k] = nearest(to, bvh, s.m[k]);
+    s.mid[k] = mid ? (*mid)[k] : nearest(to, bvh, s.m[k]);
   }
   s.centre = nearest(to, bvh, (c[0] + c[1] + c[2]) / 3.0);
   return s;
@@ -134,6 +135,46 @@ OneSidedDistance one_sided(const TriMesh& from, const TriMesh& to, bool with_bou
     const Tri& tr = from.triangles[t];
     return std::array<Near, 3>{vn[tr[0]], vn[tr[1]], vn[tr[2]]};
   };
+  // Edge midpoints: an edge two triangles share (by vertex number: welded meshes, as the readers
+  // give them) is measured once, by the triangle where it runs from its lower to its higher vertex
+  // number; the other takes that result, the same bits ((p + q) / 2 = (q + p) / 2, the same
+  // query): a third of the queries fewer, nothing changes (10^6 -> 10^4: 4.5 -> 3 million).
+  std::vector<Near> mid(3 * nt);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nt, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t t = r.begin(); t < r.end(); ++t) {
+      const Tri& tr = from.triangles[t];
+      for (int k = 0; k < 3; ++k)
+        if (tr[k] < tr[(k + 1) % 3])
+          mid[3 * t + k] = nearest(to, bvh, (from.positions[tr[k]] + from.positions[tr[(k + 1) % 3]]) * 0.5);
+    }
+  });
+  const Fans from_fans = fans_of(from);
+  // The midpoints of triangle t: its own or, for an edge running downwards, the twin's (the
+  // triangle around its lower end where it runs upwards), else measured here.
+  const auto mids_of = [&](std::size_t t) {
+    const Tri& tr = from.triangles[t];
+    std::array<Near, 3> m;
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = tr[k], b = tr[(k + 1) % 3];
+      if (a < b) {
+        m[k] = mid[3 * t + k];
+        continue;
+      }
+      bool found = false;
+      for (std::uint32_t i = from_fans.start[b]; i < from_fans.start[b + 1] && !found; ++i) {
+        const std::uint32_t u = from_fans.tris[i];
+        const Tri& q = from.triangles[u];
+        for (int j = 0; j < 3; ++j)
+          if (u != t && q[j] == b && q[(j + 1) % 3] == a) {
+            m[k] = mid[3 * u + j];
+            found = true;
+            break;
+          }
+      }
+      if (!found) m[k] = nearest(to, bvh, (from.positions[a] + from.positions[b]) * 0.5);
+    }
+    return m;
+  };
   std::vector<double> local(with_bound ? nt : 0);
   struct Max {
     double sampled = 0, local = 0;
@@ -142,7 +183,8 @@ OneSidedDistance one_sided(const TriMesh& from, const TriMesh& to, bool with_bou
       tbb::blocked_range<std::size_t>(0, nt, 256), Max{},
       [&](const tbb::blocked_range<std::size_t>& r, Max m) {
         for (std::size_t t = r.begin(); t < r.end(); ++t) {
-          const Sampled s = sample(to, bvh, from.corners(t), corners_of(t));
+          const std::array<Near, 3> mt = mids_of(t);
+          const Sampled s = sample(to, bvh, from.corners(t), corners_of(t), &mt);
           m.sampled = std::max(m.sampled, s.max_sample());
           if (!with_bound) continue;
           local[t] = local_bound(to, s, kSlack * vertex_max);
@@ -162,7 +204,8 @@ OneSidedDistance one_sided(const TriMesh& from, const TriMesh& to, bool with_bou
           for (std::size_t t = r.begin(); t < r.end(); ++t) {
             double x = local[t];
             if (x > floor) {
-              const Sampled s = sample(to, bvh, from.corners(t), corners_of(t));
+              const std::array<Near, 3> mt = mids_of(t);
+              const Sampled s = sample(to, bvh, from.corners(t), corners_of(t), &mt);
               x = std::min(x, ring_bound(to, fans, s, floor));
               if (x > floor) x = std::min(x, refined_bound(to, bvh, s, floor, 2));
             }

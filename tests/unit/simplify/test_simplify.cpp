@@ -747,6 +747,30 @@ TEST(Hausdorff, MatchesBruteForceOverTheSamePoints) {
   EXPECT_DOUBLE_EQ(h.b_to_a, brute(b, a));
 }
 
+// A shared edge's midpoint is measured once (by the triangle where it runs upwards) and copied to
+// its twin: the same bits as measuring it in each triangle, which is what a soup (no shared vertex
+// numbers) and a mesh with some triangles turned over (edges running the same way twice) still do.
+TEST(Hausdorff, SharedMidpointsGiveTheSameResultAsMeasuringEachCopy) {
+  const TriMesh a = make_sphere({.target_triangles = 3000, .bump_amplitude = 0.1});
+  auto r = simplify(a, {.target_triangles = 200, .measure_error = false});
+  ASSERT_TRUE(r.has_value());
+  TriMesh soup;
+  for (std::size_t t = 0; t < a.num_triangles(); ++t) {
+    const auto c = a.corners(t);
+    const auto base = static_cast<std::uint32_t>(soup.positions.size());
+    soup.positions.insert(soup.positions.end(), c.begin(), c.end());
+    soup.triangles.push_back({base, base + 1, base + 2});
+  }
+  TriMesh turned = a;
+  for (std::size_t t = 0; t < turned.num_triangles(); t += 3) std::swap(turned.triangles[t][1], turned.triangles[t][2]);
+  const OneSidedDistance welded = one_sided(a, r->mesh, true);
+  for (const TriMesh* m : {&soup, &turned}) {
+    const OneSidedDistance d = one_sided(*m, r->mesh, true);
+    EXPECT_EQ(d.sampled, welded.sampled);
+    EXPECT_EQ(d.bound, welded.bound);
+  }
+}
+
 TEST(Hausdorff, SelfIntersectionCountMatchesBruteForceAndTheEngineClash) {
   // Two overlapping spheres in one mesh (plus a copy of one triangle moved onto its neighbour's
   // plane): every pair of triangles not sharing a vertex position, tested exactly, against the
