@@ -110,7 +110,7 @@ int run_fem_clash(const ClashOptions& o, const ResolvedParts& parts, const Clash
   const FemPart b = same ? other_part(a, ob.part, "B") : load_fem_part(parts.b.file, ob, "B", false);
   for (const FemPart* p : {&a, &b}) {
     for (const std::string& w : p->warnings) {
-      if (!Progress::quiet()) std::fprintf(stderr, "[interfere] warning: %s\n", w.c_str());
+      warning(w);
     }
   }
   const std::size_t na = a.num_steps(), nb = b.num_steps();
@@ -138,7 +138,7 @@ int run_fem_clash(const ClashOptions& o, const ResolvedParts& parts, const Clash
   })
                                      : sres.steps.back();
   for (const std::string& w : result.warnings) {
-    if (!Progress::quiet()) std::fprintf(stderr, "[interfere] warning: %s\n", w.c_str());
+    warning(w);
   }
 
   // Outputs (inputs fully validated above).

@@ -104,7 +104,7 @@ int run_clash(const ClashOptions& o) {
     result = clash(pa.model, pb.model, request);
     query_seconds = progress.seconds();
   }
-  for (const std::string& w : result.warnings) std::fprintf(stderr, "[interfere] warning: %s\n", w.c_str());
+  for (const std::string& w : result.warnings) warning(w);
 
   // Outputs (each written atomically; inputs were fully validated above).
   if (!o.pairs.empty()) {

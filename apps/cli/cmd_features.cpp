@@ -82,7 +82,7 @@ int run_features(const FeaturesCliOptions& o) {
   for (const std::string& step : steps)
     for (auto& w : unknown_step_names(*process, step, *model)) model->warnings.push_back(std::move(w));
   for (const auto& w : model->warnings)
-    if (!Progress::quiet()) std::fprintf(stderr, "[interfere] warning: %s\n", w.c_str());
+    warning(w);
   {
     std::string declared;
     for (const auto& u : model->file_length_units) declared += (declared.empty() ? "" : ", ") + u;

@@ -262,7 +262,7 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
     cad_prepared = std::make_unique<cad::Prepared>(std::move(*prepared));
     report["cad"] = nlohmann::json::parse(cad_prepared->report_json);
     for (const auto& w : cad_prepared->warnings)
-      if (!Progress::quiet()) std::fprintf(stderr, "[interfere] warning: %s\n", w.c_str());
+      warning(w);
 #else
     throw InputError(o.input + ": STEP input needs interfere built with OpenCASCADE (INTERFERE_WITH_OCCT)");
 #endif
@@ -433,7 +433,7 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
   report["seconds"]["phases"] = phases;
   report["warnings"] = r.warnings;
   for (const auto& w : r.warnings)
-    if (!Progress::quiet()) std::fprintf(stderr, "[interfere] warning: %s\n", w.c_str());
+    warning(w);
   if (!o.json.empty()) {
     const Status s = write_file_atomic(o.json, report.dump(2) + "\n");
     if (!s) throw InputError(s.error());

@@ -42,7 +42,7 @@ int run_surface(const SurfaceOptions& o) {
                                          .linear_faces = o.linear_faces, .split = o.split, .transform = o.transform},
                                   "input", true);
   for (const std::string& w : p.warnings) {
-    if (!Progress::quiet()) std::fprintf(stderr, "[interfere] warning: %s\n", w.c_str());
+    warning(w);
   }
   // Default step: the last one (the final deformed state).
   std::size_t step = 0;

@@ -15,6 +15,8 @@
 
 namespace interfere::cli {
 
+void warning(const std::string& text) { std::fprintf(stderr, "[interfere] warning: %s\n", text.c_str()); }
+
 Progress::Progress(std::string what) : what_(std::move(what)), start_(std::chrono::steady_clock::now()) {
   if (!quiet_) std::fprintf(stderr, "[interfere] %s ...\n", what_.c_str());
 }
@@ -56,7 +58,7 @@ void warn_about(LoadedPart& p, const std::string& label) {
   auto warn = [&](std::size_t n, const char* what) {
     if (n == 0) return;
     p.warnings.push_back("part " + label + " (" + p.file + "): " + std::to_string(n) + " " + what);
-    if (!Progress::quiet()) std::fprintf(stderr, "[interfere] warning: %s\n", p.warnings.back().c_str());
+    warning(p.warnings.back());
   };
   warn(s.degenerate_triangles, "degenerate triangles (zero area; tested as segments/points)");
   warn(s.duplicate_triangles, "duplicate triangles");

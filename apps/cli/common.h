@@ -28,6 +28,10 @@ struct InputError : std::runtime_error {
   explicit InputError(const std::string& m) : std::runtime_error(m) {}
 };
 
+/// A warning on stderr ("[interfere] warning: ..."): printed with --quiet too, which silences only
+/// the progress lines (every warning is also in the command's JSON report).
+void warning(const std::string& text);
+
 /// Progress lines on stderr ("[interfere] reading A.stl ... 0.12 s"), silenced by --quiet.
 class Progress {
  public:

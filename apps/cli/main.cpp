@@ -14,7 +14,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.fallthrough();  // global flags (--quiet) also after the subcommand
   bool quiet = false;
-  app.add_flag("-q,--quiet", quiet, "no progress lines on stderr");
+  app.add_flag("-q,--quiet", quiet, "no progress lines on stderr (warnings are still printed)");
   int exit_code = kClear;
   add_clash_command(app, exit_code);
   add_distance_command(app, exit_code);

@@ -111,6 +111,18 @@ class Simplify(unittest.TestCase):
         self.assertEqual(len(read(prim["indices"])) // 3, r["output_triangles"])
         self.assertNotIn("_FACE_ID", prim["attributes"])  # no regions given
 
+    def test_warnings_are_printed_with_quiet(self):
+        # --quiet (every test runs with it) silences progress lines, not warnings: an odd budget on a
+        # closed mesh ends one below, which a warning says on stderr and in the report.
+        write_obj("odd.obj", uv_sphere())
+        code, _, err = run("simplify", path("odd.obj"), path("odd.ply"), "--target", "301", "--json", path("odd.json"))
+        self.assertEqual(code, 0, err)
+        r = load_json("odd.json")
+        self.assertEqual(r["output_triangles"], 300)
+        self.assertIn("[interfere] warning: budget 301 not reached exactly", err)
+        self.assertTrue(any("one below" in w for w in r["warnings"]))
+        self.assertNotIn("simplifying", err)  # no progress lines
+
     def test_ratio(self):
         code, _, err = run("simplify", path("sphere.obj"), path("r.obj"), "--ratio", "0.25", "--json", path("r.json"))
         self.assertEqual(code, 0, err)
