@@ -340,10 +340,16 @@ Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOp
                          std::to_string(r.rejected_intersection) + " collapses" + own_pairs + "; " + lift +
                          " it simplifies further but may add self-intersections");
   } else if (!r.reached && !one_below) {
+    // What holds the rest: the vertex classes of the input and the refused collapses.
+    std::string why = std::to_string(r.corner_vertices) +
+                      " corner vertices (where face seams, open boundaries or sharp-edge borders meet: never "
+                      "removed), " +
+                      std::to_string(r.seam_vertices) + " seam vertices (removed along their seam only)";
+    if (r.locked_vertices > 0) why += ", " + std::to_string(r.locked_vertices) + " locked vertices";
+    why += "; " + std::to_string(r.rejected_link) + " collapses refused as non-manifold, " +
+           std::to_string(r.rejected_flip) + " as flipping a triangle";
     r.warnings.push_back("budget " + std::to_string(target) + " not reached: " +
-                         std::to_string(r.mesh.num_triangles()) +
-                         " triangles remain (constrained seams/corners, locks, parity of a closed mesh, or "
-                         "rejected collapses)");
+                         std::to_string(r.mesh.num_triangles()) + " triangles remain (" + why + ")");
   } else if (own > 0) {
     r.warnings.push_back("the self-intersection guard refused " + std::to_string(r.rejected_intersection) +
                          " collapses" + own_pairs + ", so more were made elsewhere: the error can be larger than " +

@@ -273,6 +273,21 @@ TEST(Simplify, FlatRegionsDoNotPileCollapsesOnOneVertex) {
   EXPECT_LT(*std::max_element(valence.begin(), valence.end()), 40u);
 }
 
+// A budget the constraints do not allow: the warning says what holds the rest (a box split into its
+// six faces keeps its 8 corners, and its edges only lose vertices along themselves).
+TEST(Simplify, AnUnreachableBudgetNamesWhatHoldsTheRest) {
+  const TriMesh box = make_box({0, 0, 0}, {1, 2, 3}, 6);
+  auto r = simplify(box, {.target_triangles = 4, .sharp_angle_deg = 30, .measure_error = false});
+  ASSERT_TRUE(r.has_value());
+  EXPECT_FALSE(r->reached);
+  EXPECT_EQ(r->mesh.num_triangles(), 12u);  // two per face: the corners cannot go
+  EXPECT_EQ(r->corner_vertices, 8u);
+  ASSERT_FALSE(r->warnings.empty());
+  const std::string& w = r->warnings.back();
+  EXPECT_NE(w.find("budget 4 not reached: 12 triangles remain (8 corner vertices"), std::string::npos) << w;
+  EXPECT_NE(w.find(std::to_string(r->seam_vertices) + " seam vertices"), std::string::npos) << w;
+}
+
 // A crack as CAD exports leave them: two flat grids side by side, 8 and 13 cells along their
 // common border x = 1, not sharing its vertices and overlapping by 1e-6 (rounding).
 TEST(Simplify, AGuardStoppedByTheInputsOwnContactsSaysSoAndHowToLiftIt) {
