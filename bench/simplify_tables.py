@@ -83,6 +83,11 @@ def fmt(v, spec=".3g"):
     return "—" if v is None else format(v, spec)
 
 
+def rerun_cell(b):
+    """The `guard rerun` column: yes/no for interfere rows, a dash for the peers."""
+    return "—" if "guard_rerun" not in b else ("yes" if b["guard_rerun"] else "no")
+
+
 def verdict(ok):
     return "**PASS**" if ok else "**MISS**"
 
@@ -418,7 +423,7 @@ def write_doc(raw):
         if "error" in b:
             lines.append(f"| {case} | {tool} | error: {b['error']} | | | | | | |")
             continue
-        rerun = "—" if "guard_rerun" not in b else ("yes" if b["guard_rerun"] else "no")
+        rerun = rerun_cell(b)
         lines.append(f"| {case} | {tool} | {b['ms']:.1f} | {b['cpu_ms']:.1f} | {int(b['tri_out'])} | {fmt(b['hausdorff_rel'])} | "
                      f"{fmt(b['feature_err_rel'])} | {int(b['self_x'])} | {rerun} |")
     lines.append("")
@@ -447,7 +452,7 @@ def write_doc(raw):
         if "error" in b:
             lines.append(f"| {name} | error: {b['error']} | | | | | | | |")
             continue
-        rerun = "—" if "guard_rerun" not in b else ("yes" if b["guard_rerun"] else "no")
+        rerun = rerun_cell(b)
         lines.append(f"| {name} | {b['ms']:.2f} | {b['cpu_ms']:.2f} | {int(b['tri_in'])} → {int(b['tri_out'])} | "
                      f"{int(b['feature_faces'])} | {fmt(b['hausdorff_rel'])} | {fmt(b['feature_err_rel'])} | "
                      f"{int(b['self_x'])} | {rerun} |")
@@ -485,7 +490,7 @@ def write_doc(raw):
             if "error" in b:
                 lines.append(f"| {mesh} | {tool} | error: {b['error']} | | | | |")
                 continue
-            rerun = "—" if "guard_rerun" not in b else ("yes" if b["guard_rerun"] else "no")
+            rerun = rerun_cell(b)
             lines.append(f"| {mesh} | {tool} | {b['ms']:.2f} | {int(b['tri_in'])} → {int(b['tri_out'])} | "
                          f"{fmt(b['hausdorff_rel'])} | {int(b['self_x'])} ({int(b['self_x_in'])}) | {rerun} |")
         lines.append("")
