@@ -291,7 +291,12 @@ the other parts share what is left by the same formula (`rebalanced_budgets()`, 
 (report `budget_rounds`). The rebalanced parts are kept only if the total budget is then met: when the stopped
 parts alone fill it, or the others stop too, the formula's shares stand (no part loses its shape for a cap
 missed anyway) and a warning gives the total (test assembly of `tests/cli/data`, 800 triangles: 15 % → 120
-exactly, the plate stopping at 42 of its 39 and the shaft taking 36 instead of 42; 10 %: 112 for 80).
+exactly, the plate stopping at 42 of its 39 and the shaft taking 36 instead of 42; 10 %: 112 for 80). What the
+budget has left at the end — a closed part (even triangle count) ends one below an odd N_i, shares are rounded
+down per instance — goes to the parts that met theirs, two triangles each, in part order, while the total allows,
+so an assembly of closed parts meets an even budget exactly and an odd one less one (`eight_cyl.stp`, 1,312 → 394:
+394, 388 before; `as1-oc-214.stp` → 1,675: 1,674, 1,658 before); parts that ended one below are counted in one
+warning.
 
 ## CLI
 

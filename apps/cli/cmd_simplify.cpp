@@ -92,6 +92,22 @@ Expected<SimplifyResult> simplify_parts(const cad::Prepared& prep, std::size_t t
   rounds = 0;
   bool features_exceed = budgets.features_exceed_budget;
   std::tuple<std::vector<SimplifyResult>, std::vector<std::size_t>, bool> first;  // round 1
+  // Part i to n triangles.
+  const auto run_part = [&](std::size_t i, std::size_t n) -> Expected<SimplifyResult> {
+    const cad::PreparedPart& p = prep.parts[i];
+    SimplifyOptions po = so;
+    po.target_triangles = n;
+    po.ratio = 0;
+    po.face_ids = p.face_ids;
+    po.feature_faces = p.feature_faces;
+    auto r = simplify(p.mesh, po);
+    if (!r) {
+      Error e = r.error();
+      e.reason = "part '" + p.name + "': " + e.reason;
+      return e;
+    }
+    return r;
+  };
   for (;;) {
     ++rounds;
     for (std::size_t i = 0; i < prep.parts.size(); ++i) {
@@ -99,17 +115,8 @@ Expected<SimplifyResult> simplify_parts(const cad::Prepared& prep, std::size_t t
       if (p.instances == 0 || p.mesh.num_triangles() == 0 || fixed[i]) continue;
       const std::size_t n = std::clamp<std::size_t>(budgets.budgets[i] / p.instances, 1, p.mesh.num_triangles());
       if (target[i] == n) continue;  // same budget: same result
-      SimplifyOptions po = so;
-      po.target_triangles = n;
-      po.ratio = 0;
-      po.face_ids = p.face_ids;
-      po.feature_faces = p.feature_faces;
-      auto r = simplify(p.mesh, po);
-      if (!r) {
-        Error e = r.error();
-        e.reason = "part '" + p.name + "': " + e.reason;
-        return e;
-      }
+      auto r = run_part(i, n);
+      if (!r) return r.error();
       done[i] = std::move(*r);
       target[i] = n;
     }
@@ -139,7 +146,26 @@ Expected<SimplifyResult> simplify_parts(const cad::Prepared& prep, std::size_t t
       rounds = 1;
     }
   }
+  // What the budget has left (odd budgets of closed parts, which lose triangles in pairs; shares
+  // rounded down per instance) goes to the parts that met theirs, two triangles each (once, in part
+  // order) while the total allows: the renderer's budget is met exactly more often.
+  std::size_t sum = 0;
+  for (std::size_t i = 0; i < prep.parts.size(); ++i) sum += prep.parts[i].instances * done[i].mesh.num_triangles();
+  for (std::size_t i = 0; i < prep.parts.size() && sum < total; ++i) {
+    const cad::PreparedPart& p = prep.parts[i];
+    const std::size_t out = done[i].mesh.num_triangles();
+    if (target[i] == 0 || fixed[i] || out > target[i] || out + 2 > p.mesh.num_triangles() ||
+        sum + 2 * p.instances > total)
+      continue;
+    auto r = run_part(i, out + 2);
+    if (!r) return r.error();
+    if (r->mesh.num_triangles() != out + 2) continue;
+    sum += 2 * p.instances;
+    done[i] = std::move(*r);
+    target[i] = out + 2;
+  }
   SimplifyResult all;
+  std::size_t parts_one_below = 0;
   for (std::size_t i = 0; i < prep.parts.size(); ++i) {
     const cad::PreparedPart& p = prep.parts[i];
     if (target[i] == 0) continue;
@@ -169,7 +195,12 @@ Expected<SimplifyResult> simplify_parts(const cad::Prepared& prep, std::size_t t
     all.hausdorff = std::max(all.hausdorff, d.hausdorff);
     all.hausdorff_features = std::max(all.hausdorff_features, d.hausdorff_features);
     all.error_bound = std::max(all.error_bound, d.error_bound);
-    for (const auto& w : d.warnings) all.warnings.push_back("part '" + p.name + "': " + w);
+    // A closed part with an odd budget ends one below it: counted once for all parts below.
+    const std::string one_below = "budget " + std::to_string(n) + " not reached exactly";
+    for (const auto& w : d.warnings) {
+      if (w.rfind(one_below, 0) == 0) ++parts_one_below;
+      else all.warnings.push_back("part '" + p.name + "': " + w);
+    }
   }
   for (const cad::PreparedInstance& inst : prep.instances) {
     const SimplifyResult& d = done[inst.part];
@@ -185,6 +216,9 @@ Expected<SimplifyResult> simplify_parts(const cad::Prepared& prep, std::size_t t
   if (!all.reached)
     all.warnings.push_back("total budget " + std::to_string(total) + ": " + std::to_string(all.mesh.num_triangles()) +
                            " triangles (per-part budgets are rounded down per instance, parts may stop early)");
+  if (parts_one_below > 0 && !all.reached)
+    all.warnings.push_back(std::to_string(parts_one_below) + (parts_one_below == 1 ? " part" : " parts") +
+                           " ended one triangle below an odd budget (closed meshes lose triangles in pairs)");
   if (features_exceed) all.warnings.push_back("the step's feature triangles alone exceed the budget");
   all.bbox_diagonal = norm(prep.mesh.bounds().extent());
   // all.error_bound: the largest part's (rigid placements keep distances).

@@ -378,6 +378,21 @@ class Features(unittest.TestCase):
         shaft = [p for p in r2["parts_simplified"] if p["name"] == "shaft"][0]
         self.assertEqual(shaft["output_triangles"], shaft["target_triangles"])
 
+    def test_assembly_budget_is_met_exactly_when_the_parts_allow(self):
+        # Every part of the test assembly is closed (an even triangle count): an even total is met
+        # exactly, whatever the shares' rounding and odd per-part budgets; an odd one ends one below.
+        for target in (300, 301, 304, 307):
+            code, _, err = run("simplify", os.path.join(DATA, "assembly.step"), path("t.ply"), "--target", str(target),
+                               "--json", path("t.json"))
+            self.assertEqual(code, 0, err)
+            r = load_json("t.json")
+            self.assertEqual(r["output_triangles"], target - target % 2, target)
+            self.assertEqual(sum(p["instances"] * p["output_triangles"] for p in r["parts_simplified"]),
+                             r["output_triangles"])
+            self.assertEqual(r["reached"], target % 2 == 0)
+            if target % 2:
+                self.assertTrue(any("one triangle below" in w for w in r["warnings"]), r["warnings"])
+
     def simplify_assembly_step(self, step, out, ratio):
         """Simplifies the test assembly to `ratio` with the process step `step` (id P1); the report."""
         with open(path(out + ".process.json"), "w") as f:
