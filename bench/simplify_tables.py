@@ -258,6 +258,11 @@ of one mesh): each part prototype gets its share of the total budget from the fo
 the step's feature triangles reserved), is simplified in part coordinates, and its instances are placed in the
 output; the error bound is the largest part's (rigid placements keep distances).
 
+**Scale.** `interfere simplify` on a bumpy sphere of 9,991,920 triangles (binary PLY, 250 MB) to 1 %, on this
+2-core VM (2026-11-26): 18.1 s in all, reading 1.1 s, simplification 6.8 s, the report's error measurement 10.2 s
+(`--no-error`: 7.9 s in all); peak resident memory 2.5 GB, about 250 bytes per input triangle, so 10^8
+triangles need a machine of about 32 GB.
+
 **Budget.** A collapse removes the two triangles of an inner edge or the one of a boundary edge, so the budget is
 met exactly whenever it is reachable; on a closed mesh (even triangle count) an odd budget ends one below
 (never above; the result of the even budget below, bit for bit: unit test
