@@ -346,6 +346,11 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
         std::fprintf(stderr, "\r[interfere] simplifying: %3d %%", pct);
         std::fflush(stderr);
       };
+      so.stage = [&shown](const char* what) {
+        shown = true;
+        std::fprintf(stderr, "\r[interfere] simplifying: 100 %%, %s ...", what);
+        std::fflush(stderr);
+      };
     }
     Expected<SimplifyResult> res = Error{};
 #ifdef INTERFERE_HAS_CAD
@@ -376,6 +381,7 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
     seconds = progress.seconds();
     if (shown) std::fprintf(stderr, "\n");
     so.progress = nullptr;
+    so.stage = nullptr;
   }
   std::size_t self = 0;
   if (o.check_self) {

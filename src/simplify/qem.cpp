@@ -356,6 +356,7 @@ Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOp
                          lift);
   }
   if (options.measure_error) {
+    if (options.stage) options.stage("measuring the error");
     const HausdorffResult h = hausdorff(mesh, r.mesh);
     r.hausdorff = h.symmetric();
     // An upper bound of the input's distance to the result (the direction a conservative clash
