@@ -65,6 +65,13 @@ bool is_step(const std::string& file) {
 }
 
 #ifdef INTERFERE_HAS_CAD
+// A step id or part name as part of a file name (letters, digits, '-' and '_'; others become '_').
+std::string file_id(const std::string& name) {
+  std::string id;
+  for (char c : name) id += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' ? c : '_';
+  return id;
+}
+
 // STEP input: every part is simplified on its own (an assembly's touching parts are not
 // self-intersections of one mesh) to its share of the total budget (triangle_budgets: instances
 // counted, the step's feature triangles reserved), then the instances are placed in the world mesh.
@@ -92,6 +99,12 @@ Expected<SimplifyResult> simplify_parts(const cad::Prepared& prep, std::size_t t
   rounds = 0;
   bool features_exceed = budgets.features_exceed_budget;
   std::tuple<std::vector<SimplifyResult>, std::vector<std::size_t>, bool> first;  // round 1
+  // The triangles of every instance of every part, as simplified so far.
+  const auto placed = [&] {
+    std::size_t sum = 0;
+    for (std::size_t i = 0; i < prep.parts.size(); ++i) sum += prep.parts[i].instances * done[i].mesh.num_triangles();
+    return sum;
+  };
   // Part i to n triangles.
   const auto run_part = [&](std::size_t i, std::size_t n) -> Expected<SimplifyResult> {
     const cad::PreparedPart& p = prep.parts[i];
@@ -138,19 +151,14 @@ Expected<SimplifyResult> simplify_parts(const cad::Prepared& prep, std::size_t t
   }
   // Rebalanced parts are kept only if the budget is met: otherwise the formula's shares (the others
   // would lose their shape for a cap missed anyway).
-  if (rounds > 1) {
-    std::size_t sum = 0;
-    for (std::size_t i = 0; i < prep.parts.size(); ++i) sum += prep.parts[i].instances * done[i].mesh.num_triangles();
-    if (sum > total) {
-      std::tie(done, target, features_exceed) = std::move(first);
-      rounds = 1;
-    }
+  if (rounds > 1 && placed() > total) {
+    std::tie(done, target, features_exceed) = std::move(first);
+    rounds = 1;
   }
   // What the budget has left (odd budgets of closed parts, which lose triangles in pairs; shares
   // rounded down per instance) goes to the parts that met theirs, two triangles each (once, in part
   // order) while the total allows: the renderer's budget is met exactly more often.
-  std::size_t sum = 0;
-  for (std::size_t i = 0; i < prep.parts.size(); ++i) sum += prep.parts[i].instances * done[i].mesh.num_triangles();
+  std::size_t sum = placed();
   for (std::size_t i = 0; i < prep.parts.size() && sum < total; ++i) {
     const cad::PreparedPart& p = prep.parts[i];
     const std::size_t out = done[i].mesh.num_triangles();
@@ -430,9 +438,8 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
     for (auto& jp : report["parts_simplified"]) {
       const std::size_t i = jp["part"].get<std::size_t>();
       const cad::PreparedPart& p = cad_prepared->parts[i];
-      std::string stem;
-      for (char c : p.name) stem += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' ? c : '_';
-      const std::string file = (std::filesystem::path(o.parts_dir) / fmt::format("{}_{}{}", i, stem, ext)).string();
+      const std::string file =
+          (std::filesystem::path(o.parts_dir) / fmt::format("{}_{}{}", i, file_id(p.name), ext)).string();
       const SimplifyResult& d = part_results[i];
       const Status s = glb ? write_glb(file, {{p.name, d.mesh, d.face_ids, p.feature_faces, d.error_bound}},
                                        {{p.name, 0, Transform{}}}, "mm")
@@ -490,13 +497,6 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
 }
 
 #ifdef INTERFERE_HAS_CAD
-// A step id as part of a file name (letters, digits, '-' and '_'; others become '_').
-std::string file_id(const std::string& step) {
-  std::string id;
-  for (char c : step) id += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' ? c : '_';
-  return id;
-}
-
 // OUT with "_<step>" before its extension: line.glb -> line_P1.glb.
 std::string with_step(const std::string& file, const std::string& step) {
   if (file.empty()) return file;
