@@ -24,6 +24,19 @@
 namespace py = pybind11;
 
 namespace interfere::python {
+namespace {
+
+// [(T_i, F_i)] from Python, checked (F_i <= T_i).
+std::vector<PartBudgetInput> budget_inputs(const std::vector<std::pair<std::size_t, std::size_t>>& parts) {
+  std::vector<PartBudgetInput> in;
+  for (const auto& [t, f] : parts) {
+    if (f > t) throw py::value_error("feature triangles exceed the part's triangles");
+    in.push_back({t, f});
+  }
+  return in;
+}
+
+}  // namespace
 
 void bind_simplify(py::module_& m) {
   py::class_<SimplifyResult>(m, "SimplifyResult", "Result of interfere.simplify (see docs/simplify.md).")
@@ -151,12 +164,7 @@ void bind_simplify(py::module_& m) {
   m.def(
       "triangle_budgets",
       [](const std::vector<std::pair<std::size_t, std::size_t>>& parts, std::size_t renderer_max) {
-        std::vector<PartBudgetInput> in;
-        for (const auto& [t, f] : parts) {
-          if (f > t) throw py::value_error("feature triangles exceed the part's triangles");
-          in.push_back({t, f});
-        }
-        return triangle_budgets(in, renderer_max).budgets;
+        return triangle_budgets(budget_inputs(parts), renderer_max).budgets;
       },
       py::arg("parts"), py::arg("renderer_max"),
       "Per-part triangle budgets N_i from [(T_i, F_i)] and the renderer's maximum (docs/simplify.md).");
@@ -165,12 +173,7 @@ void bind_simplify(py::module_& m) {
       [](const std::vector<std::pair<std::size_t, std::size_t>>& parts, std::size_t renderer_max,
          const std::vector<std::optional<std::size_t>>& fixed) {
         if (fixed.size() != parts.size()) throw py::value_error("fixed must have one entry (None or a count) per part");
-        std::vector<PartBudgetInput> in;
-        for (const auto& [t, f] : parts) {
-          if (f > t) throw py::value_error("feature triangles exceed the part's triangles");
-          in.push_back({t, f});
-        }
-        return rebalanced_budgets(in, renderer_max, fixed).budgets;
+        return rebalanced_budgets(budget_inputs(parts), renderer_max, fixed).budgets;
       },
       py::arg("parts"), py::arg("renderer_max"), py::arg("fixed"),
       "Budgets once some parts stopped above theirs: fixed[i] (a count, or None) is kept, the others share the "
