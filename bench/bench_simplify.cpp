@@ -256,10 +256,11 @@ void real_report(benchmark::State& state, const RealCase& c, const TriMesh& out)
 
 void bm_real(benchmark::State& state, std::shared_ptr<const RealCase> c, int tool) {
   TriMesh out;
-  if (tool <= 1) {  // 0: interfere (checked), 1: unchecked
+  if (tool <= 1 || tool == 4) {  // 0: interfere (checked), 1: unchecked, 4: checked, strict about own contacts
     SimplifyOptions o{.target_triangles = real_target(*c)};
     o.measure_error = false;
-    o.prevent_self_intersections = tool == 0;
+    o.prevent_self_intersections = tool != 1;
+    o.inherit_input_contacts = tool != 4;
     if (!timed_simplify(state, c->mesh, o, out)) return;
   } else if (tool == 2) {
     out = timed_meshopt(state, c->mesh, real_target(*c));
@@ -455,9 +456,9 @@ int main(int argc, char** argv) {
       }
     }
   for (const auto& c : real_cases()) {
-    const char* tools[] = {"interfere", "interfere_unchecked", "meshoptimizer", "openmesh"};
-    for (int t = 0; t < 4; ++t) {
-      if (t == 3 && !peers) continue;
+    const char* tools[] = {"interfere", "interfere_unchecked", "meshoptimizer", "openmesh", "interfere_strict"};
+    for (int t = 0; t < 5; ++t) {
+      if ((t == 3 && !peers) || (t == 4 && c->self_in == 0)) continue;  // strict: where the input has contacts
       benchmark::RegisterBenchmark(("Real/" + std::string(tools[t]) + "/" + c->name).c_str(), bm_real, c, t)
           ->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->Iterations(t == 3 ? 1 : 5);
     }

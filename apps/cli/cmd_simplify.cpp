@@ -37,7 +37,7 @@ struct SimplifyCliOptions {
   double sharp_angle = 0;
   double linear_deflection = 0, angular_deflection = 0.5;
   std::size_t renderer_max = 0;
-  bool lock = false, check_self = false, no_error = false, no_guard = false;
+  bool lock = false, check_self = false, no_error = false, no_guard = false, strict_guard = false;
   int threads = 0;
 };
 
@@ -183,7 +183,8 @@ Expected<SimplifyResult> simplify_parts(const cad::Prepared& prep, std::size_t t
                             {"target_triangles", n}, {"output_triangles", d.mesh.num_triangles()},
                             {"feature_triangles", {{"input", d.feature_triangles_in}, {"output", d.feature_triangles_out}}},
                             {"hausdorff", d.hausdorff}, {"error_bound", d.error_bound}, {"hausdorff_features", d.hausdorff_features < 0 ? nlohmann::json(nullptr) : nlohmann::json(d.hausdorff_features)},
-                            {"guard_rerun", d.guard_rerun}, {"guard_reruns", d.guard_reruns}});
+                            {"guard_rerun", d.guard_rerun}, {"guard_reruns", d.guard_reruns},
+                            {"input_contact_pairs", d.input_contact_pairs}, {"inherited_pairs", d.inherited_pairs}});
     if (count_self) {
       const std::size_t x = count_self_intersections(d.mesh);
       parts_report.back()["self_intersections"] = x;
@@ -192,6 +193,7 @@ Expected<SimplifyResult> simplify_parts(const cad::Prepared& prep, std::size_t t
     all.collapses += d.collapses, all.rejected_link += d.rejected_link, all.rejected_flip += d.rejected_flip;
     all.rejected_intersection += d.rejected_intersection, all.guard_rerun = all.guard_rerun || d.guard_rerun;
     all.guard_reruns = std::max(all.guard_reruns, d.guard_reruns);
+    all.input_contact_pairs += d.input_contact_pairs * p.instances, all.inherited_pairs += d.inherited_pairs * p.instances;
     all.seam_vertices += d.seam_vertices, all.corner_vertices += d.corner_vertices, all.locked_vertices += d.locked_vertices;
     all.input_vertices_welded += d.input_vertices_welded, all.degenerate_triangles += d.degenerate_triangles;
     for (const auto& [name, sec] : d.phases) {  // summed over the parts
@@ -288,6 +290,7 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
   if (o.lock) so.feature_mode = FeatureMode::lock;
   so.measure_error = !o.no_error;
   so.prevent_self_intersections = !o.no_guard;
+  so.inherit_input_contacts = !o.strict_guard;
   if (is_step(o.input)) {
 #ifdef INTERFERE_HAS_CAD
     cad::PipelineOptions po;
@@ -459,6 +462,8 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
                         {"self_intersection", r.rejected_intersection}};
   report["guard_rerun"] = r.guard_rerun;
   report["guard_reruns"] = r.guard_reruns;
+  report["input_contact_pairs"] = r.input_contact_pairs;
+  report["inherited_pairs"] = r.inherited_pairs;
   report["degenerate_triangles"] = r.degenerate_triangles;
   report["vertices"] = {{"welded_input", r.input_vertices_welded}, {"seam", r.seam_vertices},
                         {"corner", r.corner_vertices}, {"locked", r.locked_vertices}};
@@ -575,6 +580,9 @@ void add_simplify_command(CLI::App& app, int& exit_code) {
   c->add_option("--format", o->format, "output format (stl, stl-ascii, obj, ply, ply-ascii, off; default by extension)");
   c->add_flag("--check-self-intersections", o->check_self, "count self-intersections of the result (engine clash)");
   c->add_flag("--no-intersection-guard", o->no_guard, "plain QEM: no self-intersection check of the result and no guarded rerun");
+  c->add_flag("--strict-intersection-guard", o->strict_guard,
+              "refuse every new intersecting pair, also where the input's own contacts (cracks, touching or "
+              "penetrating bodies) move (default: those are inherited within their zone)");
   c->add_flag("--no-error", o->no_error, "skip the Hausdorff measurement (error_bound is then -1)");
   c->add_option("--json", o->json, "write the JSON report here");
   c->add_option("--threads", o->threads, "worker threads (0 = all cores)");

@@ -51,6 +51,8 @@ void bind_simplify(py::module_& m) {
       .def_readonly("rejected_intersection", &SimplifyResult::rejected_intersection)
       .def_readonly("guard_rerun", &SimplifyResult::guard_rerun)
       .def_readonly("guard_reruns", &SimplifyResult::guard_reruns)
+      .def_readonly("input_contact_pairs", &SimplifyResult::input_contact_pairs)
+      .def_readonly("inherited_pairs", &SimplifyResult::inherited_pairs)
       .def_readonly("degenerate_triangles", &SimplifyResult::degenerate_triangles)
       .def_readonly("seam_vertices", &SimplifyResult::seam_vertices)
       .def_readonly("corner_vertices", &SimplifyResult::corner_vertices)
@@ -69,7 +71,7 @@ void bind_simplify(py::module_& m) {
       "simplify",
       [](const TriMesh& mesh, std::size_t target, double ratio, std::vector<std::uint32_t> face_ids,
          std::vector<std::uint32_t> feature_faces, bool lock, double sharp_angle, bool prevent_self_intersections,
-         bool measure_error, const std::string& feature_mode) {
+         bool measure_error, const std::string& feature_mode, bool inherit_input_contacts) {
         SimplifyOptions o;
         o.target_triangles = target;
         o.ratio = ratio;
@@ -82,6 +84,7 @@ void bind_simplify(py::module_& m) {
         if (lock) o.feature_mode = FeatureMode::lock;
         o.sharp_angle_deg = sharp_angle;
         o.prevent_self_intersections = prevent_self_intersections;
+        o.inherit_input_contacts = inherit_input_contacts;
         o.measure_error = measure_error;
         Expected<SimplifyResult> r = Error{};
         {
@@ -94,10 +97,12 @@ void bind_simplify(py::module_& m) {
       py::arg("mesh"), py::arg("target") = 0, py::arg("ratio") = 0.0, py::arg("face_ids") = std::vector<std::uint32_t>{},
       py::arg("feature_faces") = std::vector<std::uint32_t>{}, py::arg("lock") = false, py::arg("sharp_angle") = 0.0,
       py::arg("prevent_self_intersections") = true, py::arg("measure_error") = true,
-      py::arg("feature_mode") = std::string("weight"),
+      py::arg("feature_mode") = std::string("weight"), py::arg("inherit_input_contacts") = true,
       "Feature-preserving QEM simplification to `target` triangles (or `ratio` of them). face_ids: per-triangle "
-      "face/region ids; feature_faces: ids kept (cost-weighted, or hard-locked with lock=True). ValueError on bad "
-      "input (budget <= 0 or larger than the mesh, ...).");
+      "face/region ids; feature_faces: ids kept (cost-weighted, or hard-locked with lock=True). "
+      "prevent_self_intersections: no intersecting pair the input did not have; inherit_input_contacts=False makes "
+      "that strict where the input has contacts of its own (see docs/simplify.md). ValueError on bad input (budget "
+      "<= 0 or larger than the mesh, ...).");
   m.def(
       "hausdorff",
       [](const TriMesh& a, const TriMesh& b) {

@@ -43,6 +43,29 @@ class Simplify(unittest.TestCase):
         a_to_b, b_to_a = itf.hausdorff(s, r.mesh)
         self.assertAlmostEqual(max(a_to_b, b_to_a), r.hausdorff)
 
+    def test_the_inputs_own_contacts_are_inherited(self):
+        # Two flat sheets tessellated apart, overlapping by 1e-6 along x = 1 (a crack).
+        def sheet(n, x0):
+            pos = [(x0 + i / n, j / n, 0.0) for j in range(n + 1) for i in range(n + 1)]
+            tri = []
+            for j in range(n):
+                for i in range(n):
+                    a = j * (n + 1) + i
+                    tri += [(a, a + 1, a + n + 2), (a, a + n + 2, a + n + 1)]
+            return pos, tri
+        p0, t0 = sheet(8, 0.0)
+        p1, t1 = sheet(13, 1.0 - 1e-6)
+        m = itf.TriMesh(p0 + p1, t0 + [(a + len(p0), b + len(p0), c + len(p0)) for a, b, c in t1])
+        own = itf.count_self_intersections(m)
+        self.assertGreater(own, 0)
+        strict = itf.simplify(m, target=20, measure_error=False, inherit_input_contacts=False)
+        self.assertFalse(strict.reached)
+        self.assertEqual(strict.input_contact_pairs, own)
+        r = itf.simplify(m, target=20, measure_error=False)
+        self.assertTrue(r.reached)
+        self.assertEqual(r.input_contact_pairs, own)
+        self.assertEqual(r.inherited_pairs, itf.count_self_intersections(r.mesh))
+
     def test_locked_features_keep_their_triangles(self):
         s = itf.make_sphere(4000)
         faces = cap_faces(s)

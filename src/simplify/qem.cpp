@@ -10,11 +10,13 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <tuple>
 
 #include <tbb/parallel_invoke.h>
 
 #include "interfere/simplify/hausdorff.h"
+#include "contact_zone.h"
 #include "local_frame.h"
 #include "qem_internal.h"
 
@@ -85,6 +87,7 @@ bool to_world(SimplifyResult& r, const TriMesh& input, const qem::LocalFrame& fr
   }
   if (!frame.translated || !o.prevent_self_intersections) return true;
   const auto pairs = self_intersecting_pairs(r.mesh);
+  r.inherited_pairs = 0;
   if (pairs.empty()) return true;
   // The input's own pairs: both triangles as in the input (same corners).
   using Key = std::array<double, 9>;  // the corners, sorted
@@ -98,8 +101,16 @@ bool to_world(SimplifyResult& r, const TriMesh& input, const qem::LocalFrame& fr
   for (std::size_t t = 0; t < in.size(); ++t) in[t] = key(input.corners(t));
   std::sort(in.begin(), in.end());
   const auto kept = [&](std::uint32_t t) { return std::binary_search(in.begin(), in.end(), key(r.mesh.corners(t))); };
-  for (const auto& [x, y] : pairs)
-    if (!kept(x) || !kept(y)) return false;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> moved;
+  for (const auto& xy : pairs)
+    if (!kept(xy.first) || !kept(xy.second)) moved.push_back(xy);
+  if (moved.empty()) return true;
+  if (!o.inherit_input_contacts) return false;
+  const std::vector<Aabb> near = qem::ContactZone::near_pairs(r.mesh, moved);
+  const qem::ContactZone zone(input, &near);
+  for (const auto& [x, y] : moved)
+    if (!zone.holds(r.mesh.corners(x), r.mesh.corners(y))) return false;
+  r.inherited_pairs = moved.size();
   return true;
 }
 
@@ -176,8 +187,25 @@ Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOp
   SimplifyOptions plain = options;
   plain.prevent_self_intersections = options.prevent_self_intersections && options.guard_every_collapse;
   const SimplifyResult before = r;
+  // The input's own contact zone (contact_zone.h): a result pair inside it is inherited. Made
+  // where new pairs were found (grown when one lies outside), or everywhere when every collapse
+  // is guarded from the start.
+  const bool inherit = options.prevent_self_intersections && options.inherit_input_contacts;
+  std::optional<qem::ContactZone> zone;
+  std::vector<Aabb> zone_near;  // where it was made
+  const auto make_zone = [&](const TriMesh& m, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& p) {
+    if (zone && options.guard_every_collapse) return;  // made everywhere
+    const qem::BoxGrid made(zone_near);
+    std::size_t added = 0;
+    for (const Aabb& b : qem::ContactZone::near_pairs(m, p))
+      if (made.empty() || !made.contains(b)) zone_near.push_back(b), ++added;
+    if (added > 0 || !zone) zone.emplace(mesh, &zone_near);
+  };
+  const auto zone_ptr = [&]() -> const qem::ContactZone* { return inherit && zone ? &*zone : nullptr; };
+  if (inherit && options.guard_every_collapse) zone.emplace(mesh);
   // The welded input is not copied for a possible rerun (rare): it is welded again then.
   auto sp = std::make_unique<qem::Simplifier>(std::move(welded), face, feature_tri, plain);
+  sp->set_contact_zone(zone_ptr());
   if (options.prevent_self_intersections && !options.guard_every_collapse) sp->keep_handoff();
   sp->run(target, r);
   if (r.degenerate_triangles == nt)
@@ -200,6 +228,26 @@ Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOp
   // rerun, rare, splits its own result again).
   const bool splitting = have_faces || options.sharp_angle_deg > 0;
   TriMesh split;
+  // The intersecting pairs of a result (m, each triangle's input triangle `origin`) the input did
+  // not have: not both as in the input, and not inherited (counted in `held`).
+  const auto pairs_of = [&](const TriMesh& m, const std::vector<std::uint32_t>& origin, std::size_t* held = nullptr) {
+    std::vector<std::uint8_t> unmodified(m.num_triangles());  // pairs of two are not tested
+    for (std::uint32_t i = 0; i < unmodified.size(); ++i)
+      unmodified[i] = m.corners(i) == mesh.corners(origin[i]) ? 1 : 0;
+    auto p = self_intersecting_pairs(m, &unmodified);
+    if (p.empty() || !inherit) return p;
+    make_zone(m, p);
+    if (const qem::ContactZone* z = zone_ptr()) {
+      std::size_t k = 0;
+      for (const auto& xy : p)
+        if (!z->holds(m.corners(xy.first), m.corners(xy.second))) p[k++] = xy;
+      if (held) *held = p.size() - k;
+      p.resize(k);
+    }
+    return p;
+  };
+  std::size_t inherited = 0;
+  if (inherit && options.guard_every_collapse) pairs_of(out, out_origin, &inherited);
   if (options.prevent_self_intersections && !options.guard_every_collapse) {
     // The input's own intersections (touching parts of an assembly, say) cannot be removed: a pair
     // of output triangles both identical to their input triangles (same corner positions) was in
@@ -212,13 +260,10 @@ Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOp
     // batched passes too; should a rerun still add an intersection elsewhere, its neighbourhood
     // joins the region, and the last resort guards every collapse (a moved triangle then meets no
     // other: none can be added).
-    const auto pairs_of = [&](const TriMesh& m, const std::vector<std::uint32_t>& origin) {
-      std::vector<std::uint8_t> unmodified(m.num_triangles());  // pairs of two are not tested
-      for (std::uint32_t i = 0; i < unmodified.size(); ++i)
-        unmodified[i] = m.corners(i) == mesh.corners(origin[i]) ? 1 : 0;
-      return self_intersecting_pairs(m, &unmodified);
+    const auto new_pairs = [&] {
+      inherited = 0;
+      return pairs_of(out, out_origin, &inherited);
     };
-    const auto new_pairs = [&] { return pairs_of(out, out_origin); };
     std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
     tbb::parallel_invoke([&] { pairs = new_pairs(); },
                          [&] {
@@ -271,12 +316,14 @@ Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOp
         restart();
         std::unique_ptr<qem::Simplifier> hp;
         if (kept) {
-          hp = qem::Simplifier::resume(*kept, heap_attempt == 0 ? region : std::vector<Aabb>{}, clean, target, r);
+          hp = qem::Simplifier::resume(*kept, heap_attempt == 0 ? region : std::vector<Aabb>{}, zone_ptr(), clean,
+                                       target, r);
           r.guard_rerun = true;
           r.guard_reruns = reruns;
         } else {
           hp = std::make_unique<qem::Simplifier>(TriMesh(input), face, feature_tri, plain);
           if (heap_attempt == 0) hp->set_guard_region(region);
+          hp->set_contact_zone(zone_ptr());
           const qem::Simplifier* h = hp.get();
           hp->set_handoff_check([&, h] { return clean(*h); });
           hp->run(target, r);
@@ -295,6 +342,7 @@ Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOp
         restart();
         sp = std::make_unique<qem::Simplifier>(TriMesh(input), face, feature_tri, options);
         if (attempt < kRegionalReruns) sp->set_guard_region(region);
+        sp->set_contact_zone(zone_ptr());
         sp->run(target, r);
         clock.restart();
         out = compact(*sp, out_face, out_origin);
@@ -328,12 +376,19 @@ Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOp
   // cracks (T-junctions, the two sides of a face border tessellated apart, meeting or overlapping by
   // rounding), penetrating or touching bodies (the Newell teapot's spout and body), where any collapse
   // beside them makes a new intersecting pair. Say so, and how to lift the guard.
+  r.inherited_pairs = inherited;
   const std::size_t own = r.rejected_intersection > 0 ? count_self_intersections(mesh) : 0;
+  r.input_contact_pairs = r.rejected_intersection > 0 ? own : zone ? zone->input_pairs() : 0;
   const std::string own_pairs = own > 0 ? " next to the input's own " + std::to_string(own) +
                                               " intersecting or touching triangle pairs (cracks, T-junctions, "
                                               "penetrating or touching bodies)"
                                         : std::string();
-  const std::string lift = "without the guard (--no-intersection-guard, prevent_self_intersections = false)";
+  const std::string lift =
+      std::string(inherit || !options.prevent_self_intersections
+                      ? ""
+                      : "inheriting the input's contacts (without --strict-intersection-guard, "
+                        "inherit_input_contacts = true: they may move within their zone) or ") +
+      "without the guard (--no-intersection-guard, prevent_self_intersections = false)";
   if (!r.reached && r.rejected_intersection > 0 && r.mesh.num_triangles() > target) {
     r.warnings.push_back("budget " + std::to_string(target) + " not reached: " +
                          std::to_string(r.mesh.num_triangles()) + " triangles remain; the self-intersection guard refused " +
@@ -350,7 +405,7 @@ Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOp
            std::to_string(r.rejected_flip) + " as flipping a triangle";
     r.warnings.push_back("budget " + std::to_string(target) + " not reached: " +
                          std::to_string(r.mesh.num_triangles()) + " triangles remain (" + why + ")");
-  } else if (own > 0) {
+  } else if (own > 0 && r.rejected_intersection > 0) {
     r.warnings.push_back("the self-intersection guard refused " + std::to_string(r.rejected_intersection) +
                          " collapses" + own_pairs + ", so more were made elsewhere: the error can be larger than " +
                          lift);

@@ -1,12 +1,14 @@
 // Self-intersection guard of the QEM simplifier (issue #6, item 6: simplification introduces no
 // self-intersections): a uniform hash grid of the live triangles' boxes, and the exact test
 // (np/tri_tri.h, Shewchuk-style filtered predicates) of every triangle a collapse creates or moves
-// against the non-adjacent triangles near it.
+// against the non-adjacent triangles near it; a pair inside the input's own contact zone
+// (contact_zone.h) is allowed.
 #include <array>
 #include <cmath>
 #include <limits>
 
 #include "interfere/np/tri_tri.h"
+#include "contact_zone.h"
 #include "qem_internal.h"
 
 namespace interfere::qem {
@@ -135,7 +137,8 @@ bool Simplifier::intersection_ok(std::uint32_t keep, std::uint32_t remove, const
         bool share = false;
         for (std::uint32_t w : q) share = share || w == m.tr[0] || w == m.tr[1] || w == m.tr[2];
         if (share) continue;
-        if (tri_tri_exact_intersects(m.c, {pos_[q[0]], pos_[q[1]], pos_[q[2]]})) {
+        const std::array<Vec3, 3> qc{pos_[q[0]], pos_[q[1]], pos_[q[2]]};
+        if (tri_tri_exact_intersects(m.c, qc) && !(zone_ && zone_->holds(m.c, qc))) {
           ok = false;
           break;
         }

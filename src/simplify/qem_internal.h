@@ -26,6 +26,8 @@
 
 namespace interfere::qem {
 
+class ContactZone;  // contact_zone.h
+
 constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
 
 /// Allocator whose default construction leaves trivial elements uninitialised: large arrays are
@@ -263,7 +265,7 @@ class Simplifier {
   std::shared_ptr<const Handoff> handoff() const { return handoff_; }
   /// A run from a kept handoff: the copy's heap phase, with the handoff check and guard of this
   /// Simplifier (set_guard_region, set_handoff_check); r's counters continue the copy's.
-  static std::unique_ptr<Simplifier> resume(const Handoff& h, std::vector<Aabb> region,
+  static std::unique_ptr<Simplifier> resume(const Handoff& h, std::vector<Aabb> region, const ContactZone* zone,
                                             std::function<bool(const Simplifier&)> clean, std::size_t target,
                                             SimplifyResult& r);
   /// With prevent_self_intersections: only collapses whose moved triangles reach one of these boxes
@@ -281,6 +283,8 @@ class Simplifier {
       guard_outer_all_.expand(guard_outer_.back());
     }
   }
+  /// The guard allows a new intersecting pair inside the input's contact zone (null: none).
+  void set_contact_zone(const ContactZone* zone) { zone_ = zone; }
   /// Rerun that guards the heap phase only: the batched passes run as in the plain run (same
   /// options: the same collapses), then `clean()` judges the mesh at the handoff (see live_mesh);
   /// if it holds, every heap collapse is guarded, else the run stops there with handoff_failed().
@@ -418,6 +422,7 @@ class Simplifier {
   // Self-intersection guard: a uniform hash grid of triangle boxes (entries may be stale: every
   // candidate is re-checked against the current mesh).
   bool guard_ = false;
+  const ContactZone* zone_ = nullptr;
   std::vector<Aabb> guard_boxes_;  ///< guard region (empty: everywhere)
   std::vector<Aabb> guard_outer_;  ///< its neighbourhood, where the grid is kept
   Aabb guard_all_, guard_outer_all_;

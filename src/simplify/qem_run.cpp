@@ -228,7 +228,7 @@ void Simplifier::finish(EntryList& list, std::size_t live, std::size_t target, S
   r.rejected_intersection = rejected_intersection_;
 }
 
-std::unique_ptr<Simplifier> Simplifier::resume(const Handoff& h, std::vector<Aabb> region,
+std::unique_ptr<Simplifier> Simplifier::resume(const Handoff& h, std::vector<Aabb> region, const ContactZone* zone,
                                                std::function<bool(const Simplifier&)> clean, std::size_t target,
                                                SimplifyResult& r) {
   PhaseClock clock(r);
@@ -240,6 +240,7 @@ std::unique_ptr<Simplifier> Simplifier::resume(const Handoff& h, std::vector<Aab
   clock.lap("handoff copy");
   s->make_scratch();  // (the copy was taken before handoff_ was set: it keeps none)
   if (!region.empty()) s->set_guard_region(std::move(region));
+  s->set_contact_zone(zone);
   if (clean) {
     const Simplifier* me = s.get();
     s->set_handoff_check([me, clean = std::move(clean)] { return clean(*me); });

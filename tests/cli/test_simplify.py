@@ -123,6 +123,33 @@ class Simplify(unittest.TestCase):
         self.assertTrue(any("one below" in w for w in r["warnings"]))
         self.assertNotIn("simplifying", err)  # no progress lines
 
+    def test_cracked_input_strict_guard_and_inherited_contacts(self):
+        # Two flat sheets tessellated apart, overlapping by 1e-6 along x = 1 (a crack, as in CAD exports).
+        def sheet(n, x0):
+            pos = [(x0 + i / n, j / n, 0.0) for j in range(n + 1) for i in range(n + 1)]
+            tri = [t for j in range(n) for i in range(n) for a in [j * (n + 1) + i]
+                   for t in ((a, a + 1, a + n + 2), (a, a + n + 2, a + n + 1))]
+            return pos, tri
+        p0, t0 = sheet(8, 0.0)
+        p1, t1 = sheet(13, 1.0 - 1e-6)
+        write_obj("crack.obj", (p0 + p1, t0 + [(a + len(p0), b + len(p0), c + len(p0)) for a, b, c in t1]))
+        code, _, err = run("simplify", path("crack.obj"), path("crack_strict.obj"), "--target", "20",
+                           "--strict-intersection-guard", "--json", path("crack_strict.json"))
+        self.assertEqual(code, 0, err)
+        strict = load_json("crack_strict.json")
+        self.assertFalse(strict["reached"])
+        self.assertGreater(strict["input_contact_pairs"], 0)
+        self.assertEqual(strict["inherited_pairs"], 0)
+        self.assertIn("--strict-intersection-guard", err)  # the warning says how to lift it
+        code, _, err = run("simplify", path("crack.obj"), path("crack_out.obj"), "--target", "20",
+                           "--check-self-intersections", "--json", path("crack.json"))
+        self.assertEqual(code, 0, err)
+        r = load_json("crack.json")
+        self.assertTrue(r["reached"])
+        self.assertEqual(r["output_triangles"], 20)
+        self.assertEqual(r["input_contact_pairs"], strict["input_contact_pairs"])
+        self.assertEqual(r["inherited_pairs"], r["self_intersections"])
+
     def test_ratio(self):
         code, _, err = run("simplify", path("sphere.obj"), path("r.obj"), "--ratio", "0.25", "--json", path("r.json"))
         self.assertEqual(code, 0, err)

@@ -32,6 +32,7 @@
 #include "fuzz_common.h"
 #include "interfere/mesh/generate.h"
 #include "interfere/np/distance.h"
+#include "interfere/np/tri_tri.h"
 #include "interfere/simplify/hausdorff.h"
 #include "interfere/simplify/qem.h"
 
@@ -129,7 +130,8 @@ std::string num(double v) {
 
 std::string tag(const SimplifyOptions& o, int shape) {
   return " (shape " + std::to_string(shape) + ", ratio " + std::to_string(o.ratio) + ", features " +
-         std::to_string(o.feature_faces.size()) + " mode " + std::to_string(int(o.feature_mode)) + ")";
+         std::to_string(o.feature_faces.size()) + " mode " + std::to_string(int(o.feature_mode)) +
+         (o.inherit_input_contacts ? "" : ", strict guard") + ")";
 }
 
 int entry(const std::uint8_t* data, std::size_t size) {
@@ -153,6 +155,7 @@ int entry(const std::uint8_t* data, std::size_t size) {
   if (flags & 16) o.sharp_angle_deg = 30;
   if (flags & 32) o.guard_every_collapse = true;
   if (flags & 64) o.batched_passes = false;
+  if (flags & 128) o.inherit_input_contacts = false;
   const std::string where = tag(o, shape);
 
   std::size_t live = 0;
@@ -184,9 +187,41 @@ int entry(const std::uint8_t* data, std::size_t size) {
   const auto is_input = [&](std::uint32_t t) {
     return std::binary_search(in_keys.begin(), in_keys.end(), key_of(out.corners(t)));
   };
-  for (const auto& [a, b] : interfere::self_intersecting_pairs(out))
-    FUZZ_CHECK(is_input(a) && is_input(b), "a self-intersection the input did not have: triangles " +
-                                               std::to_string(a) + ", " + std::to_string(b) + where);
+  // Inheriting the input's contacts, a moved pair must meet inside the input's contact zone: here
+  // by brute force over all the input's pairs (the engine makes the zone near new pairs only, a
+  // subset), each pair's box grown by its diagonal holding where the two triangles meet.
+  std::vector<interfere::Aabb> zone;
+  if (o.inherit_input_contacts)
+    for (const auto& [a, b] : interfere::self_intersecting_pairs(mesh)) {
+      interfere::Aabb z = mesh.triangle_box(a);
+      z.expand(mesh.triangle_box(b));
+      const double g = interfere::norm(z.extent());
+      zone.push_back({z.lo - Vec3{g, g, g}, z.hi + Vec3{g, g, g}});
+    }
+  const auto in_zone = [&](std::uint32_t a, std::uint32_t b) {
+    const interfere::Aabb ba = out.triangle_box(a), bb = out.triangle_box(b);
+    interfere::Aabb meet{max(ba.lo, bb.lo), min(ba.hi, bb.hi)};
+    const interfere::TriTriResult c = interfere::tri_tri_exact(out.corners(a), out.corners(b));
+    if (c.kind == interfere::ContactKind::cross) {  // the segment, generously padded
+      const double pad = 1e-9 * (norm(ba.extent()) + norm(bb.extent()));
+      for (int k = 0; k < 3; ++k) {
+        meet.lo[k] = std::max(meet.lo[k], std::min(c.segment[0][k], c.segment[1][k]) - pad);
+        meet.hi[k] = std::min(meet.hi[k], std::max(c.segment[0][k], c.segment[1][k]) + pad);
+      }
+    }
+    for (const interfere::Aabb& z : zone)
+      if (z.contains(meet.lo) && z.contains(meet.hi)) return true;
+    return false;
+  };
+  std::size_t moved = 0;
+  for (const auto& [a, b] : interfere::self_intersecting_pairs(out)) {
+    if (is_input(a) && is_input(b)) continue;
+    ++moved;
+    FUZZ_CHECK(in_zone(a, b), "a self-intersection the input did not have: triangles " + std::to_string(a) + ", " +
+                                  std::to_string(b) + where);
+  }
+  FUZZ_CHECK(moved == r->inherited_pairs, "inherited_pairs " + std::to_string(r->inherited_pairs) + ", found " +
+                                              std::to_string(moved) + where);
 
   // Lock mode keeps every feature triangle bit for bit.
   if (o.feature_mode == interfere::FeatureMode::lock && !o.feature_faces.empty()) {

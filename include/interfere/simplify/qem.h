@@ -65,6 +65,15 @@ struct SimplifyOptions {
   bool prevent_self_intersections = true;
   /// With prevent_self_intersections: guard every collapse from the start (skip the plain run).
   bool guard_every_collapse = false;
+  /// With prevent_self_intersections, where the input has intersecting or touching pairs of its
+  /// own (penetrating or touching bodies, cracks and T-junctions of CAD exports): a result pair
+  /// whose intersection lies inside the input's contact zone (each own pair's box grown by its
+  /// diagonal) is the input's contact moved by the simplification, inherited and allowed; every
+  /// other new pair is refused as before. Off (strict): every pair of result triangles that are
+  /// not both as in the input is refused, so collapses next to the input's contacts are refused
+  /// (more error elsewhere, or a budget not reached). The zone costs one exact self-clash of the
+  /// input, made only when the plain result has a new pair.
+  bool inherit_input_contacts = true;
   /// Large reductions: batched passes of collapses with disjoint end vertices (cheapest first up to
   /// an error limit, checked and applied in vertex order, contiguous vertex ranges in parallel)
   /// down to about budget + max(budget / 2, 1024) triangles, then the heap for the rest;
@@ -108,6 +117,13 @@ struct SimplifyResult {
   /// collapse (if the passes left no intersection; else they stop at the handoff); then up to 4
   /// more: 3 guard the neighbourhoods of the intersections found so far, the last every collapse.
   std::size_t guard_reruns = 0;
+  /// The input's own intersecting or touching pairs: all of them where the guard refused
+  /// collapses, else those near the new pairs of the plain result (where the contact zone was
+  /// made; everywhere with guard_every_collapse); 0 when none were looked for.
+  std::size_t input_contact_pairs = 0;
+  /// Intersecting pairs of the result inside the input's contact zone that are not both as in the
+  /// input (inherit_input_contacts): the input's contacts, moved.
+  std::size_t inherited_pairs = 0;
   std::size_t seam_vertices = 0, corner_vertices = 0, locked_vertices = 0;
   std::size_t feature_triangles_in = 0, feature_triangles_out = 0;
   double max_unmodified_cost = 0;  ///< the largest initial edge cost: the feature offset (weight mode)

@@ -16,6 +16,7 @@
 
 #include "interfere/mesh/generate.h"
 #include "interfere/np/distance.h"
+#include "interfere/np/tri_tri.h"
 #include "interfere/query/clash.h"
 #include "interfere/query/distance.h"
 #include "interfere/simplify/budget.h"
@@ -290,28 +291,63 @@ TEST(Simplify, AnUnreachableBudgetNamesWhatHoldsTheRest) {
 
 // A crack as CAD exports leave them: two flat grids side by side, 8 and 13 cells along their
 // common border x = 1, not sharing its vertices and overlapping by 1e-6 (rounding).
-TEST(Simplify, AGuardStoppedByTheInputsOwnContactsSaysSoAndHowToLiftIt) {
+// Two flat halves tessellated apart and overlapping by 1e-6 along x = 1: a crack, as in CAD exports
+// whose face borders were meshed separately.
+TriMesh cracked_sheet() {
   TriMesh m = grid(8, 0.0);
   TriMesh right = grid(13, 0.0);
   const auto base = static_cast<std::uint32_t>(m.positions.size());
   for (Vec3 p : right.positions) m.positions.push_back({p.x + 1 - 1e-6, p.y, 0});
   for (Tri t : right.triangles) m.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  return m;
+}
+
+TEST(Simplify, AStrictGuardStoppedByTheInputsOwnContactsSaysSoAndHowToLiftIt) {
+  const TriMesh m = cracked_sheet();
   const std::size_t own = count_self_intersections(m);
   ASSERT_GT(own, 0u);  // overlapping pairs along the crack
-  auto r = simplify(m, {.target_triangles = 20, .measure_error = false});
+  auto r = simplify(m, {.target_triangles = 20, .inherit_input_contacts = false, .measure_error = false});
   ASSERT_TRUE(r.has_value());
   EXPECT_FALSE(r->reached);
   EXPECT_GT(r->rejected_intersection, 0u);
+  EXPECT_EQ(r->input_contact_pairs, own);
+  EXPECT_EQ(r->inherited_pairs, 0u);
   EXPECT_LE(count_self_intersections(r->mesh), own);
   ASSERT_FALSE(r->warnings.empty());
   const std::string& w = r->warnings.back();
   EXPECT_NE(w.find("self-intersection guard refused"), std::string::npos) << w;
   EXPECT_NE(w.find("input's own " + std::to_string(own)), std::string::npos) << w;
+  EXPECT_NE(w.find("--strict-intersection-guard"), std::string::npos) << w;
   EXPECT_NE(w.find("--no-intersection-guard"), std::string::npos) << w;
   // Without the guard the budget is met.
   auto free = simplify(m, {.target_triangles = 20, .prevent_self_intersections = false, .measure_error = false});
   ASSERT_TRUE(free.has_value());
   EXPECT_EQ(free->mesh.num_triangles(), 20u);
+}
+
+TEST(Simplify, TheInputsOwnContactsAreInheritedAndNoOtherIntersectionIsAdded) {
+  const TriMesh sheet = cracked_sheet();
+  const std::size_t own = count_self_intersections(sheet);
+  TriMesh far = sheet;  // simplified in a local frame (local_frame.h), checked again in place
+  for (Vec3& p : far.positions) p = p + Vec3{4096, -2048, 1024};
+  for (const auto& [m, every] : {std::pair{sheet, false}, std::pair{sheet, true}, std::pair{far, false}}) {
+    auto r = simplify(m, {.target_triangles = 20, .guard_every_collapse = every, .measure_error = false});
+    ASSERT_TRUE(r.has_value());
+    EXPECT_TRUE(r->reached) << every;  // the crack no longer stalls the guard
+    EXPECT_EQ(r->mesh.num_triangles(), 20u);
+    EXPECT_EQ(r->input_contact_pairs, own);
+    // Both halves are flat and coplanar: a fold of one half would overlap that half itself. Every
+    // intersecting pair joins the two halves across the crack (the input's contact, moved).
+    const auto pairs = self_intersecting_pairs(r->mesh);
+    EXPECT_EQ(r->inherited_pairs, pairs.size());
+    for (const auto& [x, y] : pairs) {
+      const Aabb a = r->mesh.triangle_box(x), b = r->mesh.triangle_box(y);
+      const double left_hi = m.positions[8].x, right_lo = m.positions[81].x;  // the crack (grid(8): 81 vertices)
+      const bool across = (a.hi.x <= left_hi && b.lo.x >= right_lo) || (b.hi.x <= left_hi && a.lo.x >= right_lo);
+      EXPECT_TRUE(across) << "pair " << x << ", " << y << " within one half";
+    }
+    if (&m == &far) EXPECT_EQ(r->phases.front().first, "local frame");  // kept, not redone in place
+  }
 }
 
 TEST(Simplify, OddBudgetOnAClosedMeshStopsOneShortOnAnOpenMeshIsExact) {
@@ -502,33 +538,42 @@ TEST(Simplify, OneAndManyThreadsGiveBitIdenticalResults) {
   EXPECT_EQ(one->hausdorff, many->hausdorff);
 }
 
-TEST(Simplify, InputIntersectionsAreKeptButNoneIsAdded) {
-  // Two interpenetrating spheres in one mesh: the input intersects itself along the crossing
-  // circle. The result may keep those intersections only between triangles left exactly as they
-  // were (input geometry); every intersecting pair with a moved or new triangle would be one the
-  // input did not have.
+// Two interpenetrating spheres in one mesh: the input intersects itself along the crossing circle
+// of the unit sphere at the origin and the sphere of radius 0.8 at kSecondCentre.
+constexpr Vec3 kSecondCentre{0.9, 0.1, 0.05};
+
+TriMesh crossing_spheres() {
   TriMesh m = make_sphere({.target_triangles = 8000, .center = {0, 0, 0}});
-  const TriMesh b = make_sphere({.target_triangles = 8000, .radius = 0.8, .center = {0.9, 0.1, 0.05}, .twist = 0.3});
+  const TriMesh b = make_sphere({.target_triangles = 8000, .radius = 0.8, .center = kSecondCentre, .twist = 0.3});
   const auto base = static_cast<std::uint32_t>(m.positions.size());
   m.positions.insert(m.positions.end(), b.positions.begin(), b.positions.end());
   for (Tri t : b.triangles) {
     for (std::uint32_t& v : t) v += base;
     m.triangles.push_back(t);
   }
+  return m;
+}
+
+// The sorted corners of a triangle: equal for a result triangle left as in the input.
+std::array<double, 9> corner_key(std::array<Vec3, 3> c) {
+  std::sort(c.begin(), c.end(), [](const Vec3& x, const Vec3& y) { return std::tie(x.x, x.y, x.z) < std::tie(y.x, y.y, y.z); });
+  return {c[0].x, c[0].y, c[0].z, c[1].x, c[1].y, c[1].z, c[2].x, c[2].y, c[2].z};
+}
+
+TEST(Simplify, StrictGuardKeepsTheInputsIntersectionsButAddsNone) {
+  // Strict: the result may keep those intersections only between triangles left exactly as they
+  // were (input geometry); every intersecting pair with a moved or new triangle would be one the
+  // input did not have.
+  const TriMesh m = crossing_spheres();
   ASSERT_GT(count_self_intersections(m), 0u);  // the case this test is about
-  auto key = [](std::array<Vec3, 3> c) {
-    std::sort(c.begin(), c.end(), [](const Vec3& x, const Vec3& y) { return std::tie(x.x, x.y, x.z) < std::tie(y.x, y.y, y.z); });
-    return std::array<double, 9>{c[0].x, c[0].y, c[0].z, c[1].x, c[1].y, c[1].z, c[2].x, c[2].y, c[2].z};
-  };
   std::set<std::array<double, 9>> input;
-  for (std::size_t t = 0; t < m.num_triangles(); ++t) input.insert(key(m.corners(t)));
-  SimplifyOptions o{.target_triangles = 3000, .measure_error = false};
-  auto r = simplify(m, o);
+  for (std::size_t t = 0; t < m.num_triangles(); ++t) input.insert(corner_key(m.corners(t)));
+  auto r = simplify(m, {.target_triangles = 3000, .inherit_input_contacts = false, .measure_error = false});
   ASSERT_TRUE(r.has_value());
   const auto pairs = self_intersecting_pairs(r->mesh);
   EXPECT_GT(pairs.size(), 0u);  // the spheres still cross
   for (const auto& [x, y] : pairs) {
-    EXPECT_TRUE(input.count(key(r->mesh.corners(x))) && input.count(key(r->mesh.corners(y))))
+    EXPECT_TRUE(input.count(corner_key(r->mesh.corners(x))) && input.count(corner_key(r->mesh.corners(y))))
         << "intersecting pair " << x << ", " << y << " has a triangle the input did not have";
   }
   EXPECT_LT(r->mesh.num_triangles(), m.num_triangles() / 2);  // and the rest was simplified
@@ -537,6 +582,41 @@ TEST(Simplify, InputIntersectionsAreKeptButNoneIsAdded) {
   const std::string own = "input's own " + std::to_string(count_self_intersections(m));
   EXPECT_TRUE(std::any_of(r->warnings.begin(), r->warnings.end(),
                           [&](const std::string& w) { return w.find(own) != std::string::npos; }));
+}
+
+TEST(Simplify, InheritedIntersectionsStayNearTheInputsCrossingCurve) {
+  // By default the crossing moves with the simplification; every intersection of the result with
+  // a moved triangle lies near the exact crossing circle (an independent oracle: no fold elsewhere).
+  const TriMesh m = crossing_spheres();
+  const std::size_t own = count_self_intersections(m);
+  const double cn = norm(kSecondCentre);
+  const Vec3 n = kSecondCentre * (1 / cn);
+  const double d = (1 + cn * cn - 0.64) / (2 * cn), rho = std::sqrt(1 - d * d);
+  const auto from_circle = [&](const Vec3& q) {
+    const double h = dot(q, n) - d;
+    return std::hypot(h, norm(q - n * dot(q, n)) - rho);
+  };
+  std::set<std::array<double, 9>> input;
+  for (std::size_t t = 0; t < m.num_triangles(); ++t) input.insert(corner_key(m.corners(t)));
+  auto strict = simplify(m, {.target_triangles = 3000, .inherit_input_contacts = false});
+  auto r = simplify(m, {.target_triangles = 3000});
+  ASSERT_TRUE(r.has_value() && strict.has_value());
+  EXPECT_EQ(r->mesh.num_triangles(), 3000u);
+  EXPECT_EQ(r->input_contact_pairs, own);
+  const auto pairs = self_intersecting_pairs(r->mesh);
+  std::size_t moved = 0;
+  for (const auto& [x, y] : pairs) {
+    if (input.count(corner_key(r->mesh.corners(x))) && input.count(corner_key(r->mesh.corners(y)))) continue;
+    ++moved;
+    const TriTriResult c = tri_tri_exact(r->mesh.corners(x), r->mesh.corners(y));
+    ASSERT_EQ(c.kind, ContactKind::cross);  // two curved surfaces crossing
+    for (const Vec3& q : c.segment) EXPECT_LT(from_circle(q), 0.3) << x << ", " << y;
+  }
+  EXPECT_GT(moved, 0u);  // the case this test is about
+  EXPECT_EQ(r->inherited_pairs, moved);
+  // Collapses next to the crossing were allowed: no larger error than the strict guard's.
+  EXPECT_LE(r->rejected_intersection, strict->rejected_intersection);
+  EXPECT_LE(r->hausdorff, strict->hausdorff * 1.0001);
 }
 
 TEST(Simplify, ScrambledVertexNumbersGiveThreadIndependentResults) {
