@@ -12,7 +12,10 @@
 namespace interfere::detail {
 
 /// Squared distance from p to the nearest triangle of `mesh` (its BVH `bvh`), and that triangle.
-double nearest_d2(const TriMesh& mesh, const Bvh& bvh, const Vec3& p, std::uint32_t* tri = nullptr);
+/// With stop_d2 >= 0 the search ends at the first triangle found within sqrt(stop_d2) (its squared
+/// distance, an upper bound of the nearest's, is returned): exact whenever the nearest is farther.
+double nearest_d2(const TriMesh& mesh, const Bvh& bvh, const Vec3& p, std::uint32_t* tri = nullptr,
+                  double stop_d2 = -1);
 
 /// A distance at a point and the triangle of `to` nearest to it.
 struct Near {
@@ -20,7 +23,7 @@ struct Near {
   std::uint32_t tri = 0;
 };
 
-Near nearest(const TriMesh& to, const Bvh& bvh, const Vec3& p);
+Near nearest(const TriMesh& to, const Bvh& bvh, const Vec3& p, double stop_d2 = -1);
 
 /// One triangle c of `from` with its samples: distances at the corners, edge midpoints (m[k] on
 /// edge k, k+1) and centroid, each with its nearest triangle of `to`.
@@ -32,9 +35,9 @@ struct Sampled {
 };
 
 /// The samples of triangle c whose corners' distances `at` (and, if given, edge midpoints' `mid`)
-/// are known.
+/// are known; the others' searches stop as nearest_d2's at stop_d2.
 Sampled sample(const TriMesh& to, const Bvh& bvh, const std::array<Vec3, 3>& c, const std::array<Near, 3>& at,
-               const std::array<Near, 3>* mid = nullptr);
+               const std::array<Near, 3>* mid = nullptr, double stop_d2 = -1);
 
 /// Upper bound of the distance from every point of triangle s.c to `to` (distance_bound.cpp),
 /// computed lazily down to `floor` (a bound at or below it is not improved).

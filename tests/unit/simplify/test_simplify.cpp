@@ -842,6 +842,56 @@ TEST(Hausdorff, MatchesBruteForceOverTheSamePoints) {
   EXPECT_DOUBLE_EQ(h.b_to_a, brute(b, a));
 }
 
+// The searches stop early at a distance the maximum is known to reach (hausdorff.cpp): the
+// maximum stays exact, bit for bit, where it lies at a vertex, an edge midpoint or a centroid, and
+// the bound is the same for 1 and N threads.
+TEST(Hausdorff, EarlyStoppedSearchesKeepTheMaximumExact) {
+  // Islands: a small triangle of `to` around each given point, in the plane z = 0.
+  const auto islands = [](std::initializer_list<Vec3> at) {
+    TriMesh m;
+    for (const Vec3& p : at) {
+      const auto base = static_cast<std::uint32_t>(m.num_vertices());
+      for (const Vec3& d : {Vec3{-0.01, -0.01, 0}, Vec3{0.02, -0.01, 0}, Vec3{-0.01, 0.02, 0}}) m.positions.push_back(p + d);
+      m.triangles.push_back({base, base + 1, base + 2});
+    }
+    return m;
+  };
+  TriMesh raised = grid(30, 0.0);  // farthest at a vertex
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<std::size_t> pick(0, raised.num_vertices() - 1);
+  for (int k = 0; k < 5; ++k) raised.positions[pick(rng)].z = 0.01 * (k + 1);
+  TriMesh tri;  // over islands at its corners: farthest at an edge midpoint; with islands there too, the centroid
+  tri.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  tri.triangles = {{0, 1, 2}};
+  const std::vector<std::pair<TriMesh, TriMesh>> cases{
+      {raised, grid(6, 0.0)},
+      {tri, islands({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}})},
+      {tri, islands({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.5, 0, 0}, {0.5, 0.5, 0}, {0, 0.5, 0}})}};
+  for (std::size_t c = 0; c < cases.size(); ++c) {
+    const auto& [a, b] = cases[c];
+    double brute = 0;
+    for (std::size_t t = 0; t < a.num_triangles(); ++t) {
+      const auto q = a.corners(t);
+      for (const Vec3& p : {q[0], q[1], q[2], (q[0] + q[1]) * 0.5, (q[1] + q[2]) * 0.5, (q[2] + q[0]) * 0.5,
+                            (q[0] + q[1] + q[2]) / 3.0}) {
+        double best = std::numeric_limits<double>::infinity();
+        for (std::size_t u = 0; u < b.num_triangles(); ++u)
+          best = std::min(best, squared_norm(closest_point_on_triangle(p, b.corners(u)) - p));
+        brute = std::max(brute, std::sqrt(best));
+      }
+    }
+    const OneSidedDistance d = one_sided(a, b, true);
+    EXPECT_EQ(d.sampled, brute) << c;
+    EXPECT_GT(d.sampled, (std::array{0.049, 0.4, 0.2}[c])) << c;  // the raised vertex, a midpoint, the centroid
+    EXPECT_GE(d.bound, d.sampled);
+    tbb::task_arena one(1);
+    OneSidedDistance serial;
+    one.execute([&] { serial = one_sided(a, b, true); });
+    EXPECT_EQ(serial.sampled, d.sampled);
+    EXPECT_EQ(serial.bound, d.bound);
+  }
+}
+
 // A shared edge's midpoint is measured once (by the triangle where it runs upwards) and copied to
 // its twin: the same bits as measuring it in each triangle, which is what a soup (no shared vertex
 // numbers) and a mesh with some triangles turned over (edges running the same way twice) still do.
