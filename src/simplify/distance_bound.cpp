@@ -165,7 +165,10 @@ double local_bound(const TriMesh& to, const Sampled& s, double floor) {
   Poly p;
   p.n = 3;
   std::copy(s.c.begin(), s.c.end(), p.v.begin());
-  int budget = 64;  // polygons examined at most (each cut multiplies them)
+  // Polygons examined at most (each cut multiplies them). A triangle left above the floor goes to
+  // ring_bound and refined_bound: 64 here gave the same bounds on the bumpy sphere and the shared
+  // meshes, 10^6 -> 10^5 in 1.58 s instead of 1.33.
+  int budget = 16;
   return std::min(lips, convex_bound(to, p, cand.data(), nc, std::max(floor, 0.0), 4, budget));
 }
 
