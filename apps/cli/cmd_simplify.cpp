@@ -30,7 +30,7 @@ namespace interfere::cli {
 namespace {
 
 struct SimplifyCliOptions {
-  std::string input, output, json, regions, features, step, process, format = "auto", feature_mode = "weight";
+  std::string input, output, json, regions, features, step, process, format = "auto", feature_mode = "weight", seams = "all";
   std::string parts_dir;  ///< STEP input: each simplified part (prototype) also written here
   std::size_t target = 0;
   double ratio = 0;
@@ -288,6 +288,10 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
   else if (o.feature_mode == "lock") so.feature_mode = FeatureMode::lock;
   else throw InputError("--feature-mode must be weight, last or lock, not '" + o.feature_mode + "'");
   if (o.lock) so.feature_mode = FeatureMode::lock;
+  if (o.seams == "all") so.seams = SeamMode::all;
+  else if (o.seams == "features") so.seams = SeamMode::features;
+  else if (o.seams == "none") so.seams = SeamMode::none;
+  else throw InputError("--seams must be all, features or none, not '" + o.seams + "'");
   so.measure_error = !o.no_error;
   so.prevent_self_intersections = !o.no_guard;
   so.inherit_input_contacts = !o.strict_guard;
@@ -468,6 +472,7 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
   report["vertices"] = {{"welded_input", r.input_vertices_welded}, {"seam", r.seam_vertices},
                         {"corner", r.corner_vertices}, {"locked", r.locked_vertices}};
   report["feature_mode"] = so.feature_mode == FeatureMode::lock ? "lock" : so.feature_mode == FeatureMode::last ? "last" : "weight";
+  report["seams"] = o.seams;
   std::vector<std::uint32_t> ff = so.feature_faces;
   std::sort(ff.begin(), ff.end());
   ff.erase(std::unique(ff.begin(), ff.end()), ff.end());
@@ -569,6 +574,9 @@ void add_simplify_command(CLI::App& app, int& exit_code) {
   c->add_option("--regions", o->regions, "per-triangle region ids (text, one unsigned integer per triangle)");
   c->add_option("--features", o->features, "comma-separated face/region ids to keep (added to the step's features)");
   c->add_flag("--lock", o->lock, "hard-lock feature faces (bit-identical) instead of the paper's cost weighting");
+  c->add_option("--seams", o->seams,
+                "face seams kept: all (default), features (the borders of assembly-feature faces only; a CAD part "
+                "of many small faces can go much lower) or none (face ids as tags only)");
   c->add_option("--feature-mode", o->feature_mode,
                 "weight (paper: + maximum unmodified cost), last (feature edges strictly last) or lock");
   c->add_option("--sharp-angle", o->sharp_angle, "plain meshes: keep edges whose dihedral angle exceeds DEG degrees");

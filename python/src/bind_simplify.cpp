@@ -71,7 +71,7 @@ void bind_simplify(py::module_& m) {
       "simplify",
       [](const TriMesh& mesh, std::size_t target, double ratio, std::vector<std::uint32_t> face_ids,
          std::vector<std::uint32_t> feature_faces, bool lock, double sharp_angle, bool prevent_self_intersections,
-         bool measure_error, const std::string& feature_mode, bool inherit_input_contacts) {
+         bool measure_error, const std::string& feature_mode, bool inherit_input_contacts, const std::string& seams) {
         SimplifyOptions o;
         o.target_triangles = target;
         o.ratio = ratio;
@@ -82,6 +82,10 @@ void bind_simplify(py::module_& m) {
         else if (feature_mode == "lock") o.feature_mode = FeatureMode::lock;
         else throw py::value_error("feature_mode must be weight, last or lock");
         if (lock) o.feature_mode = FeatureMode::lock;
+        if (seams == "all") o.seams = SeamMode::all;
+        else if (seams == "features") o.seams = SeamMode::features;
+        else if (seams == "none") o.seams = SeamMode::none;
+        else throw py::value_error("seams must be all, features or none");
         o.sharp_angle_deg = sharp_angle;
         o.prevent_self_intersections = prevent_self_intersections;
         o.inherit_input_contacts = inherit_input_contacts;
@@ -98,6 +102,7 @@ void bind_simplify(py::module_& m) {
       py::arg("feature_faces") = std::vector<std::uint32_t>{}, py::arg("lock") = false, py::arg("sharp_angle") = 0.0,
       py::arg("prevent_self_intersections") = true, py::arg("measure_error") = true,
       py::arg("feature_mode") = std::string("weight"), py::arg("inherit_input_contacts") = true,
+      py::arg("seams") = std::string("all"),
       "Feature-preserving QEM simplification to `target` triangles (or `ratio` of them). face_ids: per-triangle "
       "face/region ids; feature_faces: ids kept (cost-weighted, or hard-locked with lock=True). "
       "prevent_self_intersections: no intersecting pair the input did not have; inherit_input_contacts=False makes "

@@ -66,6 +66,16 @@ class Simplify(unittest.TestCase):
         self.assertEqual(r.input_contact_pairs, own)
         self.assertEqual(r.inherited_pairs, itf.count_self_intersections(r.mesh))
 
+    def test_seams_modes(self):
+        s = itf.make_sphere(4000)
+        faces = cap_faces(s)
+        for seams in ("all", "features", "none"):
+            r = itf.simplify(s, target=400, face_ids=faces, feature_faces=[1], seams=seams, measure_error=False)
+            self.assertEqual(len(r.mesh.triangles), 400)
+            self.assertTrue(set(r.face_ids) <= set(faces))
+        with self.assertRaises(ValueError):
+            itf.simplify(s, target=400, seams="some")
+
     def test_locked_features_keep_their_triangles(self):
         s = itf.make_sphere(4000)
         faces = cap_faces(s)

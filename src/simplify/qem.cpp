@@ -178,6 +178,18 @@ Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOp
   if (!features.empty() && r.feature_triangles_in == 0)
     r.warnings.push_back("no triangle carries one of the feature face ids");
 
+  // The face ids the simplifier constrains (SimplifyOptions::seams): all; the feature faces', the
+  // others as one; none. `face` stays the output's tag.
+  std::vector<std::uint32_t> seam_face;
+  if (options.seams == SeamMode::all) {
+    seam_face = face;
+  } else {
+    std::uint32_t other = std::numeric_limits<std::uint32_t>::max();  // an id no feature face has
+    while (std::binary_search(features.begin(), features.end(), other)) --other;
+    seam_face.resize(nt);
+    for (std::size_t t = 0; t < nt; ++t)
+      seam_face[t] = options.seams == SeamMode::features && feature_tri[t] ? face[t] : other;
+  }
   TriMesh welded = weld_positions(mesh);
   r.input_vertices_welded = welded.num_vertices();
   clock.lap("weld");
@@ -204,7 +216,7 @@ Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOp
   const auto zone_ptr = [&]() -> const qem::ContactZone* { return inherit && zone ? &*zone : nullptr; };
   if (inherit && options.guard_every_collapse) zone.emplace(mesh);
   // The welded input is not copied for a possible rerun (rare): it is welded again then.
-  auto sp = std::make_unique<qem::Simplifier>(std::move(welded), face, feature_tri, plain);
+  auto sp = std::make_unique<qem::Simplifier>(std::move(welded), seam_face, feature_tri, plain);
   sp->set_contact_zone(zone_ptr());
   if (options.prevent_self_intersections && !options.guard_every_collapse) sp->keep_handoff();
   sp->run(target, r);
@@ -321,7 +333,7 @@ Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOp
           r.guard_rerun = true;
           r.guard_reruns = reruns;
         } else {
-          hp = std::make_unique<qem::Simplifier>(TriMesh(input), face, feature_tri, plain);
+          hp = std::make_unique<qem::Simplifier>(TriMesh(input), seam_face, feature_tri, plain);
           if (heap_attempt == 0) hp->set_guard_region(region);
           hp->set_contact_zone(zone_ptr());
           const qem::Simplifier* h = hp.get();
@@ -340,7 +352,7 @@ Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOp
       for (int attempt = 0; !pairs.empty() && attempt <= kRegionalReruns; ++attempt) {
         grow_region();
         restart();
-        sp = std::make_unique<qem::Simplifier>(TriMesh(input), face, feature_tri, options);
+        sp = std::make_unique<qem::Simplifier>(TriMesh(input), seam_face, feature_tri, options);
         if (attempt < kRegionalReruns) sp->set_guard_region(region);
         sp->set_contact_zone(zone_ptr());
         sp->run(target, r);
@@ -379,9 +391,9 @@ Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOp
   r.inherited_pairs = inherited;
   const std::size_t own = r.rejected_intersection > 0 ? count_self_intersections(mesh) : 0;
   r.input_contact_pairs = r.rejected_intersection > 0 ? own : zone ? zone->input_pairs() : 0;
-  const std::string own_pairs = own > 0 ? " next to the input's own " + std::to_string(own) +
+  const std::string own_pairs = own > 0 ? "; the input's own " + std::to_string(own) +
                                               " intersecting or touching triangle pairs (cracks, T-junctions, "
-                                              "penetrating or touching bodies)"
+                                              "penetrating or touching bodies) hold the collapses next to them"
                                         : std::string();
   const std::string lift =
       std::string(inherit || !options.prevent_self_intersections
@@ -389,22 +401,25 @@ Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOp
                       : "inheriting the input's contacts (without --strict-intersection-guard, "
                         "inherit_input_contacts = true: they may move within their zone) or ") +
       "without the guard (--no-intersection-guard, prevent_self_intersections = false)";
+  // What else holds the rest: the vertex classes of the input and the other refused collapses.
+  std::string why = std::to_string(r.corner_vertices) +
+                    " corner vertices (where face seams, open boundaries or sharp-edge borders meet: never "
+                    "removed), " +
+                    std::to_string(r.seam_vertices) + " seam vertices (removed along their seam only)";
+  if (r.locked_vertices > 0) why += ", " + std::to_string(r.locked_vertices) + " locked vertices";
+  why += "; " + std::to_string(r.rejected_link) + " collapses refused as non-manifold, " +
+         std::to_string(r.rejected_flip) + " as flipping a triangle";
+  if (options.seams == SeamMode::all && splitting && r.corner_vertices + r.seam_vertices > 0)
+    why += "; --seams features (SimplifyOptions::seams) lets the seams between faces that are not assembly "
+           "features go";
+  const std::string missed =
+      "budget " + std::to_string(target) + " not reached: " + std::to_string(r.mesh.num_triangles()) + " triangles remain";
   if (!r.reached && r.rejected_intersection > 0 && r.mesh.num_triangles() > target) {
-    r.warnings.push_back("budget " + std::to_string(target) + " not reached: " +
-                         std::to_string(r.mesh.num_triangles()) + " triangles remain; the self-intersection guard refused " +
-                         std::to_string(r.rejected_intersection) + " collapses" + own_pairs + "; " + lift +
-                         " it simplifies further but may add self-intersections");
+    r.warnings.push_back(missed + "; the self-intersection guard refused " + std::to_string(r.rejected_intersection) +
+                         " collapses" + own_pairs + "; " + lift +
+                         " it simplifies further but may add self-intersections; besides (" + why + ")");
   } else if (!r.reached && !one_below) {
-    // What holds the rest: the vertex classes of the input and the refused collapses.
-    std::string why = std::to_string(r.corner_vertices) +
-                      " corner vertices (where face seams, open boundaries or sharp-edge borders meet: never "
-                      "removed), " +
-                      std::to_string(r.seam_vertices) + " seam vertices (removed along their seam only)";
-    if (r.locked_vertices > 0) why += ", " + std::to_string(r.locked_vertices) + " locked vertices";
-    why += "; " + std::to_string(r.rejected_link) + " collapses refused as non-manifold, " +
-           std::to_string(r.rejected_flip) + " as flipping a triangle";
-    r.warnings.push_back("budget " + std::to_string(target) + " not reached: " +
-                         std::to_string(r.mesh.num_triangles()) + " triangles remain (" + why + ")");
+    r.warnings.push_back(missed + " (" + why + ")");
   } else if (own > 0 && r.rejected_intersection > 0) {
     r.warnings.push_back("the self-intersection guard refused " + std::to_string(r.rejected_intersection) +
                          " collapses" + own_pairs + ", so more were made elsewhere: the error can be larger than " +

@@ -191,6 +191,35 @@ class Simplify(unittest.TestCase):
         self.assertLessEqual(r["hausdorff_features"], 1e-12)
         self.assertEqual(float(bound[0].split()[2]), r["error_bound"])
 
+    def test_seams_of_non_feature_faces(self):
+        # 8 x 8 square faces on a bumpy sheet: their corners hold the budget unless the seams of the
+        # faces that are not features may go.
+        n = 32
+        pos = [(i / n, j / n, 0.2 * math.sin(3 * i / n) * math.cos(2 * j / n)) for j in range(n + 1) for i in range(n + 1)]
+        tri, faces = [], []
+        for j in range(n):
+            for i in range(n):
+                a = j * (n + 1) + i
+                tri += [(a, a + 1, a + n + 2), (a, a + n + 2, a + n + 1)]
+                faces += [i // 4 + 8 * (j // 4)] * 2
+        write_obj("tiles.obj", (pos, tri))
+        with open(path("tiles.txt"), "w") as out:
+            out.write("\n".join(map(str, faces)) + "\n")
+        reports = {}
+        for seams in ("all", "features"):
+            code, _, err = run("simplify", path("tiles.obj"), path("tiles_%s.ply" % seams), "--target", "100",
+                               "--regions", path("tiles.txt"), "--features", "27", "--seams", seams, "--json",
+                               path("tiles_%s.json" % seams))
+            self.assertEqual(code, 0, err)
+            reports[seams] = load_json("tiles_%s.json" % seams)
+            self.assertEqual(reports[seams]["seams"], seams)
+        self.assertFalse(reports["all"]["reached"])
+        self.assertTrue(any("--seams features" in w for w in reports["all"]["warnings"]))
+        self.assertTrue(reports["features"]["reached"])
+        self.assertEqual(reports["features"]["output_triangles"], 100)
+        self.assert_input_error("simplify", path("tiles.obj"), path("tiles_bad.ply"), "--target", "100", "--seams",
+                                "some", output=path("tiles_bad.ply"), message="--seams must be all, features or none")
+
     def assert_input_error(self, *args, output=None, message=None):
         if output and os.path.exists(output):
             os.remove(output)

@@ -131,7 +131,7 @@ std::string num(double v) {
 std::string tag(const SimplifyOptions& o, int shape) {
   return " (shape " + std::to_string(shape) + ", ratio " + std::to_string(o.ratio) + ", features " +
          std::to_string(o.feature_faces.size()) + " mode " + std::to_string(int(o.feature_mode)) +
-         (o.inherit_input_contacts ? "" : ", strict guard") + ")";
+         (o.inherit_input_contacts ? "" : ", strict guard") + ", seams " + std::to_string(int(o.seams)) + ")";
 }
 
 int entry(const std::uint8_t* data, std::size_t size) {
@@ -156,6 +156,7 @@ int entry(const std::uint8_t* data, std::size_t size) {
   if (flags & 32) o.guard_every_collapse = true;
   if (flags & 64) o.batched_passes = false;
   if (flags & 128) o.inherit_input_contacts = false;
+  o.seams = static_cast<interfere::SeamMode>(data[size - 1] % 3);  // (the last byte: decoding unchanged)
   const std::string where = tag(o, shape);
 
   std::size_t live = 0;

@@ -33,6 +33,13 @@ enum class FeatureMode {
   lock,    ///< vertices of feature faces never move: feature triangles stay bit-identical
 };
 
+/// Which face seams (edges between triangles of different face ids) the simplification keeps.
+enum class SeamMode {
+  all,       ///< every seam (the default: B-Rep faces stay separable, their borders simplified as polylines)
+  features,  ///< the borders of feature faces only: seams between two other faces may be simplified away
+  none,      ///< none: face ids are per-triangle tags only
+};
+
 struct SimplifyOptions {
   /// Triangle budget. > 0: the result has exactly this many triangles when it can be reached (a
   /// collapse removes the 2 triangles of an inner edge or the 1 of a boundary edge, so on a closed
@@ -49,6 +56,10 @@ struct SimplifyOptions {
   /// angle (between the two triangles' normals) exceeds this, and the region borders are kept like
   /// face seams. Ignored when face_ids are given.
   double sharp_angle_deg = 0;
+  /// Seams kept as constrained edges (open boundaries and non-manifold edges always are). Below
+  /// `all`, a CAD part of many small faces, whose corners (where three faces meet) are never
+  /// removed, can go far lower; each output triangle still carries its input triangle's face id.
+  SeamMode seams = SeamMode::all;
   /// Weight of the penalty planes through constrained edges (perpendicular to their triangles),
   /// relative to the area-weighted face quadrics (Garland & Heckbert §6.1).
   double seam_weight = 10.0;

@@ -404,6 +404,73 @@ std::vector<std::uint32_t> cap_faces(const TriMesh& s) {
   return f;
 }
 
+// A height field of 8 x 8 faces of 4 x 4 cells each (2048 triangles; 81 corners where faces meet):
+// a CAD part of many small faces. Face 27 is the assembly feature.
+TriMesh tiled(std::vector<std::uint32_t>& face) {
+  TriMesh m = grid(32, 0.2);
+  face.resize(m.num_triangles());
+  for (std::size_t t = 0; t < face.size(); ++t) {
+    const std::size_t cell = t / 2, i = cell % 32, j = cell / 32;
+    face[t] = static_cast<std::uint32_t>(i / 4 + 8 * (j / 4));
+  }
+  return m;
+}
+
+TEST(Simplify, SeamsOfNonFeatureFacesCanGoWhereTheirCornersHoldTheBudget) {
+  std::vector<std::uint32_t> face;
+  const TriMesh m = tiled(face);
+  std::set<std::array<double, 3>> input_pos;
+  for (const Vec3& p : m.positions) input_pos.insert({p.x, p.y, p.z});
+  std::set<std::array<double, 3>> feature_border;  // input vertices on the feature face's border
+  for (std::size_t t = 0; t < m.num_triangles(); ++t)
+    if (face[t] == 27)
+      for (std::uint32_t v : m.triangles[t]) {
+        const Vec3 p = m.positions[v];
+        if (p.x == 0.375 || p.x == 0.5 || p.y == 0.375 || p.y == 0.5) feature_border.insert({p.x, p.y, p.z});
+      }
+  ASSERT_EQ(feature_border.size(), 16u);
+  const auto run = [&](SeamMode seams) {
+    SimplifyOptions o{.target_triangles = 100, .face_ids = face, .feature_faces = {27}, .seams = seams};
+    auto r = simplify(m, o);
+    EXPECT_TRUE(r.has_value());
+    return *r;
+  };
+  const SimplifyResult all = run(SeamMode::all);
+  EXPECT_FALSE(all.reached);  // two triangles at least for each of the 64 faces
+  EXPECT_GT(all.corner_vertices, 70u);  // where 3 or more faces meet, or 2 and the boundary
+  ASSERT_FALSE(all.warnings.empty());
+  EXPECT_NE(all.warnings.back().find("--seams features"), std::string::npos) << all.warnings.back();
+  for (SeamMode seams : {SeamMode::features, SeamMode::none}) {
+    const SimplifyResult r = run(seams);
+    EXPECT_TRUE(r.reached);
+    EXPECT_EQ(r.mesh.num_triangles(), 100u);
+    EXPECT_EQ(count_self_intersections(r.mesh), 0u);
+    ASSERT_EQ(r.face_ids.size(), r.mesh.num_triangles());
+    for (std::uint32_t f : r.face_ids) EXPECT_LT(f, 64u);  // each triangle keeps its input's face id
+    if (seams == SeamMode::none) continue;
+    // The feature face keeps its border: its output triangles' corners on the border lines are
+    // input vertices there, and every one of its 4 corners survives.
+    std::set<std::array<double, 3>> kept_border;
+    bool feature_out = false;
+    for (std::size_t t = 0; t < r.mesh.num_triangles(); ++t) {
+      if (r.face_ids[t] != 27) continue;
+      feature_out = true;
+      for (const Vec3& p : r.mesh.corners(t)) {
+        ASSERT_TRUE(input_pos.count({p.x, p.y, p.z})) << "a feature vertex moved off the input";
+        if (p.x == 0.375 || p.x == 0.5 || p.y == 0.375 || p.y == 0.5) kept_border.insert({p.x, p.y, p.z});
+      }
+    }
+    EXPECT_TRUE(feature_out);
+    for (const auto& q : kept_border) EXPECT_TRUE(feature_border.count(q));
+    for (double x : {0.375, 0.5})
+      for (double y : {0.375, 0.5})
+        EXPECT_TRUE(std::any_of(kept_border.begin(), kept_border.end(),
+                                [&](const auto& q) { return q[0] == x && q[1] == y; }))
+            << x << ", " << y;
+    EXPECT_LT(r.hausdorff, all.hausdorff * 4);  // far fewer triangles, not a wreck
+  }
+}
+
 TEST(Simplify, LockedFeatureFacesStayBitIdentical) {
   const TriMesh s = make_sphere({.target_triangles = 8000, .bump_amplitude = 0.03});
   const auto faces = cap_faces(s);
