@@ -100,6 +100,19 @@ bool BoxGrid::overlaps(const Aabb& b) const {
   return false;
 }
 
+std::vector<Aabb> pair_neighbourhoods(const TriMesh& m, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs,
+                                      double grow) {
+  std::vector<Aabb> out;
+  out.reserve(pairs.size());
+  for (const auto& [x, y] : pairs) {
+    Aabb b = box_of(m.corners(x));
+    b.expand(box_of(m.corners(y)));
+    const double g = grow * norm(b.extent());
+    out.push_back({b.lo - Vec3{g, g, g}, b.hi + Vec3{g, g, g}});
+  }
+  return out;
+}
+
 ContactZone::ContactZone(const TriMesh& input, const std::vector<Aabb>* near) {
   TriMesh part;
   const TriMesh* m = &input;
@@ -121,27 +134,7 @@ ContactZone::ContactZone(const TriMesh& input, const std::vector<Aabb>* near) {
     }
     m = &part;
   }
-  std::vector<Aabb> boxes;
-  for (const auto& [x, y] : self_intersecting_pairs(*m)) {
-    Aabb b = box_of(m->corners(x));
-    b.expand(box_of(m->corners(y)));
-    const double g = norm(b.extent());
-    boxes.push_back({b.lo - Vec3{g, g, g}, b.hi + Vec3{g, g, g}});
-  }
-  zone_ = BoxGrid(std::move(boxes));
-}
-
-std::vector<Aabb> ContactZone::near_pairs(const TriMesh& m,
-                                          const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs) {
-  std::vector<Aabb> near;
-  near.reserve(pairs.size());
-  for (const auto& [x, y] : pairs) {
-    Aabb b = box_of(m.corners(x));
-    b.expand(box_of(m.corners(y)));
-    const double g = 2 * norm(b.extent());
-    near.push_back({b.lo - Vec3{g, g, g}, b.hi + Vec3{g, g, g}});
-  }
-  return near;
+  zone_ = BoxGrid(pair_neighbourhoods(*m, self_intersecting_pairs(*m), 1));
 }
 
 bool ContactZone::holds(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b) const {

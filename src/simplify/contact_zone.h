@@ -45,6 +45,11 @@ class BoxGrid {
   std::vector<std::uint32_t> big_;
 };
 
+/// The box of each pair of triangles of m (both triangles), grown on every side by `grow` times
+/// its diagonal: the neighbourhood of intersecting pairs (contact zone, guard region).
+std::vector<Aabb> pair_neighbourhoods(const TriMesh& m, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs,
+                                      double grow);
+
 class ContactZone {
  public:
   ContactZone() = default;
@@ -52,9 +57,6 @@ class ContactZone {
   /// With `near`: of the pairs among the input triangles meeting those boxes only (a zone where it
   /// is needed, without a self-clash of a large input); elsewhere the zone is empty.
   explicit ContactZone(const TriMesh& input, const std::vector<Aabb>* near = nullptr);
-  /// Where a zone is needed for these intersecting pairs of m: each pair's box grown by twice its
-  /// diagonal.
-  static std::vector<Aabb> near_pairs(const TriMesh& m, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs);
   bool empty() const { return zone_.empty(); }
   /// The input's intersecting or touching pairs the zone was made from.
   std::size_t input_pairs() const { return zone_.size(); }
