@@ -137,12 +137,11 @@ ContactZone::ContactZone(const TriMesh& input, const std::vector<Aabb>* near) {
   zone_ = BoxGrid(pair_neighbourhoods(*m, self_intersecting_pairs(*m), 1));
 }
 
-bool ContactZone::holds(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b) const {
-  if (zone_.empty()) return false;
+Aabb ContactZone::meet(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b) {
   const Aabb ba = box_of(a), bb = box_of(b);
   Aabb meet{max(ba.lo, bb.lo), min(ba.hi, bb.hi)};  // holds every common point
   const TriTriResult r = tri_tri_exact(a, b);
-  if (r.kind == ContactKind::none) return true;  // (not a contact at all)
+  if (r.kind == ContactKind::none) return Aabb{};
   if (r.kind == ContactKind::cross) {
     // The segment, about 1e-15 relative to the edges (tri_tri.h): grown by far more than that.
     Aabb s;
@@ -151,8 +150,27 @@ bool ContactZone::holds(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>&
     const double pad = 1e-12 * (norm(ba.extent()) + norm(bb.extent())) + 1e-15 * std::max(max_abs(ba), max_abs(bb));
     s = {s.lo - Vec3{pad, pad, pad}, s.hi + Vec3{pad, pad, pad}};
     meet = {max(meet.lo, s.lo), min(meet.hi, s.hi)};
+    if (meet.empty()) meet = {max(ba.lo, bb.lo), min(ba.hi, bb.hi)};  // (rounding: the boxes' overlap)
   }
-  return !meet.empty() && zone_.contains(meet);
+  return meet;
+}
+
+std::vector<Aabb> ContactZone::reach(const TriMesh& m, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs) {
+  std::vector<Aabb> out;
+  out.reserve(pairs.size());
+  for (const auto& [x, y] : pairs) {
+    const Aabb b = meet(m.corners(x), m.corners(y));
+    if (b.empty()) continue;
+    const double g = norm(b.extent()) + 0.25 * std::max(norm(m.triangle_box(x).extent()), norm(m.triangle_box(y).extent()));
+    out.push_back({b.lo - Vec3{g, g, g}, b.hi + Vec3{g, g, g}});
+  }
+  return out;
+}
+
+bool ContactZone::holds(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b) const {
+  if (zone_.empty()) return false;
+  const Aabb m = meet(a, b);
+  return m.empty() || zone_.contains(m);  // (empty: not a contact at all)
 }
 
 }  // namespace interfere::qem

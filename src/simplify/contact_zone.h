@@ -60,6 +60,14 @@ class ContactZone {
   bool empty() const { return zone_.empty(); }
   /// The input's intersecting or touching pairs the zone was made from.
   std::size_t input_pairs() const { return zone_.size(); }
+  /// A box holding every common point of triangles a and b: the segment of the exact test (padded
+  /// by far more than its rounding) within the two boxes' overlap, or that overlap for a touch;
+  /// empty when they do not meet.
+  static Aabb meet(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b);
+  /// Where a zone is needed for these intersecting pairs of m: the box where each meets, grown by
+  /// its diagonal and a quarter of the larger triangle's (an input pair whose grown box holds that
+  /// meet has a triangle there, unless it is larger than that).
+  static std::vector<Aabb> reach(const TriMesh& m, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs);
   /// Whether triangles a and b, which intersect, meet only inside one zone box (conservative:
   /// false when unsure).
   bool holds(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b) const;

@@ -106,7 +106,7 @@ bool to_world(SimplifyResult& r, const TriMesh& input, const qem::LocalFrame& fr
     if (!kept(xy.first) || !kept(xy.second)) moved.push_back(xy);
   if (moved.empty()) return true;
   if (!o.inherit_input_contacts) return false;
-  const std::vector<Aabb> near = qem::pair_neighbourhoods(r.mesh, moved, 2);
+  const std::vector<Aabb> near = qem::ContactZone::reach(r.mesh, moved);
   const qem::ContactZone zone(input, &near);
   for (const auto& [x, y] : moved)
     if (!zone.holds(r.mesh.corners(x), r.mesh.corners(y))) return false;
@@ -209,7 +209,7 @@ Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOp
     if (zone && options.guard_every_collapse) return;  // made everywhere
     const qem::BoxGrid made(zone_near);
     std::size_t added = 0;
-    for (const Aabb& b : qem::pair_neighbourhoods(m, p, 2))
+    for (const Aabb& b : qem::ContactZone::reach(m, p))
       if (made.empty() || !made.contains(b)) zone_near.push_back(b), ++added;
     if (added > 0 || !zone) zone.emplace(mesh, &zone_near);
   };
