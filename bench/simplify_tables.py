@@ -200,7 +200,9 @@ quadric-error-metric edge collapses while the faces that take part in the curren
    rerun finds a pair outside it; unit
    tests `Simplify.InheritedIntersectionsStayNearTheInputsCrossingCurve` (every inherited crossing within 0.3 of
    the two spheres' exact crossing circle), `Simplify.TheInputsOwnContactsAreInheritedAndNoOtherIntersectionIsAdded`,
-   `ContactZone.*`. `--strict-intersection-guard` (`inherit_input_contacts = false`) refuses every pair of
+   `ContactZone.*`; CGAL oracle `SimplifyOracle.*`: every intersecting pair of the results, found by brute force
+   with Epeck's exact test, is the engine's, and is either left as in the input or meets, by CGAL's exact
+   intersection, inside the input's own pairs' zone). `--strict-intersection-guard` (`inherit_input_contacts = false`) refuses every pair of
    triangles not both as in the input. Only if plain QEM created
    an intersection is the run repeated with a guard that refuses collapses whose moved triangles would meet a
    non-adjacent triangle (exact test of `np/tri_tri.h` against a hash grid, scanned once per collapse over the
