@@ -17,6 +17,7 @@
 #include "interfere/mesh/generate.h"
 #include "interfere/simplify/hausdorff.h"
 #include "interfere/simplify/qem.h"
+#include "unit/simplify/scenes.h"
 
 namespace interfere {
 namespace {
@@ -107,32 +108,6 @@ std::size_t expect_no_new_intersection(const TriMesh& input, const SimplifyResul
   return moved;
 }
 
-TriMesh crossing_spheres() {
-  TriMesh m = make_sphere({.target_triangles = 4000});
-  const TriMesh b = make_sphere({.target_triangles = 4000, .radius = 0.8, .center = {0.9, 0.1, 0.05}, .twist = 0.3});
-  const auto base = static_cast<std::uint32_t>(m.positions.size());
-  m.positions.insert(m.positions.end(), b.positions.begin(), b.positions.end());
-  for (Tri t : b.triangles) m.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
-  return m;
-}
-
-// Two flat sheets tessellated apart, overlapping by 1e-6 along x = 1 (a crack of a CAD export).
-TriMesh cracked_sheet() {
-  TriMesh m;
-  for (const auto& [n, x0] : {std::pair{8, 0.0}, std::pair{13, 1.0 - 1e-6}}) {
-    const auto base = static_cast<std::uint32_t>(m.positions.size());
-    for (int j = 0; j <= n; ++j)
-      for (int i = 0; i <= n; ++i) m.positions.push_back({x0 + double(i) / n, double(j) / n, 0});
-    const auto id = [&](int i, int j) { return base + static_cast<std::uint32_t>(j * (n + 1) + i); };
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-        m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-      }
-  }
-  return m;
-}
-
 TEST(SimplifyOracle, NoIntersectionOnAMeshWithoutContacts) {
   const TriMesh s = make_sphere({.target_triangles = 20000, .bump_amplitude = 0.05});
   for (double ratio : {0.1, 0.01}) {
@@ -144,7 +119,7 @@ TEST(SimplifyOracle, NoIntersectionOnAMeshWithoutContacts) {
 }
 
 TEST(SimplifyOracle, CrossingBodiesKeepTheirContactInsideItsZoneOnly) {
-  const TriMesh m = crossing_spheres();
+  const TriMesh m = test::crossing_spheres(4000);
   for (bool inherit : {true, false}) {
     auto r = simplify(m, {.target_triangles = 1500, .inherit_input_contacts = inherit, .measure_error = false});
     ASSERT_TRUE(r.has_value());
@@ -154,7 +129,7 @@ TEST(SimplifyOracle, CrossingBodiesKeepTheirContactInsideItsZoneOnly) {
 }
 
 TEST(SimplifyOracle, ACrackIsInheritedAndNothingElseIntersects) {
-  const TriMesh m = cracked_sheet();
+  const TriMesh m = test::cracked_sheet();
   for (bool inherit : {true, false}) {
     auto r = simplify(m, {.target_triangles = 20, .inherit_input_contacts = inherit, .measure_error = false});
     ASSERT_TRUE(r.has_value());

@@ -22,6 +22,7 @@
 #include "interfere/simplify/budget.h"
 #include "interfere/simplify/hausdorff.h"
 #include "interfere/simplify/qem.h"
+#include "scenes.h"
 
 namespace interfere {
 namespace {
@@ -291,19 +292,8 @@ TEST(Simplify, AnUnreachableBudgetNamesWhatHoldsTheRest) {
 
 // A crack as CAD exports leave them: two flat grids side by side, 8 and 13 cells along their
 // common border x = 1, not sharing its vertices and overlapping by 1e-6 (rounding).
-// Two flat halves tessellated apart and overlapping by 1e-6 along x = 1: a crack, as in CAD exports
-// whose face borders were meshed separately.
-TriMesh cracked_sheet() {
-  TriMesh m = grid(8, 0.0);
-  TriMesh right = grid(13, 0.0);
-  const auto base = static_cast<std::uint32_t>(m.positions.size());
-  for (Vec3 p : right.positions) m.positions.push_back({p.x + 1 - 1e-6, p.y, 0});
-  for (Tri t : right.triangles) m.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
-  return m;
-}
-
 TEST(Simplify, AStrictGuardStoppedByTheInputsOwnContactsSaysSoAndHowToLiftIt) {
-  const TriMesh m = cracked_sheet();
+  const TriMesh m = test::cracked_sheet();
   const std::size_t own = count_self_intersections(m);
   ASSERT_GT(own, 0u);  // overlapping pairs along the crack
   auto r = simplify(m, {.target_triangles = 20, .inherit_input_contacts = false, .measure_error = false});
@@ -326,7 +316,7 @@ TEST(Simplify, AStrictGuardStoppedByTheInputsOwnContactsSaysSoAndHowToLiftIt) {
 }
 
 TEST(Simplify, TheInputsOwnContactsAreInheritedAndNoOtherIntersectionIsAdded) {
-  const TriMesh sheet = cracked_sheet();
+  const TriMesh sheet = test::cracked_sheet();
   const std::size_t own = count_self_intersections(sheet);
   TriMesh far = sheet;  // simplified in a local frame (local_frame.h), checked again in place
   for (Vec3& p : far.positions) p = p + Vec3{4096, -2048, 1024};
@@ -605,22 +595,6 @@ TEST(Simplify, OneAndManyThreadsGiveBitIdenticalResults) {
   EXPECT_EQ(one->hausdorff, many->hausdorff);
 }
 
-// Two interpenetrating spheres in one mesh: the input intersects itself along the crossing circle
-// of the unit sphere at the origin and the sphere of radius 0.8 at kSecondCentre.
-constexpr Vec3 kSecondCentre{0.9, 0.1, 0.05};
-
-TriMesh crossing_spheres() {
-  TriMesh m = make_sphere({.target_triangles = 8000, .center = {0, 0, 0}});
-  const TriMesh b = make_sphere({.target_triangles = 8000, .radius = 0.8, .center = kSecondCentre, .twist = 0.3});
-  const auto base = static_cast<std::uint32_t>(m.positions.size());
-  m.positions.insert(m.positions.end(), b.positions.begin(), b.positions.end());
-  for (Tri t : b.triangles) {
-    for (std::uint32_t& v : t) v += base;
-    m.triangles.push_back(t);
-  }
-  return m;
-}
-
 // The sorted corners of a triangle: equal for a result triangle left as in the input.
 std::array<double, 9> corner_key(std::array<Vec3, 3> c) {
   std::sort(c.begin(), c.end(), [](const Vec3& x, const Vec3& y) { return std::tie(x.x, x.y, x.z) < std::tie(y.x, y.y, y.z); });
@@ -631,7 +605,7 @@ TEST(Simplify, StrictGuardKeepsTheInputsIntersectionsButAddsNone) {
   // Strict: the result may keep those intersections only between triangles left exactly as they
   // were (input geometry); every intersecting pair with a moved or new triangle would be one the
   // input did not have.
-  const TriMesh m = crossing_spheres();
+  const TriMesh m = test::crossing_spheres(8000);
   ASSERT_GT(count_self_intersections(m), 0u);  // the case this test is about
   std::set<std::array<double, 9>> input;
   for (std::size_t t = 0; t < m.num_triangles(); ++t) input.insert(corner_key(m.corners(t)));
@@ -654,10 +628,10 @@ TEST(Simplify, StrictGuardKeepsTheInputsIntersectionsButAddsNone) {
 TEST(Simplify, InheritedIntersectionsStayNearTheInputsCrossingCurve) {
   // By default the crossing moves with the simplification; every intersection of the result with
   // a moved triangle lies near the exact crossing circle (an independent oracle: no fold elsewhere).
-  const TriMesh m = crossing_spheres();
+  const TriMesh m = test::crossing_spheres(8000);
   const std::size_t own = count_self_intersections(m);
-  const double cn = norm(kSecondCentre);
-  const Vec3 n = kSecondCentre * (1 / cn);
+  const double cn = norm(test::kSecondCentre);
+  const Vec3 n = test::kSecondCentre * (1 / cn);
   const double d = (1 + cn * cn - 0.64) / (2 * cn), rho = std::sqrt(1 - d * d);
   const auto from_circle = [&](const Vec3& q) {
     const double h = dot(q, n) - d;
