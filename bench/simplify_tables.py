@@ -229,8 +229,10 @@ quadric-error-metric edge collapses while the faces that take part in the curren
    533 faces: 12,070 → 2,718 triangles at most for a budget of 1,207, Hausdorff 12 % of the diagonal as the
    last seam collapses cut across curved borders); `--seams features` (`SimplifyOptions::seams`) keeps only the
    borders of assembly-feature faces and lets the others' seams go (1,206 triangles, Hausdorff 1.9 %;
-   `nist_ftc_08`: 7,102 → 710 instead of 1,102 at most), `--seams none` keeps none; each output triangle still
-   carries its input triangle's face id. The warning of a budget held by corners says so (unit test
+   `nist_ftc_08`: 7,102 → 710 instead of 1,102 at most), `--seams auto` keeps every seam when the budget can be
+   met so and else makes the run again with `features` (`seams_relaxed_at`: the fewest triangles every seam
+   allowed; a warning says so; the error is measured once), `--seams none` keeps none; each output triangle
+   still carries its input triangle's face id. The warning of a budget held by corners says so (unit test
    `Simplify.SeamsOfNonFeatureFacesCanGoWhereTheirCornersHoldTheBudget`). **Assembly features** follow the paper's rule: the cost of every edge touching a
    feature face is raised by the maximum unmodified (initial) edge cost, so those edges go last
    (`FeatureMode::weight`, default). Since costs grow as quadrics accumulate, late non-feature collapses can
@@ -340,7 +342,7 @@ warning.
 ```
 interfere simplify IN OUT (--target N | --ratio R | --renderer-max N) [--step P --process process.json]
                    [--regions FILE] [--features IDS] [--lock | --feature-mode weight|last|lock] [--sharp-angle DEG]
-                   [--seams all|features|none]
+                   [--seams all|auto|features|none]
                    [--linear-deflection D] [--angular-deflection A] [--parts-dir DIR] [--format F]
                    [--check-self-intersections] [--no-intersection-guard | --strict-intersection-guard] [--no-error]
                    [--json REPORT] [--threads N]
@@ -360,7 +362,7 @@ interfere features PART.step [--json REPORT] [--aag] [--library lib.json] [--rul
 | `--features IDS` | comma-separated face/region ids kept in addition to the step's |
 | `--lock` | hard locks instead of the paper's cost weighting (= `--feature-mode lock`) |
 | `--feature-mode M` | `weight` (paper, default), `last` (feature edges strictly last), `lock` |
-| `--seams S` | face seams kept: `all` (default), `features` (the borders of assembly-feature faces only), `none` (face ids as tags only) |
+| `--seams S` | face seams kept: `all` (default), `auto` (all if the budget can be met so, else as `features`), `features` (the borders of assembly-feature faces only), `none` (face ids as tags only) |
 | `--sharp-angle DEG` | plain mesh without regions: keep edges sharper than DEG |
 | `--linear-deflection`, `--angular-deflection` | STEP tessellation (0 = 0.1 % of the diagonal; radians) |
 | `--parts-dir DIR` | STEP input: also write each simplified part once, in part coordinates, as `DIR/<part>_<name>.<OUT's extension>` with its own face ids, feature tags and error bound; the report's `cad.instances[].placement` places them (a renderer instances them instead of loading the merged OUT) |
@@ -378,12 +380,12 @@ written atomically and only after every input was validated.
 **`simplify` report**: `input_triangles`, `target_triangles`, `output_triangles`, `output_vertices`, `reached`,
 `collapses`, `rejected` {`link_condition`, `flipped_normal`, `self_intersection`}, `guard_rerun`, `guard_reruns`, `input_contact_pairs` (the input's own intersecting or touching pairs: all of them where the guard refused collapses, else those near the plain result's new pairs; 0 when none were looked for), `inherited_pairs` (intersecting pairs of the result inside the input's contact zone, not both as in the input), `degenerate_triangles` (input triangles with two corners at one position, dropped with a warning; all degenerate is an error), `vertices` {`welded_input`,
 `seam`, `corner`, `locked`}, `feature_mode`, `feature_faces`, `feature_triangles` {`input`, `output`},
-`seams`, `max_unmodified_cost`, `bbox_diagonal`, `hausdorff`, `hausdorff_features` (null without features), `error_bound`,
+`seams`, `seams_relaxed_at` (`--seams auto`: the fewest triangles every seam allowed, when that was above the budget; 0 otherwise; STEP input: summed over the parts × instances), `max_unmodified_cost`, `bbox_diagonal`, `hausdorff`, `hausdorff_features` (null without features), `error_bound`,
 `self_intersections` (with the flag), `seconds` {`simplify`, `total`, `phases` [{`phase`, `seconds`}] (wall time
 of simplify()'s phases, in order; summed over the parts of a STEP input)}, `warnings`; for STEP input `cad` {`parts`
 [{`name`, `faces`, `triangles`, `features`, `assembly_feature_faces`}], `instances` [{`name`, `part`, `path`,
 `face_id_offset`, `placement` (3×4 [R|t], part → world), `in_step`, `simplified_part`}], `step`, `units`, `file_length_units`, `warnings`}, `budget_rounds` and `parts_simplified` [{`part`, `model_part`, `name`, `file` (with `--parts-dir`), `instances`, `input_triangles`,
-`target_triangles`, `output_triangles`, `feature_triangles`, `hausdorff`, `error_bound`, `hausdorff_features`, `guard_rerun`, `guard_reruns`, `input_contact_pairs`, `inherited_pairs`,
+`target_triangles`, `output_triangles`, `feature_triangles`, `hausdorff`, `error_bound`, `hausdorff_features`, `guard_rerun`, `guard_reruns`, `input_contact_pairs`, `inherited_pairs`, `seams_relaxed_at`,
 `self_intersections` (with the flag; for STEP input the report's count is the sum over parts × instances)}]. Face
 ids of a multi-instance STEP are offset per instance.
 
@@ -414,7 +416,7 @@ C++: `interfere/simplify/qem.h` (`simplify`, `SimplifyOptions`, `SimplifyResult`
 `cad/pipeline.h`. Python: `interfere.simplify(mesh, target=0, ratio=0, face_ids=[], feature_faces=[],
 lock=False, sharp_angle=0, prevent_self_intersections=True, measure_error=True, feature_mode="weight",
 inherit_input_contacts=True, seams="all")` → `SimplifyResult` (`.mesh`, `.face_ids`, `.hausdorff`, `.hausdorff_features`,
-`.error_bound`, `.guard_rerun`, `.guard_reruns`, `.input_contact_pairs`, `.inherited_pairs`, `.phases`
+`.error_bound`, `.guard_rerun`, `.guard_reruns`, `.input_contact_pairs`, `.inherited_pairs`, `.seams_relaxed_at`, `.phases`
 [(phase, seconds)], counters), `interfere.hausdorff(a, b)` (sampled a→b, b→a), `interfere.distance_bound(a, b)`,
 `interfere.write_tagged_mesh(path, mesh, face_ids=[], feature_faces=[], error_bound=-1)`,
 `interfere.read_error_bound(path)`, `interfere.write_glb(path, [(name, mesh, face_ids, feature_faces,

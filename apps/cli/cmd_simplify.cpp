@@ -184,7 +184,8 @@ Expected<SimplifyResult> simplify_parts(const cad::Prepared& prep, std::size_t t
                             {"feature_triangles", {{"input", d.feature_triangles_in}, {"output", d.feature_triangles_out}}},
                             {"hausdorff", d.hausdorff}, {"error_bound", d.error_bound}, {"hausdorff_features", d.hausdorff_features < 0 ? nlohmann::json(nullptr) : nlohmann::json(d.hausdorff_features)},
                             {"guard_rerun", d.guard_rerun}, {"guard_reruns", d.guard_reruns},
-                            {"input_contact_pairs", d.input_contact_pairs}, {"inherited_pairs", d.inherited_pairs}});
+                            {"input_contact_pairs", d.input_contact_pairs}, {"inherited_pairs", d.inherited_pairs},
+                            {"seams_relaxed_at", d.seams_relaxed_at}});
     if (count_self) {
       const std::size_t x = count_self_intersections(d.mesh);
       parts_report.back()["self_intersections"] = x;
@@ -194,6 +195,7 @@ Expected<SimplifyResult> simplify_parts(const cad::Prepared& prep, std::size_t t
     all.rejected_intersection += d.rejected_intersection, all.guard_rerun = all.guard_rerun || d.guard_rerun;
     all.guard_reruns = std::max(all.guard_reruns, d.guard_reruns);
     all.input_contact_pairs += d.input_contact_pairs * p.instances, all.inherited_pairs += d.inherited_pairs * p.instances;
+    all.seams_relaxed_at += d.seams_relaxed_at * p.instances;
     all.seam_vertices += d.seam_vertices, all.corner_vertices += d.corner_vertices, all.locked_vertices += d.locked_vertices;
     all.input_vertices_welded += d.input_vertices_welded, all.degenerate_triangles += d.degenerate_triangles;
     for (const auto& [name, sec] : d.phases) {  // summed over the parts
@@ -291,7 +293,8 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
   if (o.seams == "all") so.seams = SeamMode::all;
   else if (o.seams == "features") so.seams = SeamMode::features;
   else if (o.seams == "none") so.seams = SeamMode::none;
-  else throw InputError("--seams must be all, features or none, not '" + o.seams + "'");
+  else if (o.seams == "auto") so.seams = SeamMode::as_needed;
+  else throw InputError("--seams must be all, auto, features or none, not '" + o.seams + "'");
   so.measure_error = !o.no_error;
   so.prevent_self_intersections = !o.no_guard;
   so.inherit_input_contacts = !o.strict_guard;
@@ -473,6 +476,7 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
                         {"corner", r.corner_vertices}, {"locked", r.locked_vertices}};
   report["feature_mode"] = so.feature_mode == FeatureMode::lock ? "lock" : so.feature_mode == FeatureMode::last ? "last" : "weight";
   report["seams"] = o.seams;
+  report["seams_relaxed_at"] = r.seams_relaxed_at;
   std::vector<std::uint32_t> ff = so.feature_faces;
   std::sort(ff.begin(), ff.end());
   ff.erase(std::unique(ff.begin(), ff.end()), ff.end());
@@ -575,8 +579,9 @@ void add_simplify_command(CLI::App& app, int& exit_code) {
   c->add_option("--features", o->features, "comma-separated face/region ids to keep (added to the step's features)");
   c->add_flag("--lock", o->lock, "hard-lock feature faces (bit-identical) instead of the paper's cost weighting");
   c->add_option("--seams", o->seams,
-                "face seams kept: all (default), features (the borders of assembly-feature faces only; a CAD part "
-                "of many small faces can go much lower) or none (face ids as tags only)");
+                "face seams kept: all (default), auto (all while the budget allows, then the borders of "
+                "assembly-feature faces only), features (those only: a CAD part of many small faces can go much "
+                "lower) or none (face ids as tags only)");
   c->add_option("--feature-mode", o->feature_mode,
                 "weight (paper: + maximum unmodified cost), last (feature edges strictly last) or lock");
   c->add_option("--sharp-angle", o->sharp_angle, "plain meshes: keep edges whose dihedral angle exceeds DEG degrees");

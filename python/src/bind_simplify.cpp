@@ -53,6 +53,7 @@ void bind_simplify(py::module_& m) {
       .def_readonly("guard_reruns", &SimplifyResult::guard_reruns)
       .def_readonly("input_contact_pairs", &SimplifyResult::input_contact_pairs)
       .def_readonly("inherited_pairs", &SimplifyResult::inherited_pairs)
+      .def_readonly("seams_relaxed_at", &SimplifyResult::seams_relaxed_at)
       .def_readonly("degenerate_triangles", &SimplifyResult::degenerate_triangles)
       .def_readonly("seam_vertices", &SimplifyResult::seam_vertices)
       .def_readonly("corner_vertices", &SimplifyResult::corner_vertices)
@@ -85,7 +86,8 @@ void bind_simplify(py::module_& m) {
         if (seams == "all") o.seams = SeamMode::all;
         else if (seams == "features") o.seams = SeamMode::features;
         else if (seams == "none") o.seams = SeamMode::none;
-        else throw py::value_error("seams must be all, features or none");
+        else if (seams == "auto") o.seams = SeamMode::as_needed;
+        else throw py::value_error("seams must be all, auto, features or none");
         o.sharp_angle_deg = sharp_angle;
         o.prevent_self_intersections = prevent_self_intersections;
         o.inherit_input_contacts = inherit_input_contacts;

@@ -69,7 +69,7 @@ class Simplify(unittest.TestCase):
     def test_seams_modes(self):
         s = itf.make_sphere(4000)
         faces = cap_faces(s)
-        for seams in ("all", "features", "none"):
+        for seams in ("all", "features", "none", "auto"):
             r = itf.simplify(s, target=400, face_ids=faces, feature_faces=[1], seams=seams, measure_error=False)
             self.assertEqual(len(r.mesh.triangles), 400)
             self.assertTrue(set(r.face_ids) <= set(faces))

@@ -181,7 +181,7 @@ Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOp
   // The face ids the simplifier constrains (SimplifyOptions::seams): all; the feature faces', the
   // others as one; none. `face` stays the output's tag.
   std::vector<std::uint32_t> seam_face;
-  if (options.seams == SeamMode::all) {
+  if (options.seams == SeamMode::all || options.seams == SeamMode::as_needed) {
     seam_face = face;
   } else {
     std::uint32_t other = std::numeric_limits<std::uint32_t>::max();  // an id no feature face has
@@ -375,6 +375,22 @@ Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOp
                          " degenerate triangles (two corners at one position) dropped");
   r.reached = r.mesh.num_triangles() == target;
   const bool one_below = !r.reached && r.mesh.num_triangles() + 1 == target && nt - r.degenerate_triangles > target;
+  // SeamMode::as_needed: with every seam kept the budget is out of reach; again with the borders of
+  // the feature faces only (the error is measured once, on the result returned).
+  if (options.seams == SeamMode::as_needed && !r.reached && !one_below && r.mesh.num_triangles() > target) {
+    SimplifyOptions o = options;
+    o.seams = SeamMode::features;
+    auto again = simplify_in_frame(mesh, o, target, &box);
+    if (!again) return again;
+    again->seams_relaxed_at = r.mesh.num_triangles();
+    again->warnings.insert(again->warnings.begin(),
+                           "with every face seam kept the budget " + std::to_string(target) + " was out of reach (" +
+                               std::to_string(r.mesh.num_triangles()) +
+                               " triangles at most): only the borders of assembly-feature faces were kept "
+                               "(--seams auto)");
+    again->phases.insert(again->phases.begin(), {"every seam kept (first attempt)", phase_total(r)});
+    return again;
+  }
   if (one_below)
     r.warnings.push_back("budget " + std::to_string(target) + " not reached exactly: " +
                          std::to_string(r.mesh.num_triangles()) +
@@ -405,8 +421,8 @@ Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOp
   why += "; " + std::to_string(r.rejected_link) + " collapses refused as non-manifold, " +
          std::to_string(r.rejected_flip) + " as flipping a triangle";
   if (options.seams == SeamMode::all && splitting && r.corner_vertices + r.seam_vertices > 0)
-    why += "; --seams features (SimplifyOptions::seams) lets the seams between faces that are not assembly "
-           "features go";
+    why += "; --seams auto or features (SimplifyOptions::seams) lets the seams between faces that are not "
+           "assembly features go";
   const std::string missed =
       "budget " + std::to_string(target) + " not reached: " + std::to_string(r.mesh.num_triangles()) + " triangles remain";
   if (!r.reached && r.rejected_intersection > 0 && r.mesh.num_triangles() > target) {

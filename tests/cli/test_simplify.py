@@ -206,7 +206,7 @@ class Simplify(unittest.TestCase):
         with open(path("tiles.txt"), "w") as out:
             out.write("\n".join(map(str, faces)) + "\n")
         reports = {}
-        for seams in ("all", "features"):
+        for seams in ("all", "features", "auto"):
             code, _, err = run("simplify", path("tiles.obj"), path("tiles_%s.ply" % seams), "--target", "100",
                                "--regions", path("tiles.txt"), "--features", "27", "--seams", seams, "--json",
                                path("tiles_%s.json" % seams))
@@ -214,11 +214,14 @@ class Simplify(unittest.TestCase):
             reports[seams] = load_json("tiles_%s.json" % seams)
             self.assertEqual(reports[seams]["seams"], seams)
         self.assertFalse(reports["all"]["reached"])
-        self.assertTrue(any("--seams features" in w for w in reports["all"]["warnings"]))
+        self.assertTrue(any("--seams auto or features" in w for w in reports["all"]["warnings"]))
         self.assertTrue(reports["features"]["reached"])
         self.assertEqual(reports["features"]["output_triangles"], 100)
+        self.assertTrue(reports["auto"]["reached"])  # every seam until they held, then the features' only
+        self.assertEqual(reports["auto"]["seams_relaxed_at"], reports["all"]["output_triangles"])
+        self.assertEqual(reports["features"]["seams_relaxed_at"], 0)
         self.assert_input_error("simplify", path("tiles.obj"), path("tiles_bad.ply"), "--target", "100", "--seams",
-                                "some", output=path("tiles_bad.ply"), message="--seams must be all, features or none")
+                                "some", output=path("tiles_bad.ply"), message="--seams must be all, auto, features or none")
 
     def assert_input_error(self, *args, output=None, message=None):
         if output and os.path.exists(output):

@@ -156,7 +156,7 @@ int entry(const std::uint8_t* data, std::size_t size) {
   if (flags & 32) o.guard_every_collapse = true;
   if (flags & 64) o.batched_passes = false;
   if (flags & 128) o.inherit_input_contacts = false;
-  o.seams = static_cast<interfere::SeamMode>(data[size - 1] % 3);  // (the last byte: decoding unchanged)
+  o.seams = static_cast<interfere::SeamMode>(data[size - 1] % 4);  // (the last byte: decoding unchanged)
   const std::string where = tag(o, shape);
 
   std::size_t live = 0;

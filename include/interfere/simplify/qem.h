@@ -38,6 +38,9 @@ enum class SeamMode {
   all,       ///< every seam (the default: B-Rep faces stay separable, their borders simplified as polylines)
   features,  ///< the borders of feature faces only: seams between two other faces may be simplified away
   none,      ///< none: face ids are per-triangle tags only
+  /// every seam if the budget can be met so; else (corners and seams hold the mesh above it) the
+  /// run is made again with `features` (the error is measured once, on the result returned)
+  as_needed,
 };
 
 struct SimplifyOptions {
@@ -135,6 +138,9 @@ struct SimplifyResult {
   /// Intersecting pairs of the result inside the input's contact zone that are not both as in the
   /// input (inherit_input_contacts): the input's contacts, moved.
   std::size_t inherited_pairs = 0;
+  /// SeamMode::as_needed: the fewest triangles reached with every seam kept, where that was above
+  /// the budget and the result is the run with the feature faces' borders only (0: every seam kept).
+  std::size_t seams_relaxed_at = 0;
   std::size_t seam_vertices = 0, corner_vertices = 0, locked_vertices = 0;
   std::size_t feature_triangles_in = 0, feature_triangles_out = 0;
   double max_unmodified_cost = 0;  ///< the largest initial edge cost: the feature offset (weight mode)

@@ -429,8 +429,25 @@ TEST(Simplify, SeamsOfNonFeatureFacesCanGoWhereTheirCornersHoldTheBudget) {
   EXPECT_FALSE(all.reached);  // two triangles at least for each of the 64 faces
   EXPECT_GT(all.corner_vertices, 70u);  // where 3 or more faces meet, or 2 and the boundary
   ASSERT_FALSE(all.warnings.empty());
-  EXPECT_NE(all.warnings.back().find("--seams features"), std::string::npos) << all.warnings.back();
-  for (SeamMode seams : {SeamMode::features, SeamMode::none}) {
+  EXPECT_NE(all.warnings.back().find("--seams auto or features"), std::string::npos) << all.warnings.back();
+  EXPECT_EQ(all.seams_relaxed_at, 0u);
+  // As needed: every seam could not meet the budget, so the result is the one of `features`, bit for
+  // bit, and says where every seam held.
+  const SimplifyResult as_needed = run(SeamMode::as_needed), features = run(SeamMode::features);
+  EXPECT_EQ(as_needed.seams_relaxed_at, all.mesh.num_triangles());
+  EXPECT_EQ(as_needed.mesh.positions, features.mesh.positions);
+  EXPECT_EQ(as_needed.mesh.triangles, features.mesh.triangles);
+  EXPECT_EQ(as_needed.hausdorff, features.hausdorff);
+  EXPECT_NE(as_needed.warnings.front().find("--seams auto"), std::string::npos);
+  // A budget every seam allows: the result of `all`.
+  auto reachable = [&](SeamMode seams) {
+    return *simplify(m, {.target_triangles = 600, .face_ids = face, .feature_faces = {27}, .seams = seams});
+  };
+  const SimplifyResult easy = reachable(SeamMode::as_needed), easy_all = reachable(SeamMode::all);
+  EXPECT_TRUE(easy.reached);
+  EXPECT_EQ(easy.seams_relaxed_at, 0u);
+  EXPECT_EQ(easy.mesh.triangles, easy_all.mesh.triangles);
+  for (SeamMode seams : {SeamMode::features, SeamMode::none, SeamMode::as_needed}) {
     const SimplifyResult r = run(seams);
     EXPECT_TRUE(r.reached);
     EXPECT_EQ(r.mesh.num_triangles(), 100u);
