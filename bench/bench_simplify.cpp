@@ -41,6 +41,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -397,6 +398,45 @@ void bm_casing_openmesh(benchmark::State& state, const std::string& step, bool l
   casing_report(state, *c, step, timed_openmesh(state, welded, casing_budget(welded), lock ? &locked : nullptr));
 }
 
+// CAD parts of many small faces (../shared/data/step, rows only when present), each part to 10 % of
+// its triangles, no features: every seam kept (`all`), as needed (`auto`), or the features' only.
+struct StepCase {
+  std::string name;
+  TriMesh mesh;
+  std::vector<std::uint32_t> face_ids;
+};
+
+std::vector<std::shared_ptr<const StepCase>> step_cases() {
+  const char* env = std::getenv("INTERFERE_BENCH_DATA");
+  const std::filesystem::path dir = env && *env ? std::filesystem::path(env) / ".." / "step"
+                                                : std::filesystem::path(INTERFERE_SOURCE_DIR) / ".." / "shared" / "data" / "step";
+  std::vector<std::shared_ptr<const StepCase>> out;
+  for (const char* name : {"gmsh_Block.stp", "nist_ftc_08_asme1_rc.stp", "gmsh_Zylkopf.stp", "nist_ctc_01_asme1_rd.stp"}) {
+    const auto file = dir / name;
+    if (!std::filesystem::exists(file)) continue;
+    auto m = cad::import_step(file);
+    if (!m || m->parts.size() != 1) continue;
+    auto c = std::make_shared<StepCase>();
+    c->name = std::filesystem::path(name).stem().string();
+    c->mesh = m->parts[0].mesh;
+    c->face_ids = m->parts[0].face_ids;
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
+void bm_step_seams(benchmark::State& state, std::shared_ptr<const StepCase> c, SeamMode seams) {
+  SimplifyOptions o{.ratio = 0.1, .face_ids = c->face_ids, .seams = seams};
+  o.measure_error = false;
+  TriMesh out;
+  if (!timed_simplify(state, c->mesh, o, out)) return;
+  report(state, c->mesh, TriMesh{}, out, norm(c->mesh.bounds().extent()));
+  const auto r = simplify(c->mesh, o);
+  state.counters["target"] = double(r->target_triangles);
+  state.counters["seams_relaxed_at"] = double(r->seams_relaxed_at);
+  state.counters["faces"] = double(std::set<std::uint32_t>(c->face_ids.begin(), c->face_ids.end()).size());
+}
+
 void bm_recognition(benchmark::State& state) {
   static cad::CadModel model;
   static bool ok = false;
@@ -489,6 +529,11 @@ int main(int argc, char** argv) {
           ->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->Iterations(3);
     }
   }
+  for (const auto& c : step_cases())
+    for (const auto& [mode, name] : {std::pair{SeamMode::all, "all"}, std::pair{SeamMode::as_needed, "auto"},
+                                     std::pair{SeamMode::features, "features"}})
+      benchmark::RegisterBenchmark(("Seams/" + std::string(name) + "/" + c->name).c_str(), bm_step_seams, c, mode)
+          ->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->Iterations(5);
   benchmark::RegisterBenchmark("Recognition/perforated_plate", bm_recognition)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime();
 #endif
   benchmark::Initialize(&argc, argv);
