@@ -581,8 +581,9 @@ def write_doc(raw):
         lines.append("")
         lines.append("With every seam kept, a part's corners (where three faces meet) and its seams, simplified as "
                      "polylines through their own vertices, hold it far above a low budget, and the last collapses "
-                     "along curved borders cost the most error (and often a guarded rerun): `auto` pays the first "
-                     "attempt once more and gives the result of `features`.")
+                     "along curved borders cost the most error (and often a guarded rerun): `auto` decides on its "
+                     "first, plain run (no check or rerun of it when it falls short; `relaxed at` is its count) and "
+                     "gives the result of `features`.")
         lines.append("")
     rec = r.get("Recognition/perforated_plate")
     if rec and "error" not in rec:

@@ -236,6 +236,25 @@ Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOp
   std::vector<std::uint32_t> out_face, out_origin;
   TriMesh out = compact(*sp, out_face, out_origin);
   clock.lap("output");
+  // SeamMode::as_needed: with every seam kept the budget is out of reach; again with the borders of
+  // the feature faces only (the error is measured once, on the result returned). Decided on the
+  // plain run (its checks and reruns are not needed then), and again after them.
+  const auto with_feature_seams = [&](std::size_t held) {
+    SimplifyOptions o = options;
+    o.seams = SeamMode::features;
+    auto again = simplify_in_frame(mesh, o, target, &box);
+    if (!again) return again;
+    again->seams_relaxed_at = held;
+    again->warnings.insert(again->warnings.begin(),
+                           "with every face seam kept the budget " + std::to_string(target) + " was out of reach (" +
+                               std::to_string(held) +
+                               " triangles at most): only the borders of assembly-feature faces were kept "
+                               "(--seams auto)");
+    clock.lap("check");
+    again->phases.insert(again->phases.begin(), {"every seam kept (first attempt)", phase_total(r)});
+    return again;
+  };
+  if (options.seams == SeamMode::as_needed && out.num_triangles() > target) return with_feature_seams(out.num_triangles());
   // Split along faces when face ids were given or regions were made; done beside the check (a
   // rerun, rare, splits its own result again).
   const bool splitting = have_faces || options.sharp_angle_deg > 0;
@@ -375,22 +394,8 @@ Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOp
                          " degenerate triangles (two corners at one position) dropped");
   r.reached = r.mesh.num_triangles() == target;
   const bool one_below = !r.reached && r.mesh.num_triangles() + 1 == target && nt - r.degenerate_triangles > target;
-  // SeamMode::as_needed: with every seam kept the budget is out of reach; again with the borders of
-  // the feature faces only (the error is measured once, on the result returned).
-  if (options.seams == SeamMode::as_needed && !r.reached && !one_below && r.mesh.num_triangles() > target) {
-    SimplifyOptions o = options;
-    o.seams = SeamMode::features;
-    auto again = simplify_in_frame(mesh, o, target, &box);
-    if (!again) return again;
-    again->seams_relaxed_at = r.mesh.num_triangles();
-    again->warnings.insert(again->warnings.begin(),
-                           "with every face seam kept the budget " + std::to_string(target) + " was out of reach (" +
-                               std::to_string(r.mesh.num_triangles()) +
-                               " triangles at most): only the borders of assembly-feature faces were kept "
-                               "(--seams auto)");
-    again->phases.insert(again->phases.begin(), {"every seam kept (first attempt)", phase_total(r)});
-    return again;
-  }
+  if (options.seams == SeamMode::as_needed && r.mesh.num_triangles() > target)
+    return with_feature_seams(r.mesh.num_triangles());  // (the guard held it back)
   if (one_below)
     r.warnings.push_back("budget " + std::to_string(target) + " not reached exactly: " +
                          std::to_string(r.mesh.num_triangles()) +

@@ -138,8 +138,9 @@ struct SimplifyResult {
   /// Intersecting pairs of the result inside the input's contact zone that are not both as in the
   /// input (inherit_input_contacts): the input's contacts, moved.
   std::size_t inherited_pairs = 0;
-  /// SeamMode::as_needed: the fewest triangles reached with every seam kept, where that was above
-  /// the budget and the result is the run with the feature faces' borders only (0: every seam kept).
+  /// SeamMode::as_needed: the fewest triangles reached with every seam kept (by the plain run, or by
+  /// the guarded rerun that followed), where that was above the budget and the result is the run
+  /// with the feature faces' borders only (0: every seam kept).
   std::size_t seams_relaxed_at = 0;
   std::size_t seam_vertices = 0, corner_vertices = 0, locked_vertices = 0;
   std::size_t feature_triangles_in = 0, feature_triangles_out = 0;
