@@ -579,7 +579,7 @@ void add_simplify_command(CLI::App& app, int& exit_code) {
   c->add_option("--features", o->features, "comma-separated face/region ids to keep (added to the step's features)");
   c->add_flag("--lock", o->lock, "hard-lock feature faces (bit-identical) instead of the paper's cost weighting");
   c->add_option("--seams", o->seams,
-                "face seams kept: all (default), auto (all while the budget allows, then the borders of "
+                "face seams kept: all (default), auto (all if the budget can be met so, else the borders of "
                 "assembly-feature faces only), features (those only: a CAD part of many small faces can go much "
                 "lower) or none (face ids as tags only)");
   c->add_option("--feature-mode", o->feature_mode,
@@ -592,10 +592,12 @@ void add_simplify_command(CLI::App& app, int& exit_code) {
                 "extension> (the report's cad.instances place them)");
   c->add_option("--format", o->format, "output format (stl, stl-ascii, obj, ply, ply-ascii, off; default by extension)");
   c->add_flag("--check-self-intersections", o->check_self, "count self-intersections of the result (engine clash)");
-  c->add_flag("--no-intersection-guard", o->no_guard, "plain QEM: no self-intersection check of the result and no guarded rerun");
+  auto* no_guard = c->add_flag("--no-intersection-guard", o->no_guard,
+                               "plain QEM: no self-intersection check of the result and no guarded rerun");
   c->add_flag("--strict-intersection-guard", o->strict_guard,
               "refuse every new intersecting pair, also where the input's own contacts (cracks, touching or "
-              "penetrating bodies) move (default: those are inherited within their zone)");
+              "penetrating bodies) move (default: those are inherited within their zone)")
+      ->excludes(no_guard);
   c->add_flag("--no-error", o->no_error, "skip the Hausdorff measurement (error_bound is then -1)");
   c->add_option("--json", o->json, "write the JSON report here");
   c->add_option("--threads", o->threads, "worker threads (0 = all cores)");
