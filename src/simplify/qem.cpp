@@ -379,9 +379,8 @@ Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOp
     }
   }
   clock.lap("check");
-  qem::Simplifier& s = *sp;
-  for (std::size_t t = 0; t < nt; ++t)
-    if (!s.dead_[t]) r.feature_triangles_out += feature_tri[t];
+  sp.reset();  // (its memory, about 150 bytes per input triangle, is not needed for the error)
+  for (std::uint32_t t : out_origin) r.feature_triangles_out += feature_tri[t];
   if (splitting) {
     r.mesh = split.num_triangles() == out.num_triangles() ? std::move(split) : split_by_face(out, out_face);
   } else {
@@ -456,14 +455,9 @@ Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOp
       const std::vector<std::uint32_t>& of = have_faces ? r.face_ids : std::vector<std::uint32_t>{};
       for (std::uint32_t t = 0; t < r.mesh.num_triangles(); ++t)
         if (!of.empty() && std::binary_search(features.begin(), features.end(), of[t])) fout.push_back(t);
-      if (!have_faces) {  // regions from sharp edges: recompute the output's region of each triangle
-        std::uint32_t i = 0;
-        for (std::uint32_t t = 0; t < nt; ++t) {
-          if (s.dead_[t]) continue;
-          if (feature_tri[t]) fout.push_back(i);
-          ++i;
-        }
-      }
+      if (!have_faces)  // regions from sharp edges: the region of each output triangle's input triangle
+        for (std::uint32_t i = 0; i < out_origin.size(); ++i)
+          if (feature_tri[out_origin[i]]) fout.push_back(i);
       if (fout.empty()) {
         r.hausdorff_features = std::numeric_limits<double>::infinity();
       } else {
