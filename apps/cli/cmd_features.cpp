@@ -32,11 +32,6 @@ struct FeaturesCliOptions {
 
 #ifdef INTERFERE_HAS_CAD
 nlohmann::json vec_json(const Vec3& v) { return {v.x, v.y, v.z}; }
-std::string fmt_double(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.6g", v);
-  return b;
-}
 
 int run_features(const FeaturesCliOptions& o) {
   using namespace interfere::cad;
@@ -107,13 +102,13 @@ int run_features(const FeaturesCliOptions& o) {
       jp["features"].push_back(jf);
       const std::string faces = fmt::format("{}", fmt::join(f.faces, ","));
       std::vector<std::string> radius_texts;
-      for (double r : f.radii) radius_texts.push_back(fmt_double(r));
+      for (double r : f.radii) radius_texts.push_back(short_number(r));
       const std::string radii = fmt::format("{}", fmt::join(radius_texts, ","));
       // The axis as a point and a direction (display: components within 1e-12 of 0 shown as 0).
       std::string axis;
       if (norm(f.axis) > 0) {
         const auto v = [](const Vec3& p) {
-          const auto c = [](double x) { return fmt_double(std::fabs(x) < 1e-12 ? 0.0 : x); };
+          const auto c = [](double x) { return short_number(std::fabs(x) < 1e-12 ? 0.0 : x); };
           return "(" + c(p.x) + ", " + c(p.y) + ", " + c(p.z) + ")";
         };
         axis = " axis " + v(f.axis_point) + " dir " + v(f.axis);

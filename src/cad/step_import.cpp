@@ -60,12 +60,6 @@ namespace {
 
 constexpr double kMinDeflection = 1e-7;  // mm: Precision::Confusion()
 
-std::string fmt_number(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%g", v);
-  return b;
-}
-
 std::string label_name(const TDF_Label& l) {
   Handle(TDataStd_Name) n;
   if (l.FindAttribute(TDataStd_Name::GetID(), n)) {
@@ -200,10 +194,10 @@ Expected<CadModel> import_step(const std::filesystem::path& path, const ImportOp
   // BRepMesh refuses deflections below Precision::Confusion() / Precision::Angular().
   if (!(options.linear_deflection == 0 || (options.linear_deflection >= kMinDeflection &&
                                            std::isfinite(options.linear_deflection))))
-    return Error{.file = file, .reason = "linear deflection " + fmt_number(options.linear_deflection) +
+    return Error{.file = file, .reason = "linear deflection " + short_number(options.linear_deflection) +
                                          ": give 0 (0.1 % of each part's diagonal) or at least 1e-7 mm"};
   if (!(options.angular_deflection >= 1e-6 && options.angular_deflection <= std::numbers::pi))
-    return Error{.file = file, .reason = "angular deflection " + fmt_number(options.angular_deflection) +
+    return Error{.file = file, .reason = "angular deflection " + short_number(options.angular_deflection) +
                                          ": give radians in [1e-6, pi]"};
   {
     std::ifstream in(path, std::ios::binary);

@@ -1,5 +1,7 @@
 #include "interfere/core/error.h"
 
+#include <cstdio>
+
 namespace interfere {
 
 // Out of line, with the warning silenced here only: GCC 12 reports a false -Wrestrict (bug 105651)
@@ -16,6 +18,12 @@ std::string Error::message() const {
   if (byte >= 0) m.append("byte ").append(std::to_string(byte)).append(": ");
   m.append(reason);
   return m;
+}
+
+std::string short_number(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%g", v);
+  return b;
 }
 
 }  // namespace interfere

@@ -23,12 +23,6 @@
 namespace interfere {
 namespace {
 
-std::string number(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%g", v);
-  return b;
-}
-
 std::size_t budget_of(const TriMesh& mesh, const SimplifyOptions& o, Error& err) {
   const std::size_t n = mesh.num_triangles();
   if (o.target_triangles > 0) {
@@ -41,12 +35,12 @@ std::size_t budget_of(const TriMesh& mesh, const SimplifyOptions& o, Error& err)
   }
   if (!(o.ratio > 0 && o.ratio <= 1)) {
     err.reason = o.ratio == 0 ? "no triangle budget: give target_triangles > 0 or a ratio in (0, 1]"
-                              : "ratio must lie in (0, 1], got " + number(o.ratio);
+                              : "ratio must lie in (0, 1], got " + short_number(o.ratio);
     return 0;
   }
   const auto t = static_cast<std::size_t>(std::llround(o.ratio * static_cast<double>(n)));
   if (t == 0) {
-    err.reason = "ratio " + number(o.ratio) + " leaves no triangle of " + std::to_string(n);
+    err.reason = "ratio " + short_number(o.ratio) + " leaves no triangle of " + std::to_string(n);
     return 0;
   }
   return t;
@@ -129,7 +123,7 @@ Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& op
     return Error{.reason = "face_ids has " + std::to_string(options.face_ids.size()) + " entries for " +
                            std::to_string(nt) + " triangles"};
   if (!(options.sharp_angle_deg >= 0 && options.sharp_angle_deg < 180))
-    return Error{.reason = "sharp angle " + number(options.sharp_angle_deg) +
+    return Error{.reason = "sharp angle " + short_number(options.sharp_angle_deg) +
                            " degrees: give a dihedral angle in (0, 180), or 0 for no sharp-edge regions"};
   Error err;
   const std::size_t target = budget_of(mesh, options, err);

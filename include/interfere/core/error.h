@@ -18,6 +18,9 @@ struct Error {
   std::string message() const;
 };
 
+/// v as printf's %g (6 significant digits): the numbers of reasons, warnings and listings.
+std::string short_number(double v);
+
 /// A value or an Error (std::expected is C++23; this is the subset we need).
 template <class T>
 class Expected {
