@@ -88,6 +88,16 @@ def rerun_cell(b):
     return "—" if "guard_rerun" not in b else ("yes" if b["guard_rerun"] else "no")
 
 
+def rows_of(r, names, line, error_line):
+    """One table line per benchmark row: line(name's parts, row), or error_line(parts, error)."""
+    out = []
+    for name in names:
+        b = r[name]
+        parts = name.split("/")
+        out.append(error_line(parts, b["error"]) if "error" in b else line(parts, b))
+    return out
+
+
 def verdict(ok):
     return "**PASS**" if ok else "**MISS**"
 
@@ -538,15 +548,11 @@ def write_doc(raw):
         lines.append("")
         lines.append("| mesh | tool | time (ms) | triangles in → out | hausdorff_rel | self_x (own) | guard rerun |")
         lines.append("|---|---|---:|---:|---:|---:|---:|")
-        for name in real:
-            b = r[name]
-            _, tool, mesh = name.split("/")[:3]
-            if "error" in b:
-                lines.append(f"| {mesh} | {tool} | error: {b['error']} | | | | |")
-                continue
-            rerun = rerun_cell(b)
-            lines.append(f"| {mesh} | {tool} | {b['ms']:.2f} | {int(b['tri_in'])} → {int(b['tri_out'])} | "
-                         f"{fmt(b['hausdorff_rel'])} | {int(b['self_x'])} ({int(b['self_x_in'])}) | {rerun} |")
+        lines += rows_of(
+            r, real,
+            lambda p, b: (f"| {p[2]} | {p[1]} | {b['ms']:.2f} | {int(b['tri_in'])} → {int(b['tri_out'])} | "
+                          f"{fmt(b['hausdorff_rel'])} | {int(b['self_x'])} ({int(b['self_x_in'])}) | {rerun_cell(b)} |"),
+            lambda p, e: f"| {p[2]} | {p[1]} | error: {e} | | | | |")
         lines.append("")
         lines.append("Where a mesh has intersections of its own, the strict guard refuses collapses next to them "
                      "and makes more elsewhere (the Newell teapot: a larger error than unchecked; "
@@ -571,16 +577,12 @@ def write_doc(raw):
         lines.append("")
         lines.append("| part | faces | seams | time (ms) | triangles in → out (budget) | hausdorff_rel | relaxed at | guard rerun |")
         lines.append("|---|---:|---|---:|---:|---:|---:|---:|")
-        for name in seams:
-            b = r[name]
-            _, mode, part = name.split("/")[:3]
-            if "error" in b:
-                lines.append(f"| {part} | | {mode} | error: {b['error']} | | | | |")
-                continue
-            relaxed = int(b.get("seams_relaxed_at", 0))
-            lines.append(f"| {part} | {int(b['faces'])} | {mode} | {b['ms']:.2f} | {int(b['tri_in'])} → "
-                         f"{int(b['tri_out'])} ({int(b['target'])}) | {fmt(b['hausdorff_rel'])} | "
-                         f"{relaxed if relaxed else '—'} | {rerun_cell(b)} |")
+        lines += rows_of(
+            r, seams,
+            lambda p, b: (f"| {p[2]} | {int(b['faces'])} | {p[1]} | {b['ms']:.2f} | {int(b['tri_in'])} → "
+                          f"{int(b['tri_out'])} ({int(b['target'])}) | {fmt(b['hausdorff_rel'])} | "
+                          f"{int(b.get('seams_relaxed_at', 0)) or '—'} | {rerun_cell(b)} |"),
+            lambda p, e: f"| {p[2]} | | {p[1]} | error: {e} | | | | |")
         lines.append("")
         lines.append("With every seam kept, a part's corners (where three faces meet) and its seams, simplified as "
                      "polylines through their own vertices, hold it far above a low budget, and the last collapses "
