@@ -204,10 +204,10 @@ quadric-error-metric edge collapses while the faces that take part in the curren
    10^-12 of the triangles' size, or the two boxes' overlap for a touch) is the input's contact moved, inherited
    and allowed (`inherited_pairs` counts them); every other new pair is refused as before, so the guarantee is: no
    intersection outside the neighbourhood of the input's own. The zone is made only where the plain result has
-   new pairs (from the input's triangles near where each meets: the box of its segment grown by the segment and
-   a quarter of the larger triangle; about 5 ms at 10^6 triangles instead of the input's whole self-clash,
-   145 ms; the casing's 307 folds of `--feature-mode last`: 20,662 of its 35,516 triangles, 4 ms), grown when a
-   rerun finds a pair outside it; unit
+   new pairs (from the input's triangles near where each meets: the box of its segment grown by its own
+   diagonal; about 5 ms at 10^6 triangles instead of the input's whole self-clash, 145 ms; the casing's 307
+   folds of `--feature-mode last`: 1,737 of its 35,516 triangles, 0.5 ms), grown when a rerun finds a pair
+   outside it; unit
    tests `Simplify.InheritedIntersectionsStayNearTheInputsCrossingCurve` (every inherited crossing within 0.3 of
    the two spheres' exact crossing circle), `Simplify.TheInputsOwnContactsAreInheritedAndNoOtherIntersectionIsAdded`,
    `ContactZone.*`; CGAL oracle `SimplifyOracle.*`: every intersecting pair of the results, found by brute force
@@ -526,8 +526,8 @@ def write_doc(raw):
                  "moved triangles). Before 2026-11-26 the rerun guarded the pairs' neighbourhoods, which here cover the "
                  "whole part, with the batched passes again: about 100 ms (250 ms before 2026-11-24). Since "
                  "2026-11-26 the new pairs first make the input's contact zone where they meet (the casing has no "
-                 "contacts of its own: a self-clash of 20,662 of its 35,516 triangles finds none, 6-8 ms of the "
-                 "`last` row's time). The uniform "
+                 "contacts of its own: a self-clash of the 1,737 of its 35,516 triangles near them finds none, "
+                 "about 1 ms). The uniform "
                  "grid is a poor fit for these mixed sizes (tiny kept feature triangles beside huge ones: half the "
                  "entries scanned are dead or repeated, and 6 of 7 live ones miss the moved box); a hierarchy "
                  "there is open work. The 1e6 → 10 % rerun also takes the heap-guarded path: the plain run's heap "

@@ -161,7 +161,7 @@ std::vector<Aabb> ContactZone::reach(const TriMesh& m, const std::vector<std::pa
   for (const auto& [x, y] : pairs) {
     const Aabb b = meet(m.corners(x), m.corners(y));
     if (b.empty()) continue;
-    const double g = norm(b.extent()) + 0.25 * std::max(norm(m.triangle_box(x).extent()), norm(m.triangle_box(y).extent()));
+    const double g = norm(b.extent());
     out.push_back({b.lo - Vec3{g, g, g}, b.hi + Vec3{g, g, g}});
   }
   return out;

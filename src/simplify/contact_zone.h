@@ -65,8 +65,8 @@ class ContactZone {
   /// empty when they do not meet.
   static Aabb meet(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b);
   /// Where a zone is needed for these intersecting pairs of m: the box where each meets, grown by
-  /// its diagonal and a quarter of the larger triangle's (an input pair whose grown box holds that
-  /// meet has a triangle there, unless it is larger than that).
+  /// its diagonal (an input pair whose grown box holds that meet has a triangle there unless the
+  /// pair is larger than the meet; a pair missed is only refused: conservative).
   static std::vector<Aabb> reach(const TriMesh& m, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs);
   /// Whether triangles a and b, which intersect, meet only inside one zone box (conservative:
   /// false when unsure).
