@@ -446,12 +446,10 @@ Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOp
       std::vector<std::uint32_t> fin, fout;
       for (std::uint32_t t = 0; t < nt; ++t)
         if (feature_tri[t]) fin.push_back(t);
-      const std::vector<std::uint32_t>& of = have_faces ? r.face_ids : std::vector<std::uint32_t>{};
-      for (std::uint32_t t = 0; t < r.mesh.num_triangles(); ++t)
-        if (!of.empty() && std::binary_search(features.begin(), features.end(), of[t])) fout.push_back(t);
-      if (!have_faces)  // regions from sharp edges: the region of each output triangle's input triangle
-        for (std::uint32_t i = 0; i < out_origin.size(); ++i)
-          if (feature_tri[out_origin[i]]) fout.push_back(i);
+      // An output triangle is on a feature face when its input triangle is (face ids or sharp-edge
+      // regions alike; the output keeps the order of out_origin).
+      for (std::uint32_t i = 0; i < out_origin.size(); ++i)
+        if (feature_tri[out_origin[i]]) fout.push_back(i);
       if (fout.empty()) {
         r.hausdorff_features = std::numeric_limits<double>::infinity();
       } else {
