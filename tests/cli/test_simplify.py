@@ -39,6 +39,13 @@ def uv_sphere(lon=40, lat=21, bump=0.05):
     return v, f
 
 
+def write_process(name, steps):
+    """Writes a process description {"steps": steps} to the work file `name`; returns its path."""
+    with open(path(name), "w") as out:
+        json.dump({"steps": steps}, out)
+    return path(name)
+
+
 def read_glb(file_name):
     """GLB (binary glTF 2.0) checked for structure: header, two chunks, aligned views inside the BIN
     chunk, accessor counts; returns (json, bin bytes, reader(accessor) -> list of numbers)."""
@@ -347,9 +354,8 @@ class Features(unittest.TestCase):
         self.assertAlmostEqual(feats[0]["axis"]["point"][0], 20.0)
 
     def test_simplify_step_with_process_keeps_the_step_features(self):
-        with open(path("process.json"), "w") as out:
-            json.dump({"steps": [{"id": "P1", "parts": ["*"], "constraint": "screw"},
-                                 {"id": "P2", "parts": ["*"], "constraint": "bolt"}]}, out)
+        write_process("process.json", [{"id": "P1", "parts": ["*"], "constraint": "screw"},
+                                       {"id": "P2", "parts": ["*"], "constraint": "bolt"}])
         code, out, err = run("simplify", os.path.join(DATA, "counterbored_plate.step"), path("cb.ply"), "--ratio",
                              "0.6", "--step", "P1", "--process", path("process.json"), "--lock", "--json",
                              path("cb.json"), "--check-self-intersections")
@@ -360,8 +366,7 @@ class Features(unittest.TestCase):
         self.assertLessEqual(r["hausdorff_features"], 1e-12)
         self.assertEqual(r["self_intersections"], 0)
         # A step naming a part the model does not have keeps nothing of it: a warning, not silence.
-        with open(path("typo.json"), "w") as out:
-            json.dump({"steps": [{"id": "P1", "parts": ["plaet"], "constraint": "screw"}]}, out)
+        write_process("typo.json", [{"id": "P1", "parts": ["plaet"], "constraint": "screw"}])
         code, _, err = run("simplify", os.path.join(DATA, "counterbored_plate.step"), path("typo.ply"), "--ratio",
                            "0.6", "--step", "P1", "--process", path("typo.json"), "--json", path("typo_r.json"))
         self.assertEqual(code, 0, err)
@@ -454,8 +459,7 @@ class Features(unittest.TestCase):
 
     def simplify_assembly_step(self, step, out, ratio):
         """Simplifies the test assembly to `ratio` with the process step `step` (id P1); the report."""
-        with open(path(out + ".process.json"), "w") as f:
-            json.dump({"steps": [step]}, f)
+        write_process(out + ".process.json", [step])
         code, _, err = run("simplify", os.path.join(DATA, "assembly.step"), path(out), "--ratio", ratio, "--step",
                            "P1", "--process", path(out + ".process.json"), "--json", path(out + ".json"))
         self.assertEqual(code, 0, err)
@@ -465,8 +469,7 @@ class Features(unittest.TestCase):
         # --step all: one import, one output and report per step, each identical to its own run.
         steps = [{"id": "P1", "parts": ["plate_2"], "constraint": "screw"},
                  {"id": "P2", "parts": ["shaft"], "constraint": "gear_shaft"}]
-        with open(path("all.process.json"), "w") as f:
-            json.dump({"steps": steps}, f)
+        write_process("all.process.json", steps)
         asm = os.path.join(DATA, "assembly.step")
         code, out, err = run("simplify", asm, path("all.ply"), "--ratio", "0.6", "--step", "all", "--process",
                              path("all.process.json"), "--json", path("all.json"), "--parts-dir", path("all_parts"))
@@ -490,8 +493,7 @@ class Features(unittest.TestCase):
     def test_features_step_all_lists_every_step(self):
         steps = [{"id": "P1", "parts": ["plate_2"], "constraint": "screw"},
                  {"id": "P2", "parts": ["shaft"], "constraint": "gear_shaft"}]
-        with open(path("fall.process.json"), "w") as f:
-            json.dump({"steps": steps}, f)
+        write_process("fall.process.json", steps)
         asm = os.path.join(DATA, "assembly.step")
         code, out, err = run("features", asm, "--process", path("fall.process.json"), "--step", "all", "--json",
                              path("fall.json"))
@@ -579,8 +581,7 @@ class Features(unittest.TestCase):
         self.assertEqual(code, 2)
         with open(path("rules.json"), "w") as out:
             json.dump({"rules": [{"name": "weld", "constraint": "w", "features": [{"type": "weld_seam"}]}]}, out)
-        with open(path("p.json"), "w") as out:
-            json.dump({"steps": [{"id": "P1", "constraint": "w"}]}, out)
+        write_process("p.json", [{"id": "P1", "constraint": "w"}])
         code, _, err = run("features", os.path.join(DATA, "counterbored_plate.step"), "--rules", path("rules.json"),
                            "--process", path("p.json"), "--step", "P1")
         self.assertEqual(code, 2)
