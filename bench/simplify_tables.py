@@ -234,9 +234,17 @@ quadric-error-metric edge collapses while the faces that take part in the curren
    seams (edges between different face ids), open boundaries and non-manifold edges are constrained: a vertex on
    two of them (a seam vertex) is only removed along one of them onto the other end, which stays put, so seams
    stay shared and are simplified as polylines through original vertices; a vertex on one or three or more
-   (a corner) is never removed. A CAD part of many small faces (fillets, chamfers, the NIST test parts) has so
-   many corners that a low budget cannot be met with every seam kept (`gmsh_Block.stp` of `../shared/data`,
-   533 faces: 12,070 → 2,718 triangles at most for a budget of 1,207, Hausdorff 12 % of the diagonal as the
+   (a corner) is never removed. **No face whose seams are kept vanishes**: a collapse that would remove the
+   last triangle of such a face (every face with `--seams all`, the feature faces with `features`) is refused
+   (`rejected.last_face_triangle`), so a small face (the half cones at the tip of a drilled hole, a narrow
+   fillet) may shrink to one triangle but its id and seams stay in the output (before 2026-11-26, 148 of the
+   664 faces of `nist_ctc_02` vanished at 10 %, 13 of 33 of `eight_cyl` at 3 %; an inner edge of a face never
+   removes its last triangle, so only seam collapses are checked: in the heap exactly, in the batched passes by
+   sending those next to a face of fewer than 128 triangles at the pass's start to the serial sweep, the same
+   for any thread count; unit test `Simplify.NoFaceWhoseSeamsAreKeptVanishes`). A CAD part of many small
+   faces (fillets, chamfers, the NIST test parts) has so many corners that a low budget cannot be met with
+   every seam kept (`gmsh_Block.stp` of `../shared/data`,
+   533 faces: 12,070 → 2,726 triangles at most for a budget of 1,207, Hausdorff 12 % of the diagonal as the
    last seam collapses cut across curved borders); `--seams features` (`SimplifyOptions::seams`) keeps only the
    borders of assembly-feature faces and lets the others' seams go (1,206 triangles, Hausdorff 1.9 %;
    `nist_ftc_08`: 7,102 → 710 instead of 1,102 at most), `--seams auto` keeps every seam when the budget can be
@@ -388,7 +396,7 @@ Exit status 0 on success, 2 on a usage or input error (the message names the fil
 written atomically and only after every input was validated.
 
 **`simplify` report**: `input_triangles`, `target_triangles`, `output_triangles`, `output_vertices`, `reached`,
-`collapses`, `rejected` {`link_condition`, `flipped_normal`, `self_intersection`}, `guard_rerun`, `guard_reruns`, `input_contact_pairs` (the input's own intersecting or touching pairs: all of them where the guard refused collapses, else those near the plain result's new pairs; 0 when none were looked for), `inherited_pairs` (intersecting pairs of the result inside the input's contact zone, not both as in the input), `degenerate_triangles` (input triangles with two corners at one position, dropped with a warning; all degenerate is an error), `vertices` {`welded_input`,
+`collapses`, `rejected` {`link_condition`, `flipped_normal`, `self_intersection`, `last_face_triangle` (collapses refused as they would remove a face's last triangle)}, `guard_rerun`, `guard_reruns`, `input_contact_pairs` (the input's own intersecting or touching pairs: all of them where the guard refused collapses, else those near the plain result's new pairs; 0 when none were looked for), `inherited_pairs` (intersecting pairs of the result inside the input's contact zone, not both as in the input), `degenerate_triangles` (input triangles with two corners at one position, dropped with a warning; all degenerate is an error), `vertices` {`welded_input`,
 `seam`, `corner`, `locked`}, `feature_mode`, `feature_faces`, `feature_triangles` {`input`, `output`},
 `seams`, `seams_relaxed_at` (`--seams auto`: the fewest triangles every seam allowed, when that was above the budget; 0 otherwise; STEP input: summed over the parts × instances), `max_unmodified_cost`, `bbox_diagonal`, `hausdorff`, `hausdorff_features` (null without features), `error_bound`,
 `self_intersections` (with the flag), `seconds` {`simplify`, `total`, `phases` [{`phase`, `seconds`}] (wall time

@@ -192,7 +192,8 @@ Expected<SimplifyResult> simplify_parts(const cad::Prepared& prep, std::size_t t
       self_total += x * p.instances;
     }
     all.collapses += d.collapses, all.rejected_link += d.rejected_link, all.rejected_flip += d.rejected_flip;
-    all.rejected_intersection += d.rejected_intersection, all.guard_rerun = all.guard_rerun || d.guard_rerun;
+    all.rejected_intersection += d.rejected_intersection, all.rejected_face += d.rejected_face;
+    all.guard_rerun = all.guard_rerun || d.guard_rerun;
     all.guard_reruns = std::max(all.guard_reruns, d.guard_reruns);
     all.input_contact_pairs += d.input_contact_pairs * p.instances, all.inherited_pairs += d.inherited_pairs * p.instances;
     all.seams_relaxed_at += d.seams_relaxed_at * p.instances;
@@ -466,7 +467,7 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
   report["reached"] = r.reached;
   report["collapses"] = r.collapses;
   report["rejected"] = {{"link_condition", r.rejected_link}, {"flipped_normal", r.rejected_flip},
-                        {"self_intersection", r.rejected_intersection}};
+                        {"self_intersection", r.rejected_intersection}, {"last_face_triangle", r.rejected_face}};
   report["guard_rerun"] = r.guard_rerun;
   report["guard_reruns"] = r.guard_reruns;
   report["input_contact_pairs"] = r.input_contact_pairs;

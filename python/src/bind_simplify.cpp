@@ -49,6 +49,7 @@ void bind_simplify(py::module_& m) {
       .def_readonly("rejected_link", &SimplifyResult::rejected_link)
       .def_readonly("rejected_flip", &SimplifyResult::rejected_flip)
       .def_readonly("rejected_intersection", &SimplifyResult::rejected_intersection)
+      .def_readonly("rejected_face", &SimplifyResult::rejected_face)
       .def_readonly("guard_rerun", &SimplifyResult::guard_rerun)
       .def_readonly("guard_reruns", &SimplifyResult::guard_reruns)
       .def_readonly("input_contact_pairs", &SimplifyResult::input_contact_pairs)

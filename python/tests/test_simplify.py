@@ -76,6 +76,15 @@ class Simplify(unittest.TestCase):
         with self.assertRaises(ValueError):
             itf.simplify(s, target=400, seams="some")
 
+    def test_no_face_vanishes(self):
+        # Single-triangle faces scattered over a sphere: each keeps a triangle; rejected_face counts
+        # the collapses refused for that.
+        s = itf.make_sphere(4000)
+        faces = [0 if t % 97 else 1 + t // 97 for t in range(len(s.triangles))]
+        r = itf.simplify(s, target=200, face_ids=faces, measure_error=False, prevent_self_intersections=False)
+        self.assertEqual(set(r.face_ids), set(faces))
+        self.assertGreater(r.rejected_face, 0)
+
     def test_locked_features_keep_their_triangles(self):
         s = itf.make_sphere(4000)
         faces = cap_faces(s)

@@ -418,6 +418,7 @@ Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOp
   if (r.locked_vertices > 0) why += ", " + std::to_string(r.locked_vertices) + " locked vertices";
   why += "; " + std::to_string(r.rejected_link) + " collapses refused as non-manifold, " +
          std::to_string(r.rejected_flip) + " as flipping a triangle";
+  if (r.rejected_face > 0) why += ", " + std::to_string(r.rejected_face) + " as removing a face's last triangle";
   if (options.seams == SeamMode::all && splitting && r.corner_vertices + r.seam_vertices > 0)
     why += "; --seams auto or features (SimplifyOptions::seams) lets the seams between faces that are not "
            "assembly features go";

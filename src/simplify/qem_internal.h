@@ -340,6 +340,15 @@ class Simplifier {
   // of another range's selected collapse.
   bool snapshot(std::uint32_t a, std::uint32_t b, Scratch& sc, std::uint32_t range = kNone) const;
   bool link_ok(std::uint32_t a, std::uint32_t b, Scratch& sc) const;
+  /// Every face losing triangles on ab keeps one (face_live_, exact: serial contexts only).
+  bool face_ok(std::uint32_t a, const Scratch& sc) const;
+  /// A batched pass's collapse along a seam that removes a triangle of a face with fewer than
+  /// kFragileFace triangles when the pass began: left to the serial sweep (face_ok there).
+  bool face_fragile(std::uint32_t a, const Scratch& sc) const;
+  static constexpr std::int32_t kFragileFace = 128;
+  /// Face ids dense (0..n-1, the same equalities) and their live triangles counted, when the mesh
+  /// has two faces or more (run's setup).
+  void count_faces();
   bool flip_ok(std::uint32_t keep, std::uint32_t remove, const Vec3& p, const Scratch& sc) const;
   /// Collapses b into a at p: the triangles on ab die (counted in `died`), b's others take a; a's
   /// new fan (live triangles) is left in `merged` for the caller to store.
@@ -418,7 +427,10 @@ class Simplifier {
   double feature_offset_ = 0;
   RadixHeap heap_;
   std::vector<std::uint32_t> merged_;
-  std::size_t rejected_link_ = 0, rejected_flip_ = 0, rejected_intersection_ = 0;
+  std::size_t rejected_link_ = 0, rejected_flip_ = 0, rejected_intersection_ = 0, rejected_face_ = 0;
+  /// Live triangles per (dense) face id, and their count when the current batched pass began;
+  /// empty: one face (nothing to keep).
+  std::vector<std::int32_t> face_live_, face_pass_;
   // Self-intersection guard: a uniform hash grid of triangle boxes (entries may be stale: every
   // candidate is re-checked against the current mesh).
   bool guard_ = false;

@@ -4,6 +4,7 @@
 // manifold, the normal-flip test, and the collapse itself on per-vertex triangle fans. Feature
 // weighting after He & Xu (SJTU 2023, §3.3). All but collapse/set_fan only read the mesh.
 #include <algorithm>
+#include <atomic>
 
 #include "qem_internal.h"
 
@@ -221,6 +222,41 @@ bool Simplifier::link_ok(std::uint32_t a, std::uint32_t b, Scratch& sc) const {
   return common == sc.shared;
 }
 
+// The triangles on ab (those of b's fan that hold a) die; each one's face must keep another.
+// At most a few: a face is counted once per dying triangle of it.
+bool Simplifier::face_ok(std::uint32_t a, const Scratch& sc) const {
+  if (face_live_.empty()) return true;
+  std::uint32_t seen[4];
+  std::int32_t dying[4];
+  int n = 0;
+  for (const Scratch::FanTri& f : sc.fan_b) {
+    if (f.tr[0] != a && f.tr[1] != a && f.tr[2] != a) continue;
+    const std::uint32_t face = face_[f.t];
+    int i = 0;
+    while (i < n && seen[i] != face) ++i;
+    if (i == n) {
+      if (n == 4) return false;  // (a non-manifold edge of many faces: not collapsed)
+      seen[n] = face, dying[n++] = 0;
+    }
+    if (face_live_[face] <= ++dying[i]) return false;
+  }
+  return true;
+}
+
+// Collapses along seams only: an inner edge of a face removes an interior vertex, whose closed fan
+// of three or more triangles lies in that face, and two of them die, so the face keeps one; a
+// batched pass's collapses have disjoint ends, so together they remove at most about half of the
+// triangles of a face of kFragileFace (a disc with i inner and l border vertices has 2i + l - 2
+// triangles; the pass makes at most (i + l) / 2 collapses in it, each removing an inner vertex and
+// two triangles or a border vertex and one) and the count at the pass's start decides, the same
+// for any thread count.
+bool Simplifier::face_fragile(std::uint32_t a, const Scratch& sc) const {
+  if (face_pass_.empty() || !sc.seam) return false;
+  for (const Scratch::FanTri& f : sc.fan_b)
+    if ((f.tr[0] == a || f.tr[1] == a || f.tr[2] == a) && face_pass_[face_[f.t]] < kFragileFace) return true;
+  return false;
+}
+
 namespace {
 bool normal_ok(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& pa, const Vec3& pb, const Vec3& pc,
                double min_cos) {
@@ -262,6 +298,8 @@ void Simplifier::collapse(std::uint32_t a, std::uint32_t b, const Vec3& p, const
     if (f.tr[0] == a || f.tr[1] == a || f.tr[2] == a) {
       dead_[f.t] = 1;
       ++died;
+      // (batched passes: ranges in parallel; the sum does not depend on the order)
+      if (!face_live_.empty()) std::atomic_ref<std::int32_t>(face_live_[face_[f.t]]).fetch_sub(1, std::memory_order_relaxed);
       continue;
     }
     for (std::uint32_t& w : tris_[f.t])

@@ -37,6 +37,7 @@ std::size_t Simplifier::apply_selected(const std::vector<std::pair<std::uint32_t
   const std::size_t per = range_length(n);
   const std::size_t ranges = (n + per - 1) / per;
   ++owner_pass_;
+  face_pass_ = face_live_;  // (face_fragile's counts: the pass's start)
   std::vector<std::size_t> bound(ranges + 1, 0);  // refs_ space for the grown fans of each range
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ranges, 1), [&](const tbb::blocked_range<std::size_t>& rg) {
     for (std::size_t c = rg.begin(); c < rg.end(); ++c)
@@ -51,7 +52,7 @@ std::size_t Simplifier::apply_selected(const std::vector<std::pair<std::uint32_t
   const std::size_t base = refs_.size();
   refs_.resize(base + bound[ranges]);
   struct RangeResult {
-    std::size_t died = 0, link = 0, flip = 0, intersection = 0;
+    std::size_t died = 0, link = 0, flip = 0, intersection = 0, face = 0;
     std::vector<std::uint32_t> changed, deferred;
   };
   std::vector<RangeResult> res(ranges + 1);
@@ -64,14 +65,20 @@ std::size_t Simplifier::apply_selected(const std::vector<std::pair<std::uint32_t
     if (sc.shared == 0) return true;
     Candidate c;
     if (!direction(a, b, sc.seam, c)) return true;
-    // Guarded collapses go to the serial sweep.
+    // Guarded collapses go to the serial sweep, and those that may remove a small face's last
+    // triangle (see face_fragile).
     if (end && guard_ && guarded(moved_box(a, b, c.p, sc))) return false;
+    if (end && face_fragile(a, sc)) return false;
     if (!link_ok(a, b, sc)) {
       ++out.link;
       return true;
     }
     if (!flip_ok(a, b, c.p, sc)) {
       ++out.flip;
+      return true;
+    }
+    if (!end && !face_ok(a, sc)) {
+      ++out.face;
       return true;
     }
     if (!end && guard_ && guard_refuses(a, b, c.p, sc)) {
@@ -131,6 +138,7 @@ std::size_t Simplifier::apply_selected(const std::vector<std::pair<std::uint32_t
   for (RangeResult& r : res) {
     live -= r.died;
     rejected_link_ += r.link, rejected_flip_ += r.flip, rejected_intersection_ += r.intersection;
+    rejected_face_ += r.face;
     applied += r.changed.size();
     changed.insert(changed.end(), r.changed.begin(), r.changed.end());
   }

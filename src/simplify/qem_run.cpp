@@ -158,6 +158,7 @@ void Simplifier::run(std::size_t target, SimplifyResult& r) {
     if (tr[0] == tr[1] || tr[1] == tr[2] || tr[0] == tr[2]) dead_[t] = 1, --live;
   }
   r.degenerate_triangles = nt - live;
+  count_faces();
   progress_from_ = live, progress_target_ = target;
   report_progress(live);
   vertex_quadrics();
@@ -210,6 +211,25 @@ void Simplifier::run(std::size_t target, SimplifyResult& r) {
   finish(list, live, target, r, clock);
 }
 
+void Simplifier::count_faces() {
+  face_live_.clear();
+  face_pass_.clear();
+  const std::size_t nt = tris_.size();
+  if (face_.size() != nt || nt == 0) return;
+  const auto [lo, hi] = std::minmax_element(face_.begin(), face_.end());
+  if (*lo == *hi) return;  // one face
+  if (*hi >= 2 * nt) {  // sparse ids (an `other` id near 2^32): renumbered, the same equalities
+    std::vector<std::uint32_t> ids(face_);
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    for (std::uint32_t& f : face_)
+      f = static_cast<std::uint32_t>(std::lower_bound(ids.begin(), ids.end(), f) - ids.begin());
+  }
+  face_live_.assign(*std::max_element(face_.begin(), face_.end()) + std::size_t{1}, 0);
+  for (std::size_t t = 0; t < nt; ++t)
+    if (!dead_[t]) ++face_live_[face_[t]];
+}
+
 void Simplifier::finish(EntryList& list, std::size_t live, std::size_t target, SimplifyResult& r, PhaseClock& clock) {
   if (handoff_check_) {  // a rerun that guards the heap only (see set_handoff_check)
     if (!handoff_check_()) {
@@ -226,6 +246,7 @@ void Simplifier::finish(EntryList& list, std::size_t live, std::size_t target, S
   clock.lap("heap");
   r.rejected_link = rejected_link_, r.rejected_flip = rejected_flip_;
   r.rejected_intersection = rejected_intersection_;
+  r.rejected_face = rejected_face_;
 }
 
 std::unique_ptr<Simplifier> Simplifier::resume(const Handoff& h, std::vector<Aabb> region, const ContactZone* zone,
@@ -299,6 +320,10 @@ void Simplifier::heap_loop(std::size_t target, std::size_t& live, SimplifyResult
     }
     if (!flip_ok(a, b, c.p, sc)) {
       ++rejected_flip_;
+      continue;
+    }
+    if (!face_ok(a, sc)) {
+      ++rejected_face_;
       continue;
     }
     if (guard_ && guard_refuses(a, b, c.p, sc)) {

@@ -230,6 +230,30 @@ class Simplify(unittest.TestCase):
         self.assert_input_error("simplify", path("tiles.obj"), path("tiles_bad.ply"), "--target", "100", "--seams",
                                 "some", output=path("tiles_bad.ply"), message="--seams must be all, auto, features or none")
 
+    def test_no_face_vanishes_with_its_seams_kept(self):
+        # 2 x 2 tiles of a bumpy sheet with 12 one-square faces (2 triangles each) inside them: QEM
+        # would flatten those away; with their seams kept each keeps a triangle at least.
+        n = 32
+        pos = [(i / n, j / n, 0.2 * math.sin(3 * i / n) * math.cos(2 * j / n)) for j in range(n + 1) for i in range(n + 1)]
+        tri, faces = [], []
+        small = {(3 + 8 * (k % 4), 5 + 10 * (k // 4)): 10 + k for k in range(12)}
+        for j in range(n):
+            for i in range(n):
+                a = j * (n + 1) + i
+                tri += [(a, a + 1, a + n + 2), (a, a + n + 2, a + n + 1)]
+                faces += [small.get((i, j), i // 16 + 2 * (j // 16))] * 2
+        write_obj("dots.obj", (pos, tri))
+        with open(path("dots.txt"), "w") as out:
+            out.write("\n".join(map(str, faces)) + "\n")
+        code, _, err = run("simplify", path("dots.obj"), path("dots.ply"), "--target", "60", "--regions",
+                           path("dots.txt"), "--format", "ply-ascii", "--json", path("dots.json"))
+        self.assertEqual(code, 0, err)
+        _, _, out_faces = read_ply_ascii("dots.ply")
+        self.assertEqual(sorted(set(face[4] for face in out_faces)), sorted(set(faces)))
+        r = load_json("dots.json")
+        self.assertGreater(r["rejected"]["last_face_triangle"], 0)
+        self.assertEqual(r["rejected"]["last_face_triangle"] > 0, "face's last triangle" in " ".join(r["warnings"]))
+
     def assert_input_error(self, *args, output=None, message=None):
         if output and os.path.exists(output):
             os.remove(output)

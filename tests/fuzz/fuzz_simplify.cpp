@@ -10,7 +10,8 @@
 // Checks:
 //  - simplify() fails only when the ratio leaves no triangle or every triangle is degenerate, with
 //    a reason;
-//  - the result has finite positions, indices in range, one face id per triangle (ids of the input);
+//  - the result has finite positions, indices in range, one face id per triangle (ids of the input),
+//    and every face whose seams are kept is still there;
 //  - no more triangles than the input's non-degenerate ones; `reached` means exactly the budget;
 //  - no self-intersection the input did not have: both triangles of every intersecting pair of the
 //    result are triangles of the input (same corners);
@@ -177,6 +178,18 @@ int entry(const std::uint8_t* data, std::size_t size) {
     FUZZ_CHECK(r->face_ids.size() == out.num_triangles(), "face ids do not match the triangles" + where);
     for (std::uint32_t f : r->face_ids)
       FUZZ_CHECK(std::find(face.begin(), face.end(), f) != face.end(), "an output face id the input lacks" + where);
+    // No face whose seams are kept vanishes: every face (seams all, or auto where every seam
+    // held), the feature faces (features, or auto relaxed).
+    const bool all_kept = o.seams == interfere::SeamMode::all ||
+                          (o.seams == interfere::SeamMode::as_needed && r->seams_relaxed_at == 0);
+    const bool features_kept = all_kept || o.seams != interfere::SeamMode::none;
+    for (std::size_t t = 0; t < mesh.num_triangles(); ++t) {
+      const std::uint32_t f = face[t];
+      const bool kept = all_kept || (features_kept && f == 1);
+      if (!kept || degenerate(mesh, t)) continue;
+      FUZZ_CHECK(std::find(r->face_ids.begin(), r->face_ids.end(), f) != r->face_ids.end(),
+                 "face " + std::to_string(f) + " vanished" + where);
+    }
   }
   FUZZ_CHECK(out.num_triangles() <= live, "more triangles than the input's non-degenerate ones" + where);
   FUZZ_CHECK(!r->reached || out.num_triangles() == target, "reached, yet not the budget" + where);

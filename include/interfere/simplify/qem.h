@@ -13,7 +13,9 @@
 // polylines through original vertices and stay shared by the faces on both sides; a vertex on one
 // or three and more constrained edges (a corner, where three faces meet) is never removed. The
 // output duplicates vertices again along face boundaries when face ids were given, so faces stay
-// separable.
+// separable. A face whose seams are kept keeps at least one triangle (a collapse that would remove
+// its last one is refused): a small face (the half cone at the tip of a drilled hole, a narrow
+// fillet) may shrink to one triangle, but its id and its seams stay in the output.
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -124,6 +126,9 @@ struct SimplifyResult {
   std::size_t collapses = 0;
   std::size_t rejected_link = 0, rejected_flip = 0;  ///< candidates refused by the checks
   std::size_t rejected_intersection = 0;             ///< refused by the self-intersection guard
+  /// Refused as they would remove the last triangle of a face whose seams are kept (every face
+  /// with SeamMode::all, the feature faces with `features`): no such face vanishes.
+  std::size_t rejected_face = 0;
   bool guard_rerun = false;  ///< plain QEM created a self-intersection: a guarded run was used
   /// Guarded reruns made (0 without a rerun): up to 2 repeat the batched passes (inputs of
   /// compact_min_triangles and more: start from the plain run's copy of its state at the handoff)

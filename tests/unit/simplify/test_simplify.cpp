@@ -750,6 +750,61 @@ TEST(Simplify, BatchedPassesKeepEveryGuarantee) {
   }
 }
 
+// Face ids of a bumpy sphere: a 12 x 6 grid of longitude/latitude patches, and inside each
+// patch a small face (the triangles whose centroid lies within `r` of a point of the patch: a few
+// triangles, like the half cones and narrow fillets of a CAD part that QEM would flatten away).
+std::vector<std::uint32_t> patch_and_dot_faces(const TriMesh& m, double r) {
+  std::vector<std::uint32_t> face(m.num_triangles());
+  for (std::size_t t = 0; t < face.size(); ++t) {
+    const auto c = m.corners(t);
+    const Vec3 g = (c[0] + c[1] + c[2]) / 3.0;
+    const double lon = std::atan2(g.y, g.x) + M_PI, lat = std::acos(std::clamp(g.z / norm(g), -1.0, 1.0));
+    const int i = std::min(11, int(lon / (2 * M_PI) * 12)), j = std::min(5, int(lat / M_PI * 6));
+    const double lon0 = (i + 0.5) * (2 * M_PI) / 12 - M_PI, lat0 = (j + 0.5) * M_PI / 6;
+    const Vec3 dot_centre{std::sin(lat0) * std::cos(lon0), std::sin(lat0) * std::sin(lon0), std::cos(lat0)};
+    const bool in_dot = norm(g / norm(g) - dot_centre) < r;
+    face[t] = static_cast<std::uint32_t>(2 * (j * 12 + i) + (in_dot ? 1 : 0));
+  }
+  return face;
+}
+
+TEST(Simplify, NoFaceWhoseSeamsAreKeptVanishes) {
+  // Every face id of the input is still in the output however low the budget (a face shrinks to
+  // one triangle at least), with the batched passes (whose seam collapses next to small faces go
+  // to the serial sweep) and with the heap alone; the same result for 1 and 4 threads. Unchecked
+  // (the guard makes other refusals), features none: only the face rule holds the small faces.
+  const TriMesh s = make_sphere({.target_triangles = 40000, .bump_amplitude = 0.05});
+  const auto faces = patch_and_dot_faces(s, 0.02);  // dots of a few triangles
+  const std::set<std::uint32_t> in(faces.begin(), faces.end());
+  ASSERT_EQ(in.size(), 144u);
+  std::size_t smallest = faces.size();
+  for (std::uint32_t f : in) smallest = std::min<std::size_t>(smallest, std::count(faces.begin(), faces.end(), f));
+  ASSERT_LE(smallest, 8u);  // small faces indeed (without the rule, 32 of them vanish in the batched passes)
+  for (bool batched : {true, false}) {
+    SimplifyOptions o{.target_triangles = 400, .face_ids = faces};
+    o.prevent_self_intersections = false;
+    o.measure_error = false;
+    o.batched_passes = batched;
+    o.batched_min_triangles = 0;
+    auto one = simplify_with_threads(s, o, 1), many = simplify_with_threads(s, o, 4);
+    ASSERT_TRUE(one.has_value() && many.has_value());
+    const std::set<std::uint32_t> out(one->face_ids.begin(), one->face_ids.end());
+    EXPECT_EQ(out, in) << (batched ? "batched" : "heap") << ": " << in.size() - out.size() << " faces vanished";
+    EXPECT_GT(one->rejected_face, 0u);  // the rule was needed
+    expect_same_result(*one, *many);
+    // With seams of the feature faces only, the other faces' ids are tags and may go; the
+    // feature faces (the small ones here) stay.
+    SimplifyOptions f = o;
+    f.seams = SeamMode::features;
+    for (std::uint32_t id : in)
+      if (id % 2 == 1) f.feature_faces.push_back(id);
+    auto g = simplify(s, f);
+    ASSERT_TRUE(g.has_value());
+    const std::set<std::uint32_t> kept(g->face_ids.begin(), g->face_ids.end());
+    for (std::uint32_t id : f.feature_faces) EXPECT_TRUE(kept.count(id)) << "feature face " << id << " vanished";
+  }
+}
+
 TEST(Simplify, LastModeOrdersFeatureEdgesAfterAllOthers) {
   const TriMesh s = make_sphere({.target_triangles = 8000, .bump_amplitude = 0.03});
   const auto faces = cap_faces(s);
