@@ -22,6 +22,7 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include "vertex_map.h"
 #include "interfere/simplify/qem.h"
 
 namespace interfere::qem {
@@ -222,8 +223,8 @@ class PhaseClock {
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
 
-/// Per-thread scratch of the local operations: marks over the vertices (a fresh `id` per use
-/// instead of clearing) and the gathered neighbours of a vertex.
+/// Per-thread scratch of the local operations: a small vertex map (vertex_map.h) and the gathered
+/// neighbours of a vertex.
 struct Scratch {
   struct Neighbour {
     std::uint32_t w, count, face;
@@ -234,13 +235,12 @@ struct Scratch {
     std::uint32_t t;
     Tri tr;
   };
-  std::vector<std::uint32_t> mark_a, mark_b, slot;
+  VertexMap map;
   std::vector<Neighbour> nbr;
   std::vector<FanTri> fan_a, fan_b;  ///< live fans of the collapse's keep and remove ends
   int shared = 0;                    ///< live triangles on the collapsed edge
   bool seam = false;                 ///< the edge is constrained (see gather_neighbours)
-  std::uint32_t id = 0;
-  explicit Scratch(std::size_t nv) : mark_a(nv, 0), mark_b(nv, 0), slot(nv, 0) {}
+
 };
 
 class Simplifier {
@@ -415,8 +415,7 @@ class Simplifier {
     tbb::enumerable_thread_specific<Scratch>* operator->() const { return p.get(); }
   };
   void make_scratch() {
-    const std::size_t nv = pos_.size();
-    tls_.p = std::make_unique<tbb::enumerable_thread_specific<Scratch>>([nv] { return Scratch(nv); });
+    tls_.p = std::make_unique<tbb::enumerable_thread_specific<Scratch>>();
   }
   ScratchPool tls_;
   struct Owner {

@@ -62,20 +62,20 @@ void Simplifier::reserve_fans(std::size_t extra) {
 // first appearance.
 void Simplifier::gather_neighbours(std::uint32_t v, Scratch& sc) const {
   sc.nbr.clear();
-  // Small fans: a linear search of the few neighbours found so far (no scattered marks); from 16
-  // neighbours on, marks over the vertices.
+  // Small fans: a linear search of the few neighbours found so far; from 16 neighbours on, the
+  // scratch's vertex map (neighbour -> slot).
   constexpr std::size_t kLinear = 16;
-  std::uint32_t id = 0;
+  bool mapped = false;
   const auto add = [&](std::uint32_t w, std::uint32_t f) {
     Scratch::Neighbour* found = nullptr;
-    if (id == 0) {
+    if (!mapped) {
       for (Scratch::Neighbour& n : sc.nbr)
         if (n.w == w) {
           found = &n;
           break;
         }
-    } else if (sc.mark_a[w] == id) {
-      found = &sc.nbr[sc.slot[w]];
+    } else if (const std::uint32_t* k = sc.map.find(w)) {
+      found = &sc.nbr[*k];
     }
     if (found) {
       ++found->count;
@@ -83,11 +83,12 @@ void Simplifier::gather_neighbours(std::uint32_t v, Scratch& sc) const {
       return;
     }
     sc.nbr.push_back({w, 1, f, false});
-    if (id != 0) {
-      sc.mark_a[w] = id, sc.slot[w] = static_cast<std::uint32_t>(sc.nbr.size() - 1);
+    if (mapped) {
+      sc.map.at(w) = static_cast<std::uint32_t>(sc.nbr.size() - 1);
     } else if (sc.nbr.size() == kLinear) {
-      id = ++sc.id;
-      for (std::uint32_t k = 0; k < sc.nbr.size(); ++k) sc.mark_a[sc.nbr[k].w] = id, sc.slot[sc.nbr[k].w] = k;
+      mapped = true;
+      sc.map.clear();
+      for (std::uint32_t k = 0; k < sc.nbr.size(); ++k) sc.map.at(sc.nbr[k].w) = k;
     }
   };
   const std::uint32_t* fan = refs_.data() + fan_start_[v];
@@ -209,15 +210,18 @@ bool Simplifier::snapshot(std::uint32_t a, std::uint32_t b, Scratch& sc, std::ui
 
 // Link condition: the common neighbours of a and b are exactly the apexes of the triangles on ab.
 bool Simplifier::link_ok(std::uint32_t a, std::uint32_t b, Scratch& sc) const {
-  const std::uint32_t id = ++sc.id;
+  // Per vertex: 1 = in a's fan, 2 = counted from b's.
+  sc.map.clear();
   for (const Scratch::FanTri& f : sc.fan_a)
-    for (std::uint32_t w : f.tr) sc.mark_a[w] = id;
+    for (std::uint32_t w : f.tr) sc.map.at(w) = 1;
   int common = 0;
   for (const Scratch::FanTri& f : sc.fan_b)
     for (std::uint32_t w : f.tr) {
-      if (w == a || w == b || sc.mark_b[w] == id) continue;
-      sc.mark_b[w] = id;
-      if (sc.mark_a[w] == id) ++common;
+      if (w == a || w == b) continue;
+      std::uint32_t& m = sc.map.at(w);
+      if (m & 2) continue;
+      m |= 2;
+      if (m & 1) ++common;
     }
   return common == sc.shared;
 }
