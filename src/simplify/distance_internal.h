@@ -11,11 +11,15 @@
 
 namespace interfere::detail {
 
+inline constexpr std::uint32_t kNoSeed = 0xffffffffu;
+
 /// Squared distance from p to the nearest triangle of `mesh` (its BVH `bvh`), and that triangle.
 /// With stop_d2 >= 0 the search ends at the first triangle found within sqrt(stop_d2) (its squared
 /// distance, an upper bound of the nearest's, is returned): exact whenever the nearest is farther.
+/// `seed`: a triangle likely near p (a nearby sample's), tried first: it may end the search at
+/// once (within stop_d2) and otherwise prunes it; the exact result is the same.
 double nearest_d2(const TriMesh& mesh, const Bvh& bvh, const Vec3& p, std::uint32_t* tri = nullptr,
-                  double stop_d2 = -1);
+                  double stop_d2 = -1, std::uint32_t seed = kNoSeed);
 
 /// A distance at a point and the triangle of `to` nearest to it.
 struct Near {
@@ -23,7 +27,10 @@ struct Near {
   std::uint32_t tri = 0;
 };
 
-Near nearest(const TriMesh& to, const Bvh& bvh, const Vec3& p, double stop_d2 = -1);
+/// Of two samples, the nearer (its triangle seeds the search at a point between them).
+inline const Near& nearer(const Near& x, const Near& y) { return x.d <= y.d ? x : y; }
+
+Near nearest(const TriMesh& to, const Bvh& bvh, const Vec3& p, double stop_d2 = -1, std::uint32_t seed = kNoSeed);
 
 /// One triangle c of `from` with its samples: distances at the corners, edge midpoints (m[k] on
 /// edge k, k+1) and centroid, each with its nearest triangle of `to`.

@@ -33,8 +33,14 @@ double point_box_d2(const Vec3& p, const AabbF& b) {
 
 }  // namespace
 
-double nearest_d2(const TriMesh& mesh, const Bvh& bvh, const Vec3& p, std::uint32_t* tri, double stop_d2) {
+double nearest_d2(const TriMesh& mesh, const Bvh& bvh, const Vec3& p, std::uint32_t* tri, double stop_d2,
+                  std::uint32_t seed) {
   double best = std::numeric_limits<double>::infinity();
+  if (seed != kNoSeed) {
+    best = squared_norm(closest_point_on_triangle(p, mesh.corners(seed)) - p);
+    if (tri) *tri = seed;
+    if (best <= stop_d2) return best;
+  }
   std::uint32_t stack[128];
   int top = 0;
   stack[top++] = 0;
@@ -70,11 +76,12 @@ double nearest_d2(const TriMesh& mesh, const Bvh& bvh, const Vec3& p, std::uint3
 }
 
 
-Near nearest(const TriMesh& to, const Bvh& bvh, const Vec3& p, double stop_d2) {
+Near nearest(const TriMesh& to, const Bvh& bvh, const Vec3& p, double stop_d2, std::uint32_t seed) {
   Near n;
-  n.d = std::sqrt(nearest_d2(to, bvh, p, &n.tri, stop_d2));
+  n.d = std::sqrt(nearest_d2(to, bvh, p, &n.tri, stop_d2, seed));
   return n;
 }
+
 
 
 Sampled sample(const TriMesh& to, const Bvh& bvh, const std::array<Vec3, 3>& c, const std::array<Near, 3>& at,
@@ -82,9 +89,9 @@ Sampled sample(const TriMesh& to, const Bvh& bvh, const std::array<Vec3, 3>& c, 
   Sampled s{c, {}, at, {}, {}};
   for (int k = 0; k < 3; ++k) {
     s.m[k] = (c[k] + c[(k + 1) % 3]) * 0.5;
-    s.mid[k] = mid ? (*mid)[k] : nearest(to, bvh, s.m[k], stop_d2);
+    s.mid[k] = mid ? (*mid)[k] : nearest(to, bvh, s.m[k], stop_d2, nearer(at[k], at[(k + 1) % 3]).tri);
   }
-  s.centre = nearest(to, bvh, (c[0] + c[1] + c[2]) / 3.0, stop_d2);
+  s.centre = nearest(to, bvh, (c[0] + c[1] + c[2]) / 3.0, stop_d2, nearer(nearer(at[0], at[1]), at[2]).tri);
   return s;
 }
 
@@ -100,6 +107,7 @@ using detail::local_bound;
 using detail::Near;
 using detail::nearest;
 using detail::nearest_d2;
+using detail::nearer;
 using detail::ring_bound;
 using detail::refined_bound;
 using detail::sample;
@@ -132,7 +140,11 @@ OneSidedDistance one_sided(const TriMesh& from, const TriMesh& to, bool with_bou
   // edge midpoints and centroids. A sample farther than that is measured exactly, any other
   // reports at most that: the maximum is the same, bit for bit, and the search order is fixed
   // (thread-independent). With the leaves' per-triangle box test: 10^6 -> 10^4 triangles, input to
-  // result 720 -> 480 ms, 10^6 -> 10^5 910 -> 610 ms (2 cores). The bound takes the
+  // result 720 -> 480 ms, 10^6 -> 10^5 910 -> 610 ms (2 cores). The edge midpoints and centroids
+  // start from the triangle of their nearer corner (a seed: within the stop distance it ends the
+  // search at once, else it prunes it; the exact distances do not change): 10^6 -> 10^4 500 -> 175
+  // ms, 10^6 -> 10^5 640 -> 345 ms. (Seeding the vertices from the first pass's vertex before them
+  // gained 5 % and loosened the bound: their triangles are its candidates.) The bound takes the
   // reported distances and triangles as they are (each at least the nearest's: it stays an upper
   // bound); triangles it refines are measured again exactly.
   constexpr std::size_t kFirst = 64;
@@ -174,8 +186,8 @@ OneSidedDistance one_sided(const TriMesh& from, const TriMesh& to, bool with_bou
       const Tri& tr = from.triangles[t];
       for (int k = 0; k < 3; ++k)
         if (tr[k] < tr[(k + 1) % 3])
-          mid[3 * t + k] =
-              nearest(to, bvh, (from.positions[tr[k]] + from.positions[tr[(k + 1) % 3]]) * 0.5, sample_stop);
+          mid[3 * t + k] = nearest(to, bvh, (from.positions[tr[k]] + from.positions[tr[(k + 1) % 3]]) * 0.5,
+                                   sample_stop, nearer(vn[tr[k]], vn[tr[(k + 1) % 3]]).tri);
     }
   });
   const Fans from_fans = fans_of(from);
@@ -201,7 +213,7 @@ OneSidedDistance one_sided(const TriMesh& from, const TriMesh& to, bool with_bou
             break;
           }
       }
-      if (!found) m[k] = nearest(to, bvh, (from.positions[a] + from.positions[b]) * 0.5, sample_stop);
+      if (!found) m[k] = nearest(to, bvh, (from.positions[a] + from.positions[b]) * 0.5, sample_stop, nearer(vn[a], vn[b]).tri);
     }
     return m;
   };
@@ -235,7 +247,10 @@ OneSidedDistance one_sided(const TriMesh& from, const TriMesh& to, bool with_bou
             double x = local[t];
             if (x > floor) {  // its samples again, exactly
               const std::array<Vec3, 3> c = from.corners(t);
-              const std::array<Near, 3> at{nearest(to, bvh, c[0]), nearest(to, bvh, c[1]), nearest(to, bvh, c[2])};
+              const Tri& tr = from.triangles[t];
+              const std::array<Near, 3> at{nearest(to, bvh, c[0], -1, vn[tr[0]].tri),
+                                           nearest(to, bvh, c[1], -1, vn[tr[1]].tri),
+                                           nearest(to, bvh, c[2], -1, vn[tr[2]].tri)};
               const Sampled s = sample(to, bvh, c, at);
               x = std::min(x, ring_bound(to, fans, s, floor));
               if (x > floor) x = std::min(x, refined_bound(to, bvh, s, floor, 2));

@@ -23,6 +23,7 @@
 #include "interfere/simplify/hausdorff.h"
 #include "interfere/simplify/qem.h"
 #include "scenes.h"
+#include "../../../src/simplify/distance_internal.h"
 
 namespace interfere {
 namespace {
@@ -953,6 +954,33 @@ TEST(Hausdorff, MatchesBruteForceOverTheSamePoints) {
   const HausdorffResult h = hausdorff(a, b);
   EXPECT_DOUBLE_EQ(h.a_to_b, brute(a, b));
   EXPECT_DOUBLE_EQ(h.b_to_a, brute(b, a));
+}
+
+// A seeded nearest-triangle search (hausdorff.cpp: the samples between vertices start from a
+// nearby sample's triangle) gives the exact search's distance bit for bit whatever the seed, and
+// with a stop distance either that distance (when farther) or a triangle within the stop.
+TEST(Hausdorff, SeededSearchesAreExact) {
+  const TriMesh to = make_sphere({.target_triangles = 3000, .bump_amplitude = 0.1});
+  const Bvh bvh = build_bvh(to);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.3, 1.3);
+  for (int i = 0; i < 3000; ++i) {
+    const Vec3 p{u(rng), u(rng), u(rng)};
+    double brute = std::numeric_limits<double>::infinity();
+    for (std::size_t t = 0; t < to.num_triangles(); ++t)
+      brute = std::min(brute, squared_norm(closest_point_on_triangle(p, to.corners(t)) - p));
+    const auto seed = static_cast<std::uint32_t>(rng() % to.num_triangles());
+    std::uint32_t tri = 0;
+    const double exact = detail::nearest_d2(to, bvh, p, &tri, -1, seed);
+    EXPECT_EQ(exact, brute);
+    EXPECT_EQ(squared_norm(closest_point_on_triangle(p, to.corners(tri)) - p), exact);
+    EXPECT_EQ(detail::nearest_d2(to, bvh, p), brute);
+    const double stop = brute * (i % 2 ? 0.5 : 2.0);
+    const double stopped = detail::nearest_d2(to, bvh, p, &tri, stop, seed);
+    if (brute > stop) EXPECT_EQ(stopped, brute);
+    else EXPECT_LE(stopped, stop);
+    EXPECT_EQ(squared_norm(closest_point_on_triangle(p, to.corners(tri)) - p), stopped);
+  }
 }
 
 // The searches stop early at a distance the maximum is known to reach (hausdorff.cpp): the
