@@ -312,10 +312,11 @@ output; the error bound is the largest part's (rigid placements keep distances).
 2-core VM (2026-11-26): 18.1 s in all, reading 1.1 s, simplification 6.8 s, the report's error measurement 10.2 s
 (`--no-error`: 7.9 s in all); peak resident memory 2.5 GB, about 250 bytes per input triangle, so 10^8
 triangles need a machine of about 32 GB. The simplification itself peaks at about 206 bytes per triangle
-beyond the input's 24 (2.2 GB at 10^7, 2 threads), independent of the thread count: each thread's scratch
-is a small hash map of the vertices one collapse touches (`src/simplify/vertex_map.h`), where until
-2026-11-26 it held three arrays over every vertex (12 bytes per vertex and thread: about 100 bytes per
-triangle more on 16 threads; also about 5 % faster on 2 threads, the map staying in the L1 cache).
+beyond the input's 24 (2.2 GB at 10^7, 2 threads), nearly independent of the thread count: each thread's
+scratch holds marks over every vertex (12 bytes per vertex, the fastest) only up to 3 threads or 2^18
+vertices, else a small hash map of the vertices one collapse touches (`src/simplify/vertex_map.h`; until
+2026-11-26 the marks always, about 100 bytes per triangle more on 16 threads; the map costs about 10 % of
+the batched passes' apply phase, the same collapses bit for bit).
 
 **Budget.** A collapse removes the two triangles of an inner edge or the one of a boundary edge, so the budget is
 met exactly whenever it is reachable; on a closed mesh (even triangle count) an odd budget ends one below

@@ -4,7 +4,6 @@
 // manifold, the normal-flip test, and the collapse itself on per-vertex triangle fans. Feature
 // weighting after He & Xu (SJTU 2023, §3.3). All but collapse/set_fan only read the mesh.
 #include <algorithm>
-#include <atomic>
 
 #include "qem_internal.h"
 
@@ -56,26 +55,53 @@ void Simplifier::reserve_fans(std::size_t extra) {
   refs_.swap(refs_spare_);
 }
 
+namespace {
+// Where gather_neighbours finds a neighbour beyond the first 16 (neighbour -> its slot in sc.nbr):
+// marks over the vertices, or the vertex map on large meshes (see Scratch).
+struct MarkIndex {
+  Scratch& sc;
+  std::uint32_t id = 0;
+  void start() { id = ++sc.id; }
+  Scratch::Neighbour* find(std::uint32_t w) const { return sc.mark_a[w] == id ? &sc.nbr[sc.slot[w]] : nullptr; }
+  void set(std::uint32_t w, std::uint32_t k) { sc.mark_a[w] = id, sc.slot[w] = k; }
+};
+struct MapIndex {
+  Scratch& sc;
+  void start() { sc.map.clear(); }
+  Scratch::Neighbour* find(std::uint32_t w) const {
+    const std::uint32_t* k = sc.map.find(w);
+    return k ? &sc.nbr[*k] : nullptr;
+  }
+  void set(std::uint32_t w, std::uint32_t k) { sc.map.at(w) = k; }
+};
+}  // namespace
+
 // One sweep over v's fan gathers every neighbour w with the number of live triangles on (v, w) and
 // whether their face ids differ (the seam test for all edges at once: an edge is constrained when
 // it has not exactly two live triangles, or two with different face ids), in order of
 // first appearance.
 void Simplifier::gather_neighbours(std::uint32_t v, Scratch& sc) const {
+  if (!sc.mark_a.empty()) gather_with(v, sc, MarkIndex{sc});
+  else gather_with(v, sc, MapIndex{sc});
+}
+
+template <class Index>
+void Simplifier::gather_with(std::uint32_t v, Scratch& sc, Index index) const {
   sc.nbr.clear();
   // Small fans: a linear search of the few neighbours found so far; from 16 neighbours on, the
-  // scratch's vertex map (neighbour -> slot).
+  // index.
   constexpr std::size_t kLinear = 16;
-  bool mapped = false;
+  bool indexed = false;
   const auto add = [&](std::uint32_t w, std::uint32_t f) {
     Scratch::Neighbour* found = nullptr;
-    if (!mapped) {
+    if (!indexed) {
       for (Scratch::Neighbour& n : sc.nbr)
         if (n.w == w) {
           found = &n;
           break;
         }
-    } else if (const std::uint32_t* k = sc.map.find(w)) {
-      found = &sc.nbr[*k];
+    } else {
+      found = index.find(w);
     }
     if (found) {
       ++found->count;
@@ -83,12 +109,12 @@ void Simplifier::gather_neighbours(std::uint32_t v, Scratch& sc) const {
       return;
     }
     sc.nbr.push_back({w, 1, f, false});
-    if (mapped) {
-      sc.map.at(w) = static_cast<std::uint32_t>(sc.nbr.size() - 1);
+    if (indexed) {
+      index.set(w, static_cast<std::uint32_t>(sc.nbr.size() - 1));
     } else if (sc.nbr.size() == kLinear) {
-      mapped = true;
-      sc.map.clear();
-      for (std::uint32_t k = 0; k < sc.nbr.size(); ++k) sc.map.at(sc.nbr[k].w) = k;
+      indexed = true;
+      index.start();
+      for (std::uint32_t k = 0; k < sc.nbr.size(); ++k) index.set(sc.nbr[k].w, k);
     }
   };
   const std::uint32_t* fan = refs_.data() + fan_start_[v];
@@ -210,6 +236,41 @@ bool Simplifier::snapshot(std::uint32_t a, std::uint32_t b, Scratch& sc, std::ui
 
 // Link condition: the common neighbours of a and b are exactly the apexes of the triangles on ab.
 bool Simplifier::link_ok(std::uint32_t a, std::uint32_t b, Scratch& sc) const {
+  if (!sc.mark_a.empty()) {  // marks over the vertices (meshes whose marks stay in cache)
+    const std::uint32_t id = ++sc.id;
+    for (const Scratch::FanTri& f : sc.fan_a)
+      for (std::uint32_t w : f.tr) sc.mark_a[w] = id;
+    int common = 0;
+    for (const Scratch::FanTri& f : sc.fan_b)
+      for (std::uint32_t w : f.tr) {
+        if (w == a || w == b || sc.mark_b[w] == id) continue;
+        sc.mark_b[w] = id;
+        if (sc.mark_a[w] == id) ++common;
+      }
+    return common == sc.shared;
+  }
+  // Small fans (nearly all): the vertices of a's fan, and those of b's already counted, in short
+  // arrays, each with a 64-bit filter (one bit per vertex number's hash) so that the linear search
+  // runs only for the few that may be there.
+  constexpr std::size_t kSmall = 32;
+  if (sc.fan_a.size() <= kSmall && sc.fan_b.size() <= kSmall) {
+    const auto bit = [](std::uint32_t w) { return std::uint64_t{1} << ((w * 0x9E3779B1u) >> 26); };
+    std::uint32_t in_a[2 * kSmall], seen[2 * kSmall];
+    std::uint64_t in_a_bits = 0, seen_bits = 0;
+    int na = 0, ns = 0, common = 0;
+    for (const Scratch::FanTri& f : sc.fan_a)
+      for (std::uint32_t w : f.tr)
+        if (w != a && w != b) in_a[na++] = w, in_a_bits |= bit(w);
+    for (const Scratch::FanTri& f : sc.fan_b)
+      for (std::uint32_t w : f.tr) {
+        if (w == a || w == b) continue;
+        const std::uint64_t m = bit(w);
+        if ((seen_bits & m) && std::find(seen, seen + ns, w) != seen + ns) continue;
+        seen[ns++] = w, seen_bits |= m;
+        if ((in_a_bits & m) && std::find(in_a, in_a + na, w) != in_a + na) ++common;
+      }
+    return common == sc.shared;
+  }
   // Per vertex: 1 = in a's fan, 2 = counted from b's.
   sc.map.clear();
   for (const Scratch::FanTri& f : sc.fan_a)
@@ -295,15 +356,17 @@ bool Simplifier::flip_ok(std::uint32_t keep, std::uint32_t remove, const Vec3& p
 }
 
 void Simplifier::collapse(std::uint32_t a, std::uint32_t b, const Vec3& p, const Scratch& sc,
-                          std::vector<std::uint32_t>& merged, std::size_t& died) {
+                          std::vector<std::uint32_t>& merged, std::size_t& died,
+                          std::vector<std::uint32_t>* died_faces) {
   merged.clear();
   bool feat = false;
   for (const Scratch::FanTri& f : sc.fan_b) {
     if (f.tr[0] == a || f.tr[1] == a || f.tr[2] == a) {
       dead_[f.t] = 1;
       ++died;
-      // (batched passes: ranges in parallel; the sum does not depend on the order)
-      if (!face_live_.empty()) std::atomic_ref<std::int32_t>(face_live_[face_[f.t]]).fetch_sub(1, std::memory_order_relaxed);
+      if (face_live_.empty()) continue;
+      if (died_faces) died_faces->push_back(face_[f.t]);
+      else --face_live_[face_[f.t]];
       continue;
     }
     for (std::uint32_t& w : tris_[f.t])

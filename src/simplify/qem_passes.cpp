@@ -53,7 +53,7 @@ std::size_t Simplifier::apply_selected(const std::vector<std::pair<std::uint32_t
   refs_.resize(base + bound[ranges]);
   struct RangeResult {
     std::size_t died = 0, link = 0, flip = 0, intersection = 0, face = 0;
-    std::vector<std::uint32_t> changed, deferred;
+    std::vector<std::uint32_t> changed, deferred, died_faces;
   };
   std::vector<RangeResult> res(ranges + 1);
   // One collapse: checks, then b into a; a's grown fan goes to `*end` (the range's own space). The
@@ -85,7 +85,7 @@ std::size_t Simplifier::apply_selected(const std::vector<std::pair<std::uint32_t
       ++out.intersection;
       return true;
     }
-    collapse(a, b, c.p, sc, merged, out.died);
+    collapse(a, b, c.p, sc, merged, out.died, end ? &out.died_faces : nullptr);
     if (end && merged.size() > fan_count_[a]) {
       fan_start_[a] = static_cast<std::uint32_t>(*end);
       std::copy(merged.begin(), merged.end(), refs_.begin() + *end);
@@ -123,6 +123,8 @@ std::size_t Simplifier::apply_selected(const std::vector<std::pair<std::uint32_t
     }
   });
   Scratch& sc = tls_->local();
+  for (std::size_t c = 0; c < ranges; ++c)  // (the serial sweep's face_ok reads the counts)
+    for (std::uint32_t f : res[c].died_faces) --face_live_[f];
   if (guard_) {  // the triangles moved in parallel enter the grid before the guarded checks
     for (std::size_t c = 0; c < ranges; ++c)
       for (std::uint32_t v : res[c].changed) grid_insert_fan(v);

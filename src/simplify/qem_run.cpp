@@ -216,18 +216,19 @@ void Simplifier::count_faces() {
   face_pass_.clear();
   const std::size_t nt = tris_.size();
   if (face_.size() != nt || nt == 0) return;
-  const auto [lo, hi] = std::minmax_element(face_.begin(), face_.end());
-  if (*lo == *hi) return;  // one face
-  if (*hi >= 2 * nt) {  // sparse ids (an `other` id near 2^32): renumbered, the same equalities
+  std::uint32_t hi = *std::max_element(face_.begin(), face_.end());
+  if (hi == 0) return;  // one face
+  if (hi >= 2 * nt) {  // sparse ids (an `other` id near 2^32): renumbered, the same equalities
     std::vector<std::uint32_t> ids(face_);
     std::sort(ids.begin(), ids.end());
     ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
     for (std::uint32_t& f : face_)
       f = static_cast<std::uint32_t>(std::lower_bound(ids.begin(), ids.end(), f) - ids.begin());
+    hi = static_cast<std::uint32_t>(ids.size() - 1);
   }
-  face_live_.assign(*std::max_element(face_.begin(), face_.end()) + std::size_t{1}, 0);
-  for (std::size_t t = 0; t < nt; ++t)
-    if (!dead_[t]) ++face_live_[face_[t]];
+  face_live_.assign(hi + std::size_t{1}, 0);
+  for (std::size_t t = 0; t < nt; ++t) face_live_[face_[t]] += dead_[t] ? 0 : 1;
+  if (std::count_if(face_live_.begin(), face_live_.end(), [](std::int32_t n) { return n > 0; }) < 2) face_live_.clear();
 }
 
 void Simplifier::finish(EntryList& list, std::size_t live, std::size_t target, SimplifyResult& r, PhaseClock& clock) {

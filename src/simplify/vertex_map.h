@@ -1,8 +1,8 @@
 // A small map from vertex numbers to a 32-bit value for one local operation of the simplifier (the
 // neighbours of a fan, the link condition of a collapse): open addressing with linear probing over
-// a power-of-two table, cleared in O(1) by a generation number. It replaces per-thread arrays over
-// every vertex (12 bytes per vertex and thread: 96 bytes per triangle on 16 threads) and stays in
-// the L1 cache where those arrays were read at scattered places. Not installed.
+// a power-of-two table, cleared in O(1) by a generation number. Used instead of per-thread marks
+// over every vertex (12 bytes per vertex and thread: 96 bytes per triangle on 16 threads) where
+// those would cost too much memory (Simplifier::make_scratch). Not installed.
 #pragma once
 #include <cstdint>
 #include <vector>
