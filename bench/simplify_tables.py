@@ -240,7 +240,7 @@ quadric-error-metric edge collapses while the faces that take part in the curren
    fillet) may shrink to one triangle but its id and seams stay in the output (before 2026-11-26, 148 of the
    664 faces of `nist_ctc_02` vanished at 10 %, 13 of 33 of `eight_cyl` at 3 %; an inner edge of a face never
    removes its last triangle, so only seam collapses are checked: in the heap exactly, in the batched passes by
-   sending those next to a face of fewer than 128 triangles at the pass's start to the serial sweep, the same
+   sending those next to a face of fewer than 32 triangles at the pass's start to the serial sweep, the same
    for any thread count; unit test `Simplify.NoFaceWhoseSeamsAreKeptVanishes`). A CAD part of many small
    faces (fillets, chamfers, the NIST test parts) has so many corners that a low budget cannot be met with
    every seam kept (`gmsh_Block.stp` of `../shared/data`,

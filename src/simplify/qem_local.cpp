@@ -309,12 +309,13 @@ bool Simplifier::face_ok(std::uint32_t a, const Scratch& sc) const {
 }
 
 // Collapses along seams only: an inner edge of a face removes an interior vertex, whose closed fan
-// of three or more triangles lies in that face, and two of them die, so the face keeps one; a
-// batched pass's collapses have disjoint ends, so together they remove at most about half of the
-// triangles of a face of kFragileFace (a disc with i inner and l border vertices has 2i + l - 2
-// triangles; the pass makes at most (i + l) / 2 collapses in it, each removing an inner vertex and
-// two triangles or a border vertex and one) and the count at the pass's start decides, the same
-// for any thread count.
+// of three or more triangles lies in that face, and two of them die, so the face keeps one. A
+// batched pass's collapses have disjoint ends: in a disc face with i inner and l border vertices
+// (2i + l - 2 triangles) it makes at most (i + l) / 2, each removing two triangles with an inner
+// vertex (at most i of them) or one with a border vertex, so at least min((i + l) / 2, i) - 2
+// triangles remain, one or more for a face of 8 or more; below kFragileFace (a margin for other
+// shapes) the seam collapses go to the serial sweep. The count at the pass's start decides: the
+// same for any thread count.
 bool Simplifier::face_fragile(std::uint32_t a, const Scratch& sc) const {
   if (face_pass_.empty() || !sc.seam) return false;
   for (const Scratch::FanTri& f : sc.fan_b)
