@@ -245,6 +245,9 @@ struct Scratch {
   std::vector<FanTri> fan_a, fan_b;  ///< live fans of the collapse's keep and remove ends
   int shared = 0;                    ///< live triangles on the collapsed edge
   bool seam = false;                 ///< the edge is constrained (see gather_neighbours)
+  /// A seam collapse of a batched pass that removes a triangle of a face with fewer than
+  /// kFragileFace triangles at the pass's start: left to the serial sweep (see face_ok).
+  bool fragile = false;
   /// With marks over `marked` vertices (0: the map).
   explicit Scratch(std::size_t marked) {
     if (marked > 0) mark_a.assign(marked, 0), mark_b.assign(marked, 0), slot.assign(marked, 0);
@@ -352,9 +355,6 @@ class Simplifier {
   bool link_ok(std::uint32_t a, std::uint32_t b, Scratch& sc) const;
   /// Every face losing triangles on ab keeps one (face_live_, exact: serial contexts only).
   bool face_ok(std::uint32_t a, const Scratch& sc) const;
-  /// A batched pass's collapse along a seam that removes a triangle of a face with fewer than
-  /// kFragileFace triangles when the pass began: left to the serial sweep (face_ok there).
-  bool face_fragile(std::uint32_t a, const Scratch& sc) const;
   static constexpr std::int32_t kFragileFace = 32;
   /// Face ids dense (0..n-1, the same equalities) and their live triangles counted, when the mesh
   /// has two faces or more (run's setup).

@@ -200,6 +200,15 @@ std::size_t Simplifier::evaluate_neighbours(std::uint32_t v, const Scratch::Neig
 // The live triangles of a's and b's fans with their corners, read once for all the checks and the
 // collapse; the triangles on ab are those of b's fan holding a (the seam test as in
 // gather_neighbours).
+// Scratch::fragile (the face rule in the batched passes) concerns collapses along seams only: an
+// inner edge of a face removes an interior vertex, whose closed fan of three or more triangles lies
+// in that face, and two of them die, so the face keeps one. A
+// batched pass's collapses have disjoint ends: in a disc face with i inner and l border vertices
+// (2i + l - 2 triangles) it makes at most (i + l) / 2, each removing two triangles with an inner
+// vertex (at most i of them) or one with a border vertex, so at least min((i + l) / 2, i) - 2
+// triangles remain, one or more for a face of 8 or more; below kFragileFace (a margin for other
+// shapes) the seam collapses go to the serial sweep. The count at the pass's start decides: the
+// same for any thread count.
 bool Simplifier::snapshot(std::uint32_t a, std::uint32_t b, Scratch& sc, std::uint32_t range) const {
   const auto foreign = [&](const Tri& tr) {
     if (range == kNone) return false;
@@ -217,7 +226,7 @@ bool Simplifier::snapshot(std::uint32_t a, std::uint32_t b, Scratch& sc, std::ui
   }
   int shared = 0;
   std::uint32_t f0 = kNone;
-  bool differ = false;
+  bool differ = false, fragile = false;
   for (std::uint32_t i = 0, n = fan_count_[b]; i < n; ++i) {
     const std::uint32_t t = refs_[fan_start_[b] + i];
     if (dead_[t]) continue;
@@ -226,11 +235,14 @@ bool Simplifier::snapshot(std::uint32_t a, std::uint32_t b, Scratch& sc, std::ui
     sc.fan_b.push_back({t, tr});
     if (tr[0] != a && tr[1] != a && tr[2] != a) continue;
     ++shared;
-    if (f0 == kNone) f0 = face_[t];
-    else if (face_[t] != f0) differ = true;
+    const std::uint32_t f = face_[t];
+    if (f0 == kNone) f0 = f;
+    else if (f != f0) differ = true;
+    if (!face_pass_.empty()) fragile = fragile || face_pass_[f] < kFragileFace;
   }
   sc.shared = shared;
   sc.seam = shared != 2 || differ;
+  sc.fragile = sc.seam && fragile;
   return true;
 }
 
@@ -308,20 +320,6 @@ bool Simplifier::face_ok(std::uint32_t a, const Scratch& sc) const {
   return true;
 }
 
-// Collapses along seams only: an inner edge of a face removes an interior vertex, whose closed fan
-// of three or more triangles lies in that face, and two of them die, so the face keeps one. A
-// batched pass's collapses have disjoint ends: in a disc face with i inner and l border vertices
-// (2i + l - 2 triangles) it makes at most (i + l) / 2, each removing two triangles with an inner
-// vertex (at most i of them) or one with a border vertex, so at least min((i + l) / 2, i) - 2
-// triangles remain, one or more for a face of 8 or more; below kFragileFace (a margin for other
-// shapes) the seam collapses go to the serial sweep. The count at the pass's start decides: the
-// same for any thread count.
-bool Simplifier::face_fragile(std::uint32_t a, const Scratch& sc) const {
-  if (face_pass_.empty() || !sc.seam) return false;
-  for (const Scratch::FanTri& f : sc.fan_b)
-    if ((f.tr[0] == a || f.tr[1] == a || f.tr[2] == a) && face_pass_[face_[f.t]] < kFragileFace) return true;
-  return false;
-}
 
 namespace {
 bool normal_ok(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& pa, const Vec3& pb, const Vec3& pc,

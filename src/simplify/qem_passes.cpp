@@ -66,9 +66,9 @@ std::size_t Simplifier::apply_selected(const std::vector<std::pair<std::uint32_t
     Candidate c;
     if (!direction(a, b, sc.seam, c)) return true;
     // Guarded collapses go to the serial sweep, and those that may remove a small face's last
-    // triangle (see face_fragile).
+    // triangle (Scratch::fragile).
     if (end && guard_ && guarded(moved_box(a, b, c.p, sc))) return false;
-    if (end && face_fragile(a, sc)) return false;
+    if (end && sc.fragile) return false;
     if (!link_ok(a, b, sc)) {
       ++out.link;
       return true;
