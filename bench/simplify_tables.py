@@ -309,8 +309,10 @@ the step's feature triangles reserved), is simplified in part coordinates, and i
 output; the error bound is the largest part's (rigid placements keep distances).
 
 **Scale.** `interfere simplify` on a bumpy sphere of 9,991,920 triangles (binary PLY, 250 MB) to 1 %, on this
-2-core VM (2026-11-26): 18.1 s in all, reading 1.1 s, simplification 6.8 s, the report's error measurement 10.2 s
-(`--no-error`: 7.9 s in all); peak resident memory 2.5 GB, about 250 bytes per input triangle, so 10^8
+2-core VM (2026-11-26, later that day): 14.2 s in all, reading 1.3 s, simplification about 7.2 s (its weld took
+0.4 to 1.1 s between runs), the report's error measurement 4.6 s (10.2 s before the midpoints' and centroids'
+searches were seeded, see hausdorff.cpp) (`--no-error`: 8.5 s in all); peak resident memory 2.55 GB, about
+250 bytes per input triangle, so 10^8
 triangles need a machine of about 32 GB. The simplification itself peaks at about 206 bytes per triangle
 beyond the input's 24 (2.2 GB at 10^7, 2 threads), nearly independent of the thread count: each thread's
 scratch holds marks over every vertex (12 bytes per vertex, the fastest) only up to 3 threads or 2^18
