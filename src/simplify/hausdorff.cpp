@@ -75,14 +75,11 @@ double nearest_d2(const TriMesh& mesh, const Bvh& bvh, const Vec3& p, std::uint3
   return best;
 }
 
-
 Near nearest(const TriMesh& to, const Bvh& bvh, const Vec3& p, double stop_d2, std::uint32_t seed) {
   Near n;
   n.d = std::sqrt(nearest_d2(to, bvh, p, &n.tri, stop_d2, seed));
   return n;
 }
-
-
 
 Sampled sample(const TriMesh& to, const Bvh& bvh, const std::array<Vec3, 3>& c, const std::array<Near, 3>& at,
                const std::array<Near, 3>* mid, double stop_d2) {
@@ -213,7 +210,8 @@ OneSidedDistance one_sided(const TriMesh& from, const TriMesh& to, bool with_bou
             break;
           }
       }
-      if (!found) m[k] = nearest(to, bvh, (from.positions[a] + from.positions[b]) * 0.5, sample_stop, nearer(vn[a], vn[b]).tri);
+      if (!found)
+        m[k] = nearest(to, bvh, (from.positions[a] + from.positions[b]) * 0.5, sample_stop, nearer(vn[a], vn[b]).tri);
     }
     return m;
   };
