@@ -369,8 +369,8 @@ interfere simplify IN OUT (--target N | --ratio R | --renderer-max N) [--step P 
                    [--regions FILE] [--features IDS] [--lock | --feature-mode weight|last|lock] [--sharp-angle DEG]
                    [--seams all|auto|features|none]
                    [--linear-deflection D] [--angular-deflection A] [--parts-dir DIR] [--format F]
-                   [--check-self-intersections] [--no-intersection-guard | --strict-intersection-guard] [--no-error]
-                   [--json REPORT] [--threads N]
+                   [--check-self-intersections] [--no-intersection-guard | --strict-intersection-guard]
+                   [--no-error | --max-error E | --max-error-rel R] [--json REPORT] [--threads N]
 interfere features PART.step [--json REPORT] [--aag] [--library lib.json] [--rules rules.json]
                    [--process process.json --step P] [--linear-deflection D] [--angular-deflection A]
 ```
@@ -396,6 +396,7 @@ interfere features PART.step [--json REPORT] [--aag] [--library lib.json] [--rul
 | `--no-intersection-guard` | plain QEM: no self-intersection check of the result, no guarded rerun |
 | `--strict-intersection-guard` | refuse every new intersecting pair, also where the input's own contacts move (default: those inside the input's contact zone are inherited) |
 | `--no-error` | skip the Hausdorff measurement |
+| `--max-error E`, `--max-error-rel R` | largest error bound allowed, in model units or as a fraction of the input's bounding-box diagonal (an assembly's parts share one limit): where the budget's error bound would exceed it, the fewest triangles that keep it within are returned instead, a warning says so (`SimplifyOptions::max_error`: budgets doubled from the one asked for until one holds, then bisected to 2 % of the triangles, each step a full run with the error measured: several times the time of one run; report `max_error`, `max_error_runs`, `error_limited_budget`) |
 | `--json FILE` | JSON report |
 
 On a terminal the share of the collapses done is shown while it runs (`SimplifyOptions::progress`).
@@ -405,12 +406,12 @@ written atomically and only after every input was validated.
 **`simplify` report**: `input_triangles`, `target_triangles`, `output_triangles`, `output_vertices`, `reached`,
 `collapses`, `rejected` {`link_condition`, `flipped_normal`, `self_intersection`, `last_face_triangle` (collapses refused as they would remove a face's last triangle)}, `guard_rerun`, `guard_reruns`, `input_contact_pairs` (the input's own intersecting or touching pairs: all of them where the guard refused collapses, else those near the plain result's new pairs; 0 when none were looked for), `inherited_pairs` (intersecting pairs of the result inside the input's contact zone, not both as in the input), `degenerate_triangles` (input triangles with two corners at one position, dropped with a warning; all degenerate is an error), `vertices` {`welded_input`,
 `seam`, `corner`, `locked`}, `feature_mode`, `feature_faces`, `feature_triangles` {`input`, `output`},
-`seams`, `seams_relaxed_at` (`--seams auto`: the fewest triangles every seam allowed, when that was above the budget; 0 otherwise; STEP input: summed over the parts × instances), `max_unmodified_cost`, `bbox_diagonal`, `hausdorff`, `hausdorff_features` (null without features), `error_bound`,
+`seams`, `seams_relaxed_at` (`--seams auto`: the fewest triangles every seam allowed, when that was above the budget; 0 otherwise; STEP input: summed over the parts × instances), `max_error` (the limit in model units, null without one), `max_error_runs` (runs made for it; summed over the parts), `error_limited_budget` (the budget of the run returned where the limit raised it, else 0; STEP input: per part), `max_unmodified_cost`, `bbox_diagonal`, `hausdorff`, `hausdorff_features` (null without features), `error_bound`,
 `self_intersections` (with the flag), `seconds` {`simplify`, `total`, `phases` [{`phase`, `seconds`}] (wall time
 of simplify()'s phases, in order; summed over the parts of a STEP input)}, `warnings`; for STEP input `cad` {`parts`
 [{`name`, `faces`, `triangles`, `features`, `assembly_feature_faces`}], `instances` [{`name`, `part`, `path`,
 `face_id_offset`, `placement` (3×4 [R|t], part → world), `in_step`, `simplified_part`}], `step`, `units`, `file_length_units`, `warnings`}, `budget_rounds` and `parts_simplified` [{`part`, `model_part`, `name`, `file` (with `--parts-dir`), `instances`, `input_triangles`,
-`target_triangles`, `output_triangles`, `feature_triangles`, `hausdorff`, `error_bound`, `hausdorff_features`, `guard_rerun`, `guard_reruns`, `input_contact_pairs`, `inherited_pairs`, `seams_relaxed_at`,
+`target_triangles`, `output_triangles`, `feature_triangles`, `hausdorff`, `error_bound`, `hausdorff_features`, `guard_rerun`, `guard_reruns`, `input_contact_pairs`, `inherited_pairs`, `seams_relaxed_at`, `max_error_runs`, `error_limited_budget`,
 `self_intersections` (with the flag; for STEP input the report's count is the sum over parts × instances)}]. Face
 ids of a multi-instance STEP are offset per instance.
 
@@ -440,8 +441,9 @@ C++: `interfere/simplify/qem.h` (`simplify`, `SimplifyOptions`, `SimplifyResult`
 `cad/model.h` (`import_step`, `world_mesh`, `write_test_part`), `cad/features.h`, `cad/semantics.h`,
 `cad/pipeline.h`. Python: `interfere.simplify(mesh, target=0, ratio=0, face_ids=[], feature_faces=[],
 lock=False, sharp_angle=0, prevent_self_intersections=True, measure_error=True, feature_mode="weight",
-inherit_input_contacts=True, seams="all")` → `SimplifyResult` (`.mesh`, `.face_ids`, `.hausdorff`, `.hausdorff_features`,
-`.error_bound`, `.guard_rerun`, `.guard_reruns`, `.input_contact_pairs`, `.inherited_pairs`, `.seams_relaxed_at`, `.phases`
+inherit_input_contacts=True, seams="all", max_error=0)` → `SimplifyResult` (`.mesh`, `.face_ids`, `.hausdorff`, `.hausdorff_features`,
+`.error_bound`, `.guard_rerun`, `.guard_reruns`, `.input_contact_pairs`, `.inherited_pairs`, `.seams_relaxed_at`,
+`.max_error_runs`, `.error_limited_budget`, `.phases`
 [(phase, seconds)], counters), `interfere.hausdorff(a, b)` (sampled a→b, b→a), `interfere.distance_bound(a, b)`,
 `interfere.write_tagged_mesh(path, mesh, face_ids=[], feature_faces=[], error_bound=-1)`,
 `interfere.read_error_bound(path)`, `interfere.write_glb(path, [(name, mesh, face_ids, feature_faces,

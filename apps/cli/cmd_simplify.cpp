@@ -35,6 +35,7 @@ struct SimplifyCliOptions {
   std::size_t target = 0;
   double ratio = 0;
   double sharp_angle = 0;
+  double max_error = 0, max_error_rel = 0;  ///< --max-error (model units), --max-error-rel (of the diagonal)
   double linear_deflection = 0, angular_deflection = 0.5;
   std::size_t renderer_max = 0;
   bool lock = false, check_self = false, no_error = false, no_guard = false, strict_guard = false;
@@ -185,7 +186,8 @@ Expected<SimplifyResult> simplify_parts(const cad::Prepared& prep, std::size_t t
                             {"hausdorff", d.hausdorff}, {"error_bound", d.error_bound}, {"hausdorff_features", d.hausdorff_features < 0 ? nlohmann::json(nullptr) : nlohmann::json(d.hausdorff_features)},
                             {"guard_rerun", d.guard_rerun}, {"guard_reruns", d.guard_reruns},
                             {"input_contact_pairs", d.input_contact_pairs}, {"inherited_pairs", d.inherited_pairs},
-                            {"seams_relaxed_at", d.seams_relaxed_at}});
+                            {"seams_relaxed_at", d.seams_relaxed_at}, {"max_error_runs", d.max_error_runs},
+                            {"error_limited_budget", d.error_limited_budget}});
     if (count_self) {
       const std::size_t x = count_self_intersections(d.mesh);
       parts_report.back()["self_intersections"] = x;
@@ -193,6 +195,7 @@ Expected<SimplifyResult> simplify_parts(const cad::Prepared& prep, std::size_t t
     }
     all.collapses += d.collapses, all.rejected_link += d.rejected_link, all.rejected_flip += d.rejected_flip;
     all.rejected_intersection += d.rejected_intersection, all.rejected_face += d.rejected_face;
+    all.max_error_runs += d.max_error_runs;
     all.guard_rerun = all.guard_rerun || d.guard_rerun;
     all.guard_reruns = std::max(all.guard_reruns, d.guard_reruns);
     all.input_contact_pairs += d.input_contact_pairs * p.instances, all.inherited_pairs += d.inherited_pairs * p.instances;
@@ -337,6 +340,16 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
     const auto extra = parse_id_list(o.features, "--features");
     so.feature_faces.insert(so.feature_faces.end(), extra.begin(), extra.end());
   }
+  // --max-error / --max-error-rel: the largest error bound allowed (the relative one of the whole
+  // input's diagonal: an assembly's parts share one limit).
+  if (!(o.max_error >= 0 && std::isfinite(o.max_error)))
+    throw InputError("--max-error must be a length > 0 (model units), not " + short_number(o.max_error));
+  if (!(o.max_error_rel >= 0 && o.max_error_rel <= 1))
+    throw InputError("--max-error-rel must be a fraction of the bounding-box diagonal in (0, 1], not " +
+                     short_number(o.max_error_rel));
+  so.max_error = o.max_error > 0 ? o.max_error : o.max_error_rel * norm(mesh.bounds().extent());
+  if (o.max_error_rel > 0 && !(so.max_error > 0))
+    throw InputError("--max-error-rel: the input's bounding box has no extent (a point): give --max-error");
   if (o.renderer_max > 0) {  // one part: its budget is the renderer's maximum (docs/simplify.md)
     std::size_t feature_tris = 0;
     std::vector<std::uint32_t> ff = so.feature_faces;
@@ -478,6 +491,9 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
   report["feature_mode"] = so.feature_mode == FeatureMode::lock ? "lock" : so.feature_mode == FeatureMode::last ? "last" : "weight";
   report["seams"] = o.seams;
   report["seams_relaxed_at"] = r.seams_relaxed_at;
+  report["max_error"] = so.max_error > 0 ? nlohmann::json(so.max_error) : nlohmann::json(nullptr);
+  report["max_error_runs"] = r.max_error_runs;
+  report["error_limited_budget"] = r.error_limited_budget;
   std::vector<std::uint32_t> ff = so.feature_faces;
   std::sort(ff.begin(), ff.end());
   ff.erase(std::unique(ff.begin(), ff.end()), ff.end());
@@ -599,7 +615,15 @@ void add_simplify_command(CLI::App& app, int& exit_code) {
               "refuse every new intersecting pair, also where the input's own contacts (cracks, touching or "
               "penetrating bodies) move (default: those are inherited within their zone)")
       ->excludes(no_guard);
-  c->add_flag("--no-error", o->no_error, "skip the Hausdorff measurement (error_bound is then -1)");
+  auto* no_error = c->add_flag("--no-error", o->no_error, "skip the Hausdorff measurement (error_bound is then -1)");
+  auto* max_error = c->add_option("--max-error", o->max_error,
+                                  "largest error bound allowed (model units): where the budget would exceed it, the "
+                                  "fewest triangles within it instead (bisection over the budget, each step a run "
+                                  "with the error measured)");
+  c->add_option("--max-error-rel", o->max_error_rel, "--max-error as a fraction of the input's bounding-box diagonal")
+      ->excludes(max_error)
+      ->excludes(no_error);
+  max_error->excludes(no_error);
   c->add_option("--json", o->json, "write the JSON report here");
   c->add_option("--threads", o->threads, "worker threads (0 = all cores)");
   c->callback([o, &exit_code] { exit_code = o->step == "all" ? run_all_steps(*o) : run_simplify(*o); });

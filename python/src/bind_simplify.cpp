@@ -55,6 +55,8 @@ void bind_simplify(py::module_& m) {
       .def_readonly("input_contact_pairs", &SimplifyResult::input_contact_pairs)
       .def_readonly("inherited_pairs", &SimplifyResult::inherited_pairs)
       .def_readonly("seams_relaxed_at", &SimplifyResult::seams_relaxed_at)
+      .def_readonly("max_error_runs", &SimplifyResult::max_error_runs)
+      .def_readonly("error_limited_budget", &SimplifyResult::error_limited_budget)
       .def_readonly("degenerate_triangles", &SimplifyResult::degenerate_triangles)
       .def_readonly("seam_vertices", &SimplifyResult::seam_vertices)
       .def_readonly("corner_vertices", &SimplifyResult::corner_vertices)
@@ -73,7 +75,8 @@ void bind_simplify(py::module_& m) {
       "simplify",
       [](const TriMesh& mesh, std::size_t target, double ratio, std::vector<std::uint32_t> face_ids,
          std::vector<std::uint32_t> feature_faces, bool lock, double sharp_angle, bool prevent_self_intersections,
-         bool measure_error, const std::string& feature_mode, bool inherit_input_contacts, const std::string& seams) {
+         bool measure_error, const std::string& feature_mode, bool inherit_input_contacts, const std::string& seams,
+         double max_error) {
         SimplifyOptions o;
         o.target_triangles = target;
         o.ratio = ratio;
@@ -93,6 +96,7 @@ void bind_simplify(py::module_& m) {
         o.prevent_self_intersections = prevent_self_intersections;
         o.inherit_input_contacts = inherit_input_contacts;
         o.measure_error = measure_error;
+        o.max_error = max_error;
         Expected<SimplifyResult> r = Error{};
         {
           py::gil_scoped_release release;
@@ -105,11 +109,13 @@ void bind_simplify(py::module_& m) {
       py::arg("feature_faces") = std::vector<std::uint32_t>{}, py::arg("lock") = false, py::arg("sharp_angle") = 0.0,
       py::arg("prevent_self_intersections") = true, py::arg("measure_error") = true,
       py::arg("feature_mode") = std::string("weight"), py::arg("inherit_input_contacts") = true,
-      py::arg("seams") = std::string("all"),
+      py::arg("seams") = std::string("all"), py::arg("max_error") = 0.0,
       "Feature-preserving QEM simplification to `target` triangles (or `ratio` of them). face_ids: per-triangle "
       "face/region ids; feature_faces: ids kept (cost-weighted, or hard-locked with lock=True). "
       "prevent_self_intersections: no intersecting pair the input did not have; inherit_input_contacts=False makes "
-      "that strict where the input has contacts of its own (see docs/simplify.md). ValueError on bad input (budget "
+      "that strict where the input has contacts of its own (see docs/simplify.md). max_error > 0: where the budget's "
+      "error bound would exceed it, the fewest triangles within it (error_limited_budget, max_error_runs). "
+      "ValueError on bad input (budget "
       "<= 0 or larger than the mesh, ...).");
   m.def(
       "hausdorff",

@@ -85,6 +85,17 @@ class Simplify(unittest.TestCase):
         self.assertEqual(set(r.face_ids), set(faces))
         self.assertGreater(r.rejected_face, 0)
 
+    def test_max_error(self):
+        s = itf.make_sphere(4000)
+        plain = itf.simplify(s, target=200)
+        r = itf.simplify(s, target=200, max_error=plain.error_bound / 2)
+        self.assertLessEqual(r.error_bound, plain.error_bound / 2)
+        self.assertGreater(len(r.mesh.triangles), 200)
+        self.assertGreater(r.max_error_runs, 1)
+        self.assertGreaterEqual(r.error_limited_budget, len(r.mesh.triangles))
+        with self.assertRaises(ValueError):
+            itf.simplify(s, target=200, max_error=-1.0)
+
     def test_locked_features_keep_their_triangles(self):
         s = itf.make_sphere(4000)
         faces = cap_faces(s)

@@ -110,6 +110,82 @@ bool to_world(SimplifyResult& r, const TriMesh& input, const qem::LocalFrame& fr
 
 }  // namespace
 
+namespace {
+
+// One run to `target` triangles (in a local frame where the coordinates call for one).
+Expected<SimplifyResult> simplify_to(const TriMesh& mesh, const SimplifyOptions& options, std::size_t target) {
+  const Aabb box = mesh.bounds();
+  if (const auto frame = qem::local_frame(mesh, box)) {
+    const auto t0 = std::chrono::steady_clock::now();
+    auto r = simplify_in_frame(qem::to_local(mesh, *frame), options, target);
+    if (!r) return r;
+    if (to_world(*r, mesh, *frame, options)) {
+      r->phases.insert(r->phases.begin(),
+                       {"local frame", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() -
+                                           phase_total(*r)});
+      return r;
+    }
+  }
+  return simplify_in_frame(mesh, options, target, &box);
+}
+
+// SimplifyOptions::max_error: from the budget asked for (its error bound too large), budgets
+// doubled until one holds the error (the input's own count does: error 0), then bisected between
+// the last that did not and the first that did down to 2 % of the triangles (or 2), each step a full
+// run; the result with the fewest triangles within the error is returned, its phases led by the time
+// of the other runs.
+Expected<SimplifyResult> simplify_within(const TriMesh& mesh, const SimplifyOptions& options, std::size_t target) {
+  const double limit = options.max_error;
+  SimplifyOptions o = options;
+  o.measure_error = true;
+  const auto t0 = std::chrono::steady_clock::now();
+  auto r = simplify_to(mesh, o, target);
+  if (!r) return r;
+  r->max_error_runs = 1;
+  if (r->error_bound <= limit) return r;
+  std::size_t lo = target, hi = mesh.num_triangles(), runs = 1;
+  std::optional<SimplifyResult> best;
+  const auto step = [&](std::size_t budget) -> Status {
+    auto m = simplify_to(mesh, o, budget);
+    ++runs;
+    if (!m) return m.error();
+    if (m->error_bound <= limit) {
+      hi = std::min(budget, m->mesh.num_triangles());
+      best = std::move(*m);
+    } else {
+      lo = budget;
+    }
+    return {};
+  };
+  for (std::size_t b = 2 * target; b < hi && !best; b *= 2)
+    if (Status s = step(b); !s) return s.error();
+  while (hi > lo + std::max<std::size_t>(2, hi / 50))
+    if (Status s = step(lo + (hi - lo) / 2); !s) return s.error();
+  if (!best) {  // nothing between held the error: the input's own count
+    auto m = simplify_to(mesh, o, hi);
+    ++runs;
+    if (!m) return m;
+    best = std::move(*m);
+  }
+  const double before = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() - phase_total(*best);
+  best->phases.insert(best->phases.begin(), {"max-error search (other runs)", before});
+  best->max_error_runs = runs;
+  best->error_limited_budget = best->target_triangles;
+  best->target_triangles = target;
+  best->reached = false;
+  const std::string held = best->error_bound <= limit
+                               ? " triangles keep it within (error bound "
+                               : " triangles, the input's own, do not either (its rounding margin alone: error bound ";
+  best->warnings.insert(best->warnings.begin(),
+                        "budget " + std::to_string(target) + ": its error bound " + short_number(r->error_bound) +
+                            " exceeds max_error " + short_number(limit) + "; " +
+                            std::to_string(best->mesh.num_triangles()) + held + short_number(best->error_bound) +
+                            ", " + std::to_string(runs) + " runs)");
+  return std::move(*best);
+}
+
+}  // namespace
+
 Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& options) {
   const std::size_t nt = mesh.num_triangles();
   if (nt == 0) return Error{.reason = "the mesh has no triangles"};
@@ -125,23 +201,15 @@ Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& op
   if (!(options.sharp_angle_deg >= 0 && options.sharp_angle_deg < 180))
     return Error{.reason = "sharp angle " + short_number(options.sharp_angle_deg) +
                            " degrees: give a dihedral angle in (0, 180), or 0 for no sharp-edge regions"};
+  if (!(options.max_error >= 0 && std::isfinite(options.max_error)))
+    return Error{.reason = "max_error " + short_number(options.max_error) +
+                           ": give a length > 0 (the largest error bound allowed), or 0 for none"};
   Error err;
   const std::size_t target = budget_of(mesh, options, err);
   if (target == 0) return err;
+  if (options.max_error > 0) return simplify_within(mesh, options, target);
   // Far from the origin, or very large or small: simplified in a local frame (local_frame.h).
-  const Aabb box = mesh.bounds();
-  if (const auto frame = qem::local_frame(mesh, box)) {
-    const auto t0 = std::chrono::steady_clock::now();
-    auto r = simplify_in_frame(qem::to_local(mesh, *frame), options, target);
-    if (!r) return r;
-    if (to_world(*r, mesh, *frame, options)) {
-      r->phases.insert(r->phases.begin(),
-                       {"local frame", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() -
-                                           phase_total(*r)});
-      return r;
-    }
-  }
-  return simplify_in_frame(mesh, options, target, &box);
+  return simplify_to(mesh, options, target);
 }
 
 namespace {

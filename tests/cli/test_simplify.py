@@ -107,6 +107,38 @@ class Simplify(unittest.TestCase):
         self.assertGreaterEqual(r["error_bound"], r["hausdorff"])
         self.assertIn("400 triangles", out)
 
+    def test_max_error_stops_above_the_budget(self):
+        code, _, err = run("simplify", path("sphere.obj"), path("me0.ply"), "--target", "100", "--json", path("me0.json"))
+        self.assertEqual(code, 0, err)
+        plain = load_json("me0.json")
+        self.assertIsNone(plain["max_error"])
+        self.assertEqual(plain["max_error_runs"], 0)
+        limit = plain["error_bound"] / 3
+        code, _, err = run("simplify", path("sphere.obj"), path("me.ply"), "--target", "100", "--max-error", repr(limit),
+                           "--json", path("me.json"))
+        self.assertEqual(code, 0, err)
+        r = load_json("me.json")
+        self.assertEqual(r["max_error"], limit)
+        self.assertLessEqual(r["error_bound"], limit)
+        self.assertGreater(r["output_triangles"], 100)
+        self.assertFalse(r["reached"])
+        self.assertGreater(r["max_error_runs"], 1)
+        self.assertGreaterEqual(r["error_limited_budget"], r["output_triangles"])
+        self.assertIn("exceeds max_error", err)
+        # The same limit relative to the bounding-box diagonal.
+        code, _, err = run("simplify", path("sphere.obj"), path("me_rel.ply"), "--target", "100", "--max-error-rel",
+                           repr(limit / r["bbox_diagonal"]), "--json", path("me_rel.json"))
+        self.assertEqual(code, 0, err)
+        rel = load_json("me_rel.json")
+        self.assertAlmostEqual(rel["max_error"], limit, delta=1e-12 * limit)
+        self.assertLessEqual(rel["error_bound"], rel["max_error"])
+        for bad, message in ((("--max-error", "-1"), "--max-error must be a length > 0"),
+                             (("--max-error-rel", "2"), "--max-error-rel must be a fraction"),
+                             (("--max-error", "0.1", "--no-error"), "excludes"),
+                             (("--max-error", "0.1", "--max-error-rel", "0.1"), "excludes")):
+            self.assert_input_error("simplify", path("sphere.obj"), path("me_bad.ply"), "--target", "100", *bad,
+                                    output=path("me_bad.ply"), message=message)
+
     def test_plain_mesh_as_glb(self):
         code, _, err = run("simplify", path("sphere.obj"), path("s.glb"), "--ratio", "0.5", "--json", path("s_glb.json"))
         self.assertEqual(code, 0, err)

@@ -106,6 +106,12 @@ struct SimplifyOptions {
   /// Measure the symmetric Hausdorff distance (sampled, see hausdorff.h) overall and on the
   /// feature faces, and an upper bound of the input's distance to the result (error_bound).
   bool measure_error = true;
+  /// > 0 (model units): the budget is a floor as well as a target: where the result's error_bound
+  /// would exceed this, the fewest triangles whose error_bound stays within it are returned
+  /// instead (budgets doubled from the one asked for until one holds, then bisected to within 2 %
+  /// of the triangles or 2 of them, each step a full run with the error measured, whatever
+  /// measure_error says; a warning says so). 0: off.
+  double max_error = 0;
   /// Called now and then on the calling thread with the fraction (0 to 1) of the run's collapses
   /// done (after each batched pass, every 2 % of the heap's); a guarded rerun reports its own
   /// progress again. Reporting only: results do not depend on it.
@@ -147,6 +153,9 @@ struct SimplifyResult {
   /// the guarded rerun that followed), where that was above the budget and the result is the run
   /// with the feature faces' borders only (0: every seam kept).
   std::size_t seams_relaxed_at = 0;
+  /// max_error: the runs made (1 when the budget kept the error within it; 0 without max_error)
+  /// and the budget of the run returned (0 when it was the budget asked for).
+  std::size_t max_error_runs = 0, error_limited_budget = 0;
   std::size_t seam_vertices = 0, corner_vertices = 0, locked_vertices = 0;
   std::size_t feature_triangles_in = 0, feature_triangles_out = 0;
   double max_unmodified_cost = 0;  ///< the largest initial edge cost: the feature offset (weight mode)

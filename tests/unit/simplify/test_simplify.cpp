@@ -613,6 +613,51 @@ TEST(Simplify, OneAndManyThreadsGiveBitIdenticalResults) {
   EXPECT_EQ(one->hausdorff, many->hausdorff);
 }
 
+TEST(Simplify, MaxErrorStopsAboveTheBudgetWhereTheErrorBoundWouldExceedIt) {
+  const TriMesh s = make_sphere({.target_triangles = 20000, .bump_amplitude = 0.05});
+  SimplifyOptions o{.target_triangles = 200};
+  auto plain = simplify(s, o);
+  ASSERT_TRUE(plain.has_value());
+  // A limit the budget keeps: the same run, bit for bit.
+  SimplifyOptions loose = o;
+  loose.max_error = 2 * plain->error_bound;
+  auto same = simplify(s, loose);
+  ASSERT_TRUE(same.has_value());
+  expect_same_result(*plain, *same);
+  EXPECT_EQ(same->max_error_runs, 1u);
+  EXPECT_EQ(same->error_limited_budget, 0u);
+  // A tighter one: more triangles, the error bound within it, a warning; and the budget found
+  // gives that result again on its own.
+  for (double f : {0.5, 0.1}) {
+    SimplifyOptions tight = o;
+    tight.max_error = f * plain->error_bound;
+    auto r = simplify(s, tight);
+    ASSERT_TRUE(r.has_value());
+    EXPECT_LE(r->error_bound, tight.max_error);
+    EXPECT_GT(r->mesh.num_triangles(), 200u);
+    EXPECT_LT(r->mesh.num_triangles(), s.num_triangles());
+    EXPECT_FALSE(r->reached);
+    EXPECT_EQ(r->target_triangles, 200u);
+    EXPECT_GT(r->max_error_runs, 2u);
+    EXPECT_GE(r->error_limited_budget, r->mesh.num_triangles());
+    ASSERT_FALSE(r->warnings.empty());
+    EXPECT_NE(r->warnings[0].find("exceeds max_error"), std::string::npos) << r->warnings[0];
+    SimplifyOptions again = o;
+    again.target_triangles = r->error_limited_budget;
+    auto a = simplify(s, again);
+    ASSERT_TRUE(a.has_value());
+    EXPECT_EQ(a->mesh.triangles, r->mesh.triangles);
+    EXPECT_EQ(a->error_bound, r->error_bound);
+  }
+  for (double bad : {-1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    SimplifyOptions b = o;
+    b.max_error = bad;
+    auto e = simplify(s, b);
+    ASSERT_FALSE(e.has_value());
+    EXPECT_NE(e.error().reason.find("max_error"), std::string::npos);
+  }
+}
+
 TEST(Simplify, MarksAndVertexMapScratchGiveTheSameResult) {
   // Above 2^18 vertices and 3 threads the local operations use a small vertex map instead of marks
   // over every vertex (qem_internal.h, make_scratch): the same collapses, bit for bit.
