@@ -11,7 +11,7 @@
 //  - simplify() fails only when the ratio leaves no triangle or every triangle is degenerate, with
 //    a reason;
 //  - the result has finite positions, indices in range, one face id per triangle (ids of the input),
-//    and every face whose seams are kept is still there;
+//    and every face whose seams are kept is still there; with max_error, an error bound within it;
 //  - no more triangles than the input's non-degenerate ones; `reached` means exactly the budget;
 //  - no self-intersection the input did not have: both triangles of every intersecting pair of the
 //    result are triangles of the input (same corners);
@@ -158,7 +158,8 @@ int entry(const std::uint8_t* data, std::size_t size) {
   if (flags & 64) o.batched_passes = false;
   if (flags & 128) o.inherit_input_contacts = false;
   o.seams = static_cast<interfere::SeamMode>(data[size - 1] % 4);  // (the last byte: decoding unchanged)
-  const std::string where = tag(o, shape);
+  if ((data[size - 1] >> 2) % 4 == 3) o.max_error = 1e-3 * interfere::norm(mesh.bounds().extent());  // (0 for a point)
+  const std::string where = tag(o, shape) + (o.max_error > 0 ? " max_error " + num(o.max_error) : "");
 
   std::size_t live = 0;
   for (std::size_t t = 0; t < mesh.num_triangles(); ++t) live += degenerate(mesh, t) ? 0 : 1;
@@ -193,6 +194,10 @@ int entry(const std::uint8_t* data, std::size_t size) {
   }
   FUZZ_CHECK(out.num_triangles() <= live, "more triangles than the input's non-degenerate ones" + where);
   FUZZ_CHECK(!r->reached || out.num_triangles() == target, "reached, yet not the budget" + where);
+  // max_error: within it, or the input's own count (its rounding margin alone above it).
+  if (o.max_error > 0)
+    FUZZ_CHECK(r->error_bound <= o.max_error || r->error_limited_budget >= live,
+               "error bound " + num(r->error_bound) + " above max_error" + where);
 
   // No new self-intersection.
   std::vector<Key> in_keys;
