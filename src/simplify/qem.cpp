@@ -145,7 +145,14 @@ Expected<SimplifyResult> simplify_within(const TriMesh& mesh, const SimplifyOpti
   if (r->error_bound <= limit) return r;
   std::size_t lo = target, hi = mesh.num_triangles(), runs = 1;
   std::optional<SimplifyResult> best;
+  // The search's runs report themselves as a stage each (their collapses' progress would restart).
+  o.progress = nullptr;
+  o.stage = nullptr;
   const auto step = [&](std::size_t budget) -> Status {
+    if (options.stage) {
+      const std::string what = "error limit: run " + std::to_string(runs + 1) + " (budget " + std::to_string(budget) + ")";
+      options.stage(what.c_str());
+    }
     auto m = simplify_to(mesh, o, budget);
     ++runs;
     if (!m) return m.error();
@@ -171,6 +178,9 @@ Expected<SimplifyResult> simplify_within(const TriMesh& mesh, const SimplifyOpti
   best->phases.insert(best->phases.begin(), {"max-error search (other runs)", before});
   best->max_error_runs = runs;
   best->error_limited_budget = best->target_triangles;
+  // (its own budget's warnings, "budget B not reached ...", would only confuse: the one below says it)
+  const std::string own = "budget " + std::to_string(best->error_limited_budget) + " not reached";
+  std::erase_if(best->warnings, [&](const std::string& w) { return w.rfind(own, 0) == 0; });
   best->target_triangles = target;
   best->reached = false;
   const std::string held = best->error_bound <= limit
