@@ -344,8 +344,9 @@ that did not and the first that did, to 2 % of the triangles; the run with the f
 returned with a warning, `error_limited_budget` its budget and `max_error_runs` the runs made (the bumpy sphere
 of 19,880 triangles to 200: half its error bound holds at 280 triangles, found in 7 runs; unit test
 `Simplify.MaxErrorStopsAboveTheBudgetWhereTheErrorBoundWouldExceedIt`, where the budget found gives the same
-result again on its own). The error bound is the measured upper bound of `error_bound`, so the limit holds
-for every point of the input's surface, not only for the samples.
+result again on its own). The limit applies to `error_bound`, an upper bound of the distance from every point
+of the input's surface to the result (and at least the sampled Hausdorff distance both ways), not only to the
+samples.
 
 ### Triangle budget per part (renderer share)
 
