@@ -618,8 +618,8 @@ void add_simplify_command(CLI::App& app, int& exit_code) {
   auto* no_error = c->add_flag("--no-error", o->no_error, "skip the Hausdorff measurement (error_bound is then -1)");
   auto* max_error = c->add_option("--max-error", o->max_error,
                                   "largest error bound allowed (model units): where the budget would exceed it, the "
-                                  "fewest triangles within it instead (bisection over the budget, each step a run "
-                                  "with the error measured)");
+                                  "fewest triangles found within it instead (a search over the budget, each step a "
+                                  "run with the error measured)");
   c->add_option("--max-error-rel", o->max_error_rel, "--max-error as a fraction of the input's bounding-box diagonal")
       ->excludes(max_error)
       ->excludes(no_error);

@@ -129,11 +129,13 @@ Expected<SimplifyResult> simplify_to(const TriMesh& mesh, const SimplifyOptions&
   return simplify_in_frame(mesh, options, target, &box);
 }
 
-// SimplifyOptions::max_error: from the budget asked for (its error bound too large), budgets
-// doubled until one holds the error (the input's own count does: error 0), then bisected between
-// the last that did not and the first that did down to 2 % of the triangles (or 2), each step a full
-// run; the result with the fewest triangles within the error is returned, its phases led by the time
-// of the other runs.
+// SimplifyOptions::max_error: from the budget asked for (its error bound too large), a budget that
+// should hold the error if it falls as 1/N (QEM on a smooth surface: the error goes with the squared
+// edge length), raised until one does (the input's own count does: error 0); then the bracket
+// between the last budget that did not and the first that did is narrowed to 2 % of the triangles
+// (or 2), alternately by interpolating log error against log budget and by halving (the halving
+// bounds the runs where the model is off); each step a full run. The result with the fewest
+// triangles within the error is returned, its phases led by the time of the other runs.
 Expected<SimplifyResult> simplify_within(const TriMesh& mesh, const SimplifyOptions& options, std::size_t target) {
   const double limit = options.max_error;
   SimplifyOptions o = options;
@@ -144,6 +146,7 @@ Expected<SimplifyResult> simplify_within(const TriMesh& mesh, const SimplifyOpti
   r->max_error_runs = 1;
   if (r->error_bound <= limit) return r;
   std::size_t lo = target, hi = mesh.num_triangles(), runs = 1;
+  double e_lo = r->error_bound, e_hi = 0;
   std::optional<SimplifyResult> best;
   // The search's runs report themselves as a stage each (their collapses' progress would restart).
   o.progress = nullptr;
@@ -158,16 +161,33 @@ Expected<SimplifyResult> simplify_within(const TriMesh& mesh, const SimplifyOpti
     if (!m) return m.error();
     if (m->error_bound <= limit) {
       hi = std::min(budget, m->mesh.num_triangles());
+      e_hi = m->error_bound;
       best = std::move(*m);
     } else {
-      lo = budget;
+      lo = budget, e_lo = m->error_bound;
     }
     return {};
   };
-  for (std::size_t b = 2 * target; b < hi && !best; b *= 2)
+  const auto tolerance = [&] { return std::max<std::size_t>(2, hi / 50); };
+  while (!best && hi > lo + tolerance()) {  // 1/N model, 10 % beyond; at least a tolerance up
+    const double guess = double(lo) * (e_lo / limit) * 1.1;
+    const std::size_t b = std::clamp<std::size_t>(static_cast<std::size_t>(std::min(guess, double(hi))),
+                                                  lo + tolerance(), hi);
+    if (b >= hi) break;
     if (Status s = step(b); !s) return s.error();
-  while (hi > lo + std::max<std::size_t>(2, hi / 50))
-    if (Status s = step(lo + (hi - lo) / 2); !s) return s.error();
+  }
+  for (bool halve = false; hi > lo + tolerance(); halve = !halve) {
+    std::size_t b = lo + (hi - lo) / 2;
+    if (!halve && e_hi > 0 && e_lo > limit) {  // log-log interpolation, kept a half-tolerance inside
+      const double x = std::log(double(lo)) + (std::log(limit) - std::log(e_lo)) *
+                                                  (std::log(double(hi)) - std::log(double(lo))) /
+                                                  (std::log(e_hi) - std::log(e_lo));
+      const std::size_t margin = tolerance() / 2;
+      if (std::isfinite(x))
+        b = std::clamp<std::size_t>(static_cast<std::size_t>(std::exp(x)), lo + margin, hi - margin);
+    }
+    if (Status s = step(b); !s) return s.error();
+  }
   if (!best) {  // nothing between held the error: the input's own count
     auto m = simplify_to(mesh, o, hi);
     ++runs;

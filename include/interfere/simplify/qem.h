@@ -108,9 +108,10 @@ struct SimplifyOptions {
   bool measure_error = true;
   /// > 0 (model units): the budget is a floor as well as a target: where the result's error_bound
   /// would exceed this, the fewest triangles whose error_bound stays within it are returned
-  /// instead (budgets doubled from the one asked for until one holds, then bisected to within 2 %
-  /// of the triangles or 2 of them, each step a full run with the error measured, whatever
-  /// measure_error says; a warning says so). 0: off.
+  /// instead (a search over the budget, see docs/simplify.md, to within 2 % of the triangles or 2
+  /// of them, each step a full run with the error measured, whatever measure_error says; a warning
+  /// says so; the error bound does not fall strictly with the budget, so the count found is near the
+  /// fewest, not provably it). 0: off.
   double max_error = 0;
   /// Called now and then on the calling thread with the fraction (0 to 1) of the run's collapses
   /// done (after each batched pass, every 2 % of the heap's); a guarded rerun reports its own
