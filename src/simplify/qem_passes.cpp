@@ -37,7 +37,7 @@ std::size_t Simplifier::apply_selected(const std::vector<std::pair<std::uint32_t
   const std::size_t per = range_length(n);
   const std::size_t ranges = (n + per - 1) / per;
   ++owner_pass_;
-  face_pass_ = face_live_;  // (face_fragile's counts: the pass's start)
+  face_pass_ = face_live_;  // (Scratch::fragile's counts: the pass's start)
   std::vector<std::size_t> bound(ranges + 1, 0);  // refs_ space for the grown fans of each range
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ranges, 1), [&](const tbb::blocked_range<std::size_t>& rg) {
     for (std::size_t c = rg.begin(); c < rg.end(); ++c)
