@@ -39,6 +39,22 @@ def uv_sphere(lon=40, lat=21, bump=0.05):
     return v, f
 
 
+def write_region_sheet(name, region_of, n=32):
+    """A bumpy n x n sheet as NAME.obj, each grid square's two triangles in region region_of(i, j),
+    written one per line to NAME.txt; returns the per-triangle regions."""
+    pos = [(i / n, j / n, 0.2 * math.sin(3 * i / n) * math.cos(2 * j / n)) for j in range(n + 1) for i in range(n + 1)]
+    tri, faces = [], []
+    for j in range(n):
+        for i in range(n):
+            a = j * (n + 1) + i
+            tri += [(a, a + 1, a + n + 2), (a, a + n + 2, a + n + 1)]
+            faces += [region_of(i, j)] * 2
+    write_obj(name + ".obj", (pos, tri))
+    with open(path(name + ".txt"), "w") as out:
+        out.write("\n".join(map(str, faces)) + "\n")
+    return faces
+
+
 def write_process(name, steps):
     """Writes a process description {"steps": steps} to the work file `name`; returns its path."""
     with open(path(name), "w") as out:
@@ -233,17 +249,7 @@ class Simplify(unittest.TestCase):
     def test_seams_of_non_feature_faces(self):
         # 8 x 8 square faces on a bumpy sheet: their corners hold the budget unless the seams of the
         # faces that are not features may go.
-        n = 32
-        pos = [(i / n, j / n, 0.2 * math.sin(3 * i / n) * math.cos(2 * j / n)) for j in range(n + 1) for i in range(n + 1)]
-        tri, faces = [], []
-        for j in range(n):
-            for i in range(n):
-                a = j * (n + 1) + i
-                tri += [(a, a + 1, a + n + 2), (a, a + n + 2, a + n + 1)]
-                faces += [i // 4 + 8 * (j // 4)] * 2
-        write_obj("tiles.obj", (pos, tri))
-        with open(path("tiles.txt"), "w") as out:
-            out.write("\n".join(map(str, faces)) + "\n")
+        write_region_sheet("tiles", lambda i, j: i // 4 + 8 * (j // 4))
         reports = {}
         for seams in ("all", "features", "auto"):
             code, _, err = run("simplify", path("tiles.obj"), path("tiles_%s.ply" % seams), "--target", "100",
@@ -265,18 +271,8 @@ class Simplify(unittest.TestCase):
     def test_no_face_vanishes_with_its_seams_kept(self):
         # 2 x 2 tiles of a bumpy sheet with 12 one-square faces (2 triangles each) inside them: QEM
         # would flatten those away; with their seams kept each keeps a triangle at least.
-        n = 32
-        pos = [(i / n, j / n, 0.2 * math.sin(3 * i / n) * math.cos(2 * j / n)) for j in range(n + 1) for i in range(n + 1)]
-        tri, faces = [], []
         small = {(3 + 8 * (k % 4), 5 + 10 * (k // 4)): 10 + k for k in range(12)}
-        for j in range(n):
-            for i in range(n):
-                a = j * (n + 1) + i
-                tri += [(a, a + 1, a + n + 2), (a, a + n + 2, a + n + 1)]
-                faces += [small.get((i, j), i // 16 + 2 * (j // 16))] * 2
-        write_obj("dots.obj", (pos, tri))
-        with open(path("dots.txt"), "w") as out:
-            out.write("\n".join(map(str, faces)) + "\n")
+        faces = write_region_sheet("dots", lambda i, j: small.get((i, j), i // 16 + 2 * (j // 16)))
         code, _, err = run("simplify", path("dots.obj"), path("dots.ply"), "--target", "60", "--regions",
                            path("dots.txt"), "--format", "ply-ascii", "--json", path("dots.json"))
         self.assertEqual(code, 0, err)
