@@ -261,29 +261,7 @@ bool Simplifier::link_ok(std::uint32_t a, std::uint32_t b, Scratch& sc) const {
       }
     return common == sc.shared;
   }
-  // Small fans (nearly all): the vertices of a's fan, and those of b's already counted, in short
-  // arrays, each with a 64-bit filter (one bit per vertex number's hash) so that the linear search
-  // runs only for the few that may be there.
-  constexpr std::size_t kSmall = 32;
-  if (sc.fan_a.size() <= kSmall && sc.fan_b.size() <= kSmall) {
-    const auto bit = [](std::uint32_t w) { return std::uint64_t{1} << ((w * 0x9E3779B1u) >> 26); };
-    std::uint32_t in_a[2 * kSmall], seen[2 * kSmall];
-    std::uint64_t in_a_bits = 0, seen_bits = 0;
-    int na = 0, ns = 0, common = 0;
-    for (const Scratch::FanTri& f : sc.fan_a)
-      for (std::uint32_t w : f.tr)
-        if (w != a && w != b) in_a[na++] = w, in_a_bits |= bit(w);
-    for (const Scratch::FanTri& f : sc.fan_b)
-      for (std::uint32_t w : f.tr) {
-        if (w == a || w == b) continue;
-        const std::uint64_t m = bit(w);
-        if ((seen_bits & m) && std::find(seen, seen + ns, w) != seen + ns) continue;
-        seen[ns++] = w, seen_bits |= m;
-        if ((in_a_bits & m) && std::find(in_a, in_a + na, w) != in_a + na) ++common;
-      }
-    return common == sc.shared;
-  }
-  // Per vertex: 1 = in a's fan, 2 = counted from b's.
+  // The vertex map (large meshes on many threads), per vertex: 1 = in a's fan, 2 = counted from b's.
   sc.map.clear();
   for (const Scratch::FanTri& f : sc.fan_a)
     for (std::uint32_t w : f.tr) sc.map.at(w) = 1;
