@@ -263,9 +263,20 @@ Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOp
   std::vector<std::uint32_t> features = options.feature_faces;
   std::sort(features.begin(), features.end());
   std::vector<std::uint8_t> feature_tri(nt, 0);
-  for (std::size_t t = 0; t < nt; ++t) {
-    feature_tri[t] = std::binary_search(features.begin(), features.end(), face[t]) ? 1 : 0;
-    r.feature_triangles_in += feature_tri[t];
+  if (!features.empty()) {
+    // Face ids are dense (B-Rep faces, regions): a flag per id; else (ids beyond 4 per triangle)
+    // a binary search per triangle.
+    const std::uint32_t max_id = *std::max_element(face.begin(), face.end());
+    if (max_id < 4 * nt + 1024) {
+      std::vector<std::uint8_t> is_feature(std::size_t{max_id} + 1, 0);
+      for (std::uint32_t f : features)
+        if (f <= max_id) is_feature[f] = 1;
+      for (std::size_t t = 0; t < nt; ++t) feature_tri[t] = is_feature[face[t]];
+    } else {
+      for (std::size_t t = 0; t < nt; ++t)
+        feature_tri[t] = std::binary_search(features.begin(), features.end(), face[t]) ? 1 : 0;
+    }
+    for (std::size_t t = 0; t < nt; ++t) r.feature_triangles_in += feature_tri[t];
   }
   if (!features.empty() && r.feature_triangles_in == 0)
     r.warnings.push_back("no triangle carries one of the feature face ids");

@@ -30,7 +30,9 @@ void radix_sort_u32(Vector& v, Vector& tmp, Key key) {
   constexpr std::size_t kBuckets = std::size_t{1} << kBits;
   const std::size_t n = v.size();
   if (n < 2) return;
-  const std::size_t kBlock = parallel_block_length(n);  // few blocks: the offset sweep stays cheap
+  // Few blocks: the offset sweep stays cheap. Below 2^16 entries one block (serial): splitting
+  // made the sort slower there on 2 cores (45,000 entries: 0.32 ms in 11 blocks, 0.23 ms in one).
+  const std::size_t kBlock = n < (std::size_t{1} << 16) ? n : parallel_block_length(n);
   tmp.resize(n);
   const std::size_t nb = (n + kBlock - 1) / kBlock;
   std::vector<std::array<std::uint32_t, kBuckets>> hist(nb);
