@@ -172,7 +172,8 @@ void Simplifier::batched_passes(EntryList& list, std::size_t handoff, std::size_
   // grids, most scanned meshes); a CAD tessellation numbers each B-Rep face on its own, and half of
   // a pass's collapses then touched another range and were deferred to the serial sweep (casing:
   // 2,488 of 5,131). Where more than 2 % of the edges join vertices far apart in number, the ranges
-  // are cut along a Morton curve instead (casing: 245 deferred), each still applied in vertex order.
+  // are cut along a Morton curve instead (casing: 245 deferred in 6 ranges of 1024, 339 in the 6
+  // equal ranges of range_length), each still applied in vertex order.
   const std::size_t far_limit = std::max<std::size_t>(1024, pos_.size() / 64);
   const std::size_t far_edges = tbb::parallel_reduce(
       tbb::blocked_range<std::size_t>(0, list.size(), 1 << 16), std::size_t{0},
