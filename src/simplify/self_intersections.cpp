@@ -1,5 +1,8 @@
 // Self-intersections of a mesh (issue #6, item 6: simplification introduces none) with the
 // engine's BVH traversed against itself and the exact triangle test of np/tri_tri.h.
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
@@ -78,29 +81,65 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> self_intersecting_pairs(con
     }
     return true;
   };
+  // The triangles' boxes per coordinate in leaf order (8 spare entries at the end, never set): one
+  // triangle's box is tested against four of the other leaf's at a time without branches, and only
+  // the overlapping ones are visited (the branchy per-pair test, its outcome a coin toss, was about
+  // half of the check's time).
+  const std::size_t np = bvh.prims.size(), stride = np + 8;
+  std::vector<float> soa(6 * stride, 0.0f);
+  const float* lo[3] = {soa.data(), soa.data() + stride, soa.data() + 2 * stride};
+  const float* hi[3] = {soa.data() + 3 * stride, soa.data() + 4 * stride, soa.data() + 5 * stride};
+  for (std::size_t k = 0; k < np; ++k)
+    for (int c = 0; c < 3; ++c)
+      soa[c * stride + k] = bvh.prim_boxes[k].lo[c], soa[(3 + c) * stride + k] = bvh.prim_boxes[k].hi[c];
+  // Bit j set: the box of x overlaps that of y0 + j (j < 4).
+  const auto overlaps4 = [&](const AabbF& bx, std::uint32_t y0) {
+#if defined(__SSE2__)
+    __m128 m = _mm_castsi128_ps(_mm_set1_epi32(-1));
+    for (int c = 0; c < 3; ++c) {
+      m = _mm_and_ps(m, _mm_cmple_ps(_mm_set1_ps(bx.lo[c]), _mm_loadu_ps(hi[c] + y0)));
+      m = _mm_and_ps(m, _mm_cmple_ps(_mm_loadu_ps(lo[c] + y0), _mm_set1_ps(bx.hi[c])));
+    }
+    return static_cast<unsigned>(_mm_movemask_ps(m));
+#else
+    unsigned bits = 0;
+    for (unsigned j = 0; j < 4; ++j) {
+      bool o = true;
+      for (int c = 0; c < 3; ++c) o = o && bx.lo[c] <= hi[c][y0 + j] && lo[c][y0 + j] <= bx.hi[c];
+      bits |= static_cast<unsigned>(o) << j;
+    }
+    return bits;
+#endif
+  };
   const auto leaf_pair = [&](NodePair p, Pairs& found) {
     const BvhNode& na = bvh.nodes[p.first];
     const BvhNode& nb = bvh.nodes[p.second];
     const bool same = p.first == p.second;
+    const std::uint32_t y_end = nb.first + nb.count;
     for (std::uint32_t x = na.first; x < na.first + na.count; ++x) {
       // A triangle away from the other leaf's box meets none of its triangles.
-      if (!same && !bvh.prim_boxes[x].overlaps(nb.box)) continue;
       const AabbF& bx = bvh.prim_boxes[x];
+      if (!same && !bx.overlaps(nb.box)) continue;
       const Tri& ta = tri[x];
-      for (std::uint32_t y = same ? x + 1 : nb.first; y < nb.first + nb.count; ++y) {
-        if (!bx.overlaps(bvh.prim_boxes[y])) continue;
-        if (quiet_prim[x] && quiet_prim[y]) continue;
-        // Adjacent by index (a welded mesh) first, else by position (a soup).
-        const Tri& tb = tri[y];
-        bool share = false;
-        for (std::uint32_t i : ta) share = share || i == tb[0] || i == tb[1] || i == tb[2];
-        if (share) continue;
-        const std::array<Vec3, 3> ca{mesh.positions[ta[0]], mesh.positions[ta[1]], mesh.positions[ta[2]]};
-        const std::array<Vec3, 3> cb{mesh.positions[tb[0]], mesh.positions[tb[1]], mesh.positions[tb[2]]};
-        for (const Vec3& u : ca)
-          for (const Vec3& v : cb) share = share || u == v;
-        if (!share && tri_tri_exact_intersects(ca, cb))
-          found.emplace_back(std::min(bvh.prims[x], bvh.prims[y]), std::max(bvh.prims[x], bvh.prims[y]));
+      for (std::uint32_t y0 = same ? x + 1 : nb.first; y0 < y_end; y0 += 4) {
+        unsigned mask = overlaps4(bx, y0);
+        if (y_end - y0 < 4) mask &= (1u << (y_end - y0)) - 1u;
+        for (; mask != 0; mask &= mask - 1) {
+          const std::uint32_t y = y0 + static_cast<std::uint32_t>(__builtin_ctz(mask));
+          if (quiet_prim[x] && quiet_prim[y]) continue;
+          // Adjacent by index (a welded mesh) first, else by position (a soup).
+          // (Bitwise, without branches: four in five of the overlapping pairs are adjacent.)
+          const Tri& tb = tri[y];
+          bool share = false;
+          for (std::uint32_t i : ta) share = share | (i == tb[0]) | (i == tb[1]) | (i == tb[2]);
+          if (share) continue;
+          const std::array<Vec3, 3> ca{mesh.positions[ta[0]], mesh.positions[ta[1]], mesh.positions[ta[2]]};
+          const std::array<Vec3, 3> cb{mesh.positions[tb[0]], mesh.positions[tb[1]], mesh.positions[tb[2]]};
+          for (const Vec3& u : ca)
+            for (const Vec3& v : cb) share = share || u == v;
+          if (!share && tri_tri_exact_intersects(ca, cb))
+            found.emplace_back(std::min(bvh.prims[x], bvh.prims[y]), std::max(bvh.prims[x], bvh.prims[y]));
+        }
       }
     }
   };
