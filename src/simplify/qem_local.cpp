@@ -95,11 +95,11 @@ void Simplifier::gather_with(std::uint32_t v, Scratch& sc, Index index) const {
   const auto add = [&](std::uint32_t w, std::uint32_t f) {
     Scratch::Neighbour* found = nullptr;
     if (!indexed) {
-      for (Scratch::Neighbour& n : sc.nbr)
-        if (n.w == w) {
-          found = &n;
-          break;
-        }
+      // (No early exit: the position of a match is data, its branch a guess; the last match is
+      // the only one, neighbours being distinct.)
+      std::size_t at = sc.nbr.size();
+      for (std::size_t i = 0; i < sc.nbr.size(); ++i) at = sc.nbr[i].w == w ? i : at;
+      if (at < sc.nbr.size()) found = &sc.nbr[at];
     } else {
       found = index.find(w);
     }
@@ -123,10 +123,10 @@ void Simplifier::gather_with(std::uint32_t v, Scratch& sc, Index index) const {
     if (dead_[t]) continue;
     const std::uint32_t f = face_[t];
     const Tri& tr = tris_[t];
-    // The two other corners, in the triangle's order after v.
-    const int k = tr[0] == v ? 0 : tr[1] == v ? 1 : 2;
-    add(tr[(k + 1) % 3], f);
-    add(tr[(k + 2) % 3], f);
+    // The two other corners, in the triangle's order after v (v's corner found without branches).
+    const int k = (tr[1] == v) + 2 * (tr[2] == v);
+    add(tr[k == 2 ? 0 : k + 1], f);
+    add(tr[k == 0 ? 2 : k - 1], f);
   }
 }
 
@@ -233,7 +233,7 @@ bool Simplifier::snapshot(std::uint32_t a, std::uint32_t b, Scratch& sc, std::ui
     const Tri& tr = tris_[t];
     if (foreign(tr)) return false;
     sc.fan_b.push_back({t, tr});
-    if (tr[0] != a && tr[1] != a && tr[2] != a) continue;
+    if (!((tr[0] == a) | (tr[1] == a) | (tr[2] == a))) continue;
     ++shared;
     const std::uint32_t f = face_[t];
     if (f0 == kNone) f0 = f;
@@ -255,9 +255,9 @@ bool Simplifier::link_ok(std::uint32_t a, std::uint32_t b, Scratch& sc) const {
     int common = 0;
     for (const Scratch::FanTri& f : sc.fan_b)
       for (std::uint32_t w : f.tr) {
-        if (w == a || w == b || sc.mark_b[w] == id) continue;
+        if ((w == a) | (w == b) | (sc.mark_b[w] == id)) continue;
         sc.mark_b[w] = id;
-        if (sc.mark_a[w] == id) ++common;
+        common += sc.mark_a[w] == id;
       }
     return common == sc.shared;
   }
@@ -285,7 +285,7 @@ bool Simplifier::face_ok(std::uint32_t a, const Scratch& sc) const {
   std::int32_t dying[4];
   int n = 0;
   for (const Scratch::FanTri& f : sc.fan_b) {
-    if (f.tr[0] != a && f.tr[1] != a && f.tr[2] != a) continue;
+    if (!((f.tr[0] == a) | (f.tr[1] == a) | (f.tr[2] == a))) continue;
     const std::uint32_t face = face_[f.t];
     int i = 0;
     while (i < n && seen[i] != face) ++i;
@@ -323,7 +323,7 @@ bool Simplifier::flip_ok(std::uint32_t keep, std::uint32_t remove, const Vec3& p
     if (side == 1 && p == pos_[keep]) break;
     for (const Scratch::FanTri& f : side == 0 ? sc.fan_b : sc.fan_a) {
       const Tri& tr = f.tr;
-      if (tr[0] == other || tr[1] == other || tr[2] == other) continue;
+      if ((tr[0] == other) | (tr[1] == other) | (tr[2] == other)) continue;
       Vec3 q[3];
       for (int k = 0; k < 3; ++k) q[k] = tr[k] == v ? p : pos_[tr[k]];
       if (!normal_ok(pos_[tr[0]], pos_[tr[1]], pos_[tr[2]], q[0], q[1], q[2], mc)) return false;
@@ -338,7 +338,7 @@ void Simplifier::collapse(std::uint32_t a, std::uint32_t b, const Vec3& p, const
   merged.clear();
   bool feat = false;
   for (const Scratch::FanTri& f : sc.fan_b) {
-    if (f.tr[0] == a || f.tr[1] == a || f.tr[2] == a) {
+    if ((f.tr[0] == a) | (f.tr[1] == a) | (f.tr[2] == a)) {
       dead_[f.t] = 1;
       ++died;
       if (face_live_.empty()) continue;
@@ -352,7 +352,7 @@ void Simplifier::collapse(std::uint32_t a, std::uint32_t b, const Vec3& p, const
     feat = feat || feature_tri_[f.t];
   }
   for (const Scratch::FanTri& f : sc.fan_a) {
-    if (f.tr[0] == b || f.tr[1] == b || f.tr[2] == b) continue;  // on ab: died above
+    if ((f.tr[0] == b) | (f.tr[1] == b) | (f.tr[2] == b)) continue;  // on ab: died above
     merged.push_back(f.t);
     feat = feat || feature_tri_[f.t];
   }
