@@ -697,7 +697,12 @@ def write_doc(raw):
                  "same 1e6 input and 12.2 ms on the casing, where interfere P1 took 16.3 ms (a MISS then; the check "
                  "has since become 0.2 ms faster); the two-threaded interfere suffers more in slow phases (one "
                  "filtered run in such a phase: 1e6 → 1e4 0.67 s vs meshoptimizer 0.91 s, casing P1 23.8 ms vs "
-                 "12.9 ms). Compare rows of one run only.")
+                 "12.9 ms). On 2026-11-26 the casing P1 took 14.9 to 15.5 ms in the day's first runs (1.65× "
+                 "meshoptimizer: at the target's edge); the batched passes' ranges made even and equal (the late "
+                 "passes ran on one thread), smaller evaluation chunks and a faster self-intersection check (its "
+                 "leaf tests four boxes at a time, adjacency without branches) brought it to about 1.5× (P1's "
+                 "Hausdorff 0.000522 → 0.000554 of the diagonal from the changed ranges, the spheres' unchanged). "
+                 "Compare rows of one run only.")
     lines.append("")
     # Where the time goes: simplify()'s own phase timers (SimplifyResult::phases, the report's
     # seconds.phases), recorded by the benchmark as phase:<name> counters.
