@@ -81,10 +81,10 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> self_intersecting_pairs(con
     }
     return true;
   };
-  // The triangles' boxes per coordinate in leaf order (8 spare entries at the end, never set): one
-  // triangle's box is tested against four of the other leaf's at a time without branches, and only
-  // the overlapping ones are visited (the branchy per-pair test, its outcome a coin toss, was about
-  // half of the check's time).
+  // The triangles' boxes per coordinate in leaf order (8 spare zero entries at the end, read past a
+  // leaf's last triangle and masked out): one triangle's box is tested against four of the other
+  // leaf's at a time without branches, and only the overlapping ones are visited (the branchy
+  // per-pair test, its outcome a coin toss, was about half of the check's time).
   const std::size_t np = bvh.prims.size(), stride = np + 8;
   std::vector<float> soa(6 * stride, 0.0f);
   const float* lo[3] = {soa.data(), soa.data() + stride, soa.data() + 2 * stride};
