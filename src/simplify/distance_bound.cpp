@@ -142,11 +142,14 @@ double convex_bound2(const Poly& p, const Corners* cand, int nc, double floor2, 
   return std::min(best, std::max(b1, convex_bound2(p2, cand, nc, floor2, depth - 1, budget)));
 }
 
+// Candidates of one convex_bound at most (ring_bound's fans are cut there).
+constexpr int kMaxCandidates = 64;
+
 // convex_bound2 of triangle c with the candidates' triangle numbers, as a distance.
 double convex_bound(const TriMesh& to, const std::array<Vec3, 3>& c, const std::uint32_t* cand, int nc, double floor,
                     int depth, int budget) {
-  std::array<Corners, 64> corners;
-  nc = std::min(nc, 64);
+  std::array<Corners, kMaxCandidates> corners;
+  nc = std::min(nc, kMaxCandidates);
   for (int i = 0; i < nc; ++i) corners[i] = to.corners(cand[i]);
   Poly p;
   p.n = 3;
@@ -198,11 +201,10 @@ Fans fans_of(const TriMesh& m) {
 // convex_bound with more candidates: the samples' nearest triangles and every triangle sharing a
 // vertex with one of them.
 double ring_bound(const TriMesh& to, const Fans& fans, const Sampled& s, double floor) {
-  constexpr int kMax = 64;
-  std::array<std::uint32_t, kMax> cand;
+  std::array<std::uint32_t, kMaxCandidates> cand;
   int nc = 0;
   const auto add = [&](std::uint32_t t) {
-    if (nc < kMax && std::find(cand.begin(), cand.begin() + nc, t) == cand.begin() + nc) cand[nc++] = t;
+    if (nc < kMaxCandidates && std::find(cand.begin(), cand.begin() + nc, t) == cand.begin() + nc) cand[nc++] = t;
   };
   for (const Near* n : {&s.centre, &s.at[0], &s.at[1], &s.at[2], &s.mid[0], &s.mid[1], &s.mid[2]}) add(n->tri);
   const int seeds = nc;

@@ -246,35 +246,48 @@ bool Simplifier::snapshot(std::uint32_t a, std::uint32_t b, Scratch& sc, std::ui
   return true;
 }
 
-// Link condition: the common neighbours of a and b are exactly the apexes of the triangles on ab.
-bool Simplifier::link_ok(std::uint32_t a, std::uint32_t b, Scratch& sc) const {
-  if (!sc.mark_a.empty()) {  // marks over the vertices (meshes whose marks stay in cache)
-    const std::uint32_t id = ++sc.id;
-    for (const Scratch::FanTri& f : sc.fan_a)
-      for (std::uint32_t w : f.tr) sc.mark_a[w] = id;
-    int common = 0;
-    for (const Scratch::FanTri& f : sc.fan_b)
-      for (std::uint32_t w : f.tr) {
-        if ((w == a) | (w == b) | (sc.mark_b[w] == id)) continue;
-        sc.mark_b[w] = id;
-        common += sc.mark_a[w] == id;
-      }
-    return common == sc.shared;
+namespace {
+// The link condition's per-vertex state (in a's fan; already counted from b's): marks over the
+// vertices, or the vertex map on large meshes (see Scratch), like MarkIndex and MapIndex above.
+struct MarkLink {
+  Scratch& sc;
+  std::uint32_t id;
+  void put_a(std::uint32_t w) { sc.mark_a[w] = id; }
+  /// 1 when w, met in b's fan for the first time, is in a's fan.
+  int common_from_b(std::uint32_t w) {
+    if (sc.mark_b[w] == id) return 0;
+    sc.mark_b[w] = id;
+    return sc.mark_a[w] == id;
   }
-  // The vertex map (large meshes on many threads), per vertex: 1 = in a's fan, 2 = counted from b's.
-  sc.map.clear();
+};
+struct MapLink {  // per vertex: bit 1 = in a's fan, bit 2 = counted from b's
+  Scratch& sc;
+  void put_a(std::uint32_t w) { sc.map.at(w) = 1; }
+  int common_from_b(std::uint32_t w) {
+    std::uint32_t& m = sc.map.at(w);
+    if (m & 2) return 0;
+    m |= 2;
+    return static_cast<int>(m & 1);
+  }
+};
+
+template <class Link>
+int common_neighbours(std::uint32_t a, std::uint32_t b, const Scratch& sc, Link link) {
   for (const Scratch::FanTri& f : sc.fan_a)
-    for (std::uint32_t w : f.tr) sc.map.at(w) = 1;
+    for (std::uint32_t w : f.tr) link.put_a(w);
   int common = 0;
   for (const Scratch::FanTri& f : sc.fan_b)
-    for (std::uint32_t w : f.tr) {
-      if (w == a || w == b) continue;
-      std::uint32_t& m = sc.map.at(w);
-      if (m & 2) continue;
-      m |= 2;
-      if (m & 1) ++common;
-    }
-  return common == sc.shared;
+    for (std::uint32_t w : f.tr)
+      if (!((w == a) | (w == b))) common += link.common_from_b(w);
+  return common;
+}
+}  // namespace
+
+// Link condition: the common neighbours of a and b are exactly the apexes of the triangles on ab.
+bool Simplifier::link_ok(std::uint32_t a, std::uint32_t b, Scratch& sc) const {
+  if (!sc.mark_a.empty()) return common_neighbours(a, b, sc, MarkLink{sc, ++sc.id}) == sc.shared;
+  sc.map.clear();
+  return common_neighbours(a, b, sc, MapLink{sc}) == sc.shared;
 }
 
 // The triangles on ab (those of b's fan that hold a) die; each one's face must keep another.
