@@ -38,27 +38,11 @@ int run_features(const FeaturesCliOptions& o) {
   if (!o.step.empty() && o.process.empty()) throw InputError("--step needs --process FILE");
   if (o.step.empty() && !o.process.empty()) throw InputError("--process needs --step ID");
   Progress total("features");
-  auto lib = o.library.empty() ? default_feature_library() : load_feature_library(o.library);
-  if (!lib) throw InputError(lib.error());
-  std::optional<SemanticRules> rules;
-  std::optional<Process> process;
-  if (!o.process.empty()) {
-    Expected<SemanticRules> r = SemanticRules{};
-    if (o.rules.empty()) {
-      r = default_semantic_rules(*lib);
-    } else {
-      std::ifstream in(o.rules);
-      if (!in) throw InputError(o.rules + ": cannot open the semantic rules");
-      std::stringstream ss;
-      ss << in.rdbuf();
-      r = parse_semantic_rules(ss.str(), *lib, o.rules);
-    }
-    if (!r) throw InputError(r.error());
-    rules = std::move(*r);
-    auto p = load_process(o.process);
-    if (!p) throw InputError(p.error());
-    process = std::move(*p);
-  }
+  auto sem = load_semantics({.library_file = o.library, .rules_file = o.rules, .process_file = o.process, .step = o.step});
+  if (!sem) throw InputError(sem.error());
+  const FeatureLibrary* lib = &sem->library;
+  const SemanticRules* rules = &sem->rules;
+  const std::optional<Process>& process = sem->process;
   Expected<CadModel> model = CadModel{};
   {
     Progress progress("importing " + o.input);

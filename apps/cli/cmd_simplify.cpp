@@ -32,6 +32,7 @@ namespace {
 struct SimplifyCliOptions {
   std::string input, output, json, regions, features, step, process, format = "auto", feature_mode = "weight", seams = "all";
   std::string parts_dir;  ///< STEP input: each simplified part (prototype) also written here
+  std::string library, rules;  ///< --library, --rules: JSON files instead of the installed ones
   std::size_t target = 0;
   double ratio = 0;
   double sharp_angle = 0;
@@ -307,6 +308,8 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
     cad::PipelineOptions po;
     po.linear_deflection = o.linear_deflection;
     po.angular_deflection = o.angular_deflection;
+    po.library_file = o.library;
+    po.rules_file = o.rules;
     po.process_file = o.process;
     po.step = o.step;
     Progress progress(model ? "preparing step " + o.step : "importing " + o.input);
@@ -323,8 +326,8 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
     throw InputError(o.input + ": STEP input needs interfere built with OpenCASCADE (INTERFERE_WITH_OCCT)");
 #endif
   } else {
-    if (!o.step.empty() || !o.process.empty())
-      throw InputError("--step/--process need a STEP input (features are recognised on the B-Rep)");
+    if (!o.step.empty() || !o.process.empty() || !o.library.empty() || !o.rules.empty())
+      throw InputError("--step/--process/--library/--rules need a STEP input (features are recognised on the B-Rep)");
     Progress progress("reading " + o.input);
     auto m = read_mesh(o.input);
     if (!m) throw InputError(m.error());
@@ -543,8 +546,11 @@ int run_all_steps(const SimplifyCliOptions& o) {
 #ifdef INTERFERE_HAS_CAD
   if (o.process.empty()) throw InputError("--step all needs --process FILE");
   if (!is_step(o.input)) throw InputError("--step/--process need a STEP input (features are recognised on the B-Rep)");
-  auto process = cad::load_process(o.process);
-  if (!process) throw InputError(process.error());
+  // The library, the rules and every step of the process are checked before the import and before
+  // any output is written.
+  auto sem = cad::load_semantics({.library_file = o.library, .rules_file = o.rules, .process_file = o.process, .step = "all"});
+  if (!sem) throw InputError(sem.error());
+  const std::optional<cad::Process>& process = sem->process;
   if (process->steps.empty()) throw InputError(Error{.file = o.process, .reason = "the process has no steps"});
   std::vector<SimplifyCliOptions> runs;
   for (const cad::ProcessStep& step : process->steps) {
@@ -563,9 +569,6 @@ int run_all_steps(const SimplifyCliOptions& o) {
     model = cad::import_step(o.input, {.linear_deflection = o.linear_deflection, .angular_deflection = o.angular_deflection});
   }
   if (!model) throw InputError(model.error());
-  // A step's selection fails only for a step id the process lacks (these come from it) or a library,
-  // rules or process error, which is the same for every step: the first step meets it before any
-  // output is written.
   for (const SimplifyCliOptions& r : runs) {
     std::printf("step %s: ", r.step.c_str());
     run_simplify(r, &*model);
@@ -592,6 +595,10 @@ void add_simplify_command(CLI::App& app, int& exit_code) {
                 "process step id whose assembly features are kept (STEP input, needs --process); 'all': every step, "
                 "the STEP file imported once, outputs named OUT_<step>.ext (and JSON_<step>.json, DIR/<step>/)");
   c->add_option("--process", o->process, "process description JSON (steps, parts, constraint types)");
+  c->add_option("--library", o->library, "feature library JSON (default: the installed data/features/library.json)")
+      ->check(CLI::ExistingFile);
+  c->add_option("--rules", o->rules, "assembly-semantics rules JSON (default: data/features/semantics.json)")
+      ->check(CLI::ExistingFile);
   c->add_option("--regions", o->regions, "per-triangle region ids (text, one unsigned integer per triangle)");
   c->add_option("--features", o->features, "comma-separated face/region ids to keep (added to the step's features)");
   c->add_flag("--lock", o->lock, "hard-lock feature faces (bit-identical) instead of the paper's cost weighting");

@@ -247,19 +247,15 @@ void bind_simplify(py::module_& m) {
       "(always 'mm') and file_length_units (the units the file declares).");
   m.def(
       "step_features",
-      [](const std::filesystem::path& path, const std::string& process_file, const std::string& step) {
-        auto lib = cad::default_feature_library();
-        if (!lib) throw py::value_error(lib.error().message());
+      [](const std::filesystem::path& path, const std::string& process_file, const std::string& step,
+         const std::string& library_file, const std::string& rules_file) {
+        if (process_file.empty() != step.empty()) throw py::value_error("process and step go together");
+        auto sem = cad::load_semantics(
+            {.library_file = library_file, .rules_file = rules_file, .process_file = process_file, .step = step});
+        if (!sem) throw py::value_error(sem.error().message());
         auto model = cad::import_step(path);
         if (!model) throw py::value_error(model.error().message());
-        Expected<cad::SemanticRules> rules = cad::SemanticRules{};
-        Expected<cad::Process> proc = cad::Process{};
-        if (!process_file.empty()) {
-          rules = cad::default_semantic_rules(*lib);
-          if (!rules) throw py::value_error(rules.error().message());
-          proc = cad::load_process(process_file);
-          if (!proc) throw py::value_error(proc.error().message());
-        }
+        const cad::FeatureLibrary* lib = &sem->library;
         py::list out;
         for (const cad::Part& p : model->parts) {
           const auto feats = cad::recognize_features(p.aag, *lib);
@@ -269,7 +265,7 @@ void bind_simplify(py::module_& m) {
                                py::arg("radii") = f.radii));
           py::dict d(py::arg("part") = p.name, py::arg("features") = fl);
           if (!process_file.empty()) {  // in the step when it names the part or one of its instances
-            const auto sel = cad::part_step_selection(*proc, step, *rules, *model,
+            const auto sel = cad::part_step_selection(*sem->process, step, sem->rules, *model,
                                                       static_cast<std::uint32_t>(&p - model->parts.data()), feats);
             if (!sel) throw py::value_error(sel.error().message());
             d["assembly_feature_faces"] = sel->faces;
@@ -279,8 +275,9 @@ void bind_simplify(py::module_& m) {
         return out;
       },
       py::arg("path"), py::arg("process") = std::string(), py::arg("step") = std::string(),
+      py::arg("library") = std::string(), py::arg("rules") = std::string(),
       "Features of every part of a STEP file (library types, face ids, roles, radii) and, with process/step, "
-      "the assembly-feature faces of that step.");
+      "the assembly-feature faces of that step (library, rules: JSON files instead of the installed ones).");
   m.def(
       "prepare_step",
       [](const std::filesystem::path& path, const std::string& process_file, const std::string& step,

@@ -10,6 +10,7 @@ import unittest
 import interfere as itf
 
 DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tests", "cli", "data")
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
 
 
 def cap_faces(mesh):
@@ -185,6 +186,21 @@ class Cad(unittest.TestCase):
                 json.dump({"steps": [{"id": "P1", "constraint": "screw"}]}, out)
             f = itf.step_features(step, process=proc, step="P1")
             self.assertEqual(len(f[0]["assembly_feature_faces"]), 3)
+            # The user's rules instead of the installed ones; a constraint they lack is an error.
+            with open(os.path.join(ROOT, "data", "features", "semantics.json")) as src:
+                rules = json.load(src)
+            for rule in rules["rules"]:
+                if rule["constraint"] == "screw":
+                    rule["constraint"] = "cap_screw"
+            own = os.path.join(d, "rules.json")
+            with open(own, "w") as out:
+                json.dump(rules, out)
+            with open(proc, "w") as out:
+                json.dump({"steps": [{"id": "P1", "constraint": "cap_screw"}]}, out)
+            g = itf.step_features(step, process=proc, step="P1", rules=own)
+            self.assertEqual(g[0]["assembly_feature_faces"], f[0]["assembly_feature_faces"])
+            with self.assertRaisesRegex(ValueError, "cap_screw"):
+                itf.step_features(step, process=proc, step="P1")
         with self.assertRaises(ValueError):
             itf.import_step(os.path.join(DATA, "missing.step"))
 

@@ -40,21 +40,15 @@ std::vector<std::string> unknown_step_names(const Process& process, const std::s
   return unknown_step_parts(process, step, names);
 }
 
-namespace {
-
-// The feature library, the semantic rules and the process of the options (read before the STEP
-// file: a mistake there is reported without the import's wait).
-struct Semantics {
-  FeatureLibrary library;
-  SemanticRules rules;
-  std::optional<Process> process;
-};
-
 Expected<Semantics> load_semantics(const PipelineOptions& o) {
   auto lib = o.library_file.empty() ? default_feature_library() : load_feature_library(o.library_file);
   if (!lib) return lib.error();
   Semantics sem{std::move(*lib), {}, std::nullopt};
-  if (o.process_file.empty()) return sem;
+  if (o.process_file.empty()) {
+    if (!o.rules_file.empty())
+      return Error{.file = o.rules_file, .reason = "semantic rules apply to the steps of a process: give a process too"};
+    return sem;
+  }
   Expected<SemanticRules> rules = SemanticRules{};
   if (o.rules_file.empty()) {
     rules = default_semantic_rules(sem.library);
@@ -70,8 +64,18 @@ Expected<Semantics> load_semantics(const PipelineOptions& o) {
   auto p = load_process(o.process_file);
   if (!p) return p.error();
   sem.process = std::move(*p);
+  std::vector<std::string> steps{o.step};
+  if (o.step == "all") {
+    steps.clear();
+    for (const ProcessStep& s : sem.process->steps) steps.push_back(s.id);
+  }
+  for (const std::string& step : steps)
+    if (auto s = select_step_features(*sem.process, step, sem.rules, "", {}); !s)
+      return Error{.file = o.process_file, .reason = s.error().reason};
   return sem;
 }
+
+namespace {
 
 Expected<Prepared> prepare(const CadModel& imported, const PipelineOptions& o, const Semantics& sem);
 

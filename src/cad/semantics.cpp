@@ -123,11 +123,20 @@ Expected<Selection> select_step_features(const Process& process, const std::stri
   for (const ProcessStep& s : process.steps)
     if (s.id == step_id) step = &s;
   if (!step) return Error{.reason = "unknown process step '" + step_id + "'"};
+  // A constraint without a rule is an error, not an empty selection: a misspelt constraint would
+  // otherwise leave the step's assembly features unprotected without a word.
+  if (std::none_of(rules.rules.begin(), rules.rules.end(),
+                   [&](const SemanticRule& r) { return r.constraint == step->constraint; })) {
+    std::string known;
+    for (const SemanticRule& r : rules.rules)
+      if (known.find("'" + r.constraint + "'") == std::string::npos)
+        known += (known.empty() ? "'" : ", '") + r.constraint + "'";
+    return Error{.reason = "step '" + step_id + "': no assembly-semantics rule for constraint '" + step->constraint +
+                           "' (the rules know " + (known.empty() ? std::string("none") : known) + ")"};
+  }
   Selection sel;
-  bool any_rule = false;
   for (const SemanticRule& r : rules.rules) {
     if (r.constraint != step->constraint) continue;
-    any_rule = true;
     for (const SemanticRule::Need& n : r.needs) {
       bool found = false;
       for (const Feature& f : features) {
@@ -149,7 +158,6 @@ Expected<Selection> select_step_features(const Process& process, const std::stri
                                n.feature + "'");
     }
   }
-  if (!any_rule) sel.warnings.push_back("step '" + step_id + "': no rule for constraint '" + step->constraint + "'");
   std::sort(sel.faces.begin(), sel.faces.end());
   sel.faces.erase(std::unique(sel.faces.begin(), sel.faces.end()), sel.faces.end());
   return sel;

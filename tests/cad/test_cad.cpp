@@ -17,6 +17,7 @@
 #include "cad_test_util.h"
 #include "interfere/cad/features.h"
 #include "interfere/cad/model.h"
+#include "interfere/cad/pipeline.h"
 #include "interfere/cad/semantics.h"
 #include "interfere/np/distance.h"
 #include "interfere/simplify/hausdorff.h"
@@ -383,6 +384,42 @@ TEST(Semantics, RulesReferringToUnknownFeatureTypesAreErrors) {
   EXPECT_NE(r.error().reason.find("weld_seam"), std::string::npos);
   EXPECT_NE(r.error().reason.find("weld"), std::string::npos);
   EXPECT_FALSE(parse_process(R"({"steps":[{"id":"a","constraint":"x"},{"id":"a","constraint":"y"}]})").has_value());
+}
+
+TEST(Semantics, AStepConstraintNoRuleKnowsIsAnError) {
+  // A misspelt constraint would select nothing: an error naming the step, the constraint and the
+  // constraints the rules know, not an empty selection.
+  auto lib = default_feature_library();
+  ASSERT_TRUE(lib.has_value());
+  auto rules = default_semantic_rules(*lib);
+  ASSERT_TRUE(rules.has_value());
+  auto p = parse_process(R"({"steps":[{"id":"P1","parts":["*"],"constraint":"bolt"},
+                                      {"id":"P2","parts":["*"],"constraint":"blot"}]})");
+  ASSERT_TRUE(p.has_value());
+  EXPECT_TRUE(select_step_features(*p, "P1", *rules, "casing", {}).has_value());
+  for (const auto& sel : {select_step_features(*p, "P2", *rules, "casing", {}),
+                          select_assembly_features(*p, "P2", *rules, "casing", {})}) {
+    ASSERT_FALSE(sel.has_value());
+    EXPECT_NE(sel.error().reason.find("'P2'"), std::string::npos) << sel.error().reason;
+    EXPECT_NE(sel.error().reason.find("'blot'"), std::string::npos);
+    EXPECT_NE(sel.error().reason.find("'bolt'"), std::string::npos);  // known constraints listed
+  }
+  // load_semantics checks the step asked for ("all": every step) before any STEP file is read.
+  const auto dir = std::filesystem::temp_directory_path() / "interfere_semantics_test";
+  std::filesystem::create_directories(dir);
+  const auto process_file = (dir / "process.json").string();
+  std::ofstream(process_file) << R"({"steps":[{"id":"P1","constraint":"bolt"},{"id":"P2","constraint":"blot"}]})";
+  EXPECT_TRUE(load_semantics({.process_file = process_file, .step = "P1"}).has_value());
+  for (const std::string step : {"P2", "all", "P9"}) {
+    auto sem = load_semantics({.process_file = process_file, .step = step});
+    ASSERT_FALSE(sem.has_value()) << step;
+    EXPECT_EQ(sem.error().file, process_file);
+  }
+  // Rules without a process select nothing: an error, not ignored.
+  auto lone = load_semantics({.rules_file = process_file});
+  ASSERT_FALSE(lone.has_value());
+  EXPECT_NE(lone.error().reason.find("process"), std::string::npos);
+  std::filesystem::remove_all(dir);
 }
 
 TEST(Semantics, StepsNamingPartsNotInTheModelAreWarnings) {

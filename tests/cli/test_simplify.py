@@ -15,6 +15,7 @@ import cli_common  # noqa: E402
 from cli_common import path, run, write_obj, load_json  # noqa: E402
 
 DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data")
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 
 def uv_sphere(lon=40, lat=21, bump=0.05):
@@ -541,6 +542,68 @@ class Features(unittest.TestCase):
         code, _, err = run("simplify", asm, path("bad.ply"), "--ratio", "0.6", "--step", "all")
         self.assertEqual(code, 2)
         self.assertIn("--process", err)
+
+    def test_a_constraint_no_rule_knows_is_an_error_before_anything_is_written(self):
+        # A misspelt constraint would leave the step's features unprotected: an error naming the
+        # step, the constraint and the constraints the rules know; with --step all no step's output
+        # is written, also where an earlier step is fine.
+        steps = [{"id": "P1", "parts": ["*"], "constraint": "screw"},
+                 {"id": "P2", "parts": ["*"], "constraint": "gear_on_shaft"}]
+        write_process("misspelt.process.json", steps)
+        plate = os.path.join(DATA, "counterbored_plate.step")
+        for step in ("P2", "all"):
+            code, out, err = run("simplify", plate, path("misspelt.ply"), "--ratio", "0.6", "--step", step,
+                                 "--process", path("misspelt.process.json"), "--json", path("misspelt.json"))
+            self.assertEqual(code, 2, err)
+            self.assertIn("'gear_on_shaft'", err)
+            self.assertIn("'P2'", err)
+            self.assertIn("'gear_shaft'", err)  # the known constraints are listed
+            self.assertEqual(out, "")
+            for name in ("misspelt.ply", "misspelt_P1.ply", "misspelt_P2.ply", "misspelt.json", "misspelt_P1.json"):
+                self.assertFalse(os.path.exists(path(name)), name)
+        code, out, err = run("features", plate, "--step", "all", "--process", path("misspelt.process.json"))
+        self.assertEqual(code, 2)
+        self.assertIn("'gear_on_shaft'", err)
+        self.assertEqual(out, "")  # checked before the import: no part listed
+
+    def test_simplify_reads_its_own_rules_and_library(self):
+        # --rules/--library: the user's JSON instead of the installed files, as for `features`. A rule
+        # set naming the screw rule's constraint "cap_screw" selects the same faces as the default
+        # rules do for "screw".
+        with open(os.path.join(ROOT, "data", "features", "semantics.json")) as f:
+            rules = json.load(f)
+        for rule in rules["rules"]:
+            if rule["constraint"] == "screw":
+                rule["constraint"] = "cap_screw"
+        with open(path("own_rules.json"), "w") as f:
+            json.dump(rules, f)
+        write_process("own.process.json", [{"id": "P1", "parts": ["*"], "constraint": "cap_screw"}])
+        write_process("default.process.json", [{"id": "P1", "parts": ["*"], "constraint": "screw"}])
+        plate = os.path.join(DATA, "counterbored_plate.step")
+        library = os.path.join(ROOT, "data", "features", "library.json")
+        code, _, err = run("simplify", plate, path("own.ply"), "--ratio", "0.6", "--step", "P1", "--process",
+                           path("own.process.json"), "--rules", path("own_rules.json"), "--library", library,
+                           "--json", path("own.json"))
+        self.assertEqual(code, 0, err)
+        code, _, err = run("simplify", plate, path("default.ply"), "--ratio", "0.6", "--step", "P1", "--process",
+                           path("default.process.json"), "--json", path("default.json"))
+        self.assertEqual(code, 0, err)
+        self.assertEqual(len(load_json("own.json")["feature_faces"]), 3)  # bore, counterbore, seat
+        self.assertEqual(load_json("own.json")["feature_faces"], load_json("default.json")["feature_faces"])
+        # The installed rules do not know "cap_screw".
+        code, _, err = run("simplify", plate, path("own2.ply"), "--ratio", "0.6", "--step", "P1", "--process",
+                           path("own.process.json"))
+        self.assertEqual(code, 2)
+        self.assertIn("'cap_screw'", err)
+        # Rules without a process, or on a plain mesh, are option errors.
+        code, _, err = run("simplify", plate, path("own3.ply"), "--ratio", "0.6", "--rules", path("own_rules.json"))
+        self.assertEqual(code, 2)
+        self.assertIn("process", err)
+        write_obj("own_sphere.obj", uv_sphere())
+        code, _, err = run("simplify", path("own_sphere.obj"), path("own4.ply"), "--ratio", "0.6",
+                           "--rules", path("own_rules.json"))
+        self.assertEqual(code, 2)
+        self.assertIn("STEP input", err)
 
     def test_features_step_all_lists_every_step(self):
         steps = [{"id": "P1", "parts": ["plate_2"], "constraint": "screw"},

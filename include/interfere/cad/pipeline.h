@@ -1,6 +1,7 @@
 // STEP -> features -> assembly features of a step -> one mesh with face ids ready for
 // interfere::simplify (issue #6): the glue used by `interfere simplify` and `interfere features`.
 #pragma once
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,17 @@ struct Prepared {
   std::vector<std::string> warnings;
 };
 
+/// The feature library, semantic rules and process of the options' files (the installed defaults
+/// where library_file or rules_file is empty; no rules without a process), read before a STEP file
+/// so that a mistake there is reported without the import's wait. With a process, options.step
+/// ("all": every step of it) is checked too: a step of the process whose constraint a rule knows.
+struct Semantics {
+  FeatureLibrary library;
+  SemanticRules rules;
+  std::optional<Process> process;
+};
+Expected<Semantics> load_semantics(const PipelineOptions& options);
+
 /// Imports `step_file` (options' deflections) and prepares it for process step options.step. The
 /// library, rules and process files are read first.
 Expected<Prepared> prepare_for_simplify(const std::string& step_file, const PipelineOptions& options);
@@ -57,7 +69,7 @@ bool instance_in_step(const Process& process, const std::string& step, const Cad
 bool part_in_step(const Process& process, const std::string& step, const CadModel& model, std::uint32_t part);
 /// The assembly-feature faces process step `step` selects on part `part` of `model` (recognised
 /// `features`): select_step_features when the step takes the part in (part_in_step: by its name,
-/// "*" or one of its instances), else an empty selection. Errors: unknown step.
+/// "*" or one of its instances), else an empty selection. Errors as select_step_features.
 Expected<Selection> part_step_selection(const Process& process, const std::string& step, const SemanticRules& rules,
                                         const CadModel& model, std::uint32_t part,
                                         const std::vector<Feature>& features);

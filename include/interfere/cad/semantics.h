@@ -60,13 +60,14 @@ std::vector<std::string> unknown_step_parts(const Process& process, const std::s
 bool step_includes(const Process& process, const std::string& step_id, const std::string& name);
 
 /// The faces step `step_id`'s rules select on a part with `features`, whatever the step's part
-/// list says (for a part of which only some instances take part). Errors: unknown step id.
+/// list says (for a part of which only some instances take part). Errors: unknown step id, a
+/// step constraint no rule knows (a misspelt constraint would leave the features unprotected).
 Expected<Selection> select_step_features(const Process& process, const std::string& step_id,
                                          const SemanticRules& rules, const std::string& part_name,
                                          const std::vector<Feature>& features);
 
 /// Assembly-feature faces of `part_name` (with its recognised `features`) in step `step_id`.
-/// Errors: unknown step id. A part not in the step selects nothing.
+/// Errors as select_step_features. A part not in the step selects nothing.
 Expected<Selection> select_assembly_features(const Process& process, const std::string& step_id,
                                              const SemanticRules& rules, const std::string& part_name,
                                              const std::vector<Feature>& features);
