@@ -106,6 +106,7 @@ int run_features(const FeaturesCliOptions& o) {
       const auto sel = part_step_selection(*process, step, *rules, *model,
                                            static_cast<std::uint32_t>(&part - model->parts.data()), feats);
       if (!sel) throw InputError(o.process + ": " + sel.error().reason);
+      for (const std::string& w : sel->warnings) warning(w);
       if (o.step == "all") {
         jp["steps"][step] = {{"assembly_feature_faces", sel->faces}, {"semantics_warnings", sel->warnings}};
       } else {

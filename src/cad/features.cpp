@@ -167,6 +167,15 @@ bool FeatureLibrary::has(const std::string& type) const {
   return std::any_of(patterns.begin(), patterns.end(), [&](const FeaturePattern& p) { return p.type == type; });
 }
 
+std::vector<std::string> FeatureLibrary::roles(const std::string& type) const {
+  std::vector<std::string> out;
+  for (const FeaturePattern& p : patterns)
+    if (p.type == type)
+      for (const PatternNode& n : p.nodes)
+        if (std::find(out.begin(), out.end(), n.role) == out.end()) out.push_back(n.role);
+  return out;
+}
+
 Expected<FeatureLibrary> parse_feature_library(const std::string& text, const std::string& source) {
   FeatureLibrary lib;
   auto fail = [&](const std::string& what) { return Error{.file = source, .reason = what}; };

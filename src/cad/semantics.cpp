@@ -41,6 +41,15 @@ Expected<SemanticRules> parse_semantic_rules(const std::string& text, const Feat
         n.roles = jf.value("roles", std::vector<std::string>{});
         if (!library.has(n.feature))
           return Error{.file = source, .reason = "rule '" + r.name + "' refers to unknown feature type '" + n.feature + "'"};
+        // A misspelt role would drop its faces from every selection: an error naming the roles there are.
+        const std::vector<std::string> known = library.roles(n.feature);
+        for (const std::string& role : n.roles)
+          if (std::find(known.begin(), known.end(), role) == known.end()) {
+            std::string list;
+            for (const std::string& k : known) list += (list.empty() ? "'" : ", '") + k + "'";
+            return Error{.file = source, .reason = "rule '" + r.name + "' names role '" + role + "' of '" +
+                                                   n.feature + "', whose patterns have the roles " + list};
+          }
         r.needs.push_back(n);
       }
       out.rules.push_back(std::move(r));

@@ -384,6 +384,18 @@ TEST(Semantics, RulesReferringToUnknownFeatureTypesAreErrors) {
   EXPECT_NE(r.error().reason.find("weld_seam"), std::string::npos);
   EXPECT_NE(r.error().reason.find("weld"), std::string::npos);
   EXPECT_FALSE(parse_process(R"({"steps":[{"id":"a","constraint":"x"},{"id":"a","constraint":"y"}]})").has_value());
+  // A misspelt role would drop its faces from every selection: an error naming the roles there are.
+  auto role = parse_semantic_rules(
+      R"({"rules":[{"name":"screw","constraint":"s","features":[{"type":"counterbored_hole","roles":["bore","sead"]}]}]})",
+      *lib);
+  ASSERT_FALSE(role.has_value());
+  EXPECT_NE(role.error().reason.find("'sead'"), std::string::npos) << role.error().reason;
+  EXPECT_NE(role.error().reason.find("'seat'"), std::string::npos);
+  EXPECT_TRUE(parse_semantic_rules(
+                  R"({"rules":[{"name":"screw","constraint":"s","features":[{"type":"counterbored_hole","roles":["bore","seat"]}]}]})",
+                  *lib)
+                  .has_value());
+  EXPECT_EQ(lib->roles("weld_seam"), std::vector<std::string>{});
 }
 
 TEST(Semantics, AStepConstraintNoRuleKnowsIsAnError) {

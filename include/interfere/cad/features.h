@@ -39,6 +39,8 @@ struct FeaturePattern {
 struct FeatureLibrary {
   std::vector<FeaturePattern> patterns;
   bool has(const std::string& type) const;
+  /// The role names of the type's patterns, in order of first appearance (empty: unknown type).
+  std::vector<std::string> roles(const std::string& type) const;
 };
 
 /// Parses a library (docs/simplify.md "Feature library"); errors name the pattern and the field.
