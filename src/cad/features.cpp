@@ -196,6 +196,8 @@ Expected<FeatureLibrary> parse_feature_library(const std::string& text, const st
       for (const json& jn : jp.at("nodes")) {
         PatternNode n;
         n.role = jn.at("role").get<std::string>();
+        if (std::any_of(p.nodes.begin(), p.nodes.end(), [&](const PatternNode& o) { return o.role == n.role; }))
+          return fail(where + "role '" + n.role + "' appears twice");
         for (const json& t : jn.at("types")) {
           SurfaceType st;
           if (!parse_surface(t.get<std::string>(), st)) return fail(where + "unknown surface type '" + t.get<std::string>() + "'");

@@ -323,6 +323,14 @@ TEST(Features, LibraryErrorsNameTheProblem) {
   auto e = parse_feature_library(R"({"patterns":[{"type":"x","nodes":[{"role":"a","types":["donut"]}]}]})");
   ASSERT_FALSE(e.has_value());
   EXPECT_NE(e.error().reason.find("donut"), std::string::npos);
+  auto twice = parse_feature_library(
+      R"({"patterns":[{"type":"x","nodes":[{"role":"a","types":["plane"]},{"role":"a","types":["cylinder"]}]}]})");
+  ASSERT_FALSE(twice.has_value());
+  EXPECT_NE(twice.error().reason.find("role 'a' appears twice"), std::string::npos) << twice.error().reason;
+  auto arc = parse_feature_library(
+      R"({"patterns":[{"type":"x","nodes":[{"role":"a","types":["plane"]}],"arcs":[{"a":"a","b":"b"}]}]})");
+  ASSERT_FALSE(arc.has_value());
+  EXPECT_NE(arc.error().reason.find("unknown roles"), std::string::npos) << arc.error().reason;
 }
 
 const char* kProcess = R"({"steps":[
