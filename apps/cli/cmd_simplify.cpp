@@ -554,6 +554,12 @@ int run_all_steps(const SimplifyCliOptions& o) {
   if (process->steps.empty()) throw InputError(Error{.file = o.process, .reason = "the process has no steps"});
   std::vector<SimplifyCliOptions> runs;
   for (const cad::ProcessStep& step : process->steps) {
+    // Ids that differ only in characters a file name cannot hold would write one file twice.
+    for (const SimplifyCliOptions& r : runs)
+      if (file_id(r.step) == file_id(step.id))
+        throw InputError(Error{.file = o.process, .reason = "steps '" + r.step + "' and '" + step.id +
+                                                            "' would write the same files (OUT_" + file_id(step.id) +
+                                                            "...): give them ids that differ in letters, digits, - or _"});
     SimplifyCliOptions r = o;
     r.step = step.id;
     r.output = with_step(o.output, step.id);

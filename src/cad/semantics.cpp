@@ -76,6 +76,9 @@ Expected<Process> parse_process(const std::string& text, const std::string& sour
     for (const json& js : j["steps"]) {
       ProcessStep s;
       s.id = js.at("id").get<std::string>();
+      if (s.id.empty() || s.id == "all")
+        return Error{.file = source, .reason = s.id.empty() ? std::string("a step has an empty id")
+                                                            : "step id 'all' is reserved (--step all: every step)"};
       s.parts = js.value("parts", std::vector<std::string>{"*"});
       s.constraint = js.at("constraint").get<std::string>();
       for (const ProcessStep& o : out.steps)

@@ -392,6 +392,10 @@ TEST(Semantics, RulesReferringToUnknownFeatureTypesAreErrors) {
   EXPECT_NE(r.error().reason.find("weld_seam"), std::string::npos);
   EXPECT_NE(r.error().reason.find("weld"), std::string::npos);
   EXPECT_FALSE(parse_process(R"({"steps":[{"id":"a","constraint":"x"},{"id":"a","constraint":"y"}]})").has_value());
+  EXPECT_FALSE(parse_process(R"({"steps":[{"id":"","constraint":"x"}]})").has_value());
+  auto all = parse_process(R"({"steps":[{"id":"all","constraint":"x"}]})");  // --step all
+  ASSERT_FALSE(all.has_value());
+  EXPECT_NE(all.error().reason.find("reserved"), std::string::npos);
   // A misspelt role would drop its faces from every selection: an error naming the roles there are.
   auto role = parse_semantic_rules(
       R"({"rules":[{"name":"screw","constraint":"s","features":[{"type":"counterbored_hole","roles":["bore","sead"]}]}]})",

@@ -542,6 +542,14 @@ class Features(unittest.TestCase):
         code, _, err = run("simplify", asm, path("bad.ply"), "--ratio", "0.6", "--step", "all")
         self.assertEqual(code, 2)
         self.assertIn("--process", err)
+        # Step ids that map to one file name ("P 1", "P_1": OUT_P_1.ply) would overwrite each other.
+        write_process("clash.process.json", [{"id": "P 1", "parts": ["*"], "constraint": "screw"},
+                                             {"id": "P_1", "parts": ["*"], "constraint": "gear_shaft"}])
+        code, _, err = run("simplify", asm, path("clash.ply"), "--ratio", "0.6", "--step", "all", "--process",
+                           path("clash.process.json"))
+        self.assertEqual(code, 2)
+        self.assertIn("'P 1' and 'P_1'", err)
+        self.assertFalse(os.path.exists(path("clash_P_1.ply")))
 
     def test_a_constraint_no_rule_knows_is_an_error_before_anything_is_written(self):
         # A misspelt constraint would leave the step's features unprotected: an error naming the
