@@ -225,6 +225,7 @@ int run_bearing(const BearingOptions& o) {
   if (Status s = validate(p); !s) throw InputError(s.error());
   check_output_path(o.out, "--out");
   check_output_path(o.json, "--json");
+  check_distinct_files({{"--params", o.params_file}}, {{"--out", o.out}, {"--json", o.json}});
   set_threads(o.threads_opt.value_or(0));
 
   Progress total("bearing");

@@ -14,6 +14,8 @@ struct CheckOptions {
 };
 
 int run_check(const CheckOptions& o) {
+  check_output(o.json, {}, "--json");
+  check_distinct_files({{"FILE", o.file}}, {{"--json", o.json}});
   MeshReadInfo info;
   auto m = read_mesh(o.file, {}, &info);
   if (!m) throw InputError(m.error());

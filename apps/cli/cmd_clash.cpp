@@ -88,6 +88,10 @@ int run_clash(const ClashOptions& o) {
   check_output(o.region_a, mesh_ext, "--region-a");
   check_output(o.region_b, mesh_ext, "--region-b");
   for (const std::string& c : o.curves) check_output(c, {".obj", ".vtk"}, "--curves");
+  std::vector<NamedPath> outputs{{"--json", o.json}, {"--pairs", o.pairs}, {"--region-a", o.region_a},
+                                 {"--region-b", o.region_b}, {"--regions-vtu", o.regions_vtu}};
+  for (const std::string& c : o.curves) outputs.push_back({"--curves", c});
+  check_distinct_files({{"A", parts.a.file}, {"B", parts.b.file}, {"--scene", o.scene}}, outputs);
   if (o.fem_requested() || is_fem_file(parts.a.file) || is_fem_file(parts.b.file)) {
     return run_fem_clash(o, parts, request);  // FEM inputs: clash_fem.cpp
   }

@@ -12,6 +12,7 @@ namespace {
 
 int run_distance(const TwoPartOptions& o) {
   const ResolvedParts parts = resolve_two_parts(o, "distance");
+  check_distinct_files({{"A", parts.a.file}, {"B", parts.b.file}, {"--scene", o.scene}}, {{"--json", o.json}});
   set_threads(o.threads);
   Progress total("distance");
   const LoadedParts loaded = load_parts(parts);

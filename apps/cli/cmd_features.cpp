@@ -37,6 +37,9 @@ int run_features(const FeaturesCliOptions& o) {
   using namespace interfere::cad;
   if (!o.step.empty() && o.process.empty()) throw InputError("--step needs --process FILE");
   if (o.step.empty() && !o.process.empty()) throw InputError("--process needs --step ID");
+  check_output(o.json, {}, "--json");
+  check_distinct_files({{"IN", o.input}, {"--library", o.library}, {"--rules", o.rules}, {"--process", o.process}},
+                       {{"--json", o.json}});
   Progress total("features");
   auto sem = load_semantics({.library_file = o.library, .rules_file = o.rules, .process_file = o.process, .step = o.step});
   if (!sem) throw InputError(sem.error());

@@ -275,6 +275,9 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
                "OUT (or --format)");
   const bool glb = out_format == MeshFormat::automatic && lower_extension(o.output) == ".glb";
   check_output(o.json, {}, "--json");
+  check_distinct_files({{"IN", o.input}, {"--regions", o.regions}, {"--process", o.process},
+                        {"--library", o.library}, {"--rules", o.rules}},
+                       {{"OUT", o.output}, {"--json", o.json}});
   set_threads(o.threads);
   Progress total("simplify");
   nlohmann::json report;
@@ -567,6 +570,8 @@ int run_all_steps(const SimplifyCliOptions& o) {
     if (!o.parts_dir.empty()) r.parts_dir = (std::filesystem::path(o.parts_dir) / file_id(step.id)).string();
     check_output(r.output, {}, "OUT");
     if (!r.json.empty()) check_output(r.json, {}, "--json");
+    check_distinct_files({{"IN", o.input}, {"--process", o.process}, {"--library", o.library}, {"--rules", o.rules}},
+                         {{"OUT", r.output}, {"--json", r.json}});
     runs.push_back(std::move(r));
   }
   Expected<cad::CadModel> model = Error{};

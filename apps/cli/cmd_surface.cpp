@@ -33,6 +33,7 @@ int run_surface(const SurfaceOptions& o) {
   all_ext.insert(all_ext.end(), fem_ext.begin(), fem_ext.end());
   check_output(o.out, all_ext, "OUT");
   check_output(o.json, {}, "--json");
+  check_distinct_files({{"IN", o.in}}, {{"OUT", o.out}, {"--json", o.json}});
   if (!std::isfinite(o.scale)) throw InputError("--scale must be a finite number");
   if (o.step < -1) throw InputError("--step must be >= 0");
   set_threads(o.threads);

@@ -104,6 +104,8 @@ int run_sweep(const SweepOptions& o) {
   check_output(o.csv, {}, "--csv");
   check_output(o.hits_obj, {".obj", ".vtk"}, "--hits-obj");
   check_output(o.probes_vtk, {".vtk", ".obj"}, "--probes-vtk");
+  check_distinct_files({{"--workpiece", o.workpiece}, {"--robot", o.robot}, {"--path", o.path}},
+                       {{"--json", o.json}, {"--csv", o.csv}, {"--hits-obj", o.hits_obj}, {"--probes-vtk", o.probes_vtk}});
   set_threads(o.threads);
   const ProbeShape shape{.radius = o.probe_radius,
                          .length = o.probe_length,

@@ -188,6 +188,37 @@ void check_output(const std::string& path, const std::vector<std::string>& exten
   }
 }
 
+namespace {
+bool same_file(const std::string& a, const std::string& b) {
+  std::error_code ec;
+  if (std::filesystem::exists(a, ec) && std::filesystem::exists(b, ec)) {
+    const bool same = std::filesystem::equivalent(a, b, ec);
+    if (!ec) return same;
+  }
+  const auto canonical = [](const std::string& p) {
+    std::error_code e;
+    auto c = std::filesystem::weakly_canonical(std::filesystem::absolute(p, e), e);
+    return e ? std::filesystem::absolute(p, e).lexically_normal() : c;
+  };
+  return canonical(a) == canonical(b);
+}
+}  // namespace
+
+void check_distinct_files(const std::vector<NamedPath>& inputs, const std::vector<NamedPath>& outputs) {
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    const NamedPath& out = outputs[i];
+    if (out.path.empty()) continue;
+    for (const NamedPath& in : inputs)
+      if (!in.path.empty() && same_file(out.path, in.path))
+        throw InputError(out.flag + ": " + out.path + " is the input file of " + in.flag +
+                         ": writing it would lose the input; write elsewhere");
+    for (std::size_t k = 0; k < i; ++k)
+      if (!outputs[k].path.empty() && same_file(out.path, outputs[k].path))
+        throw InputError(out.flag + ": " + out.path + " is also the file of " + outputs[k].flag +
+                         ": one would overwrite the other");
+  }
+}
+
 void write_or_throw(const Status& s) {
   if (!s) throw InputError(s.error());
 }

@@ -95,6 +95,14 @@ void print_clash_summary(const ClashResult& result, const std::string& units);
 std::string lower_extension(const std::string& path);
 
 void check_output(const std::string& path, const std::vector<std::string>& extensions, const char* flag);
+/// A file a command reads or writes, with the flag or argument that names it ("IN", "--json").
+struct NamedPath {
+  std::string flag, path;
+};
+/// Throws InputError when an output is the same file as an input (writing it would lose the input)
+/// or as another output (one would overwrite the other): the same path after `.`/`..` and symbolic
+/// links are resolved, or one file under two names (hard links). Empty paths are skipped.
+void check_distinct_files(const std::vector<NamedPath>& inputs, const std::vector<NamedPath>& outputs);
 /// Throws InputError when a write failed.
 void write_or_throw(const Status& s);
 

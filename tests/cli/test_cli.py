@@ -157,6 +157,49 @@ class Cli(unittest.TestCase):
         self.assertEqual(open(keep).read(), "precious\n")
         self.assertEqual([n for n in os.listdir(cli_common.WORK) if ".tmp-" in n], [])
 
+    def test_outputs_never_replace_inputs_or_each_other(self):
+        # An output naming an input file (by its path, another spelling of it, a symbolic or a hard
+        # link) would lose the input; two outputs naming one file would overwrite each other. Every
+        # command refuses before any work, and the files stay as they were.
+        import hashlib
+        import shutil
+        shutil.copy(os.path.join(EXAMPLES, "plate.stl"), path("own_plate.stl"))
+        shutil.copy(os.path.join(EXAMPLES, "pin.obj"), path("own_pin.obj"))
+        shutil.copy(os.path.join(EXAMPLES, "bearing.parameters"), path("own_bearing.parameters"))
+        for link in ("plate_soft.stl", "plate_hard.stl"):
+            if os.path.lexists(path(link)):
+                os.remove(path(link))
+        os.symlink(path("own_plate.stl"), path("plate_soft.stl"))
+        os.link(path("own_plate.stl"), path("plate_hard.stl"))
+        def digest(name):
+            with open(path(name), "rb") as f:
+                return hashlib.sha256(f.read()).hexdigest()
+        before = {n: digest(n) for n in ("own_plate.stl", "own_pin.obj", "own_bearing.parameters")}
+        sub = os.path.join(cli_common.WORK, "sub")
+        os.makedirs(sub, exist_ok=True)
+        cases = [
+            (["check", path("own_plate.stl"), "--json", path("own_plate.stl")], "input file of FILE"),
+            (["check", path("own_plate.stl"), "--json", path("plate_hard.stl")], "input file of FILE"),
+            (["clash", path("own_plate.stl"), path("own_pin.obj"), "--json", path("plate_soft.stl")], "input file of A"),
+            (["clash", path("own_plate.stl"), path("own_pin.obj"), "--pairs", os.path.join(sub, "..", "own_pin.obj")],
+             "input file of B"),
+            (["clash", path("own_plate.stl"), path("own_pin.obj"), "--json", path("x.json"), "--pairs", path("x.json")],
+             "also the file of --json"),
+            (["distance", path("own_plate.stl"), path("own_pin.obj"), "--json", path("own_pin.obj")], "input file of B"),
+            (["simplify", path("own_plate.stl"), path("own_plate.stl"), "--ratio", "0.5"], "input file of IN"),
+            (["simplify", path("own_plate.stl"), path("s.ply"), "--ratio", "0.5", "--json", path("s.ply")],
+             "also the file of OUT"),
+            (["bearing", "--params", path("own_bearing.parameters"), "--json", path("own_bearing.parameters")],
+             "input file of --params"),
+        ]
+        for args, message in cases:
+            rc, out, err = run(*args)
+            self.assertEqual(rc, 2, (args, out, err))
+            self.assertIn(message, err, args)
+        self.assertEqual({n: digest(n) for n in before}, before)
+        for name in ("x.json", "s.ply"):
+            self.assertFalse(os.path.exists(path(name)), name)
+
     def test_missing_file(self):
         self.assert_input_error(["clash", path("nope.stl"), os.path.join(EXAMPLES, "pin.obj")], ["nope.stl"])
 
