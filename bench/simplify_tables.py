@@ -152,13 +152,19 @@ quadric-error-metric edge collapses while the faces that take part in the curren
    feature types and roles whose faces take part: `bolt` → through hole (wall) + top and bottom faces;
    `gear_shaft` → ring (shoulder) face + the shaft cylinder it meets; `screw` → counterbored hole (bore,
    counterbore, seat); plus `countersunk_screw`, `key`, `pin`, `locate`. A process description lists the steps
-   (`{"steps": [{"id": "P1", "parts": ["casing"], "constraint": "bolt"}, ...]}`, `"*"` = every part); the faces of
+   (`{"steps": [{"id": "P1", "parts": ["casing"], "constraint": "bolt"}, ...]}`, `"*"` = every part; ids unique,
+   not empty, not `all`, and for `--step all` distinct as file names); the faces of
    step P_i are selected automatically. A step names parts or component instances: a part used several times
    of which the step names only some instances is simplified twice, `<part> [<step>]` with the step's
    features for those instances and `<part>` without for the others (a step that mounts one of six
    identical bolts keeps that bolt's features only; report `cad.instances[].in_step`, `simplified_part`). A
    name the model does not have is a warning listing the parts there are. A rule that names a feature type
-   missing from the library is an error naming the rule and the type.
+   missing from the library is an error naming the rule and the type, and so is a role none of the type's
+   patterns has (naming the roles there are); a step whose constraint no rule knows
+   (a misspelt `gear_on_shaft` for `gear_shaft`) is an error naming the step, the constraint and the
+   constraints the rules know, reported before the STEP file is read (`load_semantics`), never an empty
+   selection that would leave the step's features unprotected. `--library`/`--rules` (both commands, and
+   `library=`/`rules=` in Python) read the user's JSON instead of the installed files.
 5. **Feature-preserving QEM** (Garland & Heckbert 1997): area-weighted plane quadrics, penalty planes through
    constrained edges (weight 10·|e|²), a min-heap of candidate collapses (a radix heap, with a binary heap for the keys below the last
    one taken, so the order is the exact cost order; equal costs first in, first out, which spreads the collapses
@@ -400,7 +406,8 @@ interfere features PART.step [--json REPORT] [--aag] [--library lib.json] [--rul
 | `--target N` | triangle budget (> 0, ≤ the input's count) |
 | `--ratio R` | budget as a fraction in (0, 1] |
 | `--renderer-max N` | budget from the formula above (one part: its feature triangles reserved) |
-| `--step P --process F` | STEP input: features of step P's constraint type (rules: installed `semantics.json`) are kept; `--step all`: every step of F in order, the STEP file imported once (`prepare_for_simplify(model, options)`), a library, rules or process error stopping it before the first output, outputs `OUT_<step>.ext`, reports `JSON_<step>.json`, parts `DIR/<step>/` (a digital twin's model for each assembly state) |
+| `--step P --process F` | STEP input: features of step P's constraint type (rules: installed `semantics.json`) are kept; `--step all`: every step of F in order, the STEP file imported once (`prepare_for_simplify(model, options)`), a library, rules or process error (any step's) stopping it before the import and the first output, outputs `OUT_<step>.ext`, reports `JSON_<step>.json`, parts `DIR/<step>/` (a digital twin's model for each assembly state) |
+| `--library F`, `--rules F` | STEP input: the feature library and the assembly-semantics rules (JSON, formats below) instead of the installed `data/features/library.json` and `semantics.json`; rules need a process |
 | `--regions FILE` | plain mesh: one unsigned region id per triangle (whitespace separated, `#` comments) |
 | `--features IDS` | comma-separated face/region ids kept in addition to the step's |
 | `--lock` | hard locks instead of the paper's cost weighting (= `--feature-mode lock`) |
@@ -467,7 +474,7 @@ inherit_input_contacts=True, seams="all", max_error=0)` → `SimplifyResult` (`.
 `interfere.read_error_bound(path)`, `interfere.write_glb(path, [(name, mesh, face_ids, feature_faces,
 error_bound)], [(name, part, Transform)], units="mm")`, `interfere.count_self_intersections(mesh)`, `interfere.triangle_budgets([(T, F), ...], renderer_max)`; when
 `interfere.HAVE_CAD`: `interfere.import_step(path, linear_deflection=0, angular_deflection=0.5)` (instances with
-their `placement`), `interfere.step_features(path, process="", step="")` and `interfere.prepare_step(path,
+their `placement`), `interfere.step_features(path, process="", step="", library="", rules="")` and `interfere.prepare_step(path,
 process="", step="", linear_deflection=0, angular_deflection=0.5, library="", rules="")`, the CLI's STEP pipeline
 up to the simplification: `parts` ready for `simplify` (`name`, `mesh` in part coordinates, `face_ids`,
 `feature_faces` of the step, `faces`, `instances`, `model_part`; `<part> [<step>]` variants as in the CLI),
