@@ -26,6 +26,26 @@ void append(std::string& bin, const void* data, std::size_t bytes) {
   while (bin.size() % 4 != 0) bin.push_back('\0');
 }
 
+// Per-vertex normals (glTF NORMAL, unit length): the area-weighted mean of the normals of the
+// vertex's triangles. The vertices are split along faces (or crease regions) first, so the normals
+// are smooth within a face (a decimated cylinder still shades round) and sharp across its borders.
+// A vertex of degenerate triangles only takes +z (the attribute must be a unit vector).
+std::vector<float> vertex_normals(const TriMesh& m) {
+  std::vector<Vec3> sum(m.num_vertices(), Vec3{});
+  for (std::size_t t = 0; t < m.num_triangles(); ++t) {
+    const auto c = m.corners(t);
+    const Vec3 n = cross(c[1] - c[0], c[2] - c[0]);  // length: twice the area
+    for (std::uint32_t v : m.triangles[t]) sum[v] = sum[v] + n;
+  }
+  std::vector<float> out(3 * sum.size());
+  for (std::size_t v = 0; v < sum.size(); ++v) {
+    const double l = norm(sum[v]);
+    const Vec3 n = l > 0 && std::isfinite(l) ? sum[v] / l : Vec3{0, 0, 1};
+    for (int k = 0; k < 3; ++k) out[3 * v + k] = static_cast<float>(n[k]);
+  }
+  return out;
+}
+
 double metres_per(const std::string& units) {
   if (units == "mm") return 1e-3;
   if (units == "cm") return 1e-2;
@@ -65,8 +85,9 @@ Status write_glb(const std::filesystem::path& path, const std::vector<GltfPart>&
     const bool ids = !part.face_ids.empty();
     if (ids && part.face_ids.size() != part.mesh.num_triangles())
       return Error{.file = file, .reason = what + ": face ids do not match the triangles"};
-    // Every vertex on one face, so that per-vertex ids are the triangles' ids.
-    const TriMesh m = ids ? split_by_face(part.mesh, part.face_ids) : part.mesh;
+    // Every vertex on one face, so that per-vertex ids are the triangles' ids and the normals are
+    // smooth within a face; without faces, within the regions between crease edges.
+    const TriMesh m = split_by_face(part.mesh, ids ? part.face_ids : sharp_edge_regions(part.mesh, part.crease_deg));
     const std::size_t nv = m.num_vertices();
     std::vector<float> pos(3 * nv);
     std::array<float, 3> lo{}, hi{};
@@ -83,6 +104,8 @@ Status write_glb(const std::filesystem::path& path, const std::vector<GltfPart>&
     const std::size_t a_pos = accessor(view(pos.data(), pos.size() * 4, kArrayBuffer), kFloat, nv, "VEC3");
     j["accessors"][a_pos]["min"] = lo, j["accessors"][a_pos]["max"] = hi;
     attributes["POSITION"] = a_pos;
+    const std::vector<float> normals = vertex_normals(m);
+    attributes["NORMAL"] = accessor(view(normals.data(), normals.size() * 4, kArrayBuffer), kFloat, nv, "VEC3");
     if (ids) {
       std::vector<std::uint32_t> feat = part.feature_faces;
       std::sort(feat.begin(), feat.end());

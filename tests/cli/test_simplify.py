@@ -166,6 +166,10 @@ class Simplify(unittest.TestCase):
         prim = doc["meshes"][0]["primitives"][0]
         self.assertEqual(len(read(prim["indices"])) // 3, r["output_triangles"])
         self.assertNotIn("_FACE_ID", prim["attributes"])  # no regions given
+        normals = read(prim["attributes"]["NORMAL"])
+        self.assertEqual(len(normals), len(read(prim["attributes"]["POSITION"])))
+        for i in range(0, len(normals), 3):
+            self.assertAlmostEqual(math.sqrt(sum(x * x for x in normals[i:i + 3])), 1.0, places=5)
 
     def test_warnings_are_printed_with_quiet(self):
         # --quiet (every test runs with it) silences progress lines, not warnings: an odd budget on a

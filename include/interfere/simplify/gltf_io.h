@@ -1,6 +1,7 @@
 // Binary glTF 2.0 (GLB) output of simplified parts for digital-twin renderers (issue #6: real-time
 // rendering of assembly lines): one glTF mesh per part, one node per instance with its placement,
-// so a part used N times is stored once. Per vertex, besides POSITION: `_FACE_ID` (the B-Rep face
+// so a part used N times is stored once. Per vertex, besides POSITION: NORMAL (smooth within a
+// face, sharp across face borders; without faces, across crease edges), `_FACE_ID` (the B-Rep face
 // or region, float: exact below 2^24) and `_FEATURE` (1 on the step's assembly-feature faces);
 // vertices are split along face boundaries first, so every vertex has one face. The scene's
 // `extras` hold `units` and the largest `error_bound`, each mesh's `extras` its own bound and face
@@ -23,6 +24,9 @@ struct GltfPart {
   std::vector<std::uint32_t> face_ids;      ///< per triangle (empty: no ids written)
   std::vector<std::uint32_t> feature_faces;  ///< face ids tagged _FEATURE = 1
   double error_bound = -1;                  ///< < 0: not stored
+  /// Without face ids: NORMAL is smooth within the regions between edges sharper than this
+  /// (degrees; sharp_edge_regions); with them, within each face.
+  double crease_deg = 40;
 };
 
 struct GltfInstance {
