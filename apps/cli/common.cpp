@@ -186,6 +186,7 @@ void check_output(const std::string& path, const std::vector<std::string>& exten
   if (!std::filesystem::is_directory(dir)) {
     throw InputError(std::string(flag) + ": " + path + ": directory does not exist");
   }
+  if (std::filesystem::is_directory(p)) throw InputError(std::string(flag) + ": " + path + ": is a directory");
 }
 
 namespace {

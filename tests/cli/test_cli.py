@@ -191,6 +191,8 @@ class Cli(unittest.TestCase):
              "also the file of OUT"),
             (["bearing", "--params", path("own_bearing.parameters"), "--json", path("own_bearing.parameters")],
              "input file of --params"),
+            (["simplify", path("own_plate.stl"), path("s.ply"), "--ratio", "0.5", "--json", sub], "is a directory"),
+            (["check", path("own_plate.stl"), "--json", sub], "is a directory"),
         ]
         for args, message in cases:
             rc, out, err = run(*args)
