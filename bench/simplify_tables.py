@@ -153,7 +153,8 @@ quadric-error-metric edge collapses while the faces that take part in the curren
    `gear_shaft` → ring (shoulder) face + the shaft cylinder it meets; `screw` → counterbored hole (bore,
    counterbore, seat); plus `countersunk_screw`, `key`, `pin`, `locate`. A process description lists the steps
    (`{"steps": [{"id": "P1", "parts": ["casing"], "constraint": "bolt"}, ...]}`, `"*"` = every part; ids unique,
-   not empty, not `all`, and for `--step all` distinct as file names); the faces of
+   not empty, not `all`, and for `--step all` distinct as file names; no `parts`: every part, an empty list is an
+   error); the faces of
    step P_i are selected automatically. A step names parts or component instances: a part used several times
    of which the step names only some instances is simplified twice, `<part> [<step>]` with the step's
    features for those instances and `<part>` without for the others (a step that mounts one of six

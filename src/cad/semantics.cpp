@@ -80,6 +80,9 @@ Expected<Process> parse_process(const std::string& text, const std::string& sour
         return Error{.file = source, .reason = s.id.empty() ? std::string("a step has an empty id")
                                                             : "step id 'all' is reserved (--step all: every step)"};
       s.parts = js.value("parts", std::vector<std::string>{"*"});
+      if (s.parts.empty())
+        return Error{.file = source, .reason = "step '" + s.id + "' has an empty parts list, which keeps no feature: "
+                                               "name its parts, or leave \"parts\" out for every part"};
       s.constraint = js.at("constraint").get<std::string>();
       for (const ProcessStep& o : out.steps)
         if (o.id == s.id) return Error{.file = source, .reason = "step id '" + s.id + "' appears twice"};

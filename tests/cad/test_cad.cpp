@@ -393,6 +393,12 @@ TEST(Semantics, RulesReferringToUnknownFeatureTypesAreErrors) {
   EXPECT_NE(r.error().reason.find("weld"), std::string::npos);
   EXPECT_FALSE(parse_process(R"({"steps":[{"id":"a","constraint":"x"},{"id":"a","constraint":"y"}]})").has_value());
   EXPECT_FALSE(parse_process(R"({"steps":[{"id":"","constraint":"x"}]})").has_value());
+  auto none = parse_process(R"({"steps":[{"id":"P1","parts":[],"constraint":"x"}]})");
+  ASSERT_FALSE(none.has_value());
+  EXPECT_NE(none.error().reason.find("empty parts list"), std::string::npos);
+  auto every = parse_process(R"({"steps":[{"id":"P1","constraint":"x"}]})");  // no list: every part
+  ASSERT_TRUE(every.has_value());
+  EXPECT_EQ(every->steps[0].parts, std::vector<std::string>{"*"});
   auto all = parse_process(R"({"steps":[{"id":"all","constraint":"x"}]})");  // --step all
   ASSERT_FALSE(all.has_value());
   EXPECT_NE(all.error().reason.find("reserved"), std::string::npos);
