@@ -318,6 +318,9 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
     Progress progress(model ? "preparing step " + o.step : "importing " + o.input);
     auto prepared = model ? cad::prepare_for_simplify(*model, po) : cad::prepare_for_simplify(o.input, po);
     if (!prepared) throw InputError(prepared.error());
+    if (!o.features.empty())  // world face ids, kept on every instance of their part
+      if (Status s = cad::add_feature_faces(*prepared, parse_id_list(o.features, "--features")); !s)
+        throw InputError("--features: " + s.error().reason);
     mesh = prepared->mesh;
     so.face_ids = prepared->face_ids;
     so.feature_faces = prepared->feature_faces;
@@ -341,10 +344,16 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
       so.face_ids = std::move(*r);
     }
     so.sharp_angle_deg = o.sharp_angle;
-  }
-  if (!o.features.empty()) {
-    const auto extra = parse_id_list(o.features, "--features");
-    so.feature_faces.insert(so.feature_faces.end(), extra.begin(), extra.end());
+    if (!o.features.empty()) {
+      if (o.regions.empty() && o.sharp_angle <= 0)
+        throw InputError("--features names region ids: give them with --regions FILE or --sharp-angle DEG");
+      so.feature_faces = parse_id_list(o.features, "--features");
+      // Ids of --regions are checked here (--sharp-angle's regions are made by the simplifier,
+      // which warns when none of the ids has a triangle).
+      for (std::uint32_t id : o.regions.empty() ? std::vector<std::uint32_t>{} : so.feature_faces)
+        if (std::find(so.face_ids.begin(), so.face_ids.end(), id) == so.face_ids.end())
+          throw InputError("--features: no triangle of " + o.regions + " has region id " + std::to_string(id));
+    }
   }
   // --max-error / --max-error-rel: the largest error bound allowed (the relative one of the whole
   // input's diagonal: an assembly's parts share one limit).
@@ -611,7 +620,9 @@ void add_simplify_command(CLI::App& app, int& exit_code) {
   c->add_option("--rules", o->rules, "assembly-semantics rules JSON (default: data/features/semantics.json)")
       ->check(CLI::ExistingFile);
   c->add_option("--regions", o->regions, "per-triangle region ids (text, one unsigned integer per triangle)");
-  c->add_option("--features", o->features, "comma-separated face/region ids to keep (added to the step's features)");
+  c->add_option("--features", o->features,
+                "comma-separated face/region ids to keep (added to the step's features): --regions/--sharp-angle "
+                "region ids, or a STEP input's face ids as the output numbers them");
   c->add_flag("--lock", o->lock, "hard-lock feature faces (bit-identical) instead of the paper's cost weighting");
   c->add_option("--seams", o->seams,
                 "face seams kept: all (default), auto (all if the budget can be met so, else the borders of "

@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <fstream>
 #include <optional>
 #include <sstream>
@@ -73,6 +74,32 @@ Expected<Semantics> load_semantics(const PipelineOptions& o) {
     if (auto s = select_step_features(*sem.process, step, sem.rules, "", {}); !s)
       return Error{.file = o.process_file, .reason = s.error().reason};
   return sem;
+}
+
+Status add_feature_faces(Prepared& prep, const std::vector<std::uint32_t>& world_ids) {
+  std::vector<std::vector<std::uint32_t>> added(prep.parts.size());
+  std::uint32_t faces = 0;  // the world's face count
+  for (const PreparedInstance& in : prep.instances)
+    faces = std::max(faces, in.face_offset + prep.parts[in.part].faces);
+  for (std::uint32_t id : world_ids) {
+    const auto in = std::find_if(prep.instances.begin(), prep.instances.end(), [&](const PreparedInstance& i) {
+      return id >= i.face_offset && id - i.face_offset < prep.parts[i.part].faces;
+    });
+    if (in == prep.instances.end())
+      return Error{.reason = "face id " + std::to_string(id) + " is on no part: the model's faces are 0.." +
+                             std::to_string(faces == 0 ? 0 : faces - 1)};
+    added[in->part].push_back(id - in->face_offset);
+  }
+  for (std::size_t i = 0; i < prep.parts.size(); ++i) {
+    std::vector<std::uint32_t>& f = prep.parts[i].feature_faces;
+    f.insert(f.end(), added[i].begin(), added[i].end());
+    std::sort(f.begin(), f.end());
+    f.erase(std::unique(f.begin(), f.end()), f.end());
+  }
+  prep.feature_faces.clear();
+  for (const PreparedInstance& in : prep.instances)
+    for (std::uint32_t f : prep.parts[in.part].feature_faces) prep.feature_faces.push_back(f + in.face_offset);
+  return {};
 }
 
 namespace {

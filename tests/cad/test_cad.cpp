@@ -452,6 +452,27 @@ TEST(Semantics, AStepConstraintNoRuleKnowsIsAnError) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(Pipeline, FeatureFacesNamedByWorldIdsGoToTheirInstancesParts) {
+  // Two parts (3 and 5 faces), four instances: faces 0-2 part 0, 3-7 part 1, 8-12 part 1, 13-15 part 0.
+  Prepared prep;
+  prep.parts.resize(2);
+  prep.parts[0].faces = 3, prep.parts[1].faces = 5;
+  prep.parts[1].feature_faces = {2};  // the step's
+  prep.instances = {{"a", 0, {}, 0}, {"b", 1, {}, 3}, {"c", 1, {}, 8}, {"d", 0, {}, 13}};
+  Prepared unchanged = prep;
+  auto bad = add_feature_faces(prep, {4, 16});
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().reason.find("16"), std::string::npos);
+  EXPECT_NE(bad.error().reason.find("0..15"), std::string::npos) << bad.error().reason;
+  EXPECT_EQ(prep.parts[1].feature_faces, unchanged.parts[1].feature_faces);  // nothing changed
+  EXPECT_TRUE(prep.parts[0].feature_faces.empty());
+  ASSERT_TRUE(add_feature_faces(prep, {4, 14, 10}).ok());
+  EXPECT_EQ(prep.parts[0].feature_faces, (std::vector<std::uint32_t>{1}));     // 14 - 13
+  EXPECT_EQ(prep.parts[1].feature_faces, (std::vector<std::uint32_t>{1, 2}));  // 4 - 3, 10 - 8 = 2 (the step's)
+  // Every instance of each part keeps them: world ids again.
+  EXPECT_EQ(prep.feature_faces, (std::vector<std::uint32_t>{1, 4, 5, 9, 10, 14}));
+}
+
 TEST(Semantics, StepsNamingPartsNotInTheModelAreWarnings) {
   auto p = parse_process(
       R"({"steps":[{"id":"P1","parts":["casing","casnig"],"constraint":"bolt"},{"id":"P2","parts":["*"],"constraint":"screw"}]})");

@@ -248,6 +248,15 @@ class Simplify(unittest.TestCase):
         r = load_json("lock.json")
         self.assertEqual(r["feature_faces"], [1])
         self.assertEqual(r["feature_mode"], "lock")
+        # A region id no triangle has, or region ids without regions, would keep nothing: errors.
+        code, _, err = run("simplify", path("sphere.obj"), path("lock2.ply"), "--target", "600", "--regions",
+                           path("regions.txt"), "--features", "1,7")
+        self.assertEqual(code, 2)
+        self.assertIn("region id 7", err)
+        code, _, err = run("simplify", path("sphere.obj"), path("lock2.ply"), "--target", "600", "--features", "1")
+        self.assertEqual(code, 2)
+        self.assertIn("--regions", err)
+        self.assertFalse(os.path.exists(path("lock2.ply")))
         self.assertLessEqual(r["hausdorff_features"], 1e-12)
         self.assertEqual(float(bound[0].split()[2]), r["error_bound"])
 
@@ -554,6 +563,26 @@ class Features(unittest.TestCase):
         self.assertEqual(code, 2)
         self.assertIn("'P 1' and 'P_1'", err)
         self.assertFalse(os.path.exists(path("clash_P_1.ply")))
+
+    def test_features_of_a_step_input_are_kept(self):
+        # --features on a STEP input names faces by the output's face ids (one part: the ids
+        # `interfere features` lists): locked, they come out bit-identical, like the step's.
+        plate = os.path.join(DATA, "counterbored_plate.step")
+        code, out, err = run("features", plate, "--json", path("fx_features.json"))
+        self.assertEqual(code, 0, err)
+        bore = load_json("fx_features.json")["parts"][0]["features"][0]["faces"]  # the counterbored hole
+        code, _, err = run("simplify", plate, path("fx.ply"), "--ratio", "0.3", "--features",
+                           ",".join(str(f) for f in bore), "--lock", "--json", path("fx.json"))
+        self.assertEqual(code, 0, err)
+        r = load_json("fx.json")
+        self.assertEqual(r["feature_faces"], sorted(bore))
+        self.assertGreater(r["feature_triangles"]["input"], 0)
+        self.assertEqual(r["feature_triangles"]["input"], r["feature_triangles"]["output"])
+        self.assertLessEqual(r["hausdorff_features"], 1e-12)
+        code, _, err = run("simplify", plate, path("fx_bad.ply"), "--ratio", "0.3", "--features", "9999")
+        self.assertEqual(code, 2)
+        self.assertIn("face id 9999 is on no part", err)
+        self.assertFalse(os.path.exists(path("fx_bad.ply")))
 
     def test_a_constraint_no_rule_knows_is_an_error_before_anything_is_written(self):
         # A misspelt constraint would leave the step's features unprotected: an error naming the

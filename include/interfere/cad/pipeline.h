@@ -62,6 +62,13 @@ Expected<Prepared> prepare_for_simplify(const std::string& step_file, const Pipe
 /// The same for a model already imported (one import for several process steps: `--step all`).
 Expected<Prepared> prepare_for_simplify(const CadModel& model, const PipelineOptions& options);
 
+/// Adds faces to keep, named by their ids in the world mesh (a part's face id plus its instance's
+/// face_offset, as Prepared::face_ids and the written outputs number them; for a one-part file the
+/// ids `interfere features` lists): each goes to the simplified part its instance uses, so it is kept
+/// on every instance sharing that part, and `feature_faces` is rebuilt. Errors: an id no instance
+/// has (naming it and the range there is); nothing is changed then.
+Status add_feature_faces(Prepared& prepared, const std::vector<std::uint32_t>& world_ids);
+
 /// Whether process step `step` takes in instance `k` of `model`: it names the instance, its part
 /// or "*".
 bool instance_in_step(const Process& process, const std::string& step, const CadModel& model, std::size_t k);
