@@ -414,7 +414,7 @@ interfere features PART.step [--json REPORT] [--aag] [--library lib.json] [--rul
 | `--lock` | hard locks instead of the paper's cost weighting (= `--feature-mode lock`) |
 | `--feature-mode M` | `weight` (paper, default), `last` (feature edges strictly last), `lock` |
 | `--seams S` | face seams kept: `all` (default), `auto` (all if the budget can be met so, else as `features`), `features` (the borders of assembly-feature faces only), `none` (face ids as tags only) |
-| `--sharp-angle DEG` | plain mesh without regions: keep edges sharper than DEG |
+| `--sharp-angle DEG` | plain mesh without regions: keep edges sharper than DEG (with `--regions`, or on a STEP input, whose regions are its faces, an error) |
 | `--linear-deflection`, `--angular-deflection` | STEP tessellation (0 = 0.1 % of the diagonal; radians) |
 | `--parts-dir DIR` | STEP input: also write each simplified part once, in part coordinates, as `DIR/<part>_<name>.<OUT's extension>` with its own face ids, feature tags and error bound; the report's `cad.instances[].placement` places them (a renderer instances them instead of loading the merged OUT) |
 | `--format F` | output format (stl, stl-ascii, obj, ply, ply-ascii, off) |

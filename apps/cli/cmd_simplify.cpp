@@ -307,6 +307,8 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
   so.prevent_self_intersections = !o.no_guard;
   so.inherit_input_contacts = !o.strict_guard;
   if (is_step(o.input)) {
+    if (!o.regions.empty() || o.sharp_angle > 0)
+      throw InputError("--regions/--sharp-angle are for plain meshes: a STEP input's regions are its B-Rep faces");
 #ifdef INTERFERE_HAS_CAD
     cad::PipelineOptions po;
     po.linear_deflection = o.linear_deflection;
@@ -619,7 +621,7 @@ void add_simplify_command(CLI::App& app, int& exit_code) {
       ->check(CLI::ExistingFile);
   c->add_option("--rules", o->rules, "assembly-semantics rules JSON (default: data/features/semantics.json)")
       ->check(CLI::ExistingFile);
-  c->add_option("--regions", o->regions, "per-triangle region ids (text, one unsigned integer per triangle)");
+  auto* regions = c->add_option("--regions", o->regions, "plain meshes: per-triangle region ids (text, one unsigned integer per triangle)");
   c->add_option("--features", o->features,
                 "comma-separated face/region ids to keep (added to the step's features): --regions/--sharp-angle "
                 "region ids, or a STEP input's face ids as the output numbers them");
@@ -630,7 +632,8 @@ void add_simplify_command(CLI::App& app, int& exit_code) {
                 "lower) or none (face ids as tags only)");
   c->add_option("--feature-mode", o->feature_mode,
                 "weight (paper: + maximum unmodified cost), last (feature edges strictly last) or lock");
-  c->add_option("--sharp-angle", o->sharp_angle, "plain meshes: keep edges whose dihedral angle exceeds DEG degrees");
+  c->add_option("--sharp-angle", o->sharp_angle, "plain meshes: keep edges whose dihedral angle exceeds DEG degrees")
+      ->excludes(regions);
   c->add_option("--linear-deflection", o->linear_deflection, "STEP tessellation: linear deflection (0 = 0.1 % of the diagonal)");
   c->add_option("--angular-deflection", o->angular_deflection, "STEP tessellation: angular deflection in radians");
   c->add_option("--parts-dir", o->parts_dir,

@@ -583,6 +583,13 @@ class Features(unittest.TestCase):
         self.assertEqual(code, 2)
         self.assertIn("face id 9999 is on no part", err)
         self.assertFalse(os.path.exists(path("fx_bad.ply")))
+        # A STEP input's regions are its faces: --regions and --sharp-angle would be ignored, so errors.
+        with open(path("fx_regions.txt"), "w") as f:
+            f.write("0\n")
+        for extra in (["--regions", path("fx_regions.txt")], ["--sharp-angle", "30"]):
+            code, _, err = run("simplify", plate, path("fx_bad.ply"), "--ratio", "0.3", *extra)
+            self.assertEqual(code, 2, extra)
+            self.assertIn("plain meshes", err)
 
     def test_a_constraint_no_rule_knows_is_an_error_before_anything_is_written(self):
         # A misspelt constraint would leave the step's features unprotected: an error naming the
