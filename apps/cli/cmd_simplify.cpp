@@ -40,6 +40,7 @@ struct SimplifyCliOptions {
   double linear_deflection = 0, angular_deflection = 0.5;
   std::size_t renderer_max = 0;
   bool lock = false, check_self = false, no_error = false, no_guard = false, strict_guard = false;
+  bool deflection_given = false;  ///< --linear-/--angular-deflection on the command line
   int threads = 0;
 };
 
@@ -336,6 +337,8 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
   } else {
     if (!o.step.empty() || !o.process.empty() || !o.library.empty() || !o.rules.empty())
       throw InputError("--step/--process/--library/--rules need a STEP input (features are recognised on the B-Rep)");
+    if (o.deflection_given)
+      throw InputError("--linear-deflection/--angular-deflection tessellate a STEP input; " + o.input + " is a mesh");
     Progress progress("reading " + o.input);
     auto m = read_mesh(o.input);
     if (!m) throw InputError(m.error());
@@ -526,6 +529,9 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
   nlohmann::json phases = nlohmann::json::array();  // wall time per phase of simplify(), in order
   for (const auto& [name, sec] : r.phases) phases.push_back({{"phase", name}, {"seconds", sec}});
   report["seconds"]["phases"] = phases;
+  if ((o.lock || o.feature_mode != "weight") && so.feature_faces.empty())
+    r.warnings.push_back(std::string(o.lock ? "--lock" : "--feature-mode " + o.feature_mode) +
+                         ": there are no feature faces to keep (--features, or --step with --process for a STEP input)");
   report["warnings"] = r.warnings;
   for (const auto& w : r.warnings)
     warning(w);
@@ -658,7 +664,10 @@ void add_simplify_command(CLI::App& app, int& exit_code) {
   max_error->excludes(no_error);
   c->add_option("--json", o->json, "write the JSON report here");
   c->add_option("--threads", o->threads, "worker threads (0 = all cores)");
-  c->callback([o, &exit_code] { exit_code = o->step == "all" ? run_all_steps(*o) : run_simplify(*o); });
+  c->callback([o, c, &exit_code] {
+    o->deflection_given = c->count("--linear-deflection") + c->count("--angular-deflection") > 0;
+    exit_code = o->step == "all" ? run_all_steps(*o) : run_simplify(*o);
+  });
 }
 
 }  // namespace interfere::cli

@@ -333,6 +333,15 @@ class Simplify(unittest.TestCase):
                                 output=path("no_such_dir/o.ply"), message="directory does not exist")
         self.assert_input_error("simplify", s, o, "--target", "10", "--process", path("p.json"), output=o,
                                 message="--step")
+        # Tessellation options on a mesh would be ignored: an error.
+        self.assert_input_error("simplify", s, o, "--target", "10", "--angular-deflection", "0.2", output=o,
+                                message="STEP input")
+        # --lock without feature faces keeps nothing: a warning (stderr and report).
+        code, _, err = run("simplify", s, path("nolock.ply"), "--target", "100", "--lock", "--json",
+                           path("nolock.json"))
+        self.assertEqual(code, 0, err)
+        self.assertIn("no feature faces to keep", err)
+        self.assertTrue(any("no feature faces" in w for w in load_json("nolock.json")["warnings"]))
 
     def test_existing_output_untouched_on_error(self):
         with open(path("keep.ply"), "w") as out:
