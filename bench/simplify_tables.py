@@ -417,7 +417,7 @@ interfere features PART.step [--json REPORT] [--aag] [--library lib.json] [--rul
 | `--sharp-angle DEG` | plain mesh without regions: keep edges sharper than DEG (with `--regions`, or on a STEP input, whose regions are its faces, an error) |
 | `--linear-deflection`, `--angular-deflection` | STEP tessellation (0 = 0.1 % of the diagonal; radians) |
 | `--parts-dir DIR` | STEP input: also write each simplified part once, in part coordinates, as `DIR/<part>_<name>.<OUT's extension>` with its own face ids, feature tags and error bound; the report's `cad.instances[].placement` places them (a renderer instances them instead of loading the merged OUT) |
-| `--format F` | output format (stl, stl-ascii, obj, ply, ply-ascii, off) |
+| `--format F` | output format (stl, stl-ascii, obj, ply, ply-ascii, off, glb), whatever OUT's extension |
 | `--check-self-intersections` | count self-intersections of the result (engine clash), reported |
 | `--no-intersection-guard` | plain QEM: no self-intersection check of the result, no guarded rerun |
 | `--strict-intersection-guard` | refuse every new intersecting pair, also where the input's own contacts move (default: those inside the input's contact zone are inherited) |

@@ -266,15 +266,17 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
       throw InputError(Error{.file = o.parts_dir, .reason = "--parts-dir: cannot create the directory" +
                                                              (ec ? ": " + ec.message() : std::string())});
   }
-  const MeshFormat out_format = mesh_format_from_name(o.format);
-  if (out_format == MeshFormat::automatic && o.format != "auto" && o.format != "AUTO")
-    throw InputError("--format: unknown mesh format '" + o.format + "'");
+  const bool glb_format = o.format == "glb" || o.format == "GLB";
+  const MeshFormat out_format = glb_format ? MeshFormat::automatic : mesh_format_from_name(o.format);
+  if (out_format == MeshFormat::automatic && o.format != "auto" && o.format != "AUTO" && !glb_format)
+    throw InputError("--format: unknown mesh format '" + o.format + "' (stl, stl-ascii, obj, ply, ply-ascii, off, glb)");
   // Outputs checked before any work: a known extension (or --format) and an existing directory.
   check_output(o.output,
-               out_format == MeshFormat::automatic ? std::vector<std::string>{".stl", ".ply", ".obj", ".off", ".glb"}
-                                                   : std::vector<std::string>{},
+               out_format == MeshFormat::automatic && !glb_format
+                   ? std::vector<std::string>{".stl", ".ply", ".obj", ".off", ".glb"}
+                   : std::vector<std::string>{},
                "OUT (or --format)");
-  const bool glb = out_format == MeshFormat::automatic && lower_extension(o.output) == ".glb";
+  const bool glb = glb_format || (out_format == MeshFormat::automatic && lower_extension(o.output) == ".glb");
   check_output(o.json, {}, "--json");
   check_distinct_files({{"IN", o.input}, {"--regions", o.regions}, {"--process", o.process},
                         {"--library", o.library}, {"--rules", o.rules}},
@@ -645,7 +647,7 @@ void add_simplify_command(CLI::App& app, int& exit_code) {
   c->add_option("--parts-dir", o->parts_dir,
                 "STEP input: also write each simplified part once, in part coordinates, to DIR/<part>_<name>.<OUT's "
                 "extension> (the report's cad.instances place them)");
-  c->add_option("--format", o->format, "output format (stl, stl-ascii, obj, ply, ply-ascii, off; default by extension)");
+  c->add_option("--format", o->format, "output format (stl, stl-ascii, obj, ply, ply-ascii, off, glb; default by extension)");
   c->add_flag("--check-self-intersections", o->check_self, "count self-intersections of the result (engine clash)");
   auto* no_guard = c->add_flag("--no-intersection-guard", o->no_guard,
                                "plain QEM: no self-intersection check of the result and no guarded rerun");

@@ -170,6 +170,11 @@ class Simplify(unittest.TestCase):
         self.assertEqual(len(normals), len(read(prim["attributes"]["POSITION"])))
         for i in range(0, len(normals), 3):
             self.assertAlmostEqual(math.sqrt(sum(x * x for x in normals[i:i + 3])), 1.0, places=5)
+        # --format glb whatever the name says.
+        code, _, err = run("simplify", path("sphere.obj"), path("s_glb.bin"), "--ratio", "0.5", "--format", "glb")
+        self.assertEqual(code, 0, err)
+        doc, _, _ = read_glb(path("s_glb.bin"))
+        self.assertEqual(len(doc["meshes"]), 1)
 
     def test_warnings_are_printed_with_quiet(self):
         # --quiet (every test runs with it) silences progress lines, not warnings: an odd budget on a
