@@ -278,8 +278,20 @@ Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOp
     }
     for (std::size_t t = 0; t < nt; ++t) r.feature_triangles_in += feature_tri[t];
   }
-  if (!features.empty() && r.feature_triangles_in == 0)
-    r.warnings.push_back("no triangle carries one of the feature face ids");
+  if (!features.empty()) {  // ids no triangle carries keep nothing: named (the first ten)
+    features.erase(std::unique(features.begin(), features.end()), features.end());
+    std::vector<std::uint8_t> carried(features.size(), 0);
+    for (std::size_t t = 0; t < nt; ++t)
+      if (feature_tri[t]) carried[std::lower_bound(features.begin(), features.end(), face[t]) - features.begin()] = 1;
+    std::string missing;
+    std::size_t n_missing = 0;
+    for (std::size_t i = 0; i < features.size(); ++i)
+      if (!carried[i] && n_missing++ < 10) missing += (missing.empty() ? "" : ", ") + std::to_string(features[i]);
+    if (n_missing > 0)
+      r.warnings.push_back((n_missing == features.size() ? std::string("no triangle carries any of the feature face ids: ")
+                                                         : std::string("no triangle carries feature face id(s) ")) +
+                           missing + (n_missing > 10 ? " and " + std::to_string(n_missing - 10) + " more" : ""));
+  }
 
   // The face ids the simplifier constrains (SimplifyOptions::seams): all; the feature faces', the
   // others as one; none. `face` stays the output's tag.

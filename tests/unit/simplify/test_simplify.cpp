@@ -501,6 +501,19 @@ TEST(Simplify, LockedFeatureFacesStayBitIdentical) {
       face_of[v] = r->face_ids[t];
     }
   EXPECT_TRUE(closed_manifold(r->mesh));
+  const auto no_warning = [](const SimplifyResult& x) {
+    return std::none_of(x.warnings.begin(), x.warnings.end(),
+                        [](const std::string& w) { return w.find("no triangle carries") != std::string::npos; });
+  };
+  EXPECT_TRUE(no_warning(*r));
+  // Feature ids no triangle carries keep nothing: a warning names them (and only them).
+  auto some = simplify(s, {.target_triangles = 2000, .face_ids = faces, .feature_faces = {1, 77, 5000},
+                           .feature_mode = FeatureMode::lock, .measure_error = false});
+  ASSERT_TRUE(some.has_value());
+  EXPECT_FALSE(no_warning(*some));
+  const std::string all = ::testing::PrintToString(some->warnings);
+  EXPECT_NE(all.find("id(s) 77, 5000"), std::string::npos) << all;  // not 1, which has triangles
+  EXPECT_EQ(some->mesh.triangles, r->mesh.triangles);  // the same result otherwise
 }
 
 TEST(Simplify, WeightedFeatureFacesCollapseLastAndStayWithinTolerance) {
