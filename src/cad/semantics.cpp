@@ -35,6 +35,10 @@ Expected<SemanticRules> parse_semantic_rules(const std::string& text, const Feat
       SemanticRule r;
       r.name = jr.at("name").get<std::string>();
       r.constraint = jr.at("constraint").get<std::string>();
+      for (const SemanticRule& o : out.rules)
+        if (o.name == r.name) return Error{.file = source, .reason = "rule name '" + r.name + "' appears twice"};
+      if (!jr.at("features").is_array() || jr.at("features").empty())
+        return Error{.file = source, .reason = "rule '" + r.name + "' names no feature (\"features\": [{\"type\": ...}])"};
       for (const json& jf : jr.at("features")) {
         SemanticRule::Need n;
         n.feature = jf.at("type").get<std::string>();

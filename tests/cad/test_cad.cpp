@@ -414,6 +414,15 @@ TEST(Semantics, RulesReferringToUnknownFeatureTypesAreErrors) {
                   *lib)
                   .has_value());
   EXPECT_EQ(lib->roles("weld_seam"), std::vector<std::string>{});
+  auto empty = parse_semantic_rules(R"({"rules":[{"name":"r","constraint":"c","features":[]}]})", *lib);
+  ASSERT_FALSE(empty.has_value());
+  EXPECT_NE(empty.error().reason.find("names no feature"), std::string::npos);
+  auto twice = parse_semantic_rules(
+      R"({"rules":[{"name":"r","constraint":"c","features":[{"type":"slot"}]},
+                   {"name":"r","constraint":"d","features":[{"type":"slot"}]}]})",
+      *lib);
+  ASSERT_FALSE(twice.has_value());
+  EXPECT_NE(twice.error().reason.find("appears twice"), std::string::npos);
 }
 
 TEST(Semantics, AStepConstraintNoRuleKnowsIsAnError) {
