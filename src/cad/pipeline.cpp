@@ -65,6 +65,7 @@ Expected<Semantics> load_semantics(const PipelineOptions& o) {
   auto p = load_process(o.process_file);
   if (!p) return p.error();
   sem.process = std::move(*p);
+  if (o.step.empty()) return Error{.file = o.process_file, .reason = "a process needs the id of its step (or 'all')"};
   std::vector<std::string> steps{o.step};
   if (o.step == "all") {
     steps.clear();

@@ -449,7 +449,7 @@ TEST(Semantics, AStepConstraintNoRuleKnowsIsAnError) {
   const auto process_file = (dir / "process.json").string();
   std::ofstream(process_file) << R"({"steps":[{"id":"P1","constraint":"bolt"},{"id":"P2","constraint":"blot"}]})";
   EXPECT_TRUE(load_semantics({.process_file = process_file, .step = "P1"}).has_value());
-  for (const std::string step : {"P2", "all", "P9"}) {
+  for (const std::string step : {"P2", "all", "P9", ""}) {
     auto sem = load_semantics({.process_file = process_file, .step = step});
     ASSERT_FALSE(sem.has_value()) << step;
     EXPECT_EQ(sem.error().file, process_file);
