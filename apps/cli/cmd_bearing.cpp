@@ -6,7 +6,6 @@
 
 #include <cctype>
 #include <cmath>
-#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <numbers>
@@ -33,14 +32,6 @@ struct BearingOptions {
   std::optional<std::uint64_t> seed, scar_seed;
   bool no_scar = false;
 };
-
-void check_output_path(const std::string& path, const char* flag) {
-  if (path.empty()) return;
-  const std::filesystem::path p(path);
-  const std::filesystem::path dir = p.parent_path().empty() ? std::filesystem::path(".") : p.parent_path();
-  if (!std::filesystem::is_directory(dir)) throw InputError(std::string(flag) + ": " + path + ": directory does not exist");
-  if (std::filesystem::is_directory(p)) throw InputError(std::string(flag) + ": " + path + ": is a directory");
-}
 
 // ---- parameters file (JSON, the paper's bearing.parameters) ----
 
@@ -223,8 +214,8 @@ int run_bearing(const BearingOptions& o) {
   if (!o.broad_phase.empty() && !parse_broad_phase(o.broad_phase, p.broad_phase))
     throw InputError("--broad-phase: unknown broad phase '" + o.broad_phase + "' (brute, sap, octree, bvh)");
   if (Status s = validate(p); !s) throw InputError(s.error());
-  check_output_path(o.out, "--out");
-  check_output_path(o.json, "--json");
+  check_output(o.out, {}, "--out");
+  check_output(o.json, {}, "--json");
   check_distinct_files({{"--params", o.params_file}}, {{"--out", o.out}, {"--json", o.json}});
   set_threads(o.threads_opt.value_or(0));
 

@@ -5,9 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <fstream>
 #include <optional>
-#include <sstream>
 
 namespace interfere::cad {
 namespace {
@@ -50,16 +48,8 @@ Expected<Semantics> load_semantics(const PipelineOptions& o) {
       return Error{.file = o.rules_file, .reason = "semantic rules apply to the steps of a process: give a process too"};
     return sem;
   }
-  Expected<SemanticRules> rules = SemanticRules{};
-  if (o.rules_file.empty()) {
-    rules = default_semantic_rules(sem.library);
-  } else {
-    std::ifstream in(o.rules_file);
-    if (!in) return Error{.file = o.rules_file, .reason = "cannot open the semantic rules"};
-    std::stringstream ss;
-    ss << in.rdbuf();
-    rules = parse_semantic_rules(ss.str(), sem.library, o.rules_file);
-  }
+  auto rules = o.rules_file.empty() ? default_semantic_rules(sem.library)
+                                    : load_semantic_rules(o.rules_file, sem.library);
   if (!rules) return rules.error();
   sem.rules = std::move(*rules);
   auto p = load_process(o.process_file);
@@ -76,6 +66,16 @@ Expected<Semantics> load_semantics(const PipelineOptions& o) {
       return Error{.file = o.process_file, .reason = s.error().reason};
   return sem;
 }
+
+namespace {
+// The parts' feature faces as world ids: each instance's part's, shifted by its face offset.
+std::vector<std::uint32_t> world_feature_faces(const Prepared& prep) {
+  std::vector<std::uint32_t> out;
+  for (const PreparedInstance& in : prep.instances)
+    for (std::uint32_t f : prep.parts[in.part].feature_faces) out.push_back(f + in.face_offset);
+  return out;
+}
+}  // namespace
 
 Status add_feature_faces(Prepared& prep, const std::vector<std::uint32_t>& world_ids) {
   std::vector<std::vector<std::uint32_t>> added(prep.parts.size());
@@ -97,9 +97,7 @@ Status add_feature_faces(Prepared& prep, const std::vector<std::uint32_t>& world
     std::sort(f.begin(), f.end());
     f.erase(std::unique(f.begin(), f.end()), f.end());
   }
-  prep.feature_faces.clear();
-  for (const PreparedInstance& in : prep.instances)
-    for (std::uint32_t f : prep.parts[in.part].feature_faces) prep.feature_faces.push_back(f + in.face_offset);
+  prep.feature_faces = world_feature_faces(prep);
   return {};
 }
 
@@ -182,7 +180,6 @@ Expected<Prepared> prepare(const CadModel& imported, const PipelineOptions& o, c
   for (std::size_t k = 0; k < model->instances.size(); ++k) {
     const Instance& inst = model->instances[k];
     const std::uint32_t variant = in_step[k] ? with_features[inst.part] : without[inst.part];
-    for (std::uint32_t f : out.parts[variant].feature_faces) out.feature_faces.push_back(f + base);
     out.instances.push_back({inst.name, variant, inst.placement, base});
     ++out.parts[variant].instances;
     rep["instances"].push_back({{"name", inst.name}, {"part", inst.part}, {"path", inst.path}, {"face_id_offset", base},
@@ -190,6 +187,7 @@ Expected<Prepared> prepare(const CadModel& imported, const PipelineOptions& o, c
                                 {"simplified_part", variant}});
     base += model->parts[inst.part].faces;
   }
+  out.feature_faces = world_feature_faces(out);
   if (!o.step.empty()) rep["step"] = o.step;
   rep["units"] = model->units;
   rep["file_length_units"] = model->file_length_units;

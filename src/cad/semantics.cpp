@@ -22,6 +22,13 @@ Expected<std::string> slurp(const std::filesystem::path& p, const char* what) {
   ss << in.rdbuf();
   return ss.str();
 }
+
+// 'a', 'b', 'c': names as the error and warning texts list them.
+std::string quoted_list(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names) out += (out.empty() ? "'" : ", '") + n + "'";
+  return out;
+}
 }  // namespace
 
 Expected<SemanticRules> parse_semantic_rules(const std::string& text, const FeatureLibrary& library,
@@ -48,12 +55,9 @@ Expected<SemanticRules> parse_semantic_rules(const std::string& text, const Feat
         // A misspelt role would drop its faces from every selection: an error naming the roles there are.
         const std::vector<std::string> known = library.roles(n.feature);
         for (const std::string& role : n.roles)
-          if (std::find(known.begin(), known.end(), role) == known.end()) {
-            std::string list;
-            for (const std::string& k : known) list += (list.empty() ? "'" : ", '") + k + "'";
+          if (std::find(known.begin(), known.end(), role) == known.end())
             return Error{.file = source, .reason = "rule '" + r.name + "' names role '" + role + "' of '" +
-                                                   n.feature + "', whose patterns have the roles " + list};
-          }
+                                                   n.feature + "', whose patterns have the roles " + quoted_list(known)};
         r.needs.push_back(n);
       }
       out.rules.push_back(std::move(r));
@@ -64,11 +68,14 @@ Expected<SemanticRules> parse_semantic_rules(const std::string& text, const Feat
   return out;
 }
 
-Expected<SemanticRules> default_semantic_rules(const FeatureLibrary& library) {
-  const auto p = data_file("semantics.json");
-  auto t = slurp(p, "semantic rules");
+Expected<SemanticRules> load_semantic_rules(const std::filesystem::path& path, const FeatureLibrary& library) {
+  auto t = slurp(path, "semantic rules");
   if (!t) return t.error();
-  return parse_semantic_rules(*t, library, p.string());
+  return parse_semantic_rules(*t, library, path.string());
+}
+
+Expected<SemanticRules> default_semantic_rules(const FeatureLibrary& library) {
+  return load_semantic_rules(data_file("semantics.json"), library);
 }
 
 Expected<Process> parse_process(const std::string& text, const std::string& source) {
@@ -111,10 +118,8 @@ std::vector<std::string> unknown_step_parts(const Process& process, const std::s
     if (s.id != step_id) continue;
     for (const std::string& p : s.parts) {
       if (p == "*" || std::find(part_names.begin(), part_names.end(), p) != part_names.end()) continue;
-      std::string known;
-      for (const std::string& n : part_names) known += (known.empty() ? "'" : ", '") + n + "'";
-      out.push_back("step '" + step_id + "' names part '" + p + "', which is not in the model (parts: " + known +
-                    "): no feature of it is kept");
+      out.push_back("step '" + step_id + "' names part '" + p + "', which is not in the model (parts: " +
+                    quoted_list(part_names) + "): no feature of it is kept");
     }
   }
   return out;
@@ -146,12 +151,11 @@ Expected<Selection> select_step_features(const Process& process, const std::stri
   // otherwise leave the step's assembly features unprotected without a word.
   if (std::none_of(rules.rules.begin(), rules.rules.end(),
                    [&](const SemanticRule& r) { return r.constraint == step->constraint; })) {
-    std::string known;
+    std::vector<std::string> known;
     for (const SemanticRule& r : rules.rules)
-      if (known.find("'" + r.constraint + "'") == std::string::npos)
-        known += (known.empty() ? "'" : ", '") + r.constraint + "'";
+      if (std::find(known.begin(), known.end(), r.constraint) == known.end()) known.push_back(r.constraint);
     return Error{.reason = "step '" + step_id + "': no assembly-semantics rule for constraint '" + step->constraint +
-                           "' (the rules know " + (known.empty() ? std::string("none") : known) + ")"};
+                           "' (the rules know " + (known.empty() ? std::string("none") : quoted_list(known)) + ")"};
   }
   Selection sel;
   for (const SemanticRule& r : rules.rules) {

@@ -262,6 +262,7 @@ Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOp
   }
   std::vector<std::uint32_t> features = options.feature_faces;
   std::sort(features.begin(), features.end());
+  features.erase(std::unique(features.begin(), features.end()), features.end());
   std::vector<std::uint8_t> feature_tri(nt, 0);
   if (!features.empty()) {
     // Face ids are dense (B-Rep faces, regions): a flag per id; else (ids beyond 4 per triangle)
@@ -279,7 +280,6 @@ Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOp
     for (std::size_t t = 0; t < nt; ++t) r.feature_triangles_in += feature_tri[t];
   }
   if (!features.empty()) {  // ids no triangle carries keep nothing: named (the first ten)
-    features.erase(std::unique(features.begin(), features.end()), features.end());
     std::vector<std::uint8_t> carried(features.size(), 0);
     for (std::size_t t = 0; t < nt; ++t)
       if (feature_tri[t]) carried[std::lower_bound(features.begin(), features.end(), face[t]) - features.begin()] = 1;

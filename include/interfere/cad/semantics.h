@@ -35,10 +35,11 @@ struct Process {
   std::vector<ProcessStep> steps;
 };
 
-/// Parses rules and checks every feature type against `library`: a rule referring to an unknown
-/// feature type is an error naming the rule and the type.
+/// Parses rules and checks every feature type and role against `library`: a rule referring to an
+/// unknown feature type or role, naming no feature, or named twice is an error naming the rule.
 Expected<SemanticRules> parse_semantic_rules(const std::string& json_text, const FeatureLibrary& library,
                                              const std::string& source = "");
+Expected<SemanticRules> load_semantic_rules(const std::filesystem::path& path, const FeatureLibrary& library);
 Expected<SemanticRules> default_semantic_rules(const FeatureLibrary& library);
 Expected<Process> parse_process(const std::string& json_text, const std::string& source = "");
 Expected<Process> load_process(const std::filesystem::path& path);
