@@ -430,6 +430,7 @@ Exit status 0 on success, 2 on a usage or input error (the message names the fil
 written atomically and only after every input was validated.
 
 **`simplify` report**: `input_triangles`, `target_triangles`, `output_triangles`, `output_vertices`, `reached`,
+`one_below` (ended one triangle below an odd budget, as a closed mesh loses triangles in pairs; a warning says so; STEP input: per part, the report's warnings count the parts),
 `collapses`, `rejected` {`link_condition`, `flipped_normal`, `self_intersection`, `last_face_triangle` (collapses refused as they would remove a face's last triangle)}, `guard_rerun`, `guard_reruns`, `input_contact_pairs` (the input's own intersecting or touching pairs: all of them where the guard refused collapses, else those near the plain result's new pairs; 0 when none were looked for), `inherited_pairs` (intersecting pairs of the result inside the input's contact zone, not both as in the input), `degenerate_triangles` (input triangles with two corners at one position, dropped with a warning; all degenerate is an error), `vertices` {`welded_input`,
 `seam`, `corner`, `locked`}, `feature_mode`, `feature_faces`, `feature_triangles` {`input`, `output`},
 `seams`, `seams_relaxed_at` (`--seams auto`: the fewest triangles every seam allowed, when that was above the budget; 0 otherwise; STEP input: summed over the parts × instances), `max_error` (the limit in model units, null without one), `max_error_runs` (runs made for it; summed over the parts), `error_limited_budget` (the budget of the run returned where the limit raised it, else 0; STEP input: per part), `max_unmodified_cost`, `bbox_diagonal`, `hausdorff`, `hausdorff_features` (null without features), `error_bound`,
@@ -437,7 +438,7 @@ written atomically and only after every input was validated.
 of simplify()'s phases, in order; summed over the parts of a STEP input)}, `warnings`; for STEP input `cad` {`parts`
 [{`name`, `faces`, `triangles`, `features`, `assembly_feature_faces`}], `instances` [{`name`, `part`, `path`,
 `face_id_offset`, `placement` (3×4 [R|t], part → world), `in_step`, `simplified_part`}], `step`, `units`, `file_length_units`, `warnings`}, `budget_rounds` and `parts_simplified` [{`part`, `model_part`, `name`, `file` (with `--parts-dir`), `instances`, `input_triangles`,
-`target_triangles`, `output_triangles`, `feature_triangles`, `hausdorff`, `error_bound`, `hausdorff_features`, `guard_rerun`, `guard_reruns`, `input_contact_pairs`, `inherited_pairs`, `seams_relaxed_at`, `max_error_runs`, `error_limited_budget`,
+`target_triangles`, `output_triangles`, `one_below`, `feature_triangles`, `hausdorff`, `error_bound`, `hausdorff_features`, `guard_rerun`, `guard_reruns`, `input_contact_pairs`, `inherited_pairs`, `seams_relaxed_at`, `max_error_runs`, `error_limited_budget`,
 `self_intersections` (with the flag; for STEP input the report's count is the sum over parts × instances)}]. Face
 ids of a multi-instance STEP are offset per instance.
 

@@ -183,7 +183,7 @@ Expected<SimplifyResult> simplify_parts(const cad::Prepared& prep, std::size_t t
     const std::size_t n = target[i];
     const SimplifyResult& d = done[i];
     parts_report.push_back({{"part", i}, {"model_part", p.model_part}, {"name", p.name}, {"instances", p.instances}, {"input_triangles", d.input_triangles},
-                            {"target_triangles", n}, {"output_triangles", d.mesh.num_triangles()},
+                            {"target_triangles", n}, {"output_triangles", d.mesh.num_triangles()}, {"one_below", d.one_below},
                             {"feature_triangles", {{"input", d.feature_triangles_in}, {"output", d.feature_triangles_out}}},
                             {"hausdorff", d.hausdorff}, {"error_bound", d.error_bound}, {"hausdorff_features", d.hausdorff_features < 0 ? nlohmann::json(nullptr) : nlohmann::json(d.hausdorff_features)},
                             {"guard_rerun", d.guard_rerun}, {"guard_reruns", d.guard_reruns},
@@ -214,11 +214,10 @@ Expected<SimplifyResult> simplify_parts(const cad::Prepared& prep, std::size_t t
     all.hausdorff_features = std::max(all.hausdorff_features, d.hausdorff_features);
     all.error_bound = std::max(all.error_bound, d.error_bound);
     // A closed part with an odd budget ends one below it: counted once for all parts below.
-    const std::string one_below = "budget " + std::to_string(n) + " not reached exactly";
-    for (const auto& w : d.warnings) {
-      if (w.rfind(one_below, 0) == 0) ++parts_one_below;
-      else all.warnings.push_back("part '" + p.name + "': " + w);
-    }
+    if (d.one_below) ++parts_one_below;
+    const std::string one_below = d.one_below ? one_below_warning(d.target_triangles) : std::string();
+    for (const auto& w : d.warnings)
+      if (w != one_below) all.warnings.push_back("part '" + p.name + "': " + w);
   }
   for (const cad::PreparedInstance& inst : prep.instances) {
     const SimplifyResult& d = done[inst.part];
@@ -500,6 +499,7 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
   report["output_triangles"] = r.mesh.num_triangles();
   report["output_vertices"] = r.mesh.num_vertices();
   report["reached"] = r.reached;
+  report["one_below"] = r.one_below;
   report["collapses"] = r.collapses;
   report["rejected"] = {{"link_condition", r.rejected_link}, {"flipped_normal", r.rejected_flip},
                         {"self_intersection", r.rejected_intersection}, {"last_face_triangle", r.rejected_face}};

@@ -45,6 +45,7 @@ void bind_simplify(py::module_& m) {
       .def_readonly("input_triangles", &SimplifyResult::input_triangles)
       .def_readonly("target_triangles", &SimplifyResult::target_triangles)
       .def_readonly("reached", &SimplifyResult::reached)
+      .def_readonly("one_below", &SimplifyResult::one_below)
       .def_readonly("collapses", &SimplifyResult::collapses)
       .def_readonly("rejected_link", &SimplifyResult::rejected_link)
       .def_readonly("rejected_flip", &SimplifyResult::rejected_flip)

@@ -46,9 +46,11 @@ std::size_t budget_of(const TriMesh& mesh, const SimplifyOptions& o, Error& err)
   return t;
 }
 
-// `box`: the mesh's bounds when known (0: computed).
+// `box`: the mesh's bounds when known (0: computed). `budget_warnings`: false leaves out the
+// warnings about this run's own budget (not reached, one below): simplify_within's runs, whose
+// budgets are its search's, not the caller's.
 Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOptions& options, std::size_t target,
-                                           const Aabb* box = nullptr);
+                                           const Aabb* box = nullptr, bool budget_warnings = true);
 
 double phase_total(const SimplifyResult& r) {
   double s = 0;
@@ -113,11 +115,12 @@ bool to_world(SimplifyResult& r, const TriMesh& input, const qem::LocalFrame& fr
 namespace {
 
 // One run to `target` triangles (in a local frame where the coordinates call for one).
-Expected<SimplifyResult> simplify_to(const TriMesh& mesh, const SimplifyOptions& options, std::size_t target) {
+Expected<SimplifyResult> simplify_to(const TriMesh& mesh, const SimplifyOptions& options, std::size_t target,
+                                     bool budget_warnings = true) {
   const Aabb box = mesh.bounds();
   if (const auto frame = qem::local_frame(mesh, box)) {
     const auto t0 = std::chrono::steady_clock::now();
-    auto r = simplify_in_frame(qem::to_local(mesh, *frame), options, target);
+    auto r = simplify_in_frame(qem::to_local(mesh, *frame), options, target, nullptr, budget_warnings);
     if (!r) return r;
     if (to_world(*r, mesh, *frame, options)) {
       r->phases.insert(r->phases.begin(),
@@ -141,7 +144,7 @@ Expected<SimplifyResult> simplify_within(const TriMesh& mesh, const SimplifyOpti
   SimplifyOptions o = options;
   o.measure_error = true;
   const auto t0 = std::chrono::steady_clock::now();
-  auto r = simplify_to(mesh, o, target);
+  auto r = simplify_to(mesh, o, target);  // (the budget asked for: its warnings stand if it holds)
   if (!r) return r;
   r->max_error_runs = 1;
   if (r->error_bound <= limit) return r;
@@ -156,7 +159,7 @@ Expected<SimplifyResult> simplify_within(const TriMesh& mesh, const SimplifyOpti
       const std::string what = "error limit: run " + std::to_string(runs + 1) + " (budget " + std::to_string(budget) + ")";
       options.stage(what.c_str());
     }
-    auto m = simplify_to(mesh, o, budget);
+    auto m = simplify_to(mesh, o, budget, false);
     ++runs;
     if (!m) return m.error();
     if (m->error_bound <= limit) {
@@ -189,7 +192,7 @@ Expected<SimplifyResult> simplify_within(const TriMesh& mesh, const SimplifyOpti
     if (Status s = step(b); !s) return s.error();
   }
   if (!best) {  // nothing between held the error: the input's own count
-    auto m = simplify_to(mesh, o, hi);
+    auto m = simplify_to(mesh, o, hi, false);
     ++runs;
     if (!m) return m;
     best = std::move(*m);
@@ -198,9 +201,8 @@ Expected<SimplifyResult> simplify_within(const TriMesh& mesh, const SimplifyOpti
   best->phases.insert(best->phases.begin(), {"max-error search (other runs)", before});
   best->max_error_runs = runs;
   best->error_limited_budget = best->target_triangles;
-  // (its own budget's warnings, "budget B not reached ...", would only confuse: the one below says it)
-  const std::string own = "budget " + std::to_string(best->error_limited_budget) + " not reached";
-  std::erase_if(best->warnings, [&](const std::string& w) { return w.rfind(own, 0) == 0; });
+  // (its own budget's warnings were left out: the one below says what happened)
+  best->one_below = false;
   best->target_triangles = target;
   best->reached = false;
   const std::string held = best->error_bound <= limit
@@ -215,6 +217,11 @@ Expected<SimplifyResult> simplify_within(const TriMesh& mesh, const SimplifyOpti
 }
 
 }  // namespace
+
+std::string one_below_warning(std::size_t budget) {
+  return "budget " + std::to_string(budget) + " not reached exactly: " + std::to_string(budget - 1) +
+         " triangles, one below (every collapse left removes two triangles, as on a closed mesh)";
+}
 
 Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& options) {
   const std::size_t nt = mesh.num_triangles();
@@ -245,7 +252,7 @@ Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& op
 namespace {
 
 Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOptions& options, std::size_t target,
-                                           const Aabb* known_box) {
+                                           const Aabb* known_box, bool budget_warnings) {
   const std::size_t nt = mesh.num_triangles();
   SimplifyResult r;
   qem::PhaseClock clock(r);
@@ -357,7 +364,7 @@ Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOp
   const auto with_feature_seams = [&](std::size_t held) {
     SimplifyOptions o = options;
     o.seams = SeamMode::features;
-    auto again = simplify_in_frame(mesh, o, target, &box);
+    auto again = simplify_in_frame(mesh, o, target, &box, budget_warnings);
     if (!again) return again;
     again->seams_relaxed_at = held;
     again->warnings.insert(again->warnings.begin(),
@@ -507,13 +514,10 @@ Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOp
     r.warnings.push_back(std::to_string(r.degenerate_triangles) +
                          " degenerate triangles (two corners at one position) dropped");
   r.reached = r.mesh.num_triangles() == target;
-  const bool one_below = !r.reached && r.mesh.num_triangles() + 1 == target && nt - r.degenerate_triangles > target;
+  r.one_below = !r.reached && r.mesh.num_triangles() + 1 == target && nt - r.degenerate_triangles > target;
   if (options.seams == SeamMode::as_needed && r.mesh.num_triangles() > target)
     return with_feature_seams(r.mesh.num_triangles());  // (the guard held it back)
-  if (one_below)
-    r.warnings.push_back("budget " + std::to_string(target) + " not reached exactly: " +
-                         std::to_string(r.mesh.num_triangles()) +
-                         " triangles, one below (every collapse left removes two triangles, as on a closed mesh)");
+  if (r.one_below && budget_warnings) r.warnings.push_back(one_below_warning(target));
   // Collapses refused by the guard are usually next to the input's own contacts: CAD exports with
   // cracks (T-junctions, the two sides of a face border tessellated apart, meeting or overlapping by
   // rounding), penetrating or touching bodies (the Newell teapot's spout and body), where any collapse
@@ -545,13 +549,14 @@ Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOp
            "assembly features go";
   const std::string missed =
       "budget " + std::to_string(target) + " not reached: " + std::to_string(r.mesh.num_triangles()) + " triangles remain";
-  if (!r.reached && r.rejected_intersection > 0 && r.mesh.num_triangles() > target) {
+  const bool guard_held = !r.reached && r.rejected_intersection > 0 && r.mesh.num_triangles() > target;
+  if (guard_held && budget_warnings) {
     r.warnings.push_back(missed + "; the self-intersection guard refused " + std::to_string(r.rejected_intersection) +
                          " collapses" + own_pairs + "; " + lift +
                          " it simplifies further but may add self-intersections; besides (" + why + ")");
-  } else if (!r.reached && !one_below) {
-    r.warnings.push_back(missed + " (" + why + ")");
-  } else if (own > 0 && r.rejected_intersection > 0) {
+  } else if (!r.reached && !r.one_below) {
+    if (budget_warnings) r.warnings.push_back(missed + " (" + why + ")");
+  } else if (!guard_held && own > 0 && r.rejected_intersection > 0) {
     r.warnings.push_back("the self-intersection guard refused " + std::to_string(r.rejected_intersection) +
                          " collapses" + own_pairs + ", so more were made elsewhere: the error can be larger than " +
                          lift);

@@ -184,6 +184,8 @@ class Simplify(unittest.TestCase):
         self.assertEqual(code, 0, err)
         r = load_json("odd.json")
         self.assertEqual(r["output_triangles"], 300)
+        self.assertTrue(r["one_below"])
+        self.assertFalse(r["reached"])
         self.assertIn("[interfere] warning: budget 301 not reached exactly", err)
         self.assertTrue(any("one below" in w for w in r["warnings"]))
         self.assertNotIn("simplifying", err)  # no progress lines
@@ -536,6 +538,15 @@ class Features(unittest.TestCase):
             self.assertEqual(r["reached"], target % 2 == 0)
             if target % 2:
                 self.assertTrue(any("one triangle below" in w for w in r["warnings"]), r["warnings"])
+            # Parts one below are counted in one warning (when the total falls short), not each with its own.
+            below = [p for p in r["parts_simplified"] if p["one_below"]]
+            for p in r["parts_simplified"]:
+                self.assertEqual(p["one_below"], p["output_triangles"] + 1 == p["target_triangles"], p)
+            self.assertFalse(any("not reached exactly" in w for w in r["warnings"]), r["warnings"])
+            if below and not r["reached"]:
+                n = len(below)
+                self.assertTrue(any(w.startswith("%d part%s ended one triangle below" % (n, "" if n == 1 else "s"))
+                                    for w in r["warnings"]), r["warnings"])
 
     def simplify_assembly_step(self, step, out, ratio):
         """Simplifies the test assembly to `ratio` with the process step `step` (id P1); the report."""

@@ -130,6 +130,9 @@ struct SimplifyResult {
   std::size_t degenerate_triangles = 0;
   std::size_t target_triangles = 0;     ///< the budget asked for
   bool reached = false;                 ///< mesh has exactly target_triangles triangles
+  /// Ended one triangle below an odd budget, as a closed mesh loses triangles in pairs (the warning
+  /// one_below_warning(target_triangles) says so); `reached` is false then.
+  bool one_below = false;
   std::size_t collapses = 0;
   std::size_t rejected_link = 0, rejected_flip = 0;  ///< candidates refused by the checks
   std::size_t rejected_intersection = 0;             ///< refused by the self-intersection guard
@@ -182,6 +185,10 @@ struct SimplifyResult {
 /// coordinate: the result is the one of the same mesh at the origin and of unit size, mapped back
 /// (kept vertices bit-identical; phase "local frame").
 Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& options);
+
+/// The warning of a result that ended one triangle below an odd `budget` (SimplifyResult::one_below):
+/// a caller combining parts can replace the parts' by one of its own.
+std::string one_below_warning(std::size_t budget);
 
 /// Regions of a plain mesh split at sharp edges (dihedral angle > angle_deg) and non-manifold or
 /// boundary edges: flood fill over the remaining edges; region ids in order of first triangle.
