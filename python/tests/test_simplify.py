@@ -43,6 +43,11 @@ class Simplify(unittest.TestCase):
         self.assertEqual(r.guard_reruns, 0)
         a_to_b, b_to_a = itf.hausdorff(s, r.mesh)
         self.assertAlmostEqual(max(a_to_b, b_to_a), r.hausdorff)
+        self.assertFalse(r.one_below)
+        odd = itf.simplify(s, target=401, measure_error=False)  # a closed mesh loses triangles in pairs
+        self.assertEqual(len(odd.mesh.triangles), 400)
+        self.assertTrue(odd.one_below)
+        self.assertFalse(odd.reached)
 
     def test_the_inputs_own_contacts_are_inherited(self):
         # Two flat sheets tessellated apart, overlapping by 1e-6 along x = 1 (a crack).
