@@ -309,7 +309,7 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
   so.prevent_self_intersections = !o.no_guard;
   so.inherit_input_contacts = !o.strict_guard;
   if (is_step(o.input)) {
-    if (!o.regions.empty() || o.sharp_angle > 0)
+    if (!o.regions.empty() || o.sharp_angle != 0)
       throw InputError("--regions/--sharp-angle are for plain meshes: a STEP input's regions are its B-Rep faces");
 #ifdef INTERFERE_HAS_CAD
     cad::PipelineOptions po;
@@ -348,17 +348,27 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
       auto r = read_region_file(o.regions, mesh.num_triangles());
       if (!r) throw InputError(r.error());
       so.face_ids = std::move(*r);
+    } else if (o.sharp_angle != 0) {
+      // The regions are made here, not by the simplifier (SimplifyOptions::sharp_angle_deg gives the
+      // same run): --features ids are checked against them, --renderer-max counts their feature
+      // triangles, and the output carries them as face ids.
+      if (!(o.sharp_angle > 0 && o.sharp_angle < 180))
+        throw InputError("--sharp-angle " + short_number(o.sharp_angle) + ": give a dihedral angle in degrees, in (0, 180)");
+      so.face_ids = sharp_edge_regions(mesh, o.sharp_angle);
     }
-    so.sharp_angle_deg = o.sharp_angle;
     if (!o.features.empty()) {
-      if (o.regions.empty() && o.sharp_angle <= 0)
+      if (so.face_ids.empty())
         throw InputError("--features names region ids: give them with --regions FILE or --sharp-angle DEG");
       so.feature_faces = parse_id_list(o.features, "--features");
-      // Ids of --regions are checked here (--sharp-angle's regions are made by the simplifier,
-      // which warns when none of the ids has a triangle).
-      for (std::uint32_t id : o.regions.empty() ? std::vector<std::uint32_t>{} : so.feature_faces)
-        if (std::find(so.face_ids.begin(), so.face_ids.end(), id) == so.face_ids.end())
-          throw InputError("--features: no triangle of " + o.regions + " has region id " + std::to_string(id));
+      const std::string source = o.regions.empty() ? "--sharp-angle " + short_number(o.sharp_angle) + "'s regions of " + o.input
+                                                   : o.regions;
+      std::vector<std::uint32_t> ids = so.face_ids;  // (a region file's ids may be sparse)
+      std::sort(ids.begin(), ids.end());
+      ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+      for (std::uint32_t id : so.feature_faces)
+        if (!std::binary_search(ids.begin(), ids.end(), id))
+          throw InputError("--features: no triangle of " + source + " has region id " + std::to_string(id) +
+                           (o.regions.empty() ? " (ids 0 to " + std::to_string(ids.back()) + ")" : std::string()));
     }
   }
   // --max-error / --max-error-rel: the largest error bound allowed (the relative one of the whole
@@ -520,6 +530,12 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
   std::sort(ff.begin(), ff.end());
   ff.erase(std::unique(ff.begin(), ff.end()), ff.end());
   report["feature_faces"] = ff;
+  report["sharp_angle"] = o.sharp_angle > 0 ? nlohmann::json(o.sharp_angle) : nlohmann::json(nullptr);
+  {
+    std::vector<std::uint32_t> ids = so.face_ids;
+    std::sort(ids.begin(), ids.end());
+    report["regions"] = std::unique(ids.begin(), ids.end()) - ids.begin();  // faces or regions of the input (0: none)
+  }
   report["feature_triangles"] = {{"input", r.feature_triangles_in}, {"output", r.feature_triangles_out}};
   report["max_unmodified_cost"] = r.max_unmodified_cost;
   report["bbox_diagonal"] = r.bbox_diagonal;

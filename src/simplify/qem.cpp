@@ -508,7 +508,7 @@ Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOp
   } else {
     r.mesh = std::move(out);
   }
-  if (have_faces) r.face_ids = std::move(out_face);
+  if (splitting) r.face_ids = std::move(out_face);  // (the face ids given, or the sharp-edge regions)
   clock.lap("split");
   if (r.degenerate_triangles > 0)
     r.warnings.push_back(std::to_string(r.degenerate_triangles) +

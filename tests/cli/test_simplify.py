@@ -40,6 +40,30 @@ def uv_sphere(lon=40, lat=21, bump=0.05):
     return v, f
 
 
+def box_mesh(n):
+    """A closed cube [0, n]^3, each side an n x n grid (integer corners: exact), outward; faces in order."""
+    index, pos, tri = {}, [], []
+
+    def vertex(p):
+        if p not in index:
+            index[p] = len(pos)
+            pos.append(p)
+        return index[p]
+    for a in range(3):
+        for side in (0, n):
+            u, w = (a + 1) % 3, (a + 2) % 3
+            for i in range(n):
+                for j in range(n):
+                    def at(di, dj):
+                        p = [0.0, 0.0, 0.0]
+                        p[a], p[u], p[w] = float(side), float(i + di), float(j + dj)
+                        return vertex(tuple(p))
+                    q = (at(0, 0), at(1, 0), at(1, 1), at(0, 1))
+                    quad = [(q[0], q[1], q[2]), (q[0], q[2], q[3])]
+                    tri += quad if side == n else [(x, z, y) for x, y, z in quad]
+    return pos, tri
+
+
 def write_region_sheet(name, region_of, n=32):
     """A bumpy n x n sheet as NAME.obj, each grid square's two triangles in region region_of(i, j),
     written one per line to NAME.txt; returns the per-triangle regions."""
@@ -266,6 +290,47 @@ class Simplify(unittest.TestCase):
         self.assertFalse(os.path.exists(path("lock2.ply")))
         self.assertLessEqual(r["hausdorff_features"], 1e-12)
         self.assertEqual(float(bound[0].split()[2]), r["error_bound"])
+
+    def test_sharp_angle_regions_are_face_ids_of_the_output(self):
+        # A cube's sides are the regions of --sharp-angle (numbered in order of first triangle: the
+        # sides as generated); the output carries them as face ids, --features names them.
+        n = 8
+        v, f = box_mesh(n)
+        write_obj("cube.obj", (v, f))
+        code, _, err = run("simplify", path("cube.obj"), path("cube.ply"), "--target", "200", "--sharp-angle", "30",
+                           "--features", "2", "--lock", "--format", "ply-ascii", "--json", path("cube.json"))
+        self.assertEqual(code, 0, err)
+        r = load_json("cube.json")
+        self.assertEqual(r["regions"], 6)
+        self.assertEqual(r["sharp_angle"], 30)
+        self.assertEqual(r["output_triangles"], 200)
+        header, verts, faces = read_ply_ascii("cube.ply")
+        self.assertEqual(sorted(set(face[4] for face in faces)), list(range(6)))
+        per_side = 2 * n * n
+        for face in faces:  # each output triangle lies in the side its face id names
+            a, side = face[4] // 2, (face[4] % 2) * n
+            self.assertTrue(all(verts[i][a] == side for i in face[1:4]), face)
+        locked = sorted(tuple(sorted(verts[i] for i in face[1:4])) for face in faces if face[4] == 2)
+        side2 = sorted(tuple(sorted(v[i] for i in t)) for t in f[2 * per_side:3 * per_side])
+        self.assertEqual(locked, side2)  # bit-identical
+        self.assertTrue(all(face[5] == (1 if face[4] == 2 else 0) for face in faces))
+        # A region id the angle does not make is an error naming the ids there are; nothing written.
+        code, _, err = run("simplify", path("cube.obj"), path("cube2.ply"), "--target", "200", "--sharp-angle", "30",
+                           "--features", "2,6")
+        self.assertEqual(code, 2)
+        self.assertIn("region id 6 (ids 0 to 5)", err)
+        for bad in ("180", "-5", "nan"):
+            code, _, err = run("simplify", path("cube.obj"), path("cube2.ply"), "--target", "200", "--sharp-angle", bad)
+            self.assertEqual(code, 2, bad)
+            self.assertIn("--sharp-angle", err)
+        self.assertFalse(os.path.exists(path("cube2.ply")))
+        # The renderer's budget counts the feature regions' triangles: here they alone exceed it.
+        code, _, err = run("simplify", path("cube.obj"), path("cube3.ply"), "--renderer-max", "100", "--sharp-angle",
+                           "30", "--features", "0,1", "--json", path("cube3.json"))
+        self.assertEqual(code, 0, err)
+        r3 = load_json("cube3.json")
+        self.assertEqual(r3["feature_triangles"]["input"], 2 * per_side)
+        self.assertEqual(r3["target_triangles"], 2 * per_side)
 
     def test_seams_of_non_feature_faces(self):
         # 8 x 8 square faces on a bumpy sheet: their corners hold the budget unless the seams of the

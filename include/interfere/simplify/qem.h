@@ -124,7 +124,9 @@ struct SimplifyOptions {
 
 struct SimplifyResult {
   TriMesh mesh;                         ///< the simplified mesh (surviving triangles in input order)
-  std::vector<std::uint32_t> face_ids;  ///< per output triangle (empty when none were given)
+  /// Per output triangle: its face id (SimplifyOptions::face_ids), or its sharp-edge region
+  /// (sharp_angle_deg, as sharp_edge_regions numbers them); empty when neither was given.
+  std::vector<std::uint32_t> face_ids;
   std::size_t input_triangles = 0, input_vertices_welded = 0;
   /// Input triangles with two corners at one position (dropped first, with a warning).
   std::size_t degenerate_triangles = 0;

@@ -384,6 +384,25 @@ TEST(Simplify, BoxWithSharpEdgesKeepsItsShapeExactly) {
   EXPECT_EQ(r->mesh.num_triangles(), 150u);
   EXPECT_TRUE(closed_manifold(r->mesh));
   EXPECT_LE(r->hausdorff, 1e-12);  // flat faces, straight seams, corners never move
+  // The result names each triangle's region, as sharp_edge_regions numbers the input's: the
+  // triangles of a region lie in its side's plane, and passing the regions as face ids gives the
+  // same run.
+  const std::vector<std::uint32_t> regions = sharp_edge_regions(box, 30);
+  const auto normal = [](const std::array<Vec3, 3>& c) { return cross(c[1] - c[0], c[2] - c[0]); };
+  ASSERT_EQ(r->face_ids.size(), r->mesh.num_triangles());
+  for (std::size_t t = 0; t < r->face_ids.size(); ++t) {
+    const std::uint32_t f = r->face_ids[t];
+    const auto first = std::find(regions.begin(), regions.end(), f);
+    ASSERT_NE(first, regions.end()) << f;
+    const Vec3 n0 = normal(box.corners(std::size_t(first - regions.begin())));
+    const Vec3 n1 = normal(r->mesh.corners(t));
+    EXPECT_GT(dot(n0, n1) / (norm(n0) * norm(n1)), 1 - 1e-12) << t;
+  }
+  auto given = simplify(box, {.target_triangles = 150, .face_ids = regions});
+  ASSERT_TRUE(given.has_value());
+  EXPECT_EQ(given->mesh.triangles, r->mesh.triangles);
+  EXPECT_EQ(given->mesh.positions, r->mesh.positions);
+  EXPECT_EQ(given->face_ids, r->face_ids);
   // Without the sharp-edge mask the box's edges are not protected: rounding costs error.
   auto plain = simplify(box, {.target_triangles = 40});
   ASSERT_TRUE(plain.has_value());
