@@ -394,7 +394,7 @@ interfere simplify IN OUT (--target N | --ratio R | --renderer-max N) [--step P 
                    [--regions FILE] [--features IDS] [--lock | --feature-mode weight|last|lock] [--sharp-angle DEG]
                    [--seams all|auto|features|none]
                    [--linear-deflection D] [--angular-deflection A] [--parts-dir DIR] [--format F]
-                   [--check-self-intersections] [--no-intersection-guard | --strict-intersection-guard]
+                   [--crease-angle DEG] [--check-self-intersections] [--no-intersection-guard | --strict-intersection-guard]
                    [--no-error | --max-error E | --max-error-rel R] [--json REPORT] [--threads N]
 interfere features PART.step [--json REPORT] [--aag] [--library lib.json] [--rules rules.json]
                    [--process process.json --step P] [--linear-deflection D] [--angular-deflection A]
@@ -418,6 +418,7 @@ interfere features PART.step [--json REPORT] [--aag] [--library lib.json] [--rul
 | `--linear-deflection`, `--angular-deflection` | STEP tessellation (0 = 0.1 % of the diagonal; radians) |
 | `--parts-dir DIR` | STEP input: also write each simplified part once, in part coordinates, as `DIR/<part>_<name>.<OUT's extension>` with its own face ids, feature tags and error bound; the report's `cad.instances[].placement` places them (a renderer instances them instead of loading the merged OUT) |
 | `--format F` | output format (stl, stl-ascii, obj, ply, ply-ascii, off, glb), whatever OUT's extension |
+| `--crease-angle DEG` | glTF output of a mesh without faces or regions: `NORMAL` smooth across edges up to DEG degrees, split across sharper ones (default 40; in (0, 180)); an error for other outputs and where faces or regions (STEP, `--regions`, `--sharp-angle`) set the normals |
 | `--check-self-intersections` | count self-intersections of the result (engine clash), reported |
 | `--no-intersection-guard` | plain QEM: no self-intersection check of the result, no guarded rerun |
 | `--strict-intersection-guard` | refuse every new intersecting pair, also where the input's own contacts move (default: those inside the input's contact zone are inherited) |

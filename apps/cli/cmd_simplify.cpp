@@ -36,11 +36,13 @@ struct SimplifyCliOptions {
   std::size_t target = 0;
   double ratio = 0;
   double sharp_angle = 0;
+  double crease_angle = 40;  ///< --crease-angle: glTF normals of a mesh without faces or regions
   double max_error = 0, max_error_rel = 0;  ///< --max-error (model units), --max-error-rel (of the diagonal)
   double linear_deflection = 0, angular_deflection = 0.5;
   std::size_t renderer_max = 0;
   bool lock = false, check_self = false, no_error = false, no_guard = false, strict_guard = false;
   bool deflection_given = false;  ///< --linear-/--angular-deflection on the command line
+  bool crease_given = false;      ///< --crease-angle on the command line
   int threads = 0;
 };
 
@@ -277,6 +279,14 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
                "OUT (or --format)");
   const bool glb = glb_format || (out_format == MeshFormat::automatic && lower_extension(o.output) == ".glb");
   check_output(o.json, {}, "--json");
+  if (o.crease_given) {
+    if (!glb) throw InputError("--crease-angle sets the normals of glTF output; OUT is not .glb (or --format glb)");
+    if (is_step(o.input) || !o.regions.empty() || o.sharp_angle != 0)
+      throw InputError("--crease-angle: the normals follow the faces or regions of IN (a STEP input's B-Rep faces, "
+                       "--regions, --sharp-angle); the crease angle is for a mesh without them");
+    if (!(o.crease_angle > 0 && o.crease_angle < 180))
+      throw InputError("--crease-angle " + short_number(o.crease_angle) + ": give a dihedral angle in degrees, in (0, 180)");
+  }
   check_distinct_files({{"IN", o.input}, {"--regions", o.regions}, {"--process", o.process},
                         {"--library", o.library}, {"--rules", o.rules}},
                        {{"OUT", o.output}, {"--json", o.json}});
@@ -475,7 +485,7 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
 #endif
       if (gparts.empty()) {
         gparts.push_back({std::filesystem::path(o.input).stem().string(), r.mesh, r.face_ids, so.feature_faces,
-                          r.error_bound});
+                          r.error_bound, o.crease_angle});
         ginst.push_back({gparts[0].name, 0, Transform{}});
       }
       s = write_glb(o.output, gparts, ginst, per_part ? "mm" : "");
@@ -658,6 +668,9 @@ void add_simplify_command(CLI::App& app, int& exit_code) {
                 "weight (paper: + maximum unmodified cost), last (feature edges strictly last) or lock");
   c->add_option("--sharp-angle", o->sharp_angle, "plain meshes: keep edges whose dihedral angle exceeds DEG degrees")
       ->excludes(regions);
+  c->add_option("--crease-angle", o->crease_angle,
+                "glTF output of a mesh without faces or regions: NORMAL is smooth across edges up to DEG degrees, "
+                "split across sharper ones (default 40)");
   c->add_option("--linear-deflection", o->linear_deflection, "STEP tessellation: linear deflection (0 = 0.1 % of the diagonal)");
   c->add_option("--angular-deflection", o->angular_deflection, "STEP tessellation: angular deflection in radians");
   c->add_option("--parts-dir", o->parts_dir,
@@ -684,6 +697,7 @@ void add_simplify_command(CLI::App& app, int& exit_code) {
   c->add_option("--threads", o->threads, "worker threads (0 = all cores)");
   c->callback([o, c, &exit_code] {
     o->deflection_given = c->count("--linear-deflection") + c->count("--angular-deflection") > 0;
+    o->crease_given = c->count("--crease-angle") > 0;
     exit_code = o->step == "all" ? run_all_steps(*o) : run_simplify(*o);
   });
 }

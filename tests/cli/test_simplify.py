@@ -200,6 +200,32 @@ class Simplify(unittest.TestCase):
         doc, _, _ = read_glb(path("s_glb.bin"))
         self.assertEqual(len(doc["meshes"]), 1)
 
+    def test_glb_crease_angle(self):
+        # A cube without regions (kept whole: without regions its edges are not protected): its
+        # 90-degree edges are creases at the default 40 (every normal along an axis), smooth at
+        # --crease-angle 100 (corner normals between the sides).
+        write_obj("gcube.obj", box_mesh(6))
+
+        def normals(*extra):
+            code, _, err = run("simplify", path("gcube.obj"), path("gcube.glb"), "--ratio", "1", *extra)
+            self.assertEqual(code, 0, err)
+            doc, _, read = read_glb(path("gcube.glb"))
+            n = read(doc["meshes"][0]["primitives"][0]["attributes"]["NORMAL"])
+            return [n[i:i + 3] for i in range(0, len(n), 3)]
+        self.assertTrue(all(sorted(abs(x) for x in n)[:2] == [0, 0] for n in normals()))
+        smooth = normals("--crease-angle", "100")
+        self.assertTrue(any(sorted(abs(x) for x in n)[1] > 0.1 for n in smooth))
+        for v in smooth:
+            self.assertAlmostEqual(math.sqrt(sum(x * x for x in v)), 1.0, places=5)
+        # Where it means nothing, or out of range: errors, nothing written.
+        for extra, message in ((["--crease-angle", "100", "--format", "ply"], "not .glb"),
+                               (["--crease-angle", "100", "--sharp-angle", "30"], "follow the faces"),
+                               (["--crease-angle", "0"], "(0, 180)"), (["--crease-angle", "180"], "(0, 180)")):
+            code, _, err = run("simplify", path("gcube.obj"), path("gcube2.glb"), "--target", "100", *extra)
+            self.assertEqual(code, 2, extra)
+            self.assertIn(message, err)
+            self.assertFalse(os.path.exists(path("gcube2.glb")))
+
     def test_warnings_are_printed_with_quiet(self):
         # --quiet (every test runs with it) silences progress lines, not warnings: an odd budget on a
         # closed mesh ends one below, which a warning says on stderr and in the report.
