@@ -467,11 +467,13 @@ C++: `interfere/simplify/qem.h` (`simplify`, `SimplifyOptions`, `SimplifyResult`
 `weld_positions`, `split_by_face`), `simplify/hausdorff.h` (`hausdorff`, `one_sided` (sampled distance and bound), `one_sided_distance`,
 `count_self_intersections`), `simplify/budget.h`, `simplify/tagged_io.h` (`write_tagged_mesh`, `read_error_bound`), `simplify/gltf_io.h` (`write_glb`); with OCCT (`interfere::cad`):
 `cad/model.h` (`import_step`, `world_mesh`, `write_test_part`), `cad/features.h`, `cad/semantics.h`,
-`cad/pipeline.h`. Python: `interfere.simplify(mesh, target=0, ratio=0, face_ids=[], feature_faces=[],
+`cad/pipeline.h` (`prepare_for_simplify`, `add_feature_faces`), `cad/assembly_simplify.h` (`simplify_assembly`:
+a prepared model part by part to one total, as the CLI does; per-part results and budgets, the merged world
+result). Python: `interfere.simplify(mesh, target=0, ratio=0, face_ids=[], feature_faces=[],
 lock=False, sharp_angle=0, prevent_self_intersections=True, measure_error=True, feature_mode="weight",
 inherit_input_contacts=True, seams="all", max_error=0)` → `SimplifyResult` (`.mesh`, `.face_ids`, `.hausdorff`, `.hausdorff_features`,
 `.error_bound`, `.guard_rerun`, `.guard_reruns`, `.input_contact_pairs`, `.inherited_pairs`, `.seams_relaxed_at`,
-`.max_error_runs`, `.error_limited_budget`, `.phases`
+`.one_below`, `.max_error_runs`, `.error_limited_budget`, `.phases`
 [(phase, seconds)], counters), `interfere.hausdorff(a, b)` (sampled a→b, b→a), `interfere.distance_bound(a, b)`,
 `interfere.write_tagged_mesh(path, mesh, face_ids=[], feature_faces=[], error_bound=-1)`,
 `interfere.read_error_bound(path)`, `interfere.write_glb(path, [(name, mesh, face_ids, feature_faces,
@@ -481,7 +483,13 @@ their `placement`), `interfere.step_features(path, process="", step="", library=
 process="", step="", linear_deflection=0, angular_deflection=0.5, library="", rules="")`, the CLI's STEP pipeline
 up to the simplification: `parts` ready for `simplify` (`name`, `mesh` in part coordinates, `face_ids`,
 `feature_faces` of the step, `faces`, `instances`, `model_part`; `<part> [<step>]` variants as in the CLI),
-`instances` (`name`, `part`, `placement`, `face_offset`), `warnings` and `report` (the CLI report's `cad` object):
+`instances` (`name`, `part`, `placement`, `face_offset`), `warnings` and `report` (the CLI report's `cad` object);
+and `interfere.simplify_step(path, target=0, ratio=0, renderer_max=0, process="", step="", lock=False,
+feature_mode="weight", seams="all", prevent_self_intersections=True, measure_error=True, max_error=0,
+linear_deflection=0, angular_deflection=0.5, library="", rules="")`, the CLI's STEP simplification whole
+(`cad::simplify_assembly`): `result` (every instance placed), `parts` [{`name`, `result`, `budget`, `instances`,
+`feature_faces`, `model_part`}], `instances`, `budget_rounds`, `features_exceed_budget`, `feature_faces`,
+`warnings`, `report`. By hand, part by part:
 
 ```python
 prep = itf.prepare_step("line.step", process="process.json", step="P1")

@@ -10,7 +10,6 @@
 #include <memory>
 #include <optional>
 #include <sstream>
-#include <tuple>
 
 #include <unistd.h>
 
@@ -23,6 +22,7 @@
 #include "interfere/simplify/qem.h"
 #include "interfere/simplify/tagged_io.h"
 #ifdef INTERFERE_HAS_CAD
+#include "interfere/cad/assembly_simplify.h"
 #include "interfere/cad/pipeline.h"
 #endif
 
@@ -77,171 +77,33 @@ std::string file_id(const std::string& name) {
   return id;
 }
 
-// STEP input: every part is simplified on its own (an assembly's touching parts are not
-// self-intersections of one mesh) to its share of the total budget (triangle_budgets: instances
-// counted, the step's feature triangles reserved), then the instances are placed in the world mesh.
-Expected<SimplifyResult> simplify_parts(const cad::Prepared& prep, std::size_t total, SimplifyOptions so,
-                                        nlohmann::json& parts_report, bool count_self, std::size_t& self_total,
-                                        std::vector<SimplifyResult>& done, int& rounds) {
-  std::vector<PartBudgetInput> in;
-  std::vector<std::size_t> feature_tris(prep.parts.size(), 0);
+// The report's parts_simplified: one entry per part simplified (a part's self-intersections counted
+// with --check-self-intersections, their sum over the instances added to `self_total`).
+nlohmann::json parts_report(const cad::Prepared& prep, const cad::AssemblySimplifyResult& a, bool count_self,
+                            std::size_t& self_total) {
+  nlohmann::json parts = nlohmann::json::array();
   for (std::size_t i = 0; i < prep.parts.size(); ++i) {
+    if (a.part_budgets[i] == 0) continue;
     const cad::PreparedPart& p = prep.parts[i];
-    std::vector<std::uint32_t> ff = p.feature_faces;
-    std::sort(ff.begin(), ff.end());
-    for (auto f : p.face_ids) feature_tris[i] += std::binary_search(ff.begin(), ff.end(), f);
-    in.push_back({p.instances * p.mesh.num_triangles(), p.instances * feature_tris[i]});
-  }
-  // Parts that stop above their share (seams, corners, locks, the guard) keep what they reached and
-  // the others share the rest (rebalanced_budgets; the renderer's maximum is a cap), re-simplified
-  // from their input when their budget drops; a few rounds, each fixing at least one more part, and
-  // kept only if they meet the budget.
-  constexpr int kMaxRounds = 4;
-  BudgetResult budgets = triangle_budgets(in, total);
-  std::vector<std::optional<std::size_t>> fixed(prep.parts.size());
-  std::vector<std::size_t> target(prep.parts.size(), 0);
-  done.assign(prep.parts.size(), SimplifyResult{});
-  rounds = 0;
-  bool features_exceed = budgets.features_exceed_budget;
-  std::tuple<std::vector<SimplifyResult>, std::vector<std::size_t>, bool> first;  // round 1
-  // The triangles of every instance of every part, as simplified so far.
-  const auto placed = [&] {
-    std::size_t sum = 0;
-    for (std::size_t i = 0; i < prep.parts.size(); ++i) sum += prep.parts[i].instances * done[i].mesh.num_triangles();
-    return sum;
-  };
-  // Part i to n triangles.
-  const auto run_part = [&](std::size_t i, std::size_t n) -> Expected<SimplifyResult> {
-    const cad::PreparedPart& p = prep.parts[i];
-    SimplifyOptions po = so;
-    po.target_triangles = n;
-    po.ratio = 0;
-    po.face_ids = p.face_ids;
-    po.feature_faces = p.feature_faces;
-    auto r = simplify(p.mesh, po);
-    if (!r) {
-      Error e = r.error();
-      e.reason = "part '" + p.name + "': " + e.reason;
-      return e;
-    }
-    return r;
-  };
-  for (;;) {
-    ++rounds;
-    for (std::size_t i = 0; i < prep.parts.size(); ++i) {
-      const cad::PreparedPart& p = prep.parts[i];
-      if (p.instances == 0 || p.mesh.num_triangles() == 0 || fixed[i]) continue;
-      const std::size_t n = std::clamp<std::size_t>(budgets.budgets[i] / p.instances, 1, p.mesh.num_triangles());
-      if (target[i] == n) continue;  // same budget: same result
-      auto r = run_part(i, n);
-      if (!r) return r.error();
-      done[i] = std::move(*r);
-      target[i] = n;
-    }
-    bool stalled = false;
-    std::size_t kept = 0;
-    for (std::size_t i = 0; i < prep.parts.size(); ++i) {
-      if (target[i] > 0 && !fixed[i] && done[i].mesh.num_triangles() > target[i]) {
-        fixed[i] = prep.parts[i].instances * done[i].mesh.num_triangles();
-        stalled = true;
-      }
-      if (fixed[i]) kept += *fixed[i];
-    }
-    // When the stopped parts alone fill the budget it cannot be met: the others keep their share
-    // instead of being cut to nothing for it.
-    if (!stalled || rounds == kMaxRounds || kept >= total) break;
-    if (rounds == 1) first = {done, target, budgets.features_exceed_budget};
-    budgets = rebalanced_budgets(in, total, fixed);
-    features_exceed = budgets.features_exceed_budget;
-  }
-  // Rebalanced parts are kept only if the budget is met: otherwise the formula's shares (the others
-  // would lose their shape for a cap missed anyway).
-  if (rounds > 1 && placed() > total) {
-    std::tie(done, target, features_exceed) = std::move(first);
-    rounds = 1;
-  }
-  // What the budget has left (odd budgets of closed parts, which lose triangles in pairs; shares
-  // rounded down per instance) goes to the parts that met theirs, two triangles each (once, in part
-  // order) while the total allows: the renderer's budget is met exactly more often.
-  std::size_t sum = placed();
-  for (std::size_t i = 0; i < prep.parts.size() && sum < total; ++i) {
-    const cad::PreparedPart& p = prep.parts[i];
-    const std::size_t out = done[i].mesh.num_triangles();
-    if (target[i] == 0 || fixed[i] || out > target[i] || out + 2 > p.mesh.num_triangles() ||
-        sum + 2 * p.instances > total)
-      continue;
-    auto r = run_part(i, out + 2);
-    if (!r) return r.error();
-    if (r->mesh.num_triangles() != out + 2) continue;
-    sum += 2 * p.instances;
-    done[i] = std::move(*r);
-    target[i] = out + 2;
-  }
-  SimplifyResult all;
-  std::size_t parts_one_below = 0;
-  for (std::size_t i = 0; i < prep.parts.size(); ++i) {
-    const cad::PreparedPart& p = prep.parts[i];
-    if (target[i] == 0) continue;
-    const std::size_t n = target[i];
-    const SimplifyResult& d = done[i];
-    parts_report.push_back({{"part", i}, {"model_part", p.model_part}, {"name", p.name}, {"instances", p.instances}, {"input_triangles", d.input_triangles},
-                            {"target_triangles", n}, {"output_triangles", d.mesh.num_triangles()}, {"one_below", d.one_below},
-                            {"feature_triangles", {{"input", d.feature_triangles_in}, {"output", d.feature_triangles_out}}},
-                            {"hausdorff", d.hausdorff}, {"error_bound", d.error_bound}, {"hausdorff_features", d.hausdorff_features < 0 ? nlohmann::json(nullptr) : nlohmann::json(d.hausdorff_features)},
-                            {"guard_rerun", d.guard_rerun}, {"guard_reruns", d.guard_reruns},
-                            {"input_contact_pairs", d.input_contact_pairs}, {"inherited_pairs", d.inherited_pairs},
-                            {"seams_relaxed_at", d.seams_relaxed_at}, {"max_error_runs", d.max_error_runs},
-                            {"error_limited_budget", d.error_limited_budget}});
+    const SimplifyResult& d = a.parts[i];
+    const auto or_null = [](double x) { return x < 0 ? nlohmann::json(nullptr) : nlohmann::json(x); };
+    nlohmann::json j = {{"part", i}, {"model_part", p.model_part}, {"name", p.name}, {"instances", p.instances},
+                        {"input_triangles", d.input_triangles}, {"target_triangles", a.part_budgets[i]},
+                        {"output_triangles", d.mesh.num_triangles()}, {"one_below", d.one_below},
+                        {"feature_triangles", {{"input", d.feature_triangles_in}, {"output", d.feature_triangles_out}}},
+                        {"hausdorff", d.hausdorff}, {"error_bound", d.error_bound},
+                        {"hausdorff_features", or_null(d.hausdorff_features)}, {"guard_rerun", d.guard_rerun},
+                        {"guard_reruns", d.guard_reruns}, {"input_contact_pairs", d.input_contact_pairs},
+                        {"inherited_pairs", d.inherited_pairs}, {"seams_relaxed_at", d.seams_relaxed_at},
+                        {"max_error_runs", d.max_error_runs}, {"error_limited_budget", d.error_limited_budget}};
     if (count_self) {
       const std::size_t x = count_self_intersections(d.mesh);
-      parts_report.back()["self_intersections"] = x;
+      j["self_intersections"] = x;
       self_total += x * p.instances;
     }
-    all.collapses += d.collapses, all.rejected_link += d.rejected_link, all.rejected_flip += d.rejected_flip;
-    all.rejected_intersection += d.rejected_intersection, all.rejected_face += d.rejected_face;
-    all.max_error_runs += d.max_error_runs;
-    all.guard_rerun = all.guard_rerun || d.guard_rerun;
-    all.guard_reruns = std::max(all.guard_reruns, d.guard_reruns);
-    all.input_contact_pairs += d.input_contact_pairs * p.instances, all.inherited_pairs += d.inherited_pairs * p.instances;
-    all.seams_relaxed_at += d.seams_relaxed_at * p.instances;
-    all.seam_vertices += d.seam_vertices, all.corner_vertices += d.corner_vertices, all.locked_vertices += d.locked_vertices;
-    all.input_vertices_welded += d.input_vertices_welded, all.degenerate_triangles += d.degenerate_triangles;
-    for (const auto& [name, sec] : d.phases) {  // summed over the parts
-      auto it = std::find_if(all.phases.begin(), all.phases.end(), [&](const auto& x) { return x.first == name; });
-      if (it == all.phases.end()) all.phases.emplace_back(name, sec);
-      else it->second += sec;
-    }
-    all.max_unmodified_cost = std::max(all.max_unmodified_cost, d.max_unmodified_cost);
-    all.hausdorff = std::max(all.hausdorff, d.hausdorff);
-    all.hausdorff_features = std::max(all.hausdorff_features, d.hausdorff_features);
-    all.error_bound = std::max(all.error_bound, d.error_bound);
-    // A closed part with an odd budget ends one below it: counted once for all parts below.
-    if (d.one_below) ++parts_one_below;
-    const std::string one_below = d.one_below ? one_below_warning(d.target_triangles) : std::string();
-    for (const auto& w : d.warnings)
-      if (w != one_below) all.warnings.push_back("part '" + p.name + "': " + w);
+    parts.push_back(std::move(j));
   }
-  for (const cad::PreparedInstance& inst : prep.instances) {
-    const SimplifyResult& d = done[inst.part];
-    const auto base = static_cast<std::uint32_t>(all.mesh.positions.size());
-    for (const Vec3& v : d.mesh.positions) all.mesh.positions.push_back(inst.placement.apply(v));
-    for (const Tri& t : d.mesh.triangles) all.mesh.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
-    for (auto f : d.face_ids) all.face_ids.push_back(f + inst.face_offset);
-    all.feature_triangles_in += d.feature_triangles_in, all.feature_triangles_out += d.feature_triangles_out;
-    all.input_triangles += d.input_triangles;
-  }
-  all.target_triangles = total;
-  all.reached = all.mesh.num_triangles() == total;
-  if (!all.reached)
-    all.warnings.push_back("total budget " + std::to_string(total) + ": " + std::to_string(all.mesh.num_triangles()) +
-                           " triangles (per-part budgets are rounded down per instance, parts may stop early)");
-  if (parts_one_below > 0 && !all.reached)
-    all.warnings.push_back(std::to_string(parts_one_below) + (parts_one_below == 1 ? " part" : " parts") +
-                           " ended one triangle below an odd budget (closed meshes lose triangles in pairs)");
-  if (features_exceed) all.warnings.push_back("the step's feature triangles alone exceed the budget");
-  all.bbox_diagonal = norm(prep.mesh.bounds().extent());
-  // all.error_bound: the largest part's (rigid placements keep distances).
-  return all;
+  return parts;
 }
 #endif
 
@@ -392,11 +254,8 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
   if (o.max_error_rel > 0 && !(so.max_error > 0))
     throw InputError("--max-error-rel: the input's bounding box has no extent (a point): give --max-error");
   if (o.renderer_max > 0) {  // one part: its budget is the renderer's maximum (docs/simplify.md)
-    std::size_t feature_tris = 0;
-    std::vector<std::uint32_t> ff = so.feature_faces;
-    std::sort(ff.begin(), ff.end());
-    for (auto f : so.face_ids) feature_tris += std::binary_search(ff.begin(), ff.end(), f);
-    const auto b = triangle_budgets({{mesh.num_triangles(), feature_tris}}, o.renderer_max);
+    const auto b = triangle_budgets({{mesh.num_triangles(), count_feature_triangles(so.face_ids, so.feature_faces)}},
+                                    o.renderer_max);
     so.target_triangles = std::max<std::size_t>(1, b.budgets[0]);
     so.ratio = 0;
   }
@@ -428,17 +287,17 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
     Expected<SimplifyResult> res = Error{};
 #ifdef INTERFERE_HAS_CAD
     if (cad_prepared) {
-      const std::size_t n = mesh.num_triangles();
-      std::size_t total = so.target_triangles;
-      if (total == 0 && so.ratio > 0) total = static_cast<std::size_t>(std::llround(so.ratio * double(n)));
-      if (total == 0 || total > n)
-        throw InputError(o.input + ": triangle budget " + std::to_string(total) + " must lie in [1, " + std::to_string(n) + "]");
-      nlohmann::json parts = nlohmann::json::array();
-      int rounds = 0;
-      res = simplify_parts(*cad_prepared, total, so, parts, o.check_self, self_parts, part_results, rounds);
+      auto a = cad::simplify_assembly(*cad_prepared, so);
+      if (!a) {
+        Error e = a.error();
+        e.file = o.input;
+        throw InputError(e);
+      }
+      report["parts_simplified"] = parts_report(*cad_prepared, *a, o.check_self, self_parts);
+      report["budget_rounds"] = a->budget_rounds;
+      part_results = std::move(a->parts);
+      res = std::move(a->merged);
       per_part = true;
-      report["parts_simplified"] = parts;
-      report["budget_rounds"] = rounds;
     } else {
       res = simplify(mesh, so);
     }

@@ -15,6 +15,7 @@
 #include "interfere/simplify/tagged_io.h"
 #include "interfere/simplify/qem.h"
 #ifdef INTERFERE_HAS_CAD
+#include "interfere/cad/assembly_simplify.h"
 #include "interfere/cad/features.h"
 #include "interfere/cad/model.h"
 #include "interfere/cad/pipeline.h"
@@ -25,6 +26,21 @@ namespace py = pybind11;
 
 namespace interfere::python {
 namespace {
+
+// The modes of simplify() and simplify_step() by name (as the CLI's --feature-mode, --lock, --seams).
+FeatureMode feature_mode_of(const std::string& name, bool lock) {
+  if (lock || name == "lock") return FeatureMode::lock;
+  if (name == "weight") return FeatureMode::weight;
+  if (name == "last") return FeatureMode::last;
+  throw py::value_error("feature_mode must be weight, last or lock, not '" + name + "'");
+}
+SeamMode seam_mode_of(const std::string& name) {
+  if (name == "all") return SeamMode::all;
+  if (name == "features") return SeamMode::features;
+  if (name == "none") return SeamMode::none;
+  if (name == "auto") return SeamMode::as_needed;
+  throw py::value_error("seams must be all, auto, features or none, not '" + name + "'");
+}
 
 // [(T_i, F_i)] from Python, checked (F_i <= T_i).
 std::vector<PartBudgetInput> budget_inputs(const std::vector<std::pair<std::size_t, std::size_t>>& parts) {
@@ -83,16 +99,8 @@ void bind_simplify(py::module_& m) {
         o.ratio = ratio;
         o.face_ids = std::move(face_ids);
         o.feature_faces = std::move(feature_faces);
-        if (feature_mode == "weight") o.feature_mode = FeatureMode::weight;
-        else if (feature_mode == "last") o.feature_mode = FeatureMode::last;
-        else if (feature_mode == "lock") o.feature_mode = FeatureMode::lock;
-        else throw py::value_error("feature_mode must be weight, last or lock");
-        if (lock) o.feature_mode = FeatureMode::lock;
-        if (seams == "all") o.seams = SeamMode::all;
-        else if (seams == "features") o.seams = SeamMode::features;
-        else if (seams == "none") o.seams = SeamMode::none;
-        else if (seams == "auto") o.seams = SeamMode::as_needed;
-        else throw py::value_error("seams must be all, auto, features or none");
+        o.feature_mode = feature_mode_of(feature_mode, lock);
+        o.seams = seam_mode_of(seams);
         o.sharp_angle_deg = sharp_angle;
         o.prevent_self_intersections = prevent_self_intersections;
         o.inherit_input_contacts = inherit_input_contacts;
@@ -319,6 +327,77 @@ void bind_simplify(py::module_& m) {
       "differ in taking part in the step comes twice, '<part> [<step>]' with the step's features), instances "
       "(name, part: index into parts, placement: Transform, face_offset), warnings and the CLI report's 'cad' "
       "object (report). Budgets per part: interfere.triangle_budgets.");
+  m.def(
+      "simplify_step",
+      [](const std::filesystem::path& path, std::size_t target, double ratio, std::size_t renderer_max,
+         const std::string& process_file, const std::string& step, bool lock, const std::string& feature_mode,
+         const std::string& seams, bool prevent_self_intersections, bool measure_error, double max_error,
+         double linear_deflection, double angular_deflection, const std::string& library_file,
+         const std::string& rules_file) {
+        if (process_file.empty() != step.empty()) throw py::value_error("process and step go together");
+        if ((target > 0) + (ratio > 0) + (renderer_max > 0) != 1)
+          throw py::value_error("give one of target, ratio or renderer_max");
+        SimplifyOptions o;
+        o.target_triangles = target;
+        o.ratio = ratio;
+        o.feature_mode = feature_mode_of(feature_mode, lock);
+        o.seams = seam_mode_of(seams);
+        o.prevent_self_intersections = prevent_self_intersections;
+        o.measure_error = measure_error;
+        o.max_error = max_error;
+        Expected<cad::Prepared> prep = Error{};
+        Expected<cad::AssemblySimplifyResult> r = Error{};
+        {
+          py::gil_scoped_release release;
+          prep = cad::prepare_for_simplify(path.string(), {.linear_deflection = linear_deflection,
+                                                           .angular_deflection = angular_deflection,
+                                                           .library_file = library_file,
+                                                           .rules_file = rules_file,
+                                                           .process_file = process_file,
+                                                           .step = step});
+          if (prep && renderer_max > 0) {  // the total from the renderer's maximum (docs/simplify.md "Budget")
+            const std::size_t f = count_feature_triangles(prep->face_ids, prep->feature_faces);
+            o.target_triangles = std::max<std::size_t>(
+                1, triangle_budgets({{prep->mesh.num_triangles(), f}}, renderer_max).budgets[0]);
+          }
+          if (prep) r = cad::simplify_assembly(*prep, o);
+        }
+        if (!prep) throw py::value_error(prep.error().message());
+        if (!r) throw py::value_error(path.string() + ": " + r.error().message());
+        py::list parts, inst;
+        for (std::size_t i = 0; i < prep->parts.size(); ++i) {
+          const cad::PreparedPart& p = prep->parts[i];
+          parts.append(py::dict(py::arg("name") = p.name, py::arg("result") = std::move(r->parts[i]),
+                                py::arg("budget") = r->part_budgets[i], py::arg("instances") = p.instances,
+                                py::arg("feature_faces") = p.feature_faces, py::arg("model_part") = p.model_part));
+        }
+        for (const cad::PreparedInstance& i : prep->instances)
+          inst.append(py::dict(py::arg("name") = i.name, py::arg("part") = i.part, py::arg("placement") = i.placement,
+                               py::arg("face_offset") = i.face_offset));
+        py::dict out;
+        out["result"] = std::move(r->merged);
+        out["parts"] = parts;
+        out["instances"] = inst;
+        out["budget_rounds"] = r->budget_rounds;
+        out["features_exceed_budget"] = r->features_exceed_budget;
+        out["feature_faces"] = prep->feature_faces;
+        out["warnings"] = prep->warnings;
+        out["report"] = py::module_::import("json").attr("loads")(prep->report_json);
+        return out;
+      },
+      py::arg("path"), py::arg("target") = 0, py::arg("ratio") = 0.0, py::arg("renderer_max") = 0,
+      py::arg("process") = std::string(), py::arg("step") = std::string(), py::arg("lock") = false,
+      py::arg("feature_mode") = std::string("weight"), py::arg("seams") = std::string("all"),
+      py::arg("prevent_self_intersections") = true, py::arg("measure_error") = true, py::arg("max_error") = 0.0,
+      py::arg("linear_deflection") = 0.0, py::arg("angular_deflection") = 0.5, py::arg("library") = std::string(),
+      py::arg("rules") = std::string(),
+      "`interfere simplify` of a STEP file: every part simplified on its own to its share of one total budget "
+      "(target, ratio of the model's triangles, or from renderer_max), the step's assembly features kept; parts "
+      "that stop early leave the rest to the others. Returns result (SimplifyResult of every instance placed, face "
+      "ids as prepare_step's world ids), parts [{name, result (part coordinates), budget (per instance, 0: not "
+      "simplified), instances, feature_faces, model_part}], instances, budget_rounds, features_exceed_budget, "
+      "feature_faces (world ids), warnings (the import's; the simplification's are in result.warnings) and report "
+      "(the CLI report's 'cad' object). ValueError on bad input.");
 #else
   m.attr("HAVE_CAD") = false;
 #endif

@@ -255,6 +255,38 @@ class Cad(unittest.TestCase):
         m = itf.import_step(asm)
         self.assertTrue(all(hasattr(i["placement"], "t") for i in m["instances"]))
 
+    def test_simplify_step_to_one_total(self):
+        # The CLI's STEP simplification: parts to their shares of one total, the step's features
+        # locked on the instance it names, instances placed.
+        asm = os.path.join(DATA, "assembly.step")
+        with tempfile.TemporaryDirectory() as d:
+            proc = plate_2_screw_process(d)
+            s = itf.simplify_step(asm, target=400, process=proc, step="P1", lock=True)
+            r = s["result"]
+            self.assertEqual(len(r.mesh.triangles), 400)
+            self.assertTrue(r.reached)
+            self.assertEqual(r.target_triangles, 400)
+            self.assertEqual(len(r.face_ids), 400)
+            parts = s["parts"]
+            self.assertEqual(sorted(p["name"] for p in parts), ["plate", "plate [P1]", "shaft"])
+            self.assertEqual(sum(p["instances"] * len(p["result"].mesh.triangles) for p in parts), 400)
+            self.assertEqual(r.feature_triangles_out, r.feature_triangles_in)
+            self.assertGreater(r.feature_triangles_in, 0)
+            self.assertEqual(r.error_bound, max(p["result"].error_bound for p in parts))
+            for p in parts:  # each part's result is simplify() of it to its budget
+                prep = {q["name"]: q for q in itf.prepare_step(asm, process=proc, step="P1")["parts"]}[p["name"]]
+                own = itf.simplify(prep["mesh"], target=p["budget"], face_ids=prep["face_ids"],
+                                   feature_faces=prep["feature_faces"], lock=True)
+                self.assertEqual([tuple(t) for t in own.mesh.triangles], [tuple(t) for t in p["result"].mesh.triangles])
+            # renderer_max: the total is the renderer's maximum, or the whole model when it is below it.
+            self.assertEqual(len(itf.simplify_step(asm, renderer_max=300)["result"].mesh.triangles), 300)
+            whole = itf.simplify_step(asm, renderer_max=10 ** 6)["result"]
+            self.assertEqual(len(whole.mesh.triangles), whole.input_triangles)
+            for bad in ({"target": 10 ** 6}, {"target": 10, "ratio": 0.5}, {}, {"ratio": 0.5, "step": "P1"},
+                        {"ratio": 0.5, "seams": "some"}, {"ratio": 0.5, "feature_mode": "x"}):
+                with self.assertRaises(ValueError, msg=str(bad)):
+                    itf.simplify_step(asm, **bad)
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -9,6 +9,14 @@
 
 namespace interfere {
 
+std::size_t count_feature_triangles(const std::vector<std::uint32_t>& face_ids,
+                                    std::vector<std::uint32_t> feature_faces) {
+  std::sort(feature_faces.begin(), feature_faces.end());
+  std::size_t n = 0;
+  for (std::uint32_t f : face_ids) n += std::binary_search(feature_faces.begin(), feature_faces.end(), f);
+  return n;
+}
+
 BudgetResult triangle_budgets(const std::vector<PartBudgetInput>& parts, std::size_t renderer_max) {
   BudgetResult r;
   std::size_t total = 0, features = 0;

@@ -10,6 +10,7 @@
 // part keeps only its feature triangles, N_i = F_i (and a warning says so).
 #pragma once
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -27,6 +28,10 @@ struct BudgetResult {
 };
 
 BudgetResult triangle_budgets(const std::vector<PartBudgetInput>& parts, std::size_t renderer_max);
+
+/// F_i: the triangles whose face id (per triangle) is one of `feature_faces`.
+std::size_t count_feature_triangles(const std::vector<std::uint32_t>& face_ids,
+                                    std::vector<std::uint32_t> feature_faces);
 
 /// Budgets once some parts stopped above theirs (seams, corners, locks, the self-intersection guard):
 /// a part i with fixed[i] keeps that many triangles, N_i = fixed[i]; the others share what is left,
