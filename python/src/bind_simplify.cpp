@@ -34,6 +34,17 @@ FeatureMode feature_mode_of(const std::string& name, bool lock) {
   if (name == "last") return FeatureMode::last;
   throw py::value_error("feature_mode must be weight, last or lock, not '" + name + "'");
 }
+#ifdef INTERFERE_HAS_CAD
+// A prepared model's instances as dicts (name, part, placement, face_offset).
+py::list instance_list(const cad::Prepared& prep) {
+  py::list out;
+  for (const cad::PreparedInstance& i : prep.instances)
+    out.append(py::dict(py::arg("name") = i.name, py::arg("part") = i.part, py::arg("placement") = i.placement,
+                        py::arg("face_offset") = i.face_offset));
+  return out;
+}
+#endif
+
 SeamMode seam_mode_of(const std::string& name) {
   if (name == "all") return SeamMode::all;
   if (name == "features") return SeamMode::features;
@@ -296,25 +307,18 @@ void bind_simplify(py::module_& m) {
         Expected<cad::Prepared> r = Error{};
         {
           py::gil_scoped_release release;
-          r = cad::prepare_for_simplify(path.string(), {.linear_deflection = linear_deflection,
-                                                        .angular_deflection = angular_deflection,
-                                                        .library_file = library_file,
-                                                        .rules_file = rules_file,
-                                                        .process_file = process_file,
-                                                        .step = step});
+          r = cad::prepare_for_simplify(path.string(), {linear_deflection, angular_deflection, library_file,
+                                                        rules_file, process_file, step});
         }
         if (!r) throw py::value_error(r.error().message());
-        py::list parts, inst;
+        py::list parts;
         for (const cad::PreparedPart& p : r->parts)
           parts.append(py::dict(py::arg("name") = p.name, py::arg("mesh") = p.mesh, py::arg("face_ids") = p.face_ids,
                                 py::arg("feature_faces") = p.feature_faces, py::arg("faces") = p.faces,
                                 py::arg("instances") = p.instances, py::arg("model_part") = p.model_part));
-        for (const cad::PreparedInstance& i : r->instances)
-          inst.append(py::dict(py::arg("name") = i.name, py::arg("part") = i.part, py::arg("placement") = i.placement,
-                               py::arg("face_offset") = i.face_offset));
         py::dict out;
         out["parts"] = parts;
-        out["instances"] = inst;
+        out["instances"] = instance_list(*r);
         out["warnings"] = r->warnings;
         out["report"] = py::module_::import("json").attr("loads")(r->report_json);
         return out;
@@ -349,12 +353,8 @@ void bind_simplify(py::module_& m) {
         Expected<cad::AssemblySimplifyResult> r = Error{};
         {
           py::gil_scoped_release release;
-          prep = cad::prepare_for_simplify(path.string(), {.linear_deflection = linear_deflection,
-                                                           .angular_deflection = angular_deflection,
-                                                           .library_file = library_file,
-                                                           .rules_file = rules_file,
-                                                           .process_file = process_file,
-                                                           .step = step});
+          prep = cad::prepare_for_simplify(path.string(), {linear_deflection, angular_deflection, library_file,
+                                                           rules_file, process_file, step});
           if (prep && renderer_max > 0) {  // the total from the renderer's maximum (docs/simplify.md "Budget")
             const std::size_t f = count_feature_triangles(prep->face_ids, prep->feature_faces);
             o.target_triangles = std::max<std::size_t>(
@@ -364,20 +364,18 @@ void bind_simplify(py::module_& m) {
         }
         if (!prep) throw py::value_error(prep.error().message());
         if (!r) throw py::value_error(path.string() + ": " + r.error().message());
-        py::list parts, inst;
+        py::list parts;
         for (std::size_t i = 0; i < prep->parts.size(); ++i) {
           const cad::PreparedPart& p = prep->parts[i];
           parts.append(py::dict(py::arg("name") = p.name, py::arg("result") = std::move(r->parts[i]),
                                 py::arg("budget") = r->part_budgets[i], py::arg("instances") = p.instances,
                                 py::arg("feature_faces") = p.feature_faces, py::arg("model_part") = p.model_part));
         }
-        for (const cad::PreparedInstance& i : prep->instances)
-          inst.append(py::dict(py::arg("name") = i.name, py::arg("part") = i.part, py::arg("placement") = i.placement,
-                               py::arg("face_offset") = i.face_offset));
+
         py::dict out;
         out["result"] = std::move(r->merged);
         out["parts"] = parts;
-        out["instances"] = inst;
+        out["instances"] = instance_list(*prep);
         out["budget_rounds"] = r->budget_rounds;
         out["features_exceed_budget"] = r->features_exceed_budget;
         out["feature_faces"] = prep->feature_faces;

@@ -16,6 +16,8 @@ from cli_common import path, run, write_obj, load_json  # noqa: E402
 
 DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data")
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, "tools"))
+import make_examples  # noqa: E402
 
 
 def uv_sphere(lon=40, lat=21, bump=0.05):
@@ -41,27 +43,9 @@ def uv_sphere(lon=40, lat=21, bump=0.05):
 
 
 def box_mesh(n):
-    """A closed cube [0, n]^3, each side an n x n grid (integer corners: exact), outward; faces in order."""
-    index, pos, tri = {}, [], []
-
-    def vertex(p):
-        if p not in index:
-            index[p] = len(pos)
-            pos.append(p)
-        return index[p]
-    for a in range(3):
-        for side in (0, n):
-            u, w = (a + 1) % 3, (a + 2) % 3
-            for i in range(n):
-                for j in range(n):
-                    def at(di, dj):
-                        p = [0.0, 0.0, 0.0]
-                        p[a], p[u], p[w] = float(side), float(i + di), float(j + dj)
-                        return vertex(tuple(p))
-                    q = (at(0, 0), at(1, 0), at(1, 1), at(0, 1))
-                    quad = [(q[0], q[1], q[2]), (q[0], q[2], q[3])]
-                    tri += quad if side == n else [(x, z, y) for x, y, z in quad]
-    return pos, tri
+    """A closed cube [0, n]^3, each side an n x n grid (integer corners: exact), outward; sides in
+    order -x, +x, -y, +y, -z, +z (the bundled examples' generator)."""
+    return make_examples.box((0.0, 0.0, 0.0), (float(n), float(n), float(n)), n)
 
 
 def write_region_sheet(name, region_of, n=32):
