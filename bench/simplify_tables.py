@@ -396,7 +396,7 @@ interfere simplify IN OUT (--target N | --ratio R | --renderer-max N) [--step P 
                    [--linear-deflection D] [--angular-deflection A] [--parts-dir DIR] [--format F]
                    [--crease-angle DEG] [--check-self-intersections] [--no-intersection-guard | --strict-intersection-guard]
                    [--no-error | --max-error E | --max-error-rel R] [--json REPORT] [--threads N]
-interfere features PART.step [--json REPORT] [--aag] [--library lib.json] [--rules rules.json]
+interfere features PART.step [--json REPORT] [--aag] [--dot GRAPH.dot] [--library lib.json] [--rules rules.json]
                    [--process process.json --step P] [--linear-deflection D] [--angular-deflection A]
 ```
 
@@ -443,6 +443,12 @@ of simplify()'s phases, in order; summed over the parts of a STEP input)}, `warn
 `self_intersections` (with the flag; for STEP input the report's count is the sum over parts × instances)}]. Face
 ids of a multi-instance STEP are offset per instance.
 
+**`features --dot FILE`**: the attributed adjacency graph of every part as Graphviz DOT (`cad::aag_dot`; render
+with `dot -Tsvg FILE -o aag.svg`): a cluster per part, a node per face (`F<id>`, surface type, radius and
+`hole` for rotational faces), faces filled in one colour per recognised feature (a legend note per feature),
+the step's assembly-feature faces (`--step P`) outlined red; arcs convex solid, concave dashed, smooth dotted,
+labelled with the curve type, bold on inner loops (where the minimal subgraphs are split first).
+
 **`features` report**: `parts` [{`name`, `solids`, `faces`, `triangles`, `untessellated_faces`, `features`
 [{`type`, `faces`, `roles` {role: face}, `radii`, `axis` {`point`, `direction`}}], `assembly_feature_faces`,
 `semantics_warnings` (with `--step all`: `steps` {step: {`assembly_feature_faces`, `semantics_warnings`}}), with `--aag`: `aag` {`nodes` [{`face`, `type`, `from_bspline`, `area`, `outer_loops`,
@@ -467,7 +473,7 @@ C++: `interfere/simplify/qem.h` (`simplify`, `SimplifyOptions`, `SimplifyResult`
 `weld_positions`, `split_by_face`), `simplify/hausdorff.h` (`hausdorff`, `one_sided` (sampled distance and bound), `one_sided_distance`,
 `count_self_intersections`), `simplify/budget.h`, `simplify/tagged_io.h` (`write_tagged_mesh`, `read_error_bound`), `simplify/gltf_io.h` (`write_glb`); with OCCT (`interfere::cad`):
 `cad/model.h` (`import_step`, `world_mesh`, `write_test_part`), `cad/features.h`, `cad/semantics.h`,
-`cad/pipeline.h` (`prepare_for_simplify`, `add_feature_faces`), `cad/assembly_simplify.h` (`simplify_assembly`:
+`cad/pipeline.h` (`prepare_for_simplify`, `add_feature_faces`), `cad/aag_dot.h` (`aag_dot`: the graph as DOT), `cad/assembly_simplify.h` (`simplify_assembly`:
 a prepared model part by part to one total, as the CLI does; per-part results and budgets, the merged world
 result). Python: `interfere.simplify(mesh, target=0, ratio=0, face_ids=[], feature_faces=[],
 lock=False, sharp_angle=0, prevent_self_intersections=True, measure_error=True, feature_mode="weight",

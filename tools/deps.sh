@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages interfere needs (build, tests, benchmarks, peers; gmsh makes test meshes and is a reader peer). Run as root.
+# Installs the Debian 12 packages interfere needs (build, tests, benchmarks, peers; gmsh makes test meshes and is a reader peer; Graphviz reads the AAG drawings back in a test). Run as root.
 set -euo pipefail
 export DEBIAN_FRONTEND=noninteractive
 pkgs=(build-essential cmake ninja-build python3 git
@@ -10,7 +10,8 @@ pkgs=(build-essential cmake ninja-build python3 git
       zlib1g-dev gmsh libgmsh-dev
       libocct-data-exchange-dev libocct-ocaf-dev libocct-modeling-algorithms-dev
       libocct-modeling-data-dev libocct-foundation-dev libocct-visualization-dev
-      libmeshoptimizer-dev libopenmesh-dev)
+      libmeshoptimizer-dev libopenmesh-dev
+      graphviz)  # (tests: `interfere features --dot` output is read back by Graphviz)
 missing=()
 for p in "${pkgs[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
 if ((${#missing[@]})); then

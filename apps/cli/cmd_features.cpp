@@ -13,6 +13,7 @@
 #include "common.h"
 #include "interfere/core/atomic_file.h"
 #ifdef INTERFERE_HAS_CAD
+#include "interfere/cad/aag_dot.h"
 #include "interfere/cad/features.h"
 #include "interfere/cad/model.h"
 #include "interfere/cad/pipeline.h"
@@ -23,7 +24,7 @@ namespace interfere::cli {
 namespace {
 
 struct FeaturesCliOptions {
-  std::string input, json, library, rules, process, step;
+  std::string input, json, dot, library, rules, process, step;
   double linear_deflection = 0, angular_deflection = 0.5;
   bool aag = false;
 };
@@ -36,8 +37,9 @@ int run_features(const FeaturesCliOptions& o) {
   if (!o.step.empty() && o.process.empty()) throw InputError("--step needs --process FILE");
   if (o.step.empty() && !o.process.empty()) throw InputError("--process needs --step ID");
   check_output(o.json, {}, "--json");
+  check_output(o.dot, {}, "--dot");
   check_distinct_files({{"IN", o.input}, {"--library", o.library}, {"--rules", o.rules}, {"--process", o.process}},
-                       {{"--json", o.json}});
+                       {{"--json", o.json}, {"--dot", o.dot}});
   Progress total("features");
   auto sem = load_semantics({.library_file = o.library, .rules_file = o.rules, .process_file = o.process, .step = o.step});
   if (!sem) throw InputError(sem.error());
@@ -72,6 +74,7 @@ int run_features(const FeaturesCliOptions& o) {
   nlohmann::json report{{"command", "features"}, {"version", INTERFERE_VERSION}, {"input", o.input}};
   report["parts"] = nlohmann::json::array();
   double recognition_seconds = 0;
+  std::vector<DotPart> dot_parts;  // --dot: each part's graph, features and (one step) assembly faces
   for (const Part& part : model->parts) {
     const auto t0 = std::chrono::steady_clock::now();
     const auto feats = recognize_features(part.aag, *lib);
@@ -101,6 +104,7 @@ int run_features(const FeaturesCliOptions& o) {
       std::printf("  %-18s faces [%s]%s%s%s\n", f.type.c_str(), faces.c_str(), radii.empty() ? "" : " radii ",
                   radii.c_str(), axis.c_str());
     }
+    if (!o.dot.empty()) dot_parts.push_back({part.name, &part.aag, feats, {}});
     for (const std::string& step : steps) {
       // In the step when it names the part or one of its instances (then only those instances
       // keep the features when simplified: `instances[].in_step` of the simplify report).
@@ -114,6 +118,7 @@ int run_features(const FeaturesCliOptions& o) {
         jp["assembly_feature_faces"] = sel->faces;
         jp["semantics_warnings"] = sel->warnings;
       }
+      if (!o.dot.empty() && o.step != "all") dot_parts.back().assembly_faces = sel->faces;
       const std::string faces = fmt::format("{}", fmt::join(sel->faces, ","));
       std::printf("  step %s: %zu assembly-feature faces [%s]\n", step.c_str(), sel->faces.size(), faces.c_str());
     }
@@ -150,6 +155,10 @@ int run_features(const FeaturesCliOptions& o) {
   report["file_length_units"] = model->file_length_units;
   report["warnings"] = model->warnings;
   report["seconds"] = {{"recognition", recognition_seconds}, {"total", total.seconds()}};
+  if (!o.dot.empty()) {
+    const Status s = write_file_atomic(o.dot, aag_dot(dot_parts));
+    if (!s) throw InputError(s.error());
+  }
   if (!o.json.empty()) {
     const Status s = write_file_atomic(o.json, report.dump(2) + "\n");
     if (!s) throw InputError(s.error());
@@ -170,6 +179,9 @@ void add_features_command(CLI::App& app, int& exit_code) {
   c->add_option("IN", o->input, "STEP file")->required()->check(CLI::ExistingFile);
   c->add_option("--json", o->json, "write the JSON report here");
   c->add_flag("--aag", o->aag, "include the attributed adjacency graph in the JSON report");
+  c->add_option("--dot", o->dot,
+                "write the attributed adjacency graph as Graphviz DOT (faces filled per feature, the step's "
+                "assembly-feature faces in red; convex arcs solid, concave dashed, smooth dotted)");
   c->add_option("--library", o->library, "feature library JSON (default: the installed data/features/library.json)");
   c->add_option("--rules", o->rules, "assembly-semantics rules JSON (default: data/features/semantics.json)");
   c->add_option("--process", o->process, "process description JSON (steps, parts, constraint types)");

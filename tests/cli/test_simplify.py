@@ -510,6 +510,40 @@ class Features(unittest.TestCase):
         self.assertIn("lengths in mm", out)
         self.assertAlmostEqual(feats[0]["axis"]["point"][0], 20.0)
 
+    def test_features_dot_is_the_aag(self):
+        # --dot draws the graph of --aag: a node per face, an arc per edge with its convexity as the
+        # line style, the feature's faces filled, the step's assembly-feature faces in red.
+        import re
+        import shutil
+        import subprocess
+        write_process("dot_process.json", [{"id": "P1", "parts": ["*"], "constraint": "screw"}])
+        code, _, err = run("features", os.path.join(DATA, "counterbored_plate.step"), "--json", path("fd.json"),
+                           "--aag", "--dot", path("fd.dot"), "--process", path("dot_process.json"), "--step", "P1")
+        self.assertEqual(code, 0, err)
+        part = load_json("fd.json")["parts"][0]
+        with open(path("fd.dot")) as f:
+            dot = f.read()
+        self.assertTrue(dot.startswith("graph aag {") and dot.rstrip().endswith("}"))
+        nodes = dict(re.findall(r'^    p0_(\d+) \[(.*)\];$', dot, re.M))
+        self.assertEqual(sorted(int(n) for n in nodes), [n["face"] for n in part["aag"]["nodes"]])
+        style = {"convex": "solid", "concave": "dashed", "smooth": "dotted"}
+        arcs = re.findall(r'^    p0_(\d+) -- p0_(\d+) \[style=(\w+), label="(\w+)"', dot, re.M)
+        self.assertEqual(sorted((int(a), int(b), st, c) for a, b, st, c in arcs),
+                         sorted((a["faces"][0], a["faces"][1], style[a["convexity"]], a["curve"])
+                                for a in part["aag"]["arcs"]))
+        feature_faces = set(part["features"][0]["faces"])
+        for face, attrs in nodes.items():
+            self.assertEqual("fillcolor" in attrs, int(face) in feature_faces, attrs)
+            self.assertEqual("color=red" in attrs, int(face) in part["assembly_feature_faces"], attrs)
+        self.assertEqual(len(part["assembly_feature_faces"]), 3)  # bore, counterbore, seat
+        self.assertIn('label="F6\\ncylinder\\nr 6 hole"', dot)
+        if shutil.which("dot"):  # Graphviz, where installed, reads it
+            subprocess.run(["dot", "-Tsvg", path("fd.dot"), "-o", path("fd.svg")], check=True)
+        code, _, err = run("features", os.path.join(DATA, "counterbored_plate.step"), "--dot",
+                           os.path.join(DATA, "counterbored_plate.step"))
+        self.assertEqual(code, 2)
+        self.assertIn("--dot", err)
+
     def test_simplify_step_with_process_keeps_the_step_features(self):
         write_process("process.json", [{"id": "P1", "parts": ["*"], "constraint": "screw"},
                                        {"id": "P2", "parts": ["*"], "constraint": "bolt"}])
