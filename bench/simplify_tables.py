@@ -485,7 +485,7 @@ inherit_input_contacts=True, seams="all", max_error=0)` → `SimplifyResult` (`.
 `interfere.read_error_bound(path)`, `interfere.write_glb(path, [(name, mesh, face_ids, feature_faces,
 error_bound)], [(name, part, Transform)], units="mm")`, `interfere.count_self_intersections(mesh)`, `interfere.triangle_budgets([(T, F), ...], renderer_max)`; when
 `interfere.HAVE_CAD`: `interfere.import_step(path, linear_deflection=0, angular_deflection=0.5)` (instances with
-their `placement`), `interfere.step_features(path, process="", step="", library="", rules="")` and `interfere.prepare_step(path,
+their `placement`), `interfere.step_features(path, process="", step="", library="", rules="")` (per part `features`, `dot`, with a step `assembly_feature_faces`) and `interfere.prepare_step(path,
 process="", step="", linear_deflection=0, angular_deflection=0.5, library="", rules="")`, the CLI's STEP pipeline
 up to the simplification: `parts` ready for `simplify` (`name`, `mesh` in part coordinates, `face_ids`,
 `feature_faces` of the step, `faces`, `instances`, `model_part`; `<part> [<step>]` variants as in the CLI),

@@ -15,6 +15,7 @@
 #include "interfere/simplify/tagged_io.h"
 #include "interfere/simplify/qem.h"
 #ifdef INTERFERE_HAS_CAD
+#include "interfere/cad/aag_dot.h"
 #include "interfere/cad/assembly_simplify.h"
 #include "interfere/cad/features.h"
 #include "interfere/cad/model.h"
@@ -284,20 +285,23 @@ void bind_simplify(py::module_& m) {
             fl.append(py::dict(py::arg("type") = f.type, py::arg("faces") = f.faces, py::arg("roles") = f.roles,
                                py::arg("radii") = f.radii));
           py::dict d(py::arg("part") = p.name, py::arg("features") = fl);
+          std::vector<std::uint32_t> assembly;
           if (!process_file.empty()) {  // in the step when it names the part or one of its instances
             const auto sel = cad::part_step_selection(*sem->process, step, sem->rules, *model,
                                                       static_cast<std::uint32_t>(&p - model->parts.data()), feats);
             if (!sel) throw py::value_error(sel.error().message());
-            d["assembly_feature_faces"] = sel->faces;
+            d["assembly_feature_faces"] = assembly = sel->faces;
           }
+          d["dot"] = cad::aag_dot({{p.name, &p.aag, feats, assembly}});
           out.append(d);
         }
         return out;
       },
       py::arg("path"), py::arg("process") = std::string(), py::arg("step") = std::string(),
       py::arg("library") = std::string(), py::arg("rules") = std::string(),
-      "Features of every part of a STEP file (library types, face ids, roles, radii) and, with process/step, "
-      "the assembly-feature faces of that step (library, rules: JSON files instead of the installed ones).");
+      "Features of every part of a STEP file (library types, face ids, roles, radii), its AAG as Graphviz DOT "
+      "(dot: as `interfere features --dot`) and, with process/step, the assembly-feature faces of that step "
+      "(library, rules: JSON files instead of the installed ones).");
   m.def(
       "prepare_step",
       [](const std::filesystem::path& path, const std::string& process_file, const std::string& step,
