@@ -402,7 +402,7 @@ interfere features PART.step [--json REPORT] [--aag] [--dot GRAPH.dot] [--librar
 
 | flag | meaning |
 |---|---|
-| `IN` | mesh (STL/OBJ/PLY/OFF) or, built with OCCT, STEP (`.step`/`.stp`) |
+| `IN` | mesh (STL/OBJ/PLY/OFF/GLB) or, built with OCCT, STEP (`.step`/`.stp`) |
 | `OUT` | `.ply`: face property `uint face_id` + `uchar feature`; `.obj`: `g face_<id>` / `g feature_face_<id>` groups; `.stl` (binary): face id in each facet's attribute word (ids < 65535); `.off`: no ids; `.glb` (binary glTF 2.0, for renderers): one mesh per part and one node per instance with its placement (a part used N times is stored once), per-vertex `NORMAL` (area-weighted, smooth within a B-Rep face so a decimated cylinder still shades round, sharp across face borders; a plain mesh's across its edges sharper than 40°), `_FACE_ID` and `_FEATURE` attributes (vertices split along faces), a root node scaling millimetres to metres for STEP input, `extras.error_bound` per mesh and on the scene (checked with the Khronos glTF validator 2.0.0-dev.3.10 from npm, 2026-11-26, on the casing's two steps, an AP214 assembly, a plain STL and the bunny: no errors, warnings or infos) |
 | `--target N` | triangle budget (> 0, ≤ the input's count) |
 | `--ratio R` | budget as a fraction in (0, 1] |

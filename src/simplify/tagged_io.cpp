@@ -12,6 +12,9 @@
 #include <sstream>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
+#include "../mesh/io/glb.h"
 #include "interfere/core/atomic_file.h"
 
 namespace interfere {
@@ -156,10 +159,41 @@ Expected<std::vector<std::uint32_t>> read_region_file(const std::filesystem::pat
 
 // The comment lines write_tagged_mesh puts before the data: PLY header comments (up to
 // end_header), OBJ comment lines before the first statement.
+namespace {
+
+// A GLB's bound: the scene's extras.error_bound (write_glb: the largest part's, in model units), in
+// the units read_mesh gives (metres where extras.metres_per_unit says the root node scales to them).
+Expected<double> glb_error_bound(const std::filesystem::path& path, std::ifstream& in) {
+  const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  auto chunks = io_detail::split_glb(path.string(), data);
+  if (!chunks) return chunks.error();
+  const auto doc = nlohmann::json::parse(chunks->json, nullptr, false);
+  const Error bad{.file = path.string(), .byte = chunks->json_at,
+                  .reason = "glTF scene extras: error_bound must be a finite number >= 0 (metres_per_unit > 0)"};
+  if (doc.is_discarded()) return Error{.file = path.string(), .byte = chunks->json_at, .reason = "the JSON chunk is not valid JSON"};
+  std::size_t scene = 0;
+  if (doc.contains("scene") && doc["scene"].is_number_unsigned()) scene = doc["scene"].get<std::size_t>();
+  if (!doc.contains("scenes") || !doc["scenes"].is_array() || scene >= doc["scenes"].size()) return -1.0;
+  const auto& extras = doc["scenes"][scene].value("extras", nlohmann::json::object());
+  if (!extras.is_object() || !extras.contains("error_bound")) return -1.0;
+  const auto& b = extras["error_bound"];
+  if (!b.is_number() || !std::isfinite(b.get<double>()) || b.get<double>() < 0) return bad;
+  double scale = 1;
+  if (extras.contains("metres_per_unit")) {
+    const auto& m = extras["metres_per_unit"];
+    if (!m.is_number() || !(m.get<double>() > 0) || !std::isfinite(m.get<double>())) return bad;
+    scale = m.get<double>();
+  }
+  return b.get<double>() * scale;
+}
+
+}  // namespace
+
 Expected<double> read_error_bound(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return Error{.file = path.string(), .reason = "cannot open the mesh file"};
   const std::string ext = lower_ext(path);
+  if (ext == ".glb") return glb_error_bound(path, in);
   const bool ply = ext == ".ply", obj = ext == ".obj";
   if (!ply && !obj) return -1.0;
   const std::string key = ply ? "comment error_bound" : "# error_bound";

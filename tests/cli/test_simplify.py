@@ -480,6 +480,38 @@ class ConservativeClash(unittest.TestCase):
         self.assertEqual(code, 2)
         self.assertIn("bad.obj:1", err)
 
+    def test_glb_outputs_clash_conservatively_as_they_are_placed(self):
+        # A GLB written by simplify is read back (the clash reads glTF) with its bound: a mesh
+        # file's unit is unknown, so nothing is scaled and the bound is the PLY's.
+        a = uv_sphere(lon=120, lat=60, bump=0.0)
+        b = ([(x + 1.999, y, z) for (x, y, z) in a[0]], a[1])
+        for name, mesh in (("ga", a), ("gb", b)):
+            write_obj(name + ".obj", mesh)
+            for ext in ("ply", "glb"):
+                code, _, err = run("simplify", path(name + ".obj"), path(name + "_s." + ext), "--target", "120")
+                self.assertEqual(code, 0, err)
+        code, _, err = run("clash", path("ga_s.glb"), path("gb_s.glb"), "--conservative", "--json", path("g.json"))
+        self.assertEqual(code, 1, err)
+        g = load_json("g.json")["conservative"]
+        code, _, err = run("clash", path("ga_s.ply"), path("gb_s.ply"), "--conservative", "--json", path("p.json"))
+        p = load_json("p.json")["conservative"]
+        self.assertTrue(g["possible_clash"])
+        self.assertEqual(g["error_bound_a"], p["error_bound_a"])
+        self.assertEqual(g["error_bound_b"], p["error_bound_b"])
+        # The same triangles (as floats) wherever they are read.
+        code, out_g, err = run("check", path("ga_s.glb"))
+        self.assertEqual(code, 0, err)
+        self.assertEqual(json.loads(out_g)["triangles"], 120)
+        # A truncated GLB is an input error naming the file; nothing is reported as clear.
+        with open(path("ga_s.glb"), "rb") as f:
+            data = f.read()
+        with open(path("cut.glb"), "wb") as f:
+            f.write(data[:-10])
+        code, _, err = run("clash", path("cut.glb"), path("gb_s.glb"))
+        self.assertEqual(code, 2)
+        self.assertIn("cut.glb", err)
+        self.assertIn("truncated", err)
+
 
 def have_cad():
     global HAVE_CAD

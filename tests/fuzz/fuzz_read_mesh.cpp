@@ -1,6 +1,6 @@
 // Fuzz target for the mesh readers (mesh/io.h): the input bytes are written to a file with each
-// extension (.stl .obj .ply .off, and .bin for detection by content) and read with read_mesh, with
-// and without welding.
+// extension (.stl .obj .ply .off .glb, and .bin for detection by content) and read with read_mesh,
+// with and without welding.
 //
 // Checked on every read (abort = finding):
 //  - no crash, hang, sanitizer report, or allocation out of proportion to the input;
@@ -264,8 +264,9 @@ int entry(const std::uint8_t* data, std::size_t size) {
                                   {"in.obj", Family::obj},
                                   {"in.ply", Family::ply},
                                   {"in.off", Family::off},
+                                  {"in.glb", Family::glb},
                                   {"in.bin", Family::unknown}};
-  Read welded_by_family[5];  // indexed by MeshFamily (unknown stays empty)
+  Read welded_by_family[6];  // indexed by MeshFamily (unknown stays empty)
   const TriMesh* first_ok = nullptr;
   for (const Input& in : kInputs) {
     const fs::path path = work_dir() / in.file;

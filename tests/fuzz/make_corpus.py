@@ -102,6 +102,35 @@ CUBE_V = [(x, y, z) for z in (0.0, 1.0) for y in (0.0, 1.0) for x in (0.0, 1.0)]
 CUBE_Q = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
 
 
+def glb(doc, bin_=b""):
+    """A GLB (binary glTF 2.0): header, JSON chunk (space-padded), BIN chunk (zero-padded)."""
+    import json
+    text = json.dumps(doc).encode()
+    text += b" " * (-len(text) % 4)
+    bin_ += b"\0" * (-len(bin_) % 4)
+    body = struct.pack("<I", len(text)) + b"JSON" + text
+    if bin_:
+        body += struct.pack("<I", len(bin_)) + b"BIN\0" + bin_
+    return b"glTF" + struct.pack("<II", 2, 12 + len(body)) + body
+
+
+def glb_tetra(node=None, index_type=5125, mode=4, edit=None):
+    """The tetrahedron as a GLB: float positions, indices of `index_type`, one node (`node`)."""
+    pos = b"".join(struct.pack("<3f", *v) for v in TETRA_V)
+    fmt = {5121: "B", 5123: "H", 5125: "I"}[index_type]
+    idx = b"".join(struct.pack("<3" + fmt, *f) for f in TETRA_F)
+    doc = {"asset": {"version": "2.0"}, "buffers": [{"byteLength": len(pos) + len(idx) + (-len(idx) % 4)}],
+           "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": len(pos)},
+                           {"buffer": 0, "byteOffset": len(pos), "byteLength": len(idx)}],
+           "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3"},
+                         {"bufferView": 1, "componentType": index_type, "count": 12, "type": "SCALAR"}],
+           "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "mode": mode}]}],
+           "nodes": [node or {"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0}
+    if edit:
+        edit(doc)
+    return glb(doc, pos + idx)
+
+
 def mesh_seeds():
     s = {}
     # STL ASCII
@@ -182,6 +211,18 @@ def mesh_seeds():
     s["ply_count_too_large.ply"] = ply_ascii(TETRA_V, TETRA_F).replace(b"element vertex 4", b"element vertex 4000000000")
     s["ply_ascii_two_corners.ply"] = ply_ascii(TETRA_V, [(0, 1)])
     s["ply_crlf_header.ply"] = ply_ascii(TETRA_V, TETRA_F).replace(b"\n", b"\r\n")
+    # GLB (binary glTF 2.0)
+    s["glb_tetra.glb"] = glb_tetra()
+    s["glb_tetra_trs_u8.glb"] = glb_tetra({"mesh": 0, "translation": [1, 2, 3], "rotation": [0, 0, 0.6, 0.8],
+                                           "scale": [2, 2, 2]}, index_type=5121)
+    s["glb_tetra_matrix_u16.glb"] = glb_tetra({"mesh": 0, "matrix": [0, 1, 0, 0, -1, 0, 0, 0, 0, 0, 1, 0, 5, 0, 0, 1]},
+                                              index_type=5123)
+    s["glb_tetra_truncated.glb"] = glb_tetra()[:-7]
+    s["glb_index_out_of_range.glb"] = glb_tetra().replace(struct.pack("<3I", *TETRA_F[-1]), struct.pack("<3I", 0, 1, 9))
+    s["glb_view_beyond_bin.glb"] = glb_tetra(edit=lambda d: d["bufferViews"][1].update(byteLength=4096))
+    s["glb_node_cycle.glb"] = glb_tetra({"mesh": 0, "children": [0]})
+    s["glb_external_buffer.glb"] = glb_tetra(edit=lambda d: d["buffers"][0].update(uri="tetra.bin"))
+    s["glb_not_json.glb"] = glb_tetra().replace(b'{"asset"', b'{"asset"!', 1)
     # Anything else
     s["empty"] = b""
     s["text_garbage"] = b"hello world\n\x00\x01\x02 solid facet v f 3 ply\n"

@@ -21,6 +21,12 @@
 //  - OFF (also COFF, NOFF, STOFF, ... with extra per-vertex/per-face values ignored): `#` comments,
 //    counts on the keyword line or the next one, polygons fan-triangulated. 4OFF, nOFF and binary
 //    OFF are rejected with an error.
+//  - GLB (binary glTF 2.0; read only): the triangles of the default scene, each mesh instance
+//    placed by its nodes' matrix or translation/rotation/scale (in double), in the file's units
+//    (glTF: metres; `interfere simplify` writes a root node scaling model units to metres). Buffer 0
+//    must be the BIN chunk; TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN primitives are read, points
+//    and lines skipped; sparse accessors, quantized positions and Draco are errors. Write glTF with
+//    write_glb (interfere/simplify/gltf_io.h).
 #pragma once
 #include <filesystem>
 #include <string>
@@ -38,18 +44,19 @@ enum class MeshFormat {
   ply_ascii,
   ply_binary_le,
   ply_binary_be,
-  off
+  off,
+  glb  ///< binary glTF 2.0: read only (the triangles of its default scene, placed)
 };
 
 /// The file family of a format (STL, OBJ, PLY, OFF), without the ASCII/binary flavour.
-enum class MeshFamily { unknown, stl, obj, ply, off };
+enum class MeshFamily { unknown, stl, obj, ply, off, glb };
 MeshFamily mesh_family(MeshFormat f);
 
 /// "stl" (= binary), "stl-ascii"/"stla", "stl-binary"/"stlb", "obj", "ply" (= binary LE),
-/// "ply-ascii", "ply-le", "ply-be", "off", "auto" -> MeshFormat ('_' may replace '-', case is
-/// ignored); automatic if unknown.
+/// "ply-ascii", "ply-le", "ply-be", "off", "glb", "auto" -> MeshFormat ('_' may replace '-', case
+/// is ignored); automatic if unknown.
 MeshFormat mesh_format_from_name(const std::string& name);
-/// "stl-ascii", "stl-binary", "obj", "ply-ascii", "ply-le", "ply-be", "off" or "auto".
+/// "stl-ascii", "stl-binary", "obj", "ply-ascii", "ply-le", "ply-be", "off", "glb" or "auto".
 const char* mesh_format_name(MeshFormat f);
 
 struct ReadOptions {

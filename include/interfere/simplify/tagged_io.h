@@ -20,9 +20,10 @@ Status write_tagged_mesh(const std::filesystem::path& path, const TriMesh& mesh,
                          const std::vector<std::uint32_t>& feature_faces, MeshFormat format = MeshFormat::automatic,
                          double error_bound = -1);
 
-/// The error bound a simplified mesh file carries (see write_tagged_mesh): -1 when it has none
-/// (no such line, or a format that cannot hold one). Errors: an unreadable file, a malformed or
-/// negative value (naming the line).
+/// The error bound a simplified mesh file carries (see write_tagged_mesh; a .glb: write_glb's scene
+/// extras, in metres when the file's root node scales to them, as read_mesh reads it): -1 when it
+/// has none (no such line, or a format that cannot hold one). Errors: an unreadable file, a
+/// malformed or negative value (naming the line or byte).
 Expected<double> read_error_bound(const std::filesystem::path& path);
 
 /// Reads a per-triangle region file: whitespace-separated unsigned integers, one per triangle, `#`

@@ -46,6 +46,8 @@ Expected<TriMesh> read_obj(const std::string& path, std::string_view data, MeshR
 /// The flavour (ASCII / binary LE / binary BE) comes from the header.
 Expected<TriMesh> read_ply(const std::string& path, std::string_view data, MeshReadInfo& info);
 Expected<TriMesh> read_off(const std::string& path, std::string_view data, MeshReadInfo& info);
+/// Binary glTF 2.0 (glb.cpp): the default scene's triangles, placed.
+Expected<TriMesh> read_glb(const std::string& path, std::string_view data, MeshReadInfo& info);
 
 /// Buffered writer over a FILE*; remembers the first failure (errno) instead of failing per call.
 class OutputBuffer {

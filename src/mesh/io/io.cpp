@@ -20,6 +20,7 @@
 
 #include "../weld_internal.h"
 #include "formats.h"
+#include "glb.h"
 #include "interfere/core/atomic_file.h"
 #include "interfere/mesh/validate.h"
 #include "text_reader.h"
@@ -123,11 +124,13 @@ Family family_from_extension(const std::filesystem::path& path) {
   if (ext == ".obj") return Family::obj;
   if (ext == ".ply") return Family::ply;
   if (ext == ".off") return Family::off;
+  if (ext == ".glb") return Family::glb;
   return Family::unknown;
 }
 
 Family family_from_content(std::string_view d) {
   if (d.substr(0, 4) == "ply\n" || d.substr(0, 5) == "ply\r\n") return Family::ply;
+  if (is_glb(d)) return Family::glb;
   if (d.size() >= 84) {
     std::uint32_t n;
     std::memcpy(&n, d.data() + 80, 4);
@@ -203,6 +206,8 @@ MeshFamily mesh_family(MeshFormat f) {
       return MeshFamily::ply;
     case MeshFormat::off:
       return MeshFamily::off;
+    case MeshFormat::glb:
+      return MeshFamily::glb;
     case MeshFormat::automatic:
       break;
   }
@@ -225,6 +230,7 @@ MeshFormat mesh_format_from_name(const std::string& raw) {
   if (n == "ply-be" || n == "ply-binary-be" || n == "ply-binary-big-endian")
     return MeshFormat::ply_binary_be;
   if (n == "off") return MeshFormat::off;
+  if (n == "glb") return MeshFormat::glb;
   return MeshFormat::automatic;
 }
 
@@ -244,6 +250,8 @@ const char* mesh_format_name(MeshFormat f) {
       return "ply-be";
     case MeshFormat::off:
       return "off";
+    case MeshFormat::glb:
+      return "glb";
     default:
       return "auto";
   }
@@ -282,6 +290,9 @@ Expected<TriMesh> read_mesh_impl(const std::filesystem::path& path, const std::s
         break;
       case Family::off:
         result = read_off(name, d, info);
+        break;
+      case Family::glb:
+        result = read_glb(name, d, info);
         break;
       default:
         return Error{name, -1, -1,
@@ -333,12 +344,17 @@ Status write_mesh_impl(const std::filesystem::path& path, const std::string& nam
       case Family::off:
         f = MeshFormat::off;
         break;
+      case Family::glb:
+        f = MeshFormat::glb;
+        break;
       default:
         return Error{name, -1, -1,
                      "cannot tell the mesh format from the extension '" +
                          path.extension().string() + "'; set WriteOptions::format"};
     }
   }
+  if (f == MeshFormat::glb)
+    return Error{name, -1, -1, "write_mesh does not write glTF: use write_glb (interfere/simplify/gltf_io.h)"};
   const bool ply_float = options.ply_float && mesh_family(f) == Family::ply;
   if (Status s = check_writable(name, mesh, f, ply_float); !s) return s;
 

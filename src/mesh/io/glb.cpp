@@ -1,0 +1,391 @@
+// GLB (binary glTF 2.0) reader: the triangles of the default scene, every mesh instance placed by
+// its nodes' transforms (Khronos glTF 2.0 specification §3.5 "Nodes and hierarchy", §3.6 "Binary
+// data storage", §3.7 "Geometry"), so that a digital-twin model (`interfere simplify ... OUT.glb`, or
+// any renderer's GLB) can be clash-checked as it is placed. Coordinates are the file's (glTF: metres).
+//
+// Read: buffer 0 as the GLB's BIN chunk (buffers with a `uri`, external or data:, are errors),
+// buffer views with byteStride, accessors (FLOAT VEC3 positions; UNSIGNED_BYTE/SHORT/INT indices or
+// none), primitives of mode TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN (points and lines carry no
+// surface and are skipped), node `matrix` or translation/rotation/scale composed in double. Sparse
+// accessors, quantized positions and Draco compression are errors naming the accessor or the
+// extension. Every index, offset and length is checked before it is used.
+#include "glb.h"
+
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "formats.h"
+
+namespace interfere::io_detail {
+namespace {
+
+std::uint32_t u32_at(std::string_view d, std::size_t at) {
+  std::uint32_t v;
+  std::memcpy(&v, d.data() + at, 4);
+  if constexpr (std::endian::native == std::endian::big) v = __builtin_bswap32(v);
+  return v;
+}
+
+using Json = nlohmann::json;
+using Mat4 = std::array<double, 16>;  // column-major, as glTF stores it
+
+Mat4 identity() { return {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}; }
+
+Mat4 multiply(const Mat4& a, const Mat4& b) {
+  Mat4 c{};
+  for (int col = 0; col < 4; ++col)
+    for (int row = 0; row < 4; ++row) {
+      double s = 0;
+      for (int k = 0; k < 4; ++k) s += a[k * 4 + row] * b[col * 4 + k];
+      c[col * 4 + row] = s;
+    }
+  return c;
+}
+
+// The reader of one file: the document, the BIN chunk, and errors that name the JSON path.
+class GlbReader {
+ public:
+  GlbReader(const std::string& path, const GlbChunks& chunks, Json doc)
+      : path_(path), chunks_(chunks), doc_(std::move(doc)) {}
+
+  Expected<TriMesh> read() {
+    if (!doc_.is_object()) return fail("", "the JSON chunk is not an object");
+    if (const Json* ext = member(doc_, "extensionsRequired"); ext && ext->is_array())
+      for (const Json& e : *ext)
+        if (e.is_string()) return fail("extensionsRequired", "extension " + e.get<std::string>() + " is not supported");
+    if (Status s = load_buffer(); !s) return s.error();
+    // The scene: `scene`, else scene 0; with no scenes, every root node (a node no other names).
+    std::vector<std::size_t> roots;
+    const Json* nodes = member(doc_, "nodes");
+    const std::size_t node_count = nodes && nodes->is_array() ? nodes->size() : 0;
+    if (const Json* scenes = member(doc_, "scenes"); scenes && scenes->is_array() && !scenes->empty()) {
+      std::size_t s = 0;
+      if (const Json* sc = member(doc_, "scene")) {
+        if (!index_of(*sc, scenes->size(), s)) return fail("scene", "not an index of scenes");
+      }
+      const Json& scene = (*scenes)[s];
+      if (const Json* list = member(scene, "nodes")) {
+        if (!list->is_array()) return fail("scenes[" + std::to_string(s) + "].nodes", "not an array");
+        for (std::size_t k = 0; k < list->size(); ++k) {
+          std::size_t n = 0;
+          if (!index_of((*list)[k], node_count, n))
+            return fail("scenes[" + std::to_string(s) + "].nodes[" + std::to_string(k) + "]", "not an index of nodes");
+          roots.push_back(n);
+        }
+      }
+    } else {
+      std::vector<char> child(node_count, 0);
+      for (std::size_t n = 0; n < node_count; ++n)
+        if (const Json* c = member((*nodes)[n], "children"); c && c->is_array())
+          for (const Json& x : *c)
+            if (std::size_t k = 0; index_of(x, node_count, k)) child[k] = 1;
+      for (std::size_t n = 0; n < node_count; ++n)
+        if (!child[n]) roots.push_back(n);
+    }
+    visited_.assign(node_count, 0);
+    for (std::size_t r : roots)
+      if (Status s = visit(r, identity()); !s) return s.error();
+    if (mesh_.triangles.empty()) return fail("", "no triangles: the scene has no triangle primitives");
+    return std::move(mesh_);
+  }
+
+ private:
+  Error fail(const std::string& where, const std::string& why) const {
+    return byte_error(path_, chunks_.json_at, "glTF " + (where.empty() ? std::string("document") : where) + ": " + why);
+  }
+  static const Json* member(const Json& j, const char* key) {
+    if (!j.is_object()) return nullptr;
+    const auto it = j.find(key);
+    return it == j.end() ? nullptr : &*it;
+  }
+  static bool index_of(const Json& j, std::size_t size, std::size_t& out) {
+    if (!j.is_number_unsigned() && !(j.is_number_integer() && j.get<std::int64_t>() >= 0)) return false;
+    const auto v = j.get<std::uint64_t>();
+    if (v >= size) return false;
+    out = static_cast<std::size_t>(v);
+    return true;
+  }
+  // An unsigned integer member (default when absent).
+  bool count_of(const Json& j, const char* key, std::uint64_t& out, std::uint64_t fallback) const {
+    const Json* m = member(j, key);
+    if (!m) {
+      out = fallback;
+      return true;
+    }
+    if (!m->is_number_unsigned() && !(m->is_number_integer() && m->get<std::int64_t>() >= 0)) return false;
+    out = m->get<std::uint64_t>();
+    return true;
+  }
+
+  Status load_buffer() {
+    const Json* buffers = member(doc_, "buffers");
+    if (!buffers) return {};
+    if (!buffers->is_array()) return fail("buffers", "not an array");
+    for (std::size_t b = 0; b < buffers->size(); ++b) {
+      const std::string where = "buffers[" + std::to_string(b) + "]";
+      if (member((*buffers)[b], "uri"))
+        return fail(where, "a buffer with a uri (an external file or a data: URI) is not supported: embed it in the GLB's BIN chunk");
+      if (b > 0) return fail(where, "only buffer 0 (the BIN chunk) can be embedded in a GLB");
+      std::uint64_t length = 0;
+      if (!count_of((*buffers)[b], "byteLength", length, 0)) return fail(where + ".byteLength", "not a length");
+      if (length > chunks_.bin.size())
+        return fail(where + ".byteLength", std::to_string(length) + " bytes, but the BIN chunk has " +
+                                               std::to_string(chunks_.bin.size()));
+    }
+    return {};
+  }
+
+  // The bytes of accessor `a` as (pointer to element 0, stride, count), checked against its view
+  // and the BIN chunk; `components` and `component_bytes` are the element's.
+  struct View {
+    const char* first = nullptr;
+    std::uint64_t stride = 0, count = 0;
+    std::uint32_t component_type = 0;
+  };
+  Expected<View> accessor(std::size_t a, const std::string& type, bool index) {
+    const Json* accessors = member(doc_, "accessors");
+    const std::string where = "accessors[" + std::to_string(a) + "]";
+    if (!accessors || !accessors->is_array() || a >= accessors->size()) return fail(where, "no such accessor");
+    const Json& acc = (*accessors)[a];
+    if (member(acc, "sparse")) return fail(where, "sparse accessors are not supported");
+    const Json* t = member(acc, "type");
+    if (!t || !t->is_string() || t->get<std::string>() != type)
+      return fail(where + ".type", "must be " + type + (index ? " (indices)" : " (POSITION)"));
+    std::uint64_t ct = 0, count = 0, offset = 0;
+    if (!count_of(acc, "componentType", ct, 0)) return fail(where + ".componentType", "not a number");
+    std::uint64_t size = 0;
+    if (index) {
+      size = ct == 5121 ? 1 : ct == 5123 ? 2 : ct == 5125 ? 4 : 0;
+      if (size == 0) return fail(where + ".componentType", std::to_string(ct) + " is not an unsigned byte, short or int");
+    } else {
+      if (ct != 5126)
+        return fail(where + ".componentType",
+                    std::to_string(ct) + ": positions must be FLOAT (5126; quantized positions are not supported)");
+      size = 12;
+    }
+    if (!count_of(acc, "count", count, 0) || count == 0) return fail(where + ".count", "must be at least 1");
+    if (!count_of(acc, "byteOffset", offset, 0)) return fail(where + ".byteOffset", "not an offset");
+    std::size_t v = 0;
+    const Json* views = member(doc_, "bufferViews");
+    const Json* bv = member(acc, "bufferView");
+    if (!bv) return fail(where, "an accessor without a bufferView (all zeros) carries no geometry");
+    if (!views || !views->is_array() || !index_of(*bv, views->size(), v))
+      return fail(where + ".bufferView", "not an index of bufferViews");
+    const Json& view = (*views)[v];
+    const std::string vwhere = "bufferViews[" + std::to_string(v) + "]";
+    std::uint64_t buffer = 0, voffset = 0, vlength = 0, stride = 0;
+    if (!count_of(view, "buffer", buffer, 0) || buffer != 0) return fail(vwhere + ".buffer", "must be 0 (the BIN chunk)");
+    if (!count_of(view, "byteOffset", voffset, 0)) return fail(vwhere + ".byteOffset", "not an offset");
+    if (!count_of(view, "byteLength", vlength, 0)) return fail(vwhere + ".byteLength", "not a length");
+    if (!count_of(view, "byteStride", stride, 0) || (stride != 0 && (stride < size || stride > 252)))
+      return fail(vwhere + ".byteStride", "must lie in [element size, 252]");
+    if (stride == 0 || index) stride = size;  // (indices are tightly packed)
+    const std::uint64_t bin = chunks_.bin.size();
+    if (voffset > bin || vlength > bin - voffset)
+      return fail(vwhere, "bytes " + std::to_string(voffset) + " + " + std::to_string(vlength) + " lie beyond the BIN chunk (" +
+                              std::to_string(bin) + " bytes)");
+    // The last element's end: offset + (count - 1) * stride + size, overflow-checked.
+    if (count - 1 > (vlength - std::min(vlength, offset)) / stride || offset > vlength ||
+        offset + (count - 1) * stride + size > vlength)
+      return fail(where, std::to_string(count) + " elements from byte " + std::to_string(offset) +
+                             " do not fit " + vwhere + " (" + std::to_string(vlength) + " bytes)");
+    return View{chunks_.bin.data() + voffset + offset, stride, count, static_cast<std::uint32_t>(ct)};
+  }
+
+  Status primitive(const Json& prim, const std::string& where, const Mat4& m) {
+    std::uint64_t mode = 4;
+    if (!count_of(prim, "mode", mode, 4) || mode > 6) return fail(where + ".mode", "not a primitive mode");
+    if (mode < 4) return {};  // points and lines: no surface
+    if (const Json* ext = member(prim, "extensions"); ext && member(*ext, "KHR_draco_mesh_compression"))
+      return fail(where, "Draco-compressed primitives are not supported");
+    const Json* attrs = member(prim, "attributes");
+    const Json* pos = attrs ? member(*attrs, "POSITION") : nullptr;
+    std::size_t pa = 0;
+    if (!pos || !index_of(*pos, std::numeric_limits<std::size_t>::max(), pa))
+      return fail(where + ".attributes.POSITION", "missing");
+    auto pv = accessor(pa, "VEC3", false);
+    if (!pv) return pv.error();
+    const auto base = static_cast<std::uint32_t>(mesh_.positions.size());
+    if (pv->count > std::uint64_t{0xffffffffu} - base) return fail(where, "too many vertices");
+    for (std::uint64_t i = 0; i < pv->count; ++i) {
+      float f[3];
+      std::memcpy(f, pv->first + i * pv->stride, 12);
+      double p[3];
+      for (int k = 0; k < 3; ++k) {
+        std::uint32_t bits;
+        std::memcpy(&bits, &f[k], 4);
+        if constexpr (std::endian::native == std::endian::big) {
+          bits = __builtin_bswap32(bits);
+          std::memcpy(&f[k], &bits, 4);
+        }
+        if (!std::isfinite(f[k]))
+          return fail("accessors[" + std::to_string(pa) + "]", "vertex " + std::to_string(i) + " is not finite");
+      }
+      for (int r = 0; r < 3; ++r) p[r] = m[r] * f[0] + m[4 + r] * f[1] + m[8 + r] * f[2] + m[12 + r];
+      const Vec3 q{p[0], p[1], p[2]};
+      if (!is_finite(q)) return fail(where, "vertex " + std::to_string(i) + " is not finite once placed");
+      mesh_.positions.push_back(q);
+    }
+    // Indices: the accessor, or 0..count-1.
+    std::vector<std::uint32_t> idx;
+    if (const Json* ind = member(prim, "indices")) {
+      std::size_t ia = 0;
+      if (!index_of(*ind, std::numeric_limits<std::size_t>::max(), ia)) return fail(where + ".indices", "not an index");
+      auto iv = accessor(ia, "SCALAR", true);
+      if (!iv) return iv.error();
+      idx.resize(iv->count);
+      for (std::uint64_t i = 0; i < iv->count; ++i) {
+        const char* e = iv->first + i * iv->stride;
+        std::uint32_t v = 0;
+        if (iv->component_type == 5121) v = static_cast<unsigned char>(*e);
+        else if (iv->component_type == 5123) v = static_cast<std::uint32_t>(static_cast<unsigned char>(e[0]) | (static_cast<unsigned char>(e[1]) << 8));
+        else v = u32_at({e, 4}, 0);
+        if (v >= pv->count)
+          return fail("accessors[" + std::to_string(ia) + "]", "index " + std::to_string(i) + " is " + std::to_string(v) +
+                                                                    ", beyond the " + std::to_string(pv->count) + " vertices");
+        idx[i] = v;
+      }
+    } else {
+      idx.resize(pv->count);
+      for (std::uint32_t i = 0; i < idx.size(); ++i) idx[i] = i;
+    }
+    const auto tri = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+      mesh_.triangles.push_back({base + a, base + b, base + c});
+    };
+    if (mode == 4) {
+      if (idx.size() % 3 != 0) return fail(where, std::to_string(idx.size()) + " indices: not a multiple of 3 (TRIANGLES)");
+      for (std::size_t i = 0; i + 2 < idx.size(); i += 3) tri(idx[i], idx[i + 1], idx[i + 2]);
+    } else if (mode == 5) {  // strip: every other triangle reversed to keep the winding
+      for (std::size_t i = 0; i + 2 < idx.size(); ++i)
+        i % 2 == 0 ? tri(idx[i], idx[i + 1], idx[i + 2]) : tri(idx[i + 1], idx[i], idx[i + 2]);
+    } else {  // fan
+      for (std::size_t i = 1; i + 1 < idx.size(); ++i) tri(idx[0], idx[i], idx[i + 1]);
+    }
+    return {};
+  }
+
+  Expected<Mat4> local(const Json& node, const std::string& where) const {
+    const auto numbers = [&](const char* key, std::size_t n, std::vector<double>& out) -> Status {
+      const Json* v = member(node, key);
+      if (!v) return {};
+      if (!v->is_array() || v->size() != n) return fail(where + "." + key, "must hold " + std::to_string(n) + " numbers");
+      for (const Json& x : *v) {
+        if (!x.is_number() || !std::isfinite(x.get<double>())) return fail(where + "." + key, "not a finite number");
+        out.push_back(x.get<double>());
+      }
+      return {};
+    };
+    std::vector<double> mat, t, r, s;
+    if (Status st = numbers("matrix", 16, mat); !st) return st.error();
+    if (!mat.empty()) {
+      Mat4 m;
+      std::copy(mat.begin(), mat.end(), m.begin());
+      return m;
+    }
+    if (Status st = numbers("translation", 3, t); !st) return st.error();
+    if (Status st = numbers("rotation", 4, r); !st) return st.error();
+    if (Status st = numbers("scale", 3, s); !st) return st.error();
+    // T * R * S (§3.5.3), the quaternion (x, y, z, w) normalised.
+    double qx = 0, qy = 0, qz = 0, qw = 1;
+    if (!r.empty()) {
+      const double l = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2] + r[3] * r[3]);
+      if (!(l > 0)) return fail(where + ".rotation", "a zero quaternion");
+      qx = r[0] / l, qy = r[1] / l, qz = r[2] / l, qw = r[3] / l;
+    }
+    const double sx = s.empty() ? 1 : s[0], sy = s.empty() ? 1 : s[1], sz = s.empty() ? 1 : s[2];
+    Mat4 m = identity();
+    const double R[3][3] = {{1 - 2 * (qy * qy + qz * qz), 2 * (qx * qy - qz * qw), 2 * (qx * qz + qy * qw)},
+                            {2 * (qx * qy + qz * qw), 1 - 2 * (qx * qx + qz * qz), 2 * (qy * qz - qx * qw)},
+                            {2 * (qx * qz - qy * qw), 2 * (qy * qz + qx * qw), 1 - 2 * (qx * qx + qy * qy)}};
+    const double S[3] = {sx, sy, sz};
+    for (int c = 0; c < 3; ++c)
+      for (int row = 0; row < 3; ++row) m[c * 4 + row] = R[row][c] * S[c];
+    if (!t.empty()) m[12] = t[0], m[13] = t[1], m[14] = t[2];
+    return m;
+  }
+
+  Status visit(std::size_t n, const Mat4& parent, int depth = 0) {
+    const Json& nodes = doc_["nodes"];
+    const std::string where = "nodes[" + std::to_string(n) + "]";
+    if (visited_[n]) return fail(where, "reached twice (glTF nodes form a tree: one parent each, no cycles)");
+    if (depth > kMaxDepth) return fail(where, "nested deeper than " + std::to_string(kMaxDepth) + " nodes");
+    visited_[n] = 1;
+    const Json& node = nodes[n];
+    auto l = local(node, where);
+    if (!l) return l.error();
+    const Mat4 m = multiply(parent, *l);
+    if (const Json* mi = member(node, "mesh")) {
+      const Json* meshes = member(doc_, "meshes");
+      std::size_t k = 0;
+      if (!meshes || !meshes->is_array() || !index_of(*mi, meshes->size(), k)) return fail(where + ".mesh", "not an index of meshes");
+      const Json* prims = member((*meshes)[k], "primitives");
+      const std::string mw = "meshes[" + std::to_string(k) + "].primitives";
+      if (!prims || !prims->is_array()) return fail(mw, "missing");
+      for (std::size_t p = 0; p < prims->size(); ++p)
+        if (Status s = primitive((*prims)[p], mw + "[" + std::to_string(p) + "]", m); !s) return s;
+    }
+    if (const Json* children = member(node, "children")) {
+      if (!children->is_array()) return fail(where + ".children", "not an array");
+      for (std::size_t c = 0; c < children->size(); ++c) {
+        std::size_t k = 0;
+        if (!index_of((*children)[c], nodes.size(), k))
+          return fail(where + ".children[" + std::to_string(c) + "]", "not an index of nodes");
+        if (Status s = visit(k, m, depth + 1); !s) return s;
+      }
+    }
+    return {};
+  }
+
+  static constexpr int kMaxDepth = 1000;  // (the recursion's stack)
+  const std::string& path_;
+  GlbChunks chunks_;
+  Json doc_;
+  TriMesh mesh_;
+  std::vector<char> visited_;
+};
+
+}  // namespace
+
+Expected<GlbChunks> split_glb(const std::string& path, std::string_view d) {
+  if (d.size() < 12 || !is_glb(d)) return byte_error(path, 0, "not a GLB file (no 'glTF' header)");
+  if (const std::uint32_t version = u32_at(d, 4); version != 2)
+    return byte_error(path, 4, "GLB version " + std::to_string(version) + ": only glTF 2.0 is supported");
+  if (const std::uint32_t length = u32_at(d, 8); length != d.size())
+    return byte_error(path, 8, "the header gives " + std::to_string(length) + " bytes, the file has " + std::to_string(d.size()) +
+                                   (length > d.size() ? " (truncated)" : ""));
+  GlbChunks out;
+  std::size_t at = 12;
+  for (int chunk = 0; at < d.size(); ++chunk) {
+    if (d.size() - at < 8) return byte_error(path, static_cast<std::int64_t>(at), "truncated chunk header");
+    const std::uint32_t length = u32_at(d, at), type = u32_at(d, at + 4);
+    if (length > d.size() - at - 8)
+      return byte_error(path, static_cast<std::int64_t>(at), "chunk of " + std::to_string(length) + " bytes runs past the end");
+    const std::string_view body = d.substr(at + 8, length);
+    if (chunk == 0) {
+      if (type != 0x4E4F534Au) return byte_error(path, static_cast<std::int64_t>(at + 4), "the first chunk is not JSON");
+      out.json = body, out.json_at = static_cast<std::int64_t>(at + 8);
+    } else if (chunk == 1 && type == 0x004E4942u) {
+      out.bin = body, out.bin_at = static_cast<std::int64_t>(at + 8);
+    }  // (other chunk types are skipped)
+    at += 8 + std::size_t{length};
+  }
+  if (out.json_at == 0) return byte_error(path, 12, "no JSON chunk");
+  return out;
+}
+
+Expected<TriMesh> read_glb(const std::string& path, std::string_view data, MeshReadInfo& info) {
+  info.format = MeshFormat::glb;
+  auto chunks = split_glb(path, data);
+  if (!chunks) return chunks.error();
+  Json doc = Json::parse(chunks->json, nullptr, false);
+  if (doc.is_discarded()) return byte_error(path, chunks->json_at, "the JSON chunk is not valid JSON");
+  return GlbReader(path, *chunks, std::move(doc)).read();
+}
+
+}  // namespace interfere::io_detail
