@@ -152,6 +152,12 @@ class Simplify(unittest.TestCase):
             doc = json.loads(data[20:20 + n])
             self.assertEqual(len(doc["meshes"]), 1)
             self.assertEqual(len(doc["nodes"]), 3)  # root + 2 instances
+            back, info = itf.read_mesh(out, return_info=True)  # both instances, placed
+            self.assertEqual(info["format"], "glb")
+            self.assertEqual(len(back.triangles), 400)
+            xs = [p[0] for p in back.positions]
+            self.assertGreater(max(xs), 5.5)
+            self.assertAlmostEqual(itf.read_error_bound(out), r.error_bound)  # metres: unscaled
             with self.assertRaises(ValueError):
                 itf.write_glb(out, [("ball", r.mesh, [], [], -1)], [("x", 4, moved)])
 
