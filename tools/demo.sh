@@ -27,8 +27,9 @@ echo "report written to out/report.json"
 # The CAD pipeline (issue #6) on the bundled casing, the paper's case: 35,516 triangles at this
 # deflection, simplified to 5,200 keeping the screw-tightening features of process step P2.
 if ./build/apps/cli/interfere features --help >/dev/null 2>&1; then
-  ./build/apps/cli/interfere features data/examples/casing.step --json out/features.json
+  ./build/apps/cli/interfere features data/examples/casing.step --json out/features.json \
+    --process data/examples/casing_process.json --step P2 --dot out/casing_aag.dot
   ./build/apps/cli/interfere simplify data/examples/casing.step out/casing_P2.ply --linear-deflection 0.0166134 \
     --target 5200 --step P2 --process data/examples/casing_process.json --json out/simplify.json
-  echo "reports written to out/features.json and out/simplify.json"
+  echo "reports written to out/features.json and out/simplify.json (AAG drawing: out/casing_aag.dot)"
 fi
