@@ -418,6 +418,17 @@ class Simplify(unittest.TestCase):
         # Tessellation options on a mesh would be ignored: an error.
         self.assert_input_error("simplify", s, o, "--target", "10", "--angular-deflection", "0.2", output=o,
                                 message="STEP input")
+        # Options are checked before the input is read: the option's error, not the file's.
+        for extra, message in ((["--sharp-angle", "200"], "--sharp-angle"), (["--max-error", "-1"], "--max-error"),
+                               (["--seams", "some"], "--seams"), (["--features", "1,x", "--sharp-angle", "30"], "not a face/region id"),
+                               (["--max-error-rel", "2"], "--max-error-rel")):
+            self.assert_input_error("simplify", path("empty.obj"), o, "--target", "10", *extra, output=o,
+                                    message=message)
+        # --parts-dir is not created when the run fails its checks.
+        code, _, err = run("simplify", os.path.join(DATA, "assembly.step"), o, "--target", "10", "--seams", "x",
+                           "--parts-dir", path("never_made"))
+        self.assertEqual(code, 2)
+        self.assertFalse(os.path.exists(path("never_made")))
         # --lock without feature faces keeps nothing: a warning (stderr and report).
         code, _, err = run("simplify", s, path("nolock.ply"), "--target", "100", "--lock", "--json",
                            path("nolock.json"))
