@@ -164,13 +164,21 @@ namespace {
 // A GLB's bound: the scene's extras.error_bound (write_glb: the largest part's, in model units), in
 // the units read_mesh gives (metres where extras.metres_per_unit says the root node scales to them).
 Expected<double> glb_error_bound(const std::filesystem::path& path, std::ifstream& in) {
-  const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  auto chunks = io_detail::split_glb(path.string(), data);
-  if (!chunks) return chunks.error();
-  const auto doc = nlohmann::json::parse(chunks->json, nullptr, false);
-  const Error bad{.file = path.string(), .byte = chunks->json_at,
+  // The header and the JSON chunk only (the BIN chunk, the bulk of the file, is not needed).
+  const std::string file = path.string();
+  std::string head(20, '\0');
+  in.read(head.data(), 20);
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  std::error_code ec;
+  const std::uint64_t size = std::filesystem::file_size(path, ec);
+  auto length = io_detail::glb_json_length(file, head, ec ? 0 : size);
+  if (!length) return length.error();
+  std::string json(*length, '\0');
+  if (!in.read(json.data(), *length)) return Error{.file = file, .byte = 20, .reason = "truncated JSON chunk"};
+  const auto doc = nlohmann::json::parse(json, nullptr, false);
+  if (doc.is_discarded()) return Error{.file = file, .byte = 20, .reason = "the JSON chunk is not valid JSON"};
+  const Error bad{.file = file, .byte = 20,
                   .reason = "glTF scene extras: error_bound must be a finite number >= 0 (metres_per_unit > 0)"};
-  if (doc.is_discarded()) return Error{.file = path.string(), .byte = chunks->json_at, .reason = "the JSON chunk is not valid JSON"};
   std::size_t scene = 0;
   if (doc.contains("scene") && doc["scene"].is_number_unsigned()) scene = doc["scene"].get<std::size_t>();
   if (!doc.contains("scenes") || !doc["scenes"].is_array() || scene >= doc["scenes"].size()) return -1.0;

@@ -203,6 +203,23 @@ TEST(GlbRead, MalformedFilesAreErrorsNamingWhere) {
                "index");
   expect_error(glb(square_doc({{"mesh", 0}}, 20, 5, 5125, 4), raw(kSquare) + idx.substr(0, 20)), "not a multiple of 3",
                "triples");
+  // read_error_bound reads the header and the JSON chunk only, checked alike; a bad bound is an error.
+  const auto bound_of = [&](const std::string& name, const std::string& bytes) {
+    const auto f = tmp(name);
+    std::ofstream(f, std::ios::binary) << bytes;
+    return read_error_bound(f);
+  };
+  EXPECT_EQ(*bound_of("nb.glb", good), -1.0);
+  auto cut = bound_of("cut.glb", good.substr(0, good.size() - 8));
+  ASSERT_FALSE(cut.has_value());
+  EXPECT_NE(cut.error().reason.find("truncated"), std::string::npos);
+  for (const char* bad : {"-1", "\"x\""}) {
+    auto doc = square_doc({{"mesh", 0}}, 0, 0, 0, 6);
+    doc["scenes"][0]["extras"]["error_bound"] = nlohmann::json::parse(bad);
+    auto b = bound_of("eb.glb", glb(doc, raw(kSquare)));
+    ASSERT_FALSE(b.has_value()) << bad;
+    EXPECT_NE(b.error().message().find("byte 20: glTF scene extras: error_bound"), std::string::npos) << b.error().message();
+  }
   // write_mesh does not write glTF (write_glb does).
   const Status s = write_mesh(tmp("out.glb"), make_box({0, 0, 0}, {1, 1, 1}));
   ASSERT_FALSE(s.ok());

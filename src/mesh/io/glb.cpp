@@ -352,30 +352,34 @@ class GlbReader {
 
 }  // namespace
 
-Expected<GlbChunks> split_glb(const std::string& path, std::string_view d) {
+Expected<std::uint32_t> glb_json_length(const std::string& path, std::string_view d, std::uint64_t size) {
   if (d.size() < 12 || !is_glb(d)) return byte_error(path, 0, "not a GLB file (no 'glTF' header)");
   if (const std::uint32_t version = u32_at(d, 4); version != 2)
     return byte_error(path, 4, "GLB version " + std::to_string(version) + ": only glTF 2.0 is supported");
-  if (const std::uint32_t length = u32_at(d, 8); length != d.size())
-    return byte_error(path, 8, "the header gives " + std::to_string(length) + " bytes, the file has " + std::to_string(d.size()) +
-                                   (length > d.size() ? " (truncated)" : ""));
+  if (const std::uint32_t length = u32_at(d, 8); length != size)
+    return byte_error(path, 8, "the header gives " + std::to_string(length) + " bytes, the file has " + std::to_string(size) +
+                                   (length > size ? " (truncated)" : ""));
+  if (d.size() < 20) return byte_error(path, 12, "no JSON chunk");
+  const std::uint32_t length = u32_at(d, 12);
+  if (u32_at(d, 16) != 0x4E4F534Au) return byte_error(path, 16, "the first chunk is not JSON");
+  if (length > size - 20) return byte_error(path, 12, "chunk of " + std::to_string(length) + " bytes runs past the end");
+  return length;
+}
+
+Expected<GlbChunks> split_glb(const std::string& path, std::string_view d) {
+  auto json_length = glb_json_length(path, d.substr(0, 20), d.size());
+  if (!json_length) return json_length.error();
   GlbChunks out;
-  std::size_t at = 12;
-  for (int chunk = 0; at < d.size(); ++chunk) {
+  out.json = d.substr(20, *json_length), out.json_at = 20;
+  std::size_t at = 20 + std::size_t{*json_length};
+  for (int chunk = 1; at < d.size(); ++chunk) {
     if (d.size() - at < 8) return byte_error(path, static_cast<std::int64_t>(at), "truncated chunk header");
     const std::uint32_t length = u32_at(d, at), type = u32_at(d, at + 4);
     if (length > d.size() - at - 8)
       return byte_error(path, static_cast<std::int64_t>(at), "chunk of " + std::to_string(length) + " bytes runs past the end");
-    const std::string_view body = d.substr(at + 8, length);
-    if (chunk == 0) {
-      if (type != 0x4E4F534Au) return byte_error(path, static_cast<std::int64_t>(at + 4), "the first chunk is not JSON");
-      out.json = body, out.json_at = static_cast<std::int64_t>(at + 8);
-    } else if (chunk == 1 && type == 0x004E4942u) {
-      out.bin = body, out.bin_at = static_cast<std::int64_t>(at + 8);
-    }  // (other chunk types are skipped)
-    at += 8 + std::size_t{length};
+    if (chunk == 1 && type == 0x004E4942u) out.bin = d.substr(at + 8, length), out.bin_at = static_cast<std::int64_t>(at + 8);
+    at += 8 + std::size_t{length};  // (other chunk types are skipped)
   }
-  if (out.json_at == 0) return byte_error(path, 12, "no JSON chunk");
   return out;
 }
 

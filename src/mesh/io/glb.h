@@ -19,6 +19,11 @@ struct GlbChunks {
 /// specification asks). Errors name the byte offset.
 Expected<GlbChunks> split_glb(const std::string& path, std::string_view data);
 
+/// The length of the JSON chunk, which starts at byte 20, from the file's first 20 bytes (`head`)
+/// and its size: the header and the JSON chunk's header checked as split_glb does, so that the
+/// JSON can be read without the rest of the file.
+Expected<std::uint32_t> glb_json_length(const std::string& path, std::string_view head, std::uint64_t file_size);
+
 /// True when the bytes start with the GLB magic "glTF".
 inline bool is_glb(std::string_view data) { return data.substr(0, 4) == "glTF"; }
 
