@@ -16,15 +16,15 @@ struct CheckOptions {
 int run_check(const CheckOptions& o) {
   check_output(o.json, {}, "--json");
   check_distinct_files({{"FILE", o.file}}, {{"--json", o.json}});
-  MeshReadInfo info;
-  auto m = read_mesh(o.file, {}, &info);
-  if (!m) throw InputError(m.error());
+  PartMesh part = read_part_mesh(o.file);
+  const MeshReadInfo& info = part.info;
+  const TriMesh* m = &part.mesh;
   const MeshStats s = mesh_stats(*m);
   const Aabb box = m->bounds();
   nlohmann::json j = {{"interfere_version", INTERFERE_VERSION},
                       {"command", "check"},
                       {"file", o.file},
-                      {"format", mesh_format_name(info.format)},
+                      {"format", part.format},
                       {"polygons_split", info.polygons_split},
                       {"vertices_before_weld", info.vertices_before_weld},
                       {"bbox", {{"min", {box.lo.x, box.lo.y, box.lo.z}}, {"max", {box.hi.x, box.hi.y, box.hi.z}}}}};

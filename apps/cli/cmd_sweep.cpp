@@ -131,16 +131,14 @@ int run_sweep(const SweepOptions& o) {
     const Status frames = check_reference_frames(path, o.path);
     if (!frames) throw InputError(frames.error());
   }
-  MeshReadInfo info;
-  auto mesh = read_mesh(o.workpiece, {}, &info);
-  if (!mesh) throw InputError(mesh.error());
+  PartMesh mesh = read_part_mesh(o.workpiece);
   const double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_read).count();
 
   // ---- compute ----
   Workpiece w;
   {
     Progress p("workpiece hierarchy (" + std::string(hierarchy_name(hierarchy)) + ")");
-    w = prepare_workpiece(std::move(mesh.value()), shape,
+    w = prepare_workpiece(std::move(mesh.mesh), shape,
                           {.hierarchy = hierarchy, .patch_volume_ratio = o.patch_rule, .patch_volume = o.patch_size});
   }
   SweepResult r;
@@ -167,7 +165,7 @@ int run_sweep(const SweepOptions& o) {
     j["version"] = INTERFERE_VERSION;
     j["command"] = "sweep";
     j["units"] = o.units;
-    j["inputs"] = {{"workpiece", {{"file", o.workpiece}, {"format", mesh_format_name(info.format)},
+    j["inputs"] = {{"workpiece", {{"file", o.workpiece}, {"format", mesh.format},
                                   {"triangles", w.mesh.num_triangles()}, {"vertices", w.mesh.num_vertices()}}},
                    {"path", {{"file", o.path}, {"points", path.size()}, {"kind", path.joint_space ? "joints" : "poses"},
                              {"columns", path.columns}}}};

@@ -39,11 +39,10 @@ LoadedPart read_part(const PartSpec& spec, const std::string& label, TriMesh& me
   }
   {
     Progress progress("reading " + label + " (" + spec.file + ")");
-    MeshReadInfo info;
-    auto m = read_mesh(spec.file, {}, &info);
-    if (!m) throw InputError(m.error());
-    mesh = std::move(*m);
-    p.format = info.format;
+    PartMesh m = read_part_mesh(spec.file);
+    mesh = std::move(m.mesh);
+    p.format = m.format;
+    p.warnings = std::move(m.warnings);
     p.read_seconds = progress.seconds();
   }
   if (!p.transform.is_identity()) mesh = transformed(mesh, p.transform);
@@ -251,7 +250,7 @@ nlohmann::json stats_json(const MeshStats& s) {
 }
 
 nlohmann::json part_json(const LoadedPart& p) {
-  nlohmann::json j = {{"file", p.file}, {"format", mesh_format_name(p.format)}};
+  nlohmann::json j = {{"file", p.file}, {"format", p.format}};
   j.update(stats_json(p.model.stats));
   j.update({{"transform", p.transform.to_row_major()},
             {"read_seconds", p.read_seconds},

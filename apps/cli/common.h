@@ -47,6 +47,18 @@ class Progress {
   static inline bool quiet_ = false;
 };
 
+/// A part's triangles for clash, distance, check and sweep: a mesh file, or a STEP file when built
+/// with OpenCASCADE (part_mesh.cpp: every instance placed, mm, welded; its import warnings are
+/// printed and kept). Throws InputError naming the file.
+struct PartMesh {
+  TriMesh mesh;
+  std::string format;  ///< mesh_format_name, or "step"
+  MeshReadInfo info;   ///< mesh files: as read_mesh reports it; STEP: vertices_before_weld only
+  std::vector<std::string> warnings;
+};
+PartMesh read_part_mesh(const std::string& file);
+bool is_step_file(const std::string& file);
+
 struct PartSpec {
   std::string file;
   std::string transform;  ///< 12 numbers, empty = identity
@@ -54,7 +66,7 @@ struct PartSpec {
 
 struct LoadedPart {
   std::string file;
-  MeshFormat format = MeshFormat::automatic;
+  std::string format;  ///< mesh_format_name, or "step"
   Transform transform;
   Model model;
   double read_seconds = 0, build_seconds = 0;

@@ -553,6 +553,31 @@ class Features(unittest.TestCase):
         self.assertIn("lengths in mm", out)
         self.assertAlmostEqual(feats[0]["axis"]["point"][0], 20.0)
 
+    def test_step_parts_are_clashed_and_checked_as_tessellated(self):
+        # clash/distance/check take a STEP file (every instance placed, welded): a pin in the plate's
+        # r = 3 bore is clear at r = 2.8 and interferes at r = 3.2; the tessellated plate is closed.
+        plate = os.path.join(DATA, "counterbored_plate.step")
+        code, out, err = run("check", plate)
+        self.assertEqual(code, 0, err)
+        c = json.loads(out)
+        self.assertEqual((c["format"], c["closed"], c["open_edges"]), ("step", True, 0))
+        for r, expected in ((2.8, 0), (3.2, 1)):
+            write_obj("pin.obj", make_examples.cylinder(r, 30, 64))
+            code, out, err = run("clash", plate, path("pin.obj"), "--transform-b", "1 0 0 20 0 1 0 15 0 0 1 5",
+                                 "--json", path("sc.json"))
+            self.assertEqual(code, expected, err)
+            self.assertEqual(load_json("sc.json")["inputs"]["a"]["format"], "step")
+        code, out, err = run("distance", plate, path("pin.obj"), "--transform-b", "1 0 0 100 0 1 0 15 0 0 1 5")
+        self.assertEqual(code, 0, err)
+        # An assembly reads as all its instances; a malformed STEP is an error naming the file.
+        code, out, err = run("check", os.path.join(DATA, "assembly.step"))
+        self.assertEqual(json.loads(out)["components"], 3)
+        with open(path("broken.step"), "w") as f:
+            f.write("ISO-10303-21;\nHEADER;\nENDSEC;\nDATA;\n#1=FOO(;\nENDSEC;\n")
+        code, _, err = run("clash", path("broken.step"), path("pin.obj"))
+        self.assertEqual(code, 2)
+        self.assertIn("broken.step", err)
+
     def test_features_dot_is_the_aag(self):
         # --dot draws the graph of --aag: a node per face, an arc per edge with its convexity as the
         # line style, the feature's faces filled, the step's assembly-feature faces in red.
