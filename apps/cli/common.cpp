@@ -166,6 +166,7 @@ void print_clash_summary(const ClashResult& result, const std::string& units) {
               result.interference() ? "INTERFERENCE" : "clear", result.pairs.size(), result.cross_pairs,
               result.touch_pairs, result.regions.size(), curve_length, units.c_str(),
               containment_name(result.containment));
+  if (result.touching_overlap) std::printf(", the solids overlap behind touching faces");
 }
 
 std::string lower_extension(const std::string& path) {

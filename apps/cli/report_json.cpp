@@ -53,6 +53,7 @@ nlohmann::json clash_result_json(const ClashResult& r, std::size_t max_clearance
           {"touch_pairs", r.touch_pairs},
           {"candidate_pairs", r.candidate_pairs},
           {"containment", containment_name(r.containment)},
+          {"touching_overlap", r.touching_overlap},
           {"region_count", r.regions.size()},
           {"curve_length", total_curve},
           {"regions", regions},

@@ -499,6 +499,7 @@ py::dict clash_dict(const ClashResult& r) {
   py::dict d;
   d["interference"] = r.interference();
   d["containment"] = containment_name(r.containment);
+  d["touching_overlap"] = r.touching_overlap;
   d["cross_pairs"] = r.cross_pairs;
   d["touch_pairs"] = r.touch_pairs;
   d["candidate_pairs"] = r.candidate_pairs;
@@ -775,6 +776,8 @@ PYBIND11_MODULE(_interfere, m) {
                              "'none', 'a_inside_b', 'b_inside_a' or 'not_checked'.")
       .def_readonly("cross_pairs", &ClashResult::cross_pairs)
       .def_readonly("touch_pairs", &ClashResult::touch_pairs)
+      .def_readonly("touching_overlap", &ClashResult::touching_overlap,
+                    "Only touching pairs, both parts closed, yet the solids overlap (coincident faces).")
       .def_readonly("candidate_pairs", &ClashResult::candidate_pairs,
                     "Box-overlapping pairs handed to the triangle test.")
       .def_readonly("warnings", &ClashResult::warnings)

@@ -175,6 +175,11 @@ ClashResult clash(const Model& a, const Model& b, const ClashRequest& request) {
     result.containment = Containment::not_checked;
   } else if (!result.pairs.empty()) {
     result.containment = Containment::none;
+    if (result.cross_pairs == 0 && a.stats.closed() && b.stats.closed()) {
+      const int overlap = detail::touching_overlap(a, b, result.pairs);
+      result.touching_overlap = overlap == 1;
+      if (overlap < 0) result.warnings.push_back("touching overlap undecided: every ray direction was degenerate");
+    }
   } else if (a.mesh.triangles.empty() || b.mesh.triangles.empty()) {
     result.containment = Containment::none;
   } else {

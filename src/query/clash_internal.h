@@ -24,4 +24,9 @@ std::vector<ClashRegion> build_regions(const TriMesh& a, const TriMesh& b, const
 /// Returns +1 inside, 0 outside, -1 undecided (every ray direction tried was degenerate).
 int point_in_closed_mesh(const Model& model, const Vec3& p);
 
+/// Closed parts whose surfaces meet in touching pairs only (`pairs`: all of them): +1 when their
+/// interiors overlap all the same, 0 when they do not, -1 undecided (a probe's rays were all
+/// degenerate). touching_overlap.cpp.
+int touching_overlap(const Model& a, const Model& b, const std::vector<TrianglePair>& pairs);
+
 }  // namespace interfere::detail

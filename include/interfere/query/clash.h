@@ -30,7 +30,7 @@ struct ClashRequest {
   bool parallel = true;         ///< use oneTBB (thread count from the caller's tbb::global_control)
   double clearance = 0.0;       ///< > 0: also report non-intersecting pairs closer than this
   bool regions = true;          ///< group pairs into regions with curves
-  bool containment = true;      ///< test whether a closed part lies wholly inside the other
+  bool containment = true;      ///< test whether a closed part lies wholly inside the other (and touching_overlap)
 };
 
 struct TrianglePair {
@@ -68,6 +68,11 @@ struct ClashResult {
   std::vector<ClearancePair> clearance;   ///< sorted by (a, b); disjoint from `pairs`
   Containment containment = Containment::not_checked;
   std::size_t cross_pairs = 0, touch_pairs = 0;
+  /// The surfaces only touch (touch pairs, no crossing pair) and both parts are closed, yet their
+  /// interiors overlap: faces coincide while the solids interpenetrate (two blocks shifted along a
+  /// face, a part seated inside another on a common face). Decided exactly (a point of one surface
+  /// off the other's and inside it, by ray parity); checked with `containment`.
+  bool touching_overlap = false;
   std::size_t candidate_pairs = 0;        ///< box-overlapping pairs handed to the triangle test
   std::vector<std::string> warnings;
   bool interference() const {

@@ -1,0 +1,51 @@
+// Interference of every pair of instances of a CAD assembly, as a CAD package's clash module checks
+// an assembly (the mission's "static clash" of paper 1 on the parts of a STEP product tree): each
+// instance's tessellation placed in the world, candidate pairs by their boxes (grown by the
+// clearance), then the engine's exact clash (query/clash.h) of each candidate. OCCT-free: works on
+// a CadModel from import_step or built by hand.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "interfere/cad/model.h"
+#include "interfere/query/clash.h"
+
+namespace interfere::cad {
+
+struct AssemblyClashOptions {
+  double clearance = 0;  ///< > 0: also report pairs of instances closer than this (model units)
+};
+
+/// How two instances meet: `clash` (their surfaces cross, one lies inside the other, or their
+/// surfaces only touch while the solids overlap: ClashResult::touching_overlap, e.g. an instance
+/// placed twice), `contact` (they touch only: faces, edges or points in common, as mating parts
+/// do), `clearance` (apart, but closer than the clearance).
+enum class InstanceMeeting : std::uint8_t { clash, contact, clearance };
+const char* instance_meeting_name(InstanceMeeting m);
+
+struct InstancePairResult {
+  std::uint32_t a = 0, b = 0;  ///< instance indices, a < b
+  InstanceMeeting meeting = InstanceMeeting::contact;
+  std::size_t cross_pairs = 0, touch_pairs = 0;  ///< intersecting triangle pairs (query/clash.h)
+  std::size_t clearance_pairs = 0;               ///< triangle pairs apart but within the clearance
+  double min_clearance = 0;                      ///< the smallest of their distances (0 without)
+  Containment containment = Containment::not_checked;
+  bool touching_overlap = false;  ///< touching surfaces of overlapping solids (ClashResult)
+  std::size_t regions = 0;
+  double curve_length = 0;  ///< of the intersection curves
+};
+
+struct AssemblyClashResult {
+  /// The meeting pairs, by (a, b); pairs that neither meet nor come within the clearance are left out.
+  std::vector<InstancePairResult> pairs;
+  std::size_t candidate_pairs = 0;  ///< instance pairs whose boxes (grown by the clearance) overlap
+  std::size_t clashes = 0, contacts = 0, within_clearance = 0;
+  std::vector<std::string> warnings;  ///< open instances (containment not checked), ...
+};
+
+/// Every pair of model.instances. Deterministic (results do not depend on the thread count).
+AssemblyClashResult assembly_clash(const CadModel& model, const AssemblyClashOptions& options = {});
+
+}  // namespace interfere::cad

@@ -1,0 +1,107 @@
+// cad::assembly_clash: every instance pair of an assembly, on hand-built models (no STEP needed):
+// known meetings (crossing, touching, contained, within a clearance) and, on random layouts, the
+// pairs found against a brute-force clash of every pair.
+#include <gtest/gtest.h>
+
+#include <map>
+#include <random>
+
+#include "interfere/cad/assembly_clash.h"
+#include "interfere/mesh/generate.h"
+#include "interfere/mesh/validate.h"
+#include "interfere/query/model.h"
+
+namespace interfere::cad {
+namespace {
+
+Transform moved(double x, double y, double z) {
+  Transform t;
+  t.t = {x, y, z};
+  return t;
+}
+
+CadModel boxes(const std::vector<std::pair<std::uint32_t, Transform>>& instances) {
+  CadModel m;
+  m.parts.resize(2);
+  m.parts[0].name = "block";
+  m.parts[0].mesh = make_box({0, 0, 0}, {1, 1, 1}, 4);
+  m.parts[1].name = "cube";
+  m.parts[1].mesh = make_box({0, 0, 0}, {0.2, 0.2, 0.2}, 3);
+  for (const auto& [part, t] : instances)
+    m.instances.push_back({.name = "i" + std::to_string(m.instances.size()), .part = part, .placement = t});
+  return m;
+}
+
+TEST(AssemblyClash, CrossingTouchingContainedAndNearPairs) {
+  const CadModel m = boxes({{0, Transform{}},          // 0
+                            {0, moved(0.5, 0, 0)},     // 1: overlaps 0 (coplanar faces: touching only)
+                            {0, moved(0, 0, 1)},       // 2: on top of 0 and 1 (face contact)
+                            {1, moved(0.4, 0.4, 0.4)},  // 3: inside 0, crossing 1's face x = 0.5
+                            {0, moved(5, 0, 0)},       // 4
+                            {0, moved(6.05, 0, 0)}});  // 5: 0.05 from 4
+  std::map<std::pair<std::uint32_t, std::uint32_t>, InstancePairResult> got;
+  auto r = assembly_clash(m, {.clearance = 0.1});
+  for (const auto& p : r.pairs) got[{p.a, p.b}] = p;
+  ASSERT_EQ(got.size(), 6u);
+  EXPECT_EQ(got.at({0, 1}).meeting, InstanceMeeting::clash);
+  EXPECT_EQ(got.at({0, 1}).cross_pairs, 0u);
+  EXPECT_TRUE(got.at({0, 1}).touching_overlap);
+  EXPECT_EQ(got.at({0, 2}).meeting, InstanceMeeting::contact);
+  EXPECT_EQ(got.at({0, 2}).cross_pairs, 0u);
+  EXPECT_FALSE(got.at({0, 2}).touching_overlap);
+  EXPECT_GT(got.at({0, 2}).touch_pairs, 0u);
+  EXPECT_EQ(got.at({1, 2}).meeting, InstanceMeeting::contact);
+  EXPECT_EQ(got.at({0, 3}).meeting, InstanceMeeting::clash);  // by containment alone
+  EXPECT_EQ(got.at({0, 3}).cross_pairs + got.at({0, 3}).touch_pairs, 0u);
+  EXPECT_EQ(got.at({0, 3}).containment, Containment::b_inside_a);
+  EXPECT_EQ(got.at({1, 3}).meeting, InstanceMeeting::clash);
+  EXPECT_GT(got.at({1, 3}).cross_pairs, 0u);
+  EXPECT_EQ(got.at({4, 5}).meeting, InstanceMeeting::clearance);
+  EXPECT_NEAR(got.at({4, 5}).min_clearance, 0.05, 1e-12);
+  EXPECT_EQ(r.clashes, 3u);
+  EXPECT_EQ(r.contacts, 2u);
+  EXPECT_EQ(r.within_clearance, 1u);
+  EXPECT_TRUE(r.warnings.empty());
+  // Without a clearance the near pair is not reported, and is no candidate.
+  auto plain = assembly_clash(m);
+  EXPECT_EQ(plain.pairs.size(), 5u);
+  EXPECT_EQ(plain.within_clearance, 0u);
+  EXPECT_LT(plain.candidate_pairs, r.candidate_pairs);
+}
+
+TEST(AssemblyClash, RandomLayoutsMatchABruteForceClashOfEveryPair) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> at(0, 3);
+  for (int trial = 0; trial < 4; ++trial) {
+    std::vector<std::pair<std::uint32_t, Transform>> inst;
+    for (int k = 0; k < 14; ++k) inst.push_back({std::uint32_t(k % 2), moved(at(rng), at(rng), at(rng))});
+    const CadModel m = boxes(inst);
+    const double clearance = trial % 2 ? 0.15 : 0;
+    const auto r = assembly_clash(m, {.clearance = clearance});
+    std::vector<Model> w;
+    for (const Instance& i : m.instances) {
+      TriMesh t = transformed(m.parts[i.part].mesh, i.placement);
+      weld_exact(t);
+      w.push_back(make_model(std::move(t)));
+    }
+    std::size_t k = 0;
+    for (std::uint32_t a = 0; a < w.size(); ++a)
+      for (std::uint32_t b = a + 1; b < w.size(); ++b) {
+        const ClashResult c = clash(w[a], w[b], {.clearance = clearance});
+        const bool meets = c.interference() || !c.clearance.empty();
+        if (!meets) continue;
+        ASSERT_LT(k, r.pairs.size()) << "trial " << trial;
+        EXPECT_EQ(r.pairs[k].a, a);
+        EXPECT_EQ(r.pairs[k].b, b);
+        EXPECT_EQ(r.pairs[k].cross_pairs, c.cross_pairs);
+        EXPECT_EQ(r.pairs[k].touch_pairs, c.touch_pairs);
+        EXPECT_EQ(r.pairs[k].clearance_pairs, c.clearance.size());
+        EXPECT_EQ(r.pairs[k].touching_overlap, c.touching_overlap);
+        ++k;
+      }
+    EXPECT_EQ(k, r.pairs.size()) << "trial " << trial;
+  }
+}
+
+}  // namespace
+}  // namespace interfere::cad
