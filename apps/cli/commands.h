@@ -13,4 +13,5 @@ void add_bearing_command(CLI::App& app, int& exit_code);
 void add_surface_command(CLI::App& app, int& exit_code);
 void add_simplify_command(CLI::App& app, int& exit_code);
 void add_features_command(CLI::App& app, int& exit_code);
+void add_assembly_clash_command(CLI::App& app, int& exit_code);
 }  // namespace interfere::cli

@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
   add_surface_command(app, exit_code);
   add_simplify_command(app, exit_code);
   add_features_command(app, exit_code);
+  add_assembly_clash_command(app, exit_code);
   app.parse_complete_callback([&] { Progress::set_quiet(quiet); });
   try {
     app.parse(argc, argv);

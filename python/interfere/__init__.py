@@ -118,6 +118,6 @@ from ._interfere import (  # noqa: F401,E402
 __all__ += ["HAVE_CAD", "SimplifyResult", "count_self_intersections", "distance_bound", "hausdorff",
             "read_error_bound", "rebalanced_budgets", "simplify", "triangle_budgets", "write_glb", "write_tagged_mesh"]
 if HAVE_CAD:
-    from ._interfere import import_step, prepare_step, simplify_step, step_features  # noqa: F401,E402
+    from ._interfere import assembly_clash, import_step, prepare_step, simplify_step, step_features  # noqa: F401,E402
 
-    __all__ += ["import_step", "prepare_step", "simplify_step", "step_features"]
+    __all__ += ["assembly_clash", "import_step", "prepare_step", "simplify_step", "step_features"]

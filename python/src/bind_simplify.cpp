@@ -16,6 +16,7 @@
 #include "interfere/simplify/qem.h"
 #ifdef INTERFERE_HAS_CAD
 #include "interfere/cad/aag_dot.h"
+#include "interfere/cad/assembly_clash.h"
 #include "interfere/cad/assembly_simplify.h"
 #include "interfere/cad/features.h"
 #include "interfere/cad/model.h"
@@ -335,6 +336,45 @@ void bind_simplify(py::module_& m) {
       "differ in taking part in the step comes twice, '<part> [<step>]' with the step's features), instances "
       "(name, part: index into parts, placement: Transform, face_offset), warnings and the CLI report's 'cad' "
       "object (report). Budgets per part: interfere.triangle_budgets.");
+  m.def(
+      "assembly_clash",
+      [](const std::filesystem::path& path, double clearance, double linear_deflection, double angular_deflection) {
+        if (!(clearance >= 0 && std::isfinite(clearance))) throw py::value_error("clearance must be >= 0");
+        Expected<cad::CadModel> model = Error{};
+        cad::AssemblyClashResult r;
+        {
+          py::gil_scoped_release release;
+          model = cad::import_step(path, {.linear_deflection = linear_deflection, .angular_deflection = angular_deflection});
+          if (model) r = cad::assembly_clash(*model, {.clearance = clearance});
+        }
+        if (!model) throw py::value_error(model.error().message());
+        py::list pairs;
+        for (const cad::InstancePairResult& q : r.pairs)
+          pairs.append(py::dict(py::arg("a") = q.a, py::arg("b") = q.b, py::arg("a_name") = model->instances[q.a].name,
+                                py::arg("b_name") = model->instances[q.b].name,
+                                py::arg("meeting") = cad::instance_meeting_name(q.meeting),
+                                py::arg("cross_pairs") = q.cross_pairs, py::arg("touch_pairs") = q.touch_pairs,
+                                py::arg("touching_overlap") = q.touching_overlap,
+                                py::arg("containment") = containment_name(q.containment),
+                                py::arg("curve_length") = q.curve_length, py::arg("clearance_pairs") = q.clearance_pairs,
+                                py::arg("min_clearance") = q.min_clearance, py::arg("depth") = q.depth,
+                                py::arg("tessellation_error") = q.tessellation_error));
+        py::dict out;
+        out["pairs"] = pairs;
+        out["candidate_pairs"] = r.candidate_pairs;
+        out["clashes"] = r.clashes;
+        out["contacts"] = r.contacts;
+        out["within_clearance"] = r.within_clearance;
+        std::vector<std::string> warnings = model->warnings;
+        warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
+        out["warnings"] = warnings;
+        return out;
+      },
+      py::arg("path"), py::arg("clearance") = 0.0, py::arg("linear_deflection") = 0.0, py::arg("angular_deflection") = 0.5,
+      "`interfere assembly-clash` of a STEP file: every pair of instances that meets, as a dict with pairs [{a, b, "
+      "a_name, b_name, meeting ('clash', 'contact', 'clearance'), cross_pairs, touch_pairs, touching_overlap, "
+      "containment, curve_length, clearance_pairs, min_clearance, depth, tessellation_error}], candidate_pairs, "
+      "clashes, contacts, within_clearance, warnings. ValueError on bad input.");
   m.def(
       "simplify_step",
       [](const std::filesystem::path& path, std::size_t target, double ratio, std::size_t renderer_max,

@@ -266,6 +266,16 @@ class Cad(unittest.TestCase):
         m = itf.import_step(asm)
         self.assertTrue(all(hasattr(i["placement"], "t") for i in m["instances"]))
 
+    def test_assembly_clash(self):
+        asm = os.path.join(DATA, "assembly.step")
+        r = itf.assembly_clash(asm, clearance=15)
+        self.assertEqual((r["clashes"], r["contacts"], r["within_clearance"]), (0, 0, 1))
+        self.assertEqual(r["pairs"][0]["meeting"], "clearance")
+        self.assertAlmostEqual(r["pairs"][0]["min_clearance"], 10.0)
+        self.assertEqual(itf.assembly_clash(asm)["pairs"], [])
+        with self.assertRaises(ValueError):
+            itf.assembly_clash(asm, clearance=-1)
+
     def test_simplify_step_to_one_total(self):
         # The CLI's STEP simplification: parts to their shares of one total, the step's features
         # locked on the instance it names, instances placed.

@@ -100,6 +100,7 @@ Part make_part(const TopoDS_Shape& shape, const std::string& name, const ImportO
     if (!(lin > 0)) lin = 1e-3;
     lin = std::max(lin, kMinDeflection);
   }
+  p.linear_deflection = lin;
   BRepMesh_IncrementalMesh mesher(shape, lin, Standard_False, o.angular_deflection, Standard_True);
   for (int i = 1; i <= faces.Extent(); ++i) {
     const TopoDS_Face f = TopoDS::Face(faces(i));

@@ -19,6 +19,8 @@
 
 namespace interfere {
 
+int point_in_solid(const Model& solid, const Vec3& p) { return detail::point_in_closed_mesh(solid, p); }
+
 const char* containment_name(Containment c) {
   switch (c) {
     case Containment::none: return "none";

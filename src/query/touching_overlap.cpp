@@ -17,6 +17,7 @@
 
 #include "clash_internal.h"
 #include "interfere/core/predicates.h"
+#include "interfere/mesh/validate.h"
 
 namespace interfere::detail {
 namespace {
@@ -71,30 +72,14 @@ int on_surface(const Model& m, const Vec3& p, const std::array<Vec3, 3>& tx) {
   return found;
 }
 
-int find(std::vector<std::uint32_t>& parent, std::uint32_t x) {
-  while (parent[x] != x) x = parent[x] = parent[parent[x]];
-  return static_cast<int>(x);
-}
-
 // +1: a probe of x lies inside y; 0: every probe decided outside (or on y); -1: a probe undecided.
 int probe(const Model& x, const Model& y, const std::vector<char>& touches) {
   const TriMesh& m = x.mesh;
   const auto nt = static_cast<std::uint32_t>(m.num_triangles());
   // Connected sets of the triangles that touch nothing (shared edges of the welded mesh).
-  std::vector<std::uint32_t> parent(nt);
-  std::iota(parent.begin(), parent.end(), 0u);
-  std::vector<std::array<std::uint32_t, 3>> edges;  // (low vertex, high vertex, triangle)
-  for (std::uint32_t t = 0; t < nt; ++t) {
-    if (touches[t]) continue;
-    for (int k = 0; k < 3; ++k) {
-      const std::uint32_t u = m.triangles[t][k], v = m.triangles[t][(k + 1) % 3];
-      edges.push_back({std::min(u, v), std::max(u, v), t});
-    }
-  }
-  std::sort(edges.begin(), edges.end());
-  for (std::size_t i = 1; i < edges.size(); ++i)
-    if (edges[i][0] == edges[i - 1][0] && edges[i][1] == edges[i - 1][1])
-      parent[find(parent, edges[i][2])] = static_cast<std::uint32_t>(find(parent, edges[i - 1][2]));
+  std::vector<char> free_of(nt);
+  for (std::uint32_t t = 0; t < nt; ++t) free_of[t] = !touches[t];
+  const std::vector<std::uint32_t> set = edge_connected_sets(m, free_of);
   int result = 0;
   const auto test = [&](const Vec3& p) {
     const int in = point_in_closed_mesh(y, p);
@@ -103,7 +88,7 @@ int probe(const Model& x, const Model& y, const std::vector<char>& touches) {
     return false;
   };
   for (std::uint32_t t = 0; t < nt; ++t)
-    if (!touches[t] && find(parent, t) == static_cast<int>(t) && test(m.positions[m.triangles[t][0]])) return 1;
+    if (!touches[t] && set[t] == t && test(m.positions[m.triangles[t][0]])) return 1;
   for (std::uint32_t t = 0; t < nt; ++t) {
     if (!touches[t]) continue;
     const auto c = m.corners(t);

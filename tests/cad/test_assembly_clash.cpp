@@ -69,6 +69,25 @@ TEST(AssemblyClash, CrossingTouchingContainedAndNearPairs) {
   EXPECT_LT(plain.candidate_pairs, r.candidate_pairs);
 }
 
+TEST(AssemblyClash, DepthSamplesTheStretchesOfLongEdgesInsideTheOtherSolid) {
+  // A rod of long triangles (every vertex outside) through a block: its long edges at y, z = 0.4
+  // or 0.6 pass 0.4 from the block's faces at their middle; the block's vertices are outside.
+  CadModel m = boxes({{0, Transform{}}});
+  m.parts.push_back({.name = "rod", .mesh = make_box({-2, 0.4, 0.4}, {3, 0.6, 0.6}, 1)});
+  m.instances.push_back({.name = "rod", .part = 2, .placement = Transform{}});
+  const auto r = assembly_clash(m);
+  ASSERT_EQ(r.pairs.size(), 1u);
+  EXPECT_EQ(r.pairs[0].meeting, InstanceMeeting::clash);
+  EXPECT_GT(r.pairs[0].cross_pairs, 0u);
+  EXPECT_NEAR(r.pairs[0].depth, 0.4, 1e-12);
+  EXPECT_EQ(r.pairs[0].tessellation_error, 0.0);  // (parts not from STEP)
+  // Only a vertex inside: a cube corner pushed 0.05 into the block's face.
+  CadModel c = boxes({{0, Transform{}}, {1, moved(0.5, 0.5, 0.95)}});
+  const auto rc = assembly_clash(c);
+  ASSERT_EQ(rc.pairs.size(), 1u);
+  EXPECT_NEAR(rc.pairs[0].depth, 0.05, 1e-12);
+}
+
 TEST(AssemblyClash, RandomLayoutsMatchABruteForceClashOfEveryPair) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> at(0, 3);

@@ -578,6 +578,42 @@ class Features(unittest.TestCase):
         self.assertEqual(code, 2)
         self.assertIn("broken.step", err)
 
+    def test_assembly_clash_pairs_of_instances(self):
+        # The test assembly as written: no pair meets (plate_2 lies 10 mm above plate_1); with a 15 mm
+        # clearance that pair is listed. plate_2 moved onto plate_1: a contact; moved into it: a clash
+        # 5 mm deep (exit status 1).
+        asm = os.path.join(DATA, "assembly.step")
+        code, out, err = run("assembly-clash", asm, "--clearance", "15", "--json", path("ac.json"))
+        self.assertEqual(code, 0, err)
+        r = load_json("ac.json")
+        self.assertEqual((r["clashes"], r["contacts"], r["within_clearance"]), (0, 0, 1))
+        self.assertEqual(len(r["instances"]), 3)
+        p = r["pairs"][0]
+        self.assertEqual((p["meeting"], p["b_name"]), ("clearance", "plate_2"))
+        self.assertAlmostEqual(p["min_clearance"], 10.0)
+        with open(asm) as f:
+            text = f.read()
+        self.assertIn("#20 = CARTESIAN_POINT('',(0.,0.,20.));", text)  # plate_2's placement
+        for lift, meeting, status in (("(0.,0.,10.)", "contact", 0), ("(10.,0.,5.)", "clash", 1)):
+            with open(path("moved.step"), "w") as f:
+                f.write(text.replace("(0.,0.,20.)", lift))
+            code, out, err = run("assembly-clash", path("moved.step"), "--json", path("ac2.json"))
+            self.assertEqual(code, status, err)
+            r = load_json("ac2.json")
+            self.assertEqual([q["meeting"] for q in r["pairs"]], [meeting])
+            self.assertIn(meeting, out)
+            if meeting == "clash":
+                self.assertAlmostEqual(r["pairs"][0]["depth"], 5.0, places=6)
+                self.assertGreater(r["pairs"][0]["cross_pairs"], 0)
+                self.assertGreater(r["pairs"][0]["tessellation_error"], 0)
+        # Not a STEP file, or a bad clearance: input errors; nothing written.
+        write_obj("m.obj", uv_sphere())
+        for args, message in (([path("m.obj")], "STEP"), ([asm, "--clearance", "-1"], "--clearance")):
+            code, _, err = run("assembly-clash", *args, "--json", path("ac3.json"))
+            self.assertEqual(code, 2)
+            self.assertIn(message, err)
+        self.assertFalse(os.path.exists(path("ac3.json")))
+
     def test_features_dot_is_the_aag(self):
         # --dot draws the graph of --aag: a node per face, an arc per edge with its convexity as the
         # line style, the feature's faces filled, the step's assembly-feature faces in red.

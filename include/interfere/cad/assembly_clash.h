@@ -21,7 +21,9 @@ struct AssemblyClashOptions {
 /// How two instances meet: `clash` (their surfaces cross, one lies inside the other, or their
 /// surfaces only touch while the solids overlap: ClashResult::touching_overlap, e.g. an instance
 /// placed twice), `contact` (they touch only: faces, edges or points in common, as mating parts
-/// do), `clearance` (apart, but closer than the clearance).
+/// do), `clearance` (apart, but closer than the clearance). Decided exactly on the tessellations:
+/// a bolt in a hole of its own diameter clashes there (the two polygons cross by up to their
+/// chordal errors); `depth` and `tessellation_error` tell such a nominal fit from a real clash.
 enum class InstanceMeeting : std::uint8_t { clash, contact, clearance };
 const char* instance_meeting_name(InstanceMeeting m);
 
@@ -33,6 +35,13 @@ struct InstancePairResult {
   double min_clearance = 0;                      ///< the smallest of their distances (0 without)
   Containment containment = Containment::not_checked;
   bool touching_overlap = false;  ///< touching surfaces of overlapping solids (ClashResult)
+  /// Clashes with crossing surfaces: the largest distance to the other surface of the vertices of
+  /// either part that lie inside the other solid (exact ray parity; the vertices of the crossing
+  /// triangles and of the other triangles inside): a sampled lower bound of how deep the surfaces
+  /// reach into each other, 0 when no vertex lies inside. `tessellation_error`: the sum of the two
+  /// parts' Part::linear_deflection, the chordal error by which tessellations of B-Rep faces in
+  /// contact may cross (0 for parts not from STEP). A depth within it suggests a nominal fit.
+  double depth = 0, tessellation_error = 0;
   std::size_t regions = 0;
   double curve_length = 0;  ///< of the intersection curves
 };

@@ -60,6 +60,9 @@ struct Part {
   Aag aag;
   std::uint32_t solids = 0, shells = 0, faces = 0;
   std::vector<std::uint32_t> untessellated_faces;  ///< faces that failed to tessellate
+  /// The linear deflection the part was tessellated with (model units): BRepMesh keeps the
+  /// triangles within about this distance of the B-Rep surfaces (0 for a part not from a STEP file).
+  double linear_deflection = 0;
 };
 
 struct Instance {

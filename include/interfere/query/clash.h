@@ -83,4 +83,9 @@ struct ClashResult {
 
 ClashResult clash(const Model& a, const Model& b, const ClashRequest& request = {});
 
+/// Whether p lies inside the closed part `solid` (exact ray parity, as the containment test): 1
+/// inside, 0 outside, -1 undecided (every ray direction tried was degenerate). p must not lie on
+/// the surface (a point there may be classified either way).
+int point_in_solid(const Model& solid, const Vec3& p);
+
 }  // namespace interfere

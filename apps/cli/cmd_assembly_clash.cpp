@@ -1,0 +1,111 @@
+// `interfere assembly-clash ASSEMBLY.step`: every pair of instances of a STEP assembly checked for
+// interference, as a CAD package's clash module checks a product (cad/assembly_clash.h: the exact
+// clash of paper 1 on each pair whose boxes meet). Each meeting pair is a clash (crossing surfaces,
+// containment, or touching faces of overlapping solids), a contact (touching only) or, with
+// --clearance, a pair closer than the clearance. Exit status 1 when some pair clashes.
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+
+#include "commands.h"
+#include "common.h"
+#include "interfere/core/atomic_file.h"
+#ifdef INTERFERE_HAS_CAD
+#include "interfere/cad/assembly_clash.h"
+#include "interfere/cad/model.h"
+#endif
+
+namespace interfere::cli {
+namespace {
+
+struct AssemblyClashCliOptions {
+  std::string input, json;
+  double clearance = 0, linear_deflection = 0, angular_deflection = 0.5;
+  int threads = 0;
+};
+
+#ifdef INTERFERE_HAS_CAD
+int run_assembly_clash(const AssemblyClashCliOptions& o) {
+  if (!is_step_file(o.input)) throw InputError(o.input + ": assembly-clash takes a STEP file (.step, .stp)");
+  if (!(o.clearance >= 0 && std::isfinite(o.clearance)))
+    throw InputError("--clearance must be a distance >= 0 (mm), not " + short_number(o.clearance));
+  check_output(o.json, {}, "--json");
+  check_distinct_files({{"IN", o.input}}, {{"--json", o.json}});
+  set_threads(o.threads);
+  Progress total("assembly-clash");
+  Expected<cad::CadModel> model = Error{};
+  {
+    Progress progress("importing " + o.input);
+    model = cad::import_step(o.input, {.linear_deflection = o.linear_deflection, .angular_deflection = o.angular_deflection});
+    if (!model) throw InputError(model.error());
+  }
+  for (const std::string& w : model->warnings) warning(w);
+  cad::AssemblyClashResult r;
+  {
+    Progress progress("clashing the pairs of " + std::to_string(model->instances.size()) + " instances");
+    r = cad::assembly_clash(*model, {.clearance = o.clearance});
+  }
+  for (const std::string& w : r.warnings) warning(w);
+  const auto name = [&](std::uint32_t i) { return model->instances[i].name; };
+  nlohmann::json pairs = nlohmann::json::array();
+  for (const cad::InstancePairResult& p : r.pairs) {
+    pairs.push_back({{"a", p.a}, {"b", p.b}, {"a_name", name(p.a)}, {"b_name", name(p.b)},
+                     {"meeting", cad::instance_meeting_name(p.meeting)}, {"cross_pairs", p.cross_pairs},
+                     {"touch_pairs", p.touch_pairs}, {"touching_overlap", p.touching_overlap},
+                     {"containment", containment_name(p.containment)}, {"regions", p.regions},
+                     {"curve_length", p.curve_length}, {"clearance_pairs", p.clearance_pairs},
+                     {"min_clearance", p.clearance_pairs > 0 ? nlohmann::json(p.min_clearance) : nlohmann::json(nullptr)},
+                     {"depth", p.cross_pairs > 0 ? nlohmann::json(p.depth) : nlohmann::json(nullptr)},
+                     {"tessellation_error", p.tessellation_error}});
+    std::string what = std::to_string(p.cross_pairs) + " crossing, " + std::to_string(p.touch_pairs) + " touching pairs";
+    if (p.containment == Containment::a_inside_b || p.containment == Containment::b_inside_a)
+      what = std::string(containment_name(p.containment));
+    if (p.touching_overlap) what += ", the solids overlap behind touching faces";
+    if (p.cross_pairs > 0)
+      what += ", depth " + short_number(p.depth) + " mm (tessellation error " + short_number(p.tessellation_error) +
+              " mm" + (p.depth <= p.tessellation_error ? ": a nominal fit?)" : ")");
+    if (p.meeting == cad::InstanceMeeting::clearance) what = "closest " + short_number(p.min_clearance) + " mm";
+    std::printf("%-9s %s x %s: %s\n", cad::instance_meeting_name(p.meeting), name(p.a).c_str(), name(p.b).c_str(),
+                what.c_str());
+  }
+  nlohmann::json instances = nlohmann::json::array();
+  for (const cad::Instance& i : model->instances)
+    instances.push_back({{"name", i.name}, {"part", model->parts[i.part].name}, {"path", i.path},
+                         {"triangles", model->parts[i.part].mesh.num_triangles()}, {"placement", i.placement.to_rows()}});
+  std::printf("%zu instances, %zu candidate pairs: %zu clashes, %zu contacts, %zu within the clearance\n",
+              model->instances.size(), r.candidate_pairs, r.clashes, r.contacts, r.within_clearance);
+  if (!o.json.empty()) {
+    std::vector<std::string> warnings = model->warnings;
+    warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
+    const nlohmann::json j = {{"command", "assembly-clash"}, {"version", INTERFERE_VERSION}, {"input", o.input},
+                              {"units", model->units}, {"clearance", o.clearance}, {"instances", instances},
+                              {"candidate_pairs", r.candidate_pairs}, {"clashes", r.clashes}, {"contacts", r.contacts},
+                              {"within_clearance", r.within_clearance}, {"pairs", pairs}, {"warnings", warnings},
+                              {"seconds", total.seconds()}};
+    const Status s = write_file_atomic(o.json, j.dump(2) + "\n");
+    if (!s) throw InputError(s.error());
+  }
+  return r.clashes > 0 ? kInterference : kClear;
+}
+#else
+int run_assembly_clash(const AssemblyClashCliOptions& o) {
+  throw InputError(o.input + ": `interfere assembly-clash` needs interfere built with OpenCASCADE (INTERFERE_WITH_OCCT)");
+}
+#endif
+
+}  // namespace
+
+void add_assembly_clash_command(CLI::App& app, int& exit_code) {
+  auto o = std::make_shared<AssemblyClashCliOptions>();
+  CLI::App* c = app.add_subcommand("assembly-clash",
+                                   "Every pair of instances of a STEP assembly: clashes, contacts, pairs within a clearance");
+  c->add_option("IN", o->input, "STEP assembly (or part)")->required()->check(CLI::ExistingFile);
+  c->add_option("--clearance", o->clearance, "also list pairs of instances closer than this (mm)");
+  c->add_option("--json", o->json, "write the JSON report here");
+  c->add_option("--threads", o->threads, "worker threads (0 = all cores)");
+  c->add_option("--linear-deflection", o->linear_deflection, "tessellation linear deflection (0 = 0.1 % of the diagonal)");
+  c->add_option("--angular-deflection", o->angular_deflection, "tessellation angular deflection, radians");
+  c->callback([o, &exit_code] { exit_code = run_assembly_clash(*o); });
+}
+
+}  // namespace interfere::cli
