@@ -48,7 +48,11 @@ int run_assembly_clash(const AssemblyClashCliOptions& o) {
   for (const std::string& w : r.warnings) warning(w);
   const auto name = [&](std::uint32_t i) { return model->instances[i].name; };
   nlohmann::json pairs = nlohmann::json::array();
+  std::size_t shallow = 0;  // clashes by crossing surfaces no deeper than the tessellation error
   for (const cad::InstancePairResult& p : r.pairs) {
+    const bool inside = p.containment == Containment::a_inside_b || p.containment == Containment::b_inside_a;
+    shallow += p.meeting == cad::InstanceMeeting::clash && p.cross_pairs > 0 && !inside && !p.touching_overlap &&
+               p.depth <= p.tessellation_error;
     pairs.push_back({{"a", p.a}, {"b", p.b}, {"a_name", name(p.a)}, {"b_name", name(p.b)},
                      {"meeting", cad::instance_meeting_name(p.meeting)}, {"cross_pairs", p.cross_pairs},
                      {"touch_pairs", p.touch_pairs}, {"touching_overlap", p.touching_overlap},
@@ -72,14 +76,16 @@ int run_assembly_clash(const AssemblyClashCliOptions& o) {
   for (const cad::Instance& i : model->instances)
     instances.push_back({{"name", i.name}, {"part", model->parts[i.part].name}, {"path", i.path},
                          {"triangles", model->parts[i.part].mesh.num_triangles()}, {"placement", i.placement.to_rows()}});
-  std::printf("%zu instances, %zu candidate pairs: %zu clashes, %zu contacts, %zu within the clearance\n",
-              model->instances.size(), r.candidate_pairs, r.clashes, r.contacts, r.within_clearance);
+  std::printf("%zu instances, %zu candidate pairs: %zu clashes (%zu no deeper than the tessellation error), %zu contacts, "
+              "%zu within the clearance\n",
+              model->instances.size(), r.candidate_pairs, r.clashes, shallow, r.contacts, r.within_clearance);
   if (!o.json.empty()) {
     std::vector<std::string> warnings = model->warnings;
     warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
     const nlohmann::json j = {{"command", "assembly-clash"}, {"version", INTERFERE_VERSION}, {"input", o.input},
                               {"units", model->units}, {"clearance", o.clearance}, {"instances", instances},
-                              {"candidate_pairs", r.candidate_pairs}, {"clashes", r.clashes}, {"contacts", r.contacts},
+                              {"candidate_pairs", r.candidate_pairs}, {"clashes", r.clashes},
+                              {"clashes_within_tessellation_error", shallow}, {"contacts", r.contacts},
                               {"within_clearance", r.within_clearance}, {"pairs", pairs}, {"warnings", warnings},
                               {"seconds", total.seconds()}};
     const Status s = write_file_atomic(o.json, j.dump(2) + "\n");

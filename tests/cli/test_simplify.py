@@ -606,6 +606,7 @@ class Features(unittest.TestCase):
                 self.assertAlmostEqual(r["pairs"][0]["depth"], 5.0, places=6)
                 self.assertGreater(r["pairs"][0]["cross_pairs"], 0)
                 self.assertGreater(r["pairs"][0]["tessellation_error"], 0)
+                self.assertEqual(r["clashes_within_tessellation_error"], 0)
         # Not a STEP file, or a bad clearance: input errors; nothing written.
         write_obj("m.obj", uv_sphere())
         for args, message in (([path("m.obj")], "STEP"), ([asm, "--clearance", "-1"], "--clearance")):
