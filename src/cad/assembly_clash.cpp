@@ -13,41 +13,10 @@
 
 #include "interfere/mesh/validate.h"
 #include "interfere/query/model.h"
-#include "interfere/np/distance.h"
+#include "interfere/query/distance.h"
 
 namespace interfere::cad {
 namespace {
-
-// The distance from p to the surface of m (nearest triangle by the BVH, nearer child first).
-double surface_distance(const Model& m, const Vec3& p) {
-  const auto box_d2 = [&](const AabbF& b) {
-    double d2 = 0;
-    for (int k = 0; k < 3; ++k) {
-      const double g = std::max({0.0, double(b.lo[k]) - p[k], p[k] - double(b.hi[k])});
-      d2 += g * g;
-    }
-    return d2;
-  };
-  double best = std::numeric_limits<double>::infinity();
-  std::vector<std::uint32_t> stack{0};
-  while (!stack.empty()) {
-    const BvhNode& n = m.bvh.nodes[stack.back()];
-    stack.pop_back();
-    if (box_d2(n.box) >= best) continue;
-    if (n.is_leaf()) {
-      for (std::uint32_t k = 0; k < n.count; ++k) {
-        const auto t = m.mesh.corners(m.bvh.prims[n.first + k]);
-        best = std::min(best, squared_norm(closest_point_on_triangle(p, t) - p));
-      }
-      continue;
-    }
-    const std::uint32_t c0 = n.first, c1 = n.first + 1;
-    const bool near0 = box_d2(m.bvh.nodes[c0].box) <= box_d2(m.bvh.nodes[c1].box);
-    stack.push_back(near0 ? c1 : c0);  // the nearer child is popped first
-    stack.push_back(near0 ? c0 : c1);
-  }
-  return std::sqrt(best);
-}
 
 // Where the segment pq meets the surface of m: parameters in (0, 1), sorted (floating point: a
 // sampling aid, each interval between them is classified exactly afterwards).

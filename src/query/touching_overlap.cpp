@@ -6,18 +6,22 @@
 //
 // Probes of part X against the closed part Y: one vertex of each connected set of X's triangles
 // that touch nothing of Y (such a set lies wholly inside or outside Y, and its vertices are
-// exactly off Y's surface), and the centroid of each triangle of X that touches Y (a triangle
-// touching Y along an edge, as the sides of a part seated on a face, has its centroid inside Y
-// when the part is). A centroid exactly on Y's surface, strictly inside a coplanar triangle of Y,
-// compares their orientations instead: the same outward side means both solids lie on the same
-// side of the common face (an instance placed twice, a part seated in another), the opposite one
-// a face contact (even where a part fills a cavity of the other exactly).
+// exactly off Y's surface), and, for each triangle of X that touches Y: where a triangle of Y lies
+// in its plane with overlapping interiors (exact: orient3d), their outward sides compared (the
+// same side means both solids lie on the same side of the common face: an instance placed twice,
+// a part seated in another; the opposite one a face contact, even where a part fills a cavity of
+// the other exactly); else its centroid (a triangle touching Y along an edge, as the sides of a
+// part seated on a face, has its centroid inside Y when the part is; the centroid is rounded, so
+// it is used only where Y's surface lies farther from it than that rounding).
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <numeric>
 
 #include "clash_internal.h"
 #include "interfere/core/predicates.h"
 #include "interfere/mesh/validate.h"
+#include "interfere/query/distance.h"
 
 namespace interfere::detail {
 namespace {
@@ -34,19 +38,45 @@ bool apex_of(const std::array<Vec3, 3>& t, Vec3& apex) {
   return false;
 }
 
-// Where p lies with respect to the surface of m, for a probe of the triangle tx through which p is
-// taken: off it (0), on it (1), or strictly inside a triangle of it coplanar with tx, whose outward
-// side is tx's (2: the two solids lie on the same side of a common face, so their interiors
-// overlap there) or the opposite one (3: a face contact).
-int on_surface(const Model& m, const Vec3& p, const std::array<Vec3, 3>& tx) {
+// Whether two triangles of one plane (apex: a point off it) have overlapping relative interiors:
+// no edge line of either has the other wholly on its outer side or on it (the separating-axis test
+// in the plane, exact with orient3d).
+bool coplanar_interiors_overlap(const std::array<Vec3, 3>& t, const std::array<Vec3, 3>& u, const Vec3& apex) {
+  const auto separates = [&](const std::array<Vec3, 3>& e, const std::array<Vec3, 3>& other) {
+    for (int i = 0; i < 3; ++i) {
+      const Vec3 &p = e[i], &q = e[(i + 1) % 3];
+      const int in = orient3d(p, q, apex, e[(i + 2) % 3]);
+      if (in == 0) return true;  // (a degenerate triangle has no interior)
+      bool all_out = true;
+      for (const Vec3& v : other) all_out = all_out && orient3d(p, q, apex, v) * in <= 0;
+      if (all_out) return true;
+    }
+    return false;
+  };
+  return !separates(t, u) && !separates(u, t);
+}
+
+// The triangles of m in tx's plane whose interiors overlap tx's: 2 when one has tx's outward side
+// (the two solids lie on the same side of a common face: their interiors overlap there), else 3
+// when there is one (a face contact), 0 when there is none.
+int coplanar_side(const Model& m, const std::array<Vec3, 3>& tx) {
+  Vec3 apex;
+  if (!apex_of(tx, apex)) return 0;
+  AabbF box;
+  for (int k = 0; k < 3; ++k) {
+    box.lo[k] = static_cast<float>(std::min({tx[0][k], tx[1][k], tx[2][k]}));
+    box.hi[k] = static_cast<float>(std::max({tx[0][k], tx[1][k], tx[2][k]}));
+    box.lo[k] = std::nextafter(box.lo[k], -std::numeric_limits<float>::infinity());  // (outwards)
+    box.hi[k] = std::nextafter(box.hi[k], std::numeric_limits<float>::infinity());
+  }
   int found = 0;
   std::vector<std::uint32_t> stack{0};
   while (!stack.empty()) {
     const BvhNode& n = m.bvh.nodes[stack.back()];
     stack.pop_back();
-    bool inside_box = true;  // (float boxes rounded outwards: conservative)
-    for (int k = 0; k < 3; ++k) inside_box = inside_box && double(n.box.lo[k]) <= p[k] && p[k] <= double(n.box.hi[k]);
-    if (!inside_box) continue;
+    bool meets = true;
+    for (int k = 0; k < 3; ++k) meets = meets && n.box.lo[k] <= box.hi[k] && box.lo[k] <= n.box.hi[k];
+    if (!meets) continue;
     if (!n.is_leaf()) {
       stack.push_back(n.first);
       stack.push_back(n.first + 1);
@@ -54,19 +84,12 @@ int on_surface(const Model& m, const Vec3& p, const std::array<Vec3, 3>& tx) {
     }
     for (std::uint32_t k = 0; k < n.count; ++k) {
       const auto t = m.mesh.corners(m.bvh.prims[n.first + k]);
-      Vec3 apex;
-      if (orient3d(t[0], t[1], t[2], p) != 0 || !apex_of(t, apex)) continue;
-      const int s0 = orient3d(t[0], t[1], apex, p), s1 = orient3d(t[1], t[2], apex, p), s2 = orient3d(t[2], t[0], apex, p);
-      if ((s0 < 0 || s1 < 0 || s2 < 0) && (s0 > 0 || s1 > 0 || s2 > 0)) continue;  // in the plane, outside
-      found = std::max(found, 1);
-      const bool strictly = s0 != 0 && s1 != 0 && s2 != 0;
-      const bool coplanar = orient3d(t[0], t[1], t[2], tx[0]) == 0 && orient3d(t[0], t[1], t[2], tx[1]) == 0 &&
-                            orient3d(t[0], t[1], t[2], tx[2]) == 0;
-      Vec3 ax;
-      if (!strictly || !coplanar || !apex_of(tx, ax)) continue;
-      // tx's outward side (where its normal points) against t's: the sign of t's orientation at it.
-      const bool same = (orient3d(t[0], t[1], t[2], ax) > 0) == (orient3d(tx[0], tx[1], tx[2], ax) > 0);
-      return same ? 2 : 3;
+      if (orient3d(tx[0], tx[1], tx[2], t[0]) != 0 || orient3d(tx[0], tx[1], tx[2], t[1]) != 0 ||
+          orient3d(tx[0], tx[1], tx[2], t[2]) != 0 || !coplanar_interiors_overlap(t, tx, apex))
+        continue;
+      // Outward sides compared at the apex (tx's normal side, or any point off the plane).
+      if ((orient3d(t[0], t[1], t[2], apex) > 0) == (orient3d(tx[0], tx[1], tx[2], apex) > 0)) return 2;
+      found = 3;
     }
   }
   return found;
@@ -92,9 +115,16 @@ int probe(const Model& x, const Model& y, const std::vector<char>& touches) {
   for (std::uint32_t t = 0; t < nt; ++t) {
     if (!touches[t]) continue;
     const auto c = m.corners(t);
+    const int side = coplanar_side(y, c);
+    if (side == 2) return 1;
+    if (side == 3) continue;  // (a face contact there)
     const Vec3 p = (c[0] + c[1] + c[2]) / 3.0;
-    const int where = on_surface(y, p, c);
-    if (where == 2 || (where == 0 && test(p))) return 1;
+    // The rounded centroid stands for the exact one (within a few units in the last place of the
+    // corners' largest coordinate) only where y's surface is farther than that: else no claim.
+    double scale = 0;
+    for (const Vec3& v : c) scale = std::max({scale, std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
+    const double rounding = 64 * std::numeric_limits<double>::epsilon() * scale;
+    if (surface_distance(y, p) > rounding && test(p)) return 1;
   }
   return result;
 }

@@ -3,6 +3,8 @@
 // is known by construction.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "interfere/mesh/generate.h"
 #include "interfere/query/clash.h"
 
@@ -37,6 +39,31 @@ TEST(TouchingOverlap, FaceContactsAreNotOverlaps) {
   // A part filling a cavity of the other exactly: the common faces have opposite outward sides.
   const TriMesh hollow = joined(make_box({-1, -1, -1}, {2, 2, 2}, 2), reversed(make_box({0, 0, 0}, {1, 1, 1}, 3)));
   EXPECT_FALSE(touch_only(a, hollow).touching_overlap);
+}
+
+TEST(TouchingOverlap, TiltedFaceContactsAreNotOverlaps) {
+  // Stacked boxes turned by the same rotation (0.7 rad about (1, 2, 3)): the common face's
+  // triangles are the same doubles, but their rounded centroids fall off it by an ulp, and on the
+  // wrong side for some: they must not pass for points inside the other box.
+  const Vec3 k = Vec3{1, 2, 3} / std::sqrt(14.0);
+  const double c = std::cos(0.7), s = std::sin(0.7);
+  Transform r;
+  const double K[3][3] = {{0, -k.z, k.y}, {k.z, 0, -k.x}, {-k.y, k.x, 0}};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      double kk = 0;
+      for (int l = 0; l < 3; ++l) kk += K[i][l] * K[l][j];
+      r.r[i][j] = (i == j ? 1.0 : 0.0) + s * K[i][j] + (1 - c) * kk;
+    }
+  r.t = {0.3, -0.2, 0.1};
+  for (int n : {1, 3}) {
+    const TriMesh a = transformed(make_box({0, 0, 0}, {1, 1, 1}, n), r);
+    const TriMesh b = transformed(make_box({0, 0, 1}, {1, 1, 2}, n), r);
+    const ClashResult contact = clash(make_model(a), make_model(b));
+    EXPECT_FALSE(contact.touching_overlap) << n;
+    EXPECT_EQ(contact.cross_pairs, 0u) << n;
+    EXPECT_TRUE(clash(make_model(a), make_model(a)).touching_overlap) << n;  // the same box twice
+  }
 }
 
 TEST(TouchingOverlap, CoincidentFacesOfOverlappingSolidsAreOverlaps) {

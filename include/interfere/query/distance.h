@@ -19,4 +19,8 @@ struct DistanceResult {
 
 DistanceResult distance(const Model& a, const Model& b, const DistanceRequest& request = {});
 
+/// The distance from the point p to the surface of m (the nearest triangle, by the BVH; +inf for
+/// an empty part). Floating point: the closest point on each triangle as np/distance.h computes it.
+double surface_distance(const Model& m, const Vec3& p);
+
 }  // namespace interfere
