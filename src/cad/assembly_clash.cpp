@@ -70,7 +70,7 @@ double depth_into(const Model& x, const Model& y, const std::vector<char>& paire
   const auto nt = static_cast<std::uint32_t>(m.num_triangles());
   std::vector<char> free_of(nt);  // the triangles that touch nothing of y
   for (std::uint32_t t = 0; t < nt; ++t) free_of[t] = !paired[t];
-  const std::vector<std::uint32_t> set = edge_connected_sets(m, free_of);
+  const std::vector<std::uint32_t> set = connected_sets(m, free_of);
   std::vector<char> set_inside(nt, 0);  // per set root
   for (std::uint32_t t = 0; t < nt; ++t)
     if (!paired[t] && set[t] == t) set_inside[t] = point_in_solid(y, m.positions[m.triangles[t][0]]) == 1;

@@ -226,27 +226,28 @@ MeshStats mesh_stats(const TriMesh& mesh) {
   return s;
 }
 
-std::vector<std::uint32_t> edge_connected_sets(const TriMesh& mesh, const std::vector<char>& keep) {
+std::vector<std::uint32_t> connected_sets(const TriMesh& mesh, const std::vector<char>& keep) {
   const auto nt = static_cast<std::uint32_t>(mesh.num_triangles());
-  std::vector<std::uint32_t> parent(nt);
+  constexpr std::uint32_t kNone = 0xffffffffu;
+  // Union-find over the triangles through the first kept triangle seen at each vertex; each root
+  // is the smallest triangle index of its set.
+  std::vector<std::uint32_t> parent(nt), at_vertex(mesh.num_vertices(), kNone);
   std::iota(parent.begin(), parent.end(), 0u);
   const auto find = [&](std::uint32_t v) {
     while (parent[v] != v) v = parent[v] = parent[parent[v]];
     return v;
   };
-  std::vector<std::array<std::uint32_t, 3>> edges;  // (low vertex, high vertex, triangle)
-  for (std::uint32_t t = 0; t < nt; ++t)
-    if (keep[t])
-      for (int k = 0; k < 3; ++k) {
-        const std::uint32_t u = mesh.triangles[t][k], v = mesh.triangles[t][(k + 1) % 3];
-        edges.push_back({std::min(u, v), std::max(u, v), t});
+  for (std::uint32_t t = 0; t < nt; ++t) {
+    if (!keep[t]) continue;
+    for (std::uint32_t v : mesh.triangles[t]) {
+      if (at_vertex[v] == kNone) {
+        at_vertex[v] = t;
+        continue;
       }
-  std::sort(edges.begin(), edges.end());
-  for (std::size_t i = 1; i < edges.size(); ++i)
-    if (edges[i][0] == edges[i - 1][0] && edges[i][1] == edges[i - 1][1]) {
-      const std::uint32_t x = find(edges[i][2]), y = find(edges[i - 1][2]);
-      parent[std::max(x, y)] = std::min(x, y);  // (the root stays the smallest index)
+      const std::uint32_t x = find(t), y = find(at_vertex[v]);
+      parent[std::max(x, y)] = std::min(x, y);
     }
+  }
   for (std::uint32_t t = 0; t < nt; ++t) parent[t] = find(t);
   return parent;
 }

@@ -3,6 +3,7 @@
 // direction (symbolic perturbation by re-sampling), so the parity is never decided by an epsilon.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "clash_internal.h"
@@ -52,17 +53,42 @@ bool segment_may_hit(const Vec3& p, const Vec3& d, const AabbF& box, double pad)
 int point_in_closed_mesh(const Model& model, const Vec3& p) {
   const Bvh& bvh = model.bvh;
   if (bvh.empty()) return 0;
-  const Aabb bounds = model.mesh.bounds();
-  const double reach = 2.0 * (norm(bounds.extent()) + norm(p - bounds.center())) + 1.0;
+  // The root's box (float, rounded outwards: it holds every triangle), not mesh.bounds(), which
+  // reads every vertex (this runs once per probe).
+  Aabb bounds;
+  for (int k = 0; k < 3; ++k) bounds.lo[k] = bvh.nodes[0].box.lo[k], bounds.hi[k] = bvh.nodes[0].box.hi[k];
+  for (int k = 0; k < 3; ++k)
+    if (p[k] < bounds.lo[k] || p[k] > bounds.hi[k]) return 0;  // (outside the bounds: outside)
+  const double diag = norm(bounds.extent());
+  const double reach = 2.0 * (diag + norm(p - bounds.center())) + 1.0;
   const double pad = 1e-9 * reach;
   std::mt19937_64 rng(0x1f2e3d4c5b6a7988ULL);  // fixed: results are reproducible
   std::normal_distribution<double> gauss;
   std::vector<std::uint32_t> stack;
-  for (int attempt = 0; attempt < 32; ++attempt) {
-    Vec3 dir{gauss(rng), gauss(rng), gauss(rng)};
-    const double len = norm(dir);
-    if (!(len > 0)) continue;
-    const Vec3 q = p + dir * (reach / len);
+  // The first rays leave by the nearest side of the bounds (short: few boxes to visit for a point
+  // near the surface), tilted at random so that grid-aligned meshes rarely make them degenerate;
+  // then random directions across the whole part. Any ray that is not degenerate gives the parity.
+  int axis = 0;
+  double sign = 1, gap = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; ++k)
+    for (const double s : {-1.0, 1.0}) {
+      const double g = s > 0 ? bounds.hi[k] - p[k] : p[k] - bounds.lo[k];
+      if (g < gap) gap = g, axis = k, sign = s;
+    }
+  for (int attempt = 0; attempt < 40; ++attempt) {
+    Vec3 q;
+    if (attempt < 8 && std::isfinite(gap) && gap >= 0) {
+      Vec3 dir{0.25 * gauss(rng), 0.25 * gauss(rng), 0.25 * gauss(rng)};
+      dir[axis] = sign;
+      const double len = (gap + 0.01 * diag + 1e-300) / 1.0;  // (the axis component is 1: it exits the bounds)
+      q = p + dir * len;
+      if (!is_finite(q)) continue;
+    } else {
+      Vec3 dir{gauss(rng), gauss(rng), gauss(rng)};
+      const double len = norm(dir);
+      if (!(len > 0)) continue;
+      q = p + dir * (reach / len);
+    }
     const Vec3 d = q - p;
     bool degenerate = false;
     int parity = 0;

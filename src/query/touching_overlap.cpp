@@ -18,6 +18,9 @@
 #include <limits>
 #include <numeric>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "clash_internal.h"
 #include "interfere/core/predicates.h"
 #include "interfere/mesh/validate.h"
@@ -56,53 +59,30 @@ bool coplanar_interiors_overlap(const std::array<Vec3, 3>& t, const std::array<V
   return !separates(t, u) && !separates(u, t);
 }
 
-// The triangles of m in tx's plane whose interiors overlap tx's: 2 when one has tx's outward side
-// (the two solids lie on the same side of a common face: their interiors overlap there), else 3
-// when there is one (a face contact), 0 when there is none.
-int coplanar_side(const Model& m, const std::array<Vec3, 3>& tx) {
+// The pair's triangles lie in one plane with overlapping interiors: 2 when they have the same
+// outward side (the two solids lie on the same side of a common face: their interiors overlap
+// there), 3 when opposite ones (a face contact), 0 otherwise.
+int coplanar_side(const std::array<Vec3, 3>& t, const std::array<Vec3, 3>& tx) {
   Vec3 apex;
   if (!apex_of(tx, apex)) return 0;
-  AabbF box;
-  for (int k = 0; k < 3; ++k) {
-    box.lo[k] = static_cast<float>(std::min({tx[0][k], tx[1][k], tx[2][k]}));
-    box.hi[k] = static_cast<float>(std::max({tx[0][k], tx[1][k], tx[2][k]}));
-    box.lo[k] = std::nextafter(box.lo[k], -std::numeric_limits<float>::infinity());  // (outwards)
-    box.hi[k] = std::nextafter(box.hi[k], std::numeric_limits<float>::infinity());
-  }
-  int found = 0;
-  std::vector<std::uint32_t> stack{0};
-  while (!stack.empty()) {
-    const BvhNode& n = m.bvh.nodes[stack.back()];
-    stack.pop_back();
-    bool meets = true;
-    for (int k = 0; k < 3; ++k) meets = meets && n.box.lo[k] <= box.hi[k] && box.lo[k] <= n.box.hi[k];
-    if (!meets) continue;
-    if (!n.is_leaf()) {
-      stack.push_back(n.first);
-      stack.push_back(n.first + 1);
-      continue;
-    }
-    for (std::uint32_t k = 0; k < n.count; ++k) {
-      const auto t = m.mesh.corners(m.bvh.prims[n.first + k]);
-      if (orient3d(tx[0], tx[1], tx[2], t[0]) != 0 || orient3d(tx[0], tx[1], tx[2], t[1]) != 0 ||
-          orient3d(tx[0], tx[1], tx[2], t[2]) != 0 || !coplanar_interiors_overlap(t, tx, apex))
-        continue;
-      // Outward sides compared at the apex (tx's normal side, or any point off the plane).
-      if ((orient3d(t[0], t[1], t[2], apex) > 0) == (orient3d(tx[0], tx[1], tx[2], apex) > 0)) return 2;
-      found = 3;
-    }
-  }
-  return found;
+  if (orient3d(tx[0], tx[1], tx[2], t[0]) != 0 || orient3d(tx[0], tx[1], tx[2], t[1]) != 0 ||
+      orient3d(tx[0], tx[1], tx[2], t[2]) != 0 || !coplanar_interiors_overlap(t, tx, apex))
+    return 0;
+  // Outward sides compared at the apex (tx's normal side, or any point off the plane).
+  return (orient3d(t[0], t[1], t[2], apex) > 0) == (orient3d(tx[0], tx[1], tx[2], apex) > 0) ? 2 : 3;
 }
 
 // +1: a probe of x lies inside y; 0: every probe decided outside (or on y); -1: a probe undecided.
+// touches[t]: 0 touches nothing of y, 1 touches it, 2 shares a face with it (a coplanar triangle of
+// y with overlapping interior and the opposite outward side: a face contact, no probe needed).
 int probe(const Model& x, const Model& y, const std::vector<char>& touches) {
   const TriMesh& m = x.mesh;
   const auto nt = static_cast<std::uint32_t>(m.num_triangles());
-  // Connected sets of the triangles that touch nothing (shared edges of the welded mesh).
+  // Connected sets of the triangles that touch nothing (through shared vertices, which touch
+  // nothing either).
   std::vector<char> free_of(nt);
   for (std::uint32_t t = 0; t < nt; ++t) free_of[t] = !touches[t];
-  const std::vector<std::uint32_t> set = edge_connected_sets(m, free_of);
+  const std::vector<std::uint32_t> set = connected_sets(m, free_of);
   int result = 0;
   const auto test = [&](const Vec3& p) {
     const int in = point_in_closed_mesh(y, p);
@@ -114,10 +94,8 @@ int probe(const Model& x, const Model& y, const std::vector<char>& touches) {
     if (!touches[t] && set[t] == t && test(m.positions[m.triangles[t][0]])) return 1;
   for (std::uint32_t t = 0; t < nt; ++t) {
     if (!touches[t]) continue;
+    if (touches[t] == 2) continue;  // (a face contact there)
     const auto c = m.corners(t);
-    const int side = coplanar_side(y, c);
-    if (side == 2) return 1;
-    if (side == 3) continue;  // (a face contact there)
     const Vec3 p = (c[0] + c[1] + c[2]) / 3.0;
     // The rounded centroid stands for the exact one (within a few units in the last place of the
     // corners' largest coordinate) only where y's surface is farther than that: else no claim.
@@ -133,7 +111,18 @@ int probe(const Model& x, const Model& y, const std::vector<char>& touches) {
 
 int touching_overlap(const Model& a, const Model& b, const std::vector<TrianglePair>& pairs) {
   std::vector<char> ta(a.mesh.num_triangles(), 0), tb(b.mesh.num_triangles(), 0);
-  for (const TrianglePair& p : pairs) ta[p.a] = 1, tb[p.b] = 1;
+  // A triangle's coplanar partner is among the triangles it touches: the pairs decide common faces
+  // (in parallel; the flags are merged in pair order).
+  std::vector<char> side(pairs.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pairs.size(), 4096), [&](const auto& range) {
+    for (std::size_t i = range.begin(); i < range.end(); ++i)
+      side[i] = static_cast<char>(coplanar_side(b.mesh.corners(pairs[i].b), a.mesh.corners(pairs[i].a)));
+  });
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    if (side[i] == 2) return 1;
+    ta[pairs[i].a] = std::max<char>(ta[pairs[i].a], side[i] == 3 ? 2 : 1);
+    tb[pairs[i].b] = std::max<char>(tb[pairs[i].b], side[i] == 3 ? 2 : 1);
+  }
   const int ab = probe(a, b, ta);
   if (ab == 1) return 1;
   const int ba = probe(b, a, tb);

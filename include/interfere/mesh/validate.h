@@ -50,9 +50,9 @@ struct MeshStats {
 /// for 10^7 triangles on two cores.
 MeshStats mesh_stats(const TriMesh& mesh);
 
-/// The connected sets of the triangles t with keep[t] set, joined across shared edges (vertex
-/// index pairs): per triangle, the smallest index of its set (a triangle not kept: its own index).
-/// keep.size() must equal the triangle count. O(n log n).
-std::vector<std::uint32_t> edge_connected_sets(const TriMesh& mesh, const std::vector<char>& keep);
+/// The connected sets of the triangles t with keep[t] set, joined across shared vertices (vertex
+/// indices): per triangle, the smallest index of its set (a triangle not kept: its own index).
+/// keep.size() must equal the triangle count. O(n) (union-find).
+std::vector<std::uint32_t> connected_sets(const TriMesh& mesh, const std::vector<char>& keep);
 
 }  // namespace interfere

@@ -70,8 +70,10 @@ struct ClashResult {
   std::size_t cross_pairs = 0, touch_pairs = 0;
   /// The surfaces only touch (touch pairs, no crossing pair) and both parts are closed, yet their
   /// interiors overlap: faces coincide while the solids interpenetrate (two blocks shifted along a
-  /// face, a part seated inside another on a common face). Decided exactly (a point of one surface
-  /// off the other's and inside it, by ray parity); checked with `containment`.
+  /// face, a part seated inside another on a common face). Decided exactly (common faces by their
+  /// outward sides, a point of one surface off the other's and inside it by ray parity); checked
+  /// with `containment`. Cost: about 0.7x the clash itself where fine meshes share large faces
+  /// (two 270k-triangle boxes stacked: 95 vs 55 ms on 2 cores), nothing when surfaces cross.
   bool touching_overlap = false;
   std::size_t candidate_pairs = 0;        ///< box-overlapping pairs handed to the triangle test
   std::vector<std::string> warnings;
