@@ -464,6 +464,15 @@ class TestClash(unittest.TestCase):
         apart = itf.clash(small, itf.make_sphere(500, radius=0.5, center=(3, 0, 0)))
         self.assertEqual(apart.containment, "none")
         self.assertFalse(apart.interference)
+        # Touching only: a face contact, or overlapping solids behind common faces.
+        box = itf.make_box((0, 0, 0), (1, 1, 1), 2)
+        on_top = itf.clash(box, itf.make_box((0, 0, 1), (1, 1, 2), 3))
+        self.assertEqual(on_top.cross_pairs, 0)
+        self.assertFalse(on_top.touching_overlap)
+        shifted = itf.clash(box, itf.make_box((0.5, 0, 0), (1.5, 1, 1), 2))
+        self.assertEqual(shifted.cross_pairs, 0)
+        self.assertTrue(shifted.touching_overlap)
+        self.assertTrue(shifted.to_dict()["touching_overlap"])
         # An open part cannot contain anything: not checked, with a warning.
         open_big = itf.submesh(big, list(range(big.num_triangles - 1)))
         r = itf.clash(open_big, small)
