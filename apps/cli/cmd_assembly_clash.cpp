@@ -60,12 +60,15 @@ int run_assembly_clash(const AssemblyClashCliOptions& o) {
                      {"curve_length", p.curve_length}, {"clearance_pairs", p.clearance_pairs},
                      {"min_clearance", p.clearance_pairs > 0 ? nlohmann::json(p.min_clearance) : nlohmann::json(nullptr)},
                      {"depth", p.cross_pairs > 0 ? nlohmann::json(p.depth) : nlohmann::json(nullptr)},
-                     {"tessellation_error", p.tessellation_error}});
+                     {"tessellation_error", p.tessellation_error}, {"nominal_fit", p.nominal_fit}});
     std::string what = std::to_string(p.cross_pairs) + " crossing, " + std::to_string(p.touch_pairs) + " touching pairs";
     if (p.containment == Containment::a_inside_b || p.containment == Containment::b_inside_a)
       what = std::string(containment_name(p.containment));
     if (p.touching_overlap) what += ", the solids overlap behind touching faces";
-    if (p.cross_pairs > 0)
+    if (p.nominal_fit)
+      what += ", a nominal fit: the crossings lie on coincident B-Rep faces (depth " + short_number(p.depth) +
+              " mm, tessellation error " + short_number(p.tessellation_error) + " mm)";
+    else if (p.cross_pairs > 0)
       what += ", depth " + short_number(p.depth) + " mm (tessellation error " + short_number(p.tessellation_error) +
               " mm" + (p.depth <= p.tessellation_error ? ": a nominal fit?)" : ")");
     if (p.meeting == cad::InstanceMeeting::clearance) what = "closest " + short_number(p.min_clearance) + " mm";

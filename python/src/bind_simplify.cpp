@@ -358,7 +358,8 @@ void bind_simplify(py::module_& m) {
                                 py::arg("containment") = containment_name(q.containment),
                                 py::arg("curve_length") = q.curve_length, py::arg("clearance_pairs") = q.clearance_pairs,
                                 py::arg("min_clearance") = q.min_clearance, py::arg("depth") = q.depth,
-                                py::arg("tessellation_error") = q.tessellation_error));
+                                py::arg("tessellation_error") = q.tessellation_error,
+                                py::arg("nominal_fit") = q.nominal_fit));
         py::dict out;
         out["pairs"] = pairs;
         out["candidate_pairs"] = r.candidate_pairs;
@@ -373,7 +374,7 @@ void bind_simplify(py::module_& m) {
       py::arg("path"), py::arg("clearance") = 0.0, py::arg("linear_deflection") = 0.0, py::arg("angular_deflection") = 0.5,
       "`interfere assembly-clash` of a STEP file: every pair of instances that meets, as a dict with pairs [{a, b, "
       "a_name, b_name, meeting ('clash', 'contact', 'clearance'), cross_pairs, touch_pairs, touching_overlap, "
-      "containment, curve_length, clearance_pairs, min_clearance, depth, tessellation_error}], candidate_pairs, "
+      "containment, curve_length, clearance_pairs, min_clearance, depth, tessellation_error, nominal_fit}], candidate_pairs, "
       "clashes, contacts, within_clearance, warnings. ValueError on bad input.");
   m.def(
       "simplify_step",

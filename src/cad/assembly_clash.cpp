@@ -9,6 +9,8 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <set>
 #include <numeric>
 
 #include "interfere/mesh/validate.h"
@@ -112,6 +114,51 @@ double depth_into(const Model& x, const Model& y, const std::vector<char>& paire
   return depth;
 }
 
+// The face node of a part, placed in the world.
+struct PlacedFace {
+  SurfaceType type = SurfaceType::other;
+  Vec3 normal, axis_point, axis;
+  double radius = 0, offset = 0;  // plane: normal . p
+  bool hole = false;
+};
+
+PlacedFace placed(const AagNode& n, const Transform& t) {
+  PlacedFace f;
+  f.type = n.type, f.radius = n.radius, f.hole = n.hole;
+  const auto rotate = [&](const Vec3& v) {
+    return Vec3{t.r[0][0] * v.x + t.r[0][1] * v.y + t.r[0][2] * v.z, t.r[1][0] * v.x + t.r[1][1] * v.y + t.r[1][2] * v.z,
+                t.r[2][0] * v.x + t.r[2][1] * v.y + t.r[2][2] * v.z};
+  };
+  f.normal = rotate(n.normal);
+  f.axis = rotate(n.axis);
+  f.axis_point = t.apply(n.axis_point);
+  return f;  // (a plane's offset is set by the caller, through a placed triangle of the face)
+}
+
+// Whether faces fa (of one instance) and fb (of the other) are one surface (within tol: lengths;
+// angles in radians): planes back to back (material on opposite sides), a sphere in a seat, and
+// coaxial cylinders of one radius, back to back (a bolt in its hole) or on the same side (two
+// bores in line, as a nut's on a plate's: their walls meet at the rim).
+bool coincide(const PlacedFace& fa, const PlacedFace& fb, double tol, double angle) {
+  if (fa.type != fb.type) return false;
+  const auto unit = [](const Vec3& v) { return v / norm(v); };
+  switch (fa.type) {
+    case SurfaceType::plane:
+      return norm(unit(fa.normal) + unit(fb.normal)) <= angle && std::fabs(fa.offset + fb.offset) <= tol;
+    case SurfaceType::cylinder: {
+      if (std::fabs(fa.radius - fb.radius) > tol) return false;
+      const Vec3 a = unit(fa.axis), b = unit(fb.axis);
+      if (norm(cross(a, b)) > angle) return false;
+      const Vec3 d = fb.axis_point - fa.axis_point;
+      return norm(d - a * dot(d, a)) <= tol;  // b's axis point on a's axis
+    }
+    case SurfaceType::sphere:
+      return fa.hole != fb.hole && std::fabs(fa.radius - fb.radius) <= tol && norm(fa.axis_point - fb.axis_point) <= tol;
+    default:
+      return false;
+  }
+}
+
 }  // namespace
 
 const char* instance_meeting_name(InstanceMeeting m) {
@@ -187,7 +234,44 @@ AssemblyClashResult assembly_clash(const CadModel& model, const AssemblyClashOpt
       for (const TrianglePair& q : r.pairs) pa[q.a] = 1, pb[q.b] = 1;
       p.depth = std::max(depth_into(world[a], world[b], pa), depth_into(world[b], world[a], pb));
     }
-    if (r.cross_pairs > 0 || inside || r.touching_overlap) p.meeting = InstanceMeeting::clash;
+    // A nominal fit: every crossing pair on two coincident B-Rep faces, back to back.
+    const Part& part_a = model.parts[model.instances[a].part];
+    const Part& part_b = model.parts[model.instances[b].part];
+    if (r.cross_pairs > 0 && !inside && !r.touching_overlap && !part_a.face_ids.empty() && !part_b.face_ids.empty()) {
+      const double size = norm(world[a].mesh.bounds().extent()) + norm(world[b].mesh.bounds().extent());
+      const double tol = kFitTolerance * size, angle = kFitTolerance;
+      const auto face_of = [&](const Part& part, const Instance& in, std::uint32_t t, const TriMesh& w) {
+        PlacedFace f = placed(part.aag.nodes[part.face_ids[t]], in.placement);
+        if (f.type == SurfaceType::plane) {  // the plane through the placed triangle
+          const auto c = w.corners(t);
+          f.offset = dot(f.normal / norm(f.normal), (c[0] + c[1] + c[2]) / 3.0);
+        }
+        return f;
+      };
+      // The faces of A and of B that coincide back to back with a face of the other, among the
+      // pairs (crossing or touching); a crossing pair is explained when one of its faces is one.
+      std::map<std::pair<std::uint32_t, std::uint32_t>, bool> coincident;  // (face of A, face of B)
+      std::set<std::uint32_t> fit_a, fit_b;
+      for (const TrianglePair& q : r.pairs) {
+        if (q.a >= part_a.face_ids.size() || q.b >= part_b.face_ids.size()) continue;
+        const auto key = std::make_pair(part_a.face_ids[q.a], part_b.face_ids[q.b]);
+        auto it = coincident.find(key);
+        if (it == coincident.end())
+          it = coincident.emplace(key, coincide(face_of(part_a, model.instances[a], q.a, world[a].mesh),
+                                                             face_of(part_b, model.instances[b], q.b, world[b].mesh),
+                                                             tol, angle)).first;
+        if (it->second) fit_a.insert(key.first), fit_b.insert(key.second);
+      }
+      bool fit = !fit_a.empty() && p.depth <= p.tessellation_error;
+      for (const TrianglePair& q : r.pairs) {
+        if (!fit) break;
+        if (q.kind != ContactKind::cross) continue;
+        fit = (q.a < part_a.face_ids.size() && fit_a.count(part_a.face_ids[q.a])) ||
+              (q.b < part_b.face_ids.size() && fit_b.count(part_b.face_ids[q.b]));
+      }
+      p.nominal_fit = fit;
+    }
+    if ((r.cross_pairs > 0 && !p.nominal_fit) || inside || r.touching_overlap) p.meeting = InstanceMeeting::clash;
     else if (r.touch_pairs > 0) p.meeting = InstanceMeeting::contact;
     else if (!r.clearance.empty()) p.meeting = InstanceMeeting::clearance;
     else return;

@@ -170,22 +170,24 @@ std::multiset<std::array<double, 9>> feature_triangles(const TriMesh& m, const s
 
 // Every part of every file, simplified to a quarter of its triangles with the bolt-connection
 // features of a process step locked.
-TEST(SharedStep, As1AssemblyHasContactsAndOnlyNominalFitClashes) {
+TEST(SharedStep, As1AssemblyHasContactsAndNominalFitsOnly) {
   // The CAx-IF AS1 assembly is modelled without interference: bolts and rods sit in holes of their
-  // own diameter, nuts and brackets on plates. Exactly on its tessellation, such fits cross by up to
-  // the chordal errors; every clash found must be that shallow, every nut/bracket seat a contact.
+  // own diameter (B-spline cylinders in this export, recognised), nuts and brackets on plates. On
+  // its tessellation such fits cross by up to the chordal errors, on coincident B-Rep faces: every
+  // meeting pair is a contact, the fits among them nominal fits.
   const CadModel* as1 = load_shared("as1-oc-214.stp");
   if (!as1) GTEST_SKIP() << "as1-oc-214.stp not present";
   const AssemblyClashResult r = assembly_clash(*as1);
+  EXPECT_EQ(r.clashes, 0u);
   EXPECT_GT(r.contacts, 0u);
-  EXPECT_GT(r.clashes, 0u);
+  std::size_t fits = 0;
   for (const InstancePairResult& p : r.pairs) {
-    if (p.meeting != InstanceMeeting::clash) continue;
-    EXPECT_GT(p.cross_pairs, 0u);
-    EXPECT_FALSE(p.touching_overlap);
-    EXPECT_GT(p.tessellation_error, 0);
-    EXPECT_LE(p.depth, p.tessellation_error) << as1->instances[p.a].name << " x " << as1->instances[p.b].name;
+    EXPECT_EQ(p.meeting, InstanceMeeting::contact) << as1->instances[p.a].name << " x " << as1->instances[p.b].name;
+    EXPECT_EQ(p.cross_pairs > 0, p.nominal_fit);
+    if (p.nominal_fit) EXPECT_LE(p.depth, p.tessellation_error);
+    fits += p.nominal_fit;
   }
+  EXPECT_GE(fits, 10u);  // every bolt and rod in its holes
 }
 
 TEST(SharedStep, EveryPartSimplifiesWithLockedFeaturesAndNoNewSelfIntersection) {

@@ -21,9 +21,8 @@ struct AssemblyClashOptions {
 /// How two instances meet: `clash` (their surfaces cross, one lies inside the other, or their
 /// surfaces only touch while the solids overlap: ClashResult::touching_overlap, e.g. an instance
 /// placed twice), `contact` (they touch only: faces, edges or points in common, as mating parts
-/// do), `clearance` (apart, but closer than the clearance). Decided exactly on the tessellations:
-/// a bolt in a hole of its own diameter clashes there (the two polygons cross by up to their
-/// chordal errors); `depth` and `tessellation_error` tell such a nominal fit from a real clash.
+/// do; or their tessellations cross only where their B-Rep faces coincide: a nominal fit, see
+/// InstancePairResult::nominal_fit), `clearance` (apart, but closer than the clearance).
 enum class InstanceMeeting : std::uint8_t { clash, contact, clearance };
 const char* instance_meeting_name(InstanceMeeting m);
 
@@ -42,9 +41,23 @@ struct InstancePairResult {
   /// parts' Part::linear_deflection, the chordal error by which tessellations of B-Rep faces in
   /// contact may cross (0 for parts not from STEP). A depth within it suggests a nominal fit.
   double depth = 0, tessellation_error = 0;
+  /// The surfaces cross only where B-Rep faces coincide (coaxial cylinders of one radius, as a bolt
+  /// in a hole of its own diameter or a nut's bore in line with a plate's; two planes back to back;
+  /// a sphere in a spherical seat): every crossing pair has a face of such a coincident pair (the
+  /// bolt's cylinder also crosses the plate's faces at the rim of the hole),
+  /// and the sampled depth is within the tessellation error. Their tessellations cross only by
+  /// their chordal errors, so the instances are a contact. Geometry compared within kFitTolerance
+  /// (the faces' parameters, placed by the instances' transforms; B-spline faces by their
+  /// recognised cylinder, plane or sphere).
+  bool nominal_fit = false;
   std::size_t regions = 0;
   double curve_length = 0;  ///< of the intersection curves
 };
+
+/// Relative tolerance (of the two parts' bounding-box diagonals, and in radians for directions)
+/// within which two placed B-Rep faces count as the same surface for InstancePairResult::nominal_fit:
+/// far above the rounding of placements, below the interference of a press fit.
+inline constexpr double kFitTolerance = 1e-7;
 
 struct AssemblyClashResult {
   /// The meeting pairs, by (a, b); pairs that neither meet nor come within the clearance are left out.
