@@ -262,6 +262,41 @@ AssemblyClashResult assembly_clash(const CadModel& model, const AssemblyClashOpt
                                                              tol, angle)).first;
         if (it->second) fit_a.insert(key.first), fit_b.insert(key.second);
       }
+      // A face crossing the other part may coincide with one of its faces that it does not meet
+      // (a nut's seat a hair inside the plate's top face: parallel, so no pair): each face of the
+      // crossing pairs, not yet explained, against every face of the other part (a triangle of
+      // each face places it).
+      const auto first_triangles = [](const Part& part) {
+        std::vector<std::uint32_t> first(part.aag.nodes.size(), 0xffffffffu);
+        for (std::uint32_t t = static_cast<std::uint32_t>(part.face_ids.size()); t-- > 0;)
+          if (part.face_ids[t] < first.size()) first[part.face_ids[t]] = t;
+        return first;
+      };
+      const std::vector<std::uint32_t> first_a = first_triangles(part_a), first_b = first_triangles(part_b);
+      std::set<std::uint32_t> crossing_a, crossing_b;
+      for (const TrianglePair& q : r.pairs)
+        if (q.kind == ContactKind::cross && q.a < part_a.face_ids.size() && q.b < part_b.face_ids.size())
+          crossing_a.insert(part_a.face_ids[q.a]), crossing_b.insert(part_b.face_ids[q.b]);
+      for (std::uint32_t fa : crossing_a) {
+        if (fit_a.count(fa)) continue;
+        for (std::uint32_t fb = 0; fb < first_b.size(); ++fb)
+          if (first_b[fb] != 0xffffffffu &&
+              coincide(face_of(part_a, model.instances[a], first_a[fa], world[a].mesh),
+                       face_of(part_b, model.instances[b], first_b[fb], world[b].mesh), tol, angle)) {
+            fit_a.insert(fa), fit_b.insert(fb);
+            break;
+          }
+      }
+      for (std::uint32_t fb : crossing_b) {
+        if (fit_b.count(fb)) continue;
+        for (std::uint32_t fa = 0; fa < first_a.size(); ++fa)
+          if (first_a[fa] != 0xffffffffu &&
+              coincide(face_of(part_a, model.instances[a], first_a[fa], world[a].mesh),
+                       face_of(part_b, model.instances[b], first_b[fb], world[b].mesh), tol, angle)) {
+            fit_a.insert(fa), fit_b.insert(fb);
+            break;
+          }
+      }
       bool fit = !fit_a.empty() && p.depth <= p.tessellation_error;
       for (const TrianglePair& q : r.pairs) {
         if (!fit) break;

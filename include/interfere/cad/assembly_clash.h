@@ -43,8 +43,9 @@ struct InstancePairResult {
   double depth = 0, tessellation_error = 0;
   /// The surfaces cross only where B-Rep faces coincide (coaxial cylinders of one radius, as a bolt
   /// in a hole of its own diameter or a nut's bore in line with a plate's; two planes back to back;
-  /// a sphere in a spherical seat): every crossing pair has a face of such a coincident pair (the
-  /// bolt's cylinder also crosses the plate's faces at the rim of the hole),
+  /// a sphere in a spherical seat; a face crossing the other part may coincide with one it does not
+  /// meet, as a seat a hair inside a plate's face): every crossing pair has a face of such a
+  /// coincident pair (the bolt's cylinder also crosses the plate's faces at the rim of the hole),
   /// and the sampled depth is within the tessellation error. Their tessellations cross only by
   /// their chordal errors, so the instances are a contact. Geometry compared within kFitTolerance
   /// (the faces' parameters, placed by the instances' transforms; B-spline faces by their
