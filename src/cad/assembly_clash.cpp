@@ -277,26 +277,23 @@ AssemblyClashResult assembly_clash(const CadModel& model, const AssemblyClashOpt
       for (const TrianglePair& q : r.pairs)
         if (q.kind == ContactKind::cross && q.a < part_a.face_ids.size() && q.b < part_b.face_ids.size())
           crossing_a.insert(part_a.face_ids[q.a]), crossing_b.insert(part_b.face_ids[q.b]);
-      for (std::uint32_t fa : crossing_a) {
-        if (fit_a.count(fa)) continue;
-        for (std::uint32_t fb = 0; fb < first_b.size(); ++fb)
-          if (first_b[fb] != 0xffffffffu &&
-              coincide(face_of(part_a, model.instances[a], first_a[fa], world[a].mesh),
-                       face_of(part_b, model.instances[b], first_b[fb], world[b].mesh), tol, angle)) {
-            fit_a.insert(fa), fit_b.insert(fb);
-            break;
+      const auto explain = [&](const std::set<std::uint32_t>& crossing, bool of_a) {
+        for (const std::uint32_t f : crossing) {
+          if ((of_a ? fit_a : fit_b).count(f)) continue;
+          const std::vector<std::uint32_t>& others = of_a ? first_b : first_a;
+          for (std::uint32_t g = 0; g < others.size(); ++g) {
+            const std::uint32_t fa = of_a ? f : g, fb = of_a ? g : f;
+            if (others[g] != 0xffffffffu &&
+                coincide(face_of(part_a, model.instances[a], first_a[fa], world[a].mesh),
+                         face_of(part_b, model.instances[b], first_b[fb], world[b].mesh), tol, angle)) {
+              fit_a.insert(fa), fit_b.insert(fb);
+              break;
+            }
           }
-      }
-      for (std::uint32_t fb : crossing_b) {
-        if (fit_b.count(fb)) continue;
-        for (std::uint32_t fa = 0; fa < first_a.size(); ++fa)
-          if (first_a[fa] != 0xffffffffu &&
-              coincide(face_of(part_a, model.instances[a], first_a[fa], world[a].mesh),
-                       face_of(part_b, model.instances[b], first_b[fb], world[b].mesh), tol, angle)) {
-            fit_a.insert(fa), fit_b.insert(fb);
-            break;
-          }
-      }
+        }
+      };
+      explain(crossing_a, true);
+      explain(crossing_b, false);
       bool fit = !fit_a.empty() && p.depth <= p.tessellation_error;
       for (const TrianglePair& q : r.pairs) {
         if (!fit) break;
