@@ -1,0 +1,113 @@
+// Sampled depth of crossing surfaces of an assembly's instance pairs
+// (include/interfere/cad/assembly_clash.h, InstancePairResult::depth).
+#include <algorithm>
+#include <array>
+
+#include "assembly_clash_internal.h"
+#include "interfere/mesh/validate.h"
+#include "interfere/query/distance.h"
+
+namespace interfere::cad::detail {
+namespace {
+
+// Where the segment pq meets the surface of m: parameters in (0, 1), sorted (floating point: a
+// sampling aid, each interval between them is classified exactly afterwards).
+std::vector<double> surface_crossings(const Model& m, const Vec3& p, const Vec3& q) {
+  std::vector<double> ts;
+  const Vec3 d = q - p;
+  std::vector<std::uint32_t> stack{0};
+  while (!stack.empty()) {
+    const BvhNode& n = m.bvh.nodes[stack.back()];
+    stack.pop_back();
+    double t0 = 0, t1 = 1;  // slab test
+    for (int k = 0; k < 3 && t0 <= t1; ++k) {
+      const double lo = double(n.box.lo[k]), hi = double(n.box.hi[k]);
+      if (d[k] == 0) {
+        if (p[k] < lo || p[k] > hi) t0 = 2;
+        continue;
+      }
+      double a = (lo - p[k]) / d[k], b = (hi - p[k]) / d[k];
+      if (a > b) std::swap(a, b);
+      t0 = std::max(t0, a), t1 = std::min(t1, b);
+    }
+    if (t0 > t1) continue;
+    if (!n.is_leaf()) {
+      stack.push_back(n.first);
+      stack.push_back(n.first + 1);
+      continue;
+    }
+    for (std::uint32_t k = 0; k < n.count; ++k) {
+      const auto t = m.mesh.corners(m.bvh.prims[n.first + k]);
+      const Vec3 nrm = cross(t[1] - t[0], t[2] - t[0]);
+      const double sp = dot(nrm, p - t[0]), sq = dot(nrm, q - t[0]);
+      if ((sp > 0) == (sq > 0) || sp == sq) continue;
+      const double s = sp / (sp - sq);
+      const Vec3 x = p + d * s;
+      const double e0 = dot(cross(t[1] - t[0], x - t[0]), nrm),
+                   e1 = dot(cross(t[2] - t[1], x - t[1]), nrm),
+                   e2 = dot(cross(t[0] - t[2], x - t[2]), nrm);
+      if (e0 >= 0 && e1 >= 0 && e2 >= 0 && s > 0 && s < 1) ts.push_back(s);
+    }
+  }
+  std::sort(ts.begin(), ts.end());
+  return ts;
+}
+
+}  // namespace
+
+// How deep the surface of x reaches into the solid y, sampled: the largest distance to y's surface
+// of x's points inside y (exact ray parity) among: the middles of the stretches of the crossing
+// triangles' edges between their crossings of y's surface, the vertices of the triangles that cross
+// or touch y (`paired`), and the vertices of the connected sets of its other triangles that lie
+// inside y (such a set lies wholly inside or outside; one vertex, exactly off y's surface,
+// decides).
+double depth_into(const Model& x, const Model& y, const std::vector<char>& paired) {
+  const TriMesh& m = x.mesh;
+  const auto nt = static_cast<std::uint32_t>(m.num_triangles());
+  std::vector<char> free_of(nt);  // the triangles that touch nothing of y
+  for (std::uint32_t t = 0; t < nt; ++t) free_of[t] = !paired[t];
+  const std::vector<std::uint32_t> set = connected_sets(m, free_of);
+  std::vector<char> set_inside(nt, 0);  // per set root
+  for (std::uint32_t t = 0; t < nt; ++t)
+    if (!paired[t] && set[t] == t)
+      set_inside[t] = point_in_solid(y, m.positions[m.triangles[t][0]]) == 1;
+  std::vector<char> state(m.num_vertices(), 0);  // 0 unknown, 1 inside, 2 not
+  double depth = 0;
+  // Along the edges of the crossing triangles: the middle of each stretch between two crossings of
+  // y's surface that lies inside y (a long edge may pass through y with both ends outside).
+  std::vector<std::array<std::uint32_t, 2>> crossing_edges;
+  for (std::uint32_t t = 0; t < nt; ++t)
+    if (paired[t])
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t u = m.triangles[t][k], v = m.triangles[t][(k + 1) % 3];
+        crossing_edges.push_back({std::min(u, v), std::max(u, v)});
+      }
+  std::sort(crossing_edges.begin(), crossing_edges.end());
+  crossing_edges.erase(std::unique(crossing_edges.begin(), crossing_edges.end()),
+                       crossing_edges.end());
+  for (const auto& [u, v] : crossing_edges) {
+    const Vec3 p = m.positions[u], q = m.positions[v];
+    std::vector<double> ts = surface_crossings(y, p, q);
+    ts.insert(ts.begin(), 0.0);
+    ts.push_back(1.0);
+    for (std::size_t i = 0; i + 1 < ts.size(); ++i) {
+      if (!(ts[i + 1] > ts[i])) continue;
+      const Vec3 mid = p + (q - p) * (0.5 * (ts[i] + ts[i + 1]));
+      if (point_in_solid(y, mid) == 1) depth = std::max(depth, surface_distance(y, mid));
+    }
+  }
+  for (std::uint32_t t = 0; t < nt; ++t) {
+    const bool whole = !paired[t] && set_inside[set[t]];
+    if (!paired[t] && !whole) continue;
+    for (std::uint32_t v : m.triangles[t]) {
+      if (state[v] == 0) state[v] = whole || point_in_solid(y, m.positions[v]) == 1 ? 1 : 2;
+      if (state[v] == 1) {
+        depth = std::max(depth, surface_distance(y, m.positions[v]));
+        state[v] = 3;  // (measured)
+      }
+    }
+  }
+  return depth;
+}
+
+}  // namespace interfere::cad::detail

@@ -1,0 +1,141 @@
+// Nominal fits of an assembly's instance pairs (include/interfere/cad/assembly_clash.h,
+// InstancePairResult::nominal_fit): tessellations that cross only where B-Rep faces coincide (a
+// bolt in a hole of its own diameter), recognised from the faces' AAG parameters (issue #6, item 2)
+// placed by the instances' transforms.
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "assembly_clash_internal.h"
+
+namespace interfere::cad::detail {
+namespace {
+
+// The face node of a part, placed in the world.
+struct PlacedFace {
+  SurfaceType type = SurfaceType::other;
+  Vec3 normal, axis_point, axis;
+  double radius = 0, offset = 0;  // plane: normal . p
+  bool hole = false;
+};
+
+PlacedFace placed(const AagNode& n, const Transform& t) {
+  PlacedFace f;
+  f.type = n.type, f.radius = n.radius, f.hole = n.hole;
+  const auto rotate = [&](const Vec3& v) {
+    return Vec3{t.r[0][0] * v.x + t.r[0][1] * v.y + t.r[0][2] * v.z,
+                t.r[1][0] * v.x + t.r[1][1] * v.y + t.r[1][2] * v.z,
+                t.r[2][0] * v.x + t.r[2][1] * v.y + t.r[2][2] * v.z};
+  };
+  f.normal = rotate(n.normal);
+  f.axis = rotate(n.axis);
+  f.axis_point = t.apply(n.axis_point);
+  return f;  // (a plane's offset is set by the caller, through a placed triangle of the face)
+}
+
+// Whether faces fa (of one instance) and fb (of the other) are one surface (within tol: lengths;
+// angles in radians): planes back to back (material on opposite sides), a sphere in a seat, and
+// coaxial cylinders of one radius, back to back (a bolt in its hole) or on the same side (two
+// bores in line, as a nut's on a plate's: their walls meet at the rim).
+bool coincide(const PlacedFace& fa, const PlacedFace& fb, double tol, double angle) {
+  if (fa.type != fb.type) return false;
+  const auto unit = [](const Vec3& v) { return v / norm(v); };
+  switch (fa.type) {
+    case SurfaceType::plane:
+      return norm(unit(fa.normal) + unit(fb.normal)) <= angle &&
+             std::fabs(fa.offset + fb.offset) <= tol;
+    case SurfaceType::cylinder: {
+      if (std::fabs(fa.radius - fb.radius) > tol) return false;
+      const Vec3 a = unit(fa.axis), b = unit(fb.axis);
+      if (norm(cross(a, b)) > angle) return false;
+      const Vec3 d = fb.axis_point - fa.axis_point;
+      return norm(d - a * dot(d, a)) <= tol;  // b's axis point on a's axis
+    }
+    case SurfaceType::sphere:
+      return fa.hole != fb.hole && std::fabs(fa.radius - fb.radius) <= tol &&
+             norm(fa.axis_point - fb.axis_point) <= tol;
+    default:
+      return false;
+  }
+}
+
+}  // namespace
+
+bool nominal_fit(const CadModel& model, std::uint32_t a, std::uint32_t b,
+                 const std::vector<Model>& world, const ClashResult& r, double depth,
+                 double tessellation_error) {
+  const Part& part_a = model.parts[model.instances[a].part];
+  const Part& part_b = model.parts[model.instances[b].part];
+  if (part_a.face_ids.empty() || part_b.face_ids.empty()) return false;
+  const double size = norm(world[a].mesh.bounds().extent()) + norm(world[b].mesh.bounds().extent());
+  const double tol = kFitTolerance * size, angle = kFitTolerance;
+  const auto face_of = [&](const Part& part, const Instance& in, std::uint32_t t,
+                           const TriMesh& w) {
+    PlacedFace f = placed(part.aag.nodes[part.face_ids[t]], in.placement);
+    if (f.type == SurfaceType::plane) {  // the plane through the placed triangle
+      const auto c = w.corners(t);
+      f.offset = dot(f.normal / norm(f.normal), (c[0] + c[1] + c[2]) / 3.0);
+    }
+    return f;
+  };
+  // The faces of A and of B that coincide back to back with a face of the other, among the
+  // pairs (crossing or touching); a crossing pair is explained when one of its faces is one.
+  std::map<std::pair<std::uint32_t, std::uint32_t>, bool> coincident;  // (face of A, face of B)
+  std::set<std::uint32_t> fit_a, fit_b;
+  for (const TrianglePair& q : r.pairs) {
+    if (q.a >= part_a.face_ids.size() || q.b >= part_b.face_ids.size()) continue;
+    const auto key = std::make_pair(part_a.face_ids[q.a], part_b.face_ids[q.b]);
+    auto it = coincident.find(key);
+    if (it == coincident.end())
+      it = coincident
+               .emplace(key, coincide(face_of(part_a, model.instances[a], q.a, world[a].mesh),
+                                      face_of(part_b, model.instances[b], q.b, world[b].mesh), tol,
+                                      angle))
+               .first;
+    if (it->second) fit_a.insert(key.first), fit_b.insert(key.second);
+  }
+  // A face crossing the other part may coincide with one of its faces that it does not meet
+  // (a nut's seat a hair inside the plate's top face: parallel, so no pair): each face of the
+  // crossing pairs, not yet explained, against every face of the other part (a triangle of
+  // each face places it).
+  const auto first_triangles = [](const Part& part) {
+    std::vector<std::uint32_t> first(part.aag.nodes.size(), 0xffffffffu);
+    for (std::uint32_t t = static_cast<std::uint32_t>(part.face_ids.size()); t-- > 0;)
+      if (part.face_ids[t] < first.size()) first[part.face_ids[t]] = t;
+    return first;
+  };
+  const std::vector<std::uint32_t> first_a = first_triangles(part_a),
+                                   first_b = first_triangles(part_b);
+  std::set<std::uint32_t> crossing_a, crossing_b;
+  for (const TrianglePair& q : r.pairs)
+    if (q.kind == ContactKind::cross && q.a < part_a.face_ids.size() &&
+        q.b < part_b.face_ids.size())
+      crossing_a.insert(part_a.face_ids[q.a]), crossing_b.insert(part_b.face_ids[q.b]);
+  const auto explain = [&](const std::set<std::uint32_t>& crossing, bool of_a) {
+    for (const std::uint32_t f : crossing) {
+      if ((of_a ? fit_a : fit_b).count(f)) continue;
+      const std::vector<std::uint32_t>& others = of_a ? first_b : first_a;
+      for (std::uint32_t g = 0; g < others.size(); ++g) {
+        const std::uint32_t fa = of_a ? f : g, fb = of_a ? g : f;
+        if (others[g] != 0xffffffffu &&
+            coincide(face_of(part_a, model.instances[a], first_a[fa], world[a].mesh),
+                     face_of(part_b, model.instances[b], first_b[fb], world[b].mesh), tol, angle)) {
+          fit_a.insert(fa), fit_b.insert(fb);
+          break;
+        }
+      }
+    }
+  };
+  explain(crossing_a, true);
+  explain(crossing_b, false);
+  bool fit = !fit_a.empty() && depth <= tessellation_error;
+  for (const TrianglePair& q : r.pairs) {
+    if (!fit) break;
+    if (q.kind != ContactKind::cross) continue;
+    fit = (q.a < part_a.face_ids.size() && fit_a.count(part_a.face_ids[q.a])) ||
+          (q.b < part_b.face_ids.size() && fit_b.count(part_b.face_ids[q.b]));
+  }
+  return fit;
+}
+
+}  // namespace interfere::cad::detail
