@@ -80,8 +80,7 @@ int point_in_closed_mesh(const Model& model, const Vec3& p) {
     if (attempt < 8 && std::isfinite(gap) && gap >= 0) {
       Vec3 dir{0.25 * gauss(rng), 0.25 * gauss(rng), 0.25 * gauss(rng)};
       dir[axis] = sign;
-      const double len = (gap + 0.01 * diag + 1e-300) / 1.0;  // (the axis component is 1: it exits the bounds)
-      q = p + dir * len;
+      q = p + dir * (gap + 0.01 * diag);  // (the axis component is 1: q lies beyond the bounds)
       if (!is_finite(q)) continue;
     } else {
       Vec3 dir{gauss(rng), gauss(rng), gauss(rng)};
