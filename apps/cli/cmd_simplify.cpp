@@ -218,7 +218,7 @@ std::string with_step(const std::string& file, const std::string& step) {
 int run_all_steps(const SimplifyCliOptions& o) {
 #ifdef INTERFERE_HAS_CAD
   if (o.process.empty()) throw InputError("--step all needs --process FILE");
-  if (!is_step(o.input)) throw InputError("--step/--process need a STEP input (features are recognised on the B-Rep)");
+  if (!is_step_file(o.input)) throw InputError("--step/--process need a STEP input (features are recognised on the B-Rep)");
   // The library, the rules and every step of the process are checked before the import and before
   // any output is written.
   auto sem = cad::load_semantics({.library_file = o.library, .rules_file = o.rules, .process_file = o.process, .step = "all"});

@@ -41,8 +41,6 @@ struct SimplifyOutput {
   MeshFormat format = MeshFormat::automatic;
 };
 
-bool is_step(const std::string& file);
-
 /// Every check of the options that needs no file read: budgets, modes, angles, limits, the
 /// options that go with a STEP input or a mesh only, the outputs (known formats, existing
 /// directories, none equal to an input or to each other). Throws InputError; nothing is written.

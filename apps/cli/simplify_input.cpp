@@ -47,25 +47,16 @@ void check_region_ids(const SimplifyCliOptions& o, const SimplifyOptions& so) {
 
 }  // namespace
 
-bool is_step(const std::string& file) {
-  const std::string e = lower_extension(file);
-  return e == ".step" || e == ".stp";
-}
-
 SimplifyOptions simplify_options(const SimplifyCliOptions& o) {
   SimplifyOptions so;
   so.target_triangles = o.target;
   so.ratio = o.ratio;
-  if (o.feature_mode == "weight") so.feature_mode = FeatureMode::weight;
-  else if (o.feature_mode == "last") so.feature_mode = FeatureMode::last;
-  else if (o.feature_mode == "lock") so.feature_mode = FeatureMode::lock;
-  else throw InputError("--feature-mode must be weight, last or lock, not '" + o.feature_mode + "'");
-  if (o.lock) so.feature_mode = FeatureMode::lock;
-  if (o.seams == "all") so.seams = SeamMode::all;
-  else if (o.seams == "features") so.seams = SeamMode::features;
-  else if (o.seams == "none") so.seams = SeamMode::none;
-  else if (o.seams == "auto") so.seams = SeamMode::as_needed;
-  else throw InputError("--seams must be all, auto, features or none, not '" + o.seams + "'");
+  const auto mode = feature_mode_from_name(o.feature_mode);
+  if (!mode) throw InputError("--feature-mode must be weight, last or lock, not '" + o.feature_mode + "'");
+  so.feature_mode = o.lock ? FeatureMode::lock : *mode;
+  const auto seams = seam_mode_from_name(o.seams);
+  if (!seams) throw InputError("--seams must be all, auto, features or none, not '" + o.seams + "'");
+  so.seams = *seams;
   so.measure_error = !o.no_error;
   so.prevent_self_intersections = !o.no_guard;
   so.inherit_input_contacts = !o.strict_guard;
@@ -78,7 +69,7 @@ SimplifyOutput check_simplify_options(const SimplifyCliOptions& o) {
   if (o.ratio != 0 && !(o.ratio > 0 && o.ratio <= 1)) throw InputError("--ratio must lie in (0, 1]");
   if (!o.step.empty() && o.process.empty()) throw InputError("--step needs --process FILE");
   if (o.step.empty() && !o.process.empty()) throw InputError("--process needs --step ID");
-  const bool step_input = is_step(o.input);
+  const bool step_input = is_step_file(o.input);
   if (!o.parts_dir.empty() && !step_input)
     throw InputError("--parts-dir needs a STEP input (one file per part of the assembly)");
   if (step_input && (!o.regions.empty() || o.sharp_angle != 0))
@@ -128,7 +119,7 @@ SimplifyOutput check_simplify_options(const SimplifyCliOptions& o) {
 SimplifyInput load_simplify_input(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedModel* model,
                                   SimplifyOptions& so, [[maybe_unused]] nlohmann::json& report) {
   SimplifyInput in;
-  if (is_step(o.input)) {
+  if (is_step_file(o.input)) {
 #ifdef INTERFERE_HAS_CAD
     cad::PipelineOptions po;
     po.linear_deflection = o.linear_deflection;

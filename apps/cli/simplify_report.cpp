@@ -25,7 +25,7 @@ void add_result_report(nlohmann::json& report, const SimplifyResult& r, const Si
   report["degenerate_triangles"] = r.degenerate_triangles;
   report["vertices"] = {{"welded_input", r.input_vertices_welded}, {"seam", r.seam_vertices},
                         {"corner", r.corner_vertices}, {"locked", r.locked_vertices}};
-  report["feature_mode"] = so.feature_mode == FeatureMode::lock ? "lock" : so.feature_mode == FeatureMode::last ? "last" : "weight";
+  report["feature_mode"] = feature_mode_name(so.feature_mode);
   report["seams"] = o.seams;
   report["seams_relaxed_at"] = r.seams_relaxed_at;
   report["max_error"] = so.max_error > 0 ? nlohmann::json(so.max_error) : nlohmann::json(nullptr);

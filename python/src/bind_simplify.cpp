@@ -31,9 +31,8 @@ namespace {
 
 // The modes of simplify() and simplify_step() by name (as the CLI's --feature-mode, --lock, --seams).
 FeatureMode feature_mode_of(const std::string& name, bool lock) {
-  if (lock || name == "lock") return FeatureMode::lock;
-  if (name == "weight") return FeatureMode::weight;
-  if (name == "last") return FeatureMode::last;
+  if (lock) return FeatureMode::lock;
+  if (const auto mode = feature_mode_from_name(name)) return *mode;
   throw py::value_error("feature_mode must be weight, last or lock, not '" + name + "'");
 }
 #ifdef INTERFERE_HAS_CAD
@@ -48,10 +47,7 @@ py::list instance_list(const cad::Prepared& prep) {
 #endif
 
 SeamMode seam_mode_of(const std::string& name) {
-  if (name == "all") return SeamMode::all;
-  if (name == "features") return SeamMode::features;
-  if (name == "none") return SeamMode::none;
-  if (name == "auto") return SeamMode::as_needed;
+  if (const auto seams = seam_mode_from_name(name)) return *seams;
   throw py::value_error("seams must be all, auto, features or none, not '" + name + "'");
 }
 

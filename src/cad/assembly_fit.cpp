@@ -22,13 +22,8 @@ struct PlacedFace {
 PlacedFace placed(const AagNode& n, const Transform& t) {
   PlacedFace f;
   f.type = n.type, f.radius = n.radius, f.hole = n.hole;
-  const auto rotate = [&](const Vec3& v) {
-    return Vec3{t.r[0][0] * v.x + t.r[0][1] * v.y + t.r[0][2] * v.z,
-                t.r[1][0] * v.x + t.r[1][1] * v.y + t.r[1][2] * v.z,
-                t.r[2][0] * v.x + t.r[2][1] * v.y + t.r[2][2] * v.z};
-  };
-  f.normal = rotate(n.normal);
-  f.axis = rotate(n.axis);
+  f.normal = t.rotate(n.normal);
+  f.axis = t.rotate(n.axis);
   f.axis_point = t.apply(n.axis_point);
   return f;  // (a plane's offset is set by the caller, through a placed triangle of the face)
 }

@@ -23,11 +23,6 @@ Transform compose(const Transform& a, const Transform& b) {
   return r;
 }
 
-Vec3 rotate(const Transform& a, const Vec3& v) {
-  return {a.r[0][0] * v.x + a.r[0][1] * v.y + a.r[0][2] * v.z, a.r[1][0] * v.x + a.r[1][1] * v.y + a.r[1][2] * v.z,
-          a.r[2][0] * v.x + a.r[2][1] * v.y + a.r[2][2] * v.z};
-}
-
 /// Exact sine/cosine at multiples of 90 degrees (so the bundled table's +-90 twists are exact).
 void sincos_deg(double deg, double& s, double& c) {
   const double q = deg / 90.0;
@@ -77,9 +72,9 @@ Vec3 perpendicular_reference(const Vec3& ref, const Vec3& axis) {
 }
 
 ProbePose tool_pose(const Robot& robot, const Transform& last) {
-  Vec3 axis = rotate(last, robot.tool_axis);
+  Vec3 axis = last.rotate(robot.tool_axis);
   axis = axis / norm(axis);
-  return {last.apply(robot.tool_tip), axis, perpendicular_reference(rotate(last, robot.tool_ref), axis)};
+  return {last.apply(robot.tool_tip), axis, perpendicular_reference(last.rotate(robot.tool_ref), axis)};
 }
 
 ProbePose forward_kinematics(const Robot& robot, const std::vector<double>& q) {

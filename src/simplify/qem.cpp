@@ -218,6 +218,29 @@ Expected<SimplifyResult> simplify_within(const TriMesh& mesh, const SimplifyOpti
 
 }  // namespace
 
+std::optional<FeatureMode> feature_mode_from_name(std::string_view name) {
+  for (const FeatureMode m : {FeatureMode::weight, FeatureMode::last, FeatureMode::lock})
+    if (name == feature_mode_name(m)) return m;
+  return std::nullopt;
+}
+
+const char* feature_mode_name(FeatureMode mode) {
+  switch (mode) {
+    case FeatureMode::weight: return "weight";
+    case FeatureMode::last: return "last";
+    case FeatureMode::lock: return "lock";
+  }
+  return "?";
+}
+
+std::optional<SeamMode> seam_mode_from_name(std::string_view name) {
+  if (name == "all") return SeamMode::all;
+  if (name == "auto") return SeamMode::as_needed;
+  if (name == "features") return SeamMode::features;
+  if (name == "none") return SeamMode::none;
+  return std::nullopt;
+}
+
 std::string one_below_warning(std::size_t budget) {
   return "budget " + std::to_string(budget) + " not reached exactly: " + std::to_string(budget - 1) +
          " triangles, one below (every collapse left removes two triangles, as on a closed mesh)";

@@ -20,6 +20,11 @@ struct Transform {
             r[1][0] * p.x + r[1][1] * p.y + r[1][2] * p.z + t.y,
             r[2][0] * p.x + r[2][1] * p.y + r[2][2] * p.z + t.z};
   }
+  /// The rotation alone (a direction or a normal: R·v).
+  Vec3 rotate(const Vec3& v) const {
+    return {r[0][0] * v.x + r[0][1] * v.y + r[0][2] * v.z, r[1][0] * v.x + r[1][1] * v.y + r[1][2] * v.z,
+            r[2][0] * v.x + r[2][1] * v.y + r[2][2] * v.z};
+  }
   friend bool operator==(const Transform&, const Transform&) = default;
 
   /// Parses 12 numbers "r00 r01 r02 tx r10 r11 r12 ty r20 r21 r22 tz" (spaces and/or commas).

@@ -20,7 +20,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -44,6 +46,12 @@ enum class SeamMode {
   /// run is made again with `features` (the error is measured once, on the result returned)
   as_needed,
 };
+
+/// The modes by name, as the CLI (--feature-mode, --seams) and Python spell them: "weight", "last",
+/// "lock"; "all", "auto" (as_needed), "features", "none". nullopt for any other name.
+std::optional<FeatureMode> feature_mode_from_name(std::string_view name);
+const char* feature_mode_name(FeatureMode mode);
+std::optional<SeamMode> seam_mode_from_name(std::string_view name);
 
 struct SimplifyOptions {
   /// Triangle budget. > 0: the result has exactly this many triangles when it can be reached (a
