@@ -11,12 +11,14 @@ namespace {
 
 struct CheckOptions {
   std::string file, json;
+  StepTessellation tessellation;
 };
 
-int run_check(const CheckOptions& o) {
+int run_check(CheckOptions o, const CLI::App& command) {
   check_output(o.json, {}, "--json");
   check_distinct_files({{"FILE", o.file}}, {{"--json", o.json}});
-  PartMesh part = read_part_mesh(o.file);
+  resolve_step_tessellation(command, o.tessellation, {o.file});
+  PartMesh part = read_part_mesh(o.file, o.tessellation);
   const MeshReadInfo& info = part.info;
   const TriMesh* m = &part.mesh;
   const MeshStats s = mesh_stats(*m);
@@ -28,6 +30,7 @@ int run_check(const CheckOptions& o) {
                       {"polygons_split", info.polygons_split},
                       {"vertices_before_weld", info.vertices_before_weld},
                       {"bbox", {{"min", {box.lo.x, box.lo.y, box.lo.z}}, {"max", {box.hi.x, box.hi.y, box.hi.z}}}}};
+  if (part.format == "step") j["linear_deflection"] = part.linear_deflection;
   j.update(stats_json(s));
   if (!o.json.empty()) {
     const Status st = write_file_atomic(o.json, j.dump(2) + "\n");
@@ -43,9 +46,10 @@ void add_check_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<CheckOptions>();
   CLI::App* c = app.add_subcommand("check", "Read and validate a mesh: counts of degenerate/duplicate "
                                             "triangles, open and non-manifold edges");
-  c->add_option("FILE", o->file, "mesh file")->required();
+  c->add_option("FILE", o->file, "mesh file (STL, OBJ, PLY, OFF, GLB) or STEP file (.step, .stp)")->required();
   c->add_option("--json", o->json, "write the statistics as JSON here");
-  c->callback([o, &exit_code] { exit_code = run_check(*o); });
+  add_step_tessellation_options(*c, o->tessellation);
+  c->callback([o, c, &exit_code] { exit_code = run_check(*o, *c); });
 }
 
 }  // namespace interfere::cli

@@ -62,26 +62,26 @@ double max_stretch(const std::string& transform) {
   return std::sqrt(worst) * (1 + 1e-12);
 }
 
-int run_clash(const ClashOptions& o) {
-  const ResolvedParts parts = resolve_two_parts(o, "clash");
+int run_clash(const ClashOptions& o, const CLI::App& command) {
+  const ResolvedParts parts = resolve_two_parts(o, command);
   if (!(o.clearance >= 0) || !std::isfinite(o.clearance)) throw InputError("--clearance must be a finite number >= 0");
   // --conservative (issue #6, item 6): two touching originals have points of their simplified
   // versions within the sum of the bounds, so a pair closer than that is a possible clash.
   double bound_a = 0, bound_b = 0;
   if (o.conservative) {
     if (o.fem_requested() || is_fem_file(parts.a.file) || is_fem_file(parts.b.file))
-      throw InputError("--conservative takes simplified mesh files (interfere simplify outputs), not FEM input");
-    // Bounds in the files' coordinates; a pose that scales stretches them.
-    bound_a = stored_error_bound(parts.a.file, "A") * max_stretch(parts.a.transform);
-    bound_b = stored_error_bound(parts.b.file, "B") * max_stretch(parts.b.transform);
+      throw InputError("--conservative takes simplified mesh files (interfere simplify outputs) or STEP files, not FEM input");
+    // Bounds in the files' coordinates; a pose that scales stretches them. A STEP input's bound is
+    // its tessellation's linear deflection, known once it is read (below).
+    if (!is_step_file(parts.a.file)) bound_a = stored_error_bound(parts.a.file, "A") * max_stretch(parts.a.transform);
+    if (!is_step_file(parts.b.file)) bound_b = stored_error_bound(parts.b.file, "B") * max_stretch(parts.b.transform);
   }
-  const double margin = bound_a + bound_b;
-  const ClashRequest request{.test = parse_test(o.test),
-                             .broadphase = parse_broadphase(o.broadphase),
-                             .parallel = true,
-                             .clearance = o.clearance + margin,
-                             .regions = true,
-                             .containment = !o.no_containment};
+  ClashRequest request{.test = parse_test(o.test),
+                       .broadphase = parse_broadphase(o.broadphase),
+                       .parallel = true,
+                       .clearance = o.clearance,
+                       .regions = true,
+                       .containment = !o.no_containment};
   const std::vector<std::string> mesh_ext{".stl", ".ply", ".obj", ".off"};
   check_output(o.json, {}, "--json");
   check_output(o.pairs, {}, "--pairs");
@@ -101,6 +101,13 @@ int run_clash(const ClashOptions& o) {
   const LoadedParts loaded = load_parts(parts);
   const LoadedPart& pa = loaded.a;
   const LoadedPart& pb = loaded.b;
+  if (o.conservative) {
+    // BRepMesh keeps a STEP part's triangles within its linear deflection of the B-Rep surfaces.
+    if (is_step_file(parts.a.file)) bound_a = pa.linear_deflection * max_stretch(parts.a.transform);
+    if (is_step_file(parts.b.file)) bound_b = pb.linear_deflection * max_stretch(parts.b.transform);
+  }
+  const double margin = bound_a + bound_b;
+  request.clearance = o.clearance + margin;
   ClashResult result;
   double query_seconds = 0;
   {
@@ -191,10 +198,11 @@ void add_clash_command(CLI::App& app, int& exit_code) {
   c->add_option("--max-clearance-pairs", o->max_clearance_pairs, "cap on clearance pairs listed in JSON");
   c->add_flag("--no-containment", o->no_containment, "skip the containment test");
   c->add_flag("--conservative", o->conservative,
-              "inputs simplified by 'interfere simplify': widen the clearance by their stored error bounds; a pair "
-              "within them is a possible clash of the originals (exit status 1)");
+              "inputs simplified by 'interfere simplify' (or STEP parts): widen the clearance by their stored error "
+              "bounds (a STEP part's: its tessellation's linear deflection); a pair within them is a possible clash "
+              "of the originals (exit status 1)");
   add_fem_clash_options(*c, *o);
-  c->callback([o, &exit_code] { exit_code = run_clash(*o); });
+  c->callback([o, c, &exit_code] { exit_code = run_clash(*o, *c); });
 }
 
 }  // namespace interfere::cli

@@ -10,8 +10,8 @@
 namespace interfere::cli {
 namespace {
 
-int run_distance(const TwoPartOptions& o) {
-  const ResolvedParts parts = resolve_two_parts(o, "distance");
+int run_distance(const TwoPartOptions& o, const CLI::App& command) {
+  const ResolvedParts parts = resolve_two_parts(o, command);
   check_distinct_files({{"A", parts.a.file}, {"B", parts.b.file}, {"--scene", o.scene}}, {{"--json", o.json}});
   set_threads(o.threads);
   Progress total("distance");
@@ -50,7 +50,7 @@ void add_distance_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<TwoPartOptions>();
   CLI::App* c = app.add_subcommand("distance", "Minimum distance between parts A and B, with witness points");
   add_two_part_options(*c, *o);
-  c->callback([o, &exit_code] { exit_code = run_distance(*o); });
+  c->callback([o, c, &exit_code] { exit_code = run_distance(*o, *c); });
 }
 
 }  // namespace interfere::cli

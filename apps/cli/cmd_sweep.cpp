@@ -22,6 +22,7 @@ namespace {
 using namespace interfere::probe;
 
 struct SweepOptions {
+  StepTessellation tessellation;
   std::string workpiece, robot, path, json, csv, hits_obj, probes_vtk, hierarchy = "bvh", units = "mm", holder_box;
   double probe_radius = std::numeric_limits<double>::quiet_NaN();
   double probe_length = std::numeric_limits<double>::quiet_NaN();
@@ -99,6 +100,7 @@ int run_sweep(const SweepOptions& o) {
   positive(o.max_clearance, "--max-clearance", true);
   if (o.depth < 1 || o.depth > 40) throw InputError("--depth: must be in [1, 40]");
   check_units(o.units);
+  check_step_units({o.workpiece}, o.units);
   const Hierarchy hierarchy = parse_hierarchy(o.hierarchy);
   check_output(o.json, {}, "--json");
   check_output(o.csv, {}, "--csv");
@@ -131,7 +133,7 @@ int run_sweep(const SweepOptions& o) {
     const Status frames = check_reference_frames(path, o.path);
     if (!frames) throw InputError(frames.error());
   }
-  PartMesh mesh = read_part_mesh(o.workpiece);
+  PartMesh mesh = read_part_mesh(o.workpiece, o.tessellation);
   const double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_read).count();
 
   // ---- compute ----
@@ -169,6 +171,7 @@ int run_sweep(const SweepOptions& o) {
                                   {"triangles", w.mesh.num_triangles()}, {"vertices", w.mesh.num_vertices()}}},
                    {"path", {{"file", o.path}, {"points", path.size()}, {"kind", path.joint_space ? "joints" : "poses"},
                              {"columns", path.columns}}}};
+    if (mesh.format == "step") j["inputs"]["workpiece"]["linear_deflection"] = mesh.linear_deflection;
     if (robot) {
       j["inputs"]["robot"] = {{"file", o.robot}, {"name", robot->name}, {"joints", robot->joints.size()}};
     }
@@ -272,7 +275,7 @@ void add_sweep_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<SweepOptions>();
   CLI::App* c = app.add_subcommand("sweep", "Inspection-probe path check: probe (cylinder) vs workpiece at every path "
                                             "point and between points");
-  c->add_option("--workpiece", o->workpiece, "workpiece mesh (STL, OBJ, PLY, OFF)")->required()->check(CLI::ExistingFile);
+  c->add_option("--workpiece", o->workpiece, "workpiece mesh (STL, OBJ, PLY, OFF, GLB) or STEP file")->required()->check(CLI::ExistingFile);
   c->add_option("--robot", o->robot, "robot DH chain (JSON; needed for joint paths)")->check(CLI::ExistingFile);
   c->add_option("--path", o->path, "path CSV: joint values (header = one name per joint) or poses "
                                    "(header px,py,pz,ax,ay,az[,rx,ry,rz])")
@@ -299,7 +302,11 @@ void add_sweep_command(CLI::App& app, int& exit_code) {
   c->add_option("--depth", o->depth, "continuous check resolution 2^-depth of a segment (default 12)");
   c->add_option("--threads", o->threads, "worker threads (0 = all cores)");
   c->add_option("--units", o->units, "length unit label of the inputs (default mm)");
-  c->callback([o, &exit_code] { exit_code = run_sweep(*o); });
+  add_step_tessellation_options(*c, o->tessellation);
+  c->callback([o, c, &exit_code] {
+    resolve_step_tessellation(*c, o->tessellation, {o->workpiece});
+    exit_code = run_sweep(*o);
+  });
 }
 
 }  // namespace interfere::cli

@@ -29,7 +29,8 @@ double Progress::seconds() const {
 
 namespace {
 // Reads, validates and poses one part (p' = R·p + t in double); the tree is built later.
-LoadedPart read_part(const PartSpec& spec, const std::string& label, TriMesh& mesh) {
+LoadedPart read_part(const PartSpec& spec, const std::string& label, const StepTessellation& tessellation,
+                     TriMesh& mesh) {
   LoadedPart p;
   p.file = spec.file;
   if (!spec.transform.empty()) {
@@ -39,9 +40,10 @@ LoadedPart read_part(const PartSpec& spec, const std::string& label, TriMesh& me
   }
   {
     Progress progress("reading " + label + " (" + spec.file + ")");
-    PartMesh m = read_part_mesh(spec.file);
+    PartMesh m = read_part_mesh(spec.file, tessellation);
     mesh = std::move(m.mesh);
     p.format = m.format;
+    p.linear_deflection = m.linear_deflection;
     p.warnings = std::move(m.warnings);
     p.read_seconds = progress.seconds();
   }
@@ -70,8 +72,8 @@ void warn_about(LoadedPart& p, const std::string& label) {
 LoadedParts load_parts(const ResolvedParts& parts) {
   LoadedParts r;
   TriMesh ma, mb;  // read one after the other, so an input error always names the first bad file
-  r.a = read_part(parts.a, "A", ma);
-  r.b = read_part(parts.b, "B", mb);
+  r.a = read_part(parts.a, "A", parts.tessellation, ma);
+  r.b = read_part(parts.b, "B", parts.tessellation, mb);
   {
     Progress progress("building trees (A: " + std::to_string(ma.num_triangles()) + ", B: " +
                       std::to_string(mb.num_triangles()) + " triangles)");
@@ -253,6 +255,7 @@ nlohmann::json stats_json(const MeshStats& s) {
 nlohmann::json part_json(const LoadedPart& p) {
   nlohmann::json j = {{"file", p.file}, {"format", p.format}};
   j.update(stats_json(p.model.stats));
+  if (p.format == "step") j["linear_deflection"] = p.linear_deflection;
   j.update({{"transform", p.transform.to_row_major()},
             {"read_seconds", p.read_seconds},
             {"build_seconds", p.build_seconds}});
@@ -269,16 +272,42 @@ void add_two_part_options(CLI::App& c, TwoPartOptions& o) {
   c.add_option("--threads", o.threads, "worker threads (0 = all cores)");
   c.add_option("--builder", o.builder, "tree builder: lbvh (default), lbvh_treelet, sah, median, insertion");
   c.add_option("--units", o.units, "length unit of the inputs, reported (mm, cm, m, um, in, ft)");
+  add_step_tessellation_options(c, o.tessellation);
 }
 
-ResolvedParts resolve_two_parts(const TwoPartOptions& o, const std::string& command) {
-  ResolvedParts r{.a = o.a, .b = o.b, .units = o.units};
+ResolvedParts resolve_two_parts(const TwoPartOptions& o, const CLI::App& command) {
+  ResolvedParts r{.a = o.a, .b = o.b, .units = o.units, .tessellation = o.tessellation};
   if (!o.scene.empty()) apply_scene(o.scene, r.a, r.b, r.units);
-  if (r.a.file.empty() || r.b.file.empty()) throw InputError(command + ": two parts are needed (A B, or --scene)");
+  if (r.a.file.empty() || r.b.file.empty())
+    throw InputError(command.get_name() + ": two parts are needed (A B, or --scene)");
   if (r.units.empty()) r.units = "mm";
   check_units(r.units);
+  check_step_units({r.a.file, r.b.file}, r.units);
+  resolve_step_tessellation(command, r.tessellation, {r.a.file, r.b.file});
   r.bvh.builder = parse_builder(o.builder);
   return r;
+}
+
+void add_step_tessellation_options(CLI::App& c, StepTessellation& t) {
+  c.add_option("--linear-deflection", t.linear_deflection,
+               "STEP inputs: tessellation linear deflection, mm (0 = 0.1 % of each part's diagonal)");
+  c.add_option("--angular-deflection", t.angular_deflection, "STEP inputs: tessellation angular deflection, radians");
+}
+
+void resolve_step_tessellation(const CLI::App& c, StepTessellation& t, const std::vector<std::string>& files) {
+  t.given = c.count("--linear-deflection") + c.count("--angular-deflection") > 0;
+  if (!t.given) return;
+  for (const std::string& f : files)
+    if (is_step_file(f)) return;
+  throw InputError("--linear-deflection/--angular-deflection tessellate STEP inputs (.step, .stp); no input is one");
+}
+
+void check_step_units(const std::vector<std::string>& files, const std::string& units) {
+  if (units == "mm") return;
+  for (const std::string& f : files)
+    if (is_step_file(f))
+      throw InputError(f + ": STEP input is read in millimetres (OpenCASCADE converts the file's units); --units is " +
+                       units + ": give --units mm and meshes in millimetres");
 }
 
 nlohmann::json two_part_report(const std::string& command, const std::string& units, const LoadedParts& parts,

@@ -55,8 +55,25 @@ struct PartMesh {
   std::string format;  ///< mesh_format_name, or "step"
   MeshReadInfo info;   ///< mesh files: as read_mesh reports it; STEP: vertices_before_weld only
   std::vector<std::string> warnings;
+  /// STEP: the largest linear deflection its parts were tessellated with (mm; BRepMesh's bound on
+  /// the distance of the triangles from the B-Rep surfaces); 0 for mesh files (exact as given).
+  double linear_deflection = 0;
 };
-PartMesh read_part_mesh(const std::string& file);
+/// The tessellation of STEP inputs (--linear-deflection, --angular-deflection; cad::ImportOptions).
+struct StepTessellation {
+  double linear_deflection = 0;     ///< mm; 0 = 0.1 % of each part's bounding-box diagonal
+  double angular_deflection = 0.5;  ///< radians
+  bool given = false;               ///< either flag was on the command line
+};
+/// Registers --linear-deflection and --angular-deflection on a command that reads parts.
+void add_step_tessellation_options(CLI::App& command, StepTessellation& t);
+/// Called when the command runs: sets `given`, and throws InputError when the flags were given
+/// although none of `files` is a STEP file (they would silently do nothing).
+void resolve_step_tessellation(const CLI::App& command, StepTessellation& t, const std::vector<std::string>& files);
+/// STEP files are read in millimetres (OCCT converts the file's units): throws InputError naming
+/// the file when one is among `files` and `units` is not "mm".
+void check_step_units(const std::vector<std::string>& files, const std::string& units);
+PartMesh read_part_mesh(const std::string& file, const StepTessellation& tessellation = {});
 bool is_step_file(const std::string& file);
 
 struct PartSpec {
@@ -69,6 +86,7 @@ struct LoadedPart {
   std::string format;  ///< mesh_format_name, or "step"
   Transform transform;
   Model model;
+  double linear_deflection = 0;  ///< PartMesh::linear_deflection (STEP inputs)
   double read_seconds = 0, build_seconds = 0;
   std::vector<std::string> warnings;  ///< degenerate/duplicate triangles, open or non-manifold edges
 };
@@ -130,8 +148,10 @@ struct TwoPartOptions {
   PartSpec a, b;
   std::string scene, units, json, builder = "lbvh";
   int threads = 0;
+  StepTessellation tessellation;
 };
-/// Registers A, B, --scene, --transform-a/-b, --json, --threads, --builder, --units.
+/// Registers A, B, --scene, --transform-a/-b, --json, --threads, --builder, --units,
+/// --linear-deflection, --angular-deflection.
 void add_two_part_options(CLI::App& command, TwoPartOptions& o);
 
 /// The two parts after the scene file, defaults and checks (files, units, builder).
@@ -139,8 +159,10 @@ struct ResolvedParts {
   PartSpec a, b;
   std::string units;
   BvhBuildOptions bvh;
+  StepTessellation tessellation;
 };
-ResolvedParts resolve_two_parts(const TwoPartOptions& o, const std::string& command);
+/// `command` is the subcommand (its name and flags, for the STEP tessellation flags).
+ResolvedParts resolve_two_parts(const TwoPartOptions& o, const CLI::App& command);
 
 /// Report fields common to the two-part commands: version, command, units, inputs, timings.
 nlohmann::json two_part_report(const std::string& command, const std::string& units, const LoadedParts& parts,

@@ -1,10 +1,13 @@
 // Part geometry for the commands that take meshes (clash, distance, check, sweep): a mesh file
 // (read_mesh: STL, OBJ, PLY, OFF, GLB) or, built with OpenCASCADE, a STEP part or assembly
-// tessellated by cad::import_step (default deflections: 0.1 % of each part's diagonal, 0.5 rad),
+// tessellated by cad::import_step (deflections from --linear-deflection/--angular-deflection;
+// defaults 0.1 % of each part's diagonal, 0.5 rad; no AAG, only triangles are needed),
 // every instance placed, lengths in millimetres, welded where faces meet (BRepMesh discretises a
 // shared edge once, so a closed solid stays closed for the containment test).
 #include "common.h"
 #include "interfere/mesh/validate.h"
+
+#include <algorithm>
 #ifdef INTERFERE_HAS_CAD
 #include "interfere/cad/model.h"
 #endif
@@ -16,12 +19,15 @@ bool is_step_file(const std::string& file) {
   return e == ".step" || e == ".stp";
 }
 
-PartMesh read_part_mesh(const std::string& file) {
+PartMesh read_part_mesh(const std::string& file, const StepTessellation& tessellation) {
   PartMesh p;
   if (is_step_file(file)) {
 #ifdef INTERFERE_HAS_CAD
-    auto model = cad::import_step(file);
+    auto model = cad::import_step(file, {.linear_deflection = tessellation.linear_deflection,
+                                         .angular_deflection = tessellation.angular_deflection,
+                                         .build_aag = false});  // triangles only
     if (!model) throw InputError(model.error());
+    for (const cad::Part& part : model->parts) p.linear_deflection = std::max(p.linear_deflection, part.linear_deflection);
     p.mesh = cad::world_mesh(*model);
     p.info.vertices_before_weld = p.mesh.num_vertices();
     weld_exact(p.mesh);

@@ -127,6 +127,7 @@ Part make_part(const TopoDS_Shape& shape, const std::string& name, const ImportO
       p.face_ids.push_back(static_cast<std::uint32_t>(i - 1));
     }
   }
+  if (!o.build_aag) return p;
   p.aag = detail::build_aag(shape, faces, o.canonical_tolerance);
   for (std::size_t t = 0; t < p.face_ids.size(); ++t) ++p.aag.nodes[p.face_ids[t]].triangles;
   return p;

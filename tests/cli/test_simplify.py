@@ -578,6 +578,45 @@ class Features(unittest.TestCase):
         self.assertEqual(code, 2)
         self.assertIn("broken.step", err)
 
+    def test_step_tessellation_options_and_conservative_clash(self):
+        # --linear-deflection sets the STEP tessellation (reported); --conservative takes a STEP part's
+        # deflection as its error bound: a pin of r = 2.95 in the plate's r = 3 bore (a 0.05 gap) is
+        # clear, a possible clash when the bore may be 0.1 off, and clear again at 0.01.
+        plate = os.path.join(DATA, "counterbored_plate.step")
+        counts = []
+        for d in ("0.5", "0.01"):
+            code, out, err = run("check", plate, "--linear-deflection", d)
+            self.assertEqual(code, 0, err)
+            c = json.loads(out)
+            self.assertEqual(c["linear_deflection"], float(d))
+            self.assertTrue(c["closed"])
+            counts.append(c["triangles"])
+        self.assertLess(counts[0], counts[1])
+        write_obj("pin295.obj", make_examples.cylinder(2.95, 30, 64))
+        pose = ("--transform-b", "1 0 0 20 0 1 0 15 0 0 1 5")
+        for d, expected in (("0.1", 1), ("0.01", 0)):
+            code, out, err = run("clash", plate, path("pin295.obj"), *pose, "--linear-deflection", d, "--conservative",
+                                 "--json", path("cons.json"))
+            self.assertEqual(code, expected, out + err)
+            r = load_json("cons.json")
+            self.assertEqual(r["inputs"]["a"]["linear_deflection"], float(d))
+            self.assertEqual(r["conservative"]["error_bound_a"], float(d))
+            self.assertEqual(r["conservative"]["error_bound_b"], 0)
+            self.assertEqual(r["result"]["pairs"], 0)
+        code, _, err = run("clash", plate, path("pin295.obj"), *pose, "--linear-deflection", "0.1")
+        self.assertEqual(code, 0, err)
+        # Misused flags are input errors naming the reason: deflection flags without a STEP input, a
+        # STEP input with other units, a bad deflection.
+        write_obj("pin2.obj", make_examples.cylinder(2.8, 30, 64))
+        for args, message in ((["clash", path("pin2.obj"), path("pin295.obj"), "--linear-deflection", "0.1"], "STEP"),
+                              (["check", path("pin2.obj"), "--angular-deflection", "0.2"], "STEP"),
+                              (["clash", plate, path("pin295.obj"), "--units", "m"], "millimetres"),
+                              (["distance", plate, path("pin295.obj"), "--linear-deflection", "-1"], "deflection"),
+                              (["check", plate, "--angular-deflection", "7"], "angular deflection")):
+            code, _, err = run(*args)
+            self.assertEqual(code, 2, args)
+            self.assertIn(message, err)
+
     def test_assembly_clash_pairs_of_instances(self):
         # The test assembly as written: no pair meets (plate_2 lies 10 mm above plate_1); with a 15 mm
         # clearance that pair is listed. plate_2 moved onto plate_1: a contact; moved into it: a clash

@@ -158,6 +158,8 @@ class Sweep(unittest.TestCase):
             "--probe-length")
         bad(["--workpiece", work, "--path", good, *BASE], "needs a robot")
         bad(["--workpiece", work, "--robot", ROBOT, "--path", good, *BASE, "--hierarchy", "octree"], "--hierarchy")
+        # STEP tessellation flags with a mesh workpiece would do nothing: an error.
+        bad(["--workpiece", work, "--robot", ROBOT, "--path", good, *BASE, "--linear-deflection", "0.1"], "STEP")
 
     def test_holder_box(self):
         # Probe down from tip z = 100, length 40; the box (40 wide along ref, 20 deep, 30 long) spans

@@ -91,6 +91,9 @@ struct ImportOptions {
   double angular_deflection = 0.5;  ///< radians, in [1e-6, pi]
   /// Tolerance (relative to the face's size) of the canonical-surface recognition of B-spline faces.
   double canonical_tolerance = 1e-4;
+  /// Builds each part's AAG (Part::aag). Callers that need triangles only (clash, distance) turn it
+  /// off: the parts' `aag` stay empty.
+  bool build_aag = true;
 };
 
 /// Reads a STEP file (parts, assemblies, names, instance transforms; XCAF), tessellates every part
