@@ -88,6 +88,25 @@ TEST(CadImport, EveryTriangleCarriesItsFaceAndFacesMeetWatertight) {
   EXPECT_NEAR(vol, 40 * 30 * 10 - M_PI * 16 * 10, 0.02 * 12000);
 }
 
+TEST(CadImport, WithoutTheAagTheTessellationIsTheSame) {
+  // build_aag = false (the mesh commands): the same triangles, face ids and deflection, no graph.
+  const CadModel& full = load(TestPart::counterbored_plate);
+  auto bare = import_step(work_dir() / "counterbored_plate.step", {.build_aag = false});
+  ASSERT_TRUE(bare.has_value()) << bare.error().message();
+  ASSERT_EQ(bare->parts.size(), 1u);
+  ASSERT_EQ(full.parts.size(), 1u);
+  const Part& a = full.parts[0];
+  const Part& b = bare->parts[0];
+  EXPECT_FALSE(a.aag.nodes.empty());
+  EXPECT_TRUE(b.aag.nodes.empty());
+  EXPECT_TRUE(b.aag.arcs.empty());
+  EXPECT_EQ(a.mesh.positions, b.mesh.positions);
+  EXPECT_EQ(a.mesh.triangles, b.mesh.triangles);
+  EXPECT_EQ(a.face_ids, b.face_ids);
+  EXPECT_EQ(a.faces, b.faces);
+  EXPECT_EQ(a.linear_deflection, b.linear_deflection);
+}
+
 TEST(CadImport, AssemblyKeepsNamesInstancesAndPlacements) {
   const auto file = work_dir() / "assembly.step";
   const Status s = write_test_assembly(file);
