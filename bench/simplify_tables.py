@@ -402,8 +402,8 @@ interfere features PART.step [--json REPORT] [--aag] [--dot GRAPH.dot] [--librar
 
 | flag | meaning |
 |---|---|
-| `IN` | mesh (STL/OBJ/PLY/OFF/GLB) or, built with OCCT, STEP (`.step`/`.stp`) |
-| `OUT` | `.ply`: face property `uint face_id` + `uchar feature`; `.obj`: `g face_<id>` / `g feature_face_<id>` groups; `.stl` (binary): face id in each facet's attribute word (ids < 65535); `.off`: no ids; `.glb` (binary glTF 2.0, for renderers): one mesh per part and one node per instance with its placement (a part used N times is stored once), per-vertex `NORMAL` (area-weighted, smooth within a B-Rep face so a decimated cylinder still shades round, sharp across face borders; a plain mesh's across its edges sharper than 40°), `_FACE_ID` and `_FEATURE` attributes (vertices split along faces), a root node scaling millimetres to metres for STEP input, `extras.error_bound` per mesh and on the scene (checked with the Khronos glTF validator 2.0.0-dev.3.10 from npm, 2026-11-26, on the casing's two steps, an AP214 assembly, a plain STL and the bunny: no errors, warnings or infos) |
+| `IN` | mesh (STL/OBJ/PLY/OFF/GLB/glTF) or, built with OCCT, STEP (`.step`/`.stp`) |
+| `OUT` | `.ply`: face property `uint face_id` + `uchar feature`; `.obj`: `g face_<id>` / `g feature_face_<id>` groups; `.stl` (binary): face id in each facet's attribute word (ids < 65535); `.off`: no ids; `.glb` (binary glTF 2.0, for renderers; `.gltf`: the same as JSON with the buffer a base64 `data:` URI, one file): one mesh per part and one node per instance with its placement (a part used N times is stored once), per-vertex `NORMAL` (area-weighted, smooth within a B-Rep face so a decimated cylinder still shades round, sharp across face borders; a plain mesh's across its edges sharper than 40°), `_FACE_ID` and `_FEATURE` attributes (vertices split along faces), a root node scaling millimetres to metres for STEP input, `extras.error_bound` per mesh and on the scene (checked with the Khronos glTF validator 2.0.0-dev.3.10 from npm, 2026-11-26, on the casing's two steps, an AP214 assembly, a plain STL and the bunny: no errors, warnings or infos) |
 | `--target N` | triangle budget (> 0, ≤ the input's count) |
 | `--ratio R` | budget as a fraction in (0, 1] |
 | `--renderer-max N` | budget from the formula above (one part: its feature triangles reserved) |
@@ -417,7 +417,7 @@ interfere features PART.step [--json REPORT] [--aag] [--dot GRAPH.dot] [--librar
 | `--sharp-angle DEG` | plain mesh without regions: split it into regions at edges sharper than DEG (in (0, 180)), whose borders are kept like seams and whose ids the output carries as face ids (with `--regions`, or on a STEP input, whose regions are its faces, an error) |
 | `--linear-deflection`, `--angular-deflection` | STEP tessellation (0 = 0.1 % of the diagonal; radians) |
 | `--parts-dir DIR` | STEP input: also write each simplified part once, in part coordinates, as `DIR/<part>_<name>.<OUT's extension>` with its own face ids, feature tags and error bound; the report's `cad.instances[].placement` places them (a renderer instances them instead of loading the merged OUT) |
-| `--format F` | output format (stl, stl-ascii, obj, ply, ply-ascii, off, glb), whatever OUT's extension |
+| `--format F` | output format (stl, stl-ascii, obj, ply, ply-ascii, off, glb, gltf), whatever OUT's extension |
 | `--crease-angle DEG` | glTF output of a mesh without faces or regions: `NORMAL` smooth across edges up to DEG degrees, split across sharper ones (default 40; in (0, 180)); an error for other outputs and where faces or regions (STEP, `--regions`, `--sharp-angle`) set the normals |
 | `--check-self-intersections` | count self-intersections of the result (engine clash), reported |
 | `--no-intersection-guard` | plain QEM: no self-intersection check of the result, no guarded rerun |

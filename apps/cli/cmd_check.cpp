@@ -46,7 +46,7 @@ void add_check_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<CheckOptions>();
   CLI::App* c = app.add_subcommand("check", "Read and validate a mesh: counts of degenerate/duplicate "
                                             "triangles, open and non-manifold edges");
-  c->add_option("FILE", o->file, "mesh file (STL, OBJ, PLY, OFF, GLB) or STEP file (.step, .stp)")->required();
+  c->add_option("FILE", o->file, "mesh file (STL, OBJ, PLY, OFF, glTF .glb/.gltf) or STEP file (.step, .stp)")->required();
   c->add_option("--json", o->json, "write the statistics as JSON here");
   add_step_tessellation_options(*c, o->tessellation);
   c->callback([o, c, &exit_code] { exit_code = run_check(*o, *c); });

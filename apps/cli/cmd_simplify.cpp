@@ -1,5 +1,5 @@
 // `interfere simplify IN OUT --target N | --ratio R`: feature-preserving QEM simplification
-// (issue #6, items 5-7). IN is a mesh file (STL/OBJ/PLY/OFF/GLB; optional per-triangle regions and
+// (issue #6, items 5-7). IN is a mesh file (STL/OBJ/PLY/OFF/glTF; optional per-triangle regions and
 // feature regions, or a dihedral-angle mask) or, when built with OpenCASCADE, a STEP file whose
 // assembly features are recognised and selected for a process step (--step P --process FILE).
 // This file: the run, its outputs, --step all and the command line; the options' checks and the
@@ -149,7 +149,7 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
                           r.error_bound, o.crease_angle});
         ginst.push_back({gparts[0].name, 0, Transform{}});
       }
-      s = write_glb(o.output, gparts, ginst, per_part ? "mm" : "");
+      s = write_glb(o.output, gparts, ginst, per_part ? "mm" : "", output.container);
     } else {
       s = write_tagged_mesh(o.output, r.mesh, r.face_ids, so.feature_faces, out_format, r.error_bound);
     }
@@ -168,7 +168,7 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
           (std::filesystem::path(o.parts_dir) / fmt::format("{}_{}{}", i, file_id(p.name), ext)).string();
       const SimplifyResult& d = part_results[i];
       const Status s = glb ? write_glb(file, {{p.name, d.mesh, d.face_ids, p.feature_faces, d.error_bound}},
-                                       {{p.name, 0, Transform{}}}, "mm")
+                                       {{p.name, 0, Transform{}}}, "mm", output.container)
                            : write_tagged_mesh(file, d.mesh, d.face_ids, p.feature_faces, out_format, d.error_bound);
       if (!s) throw InputError(s.error());
       jp["file"] = file;
@@ -263,7 +263,7 @@ void add_simplify_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<SimplifyCliOptions>();
   CLI::App* c = app.add_subcommand("simplify", "Feature-preserving QEM simplification to a triangle budget");
   c->add_option("IN", o->input, "input mesh (STL/OBJ/PLY/OFF) or STEP file")->required()->check(CLI::ExistingFile);
-  c->add_option("OUT", o->output, "output mesh (.ply/.obj keep face ids, .stl in the attribute word, .off; .glb: glTF, parts instanced)")->required();
+  c->add_option("OUT", o->output, "output mesh (.ply/.obj keep face ids, .stl in the attribute word, .off; .glb/.gltf: glTF, parts instanced)")->required();
   auto* target = c->add_option("--target", o->target, "triangle budget N (> 0, at most the input's count)");
   auto* ratio = c->add_option("--ratio", o->ratio, "budget as a fraction of the input's triangles, in (0, 1]");
   target->excludes(ratio);
@@ -298,7 +298,7 @@ void add_simplify_command(CLI::App& app, int& exit_code) {
   c->add_option("--parts-dir", o->parts_dir,
                 "STEP input: also write each simplified part once, in part coordinates, to DIR/<part>_<name>.<OUT's "
                 "extension> (the report's cad.instances place them)");
-  c->add_option("--format", o->format, "output format (stl, stl-ascii, obj, ply, ply-ascii, off, glb; default by extension)");
+  c->add_option("--format", o->format, "output format (stl, stl-ascii, obj, ply, ply-ascii, off, glb, gltf; default by extension)");
   c->add_flag("--check-self-intersections", o->check_self, "count self-intersections of the result (engine clash)");
   auto* no_guard = c->add_flag("--no-intersection-guard", o->no_guard,
                                "plain QEM: no self-intersection check of the result and no guarded rerun");

@@ -275,7 +275,7 @@ void add_sweep_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<SweepOptions>();
   CLI::App* c = app.add_subcommand("sweep", "Inspection-probe path check: probe (cylinder) vs workpiece at every path "
                                             "point and between points");
-  c->add_option("--workpiece", o->workpiece, "workpiece mesh (STL, OBJ, PLY, OFF, GLB) or STEP file")->required()->check(CLI::ExistingFile);
+  c->add_option("--workpiece", o->workpiece, "workpiece mesh (STL, OBJ, PLY, OFF, glTF .glb/.gltf) or STEP file")->required()->check(CLI::ExistingFile);
   c->add_option("--robot", o->robot, "robot DH chain (JSON; needed for joint paths)")->check(CLI::ExistingFile);
   c->add_option("--path", o->path, "path CSV: joint values (header = one name per joint) or poses "
                                    "(header px,py,pz,ax,ay,az[,rx,ry,rz])")

@@ -263,7 +263,7 @@ nlohmann::json part_json(const LoadedPart& p) {
 }
 
 void add_two_part_options(CLI::App& c, TwoPartOptions& o) {
-  c.add_option("A", o.a.file, "mesh file of part A (STL, OBJ, PLY, OFF; clash also takes FEM files: .msh .bdf .nas .dat .vtk .vtu .inp)");
+  c.add_option("A", o.a.file, "mesh file of part A (STL, OBJ, PLY, OFF, glTF .glb/.gltf, STEP; clash also takes FEM files: .msh .bdf .nas .dat .vtk .vtu .inp)");
   c.add_option("B", o.b.file, "mesh file of part B");
   c.add_option("--scene", o.scene, "JSON scene giving both parts and their transforms");
   c.add_option("--transform-a", o.a.transform, "pose of A: \"r00 r01 r02 tx r10 r11 r12 ty r20 r21 r22 tz\"");

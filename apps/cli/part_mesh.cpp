@@ -1,5 +1,5 @@
 // Part geometry for the commands that take meshes (clash, distance, check, sweep): a mesh file
-// (read_mesh: STL, OBJ, PLY, OFF, GLB) or, built with OpenCASCADE, a STEP part or assembly
+// (read_mesh: STL, OBJ, PLY, OFF, glTF) or, built with OpenCASCADE, a STEP part or assembly
 // tessellated by cad::import_step (deflections from --linear-deflection/--angular-deflection;
 // defaults 0.1 % of each part's diagonal, 0.5 rad; no AAG, only triangles are needed),
 // every instance placed, lengths in millimetres, welded where faces meet (BRepMesh discretises a

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "interfere/mesh/io.h"
+#include "interfere/simplify/gltf_io.h"
 #include "interfere/simplify/qem.h"
 #ifdef INTERFERE_HAS_CAD
 #include "interfere/cad/assembly_simplify.h"
@@ -37,7 +38,8 @@ struct SimplifyCliOptions {
 
 /// How OUT is written: glTF, or a mesh format (automatic: by OUT's extension).
 struct SimplifyOutput {
-  bool glb = false;
+  bool glb = false;  ///< glTF: binary (.glb, --format glb) or JSON (.gltf, --format gltf) as `container` says
+  GltfContainer container = GltfContainer::glb;
   MeshFormat format = MeshFormat::automatic;
 };
 

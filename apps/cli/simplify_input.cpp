@@ -90,20 +90,24 @@ SimplifyOutput check_simplify_options(const SimplifyCliOptions& o) {
     throw InputError("--max-error-rel must be a fraction of the bounding-box diagonal in (0, 1], not " +
                      short_number(o.max_error_rel));
   SimplifyOutput out;
-  const bool glb_format = o.format == "glb" || o.format == "GLB";
-  out.format = glb_format ? MeshFormat::automatic : mesh_format_from_name(o.format);
-  if (out.format == MeshFormat::automatic && o.format != "auto" && o.format != "AUTO" && !glb_format)
-    throw InputError("--format: unknown mesh format '" + o.format + "' (stl, stl-ascii, obj, ply, ply-ascii, off, glb)");
+  const MeshFormat named = mesh_format_from_name(o.format);
+  const bool gltf_format = named == MeshFormat::glb || named == MeshFormat::gltf;
+  out.format = gltf_format ? MeshFormat::automatic : named;
+  if (named == MeshFormat::automatic && o.format != "auto" && o.format != "AUTO")
+    throw InputError("--format: unknown mesh format '" + o.format + "' (stl, stl-ascii, obj, ply, ply-ascii, off, glb, gltf)");
   // Outputs: a known extension (or --format) and an existing directory.
   check_output(o.output,
-               out.format == MeshFormat::automatic && !glb_format
-                   ? std::vector<std::string>{".stl", ".ply", ".obj", ".off", ".glb"}
+               out.format == MeshFormat::automatic && !gltf_format
+                   ? std::vector<std::string>{".stl", ".ply", ".obj", ".off", ".glb", ".gltf"}
                    : std::vector<std::string>{},
                "OUT (or --format)");
-  out.glb = glb_format || (out.format == MeshFormat::automatic && lower_extension(o.output) == ".glb");
+  const std::string out_ext = lower_extension(o.output);
+  out.glb = gltf_format || (out.format == MeshFormat::automatic && (out_ext == ".glb" || out_ext == ".gltf"));
+  out.container = named == MeshFormat::gltf || (!gltf_format && out_ext == ".gltf") ? GltfContainer::gltf
+                                                                                     : GltfContainer::glb;
   check_output(o.json, {}, "--json");
   if (o.crease_given) {
-    if (!out.glb) throw InputError("--crease-angle sets the normals of glTF output; OUT is not .glb (or --format glb)");
+    if (!out.glb) throw InputError("--crease-angle sets the normals of glTF output; OUT is not .glb/.gltf (or --format glb/gltf)");
     if (step_input || !o.regions.empty() || o.sharp_angle != 0)
       throw InputError("--crease-angle: the normals follow the faces or regions of IN (a STEP input's B-Rep faces, "
                        "--regions, --sharp-angle); the crease angle is for a mesh without them");

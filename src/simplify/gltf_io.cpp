@@ -1,6 +1,7 @@
-// GLB (binary glTF 2.0, Khronos specification §4.4 "GLB File Format") writer for simplified parts:
-// a 12-byte header, a JSON chunk (padded with spaces) and a BIN chunk (padded with zeros), every
-// buffer view 4-byte aligned. Meshes are stored once per part and placed by one node per instance
+// glTF 2.0 writer for simplified parts. GLB (Khronos specification §4.4 "GLB File Format"): a
+// 12-byte header, a JSON chunk (padded with spaces) and a BIN chunk (padded with zeros); .gltf: the
+// JSON alone, its one buffer embedded as a base64 data: URI (§3.6.1.1; one self-contained file,
+// written atomically like the GLB). Every buffer view is 4-byte aligned. Meshes are stored once per part and placed by one node per instance
 // (glTF node `matrix`, column-major); a root node scales model units to metres (glTF's unit).
 #include "interfere/simplify/gltf_io.h"
 
@@ -8,11 +9,13 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <limits>
 
 #include "interfere/core/atomic_file.h"
+#include "interfere/core/base64.h"
 #include "interfere/simplify/qem.h"
 
 namespace interfere {
@@ -59,7 +62,7 @@ double metres_per(const std::string& units) {
 }  // namespace
 
 Status write_glb(const std::filesystem::path& path, const std::vector<GltfPart>& parts,
-                 const std::vector<GltfInstance>& instances, const std::string& units) {
+                 const std::vector<GltfInstance>& instances, const std::string& units, GltfContainer container) {
   const std::string file = path.string();
   if (parts.empty()) return Error{.file = file, .reason = "glTF: no part to write"};
   nlohmann::json j;
@@ -157,6 +160,16 @@ Status write_glb(const std::filesystem::path& path, const std::vector<GltfPart>&
   j["scenes"] = nlohmann::json::array({scene});
   j["scene"] = 0;
   j["buffers"] = nlohmann::json::array({{{"byteLength", bin.size()}}});
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (container == GltfContainer::gltf || (container == GltfContainer::by_extension && ext == ".gltf")) {
+    j["buffers"][0]["uri"] = "data:application/octet-stream;base64," + base64_encode(bin);
+    const std::string json = j.dump() + "\n";
+    return write_file_atomic(path, [&](std::FILE* f) -> int {
+      std::fwrite(json.data(), 1, json.size(), f);
+      return std::ferror(f) ? EIO : 0;
+    });
+  }
   std::string text = j.dump();
   while (text.size() % 4 != 0) text.push_back(' ');
   const std::size_t length = 12 + 8 + text.size() + 8 + bin.size();

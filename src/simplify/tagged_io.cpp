@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 
@@ -161,23 +162,11 @@ Expected<std::vector<std::uint32_t>> read_region_file(const std::filesystem::pat
 // end_header), OBJ comment lines before the first statement.
 namespace {
 
-// A GLB's bound: the scene's extras.error_bound (write_glb: the largest part's, in model units), in
-// the units read_mesh gives (metres where extras.metres_per_unit says the root node scales to them).
-Expected<double> glb_error_bound(const std::filesystem::path& path, std::ifstream& in) {
-  // The header and the JSON chunk only (the BIN chunk, the bulk of the file, is not needed).
-  const std::string file = path.string();
-  std::string head(20, '\0');
-  in.read(head.data(), 20);
-  head.resize(static_cast<std::size_t>(in.gcount()));
-  std::error_code ec;
-  const std::uint64_t size = std::filesystem::file_size(path, ec);
-  auto length = io_detail::glb_json_length(file, head, ec ? 0 : size);
-  if (!length) return length.error();
-  std::string json(*length, '\0');
-  if (!in.read(json.data(), *length)) return Error{.file = file, .byte = 20, .reason = "truncated JSON chunk"};
-  const auto doc = nlohmann::json::parse(json, nullptr, false);
-  if (doc.is_discarded()) return Error{.file = file, .byte = 20, .reason = "the JSON chunk is not valid JSON"};
-  const Error bad{.file = file, .byte = 20,
+// The glTF document's scene extras.error_bound (write_glb: the largest part's, in model units), in
+// the units read_mesh gives (metres where extras.metres_per_unit says the root node scales to them);
+// -1 when it has none. `byte`: where the JSON starts in the file (for errors).
+Expected<double> scene_error_bound(const nlohmann::json& doc, const std::string& file, std::int64_t byte) {
+  const Error bad{.file = file, .byte = byte,
                   .reason = "glTF scene extras: error_bound must be a finite number >= 0 (metres_per_unit > 0)"};
   std::size_t scene = 0;
   if (doc.contains("scene") && doc["scene"].is_number_unsigned()) scene = doc["scene"].get<std::size_t>();
@@ -195,13 +184,41 @@ Expected<double> glb_error_bound(const std::filesystem::path& path, std::ifstrea
   return b.get<double>() * scale;
 }
 
+// A GLB's bound: scene_error_bound of its JSON chunk.
+Expected<double> glb_error_bound(const std::filesystem::path& path, std::ifstream& in) {
+  // The header and the JSON chunk only (the BIN chunk, the bulk of the file, is not needed).
+  const std::string file = path.string();
+  std::string head(20, '\0');
+  in.read(head.data(), 20);
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  std::error_code ec;
+  const std::uint64_t size = std::filesystem::file_size(path, ec);
+  auto length = io_detail::glb_json_length(file, head, ec ? 0 : size);
+  if (!length) return length.error();
+  std::string json(*length, '\0');
+  if (!in.read(json.data(), *length)) return Error{.file = file, .byte = 20, .reason = "truncated JSON chunk"};
+  const auto doc = nlohmann::json::parse(json, nullptr, false);
+  if (doc.is_discarded()) return Error{.file = file, .byte = 20, .reason = "the JSON chunk is not valid JSON"};
+  return scene_error_bound(doc, file, 20);
+}
+
+// A .gltf file's bound: as a GLB's, from the whole JSON file.
+Expected<double> gltf_error_bound(const std::filesystem::path& path, std::ifstream& in) {
+  const std::string file = path.string();
+  const auto doc = nlohmann::json::parse(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>(), nullptr, false);
+  if (doc.is_discarded()) return Error{.file = file, .byte = 0, .reason = "not valid JSON (glTF)"};
+  return scene_error_bound(doc, file, 0);
+}
+
 }  // namespace
+
 
 Expected<double> read_error_bound(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return Error{.file = path.string(), .reason = "cannot open the mesh file"};
   const std::string ext = lower_ext(path);
   if (ext == ".glb") return glb_error_bound(path, in);
+  if (ext == ".gltf") return gltf_error_bound(path, in);
   const bool ply = ext == ".ply", obj = ext == ".obj";
   if (!ply && !obj) return -1.0;
   const std::string key = ply ? "comment error_bound" : "# error_bound";

@@ -184,6 +184,38 @@ class Simplify(unittest.TestCase):
         doc, _, _ = read_glb(path("s_glb.bin"))
         self.assertEqual(len(doc["meshes"]), 1)
 
+    def test_plain_mesh_as_gltf_clashes_conservatively(self):
+        # OUT.gltf: the same glTF as JSON, its buffer a base64 data: URI; it reads back (clash, check)
+        # as the GLB does, and --conservative takes its stored bound.
+        code, _, err = run("simplify", path("sphere.obj"), path("s.gltf"), "--ratio", "0.5", "--json", path("s_gltf.json"))
+        self.assertEqual(code, 0, err)
+        code, _, err = run("simplify", path("sphere.obj"), path("s2.glb"), "--ratio", "0.5")
+        self.assertEqual(code, 0, err)
+        with open(path("s.gltf")) as f:
+            doc = json.load(f)
+        self.assertTrue(doc["buffers"][0]["uri"].startswith("data:application/octet-stream;base64,"))
+        bound = load_json("s_gltf.json")["error_bound"]
+        self.assertAlmostEqual(doc["scenes"][0]["extras"]["error_bound"], bound)
+        checks = []
+        for f in ("s.gltf", "s2.glb"):
+            code, out, err = run("check", path(f))
+            self.assertEqual(code, 0, err)
+            checks.append(json.loads(out))
+        self.assertEqual(checks[0]["format"], "gltf")
+        for k in ("triangles", "vertices", "closed", "bbox"):
+            self.assertEqual(checks[0][k], checks[1][k], k)
+        code, out, err = run("clash", path("s.gltf"), path("s2.glb"), "--conservative", "--transform-b",
+                             "1 0 0 5 0 1 0 0 0 0 1 0", "--json", path("sg.json"))
+        self.assertEqual(code, 0, out + err)
+        self.assertAlmostEqual(load_json("sg.json")["conservative"]["error_bound_a"], bound)
+        # --format gltf whatever the name says; a file of the other container is read by content.
+        code, _, err = run("simplify", path("sphere.obj"), path("s_gltf.bin"), "--ratio", "0.5", "--format", "gltf")
+        self.assertEqual(code, 0, err)
+        with open(path("s_gltf.bin")) as f:
+            self.assertEqual(json.load(f)["asset"]["version"], "2.0")
+        code, out, err = run("check", path("s_gltf.bin"))
+        self.assertEqual((code, json.loads(out)["format"]), (0, "gltf"), err)
+
     def test_glb_crease_angle(self):
         # A cube without regions (kept whole: without regions its edges are not protected): its
         # 90-degree edges are creases at the default 40 (every normal along an axis), smooth at

@@ -1,5 +1,5 @@
 // Fuzz target for the mesh readers (mesh/io.h): the input bytes are written to a file with each
-// extension (.stl .obj .ply .off .glb, and .bin for detection by content) and read with read_mesh,
+// extension (.stl .obj .ply .off .glb .gltf, and .bin for detection by content) and read with read_mesh,
 // with and without welding.
 //
 // Checked on every read (abort = finding):
@@ -265,8 +265,9 @@ int entry(const std::uint8_t* data, std::size_t size) {
                                   {"in.ply", Family::ply},
                                   {"in.off", Family::off},
                                   {"in.glb", Family::glb},
+                                  {"in.gltf", Family::gltf},
                                   {"in.bin", Family::unknown}};
-  Read welded_by_family[6];  // indexed by MeshFamily (unknown stays empty)
+  Read welded_by_family[7];  // indexed by MeshFamily (unknown stays empty)
   const TriMesh* first_ok = nullptr;
   for (const Input& in : kInputs) {
     const fs::path path = work_dir() / in.file;

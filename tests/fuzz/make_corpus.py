@@ -131,6 +131,27 @@ def glb_tetra(node=None, index_type=5125, mode=4, edit=None):
     return glb(doc, pos + idx)
 
 
+def gltf_tetra(edit=None):
+    """The tetrahedron as JSON glTF: positions and indices in one base64 data: URI buffer."""
+    import base64
+    import json
+    pos = b"".join(struct.pack("<3f", *v) for v in TETRA_V)
+    idx = b"".join(struct.pack("<3H", *f) for f in TETRA_F)
+    data = pos + idx
+    doc = {"asset": {"version": "2.0"},
+           "buffers": [{"byteLength": len(data),
+                        "uri": "data:application/octet-stream;base64," + base64.b64encode(data).decode()}],
+           "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": len(pos)},
+                           {"buffer": 0, "byteOffset": len(pos), "byteLength": len(idx)}],
+           "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3"},
+                         {"bufferView": 1, "componentType": 5123, "count": 12, "type": "SCALAR"}],
+           "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+           "nodes": [{"mesh": 0, "translation": [1, 0, 0]}], "scenes": [{"nodes": [0]}], "scene": 0}
+    if edit:
+        edit(doc)
+    return json.dumps(doc, indent=1).encode()
+
+
 def mesh_seeds():
     s = {}
     # STL ASCII
@@ -223,6 +244,13 @@ def mesh_seeds():
     s["glb_node_cycle.glb"] = glb_tetra({"mesh": 0, "children": [0]})
     s["glb_external_buffer.glb"] = glb_tetra(edit=lambda d: d["buffers"][0].update(uri="tetra.bin"))
     s["glb_not_json.glb"] = glb_tetra().replace(b'{"asset"', b'{"asset"!', 1)
+    # JSON glTF: a data: URI buffer, a file buffer (the fuzzer's own input file), bad URIs
+    s["gltf_tetra.gltf"] = gltf_tetra()
+    s["gltf_file_buffer.gltf"] = gltf_tetra(lambda d: d["buffers"][0].update(uri="in.bin"))
+    s["gltf_device_buffer.gltf"] = gltf_tetra(lambda d: d["buffers"][0].update(uri="/dev/zero"))
+    s["gltf_http_buffer.gltf"] = gltf_tetra(lambda d: d["buffers"][0].update(uri="http://example.com/a.bin"))
+    s["gltf_bad_base64.gltf"] = gltf_tetra(lambda d: d["buffers"][0].update(uri="data:;base64,QUJD!"))
+    s["gltf_truncated.gltf"] = gltf_tetra()[:-9]
     # Anything else
     s["empty"] = b""
     s["text_garbage"] = b"hello world\n\x00\x01\x02 solid facet v f 3 ply\n"

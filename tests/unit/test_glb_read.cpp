@@ -183,8 +183,10 @@ TEST(GlbRead, MalformedFilesAreErrorsNamingWhere) {
     return glb(doc, bin.empty() ? raw(kSquare) : bin);
   };
   expect_error(with([](auto& d) { d["accessors"][0]["count"] = 5; }), "do not fit bufferViews[0]", "count");
-  expect_error(with([](auto& d) { d["bufferViews"][0]["byteLength"] = 4096; }), "beyond the BIN chunk", "view");
-  expect_error(with([](auto& d) { d["buffers"][0]["uri"] = "square.bin"; }), "buffers[0]: a buffer with a uri", "uri");
+  expect_error(with([](auto& d) { d["bufferViews"][0]["byteLength"] = 4096; }), "beyond buffers[0] (48 bytes)", "view");
+  expect_error(with([](auto& d) { d["buffers"][0]["uri"] = "no_such_square.bin"; }), "buffers[0].uri: cannot open", "uri");
+  expect_error(with([](auto& d) { d["buffers"].push_back({{"byteLength", 4}}); }), "buffers[1]: no uri", "bin1");
+  expect_error(with([](auto& d) { d["buffers"][0]["byteLength"] = 52; }), "52 bytes, but the BIN chunk has 48", "len");
   expect_error(with([](auto& d) { d["accessors"][0]["sparse"] = nlohmann::json::object(); }), "sparse", "sparse");
   expect_error(with([](auto& d) { d["accessors"][0]["componentType"] = 5123; }), "quantized", "quantized");
   expect_error(with([](auto& d) { d["nodes"][0]["children"] = {0}; }), "nodes[0]: reached twice", "cycle");

@@ -21,12 +21,14 @@
 //  - OFF (also COFF, NOFF, STOFF, ... with extra per-vertex/per-face values ignored): `#` comments,
 //    counts on the keyword line or the next one, polygons fan-triangulated. 4OFF, nOFF and binary
 //    OFF are rejected with an error.
-//  - GLB (binary glTF 2.0; read only): the triangles of the default scene, each mesh instance
-//    placed by its nodes' matrix or translation/rotation/scale (in double), in the file's units
-//    (glTF: metres; `interfere simplify` writes a root node scaling model units to metres). Buffer 0
-//    must be the BIN chunk; TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN primitives are read, points
-//    and lines skipped; sparse accessors, quantized positions and Draco are errors. Write glTF with
-//    write_glb (interfere/simplify/gltf_io.h).
+//  - glTF 2.0, binary (.glb) or JSON (.gltf); read only: the triangles of the default scene, each
+//    mesh instance placed by its nodes' matrix or translation/rotation/scale (in double), in the
+//    file's units (glTF: metres; `interfere simplify` writes a root node scaling model units to
+//    metres). Buffers: a GLB's BIN chunk, base64 `data:` URIs, or files named by relative URIs
+//    (resolved against the glTF file's folder; nothing is fetched from a network); TRIANGLES,
+//    TRIANGLE_STRIP and TRIANGLE_FAN primitives are read, points and lines skipped; sparse
+//    accessors, quantized positions and Draco are errors. Write glTF with write_glb
+//    (interfere/simplify/gltf_io.h).
 #pragma once
 #include <filesystem>
 #include <string>
@@ -45,18 +47,19 @@ enum class MeshFormat {
   ply_binary_le,
   ply_binary_be,
   off,
-  glb  ///< binary glTF 2.0: read only (the triangles of its default scene, placed)
+  glb,  ///< binary glTF 2.0: read only (the triangles of its default scene, placed)
+  gltf  ///< JSON glTF 2.0 (.gltf): read only, as glb
 };
 
 /// The file family of a format (STL, OBJ, PLY, OFF), without the ASCII/binary flavour.
-enum class MeshFamily { unknown, stl, obj, ply, off, glb };
+enum class MeshFamily { unknown, stl, obj, ply, off, glb, gltf };
 MeshFamily mesh_family(MeshFormat f);
 
 /// "stl" (= binary), "stl-ascii"/"stla", "stl-binary"/"stlb", "obj", "ply" (= binary LE),
-/// "ply-ascii", "ply-le", "ply-be", "off", "glb", "auto" -> MeshFormat ('_' may replace '-', case
+/// "ply-ascii", "ply-le", "ply-be", "off", "glb", "gltf", "auto" -> MeshFormat ('_' may replace '-', case
 /// is ignored); automatic if unknown.
 MeshFormat mesh_format_from_name(const std::string& name);
-/// "stl-ascii", "stl-binary", "obj", "ply-ascii", "ply-le", "ply-be", "off", "glb" or "auto".
+/// "stl-ascii", "stl-binary", "obj", "ply-ascii", "ply-le", "ply-be", "off", "glb", "gltf" or "auto".
 const char* mesh_format_name(MeshFormat f);
 
 struct ReadOptions {

@@ -1,4 +1,4 @@
-// Binary glTF 2.0 (GLB) output of simplified parts for digital-twin renderers (issue #6: real-time
+// glTF 2.0 output (binary GLB or JSON .gltf) of simplified parts for digital-twin renderers (issue #6: real-time
 // rendering of assembly lines): one glTF mesh per part, one node per instance with its placement,
 // so a part used N times is stored once. Per vertex, besides POSITION: NORMAL (smooth within a
 // face, sharp across face borders; without faces, across crease edges), `_FACE_ID` (the B-Rep face
@@ -35,10 +35,15 @@ struct GltfInstance {
   Transform placement;     ///< part coordinates -> world
 };
 
-/// Writes `path` (.glb); `units` (mm, cm, m, um, in, ft) scale the scene to metres, anything else
+/// The container write_glb writes: binary GLB, or JSON .gltf with its buffer embedded as a base64
+/// data: URI (one self-contained file either way); by_extension: .gltf is JSON, anything else GLB.
+enum class GltfContainer { by_extension, glb, gltf };
+
+/// Writes `path` as `container` says; `units` (mm, cm, m, um, in, ft) scale the scene to metres, anything else
 /// (a mesh file's unknown unit: "") leaves the coordinates as they are. Errors: no parts, an empty part, an instance of a part that does not
 /// exist, a coordinate or placement that is not finite or overflows float, an id at or above 2^24.
 Status write_glb(const std::filesystem::path& path, const std::vector<GltfPart>& parts,
-                 const std::vector<GltfInstance>& instances, const std::string& units = "mm");
+                 const std::vector<GltfInstance>& instances, const std::string& units = "mm",
+                 GltfContainer container = GltfContainer::by_extension);
 
 }  // namespace interfere

@@ -8,6 +8,7 @@
 #pragma once
 #include <cstdint>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -46,8 +47,12 @@ Expected<TriMesh> read_obj(const std::string& path, std::string_view data, MeshR
 /// The flavour (ASCII / binary LE / binary BE) comes from the header.
 Expected<TriMesh> read_ply(const std::string& path, std::string_view data, MeshReadInfo& info);
 Expected<TriMesh> read_off(const std::string& path, std::string_view data, MeshReadInfo& info);
-/// Binary glTF 2.0 (glb.cpp): the default scene's triangles, placed.
-Expected<TriMesh> read_glb(const std::string& path, std::string_view data, MeshReadInfo& info);
+/// glTF 2.0 (glb.cpp), binary or JSON: the default scene's triangles, placed; buffers named by
+/// relative URIs are read from `dir` (the glTF file's folder).
+Expected<TriMesh> read_glb(const std::string& path, std::string_view data, MeshReadInfo& info,
+                           const std::filesystem::path& dir);
+Expected<TriMesh> read_gltf(const std::string& path, std::string_view data, MeshReadInfo& info,
+                            const std::filesystem::path& dir);
 
 /// Buffered writer over a FILE*; remembers the first failure (errno) instead of failing per call.
 class OutputBuffer {

@@ -1,10 +1,13 @@
-// GLB (binary glTF 2.0) reader: the triangles of the default scene, every mesh instance placed by
-// its nodes' transforms (Khronos glTF 2.0 specification §3.5 "Nodes and hierarchy", §3.6 "Binary
-// data storage", §3.7 "Geometry"), so that a digital-twin model (`interfere simplify ... OUT.glb`, or
-// any renderer's GLB) can be clash-checked as it is placed. Coordinates are the file's (glTF: metres).
+// glTF 2.0 reader, binary (GLB) and JSON (.gltf): the triangles of the default scene, every mesh
+// instance placed by its nodes' transforms (Khronos glTF 2.0 specification §3.5 "Nodes and
+// hierarchy", §3.6 "Binary data storage", §3.7 "Geometry"), so that a digital-twin model
+// (`interfere simplify ... OUT.glb`, or any renderer's glTF) can be clash-checked as it is placed.
+// Coordinates are the file's (glTF: metres).
 //
-// Read: buffer 0 as the GLB's BIN chunk (buffers with a `uri`, external or data:, are errors),
-// buffer views with byteStride, accessors (FLOAT VEC3 positions; UNSIGNED_BYTE/SHORT/INT indices or
+// Read: buffers from the GLB's BIN chunk (buffer 0 without a `uri`), from `data:` URIs (base64,
+// §3.6.1.1) or from files named by relative URIs (percent-encoded, resolved against the glTF
+// file's folder; a URI with a scheme such as http: is an error: nothing is fetched), each cut to
+// its byteLength; buffer views with byteStride, accessors (FLOAT VEC3 positions; UNSIGNED_BYTE/SHORT/INT indices or
 // none), primitives of mode TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN (points and lines carry no
 // surface and are skipped), node `matrix` or translation/rotation/scale composed in double. Sparse
 // accessors, quantized positions and Draco compression are errors naming the accessor or the
@@ -13,14 +16,19 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <cctype>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <limits>
 #include <string>
 #include <vector>
 
 #include "formats.h"
+#include "interfere/core/base64.h"
 
 namespace interfere::io_detail {
 namespace {
@@ -51,15 +59,17 @@ Mat4 multiply(const Mat4& a, const Mat4& b) {
 // The reader of one file: the document, the BIN chunk, and errors that name the JSON path.
 class GlbReader {
  public:
-  GlbReader(const std::string& path, const GlbChunks& chunks, Json doc)
-      : path_(path), chunks_(chunks), doc_(std::move(doc)) {}
+  // `glb`: the document came from a GLB (buffer 0 may be its BIN chunk); `dir`: the folder
+  // relative buffer URIs are resolved against.
+  GlbReader(const std::string& path, const GlbChunks& chunks, Json doc, bool glb, std::filesystem::path dir)
+      : path_(path), chunks_(chunks), doc_(std::move(doc)), glb_(glb), dir_(std::move(dir)) {}
 
   Expected<TriMesh> read() {
     if (!doc_.is_object()) return fail("", "the JSON chunk is not an object");
     if (const Json* ext = member(doc_, "extensionsRequired"); ext && ext->is_array())
       for (const Json& e : *ext)
         if (e.is_string()) return fail("extensionsRequired", "extension " + e.get<std::string>() + " is not supported");
-    if (Status s = load_buffer(); !s) return s.error();
+    if (Status s = load_buffers(); !s) return s.error();
     // The scene: `scene`, else scene 0; with no scenes, every root node (a node no other names).
     std::vector<std::size_t> roots;
     const Json* nodes = member(doc_, "nodes");
@@ -123,22 +133,82 @@ class GlbReader {
     return true;
   }
 
-  Status load_buffer() {
+  // Every buffer's bytes (buffers_[b], cut to its byteLength): the BIN chunk, a data: URI or a file.
+  Status load_buffers() {
     const Json* buffers = member(doc_, "buffers");
     if (!buffers) return {};
     if (!buffers->is_array()) return fail("buffers", "not an array");
+    owned_.resize(buffers->size());  // (not resized again: buffers_ points into it)
     for (std::size_t b = 0; b < buffers->size(); ++b) {
       const std::string where = "buffers[" + std::to_string(b) + "]";
-      if (member((*buffers)[b], "uri"))
-        return fail(where, "a buffer with a uri (an external file or a data: URI) is not supported: embed it in the GLB's BIN chunk");
-      if (b > 0) return fail(where, "only buffer 0 (the BIN chunk) can be embedded in a GLB");
       std::uint64_t length = 0;
       if (!count_of((*buffers)[b], "byteLength", length, 0)) return fail(where + ".byteLength", "not a length");
-      if (length > chunks_.bin.size())
-        return fail(where + ".byteLength", std::to_string(length) + " bytes, but the BIN chunk has " +
-                                               std::to_string(chunks_.bin.size()));
+      std::string_view bytes;
+      std::string source;
+      if (const Json* uri = member((*buffers)[b], "uri")) {
+        if (!uri->is_string()) return fail(where + ".uri", "not a string");
+        auto fetched = fetch(uri->get<std::string>(), where + ".uri", length);
+        if (!fetched) return fetched.error();
+        owned_[b] = std::move(*fetched);
+        bytes = owned_[b];
+        source = "its uri holds";
+      } else {
+        if (!glb_) return fail(where, "no uri: a .gltf file keeps its buffers in files or data: URIs");
+        if (b > 0) return fail(where, "no uri: only buffer 0 can be the GLB's BIN chunk");
+        bytes = chunks_.bin;
+        source = "the BIN chunk has";
+      }
+      if (length > bytes.size())
+        return fail(where + ".byteLength", std::to_string(length) + " bytes, but " + source + " " + std::to_string(bytes.size()));
+      buffers_.push_back(bytes.substr(0, length));
     }
     return {};
+  }
+
+  // The bytes a buffer URI names: base64 data, or the first `length` bytes (or fewer, when it is
+  // shorter) of a regular file relative to the glTF file's folder (not a device or a pipe, which
+  // could be endless).
+  Expected<std::string> fetch(const std::string& uri, const std::string& where, std::uint64_t length) const {
+    if (uri.rfind("data:", 0) == 0) {
+      const std::size_t comma = uri.find(',');
+      if (comma == std::string::npos || uri.compare(0, comma, "data:") == 0 ||
+          comma < 7 || uri.compare(comma - 7, 7, ";base64") != 0)
+        return fail(where, "a data: URI must be base64 (data:<type>;base64,<data>)");
+      std::size_t bad = 0;
+      auto bytes = base64_decode(std::string_view(uri).substr(comma + 1), bad);
+      if (!bytes) return fail(where, "not base64 at character " + std::to_string(comma + 2 + bad) + " of the URI (from 1)");
+      return std::move(*bytes);
+    }
+    // A scheme (RFC 3986 §3.1: a letter, then letters, digits, + - ., then ':') before any '/'.
+    if (const std::size_t colon = uri.find(':'); colon != std::string::npos && colon > 0 && uri.find('/') > colon) {
+      bool scheme = std::isalpha(static_cast<unsigned char>(uri[0])) != 0;
+      for (std::size_t i = 1; i < colon && scheme; ++i)
+        scheme = std::isalnum(static_cast<unsigned char>(uri[i])) || uri[i] == '+' || uri[i] == '-' || uri[i] == '.';
+      if (scheme) return fail(where, "'" + uri + "': only relative file paths and data: URIs are read (nothing is fetched)");
+    }
+    std::string name;  // percent-decoded (RFC 3986 §2.1)
+    for (std::size_t i = 0; i < uri.size(); ++i) {
+      if (uri[i] != '%') {
+        name.push_back(uri[i]);
+        continue;
+      }
+      const auto hex = [](char c) { return std::isxdigit(static_cast<unsigned char>(c)) ? (std::isdigit(static_cast<unsigned char>(c)) ? c - '0' : (c | 32) - 'a' + 10) : -1; };
+      if (i + 2 >= uri.size() || hex(uri[i + 1]) < 0 || hex(uri[i + 2]) < 0)
+        return fail(where, "'" + uri + "': a bad percent escape at character " + std::to_string(i + 1) + " (from 1)");
+      name.push_back(static_cast<char>(hex(uri[i + 1]) * 16 + hex(uri[i + 2])));
+      i += 2;
+    }
+    if (name.empty() || name.find('\0') != std::string::npos) return fail(where, "not a file name");
+    const std::filesystem::path file = dir_ / std::filesystem::path(name);
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(file, ec)) return fail(where, "cannot open " + file.string() + " (no such file)");
+    const std::uint64_t size = std::filesystem::file_size(file, ec);
+    std::ifstream in(file, std::ios::binary);
+    if (ec || !in) return fail(where, "cannot open " + file.string());
+    std::string bytes(static_cast<std::size_t>(std::min(size, length)), '\0');
+    if (!in.read(bytes.data(), static_cast<std::streamsize>(bytes.size())))
+      return fail(where, "cannot read " + file.string());
+    return bytes;
   }
 
   // The bytes of accessor `a` as (pointer to element 0, stride, count), checked against its view
@@ -180,22 +250,24 @@ class GlbReader {
     const Json& view = (*views)[v];
     const std::string vwhere = "bufferViews[" + std::to_string(v) + "]";
     std::uint64_t buffer = 0, voffset = 0, vlength = 0, stride = 0;
-    if (!count_of(view, "buffer", buffer, 0) || buffer != 0) return fail(vwhere + ".buffer", "must be 0 (the BIN chunk)");
+    if (!count_of(view, "buffer", buffer, 0) || buffer >= buffers_.size())
+      return fail(vwhere + ".buffer", "not an index of buffers");
     if (!count_of(view, "byteOffset", voffset, 0)) return fail(vwhere + ".byteOffset", "not an offset");
     if (!count_of(view, "byteLength", vlength, 0)) return fail(vwhere + ".byteLength", "not a length");
     if (!count_of(view, "byteStride", stride, 0) || (stride != 0 && (stride < size || stride > 252)))
       return fail(vwhere + ".byteStride", "must lie in [element size, 252]");
     if (stride == 0 || index) stride = size;  // (indices are tightly packed)
-    const std::uint64_t bin = chunks_.bin.size();
+    const std::string_view data = buffers_[buffer];
+    const std::uint64_t bin = data.size();
     if (voffset > bin || vlength > bin - voffset)
-      return fail(vwhere, "bytes " + std::to_string(voffset) + " + " + std::to_string(vlength) + " lie beyond the BIN chunk (" +
-                              std::to_string(bin) + " bytes)");
+      return fail(vwhere, "bytes " + std::to_string(voffset) + " + " + std::to_string(vlength) + " lie beyond buffers[" +
+                              std::to_string(buffer) + "] (" + std::to_string(bin) + " bytes)");
     // The last element's end: offset + (count - 1) * stride + size, overflow-checked.
     if (count - 1 > (vlength - std::min(vlength, offset)) / stride || offset > vlength ||
         offset + (count - 1) * stride + size > vlength)
       return fail(where, std::to_string(count) + " elements from byte " + std::to_string(offset) +
                              " do not fit " + vwhere + " (" + std::to_string(vlength) + " bytes)");
-    return View{chunks_.bin.data() + voffset + offset, stride, count, static_cast<std::uint32_t>(ct)};
+    return View{data.data() + voffset + offset, stride, count, static_cast<std::uint32_t>(ct)};
   }
 
   Status primitive(const Json& prim, const std::string& where, const Mat4& m) {
@@ -346,6 +418,10 @@ class GlbReader {
   const std::string& path_;
   GlbChunks chunks_;
   Json doc_;
+  bool glb_ = true;
+  std::filesystem::path dir_;
+  std::vector<std::string> owned_;          // buffers read from URIs
+  std::vector<std::string_view> buffers_;   // every buffer, cut to its byteLength
   TriMesh mesh_;
   std::vector<char> visited_;
 };
@@ -383,13 +459,27 @@ Expected<GlbChunks> split_glb(const std::string& path, std::string_view d) {
   return out;
 }
 
-Expected<TriMesh> read_glb(const std::string& path, std::string_view data, MeshReadInfo& info) {
+Expected<TriMesh> read_glb(const std::string& path, std::string_view data, MeshReadInfo& info,
+                           const std::filesystem::path& dir) {
   info.format = MeshFormat::glb;
   auto chunks = split_glb(path, data);
   if (!chunks) return chunks.error();
   Json doc = Json::parse(chunks->json, nullptr, false);
   if (doc.is_discarded()) return byte_error(path, chunks->json_at, "the JSON chunk is not valid JSON");
-  return GlbReader(path, *chunks, std::move(doc)).read();
+  return GlbReader(path, *chunks, std::move(doc), true, dir).read();
+}
+
+Expected<TriMesh> read_gltf(const std::string& path, std::string_view data, MeshReadInfo& info,
+                            const std::filesystem::path& dir) {
+  info.format = MeshFormat::gltf;
+  Json doc;
+  try {
+    doc = Json::parse(data);
+  } catch (const Json::parse_error& e) {
+    return byte_error(path, static_cast<std::int64_t>(e.byte > 0 ? e.byte - 1 : 0), "not valid JSON (glTF)");
+  }
+  const GlbChunks chunks{.json = data, .bin = {}, .json_at = 0, .bin_at = 0};
+  return GlbReader(path, chunks, std::move(doc), false, dir).read();
 }
 
 }  // namespace interfere::io_detail

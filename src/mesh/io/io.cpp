@@ -125,12 +125,16 @@ Family family_from_extension(const std::filesystem::path& path) {
   if (ext == ".ply") return Family::ply;
   if (ext == ".off") return Family::off;
   if (ext == ".glb") return Family::glb;
+  if (ext == ".gltf") return Family::gltf;
   return Family::unknown;
 }
 
 Family family_from_content(std::string_view d) {
   if (d.substr(0, 4) == "ply\n" || d.substr(0, 5) == "ply\r\n") return Family::ply;
   if (is_glb(d)) return Family::glb;
+  // A JSON object: glTF (no other format read here starts with '{').
+  if (const std::size_t first = d.find_first_not_of(" \t\r\n"); first != std::string_view::npos && d[first] == '{')
+    return Family::gltf;
   if (d.size() >= 84) {
     std::uint32_t n;
     std::memcpy(&n, d.data() + 80, 4);
@@ -208,6 +212,8 @@ MeshFamily mesh_family(MeshFormat f) {
       return MeshFamily::off;
     case MeshFormat::glb:
       return MeshFamily::glb;
+    case MeshFormat::gltf:
+      return MeshFamily::gltf;
     case MeshFormat::automatic:
       break;
   }
@@ -231,6 +237,7 @@ MeshFormat mesh_format_from_name(const std::string& raw) {
     return MeshFormat::ply_binary_be;
   if (n == "off") return MeshFormat::off;
   if (n == "glb") return MeshFormat::glb;
+  if (n == "gltf") return MeshFormat::gltf;
   return MeshFormat::automatic;
 }
 
@@ -252,6 +259,8 @@ const char* mesh_format_name(MeshFormat f) {
       return "off";
     case MeshFormat::glb:
       return "glb";
+    case MeshFormat::gltf:
+      return "gltf";
     default:
       return "auto";
   }
@@ -292,7 +301,10 @@ Expected<TriMesh> read_mesh_impl(const std::filesystem::path& path, const std::s
         result = read_off(name, d, info);
         break;
       case Family::glb:
-        result = read_glb(name, d, info);
+        result = read_glb(name, d, info, path.parent_path());
+        break;
+      case Family::gltf:
+        result = read_gltf(name, d, info, path.parent_path());
         break;
       default:
         return Error{name, -1, -1,
@@ -347,13 +359,16 @@ Status write_mesh_impl(const std::filesystem::path& path, const std::string& nam
       case Family::glb:
         f = MeshFormat::glb;
         break;
+      case Family::gltf:
+        f = MeshFormat::gltf;
+        break;
       default:
         return Error{name, -1, -1,
                      "cannot tell the mesh format from the extension '" +
                          path.extension().string() + "'; set WriteOptions::format"};
     }
   }
-  if (f == MeshFormat::glb)
+  if (f == MeshFormat::glb || f == MeshFormat::gltf)
     return Error{name, -1, -1, "write_mesh does not write glTF: use write_glb (interfere/simplify/gltf_io.h)"};
   const bool ply_float = options.ply_float && mesh_family(f) == Family::ply;
   if (Status s = check_writable(name, mesh, f, ply_float); !s) return s;
