@@ -158,6 +158,16 @@ class Simplify(unittest.TestCase):
             xs = [p[0] for p in back.positions]
             self.assertGreater(max(xs), 5.5)
             self.assertAlmostEqual(itf.read_error_bound(out), r.error_bound)  # metres: unscaled
+            # .gltf: the same scene as JSON, read back alike.
+            out_json = os.path.join(d, "b.gltf")
+            itf.write_glb(out_json, [("ball", r.mesh, [], [], r.error_bound)],
+                          [("left", 0, itf.Transform("1 0 0 0 0 1 0 0 0 0 1 0")), ("right", 0, moved)], units="m")
+            with open(out_json) as f:
+                self.assertEqual(len(json.load(f)["meshes"]), 1)
+            again, info = itf.read_mesh(out_json, return_info=True)
+            self.assertEqual(info["format"], "gltf")
+            self.assertEqual([tuple(p) for p in again.positions], [tuple(p) for p in back.positions])
+            self.assertAlmostEqual(itf.read_error_bound(out_json), r.error_bound)
             with self.assertRaises(ValueError):
                 itf.write_glb(out, [("ball", r.mesh, [], [], -1)], [("x", 4, moved)])
 
