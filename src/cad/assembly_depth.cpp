@@ -4,6 +4,7 @@
 #include <array>
 
 #include "assembly_clash_internal.h"
+#include "interfere/bvh/traverse.h"
 #include "interfere/mesh/validate.h"
 #include "interfere/query/distance.h"
 
@@ -15,40 +16,18 @@ namespace {
 std::vector<double> surface_crossings(const Model& m, const Vec3& p, const Vec3& q) {
   std::vector<double> ts;
   const Vec3 d = q - p;
-  std::vector<std::uint32_t> stack{0};
-  while (!stack.empty()) {
-    const BvhNode& n = m.bvh.nodes[stack.back()];
-    stack.pop_back();
-    double t0 = 0, t1 = 1;  // slab test
-    for (int k = 0; k < 3 && t0 <= t1; ++k) {
-      const double lo = double(n.box.lo[k]), hi = double(n.box.hi[k]);
-      if (d[k] == 0) {
-        if (p[k] < lo || p[k] > hi) t0 = 2;
-        continue;
-      }
-      double a = (lo - p[k]) / d[k], b = (hi - p[k]) / d[k];
-      if (a > b) std::swap(a, b);
-      t0 = std::max(t0, a), t1 = std::min(t1, b);
-    }
-    if (t0 > t1) continue;
-    if (!n.is_leaf()) {
-      stack.push_back(n.first);
-      stack.push_back(n.first + 1);
-      continue;
-    }
-    for (std::uint32_t k = 0; k < n.count; ++k) {
-      const auto t = m.mesh.corners(m.bvh.prims[n.first + k]);
-      const Vec3 nrm = cross(t[1] - t[0], t[2] - t[0]);
-      const double sp = dot(nrm, p - t[0]), sq = dot(nrm, q - t[0]);
-      if ((sp > 0) == (sq > 0) || sp == sq) continue;
-      const double s = sp / (sp - sq);
-      const Vec3 x = p + d * s;
-      const double e0 = dot(cross(t[1] - t[0], x - t[0]), nrm),
-                   e1 = dot(cross(t[2] - t[1], x - t[1]), nrm),
-                   e2 = dot(cross(t[0] - t[2], x - t[2]), nrm);
-      if (e0 >= 0 && e1 >= 0 && e2 >= 0 && s > 0 && s < 1) ts.push_back(s);
-    }
-  }
+  for_each_on_segment(m.bvh, p, d, 0.0, [&](std::uint32_t t) {
+    const auto c = m.mesh.corners(t);
+    const Vec3 nrm = cross(c[1] - c[0], c[2] - c[0]);
+    const double sp = dot(nrm, p - c[0]), sq = dot(nrm, q - c[0]);
+    if ((sp > 0) == (sq > 0) || sp == sq) return true;
+    const double s = sp / (sp - sq);
+    const Vec3 x = p + d * s;
+    const double e0 = dot(cross(c[1] - c[0], x - c[0]), nrm), e1 = dot(cross(c[2] - c[1], x - c[1]), nrm),
+                 e2 = dot(cross(c[0] - c[2], x - c[2]), nrm);
+    if (e0 >= 0 && e1 >= 0 && e2 >= 0 && s > 0 && s < 1) ts.push_back(s);
+    return true;
+  });
   std::sort(ts.begin(), ts.end());
   return ts;
 }

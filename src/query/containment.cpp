@@ -7,6 +7,7 @@
 #include <random>
 
 #include "clash_internal.h"
+#include "interfere/bvh/traverse.h"
 #include "interfere/core/predicates.h"
 
 namespace interfere::detail {
@@ -30,24 +31,6 @@ Crossing segment_crosses(const Vec3& p, const Vec3& q, const std::array<Vec3, 3>
   return Crossing::yes;
 }
 
-/// Conservative segment/box overlap (slab test on a box padded by a relative margin): it may keep a
-/// box the segment misses, never drop one it meets; the exact test decides.
-bool segment_may_hit(const Vec3& p, const Vec3& d, const AabbF& box, double pad) {
-  double t0 = 0, t1 = 1;
-  for (int k = 0; k < 3; ++k) {
-    const double lo = box.lo[k] - pad, hi = box.hi[k] + pad;
-    if (d[k] == 0) {
-      if (p[k] < lo || p[k] > hi) return false;
-      continue;
-    }
-    double a = (lo - p[k]) / d[k], b = (hi - p[k]) / d[k];
-    if (a > b) std::swap(a, b);
-    t0 = std::max(t0, a), t1 = std::min(t1, b);
-    if (t0 > t1) return false;
-  }
-  return true;
-}
-
 }  // namespace
 
 int point_in_closed_mesh(const Model& model, const Vec3& p) {
@@ -64,7 +47,6 @@ int point_in_closed_mesh(const Model& model, const Vec3& p) {
   const double pad = 1e-9 * reach;
   std::mt19937_64 rng(0x1f2e3d4c5b6a7988ULL);  // fixed: results are reproducible
   std::normal_distribution<double> gauss;
-  std::vector<std::uint32_t> stack;
   // The first rays leave by the nearest side of the bounds (short: few boxes to visit for a point
   // near the surface), tilted at random so that grid-aligned meshes rarely make them degenerate;
   // then random directions across the whole part. Any ray that is not degenerate gives the parity.
@@ -91,25 +73,12 @@ int point_in_closed_mesh(const Model& model, const Vec3& p) {
     const Vec3 d = q - p;
     bool degenerate = false;
     int parity = 0;
-    stack.assign(1, 0);
-    while (!stack.empty() && !degenerate) {
-      const BvhNode& n = bvh.nodes[stack.back()];
-      stack.pop_back();
-      if (!segment_may_hit(p, d, n.box, pad)) continue;
-      if (!n.is_leaf()) {
-        stack.push_back(n.first);
-        stack.push_back(n.first + 1);
-        continue;
-      }
-      for (std::uint32_t k = 0; k < n.count; ++k) {
-        const Crossing c = segment_crosses(p, q, model.mesh.corners(bvh.prims[n.first + k]));
-        if (c == Crossing::degenerate) {
-          degenerate = true;
-          break;
-        }
-        parity ^= (c == Crossing::yes);
-      }
-    }
+    for_each_on_segment(bvh, p, d, pad, [&](std::uint32_t t) {
+      const Crossing c = segment_crosses(p, q, model.mesh.corners(t));
+      degenerate = c == Crossing::degenerate;
+      parity ^= (c == Crossing::yes);
+      return !degenerate;
+    });
     if (!degenerate) return parity;
   }
   return -1;

@@ -86,34 +86,67 @@ DistanceResult distance(const Model& a, const Model& b, const DistanceRequest& r
 }
 
 // Nearest triangle by the BVH, nearer child first, boxes farther than the best pruned.
-double surface_distance(const Model& m, const Vec3& p) {
-  const auto box_d2 = [&](const AabbF& b) {
-    double d2 = 0;
-    for (int k = 0; k < 3; ++k) {
-      const double g = std::max({0.0, double(b.lo[k]) - p[k], p[k] - double(b.hi[k])});
-      d2 += g * g;
-    }
-    return d2;
-  };
+namespace {
+
+double point_box_d2(const Vec3& p, const AabbF& b) {
+  double d2 = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double g = std::max({0.0, static_cast<double>(b.lo[k]) - p[k], p[k] - static_cast<double>(b.hi[k])});
+    d2 += g * g;
+  }
+  return d2;
+}
+
+}  // namespace
+
+// Depth-first, nearer child first, pruning nodes (and, in a leaf, triangles) whose box lies
+// farther than the best distance found (Ericson 2005, §6.2 "closest point queries" on a BVH; the
+// closest point on a triangle of np/distance.h, §5.1.5).
+double nearest_triangle_d2(const TriMesh& mesh, const Bvh& bvh, const Vec3& p, std::uint32_t* tri, double stop_d2,
+                           std::uint32_t seed) {
   double best = std::numeric_limits<double>::infinity();
-  std::vector<std::uint32_t> stack{0};
-  while (!stack.empty()) {
-    const BvhNode& n = m.bvh.nodes[stack.back()];
-    stack.pop_back();
-    if (box_d2(n.box) >= best) continue;
+  if (bvh.nodes.empty() || mesh.triangles.empty()) return best;
+  if (seed != kNoTriangle) {
+    best = squared_norm(closest_point_on_triangle(p, mesh.corners(seed)) - p);
+    if (tri) *tri = seed;
+    if (best <= stop_d2) return best;
+  }
+  std::uint32_t stack[128];
+  int top = 0;
+  stack[top++] = 0;
+  std::vector<std::uint32_t> spill;
+  while (top > 0 || !spill.empty()) {
+    const std::uint32_t ni = top > 0 ? stack[--top] : spill.back();
+    if (top == 0 && !spill.empty() && ni == spill.back()) spill.pop_back();
+    const BvhNode& n = bvh.nodes[ni];
+    if (point_box_d2(p, n.box) >= best) continue;
     if (n.is_leaf()) {
-      for (std::uint32_t k = 0; k < n.count; ++k) {
-        const auto t = m.mesh.corners(m.bvh.prims[n.first + k]);
-        best = std::min(best, squared_norm(closest_point_on_triangle(p, t) - p));
+      for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
+        if (point_box_d2(p, bvh.prim_boxes[i]) >= best) continue;  // cheaper than the closest point
+        const std::uint32_t t = bvh.prims[i];
+        const Vec3 q = closest_point_on_triangle(p, mesh.corners(t));
+        const double d2 = squared_norm(q - p);
+        if (d2 < best) {
+          best = d2;
+          if (tri) *tri = t;
+          if (best <= stop_d2) return best;
+        }
       }
       continue;
     }
     const std::uint32_t c0 = n.first, c1 = n.first + 1;
-    const bool near0 = box_d2(m.bvh.nodes[c0].box) <= box_d2(m.bvh.nodes[c1].box);
-    stack.push_back(near0 ? c1 : c0);  // the nearer child is popped first
-    stack.push_back(near0 ? c0 : c1);
+    const double d0 = point_box_d2(p, bvh.nodes[c0].box), d1 = point_box_d2(p, bvh.nodes[c1].box);
+    const std::uint32_t near = d0 <= d1 ? c0 : c1, far = d0 <= d1 ? c1 : c0;
+    for (std::uint32_t c : {far, near}) {  // near is popped first
+      if (top < 128) stack[top++] = c;
+      else spill.push_back(c);
+    }
   }
-  return std::sqrt(best);
+  return best;
+}
+
+double surface_distance(const Model& m, const Vec3& p) {
+  return std::sqrt(nearest_triangle_d2(m.mesh, m.bvh, p));
 }
 
 }  // namespace interfere

@@ -8,18 +8,11 @@
 
 #include "interfere/bvh/bvh.h"
 #include "interfere/mesh/tri_mesh.h"
+#include "interfere/query/distance.h"
 
 namespace interfere::detail {
 
-inline constexpr std::uint32_t kNoSeed = 0xffffffffu;
-
-/// Squared distance from p to the nearest triangle of `mesh` (its BVH `bvh`), and that triangle.
-/// With stop_d2 >= 0 the search ends at the first triangle found within sqrt(stop_d2) (its squared
-/// distance, an upper bound of the nearest's, is returned): exact whenever the nearest is farther.
-/// `seed`: a triangle likely near p (a nearby sample's), tried first: it may end the search at
-/// once (within stop_d2) and otherwise prunes it; the exact result is the same.
-double nearest_d2(const TriMesh& mesh, const Bvh& bvh, const Vec3& p, std::uint32_t* tri = nullptr,
-                  double stop_d2 = -1, std::uint32_t seed = kNoSeed);
+inline constexpr std::uint32_t kNoSeed = kNoTriangle;  // (query/distance.h)
 
 /// A distance at a point and the triangle of `to` nearest to it.
 struct Near {
@@ -42,7 +35,7 @@ struct Sampled {
 };
 
 /// The samples of triangle c whose corners' distances `at` (and, if given, edge midpoints' `mid`)
-/// are known; the others' searches stop as nearest_d2's at stop_d2.
+/// are known; the others' searches stop as nearest_triangle_d2's at stop_d2.
 Sampled sample(const TriMesh& to, const Bvh& bvh, const std::array<Vec3, 3>& c, const std::array<Near, 3>& at,
                const std::array<Near, 3>* mid = nullptr, double stop_d2 = -1);
 

@@ -1,7 +1,5 @@
 // Sampled Hausdorff distance between two meshes (issue #6, item 5) with the engine's BVH
-// (bvh/bvh.h) and the closest point on a triangle of np/distance.h (Ericson 2005, §5.1.5):
-// every sample runs a depth-first nearest-triangle search, nearer child first, pruning nodes whose
-// box lies farther than the best distance found; and the upper bound of the input's distance to
+// (bvh/bvh.h) and its nearest-triangle search (query/distance.h, nearest_triangle_d2); and the upper bound of the input's distance to
 // the result (item 6, distance_bound.cpp).
 #include "interfere/simplify/hausdorff.h"
 
@@ -20,64 +18,10 @@
 
 namespace interfere {
 namespace detail {
-namespace {
-
-double point_box_d2(const Vec3& p, const AabbF& b) {
-  double d2 = 0;
-  for (int k = 0; k < 3; ++k) {
-    const double g = std::max({0.0, static_cast<double>(b.lo[k]) - p[k], p[k] - static_cast<double>(b.hi[k])});
-    d2 += g * g;
-  }
-  return d2;
-}
-
-}  // namespace
-
-double nearest_d2(const TriMesh& mesh, const Bvh& bvh, const Vec3& p, std::uint32_t* tri, double stop_d2,
-                  std::uint32_t seed) {
-  double best = std::numeric_limits<double>::infinity();
-  if (seed != kNoSeed) {
-    best = squared_norm(closest_point_on_triangle(p, mesh.corners(seed)) - p);
-    if (tri) *tri = seed;
-    if (best <= stop_d2) return best;
-  }
-  std::uint32_t stack[128];
-  int top = 0;
-  stack[top++] = 0;
-  std::vector<std::uint32_t> spill;
-  while (top > 0 || !spill.empty()) {
-    const std::uint32_t ni = top > 0 ? stack[--top] : spill.back();
-    if (top == 0 && !spill.empty() && ni == spill.back()) spill.pop_back();
-    const BvhNode& n = bvh.nodes[ni];
-    if (point_box_d2(p, n.box) >= best) continue;
-    if (n.is_leaf()) {
-      for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
-        if (point_box_d2(p, bvh.prim_boxes[i]) >= best) continue;  // cheaper than the closest point
-        const std::uint32_t t = bvh.prims[i];
-        const Vec3 q = closest_point_on_triangle(p, mesh.corners(t));
-        const double d2 = squared_norm(q - p);
-        if (d2 < best) {
-          best = d2;
-          if (tri) *tri = t;
-          if (best <= stop_d2) return best;
-        }
-      }
-      continue;
-    }
-    const std::uint32_t c0 = n.first, c1 = n.first + 1;
-    const double d0 = point_box_d2(p, bvh.nodes[c0].box), d1 = point_box_d2(p, bvh.nodes[c1].box);
-    const std::uint32_t near = d0 <= d1 ? c0 : c1, far = d0 <= d1 ? c1 : c0;
-    for (std::uint32_t c : {far, near}) {  // near is popped first
-      if (top < 128) stack[top++] = c;
-      else spill.push_back(c);
-    }
-  }
-  return best;
-}
 
 Near nearest(const TriMesh& to, const Bvh& bvh, const Vec3& p, double stop_d2, std::uint32_t seed) {
   Near n;
-  n.d = std::sqrt(nearest_d2(to, bvh, p, &n.tri, stop_d2, seed));
+  n.d = std::sqrt(nearest_triangle_d2(to, bvh, p, &n.tri, stop_d2, seed));
   return n;
 }
 
@@ -103,7 +47,6 @@ using detail::fans_of;
 using detail::local_bound;
 using detail::Near;
 using detail::nearest;
-using detail::nearest_d2;
 using detail::nearer;
 using detail::ring_bound;
 using detail::refined_bound;

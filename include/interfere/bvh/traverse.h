@@ -1,5 +1,5 @@
 // BVH traversals: tree vs tree (serial, and parallel split into node-pair tasks after Embree's
-// collider), tree vs box, and a best-first branch-and-bound over node pairs for distance queries.
+// collider), tree vs box, tree vs segment, and a best-first branch-and-bound over node pairs for distance queries.
 // Results never depend on the thread count: the task list is built breadth-first independently of
 // it, and per-task outputs are concatenated in task order.
 //
@@ -183,6 +183,46 @@ void for_each_in_box(const Bvh& bvh, const AabbF& box, F&& f) {
     } else {
       if (boxes_overlap(box, nodes[n.first + 1].box, 0.0f)) stack.push(n.first + 1);
       if (boxes_overlap(box, nodes[n.first].box, 0.0f)) stack.push(n.first);
+    }
+  }
+}
+
+/// Conservative segment/box overlap: the segment p -> p + d against `box` grown by `pad` on every
+/// side (slab test in double): it may keep a box the segment misses by rounding, never drop one it
+/// meets; an exact test of the primitives decides.
+inline bool segment_may_hit(const Vec3& p, const Vec3& d, const AabbF& box, double pad) {
+  double t0 = 0, t1 = 1;
+  for (int k = 0; k < 3; ++k) {
+    const double lo = static_cast<double>(box.lo[k]) - pad, hi = static_cast<double>(box.hi[k]) + pad;
+    if (d[k] == 0) {
+      if (p[k] < lo || p[k] > hi) return false;
+      continue;
+    }
+    double a = (lo - p[k]) / d[k], b = (hi - p[k]) / d[k];
+    if (a > b) std::swap(a, b);
+    t0 = std::max(t0, a), t1 = std::min(t1, b);
+    if (t0 > t1) return false;
+  }
+  return true;
+}
+
+/// Calls f(i) for every primitive (triangle index) whose box the segment p -> p + d may meet
+/// (segment_may_hit with `pad`), until f returns false. Serial, deterministic order.
+template <class F>
+void for_each_on_segment(const Bvh& bvh, const Vec3& p, const Vec3& d, double pad, F&& f) {
+  if (bvh.empty()) return;
+  const BvhNode* nodes = bvh.nodes.data();
+  detail::SmallStack<std::uint32_t> stack;
+  stack.push(0);
+  while (!stack.empty()) {
+    const BvhNode& n = nodes[stack.pop()];
+    if (!segment_may_hit(p, d, n.box, pad)) continue;
+    if (n.is_leaf()) {
+      for (std::uint32_t j = n.first; j < n.first + n.count; ++j)
+        if (segment_may_hit(p, d, bvh.prim_boxes[j], pad) && !f(bvh.prims[j])) return;
+    } else {
+      stack.push(n.first + 1);
+      stack.push(n.first);
     }
   }
 }

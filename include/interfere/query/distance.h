@@ -23,4 +23,15 @@ DistanceResult distance(const Model& a, const Model& b, const DistanceRequest& r
 /// an empty part). Floating point: the closest point on each triangle as np/distance.h computes it.
 double surface_distance(const Model& m, const Vec3& p);
 
+inline constexpr std::uint32_t kNoTriangle = 0xffffffffu;
+
+/// Squared distance from p to the nearest triangle of `mesh` (its BVH `bvh`), and that triangle
+/// (+inf, `tri` untouched, for an empty mesh). With stop_d2 >= 0 the search ends at the first
+/// triangle found within sqrt(stop_d2) (its squared distance, an upper bound of the nearest's, is
+/// returned): exact whenever the nearest is farther. `seed`: a triangle likely near p (a nearby
+/// sample's), tried first: it may end the search at once (within stop_d2) and otherwise prunes it;
+/// the exact result is the same. surface_distance and the simplification's Hausdorff measure use it.
+double nearest_triangle_d2(const TriMesh& mesh, const Bvh& bvh, const Vec3& p, std::uint32_t* tri = nullptr,
+                           double stop_d2 = -1, std::uint32_t seed = kNoTriangle);
+
 }  // namespace interfere

@@ -1070,12 +1070,12 @@ TEST(Hausdorff, SeededSearchesAreExact) {
       brute = std::min(brute, squared_norm(closest_point_on_triangle(p, to.corners(t)) - p));
     const auto seed = static_cast<std::uint32_t>(rng() % to.num_triangles());
     std::uint32_t tri = 0;
-    const double exact = detail::nearest_d2(to, bvh, p, &tri, -1, seed);
+    const double exact = nearest_triangle_d2(to, bvh, p, &tri, -1, seed);
     EXPECT_EQ(exact, brute);
     EXPECT_EQ(squared_norm(closest_point_on_triangle(p, to.corners(tri)) - p), exact);
-    EXPECT_EQ(detail::nearest_d2(to, bvh, p), brute);
+    EXPECT_EQ(nearest_triangle_d2(to, bvh, p), brute);
     const double stop = brute * (i % 2 ? 0.5 : 2.0);
-    const double stopped = detail::nearest_d2(to, bvh, p, &tri, stop, seed);
+    const double stopped = nearest_triangle_d2(to, bvh, p, &tri, stop, seed);
     if (brute > stop) EXPECT_EQ(stopped, brute);
     else EXPECT_LE(stopped, stop);
     EXPECT_EQ(squared_norm(closest_point_on_triangle(p, to.corners(tri)) - p), stopped);
