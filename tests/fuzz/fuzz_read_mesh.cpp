@@ -269,9 +269,10 @@ int entry(const std::uint8_t* data, std::size_t size) {
                                   {"in.bin", Family::unknown}};
   Read welded_by_family[7];  // indexed by MeshFamily (unknown stays empty)
   const TriMesh* first_ok = nullptr;
+  // Every file first: a glTF buffer URI may name one of them (the same bytes for every read).
+  for (const Input& in : kInputs) put_file(work_dir() / in.file, data, size);
   for (const Input& in : kInputs) {
     const fs::path path = work_dir() / in.file;
-    put_file(path, data, size);
     const bool detect = in.family == Family::unknown;
     Read w = read(path, true);
     Read u = read(path, false);
