@@ -66,6 +66,8 @@ void apply_params_file(const std::string& file, SceneParams& p) {
     j = nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
     throw InputError(Error{.file = file, .byte = static_cast<std::int64_t>(e.byte), .reason = "invalid JSON"});
+  } catch (const nlohmann::json::exception& e) {  // a number beyond double ("9e308")
+    throw InputError(Error{.file = file, .reason = std::string("invalid JSON: ") + e.what()});
   }
   if (!j.is_object()) file_error(file, "the parameters file must hold a JSON object");
   for (auto it = j.begin(); it != j.end(); ++it) {

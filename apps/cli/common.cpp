@@ -120,6 +120,8 @@ void apply_scene(const std::string& scene_path, PartSpec& a, PartSpec& b, std::s
     j = nlohmann::json::parse(in);
   } catch (const nlohmann::json::parse_error& e) {
     throw InputError(scene_path + ": byte " + std::to_string(e.byte) + ": invalid JSON: " + e.what());
+  } catch (const nlohmann::json::exception& e) {  // a number beyond double ("9e308")
+    throw InputError(scene_path + ": invalid JSON: " + e.what());
   }
   if (!j.is_object()) throw InputError(scene_path + ": scene must be a JSON object");
   const std::filesystem::path dir = std::filesystem::path(scene_path).parent_path();

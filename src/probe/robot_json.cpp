@@ -81,6 +81,8 @@ Expected<Robot> parse_robot_json(std::string_view text, const std::string& file_
   } catch (const json::parse_error& e) {
     return Error{.file = file_name, .line = line_of(text, e.byte > 0 ? e.byte - 1 : 0),
                  .reason = std::string("invalid JSON: ") + e.what()};
+  } catch (const json::exception& e) {  // a number beyond double ("9e308")
+    return Error{.file = file_name, .reason = std::string("invalid JSON: ") + e.what()};
   }
   if (!doc.is_object()) return p.fail("(document)", "expected a JSON object", 1);
   Robot robot;

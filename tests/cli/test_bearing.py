@@ -128,6 +128,12 @@ class Bearing(unittest.TestCase):
         rc, _, err = run("--params", path("broken.parameters"))
         self.assertEqual(rc, 2)
         self.assertIn("byte", err)
+        with open(path("huge.parameters"), "w") as f:
+            f.write('{"pairs": 3e999}')
+        rc, _, err = run("--params", path("huge.parameters"))
+        self.assertEqual(rc, 2)
+        self.assertIn("huge.parameters", err)
+        self.assertIn("invalid JSON", err)
 
 
 if __name__ == "__main__":

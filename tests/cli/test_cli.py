@@ -241,6 +241,9 @@ class Cli(unittest.TestCase):
         with open(path("bad_scene.json"), "w") as f:
             f.write('{"a": {"file": "plate.stl"}, "b": ')
         self.assert_input_error(["clash", "--scene", path("bad_scene.json")], ["bad_scene.json", "byte"])
+        with open(path("huge_scene.json"), "w") as f:
+            f.write('{"a": {"file": "plate.stl"}, "units": 9e308}')
+        self.assert_input_error(["clash", "--scene", path("huge_scene.json")], ["huge_scene.json", "invalid JSON"])
 
     def test_check_command(self):
         rc, out, err = run("check", os.path.join(EXAMPLES, "plate.stl"))

@@ -350,6 +350,10 @@ X = float.fromhex
 # Minimised fuzzer findings: (target, file name, bytes). Keep them until the library is fixed,
 # then keep them as regression tests.
 REGRESSIONS = [
+    # read_mesh (src/mesh/io/glb.cpp, read_gltf): nlohmann's parser throws out_of_range, not
+    # parse_error, for a number beyond double; only parse_error was caught (an uncaught exception).
+    # Found by fuzz_read_mesh.
+    ("read_mesh", "regression_gltf_number_overflow", b"9e308 world\n\0\0\0\0y\n"),
     # read_fem (src/fem/io/nastran_read.cpp): tab-expanded lines were kept in a std::vector<string>;
     # its growth moved short strings and left the cards' field views dangling (ASan
     # heap-use-after-free). Found by fuzz_read_fem.

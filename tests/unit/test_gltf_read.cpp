@@ -164,6 +164,7 @@ TEST(GltfRead, BadFilesAndUrisAreErrorsNamingWhere) {
   expect_error(text.substr(0, text.size() / 2), "not valid JSON", "truncated");
   expect_error("{\"asset\": [1, 2,, 3]}", "byte 16", "syntax");  // the second comma
   expect_error("{}", "no triangles", "empty");
+  expect_error("{\"asset\": 9e308}", "number overflow", "overflow");  // nlohmann throws out_of_range
   // A bad error bound in the scene's extras is an error of read_error_bound.
   auto bounded = square("pos.bin", idx);
   bounded["scenes"][0]["extras"]["error_bound"] = -2;

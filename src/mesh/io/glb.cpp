@@ -477,6 +477,8 @@ Expected<TriMesh> read_gltf(const std::string& path, std::string_view data, Mesh
     doc = Json::parse(data);
   } catch (const Json::parse_error& e) {
     return byte_error(path, static_cast<std::int64_t>(e.byte > 0 ? e.byte - 1 : 0), "not valid JSON (glTF)");
+  } catch (const Json::exception& e) {  // a number beyond double ("9e308")
+    return byte_error(path, 0, std::string("not valid glTF JSON: ") + e.what());
   }
   const GlbChunks chunks{.json = data, .bin = {}, .json_at = 0, .bin_at = 0};
   return GlbReader(path, chunks, std::move(doc), false, dir).read();
