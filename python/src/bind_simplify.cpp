@@ -220,11 +220,13 @@ void bind_simplify(py::module_& m) {
   m.attr("HAVE_CAD") = true;
   m.def(
       "import_step",
-      [](const std::filesystem::path& path, double linear_deflection, double angular_deflection) {
+      [](const std::filesystem::path& path, double linear_deflection, double angular_deflection, bool aag) {
         Expected<cad::CadModel> r = Error{};
         {
           py::gil_scoped_release release;
-          r = cad::import_step(path, {.linear_deflection = linear_deflection, .angular_deflection = angular_deflection});
+          r = cad::import_step(path, {.linear_deflection = linear_deflection,
+                                      .angular_deflection = angular_deflection,
+                                      .build_aag = aag});
         }
         if (!r) throw py::value_error(r.error().message());
         py::dict out;
@@ -236,6 +238,7 @@ void bind_simplify(py::module_& m) {
           d["face_ids"] = p.face_ids;
           d["faces"] = p.faces;
           d["solids"] = p.solids;
+          d["linear_deflection"] = p.linear_deflection;
           py::list nodes, arcs;
           for (const cad::AagNode& n : p.aag.nodes)
             nodes.append(py::dict(py::arg("face") = n.face, py::arg("type") = cad::surface_type_name(n.type),
@@ -259,10 +262,10 @@ void bind_simplify(py::module_& m) {
         out["file_length_units"] = r->file_length_units;
         return out;
       },
-      py::arg("path"), py::arg("linear_deflection") = 0.0, py::arg("angular_deflection") = 0.5,
-      "Reads a STEP file: parts (name, mesh, per-triangle face_ids, AAG nodes/arcs), instances (name, part, path, "
-      "placement: Transform, part -> world), warnings, units "
-      "(always 'mm') and file_length_units (the units the file declares).");
+      py::arg("path"), py::arg("linear_deflection") = 0.0, py::arg("angular_deflection") = 0.5, py::arg("aag") = true,
+      "Reads a STEP file: parts (name, mesh, per-triangle face_ids, linear_deflection, AAG nodes/arcs: empty with "
+      "aag=False, for triangles only), instances (name, part, path, placement: Transform, part -> world), warnings, "
+      "units (always 'mm') and file_length_units (the units the file declares).");
   m.def(
       "step_features",
       [](const std::filesystem::path& path, const std::string& process_file, const std::string& step,

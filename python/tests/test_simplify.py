@@ -199,6 +199,10 @@ class Cad(unittest.TestCase):
         self.assertEqual(len(part["aag_nodes"]), 9)
         self.assertEqual(m["units"], "mm")
         self.assertEqual(len(m["file_length_units"]), 1)  # written by OCCT in millimetres
+        bare = itf.import_step(step, linear_deflection=0.005, aag=False)  # triangles only
+        self.assertEqual(bare["parts"][0]["aag_nodes"], [])
+        self.assertEqual(bare["parts"][0]["linear_deflection"], 0.005)
+        self.assertGreater(len(bare["parts"][0]["mesh"].triangles), len(part["mesh"].triangles))
         f = itf.step_features(step)
         self.assertEqual([x["type"] for x in f[0]["features"]], ["counterbored_hole"])
         with tempfile.TemporaryDirectory() as d:
