@@ -38,7 +38,9 @@ def build_and_run(quick: bool, bench_filter: str | None = None, exe: str | None 
     if exe:
         exe = Path(exe).resolve()
     else:
-        subprocess.run(["cmake", "-S", str(ROOT), "-B", str(BUILD), "-G", "Ninja", "-DCMAKE_BUILD_TYPE=Release",
+        # The generator is CMake's default, as bench/run_benchmarks.py configures the same build-bench/
+        # (a second generator in one build directory is an error).
+        subprocess.run(["cmake", "-S", str(ROOT), "-B", str(BUILD), "-DCMAKE_BUILD_TYPE=Release",
                         "-DINTERFERE_BUILD_TESTS=OFF", "-DINTERFERE_BUILD_CLI=OFF", "-DINTERFERE_BUILD_BENCH=ON",
                         "-DINTERFERE_BUILD_PYTHON=OFF"], check=True)
         subprocess.run(["nice", "cmake", "--build", str(BUILD), "-j2", "--target", "interfere_bench_simplify"],
