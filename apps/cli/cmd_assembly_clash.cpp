@@ -5,11 +5,14 @@
 // --clearance, a pair closer than the clearance. Exit status 1 when some pair clashes.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cstdio>
 
 #include "commands.h"
 #include "common.h"
 #include "interfere/core/atomic_file.h"
+#include "interfere/mesh/polyline.h"
+#include "interfere/simplify/tagged_io.h"
 #ifdef INTERFERE_HAS_CAD
 #include "interfere/cad/assembly_clash.h"
 #include "interfere/cad/model.h"
@@ -19,18 +22,67 @@ namespace interfere::cli {
 namespace {
 
 struct AssemblyClashCliOptions {
-  std::string input, json;
+  std::string input, json, regions;
+  std::vector<std::string> curves;
   double clearance = 0, linear_deflection = 0, angular_deflection = 0.5;
   int threads = 0;
 };
 
 #ifdef INTERFERE_HAS_CAD
+// --regions: the clash-region triangles of every clashing pair, each instance's once, in world
+// coordinates, tagged with the instance's index (face id: PLY face_id, OBJ groups, STL attribute
+// word); --curves: every clashing pair's intersection curves. Nothing to write (no clash): a note.
+void write_clash_geometry(const AssemblyClashCliOptions& o, const cad::CadModel& model,
+                          const cad::AssemblyClashResult& r) {
+  if (o.regions.empty() && o.curves.empty()) return;
+  std::vector<std::vector<std::uint32_t>> tris(model.instances.size());
+  std::vector<Polyline> curves;
+  for (const cad::InstancePairResult& p : r.pairs) {
+    tris[p.a].insert(tris[p.a].end(), p.region_triangles_a.begin(), p.region_triangles_a.end());
+    tris[p.b].insert(tris[p.b].end(), p.region_triangles_b.begin(), p.region_triangles_b.end());
+    curves.insert(curves.end(), p.curves.begin(), p.curves.end());
+  }
+  if (!o.regions.empty()) {
+    TriMesh all;
+    std::vector<std::uint32_t> instance_of;
+    for (std::uint32_t i = 0; i < tris.size(); ++i) {
+      std::sort(tris[i].begin(), tris[i].end());
+      tris[i].erase(std::unique(tris[i].begin(), tris[i].end()), tris[i].end());
+      if (tris[i].empty()) continue;
+      const cad::Instance& in = model.instances[i];
+      const TriMesh m = transformed(submesh(model.parts[in.part].mesh, tris[i]), in.placement);
+      const auto base = static_cast<std::uint32_t>(all.positions.size());
+      all.positions.insert(all.positions.end(), m.positions.begin(), m.positions.end());
+      for (const Tri& t : m.triangles) all.triangles.push_back({base + t[0], base + t[1], base + t[2]});
+      instance_of.insert(instance_of.end(), m.num_triangles(), i);
+    }
+    if (all.triangles.empty()) {
+      std::fprintf(stderr, "[interfere] note: no pair clashes; %s not written\n", o.regions.c_str());
+    } else {
+      const Status s = write_tagged_mesh(o.regions, all, instance_of, {});
+      if (!s) throw InputError(s.error());
+    }
+  }
+  for (const std::string& c : o.curves) {
+    if (curves.empty()) {
+      std::fprintf(stderr, "[interfere] note: no pair clashes with crossing surfaces; %s not written\n", c.c_str());
+      continue;
+    }
+    const Status s = write_polylines(c, curves);
+    if (!s) throw InputError(s.error());
+  }
+}
+
 int run_assembly_clash(const AssemblyClashCliOptions& o) {
   if (!is_step_file(o.input)) throw InputError(o.input + ": assembly-clash takes a STEP file (.step, .stp)");
   if (!(o.clearance >= 0 && std::isfinite(o.clearance)))
     throw InputError("--clearance must be a distance >= 0 (mm), not " + short_number(o.clearance));
   check_output(o.json, {}, "--json");
-  check_distinct_files({{"IN", o.input}}, {{"--json", o.json}});
+  check_output(o.regions, {".stl", ".ply", ".obj", ".off"}, "--regions");
+  for (const std::string& c : o.curves) check_output(c, {".obj", ".vtk"}, "--curves");
+  std::vector<NamedPath> outputs{{"--json", o.json}, {"--regions", o.regions}};
+  for (const std::string& c : o.curves) outputs.push_back({"--curves", c});
+  check_distinct_files({{"IN", o.input}}, outputs);
   set_threads(o.threads);
   Progress total("assembly-clash");
   Expected<cad::CadModel> model = Error{};
@@ -43,8 +95,9 @@ int run_assembly_clash(const AssemblyClashCliOptions& o) {
   cad::AssemblyClashResult r;
   {
     Progress progress("clashing the pairs of " + std::to_string(model->instances.size()) + " instances");
-    r = cad::assembly_clash(*model, {.clearance = o.clearance});
+    r = cad::assembly_clash(*model, {.clearance = o.clearance, .geometry = !o.regions.empty() || !o.curves.empty()});
   }
+  write_clash_geometry(o, *model, r);
   for (const std::string& w : r.warnings) warning(w);
   const auto name = [&](std::uint32_t i) { return model->instances[i].name; };
   nlohmann::json pairs = nlohmann::json::array();
@@ -111,6 +164,11 @@ void add_assembly_clash_command(CLI::App& app, int& exit_code) {
   c->add_option("IN", o->input, "STEP assembly (or part)")->required()->check(CLI::ExistingFile);
   c->add_option("--clearance", o->clearance, "also list pairs of instances closer than this (mm)");
   c->add_option("--json", o->json, "write the JSON report here");
+  c->add_option("--regions", o->regions,
+                "write the clash-region triangles of every clashing pair, in world coordinates, each tagged with its "
+                "instance's index (.ply/.obj/.stl face ids; .off untagged)");
+  c->add_option("--curves", o->curves, "write the clashing pairs' intersection curves (.obj polylines or .vtk); repeatable")
+      ->allow_extra_args(false);
   c->add_option("--threads", o->threads, "worker threads (0 = all cores)");
   c->add_option("--linear-deflection", o->linear_deflection, "tessellation linear deflection (0 = 0.1 % of the diagonal)");
   c->add_option("--angular-deflection", o->angular_deflection, "tessellation angular deflection, radians");

@@ -93,8 +93,26 @@ AssemblyClashResult assembly_clash(const CadModel& model, const AssemblyClashOpt
     }
     if (r.cross_pairs > 0 && !inside && !r.touching_overlap)
       p.nominal_fit = detail::nominal_fit(model, a, b, world, r, p.depth, p.tessellation_error);
-    if ((r.cross_pairs > 0 && !p.nominal_fit) || inside || r.touching_overlap)
+    if ((r.cross_pairs > 0 && !p.nominal_fit) || inside || r.touching_overlap) {
       p.meeting = InstanceMeeting::clash;
+      if (options.geometry)
+        for (const ClashRegion& g : r.regions) {
+          p.curves.insert(p.curves.end(), g.curves.begin(), g.curves.end());
+          p.region_triangles_a.insert(p.region_triangles_a.end(), g.triangles_a.begin(), g.triangles_a.end());
+          p.region_triangles_b.insert(p.region_triangles_b.end(), g.triangles_b.begin(), g.triangles_b.end());
+        }
+      // One instance inside the other: all of it is the clash region.
+      const auto all = [&](std::uint32_t i, std::vector<std::uint32_t>& v) {
+        v.resize(world[i].mesh.num_triangles());
+        std::iota(v.begin(), v.end(), 0u);
+      };
+      if (options.geometry && r.containment == Containment::a_inside_b) all(a, p.region_triangles_a);
+      if (options.geometry && r.containment == Containment::b_inside_a) all(b, p.region_triangles_b);
+      for (auto* v : {&p.region_triangles_a, &p.region_triangles_b}) {
+        std::sort(v->begin(), v->end());
+        v->erase(std::unique(v->begin(), v->end()), v->end());
+      }
+    }
     else if (r.touch_pairs > 0)
       p.meeting = InstanceMeeting::contact;
     else if (!r.clearance.empty())

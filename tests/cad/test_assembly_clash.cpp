@@ -3,12 +3,14 @@
 // pairs found against a brute-force clash of every pair.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <random>
 
 #include "interfere/cad/assembly_clash.h"
 #include "interfere/mesh/generate.h"
 #include "interfere/mesh/validate.h"
+#include "interfere/query/clash.h"
 #include "interfere/query/model.h"
 
 namespace interfere::cad {
@@ -67,6 +69,47 @@ TEST(AssemblyClash, CrossingTouchingContainedAndNearPairs) {
   EXPECT_EQ(plain.pairs.size(), 5u);
   EXPECT_EQ(plain.within_clearance, 0u);
   EXPECT_LT(plain.candidate_pairs, r.candidate_pairs);
+  for (const auto& p : r.pairs) EXPECT_TRUE(p.curves.empty() && p.region_triangles_a.empty());  // not asked for
+}
+
+TEST(AssemblyClash, GeometryOfTheClashingPairs) {
+  // With geometry: a crossing pair's curves lie on both surfaces and its region triangles are
+  // those of the clash's regions; a contained instance is all region; contacts keep nothing.
+  const CadModel m = boxes({{0, Transform{}},            // 0
+                            {0, moved(0, 0, 1)},         // 1: on top of 0 (contact)
+                            {1, moved(0.4, 0.4, 0.4)},   // 2: inside 0
+                            {1, moved(0.9, 0.4, 0.4)}});  // 3: crossing 0's face x = 1
+  std::map<std::pair<std::uint32_t, std::uint32_t>, InstancePairResult> got;
+  for (const auto& p : assembly_clash(m, {.geometry = true}).pairs) got[{p.a, p.b}] = p;
+  const InstancePairResult& contact = got.at({0, 1});
+  EXPECT_EQ(contact.meeting, InstanceMeeting::contact);
+  EXPECT_TRUE(contact.curves.empty() && contact.region_triangles_a.empty() && contact.region_triangles_b.empty());
+  const InstancePairResult& inside = got.at({0, 2});
+  EXPECT_EQ(inside.containment, Containment::b_inside_a);
+  EXPECT_TRUE(inside.region_triangles_a.empty());
+  EXPECT_EQ(inside.region_triangles_b.size(), m.parts[1].mesh.num_triangles());
+  const InstancePairResult& crossing = got.at({0, 3});
+  ASSERT_EQ(crossing.meeting, InstanceMeeting::clash);
+  // The same triangles as the engine's clash of the two placed meshes.
+  const Model a = make_model(transformed(m.parts[0].mesh, m.instances[0].placement));
+  const Model b = make_model(transformed(m.parts[1].mesh, m.instances[3].placement));
+  const ClashResult direct = clash(a, b);
+  std::vector<std::uint32_t> ta, tb;
+  for (const TrianglePair& q : direct.pairs) ta.push_back(q.a), tb.push_back(q.b);
+  for (auto* v : {&ta, &tb}) {
+    std::sort(v->begin(), v->end());
+    v->erase(std::unique(v->begin(), v->end()), v->end());
+  }
+  EXPECT_EQ(crossing.region_triangles_a, ta);
+  EXPECT_EQ(crossing.region_triangles_b, tb);
+  ASSERT_FALSE(crossing.curves.empty());
+  double length = 0;
+  for (const Polyline& c : crossing.curves) {
+    for (const Vec3& p : c.points) EXPECT_NEAR(p.x, 1.0, 1e-12);  // on block 0's face x = 1
+    length += c.length;
+  }
+  EXPECT_NEAR(length, 0.8, 1e-9);  // the cube's 0.2 x 0.2 section: four sides
+  EXPECT_NEAR(length, crossing.curve_length, 1e-9);
 }
 
 TEST(AssemblyClash, DepthSamplesTheStretchesOfLongEdgesInsideTheOtherSolid) {

@@ -668,19 +668,53 @@ class Features(unittest.TestCase):
         for lift, meeting, status in (("(0.,0.,10.)", "contact", 0), ("(10.,0.,5.)", "clash", 1)):
             with open(path("moved.step"), "w") as f:
                 f.write(text.replace("(0.,0.,20.)", lift))
-            code, out, err = run("assembly-clash", path("moved.step"), "--json", path("ac2.json"))
+            for f in ("reg.obj", "cur.obj"):
+                if os.path.exists(path(f)):
+                    os.remove(path(f))
+            code, out, err = run("assembly-clash", path("moved.step"), "--json", path("ac2.json"), "--regions",
+                                 path("reg.obj"), "--curves", path("cur.obj"))
             self.assertEqual(code, status, err)
             r = load_json("ac2.json")
             self.assertEqual([q["meeting"] for q in r["pairs"]], [meeting])
             self.assertIn(meeting, out)
+            if meeting == "contact":  # nothing clashes: no region, no curve, a note each
+                self.assertFalse(os.path.exists(path("reg.obj")))
+                self.assertFalse(os.path.exists(path("cur.obj")))
+                self.assertIn("not written", err)
             if meeting == "clash":
                 self.assertAlmostEqual(r["pairs"][0]["depth"], 5.0, places=6)
                 self.assertGreater(r["pairs"][0]["cross_pairs"], 0)
                 self.assertGreater(r["pairs"][0]["tessellation_error"], 0)
                 self.assertEqual(r["clashes_within_tessellation_error"], 0)
+                # The clash regions: triangles of both plates (instances 0 and 1, world coordinates),
+                # and the intersection curves inside the plates' common box x in [0, 10], y in [0, 30],
+                # z in [5, 10] (plate_2 turned about z and moved by (10, 0, 5)).
+                groups, verts, group = {}, [], None
+                with open(path("reg.obj")) as f:
+                    for line in f:
+                        w = line.split()
+                        if w and w[0] == "v":
+                            verts.append(tuple(map(float, w[1:4])))
+                        elif w and w[0] == "g":
+                            group = w[1]
+                        elif w and w[0] == "f":
+                            groups[group] = groups.get(group, 0) + 1
+                self.assertEqual(sorted(groups), ["face_0", "face_1"])
+                self.assertTrue(all(-20 - 1e-9 <= v[0] <= 40 + 1e-9 and 0 <= v[2] <= 15 + 1e-9 for v in verts))
+                points = []
+                with open(path("cur.obj")) as f:
+                    for line in f:
+                        w = line.split()
+                        if w and w[0] == "v":
+                            points.append(tuple(map(float, w[1:4])))
+                self.assertGreater(len(points), 2)
+                for x, y, z in points:
+                    self.assertTrue(-1e-9 <= x <= 10 + 1e-9 and -1e-9 <= y <= 30 + 1e-9 and 5 - 1e-9 <= z <= 10 + 1e-9,
+                                    (x, y, z))
         # Not a STEP file, or a bad clearance: input errors; nothing written.
         write_obj("m.obj", uv_sphere())
-        for args, message in (([path("m.obj")], "STEP"), ([asm, "--clearance", "-1"], "--clearance")):
+        for args, message in (([path("m.obj")], "STEP"), ([asm, "--clearance", "-1"], "--clearance"),
+                              ([asm, "--regions", path("r.step")], "--regions"), ([asm, "--curves", path("c.stl")], "--curves")):
             code, _, err = run("assembly-clash", *args, "--json", path("ac3.json"))
             self.assertEqual(code, 2)
             self.assertIn(message, err)

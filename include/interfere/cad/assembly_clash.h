@@ -16,6 +16,10 @@ namespace interfere::cad {
 
 struct AssemblyClashOptions {
   double clearance = 0;  ///< > 0: also report pairs of instances closer than this (model units)
+  /// Keep each clashing pair's geometry (InstancePairResult::curves, region_triangles_a/b): the
+  /// clash regions and intersection curves a CAD package's clash module shows (paper 1's exported
+  /// clash regions).
+  bool geometry = false;
 };
 
 /// How two instances meet: `clash` (their surfaces cross, one lies inside the other, or their
@@ -53,6 +57,12 @@ struct InstancePairResult {
   bool nominal_fit = false;
   std::size_t regions = 0;
   double curve_length = 0;  ///< of the intersection curves
+  /// With AssemblyClashOptions::geometry, for pairs that clash: the intersection curves (world
+  /// coordinates) and each instance's triangles in the clash regions (sorted indices into its
+  /// part's mesh, Part::mesh: its triangles in the same order; all of an instance that lies inside
+  /// the other), empty otherwise.
+  std::vector<Polyline> curves;
+  std::vector<std::uint32_t> region_triangles_a, region_triangles_b;
 };
 
 /// Relative tolerance (of the two parts' bounding-box diagonals, and in radians for directions)
