@@ -337,19 +337,20 @@ void bind_simplify(py::module_& m) {
       "object (report). Budgets per part: interfere.triangle_budgets.");
   m.def(
       "assembly_clash",
-      [](const std::filesystem::path& path, double clearance, double linear_deflection, double angular_deflection) {
+      [](const std::filesystem::path& path, double clearance, double linear_deflection, double angular_deflection,
+         bool geometry) {
         if (!(clearance >= 0 && std::isfinite(clearance))) throw py::value_error("clearance must be >= 0");
         Expected<cad::CadModel> model = Error{};
         cad::AssemblyClashResult r;
         {
           py::gil_scoped_release release;
           model = cad::import_step(path, {.linear_deflection = linear_deflection, .angular_deflection = angular_deflection});
-          if (model) r = cad::assembly_clash(*model, {.clearance = clearance});
+          if (model) r = cad::assembly_clash(*model, {.clearance = clearance, .geometry = geometry});
         }
         if (!model) throw py::value_error(model.error().message());
         py::list pairs;
-        for (const cad::InstancePairResult& q : r.pairs)
-          pairs.append(py::dict(py::arg("a") = q.a, py::arg("b") = q.b, py::arg("a_name") = model->instances[q.a].name,
+        for (const cad::InstancePairResult& q : r.pairs) {
+          py::dict d(py::arg("a") = q.a, py::arg("b") = q.b, py::arg("a_name") = model->instances[q.a].name,
                                 py::arg("b_name") = model->instances[q.b].name,
                                 py::arg("meeting") = cad::instance_meeting_name(q.meeting),
                                 py::arg("cross_pairs") = q.cross_pairs, py::arg("touch_pairs") = q.touch_pairs,
@@ -358,7 +359,14 @@ void bind_simplify(py::module_& m) {
                                 py::arg("curve_length") = q.curve_length, py::arg("clearance_pairs") = q.clearance_pairs,
                                 py::arg("min_clearance") = q.min_clearance, py::arg("depth") = q.depth,
                                 py::arg("tessellation_error") = q.tessellation_error,
-                                py::arg("nominal_fit") = q.nominal_fit));
+                                py::arg("nominal_fit") = q.nominal_fit);
+          if (geometry) {
+            d["curves"] = q.curves;
+            d["region_triangles_a"] = q.region_triangles_a;
+            d["region_triangles_b"] = q.region_triangles_b;
+          }
+          pairs.append(d);
+        }
         py::dict out;
         out["pairs"] = pairs;
         out["candidate_pairs"] = r.candidate_pairs;
@@ -371,10 +379,13 @@ void bind_simplify(py::module_& m) {
         return out;
       },
       py::arg("path"), py::arg("clearance") = 0.0, py::arg("linear_deflection") = 0.0, py::arg("angular_deflection") = 0.5,
+      py::arg("geometry") = false,
       "`interfere assembly-clash` of a STEP file: every pair of instances that meets, as a dict with pairs [{a, b, "
       "a_name, b_name, meeting ('clash', 'contact', 'clearance'), cross_pairs, touch_pairs, touching_overlap, "
-      "containment, curve_length, clearance_pairs, min_clearance, depth, tessellation_error, nominal_fit}], candidate_pairs, "
-      "clashes, contacts, within_clearance, warnings. ValueError on bad input.");
+      "containment, curve_length, clearance_pairs, min_clearance, depth, tessellation_error, nominal_fit; with "
+      "geometry=True also curves (Polylines, world coordinates) and region_triangles_a/_b (each instance's clash-region "
+      "triangles, indices into its part's mesh; empty unless the pair clashes)}], candidate_pairs, clashes, contacts, "
+      "within_clearance, warnings. ValueError on bad input.");
   m.def(
       "simplify_step",
       [](const std::filesystem::path& path, std::size_t target, double ratio, std::size_t renderer_max,

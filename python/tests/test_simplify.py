@@ -289,6 +289,21 @@ class Cad(unittest.TestCase):
         self.assertEqual(itf.assembly_clash(asm)["pairs"], [])
         with self.assertRaises(ValueError):
             itf.assembly_clash(asm, clearance=-1)
+        # plate_2 moved into plate_1: a clash, with its geometry on request.
+        with open(asm) as f:
+            text = f.read()
+        with tempfile.TemporaryDirectory() as d:
+            moved = os.path.join(d, "moved.step")
+            with open(moved, "w") as f:
+                f.write(text.replace("(0.,0.,20.)", "(10.,0.,5.)"))
+            g = itf.assembly_clash(moved, geometry=True)
+            self.assertEqual(g["clashes"], 1)
+            p = g["pairs"][0]
+            self.assertGreater(len(p["curves"]), 0)
+            self.assertAlmostEqual(sum(c.length for c in p["curves"]), p["curve_length"])
+            self.assertGreater(len(p["region_triangles_a"]), 0)
+            self.assertGreater(len(p["region_triangles_b"]), 0)
+            self.assertNotIn("curves", itf.assembly_clash(moved)["pairs"][0])
 
     def test_simplify_step_to_one_total(self):
         # The CLI's STEP simplification: parts to their shares of one total, the step's features
