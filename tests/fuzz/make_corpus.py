@@ -244,6 +244,13 @@ def mesh_seeds():
     s["glb_node_cycle.glb"] = glb_tetra({"mesh": 0, "children": [0]})
     s["glb_external_buffer.glb"] = glb_tetra(edit=lambda d: d["buffers"][0].update(uri="tetra.bin"))
     s["glb_not_json.glb"] = glb_tetra().replace(b'{"asset"', b'{"asset"!', 1)
+    s["glb_tetra_quantized_short.glb"] = glb(
+        {"asset": {"version": "2.0"}, "extensionsRequired": ["KHR_mesh_quantization"],
+         "buffers": [{"byteLength": 32}], "bufferViews": [{"buffer": 0, "byteLength": 32, "byteStride": 8}],
+         "accessors": [{"bufferView": 0, "componentType": 5122, "normalized": True, "count": 4, "type": "VEC3"}],
+         "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "mode": 5}]}],
+         "nodes": [{"mesh": 0, "scale": [3, 3, 3]}], "scenes": [{"nodes": [0]}]},
+        b"".join(struct.pack("<3hxx", *v) for v in ((0, 0, 0), (32767, 0, 0), (0, 32767, 0), (0, 0, -32768))))
     # JSON glTF: a data: URI buffer, a file buffer (the fuzzer's own input file), bad URIs
     s["gltf_tetra.gltf"] = gltf_tetra()
     s["gltf_file_buffer.gltf"] = gltf_tetra(lambda d: d["buffers"][0].update(uri="in.bin"))

@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -160,6 +161,56 @@ TEST(GlbRead, NodeTransformsModesIndexTypesAndStrides) {
   EXPECT_TRUE(read_bytes("noscene.glb", glb(noscene, raw(kSquare))).has_value());
 }
 
+TEST(GlbRead, QuantizedPositionsAreDequantized) {
+  // KHR_mesh_quantization (as gltfpack writes): SHORT normalized corners of the unit square
+  // (32767 = 1) placed by a node scale of 4, padded to a 8-byte stride; UNSIGNED_BYTE corners
+  // (not normalized) with a 4-byte stride; BYTE normalized, where -128 and -127 both give -1.
+  struct Case {
+    int component;
+    bool normalized;
+    std::size_t stride;
+    std::vector<std::array<int, 3>> corners;
+    double scale;
+    std::vector<Vec3> expected;
+  };
+  const std::vector<Case> cases = {
+      {5122, true, 8, {{0, 0, 0}, {32767, 0, 0}, {32767, 32767, 0}, {0, 32767, -32768}}, 4,
+       {{0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, -4}}},
+      {5121, false, 4, {{0, 0, 0}, {200, 0, 0}, {200, 100, 0}, {0, 100, 7}}, 0.5,
+       {{0, 0, 0}, {100, 0, 0}, {100, 50, 0}, {0, 50, 3.5}}},
+      {5120, true, 4, {{0, 0, 0}, {127, 0, 0}, {127, -127, 0}, {0, -128, 0}}, 1, {{0, 0, 0}, {1, 0, 0}, {1, -1, 0}, {0, -1, 0}}},
+  };
+  for (const Case& c : cases) {
+    std::string bin;
+    for (const auto& v : c.corners) {
+      std::string e;
+      for (int x : v) {
+        if (c.component == 5122) {
+          const auto q = static_cast<std::int16_t>(x);
+          e += std::string(reinterpret_cast<const char*>(&q), 2);
+        } else {
+          e += static_cast<char>(x);
+        }
+      }
+      e.resize(c.stride, '\0');
+      bin += e;
+    }
+    nlohmann::json node{{"mesh", 0}, {"scale", {c.scale, c.scale, c.scale}}};
+    auto doc = square_doc(node, 0, 0, 0, 6);
+    doc["extensionsUsed"] = {"KHR_mesh_quantization"};
+    doc["extensionsRequired"] = {"KHR_mesh_quantization"};
+    doc["buffers"][0]["byteLength"] = bin.size();
+    doc["bufferViews"][0]["byteLength"] = bin.size();
+    doc["bufferViews"][0]["byteStride"] = c.stride;
+    doc["accessors"][0]["componentType"] = c.component;
+    if (c.normalized) doc["accessors"][0]["normalized"] = true;
+    auto m = read_bytes("quantized_" + std::to_string(c.component) + ".glb", glb(doc, bin), {.weld = false});
+    ASSERT_TRUE(m.has_value()) << m.error().message();
+    ASSERT_EQ(m->num_vertices(), 4u);
+    for (std::size_t i = 0; i < 4; ++i) EXPECT_EQ(m->positions[i], c.expected[i]) << c.component << " " << i;
+  }
+}
+
 TEST(GlbRead, MalformedFilesAreErrorsNamingWhere) {
   const std::string good = glb(square_doc({{"mesh", 0}}, 0, 0, 0, 6), raw(kSquare));
   ASSERT_TRUE(read_bytes("good.glb", good).has_value());
@@ -188,7 +239,10 @@ TEST(GlbRead, MalformedFilesAreErrorsNamingWhere) {
   expect_error(with([](auto& d) { d["buffers"].push_back({{"byteLength", 4}}); }), "buffers[1]: no uri", "bin1");
   expect_error(with([](auto& d) { d["buffers"][0]["byteLength"] = 52; }), "52 bytes, but the BIN chunk has 48", "len");
   expect_error(with([](auto& d) { d["accessors"][0]["sparse"] = nlohmann::json::object(); }), "sparse", "sparse");
-  expect_error(with([](auto& d) { d["accessors"][0]["componentType"] = 5123; }), "quantized", "quantized");
+  expect_error(with([](auto& d) { d["accessors"][0]["componentType"] = 5125; }), "positions must be FLOAT", "uint");
+  expect_error(with([](auto& d) { d["accessors"][0]["normalized"] = true; }), "only integer positions", "normfloat");
+  expect_error(with([](auto& d) { d["extensionsRequired"] = {"EXT_meshopt_compression"}; }),
+               "EXT_meshopt_compression is not supported", "meshopt");
   expect_error(with([](auto& d) { d["nodes"][0]["children"] = {0}; }), "nodes[0]: reached twice", "cycle");
   expect_error(with([](auto& d) { d["nodes"][0]["mesh"] = 3; }), "nodes[0].mesh: not an index", "mesh");
   expect_error(with([](auto& d) { d["nodes"][0]["rotation"] = {0, 0, 0, 0}; }), "zero quaternion", "quat");

@@ -26,8 +26,9 @@
 //    file's units (glTF: metres; `interfere simplify` writes a root node scaling model units to
 //    metres). Buffers: a GLB's BIN chunk, base64 `data:` URIs, or files named by relative URIs
 //    (resolved against the glTF file's folder; nothing is fetched from a network); TRIANGLES,
-//    TRIANGLE_STRIP and TRIANGLE_FAN primitives are read, points and lines skipped; sparse
-//    accessors, quantized positions and Draco are errors. Write glTF with write_glb
+//    TRIANGLE_STRIP and TRIANGLE_FAN primitives are read, points and lines skipped; positions FLOAT
+//    or quantized (KHR_mesh_quantization); sparse accessors, Draco and meshopt compression are
+//    errors. Write glTF with write_glb
 //    (interfere/simplify/gltf_io.h).
 #pragma once
 #include <filesystem>

@@ -7,11 +7,12 @@
 // Read: buffers from the GLB's BIN chunk (buffer 0 without a `uri`), from `data:` URIs (base64,
 // §3.6.1.1) or from files named by relative URIs (percent-encoded, resolved against the glTF
 // file's folder; a URI with a scheme such as http: is an error: nothing is fetched), each cut to
-// its byteLength; buffer views with byteStride, accessors (FLOAT VEC3 positions; UNSIGNED_BYTE/SHORT/INT indices or
-// none), primitives of mode TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN (points and lines carry no
-// surface and are skipped), node `matrix` or translation/rotation/scale composed in double. Sparse
-// accessors, quantized positions and Draco compression are errors naming the accessor or the
-// extension. Every index, offset and length is checked before it is used.
+// its byteLength; buffer views with byteStride, accessors (VEC3 positions, FLOAT or, with
+// KHR_mesh_quantization, integers, normalized or not, as gltfpack writes them; UNSIGNED_BYTE/SHORT/
+// INT indices or none), primitives of mode TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN (points and
+// lines carry no surface and are skipped), node `matrix` or translation/rotation/scale composed in
+// double. Sparse accessors, Draco and any other required extension are errors naming the accessor
+// or the extension. Every index, offset and length is checked before it is used.
 #include "glb.h"
 
 #include <nlohmann/json.hpp>
@@ -68,7 +69,8 @@ class GlbReader {
     if (!doc_.is_object()) return fail("", "the JSON chunk is not an object");
     if (const Json* ext = member(doc_, "extensionsRequired"); ext && ext->is_array())
       for (const Json& e : *ext)
-        if (e.is_string()) return fail("extensionsRequired", "extension " + e.get<std::string>() + " is not supported");
+        if (e.is_string() && e.get<std::string>() != "KHR_mesh_quantization")  // (read: integer positions)
+          return fail("extensionsRequired", "extension " + e.get<std::string>() + " is not supported");
     if (Status s = load_buffers(); !s) return s.error();
     // The scene: `scene`, else scene 0; with no scenes, every root node (a node no other names).
     std::vector<std::size_t> roots;
@@ -217,6 +219,7 @@ class GlbReader {
     const char* first = nullptr;
     std::uint64_t stride = 0, count = 0;
     std::uint32_t component_type = 0;
+    bool normalized = false;
   };
   Expected<View> accessor(std::size_t a, const std::string& type, bool index) {
     const Json* accessors = member(doc_, "accessors");
@@ -234,10 +237,18 @@ class GlbReader {
       size = ct == 5121 ? 1 : ct == 5123 ? 2 : ct == 5125 ? 4 : 0;
       if (size == 0) return fail(where + ".componentType", std::to_string(ct) + " is not an unsigned byte, short or int");
     } else {
-      if (ct != 5126)
-        return fail(where + ".componentType",
-                    std::to_string(ct) + ": positions must be FLOAT (5126; quantized positions are not supported)");
-      size = 12;
+      // FLOAT, or KHR_mesh_quantization's (normalized) BYTE, UNSIGNED_BYTE, SHORT, UNSIGNED_SHORT.
+      size = ct == 5126 ? 12 : ct == 5120 || ct == 5121 ? 3 : ct == 5122 || ct == 5123 ? 6 : 0;
+      if (size == 0)
+        return fail(where + ".componentType", std::to_string(ct) +
+                                                  ": positions must be FLOAT (5126) or, quantized (KHR_mesh_quantization), "
+                                                  "BYTE, UNSIGNED_BYTE, SHORT or UNSIGNED_SHORT (5120-5123)");
+    }
+    bool normalized = false;
+    if (const Json* nm = member(acc, "normalized")) {
+      if (!nm->is_boolean()) return fail(where + ".normalized", "not a boolean");
+      normalized = nm->get<bool>();
+      if (normalized && (index || ct == 5126)) return fail(where + ".normalized", "only integer positions are normalized");
     }
     if (!count_of(acc, "count", count, 0) || count == 0) return fail(where + ".count", "must be at least 1");
     if (!count_of(acc, "byteOffset", offset, 0)) return fail(where + ".byteOffset", "not an offset");
@@ -267,7 +278,29 @@ class GlbReader {
         offset + (count - 1) * stride + size > vlength)
       return fail(where, std::to_string(count) + " elements from byte " + std::to_string(offset) +
                              " do not fit " + vwhere + " (" + std::to_string(vlength) + " bytes)");
-    return View{data.data() + voffset + offset, stride, count, static_cast<std::uint32_t>(ct)};
+    return View{data.data() + voffset + offset, stride, count, static_cast<std::uint32_t>(ct), normalized};
+  }
+
+  // Component k of an integer position (KHR_mesh_quantization; little endian), normalized as glTF
+  // §3.11 says: max(c / 127, -1), c / 255, max(c / 32767, -1), c / 65535.
+  static double quantized(const char* e, int k, std::uint32_t type, bool normalized) {
+    const auto byte = [&](int i) { return static_cast<unsigned char>(e[i]); };
+    switch (type) {
+      case 5120: {
+        const double c = static_cast<signed char>(byte(k));
+        return normalized ? std::max(c / 127.0, -1.0) : c;
+      }
+      case 5121:
+        return normalized ? byte(k) / 255.0 : byte(k);
+      case 5122: {
+        const double c = static_cast<std::int16_t>(static_cast<std::uint16_t>(byte(2 * k) | byte(2 * k + 1) << 8));
+        return normalized ? std::max(c / 32767.0, -1.0) : c;
+      }
+      default: {
+        const double c = static_cast<std::uint16_t>(byte(2 * k) | byte(2 * k + 1) << 8);
+        return normalized ? c / 65535.0 : c;
+      }
+    }
   }
 
   Status primitive(const Json& prim, const std::string& where, const Mat4& m) {
@@ -286,19 +319,21 @@ class GlbReader {
     const auto base = static_cast<std::uint32_t>(mesh_.positions.size());
     if (pv->count > std::uint64_t{0xffffffffu} - base) return fail(where, "too many vertices");
     for (std::uint64_t i = 0; i < pv->count; ++i) {
-      float f[3];
-      std::memcpy(f, pv->first + i * pv->stride, 12);
-      double p[3];
+      double f[3];
+      const char* e = pv->first + i * pv->stride;
       for (int k = 0; k < 3; ++k) {
-        std::uint32_t bits;
-        std::memcpy(&bits, &f[k], 4);
-        if constexpr (std::endian::native == std::endian::big) {
-          bits = __builtin_bswap32(bits);
-          std::memcpy(&f[k], &bits, 4);
+        if (pv->component_type == 5126) {
+          const std::uint32_t bits = u32_at({e + 4 * k, 4}, 0);
+          float x;
+          std::memcpy(&x, &bits, 4);
+          if (!std::isfinite(x))
+            return fail("accessors[" + std::to_string(pa) + "]", "vertex " + std::to_string(i) + " is not finite");
+          f[k] = x;
+        } else {
+          f[k] = quantized(e, k, pv->component_type, pv->normalized);
         }
-        if (!std::isfinite(f[k]))
-          return fail("accessors[" + std::to_string(pa) + "]", "vertex " + std::to_string(i) + " is not finite");
       }
+      double p[3];
       for (int r = 0; r < 3; ++r) p[r] = m[r] * f[0] + m[4 + r] * f[1] + m[8 + r] * f[2] + m[12 + r];
       const Vec3 q{p[0], p[1], p[2]};
       if (!is_finite(q)) return fail(where, "vertex " + std::to_string(i) + " is not finite once placed");
