@@ -102,7 +102,8 @@ int run_clash(const ClashOptions& o, const CLI::App& command) {
   const LoadedPart& pa = loaded.a;
   const LoadedPart& pb = loaded.b;
   if (o.conservative) {
-    // BRepMesh keeps a STEP part's triangles within its linear deflection of the B-Rep surfaces.
+    // A STEP part's bound: BRepMesh's chordal tolerance (it refines until the triangles lie within it of
+    // the B-Rep surfaces where it checks them; a tolerance, not a proven bound: README).
     if (is_step_file(parts.a.file)) bound_a = pa.linear_deflection * max_stretch(parts.a.transform);
     if (is_step_file(parts.b.file)) bound_b = pb.linear_deflection * max_stretch(parts.b.transform);
   }
