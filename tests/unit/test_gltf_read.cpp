@@ -1,13 +1,13 @@
-// JSON glTF (.gltf) reading and writing (mesh/io.h, src/mesh/io/glb.cpp; simplify/gltf_io.h) and the
-// base64 of its data: URIs (core/base64.h): write_glb's .gltf reads back as its GLB does; buffers in
-// external files (percent-encoded names), in data: URIs and several per file; bad URIs, files and
-// JSON are errors naming the file and the glTF object, and nothing is fetched from a network.
+// JSON glTF (.gltf) reading and writing (mesh/io.h, src/mesh/io/glb.cpp; simplify/gltf_io.h) and
+// the base64 of its data: URIs (core/base64.h): write_glb's .gltf reads back as its GLB does;
+// buffers in external files (percent-encoded names), in data: URIs and several per file; bad URIs,
+// files and JSON are errors naming the file and the glTF object, and nothing is fetched from a
+// network.
 #include <gtest/gtest.h>
-
-#include <nlohmann/json.hpp>
 
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <random>
 #include <string>
 #include <vector>
@@ -22,12 +22,15 @@ namespace interfere {
 namespace {
 
 std::filesystem::path dir() {
-  const auto d = std::filesystem::temp_directory_path() / ("interfere_gltf_read_" + std::to_string(::getpid()));
+  const auto d = std::filesystem::temp_directory_path() /
+                 ("interfere_gltf_read_" + std::to_string(::getpid()));
   std::filesystem::create_directories(d);
   return d;
 }
 
-void write(const std::filesystem::path& f, const std::string& bytes) { std::ofstream(f, std::ios::binary) << bytes; }
+void write(const std::filesystem::path& f, const std::string& bytes) {
+  std::ofstream(f, std::ios::binary) << bytes;
+}
 
 template <class T>
 std::string raw(const std::vector<T>& v) {
@@ -88,7 +91,9 @@ TEST(GltfRead, WriteGlbAsGltfReadsBackAsTheGlbDoes) {
   {
     std::ifstream in(g);
     const auto doc = nlohmann::json::parse(in);  // JSON text, the buffer a data: URI
-    EXPECT_EQ(doc["buffers"][0]["uri"].get<std::string>().rfind("data:application/octet-stream;base64,", 0), 0u);
+    EXPECT_EQ(doc["buffers"][0]["uri"].get<std::string>().rfind(
+                  "data:application/octet-stream;base64,", 0),
+              0u);
   }
   MeshReadInfo gi, bi;
   auto mg = read_mesh(g, {}, &gi);
@@ -135,25 +140,28 @@ TEST(GltfRead, BadFilesAndUrisAreErrorsNamingWhere) {
   const auto d = dir();
   write(d / "pos.bin", raw(kSquare));
   const std::string idx = "data:application/octet-stream;base64," + base64_encode(raw(kIndices));
-  const auto expect_error = [&](const std::string& text, const std::string& what, const std::string& tag) {
+  const auto expect_error = [&](const std::string& text, const std::string& what,
+                                const std::string& tag) {
     const auto f = d / ("bad_" + tag + ".gltf");
     write(f, text);
     auto m = read_mesh(f);
     ASSERT_FALSE(m.has_value()) << tag;
-    EXPECT_NE(m.error().message().find(what), std::string::npos) << tag << ": " << m.error().message();
+    EXPECT_NE(m.error().message().find(what), std::string::npos)
+        << tag << ": " << m.error().message();
     EXPECT_NE(m.error().file.find("bad_" + tag), std::string::npos) << tag;
   };
-  ASSERT_TRUE(read_mesh((write(d / "ok.gltf", square("pos.bin", idx).dump()), d / "ok.gltf")).has_value());
+  ASSERT_TRUE(
+      read_mesh((write(d / "ok.gltf", square("pos.bin", idx).dump()), d / "ok.gltf")).has_value());
   expect_error(square("https://example.com/pos.bin", idx).dump(), "nothing is fetched", "http");
   expect_error(square("file:///etc/pos.bin", idx).dump(), "nothing is fetched", "file");
   expect_error(square("missing.bin", idx).dump(), "buffers[0].uri: cannot open", "missing");
   expect_error(square("/dev/zero", idx).dump(), "no such file", "device");  // endless: not read
   expect_error(square("pos%2.bin", idx).dump(), "bad percent escape at character 4", "escape");
-  expect_error(square("pos.bin", "data:application/octet-stream;base64,AAA!").dump(), "not base64 at character 41",
-               "base64");
+  expect_error(square("pos.bin", "data:application/octet-stream;base64,AAA!").dump(),
+               "not base64 at character 41", "base64");
   expect_error(square("pos.bin", "data:text/plain,0123").dump(), "must be base64", "plain");
-  expect_error(square("pos.bin", "data:application/octet-stream;base64,AAAA").dump(), "12 bytes, but its uri holds 3",
-               "short");
+  expect_error(square("pos.bin", "data:application/octet-stream;base64,AAAA").dump(),
+               "12 bytes, but its uri holds 3", "short");
   auto no_uri = square("pos.bin", idx);
   no_uri["buffers"][1].erase("uri");
   expect_error(no_uri.dump(), "buffers[1]: no uri", "nouri");
@@ -164,7 +172,8 @@ TEST(GltfRead, BadFilesAndUrisAreErrorsNamingWhere) {
   expect_error(text.substr(0, text.size() / 2), "not valid JSON", "truncated");
   expect_error("{\"asset\": [1, 2,, 3]}", "byte 16", "syntax");  // the second comma
   expect_error("{}", "no triangles", "empty");
-  expect_error("{\"asset\": 9e308}", "number overflow", "overflow");  // nlohmann throws out_of_range
+  expect_error("{\"asset\": 9e308}", "number overflow",
+               "overflow");  // nlohmann throws out_of_range
   // A bad error bound in the scene's extras is an error of read_error_bound.
   auto bounded = square("pos.bin", idx);
   bounded["scenes"][0]["extras"]["error_bound"] = -2;
