@@ -88,7 +88,9 @@ int run_assembly_clash(const AssemblyClashCliOptions& o) {
   Expected<cad::CadModel> model = Error{};
   {
     Progress progress("importing " + o.input);
-    model = cad::import_step(o.input, {.linear_deflection = o.linear_deflection, .angular_deflection = o.angular_deflection});
+    model = cad::import_step(o.input, {.linear_deflection = o.linear_deflection,
+                                       .angular_deflection = o.angular_deflection,
+                                       .measure_deviation = true});  // (tessellation_error)
     if (!model) throw InputError(model.error());
   }
   for (const std::string& w : model->warnings) warning(w);

@@ -18,6 +18,7 @@ int run_check(CheckOptions o, const CLI::App& command) {
   check_output(o.json, {}, "--json");
   check_distinct_files({{"FILE", o.file}}, {{"--json", o.json}});
   resolve_step_tessellation(command, o.tessellation, {o.file});
+  o.tessellation.measure_deviation = true;  // (a STEP input: how far its triangles really lie)
   PartMesh part = read_part_mesh(o.file, o.tessellation);
   const MeshReadInfo& info = part.info;
   const TriMesh* m = &part.mesh;
@@ -30,7 +31,12 @@ int run_check(CheckOptions o, const CLI::App& command) {
                       {"polygons_split", info.polygons_split},
                       {"vertices_before_weld", info.vertices_before_weld},
                       {"bbox", {{"min", {box.lo.x, box.lo.y, box.lo.z}}, {"max", {box.hi.x, box.hi.y, box.hi.z}}}}};
-  if (part.format == "step") j["linear_deflection"] = part.linear_deflection;
+  if (part.format == "step") {
+    j["linear_deflection"] = part.linear_deflection;
+    j["tessellation_deviation"] = part.tessellation_deviation >= 0 ? nlohmann::json(part.tessellation_deviation)
+                                                                   : nlohmann::json(nullptr);
+    j["warnings"] = part.warnings;
+  }
   j.update(stats_json(s));
   if (!o.json.empty()) {
     const Status st = write_file_atomic(o.json, j.dump(2) + "\n");

@@ -63,7 +63,8 @@ double max_stretch(const std::string& transform) {
 }
 
 int run_clash(const ClashOptions& o, const CLI::App& command) {
-  const ResolvedParts parts = resolve_two_parts(o, command);
+  ResolvedParts parts = resolve_two_parts(o, command);
+  parts.tessellation.measure_deviation = o.conservative;  // (STEP inputs: the bound below)
   if (!(o.clearance >= 0) || !std::isfinite(o.clearance)) throw InputError("--clearance must be a finite number >= 0");
   // --conservative (issue #6, item 6): two touching originals have points of their simplified
   // versions within the sum of the bounds, so a pair closer than that is a possible clash.
@@ -102,10 +103,11 @@ int run_clash(const ClashOptions& o, const CLI::App& command) {
   const LoadedPart& pa = loaded.a;
   const LoadedPart& pb = loaded.b;
   if (o.conservative) {
-    // A STEP part's bound: BRepMesh's chordal tolerance (it refines until the triangles lie within it of
-    // the B-Rep surfaces where it checks them; a tolerance, not a proven bound: README).
-    if (is_step_file(parts.a.file)) bound_a = pa.linear_deflection * max_stretch(parts.a.transform);
-    if (is_step_file(parts.b.file)) bound_b = pb.linear_deflection * max_stretch(parts.b.transform);
+    // A STEP part's bound: BRepMesh's chordal tolerance, or the deviation measured after it where
+    // larger (BRepMesh may exceed its tolerance: sampled, not a proven bound; README).
+    const auto step_bound = [](const LoadedPart& p) { return std::max(p.linear_deflection, p.tessellation_deviation); };
+    if (is_step_file(parts.a.file)) bound_a = step_bound(pa) * max_stretch(parts.a.transform);
+    if (is_step_file(parts.b.file)) bound_b = step_bound(pb) * max_stretch(parts.b.transform);
   }
   const double margin = bound_a + bound_b;
   request.clearance = o.clearance + margin;

@@ -44,6 +44,7 @@ LoadedPart read_part(const PartSpec& spec, const std::string& label, const StepT
     mesh = std::move(m.mesh);
     p.format = m.format;
     p.linear_deflection = m.linear_deflection;
+    p.tessellation_deviation = m.tessellation_deviation;
     p.warnings = std::move(m.warnings);
     p.read_seconds = progress.seconds();
   }
@@ -257,7 +258,10 @@ nlohmann::json stats_json(const MeshStats& s) {
 nlohmann::json part_json(const LoadedPart& p) {
   nlohmann::json j = {{"file", p.file}, {"format", p.format}};
   j.update(stats_json(p.model.stats));
-  if (p.format == "step") j["linear_deflection"] = p.linear_deflection;
+  if (p.format == "step") {
+    j["linear_deflection"] = p.linear_deflection;
+    if (p.tessellation_deviation >= 0) j["tessellation_deviation"] = p.tessellation_deviation;
+  }
   j.update({{"transform", p.transform.to_row_major()},
             {"read_seconds", p.read_seconds},
             {"build_seconds", p.build_seconds}});

@@ -55,15 +55,20 @@ struct PartMesh {
   std::string format;  ///< mesh_format_name, or "step"
   MeshReadInfo info;   ///< mesh files: as read_mesh reports it; STEP: vertices_before_weld only
   std::vector<std::string> warnings;
-  /// STEP: the largest linear deflection its parts were tessellated with (mm; BRepMesh's bound on
-  /// the distance of the triangles from the B-Rep surfaces); 0 for mesh files (exact as given).
+  /// STEP: the largest linear deflection its parts were tessellated with (mm; BRepMesh's tolerance
+  /// on the distance of the triangles from the B-Rep surfaces); 0 for mesh files (exact as given).
   double linear_deflection = 0;
+  /// STEP with StepTessellation::measure_deviation: the largest measured distance of its triangles
+  /// from their surfaces (cad::Part::tessellation_deviation; BRepMesh may exceed its tolerance);
+  /// -1 when not measured.
+  double tessellation_deviation = -1;
 };
 /// The tessellation of STEP inputs (--linear-deflection, --angular-deflection; cad::ImportOptions).
 struct StepTessellation {
   double linear_deflection = 0;     ///< mm; 0 = 0.1 % of each part's bounding-box diagonal
   double angular_deflection = 0.5;  ///< radians
   bool given = false;               ///< either flag was on the command line
+  bool measure_deviation = false;   ///< measure PartMesh::tessellation_deviation (check, clash --conservative)
 };
 /// Registers --linear-deflection and --angular-deflection on a command that reads parts.
 void add_step_tessellation_options(CLI::App& command, StepTessellation& t);
@@ -86,7 +91,8 @@ struct LoadedPart {
   std::string format;  ///< mesh_format_name, or "step"
   Transform transform;
   Model model;
-  double linear_deflection = 0;  ///< PartMesh::linear_deflection (STEP inputs)
+  double linear_deflection = 0;         ///< PartMesh::linear_deflection (STEP inputs)
+  double tessellation_deviation = -1;   ///< PartMesh::tessellation_deviation (STEP inputs, when measured)
   double read_seconds = 0, build_seconds = 0;
   std::vector<std::string> warnings;  ///< degenerate/duplicate triangles, open or non-manifold edges
 };

@@ -25,14 +25,25 @@ PartMesh read_part_mesh(const std::string& file, const StepTessellation& tessell
 #ifdef INTERFERE_HAS_CAD
     auto model = cad::import_step(file, {.linear_deflection = tessellation.linear_deflection,
                                          .angular_deflection = tessellation.angular_deflection,
+                                         .measure_deviation = tessellation.measure_deviation,
                                          .build_aag = false});  // triangles only
     if (!model) throw InputError(model.error());
-    for (const cad::Part& part : model->parts) p.linear_deflection = std::max(p.linear_deflection, part.linear_deflection);
+    double deviation = tessellation.measure_deviation ? 0 : -1;
+    for (const cad::Part& part : model->parts) {
+      p.linear_deflection = std::max(p.linear_deflection, part.linear_deflection);
+      if (deviation >= 0) deviation = part.tessellation_deviation < 0 ? -1 : std::max(deviation, part.tessellation_deviation);
+      // BRepMesh refines to its tolerance where it checks; elsewhere it may stay above it.
+      if (part.tessellation_deviation > part.linear_deflection)
+        p.warnings.push_back("part '" + part.name + "': its triangles lie up to " + short_number(part.tessellation_deviation) +
+                             " mm from their B-Rep surfaces, beyond the linear deflection " +
+                             short_number(part.linear_deflection) + " mm (BRepMesh)");
+    }
+    p.tessellation_deviation = deviation;
     p.mesh = cad::world_mesh(*model);
     p.info.vertices_before_weld = p.mesh.num_vertices();
     weld_exact(p.mesh);
     p.format = "step";
-    p.warnings = std::move(model->warnings);
+    p.warnings.insert(p.warnings.begin(), model->warnings.begin(), model->warnings.end());
     for (const std::string& w : p.warnings) warning(file + ": " + w);
     return p;
 #else

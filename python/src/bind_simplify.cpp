@@ -220,12 +220,14 @@ void bind_simplify(py::module_& m) {
   m.attr("HAVE_CAD") = true;
   m.def(
       "import_step",
-      [](const std::filesystem::path& path, double linear_deflection, double angular_deflection, bool aag) {
+      [](const std::filesystem::path& path, double linear_deflection, double angular_deflection, bool aag,
+         bool measure_deviation) {
         Expected<cad::CadModel> r = Error{};
         {
           py::gil_scoped_release release;
           r = cad::import_step(path, {.linear_deflection = linear_deflection,
                                       .angular_deflection = angular_deflection,
+                                      .measure_deviation = measure_deviation,
                                       .build_aag = aag});
         }
         if (!r) throw py::value_error(r.error().message());
@@ -239,6 +241,7 @@ void bind_simplify(py::module_& m) {
           d["faces"] = p.faces;
           d["solids"] = p.solids;
           d["linear_deflection"] = p.linear_deflection;
+          d["tessellation_deviation"] = p.tessellation_deviation;
           py::list nodes, arcs;
           for (const cad::AagNode& n : p.aag.nodes)
             nodes.append(py::dict(py::arg("face") = n.face, py::arg("type") = cad::surface_type_name(n.type),
@@ -263,7 +266,9 @@ void bind_simplify(py::module_& m) {
         return out;
       },
       py::arg("path"), py::arg("linear_deflection") = 0.0, py::arg("angular_deflection") = 0.5, py::arg("aag") = true,
-      "Reads a STEP file: parts (name, mesh, per-triangle face_ids, linear_deflection, AAG nodes/arcs: empty with "
+      py::arg("measure_deviation") = false,
+      "Reads a STEP file: parts (name, mesh, per-triangle face_ids, linear_deflection, tessellation_deviation (with "
+      "measure_deviation=True: how far the triangles measured from their surfaces, else -1), AAG nodes/arcs: empty with "
       "aag=False, for triangles only), instances (name, part, path, placement: Transform, part -> world), warnings, "
       "units (always 'mm') and file_length_units (the units the file declares).");
   m.def(
@@ -344,7 +349,9 @@ void bind_simplify(py::module_& m) {
         cad::AssemblyClashResult r;
         {
           py::gil_scoped_release release;
-          model = cad::import_step(path, {.linear_deflection = linear_deflection, .angular_deflection = angular_deflection});
+          model = cad::import_step(path, {.linear_deflection = linear_deflection,
+                                          .angular_deflection = angular_deflection,
+                                          .measure_deviation = true});
           if (model) r = cad::assembly_clash(*model, {.clearance = clearance, .geometry = geometry});
         }
         if (!model) throw py::value_error(model.error().message());

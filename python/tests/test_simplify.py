@@ -202,6 +202,9 @@ class Cad(unittest.TestCase):
         bare = itf.import_step(step, linear_deflection=0.005, aag=False)  # triangles only
         self.assertEqual(bare["parts"][0]["aag_nodes"], [])
         self.assertEqual(bare["parts"][0]["linear_deflection"], 0.005)
+        self.assertEqual(bare["parts"][0]["tessellation_deviation"], -1)  # not asked for
+        measured = itf.import_step(step, linear_deflection=0.005, aag=False, measure_deviation=True)
+        self.assertGreater(measured["parts"][0]["tessellation_deviation"], 0)
         self.assertGreater(len(bare["parts"][0]["mesh"].triangles), len(part["mesh"].triangles))
         f = itf.step_features(step)
         self.assertEqual([x["type"] for x in f[0]["features"]], ["counterbored_hole"])

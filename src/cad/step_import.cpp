@@ -102,6 +102,8 @@ Part make_part(const TopoDS_Shape& shape, const std::string& name, const ImportO
   }
   p.linear_deflection = lin;
   BRepMesh_IncrementalMesh mesher(shape, lin, Standard_False, o.angular_deflection, Standard_True);
+  bool unmeasured = false;  // a face without UV nodes
+  p.tessellation_deviation = 0;
   for (int i = 1; i <= faces.Extent(); ++i) {
     const TopoDS_Face f = TopoDS::Face(faces(i));
     TopLoc_Location loc;
@@ -126,7 +128,13 @@ Part make_part(const TopoDS_Shape& shape, const std::string& name, const ImportO
       p.mesh.triangles.push_back({base + std::uint32_t(a - 1), base + std::uint32_t(b - 1), base + std::uint32_t(c - 1)});
       p.face_ids.push_back(static_cast<std::uint32_t>(i - 1));
     }
+    if (o.measure_deviation) {
+      const double d = detail::tessellation_deviation(f, *tri, tr, lin);
+      if (d < 0) unmeasured = true;
+      p.tessellation_deviation = std::max(p.tessellation_deviation, d);
+    }
   }
+  if (!o.measure_deviation || unmeasured) p.tessellation_deviation = -1;
   if (!o.build_aag) return p;
   p.aag = detail::build_aag(shape, faces, o.canonical_tolerance);
   for (std::size_t t = 0; t < p.face_ids.size(); ++t) ++p.aag.nodes[p.face_ids[t]].triangles;

@@ -107,6 +107,34 @@ TEST(CadImport, WithoutTheAagTheTessellationIsTheSame) {
   EXPECT_EQ(a.linear_deflection, b.linear_deflection);
 }
 
+TEST(CadImport, MeasuredDeviationMatchesTheHoleGeometry) {
+  // box_through_hole: planes and one r = 4 cylinder along z through (20, 15). The deviation at a
+  // triangle's centroid and edge midpoints is |4 - their distance to the axis| (0 on the planes):
+  // measured from the mesh alone, the oracle.
+  const auto file = work_dir() / "box_through_hole.step";
+  ASSERT_TRUE(write_test_part(TestPart::box_through_hole, file).ok());
+  for (const double lin : {0.05, 0.005}) {
+    auto m = import_step(file, {.linear_deflection = lin, .measure_deviation = true});
+    ASSERT_TRUE(m.has_value()) << m.error().message();
+    const Part& p = m->parts[0];
+    double oracle = 0;
+    for (std::size_t t = 0; t < p.mesh.num_triangles(); ++t) {
+      if (p.aag.nodes[p.face_ids[t]].type != SurfaceType::cylinder) continue;
+      const auto c = p.mesh.corners(t);
+      for (const Vec3& q : {(c[0] + c[1] + c[2]) / 3.0, (c[0] + c[1]) * 0.5, (c[1] + c[2]) * 0.5, (c[2] + c[0]) * 0.5})
+        oracle = std::max(oracle, std::fabs(4 - std::hypot(q.x - 20, q.y - 15)));
+    }
+    EXPECT_GT(oracle, 0);
+    EXPECT_GE(p.tessellation_deviation, oracle * (1 - 1e-9)) << lin;  // each sample an upper estimate
+    EXPECT_LE(p.tessellation_deviation, oracle * 1.1) << lin;          // close to it on a cylinder
+    EXPECT_LE(p.tessellation_deviation, lin * (1 + 1e-9)) << lin;      // BRepMesh held its tolerance here
+  }
+  // Not asked for: not measured.
+  auto plain = import_step(file);
+  ASSERT_TRUE(plain.has_value());
+  EXPECT_EQ(plain->parts[0].tessellation_deviation, -1);
+}
+
 TEST(CadImport, AssemblyKeepsNamesInstancesAndPlacements) {
   const auto file = work_dir() / "assembly.step";
   const Status s = write_test_assembly(file);

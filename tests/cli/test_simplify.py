@@ -621,6 +621,8 @@ class Features(unittest.TestCase):
             self.assertEqual(code, 0, err)
             c = json.loads(out)
             self.assertEqual(c["linear_deflection"], float(d))
+            self.assertGreater(c["tessellation_deviation"], 0)  # measured: the bores are curved
+            self.assertEqual(bool(c["warnings"]), c["tessellation_deviation"] > float(d))
             self.assertTrue(c["closed"])
             counts.append(c["triangles"])
         self.assertLess(counts[0], counts[1])
@@ -631,8 +633,9 @@ class Features(unittest.TestCase):
                                  "--json", path("cons.json"))
             self.assertEqual(code, expected, out + err)
             r = load_json("cons.json")
-            self.assertEqual(r["inputs"]["a"]["linear_deflection"], float(d))
-            self.assertEqual(r["conservative"]["error_bound_a"], float(d))
+            a = r["inputs"]["a"]
+            self.assertEqual(a["linear_deflection"], float(d))
+            self.assertEqual(r["conservative"]["error_bound_a"], max(float(d), a["tessellation_deviation"]))
             self.assertEqual(r["conservative"]["error_bound_b"], 0)
             self.assertEqual(r["result"]["pairs"], 0)
         code, _, err = run("clash", plate, path("pin295.obj"), *pose, "--linear-deflection", "0.1")

@@ -41,9 +41,11 @@ struct InstancePairResult {
   /// Clashes with crossing surfaces: the largest distance to the other surface of the vertices of
   /// either part that lie inside the other solid (exact ray parity; the vertices of the crossing
   /// triangles and of the other triangles inside): a sampled lower bound of how deep the surfaces
-  /// reach into each other, 0 when no vertex lies inside. `tessellation_error`: the sum of the two
-  /// parts' Part::linear_deflection, the chordal error by which tessellations of B-Rep faces in
-  /// contact may cross (0 for parts not from STEP). A depth within it suggests a nominal fit.
+  /// reach into each other, 0 when no vertex lies inside. `tessellation_error`: the sum over the two
+  /// parts of the larger of Part::linear_deflection and Part::tessellation_deviation (when
+  /// measured: BRepMesh may exceed its tolerance), the chordal error by which tessellations of
+  /// B-Rep faces in contact may cross (0 for parts not from STEP). A depth within it suggests a
+  /// nominal fit.
   double depth = 0, tessellation_error = 0;
   /// The surfaces cross only where B-Rep faces coincide (coaxial cylinders of one radius, as a bolt
   /// in a hole of its own diameter or a nut's bore in line with a plate's; two planes back to back;

@@ -63,6 +63,12 @@ struct Part {
   /// The linear deflection the part was tessellated with (model units): BRepMesh keeps the
   /// triangles within about this distance of the B-Rep surfaces (0 for a part not from a STEP file).
   double linear_deflection = 0;
+  /// With ImportOptions::measure_deviation: the largest distance from the triangles' centroids and
+  /// edge midpoints to their faces' surfaces (each sample's an upper estimate: the surface point of
+  /// the same (u, v), or a projection's nearest point where that is beyond the linear deflection;
+  /// sampled: between samples a triangle may lie farther), measured after BRepMesh; -1 when not
+  /// measured (or a face has no UV nodes).
+  double tessellation_deviation = -1;
 };
 
 struct Instance {
@@ -91,6 +97,8 @@ struct ImportOptions {
   double angular_deflection = 0.5;  ///< radians, in [1e-6, pi]
   /// Tolerance (relative to the face's size) of the canonical-surface recognition of B-spline faces.
   double canonical_tolerance = 1e-4;
+  /// Measures each part's Part::tessellation_deviation (4 surface evaluations per triangle).
+  bool measure_deviation = false;
   /// Builds each part's AAG (Part::aag). Callers that need triangles only (clash, distance) turn it
   /// off: the parts' `aag` stay empty.
   bool build_aag = true;
