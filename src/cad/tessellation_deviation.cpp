@@ -10,11 +10,16 @@
 // kept: every sample's value is the distance to a point of the surface, at least the true
 // distance; the result is a sampled measure (between samples the triangle may lie farther), not
 // a bound.
+#ifndef OCC_CONVERT_SIGNALS
+#define OCC_CONVERT_SIGNALS
+#endif
 #include <BRepAdaptor_Surface.hxx>
 #include <BRep_Tool.hxx>
 #include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <Geom_Surface.hxx>
 #include <Poly_Triangulation.hxx>
+#include <Standard_ErrorHandler.hxx>
+#include <Standard_Failure.hxx>
 #include <TopoDS_Face.hxx>
 
 #include <algorithm>
@@ -52,9 +57,13 @@ double tessellation_deviation(const TopoDS_Face& face, const Poly_Triangulation&
       const gp_Pnt q(x, y, z);
       double d = surface.Value(u, v).Distance(q);
       if (d > threshold && d > worst) {
-        if (geometry.IsNull()) geometry = BRep_Tool::Surface(face);  // (located)
-        const GeomAPI_ProjectPointOnSurf projection(q, geometry);
-        if (projection.IsDone() && projection.NbPoints() > 0) d = std::min(d, projection.LowerDistance());
+        try {  // (a projection that fails keeps the same-(u, v) distance, an upper estimate too)
+          OCC_CATCH_SIGNALS
+          if (geometry.IsNull()) geometry = BRep_Tool::Surface(face);  // (located)
+          const GeomAPI_ProjectPointOnSurf projection(q, geometry);
+          if (projection.IsDone() && projection.NbPoints() > 0) d = std::min(d, projection.LowerDistance());
+        } catch (const Standard_Failure&) {
+        }
       }
       worst = std::max(worst, d);
     }

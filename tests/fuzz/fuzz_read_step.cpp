@@ -6,7 +6,8 @@
 //
 // Checks: no crash or hang; an error names the file and gives a reason; a model has parts with
 // triangles, one face id per triangle below the part's face count, an AAG node per face, finite
-// positions and indices in range, instances naming existing parts with finite placements.
+// positions and indices in range, a measured tessellation deviation that is -1 or finite, instances
+// naming existing parts with finite placements.
 #include <cmath>
 #include <string>
 
@@ -19,7 +20,7 @@ int entry(const std::uint8_t* data, std::size_t size) {
   namespace fs = std::filesystem;
   const fs::path file = interfere::fuzz::work_dir("read_step") / "input.step";
   interfere::fuzz::put_file(file, data, size);
-  const auto m = interfere::cad::import_step(file);
+  const auto m = interfere::cad::import_step(file, {.measure_deviation = true});
   if (!m) {
     FUZZ_CHECK(m.error().file == file.string(), "the error does not name the file: " + m.error().message());
     FUZZ_CHECK(!m.error().reason.empty(), "an error without a reason");
@@ -28,6 +29,8 @@ int entry(const std::uint8_t* data, std::size_t size) {
   FUZZ_CHECK(!m->parts.empty(), "a model without parts");
   for (const interfere::cad::Part& p : m->parts) {
     const std::string where = " (part '" + p.name + "')";
+    FUZZ_CHECK(p.tessellation_deviation == -1 || (p.tessellation_deviation >= 0 && std::isfinite(p.tessellation_deviation)),
+               "a tessellation deviation that is not -1 or a finite distance" + where);
     FUZZ_CHECK(p.face_ids.size() == p.mesh.num_triangles(), "face ids do not match the triangles" + where);
     for (std::uint32_t f : p.face_ids) FUZZ_CHECK(f < p.faces, "a face id beyond the part's faces" + where);
     FUZZ_CHECK(p.aag.nodes.size() == p.faces, "the AAG does not have a node per face" + where);
