@@ -440,9 +440,14 @@ written atomically and only after every input was validated.
 `self_intersections` (with the flag), `seconds` {`simplify`, `total`, `phases` [{`phase`, `seconds`}] (wall time
 of simplify()'s phases, in order; summed over the parts of a STEP input)}, `warnings`; for STEP input `cad` {`parts`
 [{`name`, `faces`, `triangles`, `features`, `assembly_feature_faces`}], `instances` [{`name`, `part`, `path`,
-`face_id_offset`, `placement` (3×4 [R|t], part → world), `in_step`, `simplified_part`}], `step`, `units`, `file_length_units`, `warnings`}, `budget_rounds` and `parts_simplified` [{`part`, `model_part`, `name`, `file` (with `--parts-dir`), `instances`, `input_triangles`,
+`face_id_offset`, `placement` (3×4 [R|t], part → world), `in_step`, `simplified_part`}], `step`, `units`, `file_length_units`, `warnings`}, `budget_rounds`, `tessellation_error` (the largest part's) and `parts_simplified` [{`part`, `model_part`, `name`, `file` (with `--parts-dir`), `instances`, `input_triangles`,
 `target_triangles`, `output_triangles`, `one_below`, `feature_triangles`, `hausdorff`, `error_bound`, `hausdorff_features`, `guard_rerun`, `guard_reruns`, `input_contact_pairs`, `inherited_pairs`, `seams_relaxed_at`, `max_error_runs`, `error_limited_budget`,
-`self_intersections` (with the flag; for STEP input the report's count is the sum over parts × instances)}]. Face
+`self_intersections` (with the flag; for STEP input the report's count is the sum over parts × instances), `tessellation_error`}].
+`error_bound` (also the bound stored in the output files) measures the result against the tessellation it was
+simplified from; `tessellation_error` is how far that tessellation may lie from the B-Rep: the larger of the
+linear deflection and the deviation measured after BRepMesh (sampled at the triangles' centroids and edge
+midpoints, as `interfere check` reports it; BRepMesh exceeds its tolerance on some faces). Against the B-Rep
+parts, add the two. Face
 ids of a multi-instance STEP are offset per instance.
 
 **`features --dot FILE`**: the attributed adjacency graph of every part as Graphviz DOT (`cad::aag_dot`; render

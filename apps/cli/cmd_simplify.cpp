@@ -96,6 +96,9 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
         throw InputError(e);
       }
       report["parts_simplified"] = parts_report(*cad_prepared, *a, o.check_self, self_parts);
+      double tessellation_error = 0;  // (relative to the B-Rep, add it to error_bound)
+      for (const cad::PreparedPart& p : cad_prepared->parts) tessellation_error = std::max(tessellation_error, p.tessellation_error);
+      report["tessellation_error"] = tessellation_error;
       report["budget_rounds"] = a->budget_rounds;
       part_results = std::move(a->parts);
       res = std::move(a->merged);
@@ -244,7 +247,9 @@ int run_all_steps(const SimplifyCliOptions& o) {
   Expected<cad::CadModel> model = Error{};
   {
     Progress progress("importing " + o.input);
-    model = cad::import_step(o.input, {.linear_deflection = o.linear_deflection, .angular_deflection = o.angular_deflection});
+    model = cad::import_step(o.input, {.linear_deflection = o.linear_deflection,
+                                       .angular_deflection = o.angular_deflection,
+                                       .measure_deviation = true});  // (the parts' tessellation_error)
   }
   if (!model) throw InputError(model.error());
   for (const SimplifyCliOptions& r : runs) {

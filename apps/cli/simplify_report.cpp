@@ -66,7 +66,8 @@ nlohmann::json parts_report(const cad::Prepared& prep, const cad::AssemblySimpli
                         {"hausdorff_features", or_null(d.hausdorff_features)}, {"guard_rerun", d.guard_rerun},
                         {"guard_reruns", d.guard_reruns}, {"input_contact_pairs", d.input_contact_pairs},
                         {"inherited_pairs", d.inherited_pairs}, {"seams_relaxed_at", d.seams_relaxed_at},
-                        {"max_error_runs", d.max_error_runs}, {"error_limited_budget", d.error_limited_budget}};
+                        {"max_error_runs", d.max_error_runs}, {"error_limited_budget", d.error_limited_budget},
+                        {"tessellation_error", p.tessellation_error}};
     if (count_self) {
       const std::size_t x = count_self_intersections(d.mesh);
       j["self_intersections"] = x;

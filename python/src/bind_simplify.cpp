@@ -324,7 +324,8 @@ void bind_simplify(py::module_& m) {
         for (const cad::PreparedPart& p : r->parts)
           parts.append(py::dict(py::arg("name") = p.name, py::arg("mesh") = p.mesh, py::arg("face_ids") = p.face_ids,
                                 py::arg("feature_faces") = p.feature_faces, py::arg("faces") = p.faces,
-                                py::arg("instances") = p.instances, py::arg("model_part") = p.model_part));
+                                py::arg("instances") = p.instances, py::arg("model_part") = p.model_part,
+                                py::arg("tessellation_error") = p.tessellation_error));
         py::dict out;
         out["parts"] = parts;
         out["instances"] = instance_list(*r);
@@ -336,7 +337,9 @@ void bind_simplify(py::module_& m) {
       py::arg("linear_deflection") = 0.0, py::arg("angular_deflection") = 0.5, py::arg("library") = std::string(),
       py::arg("rules") = std::string(),
       "The CLI's STEP pipeline up to simplification: parts ready for interfere.simplify (name, mesh in part "
-      "coordinates, face_ids, feature_faces of the step, faces, instances, model_part; a part whose instances "
+      "coordinates, face_ids, feature_faces of the step, faces, instances, model_part, tessellation_error (the larger of "
+      "the linear deflection and the measured deviation: relative to the B-Rep, add it to a simplification's error "
+      "bound); a part whose instances "
       "differ in taking part in the step comes twice, '<part> [<step>]' with the step's features), instances "
       "(name, part: index into parts, placement: Transform, face_offset), warnings and the CLI report's 'cad' "
       "object (report). Budgets per part: interfere.triangle_budgets.");
@@ -431,7 +434,8 @@ void bind_simplify(py::module_& m) {
           const cad::PreparedPart& p = prep->parts[i];
           parts.append(py::dict(py::arg("name") = p.name, py::arg("result") = std::move(r->parts[i]),
                                 py::arg("budget") = r->part_budgets[i], py::arg("instances") = p.instances,
-                                py::arg("feature_faces") = p.feature_faces, py::arg("model_part") = p.model_part));
+                                py::arg("feature_faces") = p.feature_faces, py::arg("model_part") = p.model_part,
+                                py::arg("tessellation_error") = p.tessellation_error));
         }
 
         py::dict out;
@@ -455,7 +459,7 @@ void bind_simplify(py::module_& m) {
       "(target, ratio of the model's triangles, or from renderer_max), the step's assembly features kept; parts "
       "that stop early leave the rest to the others. Returns result (SimplifyResult of every instance placed, face "
       "ids as prepare_step's world ids), parts [{name, result (part coordinates), budget (per instance, 0: not "
-      "simplified), instances, feature_faces, model_part}], instances, budget_rounds, features_exceed_budget, "
+      "simplified), instances, feature_faces, model_part, tessellation_error}], instances, budget_rounds, features_exceed_budget, "
       "feature_faces (world ids), warnings (the import's; the simplification's are in result.warnings) and report "
       "(the CLI report's 'cad' object). ValueError on bad input.");
 #else

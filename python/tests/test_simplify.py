@@ -256,6 +256,8 @@ class Cad(unittest.TestCase):
             self.assertEqual(sorted(parts), ["plate", "plate [P1]", "shaft"])
             self.assertEqual(len(parts["plate [P1]"]["feature_faces"]), 3)  # bore, counterbore, seat
             self.assertEqual(parts["plate"]["feature_faces"], [])
+            self.assertTrue(all(p["tessellation_error"] > 0 for p in prep["parts"]))  # curved faces: chordal
+            self.assertEqual(parts["plate"]["tessellation_error"], parts["plate [P1]"]["tessellation_error"])
             self.assertEqual(len(prep["instances"]), 3)
             by_name = {i["name"]: i for i in prep["instances"]}
             self.assertEqual(prep["parts"][by_name["plate_2"]["part"]]["name"], "plate [P1]")

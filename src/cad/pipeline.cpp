@@ -110,7 +110,9 @@ Expected<Prepared> prepare(const CadModel& imported, const PipelineOptions& o, c
 Expected<Prepared> prepare_for_simplify(const std::string& step_file, const PipelineOptions& o) {
   auto sem = load_semantics(o);
   if (!sem) return sem.error();
-  auto imported = import_step(step_file, {.linear_deflection = o.linear_deflection, .angular_deflection = o.angular_deflection});
+  auto imported = import_step(step_file, {.linear_deflection = o.linear_deflection,
+                                          .angular_deflection = o.angular_deflection,
+                                          .measure_deviation = true});  // (PreparedPart::tessellation_error)
   if (!imported) return imported.error();
   return prepare(*imported, o, *sem);
 }
@@ -147,6 +149,7 @@ Expected<Prepared> prepare(const CadModel& imported, const PipelineOptions& o, c
   std::vector<std::uint32_t> with_features(model->parts.size(), kNoPart), without(model->parts.size(), kNoPart);
   for (std::size_t i = 0; i < model->parts.size(); ++i) {
     const Part& part = model->parts[i];
+    const double tessellation_error = std::max(part.linear_deflection, part.tessellation_deviation);
     const auto feats = recognize_features(part.aag, *lib);
     nlohmann::json jp{{"name", part.name}, {"faces", part.faces}, {"triangles", part.mesh.num_triangles()},
                       {"features", nlohmann::json::array()}};
@@ -165,11 +168,12 @@ Expected<Prepared> prepare(const CadModel& imported, const PipelineOptions& o, c
     if (part_in_step[i] || !part_out_of_step[i]) {
       with_features[i] = static_cast<std::uint32_t>(out.parts.size());
       out.parts.push_back({split ? part.name + " [" + o.step + "]" : part.name, part.mesh, part.face_ids,
-                           part_features[i], part.faces, 0, static_cast<std::uint32_t>(i)});
+                           part_features[i], part.faces, 0, static_cast<std::uint32_t>(i), tessellation_error});
     }
     if (part_out_of_step[i] && (split || !part_in_step[i])) {
       without[i] = static_cast<std::uint32_t>(out.parts.size());
-      out.parts.push_back({part.name, part.mesh, part.face_ids, {}, part.faces, 0, static_cast<std::uint32_t>(i)});
+      out.parts.push_back(
+          {part.name, part.mesh, part.face_ids, {}, part.faces, 0, static_cast<std::uint32_t>(i), tessellation_error});
     }
     if (!split && part_in_step[i]) without[i] = with_features[i];
   }

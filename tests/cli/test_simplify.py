@@ -800,6 +800,8 @@ class Features(unittest.TestCase):
             bound = [h for h in header if h.startswith("comment error_bound ")]
             self.assertEqual(float(bound[0].split()[2]), p["error_bound"])
             self.assertLessEqual(p["error_bound"], r["error_bound"])
+            self.assertGreater(p["tessellation_error"], 0)  # the B-Rep's curved faces: a chordal error
+            self.assertLessEqual(p["tessellation_error"], r["tessellation_error"])
             out_tris[p["part"]] = p["output_triangles"]
         instances = r["cad"]["instances"]
         self.assertEqual(len(instances), 3)  # the plate twice, the shaft once
