@@ -170,6 +170,31 @@ std::multiset<std::array<double, 9>> feature_triangles(const TriMesh& m, const s
 
 // Every part of every file, simplified to a quarter of its triangles with the bolt-connection
 // features of a process step locked.
+TEST(SharedStep, MeasuredTessellationDeviation) {
+  // Every part's deviation is measured (finite, >= 0) and, with the projections where the
+  // same-(u, v) estimate is loose, within a few deflections (the same-(u, v) estimate alone read up
+  // to 24 of them on NIST parts at 0.05 mm). gmsh_Block's torus face lies 0.165 mm from its
+  // triangles at a deflection of 0.084 mm (OCCT 7.6; BRepExtrema agrees): BRepMesh exceeds its
+  // tolerance there, which the measurement must show.
+  SKIP_WITHOUT_SHARED_DATA();
+  std::size_t checked = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(shared_step_dir())) {
+    auto m = import_step(entry.path(), {.measure_deviation = true, .build_aag = false});
+    if (!m) continue;  // (import errors are other tests' business)
+    ++checked;
+    for (const Part& p : m->parts) {
+      EXPECT_TRUE(p.tessellation_deviation >= 0 && std::isfinite(p.tessellation_deviation))
+          << entry.path().filename() << " " << p.name;
+      EXPECT_LE(p.tessellation_deviation, 5 * p.linear_deflection) << entry.path().filename() << " " << p.name;
+    }
+    if (entry.path().filename() == "gmsh_Block.stp") {
+      ASSERT_EQ(m->parts.size(), 1u);
+      EXPECT_GT(m->parts[0].tessellation_deviation, 1.5 * m->parts[0].linear_deflection);
+    }
+  }
+  EXPECT_GT(checked, 0u);
+}
+
 TEST(SharedStep, As1AssemblyHasContactsAndNominalFitsOnly) {
   // The CAx-IF AS1 assembly is modelled without interference: bolts and rods sit in holes of their
   // own diameter (B-spline cylinders in this export, recognised), nuts and brackets on plates. On
