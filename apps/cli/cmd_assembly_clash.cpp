@@ -25,6 +25,7 @@ struct AssemblyClashCliOptions {
   std::string input, json, regions;
   std::vector<std::string> curves;
   double clearance = 0, linear_deflection = 0, angular_deflection = 0.5;
+  std::size_t depth_bound_splits = 5000;
   int threads = 0;
 };
 
@@ -97,7 +98,9 @@ int run_assembly_clash(const AssemblyClashCliOptions& o) {
   cad::AssemblyClashResult r;
   {
     Progress progress("clashing the pairs of " + std::to_string(model->instances.size()) + " instances");
-    r = cad::assembly_clash(*model, {.clearance = o.clearance, .geometry = !o.regions.empty() || !o.curves.empty()});
+    r = cad::assembly_clash(*model, {.clearance = o.clearance,
+                                     .geometry = !o.regions.empty() || !o.curves.empty(),
+                                     .depth_bound_splits = o.depth_bound_splits});
   }
   write_clash_geometry(o, *model, r);
   for (const std::string& w : r.warnings) warning(w);
@@ -115,6 +118,7 @@ int run_assembly_clash(const AssemblyClashCliOptions& o) {
                      {"curve_length", p.curve_length}, {"clearance_pairs", p.clearance_pairs},
                      {"min_clearance", p.clearance_pairs > 0 ? nlohmann::json(p.min_clearance) : nlohmann::json(nullptr)},
                      {"depth", p.cross_pairs > 0 ? nlohmann::json(p.depth) : nlohmann::json(nullptr)},
+                     {"depth_bound", p.depth_bound > 0 ? nlohmann::json(p.depth_bound) : nlohmann::json(nullptr)},
                      {"tessellation_error", p.tessellation_error}, {"nominal_fit", p.nominal_fit}});
     std::string what = std::to_string(p.cross_pairs) + " crossing, " + std::to_string(p.touch_pairs) + " touching pairs";
     if (p.containment == Containment::a_inside_b || p.containment == Containment::b_inside_a)
@@ -124,8 +128,10 @@ int run_assembly_clash(const AssemblyClashCliOptions& o) {
       what += ", a nominal fit: the crossings lie on coincident B-Rep faces (depth " + short_number(p.depth) +
               " mm, tessellation error " + short_number(p.tessellation_error) + " mm)";
     else if (p.cross_pairs > 0)
-      what += ", depth " + short_number(p.depth) + " mm (tessellation error " + short_number(p.tessellation_error) +
-              " mm" + (p.depth <= p.tessellation_error ? ": a nominal fit?)" : ")");
+      what += ", depth " + short_number(p.depth) + " mm" +
+              (p.depth_bound > 0 ? ", at most " + short_number(p.depth_bound) + " mm" : std::string()) +
+              " (tessellation error " + short_number(p.tessellation_error) + " mm" +
+              (p.depth <= p.tessellation_error ? ": a nominal fit?)" : ")");
     if (p.meeting == cad::InstanceMeeting::clearance) what = "closest " + short_number(p.min_clearance) + " mm";
     std::printf("%-9s %s x %s: %s\n", cad::instance_meeting_name(p.meeting), name(p.a).c_str(), name(p.b).c_str(),
                 what.c_str());
@@ -171,6 +177,9 @@ void add_assembly_clash_command(CLI::App& app, int& exit_code) {
                 "instance's index (.ply/.obj/.stl face ids; .off untagged)");
   c->add_option("--curves", o->curves, "write the clashing pairs' intersection curves (.obj polylines or .vtk); repeatable")
       ->allow_extra_args(false);
+  c->add_option("--depth-bound-splits", o->depth_bound_splits,
+                "splits per clashing pair for the upper bound of its depth (default 5000; more: tighter and slower; "
+                "0: none)");
   c->add_option("--threads", o->threads, "worker threads (0 = all cores)");
   c->add_option("--linear-deflection", o->linear_deflection, "tessellation linear deflection (0 = 0.1 % of the diagonal)");
   c->add_option("--angular-deflection", o->angular_deflection, "tessellation angular deflection, radians");

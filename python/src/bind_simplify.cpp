@@ -368,6 +368,7 @@ void bind_simplify(py::module_& m) {
                                 py::arg("containment") = containment_name(q.containment),
                                 py::arg("curve_length") = q.curve_length, py::arg("clearance_pairs") = q.clearance_pairs,
                                 py::arg("min_clearance") = q.min_clearance, py::arg("depth") = q.depth,
+                                py::arg("depth_bound") = q.depth_bound,
                                 py::arg("tessellation_error") = q.tessellation_error,
                                 py::arg("nominal_fit") = q.nominal_fit);
           if (geometry) {
@@ -392,7 +393,8 @@ void bind_simplify(py::module_& m) {
       py::arg("geometry") = false,
       "`interfere assembly-clash` of a STEP file: every pair of instances that meets, as a dict with pairs [{a, b, "
       "a_name, b_name, meeting ('clash', 'contact', 'clearance'), cross_pairs, touch_pairs, touching_overlap, "
-      "containment, curve_length, clearance_pairs, min_clearance, depth, tessellation_error, nominal_fit; with "
+      "containment, curve_length, clearance_pairs, min_clearance, depth (sampled), depth_bound (an upper bound, for "
+      "clashes; else 0), tessellation_error, nominal_fit; with "
       "geometry=True also curves (Polylines, world coordinates) and region_triangles_a/_b (each instance's clash-region "
       "triangles, indices into its part's mesh; empty unless the pair clashes)}], candidate_pairs, clashes, contacts, "
       "within_clearance, warnings. ValueError on bad input.");

@@ -1,5 +1,6 @@
 // Internal (src/cad): the parts of assembly_clash (assembly_clash.cpp) kept in their own files.
 #pragma once
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -8,9 +9,16 @@
 
 namespace interfere::cad::detail {
 
+
 /// How deep the surface of x reaches into the solid y, sampled (assembly_depth.cpp); paired[t]:
 /// triangle t of x crosses or touches y.
 double depth_into(const Model& x, const Model& y, const std::vector<char>& paired);
+
+/// An upper bound of how deep the surface of x reaches into the solid y (assembly_depth.cpp): branch
+/// and bound over pieces of x's triangles until within 10 % of `lower` (the sampled depth) or
+/// `max_splits` splits.
+double depth_bound(const Model& x, const Model& y, const std::vector<char>& paired, double lower,
+                   std::size_t max_splits);
 
 /// Whether the crossings of instances a and b (`r`, on their world models) are a nominal fit
 /// (assembly_fit.cpp): every crossing pair has a face coinciding with one of the other part, and

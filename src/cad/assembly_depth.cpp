@@ -2,10 +2,12 @@
 // (include/interfere/cad/assembly_clash.h, InstancePairResult::depth).
 #include <algorithm>
 #include <array>
+#include <queue>
 
 #include "assembly_clash_internal.h"
 #include "interfere/bvh/traverse.h"
 #include "interfere/mesh/validate.h"
+#include "interfere/np/tri_tri.h"
 #include "interfere/query/distance.h"
 
 namespace interfere::cad::detail {
@@ -87,6 +89,68 @@ double depth_into(const Model& x, const Model& y, const std::vector<char>& paire
     }
   }
   return depth;
+}
+
+// An upper bound of depth_into: the same reach over every point of x's surface that may lie
+// inside y, not samples, by branch and bound on the 1-Lipschitz distance to y's surface: a piece
+// (a triangle of x, or a part of one) is bounded by its corners' largest distance plus its longest
+// edge / sqrt 3 (every point of a triangle lies within that of a corner: the circumradius of an
+// acute triangle, half the longest edge of an obtuse one). Pieces that meet no triangle of y (exact
+// tests, np/tri_tri.h) lie wholly inside or outside it: outside ones are dropped (exact ray parity
+// of a corner; undecided counts as inside), and x's triangles that touch nothing of y count by
+// their connected set, as in depth_into. The piece with the largest bound is split at its edge
+// midpoints until that bound is within 10 % of `lower` (the sampled depth, a lower bound) or
+// `max_splits` splits were made; the largest bound left is the result.
+double depth_bound(const Model& x, const Model& y, const std::vector<char>& paired, double lower,
+                   std::size_t max_splits) {
+  const TriMesh& m = x.mesh;
+  const auto nt = static_cast<std::uint32_t>(m.num_triangles());
+  std::vector<char> free_of(nt);
+  for (std::uint32_t t = 0; t < nt; ++t) free_of[t] = !paired[t];
+  const std::vector<std::uint32_t> set = connected_sets(m, free_of);
+  std::vector<char> set_inside(nt, 0);
+  for (std::uint32_t t = 0; t < nt; ++t)
+    if (!paired[t] && set[t] == t) set_inside[t] = point_in_solid(y, m.positions[m.triangles[t][0]]) != 0;
+  const auto meets_y = [&](const std::array<Vec3, 3>& c) {
+    Aabb box;
+    for (const Vec3& v : c) box.expand(v);
+    bool meets = false;
+    for_each_in_box(y.bvh, to_float_outward(box), [&](std::uint32_t t) {
+      meets = meets || tri_tri_exact_intersects(c, y.mesh.corners(t));
+    });
+    return meets;
+  };
+  struct Piece {
+    double bound;
+    std::array<Vec3, 3> c;
+    bool inside;  // known to meet nothing of y and to lie inside it (its parts too)
+    bool operator<(const Piece& o) const { return bound < o.bound; }
+  };
+  std::priority_queue<Piece> pieces;
+  // A piece of x that may lie inside y, with its bound; dropped when it lies outside.
+  const auto add = [&](const std::array<Vec3, 3>& c, bool inside) {
+    if (!inside && !meets_y(c)) {
+      if (point_in_solid(y, c[0]) == 0) return;  // (1 inside, -1 undecided: kept)
+      inside = true;
+    }
+    const double edge = std::max({norm(c[1] - c[0]), norm(c[2] - c[1]), norm(c[0] - c[2])});
+    const double corner = std::max({surface_distance(y, c[0]), surface_distance(y, c[1]), surface_distance(y, c[2])});
+    pieces.push({corner + edge / std::sqrt(3.0), c, inside});
+  };
+  for (std::uint32_t t = 0; t < nt; ++t)
+    if (paired[t] || set_inside[set[t]]) add(m.corners(t), !paired[t]);
+  for (std::size_t split = 0; split < max_splits && !pieces.empty() && pieces.top().bound > 1.1 * lower; ++split) {
+    const Piece p = pieces.top();
+    pieces.pop();
+    const auto& c = p.c;
+    const Vec3 a = (c[0] + c[1]) * 0.5, b = (c[1] + c[2]) * 0.5, d = (c[2] + c[0]) * 0.5;
+    add({c[0], a, d}, p.inside);
+    add({a, c[1], b}, p.inside);
+    add({d, b, c[2]}, p.inside);
+    add({a, b, d}, p.inside);
+  }
+  // (the rounded midpoints stand for the exact ones: a relative 1e-15, far below any bound here)
+  return pieces.empty() ? lower : std::max(lower, pieces.top().bound);
 }
 
 }  // namespace interfere::cad::detail

@@ -11,6 +11,7 @@
 #include "interfere/mesh/generate.h"
 #include "interfere/mesh/validate.h"
 #include "interfere/query/clash.h"
+#include "interfere/query/distance.h"
 #include "interfere/query/model.h"
 
 namespace interfere::cad {
@@ -110,6 +111,49 @@ TEST(AssemblyClash, GeometryOfTheClashingPairs) {
   }
   EXPECT_NEAR(length, 0.8, 1e-9);  // the cube's 0.2 x 0.2 section: four sides
   EXPECT_NEAR(length, crossing.curve_length, 1e-9);
+}
+
+// The deepest of dense samples of either surface inside the other solid (exact ray parity, the
+// distance to the other surface): a lower bound of the true depth, from points depth_into does not
+// look at (every triangle's interior on a 24 x 24 barycentric grid).
+double dense_depth(const Model& x, const Model& y) {
+  double deepest = 0;
+  for (std::size_t t = 0; t < x.mesh.num_triangles(); ++t) {
+    const auto c = x.mesh.corners(t);
+    for (int i = 0; i <= 24; ++i)
+      for (int j = 0; i + j <= 24; ++j) {
+        const Vec3 p = c[0] + (c[1] - c[0]) * (i / 24.0) + (c[2] - c[0]) * (j / 24.0);
+        if (point_in_solid(y, p) == 1) deepest = std::max(deepest, surface_distance(y, p));
+      }
+  }
+  return deepest;
+}
+
+TEST(AssemblyClash, DepthBoundHoldsTheDenseSamplesAndIsTight) {
+  // A cube through block 0's face x = 1 (0.1 deep), and a thin plate through the middle of block 0
+  // whose two big triangles per face keep their edges away from the block's centre: the samples of
+  // depth_into (vertices, edge stretches) miss its deepest points there (0.45 deep at (0.5, 0.5,
+  // 0.55)), the bound must not.
+  CadModel m = boxes({{0, Transform{}}, {1, moved(0.9, 0.4, 0.4)}});
+  m.parts.push_back({.name = "plate", .mesh = make_box({-3, -0.2, 0.45}, {4, 2.2, 0.55}, 1)});
+  m.instances.push_back({.name = "plate", .part = 2, .placement = Transform{}});
+  std::map<std::pair<std::uint32_t, std::uint32_t>, InstancePairResult> got;
+  for (const auto& p : assembly_clash(m).pairs) got[{p.a, p.b}] = p;
+  for (const auto& [pair, p] : got) {
+    if (p.cross_pairs == 0) continue;
+    ASSERT_EQ(p.meeting, InstanceMeeting::clash);
+    const Model a = make_model(transformed(m.parts[m.instances[pair.first].part].mesh, m.instances[pair.first].placement));
+    const Model b = make_model(transformed(m.parts[m.instances[pair.second].part].mesh, m.instances[pair.second].placement));
+    const double dense = std::max(dense_depth(a, b), dense_depth(b, a));
+    EXPECT_LE(p.depth, p.depth_bound) << pair.first << " " << pair.second;
+    EXPECT_LE(dense, p.depth_bound * (1 + 1e-12)) << pair.first << " " << pair.second;
+    EXPECT_LE(p.depth_bound, 1.25 * std::max(dense, p.depth)) << pair.first << " " << pair.second;
+  }
+  EXPECT_NEAR(got.at({0, 1}).depth, 0.1, 1e-12);  // the cube: 0.1 into the block, the block 0.1 into it
+  EXPECT_LT(got.at({0, 2}).depth, 0.2);           // the samples miss the plate's middle ...
+  EXPECT_GE(got.at({0, 2}).depth_bound, 0.45);    // ... the bound holds it (the exact depth)
+  // Without splits, no bound.
+  for (const auto& p : assembly_clash(m, {.depth_bound_splits = 0}).pairs) EXPECT_EQ(p.depth_bound, 0);
 }
 
 TEST(AssemblyClash, DepthSamplesTheStretchesOfLongEdgesInsideTheOtherSolid) {

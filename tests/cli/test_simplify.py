@@ -686,6 +686,13 @@ class Features(unittest.TestCase):
                 self.assertIn("not written", err)
             if meeting == "clash":
                 self.assertAlmostEqual(r["pairs"][0]["depth"], 5.0, places=6)
+                # The upper bound: at least the depth, within the 10 % its branch and bound aims at.
+                self.assertTrue(5.0 <= r["pairs"][0]["depth_bound"] <= 5.5 * (1 + 1e-9), r["pairs"][0]["depth_bound"])
+                self.assertIn("at most", out)
+                code0, _, err0 = run("assembly-clash", path("moved.step"), "--depth-bound-splits", "0", "--json",
+                                     path("ac0.json"))
+                self.assertEqual(code0, 1, err0)
+                self.assertIsNone(load_json("ac0.json")["pairs"][0]["depth_bound"])
                 self.assertGreater(r["pairs"][0]["cross_pairs"], 0)
                 self.assertGreater(r["pairs"][0]["tessellation_error"], 0)
                 self.assertEqual(r["clashes_within_tessellation_error"], 0)
