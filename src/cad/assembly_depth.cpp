@@ -36,22 +36,29 @@ std::vector<double> surface_crossings(const Model& m, const Vec3& p, const Vec3&
 
 }  // namespace
 
+std::vector<signed char> untouched_sides(const Model& x, const Model& y, const std::vector<char>& paired) {
+  const TriMesh& m = x.mesh;
+  const auto nt = static_cast<std::uint32_t>(m.num_triangles());
+  std::vector<char> free_of(nt);  // the triangles that touch nothing of y
+  for (std::uint32_t t = 0; t < nt; ++t) free_of[t] = !paired[t];
+  const std::vector<std::uint32_t> set = connected_sets(m, free_of);
+  std::vector<signed char> side(nt, 0);
+  for (std::uint32_t t = 0; t < nt; ++t)  // a set's root comes first in it (connected_sets)
+    if (!paired[t])
+      side[t] = set[t] == t ? static_cast<signed char>(point_in_solid(y, m.positions[m.triangles[t][0]])) : side[set[t]];
+  return side;
+}
+
 // How deep the surface of x reaches into the solid y, sampled: the largest distance to y's surface
 // of x's points inside y (exact ray parity) among: the middles of the stretches of the crossing
 // triangles' edges between their crossings of y's surface, the vertices of the triangles that cross
 // or touch y (`paired`), and the vertices of the connected sets of its other triangles that lie
 // inside y (such a set lies wholly inside or outside; one vertex, exactly off y's surface,
 // decides).
-double depth_into(const Model& x, const Model& y, const std::vector<char>& paired) {
+double depth_into(const Model& x, const Model& y, const std::vector<char>& paired,
+                  const std::vector<signed char>& side) {
   const TriMesh& m = x.mesh;
   const auto nt = static_cast<std::uint32_t>(m.num_triangles());
-  std::vector<char> free_of(nt);  // the triangles that touch nothing of y
-  for (std::uint32_t t = 0; t < nt; ++t) free_of[t] = !paired[t];
-  const std::vector<std::uint32_t> set = connected_sets(m, free_of);
-  std::vector<char> set_inside(nt, 0);  // per set root
-  for (std::uint32_t t = 0; t < nt; ++t)
-    if (!paired[t] && set[t] == t)
-      set_inside[t] = point_in_solid(y, m.positions[m.triangles[t][0]]) == 1;
   std::vector<char> state(m.num_vertices(), 0);  // 0 unknown, 1 inside, 2 not
   double depth = 0;
   // Along the edges of the crossing triangles: the middle of each stretch between two crossings of
@@ -78,7 +85,7 @@ double depth_into(const Model& x, const Model& y, const std::vector<char>& paire
     }
   }
   for (std::uint32_t t = 0; t < nt; ++t) {
-    const bool whole = !paired[t] && set_inside[set[t]];
+    const bool whole = !paired[t] && side[t] == 1;  // (undecided: not sampled)
     if (!paired[t] && !whole) continue;
     for (std::uint32_t v : m.triangles[t]) {
       if (state[v] == 0) state[v] = whole || point_in_solid(y, m.positions[v]) == 1 ? 1 : 2;
@@ -101,16 +108,10 @@ double depth_into(const Model& x, const Model& y, const std::vector<char>& paire
 // their connected set, as in depth_into. The piece with the largest bound is split at its edge
 // midpoints until that bound is within 10 % of `lower` (the sampled depth, a lower bound) or
 // `max_splits` splits were made; the largest bound left is the result.
-double depth_bound(const Model& x, const Model& y, const std::vector<char>& paired, double lower,
-                   std::size_t max_splits) {
+double depth_bound(const Model& x, const Model& y, const std::vector<char>& paired,
+                   const std::vector<signed char>& side, double lower, std::size_t max_splits) {
   const TriMesh& m = x.mesh;
   const auto nt = static_cast<std::uint32_t>(m.num_triangles());
-  std::vector<char> free_of(nt);
-  for (std::uint32_t t = 0; t < nt; ++t) free_of[t] = !paired[t];
-  const std::vector<std::uint32_t> set = connected_sets(m, free_of);
-  std::vector<char> set_inside(nt, 0);
-  for (std::uint32_t t = 0; t < nt; ++t)
-    if (!paired[t] && set[t] == t) set_inside[t] = point_in_solid(y, m.positions[m.triangles[t][0]]) != 0;
   const auto meets_y = [&](const std::array<Vec3, 3>& c) {
     Aabb box;
     for (const Vec3& v : c) box.expand(v);
@@ -138,7 +139,7 @@ double depth_bound(const Model& x, const Model& y, const std::vector<char>& pair
     pieces.push({corner + edge / std::sqrt(3.0), c, inside});
   };
   for (std::uint32_t t = 0; t < nt; ++t)
-    if (paired[t] || set_inside[set[t]]) add(m.corners(t), !paired[t]);
+    if (paired[t] || side[t] != 0) add(m.corners(t), !paired[t]);  // (undecided: kept)
   for (std::size_t split = 0; split < max_splits && !pieces.empty() && pieces.top().bound > 1.1 * lower; ++split) {
     const Piece p = pieces.top();
     pieces.pop();
