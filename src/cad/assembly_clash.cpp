@@ -69,12 +69,8 @@ AssemblyClashResult assembly_clash(const CadModel& model, const AssemblyClashOpt
     const auto [a, b] = candidates[c];
     const ClashResult r = clash(world[a], world[b], {.clearance = options.clearance});
     InstancePairResult& p = result[c];
-    // Each part's: its linear deflection, or its measured deviation where BRepMesh exceeded it.
-    const auto error_of = [&](std::uint32_t i) {
-      const Part& part = model.parts[model.instances[i].part];
-      return std::max(part.linear_deflection, part.tessellation_deviation);
-    };
-    p.tessellation_error = error_of(a) + error_of(b);
+    p.tessellation_error = model.parts[model.instances[a].part].tessellation_error() +
+                           model.parts[model.instances[b].part].tessellation_error();
     p.a = a, p.b = b;
     p.cross_pairs = r.cross_pairs, p.touch_pairs = r.touch_pairs;
     p.clearance_pairs = r.clearance.size();

@@ -149,7 +149,7 @@ Expected<Prepared> prepare(const CadModel& imported, const PipelineOptions& o, c
   std::vector<std::uint32_t> with_features(model->parts.size(), kNoPart), without(model->parts.size(), kNoPart);
   for (std::size_t i = 0; i < model->parts.size(); ++i) {
     const Part& part = model->parts[i];
-    const double tessellation_error = std::max(part.linear_deflection, part.tessellation_deviation);
+    const double tessellation_error = part.tessellation_error();
     const auto feats = recognize_features(part.aag, *lib);
     nlohmann::json jp{{"name", part.name}, {"faces", part.faces}, {"triangles", part.mesh.num_triangles()},
                       {"features", nlohmann::json::array()}};

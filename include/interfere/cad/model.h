@@ -69,6 +69,11 @@ struct Part {
   /// sampled: between samples a triangle may lie farther), measured after BRepMesh; -1 when not
   /// measured (or a face has no UV nodes).
   double tessellation_deviation = -1;
+  /// How far the tessellation may lie from the B-Rep: the larger of linear_deflection and the
+  /// measured tessellation_deviation (BRepMesh may exceed its tolerance).
+  double tessellation_error() const {
+    return tessellation_deviation > linear_deflection ? tessellation_deviation : linear_deflection;
+  }
 };
 
 struct Instance {

@@ -27,9 +27,9 @@ struct PreparedPart {
   /// Index of the CAD part (a part whose instances differ in taking part in the step is prepared
   /// twice, with and without the step's features; the first is named "<part> [<step>]").
   std::uint32_t model_part = 0;
-  /// How far the tessellation may lie from the B-Rep: the larger of Part::linear_deflection and
-  /// Part::tessellation_deviation (measured on import). A simplification's error bound is relative
-  /// to the tessellation; relative to the B-Rep add this.
+  /// How far the tessellation may lie from the B-Rep: Part::tessellation_error (its deviation
+  /// measured on import). A simplification's error bound is relative to the tessellation; relative
+  /// to the B-Rep add this.
   double tessellation_error = 0;
 };
 struct PreparedInstance {
