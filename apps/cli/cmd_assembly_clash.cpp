@@ -24,7 +24,8 @@ namespace {
 struct AssemblyClashCliOptions {
   std::string input, json, regions;
   std::vector<std::string> curves;
-  double clearance = 0, linear_deflection = 0, angular_deflection = 0.5;
+  double clearance = 0;
+  StepTessellation tessellation;
   std::size_t depth_bound_splits = 5000;
   int threads = 0;
 };
@@ -89,8 +90,8 @@ int run_assembly_clash(const AssemblyClashCliOptions& o) {
   Expected<cad::CadModel> model = Error{};
   {
     Progress progress("importing " + o.input);
-    model = cad::import_step(o.input, {.linear_deflection = o.linear_deflection,
-                                       .angular_deflection = o.angular_deflection,
+    model = cad::import_step(o.input, {.linear_deflection = o.tessellation.linear_deflection,
+                                       .angular_deflection = o.tessellation.angular_deflection,
                                        .measure_deviation = true});  // (tessellation_error)
     if (!model) throw InputError(model.error());
   }
@@ -181,8 +182,7 @@ void add_assembly_clash_command(CLI::App& app, int& exit_code) {
                 "splits per clashing pair for the upper bound of its depth (default 5000; more: tighter and slower; "
                 "0: none)");
   c->add_option("--threads", o->threads, "worker threads (0 = all cores)");
-  c->add_option("--linear-deflection", o->linear_deflection, "tessellation linear deflection (0 = 0.1 % of the diagonal)");
-  c->add_option("--angular-deflection", o->angular_deflection, "tessellation angular deflection, radians");
+  add_step_tessellation_options(*c, o->tessellation);
   c->callback([o, &exit_code] { exit_code = run_assembly_clash(*o); });
 }
 

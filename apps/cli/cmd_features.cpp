@@ -25,7 +25,7 @@ namespace {
 
 struct FeaturesCliOptions {
   std::string input, json, dot, library, rules, process, step;
-  double linear_deflection = 0, angular_deflection = 0.5;
+  StepTessellation tessellation;
   bool aag = false;
 };
 
@@ -49,7 +49,8 @@ int run_features(const FeaturesCliOptions& o) {
   Expected<CadModel> model = CadModel{};
   {
     Progress progress("importing " + o.input);
-    model = import_step(o.input, {.linear_deflection = o.linear_deflection, .angular_deflection = o.angular_deflection});
+    model = import_step(o.input, {.linear_deflection = o.tessellation.linear_deflection,
+                                  .angular_deflection = o.tessellation.angular_deflection});
     if (!model) throw InputError(model.error());
   }
   // --step all: every step of the process, in its order.
@@ -187,8 +188,7 @@ void add_features_command(CLI::App& app, int& exit_code) {
   c->add_option("--process", o->process, "process description JSON (steps, parts, constraint types)");
   c->add_option("--step", o->step,
                 "process step whose assembly-feature faces are listed ('all': every step; JSON parts[].steps)");
-  c->add_option("--linear-deflection", o->linear_deflection, "tessellation linear deflection (0 = 0.1 % of the diagonal)");
-  c->add_option("--angular-deflection", o->angular_deflection, "tessellation angular deflection, radians");
+  add_step_tessellation_options(*c, o->tessellation);
   c->callback([o, &exit_code] { exit_code = run_features(*o); });
 }
 

@@ -247,8 +247,8 @@ int run_all_steps(const SimplifyCliOptions& o) {
   Expected<cad::CadModel> model = Error{};
   {
     Progress progress("importing " + o.input);
-    model = cad::import_step(o.input, {.linear_deflection = o.linear_deflection,
-                                       .angular_deflection = o.angular_deflection,
+    model = cad::import_step(o.input, {.linear_deflection = o.tessellation.linear_deflection,
+                                       .angular_deflection = o.tessellation.angular_deflection,
                                        .measure_deviation = true});  // (the parts' tessellation_error)
   }
   if (!model) throw InputError(model.error());
@@ -298,8 +298,7 @@ void add_simplify_command(CLI::App& app, int& exit_code) {
   c->add_option("--crease-angle", o->crease_angle,
                 "glTF output of a mesh without faces or regions: NORMAL is smooth across edges up to DEG degrees, "
                 "split across sharper ones (default 40)");
-  c->add_option("--linear-deflection", o->linear_deflection, "STEP tessellation: linear deflection (0 = 0.1 % of the diagonal)");
-  c->add_option("--angular-deflection", o->angular_deflection, "STEP tessellation: angular deflection in radians");
+  add_step_tessellation_options(*c, o->tessellation);
   c->add_option("--parts-dir", o->parts_dir,
                 "STEP input: also write each simplified part once, in part coordinates, to DIR/<part>_<name>.<OUT's "
                 "extension> (the report's cad.instances place them)");
@@ -323,7 +322,7 @@ void add_simplify_command(CLI::App& app, int& exit_code) {
   c->add_option("--json", o->json, "write the JSON report here");
   c->add_option("--threads", o->threads, "worker threads (0 = all cores)");
   c->callback([o, c, &exit_code] {
-    o->deflection_given = c->count("--linear-deflection") + c->count("--angular-deflection") > 0;
+    resolve_step_tessellation(*c, o->tessellation, {o->input});  // (an error on a mesh input)
     o->crease_given = c->count("--crease-angle") > 0;
     exit_code = o->step == "all" ? run_all_steps(*o) : run_simplify(*o);
   });

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common.h"
 #include "interfere/mesh/io.h"
 #include "interfere/simplify/gltf_io.h"
 #include "interfere/simplify/qem.h"
@@ -28,10 +29,9 @@ struct SimplifyCliOptions {
   double sharp_angle = 0;
   double crease_angle = 40;  ///< --crease-angle: glTF normals of a mesh without faces or regions
   double max_error = 0, max_error_rel = 0;  ///< --max-error (model units), --max-error-rel (of the diagonal)
-  double linear_deflection = 0, angular_deflection = 0.5;
+  StepTessellation tessellation;  ///< (its `given`: resolve_step_tessellation, when the command runs)
   std::size_t renderer_max = 0;
   bool lock = false, check_self = false, no_error = false, no_guard = false, strict_guard = false;
-  bool deflection_given = false;  ///< --linear-/--angular-deflection on the command line
   bool crease_given = false;      ///< --crease-angle on the command line
   int threads = 0;
 };

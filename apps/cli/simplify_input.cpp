@@ -76,8 +76,6 @@ SimplifyOutput check_simplify_options(const SimplifyCliOptions& o) {
     throw InputError("--regions/--sharp-angle are for plain meshes: a STEP input's regions are its B-Rep faces");
   if (!step_input && (!o.step.empty() || !o.process.empty() || !o.library.empty() || !o.rules.empty()))
     throw InputError("--step/--process/--library/--rules need a STEP input (features are recognised on the B-Rep)");
-  if (!step_input && o.deflection_given)
-    throw InputError("--linear-deflection/--angular-deflection tessellate a STEP input; " + o.input + " is a mesh");
   if (o.sharp_angle != 0 && !valid_angle(o.sharp_angle))
     throw InputError("--sharp-angle " + short_number(o.sharp_angle) + ": give a dihedral angle in degrees, in (0, 180)");
   if (!step_input && !o.features.empty() && o.regions.empty() && o.sharp_angle == 0)
@@ -126,8 +124,8 @@ SimplifyInput load_simplify_input(const SimplifyCliOptions& o, [[maybe_unused]] 
   if (is_step_file(o.input)) {
 #ifdef INTERFERE_HAS_CAD
     cad::PipelineOptions po;
-    po.linear_deflection = o.linear_deflection;
-    po.angular_deflection = o.angular_deflection;
+    po.linear_deflection = o.tessellation.linear_deflection;
+    po.angular_deflection = o.tessellation.angular_deflection;
     po.library_file = o.library;
     po.rules_file = o.rules;
     po.process_file = o.process;
