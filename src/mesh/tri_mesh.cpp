@@ -1,12 +1,17 @@
 #include "interfere/mesh/tri_mesh.h"
 
 #include <unordered_map>
+#include <utility>
 
 namespace interfere {
 
 TriMesh transformed(const TriMesh& mesh, const Transform& t) {
   TriMesh out;
   out.triangles = mesh.triangles;
+  // A mirroring pose (det R < 0) turns every triangle's winding around: swap two corners so that an
+  // outward-oriented solid stays outward (its signed volume keeps its sign; issue #23, item 8).
+  if (t.determinant_sign() < 0)
+    for (Tri& f : out.triangles) std::swap(f[1], f[2]);
   out.positions.reserve(mesh.positions.size());
   for (const Vec3& p : mesh.positions) out.positions.push_back(t.apply(p));
   return out;
