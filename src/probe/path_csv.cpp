@@ -43,11 +43,99 @@ std::string fmt(double v) {
 
 }  // namespace
 
+namespace {
+
+const std::vector<std::string> kPoseColumns{"px", "py", "pz", "ax", "ay", "az", "rx", "ry", "rz"};
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string s;
+  for (const std::string& c : names) s += (s.empty() ? "" : ",") + c;
+  return s;
+}
+
+/// Reads the header `cols` (file order) by meaning (issue #23, item 9): a joint path when every
+/// name is a joint of the robot, a pose path when every name is a pose column; each needed name
+/// exactly once. Fills `path` (columns in meaning order, joint_space) and `slot` (for each file
+/// column, where its value goes: the joint index, or the pose-column index).
+Status read_header(const std::vector<std::string>& cols, const std::string& file, std::int64_t line,
+                   const Robot* robot, ProbePath& path, std::vector<std::size_t>& slot) {
+  auto fail = [&](std::size_t col, const std::string& reason) {
+    return Error{.file = file, .line = line,
+                 .reason = "header" + (col ? ", column " + std::to_string(col) : std::string()) + ": " + reason};
+  };
+  for (std::size_t i = 0; i < cols.size(); ++i) {
+    double dummy;
+    if (cols[i].empty() || parse_double(cols[i], dummy)) {
+      return fail(i + 1, "must be a name, got '" + cols[i] + "' (the first non-comment row is the header)");
+    }
+  }
+  std::vector<std::string> joints;
+  if (robot) {
+    for (const DhJoint& j : robot->joints) joints.push_back(j.name);
+  }
+  auto index_in = [](const std::vector<std::string>& names, const std::string& c) {
+    return static_cast<std::size_t>(std::find(names.begin(), names.end(), c) - names.begin());
+  };
+  const bool all_joints = robot && std::all_of(cols.begin(), cols.end(), [&](const std::string& c) {
+    return index_in(joints, c) < joints.size();
+  });
+  const bool all_pose = std::all_of(cols.begin(), cols.end(),
+                                    [&](const std::string& c) { return index_in(kPoseColumns, c) < kPoseColumns.size(); });
+  const std::vector<std::string>* names = nullptr;
+  if (all_joints) {
+    names = &joints;
+    path.joint_space = true;
+  } else if (all_pose) {
+    names = &kPoseColumns;
+    path.joint_space = false;
+  } else {
+    // Name the first column that fits neither kind.
+    const bool posey = std::any_of(cols.begin(), cols.end(),
+                                   [&](const std::string& c) { return index_in(kPoseColumns, c) < kPoseColumns.size(); });
+    for (std::size_t i = 0; i < cols.size(); ++i) {
+      const bool is_joint = index_in(joints, cols[i]) < joints.size();
+      const bool is_pose = index_in(kPoseColumns, cols[i]) < kPoseColumns.size();
+      if (posey ? is_pose : is_joint) continue;
+      if (!robot && !posey) {
+        return fail(0, "a joint path needs a robot (--robot); a pose path has the header px,py,pz,ax,ay,az "
+                       "(optionally followed by rx,ry,rz)");
+      }
+      return fail(i + 1, "unknown column '" + cols[i] + "' (" +
+                             (robot ? "joints of the robot '" + robot->name + "': " + joined(joints) + "; or " : "") +
+                             "pose columns px,py,pz,ax,ay,az[,rx,ry,rz])");
+    }
+    return fail(0, "columns mix joint names and pose columns");
+  }
+  slot.assign(cols.size(), 0);
+  std::vector<int> seen(names->size(), 0);
+  for (std::size_t i = 0; i < cols.size(); ++i) {
+    slot[i] = index_in(*names, cols[i]);
+    if (seen[slot[i]]++) return fail(i + 1, "column '" + cols[i] + "' given twice");
+  }
+  const std::size_t needed = path.joint_space ? names->size() : (seen[6] || seen[7] || seen[8] ? 9 : 6);
+  std::vector<std::string> missing;
+  for (std::size_t k = 0; k < needed; ++k) {
+    if (!seen[k]) missing.push_back((*names)[k]);
+  }
+  if (!missing.empty()) {
+    return fail(0, "missing column" + std::string(missing.size() > 1 ? "s " : " ") + joined(missing) +
+                       (path.joint_space ? " (a joint path gives every joint of the robot '" + robot->name + "': " +
+                                               joined(joints) + ")"
+                                         : " (a pose path has px,py,pz,ax,ay,az, optionally rx,ry,rz)"));
+  }
+  path.columns.assign(names->begin(), names->begin() + static_cast<std::ptrdiff_t>(needed));
+  return {};
+}
+
+}  // namespace
+
 Expected<ProbePath> parse_path_csv(std::string_view text, const std::string& file, const Robot* robot) {
   ProbePath path;
   std::int64_t line_no = 0;
   std::size_t pos = 0;
   bool have_header = false;
+  std::vector<std::string> header;  // file order
+  std::vector<std::size_t> slot;    // file column -> joint / pose-column index
   while (pos <= text.size()) {
     std::size_t end = text.find('\n', pos);
     if (end == std::string_view::npos) end = text.size();
@@ -61,49 +149,22 @@ Expected<ProbePath> parse_path_csv(std::string_view text, const std::string& fil
     const std::vector<std::string_view> f = split(line);
     if (!have_header) {
       have_header = true;
-      for (auto s : f) path.columns.emplace_back(s);
-      const std::vector<std::string> pose_cols{"px", "py", "pz", "ax", "ay", "az"};
-      const std::vector<std::string> frame_cols{"px", "py", "pz", "ax", "ay", "az", "rx", "ry", "rz"};
-      path.joint_space = path.columns != pose_cols && path.columns != frame_cols;
-      if (path.joint_space) {
-        if (!robot) {
-          return Error{.file = file, .line = line_no,
-                       .reason = "header: a joint path needs a robot (--robot); a pose path has the header "
-                                 "px,py,pz,ax,ay,az (optionally followed by rx,ry,rz)"};
-        }
-        if (path.columns.size() != robot->joints.size()) {
-          return Error{.file = file, .line = line_no,
-                       .reason = "header: " + std::to_string(path.columns.size()) + " columns but the robot '" +
-                                 robot->name + "' has " + std::to_string(robot->joints.size()) +
-                                 " joints (or use the pose header px,py,pz,ax,ay,az)"};
-        }
-      }
-      for (std::size_t i = 0; i < path.columns.size(); ++i) {
-        double dummy;
-        if (path.columns[i].empty() || parse_double(path.columns[i], dummy)) {
-          return Error{.file = file, .line = line_no,
-                       .reason = "header: column " + std::to_string(i + 1) + " must be a name, got '" +
-                                 path.columns[i] + "' (the first non-comment row is the header)"};
-        }
-      }
+      for (auto s : f) header.emplace_back(s);
+      const Status h = read_header(header, file, line_no, robot, path, slot);
+      if (!h) return h.error();
       if (end == text.size()) break;
       continue;
     }
-    if (f.size() != path.columns.size()) {
+    if (f.size() != header.size()) {
       return Error{.file = file, .line = line_no,
                    .reason = "row has " + std::to_string(f.size()) + " values, expected " +
-                             std::to_string(path.columns.size()) + " (" + "columns " +
-                             [&] {
-                               std::string s;
-                               for (auto& c : path.columns) s += (s.empty() ? "" : ",") + c;
-                               return s;
-                             }() + ")"};
+                             std::to_string(header.size()) + " (columns " + joined(header) + ")"};
     }
-    std::vector<double> v(f.size());
+    std::vector<double> v(path.columns.size());
     for (std::size_t i = 0; i < f.size(); ++i) {
-      if (!parse_double(f[i], v[i])) {
+      if (!parse_double(f[i], v[slot[i]])) {
         return Error{.file = file, .line = line_no,
-                     .reason = "field '" + path.columns[i] + "' (column " + std::to_string(i + 1) +
+                     .reason = "field '" + header[i] + "' (column " + std::to_string(i + 1) +
                                "): not a finite number: '" + std::string(f[i]) + "'"};
       }
     }
@@ -111,9 +172,11 @@ Expected<ProbePath> parse_path_csv(std::string_view text, const std::string& fil
       for (std::size_t i = 0; i < v.size(); ++i) {
         const DhJoint& j = robot->joints[i];
         if (!(v[i] >= j.min && v[i] <= j.max)) {
+          const std::size_t col = static_cast<std::size_t>(std::find(slot.begin(), slot.end(), i) - slot.begin());
           return Error{.file = file, .line = line_no,
-                       .reason = "field '" + path.columns[i] + "' (joint " + j.name + "): " + fmt(v[i]) +
-                                 " outside the joint limits [" + fmt(j.min) + ", " + fmt(j.max) + "]"};
+                       .reason = "field '" + j.name + "' (column " + std::to_string(col + 1) + ", joint " + j.name +
+                                 "): " + fmt(v[i]) + " outside the joint limits [" + fmt(j.min) + ", " + fmt(j.max) +
+                                 "]"};
         }
       }
       path.joints.push_back(std::move(v));

@@ -1,11 +1,15 @@
 // Robot file (issue #5, item 1): a Denavit-Hartenberg chain in JSON (docs/probe.md, "Robot file").
 // Every error names the file, the line (of the offending value where known) and the field.
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <vector>
 #include <fstream>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
+#include "interfere/core/units.h"
 #include "interfere/probe/kinematics.h"
 
 namespace interfere::probe {
@@ -71,6 +75,25 @@ std::vector<std::size_t> joint_offsets(std::string_view text) {
   return out;
 }
 
+/// The keys an object may have (issue #23, item 9: a misspelt key is an error, not ignored): the
+/// first other key, or nullptr.
+const std::string* unknown_key(const json& obj, const std::vector<const char*>& known) {
+  for (auto it = obj.begin(); it != obj.end(); ++it) {
+    if (std::none_of(known.begin(), known.end(), [&](const char* k) { return it.key() == k; })) return &it.key();
+  }
+  return nullptr;
+}
+
+std::string key_list(const std::vector<const char*>& known) {
+  std::string s;
+  for (const char* k : known) s += (s.empty() ? "" : ", ") + std::string(k);
+  return s;
+}
+
+/// Tolerance of the base's rotation: every entry of R^T R - I within this (rounded decimals of a
+/// rotation written by hand pass; a scale or shear of more than about 1e-6 does not).
+constexpr double kRotationTolerance = 1e-6;
+
 }  // namespace
 
 Expected<Robot> parse_robot_json(std::string_view text, const std::string& file_name) {
@@ -85,8 +108,33 @@ Expected<Robot> parse_robot_json(std::string_view text, const std::string& file_
     return Error{.file = file_name, .reason = std::string("invalid JSON: ") + e.what()};
   }
   if (!doc.is_object()) return p.fail("(document)", "expected a JSON object", 1);
+  static const std::vector<const char*> kTop{"name", "units", "comment", "convention", "base", "joints",
+                                                          "tool"};
+  if (const std::string* k = unknown_key(doc, kTop)) {
+    return p.fail(*k, "unknown key (expected " + key_list(kTop) + ")", find_key_line(text, *k));
+  }
   Robot robot;
-  robot.name = doc.value("name", std::string("robot"));
+  if (auto it = doc.find("name"); it != doc.end()) {
+    if (!it->is_string()) return p.fail("name", "expected a string", find_key_line(text, "name"));
+    robot.name = it->get<std::string>();
+  } else {
+    robot.name = "robot";
+  }
+  // Lengths (a, d, base translation, tool tip, prismatic joint values and limits) are read in mm,
+  // the unit of path files and of the working geometry; another unit would silently scale the
+  // robot, so it is refused rather than ignored.
+  if (auto it = doc.find("units"); it != doc.end()) {
+    const std::int64_t uline = find_key_line(text, "units");
+    if (!it->is_string()) return p.fail("units", "expected a string (\"mm\")", uline);
+    const std::string u = it->get<std::string>();
+    if (u != "mm") {
+      return p.fail("units", "'" + u + "'" +
+                                 (millimetres_per_unit(u) ? "" : std::string(" is not a known unit (") + known_units() + ") and") +
+                                 " is not supported: robot files are in mm (lengths, prismatic joint values of the "
+                                 "path, tool tip); convert the file to mm",
+                    uline);
+    }
+  }
   if (auto it = doc.find("base"); it != doc.end()) {
     if (!it->is_array() || it->size() != 12) {
       return p.fail("base", "expected 12 numbers (row-major [R|t])", find_key_line(text, "base"));
@@ -99,6 +147,27 @@ Expected<Robot> parse_robot_json(std::string_view text, const std::string& file_
     for (int r = 0; r < 3; ++r) {
       robot.base.r[r] = {v[4 * r], v[4 * r + 1], v[4 * r + 2]};
       robot.base.t[r] = v[4 * r + 3];
+    }
+    // A rigid transform: R orthonormal (R^T R = I within kRotationTolerance) with det R = +1.
+    const auto& R = robot.base.r;
+    double worst = 0;
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) {
+        const double rtr = R[0][i] * R[0][j] + R[1][i] * R[1][j] + R[2][i] * R[2][j];
+        worst = std::max(worst, std::fabs(rtr - (i == j ? 1.0 : 0.0)));
+      }
+    }
+    const double det = R[0][0] * (R[1][1] * R[2][2] - R[1][2] * R[2][1]) -
+                       R[0][1] * (R[1][0] * R[2][2] - R[1][2] * R[2][0]) +
+                       R[0][2] * (R[1][0] * R[2][1] - R[1][1] * R[2][0]);
+    if (!std::isfinite(robot.base.t.x) || !std::isfinite(robot.base.t.y) || !std::isfinite(robot.base.t.z) ||
+        !(worst <= kRotationTolerance) || !(det > 0)) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf,
+                    "not a rigid transform: the rotation part must be orthonormal with determinant +1 "
+                    "(max |R^T R - I| = %.3g, tolerance %.0e; det = %.6g)",
+                    worst, kRotationTolerance, det);
+      return p.fail("base", buf, find_key_line(text, "base"));
     }
   }
   auto joints = doc.find("joints");
@@ -113,10 +182,24 @@ Expected<Robot> parse_robot_json(std::string_view text, const std::string& file_
     const std::string where = "joints[" + std::to_string(i) + "]";
     const std::int64_t jline = i < offsets.size() ? line_of(text, at) : -1;
     if (!j.is_object()) return p.fail(where, "expected an object", jline);
+    static const std::vector<const char*> kJoint{"name", "type", "a", "alpha", "d", "theta", "min", "max",
+                                                               "comment"};
+    if (const std::string* k = unknown_key(j, kJoint)) {
+      return p.fail(where + "." + *k, "unknown key (expected " + key_list(kJoint) + ")", find_key_line(text, *k, at));
+    }
     DhJoint dj;
     std::string default_name = "J";
     default_name += std::to_string(i + 1);
+    if (auto n = j.find("name"); n != j.end() && !n->is_string()) {
+      return p.fail(where + ".name", "expected a string", find_key_line(text, "name", at));
+    }
     dj.name = j.value("name", default_name);
+    for (const DhJoint& other : robot.joints) {
+      if (other.name == dj.name) {
+        return p.fail(where + ".name", "'" + dj.name + "' names two joints (path columns are matched by joint name)",
+                      jline);
+      }
+    }
     auto type = j.find("type");
     if (type == j.end()) return p.fail(where + ".type", "missing (prismatic or revolute)", jline);
     if (!type->is_string()) return p.fail(where + ".type", "expected a string", find_key_line(text, "type", at));
@@ -142,6 +225,11 @@ Expected<Robot> parse_robot_json(std::string_view text, const std::string& file_
   if (auto tool = doc.find("tool"); tool != doc.end()) {
     const std::int64_t tline = find_key_line(text, "tool");
     if (!tool->is_object()) return p.fail("tool", "expected an object {\"tip\": [x,y,z], \"axis\": [x,y,z]}", tline);
+    static const std::vector<const char*> kTool{"tip", "axis", "ref", "comment"};
+    if (const std::string* k = unknown_key(*tool, kTool)) {
+      return p.fail("tool." + *k, "unknown key (expected " + key_list(kTool) + ")",
+                    find_key_line(text, *k, text.find("\"tool\"")));
+    }
     for (const char* key : {"tip", "axis"}) {
       auto it = tool->find(key);
       if (it == tool->end()) return p.fail(std::string("tool.") + key, "missing", tline);
@@ -184,6 +272,7 @@ Expected<Robot> read_robot_json(const std::filesystem::path& path) {
 std::string robot_to_json(const Robot& robot) {
   json j;
   j["name"] = robot.name;
+  j["units"] = "mm";
   std::vector<double> base;
   for (int r = 0; r < 3; ++r) {
     base.insert(base.end(), {robot.base.r[r][0], robot.base.r[r][1], robot.base.r[r][2], robot.base.t[r]});

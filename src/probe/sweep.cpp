@@ -14,7 +14,9 @@
 #include <tbb/parallel_for.h>
 
 #include "interfere/bvh/traverse.h"
+#include "interfere/mesh/validate.h"
 #include "interfere/probe/sweep.h"
+#include "interfere/query/clash.h"
 
 namespace interfere::probe {
 namespace {
@@ -172,9 +174,10 @@ Bodies grown_bodies(Bodies b, double delta) {
   return b;
 }
 
-/// Exact test of the bodies; collects hits (or stops at the first when hits is null).
-bool bodies_collide(const Workpiece& w, const Bodies& bodies, std::vector<std::uint32_t>* hits, std::size_t* tests,
-                    bool* holder_hit) {
+/// Exact test of the bodies against the triangles; collects hits (or stops at the first when hits
+/// is null).
+bool bodies_touch(const Workpiece& w, const Bodies& bodies, std::vector<std::uint32_t>* hits, std::size_t* tests,
+                  bool* holder_hit) {
   bool any = false;
   // Candidates of one body (`cull`: a cylinder containing it), tested by `touches`.
   auto body = [&](const Cylinder& cull, const Aabb& box, bool holder, auto&& touches) {
@@ -205,6 +208,32 @@ bool bodies_collide(const Workpiece& w, const Bodies& bodies, std::vector<std::u
     hits->erase(std::unique(hits->begin(), hits->end()), hits->end());
   }
   return any;
+}
+
+/// Where bodies that touch no triangle lie: 1 inside a closed component, 0 outside all of them, -1
+/// undecided (every ray direction degenerate). The bodies are connected and miss every surface, so
+/// one of their points (the tip, on the probe's end circle) decides for all of them (issue #23,
+/// item 3; exact ray parity, query/clash.h point_in_solid).
+int bodies_inside(const Workpiece& w, const Bodies& bodies) {
+  const Vec3 p = bodies.cylinders.front().c0;
+  int result = 0;
+  for (const Model& solid : w.solids) {
+    const int in = point_in_solid(solid, p);
+    if (in == 1) return 1;
+    if (in < 0) result = -1;
+  }
+  return result;
+}
+
+/// A pose's state: touches the surface or lies inside a solid (collides), outside (clear), or
+/// inside/outside undecided.
+enum class PoseState { clear, touches, inside, undecided };
+
+PoseState pose_state(const Workpiece& w, const Bodies& bodies, std::vector<std::uint32_t>* hits, std::size_t* tests,
+                     bool* holder_hit) {
+  if (bodies_touch(w, bodies, hits, tests, holder_hit)) return PoseState::touches;
+  const int in = bodies_inside(w, bodies);
+  return in == 1 ? PoseState::inside : in == 0 ? PoseState::clear : PoseState::undecided;
 }
 
 /// Best-first search over the BVH for the triangle nearest one body (bounded by `body_box`), with
@@ -272,7 +301,58 @@ double line_distance(const Vec3& p, const Vec3& o, const Vec3& dir) {
   return norm(w - dir * dot(w, dir));
 }
 
+/// The closed connected components of the workpiece become solids (Model: mesh + BVH + stats, as
+/// point_in_solid needs); open ones are counted and warned about.
+void find_solids(Workpiece& w) {
+  const TriMesh& m = w.mesh;
+  if (m.triangles.empty()) return;
+  const std::vector<std::uint32_t> set = connected_sets(m, std::vector<char>(m.num_triangles(), 1));
+  std::vector<std::uint32_t> roots;
+  for (std::uint32_t t = 0; t < m.num_triangles(); ++t) {
+    if (set[t] == t) roots.push_back(t);
+  }
+  std::vector<std::uint32_t> slot(m.num_triangles());
+  for (std::size_t k = 0; k < roots.size(); ++k) slot[roots[k]] = static_cast<std::uint32_t>(k);
+  std::vector<TriMesh> parts(roots.size());
+  std::vector<std::uint32_t> map(m.num_vertices(), kNone);  // a vertex belongs to one component
+  for (std::uint32_t t = 0; t < m.num_triangles(); ++t) {
+    TriMesh& part = parts[slot[set[t]]];
+    Tri tri;
+    for (int c = 0; c < 3; ++c) {
+      const std::uint32_t v = m.triangles[t][c];
+      if (map[v] == kNone) map[v] = static_cast<std::uint32_t>(part.positions.size()), part.positions.push_back(m.positions[v]);
+      tri[c] = map[v];
+    }
+    part.triangles.push_back(tri);
+  }
+  std::size_t open_triangles = 0;
+  for (TriMesh& part : parts) {
+    const MeshStats stats = mesh_stats(part);
+    if (stats.closed()) {
+      w.solids.push_back(make_model(std::move(part)));
+    } else {
+      ++w.open_components;
+      open_triangles += part.num_triangles();
+    }
+  }
+  if (w.open_components > 0) {
+    w.warnings.push_back("workpiece: " + std::to_string(w.open_components) + " of " + std::to_string(parts.size()) +
+                         " connected components are not closed (" + std::to_string(open_triangles) +
+                         " triangles): they bound no solid, so a probe inside or behind them is not checked "
+                         "(only contact with their surface)");
+  }
+}
+
 }  // namespace
+
+const char* segment_state_name(SegmentState s) {
+  switch (s) {
+    case SegmentState::clear: return "clear";
+    case SegmentState::unresolved: return "unresolved";
+    case SegmentState::collides: return "collides";
+  }
+  return "?";
+}
 
 double ProbeShape::volume() const { return M_PI * radius * radius * length; }
 
@@ -319,6 +399,7 @@ Workpiece prepare_workpiece(TriMesh mesh, const ProbeShape& probe, const Workpie
   w.mesh = std::move(mesh);
   w.hierarchy = o.hierarchy;
   w.bvh = build_bvh(w.mesh);
+  find_solids(w);
   const double target = o.patch_volume > 0 ? o.patch_volume : o.patch_volume_ratio * probe.volume();
   w.patches = make_patches(w.mesh, {.target_volume = target,
                                     .min_extent = 2 * probe.radius,
@@ -335,8 +416,10 @@ Workpiece prepare_workpiece(TriMesh mesh, const ProbeShape& probe, const Workpie
 }
 
 bool pose_collides(const Workpiece& w, const ProbeShape& probe, const ProbePose& pose,
-                   std::vector<std::uint32_t>* hits, std::size_t* tests) {
-  return bodies_collide(w, bodies_at(probe, pose), hits, tests, nullptr);
+                   std::vector<std::uint32_t>* hits, std::size_t* tests, bool* inside) {
+  const PoseState st = pose_state(w, bodies_at(probe, pose), hits, tests, nullptr);
+  if (inside) *inside = st == PoseState::inside;
+  return st == PoseState::touches || st == PoseState::inside;
 }
 
 namespace {
@@ -472,6 +555,106 @@ double motion_bound(const ProbePath& path, const Robot* robot, const ProbeShape&
   return midpoint_and_bound(path, robot, probe, from, t0, t1, mid);
 }
 
+namespace {
+
+/// Outcome of one refinement pass over a segment (see sweep.h and docs/probe.md, "Between path
+/// points").
+struct Refined {
+  std::vector<std::array<double, 2>> hit, unresolved;  ///< merged, sorted
+  std::vector<std::uint32_t> triangles;                ///< hit at tested interior poses, sorted
+  std::uint32_t poses = 0;
+  double smallest_gap = std::numeric_limits<double>::infinity();
+  double motion = 0;
+  SegmentState state = SegmentState::clear;
+};
+
+void merge(std::vector<std::array<double, 2>>& iv) {
+  std::sort(iv.begin(), iv.end());
+  std::vector<std::array<double, 2>> out;
+  for (const auto& x : iv) {
+    if (!out.empty() && x[0] <= out.back()[1]) {
+      out.back()[1] = std::max(out.back()[1], x[1]);
+    } else {
+      out.push_back(x);
+    }
+  }
+  iv = std::move(out);
+}
+
+/// Level-order bisection of segment `from` (Li, Zhou & Zheng 2008, §3.4's check between path points,
+/// made conservative by the motion bound): an interval is cleared when the bodies at its midpoint,
+/// grown by the motion bound plus `extra`, touch no triangle; otherwise `hit` decides the midpoint
+/// (1 proved, 0 not, -1 undecided) and the halves go to the next level, down to depth max_depth or
+/// until max_poses midpoints were tested. Leaves left over hold a proved end (part of `hit`
+/// intervals) or are unresolved. `gap` (may be empty) measures the gap at unresolved leaves.
+template <class Hit, class Gap>
+Refined refine(const Workpiece& w, const ProbePath& path, const Robot* robot, const SweepRequest& req,
+               std::uint32_t from, bool c0, bool c1, double extra, Hit&& hit, Gap&& gap) {
+  struct Node {
+    double t0, t1;
+    bool c0, c1;
+    int depth;
+  };
+  Refined out;
+  auto leaf = [&](const Node& nd) {
+    if (nd.c0 || nd.c1) {
+      out.hit.push_back({nd.t0, nd.t1});
+      return;
+    }
+    out.unresolved.push_back({nd.t0, nd.t1});
+    ProbePose pm;
+    const double delta = midpoint_and_bound(path, robot, req.probe, from, nd.t0, nd.t1, pm);
+    out.motion = std::max(out.motion, delta);
+    out.smallest_gap = std::min(out.smallest_gap, gap(bodies_at(req.probe, pm)));
+  };
+  std::vector<Node> level{{0.0, 1.0, c0, c1, 0}}, next;
+  while (!level.empty()) {
+    next.clear();
+    for (const Node& nd : level) {
+      if (nd.c0 && nd.c1) {
+        out.hit.push_back({nd.t0, nd.t1});
+        continue;
+      }
+      if (out.poses >= req.max_poses) {
+        leaf(nd);
+        continue;
+      }
+      ++out.poses;
+      ProbePose pm;
+      const double delta = midpoint_and_bound(path, robot, req.probe, from, nd.t0, nd.t1, pm);
+      const Bodies at_mid = bodies_at(req.probe, pm);
+      if (!bodies_touch(w, grown_bodies(at_mid, delta + extra), nullptr, nullptr, nullptr)) {
+        // The swept bodies miss every surface: every pose of the interval is on the same side of
+        // each closed component as its ends (one collides only by lying inside: then all do).
+        if (nd.c0 || nd.c1) out.hit.push_back({nd.t0, nd.t1});
+        continue;
+      }
+      const double tm = 0.5 * (nd.t0 + nd.t1);
+      const int cm = hit(at_mid, out.triangles);
+      if (cm == 1) out.hit.push_back({tm, tm});
+      if (cm < 0) out.unresolved.push_back({tm, tm});
+      const Node a{nd.t0, tm, nd.c0, cm == 1, nd.depth + 1}, b{tm, nd.t1, cm == 1, nd.c1, nd.depth + 1};
+      if (nd.depth >= req.max_depth) {
+        for (const Node& child : {a, b}) (child.c0 && child.c1) ? out.hit.push_back({child.t0, child.t1}) : leaf(child);
+      } else {
+        next.push_back(a);
+        next.push_back(b);
+      }
+    }
+    std::swap(level, next);
+  }
+  merge(out.hit);
+  merge(out.unresolved);
+  std::sort(out.triangles.begin(), out.triangles.end());
+  out.triangles.erase(std::unique(out.triangles.begin(), out.triangles.end()), out.triangles.end());
+  out.state = !out.hit.empty() ? SegmentState::collides
+              : !out.unresolved.empty() ? SegmentState::unresolved
+                                        : SegmentState::clear;
+  return out;
+}
+
+}  // namespace
+
 SweepResult sweep(const Workpiece& w, const ProbePath& path, const Robot* robot, const SweepRequest& req) {
   SweepResult res;
   const std::size_t n = path.poses.size();
@@ -480,6 +663,8 @@ SweepResult sweep(const Workpiece& w, const ProbePath& path, const Robot* robot,
       if (!p.has_ref()) throw std::invalid_argument("sweep: a box holder needs a reference direction at every pose");
     }
   }
+  const double limit = req.clearance_limit > 0 ? req.clearance_limit : 0.0;
+  const double max_clearance = std::max(req.max_clearance, limit);
   res.points.resize(n);
   std::vector<std::size_t> tests(n, 0);
   auto loop = [&](std::size_t count, auto&& body) {
@@ -489,36 +674,50 @@ SweepResult sweep(const Workpiece& w, const ProbePath& path, const Robot* robot,
       for (std::size_t i = 0; i < count; ++i) body(i);
     }
   };
-  // Discrete points.
+  // Discrete points: surface contact, then containment in a closed component.
   auto start = Clock::now();
   loop(n, [&](std::size_t i) {
     PointResult& r = res.points[i];
-    r.collides = bodies_collide(w, bodies_at(req.probe, path.poses[i]), &r.hits, &tests[i], &r.holder);
+    const PoseState st = pose_state(w, bodies_at(req.probe, path.poses[i]), &r.hits, &tests[i], &r.holder);
+    r.collides = st == PoseState::touches || st == PoseState::inside;
+    r.inside = st == PoseState::inside;
+    r.undecided = st == PoseState::undecided;
     if (r.collides) {
       r.clearance = 0;
-      r.triangle = r.hits.front();
-      r.patch = w.patches.patch_of[r.triangle];
+      if (!r.hits.empty()) {
+        r.triangle = r.hits.front();
+        r.patch = w.patches.patch_of[r.triangle];
+      }
     }
   });
   res.discrete_seconds = seconds_since(start);
   for (std::size_t i = 0; i < n; ++i) {
     res.candidate_tests += tests[i];
     res.colliding_points += res.points[i].collides;
+    res.inside_points += res.points[i].inside;
+    res.undecided_points += res.points[i].undecided;
   }
   // Clearance.
   start = Clock::now();
-  if (req.clearance) {
+  if (req.clearance || limit > 0) {
     loop(n, [&](std::size_t i) {
       PointResult& r = res.points[i];
       if (r.collides) return;
-      r.clearance = clearance_of(w, bodies_at(req.probe, path.poses[i]), req.max_clearance, r.triangle,
-                                 r.point_probe, r.point_workpiece);
+      r.clearance = clearance_of(w, bodies_at(req.probe, path.poses[i]), max_clearance, r.triangle, r.point_probe,
+                                 r.point_workpiece);
       if (r.triangle != kNone) r.patch = w.patches.patch_of[r.triangle];
     });
   } else {
     for (PointResult& r : res.points) {
       if (!r.collides) r.clearance = std::numeric_limits<double>::quiet_NaN();
     }
+  }
+  for (PointResult& r : res.points) {
+    r.verdict = r.collides ? Verdict::clash
+                : r.undecided ? Verdict::undecided
+                : (limit > 0 && r.clearance < limit) ? Verdict::clearance
+                                                     : Verdict::clear;
+    res.verdict = worst(res.verdict, r.verdict);
   }
   res.clearance_seconds = seconds_since(start);
   // Continuous check between consecutive points.
@@ -528,48 +727,54 @@ SweepResult sweep(const Workpiece& w, const ProbePath& path, const Robot* robot,
     loop(n - 1, [&](std::size_t s) {
       SegmentResult& seg = segs[s];
       seg.from = static_cast<std::uint32_t>(s);
-      std::vector<std::array<double, 2>> iv;
-      const bool ca = res.points[s].collides, cb = res.points[s + 1].collides;
-      if (ca) iv.push_back({0.0, 0.0});
-      if (cb) iv.push_back({1.0, 1.0});
-      auto refine = [&](auto&& self, double t0, double t1, bool c0, bool c1, int depth) -> void {
-        if (c0 && c1) {
-          iv.push_back({t0, t1});
-          return;
-        }
-        const double tm = 0.5 * (t0 + t1);
-        ++seg.poses_tested;
-        ProbePose pm;
-        const double delta = midpoint_and_bound(path, robot, req.probe, seg.from, t0, t1, pm);
-        const Bodies at_mid = bodies_at(req.probe, pm);
-        if (!bodies_collide(w, grown_bodies(at_mid, delta), nullptr, nullptr, nullptr)) return;  // swept volume clear
-        std::vector<std::uint32_t> hits;
-        const bool cm = bodies_collide(w, at_mid, &hits, nullptr, nullptr);
-        seg.triangles.insert(seg.triangles.end(), hits.begin(), hits.end());
-        if (cm) iv.push_back({tm, tm});
-        if (depth >= req.max_depth) {
-          iv.push_back({t0, t1});
-          return;
-        }
-        self(self, t0, tm, c0, cm, depth + 1);
-        self(self, tm, t1, cm, c1, depth + 1);
+      const PointResult &pa = res.points[s], &pb = res.points[s + 1];
+      auto gap = [&](const Bodies& b) {
+        std::uint32_t tri;
+        Vec3 p, q;
+        return clearance_of(w, b, max_clearance, tri, p, q);
       };
-      refine(refine, 0.0, 1.0, ca, cb, 0);
-      std::sort(iv.begin(), iv.end());
-      for (const auto& x : iv) {
-        if (!seg.intervals.empty() && x[0] <= seg.intervals.back()[1]) {
-          seg.intervals.back()[1] = std::max(seg.intervals.back()[1], x[1]);
-        } else {
-          seg.intervals.push_back(x);
-        }
+      const Refined hit = refine(
+          w, path, robot, req, seg.from, pa.collides, pb.collides, 0.0,
+          [&](const Bodies& b, std::vector<std::uint32_t>& tris) {
+            std::vector<std::uint32_t> hits;
+            const PoseState st = pose_state(w, b, &hits, nullptr, nullptr);
+            tris.insert(tris.end(), hits.begin(), hits.end());
+            return st == PoseState::undecided ? -1 : st == PoseState::clear ? 0 : 1;
+          },
+          gap);
+      seg.state = hit.state;
+      seg.intervals = hit.hit;
+      seg.unresolved = hit.unresolved;
+      seg.triangles = hit.triangles;
+      seg.poses_tested = hit.poses;
+      seg.smallest_gap = hit.smallest_gap;
+      seg.unresolved_motion = hit.motion;
+      seg.between_samples = !pa.collides && !pb.collides && seg.state == SegmentState::collides;
+      if (seg.state == SegmentState::clear && (pa.undecided || pb.undecided)) seg.state = SegmentState::unresolved;
+      seg.verdict = seg.state == SegmentState::collides     ? Verdict::clash
+                    : seg.state == SegmentState::unresolved ? Verdict::undecided
+                                                            : Verdict::clear;
+      if (seg.verdict == Verdict::clear && limit > 0) {
+        // Clearance pass: the same refinement with the bodies grown by the requested clearance; a
+        // midpoint is "hit" when its exact clearance is below it.
+        const Refined near = refine(
+            w, path, robot, req, seg.from, pa.clearance < limit, pb.clearance < limit, limit,
+            [&](const Bodies& b, std::vector<std::uint32_t>&) { return gap(b) < limit ? 1 : 0; },
+            [](const Bodies&) { return std::numeric_limits<double>::infinity(); });
+        seg.clearance_state = near.state;
+        seg.clearance_intervals = near.hit;
+        seg.clearance_unresolved = near.unresolved;
+        seg.poses_tested += near.poses;
+        seg.verdict = near.state == SegmentState::collides     ? Verdict::clearance
+                      : near.state == SegmentState::unresolved ? Verdict::undecided
+                                                               : Verdict::clear;
       }
-      std::sort(seg.triangles.begin(), seg.triangles.end());
-      seg.triangles.erase(std::unique(seg.triangles.begin(), seg.triangles.end()), seg.triangles.end());
-      seg.between_samples = !ca && !cb && !seg.intervals.empty();
     });
     for (SegmentResult& s : segs) {
-      if (s.intervals.empty()) continue;
-      ++res.colliding_segments;
+      res.verdict = worst(res.verdict, s.verdict);
+      if (s.verdict == Verdict::clear) continue;
+      res.colliding_segments += s.state == SegmentState::collides;
+      res.unresolved_segments += s.state == SegmentState::unresolved;
       res.between_samples_segments += s.between_samples;
       res.segments.push_back(std::move(s));
     }

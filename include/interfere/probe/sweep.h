@@ -9,16 +9,24 @@
 // (probe/cylinder.h), or box-triangle test for a box holder (probe/box.h). Every hierarchy gives
 // the same decisions (tests check it).
 //
-// Continuous check (item 4): consecutive points are joined by linear interpolation of the joint
-// values (joint paths) or of the tip position plus a slerp of the axis and a twist of the
-// reference direction about it (pose paths). On a parameter interval [t0, t1] the probe moves at
-// most delta from its pose at the midpoint (a bound derived from the joint increments and the
-// distances of the probe to the joint axes, docs/probe.md), so the swept volume lies inside the
-// cylinders (and holder box) grown by delta. If those grown bodies touch no
+// Continuous check (item 4; issue #23, item 4): consecutive points are joined by linear
+// interpolation of the joint values (joint paths) or of the tip position plus a slerp of the axis
+// and a twist of the reference direction about it (pose paths). On a parameter interval [t0, t1]
+// the probe moves at most delta from its pose at the midpoint (a Lipschitz bound derived from the
+// joint increments and the distances of the probe to the joint axes, docs/probe.md), so the swept
+// volume lies inside the cylinders (and holder box) grown by delta. If those grown bodies touch no
 // triangle the interval is clear; otherwise the midpoint pose is tested exactly and the interval is
-// halved, down to 2^-max_depth. Intervals that are never cleared are reported as colliding: the
-// check never misses a collision, and over-reports by at most the final resolution (plus intervals
-// whose both ends collide, which are reported whole).
+// halved, level by level, down to 2^-max_depth or until max_poses poses were tested. Each segment
+// ends in one of three states: `collides` (a pose of it was proved to collide), `clear` (every
+// interval cleared) or `unresolved` (intervals neither cleared nor holding a proved collision: the
+// probe passes closer than the resolution can separate; reported with the smallest gap measured
+// there, never called clear or colliding).
+//
+// Solids (issue #23, item 3): a closed component of the workpiece is a solid. A pose whose bodies
+// touch no triangle lies wholly inside or wholly outside each closed component (the bodies are
+// connected), so one point (the tip) decides it by exact ray parity (query/clash.h point_in_solid,
+// the engine's containment test): inside collides. Open components bound nothing: their inside is
+// not checked and Workpiece::warnings says so.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -32,6 +40,8 @@
 #include "interfere/probe/cylinder.h"
 #include "interfere/probe/kinematics.h"
 #include "interfere/probe/path.h"
+#include "interfere/query/model.h"
+#include "interfere/query/verdict.h"
 
 namespace interfere::probe {
 
@@ -120,6 +130,10 @@ struct Workpiece {
   UniformGrid grid;        ///< built for Hierarchy::grid
   DistanceField field;     ///< built for Hierarchy::distance_field
   Hierarchy hierarchy = Hierarchy::bvh;
+  /// Closed connected components of the mesh (each a solid: a pose inside one collides).
+  std::vector<Model> solids;
+  std::size_t open_components = 0;  ///< components that bound nothing (inside not checked)
+  std::vector<std::string> warnings;  ///< e.g. open components: inside/behind them is not checked
   double build_seconds = 0;
 };
 
@@ -140,12 +154,19 @@ struct SweepRequest {
   bool continuous = true;   ///< check the motion between consecutive points
   bool clearance = true;    ///< compute the clearance of non-colliding points
   double max_clearance = std::numeric_limits<double>::infinity();  ///< farther: reported as inf
-  int max_depth = 12;       ///< continuous check resolution 2^-max_depth of a segment
+  int max_depth = 16;       ///< continuous check resolution 2^-max_depth of a segment
+  std::size_t max_poses = std::size_t(1) << 16;  ///< budget of poses tested per segment (and pass)
+  /// Requested clearance (> 0): points and segments closer than this get Verdict::clearance
+  /// (points by their exact clearance; segments by a second refinement with the bodies grown by it).
+  double clearance_limit = 0;
   bool parallel = true;     ///< oneTBB over path points and segments
 };
 
 struct PointResult {
   bool collides = false;
+  bool inside = false;                 ///< collides by lying inside a closed component (no triangle hit)
+  bool undecided = false;              ///< inside/outside undecided (every ray degenerate): never clear
+  Verdict verdict = Verdict::clear;    ///< clash, undecided, clearance (< clearance_limit) or clear
   bool holder = false;                 ///< the holder (not the probe) is involved
   double clearance = 0;                ///< 0 when colliding; inf beyond max_clearance
   std::uint32_t triangle = kNone;      ///< closest triangle, or the lowest-index hit triangle
@@ -154,9 +175,27 @@ struct PointResult {
   Vec3 point_probe, point_workpiece;   ///< closest points (non-colliding, finite clearance)
 };
 
+enum class SegmentState { clear, unresolved, collides };
+const char* segment_state_name(SegmentState s);  ///< "clear", "unresolved", "collides"
+
 struct SegmentResult {
   std::uint32_t from = 0;                            ///< segment between points from and from+1
-  std::vector<std::array<double, 2>> intervals;      ///< colliding parameter intervals, sorted, disjoint
+  SegmentState state = SegmentState::clear;
+  Verdict verdict = Verdict::clear;                  ///< clash, undecided, clearance or clear
+  /// Colliding parameter intervals, sorted, disjoint: each holds a pose proved to collide; no pose
+  /// outside `intervals` and `unresolved` collides. Their ends are within 2^-max_depth of the true
+  /// contact unless the pose budget ran out.
+  std::vector<std::array<double, 2>> intervals;
+  /// Intervals neither cleared nor holding a proved collision (sorted, disjoint).
+  std::vector<std::array<double, 2>> unresolved;
+  /// Unresolved only: the smallest clearance measured at the midpoints of the unresolved intervals
+  /// (exact poses; between them the probe may come closer by at most `unresolved_motion`).
+  double smallest_gap = std::numeric_limits<double>::infinity();
+  double unresolved_motion = 0;                      ///< largest motion bound of an unresolved interval
+  /// With SweepRequest::clearance_limit: state of the clearance pass (collides = closer than the
+  /// limit proved somewhere), its intervals as above.
+  SegmentState clearance_state = SegmentState::clear;
+  std::vector<std::array<double, 2>> clearance_intervals, clearance_unresolved;
   bool between_samples = false;                      ///< neither end point collides
   std::vector<std::uint32_t> triangles;              ///< hit at tested interior poses, sorted
   std::uint32_t poses_tested = 0;                    ///< interior sub-intervals examined
@@ -164,9 +203,13 @@ struct SegmentResult {
 
 struct SweepResult {
   std::vector<PointResult> points;
-  std::vector<SegmentResult> segments;  ///< only segments with a colliding interval, by `from`
+  std::vector<SegmentResult> segments;  ///< only segments whose verdict is not clear, by `from`
   std::size_t colliding_points = 0;
+  std::size_t inside_points = 0;        ///< colliding by lying inside a closed component
   std::size_t colliding_segments = 0;
+  std::size_t unresolved_segments = 0;  ///< state unresolved (verdict undecided)
+  std::size_t undecided_points = 0;
+  Verdict verdict = Verdict::clear;     ///< the worst of every point's and segment's verdict
   std::size_t between_samples_segments = 0;
   std::size_t candidate_tests = 0;      ///< exact cylinder/box-triangle tests at the path points
   double discrete_seconds = 0, continuous_seconds = 0, clearance_seconds = 0;
@@ -178,10 +221,11 @@ struct SweepResult {
 /// needs a reference direction (check_reference_frames); std::invalid_argument otherwise.
 SweepResult sweep(const Workpiece& workpiece, const ProbePath& path, const Robot* robot, const SweepRequest& request);
 
-/// Exact: does the probe (or holder) at `pose` touch the workpiece; appends the hit triangles to
-/// `hits` (sorted, unique) when not null, else returns at the first hit.
+/// Exact: does the probe (or holder) at `pose` touch the workpiece or lie inside one of its closed
+/// components; appends the hit triangles to `hits` (sorted, unique) when not null, else returns at
+/// the first hit. `inside` (when not null) is set when the pose collides by containment only.
 bool pose_collides(const Workpiece& workpiece, const ProbeShape& probe, const ProbePose& pose,
-                   std::vector<std::uint32_t>* hits = nullptr, std::size_t* tests = nullptr);
+                   std::vector<std::uint32_t>* hits = nullptr, std::size_t* tests = nullptr, bool* inside = nullptr);
 
 /// Bound on how far any probe point moves on [t0, t1] of segment `from` away from its position at
 /// the midpoint (docs/probe.md, "Motion bound").

@@ -162,8 +162,15 @@ TEST(ProbeCylinderTriangle, TouchingTheRim) {
   const double z = std::nextafter(2.0, 3.0);
   EXPECT_FALSE(cylinder_triangle_intersect(c, {Vec3{1, 0, z}, Vec3{3, 0, 4}, Vec3{3, 1, 4}}));
   // An edge through the rim point (1, 0, 2) at 45 degrees, only touching the corner (x + z = 3).
-  EXPECT_TRUE(cylinder_triangle_intersect(c, {Vec3{0, 0, 3}, Vec3{3, 0, 0}, Vec3{3, 5, 0}}) ||
-              true);  // the face crosses; the pure-edge case follows
+  // The whole triangle lies in the plane x + z = 3, which supports the cylinder (x <= 1, z <= 2 in
+  // it) at that rim point alone; its edge from (0, 0, 3) to (3, 0, 0) passes through it (at 1/3).
+  // Hand-checked: contact at exactly one point, and none once the plane is one ulp farther out.
+  const Vec3 rim{1, 0, 2};
+  ASSERT_TRUE(point_in_cylinder(c, rim));
+  ASSERT_EQ(rim.x + rim.z, 3.0);
+  EXPECT_TRUE(cylinder_triangle_intersect(c, {Vec3{0, 0, 3}, Vec3{3, 0, 0}, Vec3{3, 5, 0}}));
+  EXPECT_FALSE(cylinder_triangle_intersect(
+      c, {Vec3{0, 0, std::nextafter(3.0, 4.0)}, Vec3{std::nextafter(3.0, 4.0), 0, 0}, Vec3{std::nextafter(3.0, 4.0), 5, 0}}));
   EXPECT_TRUE(cylinder_triangle_intersect(c, {Vec3{0, 0, 3}, Vec3{3, 0, 0}, Vec3{4, 0, 4}}));
   EXPECT_FALSE(cylinder_triangle_intersect(c, {Vec3{0, 0, std::nextafter(3.0, 4.0)}, Vec3{std::nextafter(3.0, 4.0), 0, 0},
                                                Vec3{4, 0, 4}}));

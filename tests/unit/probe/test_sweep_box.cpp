@@ -1,6 +1,6 @@
 // Sweep with a box-shaped holder (issue #5, item 2): a pose only the box hits (an inscribed holder
 // cylinder would miss, and the same box turned by 90 degrees misses), identical decisions for every
-// hierarchy against a filter-free brute force, the clearance is the brute-force minimum, the
+// hierarchy against a filter-free brute force, the clearance agrees with a dense-sampling oracle (sampled_clearance.h), the
 // continuous check finds a box contact that happens only between samples (pose paths twisting about
 // the axis and tilting it, a joint path turning the a axis), forward kinematics fills the reference direction
 // (hand-computed), and missing reference directions are rejected.
@@ -13,6 +13,7 @@
 #include "interfere/probe/export.h"
 #include "interfere/probe/generate.h"
 #include "interfere/probe/sweep.h"
+#include "sampled_clearance.h"
 
 using namespace interfere;
 using namespace interfere::probe;
@@ -153,15 +154,16 @@ TEST(ProbeSweepBox, ClearanceIsTheBruteForceMinimum) {
   int box_nearest = 0;
   for (std::size_t i = 0; i < path.size(); ++i) {
     ASSERT_FALSE(r.points[i].collides) << i;
-    double best = 1e300, box_best = 1e300;
-    const OrientedBox b = probe_holder_box(probe, path.poses[i]);
-    for (std::uint32_t t = 0; t < mesh.num_triangles(); ++t) {
-      best = std::min(best,
-                      cylinder_triangle_distance(probe_cylinders(probe, path.poses[i])[0], mesh.corners(t)).distance);
-      box_best = std::min(box_best, box_triangle_distance(b, mesh.corners(t)).distance);
-    }
-    EXPECT_DOUBLE_EQ(r.points[i].clearance, std::min(best, box_best)) << i;
-    box_nearest += box_best < best;
+    // Independent oracle (issue #23, item 14): dense samples of the probe's and the box's surfaces
+    // against the nearby triangles by np::closest_point_on_triangle; true <= sampled <= true + h.
+    const double reach = r.points[i].clearance + 2;
+    const oracle::Sampled sc = oracle::sample_cylinder(probe_cylinders(probe, path.poses[i])[0], 0.25);
+    const oracle::Sampled sb = oracle::sample_box(probe_holder_box(probe, path.poses[i]), 0.5);
+    const double cyl = oracle::sampled_distance(sc, mesh, reach), box = oracle::sampled_distance(sb, mesh, reach);
+    const double sampled = std::min(cyl, box), h = std::max(sc.h, sb.h);
+    EXPECT_LE(r.points[i].clearance, sampled + 1e-9) << i;
+    EXPECT_GE(r.points[i].clearance, sampled - h - 1e-9) << i;
+    box_nearest += box < cyl - sc.h;  // the box is provably the nearer body
   }
   EXPECT_GT(box_nearest, 0);
 }
