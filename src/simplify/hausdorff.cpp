@@ -1,6 +1,6 @@
 // Sampled Hausdorff distance between two meshes (issue #6, item 5) with the engine's BVH
-// (bvh/bvh.h) and its nearest-triangle search (query/distance.h, nearest_triangle_d2); and the upper bound of the input's distance to
-// the result (item 6, distance_bound.cpp).
+// (bvh/bvh.h) and its nearest-triangle search (query/distance.h, nearest_triangle_d2); and the
+// upper bound of the input's distance to the result (item 6, distance_bound.cpp).
 #include "interfere/simplify/hausdorff.h"
 
 #include <tbb/blocked_range.h>
@@ -25,14 +25,16 @@ Near nearest(const TriMesh& to, const Bvh& bvh, const Vec3& p, double stop_d2, s
   return n;
 }
 
-Sampled sample(const TriMesh& to, const Bvh& bvh, const std::array<Vec3, 3>& c, const std::array<Near, 3>& at,
-               const std::array<Near, 3>* mid, double stop_d2) {
+Sampled sample(const TriMesh& to, const Bvh& bvh, const std::array<Vec3, 3>& c,
+               const std::array<Near, 3>& at, const std::array<Near, 3>* mid, double stop_d2) {
   Sampled s{c, {}, at, {}, {}};
   for (int k = 0; k < 3; ++k) {
     s.m[k] = (c[k] + c[(k + 1) % 3]) * 0.5;
-    s.mid[k] = mid ? (*mid)[k] : nearest(to, bvh, s.m[k], stop_d2, nearer(at[k], at[(k + 1) % 3]).tri);
+    s.mid[k] =
+        mid ? (*mid)[k] : nearest(to, bvh, s.m[k], stop_d2, nearer(at[k], at[(k + 1) % 3]).tri);
   }
-  s.centre = nearest(to, bvh, (c[0] + c[1] + c[2]) / 3.0, stop_d2, nearer(nearer(at[0], at[1]), at[2]).tri);
+  s.centre = nearest(to, bvh, (c[0] + c[1] + c[2]) / 3.0, stop_d2,
+                     nearer(nearer(at[0], at[1]), at[2]).tri);
   return s;
 }
 
@@ -42,14 +44,17 @@ double Sampled::max_sample() const {
 
 }  // namespace detail
 
+using detail::BoundContext;
+using detail::convex_planar_regions;
+using detail::ConvexRegions;
 using detail::Fans;
 using detail::fans_of;
 using detail::local_bound;
 using detail::Near;
-using detail::nearest;
 using detail::nearer;
-using detail::ring_bound;
+using detail::nearest;
 using detail::refined_bound;
+using detail::ring_bound;
 using detail::sample;
 using detail::Sampled;
 
@@ -121,15 +126,17 @@ OneSidedDistance one_sided(const TriMesh& from, const TriMesh& to, bool with_bou
   // number; the other takes that result, the same bits ((p + q) / 2 = (q + p) / 2, the same
   // query): a third of the queries fewer, nothing changes (10^6 -> 10^4: 4.5 -> 3 million).
   std::vector<Near> mid(3 * nt);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nt, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t t = r.begin(); t < r.end(); ++t) {
-      const Tri& tr = from.triangles[t];
-      for (int k = 0; k < 3; ++k)
-        if (tr[k] < tr[(k + 1) % 3])
-          mid[3 * t + k] = nearest(to, bvh, (from.positions[tr[k]] + from.positions[tr[(k + 1) % 3]]) * 0.5,
-                                   sample_stop, nearer(vn[tr[k]], vn[tr[(k + 1) % 3]]).tri);
-    }
-  });
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, nt, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t t = r.begin(); t < r.end(); ++t) {
+          const Tri& tr = from.triangles[t];
+          for (int k = 0; k < 3; ++k)
+            if (tr[k] < tr[(k + 1) % 3])
+              mid[3 * t + k] =
+                  nearest(to, bvh, (from.positions[tr[k]] + from.positions[tr[(k + 1) % 3]]) * 0.5,
+                          sample_stop, nearer(vn[tr[k]], vn[tr[(k + 1) % 3]]).tri);
+        }
+      });
   const Fans from_fans = fans_of(from);
   // The midpoints of triangle t: its own or, for an edge running downwards, the twin's (the
   // triangle around its lower end where it runs upwards), else measured here.
@@ -154,10 +161,14 @@ OneSidedDistance one_sided(const TriMesh& from, const TriMesh& to, bool with_bou
           }
       }
       if (!found)
-        m[k] = nearest(to, bvh, (from.positions[a] + from.positions[b]) * 0.5, sample_stop, nearer(vn[a], vn[b]).tri);
+        m[k] = nearest(to, bvh, (from.positions[a] + from.positions[b]) * 0.5, sample_stop,
+                       nearer(vn[a], vn[b]).tri);
     }
     return m;
   };
+  const Fans to_fans = with_bound ? fans_of(to) : Fans{};
+  const ConvexRegions regions = with_bound ? convex_planar_regions(to) : ConvexRegions{};
+  const BoundContext ctx{to, bvh, to_fans, regions};
   std::vector<double> local(with_bound ? nt : 0);
   struct Max {
     double sampled = 0, local = 0;
@@ -170,37 +181,68 @@ OneSidedDistance one_sided(const TriMesh& from, const TriMesh& to, bool with_bou
           const Sampled s = sample(to, bvh, from.corners(t), corners_of(t), &mt, sample_stop);
           m.sampled = std::max(m.sampled, s.max_sample());
           if (!with_bound) continue;
-          local[t] = local_bound(to, s, kSlack * vertex_max);
+          local[t] = local_bound(ctx, s, kSlack * vertex_max);
           m.local = std::max(m.local, local[t]);
         }
         return m;
       },
-      [](Max x, Max y) { return Max{std::max(x.sampled, y.sampled), std::max(x.local, y.local)}; });
+      [](Max x, Max y) {
+        return Max{std::max(x.sampled, y.sampled), std::max(x.local, y.local)};
+      });
   out.sampled = std::max(vertex_max, m.sampled);
   const double floor = kSlack * out.sampled;
   double bound = m.local;
   if (with_bound && bound > floor) {
-    const Fans fans = fans_of(to);
-    bound = tbb::parallel_reduce(
-        tbb::blocked_range<std::size_t>(0, nt, 64), 0.0,
-        [&](const tbb::blocked_range<std::size_t>& r, double b) {
-          for (std::size_t t = r.begin(); t < r.end(); ++t) {
-            double x = local[t];
-            if (x > floor) {  // its samples again, exactly
-              const std::array<Vec3, 3> c = from.corners(t);
-              const Tri& tr = from.triangles[t];
-              const std::array<Near, 3> at{nearest(to, bvh, c[0], -1, vn[tr[0]].tri),
-                                           nearest(to, bvh, c[1], -1, vn[tr[1]].tri),
-                                           nearest(to, bvh, c[2], -1, vn[tr[2]].tri)};
-              const Sampled s = sample(to, bvh, c, at);
-              x = std::min(x, ring_bound(to, fans, s, floor));
-              if (x > floor) x = std::min(x, refined_bound(to, bvh, s, floor, 2));
-            }
-            b = std::max(b, x);
-          }
-          return b;
-        },
-        [](double x, double y) { return std::max(x, y); });
+    // Refinement (issue #23, item 12), worst first: the triangles above the floor in order of their
+    // local bound (ties by number), in batches of kBatch (parallel within, a fixed partition: the
+    // result is thread-independent); it stops when the next triangle's local bound is within what
+    // the refined ones reached (nothing left can raise or lower the maximum: early exit as in Taha
+    // & Hanbury 2015) or the floor, or after kRefineBudget + nt / 16 triangles: the bound is then
+    // the larger of the refined maximum and the next local bound, which bounds every triangle not
+    // refined (valid, only looser). Each refinement costs a bounded number of searches and
+    // polygons, so the bound costs O(n) searches whatever the triangles' shapes.
+    constexpr std::size_t kBatch = 256, kRefineBudget = 2048;
+    std::vector<std::uint32_t> over;
+    double below = 0;  // the largest local bound at or under the floor
+    for (std::uint32_t t = 0; t < nt; ++t) {
+      if (local[t] > floor)
+        over.push_back(t);
+      else
+        below = std::max(below, local[t]);
+    }
+    std::sort(over.begin(), over.end(), [&](std::uint32_t x, std::uint32_t y) {
+      return local[x] != local[y] ? local[x] > local[y] : x < y;
+    });
+    const std::size_t budget = std::min(over.size(), kRefineBudget + nt / 16);
+    // New searches may stop at half the floor: any triangle that near serves the bound as well.
+    const double refine_stop = stop_at(0.5 * floor);
+    double done = 0;
+    std::size_t i = 0;
+    while (i < budget && local[over[i]] > std::max(done, floor)) {
+      const std::size_t end = std::min(budget, i + kBatch);
+      done = std::max(done, tbb::parallel_reduce(
+                                tbb::blocked_range<std::size_t>(i, end, 8), 0.0,
+                                [&](const tbb::blocked_range<std::size_t>& r, double b) {
+                                  for (std::size_t j = r.begin(); j < r.end(); ++j) {
+                                    const std::uint32_t t = over[j];
+                                    const std::array<Vec3, 3> c = from.corners(t);
+                                    const Tri& tr = from.triangles[t];
+                                    const std::array<Near, 3> at{
+                                        nearest(to, bvh, c[0], refine_stop, vn[tr[0]].tri),
+                                        nearest(to, bvh, c[1], refine_stop, vn[tr[1]].tri),
+                                        nearest(to, bvh, c[2], refine_stop, vn[tr[2]].tri)};
+                                    const Sampled s = sample(to, bvh, c, at, nullptr, refine_stop);
+                                    double x = std::min(local[t], ring_bound(ctx, s, floor));
+                                    if (x > floor)
+                                      x = std::min(x, refined_bound(ctx, s, floor, 2, refine_stop));
+                                    b = std::max(b, x);
+                                  }
+                                  return b;
+                                },
+                                [](double x, double y) { return std::max(x, y); }));
+      i = end;
+    }
+    bound = std::max({done, below, i < over.size() ? local[over[i]] : 0.0});
   }
   // Rounding of the closest-point computations (relative 1e-11 seen on CAD slivers): a margin of
   // 1e-9 of the two meshes' joint extent.
