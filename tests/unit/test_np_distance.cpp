@@ -10,6 +10,7 @@
 
 #include "interfere/np/distance.h"
 #include "interfere/np/tri_tri.h"
+#include "unit/reference_distance.h"
 
 namespace interfere {
 namespace {
@@ -114,6 +115,10 @@ TEST(NpDistance, RandomPointTriangleIsOptimal) {
     // q in t (barycentric least squares residual) and optimal.
     const Vec3 tc[3] = {t[0], t[1], t[2]};
     ASSERT_TRUE(closest_pair_optimal(q, p, tc, 3, &p, 1, 1e-12)) << i;
+    // The optimality test alone accepts points off the triangle: q must lie on t, and the distance
+    // must be the independent reference's (unit/reference_distance.h).
+    ASSERT_LE(reference::point_triangle_distance(q, t), 1e-12) << i;
+    ASSERT_NEAR(distance(p, q), reference::point_triangle_distance(p, t), 1e-12) << i;
     // A few random points of t are never closer.
     for (int k = 0; k < 4; ++k) {
       double s = w(rng), r = w(rng);
@@ -136,6 +141,9 @@ TEST(NpDistance, RandomSegmentSegmentIsOptimal) {
     EXPECT_NEAR(c.distance, distance(c.p, c.q), 1e-15);
     const Vec3 pc[2] = {p0, p1}, qc[2] = {q0, q1};
     ASSERT_TRUE(closest_pair_optimal(c.p, c.q, pc, 2, qc, 2, 1e-12)) << i;
+    ASSERT_LE(reference::point_segment_distance(c.p, p0, p1), 1e-12) << i;  // on the segments
+    ASSERT_LE(reference::point_segment_distance(c.q, q0, q1), 1e-12) << i;
+    ASSERT_NEAR(c.distance, reference::segment_segment_distance(p0, p1, q0, q1), 1e-12) << i;
     for (int k = 0; k < 4; ++k) {
       const Vec3 x = p0 + (p1 - p0) * w(rng), y = q0 + (q1 - q0) * w(rng);
       ASSERT_LE(c.distance, distance(x, y) + 1e-12);
@@ -155,6 +163,10 @@ TEST(NpDistance, RandomTriangleTriangleIsOptimal) {
     ++checked;
     const ClosestPoints c = triangle_triangle_closest(a, b);
     ASSERT_TRUE(closest_pair_optimal(c.p, c.q, a.data(), 3, b.data(), 3, 1e-12)) << i;
+    ASSERT_LE(reference::point_triangle_distance(c.p, a), 1e-12) << i;  // on the triangles
+    ASSERT_LE(reference::point_triangle_distance(c.q, b), 1e-12) << i;
+    ASSERT_NEAR(c.distance, distance(c.p, c.q), 1e-15) << i;
+    ASSERT_NEAR(c.distance, reference::triangle_triangle_distance(a, b), 1e-12) << i;
     for (int k = 0; k < 4; ++k) {
       double s = w(rng), r = w(rng);
       if (s + r > 1) s = 1 - s, r = 1 - r;
