@@ -28,6 +28,7 @@ struct AssemblyClashCliOptions {
   StepTessellation tessellation;
   std::size_t depth_bound_splits = 5000;
   int threads = 0;
+  std::string fail_on;
 };
 
 #ifdef INTERFERE_HAS_CAD
@@ -77,6 +78,7 @@ void write_clash_geometry(const AssemblyClashCliOptions& o, const cad::CadModel&
 
 int run_assembly_clash(const AssemblyClashCliOptions& o) {
   if (!is_step_file(o.input)) throw InputError(o.input + ": assembly-clash takes a STEP file (.step, .stp)");
+  const FailOn failing = fail_on(o.fail_on);
   if (!(o.clearance >= 0 && std::isfinite(o.clearance)))
     throw InputError("--clearance must be a distance >= 0 (mm), not " + short_number(o.clearance));
   check_output(o.json, {}, "--json");
@@ -120,7 +122,8 @@ int run_assembly_clash(const AssemblyClashCliOptions& o) {
                      {"min_clearance", p.clearance_pairs > 0 ? nlohmann::json(p.min_clearance) : nlohmann::json(nullptr)},
                      {"depth", p.cross_pairs > 0 ? nlohmann::json(p.depth) : nlohmann::json(nullptr)},
                      {"depth_bound", p.depth_bound > 0 ? nlohmann::json(p.depth_bound) : nlohmann::json(nullptr)},
-                     {"tessellation_error", p.tessellation_error}, {"nominal_fit", p.nominal_fit}});
+                     {"tessellation_error", p.tessellation_error}, {"nominal_fit", p.nominal_fit},
+                     {"verdict", cad::instance_meeting_name(p.meeting)}, {"verdict_reasons", p.verdict_reasons}});
     std::string what = std::to_string(p.cross_pairs) + " crossing, " + std::to_string(p.touch_pairs) + " touching pairs";
     if (p.containment == Containment::a_inside_b || p.containment == Containment::b_inside_a)
       what = std::string(containment_name(p.containment));
@@ -134,6 +137,7 @@ int run_assembly_clash(const AssemblyClashCliOptions& o) {
               " (tessellation error " + short_number(p.tessellation_error) + " mm" +
               (p.depth <= p.tessellation_error ? ": a nominal fit?)" : ")");
     if (p.meeting == cad::InstanceMeeting::clearance) what = "closest " + short_number(p.min_clearance) + " mm";
+    for (const std::string& why : p.verdict_reasons) what += "; undecided: " + why;
     std::printf("%-9s %s x %s: %s\n", cad::instance_meeting_name(p.meeting), name(p.a).c_str(), name(p.b).c_str(),
                 what.c_str());
   }
@@ -142,8 +146,10 @@ int run_assembly_clash(const AssemblyClashCliOptions& o) {
     instances.push_back({{"name", i.name}, {"part", model->parts[i.part].name}, {"path", i.path},
                          {"triangles", model->parts[i.part].mesh.num_triangles()}, {"placement", i.placement.to_rows()}});
   std::printf("%zu instances, %zu candidate pairs: %zu clashes (%zu no deeper than the tessellation error), %zu contacts, "
-              "%zu within the clearance\n",
-              model->instances.size(), r.candidate_pairs, r.clashes, shallow, r.contacts, r.within_clearance);
+              "%zu within the clearance, %zu undecided: verdict %s\n",
+              model->instances.size(), r.candidate_pairs, r.clashes, shallow, r.contacts, r.within_clearance,
+              r.undecided, verdict_name(r.verdict));
+  const int status = verdict_exit_status(r.verdict, failing);
   if (!o.json.empty()) {
     std::vector<std::string> warnings = model->warnings;
     warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
@@ -151,12 +157,13 @@ int run_assembly_clash(const AssemblyClashCliOptions& o) {
                               {"units", model->units}, {"clearance", o.clearance}, {"instances", instances},
                               {"candidate_pairs", r.candidate_pairs}, {"clashes", r.clashes},
                               {"clashes_within_tessellation_error", shallow}, {"contacts", r.contacts},
-                              {"within_clearance", r.within_clearance}, {"pairs", pairs}, {"warnings", warnings},
-                              {"seconds", total.seconds()}};
-    const Status s = write_file_atomic(o.json, j.dump(2) + "\n");
+                              {"within_clearance", r.within_clearance}, {"undecided", r.undecided},
+                              {"verdict", verdict_name(r.verdict)}, {"exit_status", status}, {"pairs", pairs},
+                              {"warnings", warnings}, {"seconds", total.seconds()}};
+    const Status s = write_output(o.json, j.dump(2) + "\n");
     if (!s) throw InputError(s.error());
   }
-  return r.clashes > 0 ? kInterference : kClear;
+  return status;
 }
 #else
 int run_assembly_clash(const AssemblyClashCliOptions& o) {
@@ -182,6 +189,7 @@ void add_assembly_clash_command(CLI::App& app, int& exit_code) {
                 "splits per clashing pair for the upper bound of its depth (default 5000; more: tighter and slower; "
                 "0: none)");
   c->add_option("--threads", o->threads, "worker threads (0 = all cores)");
+  add_fail_on_option(*c, o->fail_on);
   add_step_tessellation_options(*c, o->tessellation);
   c->callback([o, &exit_code] { exit_code = run_assembly_clash(*o); });
 }

@@ -64,6 +64,7 @@ double max_stretch(const std::string& transform) {
 
 int run_clash(const ClashOptions& o, const CLI::App& command) {
   ResolvedParts parts = resolve_two_parts(o, command);
+  (void)fail_on(o.fail_on);  // checked before any work
   parts.tessellation.measure_deviation = o.conservative;  // (STEP inputs: the bound below)
   if (!(o.clearance >= 0) || !std::isfinite(o.clearance)) throw InputError("--clearance must be a finite number >= 0");
   // --conservative (issue #6, item 6): two touching originals have points of their simplified
@@ -104,10 +105,13 @@ int run_clash(const ClashOptions& o, const CLI::App& command) {
   const LoadedPart& pb = loaded.b;
   if (o.conservative) {
     // A STEP part's bound: BRepMesh's chordal tolerance, or the deviation measured after it where
-    // larger (BRepMesh may exceed its tolerance: sampled, not a proven bound; README).
+    // larger (BRepMesh may exceed its tolerance: sampled, not a proven bound; README); already in
+    // the working unit. A mesh file's stored bound is in its file's unit: scaled like the part.
     const auto step_bound = [](const LoadedPart& p) { return std::max(p.linear_deflection, p.tessellation_deviation); };
     if (is_step_file(parts.a.file)) bound_a = step_bound(pa) * max_stretch(parts.a.transform);
+    else bound_a *= pa.scale;
     if (is_step_file(parts.b.file)) bound_b = step_bound(pb) * max_stretch(parts.b.transform);
+    else bound_b *= pb.scale;
   }
   const double margin = bound_a + bound_b;
   request.clearance = o.clearance + margin;
@@ -125,7 +129,7 @@ int run_clash(const ClashOptions& o, const CLI::App& command) {
     std::string s;
     s.reserve(result.pairs.size() * 24);
     for (const TrianglePair& p : result.pairs) s += fmt::format("{} {} {}\n", p.a, p.b, kind_name(p.kind));
-    write_or_throw(write_file_atomic(o.pairs, s));
+    write_or_throw(write_output(o.pairs, s));
   }
   auto region_tris = [&](bool part_a) {
     std::vector<std::uint32_t> t;
@@ -157,7 +161,15 @@ int run_clash(const ClashOptions& o, const CLI::App& command) {
   std::size_t within_margin = 0;
   for (const ClearancePair& c : result.clearance) within_margin += c.distance < margin ? 1 : 0;
   const bool possible = result.interference() || within_margin > 0;
-  const int status = (o.conservative ? possible : result.interference()) ? kInterference : kClear;
+  if (o.conservative && possible && result.verdict != Verdict::clash) {
+    // The simplified parts touch or come within their error bounds: the originals may clash or
+    // not; neither is proved (issue #23, item 13: never a silent clear, never a clash not seen).
+    result.verdict = Verdict::undecided;
+    result.verdict_reasons.push_back(fmt::format(
+        "{} triangle pairs meet or lie within the error bounds ({:g}): the original parts may clash",
+        result.pairs.size() + within_margin, margin));
+  }
+  const int status = verdict_exit_status(result.verdict, fail_on(o.fail_on));
   if (!o.json.empty()) {
     nlohmann::json j = two_part_report("clash", parts.units, loaded, query_seconds, total.seconds());
     j["options"] = {{"test", o.test}, {"broadphase", o.broadphase}, {"builder", o.builder},
@@ -168,9 +180,10 @@ int run_clash(const ClashOptions& o, const CLI::App& command) {
       j["conservative"] = {{"error_bound_a", bound_a}, {"error_bound_b", bound_b}, {"margin", margin},
                            {"clearance", o.clearance + margin}, {"pairs_within_margin", within_margin},
                            {"possible_clash", possible}};
+    j["verdict"] = verdict_name(result.verdict);
     j["warnings"] = result.warnings;
     j["exit_status"] = status;
-    write_or_throw(write_file_atomic(o.json, j.dump(2) + "\n"));
+    write_or_throw(write_output(o.json, j.dump(2) + "\n"));
   }
 
   print_clash_summary(result, parts.units);

@@ -39,6 +39,9 @@ std::string file_id(const std::string& name) {
 // One run; `model`: the STEP input already imported (--step all imports it once for every step).
 int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedModel* model = nullptr) {
   const SimplifyOutput output = check_simplify_options(o);
+  // The input's unit (issue #23, item 6): a glTF output is written in metres, as its
+  // specification says, so mesh coordinates in mm are scaled by the root node.
+  const PartUnit input_unit = part_unit({.file = o.input, .units = o.units, .units_flag = "--units"});
   const bool glb = output.glb;
   const MeshFormat out_format = output.format;
   if (!o.parts_dir.empty()) {  // after the checks, before any work
@@ -152,7 +155,7 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
                           r.error_bound, o.crease_angle});
         ginst.push_back({gparts[0].name, 0, Transform{}});
       }
-      s = write_glb(o.output, gparts, ginst, per_part ? "mm" : "", output.container);
+      s = write_glb(o.output, gparts, ginst, per_part ? "mm" : input_unit.unit, output.container);
     } else {
       s = write_tagged_mesh(o.output, r.mesh, r.face_ids, so.feature_faces, out_format, r.error_bound);
     }
@@ -179,6 +182,8 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
   }
 #endif
   add_result_report(report, r, so, o);
+  if (!report.contains("units")) report["units"] = input_unit.unit;
+  report["units_source"] = input_unit.source;
   if (o.check_self) report["self_intersections"] = self;
   report["seconds"] = {{"simplify", seconds}, {"total", total.seconds()}};
   nlohmann::json phases = nlohmann::json::array();  // wall time per phase of simplify(), in order
@@ -191,7 +196,7 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
   for (const auto& w : r.warnings)
     warning(w);
   if (!o.json.empty()) {
-    const Status s = write_file_atomic(o.json, report.dump(2) + "\n");
+    const Status s = write_output(o.json, report.dump(2) + "\n");
     if (!s) throw InputError(s.error());
   }
   std::string error = "error not measured";
@@ -221,6 +226,7 @@ std::string with_step(const std::string& file, const std::string& step) {
 int run_all_steps(const SimplifyCliOptions& o) {
 #ifdef INTERFERE_HAS_CAD
   if (o.process.empty()) throw InputError("--step all needs --process FILE");
+  if (o.json == "-") throw InputError("--json -: --step all writes one report per step (JSON_<step>.json): give a file name");
   if (!is_step_file(o.input)) throw InputError("--step/--process need a STEP input (features are recognised on the B-Rep)");
   // The library, the rules and every step of the process are checked before the import and before
   // any output is written.
@@ -295,6 +301,9 @@ void add_simplify_command(CLI::App& app, int& exit_code) {
                 "weight (paper: + maximum unmodified cost), last (feature edges strictly last) or lock");
   c->add_option("--sharp-angle", o->sharp_angle, "plain meshes: keep edges whose dihedral angle exceeds DEG degrees")
       ->excludes(regions);
+  c->add_option("--units", o->units,
+                "unit of a mesh input's coordinates (mm, cm, m, um, in, ft; default: m for glTF, mm otherwise; a STEP "
+                "file's is its own): a glTF output is scaled to metres");
   c->add_option("--crease-angle", o->crease_angle,
                 "glTF output of a mesh without faces or regions: NORMAL is smooth across edges up to DEG degrees, "
                 "split across sharper ones (default 40)");

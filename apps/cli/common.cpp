@@ -1,13 +1,24 @@
 #include "common.h"
 
+#include "interfere/core/atomic_file.h"
+#include "interfere/core/coordinate_range.h"
 #include "interfere/query/clash.h"
+#include "interfere/core/units.h"
+#include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cctype>
+#include <cerrno>
+#include <cstring>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <memory>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <tbb/global_control.h>
 #include <tbb/info.h>
@@ -28,15 +39,18 @@ double Progress::seconds() const {
 }
 
 namespace {
-// Reads, validates and poses one part (p' = R·p + t in double); the tree is built later.
-LoadedPart read_part(const PartSpec& spec, const std::string& label, const StepTessellation& tessellation,
-                     TriMesh& mesh) {
+// Reads, validates, converts to the working unit and poses one part (p' = R·(s·p) + t in double);
+// the tree is built later.
+LoadedPart read_part(const PartSpec& spec, const std::string& label, const std::string& working_unit,
+                     const StepTessellation& tessellation, TriMesh& mesh) {
   LoadedPart p;
   p.file = spec.file;
+  p.unit = part_unit(spec);
+  p.scale = unit_in_mm(p.unit.unit, p.unit.source) / unit_in_mm(working_unit, "--units");
   if (!spec.transform.empty()) {
-    auto t = Transform::parse(spec.transform);
-    if (!t) throw InputError("--transform-" + label + ": " + t.error().reason);
-    p.transform = *t;
+    // (Checked by resolve_two_parts already; a caller that skipped it gets the same message.)
+    p.transform = parse_transform(spec.transform, spec.transform_flag.empty() ? "--transform-" + std::string(label == "A" ? "a" : "b")
+                                                                               : spec.transform_flag);
   }
   {
     Progress progress("reading " + label + " (" + spec.file + ")");
@@ -48,11 +62,36 @@ LoadedPart read_part(const PartSpec& spec, const std::string& label, const StepT
     p.warnings = std::move(m.warnings);
     p.read_seconds = progress.seconds();
   }
+  if (const std::string note = p.transform.non_rigid_note(); !note.empty()) {  // scaled, sheared, mirrored
+    p.warnings.push_back("part " + label + " (" + spec.file + "): " + note);
+    warning(p.warnings.back());
+  }
+  if (p.scale != 1) {
+    // Into the working unit before anything else (issue #23, item 6): queries see one unit.
+    for (Vec3& v : mesh.positions) v = v * p.scale;
+    p.linear_deflection *= p.scale;
+    if (p.tessellation_deviation > 0) p.tessellation_deviation *= p.scale;
+  }
   if (!p.transform.is_identity()) mesh = transformed(mesh, p.transform);
-  for (const Vec3& v : mesh.positions) {
-    if (!is_finite(v)) throw InputError(spec.file + ": transform produced a non-finite coordinate");
+  if (p.scale != 1 || !p.transform.is_identity()) {
+    // The coordinate range of the exact predicates (issue #23, item 7): the reader checked the
+    // file's own coordinates, this the ones the queries see.
+    if (const std::size_t i = first_out_of_range(mesh.positions); i < mesh.positions.size())
+      throw InputError(spec.file + ": vertex " + std::to_string(i) + " (after welding), once " +
+                       (p.transform.is_identity() ? "converted to " + working_unit
+                                                  : "converted to " + working_unit + " and transformed") +
+                       ": " + coordinate_range_reason(mesh.positions[i]));
   }
   return p;
+}
+
+// The bounding-box diagonal of a mesh (0 when empty).
+double diagonal(const TriMesh& m) {
+  if (m.positions.empty()) return 0;
+  Vec3 lo = m.positions[0], hi = lo;
+  for (const Vec3& v : m.positions)
+    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], v[k]), hi[k] = std::max(hi[k], v[k]);
+  return norm(hi - lo);
 }
 
 void warn_about(LoadedPart& p, const std::string& label) {
@@ -73,8 +112,21 @@ void warn_about(LoadedPart& p, const std::string& label) {
 LoadedParts load_parts(const ResolvedParts& parts) {
   LoadedParts r;
   TriMesh ma, mb;  // read one after the other, so an input error always names the first bad file
-  r.a = read_part(parts.a, "A", parts.tessellation, ma);
-  r.b = read_part(parts.b, "B", parts.tessellation, mb);
+  r.a = read_part(parts.a, "A", parts.units, parts.tessellation, ma);
+  r.b = read_part(parts.b, "B", parts.units, parts.tessellation, mb);
+  {
+    // Parts of one assembly rarely differ in size by two orders of magnitude; a unit mistake
+    // (a glTF in metres beside a mesh in mm given without --units-a/-b) does.
+    const double da = diagonal(ma), db = diagonal(mb);
+    if (da > 0 && db > 0 && std::max(da, db) > 100 * std::min(da, db)) {
+      const std::string w = fmt::format(
+          "the parts' sizes differ by more than 100x (A {:g} {}, unit {} from {}; B {:g} {}, unit {} from {}): "
+          "check their units (--units-a, --units-b)",
+          da, parts.units, r.a.unit.unit, r.a.unit.source, db, parts.units, r.b.unit.unit, r.b.unit.source);
+      r.a.warnings.push_back(w);
+      warning(w);
+    }
+  }
   {
     Progress progress("building trees (A: " + std::to_string(ma.num_triangles()) + ", B: " +
                       std::to_string(mb.num_triangles()) + " triangles)");
@@ -98,15 +150,27 @@ LoadedParts load_parts(const ResolvedParts& parts) {
   return r;
 }
 
+Transform parse_transform(const std::string& text, const std::string& flag) {
+  auto t = Transform::parse(text);
+  if (!t) throw InputError(flag + ": " + t.error().reason);
+  return *t;
+}
+
 namespace {
+// The transform of a scene part as the text Transform::parse reads, checked (an empty string or
+// array is an error, not the identity).
 std::string transform_from_json(const nlohmann::json& j, const std::string& where) {
-  if (j.is_string()) return j.get<std::string>();
+  if (j.is_string()) {
+    (void)parse_transform(j.get<std::string>(), where);
+    return j.get<std::string>();
+  }
   if (j.is_array()) {
     std::string s;  // JSON's own number text keeps every digit
     for (const auto& x : j) {
       if (!x.is_number()) throw InputError(where + ": transform entries must be numbers");
       s += x.dump() + " ";
     }
+    (void)parse_transform(s, where);
     return s;
   }
   throw InputError(where + ": transform must be an array of 12 numbers or a string");
@@ -136,10 +200,25 @@ void apply_scene(const std::string& scene_path, PartSpec& a, PartSpec& b, std::s
       std::filesystem::path f = p["file"].get<std::string>();
       spec.file = (f.is_relative() ? dir / f : f).string();
     }
-    if (spec.transform.empty() && p.contains("transform")) {
-      spec.transform = transform_from_json(p["transform"], scene_path + ": part \"" + key + "\"");
+    if (p.contains("transform")) {
+      const std::string where = scene_path + ": part \"" + key + "\" \"transform\"";
+      const std::string t = transform_from_json(p["transform"], where);  // checked even when the command line wins
+      if (spec.transform.empty()) spec.transform = t, spec.transform_flag = where;
     }
+    if (p.contains("units")) {
+      if (!p["units"].is_string()) throw InputError(scene_path + ": part \"" + key + "\": \"units\" must be a string");
+      if (spec.units.empty()) {
+        spec.units = p["units"].get<std::string>();
+        spec.units_flag = scene_path + ": part \"" + key + "\" \"units\"";
+      }
+    }
+    for (const auto& [k, v] : p.items())
+      if (k != "file" && k != "transform" && k != "units")
+        throw InputError(scene_path + ": part \"" + key + "\": unknown key \"" + k + "\" (file, transform, units)");
   };
+  for (const auto& [k, v] : j.items())
+    if (k != "a" && k != "b" && k != "units")
+      throw InputError(scene_path + ": unknown key \"" + k + "\" (a, b, units)");
   part("a", a);
   part("b", b);
   if (j.contains("units")) {
@@ -157,21 +236,56 @@ BvhBuilder parse_builder(const std::string& name) {
   throw InputError("--builder: unknown builder '" + name + "' (lbvh, lbvh_treelet, sah, median, insertion)");
 }
 
-void check_units(const std::string& units) {
-  for (const char* u : {"mm", "cm", "m", "um", "in", "ft"}) {
-    if (units == u) return;
+void add_fail_on_option(CLI::App& command, std::string& fail_on_text) {
+  command.add_option("--fail-on", fail_on_text,
+                     "exit 1 also on these verdicts: contact, clearance or both, comma-separated (default: clash "
+                     "only; undecided always exits 3)");
+}
+
+FailOn fail_on(const std::string& fail_on_text) {
+  if (fail_on_text.empty()) return {};
+  const std::optional<FailOn> f = parse_fail_on(fail_on_text);
+  if (!f) throw InputError("--fail-on: unknown verdict in '" + fail_on_text + "' (clash, contact, clearance)");
+  return *f;
+}
+
+void check_units(const std::string& units) { (void)unit_in_mm(units, "--units"); }
+
+double unit_in_mm(const std::string& unit, const std::string& what) {
+  const std::optional<double> mm = millimetres_per_unit(unit);
+  if (!mm) throw InputError(what + ": unknown unit '" + unit + "' (" + known_units() + ")");
+  return *mm;
+}
+
+PartUnit part_unit(const PartSpec& spec) {
+  const std::string ext = lower_extension(spec.file);
+  if (is_step_file(spec.file)) {
+    if (!spec.units.empty())
+      throw InputError(spec.units_flag + ": " + spec.file +
+                       " is a STEP file, which carries its own length unit (read in mm): give no unit for it");
+    return {"mm", "STEP file (its length unit, converted to mm)"};
   }
-  throw InputError("--units: unknown unit '" + units + "' (mm, cm, m, um, in, ft)");
+  if (!spec.units.empty()) {
+    (void)unit_in_mm(spec.units, spec.units_flag);
+    return {spec.units, "given (" + spec.units_flag + ")"};
+  }
+  if (ext == ".glb" || ext == ".gltf") return {"m", "glTF (metres by its specification)"};
+  return {"mm", "default (mm; give --units-a/--units-b when not)"};
 }
 
 void print_clash_summary(const ClashResult& result, const std::string& units) {
   double curve_length = 0;
   for (const ClashRegion& g : result.regions) curve_length += g.curve_length;
+  // The verdict first, upper case when the exit status says something is wrong (clash, undecided).
+  std::string verdict = verdict_name(result.verdict);
+  if (result.verdict == Verdict::clash || result.verdict == Verdict::undecided)
+    for (char& ch : verdict) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
   std::printf("%s: %zu pairs (%zu cross, %zu touch), %zu regions, curve length %.6g %s, containment %s",
-              result.interference() ? "INTERFERENCE" : "clear", result.pairs.size(), result.cross_pairs,
+              verdict.c_str(), result.pairs.size(), result.cross_pairs,
               result.touch_pairs, result.regions.size(), curve_length, units.c_str(),
               containment_name(result.containment));
   if (result.touching_overlap) std::printf(", the solids overlap behind touching faces");
+  for (const std::string& why : result.verdict_reasons) std::printf("; undecided: %s", why.c_str());
 }
 
 std::string lower_extension(const std::string& path) {
@@ -180,8 +294,55 @@ std::string lower_extension(const std::string& path) {
   return ext;
 }
 
+namespace {
+// Standard output as a report (issue #23, item 11). The first output taken as standard output
+// moves the process's descriptor 1 to a new descriptor (g_report_fd) and points 1 at stderr:
+// every printf of the command (summary lines) then lands on stderr, the report alone on stdout.
+int g_report_fd = -1;
+std::vector<std::string> g_stdout_paths;  // the paths check_output took as standard output
+
+bool names_standard_output(const std::string& path) {
+  if (path == "-") return true;
+  if (g_report_fd >= 0) return false;  // (after the move, /dev/stdout would name stderr)
+  struct stat out {}, st {};
+  if (::fstat(STDOUT_FILENO, &out) != 0 || ::stat(path.c_str(), &st) != 0) return false;
+  return out.st_dev == st.st_dev && out.st_ino == st.st_ino;
+}
+
+void claim_standard_output(const std::string& path) {
+  g_stdout_paths.push_back(path);
+  if (g_report_fd >= 0) return;
+  std::fflush(stdout);
+  g_report_fd = ::fcntl(STDOUT_FILENO, F_DUPFD_CLOEXEC, 3);
+  if (g_report_fd < 0) throw InputError("cannot write a report on standard output: " + std::string(std::strerror(errno)));
+  if (::dup2(STDERR_FILENO, STDOUT_FILENO) < 0)
+    throw InputError("cannot move the summary to stderr: " + std::string(std::strerror(errno)));
+}
+}  // namespace
+
+bool is_standard_output(const std::string& path) {
+  return !path.empty() && std::find(g_stdout_paths.begin(), g_stdout_paths.end(), path) != g_stdout_paths.end();
+}
+
+Status write_output(const std::string& path, const std::function<int(std::FILE*)>& body) {
+  if (is_standard_output(path)) return write_to_descriptor(g_report_fd, path == "-" ? "standard output" : path, body);
+  return write_file_atomic(path, body);
+}
+
+Status write_output(const std::string& path, std::string_view content) {
+  return write_output(path, [content](std::FILE* f) {
+    return std::fwrite(content.data(), 1, content.size(), f) == content.size() ? 0 : (errno ? errno : EIO);
+  });
+}
+
 void check_output(const std::string& path, const std::vector<std::string>& extensions, const char* flag) {
   if (path.empty()) return;
+  if (path == "-" && !extensions.empty())
+    throw InputError(std::string(flag) + ": '-' (standard output) is for text reports; give a file name for this output");
+  if (extensions.empty() && names_standard_output(path)) {
+    claim_standard_output(path);
+    return;
+  }
   const std::filesystem::path p(path);
   const std::string ext = lower_extension(path);
   bool ok = extensions.empty();
@@ -192,6 +353,15 @@ void check_output(const std::string& path, const std::vector<std::string>& exten
     throw InputError(std::string(flag) + ": " + path + ": directory does not exist");
   }
   if (std::filesystem::is_directory(p)) throw InputError(std::string(flag) + ": " + path + ": is a directory");
+  // A symbolic link is written through: its final target's directory must exist too.
+  const Expected<std::filesystem::path> target = resolve_output_path(p);
+  if (!target) throw InputError(std::string(flag) + ": " + path + ": " + target.error().reason);
+  if (*target != p) {
+    const std::filesystem::path tdir = target->parent_path().empty() ? std::filesystem::path(".") : target->parent_path();
+    if (!std::filesystem::is_directory(tdir))
+      throw InputError(std::string(flag) + ": " + path + ": symbolic link to " + target->string() +
+                       ", whose directory does not exist");
+  }
 }
 
 namespace {
@@ -214,6 +384,12 @@ void check_distinct_files(const std::vector<NamedPath>& inputs, const std::vecto
   for (std::size_t i = 0; i < outputs.size(); ++i) {
     const NamedPath& out = outputs[i];
     if (out.path.empty()) continue;
+    if (out.path == "-" || is_standard_output(out.path)) {  // one report per standard output, no input there
+      for (std::size_t k = 0; k < i; ++k)
+        if (outputs[k].path == "-" || is_standard_output(outputs[k].path))
+          throw InputError(out.flag + " and " + outputs[k].flag + " both write to standard output: give one a file name");
+      continue;
+    }
     for (const NamedPath& in : inputs)
       if (!in.path.empty() && same_file(out.path, in.path))
         throw InputError(out.flag + ": " + out.path + " is the input file of " + in.flag +
@@ -256,7 +432,8 @@ nlohmann::json stats_json(const MeshStats& s) {
 }
 
 nlohmann::json part_json(const LoadedPart& p) {
-  nlohmann::json j = {{"file", p.file}, {"format", p.format}};
+  nlohmann::json j = {{"file", p.file}, {"format", p.format}, {"units", p.unit.unit}, {"units_source", p.unit.source},
+                      {"scale_to_working_unit", p.scale}};
   j.update(stats_json(p.model.stats));
   if (p.format == "step") {
     j["linear_deflection"] = p.linear_deflection;
@@ -277,18 +454,34 @@ void add_two_part_options(CLI::App& c, TwoPartOptions& o) {
   c.add_option("--json", o.json, "write the JSON report here");
   c.add_option("--threads", o.threads, "worker threads (0 = all cores)");
   c.add_option("--builder", o.builder, "tree builder: lbvh (default), lbvh_treelet, sah, median, insertion");
-  c.add_option("--units", o.units, "length unit of the inputs, reported (mm, cm, m, um, in, ft)");
+  c.add_option("--units", o.units,
+               "working unit: every part is converted to it before any query, and the report is in it (mm, cm, "
+               "m, um, in, ft; default mm)");
+  c.add_option("--units-a", o.a.units,
+               "unit of A's coordinates (default: metres for glTF, the file's own for STEP, mm otherwise)");
+  c.add_option("--units-b", o.b.units, "unit of B's coordinates (as --units-a)");
+  add_fail_on_option(c, o.fail_on);
   add_step_tessellation_options(c, o.tessellation);
 }
 
 ResolvedParts resolve_two_parts(const TwoPartOptions& o, const CLI::App& command) {
   ResolvedParts r{.a = o.a, .b = o.b, .units = o.units, .tessellation = o.tessellation};
+  // Transforms given on the command line: an empty one is an error (it used to mean the identity),
+  // every one is checked before any work (Transform::parse: 12 finite numbers, det R != 0).
+  for (auto [spec, flag] : {std::pair{&r.a, "--transform-a"}, std::pair{&r.b, "--transform-b"}}) {
+    if (command.count(flag) == 0) continue;
+    spec->transform_flag = flag;
+    (void)parse_transform(spec->transform, flag);
+  }
   if (!o.scene.empty()) apply_scene(o.scene, r.a, r.b, r.units);
   if (r.a.file.empty() || r.b.file.empty())
     throw InputError(command.get_name() + ": two parts are needed (A B, or --scene)");
   if (r.units.empty()) r.units = "mm";
   check_units(r.units);
-  check_step_units({r.a.file, r.b.file}, r.units);
+  if (r.a.units_flag.empty()) r.a.units_flag = "--units-a";
+  if (r.b.units_flag.empty()) r.b.units_flag = "--units-b";
+  (void)part_unit(r.a);  // unit errors before any work
+  (void)part_unit(r.b);
   resolve_step_tessellation(command, r.tessellation, {r.a.file, r.b.file});
   r.bvh.builder = parse_builder(o.builder);
   return r;

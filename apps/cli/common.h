@@ -1,6 +1,9 @@
 // Shared CLI plumbing: loading posed parts, scene files, progress lines, exit codes.
 #pragma once
 #include <chrono>
+#include <cstdio>
+#include <functional>
+#include <string_view>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -12,6 +15,7 @@
 #include "interfere/core/transform.h"
 #include "interfere/mesh/io.h"
 #include "interfere/query/model.h"
+#include "interfere/query/verdict.h"
 
 namespace CLI {
 class App;
@@ -19,8 +23,10 @@ class App;
 
 namespace interfere::cli {
 
-/// Exit status (documented in the README): 0 no interference, 1 interference, 2 usage/input error.
-enum ExitCode : int { kClear = 0, kInterference = 1, kInputError = 2 };
+/// Exit status (documented in the README and docs/robustness.md): 0 clear, contact or clearance
+/// (unless --fail-on says otherwise), 1 clash, 2 usage/input error, 3 undecided (the engine could
+/// not decide: never reported as clear). interfere::verdict_exit_status maps a Verdict to it.
+enum ExitCode : int { kClear = 0, kInterference = 1, kInputError = 2, kUndecided = 3 };
 
 /// Thrown by command code for usage/input errors; main() prints it and exits with 2.
 struct InputError : std::runtime_error {
@@ -83,12 +89,31 @@ bool is_step_file(const std::string& file);
 
 struct PartSpec {
   std::string file;
-  std::string transform;  ///< 12 numbers, empty = identity
+  std::string transform;  ///< 12 numbers, empty = identity (translation in the working unit)
+  std::string transform_flag;  ///< where `transform` came from, for messages ("--transform-a", "scene.json: part \"a\" \"transform\"")
+  /// The unit of the file's coordinates (--units-a/-b, a scene part's "units"); empty: by the
+  /// format (part_unit()).
+  std::string units;
+  std::string units_flag;  ///< where `units` came from, for messages ("--units-a", "scene.json: part \"a\"")
 };
+
+/// The unit of a part's coordinates and where it comes from (issue #23, item 6): given
+/// (--units-a/-b or the scene) wins for mesh and FEM files; glTF is in metres by its
+/// specification; STEP files carry their own length unit, which OpenCASCADE converts to mm (giving
+/// a unit for a STEP file is an error); other files default to mm.
+struct PartUnit {
+  std::string unit;    ///< mm, cm, m, um, in, ft
+  std::string source;  ///< "given (--units-a)", "glTF (metres by its specification)", "STEP file", "default"
+};
+PartUnit part_unit(const PartSpec& spec);
+/// Millimetres per unit; throws InputError naming `what` for an unknown unit.
+double unit_in_mm(const std::string& unit, const std::string& what);
 
 struct LoadedPart {
   std::string file;
   std::string format;  ///< mesh_format_name, or "step"
+  PartUnit unit;            ///< of the file's coordinates
+  double scale = 1;         ///< file units to the working unit (applied before the transform)
   Transform transform;
   Model model;
   double linear_deflection = 0;         ///< PartMesh::linear_deflection (STEP inputs)
@@ -104,13 +129,19 @@ struct LoadedParts {
   double build_seconds = 0;  ///< wall time of building both models (they are built concurrently)
 };
 
-/// Reads, validates and poses (p' = R·p + t in double) both parts, A first, then builds their
-/// models concurrently and collects the input warnings.
+/// Reads, validates, converts to the working unit `parts.units` (each part's unit: part_unit) and
+/// poses (p' = R·(s·p) + t in double) both parts, A first, then builds their models concurrently
+/// and collects the input warnings (also: the parts' sizes differ by more than 100x, a likely unit
+/// mistake).
 LoadedParts load_parts(const ResolvedParts& parts);
 
-/// Fills part specs from a scene JSON file: {"a": {"file": ..., "transform": [12] | "..."}, "b": ...,
-/// "units": "mm"}. Files are relative to the scene's directory. Command-line values win.
+/// Fills part specs from a scene JSON file: {"a": {"file": ..., "transform": [12] | "...", "units":
+/// "m"}, "b": ..., "units": "mm"} (top-level "units": the working unit; a part's: its file's).
+/// Files are relative to the scene's directory. Command-line values win. Unknown keys are errors.
 void apply_scene(const std::string& scene_path, PartSpec& a, PartSpec& b, std::string& units);
+/// Transform::parse, throwing InputError "FLAG: reason" (empty, not 12 numbers, non-finite,
+/// singular: issue #23, item 8).
+Transform parse_transform(const std::string& text, const std::string& flag);
 
 BvhBuilder parse_builder(const std::string& name);
 void check_units(const std::string& units);
@@ -130,7 +161,18 @@ void print_clash_summary(const ClashResult& result, const std::string& units);
 /// The file's extension, lower case, with its dot (".stl"; "" without one).
 std::string lower_extension(const std::string& path);
 
+/// Standard output as an output (issue #23, item 11): "-" means standard output, and so does a
+/// path that names the file standard output already is (/dev/stdout, /proc/self/fd/1, or the file
+/// the shell redirected it to). Text reports are then written there directly; every other line the
+/// command prints on stdout (its summary) goes to stderr, so the report stays parseable. Mesh
+/// outputs (check_output with an extension list) reject "-".
 void check_output(const std::string& path, const std::vector<std::string>& extensions, const char* flag);
+/// Whether check_output took `path` as standard output.
+bool is_standard_output(const std::string& path);
+/// Writes a text output: to standard output when check_output took `path` as it, otherwise
+/// through write_file_atomic (a symbolic link written through, a special file written directly).
+Status write_output(const std::string& path, std::string_view content);
+Status write_output(const std::string& path, const std::function<int(std::FILE*)>& body);
 /// A file a command reads or writes, with the flag or argument that names it ("IN", "--json").
 struct NamedPath {
   std::string flag, path;
@@ -142,6 +184,12 @@ void check_distinct_files(const std::vector<NamedPath>& inputs, const std::vecto
 /// Throws InputError when a write failed.
 void write_or_throw(const Status& s);
 
+/// Registers `--fail-on clash|contact|clearance` (comma-separated; default clash) on a command
+/// that reports verdicts; parse the stored text with fail_on().
+void add_fail_on_option(CLI::App& command, std::string& fail_on_text);
+/// The parsed --fail-on value; throws InputError on an unknown name.
+FailOn fail_on(const std::string& fail_on_text);
+
 /// Sets the oneTBB thread count for the rest of the process (0 = all cores).
 void set_threads(int threads);
 int active_threads();
@@ -152,11 +200,12 @@ nlohmann::json stats_json(const MeshStats& s);
 /// Options shared by the two-part commands (clash, distance).
 struct TwoPartOptions {
   PartSpec a, b;
-  std::string scene, units, json, builder = "lbvh";
+  std::string scene, units, json, builder = "lbvh";  ///< units: the working unit (--units)
+  std::string fail_on;  ///< --fail-on (fail_on())
   int threads = 0;
   StepTessellation tessellation;
 };
-/// Registers A, B, --scene, --transform-a/-b, --json, --threads, --builder, --units,
+/// Registers A, B, --scene, --transform-a/-b, --json, --threads, --builder, --units, --fail-on,
 /// --linear-deflection, --angular-deflection.
 void add_two_part_options(CLI::App& command, TwoPartOptions& o);
 

@@ -47,7 +47,9 @@ nlohmann::json clash_result_json(const ClashResult& r, std::size_t max_clearance
   }
   double total_curve = 0;
   for (const ClashRegion& g : r.regions) total_curve += g.curve_length;
-  return {{"interference", r.interference()},
+  return {{"verdict", verdict_name(r.verdict)},
+          {"verdict_reasons", r.verdict_reasons},
+          {"interference", r.interference()},
           {"pairs", r.pairs.size()},
           {"cross_pairs", r.cross_pairs},
           {"touch_pairs", r.touch_pairs},

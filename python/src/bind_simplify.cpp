@@ -370,7 +370,9 @@ void bind_simplify(py::module_& m) {
                                 py::arg("min_clearance") = q.min_clearance, py::arg("depth") = q.depth,
                                 py::arg("depth_bound") = q.depth_bound,
                                 py::arg("tessellation_error") = q.tessellation_error,
-                                py::arg("nominal_fit") = q.nominal_fit);
+                                py::arg("nominal_fit") = q.nominal_fit,
+                                py::arg("verdict") = cad::instance_meeting_name(q.meeting),
+                                py::arg("verdict_reasons") = q.verdict_reasons);
           if (geometry) {
             d["curves"] = q.curves;
             d["region_triangles_a"] = q.region_triangles_a;
@@ -384,6 +386,8 @@ void bind_simplify(py::module_& m) {
         out["clashes"] = r.clashes;
         out["contacts"] = r.contacts;
         out["within_clearance"] = r.within_clearance;
+        out["undecided"] = r.undecided;
+        out["verdict"] = verdict_name(r.verdict);
         std::vector<std::string> warnings = model->warnings;
         warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
         out["warnings"] = warnings;
@@ -392,12 +396,12 @@ void bind_simplify(py::module_& m) {
       py::arg("path"), py::arg("clearance") = 0.0, py::arg("linear_deflection") = 0.0, py::arg("angular_deflection") = 0.5,
       py::arg("geometry") = false,
       "`interfere assembly-clash` of a STEP file: every pair of instances that meets, as a dict with pairs [{a, b, "
-      "a_name, b_name, meeting ('clash', 'contact', 'clearance'), cross_pairs, touch_pairs, touching_overlap, "
+      "a_name, b_name, meeting and verdict ('clash', 'contact', 'clearance', 'undecided'), verdict_reasons, cross_pairs, touch_pairs, touching_overlap, "
       "containment, curve_length, clearance_pairs, min_clearance, depth (sampled), depth_bound (an upper bound, for "
       "clashes; else 0), tessellation_error, nominal_fit; with "
       "geometry=True also curves (Polylines, world coordinates) and region_triangles_a/_b (each instance's clash-region "
       "triangles, indices into its part's mesh; empty unless the pair clashes)}], candidate_pairs, clashes, contacts, "
-      "within_clearance, warnings. ValueError on bad input.");
+      "within_clearance, undecided, verdict (the worst pair's), warnings. ValueError on bad input.");
   m.def(
       "simplify_step",
       [](const std::filesystem::path& path, std::size_t target, double ratio, std::size_t renderer_max,

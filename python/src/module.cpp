@@ -35,6 +35,7 @@
 #include <vector>
 
 #include "bindings.h"
+#include "interfere/core/coordinate_range.h"
 #include "interfere/core/error.h"
 #include "interfere/core/predicates.h"
 #include "interfere/core/transform.h"
@@ -225,6 +226,16 @@ std::vector<std::uint32_t> indices_from(py::handle obj, const std::string& what)
   return out;
 }
 
+/// A singular R collapses the part (ValueError); a scaled, sheared or mirrored one is applied as
+/// given, with a UserWarning saying so (issue #23, item 8; docs/robustness.md "Transforms").
+Transform checked_transform(const Transform& t) {
+  if (const Status ok = t.validate(); !ok) throw py::value_error(ok.error().reason);
+  if (const std::string note = t.non_rigid_note(); !note.empty()) {
+    if (PyErr_WarnEx(PyExc_UserWarning, note.c_str(), 1) != 0) throw py::error_already_set();
+  }
+  return t;
+}
+
 /// A Transform from a Transform, a string of 12 numbers, 12 numbers, 3 rows of 4, or a 4x4
 /// homogeneous matrix whose last row is exactly 0 0 0 1.
 Transform transform_from(py::handle obj) {
@@ -232,7 +243,7 @@ Transform transform_from(py::handle obj) {
   if (py::isinstance<py::str>(obj)) {
     const auto t = Transform::parse(obj.cast<std::string>());
     if (!t) throw py::value_error(t.error().reason);
-    return *t;
+    return checked_transform(*t);
   }
   const std::string what = "transform";
   const py::sequence s = to_sequence(obj, what);
@@ -269,7 +280,7 @@ Transform transform_from(py::handle obj) {
     for (int col = 0; col < 3; ++col) t.r[row][col] = v[static_cast<std::size_t>(row * 4 + col)];
     t.t[static_cast<std::size_t>(row)] = v[static_cast<std::size_t>(row * 4 + 3)];
   }
-  return t;
+  return checked_transform(t);
 }
 
 BvhBuilder builder_from(const std::string& name) {
@@ -314,6 +325,10 @@ void check_mesh(const TriMesh& m, const std::string& what) {
   for (std::size_t i = 0; i < m.positions.size(); ++i) {
     if (!is_finite(m.positions[i])) {
       throw py::value_error(what + ": vertex " + std::to_string(i) + " has a non-finite coordinate");
+    }
+    if (!coordinates_in_range(m.positions[i])) {  // issue #23, item 7
+      throw py::value_error(what + ": vertex " + std::to_string(i) + ": " +
+                            coordinate_range_reason(m.positions[i]));
     }
   }
   for (std::size_t t = 0; t < m.triangles.size(); ++t) {
@@ -497,6 +512,8 @@ double total_curve_length(const ClashResult& r) {
 
 py::dict clash_dict(const ClashResult& r) {
   py::dict d;
+  d["verdict"] = verdict_name(r.verdict);
+  d["verdict_reasons"] = r.verdict_reasons;
   d["interference"] = r.interference();
   d["containment"] = containment_name(r.containment);
   d["touching_overlap"] = r.touching_overlap;
@@ -784,9 +801,15 @@ PYBIND11_MODULE(_interfere, m) {
       .def_property_readonly("interference", &ClashResult::interference,
                              "Any intersecting pair, or one part inside the other.")
       .def_property_readonly("curve_length", &total_curve_length, "Sum of the regions' curve lengths.")
+      .def_property_readonly(
+          "verdict", [](const ClashResult& r) { return verdict_name(r.verdict); },
+          "'clash' (interiors overlap), 'contact' (touching only), 'clearance', 'clear' or 'undecided' "
+          "(inside/outside could not be decided, e.g. an open part: never clear); docs/robustness.md")
+      .def_readonly("verdict_reasons", &ClashResult::verdict_reasons, "Why the verdict is undecided.")
       .def("to_dict", &clash_dict, "Plain lists/dicts (JSON-serialisable).")
       .def("__repr__", [](const ClashResult& r) {
-        return "ClashResult(interference=" + std::string(r.interference() ? "True" : "False") +
+        return "ClashResult(verdict='" + std::string(verdict_name(r.verdict)) + "', interference=" +
+               std::string(r.interference() ? "True" : "False") +
                ", pairs=" + std::to_string(r.pairs.size()) + " (" + std::to_string(r.cross_pairs) + " cross, " +
                std::to_string(r.touch_pairs) + " touch), regions=" + std::to_string(r.regions.size()) +
                ", containment='" + containment_name(r.containment) + "')";

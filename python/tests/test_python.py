@@ -197,6 +197,40 @@ class TestTransform(unittest.TestCase):
             with self.assertRaises(ValueError, msg=repr(bad)):
                 itf.Transform(bad)
 
+    def test_empty_and_singular_transforms_raise(self):
+        # Issue #23, item 8: "" and an all-zero or rank-deficient R collapsed parts silently.
+        for bad in ("", " , ", [0] * 12, [1, 0, 0, 0] * 3, "1 0 0 0 0 1 0 0 0 0 0 0"):
+            with self.assertRaises(ValueError, msg=repr(bad)):
+                itf.Transform(bad)
+
+    def test_non_rigid_transform_warns(self):
+        import warnings
+        for scaled in ([2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 2, 0], [1, 1, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0],
+                       [-1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0]):
+            with warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always")
+                itf.Transform(scaled)
+            self.assertTrue(any("not rigid" in str(w.message) for w in caught), scaled)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            itf.Transform(self.NUMS)  # a rotation: no warning
+        self.assertEqual([str(w.message) for w in caught], [])
+
+    def test_mirrored_box_stays_outward(self):
+        # Signed volume by the divergence theorem, summed here: a mirror must not turn the box inside out.
+        import warnings
+        def volume(m):
+            p, v = rows(m.positions), 0.0
+            for a, b, c in rows(m.triangles):
+                (ax, ay, az), (bx, by, bz), (cx, cy, cz) = p[a], p[b], p[c]
+                v += ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx)
+            return v / 6
+        box = unit_box()
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            mirrored = itf.transformed(box, [-1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0])
+        self.assertAlmostEqual(volume(mirrored), volume(box), delta=1e-12)
+
     def test_transformed(self):
         box = unit_box()
         moved = itf.transformed(box, [1, 0, 0, 0.5, 0, 1, 0, 0.25, 0, 0, 1, -1])
@@ -479,6 +513,18 @@ class TestClash(unittest.TestCase):
         self.assertEqual(r.containment, "not_checked")
         self.assertTrue(r.warnings)
         self.assertFalse(r.interference)
+        # ... and that is undecided, never clear (issue #23, item 13).
+        self.assertEqual(r.verdict, "undecided")
+        self.assertTrue(r.verdict_reasons)
+        self.assertEqual(r.to_dict()["verdict"], "undecided")
+        # The verdict model: clash, contact, clearance, clear.
+        self.assertEqual(itf.clash(big, small).verdict, "clash")
+        self.assertEqual(on_top.verdict, "contact")
+        self.assertEqual(shifted.verdict, "clash")
+        self.assertEqual(apart.verdict, "clear")
+        self.assertEqual(off.verdict, "clear")  # containment not asked for: the caller's choice
+        self.assertEqual(itf.clash(small, itf.make_sphere(500, radius=0.5, center=(1.6, -0.2, 0.1)), clearance=0.5).verdict,
+                         "clearance")
 
     def test_clearance(self):
         a = unit_box(n=2)

@@ -22,6 +22,8 @@ const char* instance_meeting_name(InstanceMeeting m) {
       return "contact";
     case InstanceMeeting::clearance:
       return "clearance";
+    case InstanceMeeting::undecided:
+      return "undecided";
   }
   return "?";
 }
@@ -123,7 +125,10 @@ AssemblyClashResult assembly_clash(const CadModel& model, const AssemblyClashOpt
         v->erase(std::unique(v->begin(), v->end()), v->end());
       }
     }
-    else if (r.touch_pairs > 0)
+    else if (r.verdict == Verdict::undecided) {
+      p.meeting = InstanceMeeting::undecided;  // never a silent contact or clear (issue #23)
+      p.verdict_reasons = r.verdict_reasons;
+    } else if (r.touch_pairs > 0)
       p.meeting = InstanceMeeting::contact;
     else if (!r.clearance.empty())
       p.meeting = InstanceMeeting::clearance;
@@ -137,6 +142,12 @@ AssemblyClashResult assembly_clash(const CadModel& model, const AssemblyClashOpt
     out.clashes += p.meeting == InstanceMeeting::clash;
     out.contacts += p.meeting == InstanceMeeting::contact;
     out.within_clearance += p.meeting == InstanceMeeting::clearance;
+    out.undecided += p.meeting == InstanceMeeting::undecided;
+    const Verdict v = p.meeting == InstanceMeeting::clash       ? Verdict::clash
+                      : p.meeting == InstanceMeeting::contact   ? Verdict::contact
+                      : p.meeting == InstanceMeeting::clearance ? Verdict::clearance
+                                                                : Verdict::undecided;
+    out.verdict = worst(out.verdict, v);
     out.pairs.push_back(p);
   }
   for (std::size_t i = 0; i < n; ++i)

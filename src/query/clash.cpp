@@ -2,6 +2,7 @@
 // strategies), exact narrow phase with classification, clearance pairs, regions and containment.
 #include "interfere/query/clash.h"
 
+#include <tuple>
 #include <algorithm>
 #include <functional>
 #include <cmath>
@@ -173,52 +174,79 @@ ClashResult clash(const Model& a, const Model& b, const ClashRequest& request) {
   if (r.regions) result.regions = detail::build_regions(a.mesh, b.mesh, result.pairs, np.segments());
 
   // Containment (no surface pair can exist when one closed part lies wholly inside the other).
+  const bool a_closed = a.stats.closed(), b_closed = b.stats.closed();
+  auto open_reason = [&](const char* name, const MeshStats& s) {
+    if (s.triangles == 0)
+      return std::string("part ") + name + ": mesh statistics not computed (make_model with_stats = false)";
+    return std::string("part ") + name + " is not closed (" + std::to_string(s.open_edges) + " open, " +
+           std::to_string(s.nonmanifold_edges) + " non-manifold, " + std::to_string(s.inconsistent_edges) +
+           " inconsistently oriented edges)";
+  };
+  std::vector<std::string> undecided;  // what could not be decided (the verdict's reasons)
   if (!r.containment) {
     result.containment = Containment::not_checked;
   } else if (!result.pairs.empty()) {
     result.containment = Containment::none;
-    if (result.cross_pairs == 0 && a.stats.closed() && b.stats.closed()) {
-      const int overlap = detail::touching_overlap(a, b, result.pairs);
-      result.touching_overlap = overlap == 1;
-      if (overlap < 0) result.warnings.push_back("touching overlap undecided: every ray direction was degenerate");
+    if (result.cross_pairs == 0) {
+      if (a_closed && b_closed) {
+        const int overlap = detail::touching_overlap(a, b, result.pairs);
+        result.touching_overlap = overlap == 1;
+        if (overlap < 0) {
+          result.warnings.push_back("touching overlap undecided: every ray direction was degenerate");
+          undecided.push_back("whether the touching solids overlap: every ray direction was degenerate");
+        }
+      } else {
+        // Touching surfaces of an open part: whether the solids' interiors overlap (coincident
+        // faces of overlapping solids) needs both closed.
+        for (const auto& [name, model, closed] : {std::tuple{"A", &a, a_closed}, std::tuple{"B", &b, b_closed}})
+          if (!closed) {
+            result.warnings.push_back(open_reason(name, model->stats) + ": whether the touching parts overlap is not checked");
+            undecided.push_back(open_reason(name, model->stats) + ": whether the touching parts overlap");
+          }
+      }
     }
   } else if (a.mesh.triangles.empty() || b.mesh.triangles.empty()) {
     result.containment = Containment::none;
   } else {
-    auto open_warning = [&](const char* name, const MeshStats& s) {
-      if (s.triangles == 0) {
-        result.warnings.push_back(std::string("part ") + name +
-                                  ": mesh statistics not computed (make_model with_stats = false): "
-                                  "containment not checked");
-        return;
-      }
-      result.warnings.push_back(std::string("part ") + name + " is not closed (" +
-                                std::to_string(s.open_edges) + " open, " +
-                                std::to_string(s.nonmanifold_edges) + " non-manifold, " +
-                                std::to_string(s.inconsistent_edges) +
-                                " inconsistently oriented edges): containment not checked");
-    };
-    const bool a_closed = a.stats.closed(), b_closed = b.stats.closed();
-    if (!a_closed) open_warning("A", a.stats);
-    if (!b_closed) open_warning("B", b.stats);
-    if (a_closed && b_closed) {
-      const Vec3 pa = a.mesh.positions[a.mesh.triangles[0][0]];
-      const Vec3 pb = b.mesh.positions[b.mesh.triangles[0][0]];
-      const int a_in_b = detail::point_in_closed_mesh(b, pa);
-      const int b_in_a = detail::point_in_closed_mesh(a, pb);
-      if (a_in_b < 0 || b_in_a < 0) {
-        result.warnings.push_back("containment undecided: every ray direction was degenerate");
-        result.containment = Containment::not_checked;
-      } else if (a_in_b == 1) {
-        result.containment = Containment::a_inside_b;
-      } else if (b_in_a == 1) {
-        result.containment = Containment::b_inside_a;
-      } else {
-        result.containment = Containment::none;
-      }
+    // A closed part may contain the other (open or not): one point of the other decides, as no
+    // surface pair exists. An open part encloses nothing provably, so the reverse stays undecided.
+    const Vec3 pa = a.mesh.positions[a.mesh.triangles[0][0]];
+    const Vec3 pb = b.mesh.positions[b.mesh.triangles[0][0]];
+    const int a_in_b = b_closed ? detail::point_in_closed_mesh(b, pa) : -2;
+    const int b_in_a = a_closed ? detail::point_in_closed_mesh(a, pb) : -2;
+    if (a_in_b == 1) {
+      result.containment = Containment::a_inside_b;
+    } else if (b_in_a == 1) {
+      result.containment = Containment::b_inside_a;
+    } else if (a_in_b == -1 || b_in_a == -1) {
+      result.warnings.push_back("containment undecided: every ray direction was degenerate");
+      undecided.push_back("containment: every ray direction was degenerate");
+      result.containment = Containment::not_checked;
+    } else if (a_closed && b_closed) {
+      result.containment = Containment::none;
     } else {
+      for (const auto& [name, model, closed] : {std::tuple{"A", &a, a_closed}, std::tuple{"B", &b, b_closed}})
+        if (!closed) {
+          result.warnings.push_back(open_reason(name, model->stats) + ": containment not checked");
+          undecided.push_back(open_reason(name, model->stats) + ": whether the other part lies inside it");
+        }
       result.containment = Containment::not_checked;
     }
+  }
+
+  // The verdict (query/verdict.h).
+  if (result.cross_pairs > 0 || result.containment == Containment::a_inside_b ||
+      result.containment == Containment::b_inside_a || result.touching_overlap) {
+    result.verdict = Verdict::clash;
+  } else if (!undecided.empty()) {
+    result.verdict = Verdict::undecided;
+    result.verdict_reasons = std::move(undecided);
+  } else if (result.touch_pairs > 0) {
+    result.verdict = Verdict::contact;
+  } else if (!result.clearance.empty()) {
+    result.verdict = Verdict::clearance;
+  } else {
+    result.verdict = Verdict::clear;
   }
   return result;
 }

@@ -5,6 +5,8 @@
 // (glTF node `matrix`, column-major); a root node scales model units to metres (glTF's unit).
 #include "interfere/simplify/gltf_io.h"
 
+#include "interfere/core/units.h"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -50,13 +52,8 @@ std::vector<float> vertex_normals(const TriMesh& m) {
 }
 
 double metres_per(const std::string& units) {
-  if (units == "mm") return 1e-3;
-  if (units == "cm") return 1e-2;
-  if (units == "m") return 1;
-  if (units == "um") return 1e-6;
-  if (units == "in") return 0.0254;
-  if (units == "ft") return 0.3048;
-  return 0;  // unknown: no scaling
+  const std::optional<double> mm = millimetres_per_unit(units);
+  return mm ? *mm * 1e-3 : 0;  // unknown: no scaling
 }
 
 }  // namespace

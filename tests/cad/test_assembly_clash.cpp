@@ -209,5 +209,32 @@ TEST(AssemblyClash, RandomLayoutsMatchABruteForceClashOfEveryPair) {
   }
 }
 
+// Issue #23, item 13: an open instance where inside/outside decides is undecided, never a contact
+// or clear; the assembly's verdict is the worst pair's.
+TEST(AssemblyClash, OpenInstancesAreUndecided) {
+  CadModel m = boxes({{0, Transform{}},            // 0: the block
+                      {2, moved(-1, -1, -1)},      // 1: an open shell around the block (no crossing)
+                      {0, moved(10, 0, 0)},        // 2
+                      {0, moved(11, 0, 0)}});      // 3: a face contact with 2
+  m.parts.resize(3);
+  m.parts[2].name = "open_shell";
+  m.parts[2].mesh = make_box({0, 0, 0}, {3, 3, 3}, 2);
+  m.parts[2].mesh.triangles.pop_back();
+  const AssemblyClashResult r = assembly_clash(m);
+  std::map<std::pair<std::uint32_t, std::uint32_t>, InstancePairResult> got;
+  for (const auto& p : r.pairs) got[{p.a, p.b}] = p;
+  ASSERT_TRUE(got.count({0, 1}));
+  EXPECT_EQ(got.at({0, 1}).meeting, InstanceMeeting::undecided);
+  EXPECT_FALSE(got.at({0, 1}).verdict_reasons.empty());
+  ASSERT_TRUE(got.count({2, 3}));
+  EXPECT_EQ(got.at({2, 3}).meeting, InstanceMeeting::contact);
+  EXPECT_EQ(r.undecided, 1u);
+  EXPECT_EQ(r.contacts, 1u);
+  EXPECT_EQ(r.verdict, Verdict::undecided);
+  // A crossing anywhere makes the assembly a clash.
+  m.instances.push_back({.name = "i4", .part = 0, .placement = moved(10.5, 0.5, 0.5)});
+  EXPECT_EQ(assembly_clash(m).verdict, Verdict::clash);
+}
+
 }  // namespace
 }  // namespace interfere::cad

@@ -115,12 +115,86 @@ class Cli(unittest.TestCase):
         opened = write_obj("open.obj", (v, f[:-1]))
         small = write_obj("small2.obj", box((2, 3, 4), (5, 6, 7)))
         rc, _, err = run("clash", small, opened, "--json", path("open.json"))
-        self.assertEqual(rc, 0, err)
+        # The small box lies inside the open box: whether it is inside cannot be decided, so the
+        # verdict is undecided, exit 3 -- never clear (issue #23: it was "clear", exit 0).
+        self.assertEqual(rc, 3, err)
         rep = json.load(open(path("open.json")))
+        self.assertEqual(rep["verdict"], "undecided")
+        self.assertEqual(rep["result"]["verdict"], "undecided")
+        self.assertTrue(any("part B is not closed" in w for w in rep["result"]["verdict_reasons"]), rep["result"])
         self.assertEqual(rep["result"]["containment"], "not_checked")
         self.assertTrue(any("not closed" in w for w in rep["warnings"]))
         self.assertTrue(any("3 open edges" in w for w in rep["input_warnings"]), rep["input_warnings"])
         self.assertEqual(rep["inputs"]["b"]["open_edges"], 3)
+        # Skipping containment on purpose (--no-containment) is the user's choice: clear, exit 0.
+        rc, _, err = run("clash", small, opened, "--no-containment", "--json", path("open_nc.json"))
+        self.assertEqual(rc, 0, err)
+        self.assertEqual(json.load(open(path("open_nc.json")))["verdict"], "clear")
+        # A closed part still decides an open part inside it: the open box within a bigger box clashes.
+        huge = write_obj("huge.obj", box((-5, -5, -5), (20, 20, 20)))
+        rc, _, err = run("clash", opened, huge, "--json", path("open_in.json"))
+        self.assertEqual(rc, 1, err)
+        self.assertEqual(json.load(open(path("open_in.json")))["result"]["containment"], "a_inside_b")
+
+    def test_distance_sees_containment(self):
+        # Nested closed parts are apart by 2 yet their interiors overlap: a clash (was exit 0, "clear").
+        big = write_obj("dbig.obj", box((0, 0, 0), (10, 10, 10)))
+        small = write_obj("dsmall.obj", box((2, 3, 4), (5, 6, 7)))
+        rc, out, err = run("distance", small, big, "--json", path("dnest.json"))
+        self.assertEqual(rc, 1, err)
+        rep = json.load(open(path("dnest.json")))
+        self.assertEqual(rep["verdict"], "clash")
+        self.assertAlmostEqual(rep["result"]["distance"], 2.0, places=12)
+        self.assertIn("CLASH", out)
+        # Touching faces: distance 0, a contact (exit 0), not a clash.
+        b = write_obj("dtouch.obj", box((10, 0, 0), (12, 10, 10)))
+        rc, out, err = run("distance", big, b, "--json", path("dtouch.json"))
+        self.assertEqual(rc, 0, err)
+        self.assertEqual(json.load(open(path("dtouch.json")))["verdict"], "contact")
+
+    def test_units_per_input(self):
+        # Issue #23, item 6: one part in metres (given here with --units-a on an OBJ), the other in
+        # millimetres. Both are converted to the working unit before the query.
+        metres = write_obj("m_box.obj", box((0, 0, 0), (0.010, 0.010, 0.010)))   # 10 mm cube, in m
+        mm = write_obj("mm_box.obj", box((5, 5, 5), (15, 15, 15)))               # overlaps it, in mm
+        rc, _, err = run("clash", metres, mm, "--json", path("u0.json"))
+        self.assertEqual(rc, 0, err)  # without units: a 0.01 mm cube against 10 mm: apart
+        self.assertTrue(any("differ by more than 100x" in w for w in json.load(open(path("u0.json")))["input_warnings"]))
+        rc, _, err = run("clash", metres, mm, "--units-a", "m", "--json", path("u1.json"))
+        self.assertEqual(rc, 1, err)
+        rep = json.load(open(path("u1.json")))
+        self.assertEqual(rep["units"], "mm")
+        self.assertEqual(rep["inputs"]["a"]["units"], "m")
+        self.assertEqual(rep["inputs"]["a"]["scale_to_working_unit"], 1000)
+        self.assertEqual(rep["inputs"]["b"]["units"], "mm")
+        # Working unit metres: the same verdict, the report in metres.
+        rc, _, err = run("clash", metres, mm, "--units-a", "m", "--units", "m", "--json", path("u2.json"))
+        self.assertEqual(rc, 1, err)
+        self.assertAlmostEqual(json.load(open(path("u2.json")))["inputs"]["b"]["scale_to_working_unit"], 1e-3, places=15)
+        # A glTF file is in metres by its specification: simplify writes the mm box scaled to metres,
+        # and clash reads it back as metres (no flag), so it overlaps the mm box exactly.
+        glb = path("mm_box.glb")
+        rc, _, err = run("simplify", mm, glb, "--ratio", "1")
+        self.assertEqual(rc, 0, err)
+        rc, out, err = run("clash", glb, mm, "--json", path("u3.json"))
+        self.assertEqual(rc, 1, out + err)
+        rep = json.load(open(path("u3.json")))
+        self.assertEqual(rep["inputs"]["a"]["units"], "m")
+        self.assertEqual(rep["verdict"], "clash")
+        # Scene files give each part's unit; unknown keys and units are errors naming them.
+        scene = path("units_scene.json")
+        with open(scene, "w") as f:
+            json.dump({"a": {"file": metres, "units": "m"}, "b": {"file": mm}}, f)
+        rc, _, err = run("clash", "--scene", scene)
+        self.assertEqual(rc, 1, err)
+        with open(scene, "w") as f:
+            json.dump({"a": {"file": metres, "unit": "m"}, "b": {"file": mm}}, f)
+        rc, _, err = run("clash", "--scene", scene)
+        self.assertEqual(rc, 2, err)
+        self.assertIn('unknown key "unit"', err)
+        rc, _, err = run("clash", metres, mm, "--units-a", "furlong")
+        self.assertEqual(rc, 2, err)
+        self.assertIn("--units-a", err)
 
     def test_clearance(self):
         a = write_obj("ca.obj", box((0, 0, 0), (1, 1, 1)))
@@ -136,10 +210,23 @@ class Cli(unittest.TestCase):
     def test_touching_faces_are_touch_pairs(self):
         a = write_obj("fa.obj", box((0, 0, 0), (1, 1, 1)))
         b = write_obj("fb.obj", box((1, 0, 0), (2, 1, 1)))
-        rc, _, err = run("clash", a, b, "--pairs", path("touch.pairs"))
-        self.assertEqual(rc, 1, err)
+        rc, out, err = run("clash", a, b, "--pairs", path("touch.pairs"), "--json", path("touch.json"))
+        # Contact is not clash (issue #23, item 13: was exit 1, "INTERFERENCE").
+        self.assertEqual(rc, 0, err)
+        self.assertTrue(out.startswith("contact:"), out)
+        self.assertEqual(json.load(open(path("touch.json")))["verdict"], "contact")
         kinds = {line.split()[2] for line in open(path("touch.pairs"))}
         self.assertEqual(kinds, {"touch"})
+        rc, _, err = run("clash", a, b, "--fail-on", "contact")
+        self.assertEqual(rc, 1, err)
+        rc, _, err = run("clash", a, b, "--fail-on", "contacts")
+        self.assertEqual(rc, 2, err)
+        self.assertIn("--fail-on", err)
+        # Shifted along the face, the solids overlap behind coincident faces: a clash.
+        c = write_obj("fc.obj", box((0.5, 0, 0), (2, 1, 1)))
+        rc, out, err = run("clash", a, c)
+        self.assertEqual(rc, 1, err)
+        self.assertTrue(out.startswith("CLASH:"), out)
 
     # ---- bad input: exit 2, a clear message, nothing written ----
     def assert_input_error(self, args, must_contain):
@@ -252,6 +339,198 @@ class Cli(unittest.TestCase):
         self.assertTrue(s["closed"])
         self.assertEqual(s["open_edges"], 0)
         self.assertEqual(s["triangles"], 6 * 12 * 12 * 2)
+
+
+# ------------------------------------------------------------------------------------------------
+# Issue #23, items 8 and 11: transforms that are checked, outputs that respect the file system.
+def _tet_vtk(name):
+    """One linear tetrahedron as a legacy VTK file (a FEM input for `surface`)."""
+    return cli_common.write_text(name, "# vtk DataFile Version 2.0\ntet\nASCII\nDATASET UNSTRUCTURED_GRID\n"
+                                 "POINTS 4 double\n0 0 0\n1 0 0\n0 1 0\n0 0 1\nCELLS 1 5\n4 0 1 2 3\n"
+                                 "CELL_TYPES 1\n10\n")
+
+
+class TransformsAndOutputs(unittest.TestCase):
+    def setUp(self):
+        self.a = write_stl("to_a.stl", box((0, 0, 0), (1, 1, 1)))
+        self.b = write_stl("to_b.stl", box((3, 0, 0), (4, 1, 1)))       # 2 mm from A along x
+        self.b_in = write_stl("to_b_in.stl", box((0.5, 0.25, 0.25), (1.5, 0.75, 0.75)))  # crosses A's face
+
+    def assert_input_error(self, args, must_contain):
+        target = path("to_must_not_exist.json")
+        if os.path.exists(target):
+            os.remove(target)
+        rc, out, err = run(*args, "--json", target)
+        self.assertEqual(rc, 2, (args, out, err))
+        for m in must_contain:
+            self.assertIn(m, err, args)
+        self.assertFalse(os.path.exists(target), args)
+
+    # ---- item 8: transforms ----
+    def test_empty_transform_is_an_error_not_the_identity(self):
+        # Before: "" was the identity, so B stayed 2 mm away and the run said clear.
+        for cmd in ("clash", "distance"):
+            for flag in ("--transform-a", "--transform-b"):
+                self.assert_input_error([cmd, self.a, self.b, flag, ""], [flag, "empty"])
+                self.assert_input_error([cmd, self.a, self.b, flag, " , "], [flag, "empty"])
+
+    def test_singular_and_non_finite_transforms_are_errors(self):
+        # Before: the all-zero matrix collapsed B to the point (0, 0, 0), a corner of A, and the run
+        # reported a verdict on that point.
+        zeros = "0 0 0 0 0 0 0 0 0 0 0 0"
+        self.assert_input_error(["clash", self.a, self.b, "--transform-b", zeros], ["--transform-b", "singular", zeros])
+        flat = "1 0 0 0 0 1 0 0 0 0 0 0"  # z squashed to 0: B becomes a flat sheet
+        self.assert_input_error(["distance", self.a, self.b, "--transform-a", flat], ["--transform-a", "singular", flat])
+        self.assert_input_error(["clash", self.a, self.b, "--transform-b", "1 0 0 nan 0 1 0 0 0 0 1 0"],
+                                ["--transform-b", "not finite"])
+
+    def test_scene_transforms_are_checked(self):
+        for value, message in (([], "empty"), ("", "empty"), ([0] * 12, "singular"), ([1, 0, 0, 0] * 3, "singular"),
+                               ([1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1], "got 11")):
+            scene = cli_common.write_text("to_scene.json", json.dumps(
+                {"a": {"file": self.a}, "b": {"file": self.b, "transform": value}}))
+            self.assert_input_error(["clash", "--scene", scene], ["to_scene.json", '"b"', "transform", message])
+        # Checked even when the command line gives the transform that wins.
+        scene = cli_common.write_text("to_scene.json", json.dumps(
+            {"a": {"file": self.a}, "b": {"file": self.b, "transform": [0] * 12}}))
+        self.assert_input_error(["clash", "--scene", scene, "--transform-b", "1 0 0 0 0 1 0 0 0 0 1 0"], ["singular"])
+
+    def test_surface_transform_checked(self):
+        tet = _tet_vtk("to_tet.vtk")
+        for value, message in (("", "empty"), ("0 0 0 0 0 0 0 0 0 0 0 0", "singular")):
+            rc, out, err = run("surface", tet, path("to_tet.stl"), "--transform", value)
+            self.assertEqual(rc, 2, (value, out, err))
+            self.assertIn("--transform", err)
+            self.assertIn(message, err)
+            self.assertFalse(os.path.exists(path("to_tet.stl")))
+
+    def test_scaled_transform_warns_and_measures_in_the_transformed_space(self):
+        # B = [3, 4] x [0, 1] x [0, 1] scaled by 0.5 about the origin lies at x in [1.5, 2]: 0.5 from A
+        # (hand computation), where the untransformed B is 2 away.
+        rc, out, err = run("distance", self.a, self.b, "--transform-b", "0.5 0 0 0 0 0.5 0 0 0 0 0.5 0",
+                           "--json", path("to_scaled.json"))
+        self.assertEqual(rc, 0, err)
+        self.assertIn("not rigid", err)
+        self.assertIn("transformed space", err)
+        rep = json.load(open(path("to_scaled.json")))
+        self.assertAlmostEqual(rep["result"]["distance"], 0.5, delta=1e-12)
+        self.assertTrue(any("not rigid" in w for w in rep["input_warnings"]), rep["input_warnings"])
+        # A mirror (x -> -x, then +5: B at x in [1, 2]) keeps lengths, and is said to mirror.
+        rc, out, err = run("distance", self.a, self.b, "--transform-b", "-1 0 0 5 0 1 0 0 0 0 1 0",
+                           "--json", path("to_mirror.json"))
+        self.assertEqual(rc, 0, err)
+        self.assertIn("mirrors", err)
+        self.assertAlmostEqual(json.load(open(path("to_mirror.json")))["result"]["distance"], 0.0, delta=1e-12)
+        # A rigid pose gives no such warning.
+        rc, out, err = run("distance", self.a, self.b, "--transform-b", "0 -1 0 0 1 0 0 0 0 0 1 0")
+        self.assertEqual(rc, 0, err)
+        self.assertNotIn("not rigid", err)
+
+    # ---- item 11: outputs ----
+    def test_json_dash_is_standard_output(self):
+        # Before: a file named "-" was created and stdout held the summary line.
+        cwd = os.path.join(cli_common.WORK, "dash_cwd")
+        os.makedirs(cwd, exist_ok=True)
+        p = cli_common.subprocess.run([cli_common.EXE, "--quiet", "clash", self.a, self.b_in, "--json", "-"],
+                                      capture_output=True, text=True, timeout=120, cwd=cwd)
+        self.assertEqual(p.returncode, 1, p.stderr)
+        rep = json.loads(p.stdout)  # stdout holds the report alone
+        self.assertEqual(rep["verdict"], "clash")
+        self.assertIn("CLASH", p.stderr)  # the summary line moved to stderr
+        self.assertFalse(os.path.exists(os.path.join(cwd, "-")))
+        # The other commands' text reports too.
+        for args in (["check", self.a], ["distance", self.a, self.b]):
+            p = cli_common.subprocess.run([cli_common.EXE, "--quiet", *args, "--json", "-"], capture_output=True,
+                                          text=True, timeout=120, cwd=cwd)
+            self.assertEqual(p.returncode, 0, (args, p.stderr))
+            rep = json.loads(p.stdout)
+            self.assertIsInstance(rep, dict)
+            self.assertFalse(os.path.exists(os.path.join(cwd, "-")), args)
+        rep = json.loads(cli_common.subprocess.run([cli_common.EXE, "--quiet", "distance", self.a, self.b, "--json", "-"],
+                                                   capture_output=True, text=True, timeout=120, cwd=cwd).stdout)
+        self.assertAlmostEqual(rep["result"]["distance"], 2.0, delta=1e-12)
+
+    def test_pairs_dash_and_simplify_json_dash(self):
+        rc, out, err = run("clash", self.a, self.b_in, "--pairs", "-")
+        self.assertEqual(rc, 1, err)
+        lines = out.split("\n")[:-1]
+        self.assertGreater(len(lines), 0)
+        for line in lines:  # nothing but "i j kind" lines
+            i, j, kind = line.split(" ")
+            self.assertIn(kind, ("cross", "touch"))
+        rc, out, err = run("simplify", self.a, path("to_s.stl"), "--ratio", "0.5", "--json", "-")
+        self.assertEqual(rc, 0, err)
+        self.assertIsInstance(json.loads(out), dict)
+        self.assertTrue(os.path.exists(path("to_s.stl")))
+
+    def test_dev_stdout_works(self):
+        # Before: the rename over /dev/stdout failed.
+        rc, out, err = run("clash", self.a, self.b_in, "--json", "/dev/stdout")
+        self.assertEqual(rc, 1, err)
+        self.assertEqual(json.loads(out)["verdict"], "clash")
+
+    def test_dash_misuse_is_refused(self):
+        rc, out, err = run("clash", self.a, self.b_in, "--json", "-", "--pairs", "-")
+        self.assertEqual(rc, 2, err)
+        self.assertIn("standard output", err)
+        self.assertEqual(out, "")
+        rc, out, err = run("clash", self.a, self.b_in, "--region-a", "-")
+        self.assertEqual(rc, 2, err)
+        self.assertIn("standard output", err)
+        rc, out, err = run("simplify", self.a, "-", "--ratio", "0.5", "--format", "stl")
+        self.assertEqual(rc, 2, err)
+        self.assertIn("standard output", err)
+
+    def test_symlink_written_through(self):
+        # Before: the link was replaced by a regular file and its target kept the old report.
+        os.makedirs(path("to_reports"), exist_ok=True)
+        target = path("to_reports/real.json")
+        link = path("to_link.json")
+        with open(target, "w") as f:
+            f.write("old\n")
+        if os.path.lexists(link):
+            os.remove(link)
+        os.symlink(os.path.join("to_reports", "real.json"), link)
+        rc, out, err = run("clash", self.a, self.b_in, "--json", link)
+        self.assertEqual(rc, 1, err)
+        self.assertTrue(os.path.islink(link))
+        self.assertEqual(os.readlink(link), os.path.join("to_reports", "real.json"))
+        self.assertEqual(json.load(open(target))["verdict"], "clash")
+        self.assertEqual([n for n in os.listdir(path("to_reports")) if ".tmp-" in n], [])
+        # An output linked to an input is still refused, and the input is kept.
+        with open(self.a, "rb") as f:
+            before = f.read()
+        os.remove(link)
+        os.symlink(self.a, link)
+        rc, out, err = run("clash", self.a, self.b_in, "--json", link)
+        self.assertEqual(rc, 2, err)
+        self.assertIn("input file of A", err)
+        with open(self.a, "rb") as f:
+            self.assertEqual(f.read(), before)
+
+    def test_fifo_is_written_into(self):
+        # Before: the FIFO was replaced by a regular file and its reader waited forever.
+        import stat
+        import threading
+        fifo = path("to_fifo")
+        if os.path.lexists(fifo):
+            os.remove(fifo)
+        os.mkfifo(fifo)
+        got = []
+        def reader():
+            with open(fifo) as f:  # blocks until the writer opens it
+                got.append(f.read())
+        t = threading.Thread(target=reader, daemon=True)
+        t.start()
+        rc, out, err = run("clash", self.a, self.b_in, "--json", fifo)
+        if rc != 1:  # unblock the reader before failing
+            with open(fifo, "w"):
+                pass
+        t.join(30)
+        self.assertEqual(rc, 1, err)
+        self.assertFalse(t.is_alive())
+        self.assertTrue(stat.S_ISFIFO(os.lstat(fifo).st_mode))
+        self.assertEqual(json.loads(got[0])["verdict"], "clash")
 
 
 if __name__ == "__main__":

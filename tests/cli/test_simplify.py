@@ -170,7 +170,9 @@ class Simplify(unittest.TestCase):
         r = load_json("s_glb.json")
         doc, _, read = read_glb(path("s.glb"))
         self.assertEqual(len(doc["meshes"]), 1)
-        self.assertNotIn("scale", doc["nodes"][0])  # a mesh file's unit is unknown: left as is
+        # A mesh file is in mm unless --units says otherwise: glTF is in metres, so the root scales.
+        self.assertEqual(doc["nodes"][0]["scale"], [0.001, 0.001, 0.001])
+        self.assertEqual(r["units"], "mm")
         prim = doc["meshes"][0]["primitives"][0]
         self.assertEqual(len(read(prim["indices"])) // 3, r["output_triangles"])
         self.assertNotIn("_FACE_ID", prim["attributes"])  # no regions given
@@ -178,6 +180,9 @@ class Simplify(unittest.TestCase):
         self.assertEqual(len(normals), len(read(prim["attributes"]["POSITION"])))
         for i in range(0, len(normals), 3):
             self.assertAlmostEqual(math.sqrt(sum(x * x for x in normals[i:i + 3])), 1.0, places=5)
+        code, _, err = run("simplify", path("sphere.obj"), path("s_m.glb"), "--ratio", "0.5", "--units", "m")
+        self.assertEqual(code, 0, err)
+        self.assertNotIn("scale", read_glb(path("s_m.glb"))[0]["nodes"][0])  # already metres
         # --format glb whatever the name says.
         code, _, err = run("simplify", path("sphere.obj"), path("s_glb.bin"), "--ratio", "0.5", "--format", "glb")
         self.assertEqual(code, 0, err)
@@ -501,7 +506,12 @@ class ConservativeClash(unittest.TestCase):
             self.assertEqual(code, 1 if touching else 0, err)  # the originals
             code, out, err = run("clash", path("ca_s.ply"), path("cb_s.ply"), "--conservative", "--json",
                                  path("cons.json"))
-            self.assertEqual(code, 1 if touching else 0, err)
+            # A possible clash of the originals is undecided (exit 3) unless the simplified parts
+            # themselves clash (exit 1); never clear (issue #23, item 13).
+            rep = load_json("cons.json")
+            expected = ("clash" if rep["result"]["cross_pairs"] > 0 else "undecided") if touching else "clear"
+            self.assertEqual(rep["verdict"], expected)
+            self.assertEqual(code, {"clash": 1, "undecided": 3, "clear": 0}[expected], err)
             c = load_json("cons.json")["conservative"]
             self.assertEqual(c["error_bound_a"], ea)  # read back from the PLY exactly
             self.assertEqual(c["error_bound_b"], eb)
@@ -511,11 +521,11 @@ class ConservativeClash(unittest.TestCase):
         # A pose that scales the part scales its bound (the largest stretch of the pose).
         code, _, err = run("clash", path("ca_s.ply"), path("cb_s.ply"), "--conservative", "--transform-a",
                            "2 0 0 0 0 2 0 0 0 0 2 0", "--json", path("cons2.json"))
-        self.assertIn(code, (0, 1), err)
+        self.assertIn(code, (0, 1, 3), err)
         self.assertAlmostEqual(load_json("cons2.json")["conservative"]["error_bound_a"], 2 * ea, places=9)
         # An original (no stored bound) counts as exact; a malformed bound is an input error.
         code, _, err = run("clash", path("ca.obj"), path("cb_s.ply"), "--conservative")
-        self.assertIn(code, (0, 1), err)
+        self.assertIn(code, (0, 1, 3), err)
         self.assertIn("no error bound", err)
         with open(path("bad.obj"), "w") as out:
             out.write("# error_bound -3\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
@@ -524,8 +534,9 @@ class ConservativeClash(unittest.TestCase):
         self.assertIn("bad.obj:1", err)
 
     def test_glb_outputs_clash_conservatively_as_they_are_placed(self):
-        # A GLB written by simplify is read back (the clash reads glTF) with its bound: a mesh
-        # file's unit is unknown, so nothing is scaled and the bound is the PLY's.
+        # A GLB written by simplify is read back (the clash reads glTF) with its bound: the mesh is
+        # in mm (the default), written in metres as glTF says and read back into mm, so the bound is
+        # the PLY's up to the rounding of the two scalings.
         a = uv_sphere(lon=120, lat=60, bump=0.0)
         b = ([(x + 1.999, y, z) for (x, y, z) in a[0]], a[1])
         for name, mesh in (("ga", a), ("gb", b)):
@@ -534,13 +545,13 @@ class ConservativeClash(unittest.TestCase):
                 code, _, err = run("simplify", path(name + ".obj"), path(name + "_s." + ext), "--target", "120")
                 self.assertEqual(code, 0, err)
         code, _, err = run("clash", path("ga_s.glb"), path("gb_s.glb"), "--conservative", "--json", path("g.json"))
-        self.assertEqual(code, 1, err)
+        self.assertIn(code, (1, 3), err)  # a clash of the simplified parts, or a possible one
         g = load_json("g.json")["conservative"]
         code, _, err = run("clash", path("ga_s.ply"), path("gb_s.ply"), "--conservative", "--json", path("p.json"))
         p = load_json("p.json")["conservative"]
         self.assertTrue(g["possible_clash"])
-        self.assertEqual(g["error_bound_a"], p["error_bound_a"])
-        self.assertEqual(g["error_bound_b"], p["error_bound_b"])
+        self.assertAlmostEqual(g["error_bound_a"], p["error_bound_a"], delta=1e-12 * p["error_bound_a"])
+        self.assertAlmostEqual(g["error_bound_b"], p["error_bound_b"], delta=1e-12 * p["error_bound_b"])
         # The same triangles (as floats) wherever they are read.
         code, out_g, err = run("check", path("ga_s.glb"))
         self.assertEqual(code, 0, err)
@@ -561,6 +572,10 @@ def have_cad():
     if HAVE_CAD is None:
         code, _, err = run("features", os.path.join(DATA, "counterbored_plate.step"))
         HAVE_CAD = code == 0
+        # Skip only for a build without OpenCASCADE: any other failure of the probe (a regression in
+        # `features`) would otherwise skip every test below and pass (issue #23, item 14).
+        if not HAVE_CAD and "built with OpenCASCADE" not in err:
+            raise AssertionError("features failed on counterbored_plate.step (exit %d): %s" % (code, err))
     return HAVE_CAD
 
 
@@ -628,7 +643,7 @@ class Features(unittest.TestCase):
         self.assertLess(counts[0], counts[1])
         write_obj("pin295.obj", make_examples.cylinder(2.95, 30, 64))
         pose = ("--transform-b", "1 0 0 20 0 1 0 15 0 0 1 5")
-        for d, expected in (("0.1", 1), ("0.01", 0)):
+        for d, expected in (("0.1", 3), ("0.01", 0)):  # possible clash: undecided (exit 3)
             code, out, err = run("clash", plate, path("pin295.obj"), *pose, "--linear-deflection", d, "--conservative",
                                  "--json", path("cons.json"))
             self.assertEqual(code, expected, out + err)
@@ -645,7 +660,7 @@ class Features(unittest.TestCase):
         write_obj("pin2.obj", make_examples.cylinder(2.8, 30, 64))
         for args, message in ((["clash", path("pin2.obj"), path("pin295.obj"), "--linear-deflection", "0.1"], "STEP"),
                               (["check", path("pin2.obj"), "--angular-deflection", "0.2"], "STEP"),
-                              (["clash", plate, path("pin295.obj"), "--units", "m"], "millimetres"),
+                              (["clash", plate, path("pin295.obj"), "--units-a", "m"], "carries its own length unit"),
                               (["distance", plate, path("pin295.obj"), "--linear-deflection", "-1"], "deflection"),
                               (["check", plate, "--angular-deflection", "7"], "angular deflection")):
             code, _, err = run(*args)

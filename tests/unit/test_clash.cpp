@@ -261,5 +261,57 @@ TEST(Clash, EmptyPartsGiveNoPairs) {
   EXPECT_FALSE(r.interference());
 }
 
+// The verdict model (issue #23, item 13): clash versus contact, and undecided (never clear) where
+// an open part makes inside/outside undecidable. The expectations are the geometry's, by hand.
+TEST(ClashVerdict, OneModelForEveryCase) {
+  const Model unit = make_model(make_box({0, 0, 0}, {1, 1, 1}));
+  auto verdict = [&](const TriMesh& other, ClashRequest request = {}) { return clash(unit, make_model(other), request); };
+  EXPECT_EQ(verdict(make_box({0.5, 0.5, 0.5}, {2, 2, 2})).verdict, Verdict::clash);  // crossing
+  EXPECT_EQ(verdict(make_box({1, 0, 0}, {2, 1, 1})).verdict, Verdict::contact);       // a shared face
+  EXPECT_EQ(verdict(make_box({0.5, 0, 0}, {2, 1, 1})).verdict, Verdict::clash);       // coincident faces, overlap
+  EXPECT_EQ(verdict(make_box({0.2, 0.2, 0.2}, {0.8, 0.8, 0.8})).verdict, Verdict::clash);  // contained
+  EXPECT_EQ(verdict(make_box({3, 0, 0}, {4, 1, 1})).verdict, Verdict::clear);
+  EXPECT_EQ(verdict(make_box({1.5, 0, 0}, {2, 1, 1}), {.clearance = 0.75}).verdict, Verdict::clearance);
+}
+
+TEST(ClashVerdict, OpenPartsAreUndecidedNotClear) {
+  // A box with one triangle removed around a small closed box: it was "clear".
+  TriMesh open_box = make_box({0, 0, 0}, {10, 10, 10});
+  open_box.triangles.pop_back();
+  const Model open = make_model(open_box);
+  const Model small = make_model(make_box({2, 3, 4}, {5, 6, 7}));
+  const ClashResult r = clash(small, open);
+  EXPECT_EQ(r.verdict, Verdict::undecided);
+  ASSERT_FALSE(r.verdict_reasons.empty());
+  EXPECT_NE(r.verdict_reasons[0].find("part B is not closed"), std::string::npos);
+  // Not asking for containment is the caller's choice: clear.
+  EXPECT_EQ(clash(small, open, {.containment = false}).verdict, Verdict::clear);
+  // A closed part decides whether an open one lies inside it (one point, ray parity).
+  const Model huge = make_model(make_box({-5, -5, -5}, {20, 20, 20}));
+  const ClashResult in = clash(open, huge);
+  EXPECT_EQ(in.containment, Containment::a_inside_b);
+  EXPECT_EQ(in.verdict, Verdict::clash);
+  // Touching an open part: whether the solids overlap behind the common faces is undecided.
+  TriMesh open_unit = make_box({0, 0, 0}, {1, 1, 1});
+  open_unit.triangles.erase(open_unit.triangles.begin());
+  EXPECT_EQ(clash(make_model(open_unit), make_model(make_box({1, 0, 0}, {2, 1, 1}))).verdict, Verdict::undecided);
+}
+
+TEST(ClashVerdict, NamesAndExitStatus) {
+  for (Verdict v : {Verdict::clear, Verdict::clearance, Verdict::contact, Verdict::undecided, Verdict::clash})
+    EXPECT_EQ(verdict_from_name(verdict_name(v)), v);
+  EXPECT_FALSE(verdict_from_name("interference"));
+  EXPECT_EQ(worst(Verdict::contact, Verdict::undecided), Verdict::undecided);
+  EXPECT_EQ(worst(Verdict::clash, Verdict::undecided), Verdict::clash);
+  EXPECT_EQ(verdict_exit_status(Verdict::clash), 1);
+  EXPECT_EQ(verdict_exit_status(Verdict::undecided), 3);
+  EXPECT_EQ(verdict_exit_status(Verdict::contact), 0);
+  EXPECT_EQ(verdict_exit_status(Verdict::contact, {.contact = true}), 1);
+  EXPECT_EQ(verdict_exit_status(Verdict::clearance, {.contact = true}), 0);
+  EXPECT_EQ(verdict_exit_status(Verdict::clearance, *parse_fail_on("contact,clearance")), 1);
+  EXPECT_FALSE(parse_fail_on("contact,"));
+  EXPECT_FALSE(parse_fail_on("touch"));
+}
+
 }  // namespace
 }  // namespace interfere

@@ -29,8 +29,11 @@ struct AssemblyClashOptions {
 /// surfaces only touch while the solids overlap: ClashResult::touching_overlap, e.g. an instance
 /// placed twice), `contact` (they touch only: faces, edges or points in common, as mating parts
 /// do; or their tessellations cross only where their B-Rep faces coincide: a nominal fit, see
-/// InstancePairResult::nominal_fit), `clearance` (apart, but closer than the clearance).
-enum class InstanceMeeting : std::uint8_t { clash, contact, clearance };
+/// InstancePairResult::nominal_fit), `clearance` (apart, but closer than the clearance),
+/// `undecided` (an instance is open where inside/outside decides: touching surfaces or nested
+/// boxes; the clash engine's Verdict::undecided, InstancePairResult::verdict_reasons says why).
+/// The names are the verdict model's (query/verdict.h).
+enum class InstanceMeeting : std::uint8_t { clash, contact, clearance, undecided };
 const char* instance_meeting_name(InstanceMeeting m);
 
 struct InstancePairResult {
@@ -68,6 +71,7 @@ struct InstancePairResult {
   bool nominal_fit = false;
   std::size_t regions = 0;
   double curve_length = 0;  ///< of the intersection curves
+  std::vector<std::string> verdict_reasons;  ///< for `undecided`: what could not be decided
   /// With AssemblyClashOptions::geometry, for pairs that clash: the intersection curves (world
   /// coordinates) and each instance's triangles in the clash regions (sorted indices into its
   /// part's mesh, Part::mesh: its triangles in the same order; all of an instance that lies inside
@@ -85,7 +89,9 @@ struct AssemblyClashResult {
   /// The meeting pairs, by (a, b); pairs that neither meet nor come within the clearance are left out.
   std::vector<InstancePairResult> pairs;
   std::size_t candidate_pairs = 0;  ///< instance pairs whose boxes (grown by the clearance) overlap
-  std::size_t clashes = 0, contacts = 0, within_clearance = 0;
+  std::size_t clashes = 0, contacts = 0, within_clearance = 0, undecided = 0;
+  /// The worst pair's (query/verdict.h): clash, undecided, contact, clearance or clear.
+  Verdict verdict = Verdict::clear;
   std::vector<std::string> warnings;  ///< open instances (containment not checked), ...
 };
 

@@ -9,6 +9,7 @@
 #include "interfere/mesh/polyline.h"
 #include "interfere/np/tri_tri.h"
 #include "interfere/query/model.h"
+#include "interfere/query/verdict.h"
 
 namespace interfere {
 
@@ -77,6 +78,16 @@ struct ClashResult {
   bool touching_overlap = false;
   std::size_t candidate_pairs = 0;        ///< box-overlapping pairs handed to the triangle test
   std::vector<std::string> warnings;
+  /// The verdict model (query/verdict.h): `clash` (crossing pairs, containment, touching_overlap),
+  /// `contact` (touch pairs only, the solids' interiors disjoint), `clearance` (clearance pairs
+  /// only), `clear`, or `undecided` when inside/outside mattered and could not be decided (an open
+  /// part with containment requested, every ray direction degenerate): never clear then.
+  /// `verdict_reasons` says why for undecided. Without `containment` in the request, touching
+  /// parts are a contact and apart parts clear (the caller chose not to check solids).
+  Verdict verdict = Verdict::clear;
+  std::vector<std::string> verdict_reasons;
+  /// The surfaces meet (any pair, touch included) or one part lies inside the other; see `verdict`
+  /// for clash versus contact.
   bool interference() const {
     return !pairs.empty() || containment == Containment::a_inside_b ||
            containment == Containment::b_inside_a;
