@@ -1,6 +1,10 @@
 // `interfere sweep`: inspection-probe path checking (issue #5). Parses, validates every input
 // before computing, calls the probe engine, writes the JSON/CSV reports and the OBJ/VTK geometry
-// atomically. Exit status: 0 clear, 1 a point or a segment collides, 2 input error.
+// atomically. Verdicts (issue #23, items 3, 4, 13; docs/probe.md "Verdicts"): per point and segment
+// clash (collides: touches the workpiece or lies inside a closed component), undecided (a segment
+// the refinement could not resolve), clearance (closer than --clearance), clear. Exit status by
+// verdict_exit_status: 0 clear, 1 clash (or clearance with --fail-on clearance), 2 input error, 3
+// undecided.
 #include <CLI/CLI.hpp>
 
 #include <array>
@@ -24,11 +28,14 @@ using namespace interfere::probe;
 struct SweepOptions {
   StepTessellation tessellation;
   std::string workpiece, robot, path, json, csv, hits_obj, probes_vtk, hierarchy = "bvh", units = "mm", holder_box;
+  std::string fail_on;
+  double clearance = 0;       ///< requested clearance (--clearance), 0 = none
+  std::size_t max_poses = std::size_t(1) << 16;
   double probe_radius = std::numeric_limits<double>::quiet_NaN();
   double probe_length = std::numeric_limits<double>::quiet_NaN();
   double holder_radius = 0, holder_length = 0;
   double patch_size = 0, patch_rule = 33, max_clearance = 0;
-  int threads = 0, depth = 12;
+  int threads = 0, depth = 16;
   bool no_continuous = false, no_clearance = false;
 };
 
@@ -98,6 +105,13 @@ int run_sweep(const SweepOptions& o) {
   positive(o.patch_size, "--patch-size", true);
   positive(o.patch_rule, "--patch-rule");
   positive(o.max_clearance, "--max-clearance", true);
+  positive(o.clearance, "--clearance", true);
+  if (o.clearance > 0 && o.no_clearance) throw InputError("--clearance and --no-clearance: a requested clearance needs the clearance");
+  if (o.clearance > 0 && o.max_clearance > 0 && o.max_clearance < o.clearance) {
+    throw InputError("--max-clearance must be at least --clearance (clearances beyond it are not measured)");
+  }
+  if (o.max_poses < 1) throw InputError("--max-poses: must be >= 1");
+  const FailOn failing = fail_on(o.fail_on);
   if (o.depth < 1 || o.depth > 40) throw InputError("--depth: must be in [1, 40]");
   check_units(o.units);
   check_step_units({o.workpiece}, o.units);
@@ -151,9 +165,12 @@ int run_sweep(const SweepOptions& o) {
                .continuous = !o.no_continuous,
                .clearance = !o.no_clearance,
                .max_clearance = o.max_clearance > 0 ? o.max_clearance : std::numeric_limits<double>::infinity(),
-               .max_depth = o.depth});
+               .max_depth = o.depth,
+               .max_poses = o.max_poses,
+               .clearance_limit = o.clearance});
   }
-  const int status = r.any_collision() ? kInterference : kClear;
+  for (const std::string& text : w.warnings) warning(text);
+  const int status = verdict_exit_status(r.verdict, failing);
 
   // ---- outputs ----
   double min_clear = std::numeric_limits<double>::infinity();
@@ -166,6 +183,8 @@ int run_sweep(const SweepOptions& o) {
     nlohmann::json j;
     j["version"] = INTERFERE_VERSION;
     j["command"] = "sweep";
+    j["verdict"] = verdict_name(r.verdict);
+    j["warnings"] = w.warnings;
     j["units"] = o.units;
     j["inputs"] = {{"workpiece", {{"file", o.workpiece}, {"format", mesh.format},
                                   {"triangles", w.mesh.num_triangles()}, {"vertices", w.mesh.num_vertices()}}},
@@ -190,11 +209,19 @@ int run_sweep(const SweepOptions& o) {
                     {"clearance", !o.no_clearance},
                     {"max_clearance", number_or_null(o.max_clearance > 0 ? o.max_clearance : INFINITY)},
                     {"depth", o.depth},
+                    {"max_poses", o.max_poses},
+                    {"clearance_requested", o.clearance},
+                    {"fail_on", o.fail_on.empty() ? std::string("clash") : o.fail_on},
                     {"threads", active_threads()}};
-    j["workpiece"] = {{"triangles", w.mesh.num_triangles()}, {"patches", w.patches.size()}};
+    j["workpiece"] = {{"triangles", w.mesh.num_triangles()}, {"patches", w.patches.size()},
+                      {"solids", w.solids.size()}, {"open_components", w.open_components}};
     j["summary"] = {{"points", path.size()},
                     {"colliding_points", r.colliding_points},
+                    {"verdict", verdict_name(r.verdict)},
+                    {"inside_points", r.inside_points},
+                    {"undecided_points", r.undecided_points},
                     {"colliding_segments", r.colliding_segments},
+                    {"unresolved_segments", r.unresolved_segments},
                     {"between_samples_segments", r.between_samples_segments},
                     {"min_clearance", number_or_null(min_clear)},
                     {"min_clearance_point", min_point},
@@ -206,7 +233,9 @@ int run_sweep(const SweepOptions& o) {
       const PointResult& p = r.points[i];
       nlohmann::json e{{"index", i},
                        {"line", path.lines[i]},
+                       {"verdict", verdict_name(p.verdict)},
                        {"collides", p.collides},
+                       {"inside", p.inside},
                        {"holder", p.holder},
                        {"clearance", number_or_null(p.clearance)},
                        {"triangle", p.triangle == kNone ? nlohmann::json(nullptr) : nlohmann::json(p.triangle)},
@@ -223,23 +252,47 @@ int run_sweep(const SweepOptions& o) {
     }
     j["points"] = std::move(pts);
     j["colliding_points"] = std::move(colliding);
-    nlohmann::json segs = nlohmann::json::array();
-    for (const SegmentResult& s : r.segments) {
+    // Every segment whose verdict is not clear; "colliding_segments" keeps those that collide.
+    auto intervals = [](const std::vector<std::array<double, 2>>& v) {
       nlohmann::json iv = nlohmann::json::array();
-      for (const auto& x : s.intervals) iv.push_back({x[0], x[1]});
-      segs.push_back({{"from", s.from}, {"to", s.from + 1}, {"intervals", iv}, {"between_samples", s.between_samples},
-                      {"triangles", s.triangles}, {"poses_tested", s.poses_tested}});
+      for (const auto& x : v) iv.push_back({x[0], x[1]});
+      return iv;
+    };
+    nlohmann::json segs = nlohmann::json::array(), colliding_segs = nlohmann::json::array();
+    for (const SegmentResult& s : r.segments) {
+      nlohmann::json e{{"from", s.from},
+                       {"to", s.from + 1},
+                       {"verdict", verdict_name(s.verdict)},
+                       {"state", segment_state_name(s.state)},
+                       {"intervals", intervals(s.intervals)},
+                       {"unresolved", intervals(s.unresolved)},
+                       {"between_samples", s.between_samples},
+                       {"triangles", s.triangles},
+                       {"poses_tested", s.poses_tested}};
+      if (s.state == SegmentState::unresolved) {
+        e["smallest_gap"] = number_or_null(s.smallest_gap);
+        e["unresolved_motion"] = s.unresolved_motion;
+      }
+      if (o.clearance > 0 && s.state == SegmentState::clear) {
+        e["clearance_state"] = segment_state_name(s.clearance_state);
+        e["clearance_intervals"] = intervals(s.clearance_intervals);
+        e["clearance_unresolved"] = intervals(s.clearance_unresolved);
+      }
+      if (s.state == SegmentState::collides) colliding_segs.push_back(e);
+      segs.push_back(std::move(e));
     }
-    j["colliding_segments"] = std::move(segs);
+    j["segments"] = std::move(segs);
+    j["colliding_segments"] = std::move(colliding_segs);
     j["timings"] = {{"read", read_seconds}, {"build", w.build_seconds}, {"discrete", r.discrete_seconds},
                     {"clearance", r.clearance_seconds}, {"continuous", r.continuous_seconds},
                     {"total", total.seconds()}};
     j["exit_status"] = status;
-    const Status s = write_file_atomic(o.json, j.dump(1) + "\n");
+    const Status s = write_output(o.json, j.dump(1) + "\n");
     if (!s) throw InputError(s.error());
   }
   if (!o.csv.empty()) {
-    std::string out = "index,line,collides,holder,clearance,triangle,patch,hits,tip_x,tip_y,tip_z,axis_x,axis_y,axis_z\n";
+    std::string out =
+        "index,line,collides,holder,clearance,triangle,patch,hits,tip_x,tip_y,tip_z,axis_x,axis_y,axis_z,inside,verdict\n";
     for (std::size_t i = 0; i < r.points.size(); ++i) {
       const PointResult& p = r.points[i];
       std::string hits;
@@ -250,9 +303,10 @@ int run_sweep(const SweepOptions& o) {
              (p.triangle == kNone ? "" : std::to_string(p.triangle)) + "," +
              (p.patch == kNone ? "" : std::to_string(p.patch)) + "," + hits + "," + csv_number(q.tip.x) + "," +
              csv_number(q.tip.y) + "," + csv_number(q.tip.z) + "," + csv_number(q.axis.x) + "," +
-             csv_number(q.axis.y) + "," + csv_number(q.axis.z) + "\n";
+             csv_number(q.axis.y) + "," + csv_number(q.axis.z) + "," + (p.inside ? "1" : "0") + "," +
+             verdict_name(p.verdict) + "\n";
     }
-    const Status s = write_file_atomic(o.csv, out);
+    const Status s = write_output(o.csv, out);
     if (!s) throw InputError(s.error());
   }
   if (!o.hits_obj.empty() || !o.probes_vtk.empty()) {
@@ -263,9 +317,13 @@ int run_sweep(const SweepOptions& o) {
       if (!s) throw InputError(s.error());
     }
   }
-  std::printf("%s: %zu of %zu points collide, %zu colliding segments (%zu only between samples); min clearance %s %s\n",
-              r.any_collision() ? "COLLISION" : "clear", r.colliding_points, path.size(), r.colliding_segments,
-              r.between_samples_segments, csv_number(min_clear).c_str(), o.units.c_str());
+  const char* head = r.verdict == Verdict::clash       ? "COLLISION"
+                     : r.verdict == Verdict::undecided ? "UNDECIDED"
+                                                       : verdict_name(r.verdict);
+  std::printf("%s: %zu of %zu points collide (%zu inside the workpiece), %zu colliding segments (%zu only between "
+              "samples), %zu unresolved; min clearance %s %s\n",
+              head, r.colliding_points, path.size(), r.inside_points, r.colliding_segments, r.between_samples_segments,
+              r.unresolved_segments, csv_number(min_clear).c_str(), o.units.c_str());
   return status;
 }
 
@@ -299,7 +357,12 @@ void add_sweep_command(CLI::App& app, int& exit_code) {
   c->add_flag("--no-continuous", o->no_continuous, "skip the check between consecutive points");
   c->add_flag("--no-clearance", o->no_clearance, "skip the clearance of non-colliding points");
   c->add_option("--max-clearance", o->max_clearance, "report clearances beyond this as null (faster; 0 = no limit)");
-  c->add_option("--depth", o->depth, "continuous check resolution 2^-depth of a segment (default 12)");
+  c->add_option("--depth", o->depth, "continuous check resolution 2^-depth of a segment (default 16)");
+  c->add_option("--max-poses", o->max_poses,
+                "poses tested per segment before the rest is reported unresolved (default 65536)");
+  c->add_option("--clearance", o->clearance,
+                "requested clearance: points and segments closer than this get the verdict clearance (0 = none)");
+  add_fail_on_option(*c, o->fail_on);
   c->add_option("--threads", o->threads, "worker threads (0 = all cores)");
   c->add_option("--units", o->units, "length unit label of the inputs (default mm)");
   add_step_tessellation_options(*c, o->tessellation);

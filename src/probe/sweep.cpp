@@ -581,8 +581,9 @@ void merge(std::vector<std::array<double, 2>>& iv) {
   iv = std::move(out);
 }
 
-/// Level-order bisection of segment `from` (Li, Zhou & Zheng 2008, §3.4's check between path points,
-/// made conservative by the motion bound): an interval is cleared when the bodies at its midpoint,
+/// Level-order bisection of segment `from`. Li, Zhou & Zheng 2008 (§2, Fig. 1) check the path
+/// points only; this check of the motion between them is ours (docs/probe.md, "Between path
+/// points"), conservative by the motion bound: an interval is cleared when the bodies at its midpoint,
 /// grown by the motion bound plus `extra`, touch no triangle; otherwise `hit` decides the midpoint
 /// (1 proved, 0 not, -1 undecided) and the halves go to the next level, down to depth max_depth or
 /// until max_poses midpoints were tested. Leaves left over hold a proved end (part of `hit`

@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """End-to-end tests of `interfere sweep` (issue #5): exit status, JSON/CSV reports, OBJ/VTK output,
 a collision found only between samples, and bad inputs naming file, row and field (and leaving no
-output behind).
+output behind). Issue #23: a probe inside a closed workpiece collides (item 3), a constant 5 um gap is
+unresolved or clear but never a collision (item 4), path columns and robot files are read by
+meaning (item 9), verdicts and --fail-on (item 13).
 
 Usage: test_sweep.py PATH_TO_INTERFERE WORK_DIR   (run by ctest). Standard library only.
 """
@@ -36,6 +38,19 @@ def plate_obj(name, z, half=500.0, n=4):
 
 
 BASE = ["--probe-radius", "5", "--probe-length", "40"]
+
+
+def cube_obj(name, lo=0.0, hi=100.0, skip_top=False):
+    """The closed cube [lo, hi]^3 (outward triangles); without its top face when skip_top."""
+    v = [(x, y, z) for z in (lo, hi) for y in (lo, hi) for x in (lo, hi)]
+    quads = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
+    if skip_top:
+        quads = [q for q in quads if q != (4, 5, 7, 6)]
+    lines = ["v %r %r %r" % p for p in v]
+    for a, b, c, d in quads:
+        lines.append("f %d %d %d" % (a + 1, b + 1, c + 1))
+        lines.append("f %d %d %d" % (a + 1, c + 1, d + 1))
+    return write(name, "\n".join(lines) + "\n")
 
 
 class Sweep(unittest.TestCase):
@@ -229,6 +244,127 @@ class Sweep(unittest.TestCase):
         bad(["--path", bare, "--holder-box", "40,20,30"], "bare.csv:3", "field 'rx,ry,rz'", "missing")
         par = write("par.csv", "px,py,pz,ax,ay,az,rx,ry,rz\n0,0,100,0,0,-1,1,0,0\n0,0,100,0,0,-1,0,0,5\n")
         bad(["--path", par, "--holder-box", "40,20,30"], "par.csv:3", "field 'rx,ry,rz'", "parallel")
+
+    def test_probe_inside_closed_cube_collides(self):
+        # Issue #23, item 3: cube 0-100, probe at its centre pointing down (body z in [50, 90]): it
+        # touches no face but lies inside the solid. Was: collides false, clearance 10, exit 0.
+        p = write("centre.csv", "px,py,pz,ax,ay,az\n50,50,50,0,0,-1\n")
+        rc, out, err = run("--workpiece", cube_obj("cube.obj"), "--path", p, *BASE, "--json", path("cube.json"))
+        self.assertEqual(rc, 1, err + out)
+        j = load(path("cube.json"))
+        self.assertEqual(j["verdict"], "clash")
+        self.assertEqual(j["warnings"], [])
+        self.assertEqual(j["workpiece"]["solids"], 1)
+        pt = j["points"][0]
+        self.assertTrue(pt["collides"])
+        self.assertTrue(pt["inside"])
+        self.assertEqual(pt["verdict"], "clash")
+        self.assertEqual(pt["clearance"], 0)
+        self.assertEqual(j["summary"]["inside_points"], 1)
+        # Open (no top face): inside is not checked; said on stderr and in the JSON.
+        rc, out, err = run("--workpiece", cube_obj("open.obj", skip_top=True), "--path", p, *BASE, "--json",
+                           path("open.json"))
+        self.assertEqual(rc, 0, err + out)
+        self.assertIn("not checked", err)
+        j = load(path("open.json"))
+        self.assertEqual(len(j["warnings"]), 1)
+        self.assertIn("not checked", j["warnings"][0])
+        self.assertFalse(j["points"][0]["inside"])
+
+    def test_constant_gap_pass_is_not_a_collision(self):
+        # Issue #23, item 4: a 100 mm pass with the end face 5 um above a plate (gap 0.005 all along).
+        # Was: collision interval [0, 1], exit 1, only because the refinement depth ran out.
+        work = plate_obj("gap_plate.obj", 0.0)
+        p = write("gap.csv", "px,py,pz,ax,ay,az\n-50,0,0.005,0,0,-1\n50,0,0.005,0,0,-1\n")
+        rc, out, err = run("--workpiece", work, "--path", p, *BASE, "--depth", "12", "--json", path("gap12.json"))
+        self.assertEqual(rc, 3, err + out)
+        self.assertIn("UNDECIDED", out)
+        j = load(path("gap12.json"))
+        self.assertEqual(j["verdict"], "undecided")
+        self.assertEqual(j["colliding_segments"], [])
+        self.assertFalse(j["summary"]["collision"])
+        (seg,) = j["segments"]
+        self.assertEqual((seg["state"], seg["verdict"]), ("unresolved", "undecided"))
+        self.assertEqual(seg["intervals"], [])
+        self.assertEqual(seg["unresolved"], [[0.0, 1.0]])
+        self.assertAlmostEqual(seg["smallest_gap"], 0.005, places=10)
+        # The default resolution proves it clear (motion bound below the gap).
+        rc, out, err = run("--workpiece", work, "--path", p, *BASE, "--json", path("gap.json"))
+        self.assertEqual(rc, 0, err + out)
+        self.assertEqual(load(path("gap.json"))["verdict"], "clear")
+        # A 10 um step under the pass is still a collision, between the samples.
+        step = cube_obj("step.obj", -1.0, 0.01)
+        rc, out, err = run("--workpiece", step, "--path", p, *BASE, "--depth", "12", "--json", path("step.json"))
+        self.assertEqual(rc, 1, err + out)
+        (seg,) = load(path("step.json"))["colliding_segments"]
+        self.assertEqual(seg["state"], "collides")
+        self.assertTrue(seg["between_samples"])
+
+    def test_requested_clearance_and_fail_on(self):
+        work = plate_obj("cl_plate.obj", 0.0)
+        p = write("cl.csv", "x,y,z,a,b\n0,0,170,0,0\n10,0,170,0,0\n")  # tip 20 above the plate
+        rc, out, err = run("--workpiece", work, "--robot", ROBOT, "--path", p, *BASE, "--clearance", "25", "--json",
+                           path("cl.json"))
+        self.assertEqual(rc, 0, err + out)
+        j = load(path("cl.json"))
+        self.assertEqual(j["verdict"], "clearance")
+        self.assertEqual([pt["verdict"] for pt in j["points"]], ["clearance", "clearance"])
+        self.assertEqual(j["segments"][0]["verdict"], "clearance")
+        rc, out, err = run("--workpiece", work, "--robot", ROBOT, "--path", p, *BASE, "--clearance", "25",
+                           "--fail-on", "clearance")
+        self.assertEqual(rc, 1, err + out)
+        rc, out, err = run("--workpiece", work, "--robot", ROBOT, "--path", p, *BASE, "--clearance", "15",
+                           "--fail-on", "clearance", "--json", path("cl15.json"))
+        self.assertEqual(rc, 0, err + out)
+        self.assertEqual(load(path("cl15.json"))["verdict"], "clear")
+        rc, out, err = run("--workpiece", work, "--robot", ROBOT, "--path", p, *BASE, "--fail-on", "nearly")
+        self.assertEqual(rc, 2, err + out)
+        self.assertIn("--fail-on", err)
+
+    def test_joint_columns_by_name(self):
+        # Issue #23, item 9: the header names the joints; "b,a,z,y,x" is not read as x..b. Analytic
+        # clearance over a plate at z = 0: the rim's lowest point, 170 - 150 cos b - 5 sin b.
+        import math
+        work = plate_obj("name_plate.obj", 0.0)
+        b = 10.0
+        want = 170 - 150 * math.cos(math.radians(b)) - 5 * math.sin(math.radians(b))
+        for name, text in (("xyzab.csv", "x,y,z,a,b\n0,0,170,0,%r\n" % b), ("bazyx.csv", "b,a,z,y,x\n%r,0,170,0,0\n" % b)):
+            rc, out, err = run("--workpiece", work, "--robot", ROBOT, "--path", write(name, text), *BASE, "--json",
+                               path(name + ".json"))
+            self.assertEqual(rc, 0, err + out)
+            j = load(path(name + ".json"))
+            self.assertAlmostEqual(j["points"][0]["clearance"], want, places=9)
+            self.assertEqual(j["inputs"]["path"]["columns"], ["x", "y", "z", "a", "b"])
+
+    def test_bad_path_and_robot_files_by_meaning(self):
+        work = plate_obj("bm_plate.obj", 0.0)
+        good = write("bm_good.csv", "x,y,z,a,b\n0,0,170,0,0\n")
+        out_json = path("bm_out.json")
+
+        def bad(robot, path_file, *expect):
+            args = ["--workpiece", work, "--path", path_file, *BASE, "--json", out_json]
+            if robot:
+                args += ["--robot", robot]
+            rc, out, err = run(*args)
+            self.assertEqual(rc, 2, err + out)
+            for e in expect:
+                self.assertIn(e, err)
+            self.assertFalse(os.path.exists(out_json), "a bad input must not write the report")
+
+        bad(ROBOT, write("bm_q.csv", "x,y,z,a,q\n0,0,170,0,0\n"), "bm_q.csv:1", "column 5", "unknown column 'q'")
+        bad(ROBOT, write("bm_miss.csv", "x,y,z,a\n0,0,170,0\n"), "bm_miss.csv:1", "missing column b")
+        joints = '"joints": [{"name": "q", "type": "revolute", "a": 0, "alpha": 0, "d": 0, "theta": 0}]'
+        tool = '"tool": {"tip": [0, 0, 10], "axis": [0, 0, -1]}'  # 10 above the plate, pointing down
+        q_path = write("bm_q1.csv", "q\n0\n")
+        scaled = write("bm_scaled.json", '{\n"base": [2,0,0,0, 0,2,0,0, 0,0,2,0],\n%s,\n%s}\n' % (joints, tool))
+        bad(scaled, q_path, "bm_scaled.json:2", "base: not a rigid transform")
+        typo = write("bm_typo.json", '{\n"bsae": [1,0,0,0, 0,1,0,0, 0,0,1,0],\n%s,\n%s}\n' % (joints, tool))
+        bad(typo, q_path, "bm_typo.json:2", "bsae: unknown key")
+        metres = write("bm_m.json", '{\n"units": "m",\n%s,\n%s}\n' % (joints, tool))
+        bad(metres, q_path, "bm_m.json:2", "units: 'm'")
+        ok = write("bm_ok.json", '{\n"units": "mm",\n%s,\n%s}\n' % (joints, tool))
+        rc, out, err = run("--workpiece", work, "--path", q_path, "--robot", ok, *BASE)
+        self.assertEqual(rc, 0, err + out)
 
     def test_bad_input_keeps_existing_output(self):
         work = plate_obj("plate6.obj", 0.0)
