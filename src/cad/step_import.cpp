@@ -52,6 +52,7 @@
 #include <numbers>
 #include <set>
 
+#include "interfere/core/coordinate_range.h"
 #include "occt_internal.h"
 #include "step_guard.h"
 
@@ -284,6 +285,12 @@ Expected<CadModel> import_step(const std::filesystem::path& path, const ImportOp
     std::size_t tris = 0;
     for (const Part& p : model.parts) tris += p.mesh.num_triangles();
     if (tris == 0) return Error{.file = file, .reason = "no face could be tessellated"};
+    // The coordinate range of the exact predicates (issue #23, item 7), on the parts' own
+    // tessellations (instances are placed later by their transforms).
+    for (const Part& p : model.parts)
+      if (const std::size_t i = first_out_of_range(p.mesh.positions); i < p.mesh.positions.size())
+        return Error{.file = file, .reason = "part '" + p.name + "': tessellation vertex " + std::to_string(i) + ": " +
+                                             coordinate_range_reason(p.mesh.positions[i])};
     return model;
   } catch (const Standard_Failure& e) {
     return Error{.file = file, .reason = std::string("OpenCASCADE failure: ") + e.GetMessageString()};

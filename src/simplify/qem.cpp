@@ -262,7 +262,7 @@ Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& op
     return Error{.reason = "sharp angle " + short_number(options.sharp_angle_deg) +
                            " degrees: give a dihedral angle in (0, 180), or 0 for no sharp-edge regions"};
   if (!(options.max_error >= 0 && std::isfinite(options.max_error)))
-    return Error{.reason = "max_error " + short_number(options.max_error) +
+    return Error{.reason = "max_error " + (std::isnan(options.max_error) ? std::string("is not a number") : short_number(options.max_error)) +
                            ": give a length > 0 (the largest error bound allowed), or 0 for none"};
   Error err;
   const std::size_t target = budget_of(mesh, options, err);

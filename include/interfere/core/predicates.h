@@ -14,8 +14,11 @@
 // axis-aligned plane) is an exact zero and needs no fallback: a rounded difference is zero only
 // when the coordinates are equal, and a rounded product only when a factor is zero.
 //
-// Preconditions: finite coordinates, and no overflow/underflow in the expansions: coordinates and
-// nonzero coordinate differences between ~1e-80 and ~1e80 in magnitude (any physical unit).
+// Precondition: every coordinate is in the supported range of interfere/core/coordinate_range.h
+// (0, or 2^-250 <= |x| <= 2^100). Then every nonzero intermediate of the filters and of the
+// expansions lies between 2^-959 and 2^306 in magnitude: no overflow, no underflow, so the error
+// bounds and the exactness above hold (the reasoning is in coordinate_range.h). Inputs outside it
+// can give wrong signs (products overflow to inf, or round to zero); the readers reject them.
 #pragma once
 #include <cmath>
 

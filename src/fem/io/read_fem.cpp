@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "interfere/core/atomic_file.h"
+#include "interfere/core/coordinate_range.h"
 #include "scan.h"
 
 namespace interfere {
@@ -75,15 +76,22 @@ Expected<FemMesh> read_fem(const std::filesystem::path& path, const FemReadOptio
   FemFormat f = options.format;
   if (f == FemFormat::automatic) f = fem_format_from_path(path);
   if (f == FemFormat::automatic) f = sniff(*bytes);
+  Expected<FemMesh> m = fem_io::file_error(file, "cannot tell the FEM format (not .msh/.bdf/.nas/.dat/.vtk/.vtu/.inp and the content is none of them)");
   switch (f) {
-    case FemFormat::msh: return fem_io::read_msh(file, *bytes);
-    case FemFormat::nastran: return fem_io::read_nastran(path, *bytes);
-    case FemFormat::vtk_legacy: return fem_io::read_vtk_legacy(file, *bytes);
-    case FemFormat::vtu: return fem_io::read_vtu(file, *bytes);
-    case FemFormat::abaqus: return fem_io::read_abaqus(path, *bytes);
+    case FemFormat::msh: m = fem_io::read_msh(file, *bytes); break;
+    case FemFormat::nastran: m = fem_io::read_nastran(path, *bytes); break;
+    case FemFormat::vtk_legacy: m = fem_io::read_vtk_legacy(file, *bytes); break;
+    case FemFormat::vtu: m = fem_io::read_vtu(file, *bytes); break;
+    case FemFormat::abaqus: m = fem_io::read_abaqus(path, *bytes); break;
     default: break;
   }
-  return fem_io::file_error(file, "cannot tell the FEM format (not .msh/.bdf/.nas/.dat/.vtk/.vtu/.inp and the content is none of them)");
+  if (!m) return m;
+  // The coordinate range of the exact predicates (issue #23, item 7), once for every format.
+  if (const std::size_t i = first_out_of_range(m->nodes); i < m->nodes.size()) {
+    const std::string id = i < m->node_ids.size() ? std::to_string(m->node_ids[i]) : std::to_string(i);
+    return Error{.file = file, .reason = "node " + id + ": " + coordinate_range_reason(m->nodes[i])};
+  }
+  return m;
 }
 
 Status write_fem(const FemMesh& mesh, const std::filesystem::path& path, const FemWriteOptions& options) {

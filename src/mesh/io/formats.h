@@ -27,9 +27,11 @@ inline Error byte_error(const std::string& path, std::int64_t byte, std::string 
 }
 
 /// Parses coordinate `axis` (0, 1, 2) of a vertex from a text token (OBJ, OFF); the error names the
-/// line, the token and the axis, and rejects malformed numbers and NaN/Inf.
+/// line, the token and the axis, and rejects malformed numbers, NaN/Inf and coordinates outside the
+/// supported range (core/coordinate_range.h; that error also names the vertex number as the format
+/// counts it: OBJ from 1, OFF from 0).
 Status parse_coordinate(const std::string& path, std::int64_t line, std::string_view token, int axis,
-                        double& out);
+                        double& out, std::int64_t vertex);
 
 /// True when the bytes are a binary STL: the size is exactly 84 + 50·n for the count n in the
 /// header (even when the header starts with "solid"), or the file does not start with "solid", or

@@ -37,7 +37,9 @@ Expected<TriMesh> read_obj(const std::string& path, std::string_view d, MeshRead
                                 (k == 1 ? "" : "s") + "; 3 are needed");
         }
         double v;
-        if (Status st = parse_coordinate(path, r.line(), w, k, v); !st) return st.error();
+        if (Status st = parse_coordinate(path, r.line(), w, k, v,
+                                       static_cast<std::int64_t>(m.positions.size()) + 1);
+            !st) return st.error();
         p[static_cast<std::size_t>(k)] = v;
       }
       if (static_cast<std::int64_t>(m.positions.size()) >= kMaxVertices) {

@@ -113,7 +113,7 @@ Expected<TriMesh> read_off(const std::string& path, std::string_view d, MeshRead
       if (w.empty())
         return text_error(path, r.line(),
                           "vertex has " + std::to_string(k) + " coordinates; 3 are needed");
-      if (Status st = parse_coordinate(path, r.line(), w, k, v); !st) return st.error();
+      if (Status st = parse_coordinate(path, r.line(), w, k, v, static_cast<std::int64_t>(i)); !st) return st.error();
       p[static_cast<std::size_t>(k)] = v;
     }
     m.positions.push_back(p);

@@ -14,6 +14,7 @@
 
 #include "../weld_internal.h"
 #include "formats.h"
+#include "interfere/core/coordinate_range.h"
 #include "text_reader.h"
 
 namespace interfere::io_detail {
@@ -106,7 +107,9 @@ Expected<TriMesh> read_stl_binary(const std::string& path, std::string_view d, M
       bool bad = false;
       for (std::uint32_t b : bits) {
         if constexpr (std::endian::native == std::endian::big) b = bswap(b);
-        bad |= (b & 0x7f800000u) == 0x7f800000u;  // exponent all ones: Inf or NaN
+        // Inf, NaN, or above the supported coordinate range (issue #23, item 7): magnitudes over
+        // 2^100 (biased exponent 227, mantissa 0); every float is above its lower end, 2^-250.
+        bad |= (b & 0x7fffffffu) > (227u << 23);
       }
       if (bad) {
         std::uint64_t cur = first_bad.load(std::memory_order_relaxed);
@@ -128,6 +131,15 @@ Expected<TriMesh> read_stl_binary(const std::string& path, std::string_view d, M
                           std::string("non-finite coordinate (") + (std::isnan(c) ? "NaN" : "Inf") +
                               ") in vertex " + std::to_string(k / 3) + " of triangle " +
                               std::to_string(i));
+      }
+      if (!coordinate_in_range(c)) {
+        Vec3 p;
+        p[static_cast<std::size_t>(k % 3)] = c;
+        return byte_error(path,
+                          static_cast<std::int64_t>(kHeader + kFacet * i + 12 +
+                                                    4 * static_cast<std::uint64_t>(k)),
+                          "vertex " + std::to_string(k / 3) + " of triangle " + std::to_string(i) +
+                              ": " + coordinate_range_reason(p));
       }
     }
   }
@@ -229,6 +241,12 @@ Expected<TriMesh> read_stl_ascii(const std::string& path, std::string_view d, Me
       return text_error(path, r.line(), "malformed number " + quoted(w) + " (" + what + ")");
     if (finite && !std::isfinite(v)) {
       return text_error(path, r.line(), "non-finite coordinate " + quoted(w) + " (" + what + ")");
+    }
+    if (finite && !coordinate_in_range(v)) {  // issue #23, item 7
+      Vec3 p;
+      p[static_cast<std::size_t>(what[7] - 'x')] = v;  // what is "vertex x|y|z"
+      return text_error(path, r.line(),
+                        "vertex " + std::to_string(m.positions.size()) + " (0-based): " + coordinate_range_reason(p));
     }
     return true;
   };

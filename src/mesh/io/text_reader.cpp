@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "formats.h"
+#include "interfere/core/coordinate_range.h"
 
 #include <charconv>
 #include <cstdio>
@@ -72,13 +73,18 @@ std::string_view strip_comment(std::string_view line) {
 }
 
 Status parse_coordinate(const std::string& path, std::int64_t line, std::string_view token, int axis,
-                        double& out) {
+                        double& out, std::int64_t vertex) {
   static const char* const kAxis[3] = {"x", "y", "z"};
   if (!parse_double(token, out)) {
     return text_error(path, line, "malformed number " + quoted(token) + " (vertex " + kAxis[axis] + ")");
   }
   if (!std::isfinite(out)) {
     return text_error(path, line, "non-finite coordinate " + quoted(token) + " (vertex " + kAxis[axis] + ")");
+  }
+  if (!coordinate_in_range(out)) {  // issue #23, item 7: the predicates' range
+    Vec3 p;
+    p[static_cast<std::size_t>(axis)] = out;
+    return text_error(path, line, "vertex " + std::to_string(vertex) + ": " + coordinate_range_reason(p));
   }
   return {};
 }
