@@ -99,6 +99,8 @@ SimplifyOutput check_simplify_options(const SimplifyCliOptions& o) {
                    ? std::vector<std::string>{".stl", ".ply", ".obj", ".off", ".glb", ".gltf"}
                    : std::vector<std::string>{},
                "OUT (or --format)");
+  if (is_standard_output(o.output))  // (a mesh: standard output carries text reports only)
+    throw InputError("OUT: " + o.output + ": standard output is for text reports; give a mesh file name");
   const std::string out_ext = lower_extension(o.output);
   out.glb = gltf_format || (out.format == MeshFormat::automatic && (out_ext == ".glb" || out_ext == ".gltf"));
   out.container = named == MeshFormat::gltf || (!gltf_format && out_ext == ".gltf") ? GltfContainer::gltf
@@ -168,9 +170,15 @@ SimplifyInput load_simplify_input(const SimplifyCliOptions& o, [[maybe_unused]] 
   }
   // --max-error / --max-error-rel: the largest error bound allowed (the relative one of the whole
   // input's diagonal: an assembly's parts share one limit).
-  so.max_error = o.max_error > 0 ? o.max_error : o.max_error_rel * norm(in.mesh.bounds().extent());
-  if (o.max_error_rel > 0 && !(so.max_error > 0))
-    throw InputError("--max-error-rel: the input's bounding box has no extent (a point): give --max-error");
+  // The diagonal only when asked for (0 * an overflowed diagonal was NaN: issue #23, item 7).
+  so.max_error = o.max_error > 0 ? o.max_error : 0;
+  if (o.max_error_rel > 0) {
+    const double diagonal = norm(in.mesh.bounds().extent());
+    if (!(diagonal > 0) || !std::isfinite(diagonal))
+      throw InputError("--max-error-rel: the input's bounding box diagonal is " +
+                       std::string(diagonal > 0 ? "not a finite number" : "0 (a point)") + ": give --max-error");
+    so.max_error = o.max_error_rel * diagonal;
+  }
   if (o.renderer_max > 0) {  // the total is the renderer's maximum, the features reserved (docs/simplify.md)
     const auto b = triangle_budgets({{in.mesh.num_triangles(), count_feature_triangles(so.face_ids, so.feature_faces)}},
                                     o.renderer_max);
