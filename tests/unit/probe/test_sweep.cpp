@@ -65,7 +65,7 @@ TEST(ProbeSweep, HierarchiesAgreeWithBruteForce) {
   }
 }
 
-TEST(ProbeSweep, ClearanceIsTheBruteForceMinimum) {
+TEST(ProbeSweep, ClearanceMatchesSampledOracle) {
   const ProbeShape probe{.radius = 4, .length = 30};
   const TriMesh mesh = make_panel(PanelKind::saddle, 16, 16);
   const ProbePath path = small_path(PanelKind::saddle, 3, 15, 0);

@@ -137,7 +137,7 @@ TEST(ProbeSweepBox, HierarchiesAgreeWithBruteForce) {
   EXPECT_LT(results[0].colliding_points, path.size());
 }
 
-TEST(ProbeSweepBox, ClearanceIsTheBruteForceMinimum) {
+TEST(ProbeSweepBox, ClearanceMatchesSampledOracle) {
   const ProbeShape probe{
       .radius = 4, .length = 10, .holder_box_width = 100, .holder_box_depth = 30, .holder_box_length = 20};
   const TriMesh mesh = make_panel(PanelKind::saddle, 16, 16);
