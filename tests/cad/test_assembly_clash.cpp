@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <random>
 
@@ -206,6 +207,38 @@ TEST(AssemblyClash, RandomLayoutsMatchABruteForceClashOfEveryPair) {
         ++k;
       }
     EXPECT_EQ(k, r.pairs.size()) << "trial " << trial;
+
+    // The clash above is the engine assembly_clash itself runs on each pair: it checks the
+    // instance pairs, not the meetings. Those come from the boxes' intervals (issue #23, item 14):
+    // per axis the overlap min(hi) - max(lo) of the placed boxes (bounds fl(size + t), as the
+    // transform rounds them); all positive: the interiors overlap (clash); all >= 0: contact;
+    // otherwise the gap vector's length decides clearance or clear.
+    std::map<std::pair<std::uint32_t, std::uint32_t>, InstanceMeeting> expected;
+    std::map<std::pair<std::uint32_t, std::uint32_t>, double> gap;
+    for (std::uint32_t a = 0; a < inst.size(); ++a)
+      for (std::uint32_t b = a + 1; b < inst.size(); ++b) {
+        double overlap[3], gap2 = 0;
+        bool interior = true, closed = true;
+        for (int axis = 0; axis < 3; ++axis) {
+          const double sa = inst[a].first == 0 ? 1.0 : 0.2, sb = inst[b].first == 0 ? 1.0 : 0.2;
+          const double lo_a = inst[a].second.t[axis], lo_b = inst[b].second.t[axis];
+          overlap[axis] = std::min(sa + lo_a, sb + lo_b) - std::max(lo_a, lo_b);
+          interior &= overlap[axis] > 0;
+          closed &= overlap[axis] >= 0;
+          if (overlap[axis] < 0) gap2 += overlap[axis] * overlap[axis];
+        }
+        if (interior) expected[{a, b}] = InstanceMeeting::clash;
+        else if (closed) expected[{a, b}] = InstanceMeeting::contact;
+        else if (std::sqrt(gap2) < clearance) expected[{a, b}] = InstanceMeeting::clearance, gap[{a, b}] = std::sqrt(gap2);
+      }
+    EXPECT_GT(expected.size(), 3u) << "trial " << trial;
+    std::map<std::pair<std::uint32_t, std::uint32_t>, InstanceMeeting> got;
+    for (const InstancePairResult& p : r.pairs) {
+      got[{p.a, p.b}] = p.meeting;
+      if (p.meeting == InstanceMeeting::clearance && gap.count({p.a, p.b}))
+        EXPECT_NEAR(p.min_clearance, (gap[{p.a, p.b}]), 1e-12) << p.a << " " << p.b;
+    }
+    EXPECT_EQ(got, expected) << "trial " << trial;
   }
 }
 
