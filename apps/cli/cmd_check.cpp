@@ -39,7 +39,7 @@ int run_check(CheckOptions o, const CLI::App& command) {
   }
   j.update(stats_json(s));
   if (!o.json.empty()) {
-    const Status st = write_file_atomic(o.json, j.dump(2) + "\n");
+    const Status st = write_output(o.json, j.dump(2) + "\n");
     if (!st) throw InputError(st.error());
   }
   std::printf("%s\n", j.dump(2).c_str());

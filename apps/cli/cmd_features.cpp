@@ -157,11 +157,11 @@ int run_features(const FeaturesCliOptions& o) {
   report["warnings"] = model->warnings;
   report["seconds"] = {{"recognition", recognition_seconds}, {"total", total.seconds()}};
   if (!o.dot.empty()) {
-    const Status s = write_file_atomic(o.dot, aag_dot(dot_parts));
+    const Status s = write_output(o.dot, aag_dot(dot_parts));
     if (!s) throw InputError(s.error());
   }
   if (!o.json.empty()) {
-    const Status s = write_file_atomic(o.json, report.dump(2) + "\n");
+    const Status s = write_output(o.json, report.dump(2) + "\n");
     if (!s) throw InputError(s.error());
   }
   return kClear;

@@ -112,7 +112,7 @@ int run_surface(const SurfaceOptions& o) {
                         {"vertices", merged.positions.size()},
                         {"input_warnings", p.warnings},
                         {"timings_s", {{"read", p.read_seconds}, {"extract", p.extract_seconds}, {"total", total.seconds()}}}};
-    write_or_throw(write_file_atomic(o.json, j.dump(2) + "\n"));
+    write_or_throw(write_output(o.json, j.dump(2) + "\n"));
   }
   std::printf("surface: %zu part%s, %zu triangles, %zu vertices", p.chosen.size(), p.chosen.size() == 1 ? "" : "s",
               merged.triangles.size(), merged.positions.size());
@@ -136,7 +136,11 @@ void add_surface_command(CLI::App& app, int& exit_code) {
   c->add_option("--field", o->field, "nodal vector field of IN used as displacement");
   c->add_option("--scale", o->scale, "position = node + scale * u (default 1)");
   c->add_option("--step", o->step, "step of the displacement (0-based; default the last)");
-  c->add_option("--transform", o->transform, "pose: \"r00 r01 r02 tx r10 r11 r12 ty r20 r21 r22 tz\"");
+  c->add_option("--transform", o->transform, "pose: \"r00 r01 r02 tx r10 r11 r12 ty r20 r21 r22 tz\"")
+      ->check([](const std::string& text) {  // empty, non-finite, singular: an error (issue #23, item 8)
+        const auto t = Transform::parse(text);
+        return t ? std::string() : t.error().reason;
+      });
   c->add_option("--json", o->json, "write a JSON report here");
   c->add_option("--threads", o->threads, "worker threads (0 = all cores)");
   c->callback([o, &exit_code] { exit_code = run_surface(*o); });
