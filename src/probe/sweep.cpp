@@ -210,19 +210,20 @@ bool bodies_touch(const Workpiece& w, const Bodies& bodies, std::vector<std::uin
   return any;
 }
 
-/// Where bodies that touch no triangle lie: 1 inside a closed component, 0 outside all of them, -1
+/// Where bodies that touch no triangle lie: 1 in the workpiece's material, 0 outside it, -1
 /// undecided (every ray direction degenerate). The bodies are connected and miss every surface, so
 /// one of their points (the tip, on the probe's end circle) decides for all of them (issue #23,
-/// item 3; exact ray parity, query/clash.h point_in_solid).
+/// item 3; exact ray parity per closed component, query/clash.h point_in_solid, summed with the
+/// components' orientations: Workpiece::solid_sign).
 int bodies_inside(const Workpiece& w, const Bodies& bodies) {
   const Vec3 p = bodies.cylinders.front().c0;
-  int result = 0;
-  for (const Model& solid : w.solids) {
-    const int in = point_in_solid(solid, p);
-    if (in == 1) return 1;
-    if (in < 0) result = -1;
+  int winding = 0;
+  for (std::size_t k = 0; k < w.solids.size(); ++k) {
+    const int in = point_in_solid(w.solids[k], p);
+    if (in < 0) return -1;
+    winding += in * w.solid_sign[k];
   }
-  return result;
+  return winding > 0 ? 1 : 0;
 }
 
 /// A pose's state: touches the surface or lies inside a solid (collides), outside (clear), or
@@ -326,14 +327,44 @@ void find_solids(Workpiece& w) {
     part.triangles.push_back(tri);
   }
   std::size_t open_triangles = 0;
+  std::vector<double> volume;  // signed volume of each solid (6x, double: only its sign is used)
   for (TriMesh& part : parts) {
     const MeshStats stats = mesh_stats(part);
     if (stats.closed()) {
+      double v = 0;
+      for (std::size_t t = 0; t < part.num_triangles(); ++t) {
+        const auto c = part.corners(t);
+        v += dot(c[0], cross(c[1], c[2]));
+      }
+      volume.push_back(v);
       w.solids.push_back(make_model(std::move(part)));
     } else {
       ++w.open_components;
       open_triangles += part.num_triangles();
     }
+  }
+  // Orientation: outward shells bound material (+1). An inward shell is a cavity (-1) when it lies
+  // inside an outward one (one of its vertices decides: the shells do not meet), otherwise an
+  // inside-out solid, taken as material with a warning.
+  std::size_t inside_out = 0;
+  w.solid_sign.assign(w.solids.size(), 1);
+  for (std::size_t k = 0; k < w.solids.size(); ++k) {
+    if (!(volume[k] < 0)) continue;
+    const Vec3 v = w.solids[k].mesh.positions[w.solids[k].mesh.triangles[0][0]];
+    bool enclosed = false;
+    for (std::size_t j = 0; j < w.solids.size() && !enclosed; ++j) {
+      enclosed = j != k && volume[j] > 0 && point_in_solid(w.solids[j], v) == 1;
+    }
+    if (enclosed) {
+      w.solid_sign[k] = -1;
+    } else {
+      ++inside_out;
+    }
+  }
+  if (inside_out > 0) {
+    w.warnings.push_back("workpiece: " + std::to_string(inside_out) +
+                         " closed components are inside out (inward normals, enclosed by nothing): taken as "
+                         "solids");
   }
   if (w.open_components > 0) {
     w.warnings.push_back("workpiece: " + std::to_string(w.open_components) + " of " + std::to_string(parts.size()) +

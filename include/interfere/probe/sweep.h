@@ -22,11 +22,12 @@
 // probe passes closer than the resolution can separate; reported with the smallest gap measured
 // there, never called clear or colliding).
 //
-// Solids (issue #23, item 3): a closed component of the workpiece is a solid. A pose whose bodies
-// touch no triangle lies wholly inside or wholly outside each closed component (the bodies are
-// connected), so one point (the tip) decides it by exact ray parity (query/clash.h point_in_solid,
-// the engine's containment test): inside collides. Open components bound nothing: their inside is
-// not checked and Workpiece::warnings says so.
+// Solids (issue #23, item 3): the closed components of the workpiece bound its material. A pose
+// whose bodies touch no triangle lies wholly inside or wholly outside each closed component (the
+// bodies are connected), so one point (the tip) decides it by exact ray parity per component
+// (query/clash.h point_in_solid, the engine's containment test), summed with the components'
+// orientations (a cavity shell subtracts): inside the material collides. Open components bound
+// nothing: their inside is not checked and Workpiece::warnings says so.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -130,8 +131,12 @@ struct Workpiece {
   UniformGrid grid;        ///< built for Hierarchy::grid
   DistanceField field;     ///< built for Hierarchy::distance_field
   Hierarchy hierarchy = Hierarchy::bvh;
-  /// Closed connected components of the mesh (each a solid: a pose inside one collides).
+  /// Closed connected components of the mesh and their orientation: +1 bounds material (outward
+  /// normals, or an inside-out shell enclosed by nothing), -1 a cavity (inward normals, inside
+  /// another component). A point is in the material when the sum of the signs of the components
+  /// containing it is positive (winding number; two overlapping solids count, a cavity does not).
   std::vector<Model> solids;
+  std::vector<int> solid_sign;
   std::size_t open_components = 0;  ///< components that bound nothing (inside not checked)
   std::vector<std::string> warnings;  ///< e.g. open components: inside/behind them is not checked
   double build_seconds = 0;

@@ -114,6 +114,47 @@ TEST(ProbeSweepSolids, ClosedAndOpenComponents) {
   EXPECT_TRUE(r.points[0].inside);
 }
 
+namespace {
+void append(TriMesh& m, const TriMesh& other, bool flip) {
+  const auto base = static_cast<std::uint32_t>(m.positions.size());
+  m.positions.insert(m.positions.end(), other.positions.begin(), other.positions.end());
+  for (Tri t : other.triangles) {
+    if (flip) std::swap(t[1], t[2]);
+    m.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  }
+}
+}  // namespace
+
+TEST(ProbeSweepSolids, CavitiesOverlapsAndInsideOutShells) {
+  const ProbeShape small{.radius = 2, .length = 5};
+  // A hollow cube: outer [0, 100]^3 outward, a cavity [20, 80]^3 with inward normals (another
+  // component). In the cavity: empty space; in the wall: material.
+  TriMesh hollow;
+  append(hollow, make_box({0, 0, 0}, {100, 100, 100}), false);
+  append(hollow, make_box({20, 20, 20}, {80, 80, 80}), true);
+  const Workpiece w = prepare_workpiece(hollow, small);
+  ASSERT_EQ(w.solids.size(), 2u);
+  EXPECT_EQ(w.solid_sign, (std::vector<int>{1, -1}));
+  EXPECT_TRUE(w.warnings.empty());
+  const SweepResult r = sweep(w, poses({{{50, 50, 50}, kDown}, {{10, 50, 50}, kDown}}), nullptr, {.probe = small});
+  EXPECT_FALSE(r.points[0].collides);  // in the cavity: body z in [50, 55], 25 below its top
+  EXPECT_NEAR(r.points[0].clearance, 25.0, 1e-9);
+  EXPECT_TRUE(r.points[1].inside);  // in the wall x in [0, 20]
+  // Two overlapping outward cubes: a pose in their common part is in the material.
+  TriMesh two;
+  append(two, make_box({0, 0, 0}, {60, 60, 60}), false);
+  append(two, make_box({40, 40, 40}, {100, 100, 100}), false);
+  const Workpiece w2 = prepare_workpiece(two, small);
+  EXPECT_TRUE(sweep(w2, poses({{{50, 50, 50}, kDown}}), nullptr, {.probe = small}).points[0].inside);
+  // One inside-out cube: still a solid, with a warning.
+  TriMesh inverted;
+  append(inverted, make_box({0, 0, 0}, {100, 100, 100}), true);
+  const Workpiece w3 = prepare_workpiece(inverted, small);
+  ASSERT_EQ(w3.warnings.size(), 1u);
+  EXPECT_NE(w3.warnings[0].find("inside out"), std::string::npos);
+  EXPECT_TRUE(sweep(w3, poses({{{50, 50, 50}, kDown}}), nullptr, {.probe = small}).points[0].inside);
+}
+
 TEST(ProbeSweepStates, ConstantGapPassIsNeverACollision) {
   // The case: a 100 mm pass with the probe's end face 5 um above a plate. The end face is
   // parallel to the plate, so the gap is 0.005 at every pose (analytic).
