@@ -222,6 +222,8 @@ int run_sweep(const SweepOptions& o) {
                     {"undecided_points", r.undecided_points},
                     {"colliding_segments", r.colliding_segments},
                     {"unresolved_segments", r.unresolved_segments},
+                    {"segments_checked", o.no_continuous || path.size() < 2 ? 0 : path.size() - 1},
+                    {"clear_segments", o.no_continuous || path.size() < 2 ? 0 : path.size() - 1 - r.segments.size()},
                     {"between_samples_segments", r.between_samples_segments},
                     {"min_clearance", number_or_null(min_clear)},
                     {"min_clearance_point", min_point},

@@ -291,7 +291,9 @@ class Sweep(unittest.TestCase):
         # The default resolution proves it clear (motion bound below the gap).
         rc, out, err = run("--workpiece", work, "--path", p, *BASE, "--json", path("gap.json"))
         self.assertEqual(rc, 0, err + out)
-        self.assertEqual(load(path("gap.json"))["verdict"], "clear")
+        j = load(path("gap.json"))
+        self.assertEqual(j["verdict"], "clear")
+        self.assertEqual((j["summary"]["segments_checked"], j["summary"]["clear_segments"]), (1, 1))
         # A 10 um step under the pass is still a collision, between the samples.
         step = cube_obj("step.obj", -1.0, 0.01)
         rc, out, err = run("--workpiece", step, "--path", p, *BASE, "--depth", "12", "--json", path("step.json"))
