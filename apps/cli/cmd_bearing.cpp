@@ -2,6 +2,8 @@
 // Jia & Zheng, J. System Simulation 31(3), 2019). Parses options and the parameters file, runs the
 // simulation (bearing/simulation.h), writes the per-frame CSV and the JSON summary
 // (docs/bearing.md). Outputs are written atomically and only after every input is validated.
+// Every row and every pair of parts of different bearings that the broad phase reports carries a
+// verdict (query/verdict.h; bearing/part_pair.h); the exit status is verdict_exit_status's.
 #include <CLI/CLI.hpp>
 
 #include <cctype>
@@ -25,10 +27,10 @@ namespace {
 using namespace interfere::bearing;
 
 struct BearingOptions {
-  std::string params_file, out, json, broad_phase, scar;
+  std::string params_file, out, json, broad_phase, scar, fail_on;
   std::optional<int> pairs, frames, vertices, threads_opt, border;
   std::optional<double> tilt, radius, top_radius, height, partner_radius, partner_height, gap, spin, tilt_step,
-      scar_fraction, roughness, spacing;
+      scar_fraction, roughness, spacing, clearance;
   std::optional<std::uint64_t> seed, scar_seed;
   bool no_scar = false;
 };
@@ -81,6 +83,7 @@ void apply_params_file(const std::string& file, SceneParams& p) {
     else if (k == "tilt_step") p.tilt_step = number(v, file, k);
     else if (k == "spin_deg_per_frame") p.spin_deg_per_frame = number(v, file, k);
     else if (k == "spacing") p.spacing = number(v, file, k);
+    else if (k == "clearance") p.clearance = number(v, file, k);
     else if (k == "broad_phase") {
       if (!v.is_string() || !parse_broad_phase(v.get<std::string>(), p.broad_phase))
         file_error(file, "'broad_phase' must be one of \"brute\", \"sap\", \"octree\", \"bvh\"");
@@ -143,6 +146,17 @@ void parse_scar_spec(const std::string& spec, ScarParams& s) {
 
 nlohmann::json vec_json(const Vec3& v) { return {v.x, v.y, v.z}; }
 
+/// Part index 2k (roller of pair k) or 2k + 1 (its partner).
+nlohmann::json scene_part_json(std::uint32_t part) {
+  return {{"pair", part / 2}, {"part", part % 2 == 0 ? "roller" : "partner"}};
+}
+
+nlohmann::json verdict_counts(const std::array<std::uint64_t, 5>& counts) {
+  nlohmann::json j = nlohmann::json::object();
+  for (std::size_t v = 0; v < counts.size(); ++v) j[verdict_name(static_cast<Verdict>(v))] = counts[v];
+  return j;
+}
+
 nlohmann::json params_json(const SceneParams& p) {
   return {{"pairs", p.pairs},
           {"frames", p.frames},
@@ -169,20 +183,21 @@ nlohmann::json params_json(const SceneParams& p) {
             {"border", p.scar.border},
             {"seed", p.scar.seed}}},
           {"broad_phase", broad_phase_name(p.broad_phase)},
-          {"spacing", p.spacing}};
+          {"spacing", p.spacing},
+          {"clearance", p.clearance}};
 }
 
 int write_csv(std::FILE* f, const SimulationResult& r) {
   std::fputs("frame,pair,distance,interference,ax,ay,az,bx,by,bz,solver,path,scarred,scar_in_range,box_overlap,"
-             "tilt_deg,azimuth_deg,spin_deg,evaluated\n", f);
+             "tilt_deg,azimuth_deg,spin_deg,evaluated,verdict\n", f);
   for (const PairFrame& row : r.rows) {
-    std::fprintf(f, "%d,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%s,%s,%d,%d,%d,%.17g,%.17g,%.17g,%u\n",
+    std::fprintf(f, "%d,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%s,%s,%d,%d,%d,%.17g,%.17g,%.17g,%u,%s\n",
                  row.frame, row.pair, row.distance, row.distance < 0 ? -row.distance : 0.0, row.point_a.x,
                  row.point_a.y, row.point_a.z, row.point_b.x, row.point_b.y, row.point_b.z,
                  row.solver == 1 ? "scarred" : "standard",
                  row.solver == 1 ? "mesh" : analytic_path_name(static_cast<AnalyticPath>(row.path)),
                  row.scarred_roller ? 1 : 0, row.scar_in_range ? 1 : 0, row.box_overlap ? 1 : 0, row.tilt_deg,
-                 row.azimuth_deg, row.spin_deg, row.evaluated);
+                 row.azimuth_deg, row.spin_deg, row.evaluated, verdict_name(row.verdict));
   }
   return std::ferror(f) ? 1 : 0;
 }
@@ -206,6 +221,7 @@ int run_bearing(const BearingOptions& o) {
   if (o.spin) p.spin_deg_per_frame = *o.spin;
   if (o.tilt_step) p.tilt_step = *o.tilt_step;
   if (o.spacing) p.spacing = *o.spacing;
+  if (o.clearance) p.clearance = *o.clearance;
   if (o.seed) p.seed = *o.seed;
   if (!o.scar.empty()) parse_scar_spec(o.scar, p.scar);
   if (o.scar_fraction) p.scar_fraction = *o.scar_fraction;
@@ -216,6 +232,7 @@ int run_bearing(const BearingOptions& o) {
   if (!o.broad_phase.empty() && !parse_broad_phase(o.broad_phase, p.broad_phase))
     throw InputError("--broad-phase: unknown broad phase '" + o.broad_phase + "' (brute, sap, octree, bvh)");
   if (Status s = validate(p); !s) throw InputError(s.error());
+  const FailOn fail = fail_on(o.fail_on);
   check_output(o.out, {}, "--out");
   check_output(o.json, {}, "--json");
   check_distinct_files({{"--params", o.params_file}}, {{"--out", o.out}, {"--json", o.json}});
@@ -229,9 +246,9 @@ int run_bearing(const BearingOptions& o) {
   }
   if (!r) throw InputError(r.error());
   const SimulationResult& res = *r;
-  const int status = res.interfering_rows > 0 ? kInterference : kClear;
+  const int status = verdict_exit_status(res.verdict, fail);
   if (!o.out.empty()) {
-    const Status s = write_file_atomic(o.out, [&](std::FILE* f) { return write_csv(f, res); });
+    const Status s = write_output(o.out, [&](std::FILE* f) { return write_csv(f, res); });
     if (!s) throw InputError(s.error());
   }
   if (!o.json.empty()) {
@@ -251,13 +268,30 @@ int run_bearing(const BearingOptions& o) {
                     {"scarred_solves", res.scarred_solves},
                     {"general_solves", res.general_solves},
                     {"broad_pairs_total", res.broad_pairs_total},
-                    {"cross_pairs", res.cross_pairs}};
+                    {"cross_pairs", res.cross_pairs},
+                    {"verdicts", verdict_counts(res.row_verdicts)},
+                    {"cross_verdicts", verdict_counts(res.cross_verdicts)}};
+    nlohmann::json cross = nlohmann::json::array();
+    for (const CrossPair& c : res.cross_results)
+      cross.push_back({{"frame", c.frame},
+                       {"a", scene_part_json(c.part_a)},
+                       {"b", scene_part_json(c.part_b)},
+                       {"distance", c.distance},
+                       {"interference", c.distance < 0 && c.solver != PartPairSolver::bound ? -c.distance : 0.0},
+                       {"point_a", vec_json(c.point_a)},
+                       {"point_b", vec_json(c.point_b)},
+                       {"solver", part_pair_solver_name(c.solver)},
+                       {"verdict", verdict_name(c.verdict)}});
+    j["cross"] = std::move(cross);
+    j["verdict"] = verdict_name(res.verdict);
+    j["undecided_reasons"] = res.undecided_reasons;
     j["worst"] = {{"frame", res.worst.frame},
                   {"pair", res.worst.pair},
                   {"distance", res.worst.distance},
                   {"point_a", vec_json(res.worst.point_a)},
                   {"point_b", vec_json(res.worst.point_b)},
-                  {"solver", res.worst.solver == 1 ? "scarred" : "standard"}};
+                  {"solver", res.worst.solver == 1 ? "scarred" : "standard"},
+                  {"verdict", verdict_name(res.worst.verdict)}};
     j["timing"] = {{"setup_seconds", res.setup_seconds},
                    {"broad_seconds", res.broad_seconds},
                    {"narrow_seconds", res.narrow_seconds},
@@ -265,14 +299,24 @@ int run_bearing(const BearingOptions& o) {
                    {"frames_per_second", res.frames_per_second},
                    {"cpu_seconds", res.cpu_seconds}};
     j["exit_status"] = status;
-    const Status s = write_file_atomic(o.json, j.dump(2) + "\n");
+    const Status s = write_output(o.json, j.dump(2) + "\n");
     if (!s) throw InputError(s.error());
   }
+  const auto count = [](const std::array<std::uint64_t, 5>& c, Verdict v) {
+    return static_cast<unsigned long long>(c[static_cast<std::size_t>(v)]);
+  };
   std::printf("%s: %d pairs x %d frames, %llu interfering pair-frames, max interference %.17g, min distance %.17g, "
               "%.1f frames/s\n",
-              res.interfering_rows > 0 ? "INTERFERENCE" : "clear", p.pairs, p.frames,
-              static_cast<unsigned long long>(res.interfering_rows), res.min_distance < 0 ? -res.min_distance : 0.0,
-              res.min_distance, res.frames_per_second);
+              verdict_name(res.verdict), p.pairs, p.frames, static_cast<unsigned long long>(res.interfering_rows),
+              res.min_distance < 0 ? -res.min_distance : 0.0, res.min_distance, res.frames_per_second);
+  std::printf("  pair-frames: %llu clash, %llu contact, %llu clearance, %llu undecided\n",
+              count(res.row_verdicts, Verdict::clash), count(res.row_verdicts, Verdict::contact),
+              count(res.row_verdicts, Verdict::clearance), count(res.row_verdicts, Verdict::undecided));
+  std::printf("  parts of different pairs: %llu box overlaps: %llu clash, %llu contact, %llu clearance, %llu undecided\n",
+              static_cast<unsigned long long>(res.cross_pairs), count(res.cross_verdicts, Verdict::clash),
+              count(res.cross_verdicts, Verdict::contact), count(res.cross_verdicts, Verdict::clearance),
+              count(res.cross_verdicts, Verdict::undecided));
+  for (const std::string& reason : res.undecided_reasons) std::printf("  undecided: %s\n", reason.c_str());
   return status;
 }
 
@@ -302,6 +346,8 @@ void add_bearing_command(CLI::App& app, int& exit_code) {
   c->add_option("--partner-height", o->partner_height, "partner height (default 60)");
   c->add_option("--gap", o->gap, "nominal surface gap between roller and partner (default 0; < 0 = preload)");
   c->add_option("--spacing", o->spacing, "grid pitch between pairs (default 0 = automatic)");
+  c->add_option("--clearance", o->clearance, "pairs apart but closer than this get the verdict clearance (default 0 = none)");
+  add_fail_on_option(*c, o->fail_on);
   c->add_option("--seed", o->seed, "seed of the tilt random walk and spin phases (default 1)");
   c->add_option("--broad-phase", o->broad_phase, "brute, sap (default), octree or bvh");
   c->add_option("--threads", o->threads_opt, "worker threads (0 = all cores)");

@@ -1,6 +1,7 @@
 // Dynamic simulation of N bearing pairs (Jia & Zheng 2019, §4): seeded spin and tilt random walk,
 // broad phase over all parts, per pair the standard solver (§3.1) or, with a scar in the window of
-// Eq. (1), the temporally coherent scarred solver (§3.2).
+// Eq. (1), the temporally coherent scarred solver (§3.2); every pair of parts of different bearing
+// pairs that the broad phase reports is decided as well (part_pair.h), each with its verdict.
 #include "interfere/bearing/simulation.h"
 
 #include <tbb/parallel_for.h>
@@ -17,6 +18,7 @@
 #include "interfere/bearing/quadtree.h"
 #include "interfere/bearing/scarred.h"
 #include "interfere/bearing/window.h"
+#include "interfere/query/model.h"
 
 namespace interfere::bearing {
 namespace {
@@ -73,6 +75,7 @@ Status validate(const SceneParams& p) {
     if (Status s = validate(p.scar, p.roller, "scar"); !s) return s;
   }
   if (!(p.spacing >= 0 && p.spacing <= 1e9)) return param_error("spacing", ">= 0 and <= 1e9 (0 = automatic)", p.spacing);
+  if (!(p.clearance >= 0 && p.clearance <= 1e9)) return param_error("clearance", ">= 0 and <= 1e9", p.clearance);
   return {};
 }
 
@@ -117,6 +120,9 @@ Expected<SimulationResult> simulate(const SceneParams& p, bool keep_rows) {
     variants.push_back(std::move(*roller));
   }
   for (const Roller& v : variants) trees.push_back(build_quadtree(v));
+  // the closed scarred meshes as solids, for the containment test (part_pair.h mesh_containment)
+  std::vector<Model> solids;
+  for (const Roller& v : variants) solids.push_back(make_model(v.mesh, {}, false));
   for (PairState& s : st)
     if (s.scarred) {
       const auto vi = static_cast<std::size_t>(s.variant);
@@ -132,6 +138,27 @@ Expected<SimulationResult> simulate(const SceneParams& p, bool keep_rows) {
   std::vector<Cylinder> cyl_a(n), cyl_b(n);
   std::vector<PairFrame> frame_rows(n);
   std::vector<std::uint8_t> overlapping(n);
+  std::vector<IndexPair> cross;
+  std::vector<PartPairResult> cross_out;
+  // part 2k: the roller of pair k (its scarred mesh if any), 2k + 1: its partner
+  const auto part = [&](std::uint32_t q) {
+    const std::size_t k = q / 2;
+    ScenePart sp;
+    if (q % 2 == 1) {
+      sp.cylinder = cyl_b[k], sp.partner = true;
+      return sp;
+    }
+    sp.cylinder = cyl_a[k], sp.pose = poses[k];
+    if (st[k].scarred) {
+      const auto vi = static_cast<std::size_t>(st[k].variant);
+      sp.mesh = &variants[vi], sp.tree = &trees[vi], sp.solid = &solids[vi];
+    }
+    return sp;
+  };
+  const auto note_undecided = [&](const std::string& reason) {
+    if (std::find(res.undecided_reasons.begin(), res.undecided_reasons.end(), reason) == res.undecided_reasons.end())
+      res.undecided_reasons.push_back(reason);
+  };
   if (keep_rows) res.rows.reserve(n * static_cast<std::size_t>(p.frames));
   res.min_distance = std::numeric_limits<double>::infinity();
   res.setup_seconds = now() - t_start;
@@ -167,10 +194,12 @@ Expected<SimulationResult> simulate(const SceneParams& p, bool keep_rows) {
     });
     const std::vector<IndexPair> pairs = broad->update(boxes);
     std::fill(overlapping.begin(), overlapping.end(), 0);
+    cross.clear();
     for (const auto& [i, j] : pairs) {
       if (i / 2 == j / 2) overlapping[i / 2] = 1;
-      else ++res.cross_pairs;
+      else cross.push_back({i, j});
     }
+    res.cross_pairs += cross.size();
     res.broad_pairs_total += pairs.size();
     const double t1 = now();
     tbb::parallel_for(std::size_t{0}, n, [&](std::size_t k) {
@@ -201,6 +230,17 @@ Expected<SimulationResult> simulate(const SceneParams& p, bool keep_rows) {
           row.solver = 1, row.evaluated = mr.evaluated;
         }
       }
+      row.verdict = distance_verdict(row.distance, touch_tolerance(cyl_a[k], cyl_b[k]), p.clearance);
+      if (row.solver == 1 && row.verdict != Verdict::clash && row.verdict != Verdict::contact) {
+        // the surface minimum is apart: the partner may still lie wholly inside the roller
+        const int inside = mesh_containment(part(static_cast<std::uint32_t>(2 * k)), cyl_b[k]);
+        if (inside != 0) row.verdict = inside == 1 ? Verdict::clash : Verdict::undecided;
+      }
+    });
+    // every other box overlap: parts of different pairs (part_pair.h)
+    cross_out.resize(cross.size());
+    tbb::parallel_for(std::size_t{0}, cross.size(), [&](std::size_t c) {
+      cross_out[c] = decide_part_pair(part(cross[c].first), part(cross[c].second), p.clearance);
     });
     const double t2 = now();
     res.broad_seconds += t1 - t0;
@@ -210,7 +250,25 @@ Expected<SimulationResult> simulate(const SceneParams& p, bool keep_rows) {
       res.interfering_rows += row.distance < 0;
       res.scarred_solves += row.solver == 1;
       res.general_solves += row.solver == 0 && row.path == static_cast<std::uint8_t>(AnalyticPath::general);
+      ++res.row_verdicts[static_cast<std::size_t>(row.verdict)];
+      res.verdict = worst(res.verdict, row.verdict);
+      if (row.verdict == Verdict::undecided)
+        note_undecided("whether a partner lies inside its scarred roller: every ray direction was degenerate");
       if (keep_rows) res.rows.push_back(row);
+    }
+    for (std::size_t c = 0; c < cross.size(); ++c) {
+      const PartPairResult& d = cross_out[c];
+      ++res.cross_verdicts[static_cast<std::size_t>(d.verdict)];
+      res.verdict = worst(res.verdict, d.verdict);
+      if (d.verdict == Verdict::undecided) note_undecided(d.reason);
+      if (d.verdict == Verdict::clear) continue;
+      CrossPair cp;
+      cp.frame = f;
+      cp.part_a = d.swapped ? cross[c].second : cross[c].first;
+      cp.part_b = d.swapped ? cross[c].first : cross[c].second;
+      cp.distance = d.distance, cp.point_a = d.point_a, cp.point_b = d.point_b;
+      cp.solver = d.solver, cp.verdict = d.verdict;
+      res.cross_results.push_back(cp);
     }
   }
   res.cpu_seconds = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;

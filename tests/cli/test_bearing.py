@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """End-to-end tests of `interfere bearing` (issue #4): exit status, CSV columns, JSON summary,
 parameters file, determinism across thread counts, bad input (named parameter, exit 2, no output
-written or overwritten).
+written or overwritten); the verdict model and parts of different pairs (issue #23, items 5, 13).
 
 Usage: test_bearing.py PATH_TO_INTERFERE WORK_DIR   (run by ctest). Standard library only.
 """
@@ -23,7 +23,7 @@ def run(*args):
 EXAMPLE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "data", "examples", "bearing.parameters")
 
 COLUMNS = ["frame", "pair", "distance", "interference", "ax", "ay", "az", "bx", "by", "bz", "solver", "path",
-           "scarred", "scar_in_range", "box_overlap", "tilt_deg", "azimuth_deg", "spin_deg", "evaluated"]
+           "scarred", "scar_in_range", "box_overlap", "tilt_deg", "azimuth_deg", "spin_deg", "evaluated", "verdict"]
 
 
 class Bearing(unittest.TestCase):
@@ -32,12 +32,16 @@ class Bearing(unittest.TestCase):
                            "--gap", "-0.05", "--spin", "9", "--seed", "3", "--out", path("f.csv"), "--json",
                            path("s.json"))
         self.assertEqual(rc, 1, err)  # preload: interference
-        self.assertIn("INTERFERENCE", out)
+        self.assertTrue(out.startswith("clash:"), out)
         rows = read_csv("f.csv")
         self.assertEqual(len(rows), 12 * 20)
         self.assertEqual(slurp("f.csv").split("\n", 1)[0].split(","), COLUMNS)
         s = load("s.json")
         self.assertEqual(s["command"], "bearing")
+        self.assertEqual(s["verdict"], "clash")
+        self.assertEqual(s["exit_status"], 1)
+        self.assertEqual(s["results"]["verdicts"]["clash"], sum(r["verdict"] == "clash" for r in rows))
+        self.assertEqual(sum(s["results"]["verdicts"].values()), 240)
         self.assertEqual(s["results"]["rows"], 240)
         self.assertEqual(s["results"]["colliders"], 24)
         self.assertEqual(s["parameters"]["roller"]["radial_segments"], 32)
@@ -59,6 +63,11 @@ class Bearing(unittest.TestCase):
             b = [float(r[k]) for k in ("bx", "by", "bz")]
             self.assertAlmostEqual(math.dist(a, b), abs(d), delta=1e-9)
             self.assertLessEqual(float(r["tilt_deg"]), 1.0 + 1e-12)
+            # the verdict follows the sign of s, beyond the touch band (2^-36 of the coordinates)
+            if d < -1e-6:
+                self.assertEqual(r["verdict"], "clash", r)
+            elif d > 1e-6:
+                self.assertEqual(r["verdict"], "clear", r)
 
     def test_identical_for_one_and_two_threads_and_all_broad_phases(self):
         base = ["--pairs", "9", "--frames", "15", "--vertices", "24", "--scar", "0,120,0,40,0.2", "--gap", "-0.05"]
@@ -85,7 +94,77 @@ class Bearing(unittest.TestCase):
         self.assertGreater(s["results"]["min_distance"], 0)
         # command-line values override the file
         rc, _, err = run("--params", path("bearing.parameters"), "--pairs", "2", "--json", path("p2.json"))
+        self.assertEqual(rc, 0, err)
         self.assertEqual(load("p2.json")["parameters"]["pairs"], 2)
+        self.assertEqual(load("p2.json")["verdict"], "clear")
+
+    def test_overlapping_neighbours_are_clash_and_listed(self):
+        # issue #23, item 5: at --spacing 45 neighbouring partners (R = 30) overlap by 60 - 45 = 15 mm
+        # and each roller lies inside the next partner; the own pairs are apart (gap 1). This used to
+        # print "clear" and exit 0, the overlaps only counted in cross_pairs.
+        rc, out, err = run("--pairs", "4", "--frames", "3", "--gap", "1", "--spacing", "45", "--vertices", "16",
+                           "--json", path("x45.json"))
+        self.assertEqual(rc, 1, out + err)
+        self.assertTrue(out.startswith("clash:"), out)
+        s = load("x45.json")
+        self.assertEqual(s["verdict"], "clash")
+        self.assertEqual(s["results"]["interfering_rows"], 0)  # no own pair interferes ...
+        self.assertGreater(s["results"]["cross_verdicts"]["clash"], 0)  # ... parts of different pairs do
+        listed = {(c["frame"], c["a"]["pair"], c["a"]["part"], c["b"]["pair"], c["b"]["part"]): c for c in s["cross"]}
+        for frame in range(3):
+            pp = listed[(frame, 0, "partner", 1, "partner")]
+            self.assertEqual(pp["verdict"], "clash")
+            self.assertAlmostEqual(pp["distance"], 45.0 - 60.0, delta=1e-9)  # parallel equal cylinders
+            self.assertAlmostEqual(pp["interference"], 15.0, delta=1e-9)
+            self.assertEqual(listed[(frame, 0, "roller", 1, "partner")]["verdict"], "clash")
+        # every box overlap is decided: the listed ones plus the clear ones
+        self.assertEqual(s["results"]["cross_pairs"], sum(s["results"]["cross_verdicts"].values()))
+        self.assertEqual(len(s["cross"]), s["results"]["cross_pairs"] - s["results"]["cross_verdicts"]["clear"])
+        # a spacing where nothing overlaps stays clear
+        rc, out, err = run("--pairs", "4", "--frames", "3", "--gap", "1", "--spacing", "100", "--vertices", "16",
+                           "--json", path("x100.json"))
+        self.assertEqual(rc, 0, out + err)
+        self.assertTrue(out.startswith("clear:"), out)
+        s = load("x100.json")
+        self.assertEqual(s["verdict"], "clear")
+        self.assertEqual(s["cross"], [])
+
+    def test_partner_inside_scarred_roller_is_clash(self):
+        # a partner (R = 1, height 2) wholly inside its scarred roller: the scarred solver's surface
+        # minimum is positive; the run used to exit 0
+        rc, out, err = run("--pairs", "1", "--frames", "3", "--partner-radius", "1", "--partner-height", "2",
+                           "--gap", "-10.5", "--scar", "0,359,0,40,0.05", "--scar-fraction", "1", "--vertices", "24",
+                           "--out", path("in.csv"))
+        self.assertEqual(rc, 1, out + err)
+        rows = read_csv("in.csv")
+        self.assertTrue(all(r["solver"] == "scarred" and float(r["distance"]) > 0 for r in rows))
+        self.assertTrue(all(r["verdict"] == "clash" for r in rows))
+
+    def test_contact_clearance_and_fail_on(self):
+        base = ["--pairs", "4", "--frames", "2", "--tilt", "0", "--no-scar", "--vertices", "16"]
+        # parallel axes at exactly R + r: line contact, exit 0 unless --fail-on contact
+        rc, out, err = run(*base, "--gap", "0", "--json", path("c.json"), "--out", path("c.csv"))
+        self.assertEqual(rc, 0, out + err)
+        self.assertTrue(out.startswith("contact:"), out)
+        self.assertEqual(load("c.json")["verdict"], "contact")
+        self.assertEqual({r["verdict"] for r in read_csv("c.csv")}, {"contact"})
+        self.assertEqual(run(*base, "--gap", "0", "--fail-on", "contact")[0], 1)
+        # a 1 um preload is a clash, a 1 um gap is clear
+        self.assertEqual(run(*base, "--gap", "-0.001")[0], 1)
+        self.assertEqual(run(*base, "--gap", "0.001")[0], 0)
+        # clearance: apart by 1, closer than 2
+        rc, out, err = run(*base, "--gap", "1", "--clearance", "2", "--json", path("cl.json"))
+        self.assertEqual(rc, 0, out + err)
+        self.assertEqual(load("cl.json")["verdict"], "clearance")
+        self.assertEqual(load("cl.json")["parameters"]["clearance"], 2)
+        self.assertEqual(run(*base, "--gap", "1", "--clearance", "2", "--fail-on", "clearance")[0], 1)
+        self.assertEqual(run(*base, "--gap", "1", "--clearance", "0.5", "--fail-on", "clearance")[0], 0)
+        rc, _, err = run(*base, "--fail-on", "touching")
+        self.assertEqual(rc, 2)
+        self.assertIn("--fail-on", err)
+        rc, _, err = run(*base, "--clearance", "-1")
+        self.assertEqual(rc, 2)
+        self.assertIn("clearance", err)
 
     def test_example_parameters_file(self):
         rc, out, err = run("--params", EXAMPLE, "--frames", "10", "--json", path("ex.json"), "--out", path("ex.csv"))

@@ -4,17 +4,21 @@
 // and its tilt (angle <= max_tilt, any azimuth) performs a seeded random walk; a quarter (by
 // default) of the rollers carry a scar. Per frame: a broad phase over all 2N parts, then every
 // pair's maximum interference distance and point pair, by the standard solver (analytic.h) when no
-// scar is in the window of Eq. (1), else by the scarred solver (scarred.h).
+// scar is in the window of Eq. (1), else by the scarred solver (scarred.h). Every other pair of
+// parts whose boxes the broad phase reports overlapping (parts of different pairs) is decided too
+// (part_pair.h). Every row and cross pair carries a verdict (query/verdict.h; part_pair.h).
 //
 // Deterministic: the random walk of pair k at frame f depends only on (seed, k, f); pairs are
 // solved in parallel into their own slots; results are identical for any thread count.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
 
 #include "interfere/bearing/broad_phase.h"
+#include "interfere/bearing/part_pair.h"
 #include "interfere/bearing/roller.h"
 #include "interfere/bearing/scar.h"
 #include "interfere/core/error.h"
@@ -36,6 +40,7 @@ struct SceneParams {
   std::uint64_t seed = 1;
   BroadPhaseKind broad_phase = BroadPhaseKind::sweep_and_prune;
   double spacing = 0.0;              ///< grid pitch between pairs; 0 = automatic (no cross contacts)
+  double clearance = 0.0;            ///< >= 0: apart but closer than this is the verdict `clearance`
 };
 
 Status validate(const SceneParams& p);
@@ -51,12 +56,29 @@ struct PairFrame {
   std::uint8_t solver = 0;   ///< 0 standard (analytic), 1 scarred (mesh)
   std::uint8_t path = 0;     ///< AnalyticPath of the standard solver
   std::uint32_t evaluated = 0;  ///< triangles evaluated exactly by the scarred solver
+  Verdict verdict = Verdict::clear;  ///< of distance (part_pair.h), or clash by containment
+};
+
+/// A pair of parts of different bearing pairs that the broad phase reported, decided
+/// (part_pair.h). Part index 2k is the roller of pair k, 2k + 1 its partner.
+struct CrossPair {
+  std::int32_t frame = 0;
+  std::uint32_t part_a = 0, part_b = 0;  ///< A and B of s(A, B) (A: the roller when there is one)
+  double distance = 0;                   ///< s(A, B) (solver `bound`: a lower bound)
+  Vec3 point_a, point_b;                 ///< world frame
+  PartPairSolver solver = PartPairSolver::standard;
+  Verdict verdict = Verdict::clear;
 };
 
 struct SimulationResult {
   std::vector<PairFrame> rows;          ///< frame-major, then pair
   std::uint64_t broad_pairs_total = 0;  ///< box-overlap pairs over all frames
-  std::uint64_t cross_pairs = 0;        ///< overlaps between parts of different pairs (expected 0)
+  std::uint64_t cross_pairs = 0;        ///< box overlaps between parts of different pairs, all decided
+  std::vector<CrossPair> cross_results; ///< the cross pairs whose verdict is not clear (frame, pair order)
+  std::array<std::uint64_t, 5> row_verdicts{};    ///< rows per Verdict (indexed by its value)
+  std::array<std::uint64_t, 5> cross_verdicts{};  ///< cross pairs per Verdict
+  Verdict verdict = Verdict::clear;     ///< the worst verdict of every row and cross pair
+  std::vector<std::string> undecided_reasons;  ///< distinct reasons of undecided verdicts
   std::uint64_t scarred_solves = 0, general_solves = 0;
   std::int32_t scarred_rollers = 0;
   double theta = 0;                     ///< Eq. (1), radians

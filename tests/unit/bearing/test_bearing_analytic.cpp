@@ -1,5 +1,7 @@
 // Standard solver (analytic.h): analytic cases with known answers, the general (nested) path, and
-// a dense brute-force reference. Issue #4, deliverables 5 and 9.
+// an independent reference (bearing_oracle.h: a fine tessellation of A, minimised by subdivision
+// with a convexity bound and its own signed distance; bracket widened by the facet gap). Issue #4,
+// deliverables 5 and 9; issue #23, item 14.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,6 +9,7 @@
 
 #include "interfere/bearing/analytic.h"
 #include "interfere/bearing/scar.h"
+#include "bearing_oracle.h"
 
 using namespace interfere;
 using namespace interfere::bearing;
@@ -23,28 +26,14 @@ void expect_rel(double got, double want, double rel = 1e-9) {
   EXPECT_NEAR(got, want, rel * std::max(1.0, std::fabs(want))) << "got " << got << " want " << want;
 }
 
-/// Dense brute force: min of sd_B over a fine sampling of A's boundary (an upper bound of s).
-double brute(const Cylinder& a, const Cylinder& b, int n) {
-  const Vec3 u = a.axis;
-  const Vec3 t = std::fabs(u.x) < 0.6 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
-  Vec3 f1 = cross(u, t);
-  f1 = f1 / norm(f1);
-  const Vec3 f2 = cross(u, f1);
-  double best = 1e300;
-  for (int i = 0; i < n; ++i) {
-    const double phi = 2 * std::numbers::pi * i / n;
-    for (int j = 0; j <= n; ++j) {
-      const double z = a.height * j / n;
-      const double r = a.radius + (a.top() - a.radius) * z / a.height;
-      best = std::min(best, point_signed_distance(b, a.base + u * z + (f1 * std::cos(phi) + f2 * std::sin(phi)) * r));
-      for (int k = 0; k < n / 4; ++k) {  // end disks
-        const double rr = r * k / (n / 4);
-        if (j == 0 || j == n)
-          best = std::min(best, point_signed_distance(b, a.base + u * z + (f1 * std::cos(phi) + f2 * std::sin(phi)) * rr));
-      }
-    }
-  }
-  return best;
+/// Independent bracket of s(A, B) = min of sd_B over A's surface (A not containing B's core):
+/// A tessellated with n sides (inside A; its surface within facet_gap of the mesh), the mesh
+/// minimum bracketed by subdivision to 1e-8, the lower end widened by the facet gap.
+bearing_oracle::Bracket oracle(const Cylinder& a, const Cylinder& b, int n = 4096) {
+  bearing_oracle::Bracket br = bearing_oracle::surface_min_bracket(bearing_oracle::cylinder_triangles(a, n), b, 1e-8);
+  EXPECT_LE(br.upper - br.lower, 1e-8);
+  br.lower -= bearing_oracle::facet_gap(a, n);
+  return br;
 }
 
 }  // namespace
@@ -166,15 +155,16 @@ TEST(BearingAnalytic, StandardMatchesGeneralAndDenseBruteForce) {
     const PairDistance fast = cylinder_pair_distance(a, b);
     const PairDistance slow = cylinder_pair_distance_general(a, b);
     ASSERT_TRUE(std::isfinite(fast.distance));
+    SCOPED_TRACE(testing::Message() << "trial " << trial << " path " << analytic_path_name(fast.path) << " s " << fast.distance << " axis " << axis.x << "," << axis.y << " base " << a.base.x << "," << a.base.y << "," << a.base.z);
     // the general path is a convex minimisation converged to rounding
     EXPECT_NEAR(fast.distance, slow.distance, 1e-9 * std::max(1.0, std::fabs(fast.distance)))
         << "trial " << trial << " path " << analytic_path_name(fast.path);
-    // the witness is on A and attains the value
-    EXPECT_NEAR(point_signed_distance(b, fast.point_a), fast.distance, 1e-12);
-    // dense sampling is an upper bound within its spacing
-    const double br = brute(a, b, 400);
-    EXPECT_LE(fast.distance, br + 1e-12);
-    EXPECT_GE(fast.distance, br - 0.01);
+    // the witness is on A and attains the value (the oracle's own signed distance)
+    EXPECT_NEAR(bearing_oracle::oracle_sd(b, fast.point_a).value, fast.distance, 1e-12);
+    // the independent bracket (facet gap 2.9e-6 at 4096 sides)
+    const bearing_oracle::Bracket br = oracle(a, b);
+    EXPECT_LE(fast.distance, br.upper + 1e-12) << trial;
+    EXPECT_GE(fast.distance, br.lower - 1e-12) << trial;
     ++checked;
   }
   EXPECT_EQ(checked, 60);
@@ -198,8 +188,10 @@ TEST(BearingAnalytic, TaperedRollers) {
     const PairDistance fast = cylinder_pair_distance(t, b);
     const PairDistance slow = cylinder_pair_distance_general(t, b);
     EXPECT_NEAR(fast.distance, slow.distance, 1e-9 * std::max(1.0, std::fabs(slow.distance))) << trial;
-    EXPECT_NEAR(point_signed_distance(b, fast.point_a), fast.distance, 1e-9) << trial;
-    EXPECT_LE(fast.distance, brute(t, b, 200) + 1e-12) << trial;
+    EXPECT_NEAR(bearing_oracle::oracle_sd(b, fast.point_a).value, fast.distance, 1e-9) << trial;
+    const bearing_oracle::Bracket br = oracle(t, b);
+    EXPECT_LE(fast.distance, br.upper + 1e-12) << trial;
+    EXPECT_GE(fast.distance, br.lower - 1e-12) << trial;
   }
 }
 

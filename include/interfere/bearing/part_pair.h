@@ -1,0 +1,87 @@
+// Deciding a pair of bearing parts in the verdict model (query/verdict.h; issue #23, items 5 and
+// 13): the quantity is s(A, B) of analytic.h (the paper's maximum interference distance, Jia &
+// Zheng 2019, §3), computed by the exact solver the pair belongs to, and its verdict:
+//
+//   clash      s < -tol          (A's solid reaches into B's interior: the roller penetrates)
+//   contact    |s| <= tol        (touching: the solvers' rounding cannot tell the sign)
+//   clearance  tol < s < c       (apart, closer than the requested clearance c > 0)
+//   clear      s >= c (and s > tol)
+//   undecided  no exact solver for the pair, or a containment test was degenerate
+//
+// tol = touch_tolerance(A, B) = 2^-36 (~1.5e-11) times the coordinate scale of the pair: the
+// closed forms are exact to a few ulps of it and the golden-section paths converge to about
+// 4e-14 of their interval (docs/bearing.md, "Verdicts").
+//
+// Parts of one scene (simulation.h): part 2k is the roller of pair k, part 2k + 1 its partner.
+// decide_part_pair decides any two of them, not only a roller and its own partner:
+//   * roller against any partner: the roller is A, the partner B (scarred rollers: the scarred
+//     solver on the triangle surface, else the standard solver);
+//   * two partners, or two rollers of which one is an intact (untapered, unscarred) cylinder: the
+//     intact one is B, the standard (or scarred) solver as above;
+//   * two rollers that are both scarred or both tapered: no exact solver exists (B must be an
+//     intact cylinder); A is solved against the cylinder that encloses B (a lower bound of the
+//     distance): clear when that bound is clear, else undecided.
+// A triangle-surface solver reports the minimum over A's surface; when that is > 0, B could still
+// lie wholly inside A's solid: mesh_containment decides it (B's centre by exact ray parity).
+#pragma once
+#include <cstdint>
+#include <string>
+
+#include "interfere/bearing/analytic.h"
+#include "interfere/bearing/quadtree.h"
+#include "interfere/bearing/roller.h"
+#include "interfere/query/verdict.h"
+
+namespace interfere {
+struct Model;
+}
+
+namespace interfere::bearing {
+
+/// The touch tolerance of a pair: 2^-36 times the largest coordinate magnitude of either part
+/// (centre coordinates plus height and radius).
+double touch_tolerance(const Cylinder& a, const Cylinder& b);
+
+/// The verdict of s (see above). `clearance` <= 0: no clearance verdict.
+Verdict distance_verdict(double s, double tolerance, double clearance);
+
+/// One part of a scene.
+struct ScenePart {
+  Cylinder cylinder;                     ///< its solid (a scarred roller: the intact cylinder it lies in)
+  bool partner = false;                  ///< a partner (always an intact cylinder)
+  const Roller* mesh = nullptr;          ///< a scarred roller's triangle surface (body frame), else null
+  const RollerQuadtree* tree = nullptr;  ///< its quadtree (with mesh)
+  const Model* solid = nullptr;          ///< its closed mesh as a Model (body frame), for containment
+  Transform pose;                        ///< body -> world (with mesh)
+
+  /// An intact (untapered) cylinder: can be B of the solvers.
+  bool intact() const { return partner || (mesh == nullptr && !cylinder.tapered()); }
+};
+
+/// For a scarred roller A (mesh, posed) whose surface minimum s > 0 against B: whether B lies
+/// inside A's solid (then the pair is a clash). 1 inside, 0 outside, -1 undecided (no solid given,
+/// or every ray direction degenerate).
+int mesh_containment(const ScenePart& a, const Cylinder& b);
+
+enum class PartPairSolver : std::uint8_t {
+  standard,  ///< analytic.h on A's cylinder
+  scarred,   ///< scarred.h on A's triangle surface
+  bound,     ///< A against the cylinder enclosing B: a lower bound only
+};
+const char* part_pair_solver_name(PartPairSolver s);
+
+struct PartPairResult {
+  double distance = 0;     ///< s(A, B); for `bound`, a lower bound of the distance
+  Vec3 point_a, point_b;   ///< witnesses (world frame), on A and on B's (or its enclosing cylinder's) boundary
+  bool swapped = false;    ///< A is the second part given (y), B the first
+  PartPairSolver solver = PartPairSolver::standard;
+  AnalyticPath path = AnalyticPath::side;  ///< standard solver path
+  std::uint32_t evaluated = 0;              ///< triangles evaluated exactly (scarred solver)
+  Verdict verdict = Verdict::clear;
+  std::string reason;      ///< for undecided: why
+};
+
+/// Decides any two distinct parts of a scene (above). Deterministic (no temporal state).
+PartPairResult decide_part_pair(const ScenePart& x, const ScenePart& y, double clearance);
+
+}  // namespace interfere::bearing
