@@ -148,7 +148,7 @@ int run_fem_clash(const ClashOptions& o, const ResolvedParts& parts, const Clash
   if (!o.pairs.empty()) {
     std::string s;
     for (const TrianglePair& p : result.pairs) s += fmt::format("{} {} {}\n", p.a, p.b, kind_name(p.kind));
-    write_or_throw(write_file_atomic(o.pairs, s));
+    write_or_throw(write_output(o.pairs, s));
   }
   auto write_region = [&](const std::string& path, const FemPart& p, const std::vector<Vec3>& pos, bool part_a) {
     if (path.empty()) return;
@@ -241,7 +241,7 @@ int run_fem_clash(const ClashOptions& o, const ResolvedParts& parts, const Clash
           {"build", sres.build_seconds},
           {"query", query},
           {"total", total.seconds()}}}};
-    write_or_throw(write_file_atomic(o.json, j.dump(2) + "\n"));
+    write_or_throw(write_output(o.json, j.dump(2) + "\n"));
   }
 
   if (series) {

@@ -107,6 +107,8 @@ FemPart load_fem_part(const std::string& file, const FemPartOptions& o, const st
       p.from_triangle_mesh = true;
     }
     p.read_seconds = progress.seconds();
+    if (const std::string note = p.transform.non_rigid_note(); !note.empty())
+      p.warnings.push_back("part " + label + " (" + file + "): " + note);  // scaled, sheared, mirrored (item 8)
   }
   FemMesh& mesh = *p.mesh;
   if (mesh.file.empty()) mesh.file = file;
