@@ -153,7 +153,17 @@ void bind_bearing(py::module_& parent) {
       .def_property_readonly("point_b", [](const PairFrame& r) { return tup(r.point_b); })
       .def_property_readonly("solver", [](const PairFrame& r) { return r.solver == 1 ? "scarred" : "standard"; })
       .def_readonly("scar_in_range", &PairFrame::scar_in_range)
-      .def_readonly("tilt_deg", &PairFrame::tilt_deg);
+      .def_readonly("tilt_deg", &PairFrame::tilt_deg)
+      .def_property_readonly("verdict", [](const PairFrame& r) { return verdict_name(r.verdict); });
+  py::class_<CrossPair>(m, "CrossPair", "A pair of parts of different bearing pairs (part 2k: roller k, 2k + 1: its partner)")
+      .def_readonly("frame", &CrossPair::frame)
+      .def_readonly("part_a", &CrossPair::part_a)
+      .def_readonly("part_b", &CrossPair::part_b)
+      .def_readonly("distance", &CrossPair::distance)
+      .def_property_readonly("point_a", [](const CrossPair& c) { return tup(c.point_a); })
+      .def_property_readonly("point_b", [](const CrossPair& c) { return tup(c.point_b); })
+      .def_property_readonly("solver", [](const CrossPair& c) { return part_pair_solver_name(c.solver); })
+      .def_property_readonly("verdict", [](const CrossPair& c) { return verdict_name(c.verdict); });
   py::class_<SimulationResult>(m, "SimulationResult")
       .def_readonly("rows", &SimulationResult::rows)
       .def_readonly("min_distance", &SimulationResult::min_distance)
@@ -161,17 +171,21 @@ void bind_bearing(py::module_& parent) {
       .def_readonly("scarred_solves", &SimulationResult::scarred_solves)
       .def_readonly("scarred_rollers", &SimulationResult::scarred_rollers)
       .def_readonly("cross_pairs", &SimulationResult::cross_pairs)
+      .def_readonly("cross_results", &SimulationResult::cross_results)
+      .def_property_readonly("verdict", [](const SimulationResult& r) { return verdict_name(r.verdict); })
+      .def_readonly("undecided_reasons", &SimulationResult::undecided_reasons)
       .def_property_readonly("theta_deg", [](const SimulationResult& r) { return r.theta / kDeg; })
       .def_readonly("frames_per_second", &SimulationResult::frames_per_second);
   m.def(
       "simulate",
       [](int pairs, int frames, const RollerParams& roller, double partner_radius, double partner_height, double gap,
          double max_tilt_deg, double spin_deg_per_frame, double scar_fraction, const ScarParams& scar,
-         std::uint64_t seed, const std::string& broad_phase) {
+         std::uint64_t seed, const std::string& broad_phase, double spacing, double clearance) {
         SceneParams p;
         p.pairs = pairs, p.frames = frames, p.roller = roller, p.partner_radius = partner_radius;
         p.partner_height = partner_height, p.gap = gap, p.max_tilt_deg = max_tilt_deg;
         p.spin_deg_per_frame = spin_deg_per_frame, p.scar_fraction = scar_fraction, p.scar = scar, p.seed = seed;
+        p.spacing = spacing, p.clearance = clearance;
         if (!parse_broad_phase(broad_phase, p.broad_phase))
           throw py::value_error("broad_phase must be one of brute, sap, octree, bvh");
         Expected<SimulationResult> r = Error{};
@@ -185,8 +199,10 @@ void bind_bearing(py::module_& parent) {
       py::arg("pairs") = 4, py::arg("frames") = 10, py::arg("roller") = RollerParams{}, py::arg("partner_radius") = 30.0,
       py::arg("partner_height") = 60.0, py::arg("gap") = 0.0, py::arg("max_tilt_deg") = 1.0,
       py::arg("spin_deg_per_frame") = 3.0, py::arg("scar_fraction") = 0.25, py::arg("scar") = ScarParams{},
-      py::arg("seed") = 1, py::arg("broad_phase") = "sap",
-      "Run the dynamic simulation (interfere bearing) and return every pair's per-frame result.");
+      py::arg("seed") = 1, py::arg("broad_phase") = "sap", py::arg("spacing") = 0.0, py::arg("clearance") = 0.0,
+      "Run the dynamic simulation (interfere bearing) and return every pair's per-frame result, the non-clear "
+      "pairs of parts of different pairs (cross_results) and the verdict ('clash', 'contact', 'clearance', "
+      "'clear', 'undecided').");
 }
 
 }  // namespace interfere::python

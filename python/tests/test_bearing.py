@@ -61,6 +61,22 @@ class BearingTest(unittest.TestCase):
                                  scar=bearing.ScarParams(angle_center_deg=0, angle_width_deg=120, z_min=0, z_max=40,
                                                          depth=0.2), seed=4, broad_phase="bvh")
         self.assertEqual([r.distance for r in res.rows], [r.distance for r in again.rows])
+        self.assertEqual(res.verdict, "clash")  # preload
+        self.assertTrue(all(r.verdict == "clash" for r in res.rows if r.distance < -1e-6))
+        # issue #23, item 5: at spacing 45 neighbouring partners (R = 30) overlap by 15 mm; the own
+        # pairs are apart (gap 1): the cross pair decides the verdict
+        x = bearing.simulate(pairs=4, frames=2, roller=bearing.RollerParams(radial_segments=16, height_segments=15),
+                             gap=1.0, scar_fraction=0, spacing=45)
+        self.assertEqual(x.interfering_rows, 0)
+        self.assertEqual(x.verdict, "clash")
+        pp = [c for c in x.cross_results if (c.part_a, c.part_b) == (1, 3)]
+        self.assertEqual(len(pp), 2)
+        self.assertAlmostEqual(pp[0].distance, 45 - 60, delta=1e-9)
+        self.assertEqual(pp[0].verdict, "clash")
+        y = bearing.simulate(pairs=4, frames=2, roller=bearing.RollerParams(radial_segments=16, height_segments=15),
+                             gap=1.0, scar_fraction=0, spacing=100, clearance=2.0)
+        self.assertEqual(y.verdict, "clearance")
+        self.assertEqual(y.cross_results, [])
         with self.assertRaisesRegex(ValueError, "roller.radius"):
             bearing.simulate(roller=bearing.RollerParams(radius=-1))
         with self.assertRaisesRegex(ValueError, "scar.z_max"):
