@@ -115,6 +115,12 @@ int run_sweep(const SweepOptions& o) {
   if (o.depth < 1 || o.depth > 40) throw InputError("--depth: must be in [1, 40]");
   check_units(o.units);
   check_step_units({o.workpiece}, o.units);
+  if (!o.robot.empty() && o.units != "mm") {
+    // The robot file and a joint path's prismatic values are in mm (a robot file's "units" must be
+    // mm): another working unit would mix units silently (issue #23, item 9).
+    throw InputError("--units " + o.units + ": a sweep with --robot works in mm (robot files and joint paths are in "
+                     "mm); convert the workpiece to mm");
+  }
   const Hierarchy hierarchy = parse_hierarchy(o.hierarchy);
   check_output(o.json, {}, "--json");
   check_output(o.csv, {}, "--csv");

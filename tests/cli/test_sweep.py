@@ -364,6 +364,11 @@ class Sweep(unittest.TestCase):
         bad(typo, q_path, "bm_typo.json:2", "bsae: unknown key")
         metres = write("bm_m.json", '{\n"units": "m",\n%s,\n%s}\n' % (joints, tool))
         bad(metres, q_path, "bm_m.json:2", "units: 'm'")
+        rc, out, err = run("--workpiece", work, "--robot", ROBOT, "--path", good, *BASE, "--units", "in", "--json",
+                           out_json)
+        self.assertEqual(rc, 2, err + out)
+        self.assertIn("--units in", err)
+        self.assertFalse(os.path.exists(out_json))
         ok = write("bm_ok.json", '{\n"units": "mm",\n%s,\n%s}\n' % (joints, tool))
         rc, out, err = run("--workpiece", work, "--path", q_path, "--robot", ok, *BASE)
         self.assertEqual(rc, 0, err + out)
