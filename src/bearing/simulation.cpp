@@ -184,8 +184,16 @@ Expected<SimulationResult> simulate(const SceneParams& p, bool keep_rows) {
       Transform tb;
       tb.t = {ox, oy, 0.5 * hb - 0.5 * p.partner_height};
       cyl_b[k] = posed_cylinder(R, -1, p.partner_height, tb);
-      boxes[2 * k] = cylinder_box(cyl_a[k]);
-      boxes[2 * k + 1] = cylinder_box(cyl_b[k]);
+      // boxes grown by half the clearance and the touch band (part_pair.h), so that every pair of
+      // parts within the clearance or touching (up to rounding of the boxes) reaches the narrow phase
+      const auto grown = [&](const Cylinder& c) {
+        Box3 box = cylinder_box(c);
+        const double m = 0.5 * p.clearance + touch_tolerance(c, c);
+        box.lo = box.lo - Vec3{m, m, m}, box.hi = box.hi + Vec3{m, m, m};
+        return box;
+      };
+      boxes[2 * k] = grown(cyl_a[k]);
+      boxes[2 * k + 1] = grown(cyl_b[k]);
       PairFrame& row = frame_rows[k];
       row.frame = f, row.pair = static_cast<std::int32_t>(k);
       row.tilt_deg = tilt / kDeg, row.azimuth_deg = az / kDeg;

@@ -213,3 +213,28 @@ TEST(BearingVerdicts, ExactContactIsContactSmallGapsAreDecided) {
   p.clearance = -1;
   EXPECT_NE(simulate(p).error().reason.find("clearance"), std::string::npos);
 }
+
+TEST(BearingCrossPairs, PartsWithinTheClearanceReachTheNarrowPhase) {
+  // Spacing 85: roller 0 (axis at x = 41 at its bottom, radius 10, tilt <= 1 degree) is 85 - 30 -
+  // 51 = 4 from partner 1 (less by at most 40 sin 1 deg = 0.7 when it tilts towards it): their
+  // boxes are more than 3.3 apart, so the broad phase returns the pair only because the boxes are
+  // grown by half the clearance; with --clearance 5 it is a clearance pair, not silently clear.
+  SceneParams p = grid_scene(85);
+  p.clearance = 5;
+  const auto r = simulate(p);
+  ASSERT_TRUE(r.has_value());
+  EXPECT_EQ(r->verdict, Verdict::clearance);
+  for (int f = 0; f < p.frames; ++f) {
+    const CrossPair* c = find(*r, f, 0, 3);
+    ASSERT_NE(c, nullptr) << f;
+    EXPECT_EQ(c->verdict, Verdict::clearance);
+    EXPECT_GT(c->distance, 85 - 30 - 51 - 40 * std::sin(std::numbers::pi / 180) - 1e-9);
+    EXPECT_LT(c->distance, 4.01);
+  }
+  // without a clearance the same scene is clear and nothing is listed
+  p.clearance = 0;
+  const auto q = simulate(p);
+  ASSERT_TRUE(q.has_value());
+  EXPECT_EQ(q->verdict, Verdict::clear);
+  EXPECT_TRUE(q->cross_results.empty());
+}
