@@ -307,40 +307,49 @@ double line_distance(const Vec3& p, const Vec3& o, const Vec3& dir) {
 void find_solids(Workpiece& w) {
   const TriMesh& m = w.mesh;
   if (m.triangles.empty()) return;
+  std::size_t open_triangles = 0, components = 0;
+  std::vector<double> volume;  // signed volume of each solid (6x, double: only its sign is used)
+  // One component: its stats decide, `model` builds the solid only when it is closed.
+  auto consider = [&](const TriMesh& part, auto&& model) {
+    ++components;
+    const MeshStats stats = mesh_stats(part);
+    if (!stats.closed()) {
+      ++w.open_components;
+      open_triangles += part.num_triangles();
+      return;
+    }
+    double v = 0;
+    for (std::size_t t = 0; t < part.num_triangles(); ++t) {
+      const auto c = part.corners(t);
+      v += dot(c[0], cross(c[1], c[2]));
+    }
+    volume.push_back(v);
+    w.solids.push_back(model(stats));
+  };
   const std::vector<std::uint32_t> set = connected_sets(m, std::vector<char>(m.num_triangles(), 1));
   std::vector<std::uint32_t> roots;
   for (std::uint32_t t = 0; t < m.num_triangles(); ++t) {
     if (set[t] == t) roots.push_back(t);
   }
-  std::vector<std::uint32_t> slot(m.num_triangles());
-  for (std::size_t k = 0; k < roots.size(); ++k) slot[roots[k]] = static_cast<std::uint32_t>(k);
-  std::vector<TriMesh> parts(roots.size());
-  std::vector<std::uint32_t> map(m.num_vertices(), kNone);  // a vertex belongs to one component
-  for (std::uint32_t t = 0; t < m.num_triangles(); ++t) {
-    TriMesh& part = parts[slot[set[t]]];
-    Tri tri;
-    for (int c = 0; c < 3; ++c) {
-      const std::uint32_t v = m.triangles[t][c];
-      if (map[v] == kNone) map[v] = static_cast<std::uint32_t>(part.positions.size()), part.positions.push_back(m.positions[v]);
-      tri[c] = map[v];
-    }
-    part.triangles.push_back(tri);
-  }
-  std::size_t open_triangles = 0;
-  std::vector<double> volume;  // signed volume of each solid (6x, double: only its sign is used)
-  for (TriMesh& part : parts) {
-    const MeshStats stats = mesh_stats(part);
-    if (stats.closed()) {
-      double v = 0;
-      for (std::size_t t = 0; t < part.num_triangles(); ++t) {
-        const auto c = part.corners(t);
-        v += dot(c[0], cross(c[1], c[2]));
+  if (roots.size() == 1) {  // the usual case: the workpiece's own mesh and BVH, no split
+    consider(m, [&](const MeshStats& stats) { return Model{m, w.bvh, stats}; });
+  } else {
+    std::vector<std::uint32_t> slot(m.num_triangles());
+    for (std::size_t k = 0; k < roots.size(); ++k) slot[roots[k]] = static_cast<std::uint32_t>(k);
+    std::vector<TriMesh> parts(roots.size());
+    std::vector<std::uint32_t> map(m.num_vertices(), kNone);  // a vertex belongs to one component
+    for (std::uint32_t t = 0; t < m.num_triangles(); ++t) {
+      TriMesh& part = parts[slot[set[t]]];
+      Tri tri;
+      for (int c = 0; c < 3; ++c) {
+        const std::uint32_t v = m.triangles[t][c];
+        if (map[v] == kNone) map[v] = static_cast<std::uint32_t>(part.positions.size()), part.positions.push_back(m.positions[v]);
+        tri[c] = map[v];
       }
-      volume.push_back(v);
-      w.solids.push_back(make_model(std::move(part)));
-    } else {
-      ++w.open_components;
-      open_triangles += part.num_triangles();
+      part.triangles.push_back(tri);
+    }
+    for (TriMesh& part : parts) {
+      consider(part, [&](const MeshStats&) { return make_model(std::move(part)); });
     }
   }
   // Orientation: outward shells bound material (+1). An inward shell is a cavity (-1) when it lies
@@ -367,7 +376,7 @@ void find_solids(Workpiece& w) {
                          "solids");
   }
   if (w.open_components > 0) {
-    w.warnings.push_back("workpiece: " + std::to_string(w.open_components) + " of " + std::to_string(parts.size()) +
+    w.warnings.push_back("workpiece: " + std::to_string(w.open_components) + " of " + std::to_string(components) +
                          " connected components are not closed (" + std::to_string(open_triangles) +
                          " triangles): they bound no solid, so a probe inside or behind them is not checked "
                          "(only contact with their surface)");
