@@ -77,9 +77,12 @@ int mesh_containment(const ScenePart& a, const Cylinder& b) {
 
 const char* part_pair_solver_name(PartPairSolver s) {
   switch (s) {
-    case PartPairSolver::standard: return "standard";
-    case PartPairSolver::scarred: return "scarred";
-    case PartPairSolver::bound: return "bound";
+    case PartPairSolver::standard:
+      return "standard";
+    case PartPairSolver::scarred:
+      return "scarred";
+    case PartPairSolver::bound:
+      return "bound";
   }
   return "?";
 }
@@ -88,10 +91,14 @@ PartPairResult decide_part_pair(const ScenePart& x, const ScenePart& y, double c
   // roles: B must be an intact cylinder; prefer a partner as B (a roller against a partner is the
   // paper's pair), then the second part
   bool swapped = false;
-  if (y.partner) swapped = false;
-  else if (x.partner) swapped = true;
-  else if (y.intact()) swapped = false;
-  else if (x.intact()) swapped = true;
+  if (y.partner)
+    swapped = false;
+  else if (x.partner)
+    swapped = true;
+  else if (y.intact())
+    swapped = false;
+  else if (x.intact())
+    swapped = true;
   const ScenePart& a = swapped ? y : x;
   const ScenePart& b = swapped ? x : y;
   const bool exact = b.intact();
@@ -107,7 +114,8 @@ PartPairResult decide_part_pair(const ScenePart& x, const ScenePart& y, double c
       out.verdict = Verdict::clash, contained = true;
     } else if (inside < 0) {
       out.verdict = Verdict::undecided;
-      out.reason = "whether the partner lies inside the scarred roller: every ray direction was degenerate";
+      out.reason =
+          "whether the partner lies inside the scarred roller: every ray direction was degenerate";
     }
   }
   if (!exact) {
@@ -116,8 +124,9 @@ PartPairResult decide_part_pair(const ScenePart& x, const ScenePart& y, double c
     // enclosing cylinder inside A's solid: then B is too)
     if (out.verdict != Verdict::clear && !contained) {
       out.verdict = Verdict::undecided;
-      out.reason = "two rollers that are both scarred or both tapered: no exact solver (B must be an intact "
-                   "cylinder); against the cylinder enclosing the second one they are not clear";
+      out.reason =
+          "two rollers that are both scarred or both tapered: no exact solver (B must be an intact "
+          "cylinder); against the cylinder enclosing the second one they are not clear";
     }
   }
   return out;

@@ -47,12 +47,12 @@ Verdict distance_verdict(double s, double tolerance, double clearance);
 
 /// One part of a scene.
 struct ScenePart {
-  Cylinder cylinder;                     ///< its solid (a scarred roller: the intact cylinder it lies in)
-  bool partner = false;                  ///< a partner (always an intact cylinder)
-  const Roller* mesh = nullptr;          ///< a scarred roller's triangle surface (body frame), else null
+  Cylinder cylinder;             ///< its solid (a scarred roller: the intact cylinder it lies in)
+  bool partner = false;          ///< a partner (always an intact cylinder)
+  const Roller* mesh = nullptr;  ///< a scarred roller's triangle surface (body frame), else null
   const RollerQuadtree* tree = nullptr;  ///< its quadtree (with mesh)
-  const Model* solid = nullptr;          ///< its closed mesh as a Model (body frame), for containment
-  Transform pose;                        ///< body -> world (with mesh)
+  const Model* solid = nullptr;  ///< its closed mesh as a Model (body frame), for containment
+  Transform pose;                ///< body -> world (with mesh)
 
   /// An intact (untapered) cylinder: can be B of the solvers.
   bool intact() const { return partner || (mesh == nullptr && !cylinder.tapered()); }
@@ -71,14 +71,15 @@ enum class PartPairSolver : std::uint8_t {
 const char* part_pair_solver_name(PartPairSolver s);
 
 struct PartPairResult {
-  double distance = 0;     ///< s(A, B); for `bound`, a lower bound of the distance
-  Vec3 point_a, point_b;   ///< witnesses (world frame), on A and on B's (or its enclosing cylinder's) boundary
-  bool swapped = false;    ///< A is the second part given (y), B the first
+  double distance = 0;  ///< s(A, B); for `bound`, a lower bound of the distance
+  Vec3 point_a,
+      point_b;  ///< witnesses (world frame), on A and on B's (or its enclosing cylinder's) boundary
+  bool swapped = false;  ///< A is the second part given (y), B the first
   PartPairSolver solver = PartPairSolver::standard;
   AnalyticPath path = AnalyticPath::side;  ///< standard solver path
-  std::uint32_t evaluated = 0;              ///< triangles evaluated exactly (scarred solver)
+  std::uint32_t evaluated = 0;             ///< triangles evaluated exactly (scarred solver)
   Verdict verdict = Verdict::clear;
-  std::string reason;      ///< for undecided: why
+  std::string reason;  ///< for undecided: why
 };
 
 /// Decides any two distinct parts of a scene (above). Deterministic (no temporal state).

@@ -5,14 +5,14 @@
 //    cylinder.h's closed form: outside, the distance to the clamped closest point; inside, the
 //    largest of the three face functions. It also returns a subgradient of sd (convex, B convex).
 //  * surface_min_bracket: the minimum of sd over a set of triangles (the roller's surface) by
-//    best-first subdivision (longest-edge bisection): each cell's value at its centroid c is an upper bound of the
-//    minimum; convexity gives the lower bound sd(c) + min over the cell's corners of g . (v - c)
-//    (g a subgradient at c; a linear function is smallest at a corner), and the same bound for
-//    each of sd's convex minorants rho - R, -z, z - h (B lies in each of their sublevel sets, so
-//    sd >= each), which is tight along the ridges inside B where sd is their maximum (and not
-//    differentiable). The largest of these lower bounds is the cell's. It returns the bracket
-//    [lower, upper] that holds the exact minimum, refined until it is `tol` wide or the budget of
-//    evaluations is spent.
+//    best-first subdivision (longest-edge bisection): each cell's value at its centroid c is an
+//    upper bound of the minimum; convexity gives the lower bound sd(c) + min over the cell's
+//    corners of g . (v - c) (g a subgradient at c; a linear function is smallest at a corner), and
+//    the same bound for each of sd's convex minorants rho - R, -z, z - h (B lies in each of their
+//    sublevel sets, so sd >= each), which is tight along the ridges inside B where sd is their
+//    maximum (and not differentiable). The largest of these lower bounds is the cell's. It returns
+//    the bracket [lower, upper] that holds the exact minimum, refined until it is `tol` wide or the
+//    budget of evaluations is spent.
 #pragma once
 #include <algorithm>
 #include <array>
@@ -57,8 +57,8 @@ struct Bracket {
   std::size_t evaluations = 0;
 };
 
-inline Bracket surface_min_bracket(const std::vector<std::array<Vec3, 3>>& triangles, const Cylinder& b, double tol,
-                                   std::size_t budget = 4'000'000) {
+inline Bracket surface_min_bracket(const std::vector<std::array<Vec3, 3>>& triangles,
+                                   const Cylinder& b, double tol, std::size_t budget = 4'000'000) {
   struct Cell {
     std::array<Vec3, 3> v;
     double lower;
@@ -81,8 +81,9 @@ inline Bracket surface_min_bracket(const std::vector<std::array<Vec3, 3>>& trian
     const double z = dot(w, b.axis);
     const Vec3 q = w - b.axis * z;
     const double rho = norm(q);
-    const double lower = std::max({bound(s.value, s.grad), bound(rho - b.radius, rho > 0 ? q / rho : Vec3{0, 0, 0}),
-                                   bound(-z, b.axis * -1.0), bound(z - b.height, b.axis)});
+    const double lower =
+        std::max({bound(s.value, s.grad), bound(rho - b.radius, rho > 0 ? q / rho : Vec3{0, 0, 0}),
+                  bound(-z, b.axis * -1.0), bound(z - b.height, b.axis)});
     open.push({v, lower});
   };
   for (const auto& t : triangles) {
@@ -138,6 +139,8 @@ inline std::vector<std::array<Vec3, 3>> cylinder_triangles(const Cylinder& a, in
   }
   return out;
 }
-inline double facet_gap(const Cylinder& a, int n) { return a.max_radius() * (1 - std::cos(std::numbers::pi / n)); }
+inline double facet_gap(const Cylinder& a, int n) {
+  return a.max_radius() * (1 - std::cos(std::numbers::pi / n));
+}
 
 }  // namespace bearing_oracle

@@ -8,10 +8,10 @@
 #include <cmath>
 #include <numbers>
 
+#include "bearing_oracle.h"
 #include "interfere/bearing/part_pair.h"
 #include "interfere/bearing/scar.h"
 #include "interfere/bearing/simulation.h"
-#include "bearing_oracle.h"
 
 using namespace interfere;
 using namespace interfere::bearing;
@@ -79,13 +79,15 @@ TEST(BearingCrossPairs, OverlappingNeighboursAreClashAndListed) {
         EXPECT_GT(rp->distance, -30.0);
         EXPECT_LT(rp->distance, -20.0);
       }
-      EXPECT_NEAR(bearing_oracle::oracle_sd(cyl({45, 0, -10}, 60, 30), rp->point_a).value, rp->distance, 1e-9);
+      EXPECT_NEAR(bearing_oracle::oracle_sd(cyl({45, 0, -10}, 60, 30), rp->point_a).value,
+                  rp->distance, 1e-9);
       // partner 0 against partner 3 (the diagonal, parts 1 and 7): boxes overlap, the cylinders do
       // not (45 sqrt 2 - 60 = 3.64 > 0): decided clear, not listed
       EXPECT_EQ(find(*r, f, 1, 7), nullptr);
     }
     EXPECT_GE(r->cross_verdicts[static_cast<std::size_t>(Verdict::clear)], 3u);
-    EXPECT_EQ(r->cross_pairs, r->cross_results.size() + r->cross_verdicts[static_cast<std::size_t>(Verdict::clear)]);
+    EXPECT_EQ(r->cross_pairs, r->cross_results.size() +
+                                  r->cross_verdicts[static_cast<std::size_t>(Verdict::clear)]);
     // identical for 1 and N threads
     tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
     const auto one = simulate(p);
@@ -107,13 +109,18 @@ TEST(BearingCrossPairs, SpacingWhereNothingOverlapsStaysClear) {
 }
 
 TEST(BearingPartPair, RolesSolversAndVerdicts) {
-  const auto partner = [](Vec3 at) { return ScenePart{.cylinder = cyl(at, 60, 30), .partner = true}; };
-  const auto roller = [](Vec3 at, double top = -1) { return ScenePart{.cylinder = cyl(at, 40, 10, top)}; };
+  const auto partner = [](Vec3 at) {
+    return ScenePart{.cylinder = cyl(at, 60, 30), .partner = true};
+  };
+  const auto roller = [](Vec3 at, double top = -1) {
+    return ScenePart{.cylinder = cyl(at, 40, 10, top)};
+  };
   // diagonal partners: apart by 45 sqrt 2 - 60
   PartPairResult d = decide_part_pair(partner({0, 0, 0}), partner({45, 45, 0}), 0);
   EXPECT_EQ(d.verdict, Verdict::clear);
   EXPECT_NEAR(d.distance, 45 * std::sqrt(2.0) - 60, 1e-9);
-  EXPECT_EQ(decide_part_pair(partner({0, 0, 0}), partner({45, 45, 0}), 4).verdict, Verdict::clearance);
+  EXPECT_EQ(decide_part_pair(partner({0, 0, 0}), partner({45, 45, 0}), 4).verdict,
+            Verdict::clearance);
   // a roller against a partner given first: the roller is A (swapped)
   d = decide_part_pair(partner({0, 0, 0}), roller({41, 0, 10}), 0);
   EXPECT_TRUE(d.swapped);
@@ -130,8 +137,8 @@ TEST(BearingPartPair, RolesSolversAndVerdicts) {
   EXPECT_EQ(d.verdict, Verdict::clear);
   EXPECT_GT(d.distance, 0);
   EXPECT_LE(d.distance, 10 + 1e-9);  // a lower bound of the true gap 30 - 10 - 10
-  // apart by 1 everywhere (radii 10 -> 6 against 6 -> 10, axes 17 apart), but the cylinder enclosing
-  // the second reaches into the first: undecided (never clear, never a guessed clash)
+  // apart by 1 everywhere (radii 10 -> 6 against 6 -> 10, axes 17 apart), but the cylinder
+  // enclosing the second reaches into the first: undecided (never clear, never a guessed clash)
   d = decide_part_pair(roller({0, 0, 0}, 6), ScenePart{.cylinder = cyl({17, 0, 0}, 40, 6, 10)}, 0);
   EXPECT_EQ(d.verdict, Verdict::undecided);
   EXPECT_FALSE(d.reason.empty());
@@ -140,9 +147,13 @@ TEST(BearingPartPair, RolesSolversAndVerdicts) {
 }
 
 TEST(BearingPartPair, ScarredRollersAgainstEachOtherAndIntactOnes) {
-  Roller mesh = *make_roller({.radius = 10, .height = 40, .radial_segments = 32, .height_segments = 31});
-  ASSERT_TRUE(apply_scar(mesh, {.angle_center_deg = 0, .angle_width_deg = 300, .z_min = 0, .z_max = 40, .depth = 0.1})
-                  .has_value());
+  Roller mesh =
+      *make_roller({.radius = 10, .height = 40, .radial_segments = 32, .height_segments = 31});
+  ASSERT_TRUE(
+      apply_scar(
+          mesh,
+          {.angle_center_deg = 0, .angle_width_deg = 300, .z_min = 0, .z_max = 40, .depth = 0.1})
+          .has_value());
   const RollerQuadtree tree = build_quadtree(mesh);
   const auto scarred = [&](Vec3 at) {
     Transform t;
