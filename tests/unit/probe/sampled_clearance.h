@@ -100,7 +100,8 @@ inline double sampled_distance(const Sampled& s, const TriMesh& mesh, double rea
     }
     if (std::sqrt(gap2) > reach) continue;
     const auto tri = mesh.corners(t);
-    for (const Vec3& p : s.points) best = std::min(best, distance(p, closest_point_on_triangle(p, tri)));
+    for (const Vec3& p : s.points)
+      best = std::min(best, distance(p, closest_point_on_triangle(p, tri)));
   }
   return best;
 }

@@ -27,13 +27,17 @@ std::string robot_error(const std::string& text) {
   return r ? std::string() : r.error().message();
 }
 
-void expect_has(const std::string& m, const std::string& part) { EXPECT_NE(m.find(part), std::string::npos) << m; }
+void expect_has(const std::string& m, const std::string& part) {
+  EXPECT_NE(m.find(part), std::string::npos) << m;
+}
 
-const char* kJoints = R"("joints": [{"name": "q1", "type": "revolute", "a": 0, "alpha": 0, "d": 0, "theta": 0}])";
+const char* kJoints =
+    R"("joints": [{"name": "q1", "type": "revolute", "a": 0, "alpha": 0, "d": 0, "theta": 0}])";
 const char* kTool = R"("tool": {"tip": [0, 0, 10], "axis": [0, 0, 1]})";
 
 std::string robot_with(const std::string& extra) {
-  return std::string("{\n") + extra + (extra.empty() ? "" : ",\n") + kJoints + ",\n" + kTool + "\n}\n";
+  return std::string("{\n") + extra + (extra.empty() ? "" : ",\n") + kJoints + ",\n" + kTool +
+         "\n}\n";
 }
 
 }  // namespace
@@ -88,13 +92,16 @@ TEST(ProbePathByName, UnknownMissingAndRepeatedColumns) {
 }
 
 TEST(ProbeRobotFile, BaseMustBeRigid) {
-  auto base = [](const char* twelve) { return robot_with(std::string("\"base\": [") + twelve + "]"); };
+  auto base = [](const char* twelve) {
+    return robot_with(std::string("\"base\": [") + twelve + "]");
+  };
   // A rotation about z by 90 degrees: fine; written with 7 decimals (cos 30 = 0.8660254): fine.
   EXPECT_TRUE(parse_robot_json(base("0,-1,0,5, 1,0,0,6, 0,0,1,7"), "robot.json"));
-  EXPECT_TRUE(parse_robot_json(base("0.8660254,-0.5,0,0, 0.5,0.8660254,0,0, 0,0,1,0"), "robot.json"));
+  EXPECT_TRUE(
+      parse_robot_json(base("0.8660254,-0.5,0,0, 0.5,0.8660254,0,0, 0,0,1,0"), "robot.json"));
   // Scaled, sheared, reflected, singular: errors naming the field and line.
-  for (const char* bad : {"2,0,0,0, 0,2,0,0, 0,0,2,0", "1,0.1,0,0, 0,1,0,0, 0,0,1,0", "-1,0,0,0, 0,1,0,0, 0,0,1,0",
-                          "0,0,0,0, 0,0,0,0, 0,0,0,0"}) {
+  for (const char* bad : {"2,0,0,0, 0,2,0,0, 0,0,2,0", "1,0.1,0,0, 0,1,0,0, 0,0,1,0",
+                          "-1,0,0,0, 0,1,0,0, 0,0,1,0", "0,0,0,0, 0,0,0,0, 0,0,0,0"}) {
     const std::string m = robot_error(base(bad));
     expect_has(m, "robot.json:2");
     expect_has(m, "base: not a rigid transform");

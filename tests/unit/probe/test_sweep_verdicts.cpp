@@ -4,10 +4,9 @@
 // called a collision (before: the interval [0, 1], only because the refinement depth ran out).
 // Oracles: the geometry is axis-aligned, so inside/outside and every gap are known analytically.
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <cmath>
-
-#include <tbb/global_control.h>
 
 #include "interfere/mesh/generate.h"
 #include "interfere/probe/sweep.h"
@@ -22,7 +21,8 @@ ProbePath poses(std::vector<ProbePose> p) {
   path.joint_space = false;
   path.columns = {"px", "py", "pz", "ax", "ay", "az"};
   path.poses = std::move(p);
-  for (std::size_t i = 0; i < path.poses.size(); ++i) path.lines.push_back(static_cast<std::int64_t>(i) + 2);
+  for (std::size_t i = 0; i < path.poses.size(); ++i)
+    path.lines.push_back(static_cast<std::int64_t>(i) + 2);
   return path;
 }
 
@@ -57,7 +57,8 @@ TEST(ProbeSweepSolids, ProbeInsideClosedCubeCollides) {
   ASSERT_EQ(w.solids.size(), 1u);
   EXPECT_EQ(w.open_components, 0u);
   EXPECT_TRUE(w.warnings.empty());
-  const ProbePath path = poses({{{50, 50, 50}, kDown}, {{50, 50, 150}, kDown}, {{150, 50, 50}, kDown}});
+  const ProbePath path =
+      poses({{{50, 50, 50}, kDown}, {{50, 50, 150}, kDown}, {{150, 50, 50}, kDown}});
   const SweepResult r = sweep(w, path, nullptr, {.probe = kProbe, .continuous = false});
   EXPECT_TRUE(r.points[0].collides);
   EXPECT_TRUE(r.points[0].inside);
@@ -136,7 +137,8 @@ TEST(ProbeSweepSolids, CavitiesOverlapsAndInsideOutShells) {
   ASSERT_EQ(w.solids.size(), 2u);
   EXPECT_EQ(w.solid_sign, (std::vector<int>{1, -1}));
   EXPECT_TRUE(w.warnings.empty());
-  const SweepResult r = sweep(w, poses({{{50, 50, 50}, kDown}, {{10, 50, 50}, kDown}}), nullptr, {.probe = small});
+  const SweepResult r =
+      sweep(w, poses({{{50, 50, 50}, kDown}, {{10, 50, 50}, kDown}}), nullptr, {.probe = small});
   EXPECT_FALSE(r.points[0].collides);  // in the cavity: body z in [50, 55], 25 below its top
   EXPECT_NEAR(r.points[0].clearance, 25.0, 1e-9);
   EXPECT_TRUE(r.points[1].inside);  // in the wall x in [0, 20]
@@ -145,14 +147,16 @@ TEST(ProbeSweepSolids, CavitiesOverlapsAndInsideOutShells) {
   append(two, make_box({0, 0, 0}, {60, 60, 60}), false);
   append(two, make_box({40, 40, 40}, {100, 100, 100}), false);
   const Workpiece w2 = prepare_workpiece(two, small);
-  EXPECT_TRUE(sweep(w2, poses({{{50, 50, 50}, kDown}}), nullptr, {.probe = small}).points[0].inside);
+  EXPECT_TRUE(
+      sweep(w2, poses({{{50, 50, 50}, kDown}}), nullptr, {.probe = small}).points[0].inside);
   // One inside-out cube: still a solid, with a warning.
   TriMesh inverted;
   append(inverted, make_box({0, 0, 0}, {100, 100, 100}), true);
   const Workpiece w3 = prepare_workpiece(inverted, small);
   ASSERT_EQ(w3.warnings.size(), 1u);
   EXPECT_NE(w3.warnings[0].find("inside out"), std::string::npos);
-  EXPECT_TRUE(sweep(w3, poses({{{50, 50, 50}, kDown}}), nullptr, {.probe = small}).points[0].inside);
+  EXPECT_TRUE(
+      sweep(w3, poses({{{50, 50, 50}, kDown}}), nullptr, {.probe = small}).points[0].inside);
 }
 
 TEST(ProbeSweepStates, ConstantGapPassIsNeverACollision) {
@@ -241,7 +245,8 @@ TEST(ProbeSweepStates, RequestedClearance) {
 
 TEST(ProbeSweepStates, ThreadIndependent) {
   const Workpiece w = prepare_workpiece(plate(0, 500), kProbe);
-  const ProbePath path = poses({{{-50, 0, 0.005}, kDown}, {{50, 0, 0.005}, kDown}, {{50, 50, 0.004}, kDown}});
+  const ProbePath path =
+      poses({{{-50, 0, 0.005}, kDown}, {{50, 0, 0.005}, kDown}, {{50, 50, 0.004}, kDown}});
   SweepResult a;
   {
     tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
