@@ -36,11 +36,21 @@ bool cgal_intersects(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b)
 }
 
 std::vector<std::pair<std::uint32_t, std::uint32_t>> cgal_pairs(const TriMesh& a, const TriMesh& b) {
+  // CGAL's own boxes for the prefilter (enclosing, so a superset of the meeting pairs), not the
+  // library's Aabb, which the engine's broad phase uses (issue #23, item 14).
+  auto boxes = [](const TriMesh& m) {
+    std::vector<CGAL::Bbox_3> out;
+    for (std::uint32_t i = 0; i < m.num_triangles(); ++i) {
+      const auto c = m.corners(i);
+      out.push_back(pt(c[0]).bbox() + pt(c[1]).bbox() + pt(c[2]).bbox());
+    }
+    return out;
+  };
+  const std::vector<CGAL::Bbox_3> box_a = boxes(a), box_b = boxes(b);
   std::vector<std::pair<std::uint32_t, std::uint32_t>> out;
   for (std::uint32_t i = 0; i < a.num_triangles(); ++i) {
-    const Aabb ba = a.triangle_box(i);
     for (std::uint32_t j = 0; j < b.num_triangles(); ++j) {
-      if (!ba.overlaps(b.triangle_box(j))) continue;  // exact: double boxes of double points
+      if (!CGAL::do_overlap(box_a[i], box_b[j])) continue;
       if (cgal_intersects(a.corners(i), b.corners(j))) out.emplace_back(i, j);
     }
   }
