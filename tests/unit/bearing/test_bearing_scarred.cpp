@@ -246,6 +246,11 @@ TEST(BearingScarred, IntactMeshBracketsTheAnalyticCylinder) {
     const Cylinder a = posed_cylinder(10, -1, 40, pose);
     const double exact = cylinder_pair_distance(a, b).distance;
     const double mesh = surface_reference(*r, pose, b).distance;
+    // the mesh value itself against the independent bracket (bearing_oracle.h)
+    const auto br = surface_min_bracket(posed_triangles(*r, pose), b, 1e-9);
+    ASSERT_LE(br.upper - br.lower, 1e-9);
+    EXPECT_GE(mesh, br.lower - 1e-12);
+    EXPECT_LE(mesh, br.upper + 1e-12);
     EXPECT_GE(mesh, exact - 1e-12);
     EXPECT_LE(mesh, exact + 10 * (1 - std::cos(std::numbers::pi / 48)) + 1e-12);
   }
