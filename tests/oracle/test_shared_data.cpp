@@ -97,8 +97,11 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> cgal_pairs(const TriMesh& a
   auto boxes = [](const TriMesh& m) {
     std::vector<Box> out;
     for (std::uint32_t i = 0; i < m.num_triangles(); ++i) {
-      const Aabb b = m.triangle_box(i);
-      double lo[3] = {b.lo.x, b.lo.y, b.lo.z}, hi[3] = {b.hi.x, b.hi.y, b.hi.z};
+      // CGAL's boxes (enclosing), not the library's Aabb that the engine's broad phase uses.
+      const auto c = m.corners(i);
+      CGAL::Bbox_3 b;
+      for (const Vec3& v : c) b += K::Point_3(v.x, v.y, v.z).bbox();
+      double lo[3] = {b.xmin(), b.ymin(), b.zmin()}, hi[3] = {b.xmax(), b.ymax(), b.zmax()};
       out.emplace_back(lo, hi, i);
     }
     return out;
