@@ -45,6 +45,7 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "interfere/mesh/generate.h"
@@ -464,6 +465,44 @@ void bm_recognition(benchmark::State& state) {
 }
 #endif
 
+// Sliver meshes (issue #23, item 12): a prism over a regular n-gon of radius 10 whose caps are fans
+// from one centre vertex (4n triangles: 2n side slivers, 2n spokes), height 20 ("fan_cylinder",
+// n = 8192: 32,768 triangles) or 1 (a thick polygon, n = 10,000 and 20,000). To 10 % with
+// interfere's defaults; interfere_error also times the error measurement (what `interfere
+// simplify` does without --no-error), whose cost once grew with the spokes' aspect ratio (21.5 s /
+// 43 s / over 120 s). Counters: error_bound (the upper bound) and hausdorff (sampled), absolute.
+TriMesh fan_prism(int n, double h) {
+  TriMesh m;
+  for (double z : {0.0, h})
+    for (int i = 0; i < n; ++i) {
+      const double a = 2 * 3.14159265358979323846 * i / n;
+      m.positions.push_back({10 * std::cos(a), 10 * std::sin(a), z});
+    }
+  const auto un = static_cast<std::uint32_t>(n), c0 = 2 * un, c1 = c0 + 1;
+  m.positions.push_back({0, 0, 0});
+  m.positions.push_back({0, 0, h});
+  for (std::uint32_t i = 0; i < un; ++i) {
+    const std::uint32_t j = (i + 1) % un;
+    m.triangles.push_back({i, j, un + j});
+    m.triangles.push_back({i, un + j, un + i});
+    m.triangles.push_back({c0, j, i});
+    m.triangles.push_back({c1, un + i, un + j});
+  }
+  return m;
+}
+
+void bm_sliver(benchmark::State& state, int n, double h, bool measure) {
+  const TriMesh mesh = fan_prism(n, h);
+  SimplifyOptions o{.ratio = 0.1};
+  o.measure_error = measure;
+  TriMesh out;
+  SimplifyResult last;
+  if (!timed_simplify(state, mesh, o, out, &last)) return;
+  state.counters["tri_in"] = double(mesh.num_triangles());
+  state.counters["tri_out"] = double(out.num_triangles());
+  if (measure) state.counters["error_bound"] = last.error_bound, state.counters["hausdorff"] = last.hausdorff;
+}
+
 std::string label(std::size_t n) {
   if (n == 100000) return "1e5";
   if (n == 1000000) return "1e6";
@@ -498,6 +537,13 @@ int main(int argc, char** argv) {
             ->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->Iterations(1);
       }
     }
+  for (const auto& [name, n, h] : {std::tuple{"fan_cylinder", 8192, 20.0}, std::tuple{"polygon_10k", 10000, 1.0},
+                                   std::tuple{"polygon_20k", 20000, 1.0}})
+    for (bool measure : {false, true})
+      benchmark::RegisterBenchmark(
+          ((measure ? "Slivers/interfere_error/" : "Slivers/interfere/") + std::string(name)).c_str(), bm_sliver, n,
+          h, measure)
+          ->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->Iterations(3);
   for (const auto& c : real_cases()) {
     const char* tools[] = {"interfere", "interfere_unchecked", "meshoptimizer", "openmesh", "interfere_strict"};
     for (int t = 0; t < 5; ++t) {

@@ -103,7 +103,7 @@ double point_box_d2(const Vec3& p, const AabbF& b) {
 // farther than the best distance found (Ericson 2005, §6.2 "closest point queries" on a BVH; the
 // closest point on a triangle of np/distance.h, §5.1.5).
 double nearest_triangle_d2(const TriMesh& mesh, const Bvh& bvh, const Vec3& p, std::uint32_t* tri, double stop_d2,
-                           std::uint32_t seed) {
+                           std::uint32_t seed, const std::uint32_t* owner) {
   double best = std::numeric_limits<double>::infinity();
   if (bvh.nodes.empty() || mesh.triangles.empty()) return best;
   if (seed != kNoTriangle) {
@@ -123,7 +123,7 @@ double nearest_triangle_d2(const TriMesh& mesh, const Bvh& bvh, const Vec3& p, s
     if (n.is_leaf()) {
       for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
         if (point_box_d2(p, bvh.prim_boxes[i]) >= best) continue;  // cheaper than the closest point
-        const std::uint32_t t = bvh.prims[i];
+        const std::uint32_t t = owner ? owner[bvh.prims[i]] : bvh.prims[i];
         const Vec3 q = closest_point_on_triangle(p, mesh.corners(t));
         const double d2 = squared_norm(q - p);
         if (d2 < best) {

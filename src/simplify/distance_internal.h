@@ -25,7 +25,17 @@ inline const Near& nearer(const Near& x, const Near& y) {
   return x.d <= y.d ? x : y;
 }
 
-Near nearest(const TriMesh& to, const Bvh& bvh, const Vec3& p, double stop_d2 = -1,
+/// The search tree of `to` (piece_bvh.cpp): the BVH over pieces of its sliver triangles (owner:
+/// the triangle of each piece) or, without slivers, over its triangles (owner empty).
+struct PieceBvh {
+  Bvh bvh;
+  std::vector<std::uint32_t> owner;
+  const std::uint32_t* owners() const { return owner.empty() ? nullptr : owner.data(); }
+};
+PieceBvh piece_bvh(const TriMesh& to, std::size_t max_pieces);
+
+/// nearest_triangle_d2 on that tree, as a distance.
+Near nearest(const TriMesh& to, const PieceBvh& bvh, const Vec3& p, double stop_d2 = -1,
              std::uint32_t seed = kNoSeed);
 
 /// One triangle c of `from` with its samples: distances at the corners, edge midpoints (m[k] on
@@ -39,7 +49,7 @@ struct Sampled {
 
 /// The samples of triangle c whose corners' distances `at` (and, if given, edge midpoints' `mid`)
 /// are known; the others' searches stop as nearest_triangle_d2's at stop_d2.
-Sampled sample(const TriMesh& to, const Bvh& bvh, const std::array<Vec3, 3>& c,
+Sampled sample(const TriMesh& to, const PieceBvh& bvh, const std::array<Vec3, 3>& c,
                const std::array<Near, 3>& at, const std::array<Near, 3>* mid = nullptr,
                double stop_d2 = -1);
 
@@ -64,7 +74,7 @@ ConvexRegions convex_planar_regions(const TriMesh& m);
 /// What the bounds of a triangle of `from` need of `to`.
 struct BoundContext {
   const TriMesh& to;
-  const Bvh& bvh;
+  const PieceBvh& bvh;
   const Fans& fans;
   const ConvexRegions& regions;
 };

@@ -19,6 +19,11 @@
 namespace interfere::detail {
 namespace {
 
+// Dents filled at most (summed, in the plane coordinates) per region, relative to the mesh's
+// extent: a planar face whose border vertices the simplification moved off their line by rounding
+// or by a little more still counts (the bound grows by the dents); a notch (an L) does not.
+constexpr double kMaxDent = 1e-4;
+
 struct EdgeUse {
   std::uint64_t key;   // (smaller vertex << 32) | larger vertex
   std::uint32_t slot;  // 3 * triangle + edge (edge k runs from corner k to corner k + 1)
@@ -37,7 +42,8 @@ std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
 // Then the degree of the sum at any point of the plane is the cycle's winding number, 1 inside
 // the polygon and 0 outside, and with all signs alike every point of the polygon is covered (and
 // none outside): the union is that convex polygon.
-bool is_convex_polygon(const TriMesh& m, const std::vector<std::uint32_t>& tris, int axis) {
+bool is_convex_polygon(const TriMesh& m, const std::vector<std::uint32_t>& tris, int axis,
+                       double max_dent, double& dent) {
   const int iu = (axis + 1) % 3, iv = (axis + 2) % 3;
   const auto uv = [&](std::uint32_t v) {
     return std::pair{m.positions[v][iu], m.positions[v][iv]};
@@ -88,45 +94,83 @@ bool is_convex_polygon(const TriMesh& m, const std::vector<std::uint32_t>& tris,
         std::lower_bound(boundary.begin(), boundary.end(), std::pair{v, std::uint32_t{0}});
     return it != boundary.end() && it->first == v ? it->second : kNoSeed;
   };
-  // Walk the cycle from the first edge: it must close after every boundary edge, turning with s.
-  const std::uint32_t start = boundary[0].first;
-  std::uint32_t prev = start, cur = boundary[0].second;
+  // The cycle, walked from the first edge: it must close after every boundary edge.
+  std::vector<std::uint32_t> loop{boundary[0].first};
+  for (std::uint32_t v = boundary[0].second; v != boundary[0].first; v = next(v)) {
+    if (v == kNoSeed || loop.size() >= boundary.size()) return false;
+    loop.push_back(v);
+  }
+  if (loop.size() != boundary.size()) return false;
+  // Dents filled: a vertex turning against s (strictly) is dropped, its neighbours joined, and
+  // its distance from their line added to `dent` (the filled triangle's points lie within it of
+  // the two edges it replaced). The loop's winding number at a point then falls by the number of
+  // filled triangles holding it (each is a clockwise detour of the old loop): the union of the
+  // triangles is the convex polygon of the final loop less the filled triangles, every point of
+  // which lies within the sum of the dents of the union. Repeated until no vertex turns back
+  // (a doubly linked ring; a dropped vertex's neighbours are checked again).
+  const std::size_t n = loop.size();
+  std::vector<std::size_t> prev(n), nxt(n);
+  for (std::size_t i = 0; i < n; ++i) prev[i] = (i + n - 1) % n, nxt[i] = (i + 1) % n;
+  std::vector<std::uint8_t> gone(n, 0);
+  std::vector<std::size_t> work(n);
+  for (std::size_t i = 0; i < n; ++i) work[i] = n - 1 - i;
+  std::size_t left = n;
+  double dents = 0;
+  while (!work.empty() && left >= 3) {
+    const std::size_t c = work.back();
+    work.pop_back();
+    if (gone[c]) continue;
+    const auto [px, py] = uv(loop[prev[c]]);
+    const auto [cx, cy] = uv(loop[c]);
+    const auto [qx, qy] = uv(loop[nxt[c]]);
+    if (orient2d(px, py, cx, cy, qx, qy) * s >= 0) continue;
+    const double len = std::hypot(qx - px, qy - py);
+    if (!(len > 0)) return false;
+    dents += std::abs(orient2d_value(px, py, cx, cy, qx, qy)) / len * (1 + 1e-12);
+    gone[c] = 1, --left;
+    nxt[prev[c]] = nxt[c], prev[nxt[c]] = prev[c];
+    work.push_back(nxt[c]);
+    work.push_back(prev[c]);
+  }
+  if (left < 3 || !(dents <= max_dent)) return false;
+  // The final loop: convex (straight on where collinear, never back) and going round once.
   const auto half = [&](double dx, double dy) {  // 0: direction angle in [0, pi), 1: in [pi, 2 pi)
     dy *= s;
     return dy > 0 || (dy == 0 && dx > 0) ? 0 : 1;
   };
-  std::size_t steps = 1;
+  std::size_t first = 0;
+  while (gone[first]) ++first;
   int wraps = 0;
-  for (;;) {
-    const std::uint32_t nxt = next(cur);
-    if (nxt == kNoSeed) return false;
-    const auto [px, py] = uv(prev);
-    const auto [cx, cy] = uv(cur);
-    const auto [qx, qy] = uv(nxt);
+  std::size_t c = first;
+  do {
+    const auto [px, py] = uv(loop[prev[c]]);
+    const auto [cx, cy] = uv(loop[c]);
+    const auto [qx, qy] = uv(loop[nxt[c]]);
     if ((px == cx && py == cy) || (qx == cx && qy == cy)) return false;  // a zero-length edge
     const int o = orient2d(px, py, cx, cy, qx, qy) * s;
     if (o < 0) return false;
-    // Collinear: straight on (the signs of exact differences agree), not back.
     if (o == 0 && ((cx - px > 0) != (qx - cx > 0) || (cx - px < 0) != (qx - cx < 0) ||
                    (cy - py > 0) != (qy - cy > 0) || (cy - py < 0) != (qy - cy < 0)))
       return false;
     wraps += half(cx - px, cy - py) == 1 && half(qx - cx, qy - cy) == 0;
-    if (cur == start) break;
-    if (++steps > boundary.size()) return false;
-    prev = cur, cur = nxt;
-  }
-  return steps == boundary.size() && wraps == 1;
+    c = nxt[c];
+  } while (c != first);
+  if (wraps != 1) return false;
+  dent = dents;
+  return true;
 }
 
 }  // namespace
 
 // Regions grown breadth-first from each unassigned triangle (in index order: deterministic) across
-// manifold, consistently oriented edges to neighbours whose corners lie within 1e-9 of the
-// extent of the seed's plane (a heuristic: the bound uses the deviation measured afterwards), then
-// kept when their union is a convex polygon (is_convex_polygon, in the coordinates that drop the
+// manifold, consistently oriented edges to neighbours whose corners lie within 1e-6 of the
+// extent of the seed's plane (a heuristic: a simplified flat cap's vertices stray by 1e-9 of it, its
+// slivers tilt by 2e-8; the bound uses the deviation measured afterwards), then kept when their
+// union is a convex polygon up to small dents (is_convex_polygon, in the coordinates that drop the
 // normal's largest axis). The bound of a corner through the polygon lifted back to the plane (along
 // that axis) is off by at most the largest vertex deviation along the axis, once for the lift and
-// once for the corner's triangle: slack = twice that.
+// once for the corner's triangle, plus the dents (lengths in the plane coordinates grow by at most
+// 1 / |n_axis| when lifted): slack = (2 deviation + dents) / |n_axis|.
 ConvexRegions convex_planar_regions(const TriMesh& m) {
   ConvexRegions r;
   const std::size_t nt = m.num_triangles();
@@ -147,7 +191,7 @@ ConvexRegions convex_planar_regions(const TriMesh& m) {
       continue;  // same direction: inconsistent
     r.neighbour[a] = b / 3, r.neighbour[b] = a / 3;
   }
-  const double tol = 1e-9 * norm(m.bounds().extent());
+  const double extent = norm(m.bounds().extent()), tol = 1e-6 * extent;
   std::vector<std::uint32_t> tris;
   std::vector<std::uint8_t> seen(nt, 0);  // in a region, kept or not
   for (std::uint32_t seed = 0; seed < nt; ++seed) {
@@ -177,7 +221,8 @@ ConvexRegions convex_planar_regions(const TriMesh& m) {
     int axis = 0;
     for (int k = 1; k < 3; ++k)
       if (std::abs(n[k]) > std::abs(n[axis])) axis = k;
-    if (tris.size() < 2 || !is_convex_polygon(m, tris, axis)) {
+    double dent = 0;
+    if (tris.size() < 2 || !is_convex_polygon(m, tris, axis, kMaxDent * extent, dent)) {
       for (std::uint32_t t : tris) r.of[t] = ConvexRegions::kNone;
       continue;
     }
@@ -185,7 +230,7 @@ ConvexRegions convex_planar_regions(const TriMesh& m) {
     for (std::uint32_t t : tris)
       for (std::uint32_t v : m.triangles[t])
         dev = std::max(dev, std::abs(dot(n, m.positions[v] - c[0])));
-    r.slack.push_back(2 * dev / std::abs(n[axis]));
+    r.slack.push_back((2 * dev + dent) / std::abs(n[axis]));
   }
   return r;
 }

@@ -31,7 +31,11 @@ inline constexpr std::uint32_t kNoTriangle = 0xffffffffu;
 /// returned): exact whenever the nearest is farther. `seed`: a triangle likely near p (a nearby
 /// sample's), tried first: it may end the search at once (within stop_d2) and otherwise prunes it;
 /// the exact result is the same. surface_distance and the simplification's Hausdorff measure use it.
+/// `owner`: for a tree built over pieces of the triangles (bvh.prims number pieces, each box
+/// covering its piece), owner[piece] is the triangle of `mesh` it belongs to; distances are always
+/// to whole triangles, so the result is the same as with a tree over the triangles.
 double nearest_triangle_d2(const TriMesh& mesh, const Bvh& bvh, const Vec3& p, std::uint32_t* tri = nullptr,
-                           double stop_d2 = -1, std::uint32_t seed = kNoTriangle);
+                           double stop_d2 = -1, std::uint32_t seed = kNoTriangle,
+                           const std::uint32_t* owner = nullptr);
 
 }  // namespace interfere

@@ -12,8 +12,11 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <random>
 
 #include "../../../src/simplify/distance_internal.h"
+#include "interfere/np/distance.h"
+#include "interfere/query/distance.h"
 #include "interfere/simplify/hausdorff.h"
 #include "interfere/simplify/qem.h"
 
@@ -195,6 +198,51 @@ TEST(HausdorffSlivers, ConvexRegionsNeedOneConvexWinding) {
       detail::convex_planar_regions(fan(64, 1, 1.0, Vec3{s, s, 0} * 1.0, Vec3{-0.5, 0.5, s}));
   ASSERT_EQ(tilted.slack.size(), 1u);
   EXPECT_LT(tilted.slack[0], 1e-14);
+}
+
+// The search tree over pieces of slivers (piece_bvh.cpp): every point of every triangle lies in a
+// box of one of its pieces (random points on the triangles), and the nearest-triangle search on it
+// gives the distance of a brute force over the triangles, bit for bit, with or without a stop.
+TEST(HausdorffSlivers, PieceTreeCoversTheTrianglesAndSearchesExactly) {
+  const TriMesh m = fan_prism(300, 1.0, 3.0);
+  const detail::PieceBvh tree = detail::piece_bvh(m, 64 * m.num_triangles());
+  ASSERT_FALSE(tree.owner.empty());  // slivers: cut
+  EXPECT_GT(tree.bvh.prims.size(), 8 * m.num_triangles());
+  std::vector<std::vector<std::size_t>> slots(m.num_triangles());
+  for (std::size_t i = 0; i < tree.bvh.prims.size(); ++i)
+    slots[tree.owner[tree.bvh.prims[i]]].push_back(i);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (std::size_t t = 0; t < m.num_triangles(); ++t) {
+    const auto c = m.corners(t);
+    for (int i = 0; i < 50; ++i) {
+      double x = u(rng), y = u(rng);
+      if (x + y > 1) x = 1 - x, y = 1 - y;
+      const Vec3 p = i == 0 ? c[1] : (i == 1 ? c[2] : c[0] + (c[1] - c[0]) * x + (c[2] - c[0]) * y);
+      bool in = false;
+      for (std::size_t s : slots[t]) {
+        const AabbF& b = tree.bvh.prim_boxes[s];
+        bool inside = true;
+        for (int k = 0; k < 3; ++k) inside = inside && b.lo[k] <= p[k] && p[k] <= b.hi[k];
+        in = in || inside;
+      }
+      ASSERT_TRUE(in) << t;
+    }
+  }
+  std::uniform_real_distribution<double> w(-1.2, 1.2);
+  for (int i = 0; i < 2000; ++i) {
+    const Vec3 p{w(rng), w(rng), i % 3 == 0 ? 0.0 : 1.5 * (w(rng) + 1.2)};
+    double brute = std::numeric_limits<double>::infinity();
+    for (std::size_t t = 0; t < m.num_triangles(); ++t)
+      brute = std::min(brute, squared_norm(closest_point_on_triangle(p, m.corners(t)) - p));
+    std::uint32_t tri = 0;
+    EXPECT_EQ(nearest_triangle_d2(m, tree.bvh, p, &tri, -1, kNoTriangle, tree.owners()), brute);
+    EXPECT_EQ(squared_norm(closest_point_on_triangle(p, m.corners(tri)) - p), brute);
+    const double stop = brute * 2, stopped = nearest_triangle_d2(m, tree.bvh, p, &tri, stop,
+                                                                 kNoTriangle, tree.owners());
+    EXPECT_LE(stopped, stop);
+    EXPECT_EQ(squared_norm(closest_point_on_triangle(p, m.corners(tri)) - p), stopped);
+  }
 }
 
 }  // namespace
