@@ -316,6 +316,8 @@ void bind_probe(py::module_& m) {
         for (const PointResult& q : r.points) {
           py::dict d;
           d["collides"] = q.collides;
+          d["inside"] = q.inside;
+          d["verdict"] = verdict_name(q.verdict);
           d["holder"] = q.holder;
           d["clearance"] = num(q.clearance);
           d["triangle"] = q.triangle == kNone ? py::object(py::none()) : py::object(py::int_(q.triangle));
@@ -327,7 +329,12 @@ void bind_probe(py::module_& m) {
         for (const SegmentResult& s : r.segments) {
           py::dict d;
           d["from"] = s.from;
+          d["state"] = segment_state_name(s.state);
+          d["verdict"] = verdict_name(s.verdict);
           d["intervals"] = s.intervals;
+          d["unresolved"] = s.unresolved;
+          d["smallest_gap"] = num(s.smallest_gap);
+          d["unresolved_motion"] = s.unresolved_motion;
           d["between_samples"] = s.between_samples;
           d["triangles"] = s.triangles;
           segs.append(d);
@@ -338,6 +345,10 @@ void bind_probe(py::module_& m) {
         out["colliding_points"] = r.colliding_points;
         out["colliding_segments"] = r.colliding_segments;
         out["between_samples_segments"] = r.between_samples_segments;
+        out["unresolved_segments"] = r.unresolved_segments;
+        out["undecided_points"] = r.undecided_points;
+        out["verdict"] = verdict_name(r.verdict);
+        out["warnings"] = w.warnings;
         out["patches"] = w.patches.size();
         out["collision"] = r.any_collision();
         return out;
@@ -346,8 +357,10 @@ void bind_probe(py::module_& m) {
       py::arg("probe_length") = 40.0, py::arg("holder_radius") = 0.0, py::arg("holder_length") = 0.0,
       py::arg("holder_box_width") = 0.0, py::arg("holder_box_depth") = 0.0, py::arg("holder_box_length") = 0.0,
       py::arg("hierarchy") = "bvh", py::arg("patch_rule") = 33.0, py::arg("continuous") = true,
-      py::arg("clearance") = true, py::arg("depth") = 12, py::arg("threads") = 0,
-      "Checks the path against the workpiece mesh; returns a dict (points, segments, counts). Releases the GIL.");
+      py::arg("clearance") = true, py::arg("depth") = 16, py::arg("threads") = 0,
+      "Checks the path against the workpiece mesh; returns a dict (points with verdict; segments that are not clear, "
+      "each with state 'collides' or 'unresolved', verdict, intervals, unresolved, smallest_gap; counts; verdict: "
+      "the worst, 'undecided' where a segment could not be resolved, never clear; warnings). Releases the GIL.");
 }
 
 }  // namespace interfere::python

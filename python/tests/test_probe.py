@@ -136,6 +136,19 @@ class Sweep(unittest.TestCase):
         lo, hi = r["segments"][0]["intervals"][0]
         self.assertTrue(0.1 < lo < 0.5 < hi < 0.9)
 
+    def test_probe_inside_a_closed_workpiece_is_a_clash(self):
+        # Issue #23, item 3 through Python: the probe wholly inside a closed cube collides.
+        cube = itf.make_box((0, 0, 0), (100, 100, 100), 1)
+        r = probe.sweep(cube, probe.pose_path([((50, 50, 50), (0, 0, -1))]), probe_radius=5, probe_length=40)
+        self.assertTrue(r["points"][0]["collides"])
+        self.assertTrue(r["points"][0]["inside"])
+        self.assertEqual(r["points"][0]["verdict"], "clash")
+        self.assertEqual(r["verdict"], "clash")
+        # The same pose 50 mm above the cube is clear, and says so.
+        r = probe.sweep(cube, probe.pose_path([((50, 50, 150), (0, 0, -1))]), probe_radius=5, probe_length=40)
+        self.assertEqual(r["verdict"], "clear")
+        self.assertEqual(r["points"][0]["verdict"], "clear")
+
     def _swing(self):
         d = tempfile.mkdtemp()
         f = os.path.join(d, "swing.csv")
