@@ -15,6 +15,7 @@
 
 #include "commands.h"
 #include "common.h"
+#include "interfere/core/coordinate_range.h"
 #include "interfere/core/atomic_file.h"
 #include "interfere/mesh/io.h"
 #include "interfere/probe/export.h"
@@ -28,6 +29,7 @@ using namespace interfere::probe;
 struct SweepOptions {
   StepTessellation tessellation;
   std::string workpiece, robot, path, json, csv, hits_obj, probes_vtk, hierarchy = "bvh", units = "mm", holder_box;
+  std::string units_workpiece;  ///< --units-workpiece (empty: by the format)
   std::string fail_on;
   double clearance = 0;       ///< requested clearance (--clearance), 0 = none
   std::size_t max_poses = std::size_t(1) << 16;
@@ -114,7 +116,12 @@ int run_sweep(const SweepOptions& o) {
   const FailOn failing = fail_on(o.fail_on);
   if (o.depth < 1 || o.depth > 40) throw InputError("--depth: must be in [1, 40]");
   check_units(o.units);
-  check_step_units({o.workpiece}, o.units);
+  // The workpiece's own unit (issue #23, item 6): glTF metres, STEP mm, --units-workpiece, else mm;
+  // converted to the working unit --units before anything else.
+  const PartUnit workpiece_unit =
+      part_unit({.file = o.workpiece, .units = o.units_workpiece, .units_flag = "--units-workpiece"});
+  const double workpiece_scale =
+      unit_in_mm(workpiece_unit.unit, "--units-workpiece") / unit_in_mm(o.units, "--units");
   if (!o.robot.empty() && o.units != "mm") {
     // The robot file and a joint path's prismatic values are in mm (a robot file's "units" must be
     // mm): another working unit would mix units silently (issue #23, item 9).
@@ -154,6 +161,14 @@ int run_sweep(const SweepOptions& o) {
     if (!frames) throw InputError(frames.error());
   }
   PartMesh mesh = read_part_mesh(o.workpiece, o.tessellation);
+  if (workpiece_scale != 1) {
+    for (Vec3& v : mesh.mesh.positions) {
+      v = v * workpiece_scale;
+      if (!coordinates_in_range(v))
+        throw InputError(o.workpiece + ": a vertex once converted to " + o.units + ": " + coordinate_range_reason(v));
+    }
+    mesh.linear_deflection *= workpiece_scale;
+  }
   const double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_read).count();
 
   // ---- compute ----
@@ -192,7 +207,8 @@ int run_sweep(const SweepOptions& o) {
     j["verdict"] = verdict_name(r.verdict);
     j["warnings"] = w.warnings;
     j["units"] = o.units;
-    j["inputs"] = {{"workpiece", {{"file", o.workpiece}, {"format", mesh.format},
+    j["inputs"] = {{"workpiece", {{"file", o.workpiece}, {"format", mesh.format}, {"units", workpiece_unit.unit},
+                                  {"units_source", workpiece_unit.source}, {"scale_to_working_unit", workpiece_scale},
                                   {"triangles", w.mesh.num_triangles()}, {"vertices", w.mesh.num_vertices()}}},
                    {"path", {{"file", o.path}, {"points", path.size()}, {"kind", path.joint_space ? "joints" : "poses"},
                              {"columns", path.columns}}}};
@@ -372,7 +388,10 @@ void add_sweep_command(CLI::App& app, int& exit_code) {
                 "requested clearance: points and segments closer than this get the verdict clearance (0 = none)");
   add_fail_on_option(*c, o->fail_on);
   c->add_option("--threads", o->threads, "worker threads (0 = all cores)");
-  c->add_option("--units", o->units, "length unit label of the inputs (default mm)");
+  c->add_option("--units", o->units,
+                "working unit: the workpiece is converted to it, the report is in it (default mm; with --robot only mm)");
+  c->add_option("--units-workpiece", o->units_workpiece,
+                "unit of the workpiece's coordinates (default: metres for glTF, the file's own for STEP, mm otherwise)");
   add_step_tessellation_options(*c, o->tessellation);
   c->callback([o, c, &exit_code] {
     resolve_step_tessellation(*c, o->tessellation, {o->workpiece});

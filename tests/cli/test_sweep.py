@@ -271,6 +271,25 @@ class Sweep(unittest.TestCase):
         self.assertIn("not checked", j["warnings"][0])
         self.assertFalse(j["points"][0]["inside"])
 
+    def test_workpiece_units(self):
+        # Issue #23, item 6: a workpiece in metres (the cube 0-0.1 m) is converted to the working
+        # unit (mm) before the sweep: the probe at (50, 50, 50) mm is inside it.
+        p = write("centre_m.csv", "px,py,pz,ax,ay,az\n50,50,50,0,0,-1\n")
+        cube_m = cube_obj("cube_m.obj", 0.0, 0.1)
+        rc, out, err = run("--workpiece", cube_m, "--path", p, *BASE, "--units-workpiece", "m", "--json",
+                           path("cube_m.json"))
+        self.assertEqual(rc, 1, err + out)
+        j = load(path("cube_m.json"))
+        self.assertEqual(j["inputs"]["workpiece"]["units"], "m")
+        self.assertEqual(j["inputs"]["workpiece"]["scale_to_working_unit"], 1000)
+        self.assertTrue(j["points"][0]["inside"])
+        # Without the unit the cube is 0.1 mm: the probe is far from it (what the flag is for).
+        rc, out, err = run("--workpiece", cube_m, "--path", p, *BASE)
+        self.assertEqual(rc, 0, err + out)
+        rc, out, err = run("--workpiece", cube_m, "--path", p, *BASE, "--units-workpiece", "parsec")
+        self.assertEqual(rc, 2, err + out)
+        self.assertIn("--units-workpiece", err)
+
     def test_constant_gap_pass_is_not_a_collision(self):
         # Issue #23, item 4: a 100 mm pass with the end face 5 um above a plate (gap 0.005 all along).
         # Was: collision interval [0, 1], exit 1, only because the refinement depth ran out.
