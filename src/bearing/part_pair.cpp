@@ -122,6 +122,19 @@ PartPairResult decide_part_pair(const ScenePart& x, const ScenePart& y, double c
     out.solver = PartPairSolver::bound;
     // the enclosing cylinder's distance is a lower bound: only a clear bound decides (or B's
     // enclosing cylinder inside A's solid: then B is too)
+    if (out.verdict != Verdict::clear && !contained && b.mesh == nullptr) {
+      // a tapered B contains the cylinder of its smaller radius: A reaching into that one's
+      // interior reaches into B's (s(A, B) <= s(A, inner), an upper bound of s)
+      Cylinder inner = b.cylinder;
+      inner.radius = std::min(b.cylinder.radius, b.cylinder.top());
+      inner.top_radius = -1;
+      const PartPairResult in = solve(a, inner);
+      if (in.distance < -touch_tolerance(a.cylinder, inner)) {
+        out = in;
+        out.swapped = swapped, out.solver = PartPairSolver::bound, out.verdict = Verdict::clash;
+        return out;
+      }
+    }
     if (out.verdict != Verdict::clear && !contained) {
       out.verdict = Verdict::undecided;
       out.reason =

@@ -20,7 +20,9 @@
 //     intact one is B, the standard (or scarred) solver as above;
 //   * two rollers that are both scarred or both tapered: no exact solver exists (B must be an
 //     intact cylinder); A is solved against the cylinder that encloses B (a lower bound of the
-//     distance): clear when that bound is clear, else undecided.
+//     distance): clear when that bound is clear; a tapered, unscarred B also contains the
+//     cylinder of its smaller radius, and A reaching into that one is a clash (an upper bound of
+//     s); else undecided.
 // A triangle-surface solver reports the minimum over A's surface; when that is > 0, B could still
 // lie wholly inside A's solid: mesh_containment decides it (B's centre by exact ray parity).
 #pragma once
@@ -71,7 +73,8 @@ enum class PartPairSolver : std::uint8_t {
 const char* part_pair_solver_name(PartPairSolver s);
 
 struct PartPairResult {
-  double distance = 0;  ///< s(A, B); for `bound`, a lower bound of the distance
+  double distance =
+      0;  ///< s(A, B); `bound`: a lower bound (clear, undecided), an upper one (clash)
   Vec3 point_a,
       point_b;  ///< witnesses (world frame), on A and on B's (or its enclosing cylinder's) boundary
   bool swapped = false;  ///< A is the second part given (y), B the first

@@ -142,7 +142,16 @@ TEST(BearingPartPair, RolesSolversAndVerdicts) {
   d = decide_part_pair(roller({0, 0, 0}, 6), ScenePart{.cylinder = cyl({17, 0, 0}, 40, 6, 10)}, 0);
   EXPECT_EQ(d.verdict, Verdict::undecided);
   EXPECT_FALSE(d.reason.empty());
-  d = decide_part_pair(roller({0, 0, 0}, 6), roller({12, 0, 0}, 6), 0);  // the bottoms overlap
+  // the bottoms overlap by 8: the second contains the cylinder of radius 6 (its top radius). The
+  // first's rim at height z, x = 10 - z/10, lies 2 + z/10 from that cylinder's axis: its signed
+  // distance max(2 + z/10 - 6, -z) is smallest, -40/11, at z = 40/11: a clash, s <= -40/11 (the
+  // true s, against the frustum of radius 10 - z/10: max(-8 + z/5, -z), is -20/3)
+  d = decide_part_pair(roller({0, 0, 0}, 6), roller({12, 0, 0}, 6), 0);
+  EXPECT_EQ(d.verdict, Verdict::clash);
+  EXPECT_EQ(d.solver, PartPairSolver::bound);
+  EXPECT_NEAR(d.distance, -40.0 / 11, 1e-9);
+  // overlapping by 1 at the bottoms only: not deep enough for the inner cylinder: undecided
+  d = decide_part_pair(roller({0, 0, 0}, 6), roller({19, 0, 0}, 6), 0);
   EXPECT_EQ(d.verdict, Verdict::undecided);
 }
 
