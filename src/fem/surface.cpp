@@ -366,8 +366,9 @@ Expected<SurfaceResult> extract_surface(const FemMesh& mesh, const SurfaceOption
   const std::size_t nt = chunk_begin[chunks];
   std::vector<Tri> tris(nt);
   std::vector<std::uint32_t> tri_elem(nt);
-  std::vector<std::uint8_t> tri_face(nt);
-  std::vector<std::size_t> chunk_flipped(chunks, 0), chunk_flat(chunks, 0), chunk_skipped(chunks, 0);
+  std::vector<std::uint8_t> tri_face(nt), tri_flag(nt);
+  std::vector<std::size_t> chunk_flipped(chunks, 0), chunk_flat(chunks, 0), chunk_skipped(chunks, 0),
+      chunk_degenerate(chunks, 0);
   for_chunks(par, chunks, 1, [&](std::size_t lo, std::size_t hi) {
     Tri buf[8];
     for (std::size_t c = lo; c < hi; ++c) {
@@ -376,17 +377,21 @@ Expected<SurfaceResult> extract_surface(const FemMesh& mesh, const SurfaceOption
         const ElemType t = mesh.elem_types[e];
         const std::uint32_t* v = mesh.element_nodes(e);
         const FaceNodes kinds = face_nodes(t);
-        auto emit = [&](int n, std::uint8_t face) {
+        auto emit = [&](int n, std::uint8_t face, std::uint8_t flag) {
+          bool degenerate = false;
           for (int i = 0; i < n; ++i, ++out) {
             tris[out] = buf[i];
             tri_elem[out] = static_cast<std::uint32_t>(e);
             tri_face[out] = face;
+            tri_flag[out] = flag;
+            degenerate |= collinear(pos[buf[i][0]], pos[buf[i][1]], pos[buf[i][2]]);
           }
+          chunk_degenerate[c] += degenerate;
         };
         if (is_shell(t)) {
           if (flags[e] == kDroppedShell) continue;
           const FaceDef& fd = elem_info(t).corners == 3 ? kTriShell : kQuadShell;
-          emit(triangulate(fd, v, kinds, sub, false, pos, buf), 1);
+          emit(triangulate(fd, v, kinds, sub, false, pos, buf), 1, kFlagShell);
           continue;
         }
         if (elem_info(t).dim < 2) {
@@ -401,18 +406,21 @@ Expected<SurfaceResult> extract_surface(const FemMesh& mesh, const SurfaceOption
           const int vote = outward_vote(ef.faces[f], v, ef.corners, pos);
           if (vote > 0) ++chunk_flipped[c];  // the tables list faces inward for positive elements
           if (vote == 0) ++chunk_flat[c];
-          emit(triangulate(ef.faces[f], v, kinds, sub, vote < 0, pos, buf), static_cast<std::uint8_t>(f + 1));
+          emit(triangulate(ef.faces[f], v, kinds, sub, vote < 0, pos, buf), static_cast<std::uint8_t>(f + 1), 0);
         }
       }
     }
   });
   for (std::size_t c = 0; c < chunks; ++c) {
     result.inverted_faces += chunk_flipped[c];
-    result.degenerate_faces += chunk_flat[c];
+    result.tied_faces += chunk_flat[c];
+    result.degenerate_faces += chunk_degenerate[c];
     result.skipped_elements += chunk_skipped[c];
   }
 
-  // 6. Split by part (stable), then each part's vertices in order of first use.
+  // 6. Split by part (stable); per part: linear faces split at the mid-side nodes of quadratic
+  // neighbours, orientation by propagation and volume (surface_orient.cpp), then the part's
+  // vertices in order of first use.
   const std::size_t np = parts.names.size();
   std::vector<std::size_t> part_begin(np + 1, 0);
   for (std::size_t i = 0; i < nt; ++i) ++part_begin[part[tri_elem[i]] + 1];
@@ -422,6 +430,13 @@ Expected<SurfaceResult> extract_surface(const FemMesh& mesh, const SurfaceOption
     std::vector<std::size_t> cursor(part_begin.begin(), part_begin.end() - 1);
     for (std::size_t i = 0; i < nt; ++i) order[cursor[part[tri_elem[i]]]++] = static_cast<std::uint32_t>(i);
   }
+  // Quadratic elements per part (the mid-side nodes a mixed part's linear faces are split at).
+  std::vector<std::vector<std::uint32_t>> quadratic(np);
+  if (sub) {
+    for (std::size_t e = 0; e < ne; ++e) {
+      if (part[e] != kNoPart && face_nodes(mesh.elem_types[e]).mids) quadratic[part[e]].push_back(static_cast<std::uint32_t>(e));
+    }
+  }
   std::vector<std::uint32_t> local(nn, kNone);
   result.parts.resize(np);
   for (std::size_t p = 0; p < np; ++p) {
@@ -429,23 +444,36 @@ Expected<SurfaceResult> extract_surface(const FemMesh& mesh, const SurfaceOption
     sp.name = parts.names[p];
     sp.group = parts.groups[p];
     const std::size_t lo = part_begin[p], hi = part_begin[p + 1];
-    sp.mesh.triangles.resize(hi - lo);
-    sp.tri_element.resize(hi - lo);
-    sp.tri_face.resize(hi - lo);
+    PartTriangles pt;
+    pt.tris.resize(hi - lo), pt.elem.resize(hi - lo), pt.face.resize(hi - lo), pt.flag.resize(hi - lo);
     for (std::size_t i = lo; i < hi; ++i) {
       const std::uint32_t t = order[i];
+      pt.tris[i - lo] = tris[t], pt.elem[i - lo] = tri_elem[t], pt.face[i - lo] = tri_face[t];
+      pt.flag[i - lo] = tri_flag[t];
+    }
+    if (!quadratic[p].empty()) result.split_faces += split_at_mid_nodes(mesh, quadratic[p], pt);
+    const OrientStats os = orient_part(mesh, pt, par);
+    result.reoriented_triangles += os.reoriented;
+    sp.components = os.components;
+    sp.open_components = os.open_components;
+    sp.degenerate_components = os.degenerate_components;
+    sp.nonorientable_components = os.nonorientable_components;
+    sp.enclosed_volume = os.volume;
+    const std::size_t pn = pt.tris.size();
+    sp.mesh.triangles.resize(pn);
+    sp.tri_element = std::move(pt.elem);
+    sp.tri_face = std::move(pt.face);
+    for (std::size_t i = 0; i < pn; ++i) {
       Tri out;
       for (int k = 0; k < 3; ++k) {
-        std::uint32_t& l = local[tris[t][k]];
+        std::uint32_t& l = local[pt.tris[i][k]];
         if (l == kNone) {
           l = static_cast<std::uint32_t>(sp.vertex_node.size());
-          sp.vertex_node.push_back(tris[t][k]);
+          sp.vertex_node.push_back(pt.tris[i][k]);
         }
         out[k] = l;
       }
-      sp.mesh.triangles[i - lo] = out;
-      sp.tri_element[i - lo] = tri_elem[t];
-      sp.tri_face[i - lo] = tri_face[t];
+      sp.mesh.triangles[i] = out;
     }
     sp.mesh.positions.resize(sp.vertex_node.size());
     for (std::size_t i = 0; i < sp.vertex_node.size(); ++i) {

@@ -56,6 +56,18 @@ struct SurfacePart {
   std::vector<std::uint8_t> tri_face;      ///< triangle -> local face number (1-based, above)
   std::size_t volume_elements = 0;         ///< volume elements of this part
   std::size_t shell_elements = 0;          ///< shell elements of this part (taken as they are)
+  /// Orientation (see extract_surface): connected components of the volume faces' triangles
+  /// (across edges two of them share), how many are open (an edge used once: the part is not a
+  /// closed solid there), degenerate (their outward side is undecidable: the volume sum that
+  /// decides it is zero within rounding, e.g. flat elements), or non-orientable (the propagation
+  /// met a contradiction).
+  std::size_t components = 0;
+  std::size_t open_components = 0;
+  std::size_t degenerate_components = 0;
+  std::size_t nonorientable_components = 0;
+  /// Signed volume enclosed by the closed components as oriented (reference positions): outer
+  /// boundaries count positive, cavities negative, so a closed body's is its volume.
+  double enclosed_volume = 0;
 };
 
 struct SurfaceResult {
@@ -66,7 +78,16 @@ struct SurfaceResult {
   /// Boundary faces of elements given with inverted (negative-Jacobian) node order; they are
   /// oriented outward all the same (the orientation is decided by geometry).
   std::size_t inverted_faces = 0;
-  std::size_t degenerate_faces = 0;   ///< boundary faces whose orientation was undecidable (flat)
+  /// Boundary faces whose opposite-corner vote tied (warped or flat elements): oriented by the
+  /// propagation like every other face.
+  std::size_t tied_faces = 0;
+  /// Boundary faces with a triangle of zero area (collinear corners, exact test): they carry no
+  /// orientation of their own (reported, and warned about by the CLI).
+  std::size_t degenerate_faces = 0;
+  /// Triangles whose orientation the propagation / volume sign turned against their face's vote.
+  std::size_t reoriented_triangles = 0;
+  /// Linear faces split at the mid-side nodes of quadratic neighbours (mixed bodies, conforming).
+  std::size_t split_faces = 0;
   std::size_t skipped_elements = 0;   ///< points and lines (no surface)
   std::size_t dropped_shells = 0;     ///< shells on volume faces (drop_boundary_shells)
 };
@@ -78,10 +99,17 @@ struct SurfaceResult {
 /// faces of both. Triangles come out in element order, then face order (deterministic for any
 /// thread count).
 ///
-/// Orientation: each boundary face's normal is made to point away from the element's corners
-/// that are not on the face (a vote of exact orient3d signs on the reference positions); shells
-/// keep their own node order. Quads are split along the shorter diagonal of the reference
-/// positions, the one through the smaller node index on a tie.
+/// Mixed bodies (linear and quadratic elements, subdivided faces): a linear face whose edge is an
+/// edge of a quadratic element of the part is split at that edge's mid-side node (no T-junction).
+///
+/// Orientation: each boundary face's normal is first turned away from the element's corners that
+/// are not on the face (a vote of exact orient3d signs on the reference positions; it ties or errs
+/// on warped elements); then the triangles of each part are made consistent by propagation across
+/// the edges exactly two of them share, and every component is turned outward by the sign of its
+/// summed cone volumes (each triangle to its element's centroid): outer boundaries face out of the
+/// body, a cavity's boundary into the cavity. A component whose sum is zero within its rounding
+/// bound is degenerate (counted). Shells keep their own node order. Quads are split along the
+/// shorter diagonal of the reference positions, the one through the smaller node index on a tie.
 ///
 /// Precondition: `mesh` passes validate_fem_mesh (the readers guarantee it); node indices are
 /// checked again. Errors: a node index out of range, more than 2^29 elements.
