@@ -58,6 +58,27 @@ void choose_part(FemPart& p, const std::string& part, bool all_parts_ok) {
   }
 }
 
+// Warnings about the chosen bodies' surfaces (issue #23, item 1): an open or degenerate surface
+// component makes inside/outside (containment, overlap behind touching faces) undecidable there.
+void add_body_warnings(FemPart& p) {
+  for (std::size_t k : p.chosen) {
+    const SurfacePart& sp = p.surface().parts[k];
+    const std::string who = "part " + p.label + " (" + p.file + "), body '" + sp.name + "': ";
+    if (sp.open_components > 0) {
+      p.warnings.push_back(who + std::to_string(sp.open_components) + " of " + std::to_string(sp.components) +
+                           " surface components are open (edges used by one boundary face): not a closed solid");
+    }
+    if (sp.degenerate_components > 0) {
+      p.warnings.push_back(who + std::to_string(sp.degenerate_components) +
+                           " closed surface components enclose no volume (degenerate; oriented by the faces' votes)");
+    }
+    if (sp.nonorientable_components > 0) {
+      p.warnings.push_back(who + std::to_string(sp.nonorientable_components) +
+                           " surface components cannot be oriented consistently (non-orientable or mis-assembled)");
+    }
+  }
+}
+
 }  // namespace
 
 bool is_fem_file(const std::string& path) {
@@ -86,6 +107,8 @@ FemPart load_fem_part(const std::string& file, const FemPartOptions& o, const st
     auto t = Transform::parse(o.transform);
     if (!t) throw InputError("--transform" + flag + ": " + t.error().reason);
     p.transform = *t;
+    if (const std::string note = p.transform.non_rigid_note(); !note.empty())
+      p.warnings.push_back("part " + label + " (" + file + "): " + note);  // scaled, sheared, mirrored (item 8)
   }
   PartSplit split{};
   if (!part_split_from_name(o.split, split)) {
@@ -107,8 +130,6 @@ FemPart load_fem_part(const std::string& file, const FemPartOptions& o, const st
       p.from_triangle_mesh = true;
     }
     p.read_seconds = progress.seconds();
-    if (const std::string note = p.transform.non_rigid_note(); !note.empty())
-      p.warnings.push_back("part " + label + " (" + file + "): " + note);  // scaled, sheared, mirrored (item 8)
   }
   FemMesh& mesh = *p.mesh;
   if (mesh.file.empty()) mesh.file = file;
@@ -165,6 +186,11 @@ FemPart load_fem_part(const std::string& file, const FemPartOptions& o, const st
     p.extract_seconds = progress.seconds();
   }
   choose_part(p, o.part, all_parts_ok);
+  for (const std::string& w : mesh.warnings) p.warnings.push_back("part " + label + " (" + file + "): " + w);
+  if (p.surface().degenerate_faces > 0) {
+    p.warnings.push_back("part " + label + " (" + file + "): " + std::to_string(p.surface().degenerate_faces) +
+                         " boundary faces have a triangle of zero area (degenerate)");
+  }
   if (p.surface().nonmanifold_faces > 0) {
     p.warnings.push_back("part " + label + " (" + file + "): " + std::to_string(p.surface().nonmanifold_faces) +
                          " faces shared by more than two elements (left out of the surface)");
@@ -173,6 +199,8 @@ FemPart load_fem_part(const std::string& file, const FemPartOptions& o, const st
     p.warnings.push_back("part " + label + " (" + file + "): " + std::to_string(p.surface().inverted_faces) +
                          " boundary faces of inverted (negative-Jacobian) elements (oriented outward by geometry)");
   }
+  p.file_warnings = p.warnings.size();
+  add_body_warnings(p);
   return p;
 }
 
@@ -188,12 +216,14 @@ FemPart other_part(const FemPart& loaded, const std::string& part, const std::st
   p.displacement = loaded.displacement;
   p.displacement_source = loaded.displacement_source;
   p.transform = loaded.transform;
-  p.warnings = loaded.warnings;
+  p.warnings.assign(loaded.warnings.begin(), loaded.warnings.begin() + static_cast<std::ptrdiff_t>(loaded.file_warnings));
   for (std::string& w : p.warnings) {
     const std::string from = "part " + loaded.label + " ", to = "part " + label + " ";
     if (w.rfind(from, 0) == 0) w = to + w.substr(from.size());
   }
+  p.file_warnings = p.warnings.size();
   choose_part(p, part, false);
+  add_body_warnings(p);
   return p;
 }
 
@@ -216,6 +246,13 @@ nlohmann::json fem_part_json(const FemPart& p) {
           {"boundary_faces", p.surface().boundary_faces},
           {"nonmanifold_faces", p.surface().nonmanifold_faces},
           {"inverted_faces", p.surface().inverted_faces},
+          {"tied_faces", p.surface().tied_faces},
+          {"degenerate_faces", p.surface().degenerate_faces},
+          {"reoriented_triangles", p.surface().reoriented_triangles},
+          {"split_faces", p.surface().split_faces},
+          {"surface_components", p.part().components},
+          {"open_components", p.part().open_components},
+          {"enclosed_volume", p.part().enclosed_volume},
           {"displacement",
            p.displacement ? nlohmann::json{{"source", p.displacement_source},
                                            {"name", p.displacement->name},

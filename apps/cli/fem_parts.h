@@ -40,7 +40,8 @@ struct FemPart {
   std::string displacement_source;            ///< "csv", "field" or ""
   Transform transform;
   double read_seconds = 0, extract_seconds = 0;
-  std::vector<std::string> warnings;
+  std::vector<std::string> warnings;  ///< the file's first (file_warnings of them), then the chosen bodies'
+  std::size_t file_warnings = 0;
 
   const SurfacePart& part() const { return surface_->parts[chosen.front()]; }
   SeriesPart series() const { return {mesh.get(), &part(), displacement}; }

@@ -105,6 +105,9 @@ struct FemMesh {
   /// (fem/io.h read_displacements) is not stored here.
   std::vector<NodalSeries> fields;
 
+  /// What the reader left out or changed, for the user (e.g. "skipped 12 1-D elements (T3D2 12)").
+  std::vector<std::string> warnings;
+
   std::size_t num_nodes() const { return nodes.size(); }
   std::size_t num_elements() const { return elem_types.size(); }
   const std::uint32_t* element_nodes(std::size_t e) const { return elem_nodes.data() + elem_offsets[e]; }

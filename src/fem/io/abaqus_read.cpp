@@ -50,7 +50,38 @@ struct Instance {
   std::int64_t line = 0;
 };
 
+// 1-D and point elements (trusses, beams, pipes, springs, dashpots, connectors, masses): read as
+// line2/line3/point1 by their node count (so their node ids are checked), then skipped with a
+// warning (drop_lower_dimension). Names as in the Abaqus Elements Guide; suffixes (H, OS, ...) free.
+bool abaqus_1d_type(std::string_view name, ElemType& t) {
+  const std::string n = to_lower(name);
+  struct Family {
+    const char* prefix;
+    ElemType type;
+  };
+  static const Family kFamilies[] = {
+      {"t2d2", ElemType::line2},  {"t3d2", ElemType::line2},   {"t2d3", ElemType::line3},  {"t3d3", ElemType::line3},
+      {"b21", ElemType::line2},   {"b23", ElemType::line2},    {"b31", ElemType::line2},   {"b33", ElemType::line2},
+      {"b22", ElemType::line3},   {"b32", ElemType::line3},    {"pipe21", ElemType::line2}, {"pipe31", ElemType::line2},
+      {"pipe22", ElemType::line3}, {"pipe32", ElemType::line3}, {"springa", ElemType::line2}, {"spring2", ElemType::line2},
+      {"dashpota", ElemType::line2}, {"dashpot2", ElemType::line2}, {"conn3d2", ElemType::line2},
+      {"conn2d2", ElemType::line2}, {"gapuni", ElemType::line2}, {"jointc", ElemType::line2},
+      {"spring1", ElemType::point1}, {"dashpot1", ElemType::point1}, {"mass", ElemType::point1},
+      {"rotaryi", ElemType::point1}};
+  for (const Family& f : kFamilies) {
+    const std::size_t len = std::char_traits<char>::length(f.prefix);
+    if (n.compare(0, len, f.prefix) != 0) continue;
+    bool letters = true;  // only letter suffixes (B31H, B31OS, T3D2H)
+    for (std::size_t i = len; i < n.size(); ++i) letters &= n[i] >= 'a' && n[i] <= 'z';
+    if (!letters) continue;
+    t = f.type;
+    return true;
+  }
+  return false;
+}
+
 bool abaqus_type(std::string_view name, ElemType& t) {
+  if (abaqus_1d_type(name, t)) return true;
   const std::string n = to_lower(name);
   auto num_after = [&](std::string_view prefix, int& v) {
     if (n.size() <= prefix.size() || n.compare(0, prefix.size(), prefix) != 0) return false;
@@ -81,6 +112,19 @@ bool abaqus_type(std::string_view name, ElemType& t) {
       case 8: t = ElemType::hex8; return true;
       case 20: t = ElemType::hex20; return true;
       case 27: t = ElemType::hex27; return true;
+      default: return false;
+    }
+  }
+  // Plane stress/strain, axisymmetric, membrane, surface and rigid elements (gmsh writes CPS3 /
+  // CPS6 for the boundary of its volumes): 2-D, dropped beside volumes like the shells.
+  for (const char* prefix : {"cps", "cpe", "cax", "m3d", "sfm3d", "r3d"}) {
+    if (!num_after(prefix, v)) continue;
+    switch (v) {
+      case 3: t = ElemType::tri3; return true;
+      case 4: t = ElemType::quad4; return true;
+      case 6: t = ElemType::tri6; return true;
+      case 8: t = ElemType::quad8; return true;
+      case 9: t = ElemType::quad9; return true;
       default: return false;
     }
   }

@@ -56,6 +56,9 @@ struct Reader {
   std::deque<std::string> tab_lines;  // tab-expanded copies; a deque keeps them (and their
                                       // short-string buffers) in place for the fields' views
   int depth = 0;
+  // Element cards without a surface (beams, rods, springs, masses, rigid elements), by name: skipped
+  // and counted for the reader's warning (issue #23, item 10: gmsh writes its lines as CBAR).
+  std::map<std::string, std::size_t> skipped_elements;
 
   Error err(const Card& c, std::string r) const { return line_error(files[static_cast<std::size_t>(c.file)]->name, c.line, std::move(r)); }
 
@@ -161,6 +164,15 @@ struct Reader {
       for (char ch : name) up += (ch >= 'a' && ch <= 'z') ? static_cast<char>(ch - 32) : ch;
       static const char* const kWanted[] = {"GRID", "CTETRA", "CHEXA", "CPENTA", "CPYRAM", "CPYRA", "CTRIA3", "CTRIA6", "CQUAD4", "CQUAD8"};
       if (std::find_if(std::begin(kWanted), std::end(kWanted), [&](const char* w) { return up == w; }) == std::end(kWanted)) {
+        static const char* const kNoSurface[] = {
+            "CBAR",   "CBEAM",  "CBEAM3", "CBEND",  "CROD",   "CONROD", "CTUBE",  "CBUSH",  "CBUSH1D", "CBUSH2D",
+            "CELAS1", "CELAS2", "CELAS3", "CELAS4", "CDAMP1", "CDAMP2", "CDAMP3", "CDAMP4", "CDAMP5",  "CONM1",
+            "CONM2",  "CMASS1", "CMASS2", "CMASS3", "CMASS4", "CGAP",   "CVISC",  "CWELD",  "CFAST",   "CSPR",
+            "RBAR",   "RBAR1",  "RBE1",   "RBE2",   "RBE3",   "RROD",   "RSPLINE", "RTRPLT", "PLOTEL"};
+        if (std::find_if(std::begin(kNoSurface), std::end(kNoSurface), [&](const char* w) { return up == w; }) !=
+            std::end(kNoSurface)) {
+          ++skipped_elements[up];
+        }
         have = false;  // skipped card (its continuations too)
         continue;
       }
@@ -313,6 +325,17 @@ Expected<FemMesh> read_nastran(const std::filesystem::path& path, std::string_vi
   // Groups by PID of the kept (highest-dimension) elements, in increasing PID order.
   for (std::size_t e = 0; e < m.elem_groups.size(); ++e) m.elem_groups[e] = static_cast<std::int32_t>(e);  // temporary: original index
   drop_lower_dimension(m, nullptr);
+  if (!r.skipped_elements.empty()) {
+    std::size_t total = 0;
+    std::string names;
+    for (const auto& [name, count] : r.skipped_elements) {
+      total += count;
+      names += (names.empty() ? "" : ", ") + name + " " + std::to_string(count);
+    }
+    m.warnings.insert(m.warnings.begin(), "skipped " + std::to_string(total) +
+                                              " element cards without a surface (beams, rods, springs, masses, "
+                                              "rigid elements: " + names + ")");
+  }
   std::vector<std::int64_t> kept_pid(m.num_elements());
   for (std::size_t e = 0; e < m.num_elements(); ++e) kept_pid[e] = pids[static_cast<std::size_t>(m.elem_groups[e])];
   std::vector<std::int64_t> distinct = kept_pid;

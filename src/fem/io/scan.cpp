@@ -11,6 +11,10 @@
 #include <cstdio>
 #include <cstring>
 #include <system_error>
+#include <array>
+#include <string>
+
+#include "../surface_faces.h"
 
 namespace interfere::fem_io {
 
@@ -138,6 +142,58 @@ std::int32_t group_index(FemMesh& m, std::unordered_map<std::string, std::int32_
   return g;
 }
 
+namespace {
+// What the dropped lower-dimension elements were (issue #23, item 10), as reader warnings: points
+// and lines (masses, springs, trusses, beams: no surface) counted; 2-D elements on a face of a 3-D
+// element (the boundary triangles/quads exporters such as gmsh write beside the volumes: neither a
+// body nor a second copy of the surface) told apart from 2-D elements elsewhere (shells beside
+// the volumes, which are not checked).
+void warn_dropped(FemMesh& m, int top) {
+  std::size_t points = 0, lines = 0, on_faces = 0, elsewhere = 0;
+  std::vector<std::array<std::uint32_t, 4>> faces;  // sorted corner keys of the 3-D elements' faces
+  auto key = [](const std::uint32_t* v, const fem_detail::FaceDef& f) {
+    std::array<std::uint32_t, 4> k{v[f.c[0]], v[f.c[1]], v[f.c[2]], f.n == 4 ? v[f.c[3]] : ~0u};
+    std::sort(k.begin(), k.begin() + f.n);
+    return k;
+  };
+  const std::size_t ne = m.elem_types.size();
+  bool any2 = false;
+  for (std::size_t e = 0; e < ne; ++e) any2 |= elem_info(m.elem_types[e]).dim == 2;
+  if (top == 3 && any2) {
+    for (std::size_t e = 0; e < ne; ++e) {
+      const fem_detail::ElemFaces ef = fem_detail::volume_faces(m.elem_types[e]);
+      const std::uint32_t* v = m.elem_nodes.data() + m.elem_offsets[e];
+      for (int f = 0; f < ef.count; ++f) faces.push_back(key(v, ef.faces[f]));
+    }
+    std::sort(faces.begin(), faces.end());
+  }
+  for (std::size_t e = 0; e < ne; ++e) {
+    const ElemType t = m.elem_types[e];
+    const int d = elem_info(t).dim;
+    if (d == top) continue;
+    if (d == 0) {
+      ++points;
+    } else if (d == 1) {
+      ++lines;
+    } else if (d == 2 && top == 3) {
+      const fem_detail::FaceDef& f = elem_info(t).corners == 3 ? fem_detail::kTriShell : fem_detail::kQuadShell;
+      const auto k = key(m.elem_nodes.data() + m.elem_offsets[e], f);
+      (std::binary_search(faces.begin(), faces.end(), k) ? on_faces : elsewhere) += 1;
+    }
+  }
+  std::vector<std::string>& w = m.warnings;
+  if (lines + points > 0) {
+    w.push_back("skipped " + std::to_string(lines + points) + " elements without a surface (" + std::to_string(lines) +
+                " 1-D: trusses, beams, springs, lines; " + std::to_string(points) + " points: masses, 1-node springs)");
+  }
+  if (elsewhere > 0) {
+    w.push_back("skipped " + std::to_string(elsewhere) +
+                " 2-D elements that are not faces of the 3-D elements (shells beside volumes are not checked; " +
+                std::to_string(on_faces) + " 2-D elements on the volumes' faces are their boundary)");
+  }
+}
+}  // namespace
+
 void drop_lower_dimension(FemMesh& m, std::vector<std::int64_t>* where) {
   int top = -1;
   for (ElemType t : m.elem_types) top = std::max(top, elem_info(t).dim);
@@ -147,6 +203,7 @@ void drop_lower_dimension(FemMesh& m, std::vector<std::int64_t>* where) {
   bool all = true;
   for (ElemType t : m.elem_types) all &= elem_info(t).dim == top;
   if (all) return;
+  warn_dropped(m, top);
   for (std::size_t e = 0; e < ne; ++e) {
     if (elem_info(m.elem_types[e]).dim != top) continue;
     const std::uint64_t b = m.elem_offsets[e], n = m.elem_offsets[e + 1] - b;

@@ -204,8 +204,10 @@ Status check_element_ids(const FemMesh& m, const std::vector<std::int64_t>& wher
 std::int32_t group_index(FemMesh& m, std::unordered_map<std::string, std::int32_t>& by_name, const std::string& name,
                          std::int64_t id, int dim);
 
-/// Removes elements whose dimension is below the highest one present; returns how many were kept.
-/// `keep_where` is compacted alongside.
+/// Removes elements whose dimension is below the highest one present; `where` is compacted
+/// alongside. Adds warnings to m.warnings counting the 1-D and point elements skipped, and the 2-D
+/// elements of a volume mesh that are not faces of its 3-D elements (those on faces are the
+/// boundary an exporter wrote, not a body).
 void drop_lower_dimension(FemMesh& m, std::vector<std::int64_t>* where);
 
 // ---------------------------------------------------------------- node orders
