@@ -200,6 +200,39 @@ TEST(HausdorffSlivers, ConvexRegionsNeedOneConvexWinding) {
   EXPECT_LT(tilted.slack[0], 1e-14);
 }
 
+// A convex planar region whose border has a small dent (a vertex moved inwards, turning back by
+// 3e-5) still counts, and the dent goes into its slack: a sliver of `from` along the chord over the
+// dent has its corners on the region (distance 0) and its middle 1.2e-5 outside it; the bound must
+// cover that (dense oracle), which the region's corners alone would not.
+TEST(HausdorffSlivers, DentsInAConvexRegionGoIntoItsSlack) {
+  const int n = 1024;
+  TriMesh to;
+  to.positions.push_back({0, 0, 0});
+  for (int i = 0; i < n; ++i) {
+    const double a = 2 * std::numbers::pi * i / n, r = i == n / 2 ? 1 - 5e-5 : 1.0;
+    to.positions.push_back({r * std::cos(a), r * std::sin(a), 0});
+  }
+  for (std::uint32_t i = 0; i < static_cast<std::uint32_t>(n); ++i)
+    to.triangles.push_back({0, i + 1, (i + 1) % static_cast<std::uint32_t>(n) + 1});
+  const detail::ConvexRegions reg = detail::convex_planar_regions(to);
+  ASSERT_EQ(reg.slack.size(), 1u);
+  EXPECT_GT(reg.slack[0], 3e-5);
+  EXPECT_LT(reg.slack[0], 4e-5);
+  TriMesh from;
+  // The chord from vertex n/2 - 1 to n/2 + 2 passes 1.2e-5 outside the dent at n/2, its samples
+  // (corners, midpoints, centroid) nearer: only the slack covers the worst point.
+  const Vec3 a = to.positions[n / 2], b = to.positions[n / 2 + 3];
+  from.positions = {a, b, a + (b - a) * 1e-3 - a * 1e-6};  // a sliver along the chord a b
+  from.triangles = {{0, 1, 2}};
+  const OneSidedDistance d = one_sided(from, to, true);
+  const Dense oracle = dense(from, to, 1e-6);
+  EXPECT_GT(oracle.max, 1e-5);
+  EXPECT_GT(oracle.max, d.sampled + 1e-7)
+      << d.sampled;  // the samples (and the rounding margin) miss it
+  EXPECT_GE(d.bound, oracle.max);
+  EXPECT_LE(d.bound, oracle.max + oracle.radius + 1e-5);
+}
+
 // The search tree over pieces of slivers (piece_bvh.cpp): every point of every triangle lies in a
 // box of one of its pieces (random points on the triangles), and the nearest-triangle search on it
 // gives the distance of a brute force over the triangles, bit for bit, with or without a stop.
