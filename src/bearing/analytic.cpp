@@ -66,6 +66,7 @@ const char* analytic_path_name(AnalyticPath p) {
     case AnalyticPath::parallel: return "parallel";
     case AnalyticPath::tapered: return "tapered";
     case AnalyticPath::general: return "general";
+    case AnalyticPath::core: return "core";
   }
   return "?";
 }
@@ -263,6 +264,42 @@ RadialMin min_axis_distance_tapered(const Cylinder& a, const Vec3& c, const Vec3
 }
 }  // namespace
 
+namespace {
+/// B's core (its points at the greatest depth m = min(R, h/2)): the axis segment |z| <= h/2 - R
+/// when R <= h/2, else the mid-plane disk rho <= R - h/2. sd_A is convex, so its minimum over the
+/// core is a golden-section search (nested over the disk); a negative minimum is a core point
+/// inside A, and then s(A, B) = -m exactly (no point of B is deeper), else nullopt. A untapered.
+bool core_inside(const Cylinder& a, const Cylinder& b, PairDistance& out) {
+  const Vec3 bc = b.center();
+  const double R = b.radius, hh = 0.5 * b.height;
+  constexpr int kIter = 90;
+  Vec3 p;
+  double value;
+  if (R <= hh) {
+    const auto at = [&](double t) { return bc + b.axis * t; };
+    const auto [t, v] = golden_min([&](double tt) { return point_signed_distance(a, at(tt)); }, -(hh - R), hh - R, kIter);
+    p = at(t), value = v;
+  } else {
+    const Vec3 f1 = any_perpendicular(b.axis);
+    const Vec3 f2 = cross(b.axis, f1);
+    const double rc = R - hh;
+    const auto at = [&](double x, double y) { return bc + f1 * x + f2 * y; };
+    const auto over_y = [&](double x) {
+      const double ym = std::sqrt(std::max(0.0, rc * rc - x * x));
+      return golden_min([&](double y) { return point_signed_distance(a, at(x, y)); }, -ym, ym, kIter);
+    };
+    const auto [x, v] = golden_min([&](double xx) { return over_y(xx).second; }, -rc, rc, kIter);
+    p = at(x, over_y(x).first), value = v;
+  }
+  if (!(value < 0)) return false;
+  out.distance = -std::min(R, hh);
+  out.point_a = p;
+  out.point_b = nearest_on_cylinder_boundary(b, p);
+  out.path = AnalyticPath::core;
+  return true;
+}
+}  // namespace
+
 PairDistance cylinder_pair_distance(const Cylinder& a, const Cylinder& b) {
   const Vec3 bc = b.center();
   const RadialMin rm = a.tapered() ? min_axis_distance_tapered(a, bc, b.axis) : min_axis_distance(a, bc, b.axis);
@@ -271,7 +308,11 @@ PairDistance cylinder_pair_distance(const Cylinder& a, const Cylinder& b) {
   const double dr = rm.rho - R, dz = std::fabs(z) - hh;
   // certificate: at the minimiser of rho_B over A, sd_B = rho_B - R (B's side is nearest)
   const bool certified = rm.rho > 0 && (dr >= 0 ? dz <= 0 : dz <= dr);
-  if (!certified) return cylinder_pair_distance_general(a, b);
+  if (!certified) {
+    PairDistance core;
+    if (!a.tapered() && core_inside(a, b, core)) return core;
+    return cylinder_pair_distance_general(a, b);
+  }
   PairDistance out;
   out.distance = dr;
   out.point_a = rm.point;

@@ -19,9 +19,12 @@
 // value is exact to rounding in O(1). A tapered A projects onto the convex hull of ellipses of
 // linearly varying size: the distance is a convex function of the axis parameter, minimised by a
 // golden-section search with a point-to-ellipse distance per step (then the same certificate).
-// Otherwise (B's end face or rim involved, deep overlap where B's axis crosses A) a general
-// exact-to-rounding fallback minimises the convex sd_B over the convex A by nested golden-section
-// searches (partial minimisation keeps convexity).
+// Otherwise (B's end face or rim involved, deep overlap where B's axis crosses A): when an
+// untapered A contains a point of B's core — the points of B at its greatest depth min(R, h/2),
+// the axis segment |z| <= h/2 - R or the mid-plane disk rho <= R - h/2 — s is exactly -min(R, h/2)
+// (the `core` path: a 1-D or 2-D convex search of sd_A over the core finds such a point); else a
+// general exact-to-rounding fallback minimises the convex sd_B over the convex A by nested
+// golden-section searches (partial minimisation keeps convexity).
 #pragma once
 #include <cstdint>
 
@@ -35,6 +38,7 @@ enum class AnalyticPath : std::uint8_t {
   parallel,  ///< parallel axes (the projected segment is a point), closed form
   tapered,   ///< tapered roller: 1-D convex search over the axis, point-to-ellipse per disk
   general,   ///< nested convex minimisation (end faces of B, deep overlap)
+  core,      ///< A (untapered) contains a point of B's core (its deepest points): s = -min(R, h/2)
 };
 const char* analytic_path_name(AnalyticPath p);
 

@@ -208,3 +208,27 @@ TEST(BearingAnalytic, DegenerateNeverNaN) {
   // identical cylinders: deepest point of A in B is B's core, depth min(R, h/2) = 30
   EXPECT_NEAR(cylinder_pair_distance(cyl({0, 0, 0}, {0, 0, 1}, 60, 30), b).distance, -30, 1e-9);
 }
+
+TEST(BearingAnalytic, CorePathWhenAContainsBsDeepestPoints) {
+  // B's deepest points lie at depth min(R, h/2) (no point of B is deeper): when A contains one, s is
+  // exactly minus that depth. Checked against the general (nested) path and by the independent
+  // signed distance of the witness.
+  const Cylinder tall = cyl({45, 0, -10}, {0, 0, 1}, 60, 30);  // R = h/2: the core is the centre
+  const Cylinder rod = cyl({45, 0, -40}, {0, 0, 1}, 120, 30);  // R < h/2: an axis segment
+  const Cylinder disk = cyl({45, 0, 10}, {0, 0, 1}, 20, 30);   // R > h/2: the mid disk rho <= 20
+  // a roller across each (its axis 4 from B's, tilted 1 degree), and one beside the disk's core
+  const Cylinder roller = cyl({41, 0, 0}, {0.017, 0.003, 1}, 40, 10);
+  for (const auto& [b, depth] : {std::pair{tall, 30.0}, std::pair{rod, 30.0}, std::pair{disk, 10.0}}) {
+    const PairDistance pd = cylinder_pair_distance(roller, b);
+    EXPECT_EQ(pd.path, AnalyticPath::core);
+    EXPECT_EQ(pd.distance, -depth);
+    EXPECT_NEAR(bearing_oracle::oracle_sd(b, pd.point_a).value, -depth, 1e-9);
+    EXPECT_NEAR(cylinder_pair_distance_general(roller, b).distance, -depth, 1e-9);
+  }
+  // a roller 32 from the disk's axis reaches to 22, outside its core (radius 20), and is deepest
+  // there at mid height: sd = max(22 - 30, 0 - 10) = -8 (not the core path)
+  const Cylinder beside = cyl({77, 0, 0}, {0, 0, 1}, 40, 10);
+  const PairDistance pd = cylinder_pair_distance(beside, disk);
+  EXPECT_NE(pd.path, AnalyticPath::core);
+  EXPECT_NEAR(pd.distance, -8.0, 1e-9);
+}
