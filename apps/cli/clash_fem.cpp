@@ -87,6 +87,7 @@ int run_fem_clash(const ClashOptions& o, const ResolvedParts& parts, const Clash
   if (!std::isfinite(o.scale)) throw InputError("--scale must be a finite number");
   check_output(o.regions_vtu, {".vtu", ".vtk", ".msh"}, "--regions-vtu");
   if (o.step < -1) throw InputError("--step must be >= 0");
+  const FailOn fail = fail_on(o.fail_on);
   set_threads(o.threads);
   Progress total("clash");
 
@@ -131,12 +132,16 @@ int run_fem_clash(const ClashOptions& o, const ResolvedParts& parts, const Clash
   if (!run) throw InputError(run.error());
   const SeriesResult& sres = *run;
   const bool clashed = sres.first_clash_step >= 0;
-  // The step whose full result is reported: the first clashing step, else the last checked one.
-  const ClashResult& result = clashed ? sres.first_clash : sres.last;
-  const StepSummary& shown = clashed ? *std::find_if(sres.steps.begin(), sres.steps.end(), [&](const StepSummary& s) {
-    return static_cast<std::int64_t>(s.step) == sres.first_clash_step;
-  })
-                                     : sres.steps.back();
+  // The verdict model (query/verdict.h, issue #23 item 13): the series' verdict is the worst of its
+  // steps'; bodies bonded through shared nodes or faces touch without overlapping: a contact.
+  // The step whose full result is reported: the first step with the series' verdict when that is
+  // not clear (the first clashing step when one clashes), else the last checked one.
+  const bool show_worst = sres.verdict != Verdict::clear && sres.worst_step >= 0;
+  const ClashResult& result = show_worst ? sres.worst : sres.last;
+  const std::int64_t shown_step = show_worst ? sres.worst_step : static_cast<std::int64_t>(sres.steps.back().step);
+  const StepSummary& shown = *std::find_if(sres.steps.begin(), sres.steps.end(), [&](const StepSummary& s) {
+    return static_cast<std::int64_t>(s.step) == shown_step;
+  });
   for (const std::string& w : result.warnings) {
     warning(w);
   }
@@ -185,11 +190,12 @@ int run_fem_clash(const ClashOptions& o, const ResolvedParts& parts, const Clash
     }
   }
 
-  const int status = clashed ? kInterference : kClear;
+  const int status = verdict_exit_status(sres.verdict, fail);
   auto summary_json = [](const StepSummary& s) {
     return nlohmann::json{{"step", s.step},
                           {"time", s.time},
                           {"interference", s.interference},
+                          {"verdict", verdict_name(s.verdict)},
                           {"pairs", s.pairs},
                           {"cross_pairs", s.cross_pairs},
                           {"touch_pairs", s.touch_pairs},
@@ -227,9 +233,14 @@ int run_fem_clash(const ClashOptions& o, const ResolvedParts& parts, const Clash
         {"series",
          {{"steps_total", num_steps},
           {"steps_checked", sres.steps.size()},
+          {"verdict", verdict_name(sres.verdict)},
           {"first_clash_step", clashed ? nlohmann::json(sres.first_clash_step) : nlohmann::json(nullptr)},
           {"first_clash_time", clashed ? nlohmann::json(shown.time) : nlohmann::json(nullptr)},
+          {"first_contact_step",
+           sres.first_contact_step >= 0 ? nlohmann::json(sres.first_contact_step) : nlohmann::json(nullptr)},
           {"steps", steps}}},
+        {"verdict", verdict_name(sres.verdict)},
+        {"verdict_reasons", result.verdict_reasons},
         {"result_step", shown.step},
         {"result_time", shown.time},
         {"result", res},
@@ -245,14 +256,22 @@ int run_fem_clash(const ClashOptions& o, const ResolvedParts& parts, const Clash
   }
 
   if (series) {
-    std::printf("%6s %12s %8s %8s %8s %8s %12s %s\n", "step", "time", "pairs", "cross", "touch", "regions",
-                "max_curve", "containment");
+    std::printf("%6s %12s %8s %8s %8s %8s %12s %-11s %s\n", "step", "time", "pairs", "cross", "touch", "regions",
+                "max_curve", "containment", "verdict");
     for (const StepSummary& s : sres.steps) {
-      std::printf("%6zu %12.6g %8zu %8zu %8zu %8zu %12.6g %s\n", s.step, s.time, s.pairs, s.cross_pairs, s.touch_pairs,
-                  s.regions, s.max_curve_length, containment_name(s.containment));
+      std::printf("%6zu %12.6g %8zu %8zu %8zu %8zu %12.6g %-11s %s\n", s.step, s.time, s.pairs, s.cross_pairs,
+                  s.touch_pairs, s.regions, s.max_curve_length, containment_name(s.containment),
+                  verdict_name(s.verdict));
     }
     if (clashed) {
-      std::printf("INTERFERENCE: first clash at step %s of %zu\n", step_label(shown).c_str(), num_steps);
+      std::printf("CLASH: first clash at step %s of %zu\n", step_label(shown).c_str(), num_steps);
+    } else if (sres.verdict == Verdict::undecided) {
+      std::printf("UNDECIDED: first at step %s of %zu", step_label(shown).c_str(), num_steps);
+      for (const std::string& why : result.verdict_reasons) std::printf("; %s", why.c_str());
+      std::printf("\n");
+    } else if (sres.verdict == Verdict::contact || sres.verdict == Verdict::clearance) {
+      std::printf("%s: no clash in %zu steps, first %s at step %s\n", verdict_name(sres.verdict), num_steps,
+                  verdict_name(sres.verdict), step_label(shown).c_str());
     } else {
       std::printf("clear: no clash in %zu steps\n", num_steps);
     }

@@ -163,6 +163,11 @@ py::dict part_dict(const SurfacePart& p, const FemMesh& m) {
   d["tri_face"] = ints(p.tri_face);
   d["volume_elements"] = p.volume_elements;
   d["shell_elements"] = p.shell_elements;
+  d["components"] = p.components;
+  d["open_components"] = p.open_components;
+  d["degenerate_components"] = p.degenerate_components;
+  d["nonorientable_components"] = p.nonorientable_components;
+  d["enclosed_volume"] = p.enclosed_volume;
   return d;
 }
 
@@ -314,6 +319,9 @@ void bind_fem(py::module_& m) {
         d["nonmanifold_faces"] = r->nonmanifold_faces;
         d["inverted_faces"] = r->inverted_faces;
         d["degenerate_faces"] = r->degenerate_faces;
+        d["tied_faces"] = r->tied_faces;
+        d["reoriented_triangles"] = r->reoriented_triangles;
+        d["split_faces"] = r->split_faces;
         d["dropped_shells"] = r->dropped_shells;
         d["skipped_elements"] = r->skipped_elements;
         return d;
@@ -353,13 +361,17 @@ void bind_fem(py::module_& m) {
         if (!r) throw py::value_error(r.error().message());
         py::dict d;
         d["num_steps"] = r->num_steps;
+        d["verdict"] = verdict_name(r->verdict);
         d["first_clash_step"] = r->first_clash_step >= 0 ? py::object(py::int_(r->first_clash_step)) : py::none();
+        d["first_contact_step"] =
+            r->first_contact_step >= 0 ? py::object(py::int_(r->first_contact_step)) : py::none();
         py::list table;
         for (const StepSummary& s : r->steps) {
           py::dict row;
           row["step"] = s.step;
           row["time"] = s.time;
           row["interference"] = s.interference;
+          row["verdict"] = verdict_name(s.verdict);
           row["pairs"] = s.pairs;
           row["cross_pairs"] = s.cross_pairs;
           row["touch_pairs"] = s.touch_pairs;

@@ -52,12 +52,17 @@ class FemPython(unittest.TestCase):
         steps = [[(-0.125 * s, 0.0, 0.0)] * n for s in range(8)]
         r = itf.clash_series(a, "", None, b, "", steps)
         self.assertEqual(r["num_steps"], 8)
-        self.assertEqual(r["first_clash_step"], 4)  # gap 0.5 closes at 4 x 0.125
+        # gap 0.5 closes at 4 x 0.125: touching is a contact, the clash starts at 5 (issue #23, item 13)
+        self.assertEqual(r["first_contact_step"], 4)
+        self.assertEqual(r["first_clash_step"], 5)
+        self.assertEqual(r["verdict"], "clash")
         self.assertEqual([row["interference"] for row in r["steps"]], [s >= 4 for s in range(8)])
+        self.assertEqual([row["verdict"] for row in r["steps"][:6]], ["clear"] * 4 + ["contact", "clash"])
         self.assertTrue(r["first_clash"].interference)
         self.assertGreater(len(r["first_clash_regions"]), 0)
         r2 = itf.clash_series(a, "", None, b, "", steps, scale=2.0, steps=[1, 2, 3])
-        self.assertEqual(r2["first_clash_step"], 2)
+        self.assertEqual(r2["first_contact_step"], 2)
+        self.assertEqual(r2["first_clash_step"], 3)
         with self.assertRaises(ValueError):
             itf.clash_series(a, "", None, b, "", steps, steps=[9])
         with self.assertRaises(ValueError):
@@ -65,7 +70,7 @@ class FemPython(unittest.TestCase):
 
     def test_read_fem_fields_and_csv(self):
         # Two unit hexes 0.5 apart in one MSH 2.2 file (bodies "left", "right"); "right" moves by -0.25
-        # per step (field "disp" and the same values as CSV): touching at step 2.
+        # per step (field "disp" and the same values as CSV): touching at step 2, overlapping at 3.
         nodes = []
         for b, x0 in ((0, 0.0), (1, 1.5)):
             for k in range(2):
@@ -102,12 +107,13 @@ class FemPython(unittest.TestCase):
             self.assertEqual([q["name"] for q in parts], ["left", "right"])
             self.assertEqual(sorted(set(int(i) for i in parts[1]["tri_element_id"])), [2])
             r = itf.clash_series(mesh, "left", None, mesh, "right", "disp")
-            self.assertEqual(r["first_clash_step"], 2)
+            self.assertEqual(r["first_contact_step"], 2)  # touching: a contact
+            self.assertEqual(r["first_clash_step"], 3)
             self.assertEqual([int(x) for x in r["first_clash_regions"][0]["elements_b"]], [2])
             u = itf.read_displacements_csv(c, mesh)
             self.assertEqual(len(u["values"]), 4)
             r = itf.clash_series(mesh, "left", None, mesh, "right", u)
-            self.assertEqual(r["first_clash_step"], 2)
+            self.assertEqual(r["first_clash_step"], 3)
 
     def test_read_fem_and_errors(self):
         with tempfile.TemporaryDirectory() as d:

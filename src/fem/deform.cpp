@@ -121,10 +121,17 @@ Expected<SeriesResult> clash_series(const SeriesPart& a, const SeriesPart& b, co
     }
     sum.containment = r.containment;
     sum.interference = r.interference();
+    sum.verdict = r.verdict;
     result.steps.push_back(sum);
-    if (sum.interference && result.first_clash_step < 0) {
+    if (sum.interference && result.first_contact_step < 0) result.first_contact_step = static_cast<std::int64_t>(s);
+    if (sum.verdict == Verdict::clash && result.first_clash_step < 0) {
       result.first_clash_step = static_cast<std::int64_t>(s);
       if (request.keep_first_clash) result.first_clash = r;
+    }
+    if (result.worst_step < 0 || sum.verdict > result.verdict) {
+      result.verdict = sum.verdict;
+      result.worst_step = static_cast<std::int64_t>(s);
+      if (request.keep_first_clash) result.worst = r;
     }
     if (request.keep_last && s == steps.back()) result.last = r;
     if (request.keep_all) result.results.push_back(std::move(r));

@@ -34,7 +34,7 @@ def hex_box(lo, hi, n, first_node, first_elem):
 
 # Body "left": [0,1]^3, 2x2x2 hexes (ids 1..8, nodes 1..27). Body "right": [1.5,2.5]x[0.2,0.8]^2,
 # 2x2x2 hexes (ids 101..108, nodes 1001..1027), moving by -0.125 in x per step (10 steps): the gap
-# 0.5 closes at step 4 (faces touch), the bodies cross from step 5.
+# 0.5 closes at step 4 (faces touch: a contact), the bodies cross from step 5 (a clash).
 LEFT = hex_box((0, 0, 0), (1, 1, 1), 2, 1, 1)
 RIGHT = hex_box((1.5, 0.2, 0.2), (2.5, 0.8, 0.8), 2, 1001, 101)
 STEPS = 10
@@ -151,20 +151,24 @@ class FemCli(unittest.TestCase):
         rc, out, err = run("clash", self.model, self.model, "--part-a", "left", "--part-b", "right", "--field", "disp",
                            "--json", path("series.json"), "--regions-vtu", path("regions.vtu"))
         self.assertEqual(rc, 1, err)
-        self.assertIn("first clash at step 4", out)
+        # The verdict model (issue #23, item 13): touching at step 4 is a contact, the clash is at 5.
+        self.assertIn("first clash at step 5", out)
         rep = load_json(path("series.json"))
         series = rep["series"]
         self.assertEqual(series["steps_total"], STEPS)
-        self.assertEqual(series["first_clash_step"], 4)
-        self.assertEqual(series["first_clash_time"], 2.0)
+        self.assertEqual(rep["verdict"], "clash")
+        self.assertEqual(series["first_contact_step"], 4)
+        self.assertEqual(series["first_clash_step"], 5)
+        self.assertEqual(series["first_clash_time"], 2.5)
         self.assertEqual([s["interference"] for s in series["steps"]], [s >= 4 for s in range(STEPS)])
-        self.assertEqual(rep["result_step"], 4)
+        self.assertEqual([s["verdict"] for s in series["steps"][:6]], ["clear"] * 4 + ["contact", "clash"])
+        self.assertEqual(rep["result_step"], 5)
         self.assertEqual(rep["inputs"]["a"]["part"], "left")
         self.assertEqual(rep["inputs"]["b"]["displacement"]["steps"], STEPS)
         regions = rep["result"]["regions"]
         self.assertGreater(len(regions), 0)
-        # At the onset B's face x = 1 touches A's face x = 1: only A's elements of the last column
-        # (cells i = 1) and B's of the first (i = 0) are named.
+        # At the first clash B (x from 0.875) crosses A's face x = 1: only A's elements of the last
+        # column (cells i = 1) and B's of the first (i = 0) are named.
         a_ids = {e for e, _, (i, j, k) in LEFT[1] if i == 1}
         b_ids = {e for e, _, (i, j, k) in RIGHT[1] if i == 0}
         for r in regions:
@@ -235,10 +239,10 @@ class FemCli(unittest.TestCase):
         rc, out, err = run("clash", self.model, self.model, "--part-a", "left", "--part-b", "right", "--disp-b",
                            path("disp.csv"), "--json", path("csv.json"))
         self.assertEqual(rc, 1, err)
-        self.assertIn("first clash at step 4", out)
+        self.assertIn("first clash at step 5", out)
         rep = load_json(path("csv.json"))
         self.assertEqual(rep["inputs"]["b"]["displacement"]["source"], "csv")
-        self.assertEqual(rep["series"]["first_clash_step"], 4)
+        self.assertEqual(rep["series"]["first_clash_step"], 5)
         # B's own --disp-b replaces the shared --field for B; A keeps the field.
         rc, out, err = run("clash", self.model, self.model, "--part-a", "left", "--part-b", "right", "--field", "disp",
                            "--disp-b", path("disp.csv"), "--json", path("csv2.json"))
@@ -246,7 +250,7 @@ class FemCli(unittest.TestCase):
         rep = load_json(path("csv2.json"))
         self.assertEqual(rep["inputs"]["a"]["displacement"]["source"], "field")
         self.assertEqual(rep["inputs"]["b"]["displacement"]["source"], "csv")
-        self.assertEqual(rep["series"]["first_clash_step"], 4)
+        self.assertEqual(rep["series"]["first_clash_step"], 5)
         # A row for a node the mesh does not have: exit 2 naming the file and the line.
         with open(path("disp_bad.csv"), "w") as f:
             f.write("node_id,ux,uy,uz\n1001,0,0,0\n424242,0,0,0\n")

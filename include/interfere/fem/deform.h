@@ -47,15 +47,21 @@ struct StepSummary {
   double max_curve_length = 0;    ///< longest region curve length
   double total_curve_length = 0;  ///< sum over regions
   Containment containment = Containment::not_checked;
-  bool interference = false;
+  bool interference = false;  ///< the surfaces meet or one part contains the other (contact included)
+  Verdict verdict = Verdict::clear;  ///< the step's verdict (ClashResult::verdict, query/verdict.h)
   double refit_seconds = 0, clash_seconds = 0;
 };
 
 struct SeriesResult {
   std::size_t num_steps = 0;          ///< steps in the series (1 when neither part has a field)
   std::vector<StepSummary> steps;     ///< one per checked step, in step order
-  std::int64_t first_clash_step = -1;  ///< 0-based; -1 when no checked step interferes
+  /// The series' verdict: the worst of its steps' (clash > undecided > contact > clearance > clear).
+  Verdict verdict = Verdict::clear;
+  std::int64_t first_clash_step = -1;    ///< 0-based, first step whose verdict is clash; -1 if none
+  std::int64_t first_contact_step = -1;  ///< first step whose surfaces meet (contact or clash); -1 if none
+  std::int64_t worst_step = -1;          ///< first step with the series' verdict; -1 if no step checked
   ClashResult first_clash;            ///< the first clashing step's result (keep_first_clash)
+  ClashResult worst;                  ///< the result of worst_step (keep_first_clash)
   std::vector<ClashResult> results;   ///< per checked step (keep_all)
   ClashResult last;                   ///< the last checked step's result (keep_last)
   double build_seconds = 0;           ///< both trees, once

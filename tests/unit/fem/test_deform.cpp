@@ -57,9 +57,14 @@ TEST(FemDeform, ClashOnsetStepIsTheAnalyticOne) {
   ASSERT_TRUE(r) << r.error().message();
   EXPECT_EQ(r->num_steps, 14u);
   ASSERT_EQ(r->steps.size(), 14u);
-  EXPECT_EQ(r->first_clash_step, 8);
+  // The verdict model (issue #23, item 13): touching at step 8 is a contact, the clash starts at 9.
+  EXPECT_EQ(r->first_contact_step, 8);
+  EXPECT_EQ(r->first_clash_step, 9);
+  EXPECT_EQ(r->verdict, Verdict::clash);
+  EXPECT_EQ(r->worst_step, 9);
   for (const StepSummary& s : r->steps) {
     EXPECT_EQ(s.interference, s.step >= 8) << s.step;
+    EXPECT_EQ(s.verdict, s.step < 8 ? Verdict::clear : s.step == 8 ? Verdict::contact : Verdict::clash) << s.step;
     EXPECT_EQ(s.time, 0.5 * static_cast<double>(s.step));
     if (s.step == 8) {
       EXPECT_EQ(s.cross_pairs, 0u);
@@ -98,7 +103,8 @@ TEST(FemDeform, ScaleAndSelectedStepsAndMismatchedSeries) {
                         {.scale = 2.0, .steps = {1, 3, 4, 5}});
   ASSERT_TRUE(r);
   ASSERT_EQ(r->steps.size(), 4u);
-  EXPECT_EQ(r->first_clash_step, 4);  // 1 - 4 * 0.125 * 2 = 0
+  EXPECT_EQ(r->first_contact_step, 4);  // 1 - 4 * 0.125 * 2 = 0: touching, a contact
+  EXPECT_EQ(r->first_clash_step, 5);
   EXPECT_FALSE(r->steps[1].interference);
   EXPECT_TRUE(r->steps[2].interference);
 
@@ -117,6 +123,38 @@ TEST(FemDeform, ScaleAndSelectedStepsAndMismatchedSeries) {
   auto out_of_range = clash_series({&p.a.mesh, &p.sa.parts[0], nullptr}, {&p.b.mesh, &p.sb.parts[0], &p.u},
                                    {.steps = {14}});
   ASSERT_FALSE(out_of_range);
+}
+
+TEST(FemDeform, BondedBodiesAreAContactNotAClash) {
+  // Issue #23, item 13: two materials of one conforming mesh (shared nodes and a shared face) touch,
+  // their interiors are disjoint: contact. Moved into each other by 0.25 they clash.
+  for (ElemType type : {ElemType::hex8, ElemType::tet4, ElemType::tet10}) {
+    SCOPED_TRACE(elem_info(type).name);
+    GeneratedFem g = make_fem_box({.type = type, .nx = 4, .ny = 2, .nz = 2, .lo = {0, 0, 0}, .hi = {2, 1, 1}});
+    FemMesh& m = g.mesh;
+    m.groups = {{.name = "left", .id = 1}, {.name = "right", .id = 2}};
+    for (std::size_t e = 0; e < m.num_elements(); ++e) {
+      double x = 0;
+      const int c = elem_info(m.elem_types[e]).corners;
+      for (int i = 0; i < c; ++i) x += m.nodes[m.element_nodes(e)[i]].x / c;
+      m.elem_groups[e] = x < 1 ? 0 : 1;
+    }
+    auto s = extract_surface(m, {.split = PartSplit::by_group});
+    ASSERT_TRUE(s);
+    ASSERT_EQ(s->parts.size(), 2u);
+    // Step 0: as meshed (bonded); step 1: the right body moved 0.25 into the left one.
+    NodalSeries u{.name = "u", .times = {0, 1}, .values = {std::vector<Vec3>(m.num_nodes()), std::vector<Vec3>(m.num_nodes(), Vec3{-0.25, 0, 0})}};
+    auto r = clash_series({&m, &s->parts[0], nullptr}, {&m, &s->parts[1], &u}, {.keep_first_clash = true});
+    ASSERT_TRUE(r) << r.error().message();
+    ASSERT_EQ(r->steps.size(), 2u);
+    EXPECT_GT(r->steps[0].touch_pairs, 0u);
+    EXPECT_EQ(r->steps[0].cross_pairs, 0u);
+    EXPECT_EQ(r->steps[0].verdict, Verdict::contact);
+    EXPECT_EQ(r->steps[1].verdict, Verdict::clash);
+    EXPECT_EQ(r->first_contact_step, 0);
+    EXPECT_EQ(r->first_clash_step, 1);
+    EXPECT_EQ(r->verdict, Verdict::clash);
+  }
 }
 
 TEST(FemDeform, QuadraticPartsThroughMidNodesKeepTheDeformedShape) {
