@@ -72,8 +72,18 @@ Expected<FemMesh> build_vtk_mesh(const std::string& file, VtkData&& d, bool byte
   m.elem_nodes.reserve(d.connectivity.size());
   std::int64_t prev = 0;
   std::uint32_t v[32];
+  std::size_t poly_cells = 0;  // VTK_EMPTY_CELL 0, VTK_POLY_VERTEX 2, VTK_POLY_LINE 4: no surface
   for (std::size_t c = 0; c < nc; ++c) {
     ElemType t{};
+    if (d.types[c] == 0 || d.types[c] == 2 || d.types[c] == 4) {
+      const std::int64_t end = d.offsets[c];
+      if (end < prev || end > static_cast<std::int64_t>(d.connectivity.size())) {
+        return err(d.cells_where, "cell " + std::to_string(c) + ": offset " + std::to_string(end) + " out of range");
+      }
+      prev = end;
+      ++poly_cells;
+      continue;
+    }
     if (!elem_type_from_vtk(static_cast<int>(d.types[c]), t) || d.types[c] < 0 || d.types[c] > 255) {
       return err(d.types_where, "cell " + std::to_string(c) + ": unsupported VTK cell type " + std::to_string(d.types[c]));
     }
@@ -102,6 +112,10 @@ Expected<FemMesh> build_vtk_mesh(const std::string& file, VtkData&& d, bool byte
   }
   // Mixed dimensions: keep the highest (like the other readers).
   drop_lower_dimension(m, nullptr);
+  if (poly_cells > 0) {
+    m.warnings.push_back("skipped " + std::to_string(poly_cells) +
+                         " VTK empty, poly-vertex and poly-line cells (no surface)");
+  }
   // Groups: distinct values of the group array, in increasing order; -1 in our "group" array = none.
   if (groups) {
     std::vector<std::int64_t> val(nc);
