@@ -48,7 +48,8 @@ void sort_values(V& v, const L& less, bool par) {
 
 }  // namespace
 
-std::size_t split_at_mid_nodes(const FemMesh& mesh, const std::vector<std::uint32_t>& elements, PartTriangles& pt) {
+std::size_t split_at_mid_nodes(const FemMesh& mesh, const std::vector<std::uint32_t>& elements,
+                               PartTriangles& pt) {
   // Edges of the quadratic elements of the part with their mid-side nodes.
   std::vector<EdgeMid> mids;
   bool linear_faces = false;
@@ -61,7 +62,8 @@ std::size_t split_at_mid_nodes(const FemMesh& mesh, const std::vector<std::uint3
     if (!face_nodes(t).mids) continue;
     const std::uint32_t* v = mesh.element_nodes(e);
     ElemFaces ef = volume_faces(t);
-    if (is_shell(t)) ef = {1, elem_info(t).corners == 3 ? &kTriShell : &kQuadShell, elem_info(t).corners};
+    if (is_shell(t))
+      ef = {1, elem_info(t).corners == 3 ? &kTriShell : &kQuadShell, elem_info(t).corners};
     for (int f = 0; f < ef.count; ++f) {
       const FaceDef& fd = ef.faces[f];
       for (int i = 0; i < fd.n; ++i) {
@@ -74,9 +76,10 @@ std::size_t split_at_mid_nodes(const FemMesh& mesh, const std::vector<std::uint3
   std::sort(mids.begin(), mids.end(), [](const EdgeMid& x, const EdgeMid& y) {
     return x.lo != y.lo ? x.lo < y.lo : x.hi != y.hi ? x.hi < y.hi : x.mid < y.mid;
   });
-  mids.erase(std::unique(mids.begin(), mids.end(),
-                         [](const EdgeMid& x, const EdgeMid& y) { return x.lo == y.lo && x.hi == y.hi; }),
-             mids.end());
+  mids.erase(
+      std::unique(mids.begin(), mids.end(),
+                  [](const EdgeMid& x, const EdgeMid& y) { return x.lo == y.lo && x.hi == y.hi; }),
+      mids.end());
   auto mid_of = [&](std::uint32_t a, std::uint32_t b) {
     const EdgeMid key{std::min(a, b), std::max(a, b), 0};
     auto it = std::lower_bound(mids.begin(), mids.end(), key);
@@ -162,7 +165,10 @@ OrientStats orient_part(const FemMesh& mesh, PartTriangles& pt, bool par) {
   sort_values(
       he,
       [](const HalfEdge& x, const HalfEdge& y) {
-        return x.lo != y.lo ? x.lo < y.lo : x.hi != y.hi ? x.hi < y.hi : x.tri != y.tri ? x.tri < y.tri : x.up < y.up;
+        return x.lo != y.lo     ? x.lo < y.lo
+               : x.hi != y.hi   ? x.hi < y.hi
+               : x.tri != y.tri ? x.tri < y.tri
+                                : x.up < y.up;
       },
       par);
   // Links across manifold edges: (tri, other, flip) where flip says the two must differ in their
@@ -240,7 +246,8 @@ OrientStats orient_part(const FemMesh& mesh, PartTriangles& pt, bool par) {
       cones += turn[t] ? -d : d;
       perm += norm(u) * norm(v) * norm(w);
     }
-    const double bound = static_cast<double>(queue.size() + 16) * std::numeric_limits<double>::epsilon() * perm;
+    const double bound =
+        static_cast<double>(queue.size() + 16) * std::numeric_limits<double>::epsilon() * perm;
     const bool flip_all = cones < 0;
     if (!(std::fabs(cones) > bound)) ++st.degenerate_components;
     if (!closed) ++st.open_components;

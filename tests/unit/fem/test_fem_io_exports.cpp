@@ -66,18 +66,20 @@ TEST(FemIoExports, AbaqusLinesPointsAndBoundaryTrianglesAreSkippedAndCounted) {
 }
 
 TEST(FemIoExports, AbaqusUnknownTypeIsAnErrorNamingLineAndType) {
-  EXPECT_TRUE(bad_input("unknown.inp", "*NODE\n1, 0, 0, 0\n*ELEMENT, TYPE=XYZ42\n1, 1\n", "'XYZ42'"));
+  EXPECT_TRUE(
+      bad_input("unknown.inp", "*NODE\n1, 0, 0, 0\n*ELEMENT, TYPE=XYZ42\n1, 1\n", "'XYZ42'"));
   EXPECT_TRUE(bad_input("b31x.inp", "*NODE\n1, 0, 0, 0\n*ELEMENT, TYPE=B319\n1, 1\n", "'B319'"));
 }
 
 TEST(FemIoExports, NastranBeamAndMassCardsAreCounted) {
   const fs::path p = temp_dir() / "exports.bdf";
-  write_text(p, "BEGIN BULK\n"
-                "GRID,1,,0.,0.,0.\nGRID,2,,1.,0.,0.\nGRID,3,,0.,1.,0.\nGRID,4,,0.,0.,1.\n"
-                "CTETRA,1,1,1,2,3,4\n"
-                "CBAR,2,2,1,2,0.,0.,1.\nCBAR,3,2,2,3,0.,0.,1.\nCONM2,4,1,,1.\nRBE2,5,1,123456,2,3\n"
-                "CTRIA3,6,3,1,3,2\n"
-                "ENDDATA\n");
+  write_text(p,
+             "BEGIN BULK\n"
+             "GRID,1,,0.,0.,0.\nGRID,2,,1.,0.,0.\nGRID,3,,0.,1.,0.\nGRID,4,,0.,0.,1.\n"
+             "CTETRA,1,1,1,2,3,4\n"
+             "CBAR,2,2,1,2,0.,0.,1.\nCBAR,3,2,2,3,0.,0.,1.\nCONM2,4,1,,1.\nRBE2,5,1,123456,2,3\n"
+             "CTRIA3,6,3,1,3,2\n"
+             "ENDDATA\n");
   auto m = read_fem(p);
   ASSERT_TRUE(m) << m.error().message();
   ASSERT_EQ(m->num_elements(), 1u);
@@ -88,14 +90,16 @@ TEST(FemIoExports, NastranBeamAndMassCardsAreCounted) {
 
 TEST(FemIoExports, VtkPolyLinesAndVerticesAreSkipped) {
   const fs::path p = temp_dir() / "exports.vtk";
-  write_text(p, "# vtk DataFile Version 2.0\nexports\nASCII\nDATASET UNSTRUCTURED_GRID\n"
-                "POINTS 4 double\n0 0 0 1 0 0 0 1 0 0 0 1\n"
-                "CELLS 5 19\n4 0 1 2 3\n3 0 1 2\n2 0 1\n1 3\n4 0 1 2 3\n"
-                "CELL_TYPES 5\n10\n4\n3\n1\n2\n");
+  write_text(p,
+             "# vtk DataFile Version 2.0\nexports\nASCII\nDATASET UNSTRUCTURED_GRID\n"
+             "POINTS 4 double\n0 0 0 1 0 0 0 1 0 0 0 1\n"
+             "CELLS 5 19\n4 0 1 2 3\n3 0 1 2\n2 0 1\n1 3\n4 0 1 2 3\n"
+             "CELL_TYPES 5\n10\n4\n3\n1\n2\n");
   auto m = read_fem(p);
   ASSERT_TRUE(m) << m.error().message();
   ASSERT_EQ(m->num_elements(), 1u);
-  EXPECT_TRUE(has_warning(*m, "skipped 2 VTK empty, poly-vertex and poly-line cells")) << all_warnings(*m);
+  EXPECT_TRUE(has_warning(*m, "skipped 2 VTK empty, poly-vertex and poly-line cells"))
+      << all_warnings(*m);
   EXPECT_TRUE(has_warning(*m, "skipped 2 elements without a surface (1 1-D")) << all_warnings(*m);
 }
 
