@@ -31,9 +31,12 @@ struct OneSidedDistance {
   /// smaller of (a) the largest corner or edge-midpoint distance plus (longest edge) / (2 sqrt 3)
   /// (the distance is 1-Lipschitz; the midpoint split leaves triangles whose points lie within half
   /// the longest edge / sqrt 3 of a corner) and (b) the largest corner distance to one triangle of
-  /// `to` (convex: largest at a corner; the triangles nearest to its samples are tried), refined by
-  /// midpoint subdivision (4 levels) where it exceeds `sampled` by 25 %; plus 1e-9 of the meshes' joint
-  /// extent for rounding. Never below `sampled`.
+  /// `to` (convex: largest at a corner; the triangles nearest to its samples are tried) or to a
+  /// convex planar region of `to` holding the corners' nearest triangles (plus the region's
+  /// deviation and dents); where it exceeds `sampled` by 25 %, refined (more candidates, midpoint
+  /// subdivision) worst triangle first, for at most 2048 + n/16 triangles: past that budget the
+  /// next triangle's unrefined bound, which bounds all the rest (issue #23, item 12); plus 1e-9 of
+  /// the meshes' joint extent for rounding. Never below `sampled`.
   double bound = 0;
   std::size_t samples = 0;
 };
