@@ -104,10 +104,15 @@ int run_fem_clash(const ClashOptions& o, const ResolvedParts& parts, const Clash
                     .transform = parts.b.transform};
   displacement(o.disp_a, o.field_a, oa);
   displacement(o.disp_b, o.field_b, ob);
+  // Each input's own unit, converted to the working unit (issue #23, item 6).
+  for (auto [spec, opt] : {std::pair{&parts.a, &oa}, std::pair{&parts.b, &ob}}) {
+    opt->unit = part_unit(*spec);
+    opt->unit_scale = unit_in_mm(opt->unit.unit, opt->unit.source) / unit_in_mm(parts.units, "--units");
+  }
   const FemPart a = load_fem_part(parts.a.file, oa, "A", false);
   // Two bodies of one file with the same displacement, pose and options: read and extract once.
   const bool same = parts.a.file == parts.b.file && oa.disp == ob.disp && oa.field == ob.field &&
-                    oa.transform == ob.transform;
+                    oa.transform == ob.transform && oa.unit_scale == ob.unit_scale;
   const FemPart b = same ? other_part(a, ob.part, "B") : load_fem_part(parts.b.file, ob, "B", false);
   for (const FemPart* p : {&a, &b}) {
     for (const std::string& w : p->warnings) {

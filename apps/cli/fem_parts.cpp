@@ -1,5 +1,7 @@
 #include "fem_parts.h"
 
+#include "interfere/core/coordinate_range.h"
+
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
@@ -161,6 +163,23 @@ FemPart load_fem_part(const std::string& file, const FemPartOptions& o, const st
     p.displacement_source = "field";
   }
 
+  // Units: nodes and displacement vectors into the working unit, before the pose (issue #23, item 6).
+  p.unit = o.unit;
+  p.unit_scale = o.unit_scale;
+  if (o.unit_scale != 1) {
+    for (Vec3& v : mesh.nodes) {
+      v = v * o.unit_scale;
+      if (!coordinates_in_range(v))
+        throw InputError(file + ": a node once converted from " + o.unit.unit + ": " + coordinate_range_reason(v));
+    }
+    auto scale = [&](NodalSeries& s) {
+      for (auto& step : s.values)
+        for (Vec3& u : step) u = u * o.unit_scale;
+    };
+    if (p.csv) scale(*p.csv);
+    for (NodalSeries& f : mesh.fields) scale(f);
+  }
+
   // Pose: nodes moved, displacement vectors rotated (R·u).
   if (!p.transform.is_identity()) {
     for (Vec3& v : mesh.nodes) {
@@ -216,6 +235,8 @@ FemPart other_part(const FemPart& loaded, const std::string& part, const std::st
   p.displacement = loaded.displacement;
   p.displacement_source = loaded.displacement_source;
   p.transform = loaded.transform;
+  p.unit = loaded.unit;
+  p.unit_scale = loaded.unit_scale;
   p.warnings.assign(loaded.warnings.begin(), loaded.warnings.begin() + static_cast<std::ptrdiff_t>(loaded.file_warnings));
   for (std::string& w : p.warnings) {
     const std::string from = "part " + loaded.label + " ", to = "part " + label + " ";
@@ -258,6 +279,9 @@ nlohmann::json fem_part_json(const FemPart& p) {
                                            {"name", p.displacement->name},
                                            {"steps", p.displacement->num_steps()}}
                           : nlohmann::json(nullptr)},
+          {"units", p.unit.unit},
+          {"units_source", p.unit.source},
+          {"scale_to_working_unit", p.unit_scale},
           {"transform", p.transform.to_row_major()},
           {"read_seconds", p.read_seconds},
           {"extract_seconds", p.extract_seconds}};

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common.h"
 #include "interfere/core/transform.h"
 #include "interfere/fem/deform.h"
 #include "interfere/fem/fem_mesh.h"
@@ -25,10 +26,14 @@ struct FemPartOptions {
   bool linear_faces = false;  ///< corner-only faces
   std::string split = "auto";  ///< auto, group, connectivity, single
   std::string transform;     ///< pose (12 numbers), applied to nodes and displacement vectors
+  PartUnit unit{"mm", "default"};  ///< the file's unit (part_unit; issue #23, item 6)
+  double unit_scale = 1;     ///< file unit to the working unit: nodes and displacements, before the pose
 };
 
 struct FemPart {
   std::string file, label;  ///< label: "A", "B" or "input" (for messages)
+  PartUnit unit{"mm", "default"};  ///< of the file's coordinates
+  double unit_scale = 1;           ///< to the working unit (applied to nodes and displacements)
   std::string format;       ///< "msh", "vtu", ..., or the mesh format for STL/PLY/OBJ/OFF input
   bool from_triangle_mesh = false;  ///< a triangle mesh file taken as tri3 shells (ids = index + 1)
   std::shared_ptr<FemMesh> mesh;           ///< shared when A and B come from one file

@@ -230,6 +230,26 @@ class FemCli(unittest.TestCase):
         self.assertFalse(rep["inputs"]["b"]["fem"])
         self.assertGreater(rep["result"]["cross_pairs"], 0)
 
+    def test_fem_units_are_converted(self):
+        # Issue #23, item 6: the FE model in cm (body "left" is [0, 1] cm = [0, 10] mm) against a bar
+        # in mm ([9, 19] mm along x): it crosses the face x = 10 mm only once the units are applied.
+        v = [(9, 4, 4), (19, 4, 4), (19, 6, 4), (9, 6, 4), (9, 4, 6), (19, 4, 6), (19, 6, 6), (9, 6, 6)]
+        f = [(0, 2, 1), (0, 3, 2), (4, 5, 6), (4, 6, 7), (0, 1, 5), (0, 5, 4), (1, 2, 6), (1, 6, 5), (2, 3, 7),
+             (2, 7, 6), (3, 0, 4), (3, 4, 7)]
+        with open(path("bar_mm.stl"), "wb") as out:
+            out.write(b"\0" * 80 + struct.pack("<I", len(f)))
+            for t in f:
+                out.write(struct.pack("<12fH", 0, 0, 0, *v[t[0]], *v[t[1]], *v[t[2]], 0))
+        rc, out, err = run("clash", self.model, path("bar_mm.stl"), "--part-a", "left", "--json", path("u_mm.json"))
+        self.assertEqual(rc, 0, err)  # both taken as mm: apart
+        rc, out, err = run("clash", self.model, path("bar_mm.stl"), "--part-a", "left", "--units-a", "cm",
+                           "--json", path("u_cm.json"))
+        self.assertEqual(rc, 1, err)
+        rep = load_json(path("u_cm.json"))
+        self.assertEqual(rep["inputs"]["a"]["units"], "cm")
+        self.assertEqual(rep["inputs"]["a"]["scale_to_working_unit"], 10)
+        self.assertGreater(rep["result"]["cross_pairs"], 0)
+
     def test_displacement_csv_time_series(self):
         with open(path("disp.csv"), "w") as f:
             f.write("step,node_id,ux,uy,uz\n")
