@@ -471,25 +471,7 @@ void bm_recognition(benchmark::State& state) {
 // interfere's defaults; interfere_error also times the error measurement (what `interfere
 // simplify` does without --no-error), whose cost once grew with the spokes' aspect ratio (21.5 s /
 // 43 s / over 120 s). Counters: error_bound (the upper bound) and hausdorff (sampled), absolute.
-TriMesh fan_prism(int n, double h) {
-  TriMesh m;
-  for (double z : {0.0, h})
-    for (int i = 0; i < n; ++i) {
-      const double a = 2 * 3.14159265358979323846 * i / n;
-      m.positions.push_back({10 * std::cos(a), 10 * std::sin(a), z});
-    }
-  const auto un = static_cast<std::uint32_t>(n), c0 = 2 * un, c1 = c0 + 1;
-  m.positions.push_back({0, 0, 0});
-  m.positions.push_back({0, 0, h});
-  for (std::uint32_t i = 0; i < un; ++i) {
-    const std::uint32_t j = (i + 1) % un;
-    m.triangles.push_back({i, j, un + j});
-    m.triangles.push_back({i, un + j, un + i});
-    m.triangles.push_back({c0, j, i});
-    m.triangles.push_back({c1, un + i, un + j});
-  }
-  return m;
-}
+TriMesh fan_prism(int n, double h) { return make_fan_prism(n, 10, h); }
 
 void bm_sliver(benchmark::State& state, int n, double h, bool measure) {
   const TriMesh mesh = fan_prism(n, h);

@@ -46,6 +46,26 @@ TriMesh make_sphere(const SphereOptions& o) {
   return m;
 }
 
+TriMesh make_fan_prism(int n, double r, double h) {
+  TriMesh m;
+  for (double z : {0.0, h})
+    for (int i = 0; i < n; ++i) {
+      const double a = 2 * std::numbers::pi * i / n;
+      m.positions.push_back({r * std::cos(a), r * std::sin(a), z});
+    }
+  const auto un = static_cast<std::uint32_t>(n), c0 = 2 * un, c1 = c0 + 1;
+  m.positions.push_back({0, 0, 0});
+  m.positions.push_back({0, 0, h});
+  for (std::uint32_t i = 0; i < un; ++i) {
+    const std::uint32_t j = (i + 1) % un;
+    m.triangles.push_back({i, j, un + j});
+    m.triangles.push_back({i, un + j, un + i});
+    m.triangles.push_back({c0, j, i});
+    m.triangles.push_back({c1, un + i, un + j});
+  }
+  return m;
+}
+
 TriMesh make_box(const Vec3& lo, const Vec3& hi, int n) {
   n = std::max(1, n);
   TriMesh m;

@@ -22,6 +22,11 @@ TriMesh make_sphere(const SphereOptions& options);
 /// Axis-aligned box [lo, hi] with `n` subdivisions per edge (12·n² triangles), closed, outward.
 TriMesh make_box(const Vec3& lo, const Vec3& hi, int n = 1);
 
+/// A prism of height h over a regular n-gon of radius r (z from 0 to h) whose caps are fans from
+/// one centre vertex: 4n triangles, 2n side slivers and 2n spokes, closed, outward. The sliver case
+/// of the error measurement (issue #23, item 12: a "cylinder with fan caps", a thick polygon).
+TriMesh make_fan_prism(int n, double r, double h);
+
 /// The benchmark pair of issue #2: two bumpy spheres of ~`triangles_per_part` triangles each, radius 1,
 /// centres 1.96 apart on x, so that about 1 % of each part's surface lies inside the other.
 struct SpherePair {

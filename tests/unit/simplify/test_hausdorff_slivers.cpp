@@ -17,33 +17,14 @@
 #include "../../../src/simplify/distance_internal.h"
 #include "interfere/np/distance.h"
 #include "interfere/query/distance.h"
+#include "interfere/mesh/generate.h"
 #include "interfere/simplify/hausdorff.h"
 #include "interfere/simplify/qem.h"
 
 namespace interfere {
 namespace {
 
-// Prism of height h over a regular n-gon of radius r, caps fanned from their centres.
-TriMesh fan_prism(int n, double r, double h) {
-  TriMesh m;
-  for (double z : {0.0, h})
-    for (int i = 0; i < n; ++i) {
-      const double a = 2 * std::numbers::pi * i / n;
-      m.positions.push_back({r * std::cos(a), r * std::sin(a), z});
-    }
-  const auto c0 = static_cast<std::uint32_t>(2 * n), c1 = c0 + 1,
-             un = static_cast<std::uint32_t>(n);
-  m.positions.push_back({0, 0, 0});
-  m.positions.push_back({0, 0, h});
-  for (std::uint32_t i = 0; i < un; ++i) {
-    const std::uint32_t j = (i + 1) % un;
-    m.triangles.push_back({i, j, un + j});
-    m.triangles.push_back({i, un + j, un + i});
-    m.triangles.push_back({c0, j, i});
-    m.triangles.push_back({c1, un + i, un + j});
-  }
-  return m;
-}
+TriMesh fan_prism(int n, double r, double h) { return make_fan_prism(n, r, h); }
 
 // Distance from p to the segment ab and to the triangle abc, computed here from scratch.
 double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
