@@ -15,6 +15,7 @@
 #include <tbb/parallel_for.h>
 
 #include "clash_internal.h"
+#include "interfere/mesh/validate.h"
 #include "interfere/bvh/traverse.h"
 #include "interfere/np/distance.h"
 
@@ -139,6 +140,30 @@ std::vector<TrianglePair> all_pairs(const Model& a, const Model& b, const ClashR
   return out;
 }
 
+
+// One vertex of each connected component of a mesh (triangles joined by shared vertices), in the
+// order of their lowest triangle: containment must test every component, as a part of several
+// (a bolt and its nut in one file) may have one inside the other part and one outside.
+std::vector<std::uint32_t> component_vertices(const TriMesh& m) {
+  const std::vector<std::uint32_t> set = connected_sets(m, std::vector<char>(m.num_triangles(), 1));
+  std::vector<std::uint32_t> out;
+  for (std::uint32_t t = 0; t < set.size(); ++t)
+    if (set[t] == t) out.push_back(m.triangles[t][0]);  // the set's smallest triangle
+  return out;
+}
+
+// Whether some component of `part` lies inside the closed `solid`: 1 yes, 0 no, -1 undecided
+// (every ray direction degenerate for a component, none inside).
+int some_component_inside(const Model& solid, const TriMesh& part) {
+  int result = 0;
+  for (const std::uint32_t v : component_vertices(part)) {
+    const int in = detail::point_in_closed_mesh(solid, part.positions[v]);
+    if (in == 1) return 1;
+    if (in < 0) result = -1;
+  }
+  return result;
+}
+
 }  // namespace
 
 ClashResult clash(const Model& a, const Model& b, const ClashRequest& request) {
@@ -208,12 +233,11 @@ ClashResult clash(const Model& a, const Model& b, const ClashRequest& request) {
   } else if (a.mesh.triangles.empty() || b.mesh.triangles.empty()) {
     result.containment = Containment::none;
   } else {
-    // A closed part may contain the other (open or not): one point of the other decides, as no
-    // surface pair exists. An open part encloses nothing provably, so the reverse stays undecided.
-    const Vec3 pa = a.mesh.positions[a.mesh.triangles[0][0]];
-    const Vec3 pb = b.mesh.positions[b.mesh.triangles[0][0]];
-    const int a_in_b = b_closed ? detail::point_in_closed_mesh(b, pa) : -2;
-    const int b_in_a = a_closed ? detail::point_in_closed_mesh(a, pb) : -2;
+    // A closed part may contain the other (open or not): one point of each of the other's
+    // components decides, as no surface pair exists. An open part encloses nothing provably, so
+    // the reverse stays undecided.
+    const int a_in_b = b_closed ? some_component_inside(b, a.mesh) : -2;
+    const int b_in_a = a_closed ? some_component_inside(a, b.mesh) : -2;
     if (a_in_b == 1) {
       result.containment = Containment::a_inside_b;
     } else if (b_in_a == 1) {

@@ -313,5 +313,23 @@ TEST(ClashVerdict, NamesAndExitStatus) {
   EXPECT_FALSE(parse_fail_on("touch"));
 }
 
+// A part of two components (as a bolt and its nut in one file), one inside the other part and one
+// outside it, with no surface pair: a clash. The first component alone was tested, so the part was
+// "clear" whenever its first triangle's component lay outside.
+TEST(ClashVerdict, EveryComponentIsTestedForContainment) {
+  const Model big = make_model(make_box({0, 0, 0}, {10, 10, 10}));
+  TriMesh two = make_box({20, 0, 0}, {21, 1, 1});  // outside, first in the triangle order
+  const TriMesh inner = make_box({4, 4, 4}, {5, 5, 5});
+  const auto base = static_cast<std::uint32_t>(two.positions.size());
+  two.positions.insert(two.positions.end(), inner.positions.begin(), inner.positions.end());
+  for (auto t : inner.triangles) two.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  const Model part = make_model(two);
+  const ClashResult r = clash(part, big);
+  EXPECT_TRUE(r.pairs.empty());
+  EXPECT_EQ(r.containment, Containment::a_inside_b);
+  EXPECT_EQ(r.verdict, Verdict::clash);
+  EXPECT_EQ(clash(big, part).containment, Containment::b_inside_a);
+}
+
 }  // namespace
 }  // namespace interfere

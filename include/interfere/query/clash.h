@@ -57,8 +57,8 @@ struct ClashRegion {
 
 enum class Containment {
   none,            ///< neither closed part lies inside the other (or surfaces intersect)
-  a_inside_b,
-  b_inside_a,
+  a_inside_b,      ///< A, or one of A's connected components, lies inside the closed B
+  b_inside_a,      ///< B, or one of B's connected components, lies inside the closed A
   not_checked,     ///< a part is open (see warnings) or the check was disabled
 };
 const char* containment_name(Containment c);
