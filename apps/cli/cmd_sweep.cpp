@@ -156,6 +156,10 @@ int run_sweep(const SweepOptions& o) {
   if (!path_r) throw InputError(path_r.error());
   ProbePath path = std::move(path_r.value());
   if (path.joint_space) resolve_poses(path, *robot);
+  for (std::size_t i = 0; i < path.poses.size(); ++i)  // the exact tests' coordinate range (item 7)
+    if (!coordinates_in_range(path.poses[i].tip))
+      throw InputError(o.path + ":" + std::to_string(path.lines[i]) + ": probe tip " +
+                       coordinate_range_reason(path.poses[i].tip));
   if (shape.has_holder_box()) {
     const Status frames = check_reference_frames(path, o.path);
     if (!frames) throw InputError(frames.error());

@@ -4,6 +4,8 @@
 // trees", J. Graphics Tools 2(4), 1997), then the static clash of issue #2.
 #include "interfere/fem/deform.h"
 
+#include "interfere/core/coordinate_range.h"
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -96,10 +98,10 @@ Expected<SeriesResult> clash_series(const SeriesPart& a, const SeriesPart& b, co
       const std::vector<Vec3>& p = side == 0 ? pa : pb;
       const SeriesPart& sp = side == 0 ? a : b;
       for (std::size_t i = 0; i < p.size(); ++i) {
-        if (!is_finite(p[i])) {
+        if (!coordinates_in_range(p[i])) {  // non-finite or beyond the exact tests' range (issue #23, item 7)
           return fail(sp.mesh->file, "step " + std::to_string(s) + ": node " +
                                          std::to_string(sp.mesh->node_ids[sp.part->vertex_node[i]]) +
-                                         " has a non-finite deformed position");
+                                         ": deformed position " + coordinate_range_reason(p[i]));
         }
       }
     }

@@ -277,6 +277,13 @@ class FemCli(unittest.TestCase):
         self.assert_input_error(["clash", self.model, self.model, "--part-a", "left", "--part-b", "right",
                                  "--disp-b", path("disp_bad.csv"), "--json", path("csv_bad.json")],
                                 ["disp_bad.csv:3"], [path("csv_bad.json")])
+        # A displacement that moves a node beyond the exact tests' coordinate range (issue #23,
+        # item 7): an input error naming the step and the node, not a wrong answer.
+        with open(path("disp_far.csv"), "w") as f:
+            f.write("step,node_id,ux,uy,uz\n0,1001,0,0,0\n1,1001,1e200,0,0\n")
+        self.assert_input_error(["clash", self.model, self.model, "--part-a", "left", "--part-b", "right",
+                                 "--disp-b", path("disp_far.csv"), "--json", path("csv_far.json")],
+                                ["step 1", "node 1001", "coordinate range"], [path("csv_far.json")])
 
     def test_bad_inputs_exit_2_without_output(self):
         js = path("bad.json")

@@ -290,6 +290,16 @@ class Sweep(unittest.TestCase):
         self.assertEqual(rc, 2, err + out)
         self.assertIn("--units-workpiece", err)
 
+    def test_path_beyond_the_coordinate_range(self):
+        # Issue #23, item 7: a pose at 1e200 was "clear" (clearance inf); it is an input error
+        # naming the path file and line.
+        p = write("far.csv", "px,py,pz,ax,ay,az\n0,0,50,0,0,-1\n1e200,0,50,0,0,-1\n")
+        rc, out, err = run("--workpiece", cube_obj("far_cube.obj"), "--path", p, *BASE, "--json", path("far.json"))
+        self.assertEqual(rc, 2, err + out)
+        self.assertIn("far.csv:3", err)
+        self.assertIn("coordinate range", err)
+        self.assertFalse(os.path.exists(path("far.json")))
+
     def test_constant_gap_pass_is_not_a_collision(self):
         # Issue #23, item 4: a 100 mm pass with the end face 5 um above a plate (gap 0.005 all along).
         # Was: collision interval [0, 1], exit 1, only because the refinement depth ran out.
