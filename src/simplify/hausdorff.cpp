@@ -143,8 +143,11 @@ OneSidedDistance one_sided(const TriMesh& from, const TriMesh& to, bool with_bou
         }
       });
   const Fans from_fans = fans_of(from);
-  // The midpoints of triangle t: its own or, for an edge running downwards, the twin's (the
-  // triangle around its lower end where it runs upwards), else measured here.
+  // The midpoints of triangle t: its own or, for an edge running downwards, the twin's (the first
+  // triangle, by number, where it runs upwards: looked up in the smaller fan of its two ends, both
+  // in triangle order, so the same twin either way; the lower end's fan alone cost O(n^2) on a fan
+  // hub numbered before its rim, as STL welding numbers it: 20,000-gon prism 0.50 -> 0.15 s), else
+  // measured here.
   const auto mids_of = [&](std::size_t t) {
     const Tri& tr = from.triangles[t];
     std::array<Near, 3> m;
@@ -155,7 +158,11 @@ OneSidedDistance one_sided(const TriMesh& from, const TriMesh& to, bool with_bou
         continue;
       }
       bool found = false;
-      for (std::uint32_t i = from_fans.start[b]; i < from_fans.start[b + 1] && !found; ++i) {
+      const std::uint32_t v = from_fans.start[a + 1] - from_fans.start[a] <
+                                      from_fans.start[b + 1] - from_fans.start[b]
+                                  ? a
+                                  : b;
+      for (std::uint32_t i = from_fans.start[v]; i < from_fans.start[v + 1] && !found; ++i) {
         const std::uint32_t u = from_fans.tris[i];
         const Tri& q = from.triangles[u];
         for (int j = 0; j < 3; ++j)
