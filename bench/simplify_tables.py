@@ -332,18 +332,27 @@ L-shaped and a holed face are no region and a sliver over the notch is still cov
 or winding twice is none; a dent's depth goes into the slack and covers a point the samples miss; the piece
 tree covers every triangle and searches exactly. `interfere simplify IN OUT --ratio 0.1` on this VM
 (2026-11-28, 2 threads, wall time, median of 3; STL files of float coordinates, radius 10; before = the
-measurement code of commit 583eaf1 linked into the same CLI):
+measurement code of commit 583eaf1 linked into the same CLI; after → now: commit 60b18a3 against commits
+bd4c6f0 and 74a2db3 (twin lookup, parallel piece tree: below), run alternately in the same minute, later that day under a load of
+about 3 on the 2 cores, so both slower than an idle machine):
 
-| mesh | triangles | before | after | `--no-error` | error_bound before → after | hausdorff |
+| mesh | triangles | before | after → now | `--no-error` | error_bound before → after (= now) | hausdorff |
 |---|---:|---:|---:|---:|---:|---:|
-| fan-capped cylinder, 8,192 segments, height 20 | 32,768 | 8.87 s | 0.35 s | 0.17 s | 0.722 → 0.0102 | 9.7·10⁻⁵ |
-| prism over a 10,000-gon, height 1 | 40,000 | 15.6 s | 0.38 s | 0.28 s | 0.722 → 0.00285 | 6.5·10⁻⁵ |
-| prism over a 20,000-gon, height 1 | 80,000 | 30.8 s | 1.69 s | 0.27 s | 0.722 → 0.00131 | 1.8·10⁻⁵ |
-| flat 10,000-gon, one fan | 10,000 | 4.4 s | 0.30 s | — | 0.722 → 0.000142 | 1.4·10⁻⁴ |
+| fan-capped cylinder, 8,192 segments, height 20 | 32,768 | 8.87 s | 0.55 → 0.44 s | 0.20 s | 0.722 → 0.0102 | 9.7·10⁻⁵ |
+| prism over a 10,000-gon, height 1 | 40,000 | 15.6 s | 0.70 → 0.51 s | 0.28 s | 0.722 → 0.00285 | 6.5·10⁻⁵ |
+| prism over a 20,000-gon, height 1 | 80,000 | 30.8 s | 1.68 → 1.01 s | 0.45 s | 0.722 → 0.00131 | 1.8·10⁻⁵ |
+| flat 10,000-gon, one fan | 10,000 | 4.4 s | 0.33 → 0.30 s | 0.19 s | 0.722 → 0.000142 | 1.4·10⁻⁴ |
 
-(The issue measured 21.5 s, 43 s and over 120 s on its machine and meshes.) The 20,000-gon still takes 6× its
-simplification: its result's caps are fans of 2,000 spokes from a rim vertex, and a point near them lies in the
-boxes of about 80 strips. The rows `Slivers/*` of the benchmark below time the same shapes in process.
+(The issue measured 21.5 s, 43 s and over 120 s on its machine and meshes.) Two costs were not the searches:
+an edge midpoint shared with a twin triangle looked the twin up in the fan of the edge's lower vertex, O(n²)
+on a fan hub numbered before its rim (as STL welding numbers it: 0.3 s of the 20,000-gon's measurement); it now
+looks in the smaller fan of the two ends (both in triangle order: the same twin, the same bits). And the piece
+tree is filled and boxed in parallel at prefix-sum offsets (0.16 → 0.10 s). The 20,000-gon's measurement now
+takes about 0.6 s in process against its simplification's 0.2–0.27 s: 0.4 s for input to result (360,000
+searches of about 25 closest points each: the boxes of the result's fan strips near a point) and 0.23 s for
+result to input (24,000 searches of 300–700 closest points on the plain tree: cutting the input's 40,000 cap
+spokes into strips needs over a million pieces, whose tree costs more than it saves, measured). The rows
+`Slivers/*` of the benchmark below time the same shapes in process.
 
 **Local frame.** QEM costs grow as the fourth power of the size and are ranked as floats, which overflow above
 sizes of about 10^10 and underflow below 10^-9 (every cost inf or 0: collapses in arbitrary order, 15× the
