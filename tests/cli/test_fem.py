@@ -71,6 +71,19 @@ def write_model(name, steps=STEPS, extra_field_steps=None, corrupt=False):
     return path(name)
 
 
+def write_box_stl(name, lo, hi):
+    """The box [lo, hi] as a binary STL (outward triangles)."""
+    (x0, y0, z0), (x1, y1, z1) = lo, hi
+    v = [(x0, y0, z0), (x1, y0, z0), (x1, y1, z0), (x0, y1, z0), (x0, y0, z1), (x1, y0, z1), (x1, y1, z1), (x0, y1, z1)]
+    f = [(0, 2, 1), (0, 3, 2), (4, 5, 6), (4, 6, 7), (0, 1, 5), (0, 5, 4), (1, 2, 6), (1, 6, 5), (2, 3, 7),
+         (2, 7, 6), (3, 0, 4), (3, 4, 7)]
+    with open(path(name), "wb") as out:
+        out.write(b"\0" * 80 + struct.pack("<I", len(f)))
+        for t in f:
+            out.write(struct.pack("<12fH", 0, 0, 0, *v[t[0]], *v[t[1]], *v[t[2]], 0))
+    return path(name)
+
+
 def read_bytes(p):
     with open(p, "rb") as f:
         return f.read()
@@ -216,14 +229,7 @@ class FemCli(unittest.TestCase):
 
     def test_clash_fem_part_with_a_triangle_mesh(self):
         # A's body "left" against an STL box [0.9, 1.9] x [0.4, 0.6] x [0.4, 0.6]: it crosses A's face x = 1.
-        v = [(0.9, 0.4, 0.4), (1.9, 0.4, 0.4), (1.9, 0.6, 0.4), (0.9, 0.6, 0.4), (0.9, 0.4, 0.6), (1.9, 0.4, 0.6),
-             (1.9, 0.6, 0.6), (0.9, 0.6, 0.6)]
-        f = [(0, 2, 1), (0, 3, 2), (4, 5, 6), (4, 6, 7), (0, 1, 5), (0, 5, 4), (1, 2, 6), (1, 6, 5), (2, 3, 7),
-             (2, 7, 6), (3, 0, 4), (3, 4, 7)]
-        with open(path("bar.stl"), "wb") as out:
-            out.write(b"\0" * 80 + struct.pack("<I", len(f)))
-            for t in f:
-                out.write(struct.pack("<12fH", 0, 0, 0, *v[t[0]], *v[t[1]], *v[t[2]], 0))
+        write_box_stl("bar.stl", (0.9, 0.4, 0.4), (1.9, 0.6, 0.6))
         rc, out, err = run("clash", self.model, path("bar.stl"), "--part-a", "left", "--json", path("mix.json"))
         self.assertEqual(rc, 1, err)
         rep = load_json(path("mix.json"))
@@ -233,13 +239,7 @@ class FemCli(unittest.TestCase):
     def test_fem_units_are_converted(self):
         # Issue #23, item 6: the FE model in cm (body "left" is [0, 1] cm = [0, 10] mm) against a bar
         # in mm ([9, 19] mm along x): it crosses the face x = 10 mm only once the units are applied.
-        v = [(9, 4, 4), (19, 4, 4), (19, 6, 4), (9, 6, 4), (9, 4, 6), (19, 4, 6), (19, 6, 6), (9, 6, 6)]
-        f = [(0, 2, 1), (0, 3, 2), (4, 5, 6), (4, 6, 7), (0, 1, 5), (0, 5, 4), (1, 2, 6), (1, 6, 5), (2, 3, 7),
-             (2, 7, 6), (3, 0, 4), (3, 4, 7)]
-        with open(path("bar_mm.stl"), "wb") as out:
-            out.write(b"\0" * 80 + struct.pack("<I", len(f)))
-            for t in f:
-                out.write(struct.pack("<12fH", 0, 0, 0, *v[t[0]], *v[t[1]], *v[t[2]], 0))
+        write_box_stl("bar_mm.stl", (9, 4, 4), (19, 6, 6))
         rc, out, err = run("clash", self.model, path("bar_mm.stl"), "--part-a", "left", "--json", path("u_mm.json"))
         self.assertEqual(rc, 0, err)  # both taken as mm: apart
         rc, out, err = run("clash", self.model, path("bar_mm.stl"), "--part-a", "left", "--units-a", "cm",
