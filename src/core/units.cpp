@@ -13,6 +13,8 @@ std::optional<double> millimetres_per_unit(std::string_view unit) {
   return std::nullopt;
 }
 
-const char* known_units() { return "mm, cm, m, um, in, ft"; }
+const char* known_units() {
+  return "mm, cm, m, um, in, ft";
+}
 
 }  // namespace interfere

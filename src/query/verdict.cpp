@@ -9,7 +9,9 @@ namespace {
 constexpr std::array<const char*, 5> kNames{"clear", "clearance", "contact", "undecided", "clash"};
 }
 
-const char* verdict_name(Verdict v) { return kNames[static_cast<std::size_t>(v)]; }
+const char* verdict_name(Verdict v) {
+  return kNames[static_cast<std::size_t>(v)];
+}
 
 std::optional<Verdict> verdict_from_name(std::string_view name) {
   for (std::size_t i = 0; i < kNames.size(); ++i)
@@ -38,11 +40,16 @@ std::optional<FailOn> parse_fail_on(std::string_view text) {
 
 int verdict_exit_status(Verdict v, const FailOn& fail_on) {
   switch (v) {
-    case Verdict::clash: return 1;
-    case Verdict::undecided: return 3;
-    case Verdict::contact: return fail_on.contact ? 1 : 0;
-    case Verdict::clearance: return fail_on.clearance ? 1 : 0;
-    case Verdict::clear: return 0;
+    case Verdict::clash:
+      return 1;
+    case Verdict::undecided:
+      return 3;
+    case Verdict::contact:
+      return fail_on.contact ? 1 : 0;
+    case Verdict::clearance:
+      return fail_on.clearance ? 1 : 0;
+    case Verdict::clear:
+      return 0;
   }
   return 3;
 }

@@ -17,14 +17,22 @@
 
 namespace interfere {
 
-enum class Verdict : std::uint8_t { clear = 0, clearance = 1, contact = 2, undecided = 3, clash = 4 };
+enum class Verdict : std::uint8_t {
+  clear = 0,
+  clearance = 1,
+  contact = 2,
+  undecided = 3,
+  clash = 4
+};
 
 /// "clear", "clearance", "contact", "undecided", "clash" (the names in every JSON report).
 const char* verdict_name(Verdict v);
 std::optional<Verdict> verdict_from_name(std::string_view name);
 
 /// The more severe of two verdicts (clash > undecided > contact > clearance > clear).
-inline Verdict worst(Verdict a, Verdict b) { return a > b ? a : b; }
+inline Verdict worst(Verdict a, Verdict b) {
+  return a > b ? a : b;
+}
 
 /// What makes a command exit non-zero besides a clash (`--fail-on contact|clearance`).
 struct FailOn {
