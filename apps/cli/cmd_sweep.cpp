@@ -166,11 +166,10 @@ int run_sweep(const SweepOptions& o) {
   }
   PartMesh mesh = read_part_mesh(o.workpiece, o.tessellation);
   if (workpiece_scale != 1) {
-    for (Vec3& v : mesh.mesh.positions) {
-      v = v * workpiece_scale;
-      if (!coordinates_in_range(v))
-        throw InputError(o.workpiece + ": a vertex once converted to " + o.units + ": " + coordinate_range_reason(v));
-    }
+    for (Vec3& v : mesh.mesh.positions) v = v * workpiece_scale;
+    if (const std::size_t i = first_out_of_range(mesh.mesh.positions); i < mesh.mesh.positions.size())
+      throw InputError(o.workpiece + ": vertex " + std::to_string(i) + " (after welding), once converted to " +
+                       o.units + ": " + coordinate_range_reason(mesh.mesh.positions[i]));
     mesh.linear_deflection *= workpiece_scale;
   }
   const double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_read).count();

@@ -249,6 +249,11 @@ class FemCli(unittest.TestCase):
         self.assertEqual(rep["inputs"]["a"]["units"], "cm")
         self.assertEqual(rep["inputs"]["a"]["scale_to_working_unit"], 10)
         self.assertGreater(rep["result"]["cross_pairs"], 0)
+        # A pose that carries the nodes beyond the exact tests' coordinate range is an input error
+        # naming the node (it was accepted when finite).
+        self.assert_input_error(["clash", self.model, path("bar_mm.stl"), "--part-a", "left", "--transform-a",
+                                 "1e31 0 0 0 0 1 0 0 0 0 1 0", "--json", path("u_far.json")],
+                                ["node ", "converted and transformed", "coordinate range"], [path("u_far.json")])
 
     def test_displacement_csv_time_series(self):
         with open(path("disp.csv"), "w") as f:
