@@ -87,11 +87,8 @@ LoadedPart read_part(const PartSpec& spec, const std::string& label, const std::
 
 // The bounding-box diagonal of a mesh (0 when empty).
 double diagonal(const TriMesh& m) {
-  if (m.positions.empty()) return 0;
-  Vec3 lo = m.positions[0], hi = lo;
-  for (const Vec3& v : m.positions)
-    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], v[k]), hi[k] = std::max(hi[k], v[k]);
-  return norm(hi - lo);
+  const Aabb b = m.bounds();
+  return b.empty() ? 0 : norm(b.extent());
 }
 
 void warn_about(LoadedPart& p, const std::string& label) {
