@@ -498,14 +498,6 @@ void resolve_step_tessellation(const CLI::App& c, StepTessellation& t, const std
   throw InputError("--linear-deflection/--angular-deflection tessellate STEP inputs (.step, .stp); no input is one");
 }
 
-void check_step_units(const std::vector<std::string>& files, const std::string& units) {
-  if (units == "mm") return;
-  for (const std::string& f : files)
-    if (is_step_file(f))
-      throw InputError(f + ": STEP input is read in millimetres (OpenCASCADE converts the file's units); --units is " +
-                       units + ": give --units mm and meshes in millimetres");
-}
-
 nlohmann::json two_part_report(const std::string& command, const std::string& units, const LoadedParts& parts,
                                double query_seconds, double total_seconds) {
   const LoadedPart& a = parts.a;

@@ -81,9 +81,6 @@ void add_step_tessellation_options(CLI::App& command, StepTessellation& t);
 /// Called when the command runs: sets `given`, and throws InputError when the flags were given
 /// although none of `files` is a STEP file (they would silently do nothing).
 void resolve_step_tessellation(const CLI::App& command, StepTessellation& t, const std::vector<std::string>& files);
-/// STEP files are read in millimetres (OCCT converts the file's units): throws InputError naming
-/// the file when one is among `files` and `units` is not "mm".
-void check_step_units(const std::vector<std::string>& files, const std::string& units);
 PartMesh read_part_mesh(const std::string& file, const StepTessellation& tessellation = {});
 bool is_step_file(const std::string& file);
 
