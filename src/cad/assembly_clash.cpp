@@ -92,9 +92,9 @@ AssemblyClashResult assembly_clash(const CadModel& model, const AssemblyClashOpt
     if (r.cross_pairs > 0) {
       pa.assign(world[a].mesh.num_triangles(), 0), pb.assign(world[b].mesh.num_triangles(), 0);
       for (const TrianglePair& q : r.pairs) pa[q.a] = 1, pb[q.b] = 1;
-      sa = detail::untouched_sides(world[a], world[b], pa), sb = detail::untouched_sides(world[b], world[a], pb);
-      p.depth = std::max(detail::depth_into(world[a], world[b], pa, sa),
-                         detail::depth_into(world[b], world[a], pb, sb));
+      sa = interfere::detail::untouched_sides(world[a], world[b], pa), sb = interfere::detail::untouched_sides(world[b], world[a], pb);
+      p.depth = std::max(interfere::detail::depth_into(world[a], world[b], pa, sa),
+                         interfere::detail::depth_into(world[b], world[a], pb, sb));
     }
     if (r.cross_pairs > 0 && !inside && !r.touching_overlap)
       p.nominal_fit = detail::nominal_fit(model, a, b, world, r, p.depth, p.tessellation_error);
@@ -104,8 +104,8 @@ AssemblyClashResult assembly_clash(const CadModel& model, const AssemblyClashOpt
       // nominal fits, whose coincident faces it could only bound by their chordal errors, slowly).
       if (r.cross_pairs > 0 && options.depth_bound_splits > 0) {
         const std::size_t n = options.depth_bound_splits;
-        p.depth_bound = std::max({p.depth, detail::depth_bound(world[a], world[b], pa, sa, p.depth, n),
-                                  detail::depth_bound(world[b], world[a], pb, sb, p.depth, n)});
+        p.depth_bound = std::max({p.depth, interfere::detail::depth_bound(world[a], world[b], pa, sa, p.depth, n),
+                                  interfere::detail::depth_bound(world[b], world[a], pb, sb, p.depth, n)});
       }
       if (options.geometry)
         for (const ClashRegion& g : r.regions) {

@@ -1,16 +1,17 @@
-// Sampled depth of crossing surfaces of an assembly's instance pairs
-// (include/interfere/cad/assembly_clash.h, InstancePairResult::depth).
+// Depth of crossing surfaces (include/interfere/query/depth.h): sampled lower bound and proven upper
+// bound, first written for assembly-clash (cad/assembly_clash.h, InstancePairResult::depth).
 #include <algorithm>
+#include <cmath>
 #include <array>
 #include <queue>
 
-#include "assembly_clash_internal.h"
+#include "interfere/query/depth.h"
 #include "interfere/bvh/traverse.h"
 #include "interfere/mesh/validate.h"
 #include "interfere/np/tri_tri.h"
 #include "interfere/query/distance.h"
 
-namespace interfere::cad::detail {
+namespace interfere::detail {
 namespace {
 
 // Where the segment pq meets the surface of m: parameters in (0, 1), sorted (floating point: a
@@ -154,4 +155,24 @@ double depth_bound(const Model& x, const Model& y, const std::vector<char>& pair
   return pieces.empty() ? lower : std::max(lower, pieces.top().bound);
 }
 
-}  // namespace interfere::cad::detail
+}  // namespace interfere::detail
+
+namespace interfere {
+
+PenetrationDepth penetration_depth(const Model& a, const Model& b, const ClashResult& r, std::size_t max_splits) {
+  PenetrationDepth out;
+  if (r.cross_pairs == 0) return out;
+  std::vector<char> pa(a.mesh.num_triangles(), 0), pb(b.mesh.num_triangles(), 0);
+  for (const TrianglePair& q : r.pairs) pa[q.a] = 1, pb[q.b] = 1;
+  const std::vector<signed char> sa = detail::untouched_sides(a, b, pa), sb = detail::untouched_sides(b, a, pb);
+  out.depth = std::max(detail::depth_into(a, b, pa, sa), detail::depth_into(b, a, pb, sb));
+  out.depth_bound = out.depth;
+  if (max_splits > 0) {
+    out.bounded = true;
+    out.depth_bound = std::max({out.depth, detail::depth_bound(a, b, pa, sa, out.depth, max_splits),
+                                detail::depth_bound(b, a, pb, sb, out.depth, max_splits)});
+  }
+  return out;
+}
+
+}  // namespace interfere

@@ -1,0 +1,144 @@
+// The scene clash engine (issue #24, items 3, 4 and 6): a broad phase over the bodies' world boxes
+// (a BVH of boxes, refitted per frame), each candidate pair decided by the exact two-part core
+// (query/clash.h: pairs, regions, curves, containment, touching overlap; query/depth.h: depth and
+// its upper bound; distances for clearance), in parallel across pairs and inside large pairs
+// (nested oneTBB tasks). Results are identical for any thread count and any order of the bodies.
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "interfere/core/aabb.h"
+#include "interfere/mesh/polyline.h"
+#include "interfere/query/clash.h"
+#include "interfere/query/verdict.h"
+#include "interfere/scene/clash_test.h"
+#include "interfere/scene/scene.h"
+
+namespace interfere::scene {
+
+/// Status of a clash against a baseline (baseline.h): new (not in the baseline), active (in it),
+/// resolved (in it, gone now: listed once, then dropped). Without a baseline every clash is new.
+enum class ClashStatus : std::uint8_t { new_, active, resolved };
+const char* clash_status_name(ClashStatus s);
+
+/// One clash: a connected clash region of a body pair (its crossing or touching triangle pairs),
+/// a body lying inside the other, a clearance violation, or a duplicate.
+struct SceneClash {
+  /// Stable id: "C" + 16 hex digits of a 64-bit hash of the test name, the two bodies' ids (in
+  /// sorted order) and the clash's location quantised at the test's id grid, in the local frame of
+  /// the body with the smaller id (so the id survives reordering the inputs, moving an unrelated
+  /// body, and moving the pair together); "-2", "-3", ... distinguish clashes of one pair in one
+  /// grid cell (ordered by location).
+  std::string id;
+  std::string test;            ///< the clash test's name
+  std::uint32_t a = 0, b = 0;  ///< body indices; Scene::bodies[a].id < Scene::bodies[b].id
+  Verdict verdict = Verdict::clash;  ///< clash, contact, clearance or undecided
+  /// What it is: "crossing" (surfaces cross), "inside" (a body inside the other), "touching_overlap"
+  /// (faces coincide while the solids overlap), "touch" (contact region), "nominal_fit",
+  /// "within_tolerance" (hard clash no deeper than the tolerance), "clearance", "duplicate",
+  /// "undecided".
+  std::string kind;
+  /// Crossing clashes: how deep the surfaces reach into the solids, a sampled lower bound and a
+  /// proven upper bound (query/depth.h), for the body pair (every region of it carries the pair's).
+  double depth = 0, depth_bound = 0;
+  double distance = 0;  ///< clearance: the smallest distance between the bodies; 0 when they meet
+  Vec3 point;           ///< a representative point (world): on the curves, the contact, or the gap's middle
+  /// Tight box (world) of the intersection curves and contact region (touching triangle pairs'
+  /// common parts), or of the clearance witness segment, or of the inner body.
+  Aabb box;
+  double curve_length = 0;
+  std::vector<Polyline> curves;                    ///< intersection curves (world)
+  std::size_t cross_pairs = 0, touch_pairs = 0;    ///< triangle pairs of this clash
+  std::vector<std::uint32_t> triangles_a, triangles_b;  ///< sorted triangle indices of each body
+  std::vector<std::int64_t> source_ids_a, source_ids_b;  ///< their sorted distinct source ids (Body::source_id)
+  Vec3 witness_a, witness_b;  ///< clearance: the closest points
+  std::vector<std::string> reasons;  ///< undecided: why; others: notes
+  // Across frames (motion) — the first frame's data above.
+  std::vector<std::uint32_t> frames;  ///< the frames it is present in (sorted); empty when static
+  // Status (baseline.h).
+  ClashStatus status = ClashStatus::new_;
+  /// The user's fields carried from the baseline clash with the same id ("status": "approved",
+  /// "assignee", "comment", ...), as JSON text per key.
+  std::map<std::string, std::string> user_fields;
+};
+
+/// The clashes of one body pair in one test (grouping by pair).
+struct PairSummary {
+  std::string test;
+  std::uint32_t a = 0, b = 0;
+  Verdict verdict = Verdict::clear;  ///< the worst of its clashes
+  std::vector<std::uint32_t> clashes;  ///< indices into SceneClashResult::clashes
+  double depth = 0, depth_bound = 0, min_distance = 0;
+};
+
+/// A group of clashes (SceneClashOptions::group_by): one body pair, or one location where clashes
+/// cluster (boxes within SceneClashOptions::group_distance of each other, any pairs).
+struct ClashGroup {
+  std::string id;  ///< "G" + hash of its clashes' ids
+  std::vector<std::uint32_t> clashes;
+  Aabb box;
+  Verdict verdict = Verdict::clear;
+};
+
+/// One row of the frames table (motion).
+struct FrameRow {
+  std::uint32_t frame = 0;
+  std::string label;
+  double time = 0;
+  std::size_t clashes = 0, contacts = 0, clearances = 0, undecided = 0;
+  double min_distance = -1;  ///< smallest clearance distance found (-1: none within any clearance)
+  double max_depth = 0;      ///< largest depth bound of the frame's clashes
+  Verdict verdict = Verdict::clear;
+};
+
+enum class GroupBy : std::uint8_t { none, pair, location };
+
+struct SceneClashOptions {
+  /// Splits per direction of a crossing pair for the depth upper bound (query/depth.h); 0: no bound
+  /// (penetration tolerances then compare the sampled depth, which is flagged in the clash's reasons).
+  std::size_t depth_bound_splits = 5000;
+  bool curves = true;      ///< keep intersection curves (SceneClash::curves)
+  bool triangles = true;   ///< keep triangle indices and source ids
+  GroupBy group_by = GroupBy::pair;
+  double group_distance = 0;  ///< location grouping: boxes closer than this join (0: touching boxes)
+  /// Nominal-fit check (ClashTest::nominal_fits_are_contacts) supplied by sources that know B-Rep
+  /// faces (cad/assembly_scene.h): given the two bodies, their world models, the clash result and
+  /// the sampled depth, whether the crossings are only where faces coincide. Unset: none is.
+  std::function<bool(std::uint32_t a, std::uint32_t b, const Model& wa, const Model& wb,
+                     const ClashResult& r, double depth)>
+      nominal_fit;
+  /// Called after each frame with (frames done, frame count): progress for long runs.
+  std::function<void(std::size_t, std::size_t)> progress;
+};
+
+struct SceneClashResult {
+  /// Sorted by (test order, body a id, body b id, id). With motion: each distinct clash once.
+  std::vector<SceneClash> clashes;
+  std::vector<PairSummary> pairs;  ///< body pairs with clashes, same order
+  std::vector<ClashGroup> groups;  ///< by SceneClashOptions::group_by (empty for none)
+  /// Baseline clashes not found now (status resolved), for listing once.
+  std::vector<SceneClash> resolved;
+  std::vector<FrameRow> frames;  ///< motion: one row per frame
+  std::size_t bodies = 0, triangles = 0;
+  std::size_t candidate_pairs = 0;  ///< body pairs whose boxes (grown by the clearance) overlap, over tests and frames
+  std::size_t suppressed = 0;       ///< candidate pairs left out by suppression rules
+  std::size_t clash_count = 0, contact_count = 0, clearance_count = 0, undecided_count = 0;
+  Verdict verdict = Verdict::clear;  ///< the worst clash's (clear without any)
+  std::vector<std::string> warnings;  ///< selections that select nothing, open bodies, ...
+  double prepare_seconds = 0, broad_seconds = 0, narrow_seconds = 0;
+};
+
+/// Runs every test on the scene (and on every frame of its motion). Throws std::invalid_argument
+/// for an invalid scene or test (Scene::validate, ClashTest::validate, duplicate test names).
+SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& tests,
+                             const SceneClashOptions& options = {});
+
+/// The world model of every body (pose applied, BVH built; statistics computed lazily by the
+/// engine, not here), in parallel: what clash_scene prepares first, for callers that query bodies
+/// themselves.
+std::vector<Model> world_models(const Scene& scene);
+
+}  // namespace interfere::scene
