@@ -152,11 +152,11 @@ std::vector<std::uint32_t> component_vertices(const TriMesh& m) {
   return out;
 }
 
-// Whether some component of `part` lies inside the closed `solid`: 1 yes, 0 no, -1 undecided
-// (every ray direction degenerate for a component, none inside).
-int some_component_inside(const Model& solid, const TriMesh& part) {
+// Whether some component of `part` (one vertex of each: `vertices`) lies inside the closed `solid`:
+// 1 yes, 0 no, -1 undecided (every ray direction degenerate for a component, none inside).
+int some_component_inside(const Model& solid, const TriMesh& part, const std::vector<std::uint32_t>& vertices) {
   int result = 0;
-  for (const std::uint32_t v : component_vertices(part)) {
+  for (const std::uint32_t v : vertices) {
     const int in = detail::point_in_closed_mesh(solid, part.positions[v]);
     if (in == 1) return 1;
     if (in < 0) result = -1;
@@ -199,7 +199,12 @@ ClashResult clash(const Model& a, const Model& b, const ClashRequest& request) {
   if (r.regions) result.regions = detail::build_regions(a.mesh, b.mesh, result.pairs, np.segments());
 
   // Containment (no surface pair can exist when one closed part lies wholly inside the other).
-  const bool a_closed = a.stats.closed(), b_closed = b.stats.closed();
+  // Statistics only where a branch needs them (ClashRequest::stats may compute them lazily).
+  const auto stats_of = [&](int side) -> const MeshStats& {
+    if (r.stats) return r.stats(side);
+    return side == 0 ? a.stats : b.stats;
+  };
+  const auto closed = [&](int side) { return stats_of(side).closed(); };
   auto open_reason = [&](const char* name, const MeshStats& s) {
     if (s.triangles == 0)
       return std::string("part ") + name + ": mesh statistics not computed (make_model with_stats = false)";
@@ -213,7 +218,7 @@ ClashResult clash(const Model& a, const Model& b, const ClashRequest& request) {
   } else if (!result.pairs.empty()) {
     result.containment = Containment::none;
     if (result.cross_pairs == 0) {
-      if (a_closed && b_closed) {
+      if (closed(0) && closed(1)) {
         const int overlap = detail::touching_overlap(a, b, result.pairs);
         result.touching_overlap = overlap == 1;
         if (overlap < 0) {
@@ -223,10 +228,10 @@ ClashResult clash(const Model& a, const Model& b, const ClashRequest& request) {
       } else {
         // Touching surfaces of an open part: whether the solids' interiors overlap (coincident
         // faces of overlapping solids) needs both closed.
-        for (const auto& [name, model, closed] : {std::tuple{"A", &a, a_closed}, std::tuple{"B", &b, b_closed}})
-          if (!closed) {
-            result.warnings.push_back(open_reason(name, model->stats) + ": whether the touching parts overlap is not checked");
-            undecided.push_back(open_reason(name, model->stats) + ": whether the touching parts overlap");
+        for (const auto& [name, side] : {std::pair{"A", 0}, std::pair{"B", 1}})
+          if (!closed(side)) {
+            result.warnings.push_back(open_reason(name, stats_of(side)) + ": whether the touching parts overlap is not checked");
+            undecided.push_back(open_reason(name, stats_of(side)) + ": whether the touching parts overlap");
           }
       }
     }
@@ -236,8 +241,23 @@ ClashResult clash(const Model& a, const Model& b, const ClashRequest& request) {
     // A closed part may contain the other (open or not): one point of each of the other's
     // components decides, as no surface pair exists. An open part encloses nothing provably, so
     // the reverse stays undecided.
-    const int a_in_b = b_closed ? some_component_inside(b, a.mesh) : -2;
-    const int b_in_a = a_closed ? some_component_inside(a, b.mesh) : -2;
+    // A component lies inside the other part only if its vertices lie in that part's box (the
+    // tree's root box contains it): components with a vertex outside are skipped exactly, and only
+    // where one remains are the other part's statistics needed (ClashRequest::stats: lazy).
+    const auto candidates = [](const TriMesh& part, const Bvh& other) {
+      const AabbF& o = other.nodes[0].box;
+      std::vector<std::uint32_t> out;
+      for (const std::uint32_t v : component_vertices(part)) {
+        const Vec3& p = part.positions[v];
+        if (p.x >= o.lo[0] && p.x <= o.hi[0] && p.y >= o.lo[1] && p.y <= o.hi[1] && p.z >= o.lo[2] && p.z <= o.hi[2])
+          out.push_back(v);
+      }
+      return out;
+    };
+    const std::vector<std::uint32_t> ca = candidates(a.mesh, b.bvh), cb = candidates(b.mesh, a.bvh);
+    const int a_in_b = ca.empty() ? 0 : closed(1) ? some_component_inside(b, a.mesh, ca) : -2;
+    const int b_in_a = cb.empty() ? 0 : closed(0) ? some_component_inside(a, b.mesh, cb) : -2;
+    const bool a_closed = b_in_a != -2, b_closed = a_in_b != -2;  // (as far as needed)
     if (a_in_b == 1) {
       result.containment = Containment::a_inside_b;
     } else if (b_in_a == 1) {
@@ -249,10 +269,10 @@ ClashResult clash(const Model& a, const Model& b, const ClashRequest& request) {
     } else if (a_closed && b_closed) {
       result.containment = Containment::none;
     } else {
-      for (const auto& [name, model, closed] : {std::tuple{"A", &a, a_closed}, std::tuple{"B", &b, b_closed}})
-        if (!closed) {
-          result.warnings.push_back(open_reason(name, model->stats) + ": containment not checked");
-          undecided.push_back(open_reason(name, model->stats) + ": whether the other part lies inside it");
+      for (const auto& [name, side, c] : {std::tuple{"A", 0, a_closed}, std::tuple{"B", 1, b_closed}})
+        if (!c) {
+          result.warnings.push_back(open_reason(name, stats_of(side)) + ": containment not checked");
+          undecided.push_back(open_reason(name, stats_of(side)) + ": whether the other part lies inside it");
         }
       result.containment = Containment::not_checked;
     }

@@ -2,6 +2,7 @@
 // intersection curves, containment of closed parts, and clearance pairs.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,10 @@ struct ClashRequest {
   double clearance = 0.0;       ///< > 0: also report non-intersecting pairs closer than this
   bool regions = true;          ///< group pairs into regions with curves
   bool containment = true;      ///< test whether a closed part lies wholly inside the other (and touching_overlap)
+  /// Where the parts' statistics (closedness) come from: unset, the models' own (Model::stats);
+  /// set, called with 0 (A) or 1 (B) only when containment or touching overlap needs them (the
+  /// scene engine computes statistics lazily: most body pairs never need them).
+  std::function<const MeshStats&(int side)> stats;
 };
 
 struct TrianglePair {

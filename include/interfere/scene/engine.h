@@ -63,6 +63,9 @@ struct SceneClash {
   /// The user's fields carried from the baseline clash with the same id ("status": "approved",
   /// "assignee", "comment", ...), as JSON text per key.
   std::map<std::string, std::string> user_fields;
+  /// Resolved clashes only (SceneClashResult::resolved): the clash as the baseline reported it
+  /// (JSON text); a and b are then meaningless (its bodies may be gone).
+  std::string baseline_json;
 };
 
 /// The clashes of one body pair in one test (grouping by pair).
@@ -110,6 +113,11 @@ struct SceneClashOptions {
   std::function<bool(std::uint32_t a, std::uint32_t b, const Model& wa, const Model& wb,
                      const ClashResult& r, double depth)>
       nominal_fit;
+  /// Called once per checked candidate pair with the exact core's raw result (from any thread: the
+  /// caller synchronises), test index, body indices (a's id < b's id): for callers that write
+  /// per-pair outputs (`interfere clash A B`: --pairs, --region-a/-b) or aggregate per pair
+  /// (assembly-clash). Not called for duplicates tests.
+  std::function<void(std::size_t test, std::uint32_t a, std::uint32_t b, const ClashResult&)> on_pair;
   /// Called after each frame with (frames done, frame count): progress for long runs.
   std::function<void(std::size_t, std::size_t)> progress;
 };

@@ -12,6 +12,7 @@
 
 #include "interfere/core/transform.h"
 #include "interfere/mesh/tri_mesh.h"
+#include "interfere/query/model.h"
 
 namespace interfere::scene {
 
@@ -64,6 +65,11 @@ struct Body {
   /// The chordal error of the tessellation against its source surfaces (STEP bodies; 0 for
   /// meshes, which are exact as given). Crossings within it may be a nominal fit (engine.h).
   double tessellation_error = 0;
+
+  /// Optional: the body's world model, already built by the caller (mesh posed, BVH, statistics
+  /// when computed: MeshStats::triangles > 0). The engine then uses it as is instead of moving
+  /// `mesh` by `pose` (which must still describe it); frames that move or deform the body do not.
+  std::shared_ptr<const Model> world_model;
 
   std::int64_t source_id(std::uint32_t triangle) const {
     return source_ids && triangle < source_ids->size() ? (*source_ids)[triangle] : triangle;

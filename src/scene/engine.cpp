@@ -1,0 +1,353 @@
+// The scene clash engine (include/interfere/scene/engine.h; issue #24, items 3, 4, 6): per frame,
+// conservative world boxes of the bodies (a rigid pose maps the local box's corners, so a body's
+// geometry is only moved when a candidate pair needs it), a tree over them refitted per frame,
+// candidate pairs per test, then the exact two-part core on every candidate in parallel
+// (engine_pair.cpp). Results are sorted by ids, so they depend neither on the thread count nor on
+// the order of the bodies.
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <set>
+#include <stdexcept>
+#include <unordered_map>
+
+#include "engine_internal.h"
+#include "interfere/bvh/traverse.h"
+#include "interfere/core/units.h"
+
+namespace interfere::scene {
+
+const char* clash_status_name(ClashStatus s) {
+  switch (s) {
+    case ClashStatus::new_: return "new";
+    case ClashStatus::active: return "active";
+    case ClashStatus::resolved: return "resolved";
+  }
+  return "?";
+}
+
+std::vector<Model> world_models(const Scene& scene) {
+  std::vector<Model> out(scene.bodies.size());
+  tbb::parallel_for(std::size_t{0}, scene.bodies.size(), [&](std::size_t i) {
+    const Body& b = scene.bodies[i];
+    out[i] = make_model(transformed(*b.mesh, b.pose), {}, false);
+  });
+  return out;
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// The state of every body in the current frame.
+struct State {
+  std::vector<Transform> pose;
+  std::vector<std::shared_ptr<const std::vector<Vec3>>> shape;  // local positions (null: the mesh's)
+  std::vector<Aabb> local_box;                                   // of the local positions
+  std::vector<AabbF> broad_box;                                  // conservative world box
+  std::vector<char> stale;                                       // world geometry out of date
+  std::vector<char> built;                                       // world model exists
+};
+
+const std::vector<Vec3>& local_positions(const Scene& s, const State& st, std::size_t i) {
+  return st.shape[i] ? *st.shape[i] : s.bodies[i].mesh->positions;
+}
+
+Aabb bounds_of(const std::vector<Vec3>& ps) {
+  Aabb b;
+  for (const Vec3& p : ps) b.expand(p);
+  return b;
+}
+
+// The world box of a local box under an affine pose (its 8 corners), padded by a relative 2^-40 so
+// that rounding in the vertices' own transforms cannot leave it (the exact core decides anyway).
+AabbF broad_box(const Aabb& local, const Transform& t) {
+  Aabb w;
+  for (int c = 0; c < 8; ++c)
+    w.expand(t.apply({c & 1 ? local.hi.x : local.lo.x, c & 2 ? local.hi.y : local.lo.y, c & 4 ? local.hi.z : local.lo.z}));
+  const Vec3 e = w.extent();
+  const double pad = (std::max({std::fabs(w.lo.x), std::fabs(w.lo.y), std::fabs(w.lo.z), std::fabs(w.hi.x),
+                                std::fabs(w.hi.y), std::fabs(w.hi.z)}) +
+                      std::max({e.x, e.y, e.z})) *
+                     0x1p-40;
+  w.lo = w.lo - Vec3{pad, pad, pad}, w.hi = w.hi + Vec3{pad, pad, pad};
+  return to_float_outward(w);
+}
+
+// Brings the world model of body i to its current pose and shape: built once, then moved in place
+// and refitted (same topology).
+void refresh(const Scene& s, State& st, std::vector<detail::WorldBody>& world, std::size_t i) {
+  const std::vector<Vec3>& local = local_positions(s, st, i);
+  detail::WorldBody& w = world[i];
+  if (s.bodies[i].world_model && !st.shape[i] && st.pose[i] == s.bodies[i].pose) {
+    w.prebuilt = s.bodies[i].world_model.get();  // the caller's model, as it is
+    w.box = w.prebuilt->mesh.bounds();
+    st.stale[i] = 0;
+    return;
+  }
+  if (w.prebuilt) {  // moved away from the caller's model: from now on the engine's own
+    w.prebuilt = nullptr;
+    st.built[i] = 0;
+  }
+  Model& own = w.own;
+  if (!st.built[i]) {
+    TriMesh m;
+    m.triangles = s.bodies[i].mesh->triangles;
+    m.positions.resize(local.size());
+    for (std::size_t v = 0; v < local.size(); ++v) m.positions[v] = st.pose[i].apply(local[v]);
+    own.bvh = build_bvh(m);
+    own.mesh = std::move(m);
+    st.built[i] = 1;
+  } else {
+    for (std::size_t v = 0; v < local.size(); ++v) own.mesh.positions[v] = st.pose[i].apply(local[v]);
+    refit_bvh(own.bvh, own.mesh);
+  }
+  w.box = own.mesh.bounds();
+  st.stale[i] = 0;
+}
+
+struct TestPlan {
+  const ClashTest* test = nullptr;
+  std::size_t order = 0;
+  std::vector<std::uint32_t> a, b;  // selected body indices (b empty: within a)
+  double margin = 0;                // the largest distance at which a pair matters
+  double grid = 1;
+  Bvh tree_a, tree_b;
+};
+
+bool pair_matches(const Selection& x, const Selection& y, const Body& p, const Body& q) {
+  return (selects(x, p) && selects(y, q)) || (selects(x, q) && selects(y, p));
+}
+
+double pair_clearance(const ClashTest& t, const Body& p, const Body& q) {
+  if (t.mode != ClashMode::clearance) return 0;
+  for (const ClearanceOverride& o : t.clearance_overrides)
+    if (pair_matches(o.a, o.b, p, q)) return o.clearance;
+  return t.clearance;
+}
+
+struct Candidate {
+  std::uint32_t test, a, b;  // a's id < b's id
+  double clearance;
+};
+
+}  // namespace
+
+SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& tests, const SceneClashOptions& options) {
+  const auto t_prepare = Clock::now();
+  scene.validate();
+  {
+    std::set<std::string> names;
+    for (const ClashTest& t : tests) {
+      t.validate();
+      if (!names.insert(t.name).second) throw std::invalid_argument("clash test '" + t.name + "': duplicate test name");
+    }
+  }
+  SceneClashResult result;
+  const std::size_t n = scene.bodies.size();
+  result.bodies = n;
+  for (const Body& b : scene.bodies) result.triangles += b.mesh->num_triangles();
+  const double mm = millimetres_per_unit(scene.units).value_or(1.0);
+
+  State st;
+  st.pose.resize(n), st.shape.resize(n), st.local_box.resize(n), st.broad_box.resize(n);
+  st.stale.assign(n, 1), st.built.assign(n, 0);
+  tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
+    st.pose[i] = scene.bodies[i].pose;
+    st.local_box[i] = bounds_of(scene.bodies[i].mesh->positions);
+  });
+  std::vector<detail::WorldBody> world(n);
+
+  // Selections per test.
+  std::vector<TestPlan> plans(tests.size());
+  for (std::size_t k = 0; k < tests.size(); ++k) {
+    TestPlan& p = plans[k];
+    const ClashTest& t = tests[k];
+    p.test = &t, p.order = k;
+    for (std::uint32_t i = 0; i < n; ++i) {
+      if (selects(t.a, scene.bodies[i])) p.a.push_back(i);
+      if (!t.b.empty() && selects(t.b, scene.bodies[i])) p.b.push_back(i);
+    }
+    if (p.a.empty()) result.warnings.push_back("clash test '" + t.name + "': selection A selects no body");
+    if (!t.b.empty() && p.b.empty()) result.warnings.push_back("clash test '" + t.name + "': selection B selects no body");
+    p.margin = t.mode == ClashMode::duplicates ? t.tolerance : 0;
+    if (t.mode == ClashMode::clearance) {
+      p.margin = t.clearance;
+      for (const ClearanceOverride& o : t.clearance_overrides) p.margin = std::max(p.margin, o.clearance);
+    }
+    p.grid = t.id_grid > 0 ? t.id_grid : t.tolerance > 0 ? t.tolerance : 1.0 / mm;
+  }
+  result.prepare_seconds = since(t_prepare);
+
+  const bool moving = !scene.frames.empty();
+  const std::size_t frame_count = moving ? scene.frames.size() : 1;
+  std::unordered_map<std::string, std::size_t> by_id;  // clash id -> index in result.clashes
+  for (std::size_t f = 0; f < frame_count; ++f) {
+    auto t_broad = Clock::now();
+    std::vector<char> box_dirty(n, f == 0 ? 1 : 0);
+    if (moving) {
+      const Frame& fr = scene.frames[f];
+      for (const Frame::Pose& p : fr.poses) st.pose[p.body] = p.pose, st.stale[p.body] = 1, box_dirty[p.body] = 1;
+      for (const Frame::Shape& s : fr.shapes) {
+        st.shape[s.body] = s.positions, st.stale[s.body] = 1, box_dirty[s.body] = 1;
+        st.local_box[s.body] = bounds_of(*s.positions);
+      }
+    }
+    tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
+      if (box_dirty[i]) st.broad_box[i] = broad_box(st.local_box[i], st.pose[i]);
+    });
+    // Candidates of every test.
+    std::vector<Candidate> cands;
+    for (TestPlan& p : plans) {
+      const auto boxes_of = [&](const std::vector<std::uint32_t>& sel) {
+        std::vector<AabbF> b(sel.size());
+        for (std::size_t i = 0; i < sel.size(); ++i) b[i] = st.broad_box[sel[i]];
+        return b;
+      };
+      if (f == 0) {
+        p.tree_a = detail::build_box_tree(boxes_of(p.a));
+        if (!p.b.empty()) p.tree_b = detail::build_box_tree(boxes_of(p.b));
+      } else {
+        detail::refit_box_tree(p.tree_a, boxes_of(p.a));
+        if (!p.b.empty()) detail::refit_box_tree(p.tree_b, boxes_of(p.b));
+      }
+      const bool within = p.test->b.empty();
+      const Bvh& other = within ? p.tree_a : p.tree_b;
+      const std::vector<std::uint32_t>& other_sel = within ? p.a : p.b;
+      std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+      for_each_overlap(p.tree_a, other, round_up(p.margin), [&](std::uint32_t x, std::uint32_t y) {
+        std::uint32_t u = p.a[x], v = other_sel[y];
+        if (u == v) return;
+        if (scene.bodies[v].id < scene.bodies[u].id) std::swap(u, v);
+        pairs.emplace_back(u, v);
+      });
+      std::sort(pairs.begin(), pairs.end());
+      pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+      result.candidate_pairs += pairs.size();
+      for (const auto& [u, v] : pairs) {
+        const Body& bu = scene.bodies[u];
+        const Body& bv = scene.bodies[v];
+        bool suppressed = false;
+        for (const Suppression& s : p.test->suppressions) suppressed = suppressed || pair_matches(s.a, s.b, bu, bv);
+        if (suppressed) {
+          ++result.suppressed;
+          continue;
+        }
+        cands.push_back({static_cast<std::uint32_t>(p.order), u, v, pair_clearance(*p.test, bu, bv)});
+      }
+    }
+    // World geometry of the bodies the candidates need.
+    std::vector<char> need(n, 0);
+    for (const Candidate& c : cands) need[c.a] = need[c.b] = 1;
+    std::vector<std::uint32_t> todo;
+    for (std::uint32_t i = 0; i < n; ++i)
+      if (need[i] && st.stale[i]) todo.push_back(i);
+    tbb::parallel_for(std::size_t{0}, todo.size(), [&](std::size_t k) { refresh(scene, st, world, todo[k]); });
+    result.broad_seconds += since(t_broad);
+
+    // The exact core on every candidate.
+    const auto t_narrow = Clock::now();
+    std::vector<std::vector<SceneClash>> found(cands.size());
+    tbb::parallel_for(std::size_t{0}, cands.size(), [&](std::size_t k) {
+      const Candidate& c = cands[k];
+      const detail::PairContext ctx{scene, tests[c.test], c.test, options, world, st.pose};
+      found[k] = detail::evaluate_pair(ctx, c.a, c.b, c.clearance);
+    });
+    // Ids, then merge into the result.
+    FrameRow row;
+    row.frame = static_cast<std::uint32_t>(f);
+    if (moving) row.label = scene.frames[f].label, row.time = scene.frames[f].time;
+    for (std::size_t k = 0; k < cands.size(); ++k) {
+      std::vector<SceneClash>& list = found[k];
+      const Candidate& c = cands[k];
+      const Transform to_local = inverse(st.pose[c.a]);
+      std::vector<std::pair<std::string, Vec3>> keys;
+      for (SceneClash& s : list) {
+        const Vec3 local = to_local.apply(s.point);
+        s.id = detail::clash_id(tests[c.test].name, scene.bodies[c.a].id, scene.bodies[c.b].id, local, plans[c.test].grid);
+        keys.push_back({s.id, local});
+      }
+      // Clashes of one pair in one grid cell: suffixes by location.
+      std::vector<std::size_t> order(list.size());
+      for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+      std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
+        const auto& [ix, px] = keys[x];
+        const auto& [iy, py] = keys[y];
+        if (ix != iy) return ix < iy;
+        return std::tie(px.x, px.y, px.z, x) < std::tie(py.x, py.y, py.z, y);
+      });
+      for (std::size_t i = 1, run = 1; i < order.size(); ++i) {
+        run = keys[order[i]].first == keys[order[i - 1]].first ? run + 1 : 1;
+        if (run > 1) list[order[i]].id += "-" + std::to_string(run);
+      }
+      for (SceneClash& s : list) {
+        switch (s.verdict) {
+          case Verdict::clash: ++row.clashes, row.max_depth = std::max(row.max_depth, s.depth_bound); break;
+          case Verdict::contact: ++row.contacts; break;
+          case Verdict::clearance:
+            ++row.clearances;
+            row.min_distance = row.min_distance < 0 ? s.distance : std::min(row.min_distance, s.distance);
+            break;
+          case Verdict::undecided: ++row.undecided; break;
+          case Verdict::clear: break;
+        }
+        row.verdict = worst(row.verdict, s.verdict);
+        const auto it = by_id.find(s.id);
+        if (it != by_id.end()) {
+          SceneClash& prev = result.clashes[it->second];
+          if (moving) prev.frames.push_back(static_cast<std::uint32_t>(f));
+          if (worst(prev.verdict, s.verdict) != prev.verdict) prev.verdict = s.verdict;
+          prev.depth = std::max(prev.depth, s.depth), prev.depth_bound = std::max(prev.depth_bound, s.depth_bound);
+          continue;
+        }
+        if (moving) s.frames.push_back(static_cast<std::uint32_t>(f));
+        by_id.emplace(s.id, result.clashes.size());
+        result.clashes.push_back(std::move(s));
+      }
+    }
+    if (moving) result.frames.push_back(row);
+    result.narrow_seconds += since(t_narrow);
+    if (options.progress) options.progress(f + 1, frame_count);
+  }
+
+  // Order: test, body ids, clash id.
+  std::sort(result.clashes.begin(), result.clashes.end(), [&](const SceneClash& x, const SceneClash& y) {
+    std::size_t tx = 0, ty = 0;
+    for (std::size_t k = 0; k < tests.size(); ++k) tx = tests[k].name == x.test ? k : tx, ty = tests[k].name == y.test ? k : ty;
+    return std::tie(tx, scene.bodies[x.a].id, scene.bodies[x.b].id, x.id) <
+           std::tie(ty, scene.bodies[y.a].id, scene.bodies[y.b].id, y.id);
+  });
+  for (std::size_t i = 0; i < result.clashes.size(); ++i) {
+    const SceneClash& s = result.clashes[i];
+    result.clash_count += s.verdict == Verdict::clash;
+    result.contact_count += s.verdict == Verdict::contact;
+    result.clearance_count += s.verdict == Verdict::clearance;
+    result.undecided_count += s.verdict == Verdict::undecided;
+    result.verdict = worst(result.verdict, s.verdict);
+    if (result.pairs.empty() || result.pairs.back().test != s.test || result.pairs.back().a != s.a ||
+        result.pairs.back().b != s.b) {
+      result.pairs.push_back({.test = s.test, .a = s.a, .b = s.b});
+      result.pairs.back().min_distance = -1;
+    }
+    PairSummary& p = result.pairs.back();
+    p.clashes.push_back(static_cast<std::uint32_t>(i));
+    p.verdict = worst(p.verdict, s.verdict);
+    p.depth = std::max(p.depth, s.depth), p.depth_bound = std::max(p.depth_bound, s.depth_bound);
+    if (s.verdict == Verdict::clearance) p.min_distance = p.min_distance < 0 ? s.distance : std::min(p.min_distance, s.distance);
+  }
+  detail::group_clashes(result, options);
+  // Open bodies that took part (their verdicts say undecided where it mattered).
+  for (std::size_t i = 0; i < n; ++i)
+    if (const MeshStats& s = world[i].lazy_stats; s.triangles > 0 && !s.closed())
+      result.warnings.push_back("body '" + scene.bodies[i].id + "' is not closed (" + std::to_string(s.open_edges) +
+                                " open, " + std::to_string(s.nonmanifold_edges) + " non-manifold, " +
+                                std::to_string(s.inconsistent_edges) +
+                                " inconsistently oriented edges): inside/outside is undecided where it matters");
+  return result;
+}
+
+}  // namespace interfere::scene

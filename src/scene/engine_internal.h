@@ -1,0 +1,58 @@
+// Internals of the scene clash engine (src/scene/engine*.cpp; include/interfere/scene/engine.h).
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <utility>
+#include <vector>
+
+#include "interfere/bvh/bvh.h"
+#include "interfere/mesh/validate.h"
+#include "interfere/query/model.h"
+#include "interfere/scene/engine.h"
+
+namespace interfere::scene::detail {
+
+/// A BVH over boxes (one primitive per box, prims = box indices), built by median splits of the
+/// longest axis (deterministic), in the layout of bvh.h so the tree traversals apply; refit keeps
+/// the topology and recomputes every box (body_tree.cpp).
+Bvh build_box_tree(const std::vector<AabbF>& boxes);
+void refit_box_tree(Bvh& tree, const std::vector<AabbF>& boxes);
+
+/// A body in the current frame: its world model (statistics computed at most once, on demand).
+struct WorldBody {
+  Model own;                          ///< built and moved by the engine
+  const Model* prebuilt = nullptr;    ///< Body::world_model, used as is
+  Aabb box;                           ///< exact world bounds
+  const Model& model() const { return prebuilt ? *prebuilt : own; }
+  std::unique_ptr<std::once_flag> stats_once = std::make_unique<std::once_flag>();
+  MeshStats lazy_stats;
+  const MeshStats& stats();
+};
+
+/// Everything pair evaluation needs besides the two bodies.
+struct PairContext {
+  const Scene& scene;
+  const ClashTest& test;
+  std::size_t test_index;
+  const SceneClashOptions& options;
+  std::vector<WorldBody>& world;
+  const std::vector<Transform>& poses;  ///< current pose per body (the id's local frame)
+};
+
+/// The clashes of bodies a and b (Scene::bodies[a].id < [b].id) in one test (engine_pair.cpp):
+/// none when they are clear.
+std::vector<SceneClash> evaluate_pair(const PairContext& c, std::uint32_t a, std::uint32_t b, double clearance);
+
+/// The id of a clash: test name, body ids and location (world point in a's local frame)
+/// quantised at `grid` (clash_id.cpp).
+std::string clash_id(const std::string& test, const std::string& id_a, const std::string& id_b, const Vec3& local,
+                     double grid);
+std::uint64_t fnv1a(std::uint64_t h, std::string_view bytes);
+
+}  // namespace interfere::scene::detail
+
+namespace interfere::scene::detail {
+/// Fills result.groups by options.group_by (engine_groups.cpp).
+void group_clashes(SceneClashResult& result, const SceneClashOptions& options);
+}  // namespace interfere::scene::detail

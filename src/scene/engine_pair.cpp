@@ -1,0 +1,209 @@
+// One body pair of a clash test (include/interfere/scene/engine.h, issue #24 items 3-4): the exact
+// two-part core (query/clash.h) decides; its regions become clashes with tight boxes,
+// representative points, source ids and depth bounds (query/depth.h); the test's mode, penetration
+// tolerance and nominal-fit rule turn them into verdicts.
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "engine_internal.h"
+#include "interfere/query/clash.h"
+#include "interfere/query/depth.h"
+#include "interfere/query/distance.h"
+
+namespace interfere::scene::detail {
+
+const MeshStats& WorldBody::stats() {
+  // Isolated: a thread waiting inside its parallel loop must not pick up another pair's task that
+  // asks for this body's statistics (it would wait on itself).
+  std::call_once(*stats_once, [&] {
+    if (prebuilt && prebuilt->stats.triangles > 0) lazy_stats = prebuilt->stats;
+    else tbb::this_task_arena::isolate([&] { lazy_stats = mesh_stats(model().mesh); });
+  });
+  return lazy_stats;
+}
+
+namespace {
+
+Aabb intersection(const Aabb& x, const Aabb& y) {
+  Aabb r;
+  r.lo = max(x.lo, y.lo), r.hi = min(x.hi, y.hi);
+  return r;
+}
+
+// The body pair's duplicates test: the same triangle count, boxes within the tolerance, and every
+// vertex of each within the tolerance of the other's surface (the symmetric vertex-to-surface
+// distance bounds the placement error of one geometry placed twice).
+bool duplicates(const WorldBody& x, const WorldBody& y, double tol) {
+  if (x.model().mesh.num_triangles() != y.model().mesh.num_triangles()) return false;
+  for (int k = 0; k < 3; ++k)
+    if (std::fabs(x.box.lo[k] - y.box.lo[k]) > tol || std::fabs(x.box.hi[k] - y.box.hi[k]) > tol) return false;
+  const auto near = [tol](const Model& from, const Model& to) {
+    for (const Vec3& p : from.mesh.positions)
+      if (surface_distance(to, p) > tol) return false;
+    return true;
+  };
+  return near(x.model(), y.model()) && near(y.model(), x.model());
+}
+
+void set_sources(SceneClash& c, const Body& a, const Body& b) {
+  for (const auto& [tris, body, out] : {std::tuple{&c.triangles_a, &a, &c.source_ids_a},
+                                       std::tuple{&c.triangles_b, &b, &c.source_ids_b}}) {
+    out->reserve(tris->size());
+    for (const std::uint32_t t : *tris) out->push_back(body->source_id(t));
+    std::sort(out->begin(), out->end());
+    out->erase(std::unique(out->begin(), out->end()), out->end());
+  }
+}
+
+// A representative point of a crossing region: the curve point nearest the middle of its box
+// (ties: the first in curve order), so it lies on the intersection.
+Vec3 curve_point(const std::vector<Polyline>& curves, const Aabb& box) {
+  const Vec3 mid = box.center();
+  Vec3 best = mid;
+  double d = std::numeric_limits<double>::infinity();
+  for (const Polyline& l : curves)
+    for (const Vec3& p : l.points)
+      if (const double e = squared_norm(p - mid); e < d) d = e, best = p;
+  return best;
+}
+
+}  // namespace
+
+std::vector<SceneClash> evaluate_pair(const PairContext& c, std::uint32_t a, std::uint32_t b, double clearance) {
+  std::vector<SceneClash> out;
+  WorldBody& wa = c.world[a];
+  WorldBody& wb = c.world[b];
+  const Body& ba = c.scene.bodies[a];
+  const Body& bb = c.scene.bodies[b];
+  const auto base = [&](Verdict v, const char* kind) {
+    SceneClash s;
+    s.test = c.test.name;
+    s.a = a, s.b = b;
+    s.verdict = v;
+    s.kind = kind;
+    return s;
+  };
+  if (c.test.mode == ClashMode::duplicates) {
+    if (!duplicates(wa, wb, c.test.tolerance)) return out;
+    SceneClash s = base(Verdict::clash, "duplicate");
+    s.box = wa.box;
+    s.box.expand(wb.box);
+    s.point = wa.box.center();
+    s.reasons.push_back("the same geometry placed twice (within " + short_number(c.test.tolerance) + ")");
+    out.push_back(std::move(s));
+    return out;
+  }
+  ClashRequest request{.clearance = clearance, .regions = true, .containment = true};
+  request.stats = [&](int side) -> const MeshStats& { return side == 0 ? wa.stats() : wb.stats(); };
+  const ClashResult r = clash(wa.model(), wb.model(), request);
+  if (c.options.on_pair) c.options.on_pair(c.test_index, a, b, r);
+  if (r.verdict == Verdict::clear) return out;
+
+  const bool inside = r.containment == Containment::a_inside_b || r.containment == Containment::b_inside_a;
+  // Depth of crossing closed solids (both statistics are known once crossing pairs exist? not
+  // necessarily: computed here, as the depth needs inside/outside).
+  PenetrationDepth depth;
+  bool depth_known = false;
+  if (r.cross_pairs > 0 && wa.stats().closed() && wb.stats().closed()) {
+    depth = penetration_depth(wa.model(), wb.model(), r, c.options.depth_bound_splits);
+    depth_known = true;
+  }
+  bool nominal = false;
+  if (r.cross_pairs > 0 && !inside && !r.touching_overlap && c.test.nominal_fits_are_contacts && c.options.nominal_fit)
+    nominal = c.options.nominal_fit(a, b, wa.model(), wb.model(), r, depth.depth);
+  // Penetration tolerance (hard mode): the upper bound decides, so no deeper clash is hidden.
+  const bool shallow = r.cross_pairs > 0 && !inside && !r.touching_overlap && c.test.tolerance > 0 &&
+                       c.test.mode != ClashMode::duplicates && depth_known && depth.depth_bound <= c.test.tolerance;
+
+  if (inside) {
+    const bool a_in = r.containment == Containment::a_inside_b;
+    SceneClash s = base(Verdict::clash, "inside");
+    s.box = a_in ? wa.box : wb.box;
+    s.point = s.box.center();
+    if (c.options.triangles) {
+      auto& tris = a_in ? s.triangles_a : s.triangles_b;
+      tris.resize((a_in ? wa : wb).model().mesh.num_triangles());
+      for (std::uint32_t t = 0; t < tris.size(); ++t) tris[t] = t;
+      set_sources(s, ba, bb);
+    }
+    s.reasons.push_back("body '" + (a_in ? ba.id : bb.id) + "' (or a component of it) lies inside body '" +
+                        (a_in ? bb.id : ba.id) + "'");
+    out.push_back(std::move(s));
+    return out;
+  }
+  for (const ClashRegion& g : r.regions) {
+    SceneClash s = base(Verdict::contact, "touch");
+    if (g.cross_pairs > 0) {
+      if (nominal) {
+        s.kind = "nominal_fit";
+        s.reasons.push_back("crossings only where B-Rep faces coincide within the tessellation error");
+      } else if (shallow) {
+        s.kind = "within_tolerance";
+        s.reasons.push_back("depth bound " + short_number(depth.depth_bound) + " <= tolerance " +
+                            short_number(c.test.tolerance));
+      } else {
+        s.verdict = Verdict::clash, s.kind = "crossing";
+      }
+    } else if (r.touching_overlap) {
+      s.verdict = Verdict::clash, s.kind = "touching_overlap";
+    } else if (r.verdict == Verdict::undecided) {
+      s.verdict = Verdict::undecided, s.kind = "undecided";
+      s.reasons = r.verdict_reasons;
+    }
+    if (r.cross_pairs > 0 && !depth_known && s.verdict == Verdict::clash)
+      s.reasons.push_back("depth not measured: a body is not closed");
+    s.cross_pairs = g.cross_pairs, s.touch_pairs = g.touch_pairs;
+    s.curve_length = g.curve_length;
+    s.depth = depth.depth, s.depth_bound = depth.depth_bound;
+    // Tight box: the curves, and where only touching, the common part of the touching triangles'
+    // boxes (it holds the triangles' common points).
+    for (const Polyline& l : g.curves)
+      for (const Vec3& p : l.points) s.box.expand(p);
+    if (g.cross_pairs == 0 || s.box.empty()) {
+      for (const TrianglePair& p : r.pairs) {
+        if (!std::binary_search(g.triangles_a.begin(), g.triangles_a.end(), p.a)) continue;
+        const Aabb common = intersection(wa.model().mesh.triangle_box(p.a), wb.model().mesh.triangle_box(p.b));
+        if (!common.empty()) s.box.expand(common);
+      }
+    }
+    s.point = g.curves.empty() ? s.box.center() : curve_point(g.curves, s.box);
+    if (c.options.curves) s.curves = g.curves;
+    if (c.options.triangles) {
+      s.triangles_a = g.triangles_a, s.triangles_b = g.triangles_b;
+      set_sources(s, ba, bb);
+    }
+    out.push_back(std::move(s));
+  }
+  if (!out.empty()) return out;
+  if (r.verdict == Verdict::undecided) {  // no surface pair: containment could not be decided
+    SceneClash s = base(Verdict::undecided, "undecided");
+    s.box = intersection(wa.box, wb.box);
+    if (s.box.empty()) s.box = wa.box, s.box.expand(wb.box);
+    s.point = s.box.center();
+    s.reasons = r.verdict_reasons;
+    out.push_back(std::move(s));
+    return out;
+  }
+  if (!r.clearance.empty()) {
+    const ClearancePair* m = &r.clearance.front();
+    for (const ClearancePair& p : r.clearance)
+      if (p.distance < m->distance) m = &p;
+    SceneClash s = base(Verdict::clearance, "clearance");
+    s.distance = m->distance;
+    s.witness_a = m->point_a, s.witness_b = m->point_b;
+    s.box.expand(m->point_a), s.box.expand(m->point_b);
+    s.point = (m->point_a + m->point_b) * 0.5;
+    s.reasons.push_back("closer than the required clearance " + short_number(clearance));
+    if (c.options.triangles) {
+      s.triangles_a = {m->a}, s.triangles_b = {m->b};
+      set_sources(s, ba, bb);
+    }
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+}  // namespace interfere::scene::detail
