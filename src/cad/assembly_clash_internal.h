@@ -11,11 +11,19 @@
 namespace interfere::cad::detail {
 
 
-/// Whether the crossings of instances a and b (`r`, on their world models) are a nominal fit
+/// Whether the crossings of two placed parts (`r`, on their world models `wa` and `wb`, whose
+/// triangles are the parts' in order, placed rigidly by `place_a` and `place_b`) are a nominal fit
 /// (assembly_fit.cpp): every crossing pair has a face coinciding with one of the other part, and
-/// the sampled depth is within the tessellation error.
-bool nominal_fit(const CadModel& model, std::uint32_t a, std::uint32_t b,
-                 const std::vector<Model>& world, const ClashResult& r, double depth,
-                 double tessellation_error);
+/// the sampled depth is within the tessellation error. False for a part without faces or AAG.
+bool nominal_fit(const Part& part_a, const Transform& place_a, const Part& part_b, const Transform& place_b,
+                 const Model& wa, const Model& wb, const ClashResult& r, double depth, double tessellation_error);
+
+/// The same for instances a and b of `model`, world[i] the world model of instance i.
+inline bool nominal_fit(const CadModel& model, std::uint32_t a, std::uint32_t b, const std::vector<Model>& world,
+                        const ClashResult& r, double depth, double tessellation_error) {
+  const Instance &ia = model.instances[a], &ib = model.instances[b];
+  return nominal_fit(model.parts[ia.part], ia.placement, model.parts[ib.part], ib.placement, world[a], world[b], r,
+                     depth, tessellation_error);
+}
 
 }  // namespace interfere::cad::detail

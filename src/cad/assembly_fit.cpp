@@ -56,17 +56,14 @@ bool coincide(const PlacedFace& fa, const PlacedFace& fb, double tol, double ang
 
 }  // namespace
 
-bool nominal_fit(const CadModel& model, std::uint32_t a, std::uint32_t b,
-                 const std::vector<Model>& world, const ClashResult& r, double depth,
-                 double tessellation_error) {
-  const Part& part_a = model.parts[model.instances[a].part];
-  const Part& part_b = model.parts[model.instances[b].part];
-  if (part_a.face_ids.empty() || part_b.face_ids.empty()) return false;
-  const double size = norm(world[a].mesh.bounds().extent()) + norm(world[b].mesh.bounds().extent());
+bool nominal_fit(const Part& part_a, const Transform& place_a, const Part& part_b, const Transform& place_b,
+                 const Model& wa, const Model& wb, const ClashResult& r, double depth, double tessellation_error) {
+  if (part_a.face_ids.empty() || part_b.face_ids.empty() || part_a.aag.nodes.empty() || part_b.aag.nodes.empty())
+    return false;
+  const double size = norm(wa.mesh.bounds().extent()) + norm(wb.mesh.bounds().extent());
   const double tol = kFitTolerance * size, angle = kFitTolerance;
-  const auto face_of = [&](const Part& part, const Instance& in, std::uint32_t t,
-                           const TriMesh& w) {
-    PlacedFace f = placed(part.aag.nodes[part.face_ids[t]], in.placement);
+  const auto face_of = [&](const Part& part, const Transform& placement, std::uint32_t t, const TriMesh& w) {
+    PlacedFace f = placed(part.aag.nodes[part.face_ids[t]], placement);
     if (f.type == SurfaceType::plane) {  // the plane through the placed triangle
       const auto c = w.corners(t);
       f.offset = dot(f.normal / norm(f.normal), (c[0] + c[1] + c[2]) / 3.0);
@@ -83,9 +80,8 @@ bool nominal_fit(const CadModel& model, std::uint32_t a, std::uint32_t b,
     auto it = coincident.find(key);
     if (it == coincident.end())
       it = coincident
-               .emplace(key, coincide(face_of(part_a, model.instances[a], q.a, world[a].mesh),
-                                      face_of(part_b, model.instances[b], q.b, world[b].mesh), tol,
-                                      angle))
+               .emplace(key, coincide(face_of(part_a, place_a, q.a, wa.mesh), face_of(part_b, place_b, q.b, wb.mesh),
+                                      tol, angle))
                .first;
     if (it->second) fit_a.insert(key.first), fit_b.insert(key.second);
   }
@@ -113,8 +109,8 @@ bool nominal_fit(const CadModel& model, std::uint32_t a, std::uint32_t b,
       for (std::uint32_t g = 0; g < others.size(); ++g) {
         const std::uint32_t fa = of_a ? f : g, fb = of_a ? g : f;
         if (others[g] != 0xffffffffu &&
-            coincide(face_of(part_a, model.instances[a], first_a[fa], world[a].mesh),
-                     face_of(part_b, model.instances[b], first_b[fb], world[b].mesh), tol, angle)) {
+            coincide(face_of(part_a, place_a, first_a[fa], wa.mesh), face_of(part_b, place_b, first_b[fb], wb.mesh),
+                     tol, angle)) {
           fit_a.insert(fa), fit_b.insert(fb);
           break;
         }

@@ -17,6 +17,8 @@
 #include <BRepPrimAPI_MakeCone.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <IFSelect_ReturnStatus.hxx>
+#include <Interface_Static.hxx>
+#include <STEPControl_Controller.hxx>
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
 #include <Message_PrinterOStream.hxx>
@@ -172,7 +174,7 @@ namespace {
 // Writes an XCAF document filled by `fill` (shapes and their names) with STEPCAFControl_Writer, so
 // that products carry those names.
 template <class Fill>
-Status write_xcaf(const std::filesystem::path& step_file, Fill&& fill) {
+Status write_xcaf(const std::filesystem::path& step_file, Fill&& fill, const char* schema = nullptr) {
   try {
     // The writer's transfer statistics go to the default messenger's stdout printer: mute it.
     Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
@@ -180,6 +182,17 @@ Status write_xcaf(const std::filesystem::path& step_file, Fill&& fill) {
     XCAFApp_Application::GetApplication()->NewDocument("MDTV-XCAF", doc);
     if (const Status s = fill(XCAFDoc_DocumentTool::ShapeTool(doc->Main())); !s.ok())
       return Error{.file = step_file.string(), .reason = s.error().reason};
+    // The schema ("AP203", "AP214CD", ...) is a process-wide setting of OCCT's STEP interface:
+    // set for this writer (registered by STEPControl_Controller::Init), then restored.
+    STEPControl_Controller::Init();
+    struct Schema {
+      std::string before;
+      bool set = false;
+      ~Schema() {
+        if (set) Interface_Static::SetCVal("write.step.schema", before.c_str());
+      }
+    } restore{Interface_Static::CVal("write.step.schema"), schema != nullptr};
+    if (schema) Interface_Static::SetCVal("write.step.schema", schema);
     STEPCAFControl_Writer w;
     w.SetNameMode(Standard_True);
     if (!w.Transfer(doc, STEPControl_AsIs)) return Error{.file = step_file.string(), .reason = "STEP transfer failed"};
@@ -222,6 +235,32 @@ Status write_test_assembly(const std::filesystem::path& step_file) {
     st->UpdateAssemblies();
     return {};
   });
+}
+
+// AP203 (CONFIG_CONTROL_DESIGN), shaped as CAD systems export it (as1_pe_203.stp): the product
+// PLATE holds its solid as a nameless sub-shape, no instance has a name of its own.
+Status write_test_assembly_ap203(const std::filesystem::path& step_file) {
+  return write_xcaf(
+      step_file,
+      [](const Handle(XCAFDoc_ShapeTool)& st) -> Status {
+        const TDF_Label solid = st->AddShape(build(TestPart::counterbored_plate), Standard_False);
+        const TDF_Label plate = st->NewShape();
+        TDataStd_Name::Set(plate, "PLATE");
+        st->AddComponent(plate, solid, TopLoc_Location(gp_Trsf()));
+        const TDF_Label rod = st->AddShape(build(TestPart::stepped_shaft), Standard_False);
+        TDataStd_Name::Set(rod, "ROD");
+        const TDF_Label assembly = st->NewShape();
+        TDataStd_Name::Set(assembly, "ASM");
+        gp_Trsf right, left;
+        right.SetTranslation(gp_Vec(100, 0, 0));
+        left.SetTranslation(gp_Vec(-100, 0, 0));
+        st->AddComponent(assembly, plate, TopLoc_Location(gp_Trsf()));
+        st->AddComponent(assembly, rod, TopLoc_Location(right));
+        st->AddComponent(assembly, rod, TopLoc_Location(left));
+        st->UpdateAssemblies();
+        return {};
+      },
+      "AP203");
 }
 
 }  // namespace interfere::cad

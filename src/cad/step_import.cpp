@@ -70,6 +70,21 @@ std::string label_name(const TDF_Label& l) {
   return {};
 }
 
+// The label's name as the file gives it, or "" where it is a name OCCT made up: XCAFDoc_ShapeTool's
+// automatic names, "=>[0:1:1:3]" for a component (its link) and a shape type ("SOLID",
+// "COMPOUND") for a shape (also when an OCCT writer put them in the file: its type may differ once
+// read back), and a name of digits only, the NEXT_ASSEMBLY_USAGE_OCCURRENCE id that
+// STEPCAFControl_Reader gives a component whose NAUO has no name. AP203 exports (as1_pe_203.stp)
+// hold each product's solid as such a nameless sub-shape of the product.
+std::string real_name(const TDF_Label& l) {
+  std::string n = label_name(l);
+  if (n.size() > 3 && n.compare(0, 3, "=>[") == 0 && n.back() == ']') return {};
+  if (!n.empty() && std::all_of(n.begin(), n.end(), [](char c) { return c >= '0' && c <= '9'; })) return {};
+  for (const char* type : {"COMPOUND", "COMPSOLID", "SOLID", "SHELL", "FACE", "WIRE", "EDGE", "VERTEX", "SHAPE"})
+    if (n == type) return {};
+  return n;
+}
+
 Transform to_transform(const TopLoc_Location& loc) {
   const gp_Trsf t = loc.Transformation();
   Transform r;
@@ -150,21 +165,27 @@ struct Walker {
   std::map<std::string, std::uint32_t> part_by_entry;
   std::set<std::string> skipped;  ///< labels without faces, warned about once
 
-  void walk(const TDF_Label& label, const TopLoc_Location& loc, const std::string& path, const std::string& inst_name) {
+  // `inst_name`: the component's own name ("" when it has none); `parent`: the name of the
+  // product whose structure holds `label` ("" at the top).
+  void walk(const TDF_Label& label, const TopLoc_Location& loc, const std::string& path, const std::string& inst_name,
+            const std::string& parent) {
     TDF_Label ref = label;
     TopLoc_Location here = loc;
     if (XCAFDoc_ShapeTool::IsReference(label)) {
       XCAFDoc_ShapeTool::GetReferredShape(label, ref);
       here = loc * XCAFDoc_ShapeTool::GetLocation(label);
     }
-    std::string name = label_name(ref);
-    if (name.empty()) name = label_name(label);
-    if (name.empty()) name = "part" + std::to_string(model.parts.size());
-    const std::string my_path = path + "/" + (inst_name.empty() ? name : inst_name);
+    // The product's name; a nameless shape inside a product (an AP203 product's solid) is that
+    // product, and adds no level to the path.
+    std::string name = real_name(ref);
+    if (name.empty() && ref != label) name = real_name(label);
+    const bool sub_shape = name.empty() && inst_name.empty() && !parent.empty();
+    if (name.empty()) name = parent.empty() ? "part" + std::to_string(model.parts.size()) : parent;
+    const std::string my_path = sub_shape ? path : path + "/" + (inst_name.empty() ? name : inst_name);
     if (XCAFDoc_ShapeTool::IsAssembly(ref)) {
       TDF_LabelSequence comps;
       XCAFDoc_ShapeTool::GetComponents(ref, comps);
-      for (int i = 1; i <= comps.Length(); ++i) walk(comps(i), here, my_path, label_name(comps(i)));
+      for (int i = 1; i <= comps.Length(); ++i) walk(comps(i), here, my_path, real_name(comps(i)), name);
       return;
     }
     TCollection_AsciiString entry;
@@ -253,6 +274,7 @@ Expected<CadModel> import_step(const std::filesystem::path& path, const ImportOp
     ws->SetLoadedFile(file.c_str());
     ws->InitTransferReader(4);
     CadModel model;
+    model.file = file;
     // A syntax error or an unresolved reference: a corrupt or truncated file, an error. Schema
     // check failures of single entities are common in files from CAD systems (NIST test parts)
     // and tolerated by the reader: warnings, as are entities that fail to translate.
@@ -280,7 +302,22 @@ Expected<CadModel> import_step(const std::filesystem::path& path, const ImportOp
       }
     }
     Walker w{tool, options, model, {}, {}};
-    for (int i = 1; i <= free.Length(); ++i) w.walk(free(i), TopLoc_Location(), "", "");
+    for (int i = 1; i <= free.Length(); ++i) w.walk(free(i), TopLoc_Location(), "", "", "");
+    // Instances named alike in one assembly (unnamed instances of one product): "#2", "#3", ...
+    // in order, so that every path names one instance.
+    {
+      std::map<std::string, int> seen;
+      for (const Instance& in : model.instances) ++seen[in.path];
+      std::map<std::string, int> next;
+      for (Instance& in : model.instances)
+        if (seen[in.path] > 1)
+          if (const int k = ++next[in.path]; k > 1) {
+            std::string p = in.path + "#" + std::to_string(k);
+            while (seen.count(p)) p += "#";  // (a path of the file that already ends so)
+            seen[p] = 1;
+            in.path = std::move(p);
+          }
+    }
     if (model.parts.empty()) return Error{.file = file, .reason = "no solid or shell with faces in the STEP file"};
     std::size_t tris = 0;
     for (const Part& p : model.parts) tris += p.mesh.num_triangles();

@@ -93,6 +93,8 @@ struct CadModel {
   /// The length units the file declares (its contexts' units as OCCT names them, e.g. "MM",
   /// "INCH"), each once, in order of appearance.
   std::vector<std::string> file_length_units;
+  /// The STEP file it was read from (import_step; empty for a model built in memory).
+  std::string file;
 };
 
 struct ImportOptions {
@@ -143,5 +145,10 @@ Status write_test_part(TestPart part, const std::filesystem::path& step_file);
 /// (counterbored_plate) as component "plate_1" at the identity and "plate_2" rotated 90 degrees about
 /// z then lifted by (0, 0, 20); part "shaft" (stepped_shaft) as "shaft_1" moved by (100, 0, 0).
 Status write_test_assembly(const std::filesystem::path& step_file);
+
+/// An AP203 assembly "ASM" (STEP schema CONFIG_CONTROL_DESIGN) as CAD systems write them: product
+/// "PLATE" (counterbored_plate) holding its solid as a nameless sub-shape, at the identity; product
+/// "ROD" (stepped_shaft) at (100, 0, 0) and at (-100, 0, 0); no instance has a name of its own.
+Status write_test_assembly_ap203(const std::filesystem::path& step_file);
 
 }  // namespace interfere::cad
