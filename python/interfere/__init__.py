@@ -121,3 +121,7 @@ if HAVE_CAD:
     from ._interfere import assembly_clash, import_step, prepare_step, simplify_step, step_features  # noqa: F401,E402
 
     __all__ += ["assembly_clash", "import_step", "prepare_step", "simplify_step", "step_features"]
+# Scenes (issue #24, docs/python.md "Scenes"): many bodies, clash tests, stable clash ids, baselines.
+from ._interfere import Body, Clash, ClashReport, ClashTest, Scene  # noqa: F401,E402
+
+__all__ += ["Body", "Clash", "ClashReport", "ClashTest", "Scene"]

@@ -11,4 +11,7 @@ void bind_bearing(pybind11::module_& m);
 void bind_fem(pybind11::module_& m);
 
 void bind_simplify(pybind11::module_& m);
+
+/// Scenes (bind_scene.cpp, issue #24): Body, Scene, ClashTest, ClashReport, Clash.
+void bind_scene(pybind11::module_& m);
 }  // namespace interfere::python

@@ -997,4 +997,5 @@ PYBIND11_MODULE(_interfere, m) {
 
   interfere::python::bind_fem(m);
   interfere::python::bind_simplify(m);
+  interfere::python::bind_scene(m);
 }
