@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "common.h"
+#include "interfere/fem/bodies.h"
 #include "interfere/fem/io.h"
 #include "interfere/mesh/io.h"
 
@@ -66,18 +67,7 @@ void add_body_warnings(FemPart& p) {
   for (std::size_t k : p.chosen) {
     const SurfacePart& sp = p.surface().parts[k];
     const std::string who = "part " + p.label + " (" + p.file + "), body '" + sp.name + "': ";
-    if (sp.open_components > 0) {
-      p.warnings.push_back(who + std::to_string(sp.open_components) + " of " + std::to_string(sp.components) +
-                           " surface components are open (edges used by one boundary face): not a closed solid");
-    }
-    if (sp.degenerate_components > 0) {
-      p.warnings.push_back(who + std::to_string(sp.degenerate_components) +
-                           " closed surface components enclose no volume (degenerate; oriented by the faces' votes)");
-    }
-    if (sp.nonorientable_components > 0) {
-      p.warnings.push_back(who + std::to_string(sp.nonorientable_components) +
-                           " surface components cannot be oriented consistently (non-orientable or mis-assembled)");
-    }
+    for (const std::string& w : surface_part_warnings(sp)) p.warnings.push_back(who + w);
   }
 }
 
@@ -207,18 +197,7 @@ FemPart load_fem_part(const std::string& file, const FemPartOptions& o, const st
   }
   choose_part(p, o.part, all_parts_ok);
   for (const std::string& w : mesh.warnings) p.warnings.push_back("part " + label + " (" + file + "): " + w);
-  if (p.surface().degenerate_faces > 0) {
-    p.warnings.push_back("part " + label + " (" + file + "): " + std::to_string(p.surface().degenerate_faces) +
-                         " boundary faces have a triangle of zero area (degenerate)");
-  }
-  if (p.surface().nonmanifold_faces > 0) {
-    p.warnings.push_back("part " + label + " (" + file + "): " + std::to_string(p.surface().nonmanifold_faces) +
-                         " faces shared by more than two elements (left out of the surface)");
-  }
-  if (p.surface().inverted_faces > 0) {
-    p.warnings.push_back("part " + label + " (" + file + "): " + std::to_string(p.surface().inverted_faces) +
-                         " boundary faces of inverted (negative-Jacobian) elements (oriented outward by geometry)");
-  }
+  for (const std::string& w : surface_warnings(p.surface())) p.warnings.push_back("part " + label + " (" + file + "): " + w);
   p.file_warnings = p.warnings.size();
   add_body_warnings(p);
   return p;

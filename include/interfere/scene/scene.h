@@ -60,7 +60,8 @@ struct Body {
   SourceIdKind source_id_kind = SourceIdKind::input_triangle;
   /// Per triangle of `mesh`: what it came from (source_id_kind); empty: the triangle index.
   std::shared_ptr<const std::vector<std::int64_t>> source_ids;
-  /// Per triangle, fe_element_face only: the element's local face (0-based); else empty.
+  /// Per triangle, fe_element_face only: the element's local face (1-based, fem/surface.h's
+  /// Abaqus numbering S1..S6; 1 for shells); else empty.
   std::shared_ptr<const std::vector<std::int8_t>> source_faces;
   /// The chordal error of the tessellation against its source surfaces (STEP bodies; 0 for
   /// meshes, which are exact as given). Crossings within it may be a nominal fit (engine.h).
