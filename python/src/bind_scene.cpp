@@ -19,6 +19,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -36,18 +37,12 @@
 #include "interfere/scene/engine.h"
 #include "interfere/scene/io.h"
 #include "interfere/scene/report.h"
+#ifdef INTERFERE_HAS_CAD
+#include "interfere/cad/assembly_scene.h"
+#include "interfere/cad/model.h"
+#endif
 
 namespace py = pybind11;
-
-// TEMPORARY (until src/scene's glTF reader lands): a weak reference, so that the module loads
-// without it. Removed once read_gltf_bodies is in the library.
-namespace interfere::scene {
-[[gnu::weak]] Expected<std::vector<Body>> read_gltf_bodies(const std::string& path, double scale);
-}
-static bool have_gltf_bodies() {
-  volatile auto f = &interfere::scene::read_gltf_bodies;
-  return f != nullptr;
-}
 
 namespace interfere::python {
 namespace {
@@ -217,11 +212,41 @@ struct PyBody {
   std::string mesh_unit = "mm";
 };
 
+using NominalFit = std::function<bool(std::uint32_t, std::uint32_t, const Model&, const Model&,
+                                      const ClashResult&, double)>;
+
+/// A STEP assembly read into a scene: its model and sub-scene (bodies as the scene has them, from
+/// index `first`), for the nominal-fit check of its bodies (cad/assembly_scene.h).
+struct StepSource {
+#ifdef INTERFERE_HAS_CAD
+  cad::CadModel model;
+#endif
+  sc::Scene sub;
+  std::size_t first = 0;
+  NominalFit check;
+};
+
 struct PyScene {
   sc::Scene scene;
   std::vector<sc::ClashTest> tests;  ///< from a scene file's "tests"; clash()'s default when set
   std::vector<std::string> files;    ///< the files read (reported as the report's inputs)
+  std::vector<std::shared_ptr<const StepSource>> steps;  ///< STEP assemblies (shared by copies)
 };
+
+/// The engine's nominal-fit hook over the scene's STEP assemblies (none: unset).
+NominalFit nominal_fit(const std::vector<std::shared_ptr<const StepSource>>& steps) {
+  if (steps.empty()) return {};
+  return [steps](std::uint32_t a, std::uint32_t b, const Model& wa, const Model& wb,
+                 const ClashResult& r, double depth) {
+    for (const auto& st : steps) {
+      const std::size_t n = st->sub.bodies.size();
+      if (a >= st->first && a < st->first + n && b >= st->first && b < st->first + n)
+        return st->check(static_cast<std::uint32_t>(a - st->first),
+                         static_cast<std::uint32_t>(b - st->first), wa, wb, r, depth);
+    }
+    return false;  // bodies of different files share no B-Rep faces
+  };
+}
 
 /// Every posed vertex within the supported coordinate range (issue #23, item 7).
 void check_posed(const sc::Body& b) {
@@ -293,6 +318,7 @@ void load_spec(PyScene& s, const sc::BodySpec& spec) {
   const std::string prefix = spec.id.empty() ? sc::make_body_id(stem(spec.file)) : spec.id;
   s.files.push_back(spec.file);
   const auto add_expanded = [&](std::vector<sc::Body> bodies, bool filter) {
+    const std::size_t before = s.scene.bodies.size();
     for (sc::Body& b : bodies) {
       if (filter && !spec.select.empty() && !sc::glob_match(spec.select, b.path) &&
           !sc::glob_match(spec.select, b.name))
@@ -302,13 +328,50 @@ void load_spec(PyScene& s, const sc::BodySpec& spec) {
       b.tags.insert(b.tags.end(), spec.tags.begin(), spec.tags.end());
       add_body(s, std::move(b), units);  // already in the working unit
     }
+    if (s.scene.bodies.size() == before)
+      raise_input_error(
+          spec.file, spec.where + ": " +
+                         (spec.select.empty() ? std::string("the file has no body")
+                                              : "\"select\" " + spec.select + " selects no body"));
   };
   if (ext == ".step" || ext == ".stp") {
-    raise_input_error(
-        spec.file,
-        spec.where +
-            ": STEP assemblies are not read by the Python module's "
-            "Scene.from_file; use `interfere clash --scene` (or convert to a mesh file)");
+#ifdef INTERFERE_HAS_CAD
+    if (!spec.units.empty())
+      raise_input_error(
+          spec.file, spec.where + ": a STEP file carries its own length unit: give no unit for it");
+    std::optional<Expected<cad::CadModel>> model;
+    {
+      py::gil_scoped_release release;
+      model.emplace(cad::import_step(spec.file));
+    }
+    if (!*model) raise_input_error((*model).error());
+    auto step = std::make_shared<StepSource>();
+    step->model = std::move(model->value());
+    sc::Scene sub = cad::assembly_scene(step->model);
+    for (const std::string& w : sub.warnings) s.scene.warnings.push_back(spec.file + ": " + w);
+    const double scale = 1.0 / mm_per(units, "scene units");  // STEP geometry is in mm
+    for (sc::Body& b : sub.bodies) {
+      b.source.file = spec.file;
+      if (scale == 1) continue;
+      TriMesh m = *b.mesh;
+      for (Vec3& v : m.positions) v = v * scale;
+      b.mesh = std::make_shared<const TriMesh>(std::move(m));
+      b.pose.t = b.pose.t * scale;
+      b.tessellation_error *= scale;
+    }
+    step->first = s.scene.bodies.size();
+    add_expanded(std::move(sub.bodies), true);
+    // The sub-scene holds the bodies as the scene has them (ids, poses), at indices from `first`.
+    step->sub.units = units;
+    step->sub.bodies.assign(s.scene.bodies.begin() + static_cast<std::ptrdiff_t>(step->first),
+                            s.scene.bodies.end());
+    step->check = cad::nominal_fit_check(step->model, step->sub);
+    s.steps.push_back(std::move(step));
+    return;
+#else
+    raise_input_error(spec.file,
+                      spec.where + ": STEP input needs interfere built with OpenCASCADE");
+#endif
   }
   if (ext == ".glb" || ext == ".gltf") {
     const double scale = mm_per(spec.units.empty() ? "m" : spec.units, spec.where + " units") /
@@ -316,7 +379,6 @@ void load_spec(PyScene& s, const sc::BodySpec& spec) {
     std::optional<Expected<std::vector<sc::Body>>> r;
     {
       py::gil_scoped_release release;
-      if (!have_gltf_bodies()) throw std::runtime_error("glTF scenes: not in this build yet");
       r.emplace(sc::read_gltf_bodies(spec.file, scale));
     }
     if (!*r) raise_input_error(r->error());
@@ -648,6 +710,7 @@ PyReport run_clash(const PyScene& s, py::handle tests_arg, py::handle baseline_a
   o.group_distance = group_distance;
   o.depth = depth;
   o.curves = curves;
+  o.nominal_fit = nominal_fit(s.steps);
   const int threads = threads_arg.is_none() ? 0 : threads_arg.cast<int>();
   d->threads = threads;
   ThreadLimit limit(threads);
@@ -1094,8 +1157,6 @@ void bind_scene(py::module_& m) {
             std::optional<Expected<std::vector<sc::Body>>> r;
             {
               py::gil_scoped_release release;
-              if (!have_gltf_bodies())
-                throw std::runtime_error("glTF scenes: not in this build yet");
               r.emplace(sc::read_gltf_bodies(path.string(), scale));
             }
             if (!*r) raise_input_error(r->error());

@@ -7,10 +7,12 @@ touch or lie within a distance is interval arithmetic; the intersection curve of
 is a rectangle on a face), not by the engine.
 """
 
+import base64
 import itertools
 import json
 import math
 import os
+import struct
 import tempfile
 import unittest
 
@@ -96,6 +98,31 @@ def ascii_stl(path, v, f):
                 out.write("   vertex %r %r %r\n" % tuple(float(x) for x in v[i]))
             out.write("  endloop\n endfacet\n")
         out.write("endsolid t\n")
+
+
+def gltf_boxes(path, nodes, children, size=2.0**-7):
+    """A .gltf (metres) whose nodes all instance one box [0, size]^3: nodes [(name, translation)],
+    children {name: [node indices]}. Powers of two: exact in float32 and once scaled to mm."""
+    v = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]
+    f = [(0, 2, 1), (0, 3, 2), (4, 5, 6), (4, 6, 7), (0, 1, 5), (0, 5, 4),
+         (1, 2, 6), (1, 6, 5), (2, 3, 7), (2, 7, 6), (3, 0, 4), (3, 4, 7)]
+    data = b"".join(struct.pack("<3f", *[c * size for c in p]) for p in v)
+    data += b"".join(struct.pack("<3H", *t) for t in f)
+    uri = "data:application/octet-stream;base64," + base64.b64encode(data).decode()
+    child = {i for c in children.values() for i in c}
+    doc = {"asset": {"version": "2.0"}, "scene": 0,
+           "buffers": [{"byteLength": len(data), "uri": uri}],
+           "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 96},
+                           {"buffer": 0, "byteOffset": 96, "byteLength": 72}],
+           "accessors": [{"bufferView": 0, "componentType": 5126, "count": 8, "type": "VEC3",
+                          "min": [0, 0, 0], "max": [size] * 3},
+                         {"bufferView": 1, "componentType": 5123, "count": 36, "type": "SCALAR"}],
+           "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+           "nodes": [dict(name=n, mesh=0, translation=t, **({"children": children[n]} if n in children else {}))
+                     for n, t in nodes],
+           "scenes": [{"nodes": [i for i in range(len(nodes)) if i not in child]}]}
+    with open(path, "w") as out:
+        json.dump(doc, out)
 
 
 @unittest.skipIf(np is None, "numpy is needed to build the test bodies")
@@ -325,6 +352,52 @@ class ScenePython(unittest.TestCase):
             self.assertIn("colour", str(e.exception))
             with self.assertRaises(itf.InputError):
                 itf.Scene.from_file(os.path.join(d, "missing.json"))
+
+    def test_gltf_scene_nodes(self):
+        # Boxes of 2^-7 m = 7.8125 mm: "right" 2^-9 m = 1.953125 mm right of "left"; "up", a child of
+        # "right", 7.8125 mm above it (its world pose composes both): a face contact with "right",
+        # and 1.953125 mm from "left" (diagonally: x gap 1.953125, y ranges touch).
+        e, g = 2.0 ** -7, 2.0 ** -9
+        with tempfile.TemporaryDirectory() as d:
+            p = os.path.join(d, "cell.gltf")
+            gltf_boxes(p, [("left", [0, 0, 0]), ("right", [e + g, 0, 0]), ("up", [0, e, 0])], {"right": [2]})
+            s = itf.Scene.from_gltf(p)
+            self.assertEqual([(b.name, b.path, b.source_kind) for b in s.bodies],
+                             [("left", "/left", "gltf_node"), ("right", "/right", "gltf_node"),
+                              ("up", "/right/up", "gltf_node")])
+            self.assertEqual(s.bodies[2].pose.t, (1000 * (e + g), 1000 * e, 0.0))
+            boxes = {"/left": ((0, 0, 0), (1000 * e,) * 3, []),
+                     "/right": ((1000 * (e + g), 0, 0), (1000 * (2 * e + g), 1000 * e, 1000 * e), []),
+                     "/right/up": ((1000 * (e + g), 1000 * e, 0), (1000 * (2 * e + g), 2000 * e, 1000 * e), [])}
+            self.assertEqual([b.id for b in s.bodies], list(boxes))
+            r = s.clash(itf.ClashTest(mode="clearance", clearance=3))
+            self.assertEqual(found(r), expected_verdicts(boxes, 3))
+            for c in r.clashes:
+                want, _ = gap(boxes[c.body_a][:2], boxes[c.body_b][:2])
+                self.assertAlmostEqual(c.distance, want, places=9)
+
+    @unittest.skipUnless(itf.HAVE_CAD, "built without OpenCASCADE")
+    def test_step_assembly_in_a_scene_file(self):
+        # tests/cli/data/assembly.step: two 10 mm plates, plate_2 placed at z = 20 (10 mm above
+        # plate's top face), and a shaft clear of both (test_simplify.py's assembly-clash test).
+        step = os.path.join(os.path.dirname(__file__), "..", "..", "tests", "cli", "data", "assembly.step")
+        with open(step) as f:
+            text = f.read()
+        self.assertIn("#20 = CARTESIAN_POINT('',(0.,0.,20.));", text)
+        with tempfile.TemporaryDirectory() as d:
+            for lift, verdict, distance in (("(0.,0.,20.)", "clearance", 1.0), ("(0.,0.,10.)", "contact", 0.0)):
+                with open(os.path.join(d, "asm.step"), "w") as out:
+                    out.write(text.replace("(0.,0.,20.)", lift))
+                with open(os.path.join(d, "scene.json"), "w") as out:
+                    json.dump({"units": "cm", "bodies": [{"file": "asm.step", "id": "asm", "tags": ["cad"]}]}, out)
+                s = itf.Scene.from_file(os.path.join(d, "scene.json"))
+                self.assertEqual([b.name for b in s.bodies], ["plate", "plate_2", "shaft_1"])
+                self.assertTrue(all(b.source_kind == "step_instance" and b.id.startswith("asm/") for b in s.bodies))
+                self.assertEqual(s.bodies[0].source_id_kind, "brep_face")
+                r = s.clash(itf.ClashTest(mode="clearance", clearance=1.5))  # 15 mm in cm
+                self.assertEqual([(s[c.body_a].name, s[c.body_b].name, c.verdict) for c in r.clashes],
+                                 [("plate", "plate_2", verdict)])
+                self.assertAlmostEqual(r.clashes[0].distance, distance, places=9)
 
 
 if __name__ == "__main__":
