@@ -376,6 +376,32 @@ class ScenePython(unittest.TestCase):
                 want, _ = gap(boxes[c.body_a][:2], boxes[c.body_b][:2])
                 self.assertAlmostEqual(c.distance, want, places=9)
 
+    def test_fe_model_in_a_scene_file(self):
+        # An Abaqus deck with two hex8 elements in two element sets: two bodies, 2 mm apart in x,
+        # whose triangles carry the solver's element ids (101, 102).
+        boxes = {"LEFT": ((0, 0, 0), (10, 10, 10)), "RIGHT": ((12, 0, 0), (22, 10, 10))}
+        corners = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]
+        lines, n = ["*NODE"], 0
+        for lo, hi in boxes.values():
+            for c in corners:
+                n += 1
+                lines.append("%d, %s" % (n, ", ".join(repr(float(lo[k] + (hi[k] - lo[k]) * c[k])) for k in range(3))))
+        for e, name in enumerate(boxes):
+            lines += ["*ELEMENT, TYPE=C3D8, ELSET=%s" % name,
+                      "%d, %s" % (101 + e, ", ".join(str(8 * e + k + 1) for k in range(8)))]
+        with tempfile.TemporaryDirectory() as d:
+            with open(os.path.join(d, "model.inp"), "w") as out:
+                out.write("\n".join(lines) + "\n")
+            with open(os.path.join(d, "scene.json"), "w") as out:
+                json.dump({"bodies": [{"file": "model.inp", "id": "fe", "tags": ["fe"]}]}, out)
+            s = itf.Scene.from_file(os.path.join(d, "scene.json"))
+        self.assertEqual(len(s), 2)
+        self.assertTrue(all(b.source_kind == "fe_body" and b.tags == ["fe"] for b in s.bodies))
+        self.assertEqual([sorted(set(b.source_ids.tolist())) for b in s.bodies], [[101], [102]])
+        r = s.clash(itf.ClashTest(mode="clearance", clearance=3))
+        self.assertEqual([(c.verdict, c.distance) for c in r.clashes], [("clearance", 2.0)])
+        self.assertEqual((r.clashes[0].source_ids_a.tolist(), r.clashes[0].source_ids_b.tolist()), ([101], [102]))
+
     @unittest.skipUnless(itf.HAVE_CAD, "built without OpenCASCADE")
     def test_step_assembly_in_a_scene_file(self):
         # tests/cli/data/assembly.step: two 10 mm plates, plate_2 placed at z = 20 (10 mm above
