@@ -265,6 +265,17 @@ class ScenePython(unittest.TestCase):
         self.assertEqual(one.exit_status(), 1)
         self.assertEqual(s.clash(itf.ClashTest(a="id:C,id:E")).exit_status(), 0)
 
+    def test_grouping(self):
+        # The A-B clash box (x = 10, y, z in [2, 8]) and the A-D contact face (y = 10) are 2 apart.
+        s = make_scene()
+        self.assertEqual(s.clash(group_by=None).groups, [])
+        apart = s.clash(group_by="location")
+        self.assertEqual(sorted(len(g["clashes"]) for g in apart.groups), [1, 1])
+        near = s.clash(group_by="location", group_distance=3)
+        self.assertEqual([sorted(g["clashes"]) for g in near.groups], [sorted(c.id for c in near.clashes)])
+        with self.assertRaises(ValueError):
+            s.clash(group_by="colour")
+
     def test_ids_survive_reordering(self):
         shuffled = make_scene(dict(reversed(list(BOXES.items()))))
         self.assertEqual([c.id for c in make_scene().clash().clashes], [c.id for c in shuffled.clash().clashes])
@@ -293,6 +304,10 @@ class ScenePython(unittest.TestCase):
         self.assertEqual({(x.body_a, x.body_b): x.run_status for x in third.clashes},
                          {("A", "B"): "active", ("A", "F"): "new"})
         self.assertEqual(next(x for x in third.clashes if x.body_b == "B").status, "approved")
+        last = third.to_records()[-1]  # resolved clashes follow, from the baseline's fields
+        self.assertEqual((last["run_status"], last["status"], last["body_a"], last["body_b"], last["verdict"]),
+                         ("resolved", "resolved", "A", "D", "contact"))
+        self.assertEqual(len(third.to_records(resolved=False)), 2)
         with tempfile.TemporaryDirectory() as d:
             p = os.path.join(d, "third.json")
             with open(p, "w") as out:
