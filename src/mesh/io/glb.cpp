@@ -11,8 +11,10 @@
 // KHR_mesh_quantization, integers, normalized or not, as gltfpack writes them; UNSIGNED_BYTE/SHORT/
 // INT indices or none), primitives of mode TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN (points and
 // lines carry no surface and are skipped), node `matrix` or translation/rotation/scale composed in
-// double. Sparse accessors, Draco and any other required extension are errors naming the accessor
-// or the extension. Every index, offset and length is checked before it is used.
+// double (a mirroring node's triangles reversed, §3.7.2.1). Sparse accessors, Draco and any other
+// required extension are errors naming the accessor or the extension. Every index, offset and
+// length is checked before it is used. One walk of the scene's nodes (walk_gltf, glb.h) serves
+// the flattening reader and scene::read_gltf_bodies.
 #include "glb.h"
 
 #include <algorithm>
@@ -29,6 +31,7 @@
 
 #include "formats.h"
 #include "interfere/core/base64.h"
+#include "interfere/core/transform.h"
 
 namespace interfere::io_detail {
 namespace {
@@ -41,7 +44,6 @@ std::uint32_t u32_at(std::string_view d, std::size_t at) {
 }
 
 using Json = nlohmann::json;
-using Mat4 = std::array<double, 16>;  // column-major, as glTF stores it
 
 Mat4 identity() {
   return {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
@@ -67,7 +69,10 @@ class GlbReader {
             std::filesystem::path dir)
       : path_(path), chunks_(chunks), doc_(std::move(doc)), glb_(glb), dir_(std::move(dir)) {}
 
-  Expected<TriMesh> read() {
+  // Visits every node with a mesh of the default scene, depth first in the scene's order, with
+  // its world matrix and its mesh in node coordinates (parsed once per glTF mesh).
+  Status walk(const GltfVisitor& visitor) {
+    visitor_ = &visitor;
     if (!doc_.is_object()) return fail("", "the JSON chunk is not an object");
     if (const Json* ext = member(doc_, "extensionsRequired"); ext && ext->is_array())
       for (const Json& e : *ext)
@@ -109,10 +114,44 @@ class GlbReader {
     }
     visited_.assign(node_count, 0);
     for (std::size_t r : roots)
-      if (Status s = visit(r, identity()); !s) return s.error();
-    if (mesh_.triangles.empty())
+      if (Status s = visit(r, identity(), ""); !s) return s.error();
+    return {};
+  }
+
+  // The flattened scene: every node's mesh placed by its world matrix, in double.
+  Expected<TriMesh> read() {
+    TriMesh out;
+    const Status s = walk([&](const GltfMeshNode& n) -> Status {
+      const Mat4& m = n.world;
+      const auto base = static_cast<std::uint32_t>(out.positions.size());
+      if (n.local->positions.size() > std::uint64_t{0xffffffffu} - base)
+        return fail("nodes[" + std::to_string(n.node) + "]", "too many vertices");
+      for (std::size_t i = 0; i < n.local->positions.size(); ++i) {
+        const Vec3& f = n.local->positions[i];
+        double p[3];
+        for (int r = 0; r < 3; ++r) p[r] = m[r] * f.x + m[4 + r] * f.y + m[8 + r] * f.z + m[12 + r];
+        const Vec3 q{p[0], p[1], p[2]};
+        if (!is_finite(q))
+          return fail("nodes[" + std::to_string(n.node) + "]",
+                      "vertex " + std::to_string(i) + " of meshes[" + std::to_string(n.mesh) +
+                          "] is not finite once placed");
+        out.positions.push_back(q);
+      }
+      // A mirroring node (negative determinant, decided exactly) turns its faces clockwise
+      // (§3.7.2.1): reversed here, so that outward faces stay outward.
+      Transform lin;
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) lin.r[r][c] = m[c * 4 + r];
+      const bool mirrored = lin.determinant_sign() < 0;
+      for (const Tri& t : n.local->triangles)
+        out.triangles.push_back(mirrored ? Tri{base + t[0], base + t[2], base + t[1]}
+                                         : Tri{base + t[0], base + t[1], base + t[2]});
+      return {};
+    });
+    if (!s) return s.error();
+    if (out.triangles.empty())
       return fail("", "no triangles: the scene has no triangle primitives");
-    return std::move(mesh_);
+    return out;
   }
 
  private:
@@ -345,7 +384,8 @@ class GlbReader {
     }
   }
 
-  Status primitive(const Json& prim, const std::string& where, const Mat4& m) {
+  // Appends the primitive's triangles to `mesh_` (node coordinates).
+  Status primitive(const Json& prim, const std::string& where) {
     std::uint64_t mode = 4;
     if (!count_of(prim, "mode", mode, 4) || mode > 6)
       return fail(where + ".mode", "not a primitive mode");
@@ -378,13 +418,7 @@ class GlbReader {
           f[k] = quantized(e, k, pv->component_type, pv->normalized);
         }
       }
-      double p[3];
-      for (int r = 0; r < 3; ++r)
-        p[r] = m[r] * f[0] + m[4 + r] * f[1] + m[8 + r] * f[2] + m[12 + r];
-      const Vec3 q{p[0], p[1], p[2]};
-      if (!is_finite(q))
-        return fail(where, "vertex " + std::to_string(i) + " is not finite once placed");
-      mesh_.positions.push_back(q);
+      mesh_.positions.push_back({f[0], f[1], f[2]});
     }
     // Indices: the accessor, or 0..count-1.
     std::vector<std::uint32_t> idx;
@@ -475,7 +509,22 @@ class GlbReader {
     return m;
   }
 
-  Status visit(std::size_t n, const Mat4& parent, int depth = 0) {
+  // The mesh `k` in its own coordinates, parsed at its first use.
+  Expected<std::shared_ptr<const TriMesh>> mesh(std::size_t k) {
+    if (k < meshes_.size() && meshes_[k]) return meshes_[k];
+    const Json* prims = member(doc_["meshes"][k], "primitives");
+    const std::string mw = "meshes[" + std::to_string(k) + "].primitives";
+    if (!prims || !prims->is_array()) return fail(mw, "missing");
+    mesh_ = TriMesh{};
+    for (std::size_t p = 0; p < prims->size(); ++p)
+      if (Status s = primitive((*prims)[p], mw + "[" + std::to_string(p) + "]"); !s)
+        return s.error();
+    if (meshes_.size() <= k) meshes_.resize(k + 1);
+    meshes_[k] = std::make_shared<const TriMesh>(std::move(mesh_));
+    return meshes_[k];
+  }
+
+  Status visit(std::size_t n, const Mat4& parent, const std::string& parent_path, int depth = 0) {
     const Json& nodes = doc_["nodes"];
     const std::string where = "nodes[" + std::to_string(n) + "]";
     if (visited_[n])
@@ -487,16 +536,19 @@ class GlbReader {
     auto l = local(node, where);
     if (!l) return l.error();
     const Mat4 m = multiply(parent, *l);
+    std::string name;
+    if (const Json* nm = member(node, "name"); nm && nm->is_string()) name = nm->get<std::string>();
+    const std::string path = parent_path + "/" + (name.empty() ? "node" + std::to_string(n) : name);
     if (const Json* mi = member(node, "mesh")) {
       const Json* meshes = member(doc_, "meshes");
       std::size_t k = 0;
       if (!meshes || !meshes->is_array() || !index_of(*mi, meshes->size(), k))
         return fail(where + ".mesh", "not an index of meshes");
-      const Json* prims = member((*meshes)[k], "primitives");
-      const std::string mw = "meshes[" + std::to_string(k) + "].primitives";
-      if (!prims || !prims->is_array()) return fail(mw, "missing");
-      for (std::size_t p = 0; p < prims->size(); ++p)
-        if (Status s = primitive((*prims)[p], mw + "[" + std::to_string(p) + "]", m); !s) return s;
+      auto local = mesh(k);
+      if (!local) return local.error();
+      GltfMeshNode visit_node{
+          .node = n, .mesh = k, .name = name, .path = path, .world = m, .local = *local};
+      if (Status s = (*visitor_)(visit_node); !s) return s;
     }
     if (const Json* children = member(node, "children")) {
       if (!children->is_array()) return fail(where + ".children", "not an array");
@@ -504,7 +556,7 @@ class GlbReader {
         std::size_t k = 0;
         if (!index_of((*children)[c], nodes.size(), k))
           return fail(where + ".children[" + std::to_string(c) + "]", "not an index of nodes");
-        if (Status s = visit(k, m, depth + 1); !s) return s;
+        if (Status s = visit(k, m, path, depth + 1); !s) return s;
       }
     }
     return {};
@@ -516,10 +568,12 @@ class GlbReader {
   Json doc_;
   bool glb_ = true;
   std::filesystem::path dir_;
-  std::vector<std::string> owned_;         // buffers read from URIs
-  std::vector<std::string_view> buffers_;  // every buffer, cut to its byteLength
-  TriMesh mesh_;
+  std::vector<std::string> owned_;                      // buffers read from URIs
+  std::vector<std::string_view> buffers_;               // every buffer, cut to its byteLength
+  TriMesh mesh_;                                        // the mesh being parsed
+  std::vector<std::shared_ptr<const TriMesh>> meshes_;  // parsed meshes, by index
   std::vector<char> visited_;
+  const GltfVisitor* visitor_ = nullptr;
 };
 
 }  // namespace
@@ -562,31 +616,53 @@ Expected<GlbChunks> split_glb(const std::string& path, std::string_view d) {
   return out;
 }
 
+namespace {
+
+// Parses the document (GLB or JSON, by `glb`) and runs `f` on its reader.
+template <class F>
+auto with_reader(const std::string& path, std::string_view data, bool glb,
+                 const std::filesystem::path& dir, F&& f)
+    -> decltype(f(std::declval<GlbReader&>())) {
+  GlbChunks chunks{.json = data, .bin = {}, .json_at = 0, .bin_at = 0};
+  Json doc;
+  if (glb) {
+    auto split = split_glb(path, data);
+    if (!split) return split.error();
+    chunks = *split;
+    doc = Json::parse(chunks.json, nullptr, false);
+    if (doc.is_discarded())
+      return byte_error(path, chunks.json_at, "the JSON chunk is not valid JSON");
+  } else {
+    try {
+      doc = Json::parse(data);
+    } catch (const Json::parse_error& e) {
+      return byte_error(path, static_cast<std::int64_t>(e.byte > 0 ? e.byte - 1 : 0),
+                        "not valid JSON (glTF)");
+    } catch (const Json::exception& e) {  // a number beyond double ("9e308")
+      return byte_error(path, 0, std::string("not valid glTF JSON: ") + e.what());
+    }
+  }
+  GlbReader reader(path, chunks, std::move(doc), glb, dir);
+  return f(reader);
+}
+
+}  // namespace
+
 Expected<TriMesh> read_glb(const std::string& path, std::string_view data, MeshReadInfo& info,
                            const std::filesystem::path& dir) {
   info.format = MeshFormat::glb;
-  auto chunks = split_glb(path, data);
-  if (!chunks) return chunks.error();
-  Json doc = Json::parse(chunks->json, nullptr, false);
-  if (doc.is_discarded())
-    return byte_error(path, chunks->json_at, "the JSON chunk is not valid JSON");
-  return GlbReader(path, *chunks, std::move(doc), true, dir).read();
+  return with_reader(path, data, true, dir, [](GlbReader& r) { return r.read(); });
 }
 
 Expected<TriMesh> read_gltf(const std::string& path, std::string_view data, MeshReadInfo& info,
                             const std::filesystem::path& dir) {
   info.format = MeshFormat::gltf;
-  Json doc;
-  try {
-    doc = Json::parse(data);
-  } catch (const Json::parse_error& e) {
-    return byte_error(path, static_cast<std::int64_t>(e.byte > 0 ? e.byte - 1 : 0),
-                      "not valid JSON (glTF)");
-  } catch (const Json::exception& e) {  // a number beyond double ("9e308")
-    return byte_error(path, 0, std::string("not valid glTF JSON: ") + e.what());
-  }
-  const GlbChunks chunks{.json = data, .bin = {}, .json_at = 0, .bin_at = 0};
-  return GlbReader(path, chunks, std::move(doc), false, dir).read();
+  return with_reader(path, data, false, dir, [](GlbReader& r) { return r.read(); });
+}
+
+Status walk_gltf(const std::string& path, std::string_view data, const std::filesystem::path& dir,
+                 const GltfVisitor& visitor) {
+  return with_reader(path, data, is_glb(data), dir, [&](GlbReader& r) { return r.walk(visitor); });
 }
 
 }  // namespace interfere::io_detail
