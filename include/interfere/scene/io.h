@@ -63,7 +63,9 @@ Status read_motion(const std::string& path, Scene& scene);
 /// triangles, in the node's coordinates), posed by the node's world transform (the product of its
 /// ancestors' matrices or TRS), named by the node's name, with path "/parent/.../node" and id the
 /// path (made unique); units metres by the specification, scaled by `scale` (metres to the
-/// working unit). Source ids: the triangle index within the node's mesh.
+/// working unit). Source ids: the triangle index within the node's mesh. A uniform scale of the
+/// node's transform goes into the mesh (the pose stays rigid); a mirroring node's triangles are
+/// reversed (glTF §3.7.2.1).
 Expected<std::vector<Body>> read_gltf_bodies(const std::string& path, double scale = 1000.0);
 
 }  // namespace interfere::scene
