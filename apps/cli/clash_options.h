@@ -13,10 +13,17 @@ struct ClashOptions : TwoPartOptions {
   std::vector<std::string> curves;
   double clearance = 0;
   bool no_containment = false;
+  bool depth = false;  ///< two-part clash: measure depths (scenes always do)
   /// Simplified inputs (interfere simplify): their stored error bounds widen the clearance, and any
   /// pair within them counts as a possible clash of the original parts.
   bool conservative = false;
   std::size_t max_clearance_pairs = 100000;
+
+  // Scenes (issue #24; cmd_clash_scene.cpp).
+  std::vector<std::string> more;       ///< inputs after A and B
+  std::vector<std::string> test_args;  ///< --test: clash tests (exact/moller/gd: the triangle test, as before)
+  std::string tests_file, baseline, csv, frames_csv, group_by = "pair", motion;
+  double group_distance = 0, tolerance = 0;
 
   // FEM inputs (docs/fem.md, "CLI"): a flag without -a/-b applies to both parts.
   std::string part, part_a, part_b, disp, disp_a, disp_b, field, field_a, field_b, split = "auto";
@@ -34,6 +41,9 @@ struct ClashOptions : TwoPartOptions {
 /// Registers --part/-a/-b, --disp/-a/-b, --field/-a/-b, --scale, --step, --linear-faces, --split,
 /// --regions-vtu.
 void add_fem_clash_options(CLI::App& command, ClashOptions& o);
+
+/// `interfere clash` on a scene: bodies from every input, clash tests, baseline, motion.
+int run_scene_clash(const ClashOptions& o, const CLI::App& command, const std::vector<std::string>& clash_tests);
 
 /// The clash of FEM parts (either input a FEM file, or a FEM flag given): per step or per series.
 int run_fem_clash(const ClashOptions& o, const ResolvedParts& parts, const ClashRequest& request);

@@ -4,6 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include "clash_options.h"
 #include "commands.h"
@@ -12,6 +15,8 @@
 #include "interfere/core/atomic_file.h"
 #include "interfere/mesh/polyline.h"
 #include "interfere/query/clash.h"
+#include "interfere/scene/engine.h"
+#include "interfere/scene/report.h"
 #include "interfere/simplify/tagged_io.h"
 #include "report_json.h"
 
@@ -62,7 +67,43 @@ double max_stretch(const std::string& transform) {
   return std::sqrt(worst) * (1 + 1e-12);
 }
 
-int run_clash(const ClashOptions& o, const CLI::App& command) {
+// "part A" <-> "part B" in the core's messages (its A is our B when the engine ordered them by id).
+std::string swap_part_names(std::string t) {
+  for (std::size_t i = 0; (i = t.find("part ", i)) != std::string::npos; i += 6)
+    if (i + 5 < t.size() && (t[i + 5] == 'A' || t[i + 5] == 'B')) t[i + 5] = t[i + 5] == 'A' ? 'B' : 'A';
+  return t;
+}
+
+bool is_triangle_test(const std::string& s) {
+  return s == "exact" || s == "moller" || s == "gd" || s == "guigue_devillers";
+}
+
+// A scene file with "bodies" (not the two-part {"a", "b"} form).
+bool scene_file_has_bodies(const std::string& path) {
+  std::ifstream in(path);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto j = nlohmann::json::parse(text, nullptr, false);
+  return !j.is_discarded() && j.is_object() && !j.contains("a") && !j.contains("b");
+}
+
+int run_clash(ClashOptions o, const CLI::App& command) {
+  // --test: the triangle test's names as before, anything else a clash test (issue #24).
+  std::vector<std::string> clash_tests;
+  for (const std::string& t : o.test_args) {
+    if (is_triangle_test(t)) {
+      o.test = t;
+    } else {
+      clash_tests.push_back(t);
+    }
+  }
+  // A scene: one input (a file that expands to bodies), three or more, a scene file with bodies,
+  // or any scene option. Two inputs alone are the two-part clash with its per-pair outputs.
+  const bool scene = (!o.a.file.empty() && o.b.file.empty()) || !o.more.empty() || !clash_tests.empty() ||
+                     !o.tests_file.empty() || !o.baseline.empty() || !o.csv.empty() || !o.frames_csv.empty() ||
+                     !o.motion.empty() || command.count("--group-by") > 0 || command.count("--tolerance") > 0 ||
+                     (!o.scene.empty() && scene_file_has_bodies(o.scene)) ||
+                     (o.scene.empty() && o.a.file.empty());
+  if (scene) return run_scene_clash(o, command, clash_tests);
   ResolvedParts parts = resolve_two_parts(o, command);
   (void)fail_on(o.fail_on);  // checked before any work
   parts.tessellation.measure_deviation = o.conservative;  // (STEP inputs: the bound below)
@@ -115,11 +156,54 @@ int run_clash(const ClashOptions& o, const CLI::App& command) {
   }
   const double margin = bound_a + bound_b;
   request.clearance = o.clearance + margin;
+  // The two-part case of the scene engine (issue #24, item 7): two bodies on the models just
+  // built, one test; the core's own result comes back through on_pair for the per-pair outputs.
+  scene::Scene two;
+  two.units = parts.units;
+  for (const auto* p : {&pa, &pb}) {
+    scene::Body b;
+    b.id = scene::make_body_id(std::filesystem::path(p->file).stem().string());
+    b.name = std::filesystem::path(p->file).filename().string();
+    b.path = "/" + b.name;
+    b.source = {scene::SourceKind::mesh_file, p->file, ""};
+    b.unit = p->unit.unit;
+    b.mesh = std::shared_ptr<const TriMesh>(std::shared_ptr<void>{}, &p->model.mesh);  // (not owned)
+    b.world_model = std::shared_ptr<const Model>(std::shared_ptr<void>{}, &p->model);
+    b.tessellation_error = p->format == "step" ? std::max(p->linear_deflection, p->tessellation_deviation) : 0;
+    two.bodies.push_back(std::move(b));
+  }
+  if (two.bodies[0].id == two.bodies[1].id) two.bodies[0].id += "#A", two.bodies[1].id += "#B";
+  scene::ClashTest test;
+  if (request.clearance > 0) test.mode = scene::ClashMode::clearance, test.clearance = request.clearance;
+  scene::SceneClashOptions engine{.request = request, .depth = o.depth};
   ClashResult result;
+  result.containment = request.containment ? Containment::none : Containment::not_checked;
+  engine.on_pair = [&](std::size_t, std::uint32_t x, std::uint32_t, const ClashResult& r) {
+    result = r;
+    if (x == 1) {  // B's id sorts first: the engine's pair is (B, A); the outputs speak of A and B
+      for (TrianglePair& p : result.pairs) std::swap(p.a, p.b);
+      std::sort(result.pairs.begin(), result.pairs.end(), [](const TrianglePair& u, const TrianglePair& v) {
+        return std::tie(u.a, u.b) < std::tie(v.a, v.b);
+      });
+      for (ClashRegion& g : result.regions) std::swap(g.triangles_a, g.triangles_b);
+      std::sort(result.regions.begin(), result.regions.end(), [](const ClashRegion& u, const ClashRegion& v) {
+        return std::tie(u.triangles_a.front(), u.triangles_b.front()) < std::tie(v.triangles_a.front(), v.triangles_b.front());
+      });
+      for (ClearancePair& c : result.clearance) std::swap(c.a, c.b), std::swap(c.point_a, c.point_b);
+      std::sort(result.clearance.begin(), result.clearance.end(), [](const ClearancePair& u, const ClearancePair& v) {
+        return std::tie(u.a, u.b) < std::tie(v.a, v.b);
+      });
+      for (auto* texts : {&result.warnings, &result.verdict_reasons})
+        for (std::string& t : *texts) t = swap_part_names(t);
+      if (result.containment == Containment::a_inside_b) result.containment = Containment::b_inside_a;
+      else if (result.containment == Containment::b_inside_a) result.containment = Containment::a_inside_b;
+    }
+  };
+  scene::SceneClashResult scene_result;
   double query_seconds = 0;
   {
     Progress progress("clash query (" + std::to_string(active_threads()) + " threads)");
-    result = clash(pa.model, pb.model, request);
+    scene_result = scene::clash_scene(two, {test}, engine);
     query_seconds = progress.seconds();
   }
   for (const std::string& w : result.warnings) warning(w);
@@ -171,10 +255,15 @@ int run_clash(const ClashOptions& o, const CLI::App& command) {
   }
   const int status = verdict_exit_status(result.verdict, fail_on(o.fail_on));
   if (!o.json.empty()) {
-    nlohmann::json j = two_part_report("clash", parts.units, loaded, query_seconds, total.seconds());
+    // One schema for every clash (issue #24, item 7): the scene report of the two bodies, with the
+    // two-part details (inputs, options, the core's result) beside it.
+    scene::ReportContext ctx{.command = "clash", .tool_version = INTERFERE_VERSION, .inputs = {pa.file, pb.file},
+                             .threads = active_threads(), .total_seconds = total.seconds(), .exit_status = status};
+    nlohmann::json j = nlohmann::json::parse(scene::report_json(two, {test}, scene_result, ctx));
+    j.update(two_part_report("clash", parts.units, loaded, query_seconds, total.seconds()));
     j["options"] = {{"test", o.test}, {"broadphase", o.broadphase}, {"builder", o.builder},
                     {"threads", active_threads()}, {"clearance", o.clearance}, {"containment", !o.no_containment},
-                    {"conservative", o.conservative}};
+                    {"conservative", o.conservative}, {"depth", o.depth}};
     j["result"] = clash_result_json(result, o.max_clearance_pairs);
     if (o.conservative)
       j["conservative"] = {{"error_bound_a", bound_a}, {"error_bound_b", bound_b}, {"margin", margin},
@@ -209,10 +298,32 @@ void add_clash_command(CLI::App& app, int& exit_code) {
   c->add_option("--curves", o->curves, "write intersection curves (.obj polylines or .vtk polydata); repeatable")
       ->allow_extra_args(false);  // one file per --curves, so positionals may follow
   c->add_option("--clearance", o->clearance, "also report non-intersecting pairs closer than this distance");
-  c->add_option("--test", o->test, "triangle test: exact (default), moller, gd");
+  c->add_option("MORE", o->more, "further inputs: with one input, or three or more, every input expands to its bodies "
+                                 "(a STEP assembly's instances, an FE model's bodies, a glTF scene's nodes) and all are "
+                                 "checked as one scene");
+  c->add_option("--test", o->test_args,
+                "a clash test, repeatable: \"[NAME:] SEL_A [vs SEL_B] [hard|clearance D|duplicates] [tolerance T]\" "
+                "(selectors id:, name:, path:, tag:, file:, source: with globs; docs/scene.md); the names exact, moller, "
+                "gd select the triangle test of the two-part clash instead")
+      ->allow_extra_args(false);
+  c->add_option("--tests", o->tests_file, "JSON file of clash tests ({\"tests\": [...]}, as in a scene file)");
+  c->add_option("--baseline", o->baseline,
+                "an earlier report: clashes are marked new/active, baseline clashes gone are listed once as resolved, "
+                "and the user's fields (status approved, assignee, comment) are carried by clash id");
+  c->add_option("--csv", o->csv, "write the clash table as CSV");
+  c->add_option("--frames-csv", o->frames_csv, "write the frames table (motion, FE steps) as CSV");
+  c->add_option("--group-by", o->group_by, "group clashes by pair (default), location or none");
+  c->add_option("--group-distance", o->group_distance, "--group-by location: clashes closer than this join one group");
+  c->add_option("--motion", o->motion, "motion file (CSV or JSON): per-frame body poses (docs/scene.md)");
+  c->add_option("--tolerance", o->tolerance,
+                "scene default test: penetration tolerance (clashes whose depth bound is at most this are contacts)");
   c->add_option("--broadphase", o->broadphase, "bvh (default), brute, box");
+  c->add_option("--tri-test", o->test, "triangle test of the two-part clash: exact (default), moller, gd");
   c->add_option("--max-clearance-pairs", o->max_clearance_pairs, "cap on clearance pairs listed in JSON");
   c->add_flag("--no-containment", o->no_containment, "skip the containment test");
+  c->add_flag("--depth", o->depth,
+              "two parts: also measure how deep crossing closed parts reach into each other (a sampled depth and a "
+              "proven bound per clash; always on for scenes)");
   c->add_flag("--conservative", o->conservative,
               "inputs simplified by 'interfere simplify' (or STEP parts): widen the clearance by their stored error "
               "bounds (a STEP part's: its tessellation's linear deflection); a pair within them is a possible clash "

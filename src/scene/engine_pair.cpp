@@ -96,7 +96,8 @@ std::vector<SceneClash> evaluate_pair(const PairContext& c, std::uint32_t a, std
     out.push_back(std::move(s));
     return out;
   }
-  ClashRequest request{.clearance = clearance, .regions = true, .containment = true};
+  ClashRequest request = c.options.request;
+  request.clearance = clearance;
   request.stats = [&](int side) -> const MeshStats& { return side == 0 ? wa.stats() : wb.stats(); };
   const ClashResult r = clash(wa.model(), wb.model(), request);
   if (c.options.on_pair) c.options.on_pair(c.test_index, a, b, r);
@@ -107,7 +108,7 @@ std::vector<SceneClash> evaluate_pair(const PairContext& c, std::uint32_t a, std
   // necessarily: computed here, as the depth needs inside/outside).
   PenetrationDepth depth;
   bool depth_known = false;
-  if (r.cross_pairs > 0 && wa.stats().closed() && wb.stats().closed()) {
+  if (c.options.depth && r.cross_pairs > 0 && wa.stats().closed() && wb.stats().closed()) {
     depth = penetration_depth(wa.model(), wb.model(), r, c.options.depth_bound_splits);
     depth_known = true;
   }
@@ -154,7 +155,7 @@ std::vector<SceneClash> evaluate_pair(const PairContext& c, std::uint32_t a, std
       s.reasons = r.verdict_reasons;
     }
     if (r.cross_pairs > 0 && !depth_known && s.verdict == Verdict::clash)
-      s.reasons.push_back("depth not measured: a body is not closed");
+      s.reasons.push_back(c.options.depth ? "depth not measured: a body is not closed" : "depth not measured (not requested)");
     s.cross_pairs = g.cross_pairs, s.touch_pairs = g.touch_pairs;
     s.curve_length = g.curve_length;
     s.depth = depth.depth, s.depth_bound = depth.depth_bound;

@@ -100,6 +100,12 @@ struct FrameRow {
 enum class GroupBy : std::uint8_t { none, pair, location };
 
 struct SceneClashOptions {
+  /// The exact core's settings (query/clash.h): triangle test, broad phase, parallel, regions,
+  /// containment. The engine sets the clearance (per test and pair) and the statistics source.
+  ClashRequest request;
+  /// Measure the depth of crossing closed bodies (query/depth.h; SceneClash::depth, depth_bound).
+  /// Off: depths stay 0 and penetration tolerances cannot apply (such clashes stay clashes).
+  bool depth = true;
   /// Splits per direction of a crossing pair for the depth upper bound (query/depth.h); 0: no bound
   /// (penetration tolerances then compare the sampled depth, which is flagged in the clash's reasons).
   std::size_t depth_bound_splits = 5000;
