@@ -223,7 +223,7 @@ def make_block(raw: dict) -> tuple[str, list]:
     L.append(f"Measured {m['date_utc']} on {m.get('cpu_model', '?')}, {m.get('nproc', '?')} logical CPUs "
              f"(interfere on {thr} threads, the peers single-threaded as they are), load average "
              f"{m.get('loadavg_at_start', '?')} at the start; medians of {raw['settings']['repetitions']} "
-             f"repetitions (Google Benchmark rows) and of {wp.get('repetitions', '—')} runs (whole process); wall "
+             f"repetition(s) (Google Benchmark rows) and of {wp.get('repetitions', '—')} runs (whole process); wall "
              f"time. Regenerate with `python3 bench/scene_tables.py`"
              + (" (this run: `--quick`, a smaller scene: the targets are not judged on it)" if raw["settings"].get("quick") else "")
              + ". Timings on this shared 2-core virtual machine vary by ±10–30 % between runs; "
@@ -254,7 +254,7 @@ def make_block(raw: dict) -> tuple[str, list]:
            None if ratio is None else ratio >= TARGET_FCL_RATIO)
     fps = mov.get("frames_per_second") if ok_row(mov) else None
     target(f"{n(mov.get('bodies')) if ok_row(mov) else '—'} moving bodies (random small rigid motions every frame): "
-           f"≥ {TARGET_FPS:g} frames/s", "—" if fps is None else f"{fps:.1f} frames/s",
+           f"≥ {TARGET_FPS:g} frames/s", "—" if fps is None else f"{fps:.3g} frames/s",
            None if fps is None else fps >= TARGET_FPS)
     ip = (wp.get("programs") or {}).get("interfere", {})
     t_proc = ip.get("median_s")
