@@ -51,6 +51,7 @@ struct State {
   std::vector<AabbF> broad_box;                                  // conservative world box
   std::vector<char> stale;                                       // world geometry out of date
   std::vector<char> built;                                       // world model exists
+  std::vector<signed char> sign;                                 // of the pose the world model has
 };
 
 const std::vector<Vec3>& local_positions(const Scene& s, const State& st, std::size_t i) {
@@ -94,15 +95,25 @@ void refresh(const Scene& s, State& st, std::vector<detail::WorldBody>& world, s
     st.built[i] = 0;
   }
   Model& own = w.own;
+  // A mirroring pose turns the winding around: swap two corners so that outward stays outward
+  // (as transformed() does); refits keep the swap in step with the pose's sign.
+  const signed char sign = st.pose[i].determinant_sign() < 0 ? -1 : 1;
   if (!st.built[i]) {
     TriMesh m;
     m.triangles = s.bodies[i].mesh->triangles;
+    if (sign < 0)
+      for (Tri& f : m.triangles) std::swap(f[1], f[2]);
+    st.sign[i] = sign;
     m.positions.resize(local.size());
     for (std::size_t v = 0; v < local.size(); ++v) m.positions[v] = st.pose[i].apply(local[v]);
     own.bvh = build_bvh(m);
     own.mesh = std::move(m);
     st.built[i] = 1;
   } else {
+    if (sign != st.sign[i]) {
+      for (Tri& f : own.mesh.triangles) std::swap(f[1], f[2]);
+      st.sign[i] = sign;
+    }
     for (std::size_t v = 0; v < local.size(); ++v) own.mesh.positions[v] = st.pose[i].apply(local[v]);
     refit_bvh(own.bvh, own.mesh);
   }
@@ -155,7 +166,7 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
 
   State st;
   st.pose.resize(n), st.shape.resize(n), st.local_box.resize(n), st.broad_box.resize(n);
-  st.stale.assign(n, 1), st.built.assign(n, 0);
+  st.stale.assign(n, 1), st.built.assign(n, 0), st.sign.assign(n, 1);
   tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
     st.pose[i] = scene.bodies[i].pose;
     st.local_box[i] = bounds_of(scene.bodies[i].mesh->positions);
@@ -186,6 +197,11 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
   const bool moving = !scene.frames.empty();
   const std::size_t frame_count = moving ? scene.frames.size() : 1;
   std::unordered_map<std::string, std::size_t> by_id;  // clash id -> index in result.clashes
+  struct Track {
+    std::string id, kind;
+    Vec3 where;  // id location in a's frame
+  };
+  std::map<std::tuple<std::uint32_t, std::uint32_t, std::uint32_t>, std::vector<Track>> last, next;
   for (std::size_t f = 0; f < frame_count; ++f) {
     auto t_broad = Clock::now();
     std::vector<char> box_dirty(n, f == 0 ? 1 : 0);
@@ -252,10 +268,12 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
     // The exact core on every candidate.
     const auto t_narrow = Clock::now();
     std::vector<std::vector<SceneClash>> found(cands.size());
+    std::vector<std::vector<std::array<Vec3, 2>>> where(cands.size());  // the id locations
     tbb::parallel_for(std::size_t{0}, cands.size(), [&](std::size_t k) {
       const Candidate& c = cands[k];
-      const detail::PairContext ctx{scene, tests[c.test], c.test, options, world, st.pose};
-      found[k] = detail::evaluate_pair(ctx, c.a, c.b, c.clearance);
+      const detail::PairContext ctx{scene, tests[c.test], c.test, options, world, st.pose,
+                                    [&](std::uint32_t i) -> const std::vector<Vec3>& { return local_positions(scene, st, i); }};
+      found[k] = detail::evaluate_pair(ctx, c.a, c.b, c.clearance, where[k]);
     });
     // Ids, then merge into the result.
     FrameRow row;
@@ -264,12 +282,13 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
     for (std::size_t k = 0; k < cands.size(); ++k) {
       std::vector<SceneClash>& list = found[k];
       const Candidate& c = cands[k];
-      const Transform to_local = inverse(st.pose[c.a]);
       std::vector<std::pair<std::string, Vec3>> keys;
-      for (SceneClash& s : list) {
-        const Vec3 local = to_local.apply(s.point);
-        s.id = detail::clash_id(tests[c.test].name, scene.bodies[c.a].id, scene.bodies[c.b].id, local, plans[c.test].grid);
-        keys.push_back({s.id, local});
+      for (std::size_t i = 0; i < list.size(); ++i) {
+        SceneClash& s = list[i];
+        const std::array<Vec3, 2>& local = where[k][i];
+        s.id = detail::clash_id(tests[c.test].name + "\n" + verdict_name(s.verdict), scene.bodies[c.a].id,
+                                scene.bodies[c.b].id, local, plans[c.test].grid);
+        keys.push_back({s.id, local[0]});
       }
       // Clashes of one pair in one grid cell: suffixes by location.
       std::vector<std::size_t> order(list.size());
@@ -283,6 +302,32 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
       for (std::size_t i = 1, run = 1; i < order.size(); ++i) {
         run = keys[order[i]].first == keys[order[i - 1]].first ? run + 1 : 1;
         if (run > 1) list[order[i]].id += "-" + std::to_string(run);
+      }
+      if (moving) {
+        // Continuity over frames: a clash of this pair and kind in the previous frame is the same
+        // clash, moved (a ball passing through a face keeps one id while it crosses), matched by
+        // id first, then by the nearest location in a's frame; it keeps the earlier id.
+        std::vector<Track>& prev = last[{c.test, c.a, c.b}];
+        std::vector<char> used(prev.size(), 0), kept(list.size(), 0);
+        for (std::size_t i = 0; i < list.size(); ++i)
+          for (std::size_t j = 0; j < prev.size(); ++j)
+            if (!used[j] && prev[j].id == list[i].id && prev[j].kind == list[i].kind) used[j] = kept[i] = 1;
+        for (std::size_t i = 0; i < list.size(); ++i) {
+          if (kept[i]) continue;
+          std::size_t best = prev.size();
+          for (std::size_t j = 0; j < prev.size(); ++j)
+            if (!used[j] && prev[j].kind == list[i].kind &&
+                (best == prev.size() || squared_norm(prev[j].where - where[k][i][0]) < squared_norm(prev[best].where - where[k][i][0])))
+              best = j;
+          if (best == prev.size()) continue;
+          bool taken = false;  // (the earlier id is not another clash's of this frame)
+          for (const SceneClash& o : list) taken = taken || o.id == prev[best].id;
+          if (taken) continue;
+          used[best] = 1;
+          list[i].id = prev[best].id;
+        }
+        std::vector<Track>& now = next[{c.test, c.a, c.b}];
+        for (std::size_t i = 0; i < list.size(); ++i) now.push_back({list[i].id, list[i].kind, where[k][i][0]});
       }
       for (SceneClash& s : list) {
         switch (s.verdict) {
@@ -310,6 +355,8 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
       }
     }
     if (moving) result.frames.push_back(row);
+    last = std::move(next);
+    next.clear();
     result.narrow_seconds += since(t_narrow);
     if (options.progress) options.progress(f + 1, frame_count);
   }

@@ -1,6 +1,8 @@
 // Internals of the scene clash engine (src/scene/engine*.cpp; include/interfere/scene/engine.h).
 #pragma once
+#include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <utility>
@@ -38,16 +40,22 @@ struct PairContext {
   const SceneClashOptions& options;
   std::vector<WorldBody>& world;
   const std::vector<Transform>& poses;  ///< current pose per body (the id's local frame)
+  /// The current local positions of a body (its mesh's, or a frame's shape).
+  std::function<const std::vector<Vec3>&(std::uint32_t)> local_positions;
 };
 
 /// The clashes of bodies a and b (Scene::bodies[a].id < [b].id) in one test (engine_pair.cpp):
-/// none when they are clear.
-std::vector<SceneClash> evaluate_pair(const PairContext& c, std::uint32_t a, std::uint32_t b, double clearance);
+/// none when they are clear. `locations` gets, per clash, the locations its id hashes, in a's and
+/// in b's local frame: the middle of the box of its intersection curves; of the common parts of
+/// its touching triangles' boxes; of every witness segment within the clearance; the inner body's
+/// box; a's box.
+std::vector<SceneClash> evaluate_pair(const PairContext& c, std::uint32_t a, std::uint32_t b, double clearance,
+                                      std::vector<std::array<Vec3, 2>>& locations);
 
-/// The id of a clash: test name, body ids and location (world point in a's local frame)
-/// quantised at `grid` (clash_id.cpp).
-std::string clash_id(const std::string& test, const std::string& id_a, const std::string& id_b, const Vec3& local,
-                     double grid);
+/// The id of a clash: test name, body ids and its locations in a's and b's local frames quantised
+/// at `grid` (clash_id.cpp).
+std::string clash_id(const std::string& test, const std::string& id_a, const std::string& id_b,
+                     const std::array<Vec3, 2>& local, double grid);
 std::uint64_t fnv1a(std::uint64_t h, std::string_view bytes);
 
 }  // namespace interfere::scene::detail

@@ -5,6 +5,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -72,8 +73,22 @@ Vec3 curve_point(const std::vector<Polyline>& curves, const Aabb& box) {
 
 }  // namespace
 
-std::vector<SceneClash> evaluate_pair(const PairContext& c, std::uint32_t a, std::uint32_t b, double clearance) {
+std::vector<SceneClash> evaluate_pair(const PairContext& c, std::uint32_t a, std::uint32_t b, double clearance,
+                                      std::vector<std::array<Vec3, 2>>& locations) {
   std::vector<SceneClash> out;
+  locations.clear();
+  // Id locations (engine_internal.h) in a's and in b's local frame, from the clash's own geometry
+  // (curves, touching triangles, witness segments), so that they follow the clash, not the
+  // triangles, and change when it moves on either body.
+  const std::array<std::uint32_t, 2> ab{a, b};
+  const std::array<Transform, 2> to{inverse(c.poses[a]), inverse(c.poses[b])};
+  const auto local_box_center = [&](std::uint32_t body) {
+    Aabb box;
+    for (const Vec3& v : c.local_positions(body)) box.expand(v);
+    std::array<Vec3, 2> out;
+    for (int k = 0; k < 2; ++k) out[k] = body == ab[k] ? box.center() : to[k].apply(c.poses[body].apply(box.center()));
+    return out;
+  };
   WorldBody& wa = c.world[a];
   WorldBody& wb = c.world[b];
   const Body& ba = c.scene.bodies[a];
@@ -94,6 +109,7 @@ std::vector<SceneClash> evaluate_pair(const PairContext& c, std::uint32_t a, std
     s.point = wa.box.center();
     s.reasons.push_back("the same geometry placed twice (within " + short_number(c.test.tolerance) + ")");
     out.push_back(std::move(s));
+    locations.push_back(local_box_center(a));
     return out;
   }
   ClashRequest request = c.options.request;
@@ -133,6 +149,7 @@ std::vector<SceneClash> evaluate_pair(const PairContext& c, std::uint32_t a, std
     s.reasons.push_back("body '" + (a_in ? ba.id : bb.id) + "' (or a component of it) lies inside body '" +
                         (a_in ? bb.id : ba.id) + "'");
     out.push_back(std::move(s));
+    locations.push_back(local_box_center(a_in ? a : b));
     return out;
   }
   for (const ClashRegion& g : r.regions) {
@@ -171,6 +188,27 @@ std::vector<SceneClash> evaluate_pair(const PairContext& c, std::uint32_t a, std
       }
     }
     s.point = g.curves.empty() ? s.box.center() : curve_point(g.curves, s.box);
+    std::array<Vec3, 2> loc;
+    for (int k = 0; k < 2; ++k) {
+      Aabb where;
+      for (const Polyline& l : g.curves)
+        for (const Vec3& p : l.points) where.expand(to[k].apply(p));
+      if (where.empty()) {  // touching only: the common parts of the touching triangles, in this frame
+        const std::vector<Vec3>& own = c.local_positions(ab[k]);
+        const TriMesh& mesh_own = *c.scene.bodies[ab[k]].mesh;
+        const TriMesh& other = (k == 0 ? wb : wa).model().mesh;
+        for (const TrianglePair& p : r.pairs) {
+          if (!std::binary_search(g.triangles_a.begin(), g.triangles_a.end(), p.a)) continue;
+          Aabb t_own, t_other;
+          for (const std::uint32_t v : mesh_own.triangles[k == 0 ? p.a : p.b]) t_own.expand(own[v]);
+          for (const Vec3& v : other.corners(k == 0 ? p.b : p.a)) t_other.expand(to[k].apply(v));
+          if (const Aabb common = intersection(t_own, t_other); !common.empty()) where.expand(common);
+          else where.expand(t_own);  // (rounding of the other's corners: this triangle stands for the contact)
+        }
+      }
+      loc[k] = where.center();
+    }
+    locations.push_back(loc);
     if (c.options.curves) s.curves = g.curves;
     if (c.options.triangles) {
       s.triangles_a = g.triangles_a, s.triangles_b = g.triangles_b;
@@ -186,6 +224,7 @@ std::vector<SceneClash> evaluate_pair(const PairContext& c, std::uint32_t a, std
     s.point = s.box.center();
     s.reasons = r.verdict_reasons;
     out.push_back(std::move(s));
+    locations.push_back(local_box_center(a));
     return out;
   }
   if (!r.clearance.empty()) {
@@ -203,6 +242,13 @@ std::vector<SceneClash> evaluate_pair(const PairContext& c, std::uint32_t a, std
       set_sources(s, ba, bb);
     }
     out.push_back(std::move(s));
+    std::array<Vec3, 2> loc;  // every pair within the clearance (continuous: no tie between witnesses)
+    for (int k = 0; k < 2; ++k) {
+      Aabb where;
+      for (const ClearancePair& p : r.clearance) where.expand(to[k].apply(p.point_a)), where.expand(to[k].apply(p.point_b));
+      loc[k] = where.center();
+    }
+    locations.push_back(loc);
   }
   return out;
 }

@@ -27,11 +27,15 @@ const char* clash_status_name(ClashStatus s);
 /// One clash: a connected clash region of a body pair (its crossing or touching triangle pairs),
 /// a body lying inside the other, a clearance violation, or a duplicate.
 struct SceneClash {
-  /// Stable id: "C" + 16 hex digits of a 64-bit hash of the test name, the two bodies' ids (in
-  /// sorted order) and the clash's location quantised at the test's id grid, in the local frame of
-  /// the body with the smaller id (so the id survives reordering the inputs, moving an unrelated
-  /// body, and moving the pair together); "-2", "-3", ... distinguish clashes of one pair in one
-  /// grid cell (ordered by location).
+  /// Stable id: "C" + 16 hex digits of a 64-bit hash (FNV-1a) of the test name, the verdict (a
+  /// contact that became a clash is a new clash: an approval does not carry over), the two bodies'
+  /// ids (in sorted order) and the clash's location — the middle of the box of its intersection
+  /// curves, of its touching triangles' common parts, of its clearance witnesses, or the inner
+  /// body's box — in the local frames of both bodies, quantised at the test's id grid: unchanged
+  /// when the inputs are reordered, an unrelated body moves, or the pair moves together; changed
+  /// when the clash moves on either body by about a grid cell. "-2", "-3", ... distinguish
+  /// clashes of one pair in one grid cell (ordered by location). With motion, a clash of a pair
+  /// and kind in the previous frame that moved keeps its id (matched by the nearest location).
   std::string id;
   std::string test;            ///< the clash test's name
   std::uint32_t a = 0, b = 0;  ///< body indices; Scene::bodies[a].id < Scene::bodies[b].id
