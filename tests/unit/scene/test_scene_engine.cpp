@@ -109,11 +109,6 @@ Body make_body(const std::string& id, MeshPtr mesh, const Transform& pose,
 // ---------------------------------------------------------------------------------------------
 // Random scenes.
 
-// ENGINE BUG (reported; see MirroredBodiesKeepTheirOutwardSides): bodies with a mirroring pose
-// in exact contact get wrong verdicts. Until fixed, the random scenes' exact contacts use
-// rotations only (their generic random bodies still include mirrorings); set to true to re-enable.
-constexpr bool kMirroredContacts = false;
-
 // `n` bodies: (structured) groups of bodies placed with exact coordinates beyond the random region
 // — a column of boxes in face contact (exact rotations and a mirroring, so the triangulations of
 // the common faces differ), partial face, edge and corner contacts, nested containment (a prism in
@@ -135,7 +130,7 @@ Scene random_scene(std::uint64_t seed, std::size_t n, bool structured = true) {
     const MeshPtr cube = share(make_box({-1, -1, -1}, {1, 1, 1}, 1));
     const MeshPtr cube2 = share(make_box({-1, -1, -1}, {1, 1, 1}, 2));
     const auto exact = [&](double x, double y, double z, bool mirror = false) {
-      const std::vector<Transform>& set = mirror && kMirroredContacts ? mir : rot;
+      const std::vector<Transform>& set = mirror ? mir : rot;
       return with_translation(set[rng() % set.size()], x, y, z);
     };
     const double X = 100;
@@ -536,8 +531,6 @@ TEST(SceneEngine, IdsSurviveMovingUnrelatedBodiesAndMovingTheSceneExactly) {
 }
 
 TEST(SceneEngine, IdsSurviveAGeneralRigidMotionOfTheWholeScene) {
-  GTEST_SKIP() << "engine bug: clash ids change when the clashing pair moves together (see "
-                  "IdSurvivesMovingTheClashingPairTogether); in this scene 6 crossings get new ids";
   // Random bodies only (exact contacts would become crossings or gaps under a general rotation).
   const Scene s = random_scene(42, 120, false);
   const SceneClashResult base = clash_scene(s, {hard_test()}, no_depth());
@@ -606,24 +599,12 @@ TEST(SceneEngine, IdChangesWhenTheClashMovesByMoreThanTheGrid) {
   EXPECT_NE(r3.clashes[0].id, r0.clashes[0].id);
 }
 
-// ENGINE BUG (reported to the integrator; re-enable when fixed): a clash's id is not invariant
-// under moving its pair together, contrary to SceneClash::id. The location hashed is
-// SceneClash::point, chosen in WORLD coordinates (engine_pair.cpp: the curve vertex nearest the
-// middle of the curves' world box; for touching regions and "inside" the middle of a world box),
-// then mapped to the first body's frame. A world box is not carried along by a rotation, so the
-// chosen vertex changes; and where several curve vertices lie (almost) equally near the middle —
-// any symmetric curve, here the rectangle of a bar crossing a block's face — rounding alone picks
-// another one, so even a pure translation of the pair changes the id (the points differ by up to
-// the curve's size, far more than the 1 mm grid). Minimal reproduction: block [0,10]^3 at (0.3,
-// 0.2, 0.1), bar [0,10]x[0,3]x[0,3] at (8.3, 2.2, 2.4): point (10.3, 5.2, 3.0); the pair translated
-// by (100.5, -7.25, 3.125): point - translation = (10.3, 2.8, 5.4), another id. A fix: choose the
-// point in the first body's local frame from a continuous quantity (e.g. the middle of the local
-// box of the curves or contact region, or the curves' length-weighted centroid), not by a
-// nearest-vertex choice.
+// Regression (failed before 6ed7c17): the id hashed SceneClash::point, chosen in world coordinates
+// (the curve vertex nearest the middle of the curves' world box), so a rotation of the pair, or
+// rounding alone between near-tied vertices of a symmetric curve, changed it: block [0,10]^3 at
+// (0.3, 0.2, 0.1), bar [0,10]x[0,3]x[0,3] at (8.3, 2.2, 2.4), point (10.3, 5.2, 3.0); translated by
+// (100.5, -7.25, 3.125): point - translation (10.3, 2.8, 5.4), another id.
 TEST(SceneEngine, IdSurvivesMovingTheClashingPairTogether) {
-  GTEST_SKIP()
-      << "engine bug: clash ids change when the clashing pair moves together (representative point "
-         "chosen in world coordinates by a nearest-vertex choice; see the comment above)";
   const MeshPtr big = share(make_box({0, 0, 0}, {10, 10, 10}));
   const MeshPtr bar = share(make_box({0, 0, 0}, {10, 3, 3}));
   const Transform a0 = translation(0.3, 0.2, 0.1), b0 = translation(8.3, 2.2, 2.4);
@@ -927,19 +908,12 @@ TEST(SceneEngine, SelectionThatSelectsNothingWarns) {
 
 // A mirroring pose turns a mesh's winding inside out unless its triangles are turned too
 // (transformed() does): the touching-overlap test compares the outward sides of common faces.
-// ENGINE BUG (reported to the integrator; re-enable when fixed): src/scene/engine.cpp refresh()
-// builds a body's world mesh as pose.apply(vertex) with the mesh's triangles unchanged, while
-// transformed() (mesh/tri_mesh.h) swaps two corners of every triangle when det R < 0. A mirrored
-// body is then inward-oriented, and the touching-overlap test, which compares the outward sides of
-// coinciding faces, inverts: a unit cube placed twice at the same place, once with the pose
-// diag(-1, 1, 1), is reported as a CONTACT (a missed clash: the solids coincide), and a mirrored
-// cube with another cube stacked on its top face is reported as a CLASH (a face contact). Same for
-// mirrored frame poses and deformed shapes.
+// Regression (failed before 6ed7c17): the engine built a body's world mesh as pose.apply(vertex)
+// with the triangles unchanged, while transformed() swaps two corners when det R < 0: a mirrored
+// body was inward-oriented and the touching-overlap test, which compares the outward sides of
+// coinciding faces, inverted — a cube placed twice, once mirrored, was a CONTACT (a missed clash),
+// a cube stacked on a mirrored cube a CLASH.
 TEST(SceneEngine, MirroredBodiesKeepTheirOutwardSides) {
-  GTEST_SKIP() << "engine bug: mirrored poses leave the world mesh inward-oriented (engine.cpp "
-                  "refresh() does not "
-                  "swap triangle corners for det R < 0 as transformed() does); a coinciding twin "
-                  "is a contact";
   const std::vector<Transform> mir = signed_permutations(-1);
   const MeshPtr cube = share(make_box({-1, -1, -1}, {1, 1, 1}));
   const MeshPtr seat = share(make_box({-0.5, -0.5, -1}, {0.5, 0.5, 0}));
@@ -1005,9 +979,12 @@ TEST(SceneEngine, MotionFramesMatchAPerFrameExhaustiveCheck) {
   Scene s;
   const Transform home = translation(0.37, 0.41, 0.43);
   s.bodies.push_back(make_body("a_block", share(make_box({-1, 0, 0}, {1, 4, 4})), home));
-  s.bodies.push_back(make_body("b_ball",
-                               share(make_sphere({.target_triangles = 120, .radius = 0.5})),
-                               translation(-2.63, 2.41, 2.43)));
+  // The ball's centre is (2.5, 2.5, 2.5) in its own frame, so that its crossing also stays in one
+  // id cell of the ball's frame (an id may hash the location in either body's frame).
+  const Vec3 centre{2.5, 2.5, 2.5};
+  s.bodies.push_back(make_body(
+      "b_ball", share(make_sphere({.target_triangles = 120, .radius = 0.5, .center = centre})),
+      translation(-2.63 - 2.5, 2.41 - 0.5, 2.43 - 0.5)));
   s.bodies.push_back(
       make_body("c_box", share(make_box({0, 0, 0}, {2, 2, 2})), translation(20.3, 0.2, 0.1)));
   s.bodies.push_back(
@@ -1024,13 +1001,15 @@ TEST(SceneEngine, MotionFramesMatchAPerFrameExhaustiveCheck) {
     Frame fr;
     fr.label = "frame " + std::to_string(f);
     fr.time = 0.5 * f;
-    fr.poses.push_back({1, translation(0.37 + xs[f], 0.41 + 2, 0.43 + 2)});
+    fr.poses.push_back(
+        {1, translation(0.37 + xs[f] - centre.x, 0.41 + 2 - centre.y, 0.43 + 2 - centre.z)});
     if (f == 2) fr.shapes.push_back({4, stretched});
     if (f == 3) fr.shapes.push_back({4, original});
     s.frames.push_back(fr);
   }
   ClashTest t = hard_test();
-  t.id_grid = 5;  // the ball's crossing stays in one cell of the block's frame over frames 1-3
+  // The default id grid (1 mm): the crossing changes cell on the ball as it moves; the engine keeps
+  // a moved clash's id across frames (same pair and kind), so it is one clash over frames 1-3.
   const SceneClashResult r = clash_scene(s, {t});
   const std::vector<OracleFrame> o = oracle_frames(s);
   ASSERT_EQ(r.frames.size(), 5u);
