@@ -41,7 +41,7 @@ int run_scene_clash(const ClashOptions& o, const CLI::App& command, const std::v
   if (!(o.tolerance >= 0) || !std::isfinite(o.tolerance)) throw InputError("--tolerance must be a finite number >= 0");
   if (!(o.group_distance >= 0) || !std::isfinite(o.group_distance)) throw InputError("--group-distance must be a finite number >= 0");
   for (const char* flag : {"--transform-a", "--transform-b", "--units-a", "--units-b", "--pairs", "--region-a", "--region-b",
-                           "--curves", "--conservative", "--broadphase", "--regions-vtu", "--disp", "--disp-a", "--disp-b",
+                           "--curves", "--conservative", "--broadphase", "--regions-vtu", "--disp-a", "--disp-b",
                            "--part-a", "--part-b", "--field-a", "--field-b"})
     if (command.count(flag) > 0)
       throw InputError(std::string(flag) + " belongs to the two-part clash (A B); with a scene, give poses, units and "
@@ -105,7 +105,8 @@ int run_scene_clash(const ClashOptions& o, const CLI::App& command, const std::v
   check_output(o.json, {}, "--json");
   check_output(o.csv, {}, "--csv");
   check_output(o.frames_csv, {}, "--frames-csv");
-  std::vector<NamedPath> in_paths{{"--scene", o.scene}, {"--tests", o.tests_file}, {"--baseline", o.baseline}, {"--motion", o.motion}};
+  std::vector<NamedPath> in_paths{{"--scene", o.scene}, {"--tests", o.tests_file}, {"--baseline", o.baseline}, {"--motion", o.motion},
+                                 {"--disp", o.disp}};
   for (const scene::BodySpec& s : specs) in_paths.push_back({s.where, s.file});
   check_distinct_files(in_paths, {{"--json", o.json}, {"--csv", o.csv}, {"--frames-csv", o.frames_csv}});
   std::string baseline_text;
@@ -114,6 +115,7 @@ int run_scene_clash(const ClashOptions& o, const CLI::App& command, const std::v
 
   SceneInputOptions so{.units = units, .tessellation = o.tessellation};
   so.fem_split = o.split, so.fem_linear_faces = o.linear_faces, so.fem_field = o.field, so.fem_scale = o.scale;
+  so.fem_disp = o.disp;
   SceneInput in = load_scene(specs, so);
   const std::string motion = !o.motion.empty() ? o.motion : file_spec.motion;
   if (!motion.empty()) {

@@ -70,7 +70,7 @@ void adopt(const scene::BodySpec& spec, std::vector<scene::Body>& bodies, bool f
   for (scene::Body& b : bodies) {
     if (filter && !spec.select.empty() && !scene::glob_match(spec.select, b.path) && !scene::glob_match(spec.select, b.name))
       continue;
-    b.id = prefix + "/" + b.id;
+    b.id = prefix + (b.id.starts_with('/') ? "" : "/") + b.id;
     if (spec.pose_given) b.pose = scene::compose(spec.pose, b.pose);
     b.tags.insert(b.tags.end(), spec.tags.begin(), spec.tags.end());
     kept.push_back(std::move(b));
@@ -143,6 +143,7 @@ SceneInput load_scene(const std::vector<scene::BodySpec>& specs, const SceneInpu
       fo.split = o.fem_split, fo.linear_faces = o.fem_linear_faces, fo.unit = unit.unit, fo.working_unit = o.units;
       fo.unit_scale = unit_in_mm(unit.unit, unit.source) / working_mm;
       fo.select = spec.select, fo.displacement_scale = o.fem_scale, fo.field = o.fem_field;
+      fo.displacement_csv = o.fem_disp;
       auto fs = [&] {
         Progress progress("reading " + spec.file);
         return read_fem_scene(spec.file, fo);

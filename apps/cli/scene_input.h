@@ -29,6 +29,7 @@ struct SceneInputOptions {
   std::string fem_split = "auto";
   bool fem_linear_faces = false;
   std::string fem_field;          ///< displacement field of FE inputs (steps become frames)
+  std::string fem_disp;           ///< displacement CSV of the FE input (instead of a field)
   double fem_scale = 1;
 };
 

@@ -161,7 +161,7 @@ namespace interfere {
 
 PenetrationDepth penetration_depth(const Model& a, const Model& b, const ClashResult& r, std::size_t max_splits) {
   PenetrationDepth out;
-  if (r.cross_pairs == 0) return out;
+  if (r.pairs.empty()) return out;  // (crossing, or touching surfaces of overlapping solids)
   std::vector<char> pa(a.mesh.num_triangles(), 0), pb(b.mesh.num_triangles(), 0);
   for (const TrianglePair& q : r.pairs) pa[q.a] = 1, pb[q.b] = 1;
   const std::vector<signed char> sa = detail::untouched_sides(a, b, pa), sb = detail::untouched_sides(b, a, pb);

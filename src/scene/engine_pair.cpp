@@ -124,7 +124,7 @@ std::vector<SceneClash> evaluate_pair(const PairContext& c, std::uint32_t a, std
   // necessarily: computed here, as the depth needs inside/outside).
   PenetrationDepth depth;
   bool depth_known = false;
-  if (c.options.depth && r.cross_pairs > 0 && wa.stats().closed() && wb.stats().closed()) {
+  if (c.options.depth && (r.cross_pairs > 0 || r.touching_overlap) && wa.stats().closed() && wb.stats().closed()) {
     depth = penetration_depth(wa.model(), wb.model(), r, c.options.depth_bound_splits);
     depth_known = true;
   }

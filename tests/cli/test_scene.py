@@ -257,5 +257,110 @@ class SceneClash(unittest.TestCase):
         self.assert_input_error(["--scene", path("ok.json"), "--group-by", "colour"], "--group-by")
 
 
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def hex_block_inp(name, blocks):
+    """An Abaqus input with one C3D8 block per element set: blocks = [(elset, lo, hi, first_id)]."""
+    lines = ["*HEADING", "blocks for the scene test (written by the test)", "*NODE"]
+    elems = []
+    for k, (elset, lo, hi, first) in enumerate(blocks):
+        (x0, y0, z0), (x1, y1, z1) = lo, hi
+        corners = [(x0, y0, z0), (x1, y0, z0), (x1, y1, z0), (x0, y1, z0),
+                   (x0, y0, z1), (x1, y0, z1), (x1, y1, z1), (x0, y1, z1)]
+        base = 100 * (k + 1)
+        for i, p in enumerate(corners):
+            lines.append("%d, %r, %r, %r" % ((base + i + 1,) + p))
+        elems.append((elset, first, [base + i + 1 for i in range(8)]))
+    for elset, eid, nodes in elems:
+        lines.append("*ELEMENT, TYPE=C3D8, ELSET=%s" % elset)
+        lines.append("%d, %s" % (eid, ", ".join(str(n) for n in nodes)))
+    return write_text(name, "\n".join(lines) + "\n")
+
+
+class Sources(unittest.TestCase):
+    """One input that expands to its bodies: an FE model, a glTF scene, a STEP assembly."""
+
+    def test_fe_model_bodies_and_steps(self):
+        inp = hex_block_inp("blocks.inp", [("STEEL", (0, 0, 0), (1, 1, 1), 7),
+                                           ("RUBBER", (1.25, 0, 0), (2.25, 1, 1), 42)])
+        # Step 0: as given (gap 0.25); step 1: RUBBER moved -0.5 in x (0.25 deep into STEEL).
+        rows = ["step,node_id,ux,uy,uz"]
+        for step, dx in ((0, 0.0), (1, -0.5)):
+            for n in range(8):
+                rows.append("%d,%d,0,0,0" % (step, 101 + n))
+                rows.append("%d,%d,%r,0,0" % (step, 201 + n, dx))
+        disp = write_text("blocks_disp.csv", "\n".join(rows) + "\n")
+        code, _, err = run("clash", inp, "--disp", disp, "--json", path("fe.json"), "--frames-csv", path("fe.frames.csv"))
+        self.assertEqual(code, 1, err)
+        r = load_json("fe.json")
+        self.assertEqual(sorted(b["name"].upper() for b in r["bodies"]), ["RUBBER", "STEEL"])  # (Abaqus: any case)
+        self.assertTrue(all(b["source"]["kind"] == "fe_body" and b["source_id_kind"] == "fe_element_face" for b in r["bodies"]))
+        self.assertEqual([f["clashes"] > 0 for f in r["frames"]], [False, True])
+        clash = [c for c in r["clashes"] if c["verdict"] == "clash"]
+        self.assertTrue(clash)
+        for c in clash:
+            self.assertEqual(c["first_frame"], 1)
+            ids = {c["body_a"]["name"].upper(): c["source_ids_a"], c["body_b"]["name"].upper(): c["source_ids_b"]}
+            self.assertEqual(ids, {"STEEL": [7], "RUBBER": [42]})  # the solver's element ids
+            # The deepest surface point: the middle of RUBBER's face x = 0.75, 0.25 from STEEL's
+            # faces x = 1, y = 0 and 1, z = 0 and 1; the samples (vertices, edges) lie on STEEL's faces.
+            self.assertLessEqual(c["depth"], 0.25 + 1e-12)
+            self.assertGreaterEqual(c["depth_bound"], 0.25 - 1e-12)
+            self.assertLessEqual(c["depth_bound"], 0.25 * 1.1 + 1e-12)
+
+    def test_gltf_scene_nodes(self):
+        import base64
+        import struct
+        v, f = box((0, 0, 0), (1, 1, 1))
+        data = b"".join(struct.pack("<3f", *p) for p in v) + b"".join(struct.pack("<3I", *t) for t in f)
+        gltf = {
+            "asset": {"version": "2.0"}, "scene": 0,
+            "scenes": [{"nodes": [0]}],
+            # root moved 2 m in x; child "pin" 0.5 m further (overlaps "block" by 0.5 m); "far" apart.
+            "nodes": [{"name": "rig", "translation": [2, 0, 0], "children": [1, 2, 3]},
+                      {"name": "block", "mesh": 0},
+                      {"name": "pin", "mesh": 0, "translation": [0.5, 0, 0]},
+                      {"name": "far", "mesh": 0, "translation": [0, 0, 5]}],
+            "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "mode": 4}]}],
+            "accessors": [{"bufferView": 0, "componentType": 5126, "count": 8, "type": "VEC3",
+                           "min": [0, 0, 0], "max": [1, 1, 1]},
+                          {"bufferView": 1, "componentType": 5125, "count": 36, "type": "SCALAR"}],
+            "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 96},
+                            {"buffer": 0, "byteOffset": 96, "byteLength": 144}],
+            "buffers": [{"byteLength": len(data),
+                         "uri": "data:application/octet-stream;base64," + base64.b64encode(data).decode()}],
+        }
+        g = write_text("rig.gltf", json.dumps(gltf))
+        code, _, err = run("clash", g, "--json", path("g.json"))
+        self.assertEqual(code, 1, err)
+        r = load_json("g.json")
+        self.assertEqual(sorted(b["path"] for b in r["bodies"]), ["/rig/block", "/rig/far", "/rig/pin"])
+        self.assertEqual(reported(r), {("rig/rig/block", "rig/rig/pin"): "clash"})
+        c = r["clashes"][0]
+        # In mm: block [2000, 3000] in x, pin [2500, 3500]: the curves lie in x [2500, 3000].
+        self.assertGreaterEqual(c["box"]["min"][0], 2500 - 1e-6)
+        self.assertLessEqual(c["box"]["max"][0], 3000 + 1e-6)
+
+    def test_step_assembly_instances(self):
+        step = os.path.join(HERE, "data", "assembly.step")
+        code, out, err = run("clash", step, "--clearance", "15", "--json", path("s.json"))
+        if code == 2 and "OpenCASCADE" in err:
+            self.skipTest("built without OpenCASCADE")
+        self.assertEqual(code, 0, err)
+        r = load_json("s.json")
+        self.assertEqual(sorted(b["name"] for b in r["bodies"]), ["plate", "plate_2", "shaft_1"])
+        self.assertTrue(all(b["source"]["kind"] == "step_instance" for b in r["bodies"]))
+        self.assertTrue(all(b["path"].startswith("/assembly/") for b in r["bodies"]))
+        # data/README.md: plate_2 is the plate turned about z and lifted 20 mm (the plate is 10 mm
+        # thick): 10 mm apart; the shaft 100 mm away.
+        self.assertEqual(len(r["clashes"]), 1)
+        c = r["clashes"][0]
+        self.assertEqual(c["verdict"], "clearance")
+        self.assertAlmostEqual(c["distance"], 10.0, delta=1e-6)
+        self.assertEqual({c["body_a"]["name"], c["body_b"]["name"]}, {"plate", "plate_2"})
+        self.assertEqual(c["source_id_kind_a"], "brep_face")
+
+
 if __name__ == "__main__":
     cc.main()

@@ -20,8 +20,8 @@ struct PenetrationDepth {
   bool bounded = false;
 };
 
-/// Depth of the crossing surfaces of closed parts a and b (r: their clash with crossing pairs; an
-/// empty result for none). Both closed: the side tests use point_in_solid.
+/// Depth of closed parts a and b whose surfaces cross or touch while their solids overlap (r: their
+/// clash; an empty result without surface pairs). Both closed: the side tests use point_in_solid.
 PenetrationDepth penetration_depth(const Model& a, const Model& b, const ClashResult& r, std::size_t max_splits);
 
 namespace detail {

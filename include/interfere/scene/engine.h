@@ -45,7 +45,7 @@ struct SceneClash {
   /// "within_tolerance" (hard clash no deeper than the tolerance), "clearance", "duplicate",
   /// "undecided".
   std::string kind;
-  /// Crossing clashes: how deep the surfaces reach into the solids, a sampled lower bound and a
+  /// Crossing and touching-overlap clashes of closed bodies: how deep the surfaces reach into the solids, a sampled lower bound and a
   /// proven upper bound (query/depth.h), for the body pair (every region of it carries the pair's).
   double depth = 0, depth_bound = 0;
   double distance = 0;  ///< clearance: the smallest distance between the bodies; 0 when they meet
