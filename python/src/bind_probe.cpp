@@ -24,16 +24,6 @@ namespace {
 
 using namespace interfere::probe;
 
-[[noreturn]] void raise_input_error(const Error& e) {
-  py::object type = py::module_::import("interfere._interfere").attr("InputError");
-  py::object exc = type(e.message());
-  exc.attr("file") = e.file.empty() ? py::object(py::none()) : py::object(py::str(e.file));
-  exc.attr("line") = e.line >= 0 ? py::object(py::int_(e.line)) : py::object(py::none());
-  exc.attr("byte") = py::none();
-  exc.attr("reason") = py::str(e.reason);
-  PyErr_SetObject(type.ptr(), exc.ptr());
-  throw py::error_already_set();
-}
 
 Vec3 vec(const py::handle& h, const char* what) {
   const auto s = py::cast<std::vector<double>>(h);

@@ -3,7 +3,14 @@
 #pragma once
 #include <pybind11/pybind11.h>
 
+#include "interfere/core/error.h"
+
 namespace interfere::python {
+/// numpy is importable (decided once; errors.cpp).
+bool have_numpy();
+/// Raises interfere.InputError carrying the error's file, line, byte and reason (errors.cpp).
+[[noreturn]] void raise_input_error(const Error& e);
+
 void bind_probe(pybind11::module_& m);
 void bind_bearing(pybind11::module_& m);
 
