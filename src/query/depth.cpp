@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <array>
-#include <queue>
 
 #include "interfere/query/depth.h"
 #include "interfere/bvh/traverse.h"
 #include "interfere/mesh/validate.h"
+#include "interfere/np/distance.h"
 #include "interfere/np/tri_tri.h"
 #include "interfere/query/distance.h"
 
@@ -100,15 +100,23 @@ double depth_into(const Model& x, const Model& y, const std::vector<char>& paire
 }
 
 // An upper bound of depth_into: the same reach over every point of x's surface that may lie
-// inside y, not samples, by branch and bound on the 1-Lipschitz distance to y's surface: a piece
-// (a triangle of x, or a part of one) is bounded by its corners' largest distance plus its longest
-// edge / sqrt 3 (every point of a triangle lies within that of a corner: the circumradius of an
-// acute triangle, half the longest edge of an obtuse one). Pieces that meet no triangle of y (exact
-// tests, np/tri_tri.h) lie wholly inside or outside it: outside ones are dropped (exact ray parity
-// of a corner; undecided counts as inside), and x's triangles that touch nothing of y count by
-// their connected set, as in depth_into. The piece with the largest bound is split at its edge
-// midpoints until that bound is within 10 % of `lower` (the sampled depth, a lower bound) or
-// `max_splits` splits were made; the largest bound left is the result.
+// inside y, not samples, by branch and bound on the distance f to y's surface. A piece (a triangle
+// of x, or a part of one) is bounded by the smaller of two proven bounds:
+//  - Lipschitz: f is 1-Lipschitz, so f <= its corners' largest f plus the longest edge / sqrt 3
+//    (every point of a triangle lies within that of a corner: the circumradius of an acute
+//    triangle, half the longest edge of an obtuse one);
+//  - convexity: f <= the distance to any one triangle T of y, a convex function of the point
+//    (distance to a convex set), whose largest value over the piece is at a corner; T ranges over
+//    the triangles of y nearest to the piece's corners. Where one face of y is nearest to the whole
+//    piece (a shaft inside a bore, a face sunk into a plate) this bound is the exact reach, so the
+//    piece needs no splitting at all.
+// Pieces that meet no triangle of y (exact tests, np/tri_tri.h) lie wholly inside or outside it:
+// outside ones are dropped (exact ray parity of a corner; undecided counts as inside), and x's
+// triangles that touch nothing of y count by their connected set, as in depth_into. The piece with
+// the largest bound is split at its edge midpoints until that bound is within 10 % of `lower` (the
+// sampled depth, a lower bound) or `max_splits` splits were made; the largest bound left is the
+// result. Each corner's distance and nearest triangle are computed once (shared by the pieces
+// around it; a parent's nearest triangle seeds a midpoint's search, the same exact result).
 double depth_bound(const Model& x, const Model& y, const std::vector<char>& paired,
                    const std::vector<signed char>& side, double lower, std::size_t max_splits) {
   const TriMesh& m = x.mesh;
@@ -122,37 +130,72 @@ double depth_bound(const Model& x, const Model& y, const std::vector<char>& pair
     });
     return meets;
   };
+  struct Corner {
+    Vec3 p;
+    double d;         // distance to y's surface
+    std::uint32_t t;  // a nearest triangle of y
+  };
+  const auto corner = [&](const Vec3& p, std::uint32_t seed) {
+    Corner c{p, 0, seed};
+    c.d = std::sqrt(nearest_triangle_d2(y.mesh, y.bvh, p, &c.t, -1, seed));
+    return c;
+  };
   struct Piece {
     double bound;
-    std::array<Vec3, 3> c;
+    std::array<Corner, 3> c;
     bool inside;  // known to meet nothing of y and to lie inside it (its parts too)
-    bool operator<(const Piece& o) const { return bound < o.bound; }
   };
-  std::priority_queue<Piece> pieces;
+  const auto lower_bound_first = [](const Piece& a, const Piece& b) { return a.bound < b.bound; };
+  std::vector<Piece> heap;
   // A piece of x that may lie inside y, with its bound; dropped when it lies outside.
-  const auto add = [&](const std::array<Vec3, 3>& c, bool inside) {
-    if (!inside && !meets_y(c)) {
-      if (point_in_solid(y, c[0]) == 0) return;  // (1 inside, -1 undecided: kept)
+  const auto add = [&](const std::array<Corner, 3>& c, bool inside) {
+    const std::array<Vec3, 3> p{c[0].p, c[1].p, c[2].p};
+    if (!inside && !meets_y(p)) {
+      if (point_in_solid(y, p[0]) == 0) return;  // (1 inside, -1 undecided: kept)
       inside = true;
     }
-    const double edge = std::max({norm(c[1] - c[0]), norm(c[2] - c[1]), norm(c[0] - c[2])});
-    const double corner = std::max({surface_distance(y, c[0]), surface_distance(y, c[1]), surface_distance(y, c[2])});
-    pieces.push({corner + edge / std::sqrt(3.0), c, inside});
+    const double edge = std::max({norm(p[1] - p[0]), norm(p[2] - p[1]), norm(p[0] - p[2])});
+    double bound = std::max({c[0].d, c[1].d, c[2].d}) + edge / std::sqrt(3.0);
+    for (int k = 0; k < 3; ++k) {
+      if (k > 0 && (c[k].t == c[0].t || (k == 2 && c[2].t == c[1].t))) continue;
+      const std::array<Vec3, 3> t = y.mesh.corners(c[k].t);
+      double far = 0;
+      for (int i = 0; i < 3 && far < bound; ++i)
+        far = std::max(far, c[i].t == c[k].t ? c[i].d : norm(closest_point_on_triangle(p[i], t) - p[i]));
+      bound = std::min(bound, far);
+    }
+    heap.push_back({bound, c, inside});
+    std::push_heap(heap.begin(), heap.end(), lower_bound_first);
   };
-  for (std::uint32_t t = 0; t < nt; ++t)
-    if (paired[t] || side[t] != 0) add(m.corners(t), !paired[t]);  // (undecided: kept)
-  for (std::size_t split = 0; split < max_splits && !pieces.empty() && pieces.top().bound > 1.1 * lower; ++split) {
-    const Piece p = pieces.top();
-    pieces.pop();
-    const auto& c = p.c;
-    const Vec3 a = (c[0] + c[1]) * 0.5, b = (c[1] + c[2]) * 0.5, d = (c[2] + c[0]) * 0.5;
-    add({c[0], a, d}, p.inside);
-    add({a, c[1], b}, p.inside);
-    add({d, b, c[2]}, p.inside);
-    add({a, b, d}, p.inside);
+  std::vector<double> vd(m.num_vertices(), -1);  // corners of x's own triangles, once per vertex
+  std::vector<std::uint32_t> vt(m.num_vertices(), kNoTriangle);
+  for (std::uint32_t t = 0; t < nt; ++t) {
+    if (!paired[t] && side[t] == 0) continue;  // (undecided: kept)
+    std::array<Corner, 3> c;
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t v = m.triangles[t][k];
+      if (vd[v] < 0) {
+        const Corner q = corner(m.positions[v], kNoTriangle);
+        vd[v] = q.d, vt[v] = q.t;
+      }
+      c[k] = {m.positions[v], vd[v], vt[v]};
+    }
+    add(c, !paired[t]);
+  }
+  for (std::size_t split = 0; split < max_splits && !heap.empty() && heap.front().bound > 1.1 * lower; ++split) {
+    std::pop_heap(heap.begin(), heap.end(), lower_bound_first);
+    const Piece q = heap.back();
+    heap.pop_back();
+    const auto& c = q.c;
+    const Corner a = corner((c[0].p + c[1].p) * 0.5, c[0].t), b = corner((c[1].p + c[2].p) * 0.5, c[1].t),
+                 d = corner((c[2].p + c[0].p) * 0.5, c[2].t);
+    add({c[0], a, d}, q.inside);
+    add({a, c[1], b}, q.inside);
+    add({d, b, c[2]}, q.inside);
+    add({a, b, d}, q.inside);
   }
   // (the rounded midpoints stand for the exact ones: a relative 1e-15, far below any bound here)
-  return pieces.empty() ? lower : std::max(lower, pieces.top().bound);
+  return heap.empty() ? lower : std::max(lower, heap.front().bound);
 }
 
 }  // namespace interfere::detail
