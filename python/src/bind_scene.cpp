@@ -36,9 +36,9 @@
 #include "interfere/scene/clash_test.h"
 #include "interfere/scene/engine.h"
 #include "interfere/scene/io.h"
+#include "interfere/scene/load.h"
 #include "interfere/scene/report.h"
 #ifdef INTERFERE_HAS_CAD
-#include "interfere/cad/assembly_scene.h"
 #include "interfere/cad/model.h"
 #endif
 
@@ -195,38 +195,14 @@ struct PyBody {
 using NominalFit = std::function<bool(std::uint32_t, std::uint32_t, const Model&, const Model&,
                                       const ClashResult&, double)>;
 
-/// A STEP assembly read into a scene: its model and sub-scene (bodies as the scene has them, from
-/// index `first`), for the nominal-fit check of its bodies (cad/assembly_scene.h).
-struct StepSource {
-#ifdef INTERFERE_HAS_CAD
-  cad::CadModel model;
-#endif
-  sc::Scene sub;
-  std::size_t first = 0;
-  NominalFit check;
-};
-
 struct PyScene {
   sc::Scene scene;
   std::vector<sc::ClashTest> tests;  ///< from a scene file's "tests"; clash()'s default when set
   std::vector<std::string> files;    ///< the files read (reported as the report's inputs)
-  std::vector<std::shared_ptr<const StepSource>> steps;  ///< STEP assemblies (shared by copies)
+  /// The nominal-fit check of the STEP assemblies read (scene/load.h), and what it refers to.
+  NominalFit nominal_fit;
+  std::shared_ptr<void> keep_alive;
 };
-
-/// The engine's nominal-fit hook over the scene's STEP assemblies (none: unset).
-NominalFit nominal_fit(const std::vector<std::shared_ptr<const StepSource>>& steps) {
-  if (steps.empty()) return {};
-  return [steps](std::uint32_t a, std::uint32_t b, const Model& wa, const Model& wb,
-                 const ClashResult& r, double depth) {
-    for (const auto& st : steps) {
-      const std::size_t n = st->sub.bodies.size();
-      if (a >= st->first && a < st->first + n && b >= st->first && b < st->first + n)
-        return st->check(static_cast<std::uint32_t>(a - st->first),
-                         static_cast<std::uint32_t>(b - st->first), wa, wb, r, depth);
-    }
-    return false;  // bodies of different files share no B-Rep faces
-  };
-}
 
 /// Every posed vertex within the supported coordinate range (issue #23, item 7).
 void check_posed(const sc::Body& b) {
@@ -276,124 +252,6 @@ PyBody body_from_file(const std::string& path, const std::string& id, const std:
   return p;
 }
 
-/// Appends frames of `from` (body indices offset by `offset`) to `scene`, which must have none.
-void take_frames(sc::Scene& scene, std::vector<sc::Frame> from, std::uint32_t offset,
-                 const std::string& file) {
-  if (from.empty()) return;
-  if (!scene.frames.empty())
-    raise_input_error(
-        file,
-        "a second input with motion (steps or frames): a scene's motion comes from one source");
-  for (sc::Frame& f : from) {
-    for (auto& p : f.poses) p.body += offset;
-    for (auto& s : f.shapes) s.body += offset;
-  }
-  scene.frames = std::move(from);
-}
-
-/// The bodies of one scene-file entry (scene/io.h BodySpec), in the scene's unit.
-void load_spec(PyScene& s, const sc::BodySpec& spec) {
-  const std::string ext = lower_ext(spec.file);
-  const std::string& units = s.scene.units;
-  const std::string prefix = spec.id.empty() ? sc::make_body_id(stem(spec.file)) : spec.id;
-  s.files.push_back(spec.file);
-  const auto add_expanded = [&](std::vector<sc::Body> bodies, bool filter) {
-    const std::size_t before = s.scene.bodies.size();
-    for (sc::Body& b : bodies) {
-      if (filter && !spec.select.empty() && !sc::glob_match(spec.select, b.path) &&
-          !sc::glob_match(spec.select, b.name))
-        continue;
-      b.id = prefix + "/" + (b.id.starts_with('/') ? b.id.substr(1) : b.id);
-      if (spec.pose_given) b.pose = sc::compose(spec.pose, b.pose);
-      b.tags.insert(b.tags.end(), spec.tags.begin(), spec.tags.end());
-      add_body(s, std::move(b), units);  // already in the working unit
-    }
-    if (s.scene.bodies.size() == before)
-      raise_input_error(
-          spec.file, spec.where + ": " +
-                         (spec.select.empty() ? std::string("the file has no body")
-                                              : "\"select\" " + spec.select + " selects no body"));
-  };
-  if (ext == ".step" || ext == ".stp") {
-#ifdef INTERFERE_HAS_CAD
-    if (!spec.units.empty())
-      raise_input_error(
-          spec.file, spec.where + ": a STEP file carries its own length unit: give no unit for it");
-    std::optional<Expected<cad::CadModel>> model;
-    {
-      py::gil_scoped_release release;
-      model.emplace(cad::import_step(spec.file));
-    }
-    if (!*model) raise_input_error((*model).error());
-    auto step = std::make_shared<StepSource>();
-    step->model = std::move(model->value());
-    sc::Scene sub = cad::assembly_scene(step->model);
-    for (const std::string& w : sub.warnings) s.scene.warnings.push_back(spec.file + ": " + w);
-    const double scale = 1.0 / mm_per(units, "scene units");  // STEP geometry is in mm
-    for (sc::Body& b : sub.bodies) {
-      b.source.file = spec.file;
-      if (scale == 1) continue;
-      TriMesh m = *b.mesh;
-      for (Vec3& v : m.positions) v = v * scale;
-      b.mesh = std::make_shared<const TriMesh>(std::move(m));
-      b.pose.t = b.pose.t * scale;
-      b.tessellation_error *= scale;
-    }
-    step->first = s.scene.bodies.size();
-    add_expanded(std::move(sub.bodies), true);
-    // The sub-scene holds the bodies as the scene has them (ids, poses), at indices from `first`.
-    step->sub.units = units;
-    step->sub.bodies.assign(s.scene.bodies.begin() + static_cast<std::ptrdiff_t>(step->first),
-                            s.scene.bodies.end());
-    step->check = cad::nominal_fit_check(step->model, step->sub);
-    s.steps.push_back(std::move(step));
-    return;
-#else
-    raise_input_error(spec.file,
-                      spec.where + ": STEP input needs interfere built with OpenCASCADE");
-#endif
-  }
-  if (ext == ".glb" || ext == ".gltf") {
-    const double scale = mm_per(spec.units.empty() ? "m" : spec.units, spec.where + " units") /
-                         mm_per(units, "scene units");
-    std::optional<Expected<std::vector<sc::Body>>> r;
-    {
-      py::gil_scoped_release release;
-      r.emplace(sc::read_gltf_bodies(spec.file, scale));
-    }
-    if (!*r) raise_input_error(r->error());
-    add_expanded(std::move(r->value()), true);
-    return;
-  }
-  if (fem_format_from_path(spec.file) != FemFormat::automatic) {
-    FemSceneOptions o;
-    o.unit = spec.units.empty() ? "mm" : spec.units;
-    o.unit_scale = mm_per(o.unit, spec.where + " units") / mm_per(units, "scene units");
-    o.working_unit = units;
-    o.select = spec.select;
-    std::optional<Expected<sc::Scene>> r;
-    {
-      py::gil_scoped_release release;
-      r.emplace(read_fem_scene(spec.file, o));
-    }
-    if (!*r) raise_input_error(r->error());
-    sc::Scene fe = std::move(r->value());
-    for (const std::string& w : fe.warnings) s.scene.warnings.push_back(w);
-    const auto offset = static_cast<std::uint32_t>(s.scene.bodies.size());
-    std::vector<sc::Frame> frames = std::move(fe.frames);
-    add_expanded(std::move(fe.bodies),
-                 false);  // read_fem_scene applied `select`: frames index every body
-    take_frames(s.scene, std::move(frames), offset, spec.file);
-    return;
-  }
-  PyBody p = body_from_file(spec.file, spec.id, spec.units);
-  if (!spec.name.empty()) p.body.name = spec.name;
-  p.body.path = spec.path.empty() ? "/" + p.body.name : spec.path;
-  p.body.pose = spec.pose;
-  p.body.tags = spec.tags;
-  add_body(s, std::move(p.body), p.mesh_unit);
-}
-
 PyScene scene_from_file(const std::string& path, const std::string& units_arg) {
   const auto spec = sc::read_scene_file(path);
   if (!spec) raise_input_error(spec.error());
@@ -401,7 +259,19 @@ PyScene scene_from_file(const std::string& path, const std::string& units_arg) {
   s.scene.units = !units_arg.empty() ? units_arg : !spec->units.empty() ? spec->units : "mm";
   mm_per(s.scene.units, "units");
   s.files.push_back(path);
-  for (const sc::BodySpec& b : spec->bodies) load_spec(s, b);
+  {  // every entry through the library's loader (scene/load.h), as the CLI reads them
+    std::optional<Expected<sc::LoadedScene>> r;
+    {
+      py::gil_scoped_release release;
+      r.emplace(sc::load_scene(spec->bodies, sc::LoadOptions{.units = s.scene.units}));
+    }
+    if (!*r) raise_input_error(r->error());
+    sc::LoadedScene& l = r->value();
+    s.scene = std::move(l.scene);
+    s.files.insert(s.files.end(), l.files.begin(), l.files.end());
+    s.nominal_fit = std::move(l.nominal_fit);
+    s.keep_alive = std::move(l.keep_alive);
+  }
   s.tests = spec->tests;
   if (!spec->motion.empty()) {
     if (!s.scene.frames.empty())
@@ -690,7 +560,7 @@ PyReport run_clash(const PyScene& s, py::handle tests_arg, py::handle baseline_a
   o.group_distance = group_distance;
   o.depth = depth;
   o.curves = curves;
-  o.nominal_fit = nominal_fit(s.steps);
+  o.nominal_fit = s.nominal_fit;
   const int threads = threads_arg.is_none() ? 0 : threads_arg.cast<int>();
   d->threads = threads;
   ThreadLimit limit(threads);
