@@ -141,7 +141,10 @@ int run_clash(ClashOptions o, const CLI::App& command) {
   set_threads(o.threads);
 
   Progress total("clash");
-  const LoadedParts loaded = load_parts(parts);
+  // Models without statistics (issue #24, item 8): the engine computes a body's statistics only
+  // where the query needs its closedness (containment, touching overlap, depth); the report's
+  // statistics follow the same rule below.
+  LoadedParts loaded = load_parts(parts, false);
   const LoadedPart& pa = loaded.a;
   const LoadedPart& pb = loaded.b;
   if (o.conservative) {
@@ -178,8 +181,10 @@ int run_clash(ClashOptions o, const CLI::App& command) {
   scene::SceneClashOptions engine{.request = request, .depth = o.depth};
   ClashResult result;
   result.containment = request.containment ? Containment::none : Containment::not_checked;
+  bool core_ran = false;  // the bodies' boxes overlap: the exact core decided the pair
   engine.on_pair = [&](std::size_t, std::uint32_t x, std::uint32_t, const ClashResult& r) {
     result = r;
+    core_ran = true;
     if (x == 1) {  // B's id sorts first: the engine's pair is (B, A); the outputs speak of A and B
       for (TrianglePair& p : result.pairs) std::swap(p.a, p.b);
       std::sort(result.pairs.begin(), result.pairs.end(), [](const TrianglePair& u, const TrianglePair& v) {
@@ -205,6 +210,12 @@ int run_clash(ClashOptions o, const CLI::App& command) {
     Progress progress("clash query (" + std::to_string(active_threads()) + " threads)");
     scene_result = scene::clash_scene(two, {test}, engine);
     query_seconds = progress.seconds();
+  }
+  {
+    // The parts' statistics (and their input warnings) where the verdict depended on closedness:
+    // no crossing pair (containment or touching overlap decided it), or --depth of crossing parts.
+    const bool needed = core_ran && ((request.containment && result.cross_pairs == 0) || (o.depth && result.cross_pairs > 0));
+    if (needed) add_statistics(loaded, true, true);
   }
   for (const std::string& w : result.warnings) warning(w);
 

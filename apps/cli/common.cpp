@@ -1,4 +1,5 @@
 #include "common.h"
+#include "heap.h"
 
 #include "interfere/core/atomic_file.h"
 #include "interfere/core/coordinate_range.h"
@@ -12,6 +13,7 @@
 #include <cerrno>
 #include <cstring>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -62,10 +64,8 @@ LoadedPart read_part(const PartSpec& spec, const std::string& label, const std::
     p.warnings = std::move(m.warnings);
     p.read_seconds = progress.seconds();
   }
-  if (const std::string note = p.transform.non_rigid_note(); !note.empty()) {  // scaled, sheared, mirrored
-    p.warnings.push_back("part " + label + " (" + spec.file + "): " + note);
-    warning(p.warnings.back());
-  }
+  if (const std::string note = p.transform.non_rigid_note(); !note.empty())  // scaled, sheared, mirrored
+    p.warnings.push_back("part " + label + " (" + spec.file + "): " + note);  // (printed by load_parts)
   if (p.scale != 1) {
     // Into the working unit before anything else (issue #23, item 6): queries see one unit.
     for (Vec3& v : mesh.positions) v = v * p.scale;
@@ -106,11 +106,52 @@ void warn_about(LoadedPart& p, const std::string& label) {
 }
 }  // namespace
 
-LoadedParts load_parts(const ResolvedParts& parts) {
+LoadedParts load_parts(const ResolvedParts& parts, bool with_stats) {
   LoadedParts r;
-  TriMesh ma, mb;  // read one after the other, so an input error always names the first bad file
-  r.a = read_part(parts.a, "A", parts.units, parts.tessellation, ma);
-  r.b = read_part(parts.b, "B", parts.units, parts.tessellation, mb);
+  TriMesh ma, mb;
+  {
+    // Both files at once (issue #24, item 8): the readers' serial parts (the file read, the weld's
+    // numbering) overlap. STEP inputs one after the other (OpenCASCADE, its own printed warnings).
+    // Either way an input error names A first when both are bad.
+    const auto t0 = std::chrono::steady_clock::now();
+    {
+      // The heap for inputs this large (heap.h): a binary STL's process peaks at about 2.6 times
+      // its bytes (the file, the weld's scratch, mesh and tree); other formats differ (a hint).
+      std::error_code ec;
+      std::uintmax_t bytes = 0;
+      for (const std::string& f : {parts.a.file, parts.b.file})
+        if (const std::uintmax_t n = std::filesystem::file_size(f, ec); !ec) bytes += n;
+      prepare_heap(static_cast<std::size_t>(3 * bytes));
+    }
+    std::exception_ptr ea, eb;
+    const auto read_a = [&] {
+      try {
+        r.a = read_part(parts.a, "A", parts.units, parts.tessellation, ma);
+      } catch (...) {
+        ea = std::current_exception();
+      }
+    };
+    const auto read_b = [&] {
+      try {
+        r.b = read_part(parts.b, "B", parts.units, parts.tessellation, mb);
+      } catch (...) {
+        eb = std::current_exception();
+      }
+    };
+    if (is_step_file(parts.a.file) || is_step_file(parts.b.file)) {
+      read_a();
+      if (!ea) read_b();
+    } else {
+      tbb::parallel_invoke(read_a, read_b);
+    }
+    if (ea) std::rethrow_exception(ea);
+    if (eb) std::rethrow_exception(eb);
+    r.read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    // The readers' own warnings (STEP) are printed already; the notes of the poses, in order.
+    for (const auto& [p, label] : {std::pair{&r.a, "part A ("}, std::pair{&r.b, "part B ("}})
+      for (const std::string& w : p->warnings)
+        if (w.rfind(label, 0) == 0) warning(w);
+  }
   {
     // Parts of one assembly rarely differ in size by two orders of magnitude; a unit mistake
     // (a glTF in metres beside a mesh in mm given without --units-a/-b) does.
@@ -132,19 +173,30 @@ LoadedParts load_parts(const ResolvedParts& parts) {
     tbb::parallel_invoke(
         [&] {
           const auto t0 = std::chrono::steady_clock::now();
-          r.a.model = make_model(std::move(ma), parts.bvh, true);
+          r.a.model = make_model(std::move(ma), parts.bvh, with_stats);
           r.a.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         },
         [&] {
           const auto t0 = std::chrono::steady_clock::now();
-          r.b.model = make_model(std::move(mb), parts.bvh, true);
+          r.b.model = make_model(std::move(mb), parts.bvh, with_stats);
           r.b.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         });
     r.build_seconds = progress.seconds();
   }
-  warn_about(r.a, "A");
-  warn_about(r.b, "B");
+  if (with_stats) {
+    warn_about(r.a, "A");
+    warn_about(r.b, "B");
+  }
   return r;
+}
+
+void add_statistics(LoadedParts& parts, bool a, bool b) {
+  const auto compute = [](LoadedPart& p, bool wanted) {
+    if (wanted && p.model.stats.triangles == 0 && !p.model.mesh.triangles.empty()) p.model.stats = mesh_stats(p.model.mesh);
+  };
+  tbb::parallel_invoke([&] { compute(parts.a, a); }, [&] { compute(parts.b, b); });
+  if (a) warn_about(parts.a, "A");
+  if (b) warn_about(parts.b, "B");
 }
 
 Transform parse_transform(const std::string& text, const std::string& flag) {
@@ -431,7 +483,13 @@ nlohmann::json stats_json(const MeshStats& s) {
 nlohmann::json part_json(const LoadedPart& p) {
   nlohmann::json j = {{"file", p.file}, {"format", p.format}, {"units", p.unit.unit}, {"units_source", p.unit.source},
                       {"scale_to_working_unit", p.scale}};
-  j.update(stats_json(p.model.stats));
+  if (p.model.stats.triangles > 0 || p.model.mesh.triangles.empty()) {
+    j.update(stats_json(p.model.stats));
+  } else {
+    // Built without statistics, and no query needed them (issue #24, item 8).
+    j.update({{"vertices", p.model.mesh.num_vertices()}, {"triangles", p.model.mesh.num_triangles()},
+              {"statistics", "not needed"}});
+  }
   if (p.format == "step") {
     j["linear_deflection"] = p.linear_deflection;
     if (p.tessellation_deviation >= 0) j["tessellation_deviation"] = p.tessellation_deviation;
@@ -512,7 +570,7 @@ nlohmann::json two_part_report(const std::string& command, const std::string& un
              return w;
            }()},
           {"timings_s",
-           {{"read", a.read_seconds + b.read_seconds},
+           {{"read", parts.read_seconds},
             {"build", parts.build_seconds},
             {"query", query_seconds},
             {"total", total_seconds}}}};

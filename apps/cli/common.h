@@ -123,14 +123,20 @@ struct ResolvedParts;
 
 struct LoadedParts {
   LoadedPart a, b;
+  double read_seconds = 0;   ///< wall time of reading both parts (mesh files are read concurrently)
   double build_seconds = 0;  ///< wall time of building both models (they are built concurrently)
 };
 
 /// Reads, validates, converts to the working unit `parts.units` (each part's unit: part_unit) and
-/// poses (p' = R·(s·p) + t in double) both parts, A first, then builds their models concurrently
-/// and collects the input warnings (also: the parts' sizes differ by more than 100x, a likely unit
-/// mistake).
-LoadedParts load_parts(const ResolvedParts& parts);
+/// poses (p' = R·(s·p) + t in double) both parts (concurrently, mesh files; an input error names A
+/// before B), then builds their models concurrently and collects the input warnings (also: the
+/// parts' sizes differ by more than 100x, a likely unit mistake). `with_stats` false: the models
+/// carry no statistics (MeshStats::triangles == 0; issue #24, item 8: only a query that needs
+/// closedness computes them, see add_statistics) and the statistics' input warnings are not given.
+LoadedParts load_parts(const ResolvedParts& parts, bool with_stats = true);
+/// Computes the statistics of the parts chosen (concurrently) where the models have none, and
+/// adds their input warnings (open, non-manifold edges...), as load_parts with statistics does.
+void add_statistics(LoadedParts& parts, bool a, bool b);
 
 /// Fills part specs from a scene JSON file: {"a": {"file": ..., "transform": [12] | "...", "units":
 /// "m"}, "b": ..., "units": "mm"} (top-level "units": the working unit; a part's: its file's).
