@@ -38,9 +38,6 @@
 #include "interfere/scene/io.h"
 #include "interfere/scene/load.h"
 #include "interfere/scene/report.h"
-#ifdef INTERFERE_HAS_CAD
-#include "interfere/cad/model.h"
-#endif
 
 namespace py = pybind11;
 
