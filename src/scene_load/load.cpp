@@ -1,7 +1,10 @@
 // The scene loader (include/interfere/scene/load.h): one reader per kind of file, one scene.
 #include "interfere/scene/load.h"
 
+#include <tbb/parallel_for.h>
+
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 
 #include "interfere/core/coordinate_range.h"
@@ -123,7 +126,21 @@ Expected<LoadedScene> load_scene(const std::vector<BodySpec>& specs, const LoadO
 #ifdef INTERFERE_HAS_CAD
     auto steps = std::make_shared<std::vector<std::unique_ptr<StepSource>>>();
 #endif
-    for (const BodySpec& spec : specs) {
+    // Mesh files (one body each) are read, welded and converted in parallel first (item 8: many
+    // files); errors are reported in input order below, so the first bad file is always named.
+    std::vector<std::optional<Body>> pre(specs.size());
+    std::vector<std::optional<Error>> pre_error(specs.size());
+    tbb::parallel_for(std::size_t{0}, specs.size(), [&](std::size_t i) {
+      const BodySpec& spec = specs[i];
+      if (is_step(spec.file) || is_fem(spec.file) || is_gltf(spec.file)) return;
+      try {
+        pre[i] = mesh_body(spec, working_mm);
+      } catch (const LoadError& e) {
+        pre_error[i] = e.error;
+      }
+    });
+    for (std::size_t si = 0; si < specs.size(); ++si) {
+      const BodySpec& spec = specs[si];
       out.files.push_back(spec.file);
       if (o.reading) o.reading(spec.file);
       std::vector<Body> bodies;
@@ -188,7 +205,8 @@ Expected<LoadedScene> load_scene(const std::vector<BodySpec>& specs, const LoadO
           for (Body& b : bodies) b.unit = spec.units;
         adopt(spec, bodies, true);
       } else {
-        bodies.push_back(mesh_body(spec, working_mm));
+        if (pre_error[si]) fail(*pre_error[si]);
+        bodies.push_back(std::move(*pre[si]));
       }
       for (Body& b : bodies) {
         if (!b.mesh || b.mesh->num_triangles() == 0) fail(spec.file, "body '" + b.id + "' has no triangles");
