@@ -12,6 +12,7 @@
 #include <map>
 #include <set>
 #include <stdexcept>
+#include <tuple>
 #include <unordered_map>
 
 #include "engine_internal.h"
@@ -269,11 +270,40 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
     const auto t_narrow = Clock::now();
     std::vector<std::vector<SceneClash>> found(cands.size());
     std::vector<std::vector<std::array<Vec3, 2>>> where(cands.size());  // the id locations
-    tbb::parallel_for(std::size_t{0}, cands.size(), [&](std::size_t k) {
+    // One core run per body pair: the candidates of every test on the same pair share it, at the
+    // largest clearance among them, each test deriving its clashes from it (largest clearance
+    // first). Not shared: duplicates mode (no core), a caller that sees each test's core result
+    // (on_pair), and clearances with a non-exact triangle test (the core then switches to exact).
+    std::vector<std::size_t> order(cands.size());
+    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+    const bool share = !options.on_pair;
+    const auto key = [&](std::size_t k) {
       const Candidate& c = cands[k];
-      const detail::PairContext ctx{scene, tests[c.test], c.test, options, world, st.pose,
-                                    [&](std::uint32_t i) -> const std::vector<Vec3>& { return local_positions(scene, st, i); }};
-      found[k] = detail::evaluate_pair(ctx, c.a, c.b, c.clearance, where[k]);
+      const bool dup = tests[c.test].mode == ClashMode::duplicates;
+      const double split = !share || dup ? static_cast<double>(k)
+                           : options.request.test == TriTest::exact ? 0.0 : c.clearance;
+      return std::tuple{c.a, c.b, dup, split};
+    };
+    std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
+      const auto kx = key(x), ky = key(y);
+      if (kx != ky) return kx < ky;
+      return std::tie(cands[y].clearance, cands[x].test) < std::tie(cands[x].clearance, cands[y].test);
+    });
+    std::vector<std::size_t> unit_start;  // runs of `order` with one key
+    for (std::size_t i = 0; i < order.size(); ++i)
+      if (i == 0 || key(order[i]) != key(order[i - 1])) unit_start.push_back(i);
+    unit_start.push_back(order.size());
+    tbb::parallel_for(std::size_t{0}, unit_start.size() - 1, [&](std::size_t u) {
+      detail::PairCore core;
+      for (std::size_t i = unit_start[u]; i < unit_start[u + 1]; ++i) {
+        const std::size_t k = order[i];
+        const Candidate& c = cands[k];
+        const detail::PairContext ctx{scene, tests[c.test], c.test, options, world, st.pose,
+                                      [&](std::uint32_t j) -> const std::vector<Vec3>& { return local_positions(scene, st, j); }};
+        const bool dup = tests[c.test].mode == ClashMode::duplicates;
+        if (!dup && i == unit_start[u]) core = detail::core_pair(ctx, c.a, c.b, c.clearance);
+        found[k] = detail::derive_pair(ctx, c.a, c.b, c.clearance, dup ? nullptr : &core, where[k]);
+      }
     });
     // Ids, then merge into the result.
     FrameRow row;

@@ -10,6 +10,8 @@
 
 #include "interfere/bvh/bvh.h"
 #include "interfere/mesh/validate.h"
+#include "interfere/query/clash.h"
+#include "interfere/query/depth.h"
 #include "interfere/query/model.h"
 #include "interfere/scene/engine.h"
 
@@ -43,6 +45,24 @@ struct PairContext {
   /// The current local positions of a body (its mesh's, or a frame's shape).
   std::function<const std::vector<Vec3>&(std::uint32_t)> local_positions;
 };
+
+/// The exact core's answer for bodies a and b at one clearance (the largest any test of the pair
+/// needs), with the depth of crossing closed bodies: computed once per body pair and frame, and
+/// every test of the pair derives its clashes from it (derive_pair).
+struct PairCore {
+  ClashResult r;
+  double clearance = 0;  ///< the clearance r's pairs are within (narrowed by derive_pair)
+  PenetrationDepth depth;
+  bool depth_known = false;
+};
+PairCore core_pair(const PairContext& c, std::uint32_t a, std::uint32_t b, double clearance);
+/// The clashes of one test from the core's answer at a clearance >= this test's: the clearance
+/// pairs at or beyond `clearance` are dropped (the exact core reports the same crossing, touching
+/// and clearance pairs with the same distances at any larger clearance; its verdict is clearance
+/// only through them), so derive from the largest clearance first. core may be null in duplicates
+/// mode (no core needed).
+std::vector<SceneClash> derive_pair(const PairContext& c, std::uint32_t a, std::uint32_t b, double clearance,
+                                    PairCore* core, std::vector<std::array<Vec3, 2>>& locations);
 
 /// The clashes of bodies a and b (Scene::bodies[a].id < [b].id) in one test (engine_pair.cpp):
 /// none when they are clear. `locations` gets, per clash, the locations its id hashes, in a's and

@@ -73,8 +73,43 @@ Vec3 curve_point(const std::vector<Polyline>& curves, const Aabb& box) {
 
 }  // namespace
 
+PairCore core_pair(const PairContext& c, std::uint32_t a, std::uint32_t b, double clearance) {
+  PairCore core;
+  WorldBody& wa = c.world[a];
+  WorldBody& wb = c.world[b];
+  ClashRequest request = c.options.request;
+  request.clearance = clearance;
+  request.stats = [&](int side) -> const MeshStats& { return side == 0 ? wa.stats() : wb.stats(); };
+  core.r = clash(wa.model(), wb.model(), request);
+  core.clearance = clearance;
+  if (c.options.on_pair) c.options.on_pair(c.test_index, a, b, core.r);
+  // Depth of crossing (or touching but overlapping) closed solids (the statistics are computed
+  // here when not yet known: the depth needs inside/outside).
+  if (c.options.depth && (core.r.cross_pairs > 0 || core.r.touching_overlap) && wa.stats().closed() &&
+      wb.stats().closed()) {
+    core.depth = penetration_depth(wa.model(), wb.model(), core.r, c.options.depth_bound_splits);
+    core.depth_known = true;
+  }
+  return core;
+}
+
+void narrow_clearance(PairCore& core, double clearance) {
+  if (clearance >= core.clearance) return;
+  ClashResult& r = core.r;
+  std::erase_if(r.clearance, [&](const ClearancePair& p) { return !(p.distance < clearance); });
+  if (r.verdict == Verdict::clearance && r.clearance.empty()) r.verdict = Verdict::clear;
+  core.clearance = clearance;
+}
+
 std::vector<SceneClash> evaluate_pair(const PairContext& c, std::uint32_t a, std::uint32_t b, double clearance,
                                       std::vector<std::array<Vec3, 2>>& locations) {
+  if (c.test.mode == ClashMode::duplicates) return derive_pair(c, a, b, clearance, nullptr, locations);
+  PairCore core = core_pair(c, a, b, clearance);
+  return derive_pair(c, a, b, clearance, &core, locations);
+}
+
+std::vector<SceneClash> derive_pair(const PairContext& c, std::uint32_t a, std::uint32_t b, double clearance,
+                                    PairCore* core, std::vector<std::array<Vec3, 2>>& locations) {
   std::vector<SceneClash> out;
   locations.clear();
   // Id locations (engine_internal.h) in a's and in b's local frame, from the clash's own geometry
@@ -112,22 +147,13 @@ std::vector<SceneClash> evaluate_pair(const PairContext& c, std::uint32_t a, std
     locations.push_back(local_box_center(a));
     return out;
   }
-  ClashRequest request = c.options.request;
-  request.clearance = clearance;
-  request.stats = [&](int side) -> const MeshStats& { return side == 0 ? wa.stats() : wb.stats(); };
-  const ClashResult r = clash(wa.model(), wb.model(), request);
-  if (c.options.on_pair) c.options.on_pair(c.test_index, a, b, r);
+  narrow_clearance(*core, clearance);
+  const ClashResult& r = core->r;
   if (r.verdict == Verdict::clear) return out;
 
   const bool inside = r.containment == Containment::a_inside_b || r.containment == Containment::b_inside_a;
-  // Depth of crossing closed solids (both statistics are known once crossing pairs exist? not
-  // necessarily: computed here, as the depth needs inside/outside).
-  PenetrationDepth depth;
-  bool depth_known = false;
-  if (c.options.depth && (r.cross_pairs > 0 || r.touching_overlap) && wa.stats().closed() && wb.stats().closed()) {
-    depth = penetration_depth(wa.model(), wb.model(), r, c.options.depth_bound_splits);
-    depth_known = true;
-  }
+  const PenetrationDepth& depth = core->depth;
+  const bool depth_known = core->depth_known;
   bool nominal = false;
   if (r.cross_pairs > 0 && !inside && !r.touching_overlap && c.test.nominal_fits_are_contacts && c.options.nominal_fit)
     nominal = c.options.nominal_fit(a, b, wa.model(), wb.model(), r, depth.depth);
