@@ -80,7 +80,25 @@ PairCore core_pair(const PairContext& c, std::uint32_t a, std::uint32_t b, doubl
   ClashRequest request = c.options.request;
   request.clearance = clearance;
   request.stats = [&](int side) -> const MeshStats& { return side == 0 ? wa.stats() : wb.stats(); };
+  // Clearance pairs matter only for bodies whose surfaces do not meet and neither lies inside the
+  // other (verdict clear without them; derive_pair reports regions, containment or undecided
+  // first). So the core first runs without clearance, and again with it only for such a pair: a
+  // seated contact's many near triangle pairs get no distance computed. The second run is the run
+  // at that clearance (the same surface pairs; containment and warnings are the first run's, as
+  // its tests do not depend on the clearance). Not where a caller sees the core result (on_pair),
+  // nor without regions (then clearance pairs are reported beside surface pairs), nor with a
+  // non-exact triangle test (the core switches to the exact one for a clearance).
+  const bool two_step = clearance > 0 && !c.options.on_pair && request.regions && request.test == TriTest::exact;
+  if (two_step) request.clearance = 0;
   core.r = clash(wa.model(), wb.model(), request);
+  if (two_step && core.r.verdict == Verdict::clear) {
+    request.clearance = clearance;
+    request.containment = false;
+    ClashResult second = clash(wa.model(), wb.model(), request);
+    second.containment = core.r.containment;
+    second.warnings = std::move(core.r.warnings);
+    core.r = std::move(second);
+  }
   core.clearance = clearance;
   if (c.options.on_pair) c.options.on_pair(c.test_index, a, b, core.r);
   // Depth of crossing (or touching but overlapping) closed solids (the statistics are computed
@@ -178,7 +196,22 @@ std::vector<SceneClash> derive_pair(const PairContext& c, std::uint32_t a, std::
     locations.push_back(local_box_center(a_in ? a : b));
     return out;
   }
-  for (const ClashRegion& g : r.regions) {
+  // The pairs of each region (those whose triangle of a is one of the region's), in pair order:
+  // built once, not searched per region.
+  std::vector<std::vector<std::uint32_t>> region_pairs(r.regions.size());
+  {
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> owner;  // (triangle of a, region)
+    for (std::uint32_t k = 0; k < r.regions.size(); ++k)
+      for (const std::uint32_t t : r.regions[k].triangles_a) owner.emplace_back(t, k);
+    std::sort(owner.begin(), owner.end());
+    for (std::uint32_t i = 0; i < r.pairs.size(); ++i) {
+      auto it = std::lower_bound(owner.begin(), owner.end(), std::pair{r.pairs[i].a, std::uint32_t{0}});
+      for (; it != owner.end() && it->first == r.pairs[i].a; ++it)
+        if (region_pairs[it->second].empty() || region_pairs[it->second].back() != i) region_pairs[it->second].push_back(i);
+    }
+  }
+  for (std::size_t gi = 0; gi < r.regions.size(); ++gi) {
+    const ClashRegion& g = r.regions[gi];
     SceneClash s = base(Verdict::contact, "touch");
     if (g.cross_pairs > 0) {
       if (nominal) {
@@ -207,8 +240,8 @@ std::vector<SceneClash> derive_pair(const PairContext& c, std::uint32_t a, std::
     for (const Polyline& l : g.curves)
       for (const Vec3& p : l.points) s.box.expand(p);
     if (g.cross_pairs == 0 || s.box.empty()) {
-      for (const TrianglePair& p : r.pairs) {
-        if (!std::binary_search(g.triangles_a.begin(), g.triangles_a.end(), p.a)) continue;
+      for (const std::uint32_t i : region_pairs[gi]) {
+        const TrianglePair& p = r.pairs[i];
         const Aabb common = intersection(wa.model().mesh.triangle_box(p.a), wb.model().mesh.triangle_box(p.b));
         if (!common.empty()) s.box.expand(common);
       }
@@ -223,8 +256,8 @@ std::vector<SceneClash> derive_pair(const PairContext& c, std::uint32_t a, std::
         const std::vector<Vec3>& own = c.local_positions(ab[k]);
         const TriMesh& mesh_own = *c.scene.bodies[ab[k]].mesh;
         const TriMesh& other = (k == 0 ? wb : wa).model().mesh;
-        for (const TrianglePair& p : r.pairs) {
-          if (!std::binary_search(g.triangles_a.begin(), g.triangles_a.end(), p.a)) continue;
+        for (const std::uint32_t i : region_pairs[gi]) {
+          const TrianglePair& p = r.pairs[i];
           Aabb t_own, t_other;
           for (const std::uint32_t v : mesh_own.triangles[k == 0 ? p.a : p.b]) t_own.expand(own[v]);
           for (const Vec3& v : other.corners(k == 0 ? p.b : p.a)) t_other.expand(to[k].apply(v));
