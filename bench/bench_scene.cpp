@@ -11,10 +11,15 @@
 //       (gt_clash_missing/extra: clashing pairs; gt_contact_missing/extra; gt_gap_missing/extra for
 //       the clearance test).
 //   Scene/moving/interfere/hard/threads:<t>
-//       1,000 bodies of the same assembly, every body given a fresh random small rigid motion in
-//       every frame (generate_moving_scene): clash_scene over all frames; frames_per_second. Three
-//       frames by default (each frame turns the designed contacts into shallow clashes; see
-//       docs/scene-benchmarks.md for what that costs).
+//       1,000 moving bodies (generate_moving_scene, MovingLayout::cell): the assembly's parts
+//       standing apart on a grid with clearances, 2 % of them in near pairs that touch or clash in
+//       some frames, every body given a fresh random small rigid motion in every frame;
+//       clash_scene over all frames (100 by default); frames_per_second, clashes and contacts per
+//       frame, near_pairs (by construction the only pairs that can meet).
+//   Scene/moving_assembly/interfere/hard/threads:<t>
+//       the first version of the moving benchmark (MovingLayout::assembly): 1,000 bodies of the
+//       bolted assembly all moving, so that its designed face contacts become shallow clashes in
+//       every frame (one frame by default: about 35 s; docs/scene-benchmarks.md).
 // Peak memory of the 10^7-triangle scene is measured in its own process (bench/scene_run.cpp).
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
@@ -153,19 +158,40 @@ void bm_assembly(benchmark::State& state, bool with_clearance, int threads) {
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * fx.scene.bodies.size()));
 }
 
-const scene::Scene& moving_scene() {
-  static const scene::Scene s = [] {
+struct MovingFixture {
+  scene::Scene scene;
+  std::vector<std::pair<std::string, std::string>> near_pairs;
+};
+
+const MovingFixture& moving_scene(scene::MovingLayout layout) {
+  static const MovingFixture cell = [] {
     scene::MovingSceneGenOptions o;
     o.bodies = env_size("INTERFERE_BENCH_MOVING_BODIES", 1000);
-    o.frames = env_size("INTERFERE_BENCH_MOVING_FRAMES", 3);
+    o.frames = env_size("INTERFERE_BENCH_MOVING_FRAMES", 100);
     o.segments = static_cast<int>(env_size("INTERFERE_BENCH_SCENE_SEGMENTS", 48));
-    return scene::generate_moving_scene(o);
+    // (analysis: INTERFERE_BENCH_MOVING_NEAR_GAP=1 keeps every stack apart: no clash at all)
+    o.near_gap = std::stod(env_string("INTERFERE_BENCH_MOVING_NEAR_GAP", "0.06"));
+    MovingFixture f;
+    f.scene = scene::generate_moving_scene(o, &f.near_pairs);
+    return f;
   }();
-  return s;
+  if (layout == scene::MovingLayout::cell) return cell;
+  static const MovingFixture assembly = [] {
+    scene::MovingSceneGenOptions o;
+    o.layout = scene::MovingLayout::assembly;
+    o.bodies = env_size("INTERFERE_BENCH_MOVING_BODIES", 1000);
+    o.frames = env_size("INTERFERE_BENCH_MOVING_ASSEMBLY_FRAMES", 1);
+    o.segments = static_cast<int>(env_size("INTERFERE_BENCH_SCENE_SEGMENTS", 48));
+    MovingFixture f;
+    f.scene = scene::generate_moving_scene(o);
+    return f;
+  }();
+  return assembly;
 }
 
-void bm_moving(benchmark::State& state, int threads) {
-  const scene::Scene& s = moving_scene();
+void bm_moving(benchmark::State& state, int threads, scene::MovingLayout layout) {
+  const MovingFixture& fx = moving_scene(layout);
+  const scene::Scene& s = fx.scene;
   const std::vector<scene::ClashTest> tests = assembly_tests(false);
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                             static_cast<std::size_t>(threads));
@@ -196,6 +222,12 @@ void bm_moving(benchmark::State& state, int threads) {
       r.frames.empty() ? 0 : static_cast<double>(clashes) / r.frames.size();
   state.counters["contacts_per_frame"] =
       r.frames.empty() ? 0 : static_cast<double>(contacts) / r.frames.size();
+  state.counters["near_pairs"] = static_cast<double>(fx.near_pairs.size());
+  std::size_t frames_with_clash = 0;
+  for (const scene::FrameRow& f : r.frames) frames_with_clash += f.clashes > 0;
+  state.counters["frames_with_clash"] = static_cast<double>(frames_with_clash);
+  state.counters["candidates_per_frame"] =
+      r.frames.empty() ? 0 : static_cast<double>(r.candidate_pairs) / r.frames.size();
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * r.frames.size()));
 }
 
@@ -211,11 +243,14 @@ void bm_moving(benchmark::State& state, int threads) {
           ->UseRealTime()
           ->Iterations(1);
     }
-    benchmark::RegisterBenchmark(("Scene/moving/interfere/hard" + ts).c_str(),
-                                 [th](benchmark::State& s) { bm_moving(s, th); })
-        ->Unit(benchmark::kMillisecond)
-        ->UseRealTime()
-        ->Iterations(1);
+    for (const auto& [name, layout] : {std::pair{"Scene/moving/interfere/hard", scene::MovingLayout::cell},
+                                       std::pair{"Scene/moving_assembly/interfere/hard", scene::MovingLayout::assembly}}) {
+      benchmark::RegisterBenchmark((name + ts).c_str(),
+                                   [th, layout](benchmark::State& s) { bm_moving(s, th, layout); })
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime()
+          ->Iterations(1);
+    }
   }
   return true;
 }();

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <stdexcept>
@@ -394,11 +395,131 @@ Scene generate_assembly(const AssemblyGenOptions& o, AssemblyInfo* info) {
   return scene;
 }
 
-Scene generate_moving_scene(const MovingSceneGenOptions& o) {
-  AssemblyGenOptions a;
-  a.bodies = o.bodies, a.segments = o.segments, a.clashes = o.clashes, a.gaps = o.gaps,
-  a.seed = o.seed;
-  Scene scene = generate_assembly(a);
+namespace {
+
+// A random small rigid motion about `centre` (local coordinates): a rotation by an angle up to
+// max_angle about a random unit axis (rejection from the cube; Rodrigues' formula), then a
+// translation up to max_translation per axis.
+Transform small_motion(Rng& rng, const Vec3& centre, double max_angle, double max_translation) {
+  Vec3 axis;
+  double len2 = 0;
+  do {
+    axis = {rng.symmetric(), rng.symmetric(), rng.symmetric()};
+    len2 = squared_norm(axis);
+  } while (len2 > 1 || len2 < 1e-6);
+  axis = axis / std::sqrt(len2);
+  const double angle = max_angle * rng.symmetric();
+  const double co = std::cos(angle), si = std::sin(angle), v = 1 - co;
+  Transform r;
+  const double x = axis.x, y = axis.y, z = axis.z;
+  r.r = {{{co + x * x * v, x * y * v - z * si, x * z * v + y * si},
+          {y * x * v + z * si, co + y * y * v, y * z * v - x * si},
+          {z * x * v - y * si, z * y * v + x * si, co + z * z * v}}};
+  const Vec3 shift{max_translation * rng.symmetric(), max_translation * rng.symmetric(),
+                   max_translation * rng.symmetric()};
+  // translate(centre + shift) ∘ R ∘ translate(-centre)
+  return compose(translation(centre + shift), compose(r, translation(Vec3{} - centre)));
+}
+
+// MovingLayout::cell (generate.h): one body per grid cell, near pairs sharing a cell.
+Scene cell_scene(const MovingSceneGenOptions& o,
+                 std::vector<std::pair<std::string, std::string>>& near) {
+  const std::vector<AssemblyPart> parts = assembly_parts(JointDims{}, o.segments);
+  // Part order of assembly_parts: find by type.
+  auto part = [&](const char* type) -> const AssemblyPart& {
+    for (const AssemblyPart& p : parts)
+      if (p.type == type) return p;
+    throw std::logic_error("assembly part missing");
+  };
+  const char* cycle[5] = {"plate", "bolt", "washer", "nut", "bracket"};
+  const char* on_plate[4] = {"plate", "washer", "nut", "bracket"};
+  double footprint = 0;  // the largest x or y extent of a part (the plate's width)
+  for (const AssemblyPart& p : parts) {
+    const Aabb b = p.mesh->bounds();
+    footprint = std::max({footprint, b.hi.x - b.lo.x, b.hi.y - b.lo.y});
+  }
+  const double pitch = footprint + o.clearance;
+  const std::size_t pairs =
+      std::min(o.bodies / 2, static_cast<std::size_t>(std::llround(o.near_fraction * static_cast<double>(o.bodies) / 2)));
+  const std::size_t cells = o.bodies - pairs;
+  const auto side = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(cells))));
+  // Which cells hold a near pair: a seeded permutation.
+  std::vector<std::size_t> order(cells);
+  for (std::size_t i = 0; i < cells; ++i) order[i] = i;
+  Rng rng{o.seed};
+  for (std::size_t i = cells; i > 1; --i) std::swap(order[i - 1], order[rng.below(i)]);
+  std::vector<int> pair_kind(cells, -1);  // 0-3: a plate, washer, nut or bracket on a plate; 4: a fit
+  for (std::size_t r = 0; r < pairs; ++r) pair_kind[order[r]] = r % 2 == 0 ? 4 : static_cast<int>((r / 2) % 4);
+  // The bolt's head: its lowest vertex off the shaft (the bolt's axis is z, at x = y = 0).
+  const JointDims dims;
+  double head_bottom = std::numeric_limits<double>::infinity();
+  for (const Vec3& v : part("bolt").mesh->positions)
+    if (v.x * v.x + v.y * v.y > (dims.shaft_radius + 0.5) * (dims.shaft_radius + 0.5)) head_bottom = std::min(head_bottom, v.z);
+
+  Scene scene;
+  scene.units = "mm";
+  std::map<std::string, std::size_t> counts;
+  char detail[64];
+  std::snprintf(detail, sizeof detail, "segments=%d", o.segments);
+  auto add = [&](const AssemblyPart& p, const Vec3& at, std::size_t cell) {
+    Body b;
+    b.id = numbered(p.type.c_str(), counts[p.type]++);
+    b.name = b.id;
+    b.path = "/cell/" + numbered("cell", cell) + "/" + b.id;
+    b.source.kind = SourceKind::primitive;
+    b.source.detail = p.type + " " + detail;
+    b.mesh = p.mesh;
+    b.pose = translation(at);
+    b.tags = {p.type};
+    scene.bodies.push_back(std::move(b));
+    return scene.bodies.back().id;
+  };
+  for (std::size_t c = 0; c < cells; ++c) {
+    const Vec3 centre{(static_cast<double>(c % side) + 0.5) * pitch, (static_cast<double>(c / side) + 0.5) * pitch, 0};
+    // A part standing on z = 0, its box centred on the cell's centre in x and y.
+    auto standing = [&](const AssemblyPart& p, double z) {
+      const Aabb b = p.mesh->bounds();
+      return Vec3{centre.x - 0.5 * (b.lo.x + b.hi.x), centre.y - 0.5 * (b.lo.y + b.hi.y), z - b.lo.z};
+    };
+    if (pair_kind[c] < 0) {
+      const AssemblyPart& p = part(cycle[c % 5]);
+      add(p, standing(p, 0), c);
+    } else {
+      const AssemblyPart& plate = part("plate");
+      const Aabb pb = plate.mesh->bounds();
+      const std::string a = add(plate, standing(plate, 0), c);
+      std::string b;
+      if (pair_kind[c] == 4) {  // a bolt through the plate's hole, its head fit_gap above the plate
+        const AssemblyPart& bolt = part("bolt");
+        const Vec3 at = standing(bolt, 0);
+        b = add(bolt, Vec3{at.x, at.y, pb.hi.z - pb.lo.z + o.fit_gap - head_bottom}, c);
+      } else {
+        const AssemblyPart& top = part(on_plate[pair_kind[c]]);
+        b = add(top, standing(top, pb.hi.z - pb.lo.z + o.near_gap), c);
+      }
+      near.push_back(std::minmax(a, b));
+    }
+  }
+  std::sort(near.begin(), near.end());
+  return scene;
+}
+
+}  // namespace
+
+Scene generate_moving_scene(const MovingSceneGenOptions& o,
+                            std::vector<std::pair<std::string, std::string>>* near_pairs) {
+  std::vector<std::pair<std::string, std::string>> local;
+  std::vector<std::pair<std::string, std::string>>& near = near_pairs ? *near_pairs : local;
+  near.clear();
+  Scene scene;
+  if (o.layout == MovingLayout::cell) {
+    scene = cell_scene(o, near);
+  } else {
+    AssemblyGenOptions a;
+    a.bodies = o.bodies, a.segments = o.segments, a.clashes = o.clashes, a.gaps = o.gaps,
+    a.seed = o.seed;
+    scene = generate_assembly(a);
+  }
   Rng rng{o.seed ^ 0x6D6F76696E67ull};  // "moving"
   const double max_angle = o.max_rotation_deg * std::numbers::pi / 180;
   std::map<const TriMesh*, Vec3> centres;
@@ -412,27 +533,8 @@ Scene generate_moving_scene(const MovingSceneGenOptions& o) {
     fr.poses.reserve(scene.bodies.size());
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
       const Body& b = scene.bodies[i];
-      // A random unit axis (rejection from the cube), an angle, Rodrigues' formula.
-      Vec3 axis;
-      double len2 = 0;
-      do {
-        axis = {rng.symmetric(), rng.symmetric(), rng.symmetric()};
-        len2 = squared_norm(axis);
-      } while (len2 > 1 || len2 < 1e-6);
-      axis = axis / std::sqrt(len2);
-      const double angle = max_angle * rng.symmetric();
-      const double co = std::cos(angle), si = std::sin(angle), v = 1 - co;
-      Transform r;
-      const double x = axis.x, y = axis.y, z = axis.z;
-      r.r = {{{co + x * x * v, x * y * v - z * si, x * z * v + y * si},
-              {y * x * v + z * si, co + y * y * v, y * z * v - x * si},
-              {z * x * v - y * si, z * y * v + x * si, co + z * z * v}}};
-      const Vec3 centre = centres[b.mesh.get()];
-      const Vec3 shift{o.max_translation * rng.symmetric(), o.max_translation * rng.symmetric(),
-                       o.max_translation * rng.symmetric()};
-      // local -> world: base pose ∘ (translate(centre + shift) ∘ R ∘ translate(-centre)).
-      const Transform about =
-          compose(translation(centre + shift), compose(r, translation(Vec3{} - centre)));
+      // local -> world: home pose ∘ the frame's motion about the part's centre.
+      const Transform about = small_motion(rng, centres[b.mesh.get()], max_angle, o.max_translation);
       fr.poses.push_back({static_cast<std::uint32_t>(i), compose(b.pose, about)});
     }
   }

@@ -146,31 +146,107 @@ TEST(SceneGenerate, DefaultAssemblyHasAboutTenMillionTriangles) {
   EXPECT_EQ(info.gap_pairs.size(), 100u);
 }
 
-TEST(SceneGenerate, MovingSceneMovesEveryBodyRigidlyEveryFrame) {
-  const Scene s = generate_moving_scene(140, 5, 7);
-  ASSERT_EQ(s.bodies.size(), 140u);
-  ASSERT_EQ(s.frames.size(), 5u);
+// Every pose of every frame rigid and small: every corner of the local box moves by at most the
+// translation (per axis) plus the rotation about the part's centre (angle x the box's diagonal).
+void expect_small_rigid_motions(const Scene& s, const MovingSceneGenOptions& o) {
   EXPECT_NO_THROW(s.validate());
+  ASSERT_EQ(s.frames.size(), o.frames);
   for (const Frame& f : s.frames) {
-    ASSERT_EQ(f.poses.size(), 140u);
+    ASSERT_EQ(f.poses.size(), s.bodies.size());
     for (const Frame::Pose& p : f.poses) {
       EXPECT_TRUE(p.pose.is_rigid());
-      // Small: every vertex of the local box moves by at most translation + rotation about the
-      // centre.
       const Body& b = s.bodies[p.body];
       const Aabb box = b.mesh->bounds();
       for (int c = 0; c < 8; ++c) {
-        const Vec3 q{c & 1 ? box.lo.x : box.hi.x, c & 2 ? box.lo.y : box.hi.y,
-                     c & 4 ? box.lo.z : box.hi.z};
+        const Vec3 q{c & 1 ? box.lo.x : box.hi.x, c & 2 ? box.lo.y : box.hi.y, c & 4 ? box.lo.z : box.hi.z};
         EXPECT_LE(distance(p.pose.apply(q), b.pose.apply(q)),
-                  0.05 * std::sqrt(3.0) + 0.1 * std::numbers::pi / 180 * 40);
+                  o.max_translation * std::sqrt(3.0) + o.max_rotation_deg * std::numbers::pi / 180 * norm(box.extent()));
       }
     }
   }
-  const Scene t = generate_moving_scene(140, 5, 7);
+}
+
+// The world box of a body in a frame, from its local box's corners.
+Aabb world_box(const Body& b, const Transform& pose) {
+  const Aabb box = b.mesh->bounds();
+  Aabb w;
+  for (int c = 0; c < 8; ++c)
+    w.expand(pose.apply(Vec3{c & 1 ? box.lo.x : box.hi.x, c & 2 ? box.lo.y : box.hi.y, c & 4 ? box.lo.z : box.hi.z}));
+  return w;
+}
+
+TEST(SceneGenerate, MovingAssemblyMovesEveryBodyRigidlyEveryFrame) {
+  MovingSceneGenOptions o;
+  o.layout = MovingLayout::assembly, o.bodies = 140, o.frames = 5, o.seed = 7;
+  const Scene s = generate_moving_scene(o);
+  ASSERT_EQ(s.bodies.size(), 140u);
+  expect_small_rigid_motions(s, o);
+  const Scene t = generate_moving_scene(o);
   EXPECT_EQ(t.frames[4].poses[77].pose, s.frames[4].poses[77].pose);
-  const Scene u = generate_moving_scene(140, 5, 8);
+  o.seed = 8;
+  const Scene u = generate_moving_scene(o);
   EXPECT_NE(u.frames[4].poses[77].pose, s.frames[4].poses[77].pose);
+}
+
+// The moving scene of the benchmark (MovingLayout::cell): bodies apart by their cells' clearance
+// in every frame, except the near pairs, checked on the world boxes of the poses (independent of
+// any clash query); deterministic per seed.
+TEST(SceneGenerate, MovingCellsKeepBodiesApartExceptNearPairs) {
+  MovingSceneGenOptions o;
+  o.bodies = 250, o.frames = 6, o.seed = 3;
+  std::vector<std::pair<std::string, std::string>> near;
+  const Scene s = generate_moving_scene(o, &near);
+  ASSERT_EQ(s.bodies.size(), 250u);
+  ASSERT_EQ(near.size(), 5u);  // 4 % of 250 bodies in pairs
+  expect_small_rigid_motions(s, o);
+  const std::set<std::pair<std::string, std::string>> near_set(near.begin(), near.end());
+  std::size_t near_boxes_meet = 0;
+  for (const Frame& f : s.frames) {
+    std::vector<Aabb> w;
+    for (const Frame::Pose& p : f.poses) w.push_back(world_box(s.bodies[p.body], p.pose));
+    for (std::size_t i = 0; i < w.size(); ++i)
+      for (std::size_t j = i + 1; j < w.size(); ++j) {
+        double gap = 0;  // the largest separation of the boxes along an axis
+        for (int k = 0; k < 3; ++k) gap = std::max({gap, w[j].lo[k] - w[i].hi[k], w[i].lo[k] - w[j].hi[k]});
+        if (near_set.contains(std::minmax(s.bodies[i].id, s.bodies[j].id))) {
+          near_boxes_meet += gap <= 0;
+        } else {
+          ASSERT_GT(gap, 1.5) << s.bodies[i].id << " " << s.bodies[j].id;  // clearance 2 less the motions
+        }
+      }
+  }
+  EXPECT_GT(near_boxes_meet, 0u);
+  std::vector<std::pair<std::string, std::string>> again;
+  const Scene t = generate_moving_scene(o, &again);
+  EXPECT_EQ(again, near);
+  EXPECT_EQ(t.frames[5].poses[100].pose, s.frames[5].poses[100].pose);
+}
+
+// The engine on the moving cells: only near pairs are ever reported, the fits (bolt in a plate's
+// hole, 0.5 mm radial clearance) never, and the stacks clash in some frames and not in others.
+TEST(SceneGenerate, MovingCellsClashOnlyInNearPairsInSomeFrames) {
+  MovingSceneGenOptions o;
+  o.bodies = 500, o.frames = 12, o.seed = 1, o.segments = 24;
+  std::vector<std::pair<std::string, std::string>> near;
+  const Scene s = generate_moving_scene(o, &near);
+  ASSERT_EQ(near.size(), 10u);
+  ClashTest hard;
+  hard.name = "hard";
+  SceneClashOptions opt;
+  opt.curves = false;
+  const SceneClashResult r = clash_scene(s, {hard}, opt);
+  const std::set<std::pair<std::string, std::string>> near_set(near.begin(), near.end());
+  for (const PairSummary& p : r.pairs) {
+    const auto ids = std::minmax(s.bodies[p.a].id, s.bodies[p.b].id);
+    EXPECT_TRUE(near_set.contains(ids)) << ids.first << " " << ids.second;
+    EXPECT_FALSE(ids.first.starts_with("bolt") || ids.second.starts_with("bolt")) << ids.first << " " << ids.second;
+    EXPECT_NE(p.verdict, Verdict::undecided);
+  }
+  ASSERT_EQ(r.frames.size(), 12u);
+  std::size_t with = 0;
+  for (const FrameRow& f : r.frames) with += f.clashes > 0;
+  EXPECT_GT(with, 0u);
+  EXPECT_LT(with, 12u);
 }
 
 // The engine against the generator's construction: the clashing body pairs of a small assembly
