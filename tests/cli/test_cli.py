@@ -136,6 +136,30 @@ class Cli(unittest.TestCase):
         self.assertEqual(rc, 1, err)
         self.assertEqual(json.load(open(path("open_in.json")))["result"]["containment"], "a_inside_b")
 
+    def test_clash_statistics_only_where_needed(self):
+        # Issue #24, item 8: crossing surfaces decide a clash without closedness, so the parts'
+        # statistics are not computed (nor their input warnings given); check computes them all.
+        v, f = box((0, 0, 0), (10, 10, 10))
+        opened = write_obj("open_x.obj", (v, f[:-1]))  # 3 open edges
+        crossing = write_obj("cross_x.obj", box((5, 5, 5), (15, 15, 15)))
+        rc, _, err = run("clash", crossing, opened, "--json", path("stats_x.json"))
+        self.assertEqual(rc, 1, err)
+        rep = json.load(open(path("stats_x.json")))
+        self.assertEqual(rep["verdict"], "clash")
+        for part in ("a", "b"):
+            self.assertEqual(rep["inputs"][part]["statistics"], "not needed")
+            self.assertNotIn("open_edges", rep["inputs"][part])
+        self.assertEqual(rep["inputs"]["b"]["triangles"], len(f) - 1)
+        self.assertFalse(any("open edges" in w for w in rep["input_warnings"]), rep["input_warnings"])
+        # --depth needs both parts closed: then they are computed, with their warnings.
+        rc, _, err = run("clash", crossing, opened, "--depth", "--json", path("stats_d.json"))
+        self.assertEqual(rc, 1, err)
+        rep = json.load(open(path("stats_d.json")))
+        self.assertEqual(rep["inputs"]["b"]["open_edges"], 3)
+        self.assertTrue(any("3 open edges" in w for w in rep["input_warnings"]), rep["input_warnings"])
+        rc, _, err = run("check", opened, "--json", path("stats_c.json"))
+        self.assertEqual(json.load(open(path("stats_c.json")))["open_edges"], 3, err)
+
     def test_distance_sees_containment(self):
         # Nested closed parts are apart by 2 yet their interiors overlap: a clash (was exit 0, "clear").
         big = write_obj("dbig.obj", box((0, 0, 0), (10, 10, 10)))
