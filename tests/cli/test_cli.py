@@ -160,6 +160,25 @@ class Cli(unittest.TestCase):
         rc, _, err = run("check", opened, "--json", path("stats_c.json"))
         self.assertEqual(json.load(open(path("stats_c.json")))["open_edges"], 3, err)
 
+    def test_concurrent_reads_name_a_first(self):
+        # Both files are read at once (issue #24, item 8); when both are bad the error names A,
+        # whichever read fails first (B's, an empty OBJ, is the quicker here), every time.
+        bad_a = path("bad_a.stl")
+        with open(bad_a, "w") as f:
+            f.write("solid x\nfacet normal 0 0 1\nbad\n")
+        bad_b = path("bad_b.obj")
+        with open(bad_b, "w") as f:
+            f.write("garbage\n")
+        for _ in range(5):
+            rc, _, err = run("clash", bad_a, bad_b, "--json", path("bad_ab.json"))
+            self.assertEqual(rc, 2, err)
+            self.assertIn("bad_a.stl:3", err)
+            self.assertNotIn("bad_b.obj", err)
+            self.assertFalse(os.path.exists(path("bad_ab.json")))
+        rc, _, err = run("clash", bad_b, bad_a)
+        self.assertEqual(rc, 2, err)
+        self.assertIn("bad_b.obj", err)
+
     def test_distance_sees_containment(self):
         # Nested closed parts are apart by 2 yet their interiors overlap: a clash (was exit 0, "clear").
         big = write_obj("dbig.obj", box((0, 0, 0), (10, 10, 10)))
