@@ -2,6 +2,7 @@
 // meets an edge, a vertex or lies in a triangle's plane is degenerate and is replaced by another
 // direction (symbolic perturbation by re-sampling), so the parity is never decided by an epsilon.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -45,8 +46,17 @@ int point_in_closed_mesh(const Model& model, const Vec3& p) {
   const double diag = norm(bounds.extent());
   const double reach = 2.0 * (diag + norm(p - bounds.center())) + 1.0;
   const double pad = 1e-9 * reach;
-  std::mt19937_64 rng(0x1f2e3d4c5b6a7988ULL);  // fixed: results are reproducible
-  std::normal_distribution<double> gauss;
+  // The draws of a fixed generator (results are reproducible): every call would draw the same
+  // sequence, so it is drawn once (3 numbers per attempt) and read from a table.
+  static const std::array<double, 120> table = [] {
+    std::mt19937_64 rng(0x1f2e3d4c5b6a7988ULL);
+    std::normal_distribution<double> g;
+    std::array<double, 120> t{};
+    for (double& x : t) x = g(rng);
+    return t;
+  }();
+  std::size_t next = 0;
+  const auto gauss = [&] { return table[next++]; };
   // The first rays leave by the nearest side of the bounds (short: few boxes to visit for a point
   // near the surface), tilted at random so that grid-aligned meshes rarely make them degenerate;
   // then random directions across the whole part. Any ray that is not degenerate gives the parity.
@@ -60,12 +70,14 @@ int point_in_closed_mesh(const Model& model, const Vec3& p) {
   for (int attempt = 0; attempt < 40; ++attempt) {
     Vec3 q;
     if (attempt < 8 && std::isfinite(gap) && gap >= 0) {
-      Vec3 dir{0.25 * gauss(rng), 0.25 * gauss(rng), 0.25 * gauss(rng)};
+      const double x = gauss(), y = gauss(), z = gauss();
+      Vec3 dir{0.25 * x, 0.25 * y, 0.25 * z};
       dir[axis] = sign;
       q = p + dir * (gap + 0.01 * diag);  // (the axis component is 1: q lies beyond the bounds)
       if (!is_finite(q)) continue;
     } else {
-      Vec3 dir{gauss(rng), gauss(rng), gauss(rng)};
+      const double x = gauss(), y = gauss(), z = gauss();
+      Vec3 dir{x, y, z};
       const double len = norm(dir);
       if (!(len > 0)) continue;
       q = p + dir * (reach / len);
