@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <numeric>
 #include <tuple>
-#include <unordered_map>
 
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
@@ -132,14 +131,16 @@ std::vector<ClashRegion> build_regions(const TriMesh& a, const TriMesh& b, const
   };
   UnionFind uf(ta.size() + tb.size());
   for (const TrianglePair& h : hits) uf.unite(node_a(h.a), node_b(h.b));
+  // (the union-find's roots are the sets' smallest nodes whatever the order of the unions, so a
+  // sorted list of (vertex, node) joins the same sets as a map of each vertex's first node)
   auto join_by_vertex = [&](const TriMesh& m, const std::vector<std::uint32_t>& tris, std::uint32_t base) {
-    std::unordered_map<std::uint32_t, std::uint32_t> first_at_vertex;
-    for (std::uint32_t n = 0; n < tris.size(); ++n) {
-      for (std::uint32_t v : m.triangles[tris[n]]) {
-        const auto [it, inserted] = first_at_vertex.try_emplace(v, base + n);
-        if (!inserted) uf.unite(it->second, base + n);
-      }
-    }
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> at_vertex;  // (vertex, node)
+    at_vertex.reserve(3 * tris.size());
+    for (std::uint32_t n = 0; n < tris.size(); ++n)
+      for (std::uint32_t v : m.triangles[tris[n]]) at_vertex.emplace_back(v, base + n);
+    std::sort(at_vertex.begin(), at_vertex.end());
+    for (std::size_t i = 1; i < at_vertex.size(); ++i)
+      if (at_vertex[i].first == at_vertex[i - 1].first) uf.unite(at_vertex[i - 1].second, at_vertex[i].second);
   };
   join_by_vertex(a, ta, 0);
   join_by_vertex(b, tb, static_cast<std::uint32_t>(ta.size()));
