@@ -5,6 +5,7 @@
 // (engine_pair.cpp). Results are sorted by ids, so they depend neither on the thread count nor on
 // the order of the bodies.
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <chrono>
@@ -293,13 +294,15 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
     for (std::size_t i = 0; i < order.size(); ++i)
       if (i == 0 || key(order[i]) != key(order[i - 1])) unit_start.push_back(i);
     unit_start.push_back(order.size());
+    const bool many_pairs = unit_start.size() - 1 >= 4 * static_cast<std::size_t>(tbb::this_task_arena::max_concurrency());
     tbb::parallel_for(std::size_t{0}, unit_start.size() - 1, [&](std::size_t u) {
       detail::PairCore core;
       for (std::size_t i = unit_start[u]; i < unit_start[u + 1]; ++i) {
         const std::size_t k = order[i];
         const Candidate& c = cands[k];
         const detail::PairContext ctx{scene, tests[c.test], c.test, options, world, st.pose,
-                                      [&](std::uint32_t j) -> const std::vector<Vec3>& { return local_positions(scene, st, j); }};
+                                      [&](std::uint32_t j) -> const std::vector<Vec3>& { return local_positions(scene, st, j); },
+                                      many_pairs};
         const bool dup = tests[c.test].mode == ClashMode::duplicates;
         if (!dup && i == unit_start[u]) core = detail::core_pair(ctx, c.a, c.b, c.clearance);
         found[k] = detail::derive_pair(ctx, c.a, c.b, c.clearance, dup ? nullptr : &core, where[k]);

@@ -44,6 +44,9 @@ struct PairContext {
   const std::vector<Transform>& poses;  ///< current pose per body (the id's local frame)
   /// The current local positions of a body (its mesh's, or a frame's shape).
   std::function<const std::vector<Vec3>&(std::uint32_t)> local_positions;
+  /// Many pairs run side by side: a small pair's core runs on one thread (no nested tasks; the
+  /// core's result does not depend on it), a large one stays parallel inside.
+  bool many_pairs = false;
 };
 
 /// The exact core's answer for bodies a and b at one clearance (the largest any test of the pair

@@ -80,6 +80,8 @@ PairCore core_pair(const PairContext& c, std::uint32_t a, std::uint32_t b, doubl
   ClashRequest request = c.options.request;
   request.clearance = clearance;
   request.stats = [&](int side) -> const MeshStats& { return side == 0 ? wa.stats() : wb.stats(); };
+  if (c.many_pairs && wa.model().mesh.num_triangles() + wb.model().mesh.num_triangles() < 100000)
+    request.parallel = false;
   // Clearance pairs matter only for bodies whose surfaces do not meet and neither lies inside the
   // other (verdict clear without them; derive_pair reports regions, containment or undecided
   // first). So the core first runs without clearance, and again with it only for such a pair: a
