@@ -62,6 +62,10 @@ double depth_into(const Model& x, const Model& y, const std::vector<char>& paire
   const auto nt = static_cast<std::uint32_t>(m.num_triangles());
   std::vector<char> state(m.num_vertices(), 0);  // 0 unknown, 1 inside, 2 not
   double depth = 0;
+  // The distance to y's surface, the previous query's nearest triangle tried first (samples come
+  // in runs of neighbours; the nearest distance is the same, found sooner).
+  std::uint32_t last = kNoTriangle;
+  const auto distance_seeded = [&](const Vec3& p) { return std::sqrt(nearest_triangle_d2(y.mesh, y.bvh, p, &last, -1, last)); };
   // Along the edges of the crossing triangles: the middle of each stretch between two crossings of
   // y's surface that lies inside y (a long edge may pass through y with both ends outside).
   std::vector<std::array<std::uint32_t, 2>> crossing_edges;
@@ -82,7 +86,7 @@ double depth_into(const Model& x, const Model& y, const std::vector<char>& paire
     for (std::size_t i = 0; i + 1 < ts.size(); ++i) {
       if (!(ts[i + 1] > ts[i])) continue;
       const Vec3 mid = p + (q - p) * (0.5 * (ts[i] + ts[i + 1]));
-      if (point_in_solid(y, mid) == 1) depth = std::max(depth, surface_distance(y, mid));
+      if (point_in_solid(y, mid) == 1) depth = std::max(depth, distance_seeded(mid));
     }
   }
   for (std::uint32_t t = 0; t < nt; ++t) {
@@ -91,7 +95,7 @@ double depth_into(const Model& x, const Model& y, const std::vector<char>& paire
     for (std::uint32_t v : m.triangles[t]) {
       if (state[v] == 0) state[v] = whole || point_in_solid(y, m.positions[v]) == 1 ? 1 : 2;
       if (state[v] == 1) {
-        depth = std::max(depth, surface_distance(y, m.positions[v]));
+        depth = std::max(depth, distance_seeded(m.positions[v]));
         state[v] = 3;  // (measured)
       }
     }
@@ -182,13 +186,15 @@ double depth_bound(const Model& x, const Model& y, const std::vector<char>& pair
   };
   std::vector<double> vd(m.num_vertices(), -1);  // corners of x's own triangles, once per vertex
   std::vector<std::uint32_t> vt(m.num_vertices(), kNoTriangle);
+  std::uint32_t last = kNoTriangle;  // the previous corner's nearest triangle seeds the next search
   for (std::uint32_t t = 0; t < nt; ++t) {
     if (!paired[t] && side[t] == 0) continue;  // (undecided: kept)
     std::array<Corner, 3> c;
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t v = m.triangles[t][k];
       if (vd[v] < 0) {
-        const Corner q = corner(m.positions[v], kNoTriangle);
+        const Corner q = corner(m.positions[v], last);
+        last = q.t;
         vd[v] = q.d, vt[v] = q.t;
       }
       c[k] = {m.positions[v], vd[v], vt[v]};
