@@ -33,3 +33,10 @@ if ./build/apps/cli/interfere features --help >/dev/null 2>&1; then
     --target 5200 --step P2 --process data/examples/casing_process.json --json out/simplify.json
   echo "reports written to out/features.json and out/simplify.json (AAG drawing: out/casing_aag.dot)"
 fi
+# A scene (issue #24): every instance pair of a STEP assembly checked at once, with a 15 mm clearance
+# test; each clash with a stable id (rerun with --baseline out/scene.json to see new/active/resolved).
+if ./build/apps/cli/interfere features --help >/dev/null 2>&1; then
+  ./build/apps/cli/interfere clash tests/cli/data/assembly.step --clearance 15 \
+    --json out/scene.json --csv out/scene.csv
+  echo "scene report written to out/scene.json and out/scene.csv"
+fi
