@@ -300,8 +300,13 @@ int run_clash(ClashOptions o, const CLI::App& command) {
 
 void add_clash_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<ClashOptions>();
-  CLI::App* c = app.add_subcommand("clash", "Every intersecting triangle pair of parts A and B, clash "
-                                            "regions with intersection curves, containment, clearance");
+  CLI::App* c = app.add_subcommand(
+      "clash",
+      "Clash of a scene of many bodies (one input that expands to bodies, three or more inputs, --scene with "
+      "\"bodies\", or --test/--tests/--baseline/--csv/--motion: clash tests, stable clash ids, status between "
+      "runs; docs/scene.md), or of two parts A B (every intersecting triangle pair, clash regions with "
+      "intersection curves, containment, clearance). Exit status: 0 clear/contact/clearance, 1 clash, 2 input "
+      "error, 3 undecided");
   add_two_part_options(*c, *o);
   c->add_option("--pairs", o->pairs, "write 'i j kind' per intersecting pair, sorted");
   c->add_option("--region-a", o->region_a, "write A's clash-region triangles (.stl/.ply/.obj/.off)");
