@@ -113,10 +113,17 @@ int run_scene_clash(const ClashOptions& o, const CLI::App& command, const std::v
   if (!o.baseline.empty()) baseline_text = read_text(o.baseline, "--baseline");
   set_threads(o.threads);
 
-  SceneInputOptions so{.units = units, .tessellation = o.tessellation};
-  so.fem_split = o.split, so.fem_linear_faces = o.linear_faces, so.fem_field = o.field, so.fem_scale = o.scale;
-  so.fem_disp = o.disp;
-  SceneInput in = load_scene(specs, so);
+  std::vector<std::string> input_warnings;
+  scene::LoadedScene in = load_scene(specs,
+                                     {.units = units,
+                                      .linear_deflection = o.tessellation.linear_deflection,
+                                      .angular_deflection = o.tessellation.angular_deflection,
+                                      .fem_split = o.split,
+                                      .fem_linear_faces = o.linear_faces,
+                                      .fem_field = o.field,
+                                      .fem_disp = o.disp,
+                                      .fem_scale = o.scale},
+                                     input_warnings);
   const std::string motion = !o.motion.empty() ? o.motion : file_spec.motion;
   if (!motion.empty()) {
     if (!in.scene.frames.empty()) throw InputError("--motion: the inputs already carry steps (an FE model's); give one motion");
@@ -151,7 +158,7 @@ int run_scene_clash(const ClashOptions& o, const CLI::App& command, const std::v
   const int status = verdict_exit_status(result.verdict, fail_on(o.fail_on));
   scene::ReportContext ctx{.command = "clash", .tool_version = INTERFERE_VERSION, .inputs = in.files,
                            .threads = active_threads(), .total_seconds = total.seconds(), .exit_status = status,
-                           .warnings = in.warnings};
+                           .warnings = input_warnings};
   if (!o.json.empty()) write_or_throw(write_output(o.json, scene::report_json(in.scene, tests, result, ctx)));
   if (!o.csv.empty()) write_or_throw(write_output(o.csv, scene::clash_table_csv(in.scene, result)));
   if (!o.frames_csv.empty()) write_or_throw(write_output(o.frames_csv, scene::frames_table_csv(result)));

@@ -76,13 +76,6 @@ PartSplit split_from(const std::string& name) {
   return s;
 }
 
-struct ThreadLimit {
-  explicit ThreadLimit(int threads) {
-    if (threads < 0) throw py::value_error("threads must be >= 0 (0 = all cores)");
-    if (threads > 0) c.emplace(tbb::global_control::max_allowed_parallelism, threads);
-  }
-  std::optional<tbb::global_control> c;
-};
 
 py::dict series_dict(const NodalSeries& s) {
   py::dict d;

@@ -56,13 +56,6 @@ using interfere::python::raise_input_error;  // (bindings.h; overloaded below)
   raise_input_error(Error{.file = file, .reason = reason});
 }
 
-struct ThreadLimit {
-  explicit ThreadLimit(int threads) {
-    if (threads < 0) throw py::value_error("threads must be >= 0 (0 or None = all cores)");
-    if (threads > 0) c.emplace(tbb::global_control::max_allowed_parallelism, threads);
-  }
-  std::optional<tbb::global_control> c;
-};
 
 py::object vec_np(const Vec3& v) {
   if (have_numpy()) {
@@ -560,7 +553,7 @@ PyReport run_clash(const PyScene& s, py::handle tests_arg, py::handle baseline_a
   o.nominal_fit = s.nominal_fit;
   const int threads = threads_arg.is_none() ? 0 : threads_arg.cast<int>();
   d->threads = threads;
-  ThreadLimit limit(threads);
+  ThreadLimit limit(threads, "0 or None = all cores");
   Status st;
   {
     py::gil_scoped_release release;

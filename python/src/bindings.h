@@ -2,6 +2,10 @@
 // PYBIND11_MODULE. Each function adds its classes and functions to the extension module `m`.
 #pragma once
 #include <pybind11/pybind11.h>
+#include <tbb/global_control.h>
+
+#include <optional>
+#include <string>
 
 #include "interfere/core/error.h"
 
@@ -10,6 +14,19 @@ namespace interfere::python {
 bool have_numpy();
 /// Raises interfere.InputError carrying the error's file, line, byte and reason (errors.cpp).
 [[noreturn]] void raise_input_error(const Error& e);
+
+/// oneTBB thread limit for the duration of one call (0 = oneTBB's default, all cores); a negative
+/// count is a ValueError whose message ends with `zero_means` in parentheses.
+class ThreadLimit {
+ public:
+  explicit ThreadLimit(int threads, const char* zero_means = "0 = all cores") {
+    if (threads < 0) throw pybind11::value_error("threads must be >= 0 (" + std::string(zero_means) + ")");
+    if (threads > 0) control_.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+  }
+
+ private:
+  std::optional<tbb::global_control> control_;
+};
 
 void bind_probe(pybind11::module_& m);
 void bind_bearing(pybind11::module_& m);

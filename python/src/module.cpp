@@ -341,17 +341,6 @@ void check_mesh(const TriMesh& m, const std::string& what) {
   }
 }
 
-/// oneTBB thread limit for the duration of one call (0 = oneTBB's default, all cores).
-class ThreadLimit {
- public:
-  explicit ThreadLimit(int threads) {
-    if (threads < 0) throw py::value_error("threads must be >= 0 (0 = all cores)");
-    if (threads > 0) control_.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
-  }
-
- private:
-  std::optional<tbb::global_control> control_;
-};
 
 /// A query operand: the caller's Model (borrowed; kept alive by the call's arguments), or a TriMesh
 /// copied under the GIL and built into a Model once the GIL is released.
@@ -942,7 +931,7 @@ PYBIND11_MODULE(_interfere, m) {
         const BvhBuildOptions options{.builder = builder_from(builder), .max_leaf_size = std::max(1u, max_leaf_size)};
         TriMesh copy = mesh;
         check_mesh(copy, "mesh");
-        ThreadLimit limit(threads);
+        interfere::python::ThreadLimit limit(threads);
         py::gil_scoped_release release;
         return make_model(std::move(copy), options, stats);
       },
@@ -965,7 +954,7 @@ PYBIND11_MODULE(_interfere, m) {
                                    .containment = containment};
         const BvhBuildOptions options{.builder = builder_from(builder)};
         Part pa(a, "a"), pb(b, "b");
-        ThreadLimit limit(threads);
+        interfere::python::ThreadLimit limit(threads);
         py::gil_scoped_release release;
         const auto [ma, mb] = get_both(pa, pb, options);
         return clash(ma, mb, request);
@@ -982,7 +971,7 @@ PYBIND11_MODULE(_interfere, m) {
         if (!(upper_bound >= 0)) throw py::value_error("upper_bound must be >= 0 (0 = no bound)");
         const BvhBuildOptions options{.builder = builder_from(builder)};
         Part pa(a, "a"), pb(b, "b");
-        ThreadLimit limit(threads);
+        interfere::python::ThreadLimit limit(threads);
         py::gil_scoped_release release;
         const auto [ma, mb] = get_both(pa, pb, options);
         return distance(ma, mb, DistanceRequest{.upper_bound = upper_bound});
