@@ -79,6 +79,13 @@ Status validate(const SceneParams& p) {
   return {};
 }
 
+Transform partner_pose(const SceneParams& p, double spacing, int k) {
+  const int cols = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(p.pairs))));
+  Transform tb;
+  tb.t = {(k % cols) * spacing, (k / cols) * spacing, 0.5 * p.roller.height - 0.5 * p.partner_height};
+  return tb;
+}
+
 Expected<SimulationResult> simulate(const SceneParams& p, bool keep_rows) {
   if (Status s = validate(p); !s) return s.error();
   const double t_start = now();
@@ -160,6 +167,11 @@ Expected<SimulationResult> simulate(const SceneParams& p, bool keep_rows) {
       res.undecided_reasons.push_back(reason);
   };
   if (keep_rows) res.rows.reserve(n * static_cast<std::size_t>(p.frames));
+  if (keep_rows) {  // what a viewer needs to draw the frames (view/bearing_document.h)
+    res.roller_poses.reserve(n * static_cast<std::size_t>(p.frames));
+    for (const Roller& v : variants) res.scar_meshes.push_back(v.mesh);
+    for (const PairState& s : st) res.pair_variant.push_back(s.scarred ? s.variant : -1);
+  }
   res.min_distance = std::numeric_limits<double>::infinity();
   res.setup_seconds = now() - t_start;
   res.threads = tbb::this_task_arena::max_concurrency();
@@ -181,9 +193,7 @@ Expected<SimulationResult> simulate(const SceneParams& p, bool keep_rows) {
       const double spin = s.spin0 + f * p.spin_deg_per_frame * kDeg;
       poses[k] = roller_pose({ox + D, oy, 0}, tilt, az, spin);
       cyl_a[k] = posed_cylinder(r, p.roller.top_radius, hb, poses[k]);
-      Transform tb;
-      tb.t = {ox, oy, 0.5 * hb - 0.5 * p.partner_height};
-      cyl_b[k] = posed_cylinder(R, -1, p.partner_height, tb);
+      cyl_b[k] = posed_cylinder(R, -1, p.partner_height, partner_pose(p, S, static_cast<int>(k)));
       // boxes grown by half the clearance and the touch band (part_pair.h), so that every pair of
       // parts within the clearance or touching (up to rounding of the boxes) reaches the narrow phase
       const auto grown = [&](const Cylinder& c) {
@@ -264,6 +274,7 @@ Expected<SimulationResult> simulate(const SceneParams& p, bool keep_rows) {
         note_undecided("whether a partner lies inside its scarred roller: every ray direction was degenerate");
       if (keep_rows) res.rows.push_back(row);
     }
+    if (keep_rows) res.roller_poses.insert(res.roller_poses.end(), poses.begin(), poses.end());
     for (std::size_t c = 0; c < cross.size(); ++c) {
       const PartPairResult& d = cross_out[c];
       ++res.cross_verdicts[static_cast<std::size_t>(d.verdict)];

@@ -90,7 +90,18 @@ struct SimulationResult {
   double cpu_seconds = 0;               ///< process CPU time (all threads) of the frame loop
   int threads = 1;                      ///< worker threads available (oneTBB arena)
   double spacing = 0;
+  // With keep_rows (for viewers, view/bearing_document.h): the roller poses (body frame -> world,
+  // frame-major then pair, as rows), the scarred roller meshes (body frame) and, per pair, the index
+  // of its scarred mesh (-1: an unscarred roller). The partner of pair k is the cylinder of radius
+  // partner_radius on the grid point of pair k (bearing_partner_pose).
+  std::vector<Transform> roller_poses;
+  std::vector<TriMesh> scar_meshes;
+  std::vector<std::int32_t> pair_variant;
 };
+
+/// Where the partner (the cylinder B) of pair k stands: body frame (axis +z from its base) -> world,
+/// for the grid pitch `spacing` (SimulationResult::spacing).
+Transform partner_pose(const SceneParams& p, double spacing, int k);
 
 /// Runs the simulation. `keep_rows` false keeps only the summary (benchmarks). Errors: validate().
 Expected<SimulationResult> simulate(const SceneParams& p, bool keep_rows = true);
