@@ -15,9 +15,11 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <utility>
 
 #include "interfere/core/atomic_file.h"
 #include "interfere/core/base64.h"
+#include "interfere/core/glb.h"
 #include "interfere/simplify/qem.h"
 
 namespace interfere {
@@ -25,11 +27,6 @@ namespace {
 
 constexpr std::uint32_t kArrayBuffer = 34962, kElementArrayBuffer = 34963;
 constexpr std::uint32_t kFloat = 5126, kUnsignedInt = 5125;
-
-void append(std::string& bin, const void* data, std::size_t bytes) {
-  bin.append(static_cast<const char*>(data), bytes);
-  while (bin.size() % 4 != 0) bin.push_back('\0');
-}
 
 // Per-vertex normals (glTF NORMAL, unit length): the area-weighted mean of the normals of the
 // vertex's triangles. The vertices are split along faces (or crease regions) first, so the normals
@@ -70,7 +67,7 @@ Status write_glb(const std::filesystem::path& path, const std::vector<GltfPart>&
   std::string bin;
   const auto view = [&](const void* data, std::size_t bytes, std::uint32_t target) {
     j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", bin.size()}, {"byteLength", bytes}, {"target", target}});
-    append(bin, data, bytes);
+    glb_append_aligned(bin, data, bytes);
     return j["bufferViews"].size() - 1;
   };
   const auto accessor = [&](std::size_t buffer_view, std::uint32_t component, std::size_t count, const char* type) {
@@ -167,23 +164,7 @@ Status write_glb(const std::filesystem::path& path, const std::vector<GltfPart>&
       return std::ferror(f) ? EIO : 0;
     });
   }
-  std::string text = j.dump();
-  while (text.size() % 4 != 0) text.push_back(' ');
-  const std::size_t length = 12 + 8 + text.size() + 8 + bin.size();
-  if (length > std::numeric_limits<std::uint32_t>::max())
-    return Error{.file = file, .reason = "glTF: " + std::to_string(length) + " bytes exceed GLB's 4 GiB limit"};
-  const auto total = static_cast<std::uint32_t>(length);
-  return write_file_atomic(path, [&](std::FILE* f) -> int {
-    const std::uint32_t header[3] = {0x46546C67u, 2u, total};  // "glTF", version, length
-    const std::uint32_t json_chunk[2] = {static_cast<std::uint32_t>(text.size()), 0x4E4F534Au};  // "JSON"
-    const std::uint32_t bin_chunk[2] = {static_cast<std::uint32_t>(bin.size()), 0x004E4942u};    // "BIN\0"
-    std::fwrite(header, 4, 3, f);
-    std::fwrite(json_chunk, 4, 2, f);
-    std::fwrite(text.data(), 1, text.size(), f);
-    std::fwrite(bin_chunk, 4, 2, f);
-    std::fwrite(bin.data(), 1, bin.size(), f);
-    return std::ferror(f) ? EIO : 0;
-  });
+  return write_glb_container(path, j.dump(), std::move(bin));
 }
 
 }  // namespace interfere
