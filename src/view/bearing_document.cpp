@@ -121,7 +121,7 @@ Expected<Document> bearing_document(const bearing::SceneParams& p, const bearing
                     std::max(deepest->point_a.z, deepest->point_b.z)};
       const double pad = 0.05 * p.roller.radius;
       c.box_min = lo - Vec3{pad, pad, pad}, c.box_max = hi + Vec3{pad, pad, pad};
-      c.id = "P" + std::to_string(k) + "F" + std::to_string(f);
+      c.id = std::string("P").append(std::to_string(k)).append("F").append(std::to_string(f));
       c.note = "pair " + std::to_string(k) + ", frames " + std::to_string(f) + "-" + std::to_string(g - 1) +
                (deepest->distance < 0 ? ", max interference " + fmt_mm(-deepest->distance)
                                       : ", distance " + fmt_mm(deepest->distance)) +

@@ -81,9 +81,8 @@ Expected<Document> probe_document(const TriMesh& workpiece, const probe::ProbeSh
   // Frames: one per path point, marked by its verdict (and a colliding segment leaving it).
   std::vector<Verdict> v(n, Verdict::clear);
   for (std::size_t i = 0; i < n; ++i) v[i] = result.points[i].verdict;
-  for (const probe::SegmentResult& s : result.segments) {
-    v[s.from] = worst(v[s.from], s.verdict);
-  }
+  for (const probe::SegmentResult& s : result.segments)  // a collision only between two clear points
+    if (s.between_samples) v[s.from] = worst(v[s.from], s.verdict);
   doc.frames.labels.resize(n);
   doc.frames.verdicts.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
