@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "common.h"
+#include "view_output.h"
 #include "interfere/query/clash.h"
 
 namespace interfere::cli {
@@ -18,6 +19,7 @@ struct ClashOptions : TwoPartOptions {
   /// pair within them counts as a possible clash of the original parts.
   bool conservative = false;
   std::size_t max_clearance_pairs = 100000;
+  ViewOutputs views;  ///< --html, --glb, --pvd (issue #25)
 
   // Scenes (issue #24; cmd_clash_scene.cpp).
   std::vector<std::string> more;       ///< inputs after A and B

@@ -4,10 +4,12 @@
 // containment, or touching faces of overlapping solids), a contact (touching only) or, with
 // --clearance, a pair closer than the clearance. Exit status 1 when some pair clashes.
 #include <CLI/CLI.hpp>
+#include <filesystem>
 
 #include <algorithm>
 #include <cstdio>
 
+#include "view_output.h"
 #include "commands.h"
 #include "common.h"
 #include "interfere/core/atomic_file.h"
@@ -29,6 +31,7 @@ struct AssemblyClashCliOptions {
   std::size_t depth_bound_splits = 5000;
   int threads = 0;
   std::string fail_on;
+  ViewOutputs views;  ///< --html, --glb, --pvd (issue #25)
 };
 
 #ifdef INTERFERE_HAS_CAD
@@ -76,6 +79,74 @@ void write_clash_geometry(const AssemblyClashCliOptions& o, const cad::CadModel&
   }
 }
 
+// The viewer's document (issue #25): every instance placed (each part's mesh stored once), one row
+// per pair that is not clear with its regions (world) and curves.
+view::Document assembly_document(const AssemblyClashCliOptions& o, const cad::CadModel& model,
+                                 const cad::AssemblyClashResult& r) {
+  view::Document doc;
+  doc.title = "interfere assembly-clash: " + std::filesystem::path(o.input).filename().string();
+  doc.units = model.units;
+  doc.verdict = verdict_name(r.verdict);
+  for (const cad::Part& p : model.parts) {
+    view::ViewMesh m;
+    m.mesh = p.mesh;
+    m.source_triangles = p.mesh.num_triangles();
+    doc.meshes.push_back(std::move(m));
+  }
+  for (std::size_t i = 0; i < model.instances.size(); ++i) {
+    const cad::Instance& in = model.instances[i];
+    view::ViewBody b;
+    b.id = "i" + std::to_string(i), b.name = in.name, b.path = in.path, b.role = model.parts[in.part].name;
+    b.mesh = in.part, b.pose = in.placement;
+    doc.bodies.push_back(std::move(b));
+  }
+  for (const cad::InstancePairResult& p : r.pairs) {
+    view::ViewClash c;
+    c.verdict = cad::instance_meeting_name(p.meeting);
+    c.kind = p.nominal_fit ? "nominal fit" : containment_name(p.containment);
+    c.body_a = p.a, c.body_b = p.b;
+    c.id = "I" + std::to_string(p.a) + "_" + std::to_string(p.b);
+    if (p.cross_pairs > 0) c.depth = p.depth;
+    if (p.depth_bound > 0) c.depth_bound = p.depth_bound;
+    if (p.clearance_pairs > 0) c.distance = p.min_clearance;
+    TriMesh region;
+    const auto add = [&](std::uint32_t inst, const std::vector<std::uint32_t>& tris) {
+      if (tris.empty()) return;
+      const cad::Instance& in = model.instances[inst];
+      const TriMesh m = transformed(submesh(model.parts[in.part].mesh, tris), in.placement);
+      const auto base = static_cast<std::uint32_t>(region.positions.size());
+      region.positions.insert(region.positions.end(), m.positions.begin(), m.positions.end());
+      for (const Tri& t : m.triangles) region.triangles.push_back({base + t[0], base + t[1], base + t[2]});
+    };
+    add(p.a, p.region_triangles_a);
+    add(p.b, p.region_triangles_b);
+    Aabb box;
+    for (const Polyline& curve : p.curves) {
+      c.curves.push_back(curve.points);
+      if (curve.closed && !curve.points.empty()) c.curves.back().push_back(curve.points.front());
+      for (const Vec3& q : curve.points) box.expand(q);
+    }
+    if (box.empty()) box = region.bounds();
+    if (box.empty()) {  // no geometry kept: the two instances' boxes' overlap
+      const Aabb ba = transformed(model.parts[model.instances[p.a].part].mesh, model.instances[p.a].placement).bounds();
+      const Aabb bb = transformed(model.parts[model.instances[p.b].part].mesh, model.instances[p.b].placement).bounds();
+      box.expand(ba.center()), box.expand(bb.center());
+    }
+    c.box_min = box.lo, c.box_max = box.hi;
+    c.point = !p.curves.empty() && !p.curves[0].points.empty() ? p.curves[0].points[0] : box.center();
+    if (!region.triangles.empty()) {
+      view::ViewMesh m;
+      m.source_triangles = region.num_triangles();
+      m.mesh = std::move(region);
+      doc.meshes.push_back(std::move(m));
+      c.region_mesh = static_cast<std::int64_t>(doc.meshes.size() - 1);
+    }
+    for (const std::string& why : p.verdict_reasons) c.note += (c.note.empty() ? "" : "; ") + why;
+    doc.clashes.push_back(std::move(c));
+  }
+  return doc;
+}
+
 int run_assembly_clash(const AssemblyClashCliOptions& o) {
   if (!is_step_file(o.input)) throw InputError(o.input + ": assembly-clash takes a STEP file (.step, .stp)");
   const FailOn failing = fail_on(o.fail_on);
@@ -86,6 +157,8 @@ int run_assembly_clash(const AssemblyClashCliOptions& o) {
   for (const std::string& c : o.curves) check_output(c, {".obj", ".vtk"}, "--curves");
   std::vector<NamedPath> outputs{{"--json", o.json}, {"--regions", o.regions}};
   for (const std::string& c : o.curves) outputs.push_back({"--curves", c});
+  check_view_outputs(o.views);
+  for (const NamedPath& v : o.views.paths()) outputs.push_back(v);
   check_distinct_files({{"IN", o.input}}, outputs);
   set_threads(o.threads);
   Progress total("assembly-clash");
@@ -102,7 +175,7 @@ int run_assembly_clash(const AssemblyClashCliOptions& o) {
   {
     Progress progress("clashing the pairs of " + std::to_string(model->instances.size()) + " instances");
     r = cad::assembly_clash(*model, {.clearance = o.clearance,
-                                     .geometry = !o.regions.empty() || !o.curves.empty(),
+                                     .geometry = !o.regions.empty() || !o.curves.empty() || o.views.any(),
                                      .depth_bound_splits = o.depth_bound_splits});
   }
   write_clash_geometry(o, *model, r);
@@ -163,6 +236,7 @@ int run_assembly_clash(const AssemblyClashCliOptions& o) {
     const Status s = write_output(o.json, j.dump(2) + "\n");
     if (!s) throw InputError(s.error());
   }
+  if (o.views.any()) write_views(o.views, assembly_document(o, *model, r));
   return status;
 }
 #else
@@ -191,6 +265,7 @@ void add_assembly_clash_command(CLI::App& app, int& exit_code) {
   c->add_option("--threads", o->threads, "worker threads (0 = all cores)");
   add_fail_on_option(*c, o->fail_on);
   add_step_tessellation_options(*c, o->tessellation);
+  add_view_options(*c, o->views);
   c->callback([o, &exit_code] { exit_code = run_assembly_clash(*o); });
 }
 

@@ -20,6 +20,8 @@
 #include "interfere/bearing/analytic.h"
 #include "interfere/bearing/simulation.h"
 #include "interfere/core/atomic_file.h"
+#include "interfere/view/bearing_document.h"
+#include "view_output.h"
 
 namespace interfere::cli {
 namespace {
@@ -33,6 +35,7 @@ struct BearingOptions {
       scar_fraction, roughness, spacing, clearance;
   std::optional<std::uint64_t> seed, scar_seed;
   bool no_scar = false;
+  ViewOutputs views;
 };
 
 // ---- parameters file (JSON, the paper's bearing.parameters) ----
@@ -235,14 +238,17 @@ int run_bearing(const BearingOptions& o) {
   const FailOn fail = fail_on(o.fail_on);
   check_output(o.out, {}, "--out");
   check_output(o.json, {}, "--json");
-  check_distinct_files({{"--params", o.params_file}}, {{"--out", o.out}, {"--json", o.json}});
+  check_view_outputs(o.views);
+  std::vector<NamedPath> outputs{{"--out", o.out}, {"--json", o.json}};
+  for (const NamedPath& v : o.views.paths()) outputs.push_back(v);
+  check_distinct_files({{"--params", o.params_file}}, outputs);
   set_threads(o.threads_opt.value_or(0));
 
   Progress total("bearing");
   Expected<SimulationResult> r = Error{.reason = "not run"};
   {
     Progress progress("simulating " + std::to_string(p.pairs) + " pairs x " + std::to_string(p.frames) + " frames");
-    r = simulate(p, !o.out.empty());
+    r = simulate(p, !o.out.empty() || o.views.any());
   }
   if (!r) throw InputError(r.error());
   const SimulationResult& res = *r;
@@ -302,6 +308,11 @@ int run_bearing(const BearingOptions& o) {
     const Status s = write_output(o.json, j.dump(2) + "\n");
     if (!s) throw InputError(s.error());
   }
+  if (o.views.any()) {
+    Expected<view::Document> doc = view::bearing_document(p, res);
+    if (!doc) throw InputError(doc.error());
+    write_views(o.views, std::move(*doc));
+  }
   const auto count = [](const std::array<std::uint64_t, 5>& c, Verdict v) {
     return static_cast<unsigned long long>(c[static_cast<std::size_t>(v)]);
   };
@@ -353,6 +364,7 @@ void add_bearing_command(CLI::App& app, int& exit_code) {
   c->add_option("--threads", o->threads_opt, "worker threads (0 = all cores)");
   c->add_option("--out", o->out, "per-frame CSV (one row per pair and frame)");
   c->add_option("--json", o->json, "JSON summary");
+  add_view_options(*c, o->views);
   c->callback([o, &exit_code] { exit_code = run_bearing(*o); });
 }
 

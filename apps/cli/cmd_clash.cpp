@@ -9,6 +9,7 @@
 #include <iterator>
 
 #include "clash_options.h"
+#include "interfere/view/scene_document.h"
 #include "commands.h"
 #include "common.h"
 #include "fem_parts.h"
@@ -103,6 +104,7 @@ int run_clash(ClashOptions o, const CLI::App& command) {
                      !o.motion.empty() || command.count("--group-by") > 0 || command.count("--tolerance") > 0 ||
                      (!o.scene.empty() && scene_file_has_bodies(o.scene)) ||
                      (o.scene.empty() && o.a.file.empty());
+  check_view_outputs(o.views);
   if (scene) return run_scene_clash(o, command, clash_tests);
   ResolvedParts parts = resolve_two_parts(o, command);
   (void)fail_on(o.fail_on);  // checked before any work
@@ -134,6 +136,7 @@ int run_clash(ClashOptions o, const CLI::App& command) {
   std::vector<NamedPath> outputs{{"--json", o.json}, {"--pairs", o.pairs}, {"--region-a", o.region_a},
                                  {"--region-b", o.region_b}, {"--regions-vtu", o.regions_vtu}};
   for (const std::string& c : o.curves) outputs.push_back({"--curves", c});
+  for (const NamedPath& v : o.views.paths()) outputs.push_back(v);
   check_distinct_files({{"A", parts.a.file}, {"B", parts.b.file}, {"--scene", o.scene}}, outputs);
   if (o.fem_requested() || is_fem_file(parts.a.file) || is_fem_file(parts.b.file)) {
     return run_fem_clash(o, parts, request);  // FEM inputs: clash_fem.cpp
@@ -286,6 +289,13 @@ int run_clash(ClashOptions o, const CLI::App& command) {
     write_or_throw(write_output(o.json, j.dump(2) + "\n"));
   }
 
+  if (o.views.any()) {
+    view::Document doc = view::scene_document(two, {test}, scene_result, {});
+    doc.verdict = verdict_name(result.verdict);
+    doc.units = parts.units;
+    write_views(o.views, std::move(doc));
+  }
+
   print_clash_summary(result, parts.units);
   if (o.clearance + margin > 0)
     std::printf(", %zu pairs closer than %g", result.clearance.size(), o.clearance + margin);
@@ -345,6 +355,7 @@ void add_clash_command(CLI::App& app, int& exit_code) {
               "bounds (a STEP part's: its tessellation's linear deflection); a pair within them is a possible clash "
               "of the originals (exit status 1)");
   add_fem_clash_options(*c, *o);
+  add_view_options(*c, o->views);
   c->callback([o, c, &exit_code] { exit_code = run_clash(*o, *c); });
 }
 

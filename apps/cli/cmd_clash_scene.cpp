@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "clash_options.h"
+#include "interfere/view/scene_document.h"
 #include "interfere/scene/report.h"
 #include "scene_input.h"
 
@@ -108,7 +109,9 @@ int run_scene_clash(const ClashOptions& o, const CLI::App& command, const std::v
   std::vector<NamedPath> in_paths{{"--scene", o.scene}, {"--tests", o.tests_file}, {"--baseline", o.baseline}, {"--motion", o.motion},
                                  {"--disp", o.disp}};
   for (const scene::BodySpec& s : specs) in_paths.push_back({s.where, s.file});
-  check_distinct_files(in_paths, {{"--json", o.json}, {"--csv", o.csv}, {"--frames-csv", o.frames_csv}});
+  std::vector<NamedPath> out_paths{{"--json", o.json}, {"--csv", o.csv}, {"--frames-csv", o.frames_csv}};
+  for (const NamedPath& v : o.views.paths()) out_paths.push_back(v);
+  check_distinct_files(in_paths, out_paths);
   std::string baseline_text;
   if (!o.baseline.empty()) baseline_text = read_text(o.baseline, "--baseline");
   set_threads(o.threads);
@@ -162,6 +165,11 @@ int run_scene_clash(const ClashOptions& o, const CLI::App& command, const std::v
   if (!o.json.empty()) write_or_throw(write_output(o.json, scene::report_json(in.scene, tests, result, ctx)));
   if (!o.csv.empty()) write_or_throw(write_output(o.csv, scene::clash_table_csv(in.scene, result)));
   if (!o.frames_csv.empty()) write_or_throw(write_output(o.frames_csv, scene::frames_table_csv(result)));
+  if (o.views.any()) {
+    view::Document doc = view::scene_document(in.scene, tests, result, {});
+    doc.units = units;
+    write_views(o.views, std::move(doc));
+  }
 
   std::string verdict = verdict_name(result.verdict);
   if (result.verdict == Verdict::clash || result.verdict == Verdict::undecided)

@@ -6,12 +6,16 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <cstdio>
 
 #include "commands.h"
 #include "common.h"
 #include "interfere/core/atomic_file.h"
+#include "interfere/view/mesh_document.h"
+#include "view_output.h"
 #ifdef INTERFERE_HAS_CAD
 #include "interfere/cad/aag_dot.h"
 #include "interfere/cad/features.h"
@@ -27,6 +31,7 @@ struct FeaturesCliOptions {
   std::string input, json, dot, library, rules, process, step;
   StepTessellation tessellation;
   bool aag = false;
+  ViewOutputs views;  ///< --html, --glb, --pvd (issue #25): faces coloured by feature type
 };
 
 #ifdef INTERFERE_HAS_CAD
@@ -38,8 +43,13 @@ int run_features(const FeaturesCliOptions& o) {
   if (o.step.empty() && !o.process.empty()) throw InputError("--process needs --step ID");
   check_output(o.json, {}, "--json");
   check_output(o.dot, {}, "--dot");
+  check_view_outputs(o.views);
+  if (o.step == "all" && o.views.any())
+    throw InputError("--html/--glb/--pvd with --step all: give one step (its assembly-feature faces are highlighted)");
+  std::vector<NamedPath> outputs{{"--json", o.json}, {"--dot", o.dot}};
+  for (const NamedPath& v : o.views.paths()) outputs.push_back(v);
   check_distinct_files({{"IN", o.input}, {"--library", o.library}, {"--rules", o.rules}, {"--process", o.process}},
-                       {{"--json", o.json}, {"--dot", o.dot}});
+                       outputs);
   Progress total("features");
   auto sem = load_semantics({.library_file = o.library, .rules_file = o.rules, .process_file = o.process, .step = o.step});
   if (!sem) throw InputError(sem.error());
@@ -76,6 +86,16 @@ int run_features(const FeaturesCliOptions& o) {
   report["parts"] = nlohmann::json::array();
   double recognition_seconds = 0;
   std::vector<DotPart> dot_parts;  // --dot: each part's graph, features and (one step) assembly faces
+  // --html/--glb/--pvd: per part and triangle, the feature type of its B-Rep face (legend index),
+  // the step's assembly-feature faces above every type.
+  std::vector<std::string> type_names;
+  std::vector<std::vector<std::uint32_t>> part_labels;
+  const auto type_index = [&](const std::string& t) {
+    const auto it = std::find(type_names.begin(), type_names.end(), t);
+    if (it != type_names.end()) return static_cast<std::uint32_t>(it - type_names.begin() + 1);
+    type_names.push_back(t);
+    return static_cast<std::uint32_t>(type_names.size());
+  };
   for (const Part& part : model->parts) {
     const auto t0 = std::chrono::steady_clock::now();
     const auto feats = recognize_features(part.aag, *lib);
@@ -106,6 +126,14 @@ int run_features(const FeaturesCliOptions& o) {
                   radii.c_str(), axis.c_str());
     }
     if (!o.dot.empty()) dot_parts.push_back({part.name, &part.aag, feats, {}});
+    std::vector<std::uint32_t> face_label;  // by B-Rep face id (label 0: assembly-feature face)
+    if (o.views.any()) {
+      for (const Feature& f : feats)
+        for (std::uint32_t face : f.faces) {
+          if (face >= face_label.size()) face_label.resize(face + 1, view::kNoLabel);
+          if (face_label[face] == view::kNoLabel) face_label[face] = type_index(f.type);
+        }
+    }
     for (const std::string& step : steps) {
       // In the step when it names the part or one of its instances (then only those instances
       // keep the features when simplified: `instances[].in_step` of the simplify report).
@@ -120,6 +148,11 @@ int run_features(const FeaturesCliOptions& o) {
         jp["semantics_warnings"] = sel->warnings;
       }
       if (!o.dot.empty() && o.step != "all") dot_parts.back().assembly_faces = sel->faces;
+      if (o.views.any())
+        for (std::uint32_t face : sel->faces) {
+          if (face >= face_label.size()) face_label.resize(face + 1, view::kNoLabel);
+          face_label[face] = 0;
+        }
       const std::string faces = fmt::format("{}", fmt::join(sel->faces, ","));
       std::printf("  step %s: %zu assembly-feature faces [%s]\n", step.c_str(), sel->faces.size(), faces.c_str());
     }
@@ -146,6 +179,12 @@ int run_features(const FeaturesCliOptions& o) {
       jp["aag"] = {{"nodes", nodes}, {"arcs", arcs}, {"minimal_subgraphs", minimal_subgraphs(part.aag)}};
     }
     report["parts"].push_back(jp);
+    if (o.views.any()) {
+      std::vector<std::uint32_t> labels(part.mesh.num_triangles(), view::kNoLabel);
+      for (std::size_t t = 0; t < labels.size() && t < part.face_ids.size(); ++t)
+        if (part.face_ids[t] < face_label.size()) labels[t] = face_label[part.face_ids[t]];
+      part_labels.push_back(std::move(labels));
+    }
   }
   report["instances"] = nlohmann::json::array();
   for (const Instance& i : model->instances) {
@@ -163,6 +202,27 @@ int run_features(const FeaturesCliOptions& o) {
   if (!o.json.empty()) {
     const Status s = write_output(o.json, report.dump(2) + "\n");
     if (!s) throw InputError(s.error());
+  }
+  if (o.views.any()) {
+    std::vector<view::LegendEntry> legend{{"assembly-feature face (step " + o.step + ")", {0.90f, 0.10f, 0.10f}}};
+    if (o.step.empty()) legend[0].label = "assembly-feature face (no step given)";
+    for (std::size_t i = 0; i < type_names.size(); ++i) legend.push_back({type_names[i], view::label_color(i)});
+    std::vector<view::MeshLayer> layers;
+    const auto layer = [&](std::uint32_t part, const std::string& name, const std::string& path, const Transform& pose) {
+      view::MeshLayer l;
+      l.id = "b" + std::to_string(layers.size());
+      l.name = name, l.path = path, l.role = model->parts[part].name, l.pose = pose;
+      l.mesh = model->parts[part].mesh;
+      l.labels = part_labels[part];
+      layers.push_back(std::move(l));
+    };
+    for (const Instance& i : model->instances) layer(i.part, i.name, i.path, i.placement);
+    if (model->instances.empty())
+      for (std::uint32_t p = 0; p < model->parts.size(); ++p) layer(p, model->parts[p].name, "/" + model->parts[p].name, {});
+    view::Document doc = view::meshes_document("interfere features: " + std::filesystem::path(o.input).filename().string(),
+                                               std::move(layers), std::move(legend));
+    doc.units = model->units;
+    write_views(o.views, std::move(doc));
   }
   return kClear;
 }
@@ -189,6 +249,7 @@ void add_features_command(CLI::App& app, int& exit_code) {
   c->add_option("--step", o->step,
                 "process step whose assembly-feature faces are listed ('all': every step; JSON parts[].steps)");
   add_step_tessellation_options(*c, o->tessellation);
+  add_view_options(*c, o->views);
   c->callback([o, &exit_code] { exit_code = run_features(*o); });
 }
 

@@ -14,6 +14,7 @@
 
 #include <unistd.h>
 
+#include "interfere/view/mesh_document.h"
 #include "commands.h"
 #include "common.h"
 #include "interfere/core/atomic_file.h"
@@ -37,6 +38,34 @@ std::string file_id(const std::string& name) {
 #endif
 
 // One run; `model`: the STEP input already imported (--step all imports it once for every step).
+// The viewer's document (issue #25): the simplified mesh over the original (hidden at first), the
+// feature faces kept in their own colour.
+view::Document simplify_document(const SimplifyCliOptions& o, const TriMesh& original, const SimplifyResult& r,
+                                 const SimplifyOptions& so) {
+  std::vector<std::uint32_t> features = so.feature_faces;
+  std::sort(features.begin(), features.end());
+  const auto labels = [&](const std::vector<std::uint32_t>& face_ids, std::size_t n) {
+    std::vector<std::uint32_t> l(n, view::kNoLabel);
+    for (std::size_t t = 0; t < face_ids.size() && t < n; ++t)
+      if (std::binary_search(features.begin(), features.end(), face_ids[t])) l[t] = 0;
+    return l;
+  };
+  const std::string name = std::filesystem::path(o.input).stem().string();
+  view::MeshLayer simplified{.id = "simplified", .name = name + " (simplified)", .path = "/simplified",
+                             .role = "simplified", .mesh = r.mesh, .pose = {},
+                             .labels = labels(r.face_ids, r.mesh.num_triangles()), .visible = true,
+                             .color = {0.35f, 0.62f, 0.85f}};
+  view::MeshLayer input{.id = "original", .name = name + " (original)", .path = "/original", .role = "original",
+                        .mesh = original, .pose = {}, .labels = labels(so.face_ids, original.num_triangles()),
+                        .visible = false, .color = {0.70f, 0.70f, 0.70f}};
+  view::Document doc = view::meshes_document(
+      fmt::format("interfere simplify: {} -> {} triangles", original.num_triangles(), r.mesh.num_triangles()),
+      {std::move(simplified), std::move(input)}, {{"feature faces (kept)", view::label_color(1)}});
+  if (r.error_bound >= 0) doc.notes.push_back(fmt::format("error bound of the simplification: {:.6g}", r.error_bound));
+  if (r.hausdorff >= 0) doc.notes.push_back(fmt::format("Hausdorff distance: {:.6g}", r.hausdorff));
+  return doc;
+}
+
 int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedModel* model = nullptr) {
   const SimplifyOutput output = check_simplify_options(o);
   // The input's unit (issue #23, item 6): a glTF output is written in metres, as its
@@ -199,6 +228,11 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
     const Status s = write_output(o.json, report.dump(2) + "\n");
     if (!s) throw InputError(s.error());
   }
+  if (o.views.any()) {
+    view::Document doc = simplify_document(o, mesh, r, so);
+    if (report["units"].is_string()) doc.units = report["units"].get<std::string>();
+    write_views(o.views, std::move(doc));
+  }
   std::string error = "error not measured";
   if (r.hausdorff >= 0) {
     error = fmt::format("Hausdorff {:.6g}", r.hausdorff);
@@ -246,6 +280,9 @@ int run_all_steps(const SimplifyCliOptions& o) {
     r.step = step.id;
     r.output = with_step(o.output, step.id);
     r.json = with_step(o.json, step.id);
+    r.views.html = with_step(o.views.html, step.id);
+    r.views.glb = with_step(o.views.glb, step.id);
+    r.views.pvd = with_step(o.views.pvd, step.id);
     if (!o.parts_dir.empty()) r.parts_dir = (std::filesystem::path(o.parts_dir) / file_id(step.id)).string();
     check_simplify_options(r);  // (every run's options and outputs, before the import)
     runs.push_back(std::move(r));
@@ -330,6 +367,7 @@ void add_simplify_command(CLI::App& app, int& exit_code) {
   max_error->excludes(no_error);
   c->add_option("--json", o->json, "write the JSON report here");
   c->add_option("--threads", o->threads, "worker threads (0 = all cores)");
+  add_view_options(*c, o->views);
   c->callback([o, c, &exit_code] {
     resolve_step_tessellation(*c, o->tessellation, {o->input});  // (an error on a mesh input)
     o->crease_given = c->count("--crease-angle") > 0;

@@ -13,6 +13,8 @@
 #include <filesystem>
 #include <limits>
 
+#include "interfere/view/probe_document.h"
+#include "view_output.h"
 #include "commands.h"
 #include "common.h"
 #include "interfere/core/coordinate_range.h"
@@ -39,6 +41,7 @@ struct SweepOptions {
   double patch_size = 0, patch_rule = 33, max_clearance = 0;
   int threads = 0, depth = 16;
   bool no_continuous = false, no_clearance = false;
+  ViewOutputs views;
 };
 
 
@@ -133,8 +136,10 @@ int run_sweep(const SweepOptions& o) {
   check_output(o.csv, {}, "--csv");
   check_output(o.hits_obj, {".obj", ".vtk"}, "--hits-obj");
   check_output(o.probes_vtk, {".vtk", ".obj"}, "--probes-vtk");
-  check_distinct_files({{"--workpiece", o.workpiece}, {"--robot", o.robot}, {"--path", o.path}},
-                       {{"--json", o.json}, {"--csv", o.csv}, {"--hits-obj", o.hits_obj}, {"--probes-vtk", o.probes_vtk}});
+  check_view_outputs(o.views);
+  std::vector<NamedPath> outputs{{"--json", o.json}, {"--csv", o.csv}, {"--hits-obj", o.hits_obj}, {"--probes-vtk", o.probes_vtk}};
+  for (const NamedPath& v : o.views.paths()) outputs.push_back(v);
+  check_distinct_files({{"--workpiece", o.workpiece}, {"--robot", o.robot}, {"--path", o.path}}, outputs);
   set_threads(o.threads);
   const ProbeShape shape{.radius = o.probe_radius,
                          .length = o.probe_length,
@@ -344,6 +349,12 @@ int run_sweep(const SweepOptions& o) {
       if (!s) throw InputError(s.error());
     }
   }
+  if (o.views.any()) {
+    Expected<view::Document> doc = view::probe_document(w.mesh, shape, path, r);
+    if (!doc) throw InputError(doc.error());
+    doc->units = o.units;
+    write_views(o.views, std::move(*doc));
+  }
   const char* head = r.verdict == Verdict::clash       ? "COLLISION"
                      : r.verdict == Verdict::undecided ? "UNDECIDED"
                                                        : verdict_name(r.verdict);
@@ -396,6 +407,7 @@ void add_sweep_command(CLI::App& app, int& exit_code) {
   c->add_option("--units-workpiece", o->units_workpiece,
                 "unit of the workpiece's coordinates (default: metres for glTF, the file's own for STEP, mm otherwise)");
   add_step_tessellation_options(*c, o->tessellation);
+  add_view_options(*c, o->views);
   c->callback([o, c, &exit_code] {
     resolve_step_tessellation(*c, o->tessellation, {o->workpiece});
     exit_code = run_sweep(*o);

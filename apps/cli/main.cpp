@@ -6,6 +6,7 @@
 
 #include "commands.h"
 #include "common.h"
+#include "view_output.h"
 
 int main(int argc, char** argv) {
   using namespace interfere::cli;
@@ -26,6 +27,7 @@ int main(int argc, char** argv) {
   add_features_command(app, exit_code);
   add_assembly_clash_command(app, exit_code);
   app.parse_complete_callback([&] { Progress::set_quiet(quiet); });
+  set_command_line(argc, argv);
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common.h"
+#include "view_output.h"
 #include "interfere/mesh/io.h"
 #include "interfere/simplify/gltf_io.h"
 #include "interfere/simplify/qem.h"
@@ -35,6 +36,7 @@ struct SimplifyCliOptions {
   bool lock = false, check_self = false, no_error = false, no_guard = false, strict_guard = false;
   bool crease_given = false;      ///< --crease-angle on the command line
   int threads = 0;
+  ViewOutputs views;  ///< --html, --glb, --pvd (issue #25): the original and the simplified mesh
 };
 
 /// How OUT is written: glTF, or a mesh format (automatic: by OUT's extension).

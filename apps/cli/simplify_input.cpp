@@ -114,9 +114,12 @@ SimplifyOutput check_simplify_options(const SimplifyCliOptions& o) {
     if (!valid_angle(o.crease_angle))
       throw InputError("--crease-angle " + short_number(o.crease_angle) + ": give a dihedral angle in degrees, in (0, 180)");
   }
+  check_view_outputs(o.views);
+  std::vector<NamedPath> outputs{{"OUT", o.output}, {"--json", o.json}};
+  for (const NamedPath& v : o.views.paths()) outputs.push_back(v);
   check_distinct_files({{"IN", o.input}, {"--regions", o.regions}, {"--process", o.process},
                         {"--library", o.library}, {"--rules", o.rules}},
-                       {{"OUT", o.output}, {"--json", o.json}});
+                       outputs);
   return out;
 }
 
