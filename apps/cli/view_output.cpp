@@ -4,7 +4,7 @@
 #include <CLI/CLI.hpp>
 
 #include "interfere/view/budget.h"
-#if __has_include("interfere/view/gltf.h")
+#if __has_include("interfere/view/gltf.h") && __has_include("interfere/view/pvd.h")
 #include "interfere/view/gltf.h"
 #include "interfere/view/pvd.h"
 #define INTERFERE_PENDING_GLTF 1
