@@ -11,7 +11,8 @@ pkgs=(build-essential cmake ninja-build python3 git
       libocct-data-exchange-dev libocct-ocaf-dev libocct-modeling-algorithms-dev
       libocct-modeling-data-dev libocct-foundation-dev libocct-visualization-dev
       libmeshoptimizer-dev libopenmesh-dev
-      graphviz)  # (tests: `interfere features --dot` output is read back by Graphviz)
+      graphviz  # (tests: `interfere features --dot` output is read back by Graphviz)
+      python3-jsonschema python3-paraview)  # (tests/view, issue #25: the glTF schema check; ParaView reads the .pvd series back)
 missing=()
 for p in "${pkgs[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
 if ((${#missing[@]})); then
