@@ -125,6 +125,7 @@ Expected<SeriesResult> clash_series(const SeriesPart& a, const SeriesPart& b, co
     sum.interference = r.interference();
     sum.verdict = r.verdict;
     result.steps.push_back(sum);
+    if (request.on_step) request.on_step(sum, r);
     if (sum.interference && result.first_contact_step < 0) result.first_contact_step = static_cast<std::int64_t>(s);
     if (sum.verdict == Verdict::clash && result.first_clash_step < 0) {
       result.first_clash_step = static_cast<std::int64_t>(s);

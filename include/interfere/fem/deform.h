@@ -6,6 +6,7 @@
 // step (same topology; refit_bvh keeps the tree and recomputes its boxes), then the clash runs.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,8 @@ struct SeriesPart {
   const NodalSeries* displacement = nullptr;
 };
 
+struct StepSummary;
+
 struct SeriesRequest {
   ClashRequest clash;
   BvhBuildOptions bvh;
@@ -38,6 +41,10 @@ struct SeriesRequest {
   bool keep_first_clash = true;    ///< keep the full ClashResult of the first clashing step
   bool keep_all = false;           ///< keep the full ClashResult of every checked step
   bool keep_last = false;          ///< keep the full ClashResult of the last checked step
+  /// Called after each checked step with its summary and full result, before the result is kept
+  /// or dropped: a caller keeps what it needs of every step (the viewer document of issue #25 keeps
+  /// the regions and the closest clearance pair) without keep_all's copies of every result.
+  std::function<void(const StepSummary&, const ClashResult&)> on_step;
 };
 
 struct StepSummary {

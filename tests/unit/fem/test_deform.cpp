@@ -97,6 +97,32 @@ TEST(FemDeform, ClashOnsetStepIsTheAnalyticOne) {
   }
 }
 
+TEST(FemDeform, OnStepSeesEveryCheckedStepsResult) {
+  // on_step (issue #25: the viewer keeps each step's regions): called once per checked step, in
+  // order, with that step's summary and the same result keep_all keeps.
+  Pair p = make_pair_moving(1.0, 0.125, 12);
+  std::vector<std::size_t> seen;
+  std::vector<std::size_t> region_counts, pair_counts;
+  SeriesRequest request{.steps = {2, 8, 9, 11}, .keep_all = true};
+  request.on_step = [&](const StepSummary& s, const ClashResult& r) {
+    seen.push_back(s.step);
+    region_counts.push_back(r.regions.size());
+    pair_counts.push_back(r.pairs.size());
+    EXPECT_EQ(s.verdict, r.verdict) << s.step;
+    EXPECT_EQ(s.regions, r.regions.size()) << s.step;
+  };
+  auto r = clash_series({&p.a.mesh, &p.sa.parts[0], nullptr}, {&p.b.mesh, &p.sb.parts[0], &p.u}, request);
+  ASSERT_TRUE(r) << r.error().message();
+  EXPECT_EQ(seen, (std::vector<std::size_t>{2, 8, 9, 11}));
+  ASSERT_EQ(r->results.size(), 4u);
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_EQ(region_counts[i], r->results[i].regions.size()) << i;
+    EXPECT_EQ(pair_counts[i], r->results[i].pairs.size()) << i;
+  }
+  EXPECT_EQ(pair_counts[0], 0u);  // step 2: apart
+  EXPECT_GT(pair_counts[2], 0u);  // step 9: crossing
+}
+
 TEST(FemDeform, ScaleAndSelectedStepsAndMismatchedSeries) {
   Pair p = make_pair_moving(1.0, 0.125, 14);
   auto r = clash_series({&p.a.mesh, &p.sa.parts[0], nullptr}, {&p.b.mesh, &p.sb.parts[0], &p.u},
