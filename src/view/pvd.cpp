@@ -125,15 +125,22 @@ void points_array(VtpWriter& w, const std::vector<Vec3>& points) {
   w.text("</Points>\n");
 }
 
-/// A cell block (<Lines> or <Polys>): connectivity and offsets (Int64) of cells given by their
-/// point lists' ends.
+/// A cell block (<Lines> or <Polys>): connectivity and offsets of cells given by their point lists'
+/// ends; Int32 while every value fits (half the bytes), Int64 beyond.
 void cells(VtpWriter& w, const char* tag, const std::vector<std::int64_t>& connectivity, const std::vector<std::int64_t>& ends) {
+  constexpr std::int64_t kInt32Max = std::numeric_limits<std::int32_t>::max();
+  const bool narrow = std::all_of(connectivity.begin(), connectivity.end(), [](std::int64_t v) { return v <= kInt32Max; }) &&
+                      (ends.empty() || ends.back() <= kInt32Max);
   std::string c, o;
-  for (std::int64_t i : connectivity) put(c, i);
-  for (std::int64_t e : ends) put(o, e);
+  const auto add = [&](std::string& out, std::int64_t v) {
+    if (narrow) put<std::int32_t>(out, static_cast<std::int32_t>(v));
+    else put<std::int64_t>(out, v);
+  };
+  for (std::int64_t i : connectivity) add(c, i);
+  for (std::int64_t e : ends) add(o, e);
   w.text(std::string("<") + tag + ">\n");
-  w.array("Int64", "connectivity", 1, c);
-  w.array("Int64", "offsets", 1, o);
+  w.array(narrow ? "Int32" : "Int64", "connectivity", 1, c);
+  w.array(narrow ? "Int32" : "Int64", "offsets", 1, o);
   w.text(std::string("</") + tag + ">\n");
 }
 
