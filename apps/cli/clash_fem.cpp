@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 
 #include "clash_options.h"
 #include "fem_parts.h"
@@ -12,6 +13,7 @@
 #include "interfere/fem/io.h"
 #include "interfere/mesh/io.h"
 #include "interfere/mesh/polyline.h"
+#include "interfere/view/fem_document.h"
 #include "report_json.h"
 
 namespace interfere::cli {
@@ -62,6 +64,35 @@ RegionMesh region_mesh(const ClashResult& r, const FemPart* parts[2], const std:
 }
 
 std::string step_label(const StepSummary& s) { return fmt::format("{} (time {:g})", s.step, s.time); }
+
+// --html/--glb/--pvd (issue #25): the two surfaces at every checked step, a row per step that is
+// not clear (view/fem_document.h). `steps`: what on_step kept of each checked step.
+view::Document series_view(const FemPart& a, const FemPart& b, double scale, std::vector<view::FemSeriesStep> steps,
+                           const SeriesResult& sres, const std::string& units) {
+  view::FemSeriesInput in;
+  in.num_steps = sres.num_steps;
+  in.verdict = sres.verdict;
+  in.units = units;
+  const FemPart* parts[2] = {&a, &b};
+  for (std::size_t side = 0; side < 2; ++side) {
+    const FemPart& p = *parts[side];
+    const SurfacePart& sp = p.part();
+    view::FemSeriesBody& body = in.bodies[side];
+    body.id = side == 0 ? "A" : "B";
+    body.name = sp.name;
+    body.path = "/" + std::filesystem::path(p.file).stem().string() + "/" + sp.name;  // as fem/bodies.cpp names scene bodies
+    body.role = "part " + body.id;
+    body.surface = &sp.mesh;
+    body.source_ids.reserve(sp.tri_element.size());
+    for (const std::uint32_t e : sp.tri_element) body.source_ids.push_back(p.mesh->elem_ids[e]);
+  }
+  for (view::FemSeriesStep& s : steps) {
+    deformed_positions(a.part(), *a.mesh, a.displacement, s.step, scale, s.positions[0]);
+    deformed_positions(b.part(), *b.mesh, b.displacement, s.step, scale, s.positions[1]);
+  }
+  in.steps = std::move(steps);
+  return view::fem_series_document(std::move(in));
+}
 
 }  // namespace
 
@@ -128,6 +159,9 @@ int run_fem_clash(const ClashOptions& o, const ResolvedParts& parts, const Clash
   SeriesRequest sr{.clash = request, .bvh = parts.bvh, .scale = o.scale, .keep_first_clash = true, .keep_last = true};
   const bool series = o.step < 0 && num_steps > 1;
   if (o.step >= 0) sr.steps = {check_step(o.step, num_steps)};
+  std::vector<view::FemSeriesStep> view_steps;  // --html/--glb/--pvd: the regions of every checked step
+  if (o.views.any())
+    sr.on_step = [&](const StepSummary& s, const ClashResult& r) { view_steps.push_back(view::fem_series_step(s.step, s.time, r)); };
 
   Expected<SeriesResult> run = Error{};
   {
@@ -258,6 +292,11 @@ int run_fem_clash(const ClashOptions& o, const ResolvedParts& parts, const Clash
           {"query", query},
           {"total", total.seconds()}}}};
     write_or_throw(write_output(o.json, j.dump(2) + "\n"));
+  }
+  if (o.views.any()) {
+    view::Document doc = series_view(a, b, o.scale, std::move(view_steps), sres, parts.units);
+    for (const std::string& w : result.warnings) doc.notes.push_back(w);
+    write_views(o.views, std::move(doc));
   }
 
   if (series) {

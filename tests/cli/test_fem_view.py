@@ -1,0 +1,229 @@
+#!/usr/bin/env python3
+"""End-to-end tests of --glb, --pvd and --html on the FE series clash (issue #25): `interfere clash`
+of two FEM bodies over a displacement time series, its picture read back by small independent
+readers here (the GLB container and its JSON chunk; the .pvd collection and its VTK XML PolyData
+files with zlib-compressed base64 arrays) and checked against the model's analytic motion.
+
+Usage: test_fem_view.py PATH_TO_INTERFERE WORK_DIR   (run by ctest). Standard library only. The
+model is test_fem.py's: body "left" = [0,1]^3 (hex ids 1..8), body "right" = [1.5,2.5] x [0.2,0.8]^2
+(hex ids 101..108) moving by -0.125 in x per step for 10 steps (times 0.5 s): clear at steps 0-3,
+touching at step 4 (a contact), a clash from step 5.
+"""
+import base64
+import json
+import os
+import struct
+import sys
+import unittest
+import xml.etree.ElementTree as ET
+import zlib
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import cli_common  # noqa: E402
+from cli_common import path, run  # noqa: E402
+from test_fem import STEPS, V, write_model  # noqa: E402  (the model generator only; its tests are not run here)
+
+SERIES = ["--part-a", "left", "--part-b", "right", "--field", "disp"]
+NO_VIEWER = "this build of interfere has no HTML viewer"
+
+
+def read_glb(p):
+    """(JSON chunk, BIN chunk) of a binary glTF file, checking the container (glTF 2.0, section 4.4)."""
+    with open(p, "rb") as f:
+        data = f.read()
+    magic, version, length = struct.unpack_from("<III", data, 0)
+    assert magic == 0x46546C67 and version == 2 and length == len(data), (magic, version, length, len(data))
+    chunks, off = [], 12
+    while off < len(data):
+        n, kind = struct.unpack_from("<II", data, off)
+        assert n % 4 == 0, n
+        chunks.append((kind, data[off + 8:off + 8 + n]))
+        off += 8 + n
+    assert off == len(data)
+    assert chunks[0][0] == 0x4E4F534A, "first chunk is not JSON"
+    doc = json.loads(chunks[0][1].decode("utf-8"))
+    binary = chunks[1][1] if len(chunks) > 1 and chunks[1][0] == 0x004E4942 else b""
+    return doc, binary
+
+
+def accessor_values(doc, binary, index):
+    """The values of a float32/uint32 accessor as a list of tuples."""
+    acc = doc["accessors"][index]
+    view = doc["bufferViews"][acc["bufferView"]]
+    comps = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4}[acc["type"]]
+    fmt = {5126: "f", 5125: "I", 5123: "H", 5121: "B"}[acc["componentType"]]
+    size = struct.calcsize(fmt)
+    stride = view.get("byteStride", comps * size)
+    start = view.get("byteOffset", 0) + acc.get("byteOffset", 0)
+    return [struct.unpack_from("<%d%s" % (comps, fmt), binary, start + i * stride) for i in range(acc["count"])]
+
+
+def vtk_array(element):
+    """The values of a VTK XML DataArray: ascii, or binary zlib-compressed with a UInt64 header
+    [#blocks, block size, last block size, compressed sizes...] (vtkZLibDataCompressor)."""
+    kind = {"Int32": "i", "Int64": "q", "UInt8": "B", "Float64": "d", "Float32": "f", "UInt64": "Q"}[element.get("type")]
+    text = "".join(element.text.split())
+    if element.get("format") == "ascii":
+        return [float(x) if kind in "df" else int(x) for x in text.split()]
+    first = base64.b64decode(text[:32])  # 24 bytes: the first three header words
+    nblocks = struct.unpack_from("<Q", first, 0)[0]
+    head_len = 8 * (3 + nblocks)
+    head_chars = 4 * ((head_len + 2) // 3)
+    head = base64.b64decode(text[:head_chars])
+    sizes = struct.unpack_from("<%dQ" % nblocks, head, 24)
+    body = base64.b64decode(text[head_chars:])
+    raw, off = b"", 0
+    for s in sizes:
+        raw += zlib.decompress(body[off:off + s])
+        off += s
+    n = len(raw) // struct.calcsize(kind)
+    return list(struct.unpack("<%d%s" % (n, kind), raw))
+
+
+def read_vtp(p):
+    """{name: values} of a PolyData piece's cell data, point data, points and polygons, plus counts."""
+    piece = ET.parse(p).getroot().find("PolyData").find("Piece")
+    out = {"points": int(piece.get("NumberOfPoints")), "polys": int(piece.get("NumberOfPolys")),
+           "lines": int(piece.get("NumberOfLines")), "cell": {}, "point": {}}
+    for section, key in (("CellData", "cell"), ("PointData", "point")):
+        node = piece.find(section)
+        if node is not None:
+            for a in node.findall("DataArray"):
+                out[key][a.get("Name")] = vtk_array(a)
+    pts = piece.find("Points")
+    if pts is not None and out["points"]:
+        flat = vtk_array(pts.find("DataArray"))
+        out["xyz"] = [tuple(flat[i:i + 3]) for i in range(0, len(flat), 3)]
+    polys = piece.find("Polys")
+    if polys is not None and out["polys"]:
+        arrays = {a.get("Name"): vtk_array(a) for a in polys.findall("DataArray")}
+        conn, offs = arrays["connectivity"], arrays["offsets"]
+        out["poly_points"] = [conn[(offs[i - 1] if i else 0):offs[i]] for i in range(len(offs))]
+    return out
+
+
+def read_pvd(p):
+    """The collection's data sets as (timestep, part, name, file) in file order."""
+    root = ET.parse(p).getroot()
+    assert root.get("type") == "Collection", root.get("type")
+    return [(float(d.get("timestep")), int(d.get("part", "0")), d.get("name"), d.get("file"))
+            for d in root.find("Collection").findall("DataSet")]
+
+
+class FemView(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.model = write_model("model.msh")
+        cls.rc, cls.out, cls.err = run("clash", cls.model, cls.model, *SERIES, "--glb", path("series.glb"),
+                                       "--pvd", path("series.pvd"), "--json", path("series.json"))
+
+    def test_series_runs_as_before(self):
+        self.assertEqual(self.rc, 1, self.out + self.err)  # a clash: exit status 1
+        self.assertIn("first clash at step 5", self.out)
+
+    def test_pvd_has_one_bodies_dataset_per_step_at_its_time(self):
+        sets = read_pvd(path("series.pvd"))
+        bodies = [s for s in sets if s[2] == "bodies"]
+        self.assertEqual([t for t, _, _, _ in bodies], [0.5 * k for k in range(STEPS)])
+        for _, _, _, f in sets:
+            self.assertTrue(os.path.isfile(os.path.join(os.path.dirname(path("series.pvd")), f)), f)
+
+    def test_pvd_steps_hold_the_deformed_bodies_with_element_ids_and_clash_flags(self):
+        base = os.path.dirname(path("series.pvd"))
+        bodies = [s for s in read_pvd(path("series.pvd")) if s[2] == "bodies"]
+        for k, (_, _, _, f) in enumerate(bodies):
+            v = read_vtp(os.path.join(base, f))
+            body, ids, flags = v["cell"]["body"], v["cell"]["source_id"], v["cell"]["clash"]
+            self.assertEqual(len(body), v["polys"])
+            # Every hex of a 2x2x2 block has a boundary face: the element ids of each body, exactly.
+            self.assertEqual(sorted({i for b, i in zip(body, ids) if b == 0}), list(range(1, 9)))
+            self.assertEqual(sorted({i for b, i in zip(body, ids) if b == 1}), list(range(101, 109)))
+            # The bodies' x extents: left at rest, right shifted by -0.125 k.
+            for b, (lo, hi) in ((0, (0.0, 1.0)), (1, (1.5 - V * k, 2.5 - V * k))):
+                xs = [v["xyz"][p][0] for c, cell in enumerate(v["poly_points"]) if body[c] == b for p in cell]
+                self.assertAlmostEqual(min(xs), lo, places=12)
+                self.assertAlmostEqual(max(xs), hi, places=12)
+            # Flags from the contact on, and only on triangles reaching the other body's box.
+            flagged = [c for c, fl in enumerate(flags) if fl]
+            self.assertEqual(bool(flagged), k >= 4, k)
+            for c in flagged:
+                xs = [v["xyz"][p][0] for p in v["poly_points"][c]]
+                if body[c] == 0:
+                    self.assertGreaterEqual(max(xs), 1.5 - V * k - 1e-12, (k, c))
+                else:
+                    self.assertLessEqual(min(xs), 1.0 + 1e-12, (k, c))
+
+    def test_pvd_clash_files_have_geometry_from_the_contact_on(self):
+        base = os.path.dirname(path("series.pvd"))
+        clashes = [s for s in read_pvd(path("series.pvd")) if s[2] == "clashes"]
+        self.assertEqual(len(clashes), STEPS)
+        for k, (_, _, _, f) in enumerate(clashes):
+            v = read_vtp(os.path.join(base, f))
+            self.assertEqual(v["polys"] > 0, k >= 4, k)  # region triangles
+            if k in (5, 6, 7, 9):  # crossing steps: the intersection curve, on A's face x = 1
+                self.assertGreater(v["lines"], 0, k)
+
+    def test_glb_has_both_bodies_frames_and_a_row_per_step_that_is_not_clear(self):
+        doc, binary = read_glb(path("series.glb"))
+        names = [n.get("name") for n in doc["nodes"]]
+        self.assertIn("left", names)
+        self.assertIn("right", names)
+        right = doc["nodes"][names.index("right")]
+        self.assertEqual(right["extras"]["path"], "/model/right")
+        extras = doc["scenes"][doc.get("scene", 0)]["extras"]
+        frames = extras["frames"]
+        self.assertEqual(frames["labels"], ["step %d (time %g)" % (k, 0.5 * k) for k in range(STEPS)])
+        self.assertEqual(frames["verdicts"][:6], ["clear"] * 4 + ["contact", "clash"])
+        self.assertEqual(extras["verdict"], "clash")
+        rows = {n["extras"]["clash_id"]: n for n in doc["nodes"] if "clash_id" in n.get("extras", {}) and "children" in n}
+        self.assertEqual(sorted(rows), ["step %d" % k for k in range(4, STEPS)])
+        self.assertEqual(rows["step 4"]["extras"]["verdict"], "contact")
+        self.assertEqual(rows["step 5"]["extras"]["verdict"], "clash")
+        self.assertEqual(rows["step 5"]["extras"]["frames"], [5])
+        # The first clash's region, at full resolution in world coordinates: the region node's
+        # POSITION values plus the clash node's translation reach A's face x = 1 and stay within
+        # the overlap of the two boxes at step 5 (x in [0.875, 1.5]: triangles of both sides).
+        row = rows["step 5"]
+        t = row.get("translation", [0, 0, 0])
+        region = next(doc["nodes"][c] for c in row["children"] if doc["nodes"][c]["name"] == "step 5 region")
+        prim = doc["meshes"][region["mesh"]]["primitives"][0]
+        xs = [p[0] + t[0] for p in accessor_values(doc, binary, prim["attributes"]["POSITION"])]
+        self.assertGreater(len(xs), 0)
+        self.assertLessEqual(min(xs), 1.0 + 1e-6)
+        self.assertGreaterEqual(min(xs), 0.5 - 1e-6)  # A's triangles touching x = 1 start at x = 0.5
+        self.assertLessEqual(max(xs), 2.0 + 1e-6)     # B's at step 5: [0.875, 1.875]
+
+    def test_a_single_step_is_one_frame(self):
+        rc, out, err = run("clash", self.model, self.model, *SERIES, "--step", "5", "--pvd", path("one.pvd"),
+                           "--glb", path("one.glb"))
+        self.assertEqual(rc, 1, out + err)
+        sets = read_pvd(path("one.pvd"))
+        self.assertEqual([(t, n) for t, _, n, _ in sets if n == "bodies"], [(2.5, "bodies")])
+        doc, _ = read_glb(path("one.glb"))
+        self.assertEqual(doc["scenes"][doc.get("scene", 0)]["extras"]["frames"]["labels"], ["step 5 (time 2.5)"])
+
+    def test_outputs_are_checked_before_any_work(self):
+        for args, needle in ((["--json", path("same.glb"), "--glb", path("same.glb")], "is also the file of"),
+                             (["--pvd", path("bad.vtp")], "--pvd"),
+                             (["--glb", self.model], "--glb")):
+            rc, out, err = run("clash", self.model, self.model, *SERIES, *args)
+            self.assertEqual(rc, 2, out + err)
+            self.assertIn(needle, err)
+        self.assertFalse(os.path.exists(path("same.glb")))
+        self.assertFalse(os.path.exists(path("bad.vtp")))
+
+    def test_html_page_when_the_build_has_the_viewer(self):
+        rc, out, err = run("clash", self.model, self.model, *SERIES, "--html", path("series.html"))
+        if NO_VIEWER in err:
+            self.assertEqual(rc, 2, out + err)
+            self.assertFalse(os.path.exists(path("series.html")))
+            self.skipTest("this build has no HTML viewer")
+        self.assertEqual(rc, 1, out + err)
+        with open(path("series.html"), encoding="utf-8") as f:
+            page = f.read()
+        for k in range(STEPS):
+            self.assertIn("step %d (time %g)" % (k, 0.5 * k), page)
+
+
+if __name__ == "__main__":
+    cli_common.main()
