@@ -4,11 +4,8 @@
 #include <CLI/CLI.hpp>
 
 #include "interfere/view/budget.h"
-#if __has_include("interfere/view/gltf.h") && __has_include("interfere/view/pvd.h")
 #include "interfere/view/gltf.h"
 #include "interfere/view/pvd.h"
-#define INTERFERE_PENDING_GLTF 1
-#endif
 #include "interfere/view/html.h"
 
 namespace interfere::cli {
@@ -49,7 +46,6 @@ void write_views(const ViewOutputs& v, view::Document doc) {
   if (!v.any()) return;
   doc.command = g_command_line;
   doc.tool_version = INTERFERE_VERSION;
-#ifdef INTERFERE_PENDING_GLTF
   if (!v.glb.empty()) {
     Progress progress("writing " + v.glb);
     write_or_throw(view::write_glb(v.glb, doc));
@@ -58,9 +54,6 @@ void write_views(const ViewOutputs& v, view::Document doc) {
     Progress progress("writing " + v.pvd);
     write_or_throw(view::write_pvd(v.pvd, doc));
   }
-#else
-  if (!v.glb.empty() || !v.pvd.empty()) throw InputError("--glb/--pvd: not in this build yet");
-#endif
   if (!v.html.empty()) {
     Progress progress("writing " + v.html);
     view::decimate_for_display(doc, {.triangle_budget = v.budget});
