@@ -1,6 +1,9 @@
 // Independent clearance oracle for the probe tests (issue #23, item 14): dense samples of a body's
-// surface against the triangles by np::closest_point_on_triangle (Ericson's point-triangle
-// projection), sharing nothing with the probe's cylinder/box-triangle distance code it checks.
+// surface against the triangles by reference::point_triangle_distance (unit/reference_distance.h:
+// plane projection with edge-side tests, else the nearest edge), sharing nothing with the probe's
+// cylinder/box-triangle distance code it checks. (np::closest_point_on_triangle, Ericson's
+// Voronoi-region walk, is not used: the cylinder distance (probe/cylinder_distance.cpp) and the
+// box-holder distance (box_triangle_distance -> triangle_triangle_closest) both call it.)
 //
 // Error bound: the distance between a solid body and a triangle outside it is attained at a
 // boundary point p*; the samples lie on grids of the surface whose cells have sides at most a and
@@ -14,9 +17,9 @@
 #include <vector>
 
 #include "interfere/mesh/tri_mesh.h"
-#include "interfere/np/distance.h"
 #include "interfere/probe/box.h"
 #include "interfere/probe/cylinder.h"
+#include "unit/reference_distance.h"
 
 namespace interfere::probe::oracle {
 
@@ -101,7 +104,7 @@ inline double sampled_distance(const Sampled& s, const TriMesh& mesh, double rea
     if (std::sqrt(gap2) > reach) continue;
     const auto tri = mesh.corners(t);
     for (const Vec3& p : s.points)
-      best = std::min(best, distance(p, closest_point_on_triangle(p, tri)));
+      best = std::min(best, reference::point_triangle_distance(p, tri));
   }
   return best;
 }

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <random>
 
-#include "interfere/np/distance.h"
 #include "interfere/probe/cylinder.h"
+#include "unit/reference_distance.h"
 
 using namespace interfere;
 using namespace interfere::probe;
@@ -43,7 +43,9 @@ double sampled_distance(const Cylinder& c, const Tri3& t, int n) {
   return best;
 }
 
-/// Brute-force: sample the cylinder volume finely and keep the smallest distance to the triangle.
+/// Brute-force: sample the cylinder volume finely and keep the smallest distance to the triangle
+/// (reference::point_triangle_distance, unit/reference_distance.h: not np::closest_point_on_triangle,
+/// which cylinder_triangle_distance uses for its witness points; issue #23, item 14).
 double sampled_cylinder_to_triangle(const Cylinder& c, const Tri3& t, int n) {
   const Vec3 d = c.c1 - c.c0;
   const Vec3 u = d / norm(d);
@@ -59,7 +61,7 @@ double sampled_cylinder_to_triangle(const Cylinder& c, const Tri3& t, int n) {
       for (int j = 0; j < m; ++j) {
         const double phi = 2 * M_PI * j / m;
         const Vec3 p = c.c0 + d * (double(i) / n) + e1 * (rr * std::cos(phi)) + e2 * (rr * std::sin(phi));
-        best = std::min(best, distance(p, closest_point_on_triangle(p, t)));
+        best = std::min(best, reference::point_triangle_distance(p, t));
       }
     }
   }

@@ -74,7 +74,7 @@ TEST(ProbeSweep, ClearanceMatchesSampledOracle) {
   const SweepResult r = sweep(w, path, &robot, {.probe = probe, .continuous = false});
   for (std::size_t i = 0; i < path.size(); ++i) {
     // Independent oracle (issue #23, item 14): dense samples of the probe's surface against every
-    // nearby triangle by np::closest_point_on_triangle; true <= sampled <= true + h.
+    // nearby triangle by reference::point_triangle_distance; true <= sampled <= true + h.
     const oracle::Sampled s = oracle::sample_cylinder(probe_cylinders(probe, path.poses[i])[0], 0.2);
     const double sampled = oracle::sampled_distance(s, mesh, r.points[i].clearance + s.h + 1);
     EXPECT_FALSE(r.points[i].collides);

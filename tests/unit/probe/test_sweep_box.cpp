@@ -155,7 +155,7 @@ TEST(ProbeSweepBox, ClearanceMatchesSampledOracle) {
   for (std::size_t i = 0; i < path.size(); ++i) {
     ASSERT_FALSE(r.points[i].collides) << i;
     // Independent oracle (issue #23, item 14): dense samples of the probe's and the box's surfaces
-    // against the nearby triangles by np::closest_point_on_triangle; true <= sampled <= true + h.
+    // against the nearby triangles by reference::point_triangle_distance; true <= sampled <= true + h.
     const double reach = r.points[i].clearance + 2;
     const oracle::Sampled sc = oracle::sample_cylinder(probe_cylinders(probe, path.poses[i])[0], 0.25);
     const oracle::Sampled sb = oracle::sample_box(probe_holder_box(probe, path.poses[i]), 0.5);

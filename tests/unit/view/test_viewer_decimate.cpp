@@ -7,8 +7,8 @@
 #include <set>
 
 #include "interfere/view/budget.h"
-#include "interfere/np/distance.h"
 #include "interfere/view/json.h"
+#include "unit/reference_distance.h"
 
 namespace interfere::view {
 namespace {
@@ -179,14 +179,16 @@ TEST(ViewerDecimate, ErrorModes) {
     EXPECT_EQ(none.meshes[m].decimation_error, 0.0);
     EXPECT_GE(bound.meshes[m].decimation_error, sampled.meshes[m].decimation_error);
     // The sampled deviation is what an independent measurement finds at the full mesh's vertices
-    // (a subset of its samples): at least their largest distance to the decimated triangles.
+    // (a subset of its samples): at least their largest distance to the decimated triangles, by
+    // reference::point_triangle_distance (unit/reference_distance.h; the decimation measures with
+    // simplify's one_sided, whose leaf is np::closest_point_on_triangle: issue #23, item 14).
     const TriMesh& full = original.meshes[m].mesh;
     const TriMesh& dec = sampled.meshes[m].mesh;
     double far = 0;
     for (std::size_t v = 0; v < full.num_vertices(); v += 97) {
       double best = 1e300;
       for (std::size_t t = 0; t < dec.num_triangles(); ++t)
-        best = std::min(best, distance(full.positions[v], closest_point_on_triangle(full.positions[v], dec.corners(t))));
+        best = std::min(best, reference::point_triangle_distance(full.positions[v], dec.corners(t)));
       far = std::max(far, best);
     }
     EXPECT_GE(sampled.meshes[m].decimation_error, far - 1e-12) << m;
