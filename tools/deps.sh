@@ -12,7 +12,8 @@ pkgs=(build-essential cmake ninja-build python3 git
       libocct-modeling-data-dev libocct-foundation-dev libocct-visualization-dev
       libmeshoptimizer-dev libopenmesh-dev
       graphviz  # (tests: `interfere features --dot` output is read back by Graphviz)
-      python3-jsonschema python3-paraview)  # (tests/view, issue #25: the glTF schema check; ParaView reads the .pvd series back)
+      python3-jsonschema python3-paraview  # (tests/view, issue #25: the glTF schema check; ParaView reads the .pvd series back)
+      chromium)  # (tests/viewer, issue #25: the HTML viewer page in headless Chromium via puppeteer-core; Node.js/npm come with the machine: do not apt-install npm)
 missing=()
 for p in "${pkgs[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
 if ((${#missing[@]})); then
