@@ -40,6 +40,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 #include "interfere/cad/model.h"
 
@@ -172,9 +173,11 @@ const char* test_part_name(TestPart p) {
 namespace {
 
 // Writes an XCAF document filled by `fill` (shapes and their names) with STEPCAFControl_Writer, so
-// that products carry those names.
+// that products carry those names; `length_unit` (write.step.unit's names) is the file's length
+// unit, the shapes' millimetres converted to it (default: mm).
 template <class Fill>
-Status write_xcaf(const std::filesystem::path& step_file, Fill&& fill, const char* schema = nullptr) {
+Status write_xcaf(const std::filesystem::path& step_file, Fill&& fill, const char* schema = nullptr,
+                  const char* length_unit = nullptr) {
   try {
     // The writer's transfer statistics go to the default messenger's stdout printer: mute it.
     Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
@@ -182,17 +185,28 @@ Status write_xcaf(const std::filesystem::path& step_file, Fill&& fill, const cha
     XCAFApp_Application::GetApplication()->NewDocument("MDTV-XCAF", doc);
     if (const Status s = fill(XCAFDoc_DocumentTool::ShapeTool(doc->Main())); !s.ok())
       return Error{.file = step_file.string(), .reason = s.error().reason};
-    // The schema ("AP203", "AP214CD", ...) is a process-wide setting of OCCT's STEP interface:
-    // set for this writer (registered by STEPControl_Controller::Init), then restored.
+    // The schema ("AP203", "AP214CD", ...) and the length unit ("MM", "M", "INCH", ...) are
+    // process-wide settings of OCCT's STEP interface: set for this writer (registered by
+    // STEPControl_Controller::Init), then restored.
     STEPControl_Controller::Init();
-    struct Schema {
+    struct Setting {
+      const char* name;
       std::string before;
       bool set = false;
-      ~Schema() {
-        if (set) Interface_Static::SetCVal("write.step.schema", before.c_str());
+      ~Setting() {
+        if (set) Interface_Static::SetCVal(name, before.c_str());
       }
-    } restore{Interface_Static::CVal("write.step.schema"), schema != nullptr};
-    if (schema) Interface_Static::SetCVal("write.step.schema", schema);
+    };
+    Setting restore_schema{"write.step.schema", Interface_Static::CVal("write.step.schema")};
+    Setting restore_unit{"write.step.unit", Interface_Static::CVal("write.step.unit")};
+    for (auto [setting, value] :
+         {std::pair{&restore_schema, schema}, std::pair{&restore_unit, length_unit}}) {
+      if (!value) continue;
+      if (!Interface_Static::SetCVal(setting->name, value))
+        return Error{.file = step_file.string(),
+                     .reason = std::string(setting->name) + ": unknown value '" + value + "'"};
+      setting->set = true;
+    }
     STEPCAFControl_Writer w;
     w.SetNameMode(Standard_True);
     if (!w.Transfer(doc, STEPControl_AsIs)) return Error{.file = step_file.string(), .reason = "STEP transfer failed"};
@@ -204,16 +218,28 @@ Status write_xcaf(const std::filesystem::path& step_file, Fill&& fill, const cha
   }
 }
 
+// One product named after the part (test_part_name), in `length_unit` (null: OCCT's setting, mm).
+Status write_part(TestPart part, const std::filesystem::path& step_file, const char* length_unit) {
+  return write_xcaf(
+      step_file,
+      [&](const Handle(XCAFDoc_ShapeTool)& st) -> Status {
+        const TopoDS_Shape s = build(part);
+        if (s.IsNull()) return Error{.reason = "solid construction failed"};
+        TDataStd_Name::Set(st->AddShape(s, Standard_False), test_part_name(part));
+        return {};
+      },
+      nullptr, length_unit);
+}
+
 }  // namespace
 
-// One product named after the part (test_part_name).
 Status write_test_part(TestPart part, const std::filesystem::path& step_file) {
-  return write_xcaf(step_file, [&](const Handle(XCAFDoc_ShapeTool)& st) -> Status {
-    const TopoDS_Shape s = build(part);
-    if (s.IsNull()) return Error{.reason = "solid construction failed"};
-    TDataStd_Name::Set(st->AddShape(s, Standard_False), test_part_name(part));
-    return {};
-  });
+  return write_part(part, step_file, nullptr);
+}
+
+Status write_test_part(TestPart part, const std::filesystem::path& step_file,
+                       const std::string& length_unit) {
+  return write_part(part, step_file, length_unit.c_str());
 }
 
 Status write_test_assembly(const std::filesystem::path& step_file) {

@@ -625,6 +625,92 @@ class Features(unittest.TestCase):
         self.assertEqual(code, 2)
         self.assertIn("broken.step", err)
 
+    def test_step_file_in_metres_is_read_in_mm(self):
+        # Issue #23, item 6: a STEP file's own length unit. The counterbored plate's file with its
+        # length unit declared as the metre, the numbers kept: a 40 x 30 x 10 m plate, read as
+        # 40000 x 30000 x 10000 mm by every command. (tests/cad/test_step_units.cpp: files OCCT writes
+        # in inches and metres.)
+        with open(os.path.join(DATA, "counterbored_plate.step")) as f:
+            text = f.read()
+        mm_unit = "( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.) )"
+        self.assertEqual(text.count(mm_unit), 1)
+        plate = path("plate_40m.step")
+        with open(plate, "w") as f:
+            f.write(text.replace(mm_unit, "( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT($,.METRE.) )"))
+        code, out, err = run("features", plate, "--json", path("fm.json"))
+        self.assertEqual(code, 0, err)
+        r = load_json("fm.json")
+        self.assertEqual((r["units"], r["file_length_units"]), ("mm", ["metre"]))
+        feats = r["parts"][0]["features"]
+        self.assertEqual([f["type"] for f in feats], ["counterbored_hole"])
+        self.assertEqual(sorted(round(x, 6) for x in feats[0]["radii"]), [3000.0, 6000.0])
+        self.assertAlmostEqual(feats[0]["axis"]["point"][0], 20000.0, places=6)
+        code, out, err = run("check", plate)
+        self.assertEqual(code, 0, err)
+        bbox = json.loads(out)["bbox"]
+        for got, want in zip(bbox["min"] + bbox["max"], [0, 0, 0, 40000, 30000, 10000]):
+            self.assertAlmostEqual(got, want, places=6)
+        # Against parts in mm: a pin through the bore (r = 3000 mm at (20000, 15000)) is clear at
+        # r = 2800 mm and a clash at 3200 mm, as the mm plate's pins of 2.8 and 3.2 mm are; a 1 m cube
+        # inside the plate's solid is a clash. Read as mm numbers, the plate would be 40 mm wide, and
+        # all three clear of it.
+        for name, mesh, transform, expected in (
+                ("pin_2800.obj", make_examples.cylinder(2800, 30000, 64), "1 0 0 20000 0 1 0 15000 0 0 1 5000", "clear"),
+                ("pin_3200.obj", make_examples.cylinder(3200, 30000, 64), "1 0 0 20000 0 1 0 15000 0 0 1 5000", "clash"),
+                ("cube_1m.obj", make_examples.box((30000, 20000, 2000), (31000, 21000, 3000), 1), "", "clash")):
+            write_obj(name, mesh)
+            args = ["clash", plate, path(name), "--json", path("sm.json")]
+            if transform:
+                args += ["--transform-b", transform]
+            code, out, err = run(*args)
+            self.assertEqual(code, 1 if expected == "clash" else 0, out + err)
+            rep = load_json("sm.json")
+            self.assertEqual(rep["verdict"], expected, name)
+            self.assertEqual(rep["units"], "mm")
+            a, b = rep["inputs"]["a"], rep["inputs"]["b"]
+            self.assertEqual((a["format"], a["units"], a["scale_to_working_unit"]), ("step", "mm", 1))
+            self.assertEqual((b["units"], b["scale_to_working_unit"]), ("mm", 1))
+            self.assertEqual(rep["input_warnings"], [])  # sizes within 100x of each other
+        # Simplified to glTF (metres): the plate is 40 m there, and it clashes with its STEP file.
+        glb = path("plate_40m.glb")
+        code, _, err = run("simplify", plate, glb, "--ratio", "0.5")
+        self.assertEqual(code, 0, err)
+        doc, _, read = read_glb(glb)
+        scale = doc["nodes"][0].get("scale", [1, 1, 1])
+        xs = read(doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"])[0::3]
+        self.assertAlmostEqual(max(xs) * scale[0], 40.0, places=4)  # metres (float32 positions)
+        code, out, err = run("clash", glb, plate, "--json", path("sgm.json"))
+        self.assertEqual(code, 1, out + err)
+        rep = load_json("sgm.json")
+        self.assertEqual((rep["verdict"], rep["inputs"]["a"]["units"]), ("clash", "m"))
+        self.assertEqual(rep["input_warnings"], [])
+
+    def test_simplified_step_as_glb_clashes_with_the_step(self):
+        # Issue #23, item 6, as reported: `simplify part.step part.glb` then `clash part.glb part.step`
+        # printed "clear: 0 pairs" (the glTF's metres taken as mm: a 0.04 mm plate in the 40 mm one's
+        # corner; forced so with --units-a mm it now touches there, 0 crossing pairs, and a size
+        # warning). Each input is converted from its own unit to the working unit: the simplified
+        # plate lies on the original, their surfaces cross, a clash (exit 1), in mm or in metres.
+        plate = os.path.join(DATA, "counterbored_plate.step")
+        glb = path("plate_simplified.glb")
+        code, _, err = run("simplify", plate, glb, "--ratio", "0.5")
+        self.assertEqual(code, 0, err)
+        for units, scale_a, scale_b in (("mm", 1000, 1), ("m", 1, 0.001)):
+            code, out, err = run("clash", glb, plate, "--units", units, "--json", path("sg.json"))
+            self.assertEqual(code, 1, out + err)
+            rep = load_json("sg.json")
+            self.assertEqual(rep["verdict"], "clash")
+            self.assertEqual(rep["units"], units)
+            a, b = rep["inputs"]["a"], rep["inputs"]["b"]
+            self.assertEqual((a["format"], a["units"], b["format"], b["units"]), ("glb", "m", "step", "mm"))
+            self.assertAlmostEqual(a["scale_to_working_unit"], scale_a, places=12)
+            self.assertAlmostEqual(b["scale_to_working_unit"], scale_b, places=12)
+            self.assertGreater(rep["result"]["cross_pairs"], 0)
+            self.assertEqual(rep["input_warnings"], [])
+        # The other order too.
+        code, out, err = run("clash", plate, glb)
+        self.assertEqual(code, 1, out + err)
+
     def test_step_tessellation_options_and_conservative_clash(self):
         # --linear-deflection sets the STEP tessellation (reported); --conservative takes a STEP part's
         # deflection as its error bound: a pin of r = 2.95 in the plate's r = 3 bore (a 0.05 gap) is

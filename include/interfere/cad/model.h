@@ -140,6 +140,12 @@ enum class TestPart {
 };
 const char* test_part_name(TestPart p);
 Status write_test_part(TestPart part, const std::filesystem::path& step_file);
+/// The same solid (sizes in mm) written in the length unit `length_unit`, one of OCCT's
+/// write.step.unit names ("MM", "M", "INCH", "FT", ...), its coordinates converted to it (a file
+/// whose own unit is not mm, as CAD systems write them; issue #23, item 6). Unknown names: an
+/// error.
+Status write_test_part(TestPart part, const std::filesystem::path& step_file,
+                       const std::string& length_unit);
 
 /// An XCAF assembly "assembly" written with STEPCAFControl_Writer (names kept): part "plate"
 /// (counterbored_plate) as component "plate_1" at the identity and "plate_2" rotated 90 degrees about
