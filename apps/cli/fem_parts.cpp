@@ -75,7 +75,7 @@ void add_body_warnings(FemPart& p) {
 
 bool is_fem_file(const std::string& path) {
   const std::string ext = lower_extension(path);
-  for (const char* e : {".msh", ".bdf", ".nas", ".dat", ".vtk", ".vtu", ".inp"}) {
+  for (const char* e : {".msh", ".bdf", ".nas", ".dat", ".vtk", ".vtu", ".inp", ".frd", ".e", ".exo"}) {
     if (ext == e) return true;
   }
   return false;

@@ -38,7 +38,7 @@ bool is_step(const std::string& f) { return lower_ext(f) == ".step" || lower_ext
 bool is_gltf(const std::string& f) { return lower_ext(f) == ".glb" || lower_ext(f) == ".gltf"; }
 bool is_fem(const std::string& f) {
   const std::string e = lower_ext(f);
-  for (const char* x : {".msh", ".bdf", ".nas", ".dat", ".vtk", ".vtu", ".inp"})
+  for (const char* x : {".msh", ".bdf", ".nas", ".dat", ".vtk", ".vtu", ".inp", ".frd", ".e", ".exo"})
     if (e == x) return true;
   return false;
 }

@@ -1,6 +1,7 @@
 // Finite-element file input/output (issue #3, item 1): Gmsh MSH 2.2 / 4.1 (ASCII, binary), Nastran
 // bulk data (small, large, free field), legacy VTK unstructured grids, VTK XML .vtu (ASCII, binary,
-// appended, zlib), Abaqus/CalculiX .inp, and nodal displacements as CSV. Every error names the file,
+// appended, zlib), Abaqus/CalculiX .inp, nodal displacements as CSV; read only: CalculiX .frd results
+// (ASCII and binary, issue #26) and Exodus II (.e/.exo, when built with libexodusII). Every error names the file,
 // the line (text) or byte offset (binary) and the reason. The format-by-format details (supported
 // keywords, element types, how bodies become groups) are in docs/fem.md.
 #pragma once
@@ -14,13 +15,15 @@
 
 namespace interfere {
 
-enum class FemFormat { automatic, msh, nastran, vtk_legacy, vtu, abaqus };
+enum class FemFormat { automatic, msh, nastran, vtk_legacy, vtu, abaqus, frd, exodus };
 
-/// "msh", "nastran" (also "bdf", "nas"), "vtk", "vtu", "inp" (also "abaqus"), "auto";
+/// "msh", "nastran" (also "bdf", "nas"), "vtk", "vtu", "inp" (also "abaqus"), "frd" (also
+/// "calculix"), "exodus" (also "exo", "e"), "auto";
 /// automatic if unknown.
 FemFormat fem_format_from_name(const std::string& name);
 const char* fem_format_name(FemFormat f);
-/// By extension: .msh, .bdf/.nas/.dat/.blk, .vtk, .vtu, .inp; automatic when it is none of them.
+/// By extension: .msh, .bdf/.nas/.dat/.blk, .vtk, .vtu, .inp, .frd, .e/.exo; automatic when it is
+/// none of them.
 FemFormat fem_format_from_path(const std::filesystem::path& path);
 
 struct FemReadOptions {
@@ -28,9 +31,13 @@ struct FemReadOptions {
 };
 
 /// Reads a volume (or shell) mesh with its groups, sets and, where the format holds them, nodal
-/// vector fields (VTU point data with 3 components, Gmsh $NodeData views with 3 components; several
-/// time steps become one NodalSeries). The result passes validate_fem_mesh.
+/// vector fields (VTU point data with 3 components, Gmsh $NodeData views with 3 components, the
+/// DISP blocks of a .frd, the DISPL_X/Y/Z variables of an Exodus file; several time steps become
+/// one NodalSeries). The result passes validate_fem_mesh.
 Expected<FemMesh> read_fem(const std::filesystem::path& path, const FemReadOptions& options = {});
+
+/// True when this build reads Exodus II files (built with libexodusII: INTERFERE_WITH_EXODUS).
+bool fem_has_exodus_reader();
 
 /// Nodal displacements from CSV (docs/fem.md): a header row, then one row per node and step.
 ///   node_id,ux,uy,uz            one step

@@ -15,6 +15,8 @@ FemFormat fem_format_from_name(const std::string& name) {
   if (n == "vtk") return FemFormat::vtk_legacy;
   if (n == "vtu") return FemFormat::vtu;
   if (n == "inp" || n == "abaqus") return FemFormat::abaqus;
+  if (n == "frd" || n == "calculix") return FemFormat::frd;
+  if (n == "exodus" || n == "exo" || n == "e") return FemFormat::exodus;
   return FemFormat::automatic;
 }
 
@@ -25,6 +27,8 @@ const char* fem_format_name(FemFormat f) {
     case FemFormat::vtk_legacy: return "vtk";
     case FemFormat::vtu: return "vtu";
     case FemFormat::abaqus: return "inp";
+    case FemFormat::frd: return "frd";
+    case FemFormat::exodus: return "exodus";
     default: return "auto";
   }
 }
@@ -36,6 +40,8 @@ FemFormat fem_format_from_path(const std::filesystem::path& path) {
   if (ext == ".vtk") return FemFormat::vtk_legacy;
   if (ext == ".vtu") return FemFormat::vtu;
   if (ext == ".inp") return FemFormat::abaqus;
+  if (ext == ".frd") return FemFormat::frd;
+  if (ext == ".e" || ext == ".exo") return FemFormat::exodus;
   return FemFormat::automatic;
 }
 
@@ -45,6 +51,10 @@ namespace {
 FemFormat sniff(std::string_view s) {
   using namespace fem_io;
   if (s.substr(0, 3) == "\xEF\xBB\xBF") s = s.substr(3);
+  // Exodus II: a netCDF classic/64-bit file or a netCDF-4 (HDF5) file.
+  if (s.starts_with(std::string_view("CDF\x01", 4)) || s.starts_with(std::string_view("CDF\x02", 4)) ||
+      s.starts_with(std::string_view("CDF\x05", 4)) || s.starts_with("\x89HDF\r\n"))
+    return FemFormat::exodus;
   Text t(s);
   std::string_view line;
   int looked = 0;
@@ -53,6 +63,7 @@ FemFormat sniff(std::string_view s) {
     if (l.empty()) continue;
     ++looked;
     if (l.starts_with("$MeshFormat")) return FemFormat::msh;
+    if (l.starts_with("1C") || l.starts_with("2C") || l.starts_with("1UUSER")) return FemFormat::frd;  // CalculiX results
     if (istarts_with(l, "# vtk DataFile")) return FemFormat::vtk_legacy;
     if (l.starts_with("<?xml") || l.starts_with("<VTKFile")) return FemFormat::vtu;
     if (l.starts_with("**")) continue;  // Abaqus comment
@@ -71,18 +82,23 @@ FemFormat sniff(std::string_view s) {
 
 Expected<FemMesh> read_fem(const std::filesystem::path& path, const FemReadOptions& options) {
   const std::string file = path.string();
-  Expected<std::string> bytes = fem_io::read_file_bytes(path);
-  if (!bytes) return bytes.error();
   FemFormat f = options.format;
   if (f == FemFormat::automatic) f = fem_format_from_path(path);
+  Expected<std::string> bytes = std::string();
+  if (f != FemFormat::exodus) {  // (the Exodus library reads the file itself)
+    bytes = fem_io::read_file_bytes(path);
+    if (!bytes) return bytes.error();
+  }
   if (f == FemFormat::automatic) f = sniff(*bytes);
-  Expected<FemMesh> m = fem_io::file_error(file, "cannot tell the FEM format (not .msh/.bdf/.nas/.dat/.vtk/.vtu/.inp and the content is none of them)");
+  Expected<FemMesh> m = fem_io::file_error(file, "cannot tell the FEM format (not .msh/.bdf/.nas/.dat/.vtk/.vtu/.inp/.frd/.e/.exo and the content is none of them)");
   switch (f) {
     case FemFormat::msh: m = fem_io::read_msh(file, *bytes); break;
     case FemFormat::nastran: m = fem_io::read_nastran(path, *bytes); break;
     case FemFormat::vtk_legacy: m = fem_io::read_vtk_legacy(file, *bytes); break;
     case FemFormat::vtu: m = fem_io::read_vtu(file, *bytes); break;
     case FemFormat::abaqus: m = fem_io::read_abaqus(path, *bytes); break;
+    case FemFormat::frd: m = fem_io::read_frd(file, *bytes); break;
+    case FemFormat::exodus: m = fem_io::read_exodus(path); break;
     default: break;
   }
   if (!m) return m;
@@ -118,6 +134,8 @@ Status write_fem(const FemMesh& mesh, const std::filesystem::path& path, const F
     case FemFormat::vtu: st = fem_io::write_vtu(mesh, options, out); break;
     case FemFormat::nastran: st = fem_io::write_nastran(mesh, options, out); break;
     case FemFormat::abaqus: st = fem_io::write_abaqus(mesh, options, out); break;
+    case FemFormat::frd:
+    case FemFormat::exodus: return Error{.file = file, .reason = std::string("no writer for ") + fem_format_name(f) + " files (read only; write .msh, .vtk, .vtu, .bdf or .inp)"};
     default: return Error{.file = file, .reason = "cannot tell the output format from the extension (use .msh, .vtk, .vtu, .bdf or .inp)"};
   }
   if (!st) {
