@@ -136,8 +136,8 @@ Expected<FemMesh> read_exodus(const std::filesystem::path& path) {
   m.file = file;
   const auto nn = static_cast<std::size_t>(num_nodes);
   std::vector<double> x(nn, 0.0), y(nn, 0.0), z(nn, 0.0);
-  if (ex_get_coord(f.id, x.data(), num_dim > 1 ? y.data() : nullptr, num_dim > 2 ? z.data() : nullptr) < 0)
-    return fail("cannot read the coordinates (ex_get_coord)");
+  if (ex_get_coord(f.id, x.data(), num_dim > 1 ? y.data() : nullptr, num_dim > 2 ? z.data() : nullptr) != 0)
+    return fail("cannot read the coordinates (ex_get_coord: coordx/coordy/coordz, or coord when file_size is 0)");
   std::vector<int> node_map(nn), elem_map(static_cast<std::size_t>(num_elem));
   if (ex_get_id_map(f.id, EX_NODE_MAP, node_map.data()) < 0) return fail("cannot read the node number map");
   if (ex_get_id_map(f.id, EX_ELEM_MAP, elem_map.data()) < 0) return fail("cannot read the element number map");
@@ -251,8 +251,12 @@ Expected<FemMesh> read_exodus(const std::filesystem::path& path) {
       for (int st = 0; st < nsteps; ++st) {
         if (!std::isfinite(s.times[static_cast<std::size_t>(st)])) return fail("time step " + std::to_string(st + 1) + ": non-finite time");
         for (int c = 0; c < 3; ++c) {
-          if (ex_get_nodal_var(f.id, st + 1, idx[static_cast<std::size_t>(c)], num_nodes, comp.data()) < 0)
-            return fail("time step " + std::to_string(st + 1) + ": cannot read " + one_line_name(base) + " component " + "XYZ"[c]);
+          // (A warning is an error here: the library then returns no values. It happens when the
+          // file's layout flag, the global attribute file_size, disagrees with how its nodal
+          // variables are stored: meshio 5 writes vals_nod_var<k> without file_size = 1.)
+          if (ex_get_nodal_var(f.id, st + 1, idx[static_cast<std::size_t>(c)], num_nodes, comp.data()) != 0)
+            return fail("time step " + std::to_string(st + 1) + ": cannot read " + one_line_name(base) + " component " + "XYZ"[c] +
+                        " (the Exodus library finds no values: one array per variable, vals_nod_var<k>, needs the global attribute file_size = 1)");
           for (std::size_t i = 0; i < nn; ++i) {
             if (!std::isfinite(comp[i]))
               return fail("time step " + std::to_string(st + 1) + ", node " + std::to_string(m.node_ids[i]) + ": non-finite " + one_line_name(base) + " component " + "XYZ"[c]);
