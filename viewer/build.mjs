@@ -55,6 +55,7 @@ const css = (await esbuild.transform(readText('src/style.css'), {
 // Inline content must not end or re-mode its element (HTML raw text rules).
 if (/<\/script/i.test(bundle)) die('the bundle contains "</script": it would end the page\'s <script> early');
 if (bundle.includes('<!--')) die('the bundle contains "<!--": it would change how the page\'s <script> ends');
+if (/<script/i.test(bundle)) die('the bundle contains "<script": with a "<!--" before it, it would change how the page\'s <script> ends');
 if (/<\/style/i.test(css)) die('the CSS contains "</style"');
 for (const p of ['/*INTERFERE_VIEWER_DATA*/', 'INTERFERE_VIEWER_TITLE']) {
   if (bundle.includes(p) || css.includes(p)) die(`the bundle contains the placeholder ${p}`);

@@ -17,7 +17,7 @@ export class DocumentError extends Error {
 /** The text of the data element; throws when the page holds no data. */
 export function readEmbeddedText(dom) {
   const node = dom.getElementById('interfere-data');
-  if (!node) throw new DocumentError('this page holds no data: it has no <script id="interfere-data"> element');
+  if (!node) throw new DocumentError('this page holds no data: it has no data element (id "interfere-data")');
   const text = node.textContent.trim();
   if (text === '') throw new DocumentError('this page holds no data: its data element is empty');
   // JSON never starts with a comment: this is the template's placeholder, never replaced.

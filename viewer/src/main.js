@@ -36,6 +36,9 @@ function showError(message, header) {
   api.error = message;
   if (header) buildHeader($('header'), header);
   document.body.classList.add('has-error');
+  // data that ended its element early leaves its rest as stray page content
+  const data = $('interfere-data');
+  while (data && data.nextSibling) data.nextSibling.remove();
   const box = $('error');
   box.replaceChildren(el('h2', null, 'This report cannot be shown'), el('pre', null, message));
   box.hidden = false;
@@ -154,13 +157,21 @@ window.addEventListener('error', (e) => {
   if (!api.ready) showError(`the viewer failed: ${e.message}`);
 });
 
-try {
-  api.timings = { script: performance.now() };
-  const doc = parseDocument(readEmbeddedText(document));
-  api.timings.decoded = performance.now();
-  start(doc);
-  api.timings.built = performance.now();
-} catch (e) {
-  if (e instanceof DocumentError) showError(e.message, e.doc);
-  else showError(`the viewer failed: ${e && e.stack ? e.stack : e}`);
+// The page's script comes before the data element and runs once the document is parsed: data that
+// ends its element early or never (a writer that did not escape "</" or "<!--") still gets the error
+// page instead of a blank one.
+function run() {
+  try {
+    api.timings = { script: performance.now() };
+    const doc = parseDocument(readEmbeddedText(document));
+    api.timings.decoded = performance.now();
+    start(doc);
+    api.timings.built = performance.now();
+  } catch (e) {
+    if (e instanceof DocumentError) showError(e.message, e.doc);
+    else showError(`the viewer failed: ${e && e.stack ? e.stack : e}`);
+  }
 }
+
+if (document.readyState === 'loading') document.addEventListener('DOMContentLoaded', run);
+else run();
