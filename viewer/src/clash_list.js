@@ -45,7 +45,7 @@ export function buildClashList(root, doc, onSelect) {
     const dot = el('span', { className: 'dot' });
     dot.style.background = hexToCss(verdictColor(c.verdict));
     const row = el('tr', null,
-      el('td', { className: 'id' }, c.id),
+      el('td', { className: 'id', title: c.id }, c.id),
       el('td', { className: 'bodies', title: `${name(c.bodies[0])} ↔ ${name(c.bodies[1])}` },
         `${name(c.bodies[0])} ↔ ${name(c.bodies[1])}`),
       el('td', null, dot, c.verdict),

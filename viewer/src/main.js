@@ -11,6 +11,9 @@ import { buildBodiesPanel } from './bodies_panel.js';
 import { buildTimeline } from './timeline.js';
 import { buildHeader, buildLegend, buildNotes } from './header.js';
 import { el } from './format.js';
+import { warmUpGpu } from './warmup.js';
+
+warmUpGpu();
 
 const api = {
   ready: false,
