@@ -55,6 +55,9 @@ export function setBodyOpaque(body, opaque) {
     m.transparent = !opaque;
     m.opacity = opaque ? 1 : BODY_OPACITY;
     m.depthWrite = opaque;
+    // one pass for both sides (three's default draws a transparent double-sided mesh twice, back
+    // faces then front faces, with a shader program each): half the work for large bodies
+    m.forceSinglePass = true;
     m.needsUpdate = true;
   }
   body.object.renderOrder = opaque ? 0 : 1;
