@@ -133,8 +133,14 @@ function start(doc) {
     view.flyTo(center, Math.max(radius * 1.6, view.sceneRadius * 0.05));
   }
 
+  // fit every frame's bodies, not only the static poses
   poseBodies(doc, built, -1);
-  view.fit(sceneBounds(built));
+  const bounds = sceneBounds(built);
+  for (let k = 0; k < doc.frameCount; ++k) {
+    poseBodies(doc, built, k);
+    bounds.union(sceneBounds(built));
+  }
+  view.fit(bounds);
   if (frame >= 0) setFrame(frame);
   updateClashVisibility();
   showClashDetails($('details'), doc, null);
