@@ -30,6 +30,7 @@ const api = {
   projectToScreen: () => [NaN, NaN],
 };
 window.__interfereViewer = api;
+api.timings = { bundle: performance.now() };
 
 const $ = (id) => document.getElementById(id);
 
@@ -171,7 +172,7 @@ window.addEventListener('error', (e) => {
 // page instead of a blank one.
 function run() {
   try {
-    api.timings = { script: performance.now() };
+    api.timings.script = performance.now();
     const doc = parseDocument(readEmbeddedText(document));
     api.timings.decoded = performance.now();
     start(doc);
