@@ -18,6 +18,11 @@
 //   incomplete triple, is an error; a file with time steps and nodal variables but no
 //   displacements too (a results file the clash check cannot deform). A mesh-only file (no nodal
 //   variables) is read without fields.
+//
+// The library is not linked: it is opened with dlopen at the first Exodus read (exodus_api below),
+// because linking it loads libexoIIv2c, netCDF, HDF5 and MPI into every process that links
+// interfere_fem, ~46 ms at every start of the `interfere` tool (issue #24's whole-process times).
+// exodusII.h still gives the types, constants and, through decltype, each function's exact type.
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -26,7 +31,10 @@
 #include "scan.h"
 
 #ifdef INTERFERE_WITH_EXODUS
+#include <dlfcn.h>
 #include <exodusII.h>
+
+#include <type_traits>
 #endif
 
 namespace interfere {
@@ -83,11 +91,91 @@ bool exodus_type(std::string_view name, int nodes, ElemType& t) {
   return false;
 }
 
+// Where dlopen looks for the library: its soname (CMake reads it from the library found at
+// configure time), then that file's full path (a library outside the loader's search path).
+#ifndef INTERFERE_EXODUS_SONAME
+#define INTERFERE_EXODUS_SONAME "libexoIIv2c.so"
+#endif
+#ifndef INTERFERE_EXODUS_PATH
+#define INTERFERE_EXODUS_PATH INTERFERE_EXODUS_SONAME
+#endif
+
+/// The Exodus II functions the reader calls, resolved from the library once (exodus_api).
+/// Each pointer has the type of the function declared in exodusII.h.
+struct ExoApi {
+  decltype(&ex_opts) opts = nullptr;
+  decltype(&ex_open_int) open_int = nullptr;  // ex_open is a macro over ex_open_int
+  decltype(&ex_close) close = nullptr;
+  decltype(&ex_set_max_name_length) set_max_name_length = nullptr;
+  decltype(&ex_get_init) get_init = nullptr;
+  decltype(&ex_get_coord) get_coord = nullptr;
+  decltype(&ex_get_id_map) get_id_map = nullptr;
+  decltype(&ex_get_ids) get_ids = nullptr;
+  decltype(&ex_get_names) get_names = nullptr;
+  decltype(&ex_get_block) get_block = nullptr;
+  decltype(&ex_get_conn) get_conn = nullptr;
+  decltype(&ex_get_variable_param) get_variable_param = nullptr;
+  decltype(&ex_get_variable_names) get_variable_names = nullptr;
+  decltype(&ex_inquire_int) inquire_int = nullptr;
+  decltype(&ex_get_all_times) get_all_times = nullptr;
+  decltype(&ex_get_nodal_var) get_nodal_var = nullptr;
+  std::string error;  ///< why the library or one of its functions could not be loaded; empty when all are
+};
+
+ExoApi load_exodus_api() {
+  ExoApi a;
+  void* lib = nullptr;
+  for (const char* name : {INTERFERE_EXODUS_SONAME, INTERFERE_EXODUS_PATH}) {
+    lib = dlopen(name, RTLD_NOW | RTLD_LOCAL);
+    if (lib != nullptr) break;
+    const char* why = dlerror();
+    const std::string msg = why != nullptr ? why : std::string(name) + ": cannot be opened";
+    if (a.error.find(msg) == std::string::npos) a.error += (a.error.empty() ? "" : "; ") + msg;  // (same name twice: once)
+  }
+  if (lib == nullptr) return a;
+  a.error.clear();
+  // (never closed: the functions stay valid for the rest of the process)
+  auto resolve = [&](auto& fn, const char* name) {
+    dlerror();
+    void* p = dlsym(lib, name);
+    if (p == nullptr) {
+      const char* why = dlerror();
+      if (a.error.empty()) a.error = why ? why : std::string(name) + ": symbol not found";
+      return;
+    }
+    fn = reinterpret_cast<std::remove_reference_t<decltype(fn)>>(p);
+  };
+  resolve(a.opts, "ex_opts");
+  resolve(a.open_int, "ex_open_int");
+  resolve(a.close, "ex_close");
+  resolve(a.set_max_name_length, "ex_set_max_name_length");
+  resolve(a.get_init, "ex_get_init");
+  resolve(a.get_coord, "ex_get_coord");
+  resolve(a.get_id_map, "ex_get_id_map");
+  resolve(a.get_ids, "ex_get_ids");
+  resolve(a.get_names, "ex_get_names");
+  resolve(a.get_block, "ex_get_block");
+  resolve(a.get_conn, "ex_get_conn");
+  resolve(a.get_variable_param, "ex_get_variable_param");
+  resolve(a.get_variable_names, "ex_get_variable_names");
+  resolve(a.inquire_int, "ex_inquire_int");
+  resolve(a.get_all_times, "ex_get_all_times");
+  resolve(a.get_nodal_var, "ex_get_nodal_var");
+  return a;
+}
+
+/// The library's functions, loaded at the first call (thread-safe: a function-local static).
+const ExoApi& exodus_api() {
+  static const ExoApi api = load_exodus_api();
+  return api;
+}
+
 /// Closes the file on every path.
 struct ExoFile {
+  const ExoApi& ex;
   int id = -1;
   ~ExoFile() {
-    if (id >= 0) ex_close(id);
+    if (id >= 0) ex.close(id);
   }
 };
 
@@ -115,18 +203,20 @@ Expected<FemMesh> read_exodus(const std::filesystem::path& path) {
     if (!std::filesystem::exists(path, ec)) return file_error(file, "cannot open: no such file");
     if (std::filesystem::is_directory(path, ec)) return file_error(file, "cannot open: is a directory");
   }
-  ex_opts(EX_DEFAULT);  // no messages on stderr, never abort: errors come back as values
+  const ExoApi& ex = exodus_api();
+  if (!ex.error.empty()) return file_error(file, "cannot read: the Exodus II library (libexodusii) could not be loaded: " + ex.error);
+  ex.opts(EX_DEFAULT);  // no messages on stderr, never abort: errors come back as values
   int comp_ws = 8, io_ws = 0;
   float version = 0;
-  ExoFile f;
-  f.id = ex_open(file.c_str(), EX_READ, &comp_ws, &io_ws, &version);
+  ExoFile f{ex};
+  f.id = ex.open_int(file.c_str(), EX_READ, &comp_ws, &io_ws, &version, EX_API_VERS_NODOT);  // = ex_open(...)
   if (f.id < 0) return file_error(file, "cannot open as an Exodus II file (not netCDF, or not Exodus)");
-  ex_set_max_name_length(f.id, 255);
+  ex.set_max_name_length(f.id, 255);
   auto fail = [&](std::string what) { return file_error(file, "Exodus II: " + std::move(what)); };
 
   char title[MAX_LINE_LENGTH + 1] = {};
   int num_dim = 0, num_nodes = 0, num_elem = 0, num_blk = 0, num_ns = 0, num_ss = 0;
-  if (ex_get_init(f.id, title, &num_dim, &num_nodes, &num_elem, &num_blk, &num_ns, &num_ss) < 0)
+  if (ex.get_init(f.id, title, &num_dim, &num_nodes, &num_elem, &num_blk, &num_ns, &num_ss) < 0)
     return fail("cannot read the file's sizes (ex_get_init)");
   if (num_nodes <= 0) return fail("no nodes");
   if (num_blk <= 0 || num_elem <= 0) return fail("no element blocks");
@@ -136,11 +226,11 @@ Expected<FemMesh> read_exodus(const std::filesystem::path& path) {
   m.file = file;
   const auto nn = static_cast<std::size_t>(num_nodes);
   std::vector<double> x(nn, 0.0), y(nn, 0.0), z(nn, 0.0);
-  if (ex_get_coord(f.id, x.data(), num_dim > 1 ? y.data() : nullptr, num_dim > 2 ? z.data() : nullptr) != 0)
+  if (ex.get_coord(f.id, x.data(), num_dim > 1 ? y.data() : nullptr, num_dim > 2 ? z.data() : nullptr) != 0)
     return fail("cannot read the coordinates (ex_get_coord: coordx/coordy/coordz, or coord when file_size is 0)");
   std::vector<int> node_map(nn), elem_map(static_cast<std::size_t>(num_elem));
-  if (ex_get_id_map(f.id, EX_NODE_MAP, node_map.data()) < 0) return fail("cannot read the node number map");
-  if (ex_get_id_map(f.id, EX_ELEM_MAP, elem_map.data()) < 0) return fail("cannot read the element number map");
+  if (ex.get_id_map(f.id, EX_NODE_MAP, node_map.data()) < 0) return fail("cannot read the node number map");
+  if (ex.get_id_map(f.id, EX_ELEM_MAP, elem_map.data()) < 0) return fail("cannot read the element number map");
   m.nodes.resize(nn);
   m.node_ids.resize(nn);
   for (std::size_t i = 0; i < nn; ++i) {
@@ -154,11 +244,11 @@ Expected<FemMesh> read_exodus(const std::filesystem::path& path) {
 
   // Element blocks.
   std::vector<int> blk_ids(static_cast<std::size_t>(num_blk));
-  if (ex_get_ids(f.id, EX_ELEM_BLOCK, blk_ids.data()) < 0) return fail("cannot read the element block ids");
+  if (ex.get_ids(f.id, EX_ELEM_BLOCK, blk_ids.data()) < 0) return fail("cannot read the element block ids");
   std::vector<std::vector<char>> name_buf(static_cast<std::size_t>(num_blk), std::vector<char>(256, 0));
   std::vector<char*> names(static_cast<std::size_t>(num_blk));
   for (std::size_t b = 0; b < names.size(); ++b) names[b] = name_buf[b].data();
-  if (ex_get_names(f.id, EX_ELEM_BLOCK, names.data()) < 0) {
+  if (ex.get_names(f.id, EX_ELEM_BLOCK, names.data()) < 0) {
     for (auto& nb : name_buf) nb.assign(256, 0);  // (names are optional)
   }
   std::size_t e_index = 0;
@@ -169,7 +259,7 @@ Expected<FemMesh> read_exodus(const std::filesystem::path& path) {
     int count = 0, per = 0, edges = 0, faces = 0, attrs = 0;
     const std::string bname = std::string(trim(std::string_view(names[b])));
     const std::string what = "element block " + std::to_string(blk_ids[b]) + (bname.empty() ? "" : " ('" + one_line_name(bname) + "')");
-    if (ex_get_block(f.id, EX_ELEM_BLOCK, blk_ids[b], type, &count, &per, &edges, &faces, &attrs) < 0)
+    if (ex.get_block(f.id, EX_ELEM_BLOCK, blk_ids[b], type, &count, &per, &edges, &faces, &attrs) < 0)
       return fail(what + ": cannot read its parameters");
     if (count == 0) continue;
     ElemType et{};
@@ -177,7 +267,7 @@ Expected<FemMesh> read_exodus(const std::filesystem::path& path) {
       return fail(what + ": unsupported element type " + quote_tok(type) + " with " + std::to_string(per) + " nodes");
     if (count < 0 || e_index + static_cast<std::size_t>(count) > elem_map.size()) return fail(what + ": more elements than the file's total");
     conn.assign(static_cast<std::size_t>(count) * static_cast<std::size_t>(per), 0);
-    if (ex_get_conn(f.id, EX_ELEM_BLOCK, blk_ids[b], conn.data(), nullptr, nullptr) < 0) return fail(what + ": cannot read its connectivity");
+    if (ex.get_conn(f.id, EX_ELEM_BLOCK, blk_ids[b], conn.data(), nullptr, nullptr) < 0) return fail(what + ": cannot read its connectivity");
     const auto g = static_cast<std::int32_t>(m.groups.size());
     m.groups.push_back(FemGroup{.name = bname.empty() ? "block " + std::to_string(blk_ids[b]) : bname, .id = blk_ids[b], .dim = elem_info(et).dim});
     for (int e = 0; e < count; ++e, ++e_index) {
@@ -209,13 +299,13 @@ Expected<FemMesh> read_exodus(const std::filesystem::path& path) {
 
   // Nodal displacements of every time step.
   int nvars = 0;
-  if (ex_get_variable_param(f.id, EX_NODAL, &nvars) < 0) return fail("cannot read the nodal variable count");
-  const auto nsteps = static_cast<int>(ex_inquire_int(f.id, EX_INQ_TIME));
+  if (ex.get_variable_param(f.id, EX_NODAL, &nvars) < 0) return fail("cannot read the nodal variable count");
+  const auto nsteps = static_cast<int>(ex.inquire_int(f.id, EX_INQ_TIME));
   if (nvars > 0) {
     std::vector<std::vector<char>> vbuf(static_cast<std::size_t>(nvars), std::vector<char>(256, 0));
     std::vector<char*> vnames(static_cast<std::size_t>(nvars));
     for (std::size_t i = 0; i < vnames.size(); ++i) vnames[i] = vbuf[i].data();
-    if (ex_get_variable_names(f.id, EX_NODAL, nvars, vnames.data()) < 0) return fail("cannot read the nodal variable names");
+    if (ex.get_variable_names(f.id, EX_NODAL, nvars, vnames.data()) < 0) return fail("cannot read the nodal variable names");
     std::map<std::string, std::array<int, 3>> bases;  // base -> 1-based variable index per component
     std::string all;
     for (int i = 0; i < nvars; ++i) {
@@ -245,7 +335,7 @@ Expected<FemMesh> read_exodus(const std::filesystem::path& path) {
       if (nsteps <= 0) return fail("displacement " + one_line_name(base) + " without time steps");
       NodalSeries s{.name = base};
       s.times.resize(static_cast<std::size_t>(nsteps));
-      if (ex_get_all_times(f.id, s.times.data()) < 0) return fail("cannot read the time values");
+      if (ex.get_all_times(f.id, s.times.data()) < 0) return fail("cannot read the time values");
       std::vector<double> comp(nn);
       s.values.assign(static_cast<std::size_t>(nsteps), std::vector<Vec3>(nn));
       for (int st = 0; st < nsteps; ++st) {
@@ -254,7 +344,7 @@ Expected<FemMesh> read_exodus(const std::filesystem::path& path) {
           // (A warning is an error here: the library then returns no values. It happens when the
           // file's layout flag, the global attribute file_size, disagrees with how its nodal
           // variables are stored: meshio 5 writes vals_nod_var<k> without file_size = 1.)
-          if (ex_get_nodal_var(f.id, st + 1, idx[static_cast<std::size_t>(c)], num_nodes, comp.data()) != 0)
+          if (ex.get_nodal_var(f.id, st + 1, idx[static_cast<std::size_t>(c)], num_nodes, comp.data()) != 0)
             return fail("time step " + std::to_string(st + 1) + ": cannot read " + one_line_name(base) + " component " + "XYZ"[c] +
                         " (the Exodus library finds no values: one array per variable, vals_nod_var<k>, needs the global attribute file_size = 1)");
           for (std::size_t i = 0; i < nn; ++i) {
