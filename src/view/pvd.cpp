@@ -4,6 +4,7 @@
 // header [#blocks, block size, last block size, compressed sizes...] base64-encoded, then the
 // compressed blocks base64-encoded (as VTK writes it; src/fem/io/vtu_write.cpp does the same).
 #include "interfere/view/pvd.h"
+#include "interfere/core/xml_escape.h"
 
 #include <zlib.h>
 
@@ -32,21 +33,6 @@ void put(std::string& out, T v) {
   char b[sizeof(T)];
   std::memcpy(b, &v, sizeof(T));  // the library targets little-endian machines (byte_order below)
   out.append(b, sizeof(T));
-}
-
-std::string xml_escape(std::string_view s) {
-  std::string r;
-  for (char c : s) {
-    switch (c) {
-      case '<': r += "&lt;"; break;
-      case '>': r += "&gt;"; break;
-      case '&': r += "&amp;"; break;
-      case '"': r += "&quot;"; break;
-      case '\'': r += "&apos;"; break;
-      default: r += c;
-    }
-  }
-  return r;
 }
 
 std::string number(double v) {

@@ -7,6 +7,7 @@
 // last step.
 #include <zlib.h>
 
+#include "interfere/core/xml_escape.h"
 #include "vtk_common.h"
 
 namespace interfere::fem_io {
@@ -31,20 +32,6 @@ void b64_encode(std::string_view in, std::string& out) {
     out += i + 1 < in.size() ? kB64[(v >> 6) & 63] : '=';
     out += '=';
   }
-}
-
-std::string xml_escape(const std::string& s) {
-  std::string r;
-  for (char c : s) {
-    switch (c) {
-      case '<': r += "&lt;"; break;
-      case '>': r += "&gt;"; break;
-      case '&': r += "&amp;"; break;
-      case '"': r += "&quot;"; break;
-      default: r += c;
-    }
-  }
-  return r;
 }
 
 struct Out {
