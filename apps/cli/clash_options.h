@@ -24,7 +24,8 @@ struct ClashOptions : TwoPartOptions {
   // Scenes (issue #24; cmd_clash_scene.cpp).
   std::vector<std::string> more;       ///< inputs after A and B
   std::vector<std::string> test_args;  ///< --test: clash tests (exact/moller/gd: the triangle test, as before)
-  std::string tests_file, baseline, csv, frames_csv, group_by = "pair", motion;
+  bool reference = true;  // FE steps: check the undeformed model too (designed contacts)
+  std::string tests_file, baseline, csv, frames_csv, frame_pairs_csv, group_by = "pair", motion;
   double group_distance = 0, tolerance = 0;
 
   // FEM inputs (docs/fem.md, "CLI"): a flag without -a/-b applies to both parts.

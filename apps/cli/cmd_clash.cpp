@@ -100,7 +100,7 @@ int run_clash(ClashOptions o, const CLI::App& command) {
   // A scene: one input (a file that expands to bodies), three or more, a scene file with bodies,
   // or any scene option. Two inputs alone are the two-part clash with its per-pair outputs.
   const bool scene = (!o.a.file.empty() && o.b.file.empty()) || !o.more.empty() || !clash_tests.empty() ||
-                     !o.tests_file.empty() || !o.baseline.empty() || !o.csv.empty() || !o.frames_csv.empty() ||
+                     !o.tests_file.empty() || !o.baseline.empty() || !o.csv.empty() || !o.frames_csv.empty() || !o.frame_pairs_csv.empty() ||
                      !o.motion.empty() || command.count("--group-by") > 0 || command.count("--tolerance") > 0 ||
                      (!o.scene.empty() && scene_file_has_bodies(o.scene)) ||
                      (o.scene.empty() && o.a.file.empty());
@@ -338,6 +338,12 @@ void add_clash_command(CLI::App& app, int& exit_code) {
                 "and the user's fields (status approved, assignee, comment) are carried by clash id");
   c->add_option("--csv", o->csv, "write the clash table as CSV");
   c->add_option("--frames-csv", o->frames_csv, "write the frames table (motion, FE steps) as CSV");
+  c->add_option("--frame-pairs-csv", o->frame_pairs_csv,
+                "write the table frames x body pairs (motion, FE steps: each pair's verdict, contacts, "
+                "min distance and max depth per frame) as CSV");
+  c->add_flag("!--no-reference", o->reference,
+              "FE steps: do not check the undeformed model first (without it, contacts are not told apart "
+              "as designed, i.e. touching before the load, or new)");
   c->add_option("--group-by", o->group_by, "group clashes by pair (default), location or none");
   c->add_option("--group-distance", o->group_distance, "--group-by location: clashes closer than this join one group");
   c->add_option("--motion", o->motion, "motion file (CSV or JSON): per-frame body poses (docs/scene.md)");

@@ -106,10 +106,12 @@ int run_scene_clash(const ClashOptions& o, const CLI::App& command, const std::v
   check_output(o.json, {}, "--json");
   check_output(o.csv, {}, "--csv");
   check_output(o.frames_csv, {}, "--frames-csv");
+  check_output(o.frame_pairs_csv, {}, "--frame-pairs-csv");
   std::vector<NamedPath> in_paths{{"--scene", o.scene}, {"--tests", o.tests_file}, {"--baseline", o.baseline}, {"--motion", o.motion},
                                  {"--disp", o.disp}};
   for (const scene::BodySpec& s : specs) in_paths.push_back({s.where, s.file});
-  std::vector<NamedPath> out_paths{{"--json", o.json}, {"--csv", o.csv}, {"--frames-csv", o.frames_csv}};
+  std::vector<NamedPath> out_paths{{"--json", o.json}, {"--csv", o.csv}, {"--frames-csv", o.frames_csv},
+                                  {"--frame-pairs-csv", o.frame_pairs_csv}};
   for (const NamedPath& v : o.views.paths()) out_paths.push_back(v);
   check_distinct_files(in_paths, out_paths);
   std::string baseline_text;
@@ -138,6 +140,7 @@ int run_scene_clash(const ClashOptions& o, const CLI::App& command, const std::v
   eo.group_by = group_by;
   eo.group_distance = o.group_distance;
   eo.nominal_fit = in.nominal_fit;
+  eo.reference = o.reference;
   if (!in.scene.frames.empty() && !Progress::quiet())
     eo.progress = [](std::size_t done, std::size_t all) {
       if (done == all || done % std::max<std::size_t>(1, all / 20) == 0)
@@ -165,6 +168,8 @@ int run_scene_clash(const ClashOptions& o, const CLI::App& command, const std::v
   if (!o.json.empty()) write_or_throw(write_output(o.json, scene::report_json(in.scene, tests, result, ctx)));
   if (!o.csv.empty()) write_or_throw(write_output(o.csv, scene::clash_table_csv(in.scene, result)));
   if (!o.frames_csv.empty()) write_or_throw(write_output(o.frames_csv, scene::frames_table_csv(result)));
+  if (!o.frame_pairs_csv.empty())
+    write_or_throw(write_output(o.frame_pairs_csv, scene::frame_pairs_table_csv(in.scene, tests, result)));
   if (o.views.any()) {
     view::Document doc = view::scene_document(in.scene, tests, result, {});
     doc.units = units;
@@ -174,7 +179,8 @@ int run_scene_clash(const ClashOptions& o, const CLI::App& command, const std::v
   std::string verdict = verdict_name(result.verdict);
   if (result.verdict == Verdict::clash || result.verdict == Verdict::undecided)
     for (char& ch : verdict) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
-  std::FILE* out = is_standard_output(o.json) || is_standard_output(o.csv) || is_standard_output(o.frames_csv) ? stderr : stdout;
+  std::FILE* out = is_standard_output(o.json) || is_standard_output(o.csv) || is_standard_output(o.frames_csv) ||
+                       is_standard_output(o.frame_pairs_csv) ? stderr : stdout;
   std::fprintf(out, "%s: %zu bodies, %zu candidate pairs: %zu clashes, %zu contacts, %zu clearance, %zu undecided",
                verdict.c_str(), result.bodies, result.candidate_pairs, result.clash_count, result.contact_count,
                result.clearance_count, result.undecided_count);
@@ -185,6 +191,9 @@ int run_scene_clash(const ClashOptions& o, const CLI::App& command, const std::v
     std::fprintf(out, "; %zu new, %zu resolved", fresh, result.resolved.size());
   }
   if (!result.frames.empty()) std::fprintf(out, "; %zu frames", result.frames.size());
+  if (result.reference_checked)
+    std::fprintf(out, "; against the undeformed model: %zu designed contacts, %zu new contacts, %zu new penetrations",
+                 result.designed_contact_count, result.new_contact_count, result.new_penetration_count);
   std::fprintf(out, "\n");
   return status;
 }

@@ -148,6 +148,27 @@ struct Candidate {
   double clearance;
 };
 
+FramePairRow frame_pair_row(std::uint32_t frame, const Candidate& c, const std::vector<SceneClash>& list) {
+  FramePairRow r{.frame = frame, .test = c.test, .a = c.a, .b = c.b};
+  for (const SceneClash& s : list) {
+    r.verdict = worst(r.verdict, s.verdict);
+    switch (s.verdict) {
+      case Verdict::clash:
+        ++r.clashes, r.min_distance = 0;
+        r.max_depth = std::max(r.max_depth, s.depth), r.max_depth_bound = std::max(r.max_depth_bound, s.depth_bound);
+        break;
+      case Verdict::contact: ++r.contacts, r.min_distance = 0; break;
+      case Verdict::clearance:
+        ++r.clearances;
+        r.min_distance = r.min_distance < 0 ? s.distance : std::min(r.min_distance, s.distance);
+        break;
+      case Verdict::undecided: ++r.undecided; break;
+      case Verdict::clear: break;
+    }
+  }
+  return r;
+}
+
 }  // namespace
 
 SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& tests, const SceneClashOptions& options) {
@@ -204,10 +225,17 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
     Vec3 where;  // id location in a's frame
   };
   std::map<std::tuple<std::uint32_t, std::uint32_t, std::uint32_t>, std::vector<Track>> last, next;
-  for (std::size_t f = 0; f < frame_count; ++f) {
+  // Deformed bodies: the reference configuration first (pass 0), then the frames (issue #26, item 4).
+  bool deforms = false;
+  for (const Frame& fr : scene.frames) deforms = deforms || !fr.shapes.empty();
+  const std::size_t ref_pass = moving && deforms && options.reference ? 1 : 0;
+  result.reference_checked = ref_pass == 1;
+  for (std::size_t pass = 0; pass < frame_count + ref_pass; ++pass) {
+    const bool reference = pass < ref_pass;
+    const std::size_t f = pass - ref_pass;  // (unused in the reference pass)
     auto t_broad = Clock::now();
-    std::vector<char> box_dirty(n, f == 0 ? 1 : 0);
-    if (moving) {
+    std::vector<char> box_dirty(n, pass == 0 ? 1 : 0);
+    if (moving && !reference) {
       const Frame& fr = scene.frames[f];
       for (const Frame::Pose& p : fr.poses) st.pose[p.body] = p.pose, st.stale[p.body] = 1, box_dirty[p.body] = 1;
       for (const Frame::Shape& s : fr.shapes) {
@@ -226,7 +254,7 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
         for (std::size_t i = 0; i < sel.size(); ++i) b[i] = st.broad_box[sel[i]];
         return b;
       };
-      if (f == 0) {
+      if (pass == 0) {
         p.tree_a = detail::build_box_tree(boxes_of(p.a));
         if (!p.b.empty()) p.tree_b = detail::build_box_tree(boxes_of(p.b));
       } else {
@@ -245,14 +273,14 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
       });
       std::sort(pairs.begin(), pairs.end());
       pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-      result.candidate_pairs += pairs.size();
+      if (!reference) result.candidate_pairs += pairs.size();
       for (const auto& [u, v] : pairs) {
         const Body& bu = scene.bodies[u];
         const Body& bv = scene.bodies[v];
         bool suppressed = false;
         for (const Suppression& s : p.test->suppressions) suppressed = suppressed || pair_matches(s.a, s.b, bu, bv);
         if (suppressed) {
-          ++result.suppressed;
+          if (!reference) ++result.suppressed;
           continue;
         }
         cands.push_back({static_cast<std::uint32_t>(p.order), u, v, pair_clearance(*p.test, bu, bv)});
@@ -308,6 +336,16 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
         found[k] = detail::derive_pair(ctx, c.a, c.b, c.clearance, dup ? nullptr : &core, where[k]);
       }
     });
+    if (reference) {  // only each pair's verdict
+      for (std::size_t k = 0; k < cands.size(); ++k) {
+        if (found[k].empty()) continue;
+        ReferencePair r{cands[k].test, cands[k].a, cands[k].b, Verdict::clear};
+        for (const SceneClash& s : found[k]) r.verdict = worst(r.verdict, s.verdict);
+        result.reference_pairs.push_back(r);
+      }
+      result.narrow_seconds += since(t_narrow);
+      continue;
+    }
     // Ids, then merge into the result.
     FrameRow row;
     row.frame = static_cast<std::uint32_t>(f);
@@ -362,6 +400,7 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
         std::vector<Track>& now = next[{c.test, c.a, c.b}];
         for (std::size_t i = 0; i < list.size(); ++i) now.push_back({list[i].id, list[i].kind, where[k][i][0]});
       }
+      if (moving && !list.empty()) result.frame_pairs.push_back(frame_pair_row(static_cast<std::uint32_t>(f), c, list));
       for (SceneClash& s : list) {
         switch (s.verdict) {
           case Verdict::clash: ++row.clashes, row.max_depth = std::max(row.max_depth, s.depth_bound); break;
@@ -419,6 +458,7 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
     p.depth = std::max(p.depth, s.depth), p.depth_bound = std::max(p.depth_bound, s.depth_bound);
     if (s.verdict == Verdict::clearance) p.min_distance = p.min_distance < 0 ? s.distance : std::min(p.min_distance, s.distance);
   }
+  detail::summarise_frames(scene, tests, result);
   detail::group_clashes(result, options);
   // Open bodies that took part (their verdicts say undecided where it mattered).
   for (std::size_t i = 0; i < n; ++i)

@@ -87,3 +87,10 @@ namespace interfere::scene::detail {
 /// Fills result.groups by options.group_by (engine_groups.cpp).
 void group_clashes(SceneClashResult& result, const SceneClashOptions& options);
 }  // namespace interfere::scene::detail
+
+namespace interfere::scene::detail {
+/// Sorts the frames x pairs table and the reference pairs, and derives from them each pair's first
+/// (clashing) frame and reference verdict, each contact's `designed` flag and the designed / new
+/// counts (engine_frames.cpp; issue #26, items 2 and 4).
+void summarise_frames(const Scene& scene, const std::vector<ClashTest>& tests, SceneClashResult& result);
+}  // namespace interfere::scene::detail

@@ -4,7 +4,9 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <map>
 #include <set>
+#include <tuple>
 
 namespace interfere::scene {
 namespace {
@@ -35,7 +37,8 @@ const std::set<std::string>& engine_keys() {
                                        "depth", "depth_bound", "distance", "point", "box", "curve_length",
                                        "cross_pairs", "touch_pairs", "triangle_count_a", "triangle_count_b",
                                        "source_id_kind_a", "source_id_kind_b", "source_ids_a", "source_ids_b",
-                                       "curves", "witness_a", "witness_b", "reasons", "frames", "first_frame"};
+                                       "curves", "witness_a", "witness_b", "reasons", "frames", "first_frame",
+                                       "designed"};
   return k;
 }
 
@@ -82,6 +85,7 @@ json clash_json(const Scene& scene, const SceneClash& c) {
     j["frames"] = c.frames;
     j["first_frame"] = c.frames.front();
   }
+  if (c.verdict == Verdict::contact) j["designed"] = c.designed;
   return j;
 }
 
@@ -171,7 +175,11 @@ std::string report_json(const Scene& scene, const std::vector<ClashTest>& tests,
                   {"clearances", r.clearance_count},
                   {"undecided", r.undecided_count},
                   {"resolved", r.resolved.size()},
-                  {"frames", r.frames.size()}};
+                  {"frames", r.frames.size()},
+                  {"reference_checked", r.reference_checked},
+                  {"designed_contacts", r.designed_contact_count},
+                  {"new_contacts", r.new_contact_count},
+                  {"new_penetrations", r.new_penetration_count}};
   json bodies = json::array();
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const Body& b = scene.bodies[i];
@@ -227,7 +235,10 @@ std::string report_json(const Scene& scene, const std::vector<ClashTest>& tests,
                      {"clashes", p.clashes},
                      {"depth", p.depth},
                      {"depth_bound", p.depth_bound},
-                     {"min_distance", p.min_distance < 0 ? json(nullptr) : json(p.min_distance)}});
+                     {"min_distance", p.min_distance < 0 ? json(nullptr) : json(p.min_distance)},
+                     {"first_frame", p.first_frame < 0 ? json(nullptr) : json(p.first_frame)},
+                     {"first_clash_frame", p.first_clash_frame < 0 ? json(nullptr) : json(p.first_clash_frame)},
+                     {"reference_verdict", r.reference_checked ? json(verdict_name(p.reference_verdict)) : json(nullptr)}});
   j["pairs"] = pairs;
   json groups = json::array();
   for (const ClashGroup& g : r.groups)
@@ -246,6 +257,28 @@ std::string report_json(const Scene& scene, const std::vector<ClashTest>& tests,
                       {"max_depth", f.max_depth},
                       {"verdict", verdict_name(f.verdict)}});
   j["frames"] = frames;
+  json frame_pairs = json::array();
+  for (const FramePairRow& f : r.frame_pairs)
+    frame_pairs.push_back({{"frame", f.frame},
+                           {"test", tests[f.test].name},
+                           {"body_a", scene.bodies[f.a].id},
+                           {"body_b", scene.bodies[f.b].id},
+                           {"verdict", verdict_name(f.verdict)},
+                           {"clashes", f.clashes},
+                           {"contacts", f.contacts},
+                           {"clearances", f.clearances},
+                           {"undecided", f.undecided},
+                           {"min_distance", f.min_distance < 0 ? json(nullptr) : json(f.min_distance)},
+                           {"max_depth", f.max_depth},
+                           {"max_depth_bound", f.max_depth_bound}});
+  j["frame_pairs"] = frame_pairs;
+  json reference = json::array();
+  for (const ReferencePair& p : r.reference_pairs)
+    reference.push_back({{"test", tests[p.test].name},
+                         {"body_a", scene.bodies[p.a].id},
+                         {"body_b", scene.bodies[p.b].id},
+                         {"verdict", verdict_name(p.verdict)}});
+  j["reference_pairs"] = reference;
   std::vector<std::string> warnings = r.warnings;
   warnings.insert(warnings.end(), ctx.warnings.begin(), ctx.warnings.end());
   j["warnings"] = warnings;
@@ -333,6 +366,28 @@ std::string frames_table_csv(const SceneClashResult& r) {
            "," + std::to_string(f.contacts) + "," + std::to_string(f.clearances) + "," + std::to_string(f.undecided) +
            "," + (f.min_distance < 0 ? std::string() : csv_num(f.min_distance)) + "," + csv_num(f.max_depth) + "," +
            verdict_name(f.verdict) + "\n";
+  return out;
+}
+
+std::string frame_pairs_table_csv(const Scene& scene, const std::vector<ClashTest>& tests, const SceneClashResult& r) {
+  std::string out = "frame,label,time,test,body_a,body_b,verdict,clashes,contacts,clearances,undecided,min_distance,max_depth,"
+                    "max_depth_bound,reference_verdict\n";
+  std::map<std::tuple<std::uint32_t, std::uint32_t, std::uint32_t>, Verdict> reference;
+  for (const ReferencePair& p : r.reference_pairs) reference[{p.test, p.a, p.b}] = p.verdict;
+  std::size_t row = 0;  // frame_pairs and frames are both in frame order
+  for (const FramePairRow& f : r.frame_pairs) {
+    while (row < r.frames.size() && r.frames[row].frame < f.frame) ++row;
+    const bool labelled = row < r.frames.size() && r.frames[row].frame == f.frame;
+    const auto it = reference.find({f.test, f.a, f.b});
+    const Verdict ref = it == reference.end() ? Verdict::clear : it->second;
+    out += std::to_string(f.frame) + "," + (labelled ? csv_cell(r.frames[row].label) : std::string()) + "," +
+           (labelled ? csv_num(r.frames[row].time) : std::string()) + "," + csv_cell(tests[f.test].name) + "," +
+           csv_cell(scene.bodies[f.a].id) + "," + csv_cell(scene.bodies[f.b].id) + "," + verdict_name(f.verdict) + "," +
+           std::to_string(f.clashes) + "," + std::to_string(f.contacts) + "," + std::to_string(f.clearances) + "," +
+           std::to_string(f.undecided) + "," + (f.min_distance < 0 ? std::string() : csv_num(f.min_distance)) + "," +
+           csv_num(f.max_depth) + "," + csv_num(f.max_depth_bound) + "," +
+           (r.reference_checked ? verdict_name(ref) : "") + "\n";
+  }
   return out;
 }
 

@@ -177,6 +177,43 @@ class CalculixResults(unittest.TestCase):
         self.assertNotIn(b"\n -3\n", head)  # binary data blocks have no -3 record
         self.check_scene(frd, "binary")
 
+    def test_frames_by_pairs_table(self):
+        """Issue #26, items 2 and 4: the table frames x body pairs. With a clearance test of 0.5 every
+        frame has a row for the pair; before the clash its min distance is the analytic gap
+        g - D t (to the solver's 6 printed digits), from frame FIRST on it is a clash. The blocks are
+        apart before the load: the clash is a new penetration, no contact is designed."""
+        frd = run_ccx("table", False)
+        csv_path = path("table_pairs.csv")
+        code, out, err = run("clash", frd, "--clearance", "0.5", "--json", path("table.json"),
+                             "--frame-pairs-csv", csv_path)
+        self.assertEqual(code, 1, out + err)
+        self.assertIn("0 designed contacts, 0 new contacts, 1 new penetrations", out)
+        r = load_json("table.json")
+        self.assertEqual(r["summary"]["new_penetrations"], 1)
+        self.assertEqual(r["summary"]["designed_contacts"], 0)
+        rows = r["frame_pairs"]
+        self.assertEqual([x["frame"] for x in rows], list(range(INCREMENTS)))
+        for x in rows:
+            f = x["frame"]
+            self.assertEqual(x["verdict"], "clash" if f >= FIRST else "clearance", x)
+            if f < FIRST:
+                self.assertAlmostEqual(x["min_distance"], GAP - PUSH * (f + 1) / INCREMENTS, delta=1e-5)
+                self.assertEqual(x["max_depth"], 0)
+            else:
+                self.assertEqual(x["min_distance"], 0)
+                depth = PUSH * (f + 1) / INCREMENTS - GAP  # B's near face sunk this far into A
+                self.assertLessEqual(x["max_depth"], depth + 1e-5, x)
+                self.assertGreaterEqual(x["max_depth_bound"], depth - 1e-5, x)
+        (pair,) = r["pairs"]
+        self.assertEqual(pair["first_frame"], 0)
+        self.assertEqual(pair["first_clash_frame"], FIRST)
+        self.assertEqual(pair["reference_verdict"], "clearance")
+        with open(csv_path) as f:
+            lines = f.read().splitlines()
+        self.assertTrue(lines[0].startswith("frame,label,time,test,body_a,body_b,verdict,"))
+        self.assertEqual(len(lines), INCREMENTS + 1)
+        self.assertEqual(lines[FIRST + 1].split(",")[6], "clash")
+
     def test_two_part_series(self):
         frd = run_ccx("twopart", False)
         code, out, err = run("clash", frd, frd, "--part-a", "body 1", "--part-b", "body 2", "--field", "DISP")

@@ -66,6 +66,10 @@ struct SceneClash {
   std::vector<std::string> reasons;  ///< undecided: why; others: notes
   // Across frames (motion) — the first frame's data above.
   std::vector<std::uint32_t> frames;  ///< the frames it is present in (sorted); empty when static
+  /// Deformed scenes checked in their reference configuration too (SceneClashOptions::reference):
+  /// a contact of a pair that already touched there — a bonded or tied interface, a designed fit —
+  /// is a designed contact (issue #26, item 4). False otherwise, and always for clashes.
+  bool designed = false;
   // Status (baseline.h).
   ClashStatus status = ClashStatus::new_;
   /// The user's fields carried from the baseline clash with the same id ("status": "approved",
@@ -83,6 +87,12 @@ struct PairSummary {
   Verdict verdict = Verdict::clear;  ///< the worst of its clashes
   std::vector<std::uint32_t> clashes;  ///< indices into SceneClashResult::clashes
   double depth = 0, depth_bound = 0, min_distance = 0;
+  /// Motion: the first frame with any finding of the pair, and the first whose verdict is clash
+  /// (-1: none).
+  std::int64_t first_frame = -1, first_clash_frame = -1;
+  /// The pair's verdict in the reference configuration (SceneClashOptions::reference; clear when
+  /// not checked or clear there).
+  Verdict reference_verdict = Verdict::clear;
 };
 
 /// A group of clashes (SceneClashOptions::group_by): one body pair, or one location where clashes
@@ -102,6 +112,26 @@ struct FrameRow {
   std::size_t clashes = 0, contacts = 0, clearances = 0, undecided = 0;
   double min_distance = -1;  ///< smallest clearance distance found (-1: none within any clearance)
   double max_depth = 0;      ///< largest depth bound of the frame's clashes
+  Verdict verdict = Verdict::clear;
+};
+
+/// One row of the table frames x body pairs (motion; issue #26, item 2): a body pair of a test
+/// with any finding in a frame (pairs clear in that frame have no row).
+struct FramePairRow {
+  std::uint32_t frame = 0;
+  std::uint32_t test = 0;      ///< index of the clash test
+  std::uint32_t a = 0, b = 0;  ///< body indices, as in SceneClash
+  Verdict verdict = Verdict::clear;  ///< the worst of the pair's findings in the frame
+  std::size_t clashes = 0, contacts = 0, clearances = 0, undecided = 0;
+  /// Smallest distance between the bodies: 0 when they meet, the clearance distance when a
+  /// clearance test found one, -1 when not measured (hard tests measure no gaps).
+  double min_distance = -1;
+  double max_depth = 0, max_depth_bound = 0;  ///< largest depth and depth bound of its clashes
+};
+
+/// A body pair's verdict in the reference configuration (SceneClashOptions::reference).
+struct ReferencePair {
+  std::uint32_t test = 0, a = 0, b = 0;
   Verdict verdict = Verdict::clear;
 };
 
@@ -134,6 +164,11 @@ struct SceneClashOptions {
   std::function<void(std::size_t test, std::uint32_t a, std::uint32_t b, const ClashResult&)> on_pair;
   /// Called after each frame with (frames done, frame count): progress for long runs.
   std::function<void(std::size_t, std::size_t)> progress;
+  /// When frames deform bodies (Frame::shapes, an FE model's load steps), check the bodies once
+  /// more in their reference configuration (the scene's own meshes and poses) before frame 0, to
+  /// tell designed contacts (bonded or tied interfaces: touching there already) from contacts and
+  /// penetrations the load makes (issue #26, item 4). One frame's extra work.
+  bool reference = true;
 };
 
 struct SceneClashResult {
@@ -144,6 +179,15 @@ struct SceneClashResult {
   /// Baseline clashes not found now (status resolved), for listing once.
   std::vector<SceneClash> resolved;
   std::vector<FrameRow> frames;  ///< motion: one row per frame
+  /// Motion: the table frames x body pairs, sorted by (frame, test, body a id, body b id).
+  std::vector<FramePairRow> frame_pairs;
+  /// The reference configuration's findings per body pair (SceneClashOptions::reference), sorted as
+  /// frame_pairs; `reference_checked` tells whether the pass ran.
+  std::vector<ReferencePair> reference_pairs;
+  bool reference_checked = false;
+  /// Contacts of pairs that touched in the reference configuration (designed), the other
+  /// contacts, and the clashes of pairs that did not clash there (new penetrations).
+  std::size_t designed_contact_count = 0, new_contact_count = 0, new_penetration_count = 0;
   std::size_t bodies = 0, triangles = 0;
   std::size_t candidate_pairs = 0;  ///< body pairs whose boxes (grown by the clearance) overlap, over tests and frames
   std::size_t suppressed = 0;       ///< candidate pairs left out by suppression rules

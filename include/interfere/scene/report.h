@@ -45,5 +45,10 @@ std::string clash_table_csv(const Scene& scene, const SceneClashResult& result);
 
 /// The frames table (motion) as CSV: frame,label,time,clashes,contacts,clearances,undecided,min_distance,max_depth,verdict.
 std::string frames_table_csv(const SceneClashResult& result);
+/// The table frames x body pairs (SceneClashResult::frame_pairs; issue #26, item 2), one row per
+/// pair with a finding in a frame: frame,label,time,test,body_a,body_b,verdict,clashes,contacts,
+/// clearances,undecided,min_distance (empty: not measured),max_depth,max_depth_bound,
+/// reference_verdict (empty: no reference pass).
+std::string frame_pairs_table_csv(const Scene& scene, const std::vector<ClashTest>& tests, const SceneClashResult& result);
 
 }  // namespace interfere::scene
