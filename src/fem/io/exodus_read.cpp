@@ -27,6 +27,7 @@
 #include <array>
 #include <cctype>
 #include <map>
+#include <mutex>
 
 #include "scan.h"
 
@@ -205,6 +206,12 @@ Expected<FemMesh> read_exodus(const std::filesystem::path& path) {
   }
   const ExoApi& ex = exodus_api();
   if (!ex.error.empty()) return file_error(file, "cannot read: the Exodus II library (libexodusii) could not be loaded: " + ex.error);
+  // One Exodus read at a time: netCDF and HDF5 (Debian's builds) are not thread-safe, and callers
+  // read two files concurrently (the CLI's two parts, issue #24 item 8: `distance a.e b.e` failed
+  // with "netcdf library that does not support netcdf-4" from HDF5's own state). Held until the
+  // file is closed (declared before `f`).
+  static std::mutex library_mutex;
+  const std::lock_guard<std::mutex> lock(library_mutex);
   ex.opts(EX_DEFAULT);  // no messages on stderr, never abort: errors come back as values
   int comp_ws = 8, io_ws = 0;
   float version = 0;
