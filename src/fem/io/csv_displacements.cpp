@@ -74,7 +74,14 @@ Expected<NodalSeries> read_displacements_csv(const std::filesystem::path& path, 
     std::int64_t id = 0;
     if (!parse_int(cols[static_cast<std::size_t>(c_id)], id)) return line_error(file, t.line(), "malformed node id " + quote_tok(cols[static_cast<std::size_t>(c_id)]));
     const std::int64_t idx = map.find(id);
-    if (idx < 0) return line_error(file, t.line(), "node " + std::to_string(id) + " is not in the mesh");
+    if (idx < 0) {
+      // Names the row's step (issue #26, "Bad input") and the mesh the ids are looked up in.
+      const std::string at = c_step < 0 ? std::string()
+                                        : std::string(by_time ? "time " : "step ") +
+                                              std::string(trim(cols[static_cast<std::size_t>(c_step)])) + ", ";
+      return line_error(file, t.line(), at + "node " + std::to_string(id) + " is not in the mesh" +
+                                            (mesh.file.empty() ? std::string() : " (" + mesh.file + ")"));
+    }
     r.node = static_cast<std::uint32_t>(idx);
     for (int k = 0; k < 3; ++k) {
       const std::string_view x = cols[static_cast<std::size_t>(c_u[k])];
