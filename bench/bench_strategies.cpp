@@ -23,85 +23,26 @@
 
 #include "common.h"
 #include "interfere/query/clash.h"
+#include "strategy_bench.h"
 
 namespace interfere::bench {
 namespace {
 
-void set_pair_counters(benchmark::State& state, const ClashResult& r, std::size_t na,
-                       std::size_t nb) {
-  state.counters["pairs"] = static_cast<double>(r.pairs.size());
-  state.counters["cross"] = static_cast<double>(r.cross_pairs);
-  state.counters["touch"] = static_cast<double>(r.touch_pairs);
-  state.counters["candidates"] = static_cast<double>(r.candidate_pairs);
-  state.counters["tris_a"] = static_cast<double>(na);
-  state.counters["tris_b"] = static_cast<double>(nb);
-}
-
-struct StrategyRow {
-  const char* name;
-  TriTest test;
-  Broadphase broadphase;
-  BvhBuilder builder;
-  bool parallel;
-};
-
 void bm_strategy(benchmark::State& state, std::size_t n, StrategyRow row, std::size_t threads) {
-  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
   const ModelPair& m = model_pair(n, row.builder);
-  const ClashRequest request{.test = row.test,
-                             .broadphase = row.broadphase,
-                             .parallel = row.parallel,
-                             .regions = false,
-                             .containment = false};
-  ClashResult r;
-  for (auto _ : state) {
-    r = clash(m.a, m.b, request);
-    benchmark::DoNotOptimize(r.pairs.data());
-  }
-  const std::size_t na = m.a.mesh.num_triangles(), nb = m.b.mesh.num_triangles();
-  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * (na + nb)));
-  set_pair_counters(state, r, na, nb);
-  state.counters["threads"] = static_cast<double>(threads);
+  run_clash_query(state, m.a, m.b, strategy_request(row), threads);
 }
 
 /// The default request (exact + regions + curves + containment) on prebuilt default trees: the
 /// query part of the end-to-end row.
 void bm_query_default(benchmark::State& state, std::size_t n, std::size_t threads) {
-  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
   const ModelPair& m = model_pair(n, BvhBuildOptions{}.builder);
-  ClashResult r;
-  for (auto _ : state) {
-    r = clash(m.a, m.b, ClashRequest{});
-    benchmark::DoNotOptimize(r.pairs.data());
-  }
-  const std::size_t na = m.a.mesh.num_triangles(), nb = m.b.mesh.num_triangles();
-  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * (na + nb)));
-  set_pair_counters(state, r, na, nb);
-  state.counters["regions"] = static_cast<double>(r.regions.size());
-  state.counters["threads"] = static_cast<double>(threads);
+  run_clash_query(state, m.a, m.b, ClashRequest{}, threads);
 }
 
 void bm_build(benchmark::State& state, std::size_t n, BvhBuilder builder, std::size_t threads) {
-  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
   const SpherePair& p = sphere_pair(n);
-  const BvhBuildOptions options{.builder = builder};
-  std::optional<Model> ma, mb;
-  std::size_t nodes = 0;
-  for (auto _ : state) {
-    state.PauseTiming();
-    ma.reset(), mb.reset();
-    TriMesh a = p.a, b = p.b;
-    state.ResumeTiming();
-    ma.emplace(make_model(std::move(a), options, false));
-    mb.emplace(make_model(std::move(b), options, false));
-    benchmark::DoNotOptimize(ma->bvh.nodes.data());
-    benchmark::DoNotOptimize(mb->bvh.nodes.data());
-  }
-  if (ma) nodes = ma->bvh.nodes.size() + mb->bvh.nodes.size();
-  const std::size_t tris = p.a.num_triangles() + p.b.num_triangles();
-  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * tris));
-  state.counters["nodes"] = static_cast<double>(nodes);
-  state.counters["threads"] = static_cast<double>(threads);
+  run_tree_build(state, p.a, p.b, builder, threads);
 }
 
 void bm_end_to_end(benchmark::State& state, std::size_t n, std::size_t threads) {
@@ -169,10 +110,7 @@ void bm_end_to_end(benchmark::State& state, std::size_t n, std::size_t threads) 
       }
     }
     for (const StrategyRow& row : serial_rows) {
-      if ((row.broadphase == Broadphase::brute_force && n > brute_max) ||
-          (row.broadphase == Broadphase::box_pretest && n > pretest_max)) {
-        continue;
-      }
+      if (strategy_capped(row, n, brute_max, pretest_max)) continue;
       benchmark::RegisterBenchmark(("Strategy/" + std::string(row.name) + "/" + sn).c_str(),
                                    [n, row](benchmark::State& s) { bm_strategy(s, n, row, 1); })
           ->Unit(benchmark::kMillisecond)
