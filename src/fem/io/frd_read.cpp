@@ -23,15 +23,139 @@
 // header lines, else "material N"); with one material every element is ungrouped, so bodies come
 // from connectivity. Each DISP block is one step (time = the 100C value; for ccx the total time of
 // the increment); nodes absent from a block get zero displacement (counted in a warning).
+//
+// Speed (issue #26, item 7: a 10^6-element file with 10 steps in <= 2 s; docs/fem-benchmarks.md):
+// the file is mapped (read_frd_file: mmap of a regular file, no copy; other files are read), the
+// large arrays are allocated with transparent huge pages advised (on the 2-core VM of the
+// benchmarks a fresh 4 KiB page costs several microseconds: a 10-step DISP series is 250 MB),
+// numbers are parsed by an exact fast path (Clinger: at most 15 digits and |exponent| <= 22 give a
+// correctly rounded double with one multiplication or division, as std::from_chars would; anything
+// else goes to from_chars), and an ASCII DISP block is parsed in parallel chunks (oneTBB) when its
+// records are one line each. The parallel pass only accepts what the sequential reader accepts:
+// on anything unusual it gives up, and the sequential reader reads the block again from its start
+// and reports the error with its line, so errors and values do not depend on the path taken.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
+#include <atomic>
+#include <bit>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <set>
 
 #include "scan.h"
 
+#if defined(__unix__) || defined(__APPLE__)
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#define INTERFERE_FRD_MMAP 1
+#endif
+
 namespace interfere::fem_io {
 namespace {
+
+// ---------------------------------------------------------------- memory
+
+/// Advises transparent huge pages for the 2 MiB-aligned pages inside [p, p + bytes) (Linux;
+/// nothing elsewhere, or when THP is off): the pages are not touched yet, so they fault in 2 MiB
+/// at a time.
+void advise_huge(const void* p, std::size_t bytes) {
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  constexpr std::uintptr_t kHuge = std::uintptr_t{1} << 21;
+  if (bytes < 2 * kHuge) return;
+  const auto a = reinterpret_cast<std::uintptr_t>(p);
+  const std::uintptr_t b = (a + kHuge - 1) & ~(kHuge - 1), e = (a + bytes) & ~(kHuge - 1);
+  if (e > b) (void)::madvise(reinterpret_cast<void*>(b), e - b, MADV_HUGEPAGE);
+#else
+  (void)p, (void)bytes;
+#endif
+}
+
+/// reserve(n) with huge pages advised for the new storage.
+template <class T>
+void reserve_huge(std::vector<T>& v, std::size_t n) {
+  if (n <= v.capacity()) return;
+  v.reserve(n);
+  advise_huge(v.data() + v.size(), (v.capacity() - v.size()) * sizeof(T));
+}
+
+// ---------------------------------------------------------------- numbers
+
+constexpr double kPow10[23] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
+                               1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+
+inline bool is_digit(char c) { return c >= '0' && c <= '9'; }
+
+/// Whole token as a double, exactly as parse_double (std::from_chars) gives it: the fast path
+/// takes [+-]digits[.digits][(E|e)[+-]digits] with at most 15 significant digits and a decimal
+/// exponent within ±22, where m·10^x (or m/10^-x) of two exact doubles is one correctly rounded
+/// operation (Clinger 1990); every other spelling goes to parse_double.
+inline bool real_token(std::string_view f, double& out) {
+  const char* p = f.data();
+  const char* const e = p + f.size();
+  bool neg = false;
+  if (p < e && (*p == '-' || *p == '+')) neg = *p++ == '-';
+  std::uint64_t m = 0;
+  int sig = 0, x = 0;
+  bool digits = false;
+  for (; p < e && is_digit(*p); ++p) {
+    digits = true;
+    if (m == 0 && *p == '0') continue;
+    m = m * 10 + static_cast<std::uint64_t>(*p - '0');
+    ++sig;
+  }
+  if (p < e && *p == '.') {
+    for (++p; p < e && is_digit(*p); ++p) {
+      digits = true;
+      --x;
+      if (m == 0 && *p == '0') continue;
+      m = m * 10 + static_cast<std::uint64_t>(*p - '0');
+      ++sig;
+    }
+  }
+  if (digits && sig <= 15 && p < e && (*p == 'E' || *p == 'e')) {
+    ++p;
+    bool eneg = false;
+    if (p < e && (*p == '-' || *p == '+')) eneg = *p++ == '-';
+    int ex = 0, nd = 0;
+    for (; p < e && is_digit(*p) && nd < 6; ++p, ++nd) ex = ex * 10 + (*p - '0');
+    if (nd == 0 || nd == 6) return parse_double(f, out);
+    x += eneg ? -ex : ex;
+  }
+  if (!digits || sig > 15 || p != e) return parse_double(f, out);
+  double v;
+  if (m == 0) {
+    v = 0;
+  } else if (x >= 0 && x <= 22) {
+    v = static_cast<double>(m) * kPow10[x];
+  } else if (x < 0 && x >= -22) {
+    v = static_cast<double>(m) / kPow10[-x];
+  } else {
+    return parse_double(f, out);
+  }
+  out = neg ? -v : v;
+  return true;
+}
+
+/// Whole token as an integer, as parse_int gives it (fast path: [+-] and up to 18 digits).
+inline bool int_token(std::string_view f, std::int64_t& out) {
+  const char* p = f.data();
+  const char* const e = p + f.size();
+  bool neg = false;
+  if (p < e && (*p == '-' || *p == '+')) neg = *p++ == '-';
+  if (p == e || e - p > 18) return parse_int(f, out);
+  std::int64_t v = 0;
+  for (; p < e; ++p) {
+    if (!is_digit(*p)) return parse_int(f, out);
+    v = v * 10 + (*p - '0');
+  }
+  out = neg ? -v : v;
+  return true;
+}
 
 bool frd_type(std::int64_t t, ElemType& out) {
   switch (t) {
@@ -51,10 +175,32 @@ bool frd_type(std::int64_t t, ElemType& out) {
   }
 }
 
+/// Index of the first '\n' in s[p, n), or n: eight bytes at a time (the lines are short, so a
+/// call of memchr per line cost more than the search).
+inline std::size_t find_newline(const char* s, std::size_t p, std::size_t n) {
+  if constexpr (std::endian::native == std::endian::little) {
+    constexpr std::uint64_t kOnes = 0x0101010101010101ull, kHigh = 0x8080808080808080ull, kNl = 0x0A0A0A0A0A0A0A0Aull;
+    for (; p + 8 <= n; p += 8) {
+      std::uint64_t w;
+      std::memcpy(&w, s + p, 8);
+      const std::uint64_t x = w ^ kNl;
+      // The lowest flagged byte is the first zero byte of x (a borrow only flags bytes above it).
+      const std::uint64_t z = (x - kOnes) & ~x & kHigh;
+      if (z) return p + static_cast<std::size_t>(std::countr_zero(z) >> 3);
+    }
+  }
+  while (p < n && s[p] != '\n') ++p;
+  return p;
+}
+
 /// Columns [b, b + w) of a record, trimmed; empty past the end of the line.
-std::string_view column(std::string_view line, std::size_t b, std::size_t w) {
+inline std::string_view column(std::string_view line, std::size_t b, std::size_t w) {
   if (b >= line.size()) return {};
-  return trim(line.substr(b, w));
+  const char* p = line.data() + b;
+  const char* e = p + std::min(w, line.size() - b);
+  while (p < e && is_space(*p)) ++p;
+  while (e > p && is_space(e[-1])) --e;
+  return {p, static_cast<std::size_t>(e - p)};
 }
 
 struct Reader {
@@ -68,6 +214,7 @@ struct Reader {
   IdMap node_map;
   bool have_nodes = false, have_elements = false;
   std::vector<std::int64_t> where;     // per element: line or byte
+  std::size_t elem_count = 0;          // the 3C header's count
   bool where_bytes = false;
   std::map<std::int64_t, std::string> mat_names;  // 1UMAT
   // The 1PSTEP record before a result block: load case counter, increment, step.
@@ -78,7 +225,11 @@ struct Reader {
 
   Reader(std::string f, std::string_view bytes) : file(std::move(f)), s(bytes), t(bytes) { m.file = file; }
 
+  /// The current line is the file's last and has no end of line: the file ends inside it.
+  bool cut_inside_line() const { return t.at_end() && !s.empty() && s.back() != '\n'; }
+
   Error at(std::string reason) const {
+    if (cut_inside_line() && reason.find("truncated") == std::string::npos) reason += " (the file ends inside this line: truncated)";
     return binary_seen ? byte_error(file, static_cast<std::int64_t>(line_pos), std::move(reason))
                        : line_error(file, line_no, std::move(reason));
   }
@@ -87,8 +238,11 @@ struct Reader {
   /// Next line (false at the end of the file); keeps its position for messages.
   bool line(std::string_view& out) {
     line_pos = t.pos();
-    if (!t.next_line(out)) return false;
-    line_no = t.line();
+    if (line_pos >= s.size()) return false;
+    std::size_t next = 0;
+    out = line_at(line_pos, next);
+    line_no = t.cur_line();
+    t.set_pos(next, s[next - 1] == '\n' ? line_no + 1 : line_no);
     return true;
   }
   /// Resumes text reading at byte `pos` after binary data.
@@ -97,8 +251,8 @@ struct Reader {
     t.set_pos(pos, t.cur_line());
   }
 
-  bool int_field(std::string_view f, std::int64_t& v) const { return !f.empty() && parse_int(f, v); }
-  bool real_field(std::string_view f, double& v) const { return !f.empty() && parse_double(f, v); }
+  bool int_field(std::string_view f, std::int64_t& v) const { return !f.empty() && int_token(f, v); }
+  bool real_field(std::string_view f, double& v) const { return !f.empty() && real_token(f, v); }
 
   /// Count and format of a 2C / 3C header: the two integers after the key.
   Status block_header(std::string_view l, const char* what, std::int64_t& count, std::int64_t& format) {
@@ -117,10 +271,10 @@ struct Reader {
     if (have_nodes) return at("a second node block (2C): one mesh per file is supported");
     std::int64_t count = 0, format = 0;
     if (Status st = block_header(header, "node block (2C)", count, format); !st) return st;
-    m.nodes.reserve(static_cast<std::size_t>(count));
-    m.node_ids.reserve(static_cast<std::size_t>(count));
+    reserve_huge(m.nodes, static_cast<std::size_t>(count));
+    reserve_huge(m.node_ids, static_cast<std::size_t>(count));
     std::vector<std::int64_t> node_where;
-    node_where.reserve(static_cast<std::size_t>(count));
+    reserve_huge(node_where, static_cast<std::size_t>(count));
     if (format <= 1) {
       const std::size_t w = format == 0 ? 5 : 10;
       std::string_view l;
@@ -136,9 +290,9 @@ struct Reader {
         for (int c = 0; c < 3; ++c) {
           const std::string_view f = column(l, 3 + w + 12 * static_cast<std::size_t>(c), 12);
           double v = 0;
-          if (f.empty()) return at("node " + std::to_string(id) + ": the record ends before its " + "xyz"[c] + " coordinate (short or truncated line)");
-          if (!real_field(f, v)) return at("node " + std::to_string(id) + ": malformed " + "xyz"[c] + " coordinate " + quote_tok(f));
-          if (!std::isfinite(v)) return at("node " + std::to_string(id) + ": non-finite " + "xyz"[c] + " coordinate");
+          if (f.empty()) return at("node block (2C): node " + std::to_string(id) + ": the record ends before its " + "xyz"[c] + " coordinate (short or truncated line)");
+          if (!real_field(f, v)) return at("node block (2C): node " + std::to_string(id) + ": malformed " + "xyz"[c] + " coordinate " + quote_tok(f));
+          if (!std::isfinite(v)) return at("node block (2C): node " + std::to_string(id) + ": non-finite " + "xyz"[c] + " coordinate");
           x[c] = v;
         }
         m.nodes.push_back(x);
@@ -165,7 +319,7 @@ struct Reader {
           }
         }
         if (!ok) return at_byte(b, "binary node block (2C): the file ends after " + std::to_string(k) + " of " + std::to_string(count) + " nodes (truncated)");
-        if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2])) return at_byte(b, "node " + std::to_string(id) + ": non-finite coordinate");
+        if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2])) return at_byte(b, "binary node block (2C): node " + std::to_string(id) + ": non-finite coordinate");
         m.nodes.push_back(x);
         m.node_ids.push_back(id);
         node_where.push_back(static_cast<std::int64_t>(b));
@@ -189,11 +343,12 @@ struct Reader {
     const int nn = elem_info(et).nodes;
     for (int q = 0; q < nn; ++q) {
       const std::int64_t idx = node_map.find(ids[static_cast<std::size_t>(q)]);
-      if (idx < 0) return at("element " + std::to_string(id) + ": node " + std::to_string(ids[static_cast<std::size_t>(q)]) + " is not defined");
+      if (idx < 0) return at("element block (3C): element " + std::to_string(id) + ": node " + std::to_string(ids[static_cast<std::size_t>(q)]) + " is not defined");
       v[q] = static_cast<std::uint32_t>(idx);
     }
     permute(nastran_to_vtk(et), v, nn);  // he20 / pe15: bottom, vertical, top -> VTK (see above)
-    if (mat < INT32_MIN || mat > INT32_MAX) return at("element " + std::to_string(id) + ": material number out of range");
+    if (m.elem_nodes.empty()) reserve_huge(m.elem_nodes, elem_count * static_cast<std::size_t>(nn));  // by the first element's type
+    if (mat < INT32_MIN || mat > INT32_MAX) return at("element block (3C): element " + std::to_string(id) + ": material number out of range");
     m.add_element(et, id, static_cast<std::int32_t>(mat), v, nn);  // (material, made a group later)
     where.push_back(loc);
     return {};
@@ -205,6 +360,10 @@ struct Reader {
     std::int64_t count = 0, format = 0;
     if (Status st = block_header(header, "element block (3C)", count, format); !st) return st;
     where_bytes = format >= 2;
+    const auto n = static_cast<std::size_t>(count);
+    reserve_huge(m.elem_types, n), reserve_huge(m.elem_ids, n), reserve_huge(m.elem_groups, n);
+    reserve_huge(m.elem_offsets, n + 1), reserve_huge(where, n);
+    elem_count = n;
     std::vector<std::int64_t> ids;
     if (format <= 1) {
       const std::size_t w = format == 0 ? 5 : 10;
@@ -217,22 +376,22 @@ struct Reader {
         std::int64_t id = 0, type = 0, mat = 0;
         const std::string_view fid = column(l, 3, w), ft = column(l, 3 + w, 5), fm = column(l, 3 + w + 10, 5);
         if (!int_field(fid, id)) return at("element block (3C): malformed element id " + quote_tok(fid));
-        if (!int_field(ft, type)) return at("element " + std::to_string(id) + ": malformed type " + quote_tok(ft));
-        if (!fm.empty() && !int_field(fm, mat)) return at("element " + std::to_string(id) + ": malformed material " + quote_tok(fm));
+        if (!int_field(ft, type)) return at("element block (3C): element " + std::to_string(id) + ": malformed type " + quote_tok(ft));
+        if (!fm.empty() && !int_field(fm, mat)) return at("element block (3C): element " + std::to_string(id) + ": malformed material " + quote_tok(fm));
         ElemType et{};
-        if (!frd_type(type, et)) return at("element " + std::to_string(id) + ": unknown frd element type " + std::to_string(type) + " (1-12: he8 pe6 te4 he20 pe15 te10 tr3 tr6 qu4 qu8 be2 be3)");
+        if (!frd_type(type, et)) return at("element block (3C): element " + std::to_string(id) + ": unknown frd element type " + std::to_string(type) + " (1-12: he8 pe6 te4 he20 pe15 te10 tr3 tr6 qu4 qu8 be2 be3)");
         const std::int64_t loc = line_no;
         const std::size_t nn = static_cast<std::size_t>(elem_info(et).nodes);
         ids.clear();
         while (ids.size() < nn) {
-          if (!line(l)) return at("element " + std::to_string(id) + ": the file ends after " + std::to_string(ids.size()) + " of its " + std::to_string(nn) + " nodes (truncated)");
-          if (column(l, 0, 3) != "-2") return at("element " + std::to_string(id) + ": expected a node list record (-2) after " + std::to_string(ids.size()) + " of " + std::to_string(nn) + " nodes, found " + quote_tok(trim(l)));
+          if (!line(l)) return at("element block (3C): element " + std::to_string(id) + ": the file ends after " + std::to_string(ids.size()) + " of its " + std::to_string(nn) + " nodes (truncated)");
+          if (column(l, 0, 3) != "-2") return at("element block (3C): element " + std::to_string(id) + ": expected a node list record (-2) after " + std::to_string(ids.size()) + " of " + std::to_string(nn) + " nodes, found " + quote_tok(trim(l)));
           for (std::size_t b = 3; b < l.size(); b += w) {
             const std::string_view f = column(l, b, w);
             if (f.empty()) continue;
             std::int64_t n = 0;
-            if (!int_field(f, n)) return at("element " + std::to_string(id) + ": malformed node id " + quote_tok(f));
-            if (ids.size() == nn) return at("element " + std::to_string(id) + ": more than the " + std::to_string(nn) + " nodes of a " + elem_info(et).name);
+            if (!int_field(f, n)) return at("element block (3C): element " + std::to_string(id) + ": malformed node id " + quote_tok(f));
+            if (ids.size() == nn) return at("element block (3C): element " + std::to_string(id) + ": more than the " + std::to_string(nn) + " nodes of a " + elem_info(et).name);
             ids.push_back(n);
           }
         }
@@ -248,9 +407,9 @@ struct Reader {
         const std::size_t b = in.pos();
         if (!in.get_array(4, head)) return at_byte(b, "binary element block (3C): the file ends after " + std::to_string(k) + " of " + std::to_string(count) + " elements (truncated)");
         ElemType et{};
-        if (!frd_type(head[1], et)) return at_byte(b, "element " + std::to_string(head[0]) + ": unknown frd element type " + std::to_string(head[1]) + " (binary: the rest of the block cannot be read)");
+        if (!frd_type(head[1], et)) return at_byte(b, "binary element block (3C): element " + std::to_string(head[0]) + ": unknown frd element type " + std::to_string(head[1]) + " (binary: the rest of the block cannot be read)");
         const int nn = elem_info(et).nodes;
-        if (!in.get_array(static_cast<std::size_t>(nn), nodes)) return at_byte(b, "element " + std::to_string(head[0]) + ": the file ends inside its node list (truncated)");
+        if (!in.get_array(static_cast<std::size_t>(nn), nodes)) return at_byte(b, "binary element block (3C): element " + std::to_string(head[0]) + ": the file ends inside its node list (truncated)");
         ids.assign(nodes, nodes + nn);
         line_pos = b;
         binary_seen = true;
@@ -260,6 +419,123 @@ struct Reader {
     }
     have_elements = true;
     return {};
+  }
+
+  /// The line starting at byte `p` (without its end of line); `next`: the byte after it.
+  std::string_view line_at(std::size_t p, std::size_t& next) const {
+    std::size_t e = find_newline(s.data(), p, s.size());
+    next = e < s.size() ? e + 1 : e;
+    if (e > p && s[e - 1] == '\r') --e;
+    return s.substr(p, e - p);
+  }
+
+  static constexpr std::int64_t kParallelRecords = 4096;
+
+  /// The `count` node records of an ASCII DISP block (one line each: `stored` <= 6), read in
+  /// parallel chunks into u/seen; then the position is at the block's -3 record. False, with u
+  /// and seen zero again and the position unchanged, unless exactly `count` well-formed records
+  /// of distinct defined nodes with finite values precede a -3 record: the sequential reader then
+  /// reads the block and names the problem (or reads what this pass does not take, such as
+  /// records continued on -2 lines), so the result never depends on the path.
+  bool parallel_disp(std::size_t w, std::int64_t stored, std::int64_t count, std::vector<Vec3>& u, std::vector<char>& seen) {
+    const std::size_t p0 = t.pos();
+    if (p0 >= s.size()) return false;
+    std::size_t next = 0;
+    auto is_end = [&](std::size_t p) {
+      std::size_t nx = 0;
+      return p < s.size() && s[p - 1] == '\n' && column(line_at(p, nx), 0, 3) == "-3";
+    };
+    // Where the records end: ccx's records have one length, so try that first; else count lines.
+    (void)line_at(p0, next);
+    const std::size_t len = next - p0, n = static_cast<std::size_t>(count);
+    std::size_t end = len <= (s.size() - p0) / n ? p0 + len * n : s.size();
+    if (!is_end(end)) {
+      end = p0;
+      for (std::size_t k = 0; k < n; ++k) {
+        if (end >= s.size()) return false;
+        (void)line_at(end, next);
+        end = next;
+      }
+      if (!is_end(end)) return false;
+    }
+    // Chunks of about 1 MiB cut at line starts.
+    const std::size_t bytes = end - p0, chunks = std::min<std::size_t>(4096, bytes / (1u << 20) + 1);
+    std::vector<std::size_t> cut(chunks + 1, end);
+    cut[0] = p0;
+    for (std::size_t c = 1; c < chunks; ++c) {
+      std::size_t q = std::max(cut[c - 1], p0 + bytes / chunks * c);
+      if (q > p0 && q < end && s[q - 1] != '\n') {
+        const void* nl = std::memchr(s.data() + q, '\n', end - q);
+        q = nl ? static_cast<std::size_t>(static_cast<const char*>(nl) - s.data()) + 1 : end;
+      }
+      cut[c] = std::min(q, end);
+    }
+    std::atomic<bool> bad{false};
+    std::atomic<std::int64_t> records{0};
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t c = r.begin(); c != r.end(); ++c) {
+        std::int64_t here = 0;
+        for (std::size_t p = cut[c], nx = 0; p < cut[c + 1]; p = nx) {
+          if (bad.load(std::memory_order_relaxed)) return;
+          const std::string_view l = line_at(p, nx);
+          std::int64_t node = 0;
+          double v[6];
+          bool ok = column(l, 0, 3) == "-1" && int_field(column(l, 3, w), node);
+          for (std::int64_t k = 0; ok && k < stored; ++k) ok = real_field(column(l, 3 + w + 12 * static_cast<std::size_t>(k), 12), v[k]);
+          ok = ok && std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
+          const std::int64_t idx = ok ? node_map.find(node) : -1;
+          if (idx < 0 || std::atomic_ref<char>(seen[static_cast<std::size_t>(idx)]).exchange(1, std::memory_order_relaxed) != 0) {
+            bad.store(true, std::memory_order_relaxed);
+            return;
+          }
+          u[static_cast<std::size_t>(idx)] = Vec3{v[0], v[1], v[2]};
+          ++here;
+        }
+        records.fetch_add(here, std::memory_order_relaxed);
+      }
+    });
+    if (bad.load() || records.load() != count) {
+      std::fill(u.begin(), u.end(), Vec3{});
+      std::fill(seen.begin(), seen.end(), 0);
+      return false;
+    }
+    t.set_pos(end, t.cur_line() + count);
+    return true;
+  }
+
+  /// The `count` records (int32 node, then D1 D2 D3 and maybe more as float32 or float64) of a
+  /// binary DISP block at byte `start`, in parallel chunks; false, with u and seen zero again, on
+  /// any node that is unknown, repeated or has a non-finite value (the sequential loop then names it).
+  bool parallel_binary_disp(std::size_t start, std::size_t rec, bool dbl, std::int64_t count, std::vector<Vec3>& u, std::vector<char>& seen) {
+    std::atomic<bool> bad{false};
+    const char* base = s.data() + start;
+    tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, count, 16384), [&](const tbb::blocked_range<std::int64_t>& r) {
+      for (std::int64_t k = r.begin(); k != r.end(); ++k) {
+        const char* q = base + static_cast<std::size_t>(k) * rec;
+        std::int32_t node;
+        std::memcpy(&node, q, 4);
+        double v[3];
+        for (int c = 0; c < 3; ++c) {
+          if (dbl) {
+            std::memcpy(&v[c], q + 4 + 8 * c, 8);
+          } else {
+            float f;
+            std::memcpy(&f, q + 4 + 4 * c, 4);
+            v[c] = f;
+          }
+        }
+        const std::int64_t idx = std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]) ? node_map.find(node) : -1;
+        if (idx < 0 || std::atomic_ref<char>(seen[static_cast<std::size_t>(idx)]).exchange(1, std::memory_order_relaxed) != 0) {
+          bad.store(true, std::memory_order_relaxed);
+          return;
+        }
+        u[static_cast<std::size_t>(idx)] = Vec3{v[0], v[1], v[2]};
+      }
+    });
+    if (!bad.load()) return true;
+    std::fill(u.begin(), u.end(), Vec3{});
+    std::fill(seen.begin(), seen.end(), 0);
+    return false;
   }
 
   /// A 100C result block; DISP blocks become steps of `disp`, others are read past.
@@ -307,7 +583,8 @@ struct Reader {
     std::vector<Vec3> u;
     std::vector<char> seen;
     if (is_disp) {
-      u.assign(m.nodes.size(), Vec3{});
+      reserve_huge(u, m.nodes.size());
+      u.resize(m.nodes.size());
       seen.assign(m.nodes.size(), 0);
     }
     auto store = [&](std::int64_t node, const double* v, std::size_t b, bool bytes) -> Status {
@@ -326,7 +603,12 @@ struct Reader {
       const std::size_t w = format == 0 ? 5 : 10;
       std::int64_t found = 0;
       std::vector<double> vals;
-      while (true) {
+      const bool parallel = is_disp && stored <= 6 && count >= kParallelRecords && parallel_disp(w, stored, count, u, seen);
+      if (parallel) {
+        found = count;
+        if (!line(l) || column(l, 0, 3) != "-3") return at(label + ": expected -3 (internal: the parallel pass ended elsewhere)");
+      }
+      while (!parallel) {
         if (!line(l)) return at(label + ": the file ends before its -3 record after " + std::to_string(found) + " of " + std::to_string(count) + " nodes (truncated)");
         const std::string_view key = column(l, 0, 3);
         if (key == "-3") break;
@@ -368,7 +650,10 @@ struct Reader {
         in.skip(static_cast<std::size_t>(count) * rec);
       } else {
         std::vector<double> vals(static_cast<std::size_t>(stored));
-        for (std::int64_t k = 0; k < count; ++k) {
+        const bool parallel = count >= kParallelRecords && static_cast<std::uint64_t>(count) <= in.remaining() / rec &&
+                              parallel_binary_disp(start, rec, sz == 8, count, u, seen);
+        if (parallel) in.skip(static_cast<std::size_t>(count) * rec);
+        for (std::int64_t k = 0; !parallel && k < count; ++k) {
           const std::size_t b = in.pos();
           std::int32_t node = 0;
           bool ok = in.get(node);
@@ -475,6 +760,37 @@ struct Reader {
 Expected<FemMesh> read_frd(const std::string& file, std::string_view bytes) {
   Reader r(file, bytes);
   return r.run();
+}
+
+Expected<FemMesh> read_frd_file(const std::filesystem::path& path) {
+#ifdef INTERFERE_FRD_MMAP
+  // A regular file is mapped, not copied: a results file is large (10^6 elements and 10 steps in
+  // ASCII: 0.7 GB), and copying it into fresh memory took longer than parsing it. (A file that
+  // another process truncates while it is read would end the process with SIGBUS: ccx rewrites
+  // its .frd when a new job starts.) Anything else — a pipe, a device, a small file — is read.
+  constexpr off_t kMapMin = 1 << 20;
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd >= 0) {
+    struct stat st {};
+    const bool map = ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_size >= kMapMin;
+    void* p = MAP_FAILED;
+    const auto size = static_cast<std::size_t>(st.st_size);
+#ifdef MAP_POPULATE
+    if (map) p = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);
+#else
+    if (map) p = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0);
+#endif
+    ::close(fd);
+    if (p != MAP_FAILED) {
+      Expected<FemMesh> m = read_frd(path.string(), std::string_view(static_cast<const char*>(p), size));
+      ::munmap(p, size);
+      return m;
+    }
+  }
+#endif
+  Expected<std::string> bytes = read_file_bytes(path);
+  if (!bytes) return bytes.error();
+  return read_frd(path.string(), *bytes);
 }
 
 }  // namespace interfere::fem_io

@@ -85,7 +85,9 @@ Expected<FemMesh> read_fem(const std::filesystem::path& path, const FemReadOptio
   FemFormat f = options.format;
   if (f == FemFormat::automatic) f = fem_format_from_path(path);
   Expected<std::string> bytes = std::string();
-  if (f != FemFormat::exodus) {  // (the Exodus library reads the file itself)
+  // (the Exodus library reads the file itself; a .frd is mapped by read_frd_file)
+  const bool frd_file = f == FemFormat::frd;
+  if (f != FemFormat::exodus && !frd_file) {
     bytes = fem_io::read_file_bytes(path);
     if (!bytes) return bytes.error();
   }
@@ -97,7 +99,7 @@ Expected<FemMesh> read_fem(const std::filesystem::path& path, const FemReadOptio
     case FemFormat::vtk_legacy: m = fem_io::read_vtk_legacy(file, *bytes); break;
     case FemFormat::vtu: m = fem_io::read_vtu(file, *bytes); break;
     case FemFormat::abaqus: m = fem_io::read_abaqus(path, *bytes); break;
-    case FemFormat::frd: m = fem_io::read_frd(file, *bytes); break;
+    case FemFormat::frd: m = frd_file ? fem_io::read_frd_file(path) : fem_io::read_frd(file, *bytes); break;
     case FemFormat::exodus: m = fem_io::read_exodus(path); break;
     default: break;
   }

@@ -244,6 +244,7 @@ Expected<FemMesh> read_vtk_legacy(const std::string& file, std::string_view byte
 Expected<FemMesh> read_vtu(const std::string& file, std::string_view bytes);
 Expected<FemMesh> read_abaqus(const std::filesystem::path& path, std::string_view bytes);
 Expected<FemMesh> read_frd(const std::string& file, std::string_view bytes);  // frd_read.cpp
+Expected<FemMesh> read_frd_file(const std::filesystem::path& path);         // frd_read.cpp (maps a large file)
 Expected<FemMesh> read_exodus(const std::filesystem::path& path);           // exodus_read.cpp (opens the file itself)
 
 /// Writers fill `out` with the whole file; write_fem writes it atomically.

@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <cstdarg>
 #include <cstdio>
+#include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <map>
 
@@ -266,8 +268,8 @@ Error read_error(const std::string& name, const std::string& text) {
 }
 
 /// 1-based line of the first line containing `needle`.
-std::int64_t line_with(const std::string& text, const std::string& needle) {
-  return 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(text.find(needle)), '\n');
+std::int64_t line_with(const std::string& text, const std::string& needle, std::size_t from = 0) {
+  return 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(text.find(needle, from)), '\n');
 }
 
 TEST(FemIoFrd, BadAsciiInputNamesLineBlockAndStep) {
@@ -371,6 +373,192 @@ TEST(FemIoFrd, BadBinaryInputNamesByteBlockAndStep) {
     const Error e = read_error("bin_unknown.frd", t);
     EXPECT_EQ(e.byte, static_cast<std::int64_t>(data + 16));
     EXPECT_NE(e.reason.find("node 4242 is not defined"), std::string::npos) << e.message();
+  }
+}
+
+// ---------------------------------------------------------------- truncated anywhere
+
+/// Byte ranges of the blocks of a file written by write_frd: from the end of the block's key in
+/// its header record ("2C", "3C", "100C": before it the line could be any record) to the end of
+/// its last byte (ASCII: the "-3"; binary: the last datum). A file cut in [begin, end) ends
+/// inside that block.
+struct BlockSpan {
+  std::size_t begin, end;
+  std::string name;  // what the error must name
+};
+
+std::vector<BlockSpan> block_spans(const std::string& f, const Model& mod, bool binary, bool dbl) {
+  std::vector<BlockSpan> r;
+  auto after_line = [&](std::size_t p) { return f.find('\n', p) + 1; };
+  auto ascii_end = [&](std::size_t p) { return f.find("\n -3", p) + 4; };
+  const std::size_t n2 = f.find("    2C"), n3 = f.find("    3C");
+  std::size_t elem_bytes = 0;
+  for (const Model::Elem& e : mod.elems) elem_bytes += 4 * (4 + e.nodes.size());
+  r.push_back({n2 + 6, binary ? after_line(n2) + mod.nodes.size() * 28 : ascii_end(n2), "node block (2C)"});
+  r.push_back({n3 + 6, binary ? after_line(n3) + elem_bytes : ascii_end(n3), "element block (3C)"});
+  std::size_t p = n3;
+  for (std::size_t s = 0; s < mod.disp.size(); ++s) {
+    const std::size_t h = f.find("  100CL", p);
+    const std::size_t data = after_line(f.find("1ALL", h));
+    const std::size_t end = binary ? data + mod.disp[s].size() * (4 + 3 * (dbl ? 8 : 4)) : ascii_end(h);
+    r.push_back({h + 6, end, "result block " + std::to_string(s + 1) + " (step 1, increment " + std::to_string(s + 1) + ")"});
+    p = end;
+  }
+  return r;
+}
+
+TEST(FemIoFrd, CutAtEveryByteIsAnErrorNamingTheBlockOrAnEarlierEnd) {
+  // Every prefix of the file, in ASCII and binary (float32 and float64 results): cut inside a
+  // block, an error (never a crash or a hang) naming the file, the line or byte, the block and,
+  // for result blocks, the step, and saying "truncated"; cut between blocks, either an error or
+  // the complete blocks before the cut (steps = the DISP blocks that ended before it).
+  const Model mod = two_elements();
+  for (int variant = 0; variant < 3; ++variant) {
+    SCOPED_TRACE(variant);
+    const bool binary = variant > 0, dbl = variant == 2;
+    const std::string good = write_frd(mod, binary, dbl);
+    const std::vector<BlockSpan> spans = block_spans(good, mod, binary, dbl);
+    ASSERT_EQ(spans.back().end + (binary ? 0 : 1), good.find(" 9999")) << "the spans end where the end record begins";
+    const fs::path p = temp_dir() / ("cut_" + std::to_string(variant) + ".frd");
+    std::size_t errors = 0, reads = 0;
+    for (std::size_t cut = 1; cut < good.size(); ++cut) {
+      write_text(p, good.substr(0, cut));
+      Expected<FemMesh> m = read_fem(p);
+      const BlockSpan* in = nullptr;
+      for (const BlockSpan& s : spans) {
+        if (cut >= s.begin && cut < s.end) in = &s;
+      }
+      if (in) {
+        ASSERT_FALSE(m) << "cut at byte " << cut << " inside " << in->name << " was read";
+        const Error& e = m.error();
+        const std::string msg = e.message();
+        EXPECT_NE(msg.find(p.string()), std::string::npos) << msg;
+        EXPECT_NE(e.reason.find(in->name), std::string::npos) << "cut at " << cut << ": " << msg;
+        EXPECT_NE(e.reason.find("truncated"), std::string::npos) << "cut at " << cut << ": " << msg;
+        EXPECT_TRUE(e.line > 0 || e.byte >= 0) << msg;
+        if (!binary) EXPECT_GT(e.line, 0) << msg;
+        if (binary && cut > spans[0].begin + 80) EXPECT_GE(e.byte, 0) << msg;  // past the first binary data: bytes
+        ++errors;
+      } else if (m) {
+        std::size_t complete = 0;
+        for (std::size_t s = 2; s < spans.size(); ++s) complete += spans[s].end <= cut;
+        ASSERT_GE(cut, spans[1].end) << "read without elements at " << cut;
+        EXPECT_EQ(m->num_elements(), 2u);
+        EXPECT_EQ(m->fields.empty() ? 0u : m->fields[0].num_steps(), complete) << "cut at " << cut;
+        ++reads;
+      }
+    }
+    EXPECT_GT(errors, good.size() / 2);
+    EXPECT_GT(reads, 0u);
+  }
+}
+
+// ---------------------------------------------------------------- large files (mapped, parallel)
+
+/// nx × nx × 1 hex8 cells (ids from 1), `steps` DISP steps of values with 6 significant digits.
+Model grid_model(int nx, int steps) {
+  Model m;
+  const int p = nx + 1;
+  for (int k = 0; k < 2; ++k) {
+    for (int j = 0; j < p; ++j) {
+      for (int i = 0; i < p; ++i) m.nodes.push_back({1 + (k * p + j) * p + i, Vec3{i * 0.1, j * 0.1, k * 0.1}});
+    }
+  }
+  auto id = [&](int i, int j, int k) { return 1 + (k * p + j) * p + i; };
+  for (int j = 0; j < nx; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      m.elems.push_back({1 + j * nx + i, 1, 1, {id(i, j, 0), id(i + 1, j, 0), id(i + 1, j + 1, 0), id(i, j + 1, 0), id(i, j, 1), id(i + 1, j, 1), id(i + 1, j + 1, 1), id(i, j + 1, 1)}});
+    }
+  }
+  for (int s = 0; s < steps; ++s) {
+    m.times.push_back(0.125 * (s + 1));
+    std::vector<std::pair<int, Vec3>> d;
+    for (const auto& [nid, x] : m.nodes) d.push_back({nid, Vec3{std::sin(nid * 0.37 + s) * 1e-3, -x.x * x.y * (s + 1), std::exp(-x.x) * 12.5}});
+    m.disp.push_back(d);
+  }
+  return m;
+}
+
+/// The value the file holds for v: its %12.5E text read by strtod (the oracle, not our parser).
+double as_written(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%12.5E", v);
+  return std::strtod(b, nullptr);
+}
+
+TEST(FemIoFrd, LargeFilesReadExactlyAndNameTheirErrors) {
+  // 4,900 cells, 10,082 nodes, 8 steps: over 1 MB (the reader maps it) and DISP blocks of more
+  // than 4,096 records (read in parallel chunks). Every value is what strtod makes of its text.
+  const Model mod = grid_model(70, 8);
+  const std::string good = write_frd(mod, false);
+  ASSERT_GT(good.size(), 2u << 20);
+  const fs::path p = temp_dir() / "large.frd";
+  write_text(p, good);
+  const FemMesh m = must_read(p);
+  ASSERT_EQ(m.num_nodes(), mod.nodes.size());
+  ASSERT_EQ(m.num_elements(), mod.elems.size());
+  ASSERT_EQ(m.fields.size(), 1u);
+  ASSERT_EQ(m.fields[0].num_steps(), 8u);
+  EXPECT_TRUE(m.warnings.empty());
+  for (std::size_t s = 0; s < 8; ++s) {
+    for (std::size_t i = 0; i < mod.nodes.size(); ++i) {
+      ASSERT_EQ(m.node_ids[i], mod.disp[s][i].first);
+      const Vec3& u = mod.disp[s][i].second;
+      ASSERT_EQ(m.fields[0].values[s][i], (Vec3{as_written(u.x), as_written(u.y), as_written(u.z)})) << "step " << s << " node " << m.node_ids[i];
+    }
+  }
+  // Records of other lengths (trailing blanks on some, CR LF on others): the same values.
+  {
+    std::string t;
+    std::size_t k = 0;
+    for (std::size_t b = 0, e; b < good.size(); b = e + 1) {
+      e = good.find('\n', b);
+      std::string line = good.substr(b, e - b);
+      if (line.starts_with(" -1") && ++k % 7 == 0) line += k % 2 ? "   " : "\r";
+      t += line + "\n";
+    }
+    write_text(temp_dir() / "large_ragged.frd", t);
+    const FemMesh r = must_read(temp_dir() / "large_ragged.frd");
+    ASSERT_EQ(r.fields.size(), 1u);
+    EXPECT_EQ(r.fields[0].values, m.fields[0].values);
+  }
+  const std::size_t last = good.find("  100CL  108");
+  {  // an unknown node deep in the last DISP block: its line, the block and the step
+    std::string t = good;
+    const std::size_t at = t.find(" -1      9000", last);
+    t.replace(at, 13, " -1     99999");
+    const Error e = read_error("large_unknown.frd", t);
+    EXPECT_NE(e.reason.find("DISP result block 8 (step 1, increment 8) (time 1): node 99999 is not defined"), std::string::npos) << e.message();
+    EXPECT_EQ(e.line, line_with(t, " -1     99999"));
+  }
+  {  // a node twice: the line of the second record
+    std::string t = good;
+    const std::size_t at = t.find(" -1      9000", last);
+    t.replace(at, 13, " -1      8999");
+    const Error e = read_error("large_twice.frd", t);
+    EXPECT_NE(e.reason.find("node 8999 appears twice"), std::string::npos) << e.message();
+    EXPECT_EQ(e.line, 1 + std::count(t.begin(), t.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
+    EXPECT_GT(at, t.find(" -1      8999", last));  // after the first
+  }
+  {  // a malformed value and a NaN
+    std::string t = good;
+    const std::size_t at = t.find(" -1      5000", last);
+    t.replace(at + 13 + 12, 12, " 1.23456X-01");
+    const Error e = read_error("large_malformed.frd", t);
+    EXPECT_NE(e.reason.find("node 5000: malformed value '1.23456X-01'"), std::string::npos) << e.message();
+    EXPECT_EQ(e.line, line_with(t, "X-01"));
+    std::string n = good;
+    n.replace(at + 13, 12, "         NaN");
+    EXPECT_NE(read_error("large_nan.frd", n).reason.find("node 5000: non-finite D1"), std::string::npos);
+  }
+  {  // cut inside the last DISP block, at a line end and inside a line
+    const std::size_t at = good.find(" -1      7000", last);
+    for (const std::size_t cut : {at, at + 30}) {
+      const Error e = read_error("large_cut.frd", good.substr(0, cut));
+      EXPECT_NE(e.reason.find("DISP result block 8 (step 1, increment 8)"), std::string::npos) << e.message();
+      EXPECT_NE(e.reason.find("truncated"), std::string::npos) << e.message();
+      EXPECT_EQ(e.line, line_with(good, " -1      7000", last) - (cut == at ? 1 : 0)) << e.message();
+    }
   }
 }
 
