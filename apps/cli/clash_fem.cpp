@@ -9,6 +9,7 @@
 
 #include "clash_options.h"
 #include "fem_parts.h"
+#include "fem_surfaces.h"
 #include "interfere/core/atomic_file.h"
 #include "interfere/fem/io.h"
 #include "interfere/mesh/io.h"
@@ -122,19 +123,14 @@ int run_fem_clash(const ClashOptions& o, const ResolvedParts& parts, const Clash
   set_threads(o.threads);
   Progress total("clash");
 
-  auto pick = [](const std::string& own, const std::string& both) { return own.empty() ? both : own; };
-  // A part's own displacement flag (--disp-a or --field-a) replaces both shared ones.
-  auto displacement = [&](const std::string& disp_own, const std::string& field_own, FemPartOptions& p) {
-    const bool own = !disp_own.empty() || !field_own.empty();
-    p.disp = own ? disp_own : o.disp;
-    p.field = own ? field_own : o.field;
-  };
-  FemPartOptions oa{.part = pick(o.part_a, o.part), .linear_faces = o.linear_faces, .split = o.split,
-                    .transform = parts.a.transform};
-  FemPartOptions ob{.part = pick(o.part_b, o.part), .linear_faces = o.linear_faces, .split = o.split,
-                    .transform = parts.b.transform};
-  displacement(o.disp_a, o.field_a, oa);
-  displacement(o.disp_b, o.field_b, ob);
+  // The parts' bodies and displacements as distance takes them (fem_surfaces.h): a part's own
+  // displacement flag (--disp-a or --field-a) replaces both shared ones.
+  const FemFlags flags{.part = o.part, .part_a = o.part_a, .part_b = o.part_b, .disp = o.disp, .disp_a = o.disp_a,
+                       .disp_b = o.disp_b, .field = o.field, .field_a = o.field_a, .field_b = o.field_b,
+                       .split = o.split, .linear_faces = o.linear_faces};
+  FemPartOptions oa = fem_part_options(flags, 'a'), ob = fem_part_options(flags, 'b');
+  oa.transform = parts.a.transform;
+  ob.transform = parts.b.transform;
   // Each input's own unit, converted to the working unit (issue #23, item 6).
   for (auto [spec, opt] : {std::pair{&parts.a, &oa}, std::pair{&parts.b, &ob}}) {
     opt->unit = part_unit(*spec);
@@ -150,15 +146,17 @@ int run_fem_clash(const ClashOptions& o, const ResolvedParts& parts, const Clash
       warning(w);
     }
   }
+  check_step_counts(a, b);
   const std::size_t na = a.num_steps(), nb = b.num_steps();
-  if (na && nb && na != nb) {
-    throw InputError("mismatched step counts: displacements of A have " + std::to_string(na) + " steps, of B " +
-                     std::to_string(nb));
-  }
   const std::size_t num_steps = std::max<std::size_t>({na, nb, 1});
   SeriesRequest sr{.clash = request, .bvh = parts.bvh, .scale = o.scale, .keep_first_clash = true, .keep_last = true};
   const bool series = o.step < 0 && num_steps > 1;
-  if (o.step >= 0) sr.steps = {check_step(o.step, num_steps)};
+  if (o.step >= 0) {
+    const std::string whose = na   ? "the displacements of A (" + displacement_source_text(a) + ")"
+                              : nb ? "the displacements of B (" + displacement_source_text(b) + ")"
+                                   : std::string();
+    sr.steps = {check_step(o.step, num_steps, whose)};
+  }
   std::vector<view::FemSeriesStep> view_steps;  // --html/--glb/--pvd: the regions of every checked step
   if (o.views.any())
     sr.on_step = [&](const StepSummary& s, const ClashResult& r) { view_steps.push_back(view::fem_series_step(s.step, s.time, r)); };

@@ -127,7 +127,7 @@ void add_surface_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<SurfaceOptions>();
   CLI::App* c = app.add_subcommand("surface", "Boundary surface of a FEM model (optionally deformed) as "
                                               "STL/PLY/OBJ/OFF or VTU/VTK/MSH with element ids");
-  c->add_option("IN", o->in, "FEM file (.msh .bdf .nas .dat .vtk .vtu .inp)");
+  c->add_option("IN", o->in, "FEM file (.msh .bdf .nas .dat .vtk .vtu .inp .frd .e .exo)");
   c->add_option("OUT", o->out, "output: .stl .ply .obj .off (triangles) or .vtu .vtk .msh (with cell data)");
   c->add_option("--part", o->part, "only this body (default: every body)");
   c->add_option("--split", o->split, "bodies by auto (default), group, connectivity, single");

@@ -1,4 +1,5 @@
 #include "common.h"
+#include "fem_surfaces.h"
 #include "heap.h"
 
 #include "interfere/core/atomic_file.h"
@@ -44,7 +45,7 @@ namespace {
 // Reads, validates, converts to the working unit and poses one part (p' = R·(s·p) + t in double);
 // the tree is built later.
 LoadedPart read_part(const PartSpec& spec, const std::string& label, const std::string& working_unit,
-                     const StepTessellation& tessellation, TriMesh& mesh) {
+                     const StepTessellation& tessellation, const FemFlags* fem, TriMesh& mesh) {
   LoadedPart p;
   p.file = spec.file;
   p.unit = part_unit(spec);
@@ -54,7 +55,19 @@ LoadedPart read_part(const PartSpec& spec, const std::string& label, const std::
     p.transform = parse_transform(spec.transform, spec.transform_flag.empty() ? "--transform-" + std::string(label == "A" ? "a" : "b")
                                                                                : spec.transform_flag);
   }
-  {
+  if (is_fem_file(spec.file)) {
+    // An FE model (issue #26, item 5): the chosen body's surface at its step, as clash reads it
+    // (load_fem_part); its warnings are prefixed "part A (": printed by load_parts.
+    const FemFlags flags = fem ? *fem : FemFlags{};
+    FemSurfaces s = read_fem_surfaces(spec.file, fem_part_options(flags, label == "A" ? 'a' : 'b'), flags.step,
+                                      flags.scale, label, false);
+    mesh = std::move(s.bodies.front());
+    s.bodies.clear();
+    p.format = s.part.format;
+    p.warnings = s.part.warnings;
+    p.read_seconds = s.part.read_seconds + s.part.extract_seconds;
+    p.fem = std::make_shared<const FemSurfaces>(std::move(s));
+  } else {
     Progress progress("reading " + label + " (" + spec.file + ")");
     PartMesh m = read_part_mesh(spec.file, tessellation);
     mesh = std::move(m.mesh);
@@ -126,14 +139,14 @@ LoadedParts load_parts(const ResolvedParts& parts, bool with_stats) {
     std::exception_ptr ea, eb;
     const auto read_a = [&] {
       try {
-        r.a = read_part(parts.a, "A", parts.units, parts.tessellation, ma);
+        r.a = read_part(parts.a, "A", parts.units, parts.tessellation, parts.fem.get(), ma);
       } catch (...) {
         ea = std::current_exception();
       }
     };
     const auto read_b = [&] {
       try {
-        r.b = read_part(parts.b, "B", parts.units, parts.tessellation, mb);
+        r.b = read_part(parts.b, "B", parts.units, parts.tessellation, parts.fem.get(), mb);
       } catch (...) {
         eb = std::current_exception();
       }
@@ -490,6 +503,7 @@ nlohmann::json part_json(const LoadedPart& p) {
     j.update({{"vertices", p.model.mesh.num_vertices()}, {"triangles", p.model.mesh.num_triangles()},
               {"statistics", "not needed"}});
   }
+  if (p.fem) j["fem"] = fem_surfaces_json(*p.fem, false);  // body, displacements, step (issue #26, item 5)
   if (p.format == "step") {
     j["linear_deflection"] = p.linear_deflection;
     if (p.tessellation_deviation >= 0) j["tessellation_deviation"] = p.tessellation_deviation;
@@ -501,7 +515,7 @@ nlohmann::json part_json(const LoadedPart& p) {
 }
 
 void add_two_part_options(CLI::App& c, TwoPartOptions& o) {
-  c.add_option("A", o.a.file, "mesh file of part A (STL, OBJ, PLY, OFF, glTF .glb/.gltf, STEP; clash also takes FEM files: .msh .bdf .nas .dat .vtk .vtu .inp)");
+  c.add_option("A", o.a.file, "file of part A: mesh (STL, OBJ, PLY, OFF, glTF .glb/.gltf), STEP, or FE model (.msh .bdf .nas .dat .vtk .vtu .inp .frd .e .exo: its boundary surface)");
   c.add_option("B", o.b.file, "mesh file of part B");
   c.add_option("--scene", o.scene, "JSON scene giving both parts and their transforms");
   c.add_option("--transform-a", o.a.transform, "pose of A: \"r00 r01 r02 tx r10 r11 r12 ty r20 r21 r22 tz\"");

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdio>
 #include <functional>
+#include <memory>
 #include <string_view>
 #include <optional>
 #include <stdexcept>
@@ -55,7 +56,8 @@ class Progress {
 
 /// A part's triangles for clash, distance, check and sweep: a mesh file, or a STEP file when built
 /// with OpenCASCADE (part_mesh.cpp: every instance placed, mm, welded; its import warnings are
-/// printed and kept). Throws InputError naming the file.
+/// printed and kept). Throws InputError naming the file, also for an FE file (is_fem_file: clash,
+/// distance and check read those through fem_parts.h / fem_surfaces.h).
 struct PartMesh {
   TriMesh mesh;
   std::string format;  ///< mesh_format_name, or "step"
@@ -106,6 +108,9 @@ PartUnit part_unit(const PartSpec& spec);
 /// Millimetres per unit; throws InputError naming `what` for an unknown unit.
 double unit_in_mm(const std::string& unit, const std::string& what);
 
+struct FemFlags;     // fem_surfaces.h
+struct FemSurfaces;  // fem_surfaces.h
+
 struct LoadedPart {
   std::string file;
   std::string format;  ///< mesh_format_name, or "step"
@@ -117,6 +122,9 @@ struct LoadedPart {
   double tessellation_deviation = -1;   ///< PartMesh::tessellation_deviation (STEP inputs, when measured)
   double read_seconds = 0, build_seconds = 0;
   std::vector<std::string> warnings;  ///< degenerate/duplicate triangles, open or non-manifold edges
+  /// An FE file (issue #26, item 5): its model, chosen body, displacements and step (the body's
+  /// surface is `model`'s mesh); null for mesh and STEP files.
+  std::shared_ptr<const FemSurfaces> fem;
 };
 
 struct ResolvedParts;
@@ -218,6 +226,9 @@ struct ResolvedParts {
   std::string units;
   BvhBuildOptions bvh;
   StepTessellation tessellation;
+  /// FE inputs (distance; issue #26, item 5): --part/-a/-b, --disp, --field, --step, --scale...;
+  /// null: the defaults (the only body, no displacements).
+  std::shared_ptr<const FemFlags> fem;
 };
 /// `command` is the subcommand (its name and flags, for the STEP tessellation flags).
 ResolvedParts resolve_two_parts(const TwoPartOptions& o, const CLI::App& command);

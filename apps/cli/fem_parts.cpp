@@ -81,11 +81,12 @@ bool is_fem_file(const std::string& path) {
   return false;
 }
 
-std::size_t check_step(long long step, std::size_t num_steps) {
+std::size_t check_step(long long step, std::size_t num_steps, const std::string& whose) {
   const std::size_t n = std::max<std::size_t>(num_steps, 1);
   if (step < 0 || static_cast<std::size_t>(step) >= n) {
-    throw InputError("--step " + std::to_string(step) + ": out of range (the series has " + std::to_string(n) +
-                     " step" + (n == 1 ? "" : "s") + ", numbered from 0)");
+    throw InputError("--step " + std::to_string(step) + ": out of range (" +
+                     (whose.empty() ? "the series has " : whose + ": ") + std::to_string(n) + " step" +
+                     (n == 1 ? "" : "s") + ", numbered from 0)");
   }
   return static_cast<std::size_t>(step);
 }
@@ -137,6 +138,7 @@ FemPart load_fem_part(const std::string& file, const FemPartOptions& o, const st
     p.csv = std::make_shared<NodalSeries>(std::move(*u));
     p.displacement = p.csv.get();
     p.displacement_source = "csv";
+    p.displacement_file = o.disp;
     if (info.missing_nodes > 0) {
       p.warnings.push_back("part " + label + " (" + o.disp + "): " + std::to_string(info.missing_nodes) +
                            " (node, step) displacements missing, set to zero");
@@ -214,6 +216,7 @@ FemPart other_part(const FemPart& loaded, const std::string& part, const std::st
   p.csv = loaded.csv;
   p.displacement = loaded.displacement;
   p.displacement_source = loaded.displacement_source;
+  p.displacement_file = loaded.displacement_file;
   p.transform = loaded.transform;
   p.unit = loaded.unit;
   p.unit_scale = loaded.unit_scale;

@@ -16,7 +16,7 @@
 
 namespace interfere::cli {
 
-/// True for the FEM extensions (.msh .bdf .nas .dat .vtk .vtu .inp), case-insensitive.
+/// True for the FEM extensions (.msh .bdf .nas .dat .vtk .vtu .inp .frd .e .exo), case-insensitive.
 bool is_fem_file(const std::string& path);
 
 struct FemPartOptions {
@@ -43,6 +43,7 @@ struct FemPart {
   std::shared_ptr<NodalSeries> csv;  ///< (a pointer: `displacement` may point into it)
   const NodalSeries* displacement = nullptr;  ///< points into csv or mesh->fields; null = none
   std::string displacement_source;            ///< "csv", "field" or ""
+  std::string displacement_file;              ///< the CSV's path (source "csv"), else ""
   Transform transform;
   double read_seconds = 0, extract_seconds = 0;
   std::vector<std::string> warnings;  ///< the file's first (file_warnings of them), then the chosen bodies'
@@ -68,6 +69,8 @@ nlohmann::json fem_part_json(const FemPart& p);
 nlohmann::json region_ids_json(const RegionIds& ids);
 
 /// 0-based step from --step (checked against the series); throws InputError when out of range.
-std::size_t check_step(long long step, std::size_t num_steps);
+/// `whose`: the series, for the message ("the displacements of A (field 'disp' of model.msh)");
+/// empty: "the series".
+std::size_t check_step(long long step, std::size_t num_steps, const std::string& whose = "");
 
 }  // namespace interfere::cli

@@ -5,6 +5,7 @@
 // every instance placed, lengths in millimetres, welded where faces meet (BRepMesh discretises a
 // shared edge once, so a closed solid stays closed for the containment test).
 #include "common.h"
+#include "fem_parts.h"
 #include "interfere/mesh/validate.h"
 
 #include <algorithm>
@@ -49,6 +50,11 @@ PartMesh read_part_mesh(const std::string& file, const StepTessellation& tessell
 #else
     throw InputError(file + ": STEP input needs interfere built with OpenCASCADE (INTERFERE_WITH_OCCT)");
 #endif
+  }
+  if (is_fem_file(file)) {
+    // (distance and check read FE models through fem_surfaces.h; the other callers take meshes)
+    throw InputError(file + ": an FE model; this command takes mesh and STEP files (`interfere surface " + file +
+                     " OUT.stl` writes its boundary surface as a mesh)");
   }
   auto m = read_mesh(file, {}, &p.info);
   if (!m) throw InputError(m.error());
