@@ -1,5 +1,7 @@
 // Fuzz target for the FEM readers (fem/io.h): the input bytes are written to a file with each
-// extension (.msh .bdf .vtk .vtu .inp, and .fem for detection by content) and read with read_fem.
+// extension (.msh .bdf .vtk .vtu .inp .frd, and .fem for detection by content) and read with read_fem.
+// (.frd: the CalculiX reader's file path, read_frd_file, issue #26; Exodus .e/.exo is not fed: the
+// netCDF/HDF5 libraries it goes through are not ours to fuzz.)
 //
 // Checked on every read (abort = finding):
 //  - no crash, hang, sanitizer report, or allocation out of proportion to the input;
@@ -83,7 +85,7 @@ int entry(const std::uint8_t* data, std::size_t size) {
   std::int64_t lines = 1;
   for (std::size_t i = 0; i < size; ++i) lines += data[i] == '\n';
   bool tripped = false;
-  for (const char* name : {"in.msh", "in.bdf", "in.vtk", "in.vtu", "in.inp", "in.fem"}) {
+  for (const char* name : {"in.msh", "in.bdf", "in.vtk", "in.vtu", "in.inp", "in.frd", "in.fem"}) {
     const fs::path p = fem_work_dir() / name;
     put(p, data, size);
     Expected<FemMesh> m = interfere::read_fem(p);
