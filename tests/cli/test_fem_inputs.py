@@ -459,6 +459,14 @@ class FemInputs(unittest.TestCase):
         self.assert_bad(["check", stl, "--part", "x"], ["--part", "c.stl is not an FE file"])
         self.assert_bad(["check", self.files["msh"], "--part", "nobody"], ["no body 'nobody'", "'left'"])
 
+    def test_sweep_names_an_fe_workpiece(self):
+        # sweep takes meshes: an FE model is named as such (it was "cannot tell the mesh format ...
+        # set ReadOptions::format").
+        csv = write("probe_path.csv", "px,py,pz,ax,ay,az\n5,5,5,0,0,1\n")
+        err = self.assert_bad(["sweep", "--workpiece", self.files["msh"], "--path", csv, "--probe-radius", "1",
+                               "--probe-length", "2"], ["boxes.msh: an FE model", "interfere surface"])
+        self.assertNotIn("ReadOptions", err)
+
     def test_surface_help_lists_every_format(self):
         for cmd in ("surface", "check", "distance"):
             rc, out, err = run(cmd, "--help")
