@@ -97,6 +97,23 @@ inline bool is_digit(char c) { return c >= '0' && c <= '9'; }
 inline bool real_token(std::string_view f, double& out) {
   const char* p = f.data();
   const char* const e = p + f.size();
+  // ccx's own spelling first, "[-]d.dddddE±dd" (%12.5E): the same arithmetic at fixed places.
+  if (const std::size_t n = f.size(); (n == 11 || (n == 12 && *p == '-'))) {
+    const char* q = p + (n - 11);
+    if (q[1] == '.' && q[7] == 'E' && (q[8] == '+' || q[8] == '-') && is_digit(q[0]) && is_digit(q[2]) && is_digit(q[3]) &&
+        is_digit(q[4]) && is_digit(q[5]) && is_digit(q[6]) && is_digit(q[9]) && is_digit(q[10])) {
+      const std::uint64_t m = static_cast<std::uint64_t>(q[0] - '0') * 100000 + static_cast<std::uint64_t>(q[2] - '0') * 10000 +
+                              static_cast<std::uint64_t>(q[3] - '0') * 1000 + static_cast<std::uint64_t>(q[4] - '0') * 100 +
+                              static_cast<std::uint64_t>(q[5] - '0') * 10 + static_cast<std::uint64_t>(q[6] - '0');
+      const int ex = (q[9] - '0') * 10 + (q[10] - '0');
+      const int x = (q[8] == '-' ? -ex : ex) - 5;
+      if (x >= -22 && x <= 22) {
+        const double v = m == 0 ? 0.0 : x >= 0 ? static_cast<double>(m) * kPow10[x] : static_cast<double>(m) / kPow10[-x];
+        out = n == 12 ? -v : v;
+        return true;
+      }
+    }
+  }
   bool neg = false;
   if (p < e && (*p == '-' || *p == '+')) neg = *p++ == '-';
   std::uint64_t m = 0;
@@ -730,7 +747,11 @@ struct Reader {
     if (Status st = check_element_ids(m, where, where_bytes); !st) return st.error();
     drop_lower_dimension(m, &where);
     // Materials -> groups when there is more than one.
-    std::set<std::int32_t> mats(m.elem_groups.begin(), m.elem_groups.end());
+    // (Runs of one material are the rule: a set insert per run, not per element.)
+    std::set<std::int32_t> mats;
+    for (std::size_t e = 0; e < m.elem_groups.size(); ++e) {
+      if (e == 0 || m.elem_groups[e] != m.elem_groups[e - 1]) mats.insert(m.elem_groups[e]);
+    }
     if (mats.size() > 1) {
       std::map<std::int32_t, std::int32_t> index;
       const int dim = elem_info(m.elem_types[0]).dim;
@@ -740,7 +761,11 @@ struct Reader {
         index[mat] = static_cast<std::int32_t>(m.groups.size());
         m.groups.push_back(FemGroup{.name = std::move(name), .id = mat, .dim = dim});
       }
-      for (std::int32_t& g : m.elem_groups) g = index[g];
+      std::int32_t last_mat = 0, last_group = -1;
+      for (std::int32_t& g : m.elem_groups) {
+        if (last_group < 0 || g != last_mat) last_mat = g, last_group = index[g];
+        g = last_group;
+      }
     } else {
       std::fill(m.elem_groups.begin(), m.elem_groups.end(), -1);
     }
