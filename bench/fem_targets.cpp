@@ -13,6 +13,8 @@
 //      clash_scene / frames (manual time), its tree builds (prepare_s) included.
 //  BM_FemSceneSeriesStep  (target: <= 30 ms per step on 2 cores) two 10^6-element tet4 bodies,
 //      100 steps (model (c), BM_FemSeriesStep's pair) through fem_scene + clash_scene, the same way.
+//  Each scene row twice: /clash_depth with the engine's default options (depth and its bound for
+//  every clashing pair, as the CLI runs it), /no_depth without the depth (what the depth costs).
 //
 // `interfere_bench_fem_targets --write-frd` writes the .frd files (if absent) and prints their
 // paths, for the script's whole-process row (`interfere clash big.frd --json out.json`).
@@ -185,7 +187,7 @@ const SceneCase& series() {
 }
 
 /// clash_scene over every frame per iteration; manual time = its wall time / frames.
-void run_scene(benchmark::State& state, const SceneCase& c) {
+void run_scene(benchmark::State& state, const SceneCase& c, const scene::SceneClashOptions& options) {
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads()));
   const std::vector<scene::ClashTest> tests{scene::ClashTest{}};
   const std::size_t frames = std::max<std::size_t>(1, c.scene.frames.size());
@@ -194,7 +196,7 @@ void run_scene(benchmark::State& state, const SceneCase& c) {
   std::size_t iterations = 0;
   for (auto _ : state) {
     const auto t0 = Clock::now();
-    scene::SceneClashResult r = scene::clash_scene(c.scene, tests, {});
+    scene::SceneClashResult r = scene::clash_scene(c.scene, tests, options);
     const double s = seconds_since(t0);
     state.SetIterationTime(s / static_cast<double>(frames));
     total += s;
@@ -221,14 +223,26 @@ void run_scene(benchmark::State& state, const SceneCase& c) {
   state.counters["clashing_frames"] = static_cast<double>(clashing_frames);
 }
 
-void BM_Fem20BodiesStep(benchmark::State& state) { run_scene(state, twenty_bodies()); }
-void BM_FemSceneSeriesStep(benchmark::State& state) { run_scene(state, series()); }
+/// The engine's options of a row: 0 as `interfere clash model.frd` runs it (depth and its bound on
+/// every clashing pair), 1 without the depth (to show what it costs).
+scene::SceneClashOptions scene_options(std::int64_t mode) {
+  scene::SceneClashOptions o;
+  if (mode == 1) o.depth = false;
+  return o;
+}
+
+void BM_Fem20BodiesStep(benchmark::State& state) { run_scene(state, twenty_bodies(), scene_options(state.range(0))); }
+void BM_FemSceneSeriesStep(benchmark::State& state) { run_scene(state, series(), scene_options(state.range(0))); }
 
 void register_all() {
   benchmark::RegisterBenchmark("BM_FrdRead/ascii", BM_FrdRead)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
   benchmark::RegisterBenchmark("BM_FrdRead/binary", BM_FrdRead)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
-  benchmark::RegisterBenchmark("BM_Fem20BodiesStep", BM_Fem20BodiesStep)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(1);
-  benchmark::RegisterBenchmark("BM_FemSceneSeriesStep", BM_FemSceneSeriesStep)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(1);
+  for (const auto& [name, mode] : {std::pair{"clash_depth", 0}, std::pair{"no_depth", 1}}) {
+    benchmark::RegisterBenchmark((std::string("BM_Fem20BodiesStep/") + name).c_str(), BM_Fem20BodiesStep)
+        ->Arg(mode)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(1);
+    benchmark::RegisterBenchmark((std::string("BM_FemSceneSeriesStep/") + name).c_str(), BM_FemSceneSeriesStep)
+        ->Arg(mode)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(1);
+  }
 }
 
 }  // namespace
