@@ -35,7 +35,7 @@ struct FemAssembly {
   std::size_t hex_elements = 0, tet_elements = 0, nodes = 0;
   double vessel_volume = 0, port_volume = 0;                  ///< enclosed by the surfaces
   double vessel_volume_analytic = 0, port_volume_analytic = 0;
-  double generate_seconds = 0;  ///< gmsh (0 when the file was cached)
+  double generate_seconds = 0;  ///< gmsh, when the file was written (kept beside it; 0 if unknown)
   double read_seconds = 0, extract_seconds = 0;
 };
 
