@@ -13,8 +13,9 @@
 //      clash_scene / frames (manual time), its tree builds (prepare_s) included.
 //  BM_FemSceneSeriesStep  (target: <= 30 ms per step on 2 cores) two 10^6-element tet4 bodies,
 //      100 steps (model (c), BM_FemSeriesStep's pair) through fem_scene + clash_scene, the same way.
-//  Each scene row twice: /clash_depth with the engine's default options (depth and its bound for
-//  every clashing pair, as the CLI runs it), /no_depth without the depth (what the depth costs).
+//  Each scene row with the engine's default options (/clash_depth: depth and its upper bound for
+//  every clashing pair), and for comparison without the bound (/no_bound) and without the depth
+//  (/no_depth).
 //
 // `interfere_bench_fem_targets --write-frd` writes the .frd files (if absent) and prints their
 // paths, for the script's whole-process row (`interfere clash big.frd --json out.json`).
@@ -223,11 +224,12 @@ void run_scene(benchmark::State& state, const SceneCase& c, const scene::SceneCl
   state.counters["clashing_frames"] = static_cast<double>(clashing_frames);
 }
 
-/// The engine's options of a row: 0 as `interfere clash model.frd` runs it (depth and its bound on
-/// every clashing pair), 1 without the depth (to show what it costs).
+/// The engine's options of a row: 0 its defaults (depth and its upper bound on every clashing
+/// pair), 1 without the depth, 3 the depth without its bound (to show what each costs).
 scene::SceneClashOptions scene_options(std::int64_t mode) {
   scene::SceneClashOptions o;
   if (mode == 1) o.depth = false;
+  if (mode == 3) o.depth_bound_splits = 0;
   return o;
 }
 
@@ -237,7 +239,7 @@ void BM_FemSceneSeriesStep(benchmark::State& state) { run_scene(state, series(),
 void register_all() {
   benchmark::RegisterBenchmark("BM_FrdRead/ascii", BM_FrdRead)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
   benchmark::RegisterBenchmark("BM_FrdRead/binary", BM_FrdRead)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
-  for (const auto& [name, mode] : {std::pair{"clash_depth", 0}, std::pair{"no_depth", 1}}) {
+  for (const auto& [name, mode] : {std::pair{"clash_depth", 0}, std::pair{"no_bound", 3}, std::pair{"no_depth", 1}}) {
     benchmark::RegisterBenchmark((std::string("BM_Fem20BodiesStep/") + name).c_str(), BM_Fem20BodiesStep)
         ->Arg(mode)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(1);
     benchmark::RegisterBenchmark((std::string("BM_FemSceneSeriesStep/") + name).c_str(), BM_FemSceneSeriesStep)
