@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <array>
+#include <numeric>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "interfere/query/depth.h"
 #include "interfere/bvh/traverse.h"
@@ -35,39 +39,125 @@ std::vector<double> surface_crossings(const Model& m, const Vec3& p, const Vec3&
   return ts;
 }
 
+// The box of y's BVH root (float, rounded outwards: it holds every triangle of y): a point outside
+// it lies outside the solid y.
+bool in_root_box(const Bvh& bvh, const Vec3& p) {
+  const auto& b = bvh.nodes[0].box;
+  return p.x >= b.lo[0] && p.x <= b.hi[0] && p.y >= b.lo[1] && p.y <= b.hi[1] && p.z >= b.lo[2] && p.z <= b.hi[2];
+}
+
 }  // namespace
 
+// The triangles of x that touch nothing of y (paired[t] == 0) lie wholly inside or wholly outside
+// the solid y, and so does each connected set of them (sharing a vertex): one point decides a set.
+// Sets are found by union-find over x's vertices (the smallest index is a set's root), through the
+// untouched triangles with a vertex in y's box only: a triangle wholly outside the box is outside,
+// and so is every set holding a vertex outside the box (no ray cast for either). One point_in_solid
+// (of the root) per remaining set.
 std::vector<signed char> untouched_sides(const Model& x, const Model& y, const std::vector<char>& paired) {
   const TriMesh& m = x.mesh;
   const auto nt = static_cast<std::uint32_t>(m.num_triangles());
-  std::vector<char> free_of(nt);  // the triangles that touch nothing of y
-  for (std::uint32_t t = 0; t < nt; ++t) free_of[t] = !paired[t];
-  const std::vector<std::uint32_t> set = connected_sets(m, free_of);
+  const auto nv = static_cast<std::uint32_t>(m.num_vertices());
   std::vector<signed char> side(nt, 0);
-  for (std::uint32_t t = 0; t < nt; ++t)  // a set's root comes first in it (connected_sets)
-    if (!paired[t])
-      side[t] = set[t] == t ? static_cast<signed char>(point_in_solid(y, m.positions[m.triangles[t][0]])) : side[set[t]];
+  if (y.bvh.empty() || nt == 0) return side;
+  std::vector<char> in(nv);
+  for (std::uint32_t v = 0; v < nv; ++v) in[v] = in_root_box(y.bvh, m.positions[v]);
+  std::vector<std::uint32_t> parent(nv);
+  std::iota(parent.begin(), parent.end(), 0u);
+  const auto find = [&](std::uint32_t v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  const auto unite = [&](std::uint32_t u, std::uint32_t v) {
+    u = find(u), v = find(v);
+    parent[std::max(u, v)] = std::min(u, v);
+  };
+  const auto counts = [&](std::uint32_t t) {  // untouched, with a vertex in y's box
+    const auto& c = m.triangles[t];
+    return !paired[t] && (in[c[0]] || in[c[1]] || in[c[2]]);
+  };
+  for (std::uint32_t t = 0; t < nt; ++t)
+    if (counts(t)) unite(m.triangles[t][0], m.triangles[t][1]), unite(m.triangles[t][0], m.triangles[t][2]);
+  // Per root: 2 unknown, 0 outside (a vertex out of the box), else its point_in_solid.
+  std::vector<signed char> set_side(nv, 2);
+  for (std::uint32_t t = 0; t < nt; ++t)
+    if (counts(t))
+      for (std::uint32_t v : m.triangles[t])
+        if (!in[v]) set_side[find(v)] = 0;
+  for (std::uint32_t t = 0; t < nt; ++t) {
+    if (!counts(t)) continue;
+    const std::uint32_t root = find(m.triangles[t][0]);
+    if (set_side[root] == 2) set_side[root] = static_cast<signed char>(point_in_solid(y, m.positions[root]));
+    side[t] = set_side[root];
+  }
   return side;
 }
 
-// How deep the surface of x reaches into the solid y, sampled: the largest distance to y's surface
-// of x's points inside y (exact ray parity) among: the middles of the stretches of the crossing
-// triangles' edges between their crossings of y's surface, the vertices of the triangles that cross
-// or touch y (`paired`), and the vertices of the connected sets of its other triangles that lie
-// inside y (such a set lies wholly inside or outside; one vertex, exactly off y's surface,
-// decides).
-double depth_into(const Model& x, const Model& y, const std::vector<char>& paired,
-                  const std::vector<signed char>& side) {
+DepthMap depth_map(const Model& x, const Model& y, const std::vector<char>& paired, const std::vector<signed char>& side) {
   const TriMesh& m = x.mesh;
   const auto nt = static_cast<std::uint32_t>(m.num_triangles());
-  std::vector<char> state(m.num_vertices(), 0);  // 0 unknown, 1 inside, 2 not
-  double depth = 0;
+  const auto nv = static_cast<std::uint32_t>(m.num_vertices());
+  DepthMap map;
+  map.depth.assign(nv, 0.0);
+  map.side.assign(nv, 0);
+  if (y.bvh.empty()) return map;
+  // The vertices of untouched triangles take their set's side (they lie off y's surface); the
+  // others, vertices of triangles that cross or touch y only, are tested one by one (in parallel).
+  std::vector<char> known(nv, 0);
+  for (std::uint32_t t = 0; t < nt; ++t)
+    if (!paired[t])
+      for (std::uint32_t v : m.triangles[t]) map.side[v] = side[t], known[v] = 1;
+  std::vector<std::uint32_t> own;
+  for (std::uint32_t t = 0; t < nt; ++t)
+    if (paired[t])
+      for (std::uint32_t v : m.triangles[t])
+        if (!known[v]) {
+          known[v] = 1;
+          if (in_root_box(y.bvh, m.positions[v])) own.push_back(v);
+        }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, own.size(), 64), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i < r.end(); ++i)
+      map.side[own[i]] = static_cast<signed char>(point_in_solid(y, m.positions[own[i]]));
+  });
+  // The inside vertices' distances to y's surface, in runs of consecutive vertices (neighbours, in
+  // most meshes): each query seeded with the previous one's nearest triangle (the same exact
+  // nearest triangle, found sooner). A vertex at distance 0 lies on y's surface: outside (0).
+  std::vector<std::uint32_t> inside;
+  for (std::uint32_t v = 0; v < nv; ++v)
+    if (map.side[v] == 1) inside.push_back(v);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, inside.size(), 256), [&](const tbb::blocked_range<std::size_t>& r) {
+    std::uint32_t last = kNoTriangle;
+    for (std::size_t i = r.begin(); i < r.end(); ++i) {
+      const std::uint32_t v = inside[i];
+      map.depth[v] = std::sqrt(nearest_triangle_d2(y.mesh, y.bvh, m.positions[v], &last, -1, last));
+    }
+  });
+  for (const std::uint32_t v : inside) {
+    if (!(map.depth[v] > 0)) {
+      map.depth[v] = 0, map.side[v] = 0;
+      continue;
+    }
+    ++map.inside;
+    if (map.depth[v] > map.max_depth) map.max_depth = map.depth[v], map.max_vertex = v;
+  }
+  for (std::uint32_t v = 0; v < nv; ++v) map.undecided += map.side[v] < 0;
+  return map;
+}
+
+// How deep the surface of x reaches into the solid y, sampled: the largest distance to y's surface
+// of x's points inside y (exact ray parity) among: the vertices of x inside y (the depth map: the
+// vertices of the triangles that cross or touch y, `paired`, and those of the connected sets of its
+// other triangles that lie inside y), and the middles of the stretches of the crossing triangles'
+// edges between their crossings of y's surface (a long edge may pass through y with both ends
+// outside).
+double depth_into(const Model& x, const Model& y, const std::vector<char>& paired, const DepthMap& map) {
+  const TriMesh& m = x.mesh;
+  const auto nt = static_cast<std::uint32_t>(m.num_triangles());
+  double depth = map.max_depth;
   // The distance to y's surface, the previous query's nearest triangle tried first (samples come
   // in runs of neighbours; the nearest distance is the same, found sooner).
   std::uint32_t last = kNoTriangle;
   const auto distance_seeded = [&](const Vec3& p) { return std::sqrt(nearest_triangle_d2(y.mesh, y.bvh, p, &last, -1, last)); };
-  // Along the edges of the crossing triangles: the middle of each stretch between two crossings of
-  // y's surface that lies inside y (a long edge may pass through y with both ends outside).
   std::vector<std::array<std::uint32_t, 2>> crossing_edges;
   for (std::uint32_t t = 0; t < nt; ++t)
     if (paired[t])
@@ -89,18 +179,12 @@ double depth_into(const Model& x, const Model& y, const std::vector<char>& paire
       if (point_in_solid(y, mid) == 1) depth = std::max(depth, distance_seeded(mid));
     }
   }
-  for (std::uint32_t t = 0; t < nt; ++t) {
-    const bool whole = !paired[t] && side[t] == 1;  // (undecided: not sampled)
-    if (!paired[t] && !whole) continue;
-    for (std::uint32_t v : m.triangles[t]) {
-      if (state[v] == 0) state[v] = whole || point_in_solid(y, m.positions[v]) == 1 ? 1 : 2;
-      if (state[v] == 1) {
-        depth = std::max(depth, distance_seeded(m.positions[v]));
-        state[v] = 3;  // (measured)
-      }
-    }
-  }
   return depth;
+}
+
+double depth_into(const Model& x, const Model& y, const std::vector<char>& paired,
+                  const std::vector<signed char>& side) {
+  return depth_into(x, y, paired, depth_map(x, y, paired, side));
 }
 
 // An upper bound of depth_into: the same reach over every point of x's surface that may lie
@@ -220,20 +304,75 @@ double depth_bound(const Model& x, const Model& y, const std::vector<char>& pair
 }  // namespace interfere::detail
 
 namespace interfere {
+namespace {
 
-PenetrationDepth penetration_depth(const Model& a, const Model& b, const ClashResult& r, std::size_t max_splits) {
+// The triangles of the clash's part a (which == 0) or b that meet the other part.
+std::vector<char> paired_of(const Model& m, const ClashResult& r, int which) {
+  std::vector<char> p(m.mesh.num_triangles(), 0);
+  for (const TrianglePair& q : r.pairs) p[which == 0 ? q.a : q.b] = 1;
+  return p;
+}
+
+bool boxes_meet(const Bvh& x, const Bvh& y) {
+  if (x.empty() || y.empty()) return false;
+  const auto &a = x.nodes[0].box, &b = y.nodes[0].box;
+  for (int k = 0; k < 3; ++k)
+    if (a.hi[k] < b.lo[k] || b.hi[k] < a.lo[k]) return false;
+  return true;
+}
+
+// x's map into the solid y (closed or not), x being the clash's part `which`.
+DepthMap map_into(const Model& x, const Model& y, const ClashResult& r, int which, bool y_closed) {
+  const auto nv = x.mesh.num_vertices();
+  if (!boxes_meet(x.bvh, y.bvh)) {  // every vertex outside y's box
+    DepthMap map;
+    map.depth.assign(nv, 0.0);
+    map.side.assign(nv, 0);
+    return map;
+  }
+  if (!y_closed) {  // no inside: undecided in y's box, outside beyond it
+    DepthMap map;
+    map.depth.assign(nv, 0.0);
+    map.side.assign(nv, 0);
+    for (std::size_t v = 0; v < nv; ++v)
+      if (detail::in_root_box(y.bvh, x.mesh.positions[v])) map.side[v] = -1, ++map.undecided;
+    return map;
+  }
+  const std::vector<char> paired = paired_of(x, r, which);
+  return detail::depth_map(x, y, paired, detail::untouched_sides(x, y, paired));
+}
+
+}  // namespace
+
+DepthMap depth_map(const Model& a, const Model& b, const ClashResult& r, DepthOf of, const DepthMapRequest& request) {
+  const int which = of == DepthOf::a_in_b ? 0 : 1;
+  const Model& y = which == 0 ? b : a;
+  const bool closed = request.stats ? request.stats(1 - which).closed() : y.stats.closed();
+  return map_into(which == 0 ? a : b, y, r, which, closed);
+}
+
+DepthMaps depth_maps(const Model& a, const Model& b, const ClashResult& r, const DepthMapRequest& request) {
+  return {depth_map(a, b, r, DepthOf::a_in_b, request), depth_map(a, b, r, DepthOf::b_in_a, request)};
+}
+
+PenetrationDepth penetration_depth(const Model& a, const Model& b, const ClashResult& r, std::size_t max_splits,
+                                   DepthMaps* maps) {
   PenetrationDepth out;
-  if (r.pairs.empty()) return out;  // (crossing, or touching surfaces of overlapping solids)
-  std::vector<char> pa(a.mesh.num_triangles(), 0), pb(b.mesh.num_triangles(), 0);
-  for (const TrianglePair& q : r.pairs) pa[q.a] = 1, pb[q.b] = 1;
+  if (r.pairs.empty()) {  // (crossing, or touching surfaces of overlapping solids)
+    if (maps) *maps = {map_into(a, b, r, 0, true), map_into(b, a, r, 1, true)};
+    return out;
+  }
+  const std::vector<char> pa = paired_of(a, r, 0), pb = paired_of(b, r, 1);
   const std::vector<signed char> sa = detail::untouched_sides(a, b, pa), sb = detail::untouched_sides(b, a, pb);
-  out.depth = std::max(detail::depth_into(a, b, pa, sa), detail::depth_into(b, a, pb, sb));
+  DepthMap ma = detail::depth_map(a, b, pa, sa), mb = detail::depth_map(b, a, pb, sb);
+  out.depth = std::max(detail::depth_into(a, b, pa, ma), detail::depth_into(b, a, pb, mb));
   out.depth_bound = out.depth;
   if (max_splits > 0) {
     out.bounded = true;
     out.depth_bound = std::max({out.depth, detail::depth_bound(a, b, pa, sa, out.depth, max_splits),
                                 detail::depth_bound(b, a, pb, sb, out.depth, max_splits)});
   }
+  if (maps) *maps = {std::move(ma), std::move(mb)};
   return out;
 }
 
