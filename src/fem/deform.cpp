@@ -23,6 +23,60 @@ namespace {
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
+
+// The element id of the part's first surface triangle at vertex v (-1 when none uses it).
+std::int64_t element_at(const SurfacePart& part, const FemMesh& mesh, std::uint32_t v) {
+  const auto& tris = part.mesh.triangles;
+  for (std::size_t t = 0; t < tris.size(); ++t)
+    if (tris[t][0] == v || tris[t][1] == v || tris[t][2] == v) return mesh.elem_ids[part.tri_element[t]];
+  return -1;
+}
+
+// SeriesRequest::depth for one checked step (issue #26, item 3): the penetration depth and both
+// depth maps of a clashing step of closed parts, the deepest node named by its FE ids. Returns
+// whether `maps` were computed.
+bool measure_depth(const SeriesPart& a, const SeriesPart& b, const Model& ma, const Model& mb, const ClashResult& r,
+                   std::size_t max_splits, StepSummary& sum, DepthMaps& maps) {
+  if (sum.verdict != Verdict::clash) return false;
+  const bool ca = ma.stats.closed(), cb = mb.stats.closed();
+  if (!ca || !cb) {
+    sum.depth_note = std::string("depth not measured: ") +
+                     (!ca && !cb ? "parts A and B are" : !ca ? "part A is" : "part B is") +
+                     " not closed (inside/outside is undefined)";
+    return false;
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  const PenetrationDepth d = penetration_depth(ma, mb, r, max_splits, &maps);
+  sum.depth_measured = true;
+  if (r.cross_pairs > 0 || r.touching_overlap) {
+    sum.depth = d.depth, sum.depth_bound = d.depth_bound, sum.depth_bounded = d.bounded;
+  } else {  // one part inside the other without crossing: the deepest node, no bound
+    sum.depth = sum.depth_bound = std::max(maps.a.max_depth, maps.b.max_depth);
+    sum.depth_note = "one part inside the other: the depth of the deepest surface node, no upper bound";
+  }
+  const SeriesPart* parts[2] = {&a, &b};
+  const DepthMap* side_maps[2] = {&maps.a, &maps.b};
+  const Model* models[2] = {&ma, &mb};
+  for (int side = 0; side < 2; ++side) {
+    const DepthMap& m = *side_maps[side];
+    if (m.max_vertex == kNoVertex || !(m.max_depth > 0)) continue;
+    if (sum.has_deepest && !(m.max_depth > sum.deepest.depth)) continue;  // ties: part a
+    const SeriesPart& p = *parts[side];
+    sum.has_deepest = true;
+    sum.deepest = {.part = side,
+                   .vertex = m.max_vertex,
+                   .node = p.mesh->node_ids[p.part->vertex_node[m.max_vertex]],
+                   .element = element_at(*p.part, *p.mesh, m.max_vertex),
+                   .depth = m.max_depth,
+                   .point = models[side]->mesh.positions[m.max_vertex]};
+  }
+  if (const std::size_t undecided = maps.a.undecided + maps.b.undecided; undecided > 0) {
+    if (!sum.depth_note.empty()) sum.depth_note += "; ";
+    sum.depth_note += std::to_string(undecided) + " surface nodes undecided (no inside/outside answer; depth 0 in the maps)";
+  }
+  sum.depth_seconds = seconds_since(t0);
+  return true;
+}
 }  // namespace
 
 void deformed_positions(const SurfacePart& part, const FemMesh& mesh, const NodalSeries* displacement,
@@ -87,6 +141,7 @@ Expected<SeriesResult> clash_series(const SeriesPart& a, const SeriesPart& b, co
   std::pair<Model, Model> models = make_models(a.part->mesh, b.part->mesh, request.bvh, true);
   result.build_seconds = seconds_since(t0);
   std::vector<Vec3> pa, pb;
+  std::size_t deepest_index = 0;  // of result.deepest_step in result.steps
   for (std::size_t s : steps) {
     StepSummary sum;
     sum.step = s;
@@ -124,7 +179,15 @@ Expected<SeriesResult> clash_series(const SeriesPart& a, const SeriesPart& b, co
     sum.containment = r.containment;
     sum.interference = r.interference();
     sum.verdict = r.verdict;
+    DepthMaps maps;
+    const bool mapped = request.depth && measure_depth(a, b, models.first, models.second, r,
+                                                       request.depth_bound_splits, sum, maps);
+    if (sum.depth_measured && (result.deepest_step < 0 || sum.depth > result.steps[deepest_index].depth)) {
+      result.deepest_step = static_cast<std::int64_t>(s);
+      deepest_index = result.steps.size();
+    }
     result.steps.push_back(sum);
+    if (mapped && request.on_depth_maps) request.on_depth_maps(sum, maps);
     if (request.on_step) request.on_step(sum, r);
     if (sum.interference && result.first_contact_step < 0) result.first_contact_step = static_cast<std::int64_t>(s);
     if (sum.verdict == Verdict::clash && result.first_clash_step < 0) {

@@ -14,6 +14,7 @@
 #include "interfere/fem/fem_mesh.h"
 #include "interfere/fem/surface.h"
 #include "interfere/query/clash.h"
+#include "interfere/query/depth.h"
 
 namespace interfere {
 
@@ -45,6 +46,29 @@ struct SeriesRequest {
   /// or dropped: a caller keeps what it needs of every step (the viewer document of issue #25 keeps
   /// the regions and the closest clearance pair) without keep_all's copies of every result.
   std::function<void(const StepSummary&, const ClashResult&)> on_step;
+  /// Penetration depth of every checked step whose verdict is clash (issue #26, item 3; Deng et
+  /// al. 2018 judge a clash by how deep the deformed parts reach into each other): with both parts
+  /// closed, query/depth.h's penetration_depth and the per-vertex depth maps of both parts, the
+  /// deepest node on StepSummary; a part not closed: not measured, StepSummary::depth_note says so.
+  bool depth = false;
+  /// Splits per direction for the depth's upper bound (penetration_depth's max_splits); 0: none.
+  std::size_t depth_bound_splits = 5000;
+  /// With `depth`: called with each measured step's summary and both per-vertex maps (maps.a: the
+  /// surface vertices of part a in b's solid; maps.b: b's in a's; indices of SurfacePart::mesh),
+  /// right before on_step for that step; the maps are not kept.
+  std::function<void(const StepSummary&, const DepthMaps&)> on_depth_maps;
+};
+
+/// The deepest surface node of a step's depth maps (issue #26, item 3).
+struct DeepestNode {
+  int part = 0;                      ///< 0: a node of part a inside b's solid; 1: of b inside a's
+  std::uint32_t vertex = kNoVertex;  ///< the part's surface vertex (SurfacePart::mesh)
+  std::int64_t node = -1;            ///< its FE node id (FemMesh::node_ids of SurfacePart::vertex_node)
+  /// Id of the element of the part's first surface triangle at the vertex (FemMesh::elem_ids of
+  /// SurfacePart::tri_element): an element that has the node.
+  std::int64_t element = -1;
+  double depth = 0;  ///< its distance to the other part's surface
+  Vec3 point;        ///< its deformed position
 };
 
 struct StepSummary {
@@ -57,6 +81,19 @@ struct StepSummary {
   bool interference = false;  ///< the surfaces meet or one part contains the other (contact included)
   Verdict verdict = Verdict::clear;  ///< the step's verdict (ClashResult::verdict, query/verdict.h)
   double refit_seconds = 0, clash_seconds = 0;
+  /// SeriesRequest::depth, a clashing step of closed parts: `depth` is the sampled penetration
+  /// depth (a lower bound: PenetrationDepth::depth; for one part inside the other, which has no
+  /// crossing, the largest node depth of the maps), `depth_bound` its proven upper bound where
+  /// `depth_bounded` (crossing or touching-overlap steps with depth_bound_splits > 0).
+  bool depth_measured = false;
+  double depth = 0, depth_bound = 0;
+  bool depth_bounded = false;
+  bool has_deepest = false;  ///< a surface node lies inside the other part (depth maps)
+  DeepestNode deepest;
+  /// A clashing step whose depth is not measured says why (a part not closed); a measured one,
+  /// what limits it (undecided nodes, a containment without bound). Empty otherwise.
+  std::string depth_note;
+  double depth_seconds = 0;
 };
 
 struct SeriesResult {
@@ -67,6 +104,8 @@ struct SeriesResult {
   std::int64_t first_clash_step = -1;    ///< 0-based, first step whose verdict is clash; -1 if none
   std::int64_t first_contact_step = -1;  ///< first step whose surfaces meet (contact or clash); -1 if none
   std::int64_t worst_step = -1;          ///< first step with the series' verdict; -1 if no step checked
+  /// SeriesRequest::depth: the first step of the largest measured depth; -1 if none measured.
+  std::int64_t deepest_step = -1;
   ClashResult first_clash;            ///< the first clashing step's result (keep_first_clash)
   ClashResult worst;                  ///< the result of worst_step (keep_first_clash)
   std::vector<ClashResult> results;   ///< per checked step (keep_all)
