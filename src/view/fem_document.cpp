@@ -168,6 +168,11 @@ Document fem_series_document(FemSeriesInput in, const FemSeriesDocumentOptions& 
     if (!body.source_ids.empty() && !ids)
       doc.notes.push_back("body '" + body.id + "': " + std::to_string(body.source_ids.size()) + " element ids for " +
                           std::to_string(nt) + " triangles, not shown");
+    // Penetration depth per vertex (issue #26, item 3): on every step's mesh when any step has it.
+    const std::size_t nv = body.surface ? body.surface->num_vertices() : 0;
+    const bool any_depth = nv > 0 && std::any_of(in.steps.begin(), in.steps.end(), [&](const FemSeriesStep& s) {
+      return !s.depth[side].empty();
+    });
     std::int64_t last = -1;
     for (std::size_t f = 0; f < nf; ++f) {
       FemSeriesStep& s = in.steps[f];
@@ -183,12 +188,23 @@ Document fem_series_document(FemSeriesInput in, const FemSeriesDocumentOptions& 
       if (body.surface && !fits)
         doc.notes.push_back("body '" + body.id + "', " + step_label(s) + ": " + std::to_string(s.positions[side].size()) +
                             " positions for " + std::to_string(body.surface->num_vertices()) + " vertices, not drawn");
+      std::vector<double> depth;
+      if (any_depth && fits) {
+        if (s.depth[side].size() == nv) {
+          depth = std::move(s.depth[side]);
+        } else if (!s.depth[side].empty()) {  // none drawn (the .pvd writes NaN), never a made-up 0
+          doc.notes.push_back("body '" + body.id + "', " + step_label(s) + ": " + std::to_string(s.depth[side].size()) +
+                              " depths for " + std::to_string(nv) + " vertices, not drawn");
+        } else {  // not measured at this step: not a clash, nothing inside
+          depth.assign(nv, 0.0);
+        }
+      }
       if (last >= 0) {
         const ViewMesh& prev = doc.meshes[static_cast<std::size_t>(last)];
         const bool same_flags = flagged ? prev.clash_flags == flags : prev.clash_flags.empty();
         const bool same_shape = fits ? prev.mesh.num_triangles() == nt && prev.mesh.positions == s.positions[side]
                                      : prev.mesh.num_triangles() == 0;
-        if (same_flags && same_shape) {
+        if (same_flags && same_shape && prev.point_depth == depth) {
           vb.frame_meshes.push_back(static_cast<std::uint32_t>(last));
           continue;
         }
@@ -199,6 +215,7 @@ Document fem_series_document(FemSeriesInput in, const FemSeriesDocumentOptions& 
         vm.mesh.triangles = body.surface->triangles;
         if (ids) vm.source_ids = body.source_ids;
         if (flagged) vm.clash_flags = std::move(flags);
+        vm.point_depth = std::move(depth);
       }
       vm.source_triangles = vm.mesh.num_triangles();
       doc.meshes.push_back(std::move(vm));

@@ -16,8 +16,11 @@
 // clash or contact regions at full resolution as one world mesh (the region triangles of both
 // bodies at the step's positions), all its intersection curves, the box of its regions and the
 // camera point at the box's centre; a containment without regions points at the inner body; a
-// clearance step carries its closest pair as the witness and the distance. Depths are not known
-// (-1). A row per step, not per run, because the region moves and changes with the step.
+// clearance step carries its closest pair as the witness and the distance. Row depths are not
+// known (-1). A row per step, not per run, because the region moves and changes with the step.
+// Steps with depth maps (FemSeriesStep::depth, issue #26 item 3) give their body meshes per-vertex
+// point_depth; a step without them, where another step has them, gets zeros (no depth measured:
+// not a clash); depths of the wrong length: none on that mesh (NaN in the .pvd) and a note.
 #pragma once
 #include <array>
 #include <cstddef>
@@ -52,6 +55,10 @@ struct FemSeriesStep {
   std::vector<std::string> reasons;  ///< ClashResult::verdict_reasons
   bool has_clearance = false;
   ClearancePair closest;  ///< the closest clearance pair, when has_clearance
+  /// Per body, per surface vertex: its penetration depth in the other body at this step (issue
+  /// #26, item 3: fem/deform.h's depth maps; 0 outside); empty where the step's depth was not
+  /// measured. Drawn as ViewMesh::point_depth (the .pvd's point array penetration_depth).
+  std::array<std::vector<double>, 2> depth;
 };
 
 /// The step record of a clash result (regions, containment, reasons, closest clearance pair);
