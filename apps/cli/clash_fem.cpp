@@ -66,6 +66,34 @@ RegionMesh region_mesh(const ClashResult& r, const FemPart* parts[2], const std:
 
 std::string step_label(const StepSummary& s) { return fmt::format("{} (time {:g})", s.step, s.time); }
 
+// A step's penetration depth (issue #26, item 3): depth, depth_bound (null when not measured or not
+// bounded), the deepest node (part "a" or "b", FE node id, an element id at it, depth, point),
+// and depth_note (why a clashing step's depth is not measured, or what limits it).
+void add_depth_json(nlohmann::json& j, const StepSummary& s) {
+  j["depth"] = s.depth_measured ? nlohmann::json(s.depth) : nlohmann::json(nullptr);
+  j["depth_bound"] = s.depth_measured && s.depth_bounded ? nlohmann::json(s.depth_bound) : nlohmann::json(nullptr);
+  j["deepest"] = s.has_deepest ? nlohmann::json{{"part", s.deepest.part == 0 ? "a" : "b"},
+                                                {"node", s.deepest.node},
+                                                {"element", s.deepest.element},
+                                                {"depth", s.deepest.depth},
+                                                {"point", vec_json(s.deepest.point)}}
+                               : nlohmann::json(nullptr);
+  j["depth_note"] = s.depth_note.empty() ? nlohmann::json(nullptr) : nlohmann::json(s.depth_note);
+}
+
+// The text summary's line on a step's depth.
+std::string depth_text(const StepSummary& s, const std::string& units) {
+  if (!s.depth_measured) return s.depth_note;
+  std::string t = fmt::format("depth {:.6g} {} at step {}", s.depth, units, step_label(s));
+  if (s.depth_bounded) t += fmt::format(" (at most {:.6g})", s.depth_bound);
+  if (s.has_deepest)
+    t += fmt::format(": deepest node {} of part {} (element {}), {:.6g} {} inside part {}", s.deepest.node,
+                     s.deepest.part == 0 ? "A" : "B", s.deepest.element, s.deepest.depth, units,
+                     s.deepest.part == 0 ? "B" : "A");
+  if (!s.depth_note.empty()) t += "; " + s.depth_note;
+  return t;
+}
+
 // --html/--glb/--pvd (issue #25): the two surfaces at every checked step, a row per step that is
 // not clear (view/fem_document.h). `steps`: what on_step kept of each checked step.
 view::Document series_view(const FemPart& a, const FemPart& b, double scale, std::vector<view::FemSeriesStep> steps,
@@ -149,7 +177,8 @@ int run_fem_clash(const ClashOptions& o, const ResolvedParts& parts, const Clash
   check_step_counts(a, b);
   const std::size_t na = a.num_steps(), nb = b.num_steps();
   const std::size_t num_steps = std::max<std::size_t>({na, nb, 1});
-  SeriesRequest sr{.clash = request, .bvh = parts.bvh, .scale = o.scale, .keep_first_clash = true, .keep_last = true};
+  SeriesRequest sr{.clash = request, .bvh = parts.bvh, .scale = o.scale, .keep_first_clash = true, .keep_last = true,
+                   .depth = true};  // penetration depth of every clashing step (issue #26, item 3)
   const bool series = o.step < 0 && num_steps > 1;
   if (o.step >= 0) {
     const std::string whose = na   ? "the displacements of A (" + displacement_source_text(a) + ")"
@@ -158,8 +187,16 @@ int run_fem_clash(const ClashOptions& o, const ResolvedParts& parts, const Clash
     sr.steps = {check_step(o.step, num_steps, whose)};
   }
   std::vector<view::FemSeriesStep> view_steps;  // --html/--glb/--pvd: the regions of every checked step
-  if (o.views.any())
-    sr.on_step = [&](const StepSummary& s, const ClashResult& r) { view_steps.push_back(view::fem_series_step(s.step, s.time, r)); };
+  DepthMaps step_maps;  // --pvd etc.: the depth maps of the step on_step is about to hand over
+  bool step_mapped = false;
+  if (o.views.any()) {
+    sr.on_depth_maps = [&](const StepSummary&, const DepthMaps& m) { step_maps = m, step_mapped = true; };
+    sr.on_step = [&](const StepSummary& s, const ClashResult& r) {
+      view_steps.push_back(view::fem_series_step(s.step, s.time, r));
+      if (step_mapped) view_steps.back().depth = {std::move(step_maps.a.depth), std::move(step_maps.b.depth)};
+      step_mapped = false;
+    };
+  }
 
   Expected<SeriesResult> run = Error{};
   {
@@ -243,17 +280,27 @@ int run_fem_clash(const ClashOptions& o, const ResolvedParts& parts, const Clash
                           {"refit_seconds", s.refit_seconds},
                           {"clash_seconds", s.clash_seconds}};
   };
+  auto step_json = [&](const StepSummary& s) {
+    nlohmann::json j = summary_json(s);
+    add_depth_json(j, s);
+    j["depth_seconds"] = s.depth_seconds;
+    return j;
+  };
+  const StepSummary* deepest = nullptr;
+  for (const StepSummary& s : sres.steps)
+    if (static_cast<std::int64_t>(s.step) == sres.deepest_step) deepest = &s;
   if (!o.json.empty()) {
     nlohmann::json steps = nlohmann::json::array();
     double query = 0;
     for (const StepSummary& s : sres.steps) {
-      steps.push_back(summary_json(s));
-      query += s.refit_seconds + s.clash_seconds;
+      steps.push_back(step_json(s));
+      query += s.refit_seconds + s.clash_seconds + s.depth_seconds;
     }
     nlohmann::json res = clash_result_json(result, o.max_clearance_pairs);
     for (std::size_t i = 0; i < result.regions.size(); ++i) {
       res["regions"][i]["fem"] = region_ids_json(region_ids(result.regions[i], a.part(), *a.mesh, b.part(), *b.mesh));
     }
+    add_depth_json(res, shown);
     std::vector<std::string> input_warnings = a.warnings;
     input_warnings.insert(input_warnings.end(), b.warnings.begin(), b.warnings.end());
     nlohmann::json j = {
@@ -275,6 +322,8 @@ int run_fem_clash(const ClashOptions& o, const ResolvedParts& parts, const Clash
           {"first_clash_time", clashed ? nlohmann::json(shown.time) : nlohmann::json(nullptr)},
           {"first_contact_step",
            sres.first_contact_step >= 0 ? nlohmann::json(sres.first_contact_step) : nlohmann::json(nullptr)},
+          {"deepest_step", deepest ? nlohmann::json(deepest->step) : nlohmann::json(nullptr)},
+          {"max_depth", deepest ? nlohmann::json(deepest->depth) : nlohmann::json(nullptr)},
           {"steps", steps}}},
         {"verdict", verdict_name(sres.verdict)},
         {"verdict_reasons", result.verdict_reasons},
@@ -307,6 +356,8 @@ int run_fem_clash(const ClashOptions& o, const ResolvedParts& parts, const Clash
     }
     if (clashed) {
       std::printf("CLASH: first clash at step %s of %zu\n", step_label(shown).c_str(), num_steps);
+      if (deepest) std::printf("max %s\n", depth_text(*deepest, parts.units).c_str());
+      if (!shown.depth_measured && !shown.depth_note.empty()) std::printf("%s\n", shown.depth_note.c_str());
     } else if (sres.verdict == Verdict::undecided) {
       std::printf("UNDECIDED: first at step %s of %zu", step_label(shown).c_str(), num_steps);
       for (const std::string& why : result.verdict_reasons) std::printf("; %s", why.c_str());
@@ -321,6 +372,8 @@ int run_fem_clash(const ClashOptions& o, const ResolvedParts& parts, const Clash
     print_clash_summary(result, parts.units);
     if (num_steps > 1) std::printf(", step %s", step_label(shown).c_str());
     std::printf("\n");
+    if (shown.verdict == Verdict::clash && (shown.depth_measured || !shown.depth_note.empty()))
+      std::printf("%s\n", depth_text(shown, parts.units).c_str());
   }
   return status;
 }

@@ -17,10 +17,21 @@ import unittest
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import cli_common  # noqa: E402
 from cli_common import path, run  # noqa: E402
-from test_fem import STEPS, V, write_model  # noqa: E402  (the model generator only; its tests are not run here)
+from test_fem import LEFT, RIGHT, STEPS, V, write_model  # noqa: E402  (the model generator only; its tests are not run here)
 from view_readers import accessor_values, read_glb, read_pvd, read_vtp, vtk_array  # noqa: E402
 
 SERIES = ["--part-a", "left", "--part-b", "right", "--field", "disp"]
+LEFT_BOX = ((0.0, 0.0, 0.0), (1.0, 1.0, 1.0))
+
+
+def right_box(k):
+    return ((1.5 - V * k, 0.2, 0.2), (2.5 - V * k, 0.8, 0.8))
+
+
+def inside_depth(p, lo, hi):
+    """Distance of p to the surface of the box [lo, hi] when strictly inside it, else 0."""
+    d = min(min(p[a] - lo[a], hi[a] - p[a]) for a in range(3))
+    return d if d > 0 else 0.0
 NO_VIEWER = "this build of interfere has no HTML viewer"
 
 
@@ -76,6 +87,69 @@ class FemView(unittest.TestCase):
             self.assertEqual(v["polys"] > 0, k >= 4, k)  # region triangles
             if k in (5, 6, 7, 9):  # crossing steps: the intersection curve, on A's face x = 1
                 self.assertGreater(v["lines"], 0, k)
+
+    def test_pvd_penetration_depth_is_each_points_depth_in_the_other_block(self):
+        # Issue #26, item 3: per point of each body at each step, its distance to the other block's
+        # surface when strictly inside it, 0 otherwise (the blocks' geometry is the oracle).
+        base = os.path.dirname(path("series.pvd"))
+        bodies = [s for s in read_pvd(path("series.pvd")) if s[2] == "bodies"]
+        self.assertEqual(len(bodies), STEPS)
+        for k, (_, _, _, f) in enumerate(bodies):
+            v = read_vtp(os.path.join(base, f))
+            depth = v["point"]["penetration_depth"]
+            self.assertEqual(len(depth), v["points"])
+            body_of = {}
+            for c, cell in enumerate(v["poly_points"]):
+                for p in cell:
+                    body_of[p] = v["cell"]["body"][c]
+            self.assertEqual(len(body_of), v["points"])
+            for p, b in body_of.items():
+                expected = inside_depth(v["xyz"][p], *(right_box(k) if b == 0 else LEFT_BOX))
+                self.assertAlmostEqual(depth[p], expected, places=12, msg=(k, p, b, v["xyz"][p]))
+            self.assertEqual(max(depth) > 0, k >= 5, k)  # something inside from the first clash on
+
+    def test_json_steps_name_the_deepest_node(self):
+        with open(path("series.json")) as f:
+            j = json.load(f)
+        rest = {0: LEFT_BOX, 1: right_box(0)}
+
+        def on_boundary(part, xyz):
+            return any(xyz[a] in (rest[part][0][a], rest[part][1][a]) for a in range(3))
+        ids = {part: {n: xyz for n, xyz in block[0] if on_boundary(part, xyz)} for part, block in ((0, LEFT), (1, RIGHT))}
+        elements = {0: {e: v for e, v, _ in LEFT[1]}, 1: {e: v for e, v, _ in RIGHT[1]}}
+        steps = j["series"]["steps"]
+        for row in steps:
+            k = row["step"]
+            if row["verdict"] != "clash":
+                self.assertIsNone(row["depth"], k)
+                self.assertIsNone(row["deepest"], k)
+                continue
+            # The oracle's deepest surface node (the nodes of both blocks on their boundaries).
+            def node_depth(part, n):
+                x, y, z = ids[part][n]
+                if part == 1:
+                    x -= V * k
+                return inside_depth((x, y, z), *(right_box(k) if part == 0 else LEFT_BOX))
+            best = max(node_depth(part, n) for part in (0, 1) for n in ids[part])
+            d = row["deepest"]
+            part = {"a": 0, "b": 1}[d["part"]]
+            self.assertIn(d["node"], ids[part], k)
+            self.assertAlmostEqual(d["depth"], best, places=12, msg=k)
+            self.assertAlmostEqual(node_depth(part, d["node"]), best, places=12, msg=k)
+            self.assertIn(d["node"], elements[part][d["element"]], k)  # the element has the node
+            self.assertGreaterEqual(row["depth"], d["depth"] - 1e-12)
+            self.assertGreaterEqual(row["depth_bound"], row["depth"] - 1e-12)
+            self.assertIsNone(row["depth_note"], k)
+        first = j["result"]  # the first clash (step 5): A's face x = 1 is 0.125 inside B
+        self.assertEqual(j["result_step"], 5)
+        self.assertAlmostEqual(first["deepest"]["depth"], 0.125, places=12)
+        self.assertAlmostEqual(first["depth"], 0.125, places=12)
+        deepest = max(steps, key=lambda r: r["depth"] or -1)
+        self.assertEqual(j["series"]["deepest_step"], deepest["step"])
+        self.assertEqual(j["series"]["max_depth"], deepest["depth"])
+        self.assertIn("max depth %g mm at step %d" % (deepest["depth"], deepest["step"]), self.out)
+        self.assertIn("deepest node %d of part %s" % (deepest["deepest"]["node"], deepest["deepest"]["part"].upper()),
+                      self.out)
 
     def test_glb_has_both_bodies_frames_and_a_row_per_step_that_is_not_clear(self):
         doc, binary = read_glb(path("series.glb"))
