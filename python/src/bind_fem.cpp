@@ -307,7 +307,7 @@ void bind_fem(py::module_& m) {
       "clash_series",
       [](const FemMesh& mesh_a, const std::string& part_a, py::object disp_a, const FemMesh& mesh_b,
          const std::string& part_b, py::object disp_b, double scale, std::optional<std::vector<std::size_t>> steps,
-         bool linear_faces, const std::string& split, int threads) {
+         bool linear_faces, const std::string& split, int threads, bool depth) {
         const SurfaceOptions so{.subdivide_quadratic = !linear_faces, .split = split_from(split)};
         const std::optional<NodalSeries> ua = series_from(disp_a, mesh_a, "disp_a");
         const std::optional<NodalSeries> ub = series_from(disp_b, mesh_b, "disp_b");
@@ -322,7 +322,7 @@ void bind_fem(py::module_& m) {
         if (!sb) raise_input_error(sb.error());
         const SurfacePart& pa = pick(*sa, part_a, "part_a");
         const SurfacePart& pb = pick(*sb, part_b, "part_b");
-        SeriesRequest request{.scale = scale};
+        SeriesRequest request{.scale = scale, .depth = depth};
         if (steps) request.steps = *steps;
         Expected<SeriesResult> r = Error{};
         {
@@ -337,6 +337,7 @@ void bind_fem(py::module_& m) {
         d["first_clash_step"] = r->first_clash_step >= 0 ? py::object(py::int_(r->first_clash_step)) : py::none();
         d["first_contact_step"] =
             r->first_contact_step >= 0 ? py::object(py::int_(r->first_contact_step)) : py::none();
+        d["deepest_step"] = r->deepest_step >= 0 ? py::object(py::int_(r->deepest_step)) : py::none();
         py::list table;
         for (const StepSummary& s : r->steps) {
           py::dict row;
@@ -353,6 +354,21 @@ void bind_fem(py::module_& m) {
           row["containment"] = containment_name(s.containment);
           row["refit_seconds"] = s.refit_seconds;
           row["clash_seconds"] = s.clash_seconds;
+          // Penetration depth (issue #26, item 3): None where not measured / not bounded / no node inside.
+          row["depth"] = s.depth_measured ? py::object(py::float_(s.depth)) : py::none();
+          row["depth_bound"] = s.depth_measured && s.depth_bounded ? py::object(py::float_(s.depth_bound)) : py::none();
+          if (s.has_deepest) {
+            py::dict deep;
+            deep["part"] = s.deepest.part == 0 ? "a" : "b";
+            deep["node"] = s.deepest.node;
+            deep["element"] = s.deepest.element;
+            deep["depth"] = s.deepest.depth;
+            deep["point"] = py::make_tuple(s.deepest.point.x, s.deepest.point.y, s.deepest.point.z);
+            row["deepest"] = deep;
+          } else {
+            row["deepest"] = py::none();
+          }
+          row["depth_note"] = s.depth_note.empty() ? py::object(py::none()) : py::object(py::str(s.depth_note));
           table.append(row);
         }
         d["steps"] = table;
@@ -377,10 +393,12 @@ void bind_fem(py::module_& m) {
       },
       py::arg("mesh_a"), py::arg("part_a") = "", py::arg("disp_a") = py::none(), py::arg("mesh_b"),
       py::arg("part_b") = "", py::arg("disp_b") = py::none(), py::arg("scale") = 1.0, py::arg("steps") = py::none(),
-      py::arg("linear_faces") = false, py::arg("split") = "auto", py::arg("threads") = 0,
+      py::arg("linear_faces") = false, py::arg("split") = "auto", py::arg("threads") = 0, py::arg("depth") = true,
       "Clash of two FEM bodies per load step (trees refitted per step). disp_*: None, a field name, a dict "
-      "from read_displacements_csv, or a list of (n, 3) steps. Returns {'num_steps', 'first_clash_step', "
-      "'steps': [...], 'first_clash' (ClashResult), 'first_clash_regions': [{'elements_a', ...}]}.");
+      "from read_displacements_csv, or a list of (n, 3) steps. depth: measure the penetration depth of every "
+      "clashing step (closed parts; each step's 'depth', 'depth_bound', 'deepest' {part, node, element, depth, "
+      "point}, 'depth_note'). Returns {'num_steps', 'first_clash_step', 'deepest_step', 'steps': [...], "
+      "'first_clash' (ClashResult), 'first_clash_regions': [{'elements_a', ...}]}.");
 }
 
 }  // namespace interfere::python

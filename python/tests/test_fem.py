@@ -68,6 +68,48 @@ class FemPython(unittest.TestCase):
         with self.assertRaises(ValueError):
             itf.clash_series(a, "nobody", None, b, "", steps)
 
+    def test_clash_series_depth_names_the_deepest_node(self):
+        # Issue #26, item 3. A = [0,1]^3, B = [1.5,2.5] x [0.3,1.3]^2 moving -0.125 per step: the
+        # deepest surface node of each clashing step against the boxes' geometry (a point strictly
+        # inside a box lies min(p - lo, hi - p) over the axes from its surface).
+        a, _, _ = itf.make_fem_box("hex8", (4, 4, 4))
+        b, _, _ = itf.make_fem_box("tet4", (3, 3, 3), (1.5, 0.3, 0.3), (2.5, 1.3, 1.3))
+        steps = [[(-0.125 * s, 0.0, 0.0)] * b.num_nodes for s in range(12)]
+        r = itf.clash_series(a, "", None, b, "", steps)
+
+        def inside(p, lo, hi):
+            d = min(min(p[k] - lo[k], hi[k] - p[k]) for k in range(3))
+            return max(d, 0.0)
+        nodes = {"a": rows(a.nodes), "b": rows(b.nodes)}
+        ids = {"a": [int(i) for i in a.node_ids], "b": [int(i) for i in b.node_ids]}
+        surface = {"a": itf.extract_surface(a)["parts"][0], "b": itf.extract_surface(b)["parts"][0]}
+        measured = 0
+        for row in r["steps"]:
+            k = row["step"]
+            if row["verdict"] != "clash":
+                self.assertIsNone(row["depth"], k)
+                self.assertIsNone(row["deepest"], k)
+                continue
+            x0 = 1.5 - 0.125 * k
+            boxes = {"a": ((x0, 0.3, 0.3), (x0 + 1, 1.3, 1.3)), "b": ((0, 0, 0), (1, 1, 1))}  # the other part's
+
+            def depth_of(part, n):
+                p = list(nodes[part][n])
+                if part == "b":
+                    p[0] -= 0.125 * k
+                return inside(p, *boxes[part])
+            best = max(depth_of(part, int(n)) for part in "ab" for n in surface[part]["vertex_node"])
+            d = row["deepest"]
+            self.assertAlmostEqual(d["depth"], best, places=12, msg=k)
+            self.assertAlmostEqual(depth_of(d["part"], ids[d["part"]].index(d["node"])), best, places=12, msg=k)
+            self.assertGreaterEqual(row["depth"], best - 1e-12)
+            self.assertGreaterEqual(row["depth_bound"], row["depth"] - 1e-12)
+            measured += 1
+        self.assertEqual(measured, 7)  # steps 5..11
+        self.assertIsNotNone(r["deepest_step"])
+        off = itf.clash_series(a, "", None, b, "", steps, depth=False)
+        self.assertTrue(all(row["depth"] is None for row in off["steps"]))
+
     def test_read_fem_fields_and_csv(self):
         # Two unit hexes 0.5 apart in one MSH 2.2 file (bodies "left", "right"); "right" moves by -0.25
         # per step (field "disp" and the same values as CSV): touching at step 2, overlapping at 3.
