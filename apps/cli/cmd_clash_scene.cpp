@@ -141,6 +141,7 @@ int run_scene_clash(const ClashOptions& o, const CLI::App& command, const std::v
   eo.group_distance = o.group_distance;
   eo.nominal_fit = in.nominal_fit;
   eo.reference = o.reference;
+  eo.depth_maps = true;  // (the deepest node per clash and step; the maps drawn by --pvd)
   if (!in.scene.frames.empty() && !Progress::quiet())
     eo.progress = [](std::size_t done, std::size_t all) {
       if (done == all || done % std::max<std::size_t>(1, all / 20) == 0)

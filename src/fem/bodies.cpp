@@ -175,6 +175,9 @@ Expected<scene::Scene> fem_scene(const FemMesh& input, const std::string& file_a
     }
     b.source_ids = std::move(ids);
     b.source_faces = std::move(faces);
+    auto nodes = std::make_shared<std::vector<std::int64_t>>(sp.vertex_node.size());
+    for (std::size_t v = 0; v < sp.vertex_node.size(); ++v) (*nodes)[v] = mesh.node_ids[sp.vertex_node[v]];
+    b.vertex_ids = std::move(nodes);
     b.mesh = std::make_shared<const TriMesh>(sp.mesh);  // a copy: vertex_node stays with the part
     sc.bodies.push_back(std::move(b));
     body_part.push_back(i);

@@ -323,6 +323,12 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
       if (i == 0 || key(order[i]) != key(order[i - 1])) unit_start.push_back(i);
     unit_start.push_back(order.size());
     const bool many_pairs = unit_start.size() - 1 >= 4 * static_cast<std::size_t>(tbb::this_task_arena::max_concurrency());
+    // Depth maps per unit (one body pair), and each candidate's unit.
+    std::vector<PairDepthMap> unit_maps(unit_start.size() - 1);
+    std::vector<char> unit_has_map(unit_start.size() - 1, 0);
+    std::vector<std::size_t> cand_unit(cands.size());
+    for (std::size_t u = 0; u + 1 < unit_start.size(); ++u)
+      for (std::size_t i = unit_start[u]; i < unit_start[u + 1]; ++i) cand_unit[order[i]] = u;
     tbb::parallel_for(std::size_t{0}, unit_start.size() - 1, [&](std::size_t u) {
       detail::PairCore core;
       for (std::size_t i = unit_start[u]; i < unit_start[u + 1]; ++i) {
@@ -332,7 +338,15 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
                                       [&](std::uint32_t j) -> const std::vector<Vec3>& { return local_positions(scene, st, j); },
                                       many_pairs};
         const bool dup = tests[c.test].mode == ClashMode::duplicates;
-        if (!dup && i == unit_start[u]) core = detail::core_pair(ctx, c.a, c.b, c.clearance);
+        if (!dup && i == unit_start[u]) {
+          core = detail::core_pair(ctx, c.a, c.b, c.clearance);
+          if (core.maps_known && !reference &&
+              (core.maps.a.inside + core.maps.a.undecided + core.maps.b.inside + core.maps.b.undecided) > 0) {
+            unit_maps[u] = detail::pair_depth_map(scene, world, static_cast<std::uint32_t>(moving ? f : 0), c.a, c.b, core.maps);
+            unit_has_map[u] = 1;
+          }
+          core.maps = {};
+        }
         found[k] = detail::derive_pair(ctx, c.a, c.b, c.clearance, dup ? nullptr : &core, where[k]);
       }
     });
@@ -400,8 +414,13 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
         std::vector<Track>& now = next[{c.test, c.a, c.b}];
         for (std::size_t i = 0; i < list.size(); ++i) now.push_back({list[i].id, list[i].kind, where[k][i][0]});
       }
-      if (moving && !list.empty()) result.frame_pairs.push_back(frame_pair_row(static_cast<std::uint32_t>(f), c, list));
+      const PairDepthMap* map = unit_has_map[cand_unit[k]] ? &unit_maps[cand_unit[k]] : nullptr;
+      if (moving && !list.empty()) {
+        result.frame_pairs.push_back(frame_pair_row(static_cast<std::uint32_t>(f), c, list));
+        if (map && map->has_deepest) result.frame_pairs.back().has_deepest = true, result.frame_pairs.back().deepest = map->deepest;
+      }
       for (SceneClash& s : list) {
+        if (map && map->has_deepest && s.verdict == Verdict::clash) detail::keep_deeper(s.has_deepest, s.deepest, map->deepest);
         switch (s.verdict) {
           case Verdict::clash: ++row.clashes, row.max_depth = std::max(row.max_depth, s.depth_bound); break;
           case Verdict::contact: ++row.contacts; break;
@@ -418,6 +437,7 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
           SceneClash& prev = result.clashes[it->second];
           if (moving) prev.frames.push_back(static_cast<std::uint32_t>(f));
           if (worst(prev.verdict, s.verdict) != prev.verdict) prev.verdict = s.verdict;
+          if (s.has_deepest) detail::keep_deeper(prev.has_deepest, prev.deepest, s.deepest);
           prev.depth = std::max(prev.depth, s.depth), prev.depth_bound = std::max(prev.depth_bound, s.depth_bound);
           continue;
         }
@@ -427,6 +447,8 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
       }
     }
     if (moving) result.frames.push_back(row);
+    for (std::size_t u = 0; u < unit_maps.size(); ++u)
+      if (unit_has_map[u]) result.depth_maps.push_back(std::move(unit_maps[u]));
     last = std::move(next);
     next.clear();
     result.narrow_seconds += since(t_narrow);

@@ -18,6 +18,10 @@ void summarise_frames(const Scene& scene, const std::vector<ClashTest>& tests, S
     if (x.frame != y.frame) return x.frame < y.frame;
     return pair_key(x.test, x.a, x.b) < pair_key(y.test, y.a, y.b);
   });
+  std::sort(result.depth_maps.begin(), result.depth_maps.end(), [&](const PairDepthMap& x, const PairDepthMap& y) {
+    if (x.frame != y.frame) return x.frame < y.frame;
+    return pair_key(0, x.a, x.b) < pair_key(0, y.a, y.b);
+  });
   std::sort(result.reference_pairs.begin(), result.reference_pairs.end(), [&](const ReferencePair& x, const ReferencePair& y) {
     return pair_key(x.test, x.a, x.b) < pair_key(y.test, y.a, y.b);
   });
@@ -55,6 +59,51 @@ void summarise_frames(const Scene& scene, const std::vector<ClashTest>& tests, S
       result.new_penetration_count += ref != Verdict::clash;
     }
   }
+}
+
+namespace {
+
+VertexDepths sparse(const DepthMap& m) {
+  VertexDepths out;
+  out.undecided = m.undecided;
+  for (std::uint32_t v = 0; v < m.side.size(); ++v)
+    if (m.side[v] == 1) out.vertices.push_back(v), out.depths.push_back(m.depth[v]);
+  return out;
+}
+
+// The source id of a triangle at vertex v (the smallest index), -1 when none.
+std::int64_t element_at(const Body& body, std::uint32_t v) {
+  const auto& tris = body.mesh->triangles;
+  for (std::uint32_t t = 0; t < tris.size(); ++t)
+    if (tris[t][0] == v || tris[t][1] == v || tris[t][2] == v) return body.source_id(t);
+  return -1;
+}
+
+}  // namespace
+
+void keep_deeper(bool& has, DeepestPoint& kept, const DeepestPoint& c) {
+  if (!has || c.depth > kept.depth ||
+      (c.depth == kept.depth && std::tie(c.frame, c.body, c.vertex) < std::tie(kept.frame, kept.body, kept.vertex))) {
+    kept = c;
+    has = true;
+  }
+}
+
+PairDepthMap pair_depth_map(const Scene& scene, const std::vector<WorldBody>& world, std::uint32_t frame,
+                            std::uint32_t a, std::uint32_t b, const DepthMaps& maps) {
+  PairDepthMap m{.frame = frame, .a = a, .b = b, .a_in_b = sparse(maps.a), .b_in_a = sparse(maps.b)};
+  const auto consider = [&](std::uint32_t body, const DepthMap& map) {
+    if (map.max_vertex == kNoVertex || !(map.max_depth > 0)) return;
+    DeepestPoint d{.body = body, .vertex = map.max_vertex, .depth = map.max_depth, .frame = frame};
+    const Body& x = scene.bodies[body];
+    d.node = x.vertex_id(map.max_vertex);
+    d.element = element_at(x, map.max_vertex);
+    d.point = world[body].model().mesh.positions[map.max_vertex];
+    keep_deeper(m.has_deepest, m.deepest, d);
+  };
+  consider(a, maps.a);
+  consider(b, maps.b);
+  return m;
 }
 
 }  // namespace interfere::scene::detail

@@ -57,6 +57,10 @@ struct PairCore {
   double clearance = 0;  ///< the clearance r's pairs are within (narrowed by derive_pair)
   PenetrationDepth depth;
   bool depth_known = false;
+  /// SceneClashOptions::depth_maps: per vertex of each body, its depth in the other's solid
+  /// (query/depth.h), for crossing, touching-overlap and containment clashes of closed bodies.
+  DepthMaps maps;
+  bool maps_known = false;
 };
 PairCore core_pair(const PairContext& c, std::uint32_t a, std::uint32_t b, double clearance);
 /// The clashes of one test from the core's answer at a clearance >= this test's: the clearance
@@ -93,4 +97,10 @@ namespace interfere::scene::detail {
 /// (clashing) frame and reference verdict, each contact's `designed` flag and the designed / new
 /// counts (engine_frames.cpp; issue #26, items 2 and 4).
 void summarise_frames(const Scene& scene, const std::vector<ClashTest>& tests, SceneClashResult& result);
+/// The sparse depth maps of bodies a and b in one frame and their deepest vertex (node and element
+/// ids from the bodies' sources, the point from the world models) (engine_frames.cpp).
+PairDepthMap pair_depth_map(const Scene& scene, const std::vector<WorldBody>& world, std::uint32_t frame,
+                            std::uint32_t a, std::uint32_t b, const DepthMaps& maps);
+/// Keeps the deeper of two deepest points (ties: the earlier frame, then body, then vertex).
+void keep_deeper(bool& has, DeepestPoint& kept, const DeepestPoint& candidate);
 }  // namespace interfere::scene::detail

@@ -105,10 +105,14 @@ PairCore core_pair(const PairContext& c, std::uint32_t a, std::uint32_t b, doubl
   if (c.options.on_pair) c.options.on_pair(c.test_index, a, b, core.r);
   // Depth of crossing (or touching but overlapping) closed solids (the statistics are computed
   // here when not yet known: the depth needs inside/outside).
-  if (c.options.depth && (core.r.cross_pairs > 0 || core.r.touching_overlap) && wa.stats().closed() &&
-      wb.stats().closed()) {
-    core.depth = penetration_depth(wa.model(), wb.model(), core.r, c.options.depth_bound_splits);
-    core.depth_known = true;
+  const bool crossing = core.r.cross_pairs > 0 || core.r.touching_overlap;
+  const bool inside = core.r.containment == Containment::a_inside_b || core.r.containment == Containment::b_inside_a;
+  if (c.options.depth && (crossing || (inside && c.options.depth_maps)) && wa.stats().closed() && wb.stats().closed()) {
+    // (containment: the maps only; the pair's depth stays unmeasured as before)
+    const PenetrationDepth d = penetration_depth(wa.model(), wb.model(), core.r, c.options.depth_bound_splits,
+                                                 c.options.depth_maps ? &core.maps : nullptr);
+    if (crossing) core.depth = d, core.depth_known = true;
+    core.maps_known = c.options.depth_maps;
   }
   return core;
 }

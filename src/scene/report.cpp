@@ -38,8 +38,13 @@ const std::set<std::string>& engine_keys() {
                                        "cross_pairs", "touch_pairs", "triangle_count_a", "triangle_count_b",
                                        "source_id_kind_a", "source_id_kind_b", "source_ids_a", "source_ids_b",
                                        "curves", "witness_a", "witness_b", "reasons", "frames", "first_frame",
-                                       "designed"};
+                                       "designed", "deepest"};
   return k;
+}
+
+json deepest_json(const Scene& s, const DeepestPoint& d) {
+  return {{"body", s.bodies[d.body].id}, {"vertex", d.vertex}, {"node", d.node}, {"element", d.element},
+          {"depth", d.depth},       {"point", vec(d.point)}, {"frame", d.frame}};
 }
 
 bool engine_status_word(const std::string& s) { return s == "new" || s == "active" || s == "resolved"; }
@@ -86,6 +91,7 @@ json clash_json(const Scene& scene, const SceneClash& c) {
     j["first_frame"] = c.frames.front();
   }
   if (c.verdict == Verdict::contact) j["designed"] = c.designed;
+  if (c.has_deepest) j["deepest"] = deepest_json(scene, c.deepest);
   return j;
 }
 
@@ -270,7 +276,8 @@ std::string report_json(const Scene& scene, const std::vector<ClashTest>& tests,
                            {"undecided", f.undecided},
                            {"min_distance", f.min_distance < 0 ? json(nullptr) : json(f.min_distance)},
                            {"max_depth", f.max_depth},
-                           {"max_depth_bound", f.max_depth_bound}});
+                           {"max_depth_bound", f.max_depth_bound},
+                           {"deepest", f.has_deepest ? deepest_json(scene, f.deepest) : json(nullptr)}});
   j["frame_pairs"] = frame_pairs;
   json reference = json::array();
   for (const ReferencePair& p : r.reference_pairs)

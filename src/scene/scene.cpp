@@ -46,6 +46,9 @@ void Scene::validate() const {
     if (b.source_ids && b.source_ids->size() != b.mesh->num_triangles())
       throw std::invalid_argument(where + " ('" + b.id + "'): " + std::to_string(b.source_ids->size()) +
                                   " source ids for " + std::to_string(b.mesh->num_triangles()) + " triangles");
+    if (b.vertex_ids && b.vertex_ids->size() != b.mesh->num_vertices())
+      throw std::invalid_argument(where + " ('" + b.id + "'): " + std::to_string(b.vertex_ids->size()) +
+                                  " vertex ids for " + std::to_string(b.mesh->num_vertices()) + " vertices");
   }
   for (std::size_t f = 0; f < frames.size(); ++f) {
     const std::string where = "frame " + std::to_string(f) + " ('" + frames[f].label + "')";

@@ -138,8 +138,9 @@ std::string bodies_file(const Document& doc, std::size_t k, bool framed) {
   for (const ViewBody& b : doc.bodies) {
     const std::uint32_t m = framed && !b.frame_meshes.empty() ? b.frame_meshes[k] : b.mesh;
     any_source = any_source || !doc.meshes[m].source_ids.empty();
-    any_depth = any_depth || !doc.meshes[m].point_depth.empty();
   }
+  // (penetration_depth in every file of a series when any mesh has it, for ParaView's colouring)
+  for (const ViewMesh& m : doc.meshes) any_depth = any_depth || !m.point_depth.empty();
   for (std::size_t bi = 0; bi < doc.bodies.size(); ++bi) {
     const ViewBody& b = doc.bodies[bi];
     const ViewMesh& vm = doc.meshes[framed && !b.frame_meshes.empty() ? b.frame_meshes[k] : b.mesh];

@@ -252,6 +252,46 @@ Document scene_document(const Scene& s, const std::vector<scene::ClashTest>& tes
     flag(c.b, c.triangles_b, c.frames);
   }
 
+  // Penetration depth per vertex (SceneClashResult::depth_maps; issue #26, item 3) on a mesh of its
+  // own for each (body, frame) that has one: a mesh drawn by other bodies or other frames is
+  // copied first, so each frame shows its own depths; 0 elsewhere on that mesh.
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> depth_mesh;  // (body, frame) -> mesh
+  const auto mesh_with_depth = [&](std::uint32_t body, std::uint32_t frame) -> ViewMesh& {
+    const auto key = std::make_pair(body, frame);
+    if (const auto it = depth_mesh.find(key); it != depth_mesh.end()) return doc.meshes[it->second];
+    ViewBody& vb = doc.bodies[body];
+    std::uint32_t* slot = &vb.mesh;
+    if (nf > 0) {
+      if (vb.frame_meshes.empty()) vb.frame_meshes.assign(nf, vb.mesh);
+      slot = &vb.frame_meshes[std::min<std::size_t>(frame, nf - 1)];
+    }
+    const std::uint32_t m = *slot;
+    const bool shared = users[m] != 1 || (nf > 0 && (m == vb.mesh || std::count(vb.frame_meshes.begin(), vb.frame_meshes.end(), m) > 1));
+    if (shared) {
+      ViewMesh copy = doc.meshes[m];
+      copy.point_depth.clear();
+      *slot = add_mesh(std::move(copy));
+      users.push_back(1);
+    }
+    ViewMesh& vm = doc.meshes[*slot];
+    vm.point_depth.assign(vm.mesh.num_vertices(), 0.0);
+    depth_mesh.emplace(key, *slot);
+    return vm;
+  };
+  if (!result.depth_maps.empty())  // depth known: 0 outside the other bodies
+    for (ViewMesh& vm : doc.meshes)
+      if (vm.point_depth.empty()) vm.point_depth.assign(vm.mesh.num_vertices(), 0.0);
+  for (const scene::PairDepthMap& pm : result.depth_maps) {
+    if (pm.a >= doc.bodies.size() || pm.b >= doc.bodies.size()) continue;
+    for (const auto& [body, vd] : {std::pair{pm.a, &pm.a_in_b}, std::pair{pm.b, &pm.b_in_a}}) {
+      if (vd->vertices.empty()) continue;
+      ViewMesh& vm = mesh_with_depth(body, pm.frame);
+      for (std::size_t i = 0; i < vd->vertices.size(); ++i)
+        if (vd->vertices[i] < vm.point_depth.size())
+          vm.point_depth[vd->vertices[i]] = std::max(vm.point_depth[vd->vertices[i]], vd->depths[i]);
+    }
+  }
+
   // The world geometry of body b's triangles `tris` at frame f (the clash's first frame).
   const auto world_triangles = [&](std::uint32_t b, std::int64_t f, const std::vector<std::uint32_t>& tris, TriMesh& out) {
     const Body& body = s.bodies[b];

@@ -108,6 +108,40 @@ def ascii_disp_blocks(frd):
     return out
 
 
+def node_position(nid, shift):
+    """The node's position with B moved by -shift in x (A's nodes ids 1..125, B's 1001..)."""
+    base, box = (1000, B_BOX) if nid > 1000 else (0, A_BOX)
+    n = N_CELLS + 1
+    i, rest = (nid - base - 1) % n, (nid - base - 1) // n
+    j, k = rest % n, rest // n
+    p = grid(box, (i, j, k))
+    if base:
+        p[0] -= shift
+    return p, base
+
+
+def box_depth(p, box):
+    """Distance of p to the surface of the box when strictly inside it, else 0."""
+    if not all(lo < c < hi for c, (lo, hi) in zip(p, box)):
+        return 0.0
+    return min(min(c - lo, hi - c) for c, (lo, hi) in zip(p, box))
+
+
+def node_depth(nid, shift):
+    p, base = node_position(nid, shift)
+    if base:
+        return box_depth(p, A_BOX)
+    (x0, x1), yb, zb = B_BOX
+    return box_depth(p, ((x0 - shift, x1 - shift), yb, zb))
+
+
+def element_nodes(eid):
+    base = 1000 if eid > 1000 else 0
+    e = eid - base - 1
+    i, j, k = e % N_CELLS, (e // N_CELLS) % N_CELLS, e // (N_CELLS * N_CELLS)
+    return {node_id(base, i + a, j + b, k + c) for a in (0, 1) for b in (0, 1) for c in (0, 1)}
+
+
 def expected_elements():
     """A's layer at x = 1 whose face meets the outline of B's cross-section [0.2, 0.8]^2, and B's
     first layer on its sides (the closed cell meets the outline: overlaps the square, not inside it)."""
@@ -204,6 +238,13 @@ class CalculixResults(unittest.TestCase):
                 depth = PUSH * (f + 1) / INCREMENTS - GAP  # B's near face sunk this far into A
                 self.assertLessEqual(x["max_depth"], depth + 1e-5, x)
                 self.assertGreaterEqual(x["max_depth_bound"], depth - 1e-5, x)
+                # The deepest node (issue #26, item 3): its depth is the analytic one, recomputed
+                # here from the node's id, the generated grid and B's translation, and its element
+                # holds it.
+                d = x["deepest"]
+                self.assertAlmostEqual(d["depth"], depth, delta=1e-5)
+                self.assertAlmostEqual(node_depth(d["node"], PUSH * (f + 1) / INCREMENTS), depth, delta=1e-5)
+                self.assertIn(d["node"], element_nodes(d["element"]), d)
         (pair,) = r["pairs"]
         self.assertEqual(pair["first_frame"], 0)
         self.assertEqual(pair["first_clash_frame"], FIRST)

@@ -24,6 +24,18 @@ namespace interfere::scene {
 enum class ClashStatus : std::uint8_t { new_, active, resolved };
 const char* clash_status_name(ClashStatus s);
 
+/// The deepest vertex of a pair's depth maps: which body's vertex, its index and source id (FE: the
+/// solver's node id), the source id of a triangle at it (FE: an element id), its depth in the
+/// other body and where it is (world).
+struct DeepestPoint {
+  std::uint32_t body = 0;
+  std::uint32_t vertex = 0;
+  std::int64_t node = -1, element = -1;
+  double depth = 0;
+  Vec3 point;
+  std::uint32_t frame = 0;  ///< motion: the frame (static: 0)
+};
+
 /// One clash: a connected clash region of a body pair (its crossing or touching triangle pairs),
 /// a body lying inside the other, a clearance violation, or a duplicate.
 struct SceneClash {
@@ -66,6 +78,9 @@ struct SceneClash {
   std::vector<std::string> reasons;  ///< undecided: why; others: notes
   // Across frames (motion) — the first frame's data above.
   std::vector<std::uint32_t> frames;  ///< the frames it is present in (sorted); empty when static
+  /// With depth maps: the deepest vertex of the pair over the frames the clash is present in.
+  bool has_deepest = false;
+  DeepestPoint deepest;
   /// Deformed scenes checked in their reference configuration too (SceneClashOptions::reference):
   /// a contact of a pair that already touched there — a bonded or tied interface, a designed fit —
   /// is a designed contact (issue #26, item 4). False otherwise, and always for clashes.
@@ -127,6 +142,26 @@ struct FramePairRow {
   /// clearance test found one, -1 when not measured (hard tests measure no gaps).
   double min_distance = -1;
   double max_depth = 0, max_depth_bound = 0;  ///< largest depth and depth bound of its clashes
+  /// With depth maps: the deepest vertex of the pair in the frame.
+  bool has_deepest = false;
+  DeepestPoint deepest;
+};
+
+/// One body's vertices strictly inside the other body's solid, sparse: vertex indices (sorted) and
+/// their depths (distance to the other surface).
+struct VertexDepths {
+  std::vector<std::uint32_t> vertices;
+  std::vector<double> depths;
+  std::size_t undecided = 0;  ///< vertices whose side could not be decided (never counted as outside)
+};
+
+/// The depth maps of one clashing body pair in one frame (SceneClashOptions::depth_maps).
+struct PairDepthMap {
+  std::uint32_t frame = 0;
+  std::uint32_t a = 0, b = 0;  ///< body indices (a's id < b's id)
+  VertexDepths a_in_b, b_in_a;
+  bool has_deepest = false;
+  DeepestPoint deepest;
 };
 
 /// A body pair's verdict in the reference configuration (SceneClashOptions::reference).
@@ -144,6 +179,11 @@ struct SceneClashOptions {
   /// Measure the depth of crossing closed bodies (query/depth.h; SceneClash::depth, depth_bound).
   /// Off: depths stay 0 and penetration tolerances cannot apply (such clashes stay clashes).
   bool depth = true;
+  /// Penetration depth maps (issue #26, item 3): per clashing pair of closed bodies (crossing,
+  /// touching overlap, containment) and frame, every vertex of each body that lies inside the
+  /// other with its depth (SceneClashResult::depth_maps; the deepest vertex also on the frame's
+  /// pair row and on the clash). Needs `depth`.
+  bool depth_maps = false;
   /// Splits per direction of a crossing pair for the depth upper bound (query/depth.h); 0: no bound
   /// (penetration tolerances then compare the sampled depth, which is flagged in the clash's reasons).
   std::size_t depth_bound_splits = 5000;
@@ -184,6 +224,9 @@ struct SceneClashResult {
   /// The reference configuration's findings per body pair (SceneClashOptions::reference), sorted as
   /// frame_pairs; `reference_checked` tells whether the pass ran.
   std::vector<ReferencePair> reference_pairs;
+  /// SceneClashOptions::depth_maps: per frame (0 when static) and clashing body pair, sorted by
+  /// (frame, body a id, body b id).
+  std::vector<PairDepthMap> depth_maps;
   bool reference_checked = false;
   /// Contacts of pairs that touched in the reference configuration (designed), the other
   /// contacts, and the clashes of pairs that did not clash there (new penetrations).

@@ -63,6 +63,9 @@ struct Body {
   /// Per triangle, fe_element_face only: the element's local face (1-based, fem/surface.h's
   /// Abaqus numbering S1..S6; 1 for shells); else empty.
   std::shared_ptr<const std::vector<std::int8_t>> source_faces;
+  /// Per vertex of `mesh`: the source's id of it (FE bodies: the solver's node id; issue #26,
+  /// item 3); empty: the vertex index.
+  std::shared_ptr<const std::vector<std::int64_t>> vertex_ids;
   /// The chordal error of the tessellation against its source surfaces (STEP bodies; 0 for
   /// meshes, which are exact as given). Crossings within it may be a nominal fit (engine.h).
   double tessellation_error = 0;
@@ -74,6 +77,9 @@ struct Body {
 
   std::int64_t source_id(std::uint32_t triangle) const {
     return source_ids && triangle < source_ids->size() ? (*source_ids)[triangle] : triangle;
+  }
+  std::int64_t vertex_id(std::uint32_t vertex) const {
+    return vertex_ids && vertex < vertex_ids->size() ? (*vertex_ids)[vertex] : vertex;
   }
 };
 

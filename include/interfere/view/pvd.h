@@ -12,7 +12,8 @@
 // body's index; field data `body_names` and `body_ids` name them), `clash` (UInt8,
 // ViewMesh::clash_flags, 0 where absent), `source_id` (Int64, ViewMesh::source_ids: FE element ids,
 // B-Rep faces; -1 where absent; only when some body has them). Point data: `penetration_depth`
-// (Float64, ViewMesh::point_depth; NaN where a body has none; only when some body has it).
+// (Float64, ViewMesh::point_depth; NaN where a body has none; in every file of a series when any
+// mesh of the document has it).
 //
 // clashes_<k>.vtp: the clashes present at step k (ViewClash::frames empty or holding k), world
 // coordinates: intersection curves and clearance witness segments as polylines, then the clash and

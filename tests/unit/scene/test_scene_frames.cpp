@@ -6,12 +6,14 @@
 // C's contact new, C's clash a new penetration; and a clash that existed before the load is not.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
 #include <nlohmann/json.hpp>
 
 #include "interfere/mesh/generate.h"
 #include "interfere/scene/engine.h"
 #include "interfere/scene/report.h"
+#include "interfere/view/scene_document.h"
 
 namespace interfere::scene {
 namespace {
@@ -163,6 +165,73 @@ TEST(SceneFrames, ReportAndCsvCarryTheTable) {
   EXPECT_EQ(lines, r.frame_pairs.size() + 1);
   EXPECT_NE(csv.find("3,step 3,3,hard,A,C,clash,"), std::string::npos) << csv;
   EXPECT_NE(csv.find("0,step 0,0,hard,A,B,contact,0,1,0,0,0,0,0,contact\n"), std::string::npos) << csv;
+}
+
+// Depth of point p inside the box [lo, hi] (distance to its surface), or -1 when p is not strictly
+// inside: the analytic oracle of the depth maps below.
+double box_depth(const Vec3& p, const Vec3& lo, const Vec3& hi) {
+  if (!(p.x > lo.x && p.x < hi.x && p.y > lo.y && p.y < hi.y && p.z > lo.z && p.z < hi.z)) return -1;
+  return std::min({p.x - lo.x, hi.x - p.x, p.y - lo.y, hi.y - p.y, p.z - lo.z, hi.z - p.z});
+}
+
+TEST(SceneFrames, DepthMapsMatchTheBoxesAnalyticDepths) {
+  const Scene s = bonded_and_approaching();
+  SceneClashOptions o;
+  o.depth_maps = true;
+  const SceneClashResult r = clash_scene(s, {hard()}, o);
+  ASSERT_EQ(r.depth_maps.size(), 1u);  // A-C at frame 3 only (A-B touch: no vertex inside)
+  const PairDepthMap& m = r.depth_maps[0];
+  EXPECT_EQ(m.frame, 3u);
+  EXPECT_EQ(s.bodies[m.a].id + s.bodies[m.b].id, "AC");
+  // Frame 3: C is [-0.75, 0.25] x [0.25, 0.75]^2.
+  const Vec3 a_lo{0, 0, 0}, a_hi{1, 1, 1}, c_lo{-0.75, 0.25, 0.25}, c_hi{0.25, 0.75, 0.75};
+  const auto check = [&](std::uint32_t body, const VertexDepths& vd, const std::vector<Vec3>& pos, const Vec3& lo,
+                         const Vec3& hi) {
+    EXPECT_EQ(vd.undecided, 0u);
+    std::size_t listed = 0;
+    for (std::uint32_t v = 0; v < pos.size(); ++v) {
+      const double expect = box_depth(pos[v], lo, hi);
+      const auto it = std::find(vd.vertices.begin(), vd.vertices.end(), v);
+      if (expect < 0) {
+        EXPECT_EQ(it, vd.vertices.end()) << s.bodies[body].id << " vertex " << v;
+        continue;
+      }
+      ASSERT_NE(it, vd.vertices.end()) << s.bodies[body].id << " vertex " << v;
+      EXPECT_NEAR(vd.depths[it - vd.vertices.begin()], expect, 1e-12);
+      ++listed;
+    }
+    EXPECT_EQ(listed, vd.vertices.size());
+    EXPECT_GT(listed, 0u);
+  };
+  std::vector<Vec3> c_pos = s.bodies[2].mesh->positions;
+  for (Vec3& p : c_pos) p.x += 0.75;
+  check(m.a, m.a_in_b, s.bodies[0].mesh->positions, c_lo, c_hi);
+  check(m.b, m.b_in_a, c_pos, a_lo, a_hi);
+  ASSERT_TRUE(m.has_deepest);
+  EXPECT_NEAR(m.deepest.depth, 0.25, 1e-12);
+  const Vec3 p = m.deepest.point;
+  EXPECT_NEAR(m.deepest.body == 0 ? box_depth(p, c_lo, c_hi) : box_depth(p, a_lo, a_hi), 0.25, 1e-12);
+  EXPECT_EQ(m.deepest.node, m.deepest.vertex);  // (no vertex ids: the index)
+  // The clash and the frame's pair row carry it.
+  bool carried = false;
+  for (const SceneClash& c : r.clashes)
+    if (c.verdict == Verdict::clash) carried = c.has_deepest && c.deepest.depth == m.deepest.depth && c.deepest.frame == 3;
+  EXPECT_TRUE(carried);
+  EXPECT_TRUE(row(r, 3, "A", "C", s)->has_deepest);
+  // Drawn: the frame-3 meshes of A and C carry the depths, other frames none or zeros.
+  const view::Document doc = view::scene_document(s, {hard()}, r, {});
+  for (std::uint32_t body : {0u, 2u}) {
+    const view::ViewBody& vb = doc.bodies[body];
+    ASSERT_EQ(vb.frame_meshes.size(), 4u);
+    const view::ViewMesh& vm = doc.meshes[vb.frame_meshes[3]];
+    ASSERT_EQ(vm.point_depth.size(), vm.mesh.num_vertices());
+    const VertexDepths& vd = body == 0 ? m.a_in_b : m.b_in_a;
+    for (std::size_t i = 0; i < vd.vertices.size(); ++i) EXPECT_EQ(vm.point_depth[vd.vertices[i]], vd.depths[i]);
+    for (std::uint32_t f = 0; f < 3; ++f) {
+      const view::ViewMesh& other = doc.meshes[vb.frame_meshes[f]];
+      for (double d : other.point_depth) EXPECT_EQ(d, 0.0);
+    }
+  }
 }
 
 }  // namespace
