@@ -7,6 +7,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 #include "interfere/query/depth.h"
 #include "interfere/bvh/traverse.h"
@@ -76,14 +77,17 @@ std::vector<signed char> untouched_sides(const Model& x, const Model& y, const s
     const auto& c = m.triangles[t];
     return !paired[t] && (in[c[0]] || in[c[1]] || in[c[2]]);
   };
+  std::vector<std::uint32_t> out_of_box;  // vertices of such triangles outside y's box
   for (std::uint32_t t = 0; t < nt; ++t)
-    if (counts(t)) unite(m.triangles[t][0], m.triangles[t][1]), unite(m.triangles[t][0], m.triangles[t][2]);
+    if (counts(t)) {
+      const auto& c = m.triangles[t];
+      unite(c[0], c[1]), unite(c[0], c[2]);
+      for (std::uint32_t v : c)
+        if (!in[v]) out_of_box.push_back(v);
+    }
   // Per root: 2 unknown, 0 outside (a vertex out of the box), else its point_in_solid.
   std::vector<signed char> set_side(nv, 2);
-  for (std::uint32_t t = 0; t < nt; ++t)
-    if (counts(t))
-      for (std::uint32_t v : m.triangles[t])
-        if (!in[v]) set_side[find(v)] = 0;
+  for (const std::uint32_t v : out_of_box) set_side[find(v)] = 0;
   for (std::uint32_t t = 0; t < nt; ++t) {
     if (!counts(t)) continue;
     const std::uint32_t root = find(m.triangles[t][0]);
@@ -352,7 +356,10 @@ DepthMap depth_map(const Model& a, const Model& b, const ClashResult& r, DepthOf
 }
 
 DepthMaps depth_maps(const Model& a, const Model& b, const ClashResult& r, const DepthMapRequest& request) {
-  return {depth_map(a, b, r, DepthOf::a_in_b, request), depth_map(a, b, r, DepthOf::b_in_a, request)};
+  DepthMaps m;  // (the two directions side by side: their serial passes overlap)
+  tbb::parallel_invoke([&] { m.a = depth_map(a, b, r, DepthOf::a_in_b, request); },
+                       [&] { m.b = depth_map(a, b, r, DepthOf::b_in_a, request); });
+  return m;
 }
 
 PenetrationDepth penetration_depth(const Model& a, const Model& b, const ClashResult& r, std::size_t max_splits,
@@ -364,7 +371,8 @@ PenetrationDepth penetration_depth(const Model& a, const Model& b, const ClashRe
   }
   const std::vector<char> pa = paired_of(a, r, 0), pb = paired_of(b, r, 1);
   const std::vector<signed char> sa = detail::untouched_sides(a, b, pa), sb = detail::untouched_sides(b, a, pb);
-  DepthMap ma = detail::depth_map(a, b, pa, sa), mb = detail::depth_map(b, a, pb, sb);
+  DepthMap ma, mb;
+  tbb::parallel_invoke([&] { ma = detail::depth_map(a, b, pa, sa); }, [&] { mb = detail::depth_map(b, a, pb, sb); });
   out.depth = std::max(detail::depth_into(a, b, pa, ma), detail::depth_into(b, a, pb, mb));
   out.depth_bound = out.depth;
   if (max_splits > 0) {
