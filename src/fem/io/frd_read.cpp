@@ -284,6 +284,141 @@ struct Reader {
     return {};
   }
 
+  /// The end of `count` records of `len` bytes each from the current position when a -3 record
+  /// follows them there (the fixed-length records ccx writes), else 0.
+  std::size_t fixed_end(std::size_t len, std::int64_t count) const {
+    const std::size_t p0 = t.pos(), n = static_cast<std::size_t>(count);
+    if (len == 0 || n == 0 || p0 >= s.size() || len > (s.size() - p0) / n) return 0;
+    const std::size_t end = p0 + len * n;
+    std::size_t nx = 0;
+    return end < s.size() && s[end - 1] == '\n' && column(line_at(end, nx), 0, 3) == "-3" ? end : 0;
+  }
+
+  /// The line of `len` bytes at `b` (its end of line last, none inside), or false.
+  bool fixed_line(std::size_t b, std::size_t len, std::string_view& l) const {
+    const std::size_t e = b + len - 1;
+    if (s[e] != '\n' || find_newline(s.data(), b, e) != e) return false;
+    l = s.substr(b, e - b);
+    if (!l.empty() && l.back() == '\r') l.remove_suffix(1);
+    return true;
+  }
+
+  /// The `count` records of an ASCII node block in parallel when they have one length and a -3
+  /// follows them; then the position is at the -3. False (arrays empty, position unchanged) on
+  /// anything else, and the sequential loop reads the block and names the problem.
+  bool parallel_nodes(std::size_t w, std::int64_t count, std::vector<std::int64_t>& node_where) {
+    const std::size_t p0 = t.pos();
+    if (p0 >= s.size()) return false;
+    std::size_t next = 0;
+    (void)line_at(p0, next);
+    const std::size_t len = next - p0, n = static_cast<std::size_t>(count);
+    const std::size_t end = fixed_end(len, count);
+    if (end == 0) return false;
+    const std::int64_t line0 = t.cur_line();
+    m.nodes.resize(n), m.node_ids.resize(n), node_where.resize(n);
+    std::atomic<bool> bad{false};
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 8192), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t k = r.begin(); k != r.end(); ++k) {
+        std::string_view l;
+        std::int64_t id = 0;
+        double x[3] = {0, 0, 0};
+        bool ok = !bad.load(std::memory_order_relaxed) && fixed_line(p0 + k * len, len, l) && column(l, 0, 3) == "-1" &&
+                  int_field(column(l, 3, w), id);
+        for (std::size_t c = 0; ok && c < 3; ++c) ok = real_field(column(l, 3 + w + 12 * c, 12), x[c]) && std::isfinite(x[c]);
+        if (!ok) {
+          bad.store(true, std::memory_order_relaxed);
+          return;
+        }
+        m.nodes[k] = Vec3{x[0], x[1], x[2]};
+        m.node_ids[k] = id;
+        node_where[k] = line0 + static_cast<std::int64_t>(k);
+      }
+    });
+    if (bad.load()) {
+      m.nodes.clear(), m.node_ids.clear(), node_where.clear();
+      return false;
+    }
+    t.set_pos(end, line0 + count);
+    return true;
+  }
+
+  /// The `count` records of an ASCII element block in parallel when they all have the length,
+  /// the lines and the element type of the first one and a -3 follows them; then the position is
+  /// at the -3. False (element arrays empty, position unchanged) on anything else — another type,
+  /// an unknown node, a malformed field —, and the sequential loop reads the block and names it.
+  bool parallel_elements(std::size_t w, std::int64_t count) {
+    const std::size_t p0 = t.pos();
+    if (p0 >= s.size()) return false;
+    // The first record: its -1 line, then -2 lines until its type's node count.
+    std::size_t p = p0, nx = 0;
+    std::string_view l = line_at(p, nx);
+    std::int64_t type = 0;
+    ElemType et{};
+    if (column(l, 0, 3) != "-1" || !int_field(column(l, 3 + w, 5), type) || !frd_type(type, et)) return false;
+    const std::size_t nn = static_cast<std::size_t>(elem_info(et).nodes);
+    std::size_t got = 0, lines = 1;
+    for (p = nx; got < nn; p = nx, ++lines) {
+      if (p >= s.size()) return false;
+      l = line_at(p, nx);
+      if (column(l, 0, 3) != "-2") return false;
+      for (std::size_t b = 3; b < l.size(); b += w) got += !column(l, b, w).empty();
+    }
+    if (got != nn) return false;
+    const std::size_t len = p - p0, n = static_cast<std::size_t>(count);
+    const std::size_t end = fixed_end(len, count);
+    if (end == 0) return false;
+    const std::int64_t line0 = t.cur_line();
+    reserve_huge(m.elem_nodes, n * nn);
+    m.elem_types.resize(n), m.elem_ids.resize(n), m.elem_groups.resize(n), m.elem_offsets.resize(n + 1);
+    m.elem_nodes.resize(n * nn), where.resize(n);
+    const int* perm = nastran_to_vtk(et);
+    std::atomic<bool> bad{false};
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t k = r.begin(); k != r.end(); ++k) {
+        if (bad.load(std::memory_order_relaxed)) return;
+        const std::size_t q0 = p0 + k * len, qe = q0 + len;
+        std::size_t q = q0, e = 0;
+        std::string_view h = line_at(q, e);
+        std::int64_t id = 0, ty = 0, mat = 0;
+        const std::string_view fm = column(h, 3 + w + 10, 5);
+        bool ok = e <= qe && column(h, 0, 3) == "-1" && int_field(column(h, 3, w), id) && int_field(column(h, 3 + w, 5), ty) &&
+                  ty == type && (fm.empty() || int_field(fm, mat)) && mat >= INT32_MIN && mat <= INT32_MAX;
+        std::uint32_t v[32];
+        std::size_t have = 0, nl = 1;
+        for (q = e; ok && have < nn; q = e, ++nl) {
+          const std::string_view d = q < qe ? line_at(q, e) : std::string_view();
+          ok = q < qe && e <= qe && column(d, 0, 3) == "-2";
+          for (std::size_t b = 3; ok && b < d.size(); b += w) {
+            const std::string_view f = column(d, b, w);
+            if (f.empty()) continue;
+            std::int64_t node = 0;
+            const std::int64_t idx = have < nn && int_field(f, node) ? node_map.find(node) : -1;
+            ok = idx >= 0;
+            if (ok) v[have++] = static_cast<std::uint32_t>(idx);
+          }
+        }
+        if (!ok || have != nn || q != qe || nl != lines) {
+          bad.store(true, std::memory_order_relaxed);
+          return;
+        }
+        permute(perm, v, static_cast<int>(nn));
+        m.elem_types[k] = et;
+        m.elem_ids[k] = id;
+        m.elem_groups[k] = static_cast<std::int32_t>(mat);
+        m.elem_offsets[k + 1] = (k + 1) * nn;
+        std::copy(v, v + nn, m.elem_nodes.begin() + static_cast<std::ptrdiff_t>(k * nn));
+        where[k] = line0 + static_cast<std::int64_t>(k * lines);
+      }
+    });
+    if (bad.load()) {
+      m.elem_types.clear(), m.elem_ids.clear(), m.elem_groups.clear(), m.elem_nodes.clear(), where.clear();
+      m.elem_offsets.assign(1, 0);
+      return false;
+    }
+    t.set_pos(end, line0 + count * static_cast<std::int64_t>(lines));
+    return true;
+  }
+
   Status read_nodes(std::string_view header) {
     if (have_nodes) return at("a second node block (2C): one mesh per file is supported");
     std::int64_t count = 0, format = 0;
@@ -295,7 +430,8 @@ struct Reader {
     if (format <= 1) {
       const std::size_t w = format == 0 ? 5 : 10;
       std::string_view l;
-      for (std::int64_t k = 0; k < count; ++k) {
+      const bool parallel = count >= kParallelRecords && parallel_nodes(w, count, node_where);
+      for (std::int64_t k = 0; !parallel && k < count; ++k) {
         if (!line(l)) return at("node block (2C): the file ends after " + std::to_string(k) + " of " + std::to_string(count) + " nodes (truncated)");
         const std::string_view key = column(l, 0, 3);
         if (key == "-3") return at("node block (2C): -3 after " + std::to_string(k) + " nodes, the header says " + std::to_string(count) + " (wrong count)");
@@ -385,7 +521,8 @@ struct Reader {
     if (format <= 1) {
       const std::size_t w = format == 0 ? 5 : 10;
       std::string_view l;
-      for (std::int64_t k = 0; k < count; ++k) {
+      const bool parallel = count >= kParallelRecords && parallel_elements(w, count);
+      for (std::int64_t k = 0; !parallel && k < count; ++k) {
         if (!line(l)) return at("element block (3C): the file ends after " + std::to_string(k) + " of " + std::to_string(count) + " elements (truncated)");
         const std::string_view key = column(l, 0, 3);
         if (key == "-3") return at("element block (3C): -3 after " + std::to_string(k) + " elements, the header says " + std::to_string(count) + " (wrong count)");

@@ -500,6 +500,16 @@ TEST(FemIoFrd, LargeFilesReadExactlyAndNameTheirErrors) {
   ASSERT_EQ(m.fields.size(), 1u);
   ASSERT_EQ(m.fields[0].num_steps(), 8u);
   EXPECT_TRUE(m.warnings.empty());
+  for (std::size_t i = 0; i < mod.nodes.size(); ++i) {
+    ASSERT_EQ(m.node_ids[i], mod.nodes[i].first);
+    ASSERT_EQ(m.nodes[i], (Vec3{as_written(mod.nodes[i].second.x), as_written(mod.nodes[i].second.y), as_written(mod.nodes[i].second.z)}));
+  }
+  for (std::size_t e = 0; e < mod.elems.size(); ++e) {
+    ASSERT_EQ(m.elem_ids[e], mod.elems[e].id);
+    ASSERT_EQ(m.elem_types[e], ElemType::hex8);
+    ASSERT_EQ(m.element_size(e), 8);
+    for (int q = 0; q < 8; ++q) ASSERT_EQ(m.node_ids[m.element_nodes(e)[q]], mod.elems[e].nodes[static_cast<std::size_t>(q)]) << "element " << mod.elems[e].id;
+  }
   for (std::size_t s = 0; s < 8; ++s) {
     for (std::size_t i = 0; i < mod.nodes.size(); ++i) {
       ASSERT_EQ(m.node_ids[i], mod.disp[s][i].first);
@@ -521,6 +531,41 @@ TEST(FemIoFrd, LargeFilesReadExactlyAndNameTheirErrors) {
     const FemMesh r = must_read(temp_dir() / "large_ragged.frd");
     ASSERT_EQ(r.fields.size(), 1u);
     EXPECT_EQ(r.fields[0].values, m.fields[0].values);
+  }
+  {  // a tet4 among the hex8 elements (records of another length): read alike
+    Model mixed = mod;
+    mixed.elems[2000] = {mod.elems[2000].id, 3, 1, {mod.elems[2000].nodes[0], mod.elems[2000].nodes[1], mod.elems[2000].nodes[3], mod.elems[2000].nodes[4]}};
+    write_text(temp_dir() / "large_mixed.frd", write_frd(mixed, false));
+    const FemMesh r = must_read(temp_dir() / "large_mixed.frd");
+    ASSERT_EQ(r.num_elements(), mod.elems.size());
+    EXPECT_EQ(r.elem_types[2000], ElemType::tet4);
+    EXPECT_EQ(r.elem_types[2001], ElemType::hex8);
+    EXPECT_EQ(r.node_ids[r.element_nodes(2000)[3]], mod.elems[2000].nodes[4]);
+    EXPECT_EQ(r.node_ids[r.element_nodes(4899)[7]], mod.elems[4899].nodes[7]);
+  }
+  const std::size_t elems = good.find("    3C");
+  {  // an element naming an undefined node, deep in the element block: its line
+    std::string t = good;
+    const std::size_t at = t.find(" -1      3000", elems);
+    const std::size_t nodes_line = t.find('\n', at) + 1;
+    t.replace(nodes_line + 3, 10, "     99999");
+    const Error e = read_error("large_elem_node.frd", t);
+    EXPECT_NE(e.reason.find("element block (3C): element 3000: node 99999 is not defined"), std::string::npos) << e.message();
+    EXPECT_EQ(e.line, line_with(t, "     99999"));
+  }
+  {  // a malformed coordinate and a repeated node id deep in the node block: their lines
+    std::string t = good;
+    const std::size_t at = t.find(" -1      7000");
+    t.replace(at + 13 + 12, 12, " 1.00000Q+00");
+    const Error e = read_error("large_coord.frd", t);
+    EXPECT_NE(e.reason.find("node block (2C): node 7000: malformed y coordinate"), std::string::npos) << e.message();
+    EXPECT_EQ(e.line, line_with(t, "Q+00"));
+    std::string d = good;
+    const std::size_t ad = d.find(" -1      7001");
+    d.replace(ad, 13, " -1      6999");
+    const Error ed = read_error("large_dup.frd", d);
+    EXPECT_NE(ed.reason.find("duplicate node id 6999"), std::string::npos) << ed.message();
+    EXPECT_EQ(ed.line, 1 + std::count(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(ad), '\n'));
   }
   const std::size_t last = good.find("  100CL  108");
   {  // an unknown node deep in the last DISP block: its line, the block and the step
