@@ -13,9 +13,10 @@
 //      clash_scene / frames (manual time), its tree builds (prepare_s) included.
 //  BM_FemSceneSeriesStep  (target: <= 30 ms per step on 2 cores) two 10^6-element tet4 bodies,
 //      100 steps (model (c), BM_FemSeriesStep's pair) through fem_scene + clash_scene, the same way.
-//  Each scene row with the engine's default options (/clash_depth: depth and its upper bound for
-//  every clashing pair), and for comparison without the bound (/no_bound) and without the depth
-//  (/no_depth).
+//  Each scene row as the CLI runs it (/depth_maps: the engine's defaults — depth and its upper
+//  bound for every clashing pair, the check of the undeformed model — plus the per-node depth
+//  maps), with the defaults alone (/clash_depth), and for comparison without the bound (/no_bound)
+//  and without the depth (/no_depth).
 //
 // `interfere_bench_fem_targets --write-frd` writes the .frd files (if absent) and prints their
 // paths, for the script's whole-process row (`interfere clash big.frd --json out.json`).
@@ -222,13 +223,20 @@ void run_scene(benchmark::State& state, const SceneCase& c, const scene::SceneCl
   state.counters["clashes"] = static_cast<double>(last.clash_count);
   state.counters["clash_pairs"] = static_cast<double>(last.pairs.size());
   state.counters["clashing_frames"] = static_cast<double>(clashing_frames);
+  std::size_t inside = 0;
+  for (const scene::PairDepthMap& d : last.depth_maps) inside += d.a_in_b.vertices.size() + d.b_in_a.vertices.size();
+  state.counters["depth_maps"] = static_cast<double>(last.depth_maps.size());
+  state.counters["depth_map_vertices"] = static_cast<double>(inside);
 }
 
-/// The engine's options of a row: 0 its defaults (depth and its upper bound on every clashing
-/// pair), 1 without the depth, 3 the depth without its bound (to show what each costs).
+/// The engine's options of a row: 2 as `interfere clash model.frd` sets them (the defaults —
+/// depth and its upper bound on every clashing pair, the check of the undeformed model — and the
+/// penetration depth maps), 0 the defaults, 3 the depth without its bound, 1 without the depth (to
+/// show what each costs).
 scene::SceneClashOptions scene_options(std::int64_t mode) {
   scene::SceneClashOptions o;
   if (mode == 1) o.depth = false;
+  if (mode == 2) o.depth_maps = true;
   if (mode == 3) o.depth_bound_splits = 0;
   return o;
 }
@@ -239,7 +247,8 @@ void BM_FemSceneSeriesStep(benchmark::State& state) { run_scene(state, series(),
 void register_all() {
   benchmark::RegisterBenchmark("BM_FrdRead/ascii", BM_FrdRead)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
   benchmark::RegisterBenchmark("BM_FrdRead/binary", BM_FrdRead)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
-  for (const auto& [name, mode] : {std::pair{"clash_depth", 0}, std::pair{"no_bound", 3}, std::pair{"no_depth", 1}}) {
+  for (const auto& [name, mode] : {std::pair{"depth_maps", 2}, std::pair{"clash_depth", 0}, std::pair{"no_bound", 3},
+                                   std::pair{"no_depth", 1}}) {
     benchmark::RegisterBenchmark((std::string("BM_Fem20BodiesStep/") + name).c_str(), BM_Fem20BodiesStep)
         ->Arg(mode)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(1);
     benchmark::RegisterBenchmark((std::string("BM_FemSceneSeriesStep/") + name).c_str(), BM_FemSceneSeriesStep)

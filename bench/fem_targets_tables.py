@@ -147,16 +147,20 @@ def scene_rows(res: dict, family: str, target: float) -> list[str]:
            "candidate pairs | clash pairs | frames with clashes |",
            "| --- | ---: | ---: | --- | ---: | ---: | ---: | ---: | ---: |"]
     for variant, what in (("depth_maps", "as `interfere clash model.frd`: clash, depth and bound, depth maps"),
-                          ("clash_depth", "engine defaults: clash, depth and its upper bound"),
+                          ("clash_depth", "engine defaults: clash, depth and its upper bound (no depth maps)"),
                           ("no_bound", "clash and depth, no upper bound (for comparison)"),
                           ("no_depth", "clash only, no depth (for comparison)")):
         r = res.get(f"{family}/{variant}")
         if not r or "error" in r:
             continue
-        judged = variant in ("depth_maps", "clash_depth")
+        judged = variant == "depth_maps" or (variant == "clash_depth" and f"{family}/depth_maps" not in res)
         out.append(f"| {what} | {fmt_ms(r)} | {target:.0f} ms | {verdict(r['ms'], target) if judged else '(not judged)'} "
                    f"| {r['clash_scene_s']:.2f} s | {r['prepare_s'] * 1e3:.1f} ms | {r['candidate_pairs']:.0f} "
                    f"| {r['clash_pairs']:.0f} | {r['clashing_frames']:.0f} of {r['frames']:.0f} |")
+    d = res.get(f"{family}/depth_maps")
+    if d and "error" not in d and d.get("depth_maps"):
+        out += ["", f"Depth maps of the first row: {d['depth_maps']:.0f} (pair, step) maps, {d['depth_map_vertices']:.0f} "
+                "surface vertices inside the other body in all, each with its depth."]
     return out
 
 

@@ -30,8 +30,8 @@
 // benchmarks a fresh 4 KiB page costs several microseconds: a 10-step DISP series is 250 MB),
 // numbers are parsed by an exact fast path (Clinger: at most 15 digits and |exponent| <= 22 give a
 // correctly rounded double with one multiplication or division, as std::from_chars would; anything
-// else goes to from_chars), and an ASCII DISP block is parsed in parallel chunks (oneTBB) when its
-// records are one line each. The parallel pass only accepts what the sequential reader accepts:
+// else goes to from_chars), and ASCII node, element and DISP blocks and binary DISP blocks are
+// parsed in parallel chunks (oneTBB) when their records have one layout (what ccx writes). The parallel pass only accepts what the sequential reader accepts:
 // on anything unusual it gives up, and the sequential reader reads the block again from its start
 // and reports the error with its line, so errors and values do not depend on the path taken.
 #include <tbb/blocked_range.h>
