@@ -210,7 +210,7 @@ double depth_into(const Model& x, const Model& y, const std::vector<char>& paire
 // result. Each corner's distance and nearest triangle are computed once (shared by the pieces
 // around it; a parent's nearest triangle seeds a midpoint's search, the same exact result).
 double depth_bound(const Model& x, const Model& y, const std::vector<char>& paired,
-                   const std::vector<signed char>& side, double lower, std::size_t max_splits) {
+                   const std::vector<signed char>& side, double lower, std::size_t max_splits, const DepthMap* map) {
   const TriMesh& m = x.mesh;
   const auto nt = static_cast<std::uint32_t>(m.num_triangles());
   const auto meets_y = [&](const std::array<Vec3, 3>& c) {
@@ -252,10 +252,11 @@ double depth_bound(const Model& x, const Model& y, const std::vector<char>& pair
       if (heap.capacity() <= (std::size_t{1} << 16)) heap.swap(spare);  // (at most ~9 MB kept per thread)
     }
   } give_back{heap};
-  // A piece of x that may lie inside y, with its bound; dropped when it lies outside.
-  const auto add = [&](const std::array<Corner, 3>& c, bool inside) {
+  // A piece of x that may lie inside y, with its bound; dropped when it lies outside. `meets`: known
+  // to meet y (x's triangles in the clash's pairs), no test needed.
+  const auto add = [&](const std::array<Corner, 3>& c, bool inside, bool meets = false) {
     const std::array<Vec3, 3> p{c[0].p, c[1].p, c[2].p};
-    if (!inside && !meets_y(p)) {
+    if (!inside && !meets && !meets_y(p)) {
       if (point_in_solid(y, p[0]) == 0) return;  // (1 inside, -1 undecided: kept)
       inside = true;
     }
@@ -275,8 +276,26 @@ double depth_bound(const Model& x, const Model& y, const std::vector<char>& pair
   std::vector<double> vd(m.num_vertices(), -1);  // corners of x's own triangles, once per vertex
   std::vector<std::uint32_t> vt(m.num_vertices(), kNoTriangle);
   std::uint32_t last = kNoTriangle;  // the previous corner's nearest triangle seeds the next search
+  const bool use_map = map && map->depth.size() == m.num_vertices() && map->side.size() == m.num_vertices();
   for (std::uint32_t t = 0; t < nt; ++t) {
     if (!paired[t] && side[t] == 0) continue;  // (undecided: kept)
+    if (use_map) {
+      // The Lipschitz bound from the map's distances (inside vertices; the others are searched as
+      // below): a triangle whose bound stays within `lower` can neither raise the result nor be
+      // split (only pieces above 1.1 lower are), so it is left out before any search of its own.
+      double far = 0;
+      bool known = true;
+      for (const std::uint32_t v : m.triangles[t]) {
+        if (map->side[v] == 1) far = std::max(far, map->depth[v]);
+        else if (vd[v] >= 0) far = std::max(far, vd[v]);
+        else known = false;
+      }
+      if (known) {
+        const auto p = m.corners(t);
+        const double edge = std::max({norm(p[1] - p[0]), norm(p[2] - p[1]), norm(p[0] - p[2])});
+        if (far + edge / std::sqrt(3.0) <= lower) continue;
+      }
+    }
     std::array<Corner, 3> c;
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t v = m.triangles[t][k];
@@ -287,7 +306,7 @@ double depth_bound(const Model& x, const Model& y, const std::vector<char>& pair
       }
       c[k] = {m.positions[v], vd[v], vt[v]};
     }
-    add(c, !paired[t]);
+    add(c, !paired[t], paired[t] != 0);
   }
   for (std::size_t split = 0; split < max_splits && !heap.empty() && heap.front().bound > 1.1 * lower; ++split) {
     std::pop_heap(heap.begin(), heap.end(), lower_bound_first);
@@ -377,8 +396,10 @@ PenetrationDepth penetration_depth(const Model& a, const Model& b, const ClashRe
   out.depth_bound = out.depth;
   if (max_splits > 0) {
     out.bounded = true;
-    out.depth_bound = std::max({out.depth, detail::depth_bound(a, b, pa, sa, out.depth, max_splits),
-                                detail::depth_bound(b, a, pb, sb, out.depth, max_splits)});
+    double ba = 0, bb = 0;  // (the two directions side by side)
+    tbb::parallel_invoke([&] { ba = detail::depth_bound(a, b, pa, sa, out.depth, max_splits, &ma); },
+                         [&] { bb = detail::depth_bound(b, a, pb, sb, out.depth, max_splits, &mb); });
+    out.depth_bound = std::max({out.depth, ba, bb});
   }
   if (maps) *maps = {std::move(ma), std::move(mb)};
   return out;
