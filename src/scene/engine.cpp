@@ -230,6 +230,10 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
   for (const Frame& fr : scene.frames) deforms = deforms || !fr.shapes.empty();
   const std::size_t ref_pass = moving && deforms && options.reference ? 1 : 0;
   result.reference_checked = ref_pass == 1;
+  bool tolerant = false;  // a test whose penetration tolerance the depth bound decides
+  for (const ClashTest& t : tests) tolerant = tolerant || (t.mode == ClashMode::hard && t.tolerance > 0);
+  const std::size_t bound_splits =
+      moving && !tolerant ? std::min(options.depth_bound_splits, options.frame_depth_bound_splits) : options.depth_bound_splits;
   for (std::size_t pass = 0; pass < frame_count + ref_pass; ++pass) {
     const bool reference = pass < ref_pass;
     const std::size_t f = pass - ref_pass;  // (unused in the reference pass)
@@ -336,7 +340,7 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
         const Candidate& c = cands[k];
         const detail::PairContext ctx{scene, tests[c.test], c.test, options, world, st.pose,
                                       [&](std::uint32_t j) -> const std::vector<Vec3>& { return local_positions(scene, st, j); },
-                                      many_pairs};
+                                      many_pairs, bound_splits};
         const bool dup = tests[c.test].mode == ClashMode::duplicates;
         if (!dup && i == unit_start[u]) {
           core = detail::core_pair(ctx, c.a, c.b, c.clearance);

@@ -47,6 +47,9 @@ struct PairContext {
   /// Many pairs run side by side: a small pair's core runs on one thread (no nested tasks; the
   /// core's result does not depend on it), a large one stays parallel inside.
   bool many_pairs = false;
+  /// Splits per direction of the depth bound for this evaluation (SceneClashOptions::depth_bound_splits,
+  /// or frame_depth_bound_splits in frames where no test has a penetration tolerance).
+  std::size_t depth_bound_splits = 5000;
 };
 
 /// The exact core's answer for bodies a and b at one clearance (the largest any test of the pair

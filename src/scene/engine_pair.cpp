@@ -109,7 +109,7 @@ PairCore core_pair(const PairContext& c, std::uint32_t a, std::uint32_t b, doubl
   const bool inside = core.r.containment == Containment::a_inside_b || core.r.containment == Containment::b_inside_a;
   if (c.options.depth && (crossing || (inside && c.options.depth_maps)) && wa.stats().closed() && wb.stats().closed()) {
     // (containment: the maps only; the pair's depth stays unmeasured as before)
-    const PenetrationDepth d = penetration_depth(wa.model(), wb.model(), core.r, c.options.depth_bound_splits,
+    const PenetrationDepth d = penetration_depth(wa.model(), wb.model(), core.r, c.depth_bound_splits,
                                                  c.options.depth_maps ? &core.maps : nullptr);
     if (crossing) core.depth = d, core.depth_known = true;
     core.maps_known = c.options.depth_maps;
