@@ -114,12 +114,13 @@ FemMesh two_body_series_model(std::size_t elements_per_body, int steps) {
   const int n = tet_cells_for(elements_per_body);
   FemMesh m;
   const FemBoxOptions o{.type = ElemType::tet4, .nx = n, .ny = n, .nz = n};
-  append_body(m, make_fem_box(o).mesh, "A");
+  const Range a = append_body(m, make_fem_box(o).mesh, "A");
   const Range b = append_body(m, make_fem_sphere(o, 0.5, {1.6, 0.5, 0.5}).mesh, "B");
   NodalSeries& u = new_disp(m, steps);
   for (int k = 0; k < steps; ++k) {
     u.times[static_cast<std::size_t>(k)] = k;
     std::vector<Vec3>& v = u.values[static_cast<std::size_t>(k)];
+    for (std::size_t i = a.begin; i < a.end; ++i) v[i] = Vec3{0, 0, -1e-4 * k * m.nodes[i].x * m.nodes[i].x};
     for (std::size_t i = b.begin; i < b.end; ++i) v[i] = Vec3{-0.01 * k, 0, 0};
   }
   return m;

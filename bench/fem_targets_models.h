@@ -13,7 +13,8 @@
 //      0.01k (z += 0.01k(x - cx)).
 //  (c) two_body_series_model: the pair of BM_FemSeriesStep (bench_fem.cpp): A a tet4 unit box,
 //      B a tet4 ball of radius 0.5 at (1.6, 0.5, 0.5), n³ cells × 6 tets each, B moved by -0.01k
-//      in x at step k (touching A at k = 10, 0.9 deep at k = 99), A still.
+//      in x at step k (touching A at k = 10, 0.9 deep at k = 99), A sagging by -1e-4·k·x² in z (so
+//      that both bodies change at every step and both are refitted, as in a real analysis).
 #pragma once
 #include <cstddef>
 
