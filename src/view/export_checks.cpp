@@ -50,6 +50,7 @@ void check_mesh(const Document& doc, std::size_t m) {
   };
   per_triangle(vm.face_colors.size(), "face_colors");
   per_triangle(vm.clash_flags.size(), "clash_flags");
+  per_triangle(vm.clash_region.size(), "clash_region");
   per_triangle(vm.source_ids.size(), "source_ids");
   for (std::size_t t = 0; t < vm.face_colors.size(); ++t)
     if (vm.face_colors[t] >= doc.legend.size())

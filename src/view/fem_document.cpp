@@ -177,12 +177,17 @@ Document fem_series_document(FemSeriesInput in, const FemSeriesDocumentOptions& 
     for (std::size_t f = 0; f < nf; ++f) {
       FemSeriesStep& s = in.steps[f];
       std::vector<std::uint8_t> flags;
+      std::vector<std::int32_t> regions;
       bool flagged = false;
       if (nt > 0) {
         flags.assign(nt, 0);
-        for (const ClashRegion& g : s.regions)
-          for (const std::uint32_t t : side == 0 ? g.triangles_a : g.triangles_b)
-            if (t < nt) flags[t] = 1, flagged = true;
+        regions.assign(nt, -1);
+        for (std::size_t g = 0; g < s.regions.size(); ++g)
+          for (const std::uint32_t t : side == 0 ? s.regions[g].triangles_a : s.regions[g].triangles_b)
+            if (t < nt) {
+              flags[t] = 1, flagged = true;
+              if (regions[t] < 0) regions[t] = static_cast<std::int32_t>(g);
+            }
       }
       const bool fits = positions_fit(body, s.positions[side]);
       if (body.surface && !fits)
@@ -201,7 +206,7 @@ Document fem_series_document(FemSeriesInput in, const FemSeriesDocumentOptions& 
       }
       if (last >= 0) {
         const ViewMesh& prev = doc.meshes[static_cast<std::size_t>(last)];
-        const bool same_flags = flagged ? prev.clash_flags == flags : prev.clash_flags.empty();
+        const bool same_flags = flagged ? prev.clash_flags == flags && prev.clash_region == regions : prev.clash_flags.empty();
         const bool same_shape = fits ? prev.mesh.num_triangles() == nt && prev.mesh.positions == s.positions[side]
                                      : prev.mesh.num_triangles() == 0;
         if (same_flags && same_shape && prev.point_depth == depth) {
@@ -214,7 +219,7 @@ Document fem_series_document(FemSeriesInput in, const FemSeriesDocumentOptions& 
         vm.mesh.positions = std::move(s.positions[side]);
         vm.mesh.triangles = body.surface->triangles;
         if (ids) vm.source_ids = body.source_ids;
-        if (flagged) vm.clash_flags = std::move(flags);
+        if (flagged) vm.clash_flags = std::move(flags), vm.clash_region = std::move(regions);
         vm.point_depth = std::move(depth);
       }
       vm.source_triangles = vm.mesh.num_triangles();

@@ -133,14 +133,17 @@ void cells(VtpWriter& w, const char* tag, const std::vector<std::int64_t>& conne
 std::string bodies_file(const Document& doc, std::size_t k, bool framed) {
   std::vector<Vec3> points;
   std::vector<std::int64_t> connectivity, ends;
-  std::string body, clash, source, depth;
-  bool any_source = false, any_depth = false;
+  std::string body, clash, region, source, depth;
+  bool any_source = false, any_depth = false, any_region = false;
   for (const ViewBody& b : doc.bodies) {
     const std::uint32_t m = framed && !b.frame_meshes.empty() ? b.frame_meshes[k] : b.mesh;
     any_source = any_source || !doc.meshes[m].source_ids.empty();
   }
   // (penetration_depth in every file of a series when any mesh has it, for ParaView's colouring)
-  for (const ViewMesh& m : doc.meshes) any_depth = any_depth || !m.point_depth.empty();
+  for (const ViewMesh& m : doc.meshes) {
+    any_depth = any_depth || !m.point_depth.empty();
+    any_region = any_region || !m.clash_region.empty();  // (likewise in every file of a series)
+  }
   for (std::size_t bi = 0; bi < doc.bodies.size(); ++bi) {
     const ViewBody& b = doc.bodies[bi];
     const ViewMesh& vm = doc.meshes[framed && !b.frame_meshes.empty() ? b.frame_meshes[k] : b.mesh];
@@ -152,6 +155,7 @@ std::string bodies_file(const Document& doc, std::size_t k, bool framed) {
       ends.push_back(static_cast<std::int64_t>(connectivity.size()));
       put<std::int32_t>(body, static_cast<std::int32_t>(bi));
       put<std::uint8_t>(clash, vm.clash_flags.empty() ? 0 : vm.clash_flags[t]);
+      if (any_region) put<std::int32_t>(region, vm.clash_region.empty() ? -1 : vm.clash_region[t]);
       if (any_source) put<std::int64_t>(source, vm.source_ids.empty() ? -1 : vm.source_ids[t]);
     }
     if (any_depth)
@@ -172,6 +176,7 @@ std::string bodies_file(const Document& doc, std::size_t k, bool framed) {
   w.text("</PointData>\n<CellData>\n");
   w.array("Int32", "body", 1, body);
   w.array("UInt8", "clash", 1, clash);
+  if (any_region) w.array("Int32", "clash_region", 1, region);
   if (any_source) w.array("Int64", "source_id", 1, source);
   w.text("</CellData>\n");
   points_array(w, points);

@@ -227,14 +227,19 @@ Document scene_document(const Scene& s, const std::vector<scene::ClashTest>& tes
 
   // Per-triangle clash flags on the meshes one body draws: the static mesh, and a deformed frame
   // mesh where the clash is present in a frame that draws it.
-  const auto flag = [&](std::uint32_t body, const std::vector<std::uint32_t>& tris, const std::vector<std::uint32_t>& frames) {
+  const auto flag = [&](std::uint32_t body, const std::vector<std::uint32_t>& tris, const std::vector<std::uint32_t>& frames,
+                        std::int32_t index) {
     const ViewBody& vb = doc.bodies[body];
     const auto mark = [&](std::uint32_t m) {
       if (users[m] != 1) return;
       ViewMesh& vm = doc.meshes[m];
       vm.clash_flags.resize(vm.mesh.num_triangles(), 0);
+      vm.clash_region.resize(vm.mesh.num_triangles(), -1);
       for (const std::uint32_t t : tris)
-        if (t < vm.clash_flags.size()) vm.clash_flags[t] = 1;
+        if (t < vm.clash_flags.size()) {
+          vm.clash_flags[t] = 1;
+          if (vm.clash_region[t] < 0) vm.clash_region[t] = index;  // (the first clash listing it)
+        }
     };
     mark(vb.mesh);
     if (vb.frame_meshes.empty()) return;
@@ -246,10 +251,12 @@ Document scene_document(const Scene& s, const std::vector<scene::ClashTest>& tes
         if (f < vb.frame_meshes.size() && vb.frame_meshes[f] != vb.mesh) mark(vb.frame_meshes[f]);
     }
   };
+  std::int32_t clash_index = 0;  // (the index the clash gets in doc.clashes below)
   for (const SceneClash& c : result.clashes) {
     if (c.a >= doc.bodies.size() || c.b >= doc.bodies.size()) continue;
-    flag(c.a, c.triangles_a, c.frames);
-    flag(c.b, c.triangles_b, c.frames);
+    flag(c.a, c.triangles_a, c.frames, clash_index);
+    flag(c.b, c.triangles_b, c.frames, clash_index);
+    ++clash_index;
   }
 
   // Penetration depth per vertex (SceneClashResult::depth_maps; issue #26, item 3) on a mesh of its

@@ -59,6 +59,9 @@ class FemView(unittest.TestCase):
         for k, (_, _, _, f) in enumerate(bodies):
             v = read_vtp(os.path.join(base, f))
             body, ids, flags = v["cell"]["body"], v["cell"]["source_id"], v["cell"]["clash"]
+            # clash_region (issue #26, item 3): the step's region number on exactly the flagged cells
+            region = v["cell"]["clash_region"]
+            self.assertEqual([g >= 0 for g in region], [bool(fl) for fl in flags], k)
             self.assertEqual(len(body), v["polys"])
             # Every hex of a 2x2x2 block has a boundary face: the element ids of each body, exactly.
             self.assertEqual(sorted({i for b, i in zip(body, ids) if b == 0}), list(range(1, 9)))

@@ -28,6 +28,10 @@ struct ViewMesh {
   std::vector<std::uint8_t> clash_flags;
   std::vector<std::int64_t> source_ids;  ///< optional, per triangle (FE element ids, B-Rep faces)
   std::vector<double> point_depth;        ///< optional, per vertex: penetration depth (>= 0) where known
+  /// Optional, per triangle: the clash region holding it (scene documents: the index into
+  /// Document::clashes; FE series: the step's region number), -1 none (issue #26, item 3: the
+  /// ParaView series' `clash_region`).
+  std::vector<std::int32_t> clash_region;
   std::size_t source_triangles = 0;       ///< triangles before decimation (== mesh size when not decimated)
   double decimation_error = 0;            ///< the simplifier's error bound when decimated (0 otherwise)
 };

@@ -10,7 +10,9 @@
 // bodies_<k>.vtp: every body in world coordinates at step k (its frame pose, else `pose`; its
 // frame mesh, else `mesh`), triangles as polygons, points Float64. Cell data: `body` (Int32, the
 // body's index; field data `body_names` and `body_ids` name them), `clash` (UInt8,
-// ViewMesh::clash_flags, 0 where absent), `source_id` (Int64, ViewMesh::source_ids: FE element ids,
+// ViewMesh::clash_flags, 0 where absent), `clash_region` (Int32, ViewMesh::clash_region: the clash
+// index of the clashes files, or an FE series step's region number; -1 where none; in every file when
+// any mesh of the document has it), `source_id` (Int64, ViewMesh::source_ids: FE element ids,
 // B-Rep faces; -1 where absent; only when some body has them). Point data: `penetration_depth`
 // (Float64, ViewMesh::point_depth; NaN where a body has none; in every file of a series when any
 // mesh of the document has it).

@@ -232,6 +232,24 @@ TEST(SceneFrames, DepthMapsMatchTheBoxesAnalyticDepths) {
       for (double d : other.point_depth) EXPECT_EQ(d, 0.0);
     }
   }
+  // clash_region: on C's frame-3 mesh (C deforms: a mesh per frame) exactly the clash's triangles
+  // carry its index (scene::SceneClash order = the document's clashes), the others -1. (A does
+  // not deform: its one mesh carries the regions of every frame, the first clash listing each.)
+  std::size_t clashes = 0;
+  for (std::size_t i = 0; i < r.clashes.size(); ++i) {
+    const SceneClash& c = r.clashes[i];
+    if (c.verdict != Verdict::clash) continue;
+    ++clashes;
+    ASSERT_EQ(s.bodies[c.b].id, "C");
+    const view::ViewMesh& vm = doc.meshes[doc.bodies[c.b].frame_meshes[3]];
+    ASSERT_EQ(vm.clash_region.size(), vm.mesh.num_triangles());
+    for (std::uint32_t t : c.triangles_b) EXPECT_EQ(vm.clash_region[t], static_cast<std::int32_t>(i)) << t;
+    std::size_t marked = 0, other = 0;
+    for (std::int32_t g : vm.clash_region) marked += g == static_cast<std::int32_t>(i), other += g >= 0 && g != static_cast<std::int32_t>(i);
+    EXPECT_EQ(marked, c.triangles_b.size());
+    EXPECT_EQ(other, 0u);
+  }
+  EXPECT_EQ(clashes, 1u);
 }
 
 }  // namespace
