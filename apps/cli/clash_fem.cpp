@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <filesystem>
 
 #include "clash_options.h"
@@ -27,12 +28,15 @@ struct RegionMesh {
   FemWriteOptions options;
 };
 
-RegionMesh region_mesh(const ClashResult& r, const FemPart* parts[2], const std::vector<Vec3>* positions[2]) {
+// The clash regions of both parts as one surface mesh; `maps` (the step's depth maps, when
+// measured) add the point data penetration_depth (issue #26, item 3).
+RegionMesh region_mesh(const ClashResult& r, const FemPart* parts[2], const std::vector<Vec3>* positions[2],
+                       const DepthMaps* maps) {
   RegionMesh out;
   FemMesh& m = out.mesh;
   m.groups = {{.name = "A", .id = 1, .dim = 2}, {.name = "B", .id = 2, .dim = 2}};
   FemArray elem{.name = "fem_element_id"}, face{.name = "fem_face"}, part{.name = "part"}, region{.name = "region"};
-  FemArray node_id{.name = "fem_node_id"};
+  FemArray node_id{.name = "fem_node_id"}, depth{.name = "penetration_depth"};
   for (int side = 0; side < 2; ++side) {
     const SurfacePart& sp = parts[side]->part();
     const FemMesh& fm = *parts[side]->mesh;
@@ -48,6 +52,13 @@ RegionMesh region_mesh(const ClashResult& r, const FemPart* parts[2], const std:
             m.nodes.push_back((*positions[side])[sp.mesh.triangles[t][k]]);
             m.node_ids.push_back(static_cast<std::int64_t>(m.nodes.size()));
             node_id.ints.push_back(fm.node_ids[sp.vertex_node[sp.mesh.triangles[t][k]]]);
+            if (maps) {
+              const DepthMap& dm = side == 0 ? maps->a : maps->b;
+              const std::uint32_t vx = sp.mesh.triangles[t][k];
+              depth.reals.push_back(vx < dm.side.size() && dm.side[vx] == -1 ? std::numeric_limits<double>::quiet_NaN()
+                                    : vx < dm.depth.size()                 ? dm.depth[vx]
+                                                                           : 0.0);
+            }
           }
           v[k] = l;
         }
@@ -61,6 +72,7 @@ RegionMesh region_mesh(const ClashResult& r, const FemPart* parts[2], const std:
   }
   out.options.cell_data = {elem, face, part, region};
   out.options.point_data = {node_id};
+  if (maps) out.options.point_data.push_back(std::move(depth));
   return out;
 }
 
@@ -140,7 +152,8 @@ void add_fem_clash_options(CLI::App& c, ClashOptions& o) {
   c.add_flag("--linear-faces", o.linear_faces, "FEM: quadratic faces by their corners only");
   c.add_option("--split", o.split, "FEM: bodies by auto (default), group, connectivity, single");
   c.add_option("--regions-vtu", o.regions_vtu,
-               "FEM: write the clash regions (.vtu; cell data fem_element_id, fem_face, part, region)");
+               "FEM: write the clash regions (.vtu; cell data fem_element_id, fem_face, part, region; point data "
+               "fem_node_id and, at a clashing step, penetration_depth)");
 }
 
 int run_fem_clash(const ClashOptions& o, const ResolvedParts& parts, const ClashRequest& request) {
@@ -189,8 +202,18 @@ int run_fem_clash(const ClashOptions& o, const ResolvedParts& parts, const Clash
   std::vector<view::FemSeriesStep> view_steps;  // --html/--glb/--pvd: the regions of every checked step
   DepthMaps step_maps;  // --pvd etc.: the depth maps of the step on_step is about to hand over
   bool step_mapped = false;
+  DepthMaps first_clash_maps;  // --regions-vtu: the depth maps of the first clashing step (the one shown)
+  bool first_clash_mapped = false;
+  if (!o.regions_vtu.empty() && !o.views.any())
+    sr.on_depth_maps = [&](const StepSummary& s, const DepthMaps& m) {
+      if (!first_clash_mapped && s.verdict == Verdict::clash) first_clash_maps = m, first_clash_mapped = true;
+    };
   if (o.views.any()) {
-    sr.on_depth_maps = [&](const StepSummary&, const DepthMaps& m) { step_maps = m, step_mapped = true; };
+    sr.on_depth_maps = [&](const StepSummary& s, const DepthMaps& m) {
+      if (!o.regions_vtu.empty() && !first_clash_mapped && s.verdict == Verdict::clash)
+        first_clash_maps = m, first_clash_mapped = true;
+      step_maps = m, step_mapped = true;
+    };
     sr.on_step = [&](const StepSummary& s, const ClashResult& r) {
       view_steps.push_back(view::fem_series_step(s.step, s.time, r));
       if (step_mapped) view_steps.back().depth = {std::move(step_maps.a.depth), std::move(step_maps.b.depth)};
@@ -259,7 +282,8 @@ int run_fem_clash(const ClashOptions& o, const ResolvedParts& parts, const Clash
     } else {
       const FemPart* ps[2] = {&a, &b};
       const std::vector<Vec3>* pp[2] = {&pos_a, &pos_b};
-      RegionMesh rm = region_mesh(result, ps, pp);
+      const bool maps_shown = first_clash_mapped && sres.verdict == Verdict::clash;  // (shown = first clashing step)
+      RegionMesh rm = region_mesh(result, ps, pp, maps_shown ? &first_clash_maps : nullptr);
       write_or_throw(write_fem(rm.mesh, o.regions_vtu, rm.options));
     }
   }

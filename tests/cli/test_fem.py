@@ -193,6 +193,44 @@ class FemCli(unittest.TestCase):
             for e, face in fem["faces_a"]:
                 self.assertEqual(face, 4)  # hex face S4 = (1,5,6,2): the +x face
         self.assertIn(b'Name="fem_element_id"', read_bytes(path("regions.vtu")))
+        self.check_region_depths(path("regions.vtu"), 5)
+
+    def check_region_depths(self, vtu, step):
+        """Issue #26, item 3: the regions file's point data penetration_depth, read by VTK's own XML
+        reader (an independent reader; python3-paraview ships it), equals each node's analytic
+        inside-distance in the other block at the step (A = [0,1]^3 with node ids 1..27; B =
+        [1.5,2.5] x [0.2,0.8]^2 moved by -V step)."""
+        try:
+            from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
+        except ImportError:
+            self.skipTest("VTK's Python modules (python3-paraview) are not installed")
+        reader = vtkXMLUnstructuredGridReader()
+        reader.SetFileName(vtu)
+        reader.Update()
+        grid = reader.GetOutput()
+        pd = grid.GetPointData()
+        self.assertIsNotNone(pd.GetArray("penetration_depth"))
+        n = grid.GetNumberOfPoints()
+        depth = [pd.GetArray("penetration_depth").GetValue(i) for i in range(n)]
+        ids = [pd.GetArray("fem_node_id").GetValue(i) for i in range(n)]
+
+        class M:
+            points = [grid.GetPoint(i) for i in range(n)]
+        m = M()
+        a_box = ((0.0, 1.0), (0.0, 1.0), (0.0, 1.0))
+        b_box = ((1.5 - V * step, 2.5 - V * step), (0.2, 0.8), (0.2, 0.8))
+
+        def inside(p, box):
+            if not all(lo < c < hi for c, (lo, hi) in zip(p, box)):
+                return 0.0
+            return min(min(c - lo, hi - c) for c, (lo, hi) in zip(p, box))
+        self.assertGreater(len(depth), 0)
+        deepest = 0.0
+        for p, d, n in zip(m.points, depth, ids):
+            expect = inside(p, b_box if int(n) < 1000 else a_box)
+            self.assertAlmostEqual(float(d), expect, places=12, msg=(p, n))
+            deepest = max(deepest, float(d))
+        self.assertGreater(deepest, 0.0)
 
     def test_regions_file_holds_the_region_triangles(self):
         # Written through write_fem (.msh here, .vtu in the series test: the same code path).
