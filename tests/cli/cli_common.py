@@ -56,6 +56,21 @@ def write_obj(name, mesh):
     return path(name)
 
 
+def assert_input_error(test, args, needles, outputs=()):
+    """Runs `interfere *args` expecting bad input: exit status 2, every needle in stderr, and none of
+    `outputs` written (removed first). Returns stderr."""
+    for o in outputs:
+        if os.path.exists(o):
+            os.remove(o)
+    rc, out, err = run(*args)
+    test.assertEqual(rc, 2, out + err)
+    for n in needles:
+        test.assertIn(n, err)
+    for o in outputs:
+        test.assertFalse(os.path.exists(o), o)
+    return err
+
+
 def main():
     """Reads EXE and WORK from the command line, empties WORK, runs the calling module's tests."""
     global EXE, WORK

@@ -12,7 +12,7 @@ import unittest
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import cli_common  # noqa: E402
-from cli_common import path, run, load_json  # noqa: E402
+from cli_common import assert_input_error, path, run, load_json  # noqa: E402
 
 
 def hex_box(lo, hi, n, first_node, first_elem):
@@ -112,15 +112,7 @@ class FemCli(unittest.TestCase):
         cls.model = write_model("model.msh")
 
     def assert_input_error(self, args, needles, outputs=()):
-        for o in outputs:
-            if os.path.exists(o):
-                os.remove(o)
-        rc, out, err = run(*args)
-        self.assertEqual(rc, 2, out + err)
-        for n in needles:
-            self.assertIn(n, err)
-        for o in outputs:
-            self.assertFalse(os.path.exists(o), o)
+        assert_input_error(self, args, needles, outputs)
 
     def test_surface_of_each_body_is_closed_and_outward(self):
         rc, out, err = run("surface", self.model, path("all.stl"), "--json", path("all.json"))

@@ -24,7 +24,7 @@ import unittest
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import cli_common  # noqa: E402
-from cli_common import load_json, path, run  # noqa: E402
+from cli_common import assert_input_error, load_json, path, run  # noqa: E402
 
 try:
     import meshio
@@ -290,16 +290,7 @@ class FemInputs(unittest.TestCase):
                 yield fmt, self.files[fmt], bodies, field
 
     def assert_bad(self, args, needles, outputs=()):
-        for o in outputs:
-            if os.path.exists(o):
-                os.remove(o)
-        rc, out, err = run(*args)
-        self.assertEqual(rc, 2, out + err)
-        for n in needles:
-            self.assertIn(n, err)
-        for o in outputs:
-            self.assertFalse(os.path.exists(o), o)
-        return err
+        return assert_input_error(self, args, needles, outputs)
 
     # ---- distance ----
 
