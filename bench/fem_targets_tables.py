@@ -159,7 +159,7 @@ def scene_rows(res: dict, family: str, target: float) -> list[str]:
                    f"| {r['clash_pairs']:.0f} | {r['clashing_frames']:.0f} of {r['frames']:.0f} |")
     d = res.get(f"{family}/depth_maps")
     if d and "error" not in d and d.get("depth_maps"):
-        out += ["", f"Depth maps of the first row: {d['depth_maps']:.0f} (pair, step) maps, {d['depth_map_vertices']:.0f} "
+        out += ["", f"Depth maps of the first row: {d['depth_maps']:.0f} (pair, step) maps, {d['depth_map_vertices']:,.0f} "
                 "surface vertices inside the other body in all, each with its depth."]
     return out
 
@@ -179,7 +179,7 @@ def write_doc(raw: dict) -> None:
     L += ["## (a) Reading a 10^6-element CalculiX `.frd` with 10 steps — target ≤ 2 s", ""]
     a = res.get("BM_FrdRead/ascii", {})
     if a and "error" not in a:
-        L += [f"Two hex8 (C3D8) boxes, {a['elements']:.0f} elements, {a['nodes']:.0f} nodes, "
+        L += [f"Two hex8 (C3D8) boxes, {a['elements']:,.0f} elements, {a['nodes']:,.0f} nodes, "
               f"{a['steps']:.0f} DISP steps (`bench/fem_targets_models.h` (a); B moves into A from step 3 on), "
               "written by the bench-only writer `bench/frd_bench_writer.cpp` as ccx 2.20 writes them: ASCII long "
               "format (`*NODE FILE`) and binary (`*NODE OUTPUT`: nodes float64, results float32). The read is "
@@ -197,7 +197,7 @@ def write_doc(raw: dict) -> None:
                      f"(not the target's measure: it also extracts the surfaces, checks the undeformed model and 10 "
                      f"frames and writes the report; exit status {r['exit_status']}) |")
     L += ["", "How: `src/fem/io/frd_read.cpp` maps the file (no copy), advises huge pages for its large arrays, "
-          "parses numbers with an exact fast path and reads the DISP blocks in parallel chunks. Before, the "
+          "parses numbers with an exact fast path and reads the node, element and DISP blocks in parallel chunks. Before, the "
           "same files took 7.0 s (ASCII) and 3.6 s (binary) on this machine, most of it in page faults of "
           "freshly allocated memory (a fresh 4 KiB page costs microseconds on this VM).", ""]
 
@@ -205,13 +205,13 @@ def write_doc(raw: dict) -> None:
     b = res.get("BM_Fem20BodiesStep/clash_depth", {})
     if b and "error" not in b:
         L += [f"{b['bodies']:.0f} tet4 bodies (unit boxes and balls of radius 0.5 in a checkerboard on a 5 × 4 grid "
-              f"of pitch 1.1), {b['elements']:.0f} elements, {b['nodes']:.0f} nodes, {b['triangles']:.0f} surface "
+              f"of pitch 1.1), {b['elements']:,.0f} elements, {b['nodes']:,.0f} nodes, {b['triangles']:,.0f} surface "
               f"triangles, {b['frames']:.0f} steps in which every ball grows (6 % of its radius per step: it "
               "crosses its 2–4 box neighbours from step 4 on) and every box shears; built in memory "
               "(`bench/fem_targets_models.h` (b)), made a scene by `fem_scene` and checked by "
               "`scene::clash_scene` with the default all-pairs test. Per step = the whole clash_scene / steps: "
               "its tree builds and, with the engine's defaults, its one check of the undeformed model "
-              "(SceneClashOptions::reference, one frame's work) are included.",
+              "(SceneClashOptions::reference, one frame's work) are included.", "",
               f"One-time costs: generating the model {b['generate_s']:.1f} s (bench only), `fem_scene` (surface "
               f"extraction, bodies, frames) {b['extract_s']:.2f} s; the tree builds are inside clash_scene "
               "(column prepare).", ""]
@@ -220,7 +220,7 @@ def write_doc(raw: dict) -> None:
     c = res.get("BM_FemSceneSeriesStep/clash_depth", {})
     if c and "error" not in c:
         L += [f"A tet4 unit box and a tet4 ball of radius 0.5 moving into it by 0.01 per step (BM_FemSeriesStep's "
-              f"pair, `bench/fem_targets_models.h` (c)): {c['elements']:.0f} elements, {c['triangles']:.0f} surface "
+              f"pair, `bench/fem_targets_models.h` (c)): {c['elements']:,.0f} elements, {c['triangles']:,.0f} surface "
               f"triangles, {c['frames']:.0f} steps, the ball touching the box from step 10 and 0.9 deep at step 99, the box "
               "sagging a little at every step (both bodies are refitted every step). "
               "Through `fem_scene` + `scene::clash_scene` (what `interfere clash model.frd` runs), per step = the "
