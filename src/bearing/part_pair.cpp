@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "interfere/bearing/scarred.h"
 #include "interfere/query/clash.h"
@@ -87,61 +88,130 @@ const char* part_pair_solver_name(PartPairSolver s) {
   return "?";
 }
 
+namespace {
+
+/// A canonical order of parts, so that the roles of two parts of the same kind do not depend on
+/// the order they are given in (S(A, B) = S(B, A) bitwise).
+bool canonical_less(const ScenePart& x, const ScenePart& y) {
+  const Cylinder& a = x.cylinder;
+  const Cylinder& b = y.cylinder;
+  const double ka[] = {a.base.x, a.base.y, a.base.z, a.axis.x, a.axis.y, a.axis.z, a.height, a.radius, a.top()};
+  const double kb[] = {b.base.x, b.base.y, b.base.z, b.axis.x, b.axis.y, b.axis.z, b.height, b.radius, b.top()};
+  for (int k = 0; k < 9; ++k)
+    if (ka[k] != kb[k]) return ka[k] < kb[k];
+  return std::less<const void*>()(x.mesh, y.mesh);  // same solid: either order gives the same value
+}
+
+/// The verdict of a bracket [lo, hi] of S: decided when both ends agree.
+Verdict bracket_verdict(double lo, double hi, double tol, double clearance) {
+  const Verdict vh = distance_verdict(hi, tol, clearance);
+  return distance_verdict(lo, tol, clearance) == vh ? vh : Verdict::undecided;
+}
+
+}  // namespace
+
 PartPairResult decide_part_pair(const ScenePart& x, const ScenePart& y, double clearance) {
   // roles: B must be an intact cylinder; prefer a partner as B (a roller against a partner is the
-  // paper's pair), then the second part
-  bool swapped = false;
-  if (y.partner)
-    swapped = false;
-  else if (x.partner)
-    swapped = true;
-  else if (y.intact())
-    swapped = false;
-  else if (x.intact())
-    swapped = true;
+  // paper's pair), then an intact part; between parts of the same kind, the canonical order
+  const auto rank = [](const ScenePart& p) { return p.partner ? 2 : (p.intact() ? 1 : 0); };
+  const int rx = rank(x), ry = rank(y);
+  const bool swapped = rx != ry ? rx > ry : canonical_less(y, x);
   const ScenePart& a = swapped ? y : x;
   const ScenePart& b = swapped ? x : y;
   const bool exact = b.intact();
   const Cylinder bc = exact ? b.cylinder : enclosing(b.cylinder);
-  PartPairResult out = solve(a, bc);
+  PartPairResult out = solve(a, bc);  // s(A, B) (or A against B's enclosing cylinder)
   out.swapped = swapped;
   const double tol = touch_tolerance(a.cylinder, bc);
-  out.verdict = distance_verdict(out.distance, tol, clearance);
+  out.distance_lower = out.distance;
   bool contained = false;
   if (out.solver == PartPairSolver::scarred && out.distance > tol) {
     const int inside = mesh_containment(a, bc);
     if (inside == 1) {
-      out.verdict = Verdict::clash, contained = true;
+      contained = true;
     } else if (inside < 0) {
       out.verdict = Verdict::undecided;
       out.reason =
           "whether the partner lies inside the scarred roller: every ray direction was degenerate";
+      return out;
     }
   }
-  if (!exact) {
-    out.solver = PartPairSolver::bound;
-    // the enclosing cylinder's distance is a lower bound: only a clear bound decides (or B's
-    // enclosing cylinder inside A's solid: then B is too)
-    if (out.verdict != Verdict::clear && !contained && b.mesh == nullptr) {
-      // a tapered B contains the cylinder of its smaller radius: A reaching into that one's
-      // interior reaches into B's (s(A, B) <= s(A, inner), an upper bound of s)
-      Cylinder inner = b.cylinder;
-      inner.radius = std::min(b.cylinder.radius, b.cylinder.top());
-      inner.top_radius = -1;
-      const PartPairResult in = solve(a, inner);
-      if (in.distance < -touch_tolerance(a.cylinder, inner)) {
-        out = in;
-        out.swapped = swapped, out.solver = PartPairSolver::bound, out.verdict = Verdict::clash;
-        return out;
+  if (exact) {
+    // the reverse direction, B's depth into A (issue #27; the paper's Step 3: all four end circles)
+    if (a.intact()) {
+      const PairDistance rev = cylinder_pair_distance(bc, a.cylinder);
+      if (rev.distance < out.distance) {
+        out.distance = out.distance_lower = rev.distance;
+        out.point_a = rev.point_b, out.point_b = rev.point_a;  // on A, on B
+        out.path = rev.path, out.reverse = true;
       }
+    } else if (!(out.distance > tol) && !contained) {
+      // A scarred or tapered lies in its enclosing cylinder A0: s(B, A) >= s(B, A0). (Apart,
+      // s(A, B) > tol, both one-sided values are the distance of the solids: nothing to add.)
+      const double lo = cylinder_pair_distance(bc, enclosing(a.cylinder)).distance;
+      if (lo < out.distance) out.distance_lower = lo, out.two_sided_exact = false;
     }
-    if (out.verdict != Verdict::clear && !contained) {
-      out.verdict = Verdict::undecided;
+    out.verdict = contained ? Verdict::clash
+                            : bracket_verdict(out.distance_lower, out.distance, tol, clearance);
+    if (out.verdict == Verdict::undecided)
       out.reason =
-          "two rollers that are both scarred or both tapered: no exact solver (B must be an intact "
-          "cylinder); against the cylinder enclosing the second one they are not clear";
+          "two-sided depth: the partner's depth into the scarred or tapered roller is only bounded "
+          "(by its enclosing cylinder), and the bounds give different verdicts";
+    return out;
+  }
+  // no exact solver: A against the cylinder enclosing B is a lower bound of s(A, B); B's depth
+  // into A is bounded below by B's enclosing cylinder against A's: S >= the smaller of the two
+  out.solver = PartPairSolver::bound;
+  const Cylinder ac = enclosing(a.cylinder);
+  const PairDistance rev = cylinder_pair_distance(bc, ac);
+  if (rev.distance < out.distance) {
+    out.distance = rev.distance, out.point_a = rev.point_b, out.point_b = rev.point_a;
+    out.path = rev.path, out.reverse = true;
+  }
+  out.distance_lower = out.distance;
+  out.two_sided_exact = false;
+  out.verdict = distance_verdict(out.distance, tol, clearance);
+  // the bound is a lower one: only a clear bound decides (or B's enclosing cylinder inside A's
+  // solid: then B is too)
+  if (out.verdict == Verdict::clear || contained) {
+    if (contained) out.verdict = Verdict::clash;
+    return out;
+  }
+  // a tapered, unscarred part contains the cylinder of its smaller radius: the other reaching into
+  // that one's interior reaches into it (S <= s(A, inner B), an upper bound); both ways
+  const auto inner_of = [](const Cylinder& c) {
+    Cylinder in = c;
+    in.radius = std::min(c.radius, c.top());
+    in.top_radius = -1;
+    return in;
+  };
+  PartPairResult best;
+  bool found = false;
+  if (b.mesh == nullptr) {
+    const Cylinder inner = inner_of(b.cylinder);
+    const PartPairResult in = solve(a, inner);
+    if (in.distance < -touch_tolerance(a.cylinder, inner)) best = in, found = true;
+  }
+  if (a.mesh == nullptr && b.mesh == nullptr) {  // B (a cylinder or frustum) against A's inner
+    const Cylinder inner = inner_of(a.cylinder);
+    const PartPairResult in = solve(b, inner);
+    if (in.distance < -touch_tolerance(b.cylinder, inner) && (!found || in.distance < best.distance)) {
+      best = in, found = true;
+      std::swap(best.point_a, best.point_b);  // on A, on B
+      best.reverse = true;
     }
   }
+  if (found) {
+    const double lower = out.distance;
+    out = best;
+    out.swapped = swapped, out.solver = PartPairSolver::bound, out.verdict = Verdict::clash;
+    out.distance_lower = std::min(lower, out.distance), out.two_sided_exact = false;
+    return out;
+  }
+  out.verdict = Verdict::undecided;
+  out.reason =
+      "two rollers that are both scarred or both tapered: no exact solver (B must be an intact "
+      "cylinder); against the cylinder enclosing the second one they are not clear";
   return out;
 }
 

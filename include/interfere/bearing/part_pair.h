@@ -25,6 +25,20 @@
 //     s); else undecided.
 // A triangle-surface solver reports the minimum over A's surface; when that is > 0, B could still
 // lie wholly inside A's solid: mesh_containment decides it (B's centre by exact ray parity).
+//
+// Two-sided (issue #27, "the depth is one-sided"; the paper's §3.3 Step 3 checks all four end
+// circles, i.e. both parts against the other): the pair's maximum interference distance is
+//     S(A, B) = min( s(A, B), s(B, A) ) = S(B, A)
+// (the deeper of A's deepest point in B and B's deepest point in A; when the solids are apart both
+// one-sided values are their Euclidean distance, so S = s). decide_part_pair(x, y) and
+// decide_part_pair(y, x) run the same computation (roles by part type, ties broken by a canonical
+// order of the parts), so the value, witnesses and verdict are bitwise the same, only `swapped`
+// differs. s(B, A) is exact (the standard solver with the roles exchanged) when A is an intact
+// cylinder. When A is scarred or tapered no exact solver of B's depth into A exists (A must then be
+// B of a solver); A lies in its enclosing intact cylinder A0, so s(B, A) >= s(B, A0): when that
+// bound is not below s(A, B), S = s(A, B) exactly, else S is bracketed by
+// [distance_lower, distance] and `two_sided_exact` is false (the verdict is decided only when both
+// ends give the same one; else undecided).
 #pragma once
 #include <cstdint>
 #include <string>
@@ -74,10 +88,14 @@ const char* part_pair_solver_name(PartPairSolver s);
 
 struct PartPairResult {
   double distance =
-      0;  ///< s(A, B); `bound`: a lower bound (clear, undecided), an upper one (clash)
+      0;  ///< S(A, B) (two-sided, above); `bound`: a lower bound (clear, undecided), an upper one (clash)
   Vec3 point_a,
       point_b;  ///< witnesses (world frame), on A and on B's (or its enclosing cylinder's) boundary
   bool swapped = false;  ///< A is the second part given (y), B the first
+  /// false: S is only bracketed, distance_lower <= S <= distance (see above)
+  bool two_sided_exact = true;
+  double distance_lower = 0;  ///< equals distance when two_sided_exact
+  bool reverse = false;  ///< B's depth into A decided S (point_a, point_b still on A, on B)
   PartPairSolver solver = PartPairSolver::standard;
   AnalyticPath path = AnalyticPath::side;  ///< standard solver path
   std::uint32_t evaluated = 0;             ///< triangles evaluated exactly (scarred solver)
