@@ -108,15 +108,35 @@ void bind_bearing(py::module_& parent) {
         "distance), with the point pair. Exact to rounding (standard solver).");
   m.def("point_signed_distance", [](const Cylinder& c, P3 p) { return point_signed_distance(c, vec(p)); });
   m.def("barbier_galin_signed_distance", [](const Cylinder& c, P3 p) { return barbier_galin_signed_distance(c, vec(p)); });
+  // Eq. (1) of Jia & Zheng 2019, §2.3 (issue #27): window.h
+  const auto window_params = [](double r, double R, double hb, double max_tilt_deg) {
+    const WindowParams w{r, R, hb, max_tilt_deg * kDeg};
+    check(validate(w));
+    return w;
+  };
   m.def(
-      "interference_window",
-      [](double r, double R, double hb, double max_tilt_deg) {
-        const WindowParams w{r, R, hb, max_tilt_deg * kDeg};
-        check(validate(w));
-        return interference_window(w) / kDeg;
+      "ideal_interference_range",
+      [window_params](double r, double R, double hb, double max_tilt_deg) {
+        return ideal_interference_range(window_params(r, R, hb, max_tilt_deg)) / kDeg;
       },
       py::arg("roller_radius"), py::arg("partner_radius"), py::arg("height"), py::arg("max_tilt_deg"),
-      "theta of Eq. (1) in degrees: asin(h_b sin(alpha) / (R + r)).");
+      "theta of Eq. (1) in degrees, the full angle MCN: 2 acos((r^2 + d^2 - R^2) / (2 r d)), "
+      "d = R + r - h_b tan(alpha); tilts must be in [0, atan(2 min(r, R) / h_b)).");
+  m.def(
+      "interference_window",
+      [window_params](double r, double R, double hb, double max_tilt_deg) {
+        return interference_window(window_params(r, R, hb, max_tilt_deg)) / kDeg;
+      },
+      py::arg("roller_radius"), py::arg("partner_radius"), py::arg("height"), py::arg("max_tilt_deg"),
+      "The search window's half-width in degrees: theta / 2 of Eq. (1) (ideal_interference_range).");
+  m.def(
+      "contact_turn_bound",
+      [window_params](double r, double R, double hb, double max_tilt_deg) {
+        return contact_turn_bound(window_params(r, R, hb, max_tilt_deg)) / kDeg;
+      },
+      py::arg("roller_radius"), py::arg("partner_radius"), py::arg("height"), py::arg("max_tilt_deg"),
+      "The former window, asin(h_b sin(alpha) / (R + r)) in degrees: a bound on the turn of the "
+      "maximum-interference point (not the paper's range).");
   m.def(
       "roller_pose",
       [](P3 pivot, double tilt_deg, double azimuth_deg, double spin_deg) {

@@ -61,10 +61,22 @@ class BearingTest(unittest.TestCase):
         self.assertAlmostEqual(bearing.max_interference_distance(a, b).distance, -40 * math.tan(al), delta=1e-12)
 
     def test_window_and_surface_reference(self):
-        th = bearing.interference_window(10, 30, 40, 1.0)
-        self.assertAlmostEqual(th, math.degrees(math.asin(40 * math.sin(math.radians(1)) / 40)), delta=1e-12)
-        with self.assertRaisesRegex(ValueError, "max_tilt"):
-            bearing.interference_window(10, 30, 40, 95)
+        # Eq. (1) (issue #27): the arc of the roller's top-view circle (radius 10) inside the partner's
+        # (radius 30, centre at 40 - 40 tan(1 degree)), found here by bisection: 37.4 degrees
+        d = 40 - 40 * math.tan(math.radians(1))
+        lo, hi = 0.0, math.pi
+        for _ in range(100):
+            mid = 0.5 * (lo + hi)
+            inside = (10 * math.cos(mid) - d) ** 2 + (10 * math.sin(mid)) ** 2 <= 30 ** 2
+            lo, hi = (mid, hi) if inside else (lo, mid)
+        self.assertAlmostEqual(bearing.ideal_interference_range(10, 30, 40, 1.0), math.degrees(2 * lo), delta=1e-9)
+        self.assertAlmostEqual(bearing.ideal_interference_range(10, 30, 40, 1.0), 37.36, delta=0.01)
+        self.assertAlmostEqual(bearing.interference_window(10, 30, 40, 1.0), math.degrees(lo), delta=1e-9)
+        self.assertAlmostEqual(bearing.contact_turn_bound(10, 30, 40, 1.0),
+                               math.degrees(math.asin(40 * math.sin(math.radians(1)) / 40)), delta=1e-12)
+        for bad in (95, 60, -1):  # beyond atan(2 min(r, R) / h_b) = 26.57 degrees
+            with self.assertRaisesRegex(ValueError, "max_tilt"):
+                bearing.interference_window(10, 30, 40, bad)
         p = bearing.RollerParams(radius=10, height=40, radial_segments=24, height_segments=23)
         r = bearing.make_roller(p, bearing.ScarParams(angle_center_deg=180, angle_width_deg=60, z_min=0, z_max=40,
                                                       depth=0.3, seed=2))

@@ -1,5 +1,6 @@
 // Vertex quadtree over the unrolled side of a roller (Jia & Zheng 2019, §2.4): scar labels
-// propagated to ancestors, virtual (averaged) vertices, calculation layer from Eq. (1); plus, for
+// propagated to ancestors, virtual (averaged) vertices, calculation layer from Eq. (1) (the paper's
+// rule by default, the former "still spanning the window" rule as an option; issue #27); plus, for
 // the exact solver, oriented boxes (radial, tangential, axial at the node's middle angle) that
 // contain the node's triangles, and binary trees over the end-cap fans.
 #include "interfere/bearing/quadtree.h"
@@ -44,6 +45,10 @@ struct Builder {
   // Fills the (already allocated) slot `id`; children get contiguous slots allocated here.
   void side(std::int32_t id, std::int32_t i0, std::int32_t i1, std::int32_t j0, std::int32_t j1, std::int32_t level) {
     tree.depth = std::max(tree.depth, level);
+    if (tree.level_max_columns.size() <= static_cast<std::size_t>(level))
+      tree.level_max_columns.resize(static_cast<std::size_t>(level) + 1, 0);
+    tree.level_max_columns[static_cast<std::size_t>(level)] =
+        std::max(tree.level_max_columns[static_cast<std::size_t>(level)], i1 - i0);
     {
       QuadNode& node = tree.nodes[static_cast<std::size_t>(id)];
       node.i0 = i0, node.i1 = i1, node.j0 = j0, node.j1 = j1, node.level = level;
@@ -122,19 +127,35 @@ struct Builder {
 
 }  // namespace
 
-std::int32_t RollerQuadtree::calculation_layer(double theta, int radial_segments) const {
-  // deepest level whose nodes still span 2*theta in angle (node width 2*pi/2^level, capped by n)
+std::int32_t RollerQuadtree::calculation_layer(double half_width, int radial_segments) const {
+  return calculation_layer(half_width, radial_segments, options.layer_rule);
+}
+
+std::int32_t RollerQuadtree::calculation_layer(double half_width, int radial_segments,
+                                               CalculationLayerRule rule) const {
+  const double col = 2.0 * std::numbers::pi / radial_segments;
+  if (rule == CalculationLayerRule::paper) {
+    // the highest level whose every node's leaves (columns i0 .. i1-1, at angles i * col) span at
+    // most the range 2 * half_width; a relative tolerance absorbs the rounding of col
+    const double range = 2.0 * half_width * (1 + 1e-12);
+    for (std::int32_t level = 0; level < static_cast<std::int32_t>(level_max_columns.size()); ++level)
+      if ((level_max_columns[static_cast<std::size_t>(level)] - 1) * col <= range) return level;
+    return depth;
+  }
+  // spanning_window: deepest level whose nodes still span 2*half_width in angle (node width
+  // 2*pi/2^level, capped by n)
   std::int32_t level = 0;
   while (level < depth) {
     const double cols = std::max(1.0, std::ceil(radial_segments / std::pow(2.0, level + 1)));
-    if (2.0 * std::numbers::pi * cols / radial_segments < 2.0 * theta) break;
+    if (col * cols < 2.0 * half_width) break;
     ++level;
   }
   return level;
 }
 
-RollerQuadtree build_quadtree(const Roller& roller) {
+RollerQuadtree build_quadtree(const Roller& roller, const QuadtreeOptions& options) {
   RollerQuadtree tree;
+  tree.options = options;
   tree.nodes.reserve(static_cast<std::size_t>(roller.n()) * (roller.m() + 1) * 2 + 2 * roller.n());
   Builder b{roller, tree};
   tree.side_root = b.root();

@@ -93,7 +93,7 @@ Expected<SimulationResult> simulate(const SceneParams& p, bool keep_rows) {
   const double r = p.roller.radius, rmax = std::max(r, p.roller.top()), hb = p.roller.height;
   const double R = p.partner_radius, D = R + r + p.gap;
   const double alpha = p.max_tilt_deg * kDeg;
-  res.theta = interference_window({.roller_radius = r, .partner_radius = R, .height = hb, .max_tilt = alpha});
+  res.theta = ideal_interference_range({.roller_radius = r, .partner_radius = R, .height = hb, .max_tilt = alpha});
   const double reach = D + rmax + hb;
   const double auto_spacing = 1.05 * std::max(R + reach, 2 * std::max(R, rmax + hb)) + 1e-3 * reach;
   const double S = p.spacing > 0 ? p.spacing : auto_spacing;
@@ -231,7 +231,8 @@ Expected<SimulationResult> simulate(const SceneParams& p, bool keep_rows) {
       if (s.scarred) {
         const ScarParams& sp = p.scar;
         const double phi = contact_direction_angle(poses[k], cyl_b[k], hb);
-        bool in_range = scar_angle_contains(sp, phi, res.theta + 2 * col);
+        // §3.1: the scar is in the range of Eq. (1) (half-width theta/2 about the contact direction)
+        bool in_range = scar_angle_contains(sp, phi, 0.5 * res.theta + 2 * col);
         if (!in_range) {  // exactness guard: the standard witness itself on the scar window
           const Transform& T = poses[k];
           const Vec3 w = pd.point_a - T.t;

@@ -183,6 +183,8 @@ class Bearing(unittest.TestCase):
                  (["--vertices", "2"], "--vertices"),
                  (["--tilt", "95"], "max_tilt"),
                  (["--tilt", "80", "--radius", "1", "--partner-radius", "1"], "Eq. (1)"),
+                 (["--tilt", "60"], "Eq. (1)"),  # issue #27: beyond atan(2 min(r, R) / h_b) = 26.57 degrees
+                 (["--tilt", "26.6"], "max_tilt"),
                  (["--scar", "0,40,30,50,0.1"], "scar.z_max"),
                  (["--scar", "0,40,-5,10,0.1"], "scar.z_min"),
                  (["--scar", "0,40,10"], "--scar"),

@@ -1,7 +1,10 @@
 // Vertex quadtree over the unrolled side surface (angle x height) of a roller (Jia & Zheng 2019,
 // §2.4): every node is a rectangle of side vertices; scar labels are propagated to the ancestors;
-// inner nodes carry a virtual vertex (the average of their vertices); the "calculation layer" is
-// the deepest level whose nodes still span the window 2*theta of Eq. (1).
+// inner nodes carry a virtual vertex (the average of their vertices); the "calculation layer" is,
+// as in the paper (§2.4, issue #27), the highest level whose nodes have all their leaves inside the
+// range of Eq. (1) (window.h) — or, as an option (CalculationLayerRule::spanning_window), the
+// project's former rule: the deepest level whose nodes still span the whole window. Both are
+// measured in bench/bearing/bench_quadtree_layer.cpp (docs/bearing.md, "Calculation layer").
 //
 // The same tree carries, for the exact solver (scarred.h), a conservative bound of the node's
 // triangles: an oriented box in the node's own (radial, tangential, axial) frame at its middle angle,
@@ -31,17 +34,39 @@ struct QuadNode {
   double cos_mid = 1, sin_mid = 0;  ///< the frame's radial direction (cos, sin, 0)
 };
 
+/// How the calculation layer (the level where the quadtree method starts, §2.4) is chosen for a
+/// window of half-width w (the range of Eq. (1) is [phi - w, phi + w] about the contact direction phi).
+enum class CalculationLayerRule {
+  /// The paper's: the highest (shallowest) level every node of which has all its leaves (side
+  /// vertices, at angles i * 2 pi / n) within an angular span of 2w, i.e. each node of the level fits
+  /// inside the range. The default.
+  paper,
+  /// The project's former rule: the deepest level whose nodes still span 2w in angle (their cells'
+  /// width, ceil(n / 2^level) columns). One level higher than the paper's in general: fewer, wider nodes.
+  spanning_window,
+};
+
+struct QuadtreeOptions {
+  CalculationLayerRule layer_rule = CalculationLayerRule::paper;
+};
+
 struct RollerQuadtree {
   std::vector<QuadNode> nodes;
   std::int32_t side_root = 0, bottom_root = -1, top_root = -1;
   std::int32_t depth = 0;  ///< deepest level of the side tree
-  /// The calculation layer for a window half-width theta (radians).
-  std::int32_t calculation_layer(double theta, int radial_segments) const;
+  QuadtreeOptions options;
+  /// Per level of the side tree, the largest column count (i1 - i0) of its nodes.
+  std::vector<std::int32_t> level_max_columns;
+  /// The calculation layer for a window half-width `half_width` (radians, e.g. interference_window()
+  /// of window.h) under options.layer_rule.
+  std::int32_t calculation_layer(double half_width, int radial_segments) const;
+  /// The same under an explicit rule.
+  std::int32_t calculation_layer(double half_width, int radial_segments, CalculationLayerRule rule) const;
 };
 
 /// Builds the tree of a meshed (possibly scarred) roller. Side leaves are single vertices for the
 /// vertex methods; the exact bound of a leaf (i, j) covers side cell (i, j) (its 2 triangles) when
 /// j < m. O(n*m).
-RollerQuadtree build_quadtree(const Roller& roller);
+RollerQuadtree build_quadtree(const Roller& roller, const QuadtreeOptions& options = {});
 
 }  // namespace interfere::bearing

@@ -81,7 +81,7 @@ struct SimulationResult {
   std::vector<std::string> undecided_reasons;  ///< distinct reasons of undecided verdicts
   std::uint64_t scarred_solves = 0, general_solves = 0;
   std::int32_t scarred_rollers = 0;
-  double theta = 0;                     ///< Eq. (1), radians
+  double theta = 0;                     ///< Eq. (1): the full range angle MCN, radians (window.h)
   double min_distance = 0;              ///< over all rows
   PairFrame worst;                      ///< the row with min_distance (first in frame, pair order)
   std::uint64_t interfering_rows = 0;

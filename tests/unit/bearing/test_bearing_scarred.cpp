@@ -83,7 +83,7 @@ TEST(BearingRoller, BadParametersNameTheParameter) {
   EXPECT_NE(validate(ScarParams{.angle_width_deg = 400}, rp).error().reason.find("angle_width"), std::string::npos);
   EXPECT_NE(validate(ScarParams{.depth = 20}, rp).error().reason.find("scar.depth"), std::string::npos);
   EXPECT_NE(validate(WindowParams{.max_tilt = 1.6}).error().reason.find("max_tilt"), std::string::npos);
-  // h_b sin(alpha) >= R + r: beyond Eq. (1)
+  // h_b tan(alpha) > 2 min(r, R): beyond Eq. (1) (test_bearing_window.cpp has the range itself)
   EXPECT_FALSE(validate(WindowParams{.roller_radius = 1, .partner_radius = 1, .height = 40, .max_tilt = 0.2}).ok());
 }
 
@@ -174,9 +174,10 @@ TEST(BearingQuadtree, LabelsBoundsAndLayers) {
   }
   EXPECT_EQ(leaves, 32 * 32 + 2 * 16);  // one leaf per side vertex, fan leaves of 2 triangles
   EXPECT_EQ(reached, t.nodes.size());   // every node is reachable (no orphans)
-  // calculation layer: nodes at that level still span 2*theta, the next level does not
+  // the former calculation layer rule (the paper's is tested in test_bearing_quadtree_layer.cpp):
+  // nodes at that level still span 2*theta, the next level does not
   const double theta = 0.3;
-  const std::int32_t L = t.calculation_layer(theta, 32);
+  const std::int32_t L = t.calculation_layer(theta, 32, CalculationLayerRule::spanning_window);
   EXPECT_GE(2 * std::numbers::pi * std::ceil(32 / std::pow(2.0, L)) / 32, 2 * theta);
   EXPECT_LT(2 * std::numbers::pi * std::ceil(32 / std::pow(2.0, L + 1)) / 32, 2 * theta);
 }
@@ -253,59 +254,6 @@ TEST(BearingScarred, IntactMeshBracketsTheAnalyticCylinder) {
     EXPECT_LE(mesh, br.upper + 1e-12);
     EXPECT_GE(mesh, exact - 1e-12);
     EXPECT_LE(mesh, exact + 10 * (1 - std::cos(std::numbers::pi / 48)) + 1e-12);
-  }
-}
-
-TEST(BearingWindow, Eq1AgainstDirectGeometry) {
-  // Direct computation: the roller pivots about its bottom centre by exactly alpha in every
-  // azimuth; the exact analytic minimiser of the distance to B's axis (min_axis_distance) is its
-  // maximum-interference point; its direction seen from B's axis, relative to the centre line,
-  // must never exceed theta, and the worst azimuth must reach it.
-  for (const auto& [r, R, hb, deg] : {std::tuple{10.0, 30.0, 40.0, 1.0}, std::tuple{10.0, 30.0, 40.0, 5.0},
-                                      std::tuple{5.0, 50.0, 20.0, 2.0}}) {
-    const double alpha = deg * std::numbers::pi / 180;
-    const double theta = interference_window({.roller_radius = r, .partner_radius = R, .height = hb, .max_tilt = alpha});
-    double worst = 0;
-    for (int k = 0; k < 20000; ++k) {
-      const double az = 2 * std::numbers::pi * k / 20000;
-      const Transform pose = roller_pose({R + r, 0, 0}, alpha, az, 0);
-      const Cylinder a = posed_cylinder(r, -1, hb, pose);
-      const RadialMin m = min_axis_distance(a, {0, 0, 0}, {0, 0, 1});
-      // direction of the axis point at the contact's end, seen from B's axis (the derivation's angle)
-      const Vec3 end = m.point.z > 0.5 * hb ? a.top_center() : a.base;
-      worst = std::max(worst, std::fabs(std::atan2(end.y, end.x)));
-      // and the contact point's own direction seen from B's axis
-      worst = std::max(worst, std::fabs(std::atan2(m.point.y, m.point.x)) - 0.0);
-    }
-    EXPECT_LE(worst, theta * (1 + 1e-9));
-    EXPECT_GE(worst, theta * (1 - 1e-6));
-  }
-}
-
-TEST(BearingWindow, ContactPointBodyAngleWithinTheta) {
-  // The quantity the window is used for: the body-frame angle of the exact maximum-interference
-  // point (standard solver witness) relative to the centre-line direction (contact_direction_angle)
-  // never exceeds theta of Eq. (1), over tilts up to alpha, all azimuths and spins; and it gets
-  // close to theta (the bound is tight to second order in alpha).
-  const Cylinder b = partner();
-  for (const double deg : {0.5, 1.0, 3.0, 10.0}) {
-    const double al = deg * std::numbers::pi / 180;
-    const double th = interference_window({.roller_radius = 10, .partner_radius = 30, .height = 40, .max_tilt = al});
-    double worst = 0;
-    for (int k = 0; k < 4000; ++k) {
-      const double az = 2 * std::numbers::pi * k / 4000, spin = 0.37 * k;
-      for (const double f : {1.0, 0.5}) {
-        const Transform T = roller_pose({40, 0, 0}, al * f, az, spin);
-        const PairDistance pd = cylinder_pair_distance(posed_cylinder(10, -1, 40, T), b);
-        const Vec3 v = pd.point_a - T.t;
-        const double x = T.r[0][0] * v.x + T.r[1][0] * v.y + T.r[2][0] * v.z;
-        const double y = T.r[0][1] * v.x + T.r[1][1] * v.y + T.r[2][1] * v.z;
-        const double d = std::remainder(std::atan2(y, x) - contact_direction_angle(T, b, 40), 2 * std::numbers::pi);
-        worst = std::max(worst, std::fabs(d));
-      }
-    }
-    EXPECT_LE(worst, th) << deg;
-    EXPECT_GE(worst, th * (1 - 0.02 * deg)) << deg;
   }
 }
 
