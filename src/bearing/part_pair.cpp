@@ -110,6 +110,16 @@ Verdict bracket_verdict(double lo, double hi, double tol, double clearance) {
 
 }  // namespace
 
+PairDistance two_sided_cylinder_distance(const Cylinder& a, const Cylinder& b) {
+  PairDistance fwd = cylinder_pair_distance(a, b);
+  const PairDistance rev = cylinder_pair_distance(b, a);
+  if (rev.distance < fwd.distance) {
+    fwd.distance = rev.distance, fwd.point_a = rev.point_b, fwd.point_b = rev.point_a;  // on a, on b
+    fwd.path = rev.path;
+  }
+  return fwd;
+}
+
 PartPairResult decide_part_pair(const ScenePart& x, const ScenePart& y, double clearance) {
   // roles: B must be an intact cylinder; prefer a partner as B (a roller against a partner is the
   // paper's pair), then an intact part; between parts of the same kind, the canonical order
@@ -139,12 +149,10 @@ PartPairResult decide_part_pair(const ScenePart& x, const ScenePart& y, double c
   if (exact) {
     // the reverse direction, B's depth into A (issue #27; the paper's Step 3: all four end circles)
     if (a.intact()) {
-      const PairDistance rev = cylinder_pair_distance(bc, a.cylinder);
-      if (rev.distance < out.distance) {
-        out.distance = out.distance_lower = rev.distance;
-        out.point_a = rev.point_b, out.point_b = rev.point_a;  // on A, on B
-        out.path = rev.path, out.reverse = true;
-      }
+      const PairDistance two = two_sided_cylinder_distance(a.cylinder, bc);
+      out.reverse = two.distance < out.distance;
+      out.distance = out.distance_lower = two.distance;
+      out.point_a = two.point_a, out.point_b = two.point_b, out.path = two.path;
     } else if (!(out.distance > tol) && !contained) {
       // A scarred or tapered lies in its enclosing cylinder A0: s(B, A) >= s(B, A0). (Apart,
       // s(A, B) > tol, both one-sided values are the distance of the solids: nothing to add.)

@@ -103,6 +103,12 @@ struct PartPairResult {
   std::string reason;  ///< for undecided: why
 };
 
+/// S(a, b) = min(s(a, b), s(b, a)) for two intact (untapered) cylinders with the standard solver
+/// both ways (issue #27): the value does not depend on the order of the arguments (the same two
+/// numbers are compared); point_a lies on a, point_b on b; `path` is that of the direction taken
+/// (the forward one on a tie). For the simulation's own roller-partner rows.
+PairDistance two_sided_cylinder_distance(const Cylinder& a, const Cylinder& b);
+
 /// Decides any two distinct parts of a scene (above). Deterministic (no temporal state).
 PartPairResult decide_part_pair(const ScenePart& x, const ScenePart& y, double clearance);
 

@@ -88,6 +88,9 @@ TEST(BearingTwoSided, IntactPairsAreSymmetricAndEqualTheDenseReference) {
     const PartPairResult p = decide_part_pair(roller, other, 0);
     const PartPairResult q = decide_part_pair(other, roller, 0);
     expect_same(p, q);
+    // the simulation's helper: the same value, in either order
+    EXPECT_EQ(two_sided_cylinder_distance(roller.cylinder, oc).distance, p.distance);
+    EXPECT_EQ(two_sided_cylinder_distance(oc, roller.cylinder).distance, p.distance);
     EXPECT_TRUE(p.two_sided_exact);
     const bearing_oracle::Bracket ab = one_sided(roller.cylinder, oc, 16384);
     const bearing_oracle::Bracket ba = one_sided(oc, roller.cylinder, 16384);
