@@ -161,6 +161,8 @@ TEST(BearingTwoSided, ScarredAndTaperedPairsAreSymmetricAndBracketed) {
       EXPECT_LT(x.distance_lower, x.distance);
     }
   }
+  RecordProperty("exact", exact);
+  RecordProperty("bracketed", bracketed);
   EXPECT_GT(exact, 0);
   EXPECT_GT(bracketed, 0);  // the bound is not always enough: reported as a bracket, not hidden
   // tapered rollers against the partner and against each other: symmetric too
