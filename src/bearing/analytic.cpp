@@ -67,6 +67,11 @@ const char* analytic_path_name(AnalyticPath p) {
     case AnalyticPath::tapered: return "tapered";
     case AnalyticPath::general: return "general";
     case AnalyticPath::core: return "core";
+    case AnalyticPath::bore: return "bore";
+    case AnalyticPath::cup: return "cup";
+    case AnalyticPath::rib: return "rib";
+    case AnalyticPath::cone: return "cone";
+    case AnalyticPath::apart: return "apart";
   }
   return "?";
 }

@@ -39,6 +39,12 @@ enum class AnalyticPath : std::uint8_t {
   tapered,   ///< tapered roller: 1-D convex search over the axis, point-to-ellipse per disk
   general,   ///< nested convex minimisation (end faces of B, deep overlap)
   core,      ///< A (untapered) contains a point of B's core (its deepest points): s = -min(R, h/2)
+  // raceway.h (issue #27): the bearing's ring pairs
+  bore,      ///< roller in a cylindrical bore: farthest point of an end-circle ellipse (closed form)
+  cup,       ///< roller in a conical cup: 1-D maximisation over an end circle
+  rib,       ///< roller end against a rib face (end circle or annulus-edge curve)
+  cone,      ///< A against a cone frustum B: certified lateral (dual) solution
+  apart,     ///< no part of the roller within the ring's width / over the annulus: a lower bound
 };
 const char* analytic_path_name(AnalyticPath p);
 
