@@ -20,13 +20,15 @@ double scale(const Cylinder& c) {
 }
 
 /// The intact cylinder enclosing a roller (a frustum lies in the cylinder of its larger radius; a
-/// scarred surface lies in its intact cylinder: scars displace inwards, facets lie inside).
-Cylinder enclosing(const Cylinder& c) {
+/// scarred surface lies in its intact cylinder grown by its raise: inward scars and facets lie
+/// inside it, a raised scar (issue #27) reaches out by at most `raise`).
+Cylinder enclosing(const Cylinder& c, double raise = 0) {
   Cylinder out = c;
-  out.radius = c.max_radius();
+  out.radius = c.max_radius() + raise;
   out.top_radius = -1;
   return out;
 }
+Cylinder enclosing(const ScenePart& p) { return enclosing(p.cylinder, p.mesh ? p.mesh->raise : 0.0); }
 
 /// A against the intact cylinder b: the scarred solver on A's surface, else the standard solver.
 PartPairResult solve(const ScenePart& a, const Cylinder& b) {
@@ -62,11 +64,11 @@ Verdict distance_verdict(double s, double tolerance, double clearance) {
 int mesh_containment(const ScenePart& a, const Cylinder& b) {
   // B does not meet A's surface, so B is wholly inside A's solid or wholly outside it: one point
   // decides, B's centre. It lies at depth min(R, h/2) in B, hence at least that far from A's
-  // surface, and A's solid lies in its intact cylinder: a centre outside that cylinder (by more
-  // than half that depth, far beyond rounding) is outside A.
+  // surface, and A's solid lies in its enclosing cylinder (grown by a raised scar's raise): a
+  // centre outside that cylinder (by more than half that depth, far beyond rounding) is outside A.
   const Vec3 c = b.center();
   const double depth = std::min(b.radius, 0.5 * b.height);
-  if (point_signed_distance(enclosing(a.cylinder), c) > -0.5 * depth) return 0;
+  if (point_signed_distance(enclosing(a), c) > -0.5 * depth) return 0;
   if (a.solid == nullptr) return -1;
   const Transform& T = a.pose;  // world -> body: R^T (c - t)
   const Vec3 w = c - T.t;
@@ -129,7 +131,7 @@ PartPairResult decide_part_pair(const ScenePart& x, const ScenePart& y, double c
   const ScenePart& a = swapped ? y : x;
   const ScenePart& b = swapped ? x : y;
   const bool exact = b.intact();
-  const Cylinder bc = exact ? b.cylinder : enclosing(b.cylinder);
+  const Cylinder bc = exact ? b.cylinder : enclosing(b);
   PartPairResult out = solve(a, bc);  // s(A, B) (or A against B's enclosing cylinder)
   out.swapped = swapped;
   const double tol = touch_tolerance(a.cylinder, bc);
@@ -154,9 +156,10 @@ PartPairResult decide_part_pair(const ScenePart& x, const ScenePart& y, double c
       out.distance = out.distance_lower = two.distance;
       out.point_a = two.point_a, out.point_b = two.point_b, out.path = two.path;
     } else if (!(out.distance > tol) && !contained) {
-      // A scarred or tapered lies in its enclosing cylinder A0: s(B, A) >= s(B, A0). (Apart,
+      // A scarred or tapered lies in its enclosing cylinder A0 (grown by a raised scar's raise):
+      // s(B, A) >= s(B, A0). (Apart,
       // s(A, B) > tol, both one-sided values are the distance of the solids: nothing to add.)
-      const double lo = cylinder_pair_distance(bc, enclosing(a.cylinder)).distance;
+      const double lo = cylinder_pair_distance(bc, enclosing(a)).distance;
       if (lo < out.distance) out.distance_lower = lo, out.two_sided_exact = false;
     }
     out.verdict = contained ? Verdict::clash
@@ -170,7 +173,7 @@ PartPairResult decide_part_pair(const ScenePart& x, const ScenePart& y, double c
   // no exact solver: A against the cylinder enclosing B is a lower bound of s(A, B); B's depth
   // into A is bounded below by B's enclosing cylinder against A's: S >= the smaller of the two
   out.solver = PartPairSolver::bound;
-  const Cylinder ac = enclosing(a.cylinder);
+  const Cylinder ac = enclosing(a);
   const PairDistance rev = cylinder_pair_distance(bc, ac);
   if (rev.distance < out.distance) {
     out.distance = rev.distance, out.point_a = rev.point_b, out.point_b = rev.point_a;

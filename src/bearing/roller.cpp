@@ -2,6 +2,7 @@
 // paper. Regular (angle x height) grid, outward triangles, fans on the end caps.
 #include "interfere/bearing/roller.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -32,6 +33,8 @@ double Roller::z(int j) const { return j == m() ? params.height : params.height 
 
 void Roller::update_positions() {
   const int nn = n(), mm = m();
+  raise = 0;
+  for (const double d : displacement) raise = std::max(raise, -d);
   for (int j = 0; j <= mm; ++j) {
     const double zz = z(j);
     const double rr = params.radius_at(zz);

@@ -1,5 +1,5 @@
 // Scars (Jia & Zheng 2019, §2.2): diamond-square height map (Fournier, Fussell & Carpenter 1982)
-// as inward radial displacement over an (angle x height) window, median-filtered border band.
+// as inward (or, raised, outward) radial displacement over an (angle x height) window, median-filtered border band.
 #include "interfere/bearing/scar.h"
 
 #include <algorithm>
@@ -107,7 +107,7 @@ Expected<int> apply_scar(Roller& roller, const ScarParams& s) {
       const auto at = [&](int x, int y) { return map[static_cast<std::size_t>(y) * size + x]; };
       const double hval = (1 - ay) * ((1 - ax) * at(x0, y0) + ax * at(x0 + 1, y0)) +
                           ay * ((1 - ax) * at(x0, y0 + 1) + ax * at(x0 + 1, y0 + 1));
-      raw[roller.side_vertex(i, j)] = s.depth * hval;
+      raw[roller.side_vertex(i, j)] = (s.raised ? -s.depth : s.depth) * hval;
       inside[roller.side_vertex(i, j)] = 1;
     }
   }

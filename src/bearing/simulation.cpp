@@ -16,6 +16,7 @@
 
 #include "interfere/bearing/analytic.h"
 #include "interfere/bearing/quadtree.h"
+#include "interfere/bearing/raised_bound.h"
 #include "interfere/bearing/scarred.h"
 #include "interfere/bearing/window.h"
 #include "interfere/query/model.h"
@@ -94,10 +95,6 @@ Expected<SimulationResult> simulate(const SceneParams& p, bool keep_rows) {
   const double R = p.partner_radius, D = R + r + p.gap;
   const double alpha = p.max_tilt_deg * kDeg;
   res.theta = ideal_interference_range({.roller_radius = r, .partner_radius = R, .height = hb, .max_tilt = alpha});
-  const double reach = D + rmax + hb;
-  const double auto_spacing = 1.05 * std::max(R + reach, 2 * std::max(R, rmax + hb)) + 1e-3 * reach;
-  const double S = p.spacing > 0 ? p.spacing : auto_spacing;
-  res.spacing = S;
   const int cols = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(p.pairs))));
 
   // scarred roller variants (meshes and quadtrees) shared by the scarred pairs
@@ -127,6 +124,19 @@ Expected<SimulationResult> simulate(const SceneParams& p, bool keep_rows) {
     variants.push_back(std::move(*roller));
   }
   for (const Roller& v : variants) trees.push_back(build_quadtree(v));
+  // raised scars (issue #27) reach outside the intact cylinder: by at most `raise`, and the spheres
+  // of raised_bound.h bound where
+  std::vector<RaisedBound> raised_bounds;
+  double max_raise = 0;
+  for (const Roller& v : variants) {
+    raised_bounds.push_back(build_raised_bound(v));
+    max_raise = std::max(max_raise, v.raise);
+  }
+  const double reach = D + rmax + max_raise + hb;
+  const double auto_spacing =
+      1.05 * std::max(R + reach, 2 * std::max(R, rmax + max_raise + hb)) + 1e-3 * reach;
+  const double S = p.spacing > 0 ? p.spacing : auto_spacing;
+  res.spacing = S;
   // the closed scarred meshes as solids, for the containment test (part_pair.h mesh_containment)
   std::vector<Model> solids;
   for (const Roller& v : variants) solids.push_back(make_model(v.mesh, {}, false));
@@ -196,14 +206,16 @@ Expected<SimulationResult> simulate(const SceneParams& p, bool keep_rows) {
       cyl_b[k] = posed_cylinder(R, -1, p.partner_height, partner_pose(p, S, static_cast<int>(k)));
       // boxes grown by half the clearance and the touch band (part_pair.h), so that every pair of
       // parts within the clearance or touching (up to rounding of the boxes) reaches the narrow phase
-      const auto grown = [&](const Cylinder& c) {
+      // (a raised scar's roller also by its raise: its solid lies in its cylinder grown radially by
+      // it, and a box grown by it in every direction contains that cylinder's box)
+      const auto grown = [&](const Cylinder& c, double raise) {
         Box3 box = cylinder_box(c);
-        const double m = 0.5 * p.clearance + touch_tolerance(c, c);
+        const double m = 0.5 * p.clearance + touch_tolerance(c, c) + raise;
         box.lo = box.lo - Vec3{m, m, m}, box.hi = box.hi + Vec3{m, m, m};
         return box;
       };
-      boxes[2 * k] = grown(cyl_a[k]);
-      boxes[2 * k + 1] = grown(cyl_b[k]);
+      boxes[2 * k] = grown(cyl_a[k], s.scarred ? variants[static_cast<std::size_t>(s.variant)].raise : 0.0);
+      boxes[2 * k + 1] = grown(cyl_b[k], 0.0);
       PairFrame& row = frame_rows[k];
       row.frame = f, row.pair = static_cast<std::int32_t>(k);
       row.tilt_deg = tilt / kDeg, row.azimuth_deg = az / kDeg;
@@ -243,7 +255,11 @@ Expected<SimulationResult> simulate(const SceneParams& p, bool keep_rows) {
                      bz <= sp.z_max + cell_z;
         }
         row.scar_in_range = in_range;
-        if (in_range) {
+        // a raised scar (issue #27) may reach deeper than the intact cylinder from anywhere: the
+        // standard value stands only when no outward-displaced triangle can come below it
+        const RaisedBound& rb = raised_bounds[static_cast<std::size_t>(s.variant)];
+        const bool raised_reach = !rb.empty() && raised_lower_bound(rb, poses[k], cyl_b[k]) < pd.distance;
+        if (in_range || raised_reach) {
           const MeshPairResult mr = s.solver.solve(poses[k], cyl_b[k], pd.point_a);
           row.distance = mr.distance, row.point_a = mr.point_a, row.point_b = mr.point_b;
           row.solver = 1, row.evaluated = mr.evaluated;

@@ -19,7 +19,8 @@
 //   * two partners, or two rollers of which one is an intact (untapered, unscarred) cylinder: the
 //     intact one is B, the standard (or scarred) solver as above;
 //   * two rollers that are both scarred or both tapered: no exact solver exists (B must be an
-//     intact cylinder); A is solved against the cylinder that encloses B (a lower bound of the
+//     intact cylinder); A is solved against the cylinder that encloses B (grown by a raised scar's
+//     raise; a lower bound of the
 //     distance): clear when that bound is clear; a tapered, unscarred B also contains the
 //     cylinder of its smaller radius, and A reaching into that one is a clash (an upper bound of
 //     s); else undecided.
@@ -35,7 +36,8 @@
 // order of the parts), so the value, witnesses and verdict are bitwise the same, only `swapped`
 // differs. s(B, A) is exact (the standard solver with the roles exchanged) when A is an intact
 // cylinder. When A is scarred or tapered no exact solver of B's depth into A exists (A must then be
-// B of a solver); A lies in its enclosing intact cylinder A0, so s(B, A) >= s(B, A0): when that
+// B of a solver); A lies in its enclosing intact cylinder A0 (radius: the larger end radius plus a
+// raised scar's raise, Roller::raise), so s(B, A) >= s(B, A0): when that
 // bound is not below s(A, B), S = s(A, B) exactly, else S is bracketed by
 // [distance_lower, distance] and `two_sided_exact` is false (the verdict is decided only when both
 // ends give the same one; else undecided).
@@ -63,7 +65,10 @@ Verdict distance_verdict(double s, double tolerance, double clearance);
 
 /// One part of a scene.
 struct ScenePart {
-  Cylinder cylinder;             ///< its solid (a scarred roller: the intact cylinder it lies in)
+  /// Its solid; a scarred roller: its intact cylinder, which its solid lies in when the scar is
+  /// inward; a raised scar reaches out by mesh->raise (issue #27), and the solid lies in the
+  /// cylinder of radius max_radius() + mesh->raise.
+  Cylinder cylinder;
   bool partner = false;          ///< a partner (always an intact cylinder)
   const Roller* mesh = nullptr;  ///< a scarred roller's triangle surface (body frame), else null
   const RollerQuadtree* tree = nullptr;  ///< its quadtree (with mesh)

@@ -5,7 +5,8 @@
 //
 // Body frame: the axis is +z, the bottom end centre is the origin, the top end centre (0,0,height).
 // Side vertex (i, j), i in [0, radial_segments), j in [0, height_segments]: angle 2*pi*i/n, height
-// height*j/m, radius r(z) = radius + (top_radius - radius)*z/height minus the scar displacement.
+// height*j/m, radius r(z) = radius + (top_radius - radius)*z/height minus the scar displacement
+// (signed: > 0 inward, the paper's usual scar; < 0 raised, outward, issue #27).
 #pragma once
 #include <cstdint>
 #include <string>
@@ -39,9 +40,14 @@ Status validate(const RollerParams& p, const std::string& prefix = "roller");
 struct Roller {
   RollerParams params;
   TriMesh mesh;                        ///< body frame, outward (counter-clockwise seen from outside)
-  std::vector<double> displacement;    ///< inward radial scar displacement per side vertex (>= 0)
+  /// Inward radial scar displacement per side vertex: > 0 inward (a pit), < 0 outward (a raised
+  /// scar, issue #27). A raised scar reaches outside the intact solid: see `raise`.
+  std::vector<double> displacement;
   std::vector<std::uint8_t> scar;      ///< 1 for side vertices of a scar (scar.h), else 0
   bool has_scar = false;
+  /// The largest outward displacement, max(0, -min displacement), set by update_positions(): the
+  /// scarred solid lies in the intact solid grown radially by `raise` (0: inside the intact solid).
+  double raise = 0;
 
   int n() const { return params.radial_segments; }
   int m() const { return params.height_segments; }
@@ -53,7 +59,7 @@ struct Roller {
   std::uint32_t top_triangle(int i) const { return static_cast<std::uint32_t>(2 * n() * m() + n() + i); }
   double angle(int i) const;   ///< 2*pi*i/n
   double z(int j) const;       ///< height*j/m
-  /// Recomputes the side positions from params and displacement (after a scar is applied).
+  /// Recomputes the side positions from params and displacement (after a scar is applied), and `raise`.
   void update_positions();
 };
 

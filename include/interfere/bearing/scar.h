@@ -1,7 +1,8 @@
 // Scars on the side of a roller (Jia & Zheng 2019, §2.2): a radial height map made by the
 // diamond-square algorithm (Fournier, Fussell & Carpenter, "Computer rendering of stochastic
-// models", CACM 25(6), 1982), applied as an inward radial displacement over an (angle x height)
-// window of the side surface; a median filter over the window's border band joins the scar to the
+// models", CACM 25(6), 1982), applied as an inward radial displacement (or, with `raised`, an
+// outward one: the paper's §2.2 says the disturbance is inward "in most cases", not always; issue
+// #27) over an (angle x height) window of the side surface; a median filter over the window's border band joins the scar to the
 // intact surface. Seeded and reproducible (SplitMix64; no std:: distributions, whose output is
 // implementation-defined).
 #pragma once
@@ -19,7 +20,8 @@ struct ScarParams {
   double angle_width_deg = 40.0;  ///< angular width (0, 360)
   double z_min = 10.0;            ///< window bottom, body-frame height, in [0, height)
   double z_max = 30.0;            ///< window top, in (z_min, height]
-  double depth = 0.05;            ///< largest inward displacement (> 0, < the smallest radius)
+  double depth = 0.05;            ///< largest displacement (> 0, < the smallest radius)
+  bool raised = false;            ///< false: inward (a pit, the default); true: outward (a raised scar)
   double roughness = 0.6;         ///< diamond-square amplitude factor per level, in (0, 1]
   int border = 2;                 ///< median-filter band, in grid cells (>= 0)
   std::uint64_t seed = 1;
@@ -44,7 +46,7 @@ struct SplitMix64 {
 std::vector<double> diamond_square(int levels, double roughness, std::uint64_t seed);
 
 /// Applies the scar to the roller's side: displacement = depth * height map (bilinear over the
-/// window), then the median filter over the border band, then labels and positions. Returns the
+/// window; negated when `raised`), then the median filter over the border band, then labels and positions. Returns the
 /// number of side vertices labelled as scar.
 Expected<int> apply_scar(Roller& roller, const ScarParams& s);
 
