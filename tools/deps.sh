@@ -8,6 +8,7 @@ pkgs=(build-essential cmake ninja-build python3 git
       libcgal-dev libgmp-dev libmpfr-dev libfcl-dev
       pybind11-dev python3-dev python3-numpy
       zlib1g-dev gmsh libgmsh-dev
+      libpng-dev  # (issue #27: 16-bit grayscale PNG scar height maps, optional in CMake)
       libocct-data-exchange-dev libocct-ocaf-dev libocct-modeling-algorithms-dev
       libocct-modeling-data-dev libocct-foundation-dev libocct-visualization-dev
       libmeshoptimizer-dev libopenmesh-dev

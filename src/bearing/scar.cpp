@@ -79,6 +79,38 @@ bool scar_angle_contains(const ScarParams& s, double phi, double margin) {
   return std::fabs(wrap_angle(phi - c)) <= half;
 }
 
+std::vector<double> median_filter_border(const Roller& roller, const std::vector<double>& raw,
+                                         const std::vector<std::uint8_t>& inside, int border) {
+  const int n = roller.n(), m = roller.m();
+  // Median filter over the border band: window vertices within `border` grid steps of a vertex
+  // outside the window take the median of their (2b+1)^2 neighbourhood (outside counts as 0).
+  std::vector<double> out = raw;
+  const int b = border;
+  if (b > 0) {
+    std::vector<double> nb;
+    for (int j = 0; j <= m; ++j)
+      for (int i = 0; i < n; ++i) {
+        if (!inside[roller.side_vertex(i, j)]) continue;
+        bool near_border = false;
+        for (int dj = -b; dj <= b && !near_border; ++dj)
+          for (int di = -b; di <= b; ++di) {
+            const int jj = j + dj;
+            if (jj < 0 || jj > m || !inside[roller.side_vertex(i + di, jj)]) { near_border = true; break; }
+          }
+        if (!near_border) continue;
+        nb.clear();
+        for (int dj = -b; dj <= b; ++dj)
+          for (int di = -b; di <= b; ++di) {
+            const int jj = j + dj;
+            nb.push_back(jj < 0 || jj > m ? 0.0 : raw[roller.side_vertex(i + di, jj)]);
+          }
+        std::nth_element(nb.begin(), nb.begin() + nb.size() / 2, nb.end());
+        out[roller.side_vertex(i, j)] = nb[nb.size() / 2];
+      }
+  }
+  return out;
+}
+
 Expected<int> apply_scar(Roller& roller, const ScarParams& s) {
   if (Status st = validate(s, roller.params); !st) return st.error();
   const int n = roller.n(), m = roller.m();
@@ -111,32 +143,7 @@ Expected<int> apply_scar(Roller& roller, const ScarParams& s) {
       inside[roller.side_vertex(i, j)] = 1;
     }
   }
-  // Median filter over the border band: window vertices within `border` grid steps of a vertex
-  // outside the window take the median of their (2b+1)^2 neighbourhood (outside counts as 0).
-  std::vector<double> out = raw;
-  const int b = s.border;
-  if (b > 0) {
-    std::vector<double> nb;
-    for (int j = 0; j <= m; ++j)
-      for (int i = 0; i < n; ++i) {
-        if (!inside[roller.side_vertex(i, j)]) continue;
-        bool near_border = false;
-        for (int dj = -b; dj <= b && !near_border; ++dj)
-          for (int di = -b; di <= b; ++di) {
-            const int jj = j + dj;
-            if (jj < 0 || jj > m || !inside[roller.side_vertex(i + di, jj)]) { near_border = true; break; }
-          }
-        if (!near_border) continue;
-        nb.clear();
-        for (int dj = -b; dj <= b; ++dj)
-          for (int di = -b; di <= b; ++di) {
-            const int jj = j + dj;
-            nb.push_back(jj < 0 || jj > m ? 0.0 : raw[roller.side_vertex(i + di, jj)]);
-          }
-        std::nth_element(nb.begin(), nb.begin() + nb.size() / 2, nb.end());
-        out[roller.side_vertex(i, j)] = nb[nb.size() / 2];
-      }
-  }
+  const std::vector<double> out = median_filter_border(roller, raw, inside, s.border);
   int labelled = 0;
   for (std::size_t k = 0; k < out.size(); ++k) {
     roller.displacement[k] = out[k];

@@ -50,6 +50,13 @@ std::vector<double> diamond_square(int levels, double roughness, std::uint64_t s
 /// number of side vertices labelled as scar.
 Expected<int> apply_scar(Roller& roller, const ScarParams& s);
 
+/// The median filter of apply_scar: every vertex with inside = 1 within `border` grid steps (in the
+/// (2 border + 1)^2 neighbourhood, columns wrapping) of a vertex with inside = 0 or of the grid's end
+/// rings takes the median of that neighbourhood of `raw` (beyond the end rings: 0); the others
+/// keep their value. `raw` and `inside` are per side vertex.
+std::vector<double> median_filter_border(const Roller& roller, const std::vector<double>& raw,
+                                         const std::vector<std::uint8_t>& inside, int border);
+
 /// True when body-frame angle `phi` (radians) lies in the scar window's angular range, widened by
 /// `margin` radians on each side.
 bool scar_angle_contains(const ScarParams& s, double phi, double margin);
