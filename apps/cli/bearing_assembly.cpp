@@ -1,0 +1,193 @@
+// `interfere bearing --assembly FILE.json [--motion poses.csv] [--frames N] [--seed S] --out rows.csv
+// --json summary.json` (issue #27; docs/bearing.md, "Bearing assemblies"): reads and validates the
+// description, builds the parts and pairs, generates the motion (or reads it), solves every pair of
+// every frame and writes one CSV row per (frame, pair) and the JSON summary (schema_version 1).
+// Outputs are written atomically and only after every input is validated.
+#include "bearing_assembly.h"
+
+#include <cmath>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "common.h"
+#include "interfere/bearing/assembly.h"
+
+namespace interfere::cli {
+namespace {
+
+using namespace interfere::bearing;
+
+constexpr int kSchemaVersion = 1;
+
+nlohmann::json vec_json(const Vec3& v) { return {v.x, v.y, v.z}; }
+
+const char* path_name(const AssemblyPairResult& r) {
+  return r.solver == AssemblySolver::standard || r.solver == AssemblySolver::raceway ||
+                 r.solver == AssemblySolver::vertex
+             ? analytic_path_name(r.path)
+             : "-";
+}
+
+int write_csv(std::FILE* f, const Assembly& as, const AssemblyResult& r) {
+  std::fputs("frame,bearing,kind,a,b,distance,interference,ax,ay,az,bx,by,bz,solver,path,scar,exact,verdict\n", f);
+  for (const AssemblyRow& row : r.rows) {
+    const AssemblyPair& p = as.pairs[row.pair];
+    const AssemblyPairResult& x = row.result;
+    std::string b = as.parts[p.b].id;
+    if (p.kind == AssemblyPairKind::roller_cage) b += "#web" + std::to_string(p.feature);
+    if (p.kind == AssemblyPairKind::roller_rib) b += p.feature == 0 ? "#rib0" : "#rib1";
+    std::fprintf(f, "%d,%s,%s,%s,%s,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%s,%s,%d,%d,%s\n", row.frame,
+                 as.spec.bearings[as.parts[p.a].bearing].id.c_str(), assembly_pair_kind_name(p.kind),
+                 as.parts[p.a].id.c_str(), b.c_str(), x.distance, x.distance < 0 ? -x.distance : 0.0, x.point_a.x,
+                 x.point_a.y, x.point_a.z, x.point_b.x, x.point_b.y, x.point_b.z, assembly_solver_name(x.solver),
+                 path_name(x), x.scar ? 1 : 0, x.exact ? 1 : 0, verdict_name(x.verdict));
+  }
+  return std::ferror(f) ? 1 : 0;
+}
+
+nlohmann::json verdict_counts(const std::array<std::uint64_t, 5>& c) {
+  nlohmann::json j = nlohmann::json::object();
+  for (std::size_t v = 0; v < c.size(); ++v) j[verdict_name(static_cast<Verdict>(v))] = c[v];
+  return j;
+}
+
+nlohmann::json row_json(const Assembly& as, const AssemblyRow& row) {
+  const AssemblyPair& p = as.pairs[row.pair];
+  const AssemblyPairResult& x = row.result;
+  return {{"frame", row.frame},
+          {"pair", row.pair},
+          {"kind", assembly_pair_kind_name(p.kind)},
+          {"a", as.parts[p.a].id},
+          {"b", as.parts[p.b].id},
+          {"feature", p.feature},
+          {"distance", x.distance},
+          {"interference", x.distance < 0 ? -x.distance : 0.0},
+          {"point_a", vec_json(x.point_a)},
+          {"point_b", vec_json(x.point_b)},
+          {"solver", assembly_solver_name(x.solver)},
+          {"scar", x.scar},
+          {"exact", x.exact},
+          {"verdict", verdict_name(x.verdict)}};
+}
+
+nlohmann::json summary(const Assembly& as, const AssemblyMotion& m, const AssemblyResult& r, std::uint64_t seed,
+                       int status) {
+  nlohmann::json j;
+  j["schema_version"] = kSchemaVersion;
+  j["version"] = INTERFERE_VERSION;
+  j["command"] = "bearing";
+  j["mode"] = "assembly";
+  j["assembly"] = as.spec.file;
+  j["motion"] = m.source;
+  j["seed"] = seed;
+  j["frames"] = r.frames;
+  j["threads"] = active_threads();
+  nlohmann::json bearings = nlohmann::json::array();
+  for (std::size_t b = 0; b < as.spec.bearings.size(); ++b) {
+    const BearingSpec& s = as.spec.bearings[b];
+    int scarred = 0, pairs = 0;
+    for (const AssemblyPart& p : as.parts) scarred += p.bearing == static_cast<int>(b) && p.scarred;
+    for (const AssemblyPair& p : as.pairs) pairs += as.parts[p.a].bearing == static_cast<int>(b);
+    bearings.push_back({{"id", s.id},
+                        {"type", bearing_type_name(s.type)},
+                        {"rollers", s.rollers.count},
+                        {"scarred_rollers", scarred},
+                        {"pitch_radius", as.geometry[b].pitch_radius},
+                        {"parts", s.rollers.count + 3},
+                        {"pairs", pairs}});
+  }
+  j["bearings"] = std::move(bearings);
+  j["parts"] = as.parts.size();
+  j["pairs_per_frame"] = as.pairs.size();
+  // per pair kind
+  struct Kind {
+    std::uint64_t rows = 0;
+    double min_distance = INFINITY;
+    std::array<std::uint64_t, 5> verdicts{};
+  };
+  std::map<std::string, Kind> kinds;
+  for (const AssemblyRow& row : r.rows) {
+    Kind& k = kinds[assembly_pair_kind_name(as.pairs[row.pair].kind)];
+    ++k.rows;
+    k.min_distance = std::min(k.min_distance, row.result.distance);
+    ++k.verdicts[static_cast<std::size_t>(row.result.verdict)];
+  }
+  nlohmann::json by_kind = nlohmann::json::object();
+  for (const auto& [name, k] : kinds)
+    by_kind[name] = {{"rows", k.rows}, {"min_distance", k.min_distance}, {"verdicts", verdict_counts(k.verdicts)}};
+  const double dmin = r.rows.empty() ? 0.0 : r.rows[r.worst].result.distance;
+  j["results"] = {{"rows", r.rows.size()},
+                  {"verdicts", verdict_counts(r.verdicts)},
+                  {"interfering_rows", r.interfering_rows},
+                  {"scar_rows", r.scar_rows},
+                  {"inexact_rows", r.inexact_rows},
+                  {"min_distance", dmin},
+                  {"max_interference", dmin < 0 ? -dmin : 0.0},
+                  {"by_kind", std::move(by_kind)}};
+  if (!r.rows.empty()) j["worst"] = row_json(as, r.rows[r.worst]);
+  nlohmann::json frames = nlohmann::json::array();
+  for (std::uint32_t i : r.worst_per_frame) frames.push_back(row_json(as, r.rows[i]));
+  j["frame_worst"] = std::move(frames);
+  j["verdict"] = verdict_name(r.verdict);
+  j["exit_status"] = status;
+  j["timing"] = {{"seconds", r.seconds}, {"frames_per_second", r.seconds > 0 ? r.frames / r.seconds : 0.0}};
+  return j;
+}
+
+}  // namespace
+
+int run_bearing_assembly(const BearingAssemblyOptions& o) {
+  Expected<AssemblySpec> spec = read_assembly_file(o.assembly);
+  if (!spec) throw InputError(spec.error());
+  if (o.frames) spec->frames = *o.frames;
+  if (o.seed) spec->seed = *o.seed;
+  if (o.clearance) spec->clearance = *o.clearance;
+  if (o.frames && *o.frames < 1) throw InputError("--frames must be >= 1, got " + std::to_string(*o.frames));
+  if (!o.motion.empty() && o.frames) throw InputError("--frames cannot be combined with --motion (the file gives the frames)");
+  if (Status s = validate_assembly(*spec); !s) {
+    Error e = s.error();
+    if (e.file.empty()) e.file = o.assembly;
+    throw InputError(e);
+  }
+  if (o.views.any()) throw InputError("--html, --glb and --pvd are not yet available with --assembly");
+  const FailOn fail = fail_on(o.fail_on);
+  check_output(o.out, {}, "--out");
+  check_output(o.json, {}, "--json");
+  check_distinct_files({{"--assembly", o.assembly}, {"--motion", o.motion}}, {{"--out", o.out}, {"--json", o.json}});
+  set_threads(o.threads.value_or(0));
+
+  Progress total("bearing assembly");
+  Expected<Assembly> as = build_assembly(*spec);
+  if (!as) throw InputError(as.error());
+  AssemblyMotion motion;
+  if (!o.motion.empty()) {
+    Expected<AssemblyMotion> m = read_assembly_motion(*as, o.motion);
+    if (!m) throw InputError(m.error());
+    motion = std::move(*m);
+  } else {
+    motion = generate_motion(*as, spec->frames, spec->seed);
+  }
+  AssemblyResult res;
+  {
+    Progress progress("solving " + std::to_string(as->pairs.size()) + " pairs x " +
+                      std::to_string(motion.poses.size()) + " frames");
+    res = run_assembly(*as, motion);
+  }
+  const int status = verdict_exit_status(res.verdict, fail);
+  if (!o.out.empty()) write_or_throw(write_output(o.out, [&](std::FILE* f) { return write_csv(f, *as, res); }));
+  if (!o.json.empty()) write_or_throw(write_output(o.json, summary(*as, motion, res, spec->seed, status).dump(2) + "\n"));
+  const AssemblyRow& w = res.rows[res.worst];
+  std::printf("%s: %zu bearings, %zu parts, %zu pairs x %d frames, %llu interfering pair-frames, worst %s %s-%s "
+              "distance %.17g (frame %d)\n",
+              verdict_name(res.verdict), as->spec.bearings.size(), as->parts.size(), as->pairs.size(), res.frames,
+              static_cast<unsigned long long>(res.interfering_rows), assembly_pair_kind_name(as->pairs[w.pair].kind),
+              as->parts[as->pairs[w.pair].a].id.c_str(), as->parts[as->pairs[w.pair].b].id.c_str(), w.result.distance,
+              w.frame);
+  std::printf("  pair-frames: %llu clash, %llu contact, %llu clearance, %llu undecided, %llu clear\n",
+              static_cast<unsigned long long>(res.verdicts[4]), static_cast<unsigned long long>(res.verdicts[2]),
+              static_cast<unsigned long long>(res.verdicts[1]), static_cast<unsigned long long>(res.verdicts[3]),
+              static_cast<unsigned long long>(res.verdicts[0]));
+  return status;
+}
+
+}  // namespace interfere::cli

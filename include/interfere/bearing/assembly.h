@@ -1,0 +1,268 @@
+// Bearing assemblies (issue #27, item 1; Jia & Zheng 2019, §2.1 Fig. 1 and §4): several bearings of
+// an axle, each with its rings, rollers and cage, described in JSON (docs/bearing.md, "Bearing
+// assemblies"), meshed as closed outward bodies, and checked pair by pair every frame of a motion
+// (generated with a seed, or read from a pose file) by exact solvers.
+//
+//  * cylindrical: inner ring (raceway cylinder r_i, two ribs of height h and width w at its ends,
+//    bore), outer ring (concave raceway bore R_o), Z cylindrical rollers on the pitch circle, a cage
+//    of Z webs (convex hexahedra) between the pockets;
+//  * tapered: cone (inner raceway, a frustum), cup (outer raceway, a concave cone), Z tapered rollers
+//    whose axes and raceways meet at one apex on the bearing axis (§2.1: "axes coplanar or meeting at
+//    a point"), the same cage of webs.
+//
+// Frames: each bearing's local frame has the bearing axis +z through `position`, the mid-plane z = 0.
+// Rings and cage have that frame as body frame; a roller's body frame is make_roller's (axis +z from
+// its bottom end centre). Poses (motion) map body frames to the world.
+//
+// Pairs (per bearing; bearings of one assembly must lie apart, checked): roller-inner raceway and
+// roller-roller (neighbours) by part_pair.h (standard or scarred solver, two-sided), roller-outer
+// bore (raceway.h; scarred rollers: the exact vertex maximum, see assembly_pairs.cpp), roller end-rib
+// (raceway.h), roller-cage web (exact: min over the web's triangles of the roller's signed distance,
+// scarred.h's triangle minimum; tapered or scarred rollers: the mesh engine), tapered: roller-cone
+// (cone_pair_distance), roller-cup (roller_cup_distance). Sign convention of analytic.h: > 0
+// clearance, < 0 interference depth.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "interfere/bearing/part_pair.h"
+#include "interfere/bearing/quadtree.h"
+#include "interfere/bearing/roller.h"
+#include "interfere/bearing/scar.h"
+#include "interfere/core/error.h"
+#include "interfere/mesh/tri_mesh.h"
+#include "interfere/query/model.h"
+#include "interfere/query/verdict.h"
+
+namespace interfere::bearing {
+
+// ---------------------------------------------------------------------------------------------
+// Description (assembly_read.cpp, assembly_validate.cpp)
+
+enum class BearingType : std::uint8_t { cylindrical, tapered };
+const char* bearing_type_name(BearingType t);
+
+struct RollerSetSpec {
+  int count = 0;              ///< Z >= 3
+  double radius = 0;          ///< cylindrical: the radius; tapered: the small-end radius
+  double top_radius = -1;     ///< tapered: the large-end radius (> radius)
+  double length = 0;          ///< > 0
+  double pitch_radius = 0;    ///< cylindrical: radius of the circle of the roller axes (tapered: derived)
+  int radial_segments = 32;   ///< mesh (>= 3)
+  int height_segments = 31;   ///< mesh (>= 1)
+};
+
+struct CageSpec {
+  double pocket_clearance = 0;  ///< tangential play per side between roller and pocket face (>= 0)
+  double web_thickness = 0;     ///< radial thickness of the webs, centred on the pitch line (< 2 x min roller radius)
+  double width = 0;             ///< axial length of the webs along the roller axis; 0: the roller length
+};
+
+struct BearingSpec {
+  std::string id;  ///< unique; part ids are "<id>/inner", "<id>/outer", "<id>/cage", "<id>/roller<k>"
+  std::string where;  ///< "bearings[2]" (messages)
+  BearingType type = BearingType::cylindrical;
+  Vec3 position;
+  Vec3 axis{0, 0, 1};  ///< normalised by the reader
+  RollerSetSpec rollers;
+  CageSpec cage;
+  // cylindrical
+  double inner_bore = 0, inner_raceway = 0, inner_width = 0;  ///< inner ring radii, axial width
+  double rib_height = 0, rib_width = 0;                       ///< the two ribs of the inner ring
+  double outer_raceway = 0, outer_radius = 0, outer_width = 0;  ///< outer ring: bore R_o, outside, width
+  // tapered
+  double contact_angle_deg = 0;  ///< cup half-angle alpha
+  double cone_bore = 0, cone_clearance = 0;   ///< cone's bore radius; raceway offset inwards (normal)
+  double cup_outer = 0, cup_clearance = 0;    ///< cup's outside radius; raceway offset outwards (normal)
+};
+
+struct AssemblyMotionSpec {
+  double inner_deg_per_frame = 5;  ///< inner ring rotation per frame (outer ring fixed)
+  double max_tilt_deg = 0.05;      ///< roller tilt perturbation in its axial plane, |tilt| <= this; Eq. (1) valid
+  double load_direction_deg = 270; ///< direction of the inner ring's radial displacement (bearing frame, from +x)
+  double load_displacement = 0;    ///< radial displacement of the inner ring (>= 0)
+  double pocket_play = 1.0;        ///< tangential roller shift, fraction of the pocket clearance ([0, 4])
+  double axial_play = 1.0;         ///< axial roller shift, fraction of the free axial play between the ribs ([0, 4])
+};
+
+struct AssemblySpec {
+  std::string file;
+  int frames = 10;
+  std::uint64_t seed = 1;
+  double clearance = 0;          ///< >= 0: the clearance verdict below it
+  int ring_segments = 96;        ///< segments around the rings' meshes (>= 8)
+  double scar_fraction = 0;      ///< of each cylindrical bearing's rollers, in [0, 1]
+  ScarParams scar;               ///< window; z_min/z_max < 0: 25 % / 75 % of the roller length
+  AssemblyMotionSpec motion;
+  std::vector<BearingSpec> bearings;
+};
+
+/// Reads the JSON description. Errors name the file and the JSON path ("axle.json: bearings[1].
+/// rollers.count: expected an integer, got a string"): unknown keys, wrong types, missing fields.
+/// The result is validated (validate_assembly).
+Expected<AssemblySpec> read_assembly_file(const std::string& path);
+/// The same from text (`file` names it in messages).
+Expected<AssemblySpec> parse_assembly(const std::string& text, const std::string& file);
+
+/// Every geometric condition, the error naming the parameter ("bearings[0].rollers.pitch_radius"):
+/// non-finite numbers, rollers that do not fit between their rings (radially, axially between the
+/// ribs), neighbours overlapping (Z too large for the pitch circle), a cage pocket smaller than its
+/// roller, webs that vanish, tilts outside Eq. (1)'s validity range (window.h), bearings that overlap.
+Status validate_assembly(const AssemblySpec& spec);
+
+// ---------------------------------------------------------------------------------------------
+// Parts (assembly_parts.cpp)
+
+enum class PartKind : std::uint8_t { inner, outer, cage, roller };
+const char* part_kind_name(PartKind k);
+
+/// A convex hexahedral cage web, body (bearing) frame: 8 corners, 6 outward planes n.x <= d.
+struct CageWeb {
+  std::array<Vec3, 8> corners;
+  std::array<Vec3, 6> normals;
+  std::array<double, 6> offsets;
+};
+
+/// Derived geometry of one bearing (bearing frame).
+struct BearingGeometry {
+  Transform frame;          ///< bearing frame -> world (rotation z -> axis, translation position)
+  double pitch_radius = 0;  ///< of the roller mid points
+  double roller_z = 0;      ///< axial position of the roller mid points
+  double roller_lean = 0;   ///< angle of the roller axes to the bearing axis (tapered: gamma), radians
+  double apex_z = 0;        ///< tapered: the apex on the axis
+  double cone_half_angle = 0, cup_half_angle = 0;
+  double ring_lo = 0, ring_hi = 0;  ///< tapered: axial span of cone and cup
+  Cylinder raceway;         ///< inner raceway (cylindrical: r_i over the inner width; tapered: the cone frustum)
+  double free_axial_play = 0;  ///< cylindrical: (inner width - 2 rib widths - roller length) / 2
+  std::vector<CageWeb> webs;   ///< web k lies between roller k and roller k + 1
+};
+Expected<BearingGeometry> bearing_geometry(const BearingSpec& b);
+
+struct AssemblyPart {
+  std::string id;
+  PartKind kind = PartKind::roller;
+  int bearing = 0, index = 0;          ///< index: the roller's k (else 0)
+  std::shared_ptr<const TriMesh> mesh; ///< body frame, closed and outward
+  std::shared_ptr<const Roller> roller;        ///< rollers: the meshed (scarred) roller
+  std::shared_ptr<const RollerQuadtree> tree;  ///< scarred rollers
+  std::shared_ptr<const Model> solid;          ///< scarred rollers: body-frame model (containment)
+  bool scarred = false;
+  Transform rest;  ///< nominal pose (no motion)
+};
+
+/// Meshes of the parts of one bearing (for views and the mesh engine).
+TriMesh inner_ring_mesh(const BearingSpec& b, const BearingGeometry& g, int segments);
+TriMesh outer_ring_mesh(const BearingSpec& b, const BearingGeometry& g, int segments);
+TriMesh cage_mesh(const BearingGeometry& g);  ///< the Z webs, 12 triangles each
+TriMesh web_mesh(const CageWeb& w);
+
+/// The roller pose in the bearing frame: orbit angle phi, tilt in the axial plane (about the
+/// tangential direction through the roller's mid point), axial shift, spin about its own axis.
+Transform roller_local_pose(const BearingSpec& b, const BearingGeometry& g, double phi, double tilt,
+                            double axial_shift, double spin);
+
+// ---------------------------------------------------------------------------------------------
+// Pairs (assembly_pairs.cpp)
+
+enum class AssemblyPairKind : std::uint8_t {
+  roller_inner,  ///< cylindrical roller - inner raceway cylinder (convex-convex)
+  roller_outer,  ///< roller - concave outer raceway bore
+  roller_roller, ///< neighbours
+  roller_cage,   ///< roller - the cage web next to it
+  roller_rib,    ///< roller end - rib face of the inner ring
+  roller_cone,   ///< tapered roller - cone raceway
+  roller_cup,    ///< tapered roller - cup raceway
+};
+const char* assembly_pair_kind_name(AssemblyPairKind k);
+
+struct AssemblyPair {
+  AssemblyPairKind kind = AssemblyPairKind::roller_inner;
+  std::uint32_t a = 0, b = 0;  ///< part indices (a: the roller)
+  int feature = 0;             ///< roller_cage: the web index; roller_rib: 0 (z < 0 side) or 1
+};
+
+struct Assembly {
+  AssemblySpec spec;
+  std::vector<BearingGeometry> geometry;
+  std::vector<AssemblyPart> parts;
+  std::vector<AssemblyPair> pairs;
+  std::vector<Model> webs;  ///< per bearing, per web: body-frame models (mesh engine), flattened
+  std::vector<std::uint32_t> web_offset;  ///< per bearing: first web model
+  std::int64_t find(const std::string& id) const;
+};
+
+/// Builds geometry, meshes (scars applied), and the pair list. Errors: validate_assembly.
+Expected<Assembly> build_assembly(const AssemblySpec& spec);
+
+enum class AssemblySolver : std::uint8_t {
+  standard,  ///< analytic.h (two-sided)
+  scarred,   ///< scarred.h on the roller's triangle surface
+  raceway,   ///< raceway.h (bore, rib, cone, cup)
+  vertex,    ///< scarred roller in the bore: maximum over its vertices (exact for the mesh)
+  web,       ///< min over the web's triangles of the roller's signed distance (exact)
+  mesh,      ///< the mesh engine (query/distance.h, clash.h) on the two meshes
+  bound,     ///< only a bound (see part_pair.h)
+};
+const char* assembly_solver_name(AssemblySolver s);
+
+struct AssemblyPairResult {
+  double distance = 0;        ///< > 0 clearance, < 0 interference depth
+  Vec3 point_a, point_b;      ///< world frame
+  AssemblySolver solver = AssemblySolver::standard;
+  AnalyticPath path = AnalyticPath::side;  ///< the analytic solver's path (standard, raceway)
+  bool scar = false;          ///< a scarred surface was the one measured
+  bool exact = true;          ///< false: distance is a bound (the verdict says what is decided)
+  Verdict verdict = Verdict::clear;
+};
+
+/// One pair at the given poses (world, per part).
+AssemblyPairResult solve_pair(const Assembly& as, const AssemblyPair& pair, const std::vector<Transform>& poses,
+                              double clearance);
+
+// ---------------------------------------------------------------------------------------------
+// Motion (assembly_motion.cpp)
+
+/// Per frame, per part: body -> world.
+struct AssemblyMotion {
+  std::vector<std::vector<Transform>> poses;
+  std::string source;  ///< "generated (seed S)" or the file
+};
+
+/// The paper's motion (§4; docs/bearing.md): inner ring rotation, cage and rollers orbiting at the
+/// cage speed, roller spin, seeded tilt perturbations in the axial plane (|tilt| <= max_tilt), pocket
+/// and axial play, the load's radial displacement of the inner ring. Frame f depends only on
+/// (seed, f): deterministic.
+AssemblyMotion generate_motion(const Assembly& as, int frames, std::uint64_t seed);
+
+/// Per-frame poses from a motion file (scene/io.h's read_motion: CSV frame,body,12 numbers, or
+/// JSON); a part a frame does not list keeps its previous pose (initially the rest pose). Errors
+/// name the file and line (unknown part ids, ...), or the frame and part for a non-rigid pose.
+Expected<AssemblyMotion> read_assembly_motion(const Assembly& as, const std::string& path);
+
+// ---------------------------------------------------------------------------------------------
+// Per frame (assembly_run.cpp)
+
+struct AssemblyRow {
+  std::int32_t frame = 0;
+  std::uint32_t pair = 0;  ///< index into Assembly::pairs
+  AssemblyPairResult result;
+};
+
+struct AssemblyResult {
+  int frames = 0;
+  std::vector<AssemblyRow> rows;             ///< frame-major, then pair
+  std::vector<std::uint32_t> worst_per_frame;  ///< row index of each frame's smallest distance (first on ties)
+  std::uint32_t worst = 0;                   ///< row index of the smallest distance overall
+  std::array<std::uint64_t, 5> verdicts{};   ///< rows per Verdict
+  Verdict verdict = Verdict::clear;
+  std::uint64_t interfering_rows = 0, scar_rows = 0, inexact_rows = 0;
+  double seconds = 0;
+};
+
+/// Every pair of every frame, in parallel over pairs (oneTBB), identical for any thread count.
+AssemblyResult run_assembly(const Assembly& as, const AssemblyMotion& motion);
+
+}  // namespace interfere::bearing

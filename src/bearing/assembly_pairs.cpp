@@ -1,0 +1,318 @@
+// The pair solvers of a bearing assembly (assembly.h, solve_pair; docs/bearing.md, "Bearing
+// assemblies"). Every pair's value is s of analytic.h's convention (> 0 clearance, < 0 minus the
+// interference depth), computed at the frame's poses by an exact solver:
+//   roller-inner, roller-roller (cylindrical): part_pair.h (standard or scarred solver, two-sided);
+//   roller-roller (tapered): min(cone_pair_distance(a, b), cone_pair_distance(b, a)) (two-sided);
+//   roller-cone: the same two ways; roller-cup: roller_cup_distance; roller-outer:
+//   roller_bore_distance, a scarred roller by the maximum over its mesh vertices of the distance to
+//   the bore axis (rho is convex, so its maximum over a triangle is at a vertex: exact for the mesh);
+//   roller-rib: roller_rib_distance; roller-cage: min over the web's triangles of the roller's signed
+//   distance (scarred.h's exact triangle minimum for cylinders; a nested golden-section search of the
+//   convex signed distance of a frustum for tapered rollers).
+// Scarred rollers against the rib and the cage web: the scar lies in the window z_min..z_max of the
+// roller's length; the roller is split into its two intact end pieces (exact cylinders) and the
+// middle piece, enclosed by the cylinder grown by the scar's largest outward displacement. When
+// the middle's bound is above the ends' value the ends decide: exact. Otherwise the value is a
+// bound (exact = false) and the verdict comes from the mesh engine (query/clash.h) on the meshes.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "golden.h"
+#include "interfere/bearing/assembly.h"
+#include "interfere/bearing/raceway.h"
+#include "interfere/bearing/scarred.h"
+#include "interfere/query/clash.h"
+
+namespace interfere::bearing {
+namespace {
+
+using detail::golden_min;
+
+Cylinder posed(const Cylinder& c, const Transform& pose) {
+  Cylinder out = c;
+  out.base = pose.apply(c.base);
+  out.axis = pose.rotate(c.axis);
+  out.axis = out.axis / norm(out.axis);
+  return out;
+}
+
+double tolerance_of(const Cylinder& roller, double ring_radius) {
+  const Vec3 m = roller.center();
+  return 0x1p-36 * (std::max({std::fabs(m.x), std::fabs(m.y), std::fabs(m.z)}) + roller.height + roller.max_radius() +
+                    ring_radius);
+}
+
+double ring_radius(const BearingSpec& b) {
+  return b.type == BearingType::cylindrical ? b.outer_radius : b.cup_outer;
+}
+
+/// min over the triangle (t0, t1, t2) of the convex signed distance sd: nested golden-section search
+/// over the barycentric coordinates (partial minimisation keeps convexity).
+template <class F>
+std::pair<double, Vec3> triangle_min(F&& sd, const Vec3& t0, const Vec3& t1, const Vec3& t2) {
+  constexpr int kIter = 72;
+  const auto at = [&](double u, double v) { return t0 + (t1 - t0) * u + (t2 - t0) * v; };
+  const auto over_v = [&](double u) {
+    return golden_min([&](double v) { return sd(at(u, v)); }, 0.0, 1.0 - u, kIter);
+  };
+  const auto [u, value] = golden_min([&](double uu) { return over_v(uu).second; }, 0.0, 1.0, kIter);
+  const double v = over_v(u).first;
+  return {value, at(u, v)};
+}
+
+/// s(web, roller): the minimum over the web's triangles of the roller's signed distance (the web
+/// is convex and thin; when that minimum is > 0 the web could only lie inside the roller: its centre
+/// is tested). point_a on the roller's boundary, point_b on the web.
+struct WebValue {
+  double distance = std::numeric_limits<double>::infinity();
+  Vec3 point_a, point_b;
+};
+WebValue web_distance(const Cylinder& roller, const TriMesh& web, const Transform& cage_pose) {
+  WebValue out;
+  std::vector<Vec3> p(web.positions.size());
+  Vec3 centre;
+  for (std::size_t i = 0; i < p.size(); ++i) p[i] = cage_pose.apply(web.positions[i]), centre += p[i];
+  centre = centre / static_cast<double>(p.size());
+  if (!roller.tapered()) {
+    for (const Tri& t : web.triangles) {
+      const TriangleMin tm = triangle_min_signed_distance(roller, p[t[0]], p[t[1]], p[t[2]]);
+      if (tm.value < out.distance) out.distance = tm.value, out.point_b = tm.point;
+    }
+  } else {
+    // A frustum lies in the cylinder of its larger radius, so that cylinder's exact triangle minimum
+    // is a lower bound of the frustum's: triangles whose bound is not below the best value so far
+    // are skipped (the value is the same, only the work is less).
+    Cylinder enclosing = roller;
+    enclosing.radius = roller.max_radius();
+    enclosing.top_radius = -1;
+    std::vector<std::pair<double, std::size_t>> order;
+    for (std::size_t i = 0; i < web.triangles.size(); ++i) {
+      const Tri& t = web.triangles[i];
+      order.emplace_back(triangle_min_signed_distance(enclosing, p[t[0]], p[t[1]], p[t[2]]).value, i);
+    }
+    std::sort(order.begin(), order.end());
+    for (const auto& [bound, i] : order) {
+      if (!(bound < out.distance)) break;
+      const Tri& t = web.triangles[i];
+      const auto [value, point] = triangle_min(
+          [&](const Vec3& x) { return point_frustum_signed_distance(roller, x); }, p[t[0]], p[t[1]], p[t[2]]);
+      if (value < out.distance) out.distance = value, out.point_b = point;
+    }
+  }
+  if (out.distance > 0) {
+    const double c = roller.tapered() ? point_frustum_signed_distance(roller, centre) : point_signed_distance(roller, centre);
+    if (c < 0) out.distance = c, out.point_b = centre;  // the web inside the roller: a clash
+  }
+  out.point_a = roller.tapered() ? nearest_on_frustum_boundary(roller, out.point_b)
+                                 : nearest_on_cylinder_boundary(roller, out.point_b);
+  return out;
+}
+
+/// A scarred roller split along its axis: the intact end pieces [0, z0], [z1, L] and the middle
+/// piece [z0, z1] grown by `raise` (the scar's largest outward displacement).
+struct Pieces {
+  std::vector<Cylinder> ends;
+  Cylinder middle;
+};
+Pieces split(const Cylinder& c, const Roller& r, const ScarParams& scar) {
+  double raise = 0;
+  for (double d : r.displacement) raise = std::max(raise, -d);
+  const double z0 = std::clamp(scar.z_min, 0.0, c.height), z1 = std::clamp(scar.z_max, z0, c.height);
+  Pieces out;
+  if (z0 > 0) {
+    Cylinder e = c;
+    e.height = z0;
+    out.ends.push_back(e);
+  }
+  if (z1 < c.height) {
+    Cylinder e = c;
+    e.base = c.base + c.axis * z1;
+    e.height = c.height - z1;
+    out.ends.push_back(e);
+  }
+  out.middle = c;
+  out.middle.base = c.base + c.axis * z0;
+  out.middle.height = std::max(z1 - z0, 1e-300);
+  out.middle.radius = c.radius + raise;
+  return out;
+}
+
+ScarParams scar_of(const AssemblySpec& s, const BearingSpec& b) {
+  ScarParams sc = s.scar;
+  if (sc.z_min < 0) sc.z_min = 0.25 * b.rollers.length;
+  if (sc.z_max < 0) sc.z_max = 0.75 * b.rollers.length;
+  return sc;
+}
+
+/// The verdict of two meshes by the mesh engine (closed parts: containment decided).
+Verdict mesh_verdict(const TriMesh& a, const Transform& pa, const TriMesh& b, const Transform& pb, double clearance) {
+  const Model ma = make_model(transformed(a, pa)), mb = make_model(transformed(b, pb));
+  ClashRequest rq;
+  rq.parallel = false;
+  rq.regions = false;
+  rq.clearance = clearance;
+  return clash(ma, mb, rq).verdict;
+}
+
+AssemblyPairResult from_part_pair(const PartPairResult& r, double clearance, double tol) {
+  AssemblyPairResult out;
+  out.distance = r.distance;
+  out.point_a = r.swapped ? r.point_b : r.point_a;
+  out.point_b = r.swapped ? r.point_a : r.point_b;
+  out.solver = r.solver == PartPairSolver::scarred ? AssemblySolver::scarred
+               : r.solver == PartPairSolver::bound ? AssemblySolver::bound
+                                                    : AssemblySolver::standard;
+  out.path = r.path;
+  out.scar = r.solver == PartPairSolver::scarred;
+  out.exact = r.two_sided_exact && r.solver != PartPairSolver::bound;
+  out.verdict = r.verdict;
+  (void)clearance, (void)tol;
+  return out;
+}
+
+AssemblyPairResult from_distance(const PairDistance& d, AssemblySolver solver, double clearance, double tol) {
+  AssemblyPairResult out;
+  out.distance = d.distance, out.point_a = d.point_a, out.point_b = d.point_b;
+  out.solver = solver, out.path = d.path;
+  out.verdict = distance_verdict(d.distance, tol, clearance);
+  return out;
+}
+
+/// Two-sided S = min(s(a, b), s(b, a)) with cone_pair_distance (tapered parts).
+PairDistance two_sided_cone(const Cylinder& a, const Cylinder& b) {
+  const PairDistance f = cone_pair_distance(a, b);
+  PairDistance r = cone_pair_distance(b, a);
+  if (f.distance <= r.distance) return f;
+  std::swap(r.point_a, r.point_b);
+  return r;
+}
+
+ScenePart roller_part(const AssemblyPart& p, const Cylinder& c, const Transform& pose) {
+  ScenePart s;
+  s.cylinder = c;
+  if (p.scarred) {
+    s.mesh = p.roller.get();
+    s.tree = p.tree.get();
+    s.solid = p.solid.get();
+  }
+  s.pose = pose;
+  return s;
+}
+
+}  // namespace
+
+AssemblyPairResult solve_pair(const Assembly& as, const AssemblyPair& pair, const std::vector<Transform>& poses,
+                              double clearance) {
+  const AssemblyPart& ra = as.parts[pair.a];
+  const AssemblyPart& pb = as.parts[pair.b];
+  const BearingSpec& b = as.spec.bearings[ra.bearing];
+  const BearingGeometry& g = as.geometry[ra.bearing];
+  const Transform& pose_a = poses[pair.a];
+  const Transform& pose_b = poses[pair.b];
+  const Cylinder roller = posed_cylinder(b.rollers.radius, b.rollers.top_radius, b.rollers.length, pose_a);
+  const double tol = tolerance_of(roller, ring_radius(b));
+  const Vec3 z{0, 0, 1};
+  switch (pair.kind) {
+    case AssemblyPairKind::roller_inner: {
+      ScenePart race;
+      race.cylinder = posed(g.raceway, pose_b);
+      race.partner = true;
+      return from_part_pair(decide_part_pair(roller_part(ra, roller, pose_a), race, clearance), clearance, tol);
+    }
+    case AssemblyPairKind::roller_roller: {
+      const Cylinder other = posed_cylinder(b.rollers.radius, b.rollers.top_radius, b.rollers.length, pose_b);
+      if (b.type == BearingType::tapered)
+        return from_distance(two_sided_cone(roller, other), AssemblySolver::raceway, clearance, tol);
+      return from_part_pair(
+          decide_part_pair(roller_part(ra, roller, pose_a), roller_part(pb, other, pose_b), clearance), clearance, tol);
+    }
+    case AssemblyPairKind::roller_cone:
+      return from_distance(two_sided_cone(roller, posed(g.raceway, pose_b)), AssemblySolver::raceway, clearance, tol);
+    case AssemblyPairKind::roller_cup: {
+      Cup cup;
+      const auto cup_r = [&](double zz) {
+        return (zz - g.apex_z) * std::tan(g.cup_half_angle) + b.cup_clearance / std::cos(g.cup_half_angle);
+      };
+      cup.base = pose_b.apply({0, 0, g.ring_lo});
+      cup.axis = pose_b.rotate(z);
+      cup.radius = cup_r(g.ring_lo), cup.top_radius = cup_r(g.ring_hi), cup.width = g.ring_hi - g.ring_lo;
+      return from_distance(roller_cup_distance(roller, cup), AssemblySolver::raceway, clearance, tol);
+    }
+    case AssemblyPairKind::roller_outer: {
+      Bore bore;
+      bore.base = pose_b.apply({0, 0, -0.5 * b.outer_width});
+      bore.axis = pose_b.rotate(z);
+      bore.radius = b.outer_raceway, bore.width = b.outer_width;
+      if (!ra.scarred) return from_distance(roller_bore_distance(roller, bore), AssemblySolver::raceway, clearance, tol);
+      // the scarred mesh: s = R - max over its vertices (within the ring's width) of rho
+      double best = -1;
+      Vec3 far;
+      for (const Vec3& v : ra.mesh->positions) {
+        const Vec3 p = pose_a.apply(v), d = p - bore.base;
+        const double zz = dot(d, bore.axis);
+        if (zz < 0 || zz > bore.width) continue;
+        const double rho = norm(cross(d, bore.axis));
+        if (rho > best) best = rho, far = p;
+      }
+      if (best < 0) return from_distance(roller_bore_distance(roller, bore), AssemblySolver::raceway, clearance, tol);
+      PairDistance d;
+      d.distance = bore.radius - best;
+      d.point_a = far;
+      const Vec3 foot = bore.base + bore.axis * dot(far - bore.base, bore.axis);
+      const Vec3 radial = far - foot;
+      const double rn = norm(radial);
+      d.point_b = rn > 0 ? foot + radial * (bore.radius / rn) : far;
+      d.path = AnalyticPath::bore;
+      AssemblyPairResult out = from_distance(d, AssemblySolver::vertex, clearance, tol);
+      out.scar = true;
+      return out;
+    }
+    case AssemblyPairKind::roller_rib:
+    case AssemblyPairKind::roller_cage: {
+      const bool rib = pair.kind == AssemblyPairKind::roller_rib;
+      Rib face;
+      if (rib) {
+        const double zf = pair.feature == 0 ? -0.5 * b.inner_width + b.rib_width : 0.5 * b.inner_width - b.rib_width;
+        face.center = pose_b.apply({0, 0, zf});
+        face.axis = pose_b.rotate(z);
+        face.normal = pair.feature == 0 ? face.axis : -face.axis;
+        face.inner_radius = b.inner_raceway;
+        face.outer_radius = b.inner_raceway + b.rib_height;
+      }
+      const TriMesh* web = rib ? nullptr : &as.webs[as.web_offset[ra.bearing] + pair.feature].mesh;
+      const auto one = [&](const Cylinder& c) -> AssemblyPairResult {
+        if (rib) return from_distance(roller_rib_distance(c, face), AssemblySolver::raceway, clearance, tol);
+        const WebValue w = web_distance(c, *web, pose_b);
+        PairDistance d;
+        d.distance = w.distance, d.point_a = w.point_a, d.point_b = w.point_b;
+        return from_distance(d, AssemblySolver::web, clearance, tol);
+      };
+      if (!ra.scarred) return one(roller);
+      const Pieces pieces = split(roller, *ra.roller, scar_of(as.spec, b));
+      AssemblyPairResult best;
+      best.distance = std::numeric_limits<double>::infinity();
+      for (const Cylinder& e : pieces.ends)
+        if (AssemblyPairResult r = one(e); r.distance < best.distance) best = r;
+      const AssemblyPairResult mid = one(pieces.middle);
+      if (mid.distance > best.distance) return best;  // the intact ends decide: exact
+      // the scarred middle may decide: a bound (the enclosing middle) and the mesh engine's verdict
+      AssemblyPairResult out = mid;
+      out.exact = false;
+      out.scar = true;
+      out.solver = AssemblySolver::bound;
+      if (out.verdict != Verdict::clear) {  // a lower bound decides only `clear`
+        if (rib) {
+          out.verdict = Verdict::undecided;
+        } else {
+          out.verdict = mesh_verdict(*ra.mesh, pose_a, *web, pose_b, clearance);
+          out.solver = AssemblySolver::mesh;
+        }
+      }
+      return out;
+    }
+  }
+  return {};
+}
+
+}  // namespace interfere::bearing

@@ -1,0 +1,244 @@
+// The parts of a bearing assembly as bodies (assembly.h): closed outward meshes of the rings
+// (solids of revolution of their profiles), the cage (Z convex webs, one hexahedron each: the side
+// rings that would join them lie axially beyond the rollers and are not modelled), the rollers
+// (make_roller, scarred by scar.h), and the list of pairs that can touch.
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "assembly_internal.h"
+#include "interfere/bearing/assembly.h"
+
+namespace interfere::bearing {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+/// Signed volume (divergence theorem): > 0 for a closed outward mesh.
+double signed_volume(const TriMesh& m) {
+  double v = 0;
+  for (const Tri& t : m.triangles)
+    v += dot(m.positions[t[0]], cross(m.positions[t[1]], m.positions[t[2]]));
+  return v / 6;
+}
+
+void flip_if_inward(TriMesh& m) {
+  if (signed_volume(m) < 0)
+    for (Tri& t : m.triangles) std::swap(t[1], t[2]);
+}
+
+/// The solid of revolution of a closed polygon in the (r, z) half-plane (r > 0 everywhere) about
+/// the z axis, `n` segments: a closed torus-like mesh, outward.
+TriMesh revolve(const std::vector<std::array<double, 2>>& profile, int n) {
+  TriMesh m;
+  const std::size_t p = profile.size();
+  for (int j = 0; j < n; ++j) {
+    const double a = 2 * kPi * j / n, c = std::cos(a), s = std::sin(a);
+    for (const auto& [r, z] : profile) m.positions.push_back({r * c, r * s, z});
+  }
+  const auto v = [&](std::size_t i, int j) { return static_cast<std::uint32_t>((j % n) * p + (i % p)); };
+  for (int j = 0; j < n; ++j)
+    for (std::size_t i = 0; i < p; ++i) {
+      m.triangles.push_back({v(i, j), v(i + 1, j), v(i + 1, j + 1)});
+      m.triangles.push_back({v(i, j), v(i + 1, j + 1), v(i, j + 1)});
+    }
+  flip_if_inward(m);
+  return m;
+}
+
+}  // namespace
+
+const char* part_kind_name(PartKind k) {
+  switch (k) {
+    case PartKind::inner: return "inner";
+    case PartKind::outer: return "outer";
+    case PartKind::cage: return "cage";
+    case PartKind::roller: return "roller";
+  }
+  return "?";
+}
+
+const char* assembly_pair_kind_name(AssemblyPairKind k) {
+  switch (k) {
+    case AssemblyPairKind::roller_inner: return "roller-inner";
+    case AssemblyPairKind::roller_outer: return "roller-outer";
+    case AssemblyPairKind::roller_roller: return "roller-roller";
+    case AssemblyPairKind::roller_cage: return "roller-cage";
+    case AssemblyPairKind::roller_rib: return "roller-rib";
+    case AssemblyPairKind::roller_cone: return "roller-cone";
+    case AssemblyPairKind::roller_cup: return "roller-cup";
+  }
+  return "?";
+}
+
+const char* assembly_solver_name(AssemblySolver s) {
+  switch (s) {
+    case AssemblySolver::standard: return "standard";
+    case AssemblySolver::scarred: return "scarred";
+    case AssemblySolver::raceway: return "raceway";
+    case AssemblySolver::vertex: return "vertex";
+    case AssemblySolver::web: return "web";
+    case AssemblySolver::mesh: return "mesh";
+    case AssemblySolver::bound: return "bound";
+  }
+  return "?";
+}
+
+TriMesh inner_ring_mesh(const BearingSpec& b, const BearingGeometry& g, int segments) {
+  if (b.type == BearingType::tapered) {
+    const double lo = g.ring_lo, hi = g.ring_hi;
+    return revolve({{b.cone_bore, lo}, {g.raceway.radius, lo}, {g.raceway.top(), hi}, {b.cone_bore, hi}}, segments);
+  }
+  const double h = 0.5 * b.inner_width, w = b.rib_width, ri = b.inner_raceway, rr = ri + b.rib_height;
+  return revolve({{b.inner_bore, -h},
+                  {rr, -h},
+                  {rr, -h + w},
+                  {ri, -h + w},
+                  {ri, h - w},
+                  {rr, h - w},
+                  {rr, h},
+                  {b.inner_bore, h}},
+                 segments);
+}
+
+TriMesh outer_ring_mesh(const BearingSpec& b, const BearingGeometry& g, int segments) {
+  if (b.type == BearingType::tapered) {
+    const double lo = g.ring_lo, hi = g.ring_hi;
+    const auto cup_r = [&](double z) {
+      return (z - g.apex_z) * std::tan(g.cup_half_angle) + b.cup_clearance / std::cos(g.cup_half_angle);
+    };
+    return revolve({{cup_r(lo), lo}, {b.cup_outer, lo}, {b.cup_outer, hi}, {cup_r(hi), hi}}, segments);
+  }
+  const double h = 0.5 * b.outer_width;
+  return revolve({{b.outer_raceway, -h}, {b.outer_radius, -h}, {b.outer_radius, h}, {b.outer_raceway, h}}, segments);
+}
+
+TriMesh web_mesh(const CageWeb& w) {
+  TriMesh m;
+  m.positions.assign(w.corners.begin(), w.corners.end());
+  // corner i: bit 0 the pocket face (0: k, 1: k+1), bit 1 inner/outer, bit 2 low/high; each face is
+  // the 4 corners with its bit fixed
+  const Vec3 centre = [&] {
+    Vec3 c;
+    for (const Vec3& p : w.corners) c += p;
+    return c / 8.0;
+  }();
+  for (int bit = 0; bit < 3; ++bit)
+    for (int value = 0; value < 2; ++value) {
+      std::array<std::uint32_t, 4> q{};
+      int n = 0;
+      // cyclic order over the other two bits: 00, 01, 11, 10
+      const int o1 = (bit + 1) % 3, o2 = (bit + 2) % 3;
+      for (const auto& [x, y] : {std::pair{0, 0}, {1, 0}, {1, 1}, {0, 1}})
+        q[n++] = static_cast<std::uint32_t>((value << bit) | (x << o1) | (y << o2));
+      Tri t0{q[0], q[1], q[2]}, t1{q[0], q[2], q[3]};
+      const Vec3 nrm = cross(w.corners[q[1]] - w.corners[q[0]], w.corners[q[2]] - w.corners[q[0]]);
+      if (dot(nrm, w.corners[q[0]] - centre) < 0) std::swap(t0[1], t0[2]), std::swap(t1[1], t1[2]);
+      m.triangles.push_back(t0);
+      m.triangles.push_back(t1);
+    }
+  return m;
+}
+
+TriMesh cage_mesh(const BearingGeometry& g) {
+  TriMesh m;
+  for (const CageWeb& w : g.webs) {
+    const TriMesh wm = web_mesh(w);
+    const auto base = static_cast<std::uint32_t>(m.positions.size());
+    m.positions.insert(m.positions.end(), wm.positions.begin(), wm.positions.end());
+    for (const Tri& t : wm.triangles) m.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  }
+  return m;
+}
+
+std::int64_t Assembly::find(const std::string& id) const {
+  for (std::size_t i = 0; i < parts.size(); ++i)
+    if (parts[i].id == id) return static_cast<std::int64_t>(i);
+  return -1;
+}
+
+Expected<Assembly> build_assembly(const AssemblySpec& spec) {
+  if (Status st = validate_assembly(spec); !st) {
+    Error e = st.error();
+    if (e.file.empty()) e.file = spec.file;
+    return e;
+  }
+  Assembly as;
+  as.spec = spec;
+  std::uint64_t roller_serial = 0;
+  for (std::size_t bi = 0; bi < spec.bearings.size(); ++bi) {
+    const BearingSpec& b = spec.bearings[bi];
+    Expected<BearingGeometry> g = bearing_geometry(b);
+    if (!g) return g.error();
+    as.geometry.push_back(*g);
+    const int bearing = static_cast<int>(bi);
+    const auto add = [&](PartKind kind, std::string id, TriMesh mesh, const Transform& rest, int index) {
+      AssemblyPart p;
+      p.id = std::move(id), p.kind = kind, p.bearing = bearing, p.index = index;
+      p.mesh = std::make_shared<const TriMesh>(std::move(mesh));
+      p.rest = rest;
+      as.parts.push_back(std::move(p));
+      return static_cast<std::uint32_t>(as.parts.size() - 1);
+    };
+    const std::uint32_t inner = add(PartKind::inner, b.id + "/inner", inner_ring_mesh(b, *g, spec.ring_segments), g->frame, 0);
+    const std::uint32_t outer = add(PartKind::outer, b.id + "/outer", outer_ring_mesh(b, *g, spec.ring_segments), g->frame, 0);
+    const std::uint32_t cage = add(PartKind::cage, b.id + "/cage", cage_mesh(*g), g->frame, 0);
+    as.web_offset.push_back(static_cast<std::uint32_t>(as.webs.size()));
+    for (const CageWeb& w : g->webs) as.webs.push_back(make_model(web_mesh(w)));
+    // rollers, scarred ones spread evenly: roller k is scarred when floor((k+1) f) > floor(k f)
+    RollerParams rp;
+    rp.radius = b.rollers.radius, rp.top_radius = b.rollers.top_radius, rp.height = b.rollers.length;
+    rp.radial_segments = b.rollers.radial_segments, rp.height_segments = b.rollers.height_segments;
+    Expected<Roller> plain = make_roller(rp);
+    if (!plain) return plain.error();
+    const auto shared_plain = std::make_shared<const Roller>(*plain);
+    const auto shared_mesh = std::make_shared<const TriMesh>(plain->mesh);
+    const int z = b.rollers.count;
+    std::vector<std::uint32_t> rollers;
+    for (int k = 0; k < z; ++k, ++roller_serial) {
+      AssemblyPart p;
+      p.id = b.id + "/roller" + std::to_string(k);
+      p.kind = PartKind::roller, p.bearing = bearing, p.index = k;
+      p.rest = detail::compose(g->frame, roller_local_pose(b, *g, 2 * kPi * k / z, 0, 0, 0));
+      const double f = spec.scar_fraction;
+      const bool scarred = b.type == BearingType::cylindrical && f > 0 &&
+                           std::floor((k + 1) * f + 1e-12) > std::floor(k * f + 1e-12);
+      if (scarred) {
+        Roller r = *plain;
+        ScarParams sc = spec.scar;
+        if (sc.z_min < 0) sc.z_min = 0.25 * rp.height;
+        if (sc.z_max < 0) sc.z_max = 0.75 * rp.height;
+        sc.seed = spec.scar.seed + roller_serial;
+        Expected<int> applied = apply_scar(r, sc);
+        if (!applied) return applied.error();
+        p.scarred = true;
+        p.tree = std::make_shared<const RollerQuadtree>(build_quadtree(r));
+        p.solid = std::make_shared<const Model>(make_model(r.mesh));
+        p.mesh = std::make_shared<const TriMesh>(r.mesh);
+        p.roller = std::make_shared<const Roller>(std::move(r));
+      } else {
+        p.roller = shared_plain;
+        p.mesh = shared_mesh;
+      }
+      as.parts.push_back(std::move(p));
+      rollers.push_back(static_cast<std::uint32_t>(as.parts.size() - 1));
+    }
+    // the pairs that can touch
+    const bool cyl = b.type == BearingType::cylindrical;
+    for (int k = 0; k < z; ++k) {
+      const std::uint32_t r = rollers[k];
+      as.pairs.push_back({cyl ? AssemblyPairKind::roller_inner : AssemblyPairKind::roller_cone, r, inner, 0});
+      as.pairs.push_back({cyl ? AssemblyPairKind::roller_outer : AssemblyPairKind::roller_cup, r, outer, 0});
+      if (cyl) {
+        as.pairs.push_back({AssemblyPairKind::roller_rib, r, inner, 0});
+        as.pairs.push_back({AssemblyPairKind::roller_rib, r, inner, 1});
+      }
+      as.pairs.push_back({AssemblyPairKind::roller_cage, r, cage, (k + z - 1) % z});  // the web behind it
+      as.pairs.push_back({AssemblyPairKind::roller_cage, r, cage, k});                // the web ahead
+      as.pairs.push_back({AssemblyPairKind::roller_roller, r, rollers[(k + 1) % z], 0});
+    }
+  }
+  return as;
+}
+
+}  // namespace interfere::bearing
