@@ -23,6 +23,7 @@
 #include "interfere/core/atomic_file.h"
 #include "interfere/view/bearing_document.h"
 #include "view_output.h"
+#include "bearing_scar_import.h"
 
 namespace interfere::cli {
 namespace {
@@ -37,6 +38,8 @@ struct BearingOptions {
       scar_fraction, roughness, spacing, clearance;
   std::optional<std::uint64_t> seed, scar_seed;
   bool no_scar = false;
+  bool raised = false;                ///< --raised (issue #27)
+  ScarImportOptions scar_import;      ///< --scar-map, --scar-points (issue #27)
   ViewOutputs views;
 };
 
@@ -125,6 +128,10 @@ void apply_params_file(const std::string& file, SceneParams& p) {
         else if (r.key() == "roughness") p.scar.roughness = number(*r, file, key);
         else if (r.key() == "border") p.scar.border = integer(*r, file, key);
         else if (r.key() == "seed") p.scar.seed = unsigned_integer(*r, file, key);
+        else if (r.key() == "raised") {
+          if (!r->is_boolean()) file_error(file, "'" + key + "' must be true or false");
+          p.scar.raised = r->get<bool>();
+        }
         else file_error(file, "unknown key '" + key + "'");
       }
     } else {
@@ -186,7 +193,8 @@ nlohmann::json params_json(const SceneParams& p) {
             {"depth", p.scar.depth},
             {"roughness", p.scar.roughness},
             {"border", p.scar.border},
-            {"seed", p.scar.seed}}},
+            {"seed", p.scar.seed},
+            {"raised", p.scar.raised}}},
           {"broad_phase", broad_phase_name(p.broad_phase)},
           {"spacing", p.spacing},
           {"clearance", p.clearance}};
@@ -241,6 +249,8 @@ int run_bearing(const BearingOptions& o) {
   if (o.border) p.scar.border = *o.border;
   if (o.scar_seed) p.scar.seed = *o.scar_seed;
   if (o.no_scar) p.scar_fraction = 0;
+  if (o.raised) p.scar.raised = true;
+  const nlohmann::json scar_import = apply_scar_import(o.scar_import, p);  // after the roller grid is final
   if (!o.broad_phase.empty() && !parse_broad_phase(o.broad_phase, p.broad_phase))
     throw InputError("--broad-phase: unknown broad phase '" + o.broad_phase + "' (brute, sap, octree, bvh)");
   if (Status s = validate(p); !s) throw InputError(s.error());
@@ -250,7 +260,10 @@ int run_bearing(const BearingOptions& o) {
   check_view_outputs(o.views);
   std::vector<NamedPath> outputs{{"--out", o.out}, {"--json", o.json}};
   for (const NamedPath& v : o.views.paths()) outputs.push_back(v);
-  check_distinct_files({{"--params", o.params_file}}, outputs);
+  std::vector<NamedPath> inputs{{"--params", o.params_file}};
+  for (const std::string& f : scar_import_inputs(o.scar_import))
+    inputs.push_back({f == o.scar_import.map ? "--scar-map" : "--scar-points", f});
+  check_distinct_files(inputs, outputs);
   set_threads(o.threads_opt.value_or(0));
 
   Progress total("bearing");
@@ -273,6 +286,7 @@ int run_bearing(const BearingOptions& o) {
     j["parameters"] = params_json(p);
     j["spacing"] = res.spacing;
     j["theta_deg"] = res.theta * 180 / std::numbers::pi;
+    j["scar_import"] = scar_import;
     j["threads"] = active_threads();
     j["results"] = {{"rows", static_cast<std::uint64_t>(p.pairs) * static_cast<std::uint64_t>(p.frames)},
                     {"colliders", 2 * p.pairs},
@@ -358,6 +372,14 @@ void add_bearing_command(CLI::App& app, int& exit_code) {
   c->add_option("--border", o->border, "median-filter border band in grid cells");
   c->add_option("--scar-seed", o->scar_seed, "seed of the scar height maps");
   c->add_flag("--no-scar", o->no_scar, "no scarred rollers");
+  c->add_flag("--raised", o->raised, "generated scars are raised (outward) instead of inward");
+  c->add_option("--scar-map", o->scar_import.map,
+                "imported scar height map for the scarred rollers: .csv grid or 16-bit grayscale .png (docs/bearing.md)");
+  c->add_option("--scar-map-scale", o->scar_import.scale, "PNG map: mm per pixel unit (height = scale * value + offset)");
+  c->add_option("--scar-map-offset", o->scar_import.offset, "PNG map: height offset in mm (default 0)");
+  c->add_option("--scar-points", o->scar_import.points,
+                "imported scar from a point cloud in the roller's body frame: x y z text, or .stl/.ply/.obj/.off");
+  c->add_option("--scar-points-window", o->scar_import.window, "point cloud search radius in mm (default 0 = one grid cell)");
   c->add_option("--tilt", o->tilt, "maximum tilt alpha in degrees (default 1)");
   c->add_option("--tilt-step", o->tilt_step, "tilt random-walk step, fraction of alpha (default 0.25)");
   c->add_option("--spin", o->spin, "roller spin per frame in degrees (default 3)");

@@ -72,7 +72,16 @@ Status validate(const SceneParams& p) {
   if (!std::isfinite(p.spin_deg_per_frame)) return param_error("spin_deg_per_frame", "finite", p.spin_deg_per_frame);
   if (!(p.scar_fraction >= 0 && p.scar_fraction <= 1))
     return param_error("scar_fraction", "in [0, 1]", p.scar_fraction);
-  if (p.scar_fraction > 0) {
+  if (!p.imported_scar.height.empty()) {
+    const VertexHeights& h = p.imported_scar;
+    const std::size_t nv = static_cast<std::size_t>(p.roller.radial_segments) * (p.roller.height_segments + 1);
+    if (h.n != p.roller.radial_segments || h.m != p.roller.height_segments || h.height.size() != nv ||
+        h.covered.size() != nv)
+      return Error{.file = h.source,
+                   .reason = "the imported scar is on a " + std::to_string(h.n) + " x " + std::to_string(h.m + 1) +
+                             " vertex grid, the roller's is " + std::to_string(p.roller.radial_segments) + " x " +
+                             std::to_string(p.roller.height_segments + 1)};
+  } else if (p.scar_fraction > 0) {
     if (Status s = validate(p.scar, p.roller, "scar"); !s) return s;
   }
   if (!(p.spacing >= 0 && p.spacing <= 1e9)) return param_error("spacing", ">= 0 and <= 1e9 (0 = automatic)", p.spacing);
@@ -113,16 +122,27 @@ Expected<SimulationResult> simulate(const SceneParams& p, bool keep_rows) {
     s.spin0 = 2 * std::numbers::pi * g.uniform();
   }
   res.scarred_rollers = scarred;
-  const int nvariants = std::min(scarred, kScarVariants);
+  // an imported scar (issue #27) is one mesh shared by every scarred roller
+  const bool imported = !p.imported_scar.height.empty();
+  const int nvariants = std::min(scarred, imported ? 1 : kScarVariants);
+  if (imported)
+    for (PairState& s : st)
+      if (s.scarred) s.variant = 0;
   variants.reserve(static_cast<std::size_t>(nvariants));
   for (int v = 0; v < nvariants; ++v) {
     Expected<Roller> roller = make_roller(p.roller);
     if (!roller) return roller.error();
-    ScarParams sp = p.scar;
-    sp.seed = p.scar.seed + static_cast<std::uint64_t>(v);
-    if (Expected<int> e = apply_scar(*roller, sp); !e) return e.error();
+    if (imported) {
+      if (Expected<int> e = apply_vertex_heights(*roller, p.imported_scar, 0); !e) return e.error();
+    } else {
+      ScarParams sp = p.scar;
+      sp.seed = p.scar.seed + static_cast<std::uint64_t>(v);
+      if (Expected<int> e = apply_scar(*roller, sp); !e) return e.error();
+    }
     variants.push_back(std::move(*roller));
   }
+  // the scar window of the range test: the generated scar's, or the imported scar's covered window
+  const ScarParams scar_window = imported ? covered_window(p.imported_scar, p.roller) : p.scar;
   for (const Roller& v : variants) trees.push_back(build_quadtree(v));
   // raised scars (issue #27) reach outside the intact cylinder: by at most `raise`, and the spheres
   // of raised_bound.h bound where
@@ -241,7 +261,7 @@ Expected<SimulationResult> simulate(const SceneParams& p, bool keep_rows) {
       row.path = static_cast<std::uint8_t>(pd.path);
       row.solver = 0, row.evaluated = 0, row.scar_in_range = false;
       if (s.scarred) {
-        const ScarParams& sp = p.scar;
+        const ScarParams& sp = scar_window;
         const double phi = contact_direction_angle(poses[k], cyl_b[k], hb);
         // §3.1: the scar is in the range of Eq. (1) (half-width theta/2 about the contact direction)
         bool in_range = scar_angle_contains(sp, phi, 0.5 * res.theta + 2 * col);

@@ -2,7 +2,8 @@
 // length h_b, pivoting about its bottom end centre) next to a partner cylinder B (radius R) whose
 // axis is parallel to A's nominal axis at distance R + r + gap. Every frame A spins about its axis
 // and its tilt (angle <= max_tilt, any azimuth) performs a seeded random walk; a quarter (by
-// default) of the rollers carry a scar. Per frame: a broad phase over all 2N parts, then every
+// default) of the rollers carry a scar (generated, inward or raised, or imported: issue #27). Per
+// frame: a broad phase over all 2N parts, then every
 // pair's maximum interference distance and point pair, by the standard solver (analytic.h) when no
 // scar is in the window of Eq. (1), else by the scarred solver (scarred.h). Every other pair of
 // parts whose boxes the broad phase reports overlapping (parts of different pairs) is decided too
@@ -21,6 +22,7 @@
 #include "interfere/bearing/part_pair.h"
 #include "interfere/bearing/roller.h"
 #include "interfere/bearing/scar.h"
+#include "interfere/bearing/scar_import.h"
 #include "interfere/core/error.h"
 
 namespace interfere::bearing {
@@ -37,6 +39,10 @@ struct SceneParams {
   double spin_deg_per_frame = 3.0;   ///< roller spin per frame (any finite value)
   double scar_fraction = 0.25;       ///< fraction of scarred rollers, in [0, 1]
   ScarParams scar;                   ///< scar window; each scarred roller gets seed scar.seed + k
+  /// Non-empty (scar_import.h, issue #27): every scarred roller carries this imported scar (on the
+  /// roller's grid, applied as measured: no border filter) instead of a generated one; the range
+  /// test of Eq. (1) then uses its covered_window().
+  VertexHeights imported_scar;
   std::uint64_t seed = 1;
   BroadPhaseKind broad_phase = BroadPhaseKind::sweep_and_prune;
   double spacing = 0.0;              ///< grid pitch between pairs; 0 = automatic (no cross contacts)

@@ -13,6 +13,8 @@
 #include <string>
 
 #include "interfere/bearing/scar_import.h"
+#include "interfere/bearing/scarred.h"
+#include "interfere/bearing/simulation.h"
 #include "interfere/mesh/io.h"
 
 #ifdef INTERFERE_TEST_PNG
@@ -382,4 +384,39 @@ TEST(BearingScarImport, PointCloudBadInput) {
   ASSERT_FALSE(far.has_value());
   EXPECT_NE(far.error().reason.find("body frame"), std::string::npos);
   EXPECT_FALSE(scar_from_points({{10, 0, 20}}, rp, {.window = -1}).has_value());
+}
+
+TEST(BearingScarImport, SimulationCarriesTheImportedScar) {
+  // every scarred roller carries the imported bump; the rows solved on the mesh equal the exact
+  // surface reference of a roller built here from the same heights
+  SceneParams p;
+  p.pairs = 3, p.frames = 8, p.roller = grid72(), p.max_tilt_deg = 0, p.spin_deg_per_frame = 25, p.gap = 0.05;
+  p.scar_fraction = 1;
+  const auto map = parse_scar_csv(csv_of(bump, -30, 30, 5, 5, 35, 1), "bump.csv");
+  p.imported_scar = resample_height_map(map.value(), p.roller).value();
+  const auto r = simulate(p);
+  ASSERT_TRUE(r.has_value()) << r.error().message();
+  ASSERT_EQ(r->scar_meshes.size(), 1u);
+  Roller ref = make_roller(p.roller).value();
+  ASSERT_TRUE(apply_vertex_heights(ref, p.imported_scar).has_value());
+  int mesh_rows = 0, reaching = 0;
+  for (std::size_t q = 0; q < r->rows.size(); ++q) {
+    const PairFrame& row = r->rows[q];
+    const Cylinder b = posed_cylinder(p.partner_radius, -1, p.partner_height, partner_pose(p, r->spacing, row.pair));
+    const double s = surface_reference(ref, r->roller_poses[q], b).distance;
+    EXPECT_LE(row.distance, s + 1e-9);
+    if (row.solver == 1) {
+      ++mesh_rows;
+      EXPECT_NEAR(row.distance, s, 1e-9);
+    }
+    reaching += s < -1e-6;
+  }
+  EXPECT_GT(mesh_rows, 0);
+  EXPECT_GT(reaching, 0);  // the 0.1 mm bump reaches across the 0.05 mm gap when it faces the partner
+  // heights on another grid are an error naming the source
+  p.roller.radial_segments = 64;
+  const auto bad = simulate(p);
+  ASSERT_FALSE(bad.has_value());
+  EXPECT_EQ(bad.error().file, "bump.csv");
+  EXPECT_NE(bad.error().reason.find("grid"), std::string::npos);
 }
