@@ -11,6 +11,7 @@
 
 #include "view_output.h"
 #include "commands.h"
+#include "cad_exec.h"
 #include "common.h"
 #include "interfere/core/atomic_file.h"
 #include "interfere/mesh/polyline.h"
@@ -241,7 +242,8 @@ int run_assembly_clash(const AssemblyClashCliOptions& o) {
 }
 #else
 int run_assembly_clash(const AssemblyClashCliOptions& o) {
-  throw InputError(o.input + ": `interfere assembly-clash` needs interfere built with OpenCASCADE (INTERFERE_WITH_OCCT)");
+  require_cad("`interfere assembly-clash " + o.input + "`");  // (does not return here)
+  return kInputError;
 }
 #endif
 

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "cad_exec.h"
 #include "clash_options.h"
 #include "interfere/view/scene_document.h"
 #include "interfere/scene/report.h"
@@ -36,7 +37,6 @@ scene::GroupBy parse_group_by(const std::string& s) {
 
 int run_scene_clash(const ClashOptions& o, const CLI::App& command, const std::vector<std::string>& clash_tests) {
   (void)fail_on(o.fail_on);
-  Progress total("clash (scene)");
   const scene::GroupBy group_by = parse_group_by(o.group_by);
   if (!(o.clearance >= 0) || !std::isfinite(o.clearance)) throw InputError("--clearance must be a finite number >= 0");
   if (!(o.tolerance >= 0) || !std::isfinite(o.tolerance)) throw InputError("--tolerance must be a finite number >= 0");
@@ -69,6 +69,8 @@ int run_scene_clash(const ClashOptions& o, const CLI::App& command, const std::v
   for (std::size_t i = 0; i < inputs.size(); ++i)
     specs.push_back({.where = "input " + std::to_string(i + 1) + " (" + inputs[i] + ")", .file = inputs[i]});
   if (specs.empty()) throw InputError("clash: no input (files, or --scene with \"bodies\")");
+  for (const scene::BodySpec& s : specs) require_cad_for_step_files({s.file});  // (before the first progress line)
+  Progress total("clash (scene)");
   std::string units = !o.units.empty() ? o.units : !file_spec.units.empty() ? file_spec.units : "mm";
   check_units(units);
 

@@ -12,6 +12,7 @@
 #include <cstdio>
 
 #include "commands.h"
+#include "cad_exec.h"
 #include "common.h"
 #include "interfere/core/atomic_file.h"
 #include "interfere/view/mesh_document.h"
@@ -228,7 +229,8 @@ int run_features(const FeaturesCliOptions& o) {
 }
 #else
 int run_features(const FeaturesCliOptions& o) {
-  throw InputError(o.input + ": `interfere features` needs interfere built with OpenCASCADE (INTERFERE_WITH_OCCT)");
+  require_cad("`interfere features " + o.input + "`");  // (does not return here)
+  return kInputError;
 }
 #endif
 

@@ -16,6 +16,7 @@
 
 #include "interfere/view/mesh_document.h"
 #include "commands.h"
+#include "cad_exec.h"
 #include "common.h"
 #include "interfere/core/atomic_file.h"
 #include "interfere/simplify/gltf_io.h"
@@ -301,7 +302,8 @@ int run_all_steps(const SimplifyCliOptions& o) {
   }
   return kClear;
 #else
-  throw InputError(o.input + ": STEP input needs interfere built with OpenCASCADE (INTERFERE_WITH_OCCT)");
+  require_cad("`interfere simplify " + o.input + " --step all`");  // (does not return here)
+  return kInputError;
 #endif
 }
 

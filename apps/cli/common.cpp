@@ -1,4 +1,6 @@
 #include "common.h"
+
+#include "cad_exec.h"
 #include "fem_surfaces.h"
 #include "heap.h"
 
@@ -563,6 +565,7 @@ void add_step_tessellation_options(CLI::App& c, StepTessellation& t) {
 }
 
 void resolve_step_tessellation(const CLI::App& c, StepTessellation& t, const std::vector<std::string>& files) {
+  require_cad_for_step_files(files);  // (interfere hands a STEP run to interfere-cad here, before any output)
   t.given = c.count("--linear-deflection") + c.count("--angular-deflection") > 0;
   if (!t.given) return;
   for (const std::string& f : files)

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <exception>
 
+#include "cad_exec.h"
 #include "commands.h"
 #include "common.h"
 #include "view_output.h"
@@ -28,6 +29,7 @@ int main(int argc, char** argv) {
   add_assembly_clash_command(app, exit_code);
   app.parse_complete_callback([&] { Progress::set_quiet(quiet); });
   set_command_line(argc, argv);
+  remember_arguments(argv);
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {

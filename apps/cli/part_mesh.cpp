@@ -4,6 +4,7 @@
 // defaults 0.1 % of each part's diagonal, 0.5 rad; no AAG, only triangles are needed),
 // every instance placed, lengths in millimetres, welded where faces meet (BRepMesh discretises a
 // shared edge once, so a closed solid stays closed for the containment test).
+#include "cad_exec.h"
 #include "common.h"
 #include "fem_parts.h"
 #include "interfere/mesh/validate.h"
@@ -20,9 +21,10 @@ bool is_step_file(const std::string& file) {
   return e == ".step" || e == ".stp";
 }
 
-PartMesh read_part_mesh(const std::string& file, const StepTessellation& tessellation) {
+PartMesh read_part_mesh(const std::string& file, [[maybe_unused]] const StepTessellation& tessellation) {
   PartMesh p;
   if (is_step_file(file)) {
+    require_cad("STEP input " + file);  // (returns in interfere-cad only)
 #ifdef INTERFERE_HAS_CAD
     auto model = cad::import_step(file, {.linear_deflection = tessellation.linear_deflection,
                                          .angular_deflection = tessellation.angular_deflection,
@@ -47,8 +49,6 @@ PartMesh read_part_mesh(const std::string& file, const StepTessellation& tessell
     p.warnings.insert(p.warnings.begin(), model->warnings.begin(), model->warnings.end());
     for (const std::string& w : p.warnings) warning(file + ": " + w);
     return p;
-#else
-    throw InputError(file + ": STEP input needs interfere built with OpenCASCADE (INTERFERE_WITH_OCCT)");
 #endif
   }
   if (is_fem_file(file)) {

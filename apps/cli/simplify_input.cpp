@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "cad_exec.h"
 #include "common.h"
 #include "interfere/simplify/budget.h"
 #include "interfere/simplify/tagged_io.h"
@@ -127,6 +128,7 @@ SimplifyInput load_simplify_input(const SimplifyCliOptions& o, [[maybe_unused]] 
                                   SimplifyOptions& so, [[maybe_unused]] nlohmann::json& report) {
   SimplifyInput in;
   if (is_step_file(o.input)) {
+    require_cad("STEP input " + o.input);  // (returns in interfere-cad only)
 #ifdef INTERFERE_HAS_CAD
     cad::PipelineOptions po;
     po.linear_deflection = o.tessellation.linear_deflection;
@@ -148,8 +150,6 @@ SimplifyInput load_simplify_input(const SimplifyCliOptions& o, [[maybe_unused]] 
     report["cad"] = nlohmann::json::parse(in.cad->report_json);
     for (const auto& w : in.cad->warnings)
       warning(w);
-#else
-    throw InputError(o.input + ": STEP input needs interfere built with OpenCASCADE (INTERFERE_WITH_OCCT)");
 #endif
   } else {
     Progress progress("reading " + o.input);

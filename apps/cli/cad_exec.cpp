@@ -1,0 +1,56 @@
+// Hand-over of CAD runs from `interfere` to `interfere-cad` (cad_exec.h).
+#include "cad_exec.h"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <system_error>
+
+#include "common.h"
+
+namespace interfere::cli {
+namespace {
+char** g_argv = nullptr;
+}
+
+void remember_arguments(char** argv) { g_argv = argv; }
+
+void require_cad_for_step_files(const std::vector<std::string>& files) {
+  for (const std::string& f : files)
+    if (is_step_file(f)) require_cad("STEP input " + f);
+}
+
+#if defined(INTERFERE_HAS_CAD)
+void require_cad(const std::string&) {}
+#elif defined(INTERFERE_CAD_EXECUTABLE)
+// INTERFERE_CAD_EXECUTABLE: its file name; INTERFERE_CAD_LIBEXEC: the installed libexec folder
+// relative to the installed bin folder (apps/cli/CMakeLists.txt).
+void require_cad(const std::string& what) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  if (ec) throw InputError(what + " needs " INTERFERE_CAD_EXECUTABLE ", which is found beside this executable: /proc/self/exe: " + ec.message());
+  const fs::path dir = self.parent_path();
+  // The build tree has it beside `interfere`, the installed tree in libexec.
+  const fs::path candidates[] = {dir / INTERFERE_CAD_EXECUTABLE, (dir / INTERFERE_CAD_LIBEXEC / INTERFERE_CAD_EXECUTABLE).lexically_normal()};
+  std::string tried;
+  for (const fs::path& p : candidates) {
+    tried += (tried.empty() ? "" : ", ") + p.string();
+    if (::access(p.c_str(), X_OK) != 0) continue;
+    std::fflush(nullptr);
+    ::execv(p.c_str(), g_argv);
+    throw InputError(what + " needs " + p.string() + ", which does not run: " + std::strerror(errno));
+  }
+  throw InputError(what + " needs the CAD executable " INTERFERE_CAD_EXECUTABLE " (interfere built with OpenCASCADE), "
+                   "which is missing: not found at " + tried);
+}
+#else
+void require_cad(const std::string& what) {
+  throw InputError(what + " needs interfere built with OpenCASCADE (INTERFERE_WITH_OCCT)");
+}
+#endif
+
+}  // namespace interfere::cli
