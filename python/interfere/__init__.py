@@ -1,14 +1,23 @@
 """interfere: exact, parallel clash detection for triangle meshes.
 
 The compiled extension ``interfere._interfere`` holds everything; this package re-exports it.
-numpy is optional: with it, point and index lists come back as numpy arrays; without it, as
-lists of tuples. ``HAVE_NUMPY`` says which. See docs/python.md.
+numpy is required: point and index lists come back as numpy arrays (``HAVE_NUMPY`` is always
+True, kept for older scripts). Type stubs ship with the package (``py.typed``). See docs/python.md.
 
     import interfere as itf
     a, b = itf.make_overlapping_spheres(20000)
     r = itf.clash(itf.make_model(a), itf.make_model(b))
     print(r.interference, len(r.pairs), r.regions[0].curve_length)
 """
+
+try:
+    import numpy as _numpy  # required: every point and index list is a numpy array
+except ImportError as _e:  # pragma: no cover - exercised by the packaging test only
+    raise ImportError(
+        "interfere needs numpy, which could not be imported (" + str(_e) + "); install it: "
+        "apt-get install python3-numpy, or pip install numpy"
+    ) from _e
+del _numpy
 
 from ._interfere import bearing  # noqa: F401  (submodule: issue #4, docs/bearing.md)
 from ._interfere import (  # noqa: F401

@@ -1,6 +1,6 @@
 // Python bindings of the FEM module (issue #3): read_fem, the structured mesh generators, surface
-// extraction and the clash per load step. Results are dicts of numpy arrays (lists of tuples
-// without numpy) and the module's TriMesh / ClashResult classes. See docs/fem.md, "Python".
+// extraction and the clash per load step. Results are dicts of numpy arrays and the module's
+// TriMesh / ClashResult classes. See docs/fem.md, "Python".
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -28,30 +28,20 @@ namespace {
 
 
 py::object points(const std::vector<Vec3>& p) {
-  if (have_numpy()) {
-    py::array_t<double> a({static_cast<py::ssize_t>(p.size()), py::ssize_t{3}});
-    auto r = a.mutable_unchecked<2>();
-    for (std::size_t i = 0; i < p.size(); ++i) {
-      r(i, 0) = p[i].x, r(i, 1) = p[i].y, r(i, 2) = p[i].z;
-    }
-    return a;
+  py::array_t<double> a({static_cast<py::ssize_t>(p.size()), py::ssize_t{3}});
+  auto r = a.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    r(i, 0) = p[i].x, r(i, 1) = p[i].y, r(i, 2) = p[i].z;
   }
-  py::list l;
-  for (const Vec3& v : p) l.append(py::make_tuple(v.x, v.y, v.z));
-  return l;
+  return a;
 }
 
 template <class T>
 py::object ints(const std::vector<T>& v) {
-  if (have_numpy()) {
-    py::array_t<std::int64_t> a(static_cast<py::ssize_t>(v.size()));
-    auto r = a.mutable_unchecked<1>();
-    for (std::size_t i = 0; i < v.size(); ++i) r(i) = static_cast<std::int64_t>(v[i]);
-    return a;
-  }
-  py::list l;
-  for (const T& x : v) l.append(static_cast<std::int64_t>(x));
-  return l;
+  py::array_t<std::int64_t> a(static_cast<py::ssize_t>(v.size()));
+  auto r = a.mutable_unchecked<1>();
+  for (std::size_t i = 0; i < v.size(); ++i) r(i) = static_cast<std::int64_t>(v[i]);
+  return a;
 }
 
 std::vector<Vec3> points_in(py::handle obj, const char* what) {

@@ -47,7 +47,7 @@ namespace {
 namespace sc = interfere::scene;
 
 // ---------------------------------------------------------------------------------------------
-// Helpers (the module's conventions: numpy when importable, errors as InputError / ValueError)
+// Helpers (the module's conventions: numpy arrays out, errors as InputError / ValueError)
 
 
 
@@ -58,13 +58,10 @@ using interfere::python::raise_input_error;  // (bindings.h; overloaded below)
 
 
 py::object vec_np(const Vec3& v) {
-  if (have_numpy()) {
-    py::array_t<double> a(3);
-    auto r = a.mutable_unchecked<1>();
-    r(0) = v.x, r(1) = v.y, r(2) = v.z;
-    return a;
-  }
-  return py::make_tuple(v.x, v.y, v.z);
+  py::array_t<double> a(3);
+  auto r = a.mutable_unchecked<1>();
+  r(0) = v.x, r(1) = v.y, r(2) = v.z;
+  return a;
 }
 
 py::object box_out(const Aabb& b) {
@@ -75,23 +72,18 @@ py::object box_out(const Aabb& b) {
 
 template <class T>
 py::object ints_np(const std::vector<T>& v, bool unsigned32 = false) {
-  if (have_numpy()) {
-    if (unsigned32) {
-      py::array_t<std::uint32_t> a(static_cast<py::ssize_t>(v.size()));
-      auto r = a.mutable_unchecked<1>();
-      for (std::size_t i = 0; i < v.size(); ++i)
-        r(static_cast<py::ssize_t>(i)) = static_cast<std::uint32_t>(v[i]);
-      return a;
-    }
-    py::array_t<std::int64_t> a(static_cast<py::ssize_t>(v.size()));
+  if (unsigned32) {
+    py::array_t<std::uint32_t> a(static_cast<py::ssize_t>(v.size()));
     auto r = a.mutable_unchecked<1>();
     for (std::size_t i = 0; i < v.size(); ++i)
-      r(static_cast<py::ssize_t>(i)) = static_cast<std::int64_t>(v[i]);
+      r(static_cast<py::ssize_t>(i)) = static_cast<std::uint32_t>(v[i]);
     return a;
   }
-  py::list l;
-  for (const T& x : v) l.append(static_cast<std::int64_t>(x));
-  return l;
+  py::array_t<std::int64_t> a(static_cast<py::ssize_t>(v.size()));
+  auto r = a.mutable_unchecked<1>();
+  for (std::size_t i = 0; i < v.size(); ++i)
+    r(static_cast<py::ssize_t>(i)) = static_cast<std::int64_t>(v[i]);
+  return a;
 }
 
 double mm_per(const std::string& unit, const std::string& what) {

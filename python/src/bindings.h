@@ -10,8 +10,6 @@
 #include "interfere/core/error.h"
 
 namespace interfere::python {
-/// numpy is importable (decided once; errors.cpp).
-bool have_numpy();
 /// Raises interfere.InputError carrying the error's file, line, byte and reason (errors.cpp).
 [[noreturn]] void raise_input_error(const Error& e);
 

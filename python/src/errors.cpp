@@ -7,18 +7,6 @@ namespace py = pybind11;
 
 namespace interfere::python {
 
-bool have_numpy() {
-  static const bool have = [] {
-    try {
-      py::module_::import("numpy");
-      return true;
-    } catch (const py::error_already_set&) {
-      return false;
-    }
-  }();
-  return have;
-}
-
 void raise_input_error(const Error& e) {
   py::object type = py::module_::import("interfere._interfere").attr("InputError");
   py::object exc = type(e.message());

@@ -2,9 +2,9 @@
 //
 // ARCHITECTURE.md: the bindings only parse arguments, fill requests, call the engines and convert
 // results; there is no geometry here. Conventions of this file:
-//  - numpy is optional. When it is importable, point and index lists are returned as numpy arrays
-//    ((n, 3) float64, (m, 3) uint32, (k,) uint32); otherwise as lists of tuples / ints. Input accepts
-//    either (any sequence of sequences, or any array-like when numpy is present).
+//  - numpy is required (issue #30): point and index lists are always returned as numpy arrays
+//    ((n, 3) float64, (m, 3) uint32, (k,) uint32). Input accepts any array-like (sequences of
+//    sequences included). Importing the module without numpy raises ImportError naming numpy.
 //  - Every result is a copy owned by Python: no view into C++ memory escapes, so no Python object
 //    can dangle or mutate a Model (which is immutable once built, as in C++).
 //  - The GIL is released only around work on C++ data that no Python thread can reach: copies, and
@@ -52,14 +52,6 @@ namespace py = pybind11;
 using namespace interfere;
 
 namespace {
-
-// ---------------------------------------------------------------------------------------------
-// numpy (optional)
-
-bool g_have_numpy = false;  // importable, decided once at module import
-bool g_use_numpy = false;   // return arrays; _set_use_numpy(False) exercises the list paths in tests
-
-bool numpy_on() { return g_have_numpy && g_use_numpy; }
 
 // ---------------------------------------------------------------------------------------------
 // Exceptions. Types live for the whole process (intentionally never released: a static py::object
@@ -132,19 +124,13 @@ py::array as_rows_of_3(py::handle obj, const std::string& what, const char* kind
 std::vector<Vec3> points_from(py::handle obj, const std::string& what) {
   std::vector<Vec3> out;
   if (obj.is_none()) return out;
-  if (numpy_on()) {
-    const py::array raw = as_rows_of_3(obj, what, "fiu");
-    if (raw.size() == 0) return out;
-    const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(raw);
-    if (!a) throw py::type_error(what + ": cannot convert to float64");
-    const auto v = a.unchecked<2>();
-    out.resize(static_cast<std::size_t>(v.shape(0)));
-    for (py::ssize_t i = 0; i < v.shape(0); ++i) out[static_cast<std::size_t>(i)] = {v(i, 0), v(i, 1), v(i, 2)};
-    return out;
-  }
-  const py::sequence s = to_sequence(obj, what);
-  out.reserve(s.size());
-  for (std::size_t i = 0; i < s.size(); ++i) out.push_back(to_vec3(s[i], what + "[" + std::to_string(i) + "]"));
+  const py::array raw = as_rows_of_3(obj, what, "fiu");
+  if (raw.size() == 0) return out;
+  const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(raw);
+  if (!a) throw py::type_error(what + ": cannot convert to float64");
+  const auto v = a.unchecked<2>();
+  out.resize(static_cast<std::size_t>(v.shape(0)));
+  for (py::ssize_t i = 0; i < v.shape(0); ++i) out[static_cast<std::size_t>(i)] = {v(i, 0), v(i, 1), v(i, 2)};
   return out;
 }
 
@@ -171,47 +157,36 @@ std::int64_t to_int(py::handle h, const std::string& what) {
 std::vector<Tri> triangles_from(py::handle obj, const std::string& what) {
   std::vector<Tri> out;
   if (obj.is_none()) return out;
-  if (numpy_on()) {
-    const py::array raw = as_rows_of_3(obj, what, "iu");
-    if (raw.size() == 0) return out;
-    if (raw.dtype().kind() == 'u' && raw.dtype().itemsize() == 8) {
-      // uint64 does not fit int64: check the range before converting.
-      const auto a = py::array_t<std::uint64_t, py::array::c_style | py::array::forcecast>::ensure(raw);
-      const auto v = a.unchecked<2>();
-      out.resize(static_cast<std::size_t>(v.shape(0)));
-      for (py::ssize_t i = 0; i < v.shape(0); ++i) {
-        for (int k = 0; k < 3; ++k) {
-          if (v(i, k) > std::numeric_limits<std::uint32_t>::max()) {
-            throw py::value_error(what + ": index " + std::to_string(v(i, k)) + " is outside [0, 2^32)");
-          }
-          out[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(v(i, k));
-        }
-      }
-      return out;
-    }
-    const auto a = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(raw);
-    if (!a) throw py::type_error(what + ": cannot convert to int64");
+  const py::array raw = as_rows_of_3(obj, what, "iu");
+  if (raw.size() == 0) return out;
+  if (raw.dtype().kind() == 'u' && raw.dtype().itemsize() == 8) {
+    // uint64 does not fit int64: check the range before converting.
+    const auto a = py::array_t<std::uint64_t, py::array::c_style | py::array::forcecast>::ensure(raw);
     const auto v = a.unchecked<2>();
     out.resize(static_cast<std::size_t>(v.shape(0)));
     for (py::ssize_t i = 0; i < v.shape(0); ++i) {
-      for (int k = 0; k < 3; ++k) out[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)] = to_index(v(i, k), what);
+      for (int k = 0; k < 3; ++k) {
+        if (v(i, k) > std::numeric_limits<std::uint32_t>::max()) {
+          throw py::value_error(what + ": index " + std::to_string(v(i, k)) + " is outside [0, 2^32)");
+        }
+        out[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(v(i, k));
+      }
     }
     return out;
   }
-  const py::sequence s = to_sequence(obj, what);
-  out.reserve(s.size());
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    const std::string w = what + "[" + std::to_string(i) + "]";
-    const py::sequence t = to_sequence(s[i], w);
-    if (t.size() != 3) throw py::value_error(w + ": expected 3 indices, got " + std::to_string(t.size()));
-    out.push_back({to_index(to_int(t[0], w), w), to_index(to_int(t[1], w), w), to_index(to_int(t[2], w), w)});
+  const auto a = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(raw);
+  if (!a) throw py::type_error(what + ": cannot convert to int64");
+  const auto v = a.unchecked<2>();
+  out.resize(static_cast<std::size_t>(v.shape(0)));
+  for (py::ssize_t i = 0; i < v.shape(0); ++i) {
+    for (int k = 0; k < 3; ++k) out[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)] = to_index(v(i, k), what);
   }
   return out;
 }
 
 std::vector<std::uint32_t> indices_from(py::handle obj, const std::string& what) {
   std::vector<std::uint32_t> out;
-  if (numpy_on() && !py::isinstance<py::list>(obj) && !py::isinstance<py::tuple>(obj)) {
+  if (!py::isinstance<py::list>(obj) && !py::isinstance<py::tuple>(obj)) {
     py::array a = py::module_::import("numpy").attr("asarray")(obj);
     if (a.size() == 0) return out;
     if (a.ndim() != 1) throw py::value_error(what + ": expected a 1-D array");
@@ -539,24 +514,16 @@ PYBIND11_MODULE(_interfere, m) {
   m.doc() = "Exact, parallel clash detection for triangle meshes (bindings of the C++ library).";
   m.attr("__version__") = INTERFERE_VERSION;
 
+  // numpy is required: every point and index list comes back as an array (issue #30).
   try {
     py::module_::import("numpy");
-    g_have_numpy = true;
-  } catch (const py::error_already_set&) {
-    g_have_numpy = false;  // lists of tuples everywhere
+  } catch (const py::error_already_set& e) {
+    throw py::import_error(std::string("interfere needs numpy, which could not be imported (") + e.what() +
+                           "); install it: apt-get install python3-numpy, or pip install numpy");
   }
-  g_use_numpy = g_have_numpy;
-  m.attr("HAVE_NUMPY") = g_have_numpy;
+  m.attr("HAVE_NUMPY") = true;  // always True since numpy became required; kept for old scripts
   m.attr("KIND_TOUCH") = static_cast<int>(ContactKind::touch);
   m.attr("KIND_CROSS") = static_cast<int>(ContactKind::cross);
-  m.def(
-      "_set_use_numpy",
-      [](bool on) {
-        const bool previous = g_use_numpy;
-        g_use_numpy = on && g_have_numpy;
-        return previous;
-      },
-      py::arg("on"), "Testing aid: return lists instead of numpy arrays when False. Returns the previous setting.");
 
   // ---- exceptions ----
   g_error = PyErr_NewExceptionWithDoc(
@@ -602,16 +569,11 @@ PYBIND11_MODULE(_interfere, m) {
       .def("matrix",
            [](const Transform& t) {
              const auto v = t.to_row_major();
-             if (numpy_on()) {
-               py::array_t<double> a({static_cast<py::ssize_t>(3), static_cast<py::ssize_t>(4)});
-               std::copy(v.begin(), v.end(), a.mutable_data());
-               return py::object(std::move(a));
-             }
-             py::list rows;
-             for (int r = 0; r < 3; ++r) rows.append(py::make_tuple(v[r * 4], v[r * 4 + 1], v[r * 4 + 2], v[r * 4 + 3]));
-             return py::object(std::move(rows));
+             py::array_t<double> a({static_cast<py::ssize_t>(3), static_cast<py::ssize_t>(4)});
+             std::copy(v.begin(), v.end(), a.mutable_data());
+             return a;
            },
-           "The 3x4 matrix [R|t] (numpy array, or list of row tuples).")
+           "The 3x4 matrix [R|t] as a (3, 4) float64 numpy array.")
       .def("apply", [](const Transform& t, py::handle p) { return vec_out(t.apply(to_vec3(p, "point"))); },
            py::arg("point"), "R·p + t for one point.")
       .def("is_identity", &Transform::is_identity)
@@ -639,11 +601,11 @@ PYBIND11_MODULE(_interfere, m) {
            }),
            py::arg("positions") = py::none(), py::arg("triangles") = py::none())
       .def_property(
-          "positions", [](const TriMesh& t) { return points_out(t.positions, numpy_on()); },
+          "positions", [](const TriMesh& t) { return points_out(t.positions, true); },
           [](TriMesh& t, py::handle v) { t.positions = points_from(v, "positions"); },
           "Vertex positions (a copy: assign the attribute to change it).")
       .def_property(
-          "triangles", [](const TriMesh& t) { return triangles_out(t.triangles, numpy_on()); },
+          "triangles", [](const TriMesh& t) { return triangles_out(t.triangles, true); },
           [](TriMesh& t, py::handle v) { t.triangles = triangles_from(v, "triangles"); },
           "Vertex indices per triangle (a copy: assign the attribute to change it).")
       .def_property_readonly("num_vertices", &TriMesh::num_vertices)
@@ -711,7 +673,7 @@ PYBIND11_MODULE(_interfere, m) {
              return p;
            }),
            py::arg("points"), py::arg("closed") = false)
-      .def_property_readonly("points", [](const Polyline& p) { return points_out(p.points, numpy_on()); })
+      .def_property_readonly("points", [](const Polyline& p) { return points_out(p.points, true); })
       .def_readonly("closed", &Polyline::closed, "The last point joins the first.")
       .def_readonly("length", &Polyline::length)
       .def("__len__", [](const Polyline& p) { return p.points.size(); })
@@ -723,9 +685,9 @@ PYBIND11_MODULE(_interfere, m) {
 
   // ---- clash results ----
   py::class_<ClashRegion>(m, "ClashRegion", "Connected group of intersecting pairs with its curves.")
-      .def_property_readonly("triangles_a", [](const ClashRegion& r) { return indices_out(r.triangles_a, numpy_on()); },
+      .def_property_readonly("triangles_a", [](const ClashRegion& r) { return indices_out(r.triangles_a, true); },
                              "Sorted triangle indices of A.")
-      .def_property_readonly("triangles_b", [](const ClashRegion& r) { return indices_out(r.triangles_b, numpy_on()); },
+      .def_property_readonly("triangles_b", [](const ClashRegion& r) { return indices_out(r.triangles_b, true); },
                              "Sorted triangle indices of B.")
       .def_readonly("cross_pairs", &ClashRegion::cross_pairs)
       .def_readonly("touch_pairs", &ClashRegion::touch_pairs)
@@ -759,23 +721,15 @@ PYBIND11_MODULE(_interfere, m) {
       .def(
           "pair_array",
           [](const ClashResult& r) {
-            if (!numpy_on()) {
-              py::list l(r.pairs.size());
-              for (std::size_t i = 0; i < r.pairs.size(); ++i) {
-                l[i] = py::make_tuple(r.pairs[i].a, r.pairs[i].b, static_cast<int>(r.pairs[i].kind));
-              }
-              return py::object(std::move(l));
-            }
             py::array_t<std::uint32_t> a({static_cast<py::ssize_t>(r.pairs.size()), static_cast<py::ssize_t>(3)});
             auto v = a.mutable_unchecked<2>();
             for (std::size_t i = 0; i < r.pairs.size(); ++i) {
               const auto k = static_cast<py::ssize_t>(i);
               v(k, 0) = r.pairs[i].a, v(k, 1) = r.pairs[i].b, v(k, 2) = static_cast<std::uint32_t>(r.pairs[i].kind);
             }
-            return py::object(std::move(a));
+            return a;
           },
-          "Pairs as an (n, 3) uint32 array [a, b, kind] with kind KIND_TOUCH (1) or KIND_CROSS (2); a list of "
-          "tuples without numpy.")
+          "Pairs as an (n, 3) uint32 array [a, b, kind] with kind KIND_TOUCH (1) or KIND_CROSS (2).")
       .def_readonly("regions", &ClashResult::regions, "List of ClashRegion.")
       .def_readonly("clearance", &ClashResult::clearance, "List of ClearancePair, sorted by (a, b).")
       .def_property_readonly("containment", [](const ClashResult& r) { return containment_name(r.containment); },

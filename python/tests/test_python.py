@@ -1,4 +1,4 @@
-"""Tests of the Python module `interfere` (unittest, standard library + the module; numpy optional).
+"""Tests of the Python module `interfere` (unittest, standard library + numpy + the module).
 
 Run:  PYTHONPATH=<build>/python python3 -m unittest discover -s python/tests -v
 Expected values come from geometry known in closed form (touching/contained/separated boxes and
@@ -15,12 +15,9 @@ import tempfile
 import threading
 import unittest
 
-import interfere as itf
+import numpy as np
 
-try:
-    import numpy as np
-except ImportError:  # the module works without numpy; the numpy-specific tests are skipped
-    np = None
+import interfere as itf
 
 SPHERE_CIRCLE = 2 * math.pi * math.sqrt(1 - 0.98 ** 2)  # unit spheres 1.96 apart meet at x = 0.98
 
@@ -40,19 +37,8 @@ def unit_box(lo=(0.0, 0.0, 0.0), hi=(1.0, 1.0, 1.0), n=1):
     return itf.make_box(lo, hi, n)
 
 
-class ListMode:
-    """Mixin: run with numpy disabled, so the list code paths are exercised even where numpy exists."""
-
-    def setUp(self):
-        self._saved = itf._interfere._set_use_numpy(False)
-
-    def tearDown(self):
-        itf._interfere._set_use_numpy(self._saved)
-
-
 # ------------------------------------------------------------------------------------------------
 class TestTriMesh(unittest.TestCase):
-    LIST_MODE = False
     POS = [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)]
     TRI = [(0, 2, 1), (0, 1, 3), (0, 3, 2), (1, 2, 3)]  # closed, outward tetrahedron
 
@@ -65,10 +51,7 @@ class TestTriMesh(unittest.TestCase):
         self.assertIsNone(itf.TriMesh().bounds())
         self.assertTrue(itf.mesh_stats(m).closed)
 
-    @unittest.skipUnless(np is not None, "numpy not installed")
     def test_numpy_in_and_out(self):
-        if self.LIST_MODE:
-            self.skipTest("list mode")
         pos = np.array(self.POS, dtype=np.float32)  # any numeric dtype is accepted
         tri = np.array(self.TRI, dtype=np.int16)
         m = itf.TriMesh(pos, tri)
@@ -161,14 +144,17 @@ class TestTriMesh(unittest.TestCase):
         self.assertAlmostEqual(c.bounds()[0][0], 1.96 - 1.0, delta=0.02)
 
 
-class TestTriMeshLists(ListMode, TestTriMesh):
-    LIST_MODE = True
-
-    def test_list_types(self):
-        m = itf.TriMesh(self.POS, self.TRI)
-        self.assertIsInstance(m.positions, list)
-        self.assertIsInstance(m.positions[0], tuple)
-        self.assertIsInstance(m.triangles[0][0], int)
+class TestTriMeshArrays(unittest.TestCase):
+    def test_lists_in_arrays_out(self):
+        # numpy is required (issue #30): lists are accepted, arrays always come back.
+        m = itf.TriMesh(TestTriMesh.POS, TestTriMesh.TRI)
+        self.assertIsInstance(m.positions, np.ndarray)
+        self.assertEqual((m.positions.dtype, m.positions.shape), (np.float64, (4, 3)))
+        self.assertEqual((m.triangles.dtype, m.triangles.shape), (np.uint32, (4, 3)))
+        self.assertTrue(itf.HAVE_NUMPY)
+        self.assertFalse(hasattr(itf._interfere, "_set_use_numpy"))
+        with self.assertRaises(ValueError):
+            itf.TriMesh([(0.0, 0.0), (1.0, 0.0, 0.0)], [])  # ragged rows
 
 
 # ------------------------------------------------------------------------------------------------
@@ -561,23 +547,21 @@ class TestClash(unittest.TestCase):
             itf.make_model(self.a, builder="nope")
 
 
-class TestClashLists(ListMode, unittest.TestCase):
-    def test_same_results_as_lists(self):
+class TestClashArrays(unittest.TestCase):
+    def test_one_return_type(self):
         a, b = itf.make_overlapping_spheres(2000)
         r = itf.clash(a, b)
-        self.assertIsInstance(r.regions[0].triangles_a, list)
-        self.assertIsInstance(r.regions[0].curves[0].points, list)
-        self.assertIsInstance(r.pair_array(), list)
         self.assertTrue(r.pairs)
-        points, tris_b = r.regions[0].curves[0].points, r.regions[0].triangles_b
-        itf._interfere._set_use_numpy(True)  # (output types follow the setting at access time)
-        try:
-            r2 = itf.clash(a, b)
-            self.assertEqual(r2.pairs, r.pairs)
-            self.assertEqual(rows(r2.regions[0].curves[0].points), points)
-            self.assertEqual(flat(r2.regions[0].triangles_b), tris_b)
-        finally:
-            itf._interfere._set_use_numpy(False)
+        region = r.regions[0]
+        for arr, dtype, ndim in ((region.triangles_a, np.uint32, 1), (region.triangles_b, np.uint32, 1),
+                                 (region.curves[0].points, np.float64, 2), (r.pair_array(), np.uint32, 2)):
+            self.assertIsInstance(arr, np.ndarray)
+            self.assertEqual((arr.dtype, arr.ndim), (dtype, ndim))
+        self.assertEqual(r.pair_array().shape, (len(r.pairs), 3))
+        self.assertEqual(rows(r.pair_array()[:, :2]), [(p[0], p[1]) for p in r.pairs])
+        # to_dict stays plain lists (JSON-serialisable).
+        self.assertIsInstance(r.to_dict()["regions"][0]["triangles_a"], list)
+        self.assertIsInstance(itf.Transform().matrix(), np.ndarray)
 
 
 # ------------------------------------------------------------------------------------------------
