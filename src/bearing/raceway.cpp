@@ -1,0 +1,301 @@
+// Raceway pairs of a roller bearing (issue #27; Jia & Zheng 2019, §2.1 Fig. 1 geometry): the roller
+// inside a concave cylindrical bore (outer ring of a cylindrical roller bearing) and inside a conical
+// cup (outer ring of a tapered roller bearing); parameter checks; the point-to-frustum signed
+// distance. The rib is raceway_rib.cpp, the cone-cone pair raceway_cone.cpp. docs/bearing.md,
+// "Raceways (issue #27)".
+#include "interfere/bearing/raceway.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "golden.h"
+#include "raceway_detail.h"
+
+namespace interfere::bearing {
+namespace {
+
+using detail::golden_min;
+using detail::perpendicular_unit;
+using detail::Rim;
+using detail::max_axis_distance_on_rim;
+using detail::max_over_angle;
+
+Error bad(const char* what, const std::string& reason) { return Error{"", -1, -1, std::string(what) + "." + reason}; }
+
+bool finite3(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool unit(const Vec3& v) { return finite3(v) && std::fabs(norm(v) - 1) <= 1e-9; }
+
+/// The roller's axis segment clipped to the slab 0 <= z <= width of a ring (z measured from `base`
+/// along `u`): the sub-frustum's end circles (at axis parameters t0 <= t1), or, when no axis point
+/// lies in the slab, the axial gap between the roller and the slab with its witnesses.
+struct Clip {
+  bool empty = false;
+  Rim lo, hi;      ///< end circles of the clipped roller
+  PairDistance gap;  ///< when empty: distance = axial gap >= 0, path apart
+};
+
+Clip clip_to_slab(const Cylinder& roller, const Vec3& base, const Vec3& u, double width) {
+  const Vec3& d = roller.axis;
+  const double h = roller.height;
+  const double z0 = dot(roller.base - base, u), du = dot(d, u);
+  double t0 = 0, t1 = h;
+  if (du != 0) {
+    double a = (0 - z0) / du, b = (width - z0) / du;
+    if (a > b) std::swap(a, b);
+    t0 = std::max(t0, a), t1 = std::min(t1, b);
+  } else if (!(z0 >= 0 && z0 <= width)) {
+    t0 = 1, t1 = 0;  // parallel to the faces and outside the slab
+  }
+  Clip out;
+  if (t0 <= t1) {
+    out.lo = {roller.base + d * t0, detail::radius_at(roller, t0)};
+    out.hi = {roller.base + d * t1, detail::radius_at(roller, t1)};
+    return out;
+  }
+  // No axis point in the slab: the roller's axial extent [zmin, zmax] (end-circle extremes along u)
+  out.empty = true;
+  const Vec3 pu = u - d * du;  // u's part in the end-circle planes, length sin(angle)
+  const double spu = norm(pu);
+  const Vec3 dir = spu > 0 ? pu / spu : Vec3{0, 0, 0};
+  const Rim rims[2] = {{roller.base, roller.radius}, {roller.top_center(), roller.top()}};
+  const bool above = z0 > width;  // the roller lies beyond z = width: its lowest point matters
+  double best = above ? 1e300 : -1e300;
+  Vec3 bp;
+  for (const Rim& rim : rims) {
+    const Vec3 p = rim.c + dir * (above ? -rim.r : rim.r);
+    const double z = dot(p - base, u);
+    if (above ? z < best : z > best) best = z, bp = p;
+  }
+  const double gap = above ? best - width : -best;
+  out.gap.distance = std::max(gap, 0.0);
+  out.gap.point_a = bp;
+  out.gap.point_b = bp - u * (above ? best - width : best);
+  out.gap.path = AnalyticPath::apart;
+  return out;
+}
+
+/// Farthest point of the ellipse x0^2/e0^2 + x1^2/e1^2 = 1 (e0 >= e1 >= 0) from (y0, y1): returns the
+/// distance and the point. Lagrange: x - y = lambda (x0/e0^2, x1/e1^2); the farthest point has
+/// lambda > e0^2 and lies in the quadrant opposite y: with X_i = |x_i| = |y_i| e_i^2/(lambda - e_i^2)
+/// the constraint is G(mu) = (|y0| e0/mu)^2 + (|y1| e1/(mu + e0^2 - e1^2))^2 - 1 = 0 for
+/// mu = lambda - e0^2 > 0. G decreases strictly from +inf (|y0| > 0) to -1, so the root is unique:
+/// bisected to rounding on [0, hypot(y0 e0, y1 e1)] (G <= 0 there). With y0 = 0 the maximiser is the
+/// minor vertex opposite y when |y1| e1 >= e0^2 - e1^2, else lambda = e0^2 (two symmetric points).
+/// Evaluated in mu (no cancellation near the pole); the distance is hypot(|y0| + X0, |y1| + X1).
+struct Far {
+  double distance = 0, x0 = 0, x1 = 0;
+};
+Far farthest_on_ellipse(double e0, double e1, double y0, double y1) {
+  const double s0 = y0 < 0 ? -1.0 : 1.0, s1 = y1 < 0 ? -1.0 : 1.0;
+  const double a0 = std::fabs(y0), a1 = std::fabs(y1);
+  const double gap = e0 * e0 - e1 * e1;  // >= 0
+  double X0, X1;
+  if (a0 > 0) {
+    const double n0 = a0 * e0, n1 = a1 * e1;
+    const auto G = [&](double mu) {
+      const double q0 = n0 / mu, q1 = n1 / (mu + gap);
+      return q0 * q0 + q1 * q1 - 1;
+    };
+    double lo = 0, hi = std::hypot(n0, n1);
+    for (int i = 0; i < 1100; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      if (mid <= lo || mid >= hi) break;
+      if (G(mid) > 0) lo = mid;
+      else hi = mid;
+    }
+    const double mu = hi;  // G(hi) <= 0: X0 <= e0 (the point is on or just inside the ellipse)
+    X0 = std::min(e0, a0 * e0 * e0 / mu);
+    X1 = e1 > 0 ? std::min(e1, a1 * e1 * e1 / (mu + gap)) : 0.0;
+    // project onto the ellipse along x1 (the bisection's last ulp): x0 is the accurate coordinate
+    if (e1 > 0) X1 = std::max(X1, e1 * std::sqrt(std::max(0.0, 1 - (X0 / e0) * (X0 / e0))));
+  } else if (a1 * e1 >= gap) {
+    X0 = 0, X1 = e1;
+  } else if (e1 == 0) {  // a segment: its end
+    X0 = e0, X1 = 0;
+  } else {
+    X1 = a1 * e1 * e1 / gap;  // gap > 0 here (else a1 * e1 >= 0 = gap)
+    X0 = e0 * std::sqrt(std::max(0.0, 1 - (X1 / e1) * (X1 / e1)));
+  }
+  Far out;
+  out.distance = std::hypot(a0 + X0, a1 + X1);
+  out.x0 = -s0 * X0, out.x1 = -s1 * X1;
+  return out;
+}
+
+/// max over one end circle of rho (distance to the line base + z u): the circle projected along u is
+/// an ellipse, semi-axes r along f1 = d x u / |d x u| and r |cos gamma| along e2 = u x f1 (gamma the
+/// angle between the axes); the line projects to a point. Returns (rho, the circle's point).
+}  // namespace
+
+namespace detail {
+std::pair<double, Vec3> max_axis_distance_on_rim(const Rim& rim, const Vec3& d, const Vec3& base, const Vec3& u) {
+  const Vec3 cr = cross(d, u);
+  const double sl = norm(cr);
+  const Vec3 f1 = sl > 0 ? cr / sl : perpendicular_unit(d);
+  const Vec3 e2 = cross(u, f1), g2 = cross(d, f1);
+  const double cg = dot(g2, e2);  // +-cos gamma
+  const Vec3 q = rim.c - base;
+  const Far far = farthest_on_ellipse(rim.r, rim.r * std::fabs(cg), -dot(q, f1), -dot(q, e2));
+  double cs = rim.r > 0 ? far.x0 / rim.r : 1.0, sn;
+  if (cg != 0 && rim.r > 0) sn = far.x1 / (rim.r * cg);
+  else sn = std::sqrt(std::max(0.0, 1 - cs * cs));  // both signs project alike
+  const double len = std::hypot(cs, sn);
+  if (len > 0) cs /= len, sn /= len;
+  return {far.distance, rim.c + f1 * (rim.r * cs) + g2 * (rim.r * sn)};
+}
+}  // namespace detail
+
+namespace {
+
+/// p moved within its meridian half-plane (of the axis base + z u) onto the point (R, z) of it.
+Vec3 radial_to(const Vec3& p, const Vec3& base, const Vec3& u, double R) {
+  const Vec3 v = p - base;
+  const double z = dot(v, u);
+  const Vec3 radial = v - u * z;
+  const double rho = norm(radial);
+  const Vec3 ur = rho > 0 ? radial / rho : perpendicular_unit(u);
+  return base + u * z + ur * R;
+}
+
+}  // namespace
+
+Status validate_roller(const Cylinder& c, const char* what) {
+  if (!finite3(c.base)) return bad(what, "base must be finite");
+  if (!unit(c.axis)) return bad(what, "axis must be a unit vector");
+  if (!(c.height > 0) || !std::isfinite(c.height)) return bad(what, "height must be > 0 and finite");
+  if (!(c.radius >= 0) || !std::isfinite(c.radius)) return bad(what, "radius must be >= 0 and finite");
+  if (!std::isfinite(c.top_radius)) return bad(what, "top_radius must be finite");
+  if (!(c.radius > 0 || c.top() > 0)) return bad(what, "radius and top_radius must not both be 0");
+  return {};
+}
+
+Status validate_bore(const Bore& b, const char* what) {
+  if (!finite3(b.base)) return bad(what, "base must be finite");
+  if (!unit(b.axis)) return bad(what, "axis must be a unit vector");
+  if (!(b.radius > 0) || !std::isfinite(b.radius)) return bad(what, "radius must be > 0 and finite");
+  if (!(b.width > 0) || !std::isfinite(b.width)) return bad(what, "width must be > 0 and finite");
+  return {};
+}
+
+Status validate_cup(const Cup& c, const char* what) {
+  if (!finite3(c.base)) return bad(what, "base must be finite");
+  if (!unit(c.axis)) return bad(what, "axis must be a unit vector");
+  if (!(c.radius > 0) || !std::isfinite(c.radius)) return bad(what, "radius must be > 0 and finite");
+  if (!(c.top_radius > 0) || !std::isfinite(c.top_radius)) return bad(what, "top_radius must be > 0 and finite");
+  if (!(c.width > 0) || !std::isfinite(c.width)) return bad(what, "width must be > 0 and finite");
+  return {};
+}
+
+Status validate_rib(const Rib& r, const char* what) {
+  if (!finite3(r.center)) return bad(what, "center must be finite");
+  if (!unit(r.normal)) return bad(what, "normal must be a unit vector");
+  if (!unit(r.axis)) return bad(what, "axis must be a unit vector");
+  if (!(std::fabs(dot(r.normal, r.axis)) >= 0.5)) return bad(what, "normal must be within 60 degrees of axis");
+  if (!(r.inner_radius >= 0) || !std::isfinite(r.inner_radius)) return bad(what, "inner_radius must be >= 0 and finite");
+  if (!(r.outer_radius > r.inner_radius) || !std::isfinite(r.outer_radius))
+    return bad(what, "outer_radius must be > inner_radius and finite");
+  return {};
+}
+
+double point_frustum_signed_distance(const Cylinder& c, const Vec3& p) {
+  // meridian half-plane of p: x = rho >= 0, z from the base; the section is the trapezoid
+  // |x| <= R(z) = R0 + (R1 - R0) z / h, 0 <= z <= h (convex; for x >= 0 only the bottom, top and
+  // right lateral edges can be nearest).
+  const Vec3 v = p - c.base;
+  const double z = dot(v, c.axis), x = norm(cross(v, c.axis));
+  const double h = c.height, R0 = c.radius, R1 = c.top();
+  const double L = std::hypot(R1 - R0, h);
+  const double lat = ((x - R0) * h - z * (R1 - R0)) / L;  // signed distance to the lateral line
+  if (z >= 0 && z <= h && lat <= 0) return -std::min({z, h - z, -lat});
+  // outside: the distance to the nearest of the three edge segments
+  const double db = std::hypot(std::max(x - R0, 0.0), z);
+  const double dt = std::hypot(std::max(x - R1, 0.0), z - h);
+  const double w = std::clamp(((x - R0) * (R1 - R0) + z * h) / (L * L), 0.0, 1.0);
+  const double dl = std::hypot(x - (R0 + w * (R1 - R0)), z - w * h);
+  return std::min({db, dt, dl});
+}
+
+Vec3 nearest_on_frustum_boundary(const Cylinder& c, const Vec3& p) {
+  const Vec3 v = p - c.base;
+  const double z = dot(v, c.axis);
+  const Vec3 radial = v - c.axis * z;
+  const double x = norm(radial);
+  const Vec3 ur = x > 0 ? radial / x : perpendicular_unit(c.axis);
+  const double h = c.height, R0 = c.radius, R1 = c.top();
+  const double L = std::hypot(R1 - R0, h);
+  const double lat = ((x - R0) * h - z * (R1 - R0)) / L;
+  double bx, bz;
+  const double w = std::clamp(((x - R0) * (R1 - R0) + z * h) / (L * L), 0.0, 1.0);
+  const double lx = R0 + w * (R1 - R0), lz = w * h;
+  if (z >= 0 && z <= h && lat <= 0) {
+    const double m = std::min({z, h - z, -lat});
+    if (m == -lat) bx = x - lat * h / L, bz = z + lat * (R1 - R0) / L;  // foot on the lateral line
+    else if (m == z) bx = x, bz = 0;
+    else bx = x, bz = h;
+  } else {
+    const double db = std::hypot(std::max(x - R0, 0.0), z);
+    const double dt = std::hypot(std::max(x - R1, 0.0), z - h);
+    const double dl = std::hypot(x - lx, z - lz);
+    if (dl <= db && dl <= dt) bx = lx, bz = lz;
+    else if (db <= dt) bx = std::min(x, R0), bz = 0;
+    else bx = std::min(x, R1), bz = h;
+  }
+  return c.base + c.axis * bz + ur * bx;
+}
+
+PairDistance roller_bore_distance(const Cylinder& roller, const Bore& bore) {
+  const Clip clip = clip_to_slab(roller, bore.base, bore.axis, bore.width);
+  if (clip.empty) return clip.gap;
+  // max of the convex rho over the (clipped) frustum: at an extreme point, i.e. on an end circle
+  const auto lo = max_axis_distance_on_rim(clip.lo, roller.axis, bore.base, bore.axis);
+  const auto hi = max_axis_distance_on_rim(clip.hi, roller.axis, bore.base, bore.axis);
+  const auto& m = hi.first > lo.first ? hi : lo;
+  PairDistance out;
+  out.distance = bore.radius - m.first;
+  out.point_a = m.second;
+  out.point_b = radial_to(m.second, bore.base, bore.axis, bore.radius);
+  out.path = AnalyticPath::bore;
+  return out;
+}
+
+PairDistance roller_cup_distance(const Cylinder& roller, const Cup& cup) {
+  const Clip clip = clip_to_slab(roller, cup.base, cup.axis, cup.width);
+  if (clip.empty) return clip.gap;
+  const Vec3& u = cup.axis;
+  const double k = (cup.top_radius - cup.radius) / cup.width;
+  const double cb = 1 / std::sqrt(1 + k * k);
+  // g(p) = (rho - R0 - k z) cb: convex (rho convex, z linear), so its maximum over the clipped
+  // frustum is on an end circle; on a circle h(phi) = rho(phi) - k z(phi) is smooth where rho > 0.
+  const Vec3 f1 = perpendicular_unit(roller.axis), f2 = cross(roller.axis, f1);
+  const auto h_of = [&](const Rim& rim) {
+    return [&, rim](double phi) {
+      const Vec3 v = detail::rim_point(rim, f1, f2, phi) - cup.base;
+      const double z = dot(v, u);
+      return norm(cross(v, u)) - k * z;
+    };
+  };
+  const auto lo = max_over_angle(h_of(clip.lo));
+  const auto hi = max_over_angle(h_of(clip.hi));
+  const bool top = hi.second > lo.second;
+  const Rim& rim = top ? clip.hi : clip.lo;
+  const double phi = top ? hi.first : lo.first;
+  const Vec3 pa = detail::rim_point(rim, f1, f2, phi);
+  const Vec3 v = pa - cup.base;
+  const double z = dot(v, u), rho = norm(cross(v, u));
+  const double g = (rho - cup.radius - k * z) * cb;  // signed distance beyond the cone line
+  PairDistance out;
+  out.distance = -g;
+  out.point_a = pa;
+  // the foot on the cone line (R0 + k z', z') of the meridian half-plane: move by -g along the
+  // line's outward normal (1, -k) cb
+  const Vec3 radial = v - u * z;
+  const Vec3 ur = rho > 0 ? radial / rho : perpendicular_unit(u);
+  out.point_b = cup.base + u * (z + g * k * cb) + ur * (rho - g * cb);
+  out.path = AnalyticPath::cup;
+  return out;
+}
+
+}  // namespace interfere::bearing

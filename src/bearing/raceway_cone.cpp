@@ -1,0 +1,105 @@
+// Tapered roller against the cone raceway of a tapered roller bearing (issue #27): s(A, B) of
+// analytic.h with B a cone frustum (cylinder_pair_distance requires an untapered B).
+//
+// Lateral bound. Let B have base O, axis u, radii R0 (z = 0) .. R1 (z = h), k = (R1 - R0)/h. For a
+// point p in the meridian half-plane of azimuth n (unit, perpendicular to u),
+//     g(p) = (rho(p) - R0 - k z(p)) / sqrt(1 + k^2)
+// is its signed distance to the plane tangent to B's cone along the generator of azimuth n. That
+// tangent half-space is a supporting half-space of the convex (infinite) solid cone C ⊇ B, and the
+// signed distance to a convex set is the largest signed distance to its supporting half-spaces, so
+// sd_B(p) >= sd_C(p) >= g(p) for every p, hence s(A, B) >= min over A of g.
+// Dual. rho(p) - k z(p) = max over unit n ⊥ u of w.(p - O) with w = n - k u, so by weak duality
+//     min over A of (rho - k z)  >=  V = max over n of Phi(n),
+//     Phi(n) = min over A of w.(p - O) = min over the end circles j of [w.(c_j - O) - r_j |w_perp|]
+// (the support function of a frustum, w_perp = w's part perpendicular to A's axis). Phi is
+// maximised over the angle of n (1-D: sampled, then golden-section refinement), and the primal point
+// p* is the minimiser of w*.p over A (an end-circle point). Certificate: with V_g = (V - R0)/sqrt(1+k^2),
+//     V_g <= min over A of g <= s(A, B) <= sd_B(p*),
+// so when sd_B(p*) - V_g is within a few ulps of the pair's scale, s = sd_B(p*) to that accuracy
+// (path `cone`; this is the roller's side or end circle against B's cone surface, the bearing's case,
+// line contact included). Otherwise (B's end faces or rims nearest, A crossing B's axis, deep overlap)
+// sd_B is minimised over A by nested golden-section searches (sd_B convex, partial minimisation keeps
+// convexity; path `general`), as cylinder_pair_distance_general does for a cylinder B.
+#include <algorithm>
+#include <cmath>
+
+#include "golden.h"
+#include "interfere/bearing/raceway.h"
+#include "raceway_detail.h"
+
+namespace interfere::bearing {
+namespace {
+
+using detail::golden_min;
+using detail::perpendicular_unit;
+
+PairDistance cone_general(const Cylinder& a, const Cylinder& b) {
+  const Vec3 f1 = perpendicular_unit(a.axis);
+  const Vec3 f2 = cross(a.axis, f1);
+  const auto sd = [&](const Vec3& p) { return point_frustum_signed_distance(b, p); };
+  const auto point = [&](double t, double x, double y) { return a.base + a.axis * t + f1 * x + f2 * y; };
+  constexpr int kIter = 64;
+  const auto over_y = [&](double t, double x, double r) {
+    const double ym = std::sqrt(std::max(0.0, r * r - x * x));
+    return golden_min([&](double y) { return sd(point(t, x, y)); }, -ym, ym, kIter);
+  };
+  const auto over_x = [&](double t) {
+    const double r = detail::radius_at(a, t);
+    return golden_min([&](double x) { return over_y(t, x, r).second; }, -r, r, kIter);
+  };
+  const auto [t, value] = golden_min([&](double tt) { return over_x(tt).second; }, 0.0, a.height, kIter);
+  const double r = detail::radius_at(a, t);
+  const double x = over_x(t).first;
+  const double y = over_y(t, x, r).first;
+  PairDistance out;
+  out.point_a = point(t, x, y);
+  out.distance = value;
+  out.point_b = nearest_on_frustum_boundary(b, out.point_a);
+  out.path = AnalyticPath::general;
+  return out;
+}
+
+}  // namespace
+
+PairDistance cone_pair_distance(const Cylinder& a, const Cylinder& b) {
+  if (!b.tapered()) return cylinder_pair_distance(a, b);
+  const Vec3& u = b.axis;
+  const Vec3& d = a.axis;
+  const double k = (b.top() - b.radius) / b.height;
+  const double cb = 1 / std::sqrt(1 + k * k);
+  const Vec3 e1 = perpendicular_unit(u), e2 = cross(u, e1);
+  const detail::Rim rims[2] = {{a.base, a.radius}, {a.top_center(), a.top()}};
+  // Phi(psi) and the end-circle point minimising w.p
+  const auto phi_at = [&](double psi, Vec3* at) {
+    const Vec3 w = e1 * std::cos(psi) + e2 * std::sin(psi) - u * k;
+    const Vec3 wp = w - d * dot(w, d);
+    const double swp = norm(wp);
+    double best = 0;
+    for (int j = 0; j < 2; ++j) {
+      const double v = dot(w, rims[j].c - b.base) - rims[j].r * swp;
+      if (j == 0 || v < best) {
+        best = v;
+        if (at) *at = swp > 0 ? rims[j].c - wp * (rims[j].r / swp) : rims[j].c;
+      }
+    }
+    return best;
+  };
+  const auto [psi, V] = detail::max_over_angle([&](double x) { return phi_at(x, nullptr); });
+  Vec3 p;
+  phi_at(psi, &p);
+  const double sdp = point_frustum_signed_distance(b, p);
+  const double vg = (V - b.radius) * cb;
+  double scale = std::max({b.height, b.max_radius(), a.height, a.max_radius()});
+  for (const Vec3& v : {a.base, b.base}) scale = std::max({scale, std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
+  if (sdp - vg <= 0x1p-44 * scale) {  // ~5.7e-14 relative: the duality gap closes
+    PairDistance out;
+    out.distance = sdp;
+    out.point_a = p;
+    out.point_b = nearest_on_frustum_boundary(b, p);
+    out.path = AnalyticPath::cone;
+    return out;
+  }
+  return cone_general(a, b);
+}
+
+}  // namespace interfere::bearing

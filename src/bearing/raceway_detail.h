@@ -1,0 +1,66 @@
+// Shared pieces of the raceway solvers (raceway.cpp, raceway_rib.cpp, raceway_cone.cpp).
+#pragma once
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <utility>
+
+#include "golden.h"
+#include "interfere/bearing/cylinder.h"
+
+namespace interfere::bearing::detail {
+
+inline Vec3 perpendicular_unit(const Vec3& u) {
+  const Vec3 t = std::fabs(u.x) < 0.6 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+  const Vec3 p = cross(u, t);
+  return p / norm(p);
+}
+
+/// An end circle of a roller: centre, radius; the roller's unit axis is its normal.
+struct Rim {
+  Vec3 c;
+  double r = 0;
+};
+
+/// The radius of frustum c at axis parameter t in [0, height].
+inline double radius_at(const Cylinder& c, double t) { return c.radius + (c.top() - c.radius) * (t / c.height); }
+
+/// The point of the roller's rim at axis parameter t and angle phi in the frame (f1, f2).
+inline Vec3 rim_point(const Rim& rim, const Vec3& f1, const Vec3& f2, double phi) {
+  return rim.c + f1 * (rim.r * std::cos(phi)) + f2 * (rim.r * std::sin(phi));
+}
+
+/// max over one end circle (axis d) of the distance to the line base + z u, and the circle's point
+/// where it is reached (raceway.cpp: farthest point of the projected ellipse, closed form to rounding).
+std::pair<double, Vec3> max_axis_distance_on_rim(const Rim& rim, const Vec3& d, const Vec3& base, const Vec3& u);
+
+/// Maximises a smooth 2*pi-periodic h over the angle: 32 samples, then every sampled local maximum
+/// among the three largest is refined by golden-section search on its bracket [phi_i - step,
+/// phi_i + step] (where h is unimodal unless two maxima lie within one step of each other; then their
+/// values agree to the variation of h over a step's neighbourhood of a near-flat top).
+template <class H>
+std::pair<double, double> max_over_angle(H&& h) {
+  constexpr int kN = 32;
+  constexpr double kStep = 2 * std::numbers::pi / kN;
+  std::array<double, kN> v{};
+  for (int i = 0; i < kN; ++i) v[i] = h(i * kStep);
+  std::array<int, kN> peaks{};
+  int np = 0;
+  for (int i = 0; i < kN; ++i) {
+    const double l = v[(i + kN - 1) % kN], r = v[(i + 1) % kN];
+    if (v[i] >= l && v[i] >= r) peaks[np++] = i;
+  }
+  std::sort(peaks.begin(), peaks.begin() + np, [&](int a, int b) { return v[a] > v[b]; });
+  double best_phi = 0, best = v[0];
+  for (int i = 0; i < kN; ++i)
+    if (v[i] > best) best = v[i], best_phi = i * kStep;
+  for (int k = 0; k < std::min(np, 3); ++k) {
+    const double c = peaks[k] * kStep;
+    const auto [phi, neg] = golden_min([&](double x) { return -h(x); }, c - kStep, c + kStep, 80);
+    if (-neg > best) best = -neg, best_phi = phi;
+  }
+  return {best_phi, best};
+}
+
+}  // namespace interfere::bearing::detail

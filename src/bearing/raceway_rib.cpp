@@ -1,0 +1,242 @@
+// Roller end against a rib (flange) face (issue #27; Jia & Zheng 2019, §2.1 Fig. 1: the ribs of the
+// inner ring guide the rollers' ends). raceway.h documents the quantity:
+//     s = min over K of l(p),  l(p) = (p - center).normal,  K = roller ∩ {ri <= rho(p) <= ro}
+// with rho the distance to the ring axis. K is compact but not convex (rho >= ri), so the minimum of
+// the linear l over K is found among the places where a minimum can be:
+//   (a) on an end circle of the roller: l restricted to the whole circle has its minimum at
+//       c - r n_perp/|n_perp| (n_perp = normal's part in the circle's plane; closed form, the rim
+//       case of the support function centre.n + r sqrt(1 - (n.axis)^2)); it counts when that point
+//       lies in the shell ri <= rho <= ro;
+//   (b) on the curves where the roller's boundary meets the cylinders rho = ri and rho = ro.
+// Why nothing else: on the lateral surface l is linear along each generator, so a minimum over K is
+// at a generator's end in K: on an end circle or where the generator leaves the shell (b); on an end
+// disk l is linear, so its minimum over disk ∩ shell is on the disk's circle or on the shell's
+// boundary (b); inside the roller, a minimum over K lies on the shell's boundary rho = c, where l is
+// linear along the lines parallel to the ring axis, so it is at such a line's exit from the roller
+// (b). A minimum on an end circle that is not (a) is at an arc end, i.e. on (b). For (b), each line
+// parallel to the ring axis at radius c and azimuth psi meets the convex roller in a segment (exact
+// line-frustum clipping, a quadratic); l is linear along it, so the segment's lower end is the
+// candidate, and psi is searched in 1-D: 64 samples over the roller's angular window, seeded also
+// with the azimuth of the roller's point nearest to (c = ro) / farthest from (c = ri) the axis (where
+// a thin crossing arc lies), then golden-section refinement of every sampled local minimum.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <vector>
+
+#include "golden.h"
+#include "interfere/bearing/raceway.h"
+#include "raceway_detail.h"
+
+namespace interfere::bearing {
+namespace {
+
+using detail::golden_min;
+using detail::perpendicular_unit;
+using detail::Rim;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// The segment [z0, z1] of the line q + z u inside the solid frustum c; false when they miss.
+bool clip_line(const Cylinder& c, const Vec3& q, const Vec3& u, double& z0, double& z1) {
+  const Vec3& d = c.axis;
+  const double h = c.height, r0 = c.radius, s = (c.top() - c.radius) / h;
+  const Vec3 v = q - c.base;
+  const double a0 = dot(v, d), ud = dot(u, d);
+  double lo = -kInf, hi = kInf;
+  if (ud != 0) {
+    lo = (0 - a0) / ud, hi = (h - a0) / ud;
+    if (lo > hi) std::swap(lo, hi);
+  } else if (!(a0 >= 0 && a0 <= h)) {
+    return false;
+  }
+  const Vec3 w0 = v - d * a0, w1 = u - d * ud;
+  const double R0 = r0 + s * a0, sr = s * ud;
+  const double A = dot(w1, w1) - sr * sr, B = dot(w0, w1) - sr * R0, C = dot(w0, w0) - R0 * R0;
+  // Q(z) = A z^2 + 2 B z + C <= 0 inside the lateral surface (the radius is >= 0 within the slab);
+  // inside the slab the feasible set is an interval (intersection of convex sets)
+  std::array<double, 4> br{};
+  int nb = 0;
+  if (std::isfinite(lo)) br[nb++] = lo, br[nb++] = hi;
+  const double disc = B * B - A * C;
+  if (disc >= 0 && (A != 0 || B != 0)) {
+    if (A != 0) {
+      const double sq = std::sqrt(disc);
+      const double qq = -(B + (B >= 0 ? sq : -sq));
+      if (qq != 0) br[nb++] = qq / A, br[nb++] = C / qq;
+      else br[nb++] = 0;
+    } else {
+      br[nb++] = -C / (2 * B);
+    }
+  }
+  if (!std::isfinite(lo)) {  // unbounded slab (ud = 0): A = |w1|^2 > 0, the roots bound it
+    if (!(disc >= 0) || A <= 0) return false;
+    lo = -kInf, hi = kInf;
+  }
+  std::sort(br.begin(), br.begin() + nb);
+  double f0 = kInf, f1 = -kInf;
+  const auto Q = [&](double z) { return (A * z + 2 * B) * z + C; };
+  for (int i = 0; i < nb; ++i) {
+    const double x = br[i];
+    if (!(x >= lo && x <= hi)) continue;
+    // the sub-interval to the right is feasible when its midpoint is
+    if (i + 1 < nb) {
+      const double y = std::min(br[i + 1], hi);
+      if (y > x && Q(0.5 * (x + y)) <= 0) f0 = std::min(f0, x), f1 = std::max(f1, y);
+    }
+  }
+  // a degenerate (single-point) interval: a tangent line
+  if (!(f0 <= f1)) {
+    for (int i = 0; i < nb; ++i) {
+      const double x = br[i];
+      if (x >= lo && x <= hi && Q(x) <= 0) {
+        f0 = f1 = x;
+        break;
+      }
+    }
+  }
+  if (!(f0 <= f1)) return false;
+  z0 = std::max(f0, lo), z1 = std::min(f1, hi);
+  return z0 <= z1;
+}
+
+struct Candidate {
+  double l = kInf;
+  Vec3 p;
+};
+
+/// (b) for the cylinder rho = c: min over the azimuth of l at the roller's boundary on the line.
+Candidate shell_curve(const Cylinder& roller, const Rib& rib, double c, const Vec3& a1, const Vec3& a2,
+                      double psi_lo, double psi_hi, double seed) {
+  const Vec3& u = rib.axis;
+  const double un = dot(u, rib.normal);
+  const auto eval = [&](double psi, Vec3* at) {
+    const Vec3 q = rib.center + a1 * (c * std::cos(psi)) + a2 * (c * std::sin(psi));
+    double z0, z1;
+    if (!clip_line(roller, q, u, z0, z1)) return kInf;
+    const double z = un > 0 ? z0 : z1;
+    const Vec3 p = q + u * z;
+    if (at) *at = p;
+    return dot(p - rib.center, rib.normal);
+  };
+  constexpr int kN = 64;
+  const double step = (psi_hi - psi_lo) / kN;
+  std::array<double, kN + 1> v{};
+  for (int i = 0; i <= kN; ++i) v[i] = eval(psi_lo + i * step, nullptr);
+  Candidate best;
+  std::vector<double> starts;
+  for (int i = 0; i <= kN; ++i) {
+    if (!(v[i] < kInf)) continue;
+    const double l = i > 0 ? v[i - 1] : kInf, r = i < kN ? v[i + 1] : kInf;
+    if (v[i] <= l && v[i] <= r) starts.push_back(psi_lo + i * step);
+  }
+  std::sort(starts.begin(), starts.end(), [&](double x, double y) { return eval(x, nullptr) < eval(y, nullptr); });
+  if (starts.size() > 3) starts.resize(3);
+  starts.push_back(seed);
+  for (const double s0 : starts) {
+    const auto [psi, val] = golden_min([&](double x) { return eval(x, nullptr); }, s0 - step, s0 + step, 80);
+    Vec3 p;
+    if (val < best.l && eval(psi, &p) < kInf) best.l = eval(psi, &p), best.p = p;
+  }
+  return best;
+}
+
+}  // namespace
+
+PairDistance roller_rib_distance(const Cylinder& roller, const Rib& rib) {
+  const Vec3& n = rib.normal;
+  const Vec3& u = rib.axis;
+  const double ri = rib.inner_radius, ro = rib.outer_radius;
+  const Vec3& d = roller.axis;
+  const auto rho = [&](const Vec3& p) { return norm(cross(p - rib.center, u)); };
+  const auto l = [&](const Vec3& p) { return dot(p - rib.center, n); };
+  const Rim rims[2] = {{roller.base, roller.radius}, {roller.top_center(), roller.top()}};
+  Candidate best;
+  double plane_min = kInf;  // min of l over the whole roller (a lower bound when apart)
+  Vec3 plane_p;
+  // (a) the minimum of l on each end circle
+  const Vec3 np = n - d * dot(n, d);
+  const double snp = norm(np);
+  for (const Rim& rim : rims) {
+    if (snp > 1e-12) {
+      const Vec3 p = rim.c - np * (rim.r / snp);
+      const double lp = l(p), rp = rho(p);
+      if (lp < plane_min) plane_min = lp, plane_p = p;
+      if (rp >= ri && rp <= ro && lp < best.l) best.l = lp, best.p = p;
+    } else {  // the circle is parallel to the face: l is constant on it; any point in the shell
+      const Vec3 f1 = perpendicular_unit(d), f2 = cross(d, f1);
+      for (int k = 0; k < 16; ++k) {
+        const Vec3 p = detail::rim_point(rim, f1, f2, k * (std::numbers::pi / 8));
+        const double lp = l(p), rp = rho(p);
+        if (lp < plane_min) plane_min = lp, plane_p = p;
+        if (rp >= ri && rp <= ro && lp < best.l) best.l = lp, best.p = p;
+      }
+    }
+  }
+  // (b) the curves on rho = ro and rho = ri, searched over the roller's angular window seen from the
+  // ring axis (bounding sphere of the roller: centre m, radius rb)
+  const Vec3 a1 = perpendicular_unit(u), a2 = cross(u, a1);
+  const Vec3 m = roller.center() - rib.center;
+  const double mx = dot(m, a1), my = dot(m, a2), D = std::hypot(mx, my);
+  const double rb = std::hypot(0.5 * roller.height, roller.max_radius());
+  double psi_lo = -std::numbers::pi, psi_hi = std::numbers::pi;
+  const double psi_m = std::atan2(my, mx);
+  if (D > rb * 1.000001) {
+    const double w = std::asin(std::min(1.0, rb / D)) * 1.000001 + 1e-12;
+    psi_lo = psi_m - w, psi_hi = psi_m + w;
+  }
+  // seeds: the azimuths of the roller's extreme points in rho (thin crossings lie around them)
+  double min_rho = kInf, max_rho = 0;
+  Vec3 far_p;
+  for (const Rim& rim : rims) {
+    const auto [r, p] = detail::max_axis_distance_on_rim(rim, d, rib.center, u);
+    if (r > max_rho) max_rho = r, far_p = p;
+  }
+  Cylinder enclosing = roller;  // contains the roller: its min rho is a lower bound
+  enclosing.radius = roller.max_radius(), enclosing.top_radius = -1;
+  const RadialMin near = min_axis_distance(enclosing, rib.center, u);
+  min_rho = near.rho;
+  const auto azimuth = [&](const Vec3& p) { return std::atan2(dot(p - rib.center, a2), dot(p - rib.center, a1)); };
+  if (min_rho <= ro) {  // else the roller lies wholly outside the annulus
+    const Candidate c = shell_curve(roller, rib, ro, a1, a2, psi_lo, psi_hi, azimuth(near.point));
+    if (c.l < best.l) best = c;
+  }
+  if (ri > 0 && max_rho >= ri) {
+    const Candidate c = shell_curve(roller, rib, ri, a1, a2, psi_lo, psi_hi, azimuth(far_p));
+    if (c.l < best.l) best = c;
+  }
+  PairDistance out;
+  if (best.l < kInf) {
+    out.distance = best.l;
+    out.point_a = best.p;
+    out.point_b = best.p - n * best.l;
+    out.path = AnalyticPath::rib;
+    return out;
+  }
+  // no point over the annulus: a positive lower bound of the distance (radial gap to the shell, or
+  // the plane gap of the whole roller)
+  const double radial = std::max(min_rho - ro, ri - max_rho);
+  out.distance = std::max({radial, plane_min, 0.0});
+  if (out.distance == plane_min) {
+    out.point_a = plane_p, out.point_b = plane_p - n * plane_min;
+  } else if (radial == min_rho - ro) {
+    out.point_a = near.point;
+    out.point_b = near.point;  // moved radially onto rho = ro below
+    const Vec3 v = near.point - rib.center;
+    const Vec3 rad = v - u * dot(v, u);
+    const double rr = norm(rad);
+    if (rr > 0) out.point_b = rib.center + u * dot(v, u) + rad * (ro / rr);
+  } else {
+    out.point_a = far_p;
+    const Vec3 v = far_p - rib.center;
+    const Vec3 rad = v - u * dot(v, u);
+    const double rr = norm(rad);
+    out.point_b = rr > 0 ? rib.center + u * dot(v, u) + rad * (ri / rr) : far_p;
+  }
+  out.path = AnalyticPath::apart;
+  return out;
+}
+
+}  // namespace interfere::bearing
