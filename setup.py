@@ -1,0 +1,114 @@
+"""Builds the Python package `interfere` with CMake (issue #30; docs/python.md, "Install").
+
+    pip install --no-build-isolation .      # offline, with Debian's python3-setuptools/-wheel/-numpy
+
+`build_ext` configures this repository's CMakeLists.txt with the Python module on and the tests,
+benchmarks and CLI off, builds the target `_interfere` (which also writes the type stubs,
+python/tools/stubgen.py) and copies the extension and `_interfere.pyi` into the wheel; the pure
+Python files and `py.typed` come from python/interfere/.
+
+Environment:
+  INTERFERE_CMAKE_BUILD_DIR   an already configured CMake build tree to reuse: no configure, only
+                              an incremental `cmake --build DIR --target _interfere` (tests, developers)
+  INTERFERE_CMAKE_ARGS        extra configure arguments (split on spaces), e.g. -DINTERFERE_WITH_OCCT=OFF
+  CMAKE_BUILD_PARALLEL_LEVEL  build jobs (default: the number of CPUs)
+Without INTERFERE_CMAKE_BUILD_DIR the CMake tree is build-pip/cmake (kept, so a second
+`pip install .` is incremental).
+"""
+
+import glob
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+from setuptools import Extension, setup
+from setuptools.command.build_ext import build_ext
+
+ROOT = os.path.dirname(os.path.abspath(__file__))
+# The Debian packages a clean build needs (README "Install"); named when a step fails.
+DEBIAN_BUILD_DEPS = ("cmake g++ ninja-build libtbb-dev nlohmann-json3-dev zlib1g-dev pybind11-dev python3-dev "
+                     "python3-numpy python3-setuptools python3-wheel")
+
+
+def project_version():
+    with open(os.path.join(ROOT, "CMakeLists.txt")) as f:
+        m = re.search(r"project\(\s*interfere\s+VERSION\s+([0-9.]+)", f.read())
+    if not m:
+        raise RuntimeError("setup.py: no `project(interfere VERSION x.y.z)` in CMakeLists.txt")
+    return m.group(1)
+
+
+def fail(message):
+    sys.stderr.write(f"\ninterfere setup.py: error: {message}\n")
+    raise SystemExit(1)
+
+
+class CMakeExtension(Extension):
+    def __init__(self, name):
+        super().__init__(name, sources=[])
+
+
+class CMakeBuild(build_ext):
+    def build_extension(self, ext):
+        cmake = shutil.which("cmake")
+        if cmake is None:
+            fail("cmake was not found on PATH (Debian: apt-get install cmake). Build dependencies: " +
+                 DEBIAN_BUILD_DEPS)
+        reuse = os.environ.get("INTERFERE_CMAKE_BUILD_DIR")
+        if reuse:
+            build_dir = os.path.abspath(reuse)
+            if not os.path.isfile(os.path.join(build_dir, "CMakeCache.txt")):
+                fail(f"INTERFERE_CMAKE_BUILD_DIR={reuse} is not a configured CMake build tree (no CMakeCache.txt)")
+        else:
+            build_dir = os.path.join(ROOT, "build-pip", "cmake")
+            self.configure(cmake, build_dir)
+        jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL") or str(os.cpu_count() or 1)
+        self.run_step([cmake, "--build", build_dir, "--target", "_interfere", "-j", jobs], "build")
+
+        package_dir = os.path.join(build_dir, "python", "interfere")
+        built = sorted(glob.glob(os.path.join(package_dir, "_interfere*.so")) +
+                       glob.glob(os.path.join(package_dir, "_interfere*.pyd")))
+        if not built:
+            fail(f"the build left no _interfere extension in {package_dir} (is INTERFERE_BUILD_PYTHON on there?)")
+        target = self.get_ext_fullpath(ext.name)
+        os.makedirs(os.path.dirname(target), exist_ok=True)
+        shutil.copyfile(built[-1], target)
+        stub = os.path.join(package_dir, "_interfere.pyi")
+        if not os.path.isfile(stub):
+            fail(f"the build left no type stubs {stub} (python/tools/stubgen.py)")
+        shutil.copyfile(stub, os.path.join(os.path.dirname(target), "_interfere.pyi"))
+
+    def configure(self, cmake, build_dir):
+        args = [cmake, "-S", ROOT, "-B", build_dir, "-DCMAKE_BUILD_TYPE=Release",
+                "-DINTERFERE_BUILD_PYTHON=ON", "-DINTERFERE_BUILD_TESTS=OFF", "-DINTERFERE_BUILD_ORACLE_TESTS=OFF",
+                "-DINTERFERE_BUILD_BENCH=OFF", "-DINTERFERE_BUILD_CLI=OFF",
+                f"-DPython3_EXECUTABLE={sys.executable}"]
+        if not os.path.isfile(os.path.join(build_dir, "CMakeCache.txt")) and shutil.which("ninja"):
+            args += ["-G", "Ninja"]
+        args += os.environ.get("INTERFERE_CMAKE_ARGS", "").split()
+        self.run_step(args, "configure")
+
+    def run_step(self, args, what):
+        print(" ".join(args), flush=True)
+        try:
+            subprocess.run(args, check=True)
+        except subprocess.CalledProcessError as e:
+            fail(f"CMake {what} failed (exit {e.returncode}); its output above names what is missing. "
+                 f"On Debian 12 the build needs: apt-get install {DEBIAN_BUILD_DEPS}")
+
+
+BUILD_BASE = os.path.join(ROOT, "build-pip")  # setuptools' own default, build/, is the CMake tree's name
+os.makedirs(BUILD_BASE, exist_ok=True)
+
+setup(
+    version=project_version(),
+    packages=["interfere"],
+    package_dir={"": "python"},
+    package_data={"interfere": ["py.typed", "*.pyi"]},
+    ext_modules=[CMakeExtension("interfere._interfere")],
+    cmdclass={"build_ext": CMakeBuild},
+    options={"build": {"build_base": BUILD_BASE}, "egg_info": {"egg_base": BUILD_BASE}},
+    zip_safe=False,
+)
