@@ -2,14 +2,16 @@
 // a signed displacement, and every place that assumed a scarred roller lies inside its intact
 // cylinder (part_pair.cpp's enclosing cylinder and containment shortcut, the simulation's broad
 // phase boxes and its "standard value when the scar is out of range" rule). Each test below failed
-// before the fix. Oracles: the analytic bump itself (a point inside it is inside the roller) and the
-// exact surface reference (every triangle, scarred.h), against which the simulation's rows and
-// cross pairs are checked.
+// before the fix. Oracles: the analytic bump itself (a point inside it is inside the roller), the
+// independent bracket of the surface minimum (bearing_oracle.h: its own signed distance, subdivision
+// with a convexity bound) and, to select among many rows cheaply, the every-triangle reference
+// (scarred.h surface_reference; the rows the fixes are about are then bracketed independently).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
+#include "bearing_oracle.h"
 #include "interfere/bearing/part_pair.h"
 #include "interfere/bearing/quadtree.h"
 #include "interfere/bearing/raised_bound.h"
@@ -48,6 +50,20 @@ Roller raised_roller(double center_angle, double amp, const RollerParams& rp = {
   r.has_scar = true;
   r.update_positions();
   return r;
+}
+
+/// The exact minimum of sd_B over the roller's triangles posed by `pose`, bracketed by the
+/// independent oracle (bearing_oracle.h: its own signed distance, subdivision with a convexity
+/// bound; nothing from scarred.h) to 1e-9: [lower, upper].
+bearing_oracle::Bracket oracle_min(const Roller& r, const Transform& pose, const Cylinder& b) {
+  std::vector<std::array<Vec3, 3>> tris;
+  for (std::size_t t = 0; t < r.mesh.num_triangles(); ++t) {
+    const auto c = r.mesh.corners(t);
+    tris.push_back({pose.apply(c[0]), pose.apply(c[1]), pose.apply(c[2])});
+  }
+  const bearing_oracle::Bracket br = bearing_oracle::surface_min_bracket(tris, b, 1e-9);
+  EXPECT_LE(br.upper - br.lower, 1e-9);
+  return br;
 }
 
 Cylinder cyl(Vec3 base, double h, double r) {
@@ -100,8 +116,7 @@ TEST(BearingRaisedScar, PartnerInsideTheRaisedBumpIsClash) {
   b.cylinder = cyl({12, 0, zc - 0.3}, 0.6, 0.3);
   // the oracle: the partner's centre is 12 from the axis, the analytic bump surface 13 there
   ASSERT_LT(12.0, 10 + bump(0, zc, 10, 0, zc, 3, 6));
-  const MeshPairResult surface = surface_reference(roller, Transform::identity(), b.cylinder);
-  EXPECT_GT(surface.distance, 0.1);  // the partner does not meet the surface
+  EXPECT_GT(oracle_min(roller, Transform::identity(), b.cylinder).lower, 0.1);  // it meets no triangle
   EXPECT_EQ(mesh_containment(a, b.cylinder), 1);
   const PartPairResult r = decide_part_pair(a, b, 0);
   EXPECT_EQ(r.verdict, Verdict::clash);
@@ -127,8 +142,9 @@ TEST(BearingRaisedScar, TwoScarredRollersBoundIncludesTheRaise) {
   pb.t = {21, 0, 0};
   b.cylinder = cyl({21, 0, 0}, 40, 10), b.mesh = &rb, b.tree = &tb, b.solid = &sb, b.pose = pb;
   // oracle: B's deepest point in A (whose scar is on the far side: A is its intact cylinder there)
-  const double ref = surface_reference(rb, pb, a.cylinder).distance;
-  EXPECT_NEAR(ref, -2.0, 1e-9);  // the bump's peak vertex at 180 degrees, 21 - 13 - 10
+  const bearing_oracle::Bracket br = oracle_min(rb, pb, a.cylinder);
+  const double ref = br.upper;
+  EXPECT_NEAR(br.lower, -2.0, 1e-9);  // the bump's peak vertex at 180 degrees, 21 - 13 - 10
   for (const bool flip : {false, true}) {
     const PartPairResult r = flip ? decide_part_pair(b, a, 0) : decide_part_pair(a, b, 0);
     EXPECT_EQ(r.solver, PartPairSolver::bound);
@@ -159,7 +175,7 @@ namespace {
 
 SceneParams raised_scene() {
   SceneParams p;
-  p.pairs = 8, p.frames = 40;
+  p.pairs = 4, p.frames = 40;
   p.roller = {.radius = 10, .height = 40, .radial_segments = 64, .height_segments = 31};
   p.max_tilt_deg = 0;  // Eq. (1)'s range is then only the grid margin: most frames are out of range
   p.spin_deg_per_frame = 7;
@@ -184,7 +200,8 @@ TEST(BearingRaisedScar, SimulationRowsSeeARaisedScarOutOfRange) {
   // The rule "scar out of the range of Eq. (1): the standard solver's value on the intact cylinder"
   // holds for inward scars only; a raised scar 15-30 degrees off the contact direction reaches
   // 0.2 mm across the gap and into the partner. Every scarred row must not exceed the exact surface
-  // minimum (inward facets and scars only make the surface minimum larger than the intact one).
+  // minimum (inward facets and scars only make the surface minimum larger than the intact one), and
+  // a row that reaches must be the mesh's own value.
   const SceneParams p = raised_scene();
   const auto r = simulate(p);
   ASSERT_TRUE(r.has_value()) << r.error().message();
@@ -196,7 +213,10 @@ TEST(BearingRaisedScar, SimulationRowsSeeARaisedScarOutOfRange) {
     const int v = r->pair_variant[static_cast<std::size_t>(row.pair)];
     ASSERT_GE(v, 0);
     const Cylinder b = posed_cylinder(p.partner_radius, -1, p.partner_height, partner_pose(p, r->spacing, row.pair));
-    const double ref = surface_reference(variants[static_cast<std::size_t>(v)], r->roller_poses[q], b).distance;
+    // every row against the every-triangle reference (scarred.h); the rows the fix is about also
+    // against the independent bracket (a few: it is slow)
+    const Roller& roller = variants[static_cast<std::size_t>(v)];
+    const double ref = surface_reference(roller, r->roller_poses[q], b).distance;
     EXPECT_LE(row.distance, ref + 1e-9) << "frame " << row.frame << " pair " << row.pair;
     ++checked;
     if (!row.scar_in_range && ref < -1e-6) {
@@ -204,6 +224,11 @@ TEST(BearingRaisedScar, SimulationRowsSeeARaisedScarOutOfRange) {
       EXPECT_EQ(row.solver, 1) << "frame " << row.frame << " pair " << row.pair;
       EXPECT_NEAR(row.distance, ref, 1e-9);
       EXPECT_EQ(row.verdict, Verdict::clash);
+      if (out_of_range_reaching <= 3) {
+        const bearing_oracle::Bracket br = oracle_min(roller, r->roller_poses[q], b);
+        EXPECT_LE(row.distance, br.upper + 1e-9);
+        EXPECT_GE(row.distance, br.lower - 1e-9);
+      }
     }
   }
   EXPECT_EQ(checked, p.pairs * p.frames);
@@ -222,7 +247,8 @@ TEST(BearingRaisedScar, BroadPhaseBoxesContainTheRaisedScar) {
   const Cylinder partner1 = posed_cylinder(p.partner_radius, -1, p.partner_height, partner_pose(p, r->spacing, 1));
   int reaching = 0;
   for (int f = 0; f < p.frames; ++f) {
-    const double ref = surface_reference(v0, r->roller_poses[static_cast<std::size_t>(f) * 2], partner1).distance;
+    const Transform& pose = r->roller_poses[static_cast<std::size_t>(f) * 2];
+    const double ref = surface_reference(v0, pose, partner1).distance;
     if (ref > -1e-6) continue;
     ++reaching;
     const CrossPair* hit = nullptr;
@@ -231,6 +257,11 @@ TEST(BearingRaisedScar, BroadPhaseBoxesContainTheRaisedScar) {
     ASSERT_NE(hit, nullptr) << "frame " << f << ": roller 0 reaches " << -ref << " into partner 1, not reported";
     EXPECT_EQ(hit->verdict, Verdict::clash);
     EXPECT_NEAR(hit->distance, ref, 1e-9);
+    if (reaching <= 2) {  // and against the independent bracket
+      const bearing_oracle::Bracket br = oracle_min(v0, pose, partner1);
+      EXPECT_LE(hit->distance, br.upper + 1e-9);
+      EXPECT_GE(hit->distance, br.lower - 1e-9);
+    }
   }
   EXPECT_GT(reaching, 0) << "the scene must exercise the case";
   EXPECT_EQ(r->verdict, Verdict::clash);

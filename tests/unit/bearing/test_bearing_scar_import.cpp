@@ -12,6 +12,7 @@
 #include <sstream>
 #include <string>
 
+#include "bearing_oracle.h"
 #include "interfere/bearing/scar_import.h"
 #include "interfere/bearing/scarred.h"
 #include "interfere/bearing/simulation.h"
@@ -59,6 +60,20 @@ RollerParams grid72() {  // 5-degree columns, 1 mm rings
   RollerParams p;
   p.radius = 10, p.height = 40, p.radial_segments = 72, p.height_segments = 40;
   return p;
+}
+
+/// The exact minimum of sd_B over the roller's triangles posed by `pose`, bracketed by the
+/// independent oracle (bearing_oracle.h: its own signed distance, subdivision with a convexity
+/// bound; nothing from scarred.h) to 1e-9: [lower, upper].
+bearing_oracle::Bracket oracle_min(const Roller& r, const Transform& pose, const Cylinder& b) {
+  std::vector<std::array<Vec3, 3>> tris;
+  for (std::size_t t = 0; t < r.mesh.num_triangles(); ++t) {
+    const auto c = r.mesh.corners(t);
+    tris.push_back({pose.apply(c[0]), pose.apply(c[1]), pose.apply(c[2])});
+  }
+  const bearing_oracle::Bracket br = bearing_oracle::surface_min_bracket(tris, b, 1e-9);
+  EXPECT_LE(br.upper - br.lower, 1e-9);
+  return br;
 }
 
 std::string csv_of(const std::function<double(double, double)>& f, double a0, double a1, double da, double z0, double z1,
@@ -387,8 +402,8 @@ TEST(BearingScarImport, PointCloudBadInput) {
 }
 
 TEST(BearingScarImport, SimulationCarriesTheImportedScar) {
-  // every scarred roller carries the imported bump; the rows solved on the mesh equal the exact
-  // surface reference of a roller built here from the same heights
+  // every scarred roller carries the imported bump: the rows equal the surface minimum of a roller
+  // built here from the same heights
   SceneParams p;
   p.pairs = 3, p.frames = 8, p.roller = grid72(), p.max_tilt_deg = 0, p.spin_deg_per_frame = 25, p.gap = 0.05;
   p.scar_fraction = 1;
@@ -403,13 +418,19 @@ TEST(BearingScarImport, SimulationCarriesTheImportedScar) {
   for (std::size_t q = 0; q < r->rows.size(); ++q) {
     const PairFrame& row = r->rows[q];
     const Cylinder b = posed_cylinder(p.partner_radius, -1, p.partner_height, partner_pose(p, r->spacing, row.pair));
-    const double s = surface_reference(ref, r->roller_poses[q], b).distance;
-    EXPECT_LE(row.distance, s + 1e-9);
+    // every row against the every-triangle reference (scarred.h), a few reaching mesh rows also
+    // against the independent bracket (slow where the minimum is a long line contact)
+    const double sref = surface_reference(ref, r->roller_poses[q], b).distance;
+    EXPECT_LE(row.distance, sref + 1e-9);
     if (row.solver == 1) {
       ++mesh_rows;
-      EXPECT_NEAR(row.distance, s, 1e-9);
+      EXPECT_NEAR(row.distance, sref, 1e-9);
+      if (sref < -1e-6 && ++reaching <= 3) {
+        const bearing_oracle::Bracket br = oracle_min(ref, r->roller_poses[q], b);
+        EXPECT_LE(row.distance, br.upper + 1e-9);
+        EXPECT_GE(row.distance, br.lower - 1e-9);
+      }
     }
-    reaching += s < -1e-6;
   }
   EXPECT_GT(mesh_rows, 0);
   EXPECT_GT(reaching, 0);  // the 0.1 mm bump reaches across the 0.05 mm gap when it faces the partner
