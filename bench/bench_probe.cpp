@@ -47,7 +47,7 @@ const Case& get_case(int i) {
     c->spec = paper_cases()[i];
     c->mesh = make_panel(c->spec.kind, c->spec.nu, c->spec.nv);
     c->path = make_panel_path(c->spec.kind, c->spec.path);
-    c->robot = paper_machine(c->spec.path.pivot_to_tip);
+    c->robot = pivot_machine(c->spec.path.pivot_to_tip);
   }
   return *c;
 }
@@ -159,7 +159,7 @@ void BM_ProbeScaling(benchmark::State& state) {
   const int lines = 100;
   const ProbePath path = make_panel_path(
       PanelKind::saddle, {.lines = lines, .points_per_line = static_cast<int>(pts / lines), .collide_every = 997});
-  const Robot robot = paper_machine(150);
+  const Robot robot = pivot_machine(150);
   double build = 0, discrete = 0, continuous = 0;
   SweepResult r;
   for (auto _ : state) {

@@ -108,8 +108,10 @@ void bind_probe(py::module_& m) {
         return std::move(r.value());
       },
       py::arg("text"));
-  p.def("paper_machine", [](double l) { return paper_machine(l); }, py::arg("pivot_to_tip") = 150.0,
-        "The paper's 5-axis machine (x, y, z, a, b).");
+  p.def("pivot_machine", [](double l) { return pivot_machine(l); }, py::arg("pivot_to_tip") = 150.0,
+        "The 5-axis pivot machine (x, y, z, a, b): the project's reconstruction, not the paper's §3.1 machine.");
+  p.def("paper_machine", [](double l) { return pivot_machine(l); }, py::arg("pivot_to_tip") = 150.0,
+        "Former name of pivot_machine (kept for old scripts): NOT the paper's §3.1 machine.");
   p.def(
       "forward_kinematics",
       [](const Robot& r, const std::vector<double>& q) {
@@ -135,10 +137,11 @@ void bind_probe(py::module_& m) {
   p.def(
       "paper_end_circle",
       [](const std::array<double, 5>& q, double l) {
-        const ProbePose pose = paper_end_circle(q, l);
+        const ProbePose pose = pivot_end_circle(q, l);
         return py::make_tuple(tup(pose.tip), tup(pose.axis));
       },
-      py::arg("xyzab"), py::arg("pivot_to_tip") = 150.0, "§3.1's closed-form end-circle centre and axis.");
+      py::arg("xyzab"), py::arg("pivot_to_tip") = 150.0,
+      "The pivot machine's closed-form end-circle centre and axis (not §3.1's formula; former name kept).");
 
   p.def(
       "cylinder_triangle_intersect",

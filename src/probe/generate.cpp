@@ -61,7 +61,7 @@ TriMesh make_panel(PanelKind kind, int nu, int nv) {
 }
 
 ProbePath make_panel_path(PanelKind kind, const PanelPathOptions& o) {
-  const Robot robot = paper_machine(o.pivot_to_tip);
+  const Robot robot = pivot_machine(o.pivot_to_tip);
   ProbePath path;
   path.joint_space = true;
   for (const DhJoint& j : robot.joints) path.columns.push_back(j.name);
@@ -77,7 +77,7 @@ ProbePath make_panel_path(PanelKind kind, const PanelPathOptions& o) {
       const bool collide = o.collide_every > 0 && index % o.collide_every == o.collide_every / 2;
       const double s = collide ? -o.collide_depth : o.standoff;
       ProbePose pose{p + n * s, -n};
-      std::array<double, 5> q = paper_inverse(pose, o.pivot_to_tip);
+      std::array<double, 5> q = pivot_inverse(pose, o.pivot_to_tip);
       while (q[3] - prev_a > 180) q[3] -= 360;  // keep A4 continuous along the path
       while (q[3] - prev_a < -180) q[3] += 360;
       prev_a = q[3];

@@ -92,9 +92,9 @@ Status check_joint_limits(const Robot& robot, const std::vector<double>& q) {
   return {};
 }
 
-Robot paper_machine(double pivot_to_tip, const Vec3& base_origin) {
+Robot pivot_machine(double pivot_to_tip, const Vec3& base_origin) {
   Robot r;
-  r.name = "paper-5-axis";
+  r.name = "pivot-5-axis";
   // DH frame 0: x0 = world y, y0 = world z, z0 = world x (so A1 slides along world x).
   r.base.r = {{{0, 0, 1}, {1, 0, 0}, {0, 1, 0}}};
   r.base.t = base_origin;
@@ -111,14 +111,14 @@ Robot paper_machine(double pivot_to_tip, const Vec3& base_origin) {
   return r;
 }
 
-ProbePose paper_end_circle(const std::array<double, 5>& q, double pivot_to_tip, const Vec3& base_origin) {
+ProbePose pivot_end_circle(const std::array<double, 5>& q, double pivot_to_tip, const Vec3& base_origin) {
   const double a = q[3] * kDeg, b = q[4] * kDeg;
   const Vec3 axis{-std::sin(b) * std::cos(a), -std::sin(b) * std::sin(a), -std::cos(b)};
   const Vec3 pivot = base_origin + Vec3{q[0], q[1], q[2]};
   return {pivot + axis * pivot_to_tip, axis};
 }
 
-std::array<double, 5> paper_inverse(const ProbePose& pose, double pivot_to_tip, const Vec3& base_origin) {
+std::array<double, 5> pivot_inverse(const ProbePose& pose, double pivot_to_tip, const Vec3& base_origin) {
   const Vec3 u = pose.axis / norm(pose.axis);
   const double b = std::acos(std::clamp(-u.z, -1.0, 1.0));
   const double sb = std::sin(b);

@@ -33,10 +33,10 @@ struct PanelPathOptions {
   double standoff = 10.0;      ///< tip distance from the surface along its normal
   int collide_every = 97;      ///< every collide_every-th point (from index collide_every/2) ...
   double collide_depth = 1.0;  ///< ... has its tip this far below the surface (colliding)
-  double pivot_to_tip = 150;   ///< the paper machine's pivot-to-tip distance
+  double pivot_to_tip = 150;   ///< the pivot machine's pivot-to-tip distance
 };
 
-/// Joint path (x, y, z, a, b) of the paper machine (paper_machine(options.pivot_to_tip)) following
+/// Joint path (x, y, z, a, b) of the pivot machine (pivot_machine(options.pivot_to_tip)) following
 /// the panel at the stand-off, probe along the inward normal; poses resolved.
 ProbePath make_panel_path(PanelKind kind, const PanelPathOptions& options);
 

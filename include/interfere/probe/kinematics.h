@@ -1,7 +1,8 @@
 // Robot kinematics for the inspection probe (issue #5, item 1): a serial chain in standard
-// (distal) Denavit-Hartenberg convention, read from JSON, and the paper's 5-axis machine
-// (Li, Zhou & Zheng 2008, §3.1: prismatic A1-A3 = x, y, z; revolute A4 = a about the vertical,
-// A5 = b tilting the probe) as a bundled example (data/examples/probe_5axis.json).
+// (distal) Denavit-Hartenberg convention, read from JSON, and a 5-axis pivot machine (prismatic
+// x, y, z; revolute a about the vertical, b tilting the probe; data/examples/probe_5axis.json).
+// The paper's own machine (Li, Zhou & Zheng 2008, §3.1) is in paper_machine.h
+// (data/examples/probe_paper_machine.json).
 //
 // Convention (standard DH, Craig's "distal" variant as in Spong & Vidyasagar):
 //   T_i = Rot_z(theta_i) * Trans_z(d_i) * Trans_x(a_i) * Rot_x(alpha_i),   world <- base * T_1 ... T_n,
@@ -79,18 +80,21 @@ Expected<Robot> parse_robot_json(std::string_view text, const std::string& file_
 Expected<Robot> read_robot_json(const std::filesystem::path& path);
 std::string robot_to_json(const Robot& robot);
 
-/// The paper's 5-axis machine: pivot (intersection of the A4 and A5 axes) at base_origin + (x, y,
-/// z); A4 rotates by a about the vertical z; A5 tilts by b about the rotated y axis; the probe's
-/// end circle is `pivot_to_tip` from the pivot along the probe axis, which points down (-z) at
-/// a = b = 0. Limits: x, y, z in [-2000, 2000], a in [-360, 360], b in [-120, 120].
-Robot paper_machine(double pivot_to_tip = 150.0, const Vec3& base_origin = {});
+/// A 5-axis "pivot" machine (the project's reconstruction from issue #5, before the paper's text was
+/// available; NOT the machine of §3.1, which is paper_machine_31 in paper_machine.h): pivot
+/// (intersection of the A4 and A5 axes) at base_origin + (x, y, z); A4 rotates by a about the
+/// vertical z; A5 tilts by b about the rotated y axis; the probe's end circle is `pivot_to_tip` from
+/// the pivot along the probe axis, which points down (-z) at a = b = 0. Limits: x, y, z in
+/// [-2000, 2000], a in [-360, 360], b in [-120, 120]. Named "pivot-5-axis"; bundled as
+/// data/examples/probe_5axis.json; used by the path generator, the benchmarks and older tests.
+Robot pivot_machine(double pivot_to_tip = 150.0, const Vec3& base_origin = {});
 
-/// §3.1's closed form of the end-circle centre for that machine:
+/// The closed form of that machine's end-circle centre (not §3.1's formula):
 ///   P = (x, y, z) + L (-sin b cos a, -sin b sin a, -cos b),  axis = (P - pivot) / L.
-ProbePose paper_end_circle(const std::array<double, 5>& xyzab, double pivot_to_tip, const Vec3& base_origin = {});
+ProbePose pivot_end_circle(const std::array<double, 5>& xyzab, double pivot_to_tip, const Vec3& base_origin = {});
 
 /// Inverse of paper_end_circle: joint values (x, y, z, a, b) putting the end circle at pose.tip with
 /// direction pose.axis (b in [0, 180], a in (-180, 180]; a = 0 when the axis is vertical).
-std::array<double, 5> paper_inverse(const ProbePose& pose, double pivot_to_tip, const Vec3& base_origin = {});
+std::array<double, 5> pivot_inverse(const ProbePose& pose, double pivot_to_tip, const Vec3& base_origin = {});
 
 }  // namespace interfere::probe

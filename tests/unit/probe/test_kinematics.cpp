@@ -1,5 +1,5 @@
 // Kinematics (issue #5, items 1, 2, 7): DH forward kinematics against hand-computed poses, the
-// paper machine against §3.1's end-circle formula, the bundled robot file, and bad inputs naming
+// pivot machine against its closed-form end circle (the paper's §3.1 machine: test_paper_machine.cpp), the bundled pivot robot file, and bad inputs naming
 // file, line and field.
 #include <gtest/gtest.h>
 
@@ -44,20 +44,20 @@ TEST(ProbeKinematics, PrismaticAndTwistByHand) {
   expect_vec(p.axis, {0, -1, 0}, 1e-12);
 }
 
-TEST(ProbeKinematics, PaperMachineMatchesEndCircleFormula) {
+TEST(ProbeKinematics, PivotMachineMatchesItsClosedForm) {
   std::mt19937_64 g(5);
   std::uniform_real_distribution<double> len(-500, 500), ang(-180, 180), tilt(-110, 110);
   const Vec3 base{10, -20, 300};
-  const Robot r = paper_machine(150, base);
+  const Robot r = pivot_machine(150, base);
   for (int it = 0; it < 200; ++it) {
     const std::array<double, 5> q{len(g), len(g), len(g), ang(g), tilt(g)};
     const ProbePose fk = forward_kinematics(r, {q.begin(), q.end()});
-    const ProbePose ref = paper_end_circle(q, 150, base);
+    const ProbePose ref = pivot_end_circle(q, 150, base);
     expect_vec(fk.tip, ref.tip, 1e-9);
     expect_vec(fk.axis, ref.axis, 1e-12);
     // And the inverse used by the path generator.
-    const auto back = paper_inverse(ref, 150, base);
-    const ProbePose again = paper_end_circle(back, 150, base);
+    const auto back = pivot_inverse(ref, 150, base);
+    const ProbePose again = pivot_end_circle(back, 150, base);
     expect_vec(again.tip, ref.tip, 1e-9);
     expect_vec(again.axis, ref.axis, 1e-12);
   }
@@ -67,10 +67,10 @@ TEST(ProbeKinematics, PaperMachineMatchesEndCircleFormula) {
   expect_vec(p.tip, base + Vec3{1, 2 - 150, 3}, 1e-12);
 }
 
-TEST(ProbeKinematics, BundledRobotFileIsThePaperMachine) {
+TEST(ProbeKinematics, BundledPivotRobotFile) {
   auto r = read_robot_json(std::filesystem::path(INTERFERE_SOURCE_DIR) / "data" / "examples" / "probe_5axis.json");
   ASSERT_TRUE(r) << r.error().message();
-  const Robot ref = paper_machine(150);
+  const Robot ref = pivot_machine(150);
   ASSERT_EQ(r->joints.size(), 5u);
   for (const std::vector<double> q : {std::vector<double>{0, 0, 0, 0, 0}, {12, -40, 250, 33, -21}}) {
     const ProbePose a = forward_kinematics(*r, q), b = forward_kinematics(ref, q);
@@ -108,7 +108,7 @@ TEST(ProbeKinematics, BadRobotFiles) {
 }
 
 TEST(ProbePath, JointAndPosePaths) {
-  const Robot r = paper_machine(150);
+  const Robot r = pivot_machine(150);
   auto p = parse_path_csv("# comment\nx,y,z,a,b\n1,2,3,0,0\n\n4, 5, 6, 10, 20\n", "p.csv", &r);
   ASSERT_TRUE(p) << p.error().message();
   EXPECT_TRUE(p->joint_space);
@@ -126,7 +126,7 @@ TEST(ProbePath, JointAndPosePaths) {
 }
 
 TEST(ProbePath, BadRowsNameFileLineAndField) {
-  const Robot r = paper_machine(150);
+  const Robot r = pivot_machine(150);
   auto err = [&](const char* text, const Robot* robot) {
     auto p = parse_path_csv(text, "path.csv", robot);
     EXPECT_FALSE(p);

@@ -2,8 +2,8 @@
 // matched to the robot's joints by header name (a header "b,a,z,y,x" used to be read as x..b by
 // position), unknown, missing and repeated names are errors naming file, line and column; the
 // robot's base must be a rigid transform, unknown keys are errors with their JSON path, and a
-// `units` other than mm is refused instead of ignored. Oracle for the poses: the paper's closed
-// form of the end circle (paper_end_circle, §3.1), not the DH chain the parser feeds.
+// `units` other than mm is refused instead of ignored. Oracle for the poses: the closed
+// form of the pivot machine's end circle (pivot_end_circle), not the DH chain the parser feeds.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -43,7 +43,7 @@ std::string robot_with(const std::string& extra) {
 }  // namespace
 
 TEST(ProbePathByName, JointColumnsInAnyOrder) {
-  const Robot r = paper_machine(150);
+  const Robot r = pivot_machine(150);
   auto a = parse_path_csv("x,y,z,a,b\n1,2,170,30,10\n", "a.csv", &r);
   auto b = parse_path_csv("b,a,z,y,x\n10,30,170,2,1\n", "b.csv", &r);
   ASSERT_TRUE(a) << a.error().message();
@@ -51,7 +51,7 @@ TEST(ProbePathByName, JointColumnsInAnyOrder) {
   EXPECT_EQ(b->joints, a->joints);
   EXPECT_EQ(b->columns, (std::vector<std::string>{"x", "y", "z", "a", "b"}));  // the robot's order
   resolve_poses(*b, r);
-  const ProbePose ref = paper_end_circle({1, 2, 170, 30, 10}, 150);
+  const ProbePose ref = pivot_end_circle({1, 2, 170, 30, 10}, 150);
   EXPECT_NEAR(b->poses[0].tip.x, ref.tip.x, 1e-9);
   EXPECT_NEAR(b->poses[0].tip.y, ref.tip.y, 1e-9);
   EXPECT_NEAR(b->poses[0].tip.z, ref.tip.z, 1e-9);
@@ -63,7 +63,7 @@ TEST(ProbePathByName, JointColumnsInAnyOrder) {
 }
 
 TEST(ProbePathByName, UnknownMissingAndRepeatedColumns) {
-  const Robot r = paper_machine(150);
+  const Robot r = pivot_machine(150);
   std::string m = path_error("x,y,z,a,q\n0,0,0,0,0\n", &r);
   expect_has(m, "path.csv:1");
   expect_has(m, "column 5");

@@ -35,7 +35,7 @@ TEST(ProbeSweep, HierarchiesAgreeWithBruteForce) {
   for (PanelKind kind : {PanelKind::sheet, PanelKind::shell, PanelKind::saddle}) {
     const TriMesh mesh = make_panel(kind, 20, 14);
     const ProbePath path = small_path(kind, 4, 40, 13);
-    const Robot robot = paper_machine(150);
+    const Robot robot = pivot_machine(150);
     std::vector<SweepResult> results;
     for (Hierarchy h : {Hierarchy::brute_force, Hierarchy::bvh, Hierarchy::patches, Hierarchy::grid,
                         Hierarchy::distance_field}) {
@@ -69,7 +69,7 @@ TEST(ProbeSweep, ClearanceMatchesSampledOracle) {
   const ProbeShape probe{.radius = 4, .length = 30};
   const TriMesh mesh = make_panel(PanelKind::saddle, 16, 16);
   const ProbePath path = small_path(PanelKind::saddle, 3, 15, 0);
-  const Robot robot = paper_machine(150);
+  const Robot robot = pivot_machine(150);
   const Workpiece w = prepare_workpiece(mesh, probe);
   const SweepResult r = sweep(w, path, &robot, {.probe = probe, .continuous = false});
   for (std::size_t i = 0; i < path.size(); ++i) {
@@ -90,7 +90,7 @@ TEST(ProbeSweep, CollisionOnlyBetweenSamples) {
   // height is 200 - 150 cos b: 125 at the ends, 50 at b = 0. A plate at z = 80 is clear at both
   // samples but hit in between; the probe bottom (tip) reaches z = 80 at cos b = 0.8 (b = +-36.87),
   // i.e. t = 0.5 -+ 36.87/120, and the rim (radius 5) slightly earlier.
-  const Robot robot = paper_machine(150);
+  const Robot robot = pivot_machine(150);
   ProbePath path;
   path.columns = {"x", "y", "z", "a", "b"};
   path.joints = {{0, 0, 200, 0, -60}, {0, 0, 200, 0, 60}};
@@ -150,7 +150,7 @@ TEST(ProbeSweep, ThreadIndependent) {
   const ProbeShape probe{.radius = 5, .length = 40};
   const TriMesh mesh = make_panel(PanelKind::shell, 24, 24);
   const ProbePath path = small_path(PanelKind::shell, 5, 60, 17);
-  const Robot robot = paper_machine(150);
+  const Robot robot = pivot_machine(150);
   const Workpiece w = prepare_workpiece(mesh, probe);
   SweepResult a, b;
   {

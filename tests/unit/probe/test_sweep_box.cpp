@@ -228,7 +228,7 @@ TEST(ProbeSweepBox, TurningJointBetweenSamples) {
   // The paper machine turns a from 0 to 90 degrees with b = 0 (probe down, tip at z = 50): the
   // tool's x axis, the box's width direction, turns with it (ref = (cos a, sin a, 0)); the box spans
   // z in [90, 120]. The same post as above, between z = 100 and 110: hit for a in 45 -+ 19.47.
-  const Robot robot = paper_machine(150);
+  const Robot robot = pivot_machine(150);
   ProbePath path;
   path.columns = {"x", "y", "z", "a", "b"};
   path.joints = {{0, 0, 200, 0, 0}, {0, 0, 200, 90, 0}};
@@ -253,7 +253,7 @@ TEST(ProbeSweepBox, TurningJointBetweenSamples) {
 TEST(ProbeSweepBox, ForwardKinematicsReferenceHandComputed) {
   // Paper machine, frame 5: x5 = (cos b cos a, cos b sin a, -sin b), y5 = (sin a, -cos a, 0),
   // z5 = (-sin b cos a, -sin b sin a, -cos b) (the probe axis).
-  const Robot r = paper_machine(150);
+  const Robot r = pivot_machine(150);
   const ProbePose p = forward_kinematics(r, {1, 2, 3, 90, 30});
   expect_vec(p.axis, {0, -0.5, -std::sqrt(0.75)}, 1e-15);
   expect_vec(p.ref, {0, std::sqrt(0.75), -0.5}, 1e-15);
