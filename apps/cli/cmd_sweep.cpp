@@ -21,6 +21,7 @@
 #include "interfere/core/atomic_file.h"
 #include "interfere/mesh/io.h"
 #include "interfere/probe/export.h"
+#include "interfere/probe/paper_machine.h"
 #include "interfere/probe/sweep.h"
 
 namespace interfere::cli {
@@ -33,6 +34,9 @@ struct SweepOptions {
   std::string workpiece, robot, path, json, csv, hits_obj, probes_vtk, hierarchy = "bvh", units = "mm", holder_box;
   std::string units_workpiece;  ///< --units-workpiece (empty: by the format)
   std::string fail_on;
+  std::string interpolate;    ///< --interpolate joint|pose (empty: joint when the machine can, docs/probe.md)
+  double d1 = std::numeric_limits<double>::quiet_NaN();  ///< --d1: the paper's machine (§3.1)
+  double d2 = std::numeric_limits<double>::quiet_NaN();  ///< --d2
   double clearance = 0;       ///< requested clearance (--clearance), 0 = none
   std::size_t max_poses = std::size_t(1) << 16;
   double probe_radius = std::numeric_limits<double>::quiet_NaN();
@@ -125,13 +129,24 @@ int run_sweep(const SweepOptions& o) {
       part_unit({.file = o.workpiece, .units = o.units_workpiece, .units_flag = "--units-workpiece"});
   const double workpiece_scale =
       unit_in_mm(workpiece_unit.unit, "--units-workpiece") / unit_in_mm(o.units, "--units");
-  if (!o.robot.empty() && o.units != "mm") {
+  if ((!o.robot.empty() || !std::isnan(o.d1) || !std::isnan(o.d2)) && o.units != "mm") {
     // The robot file and a joint path's prismatic values are in mm (a robot file's "units" must be
     // mm): another working unit would mix units silently (issue #23, item 9).
     throw InputError("--units " + o.units + ": a sweep with --robot works in mm (robot files and joint paths are in "
                      "mm); convert the workpiece to mm");
   }
   const Hierarchy hierarchy = parse_hierarchy(o.hierarchy);
+  if (!o.interpolate.empty() && o.interpolate != "joint" && o.interpolate != "pose") {
+    throw InputError("--interpolate: unknown motion '" + o.interpolate + "' (joint or pose)");
+  }
+  const bool paper_flags = !std::isnan(o.d1) || !std::isnan(o.d2);
+  if (paper_flags && !o.robot.empty()) {
+    throw InputError("--d1/--d2 build the paper's machine (§3.1): give them or --robot, not both");
+  }
+  if (paper_flags) {
+    if (!std::isnan(o.d1) && !std::isfinite(o.d1)) throw InputError("--d1: must be a finite number");
+    if (!std::isnan(o.d2)) positive(o.d2, "--d2");
+  }
   check_output(o.json, {}, "--json");
   check_output(o.csv, {}, "--csv");
   check_output(o.hits_obj, {".obj", ".vtk"}, "--hits-obj");
@@ -156,11 +171,41 @@ int run_sweep(const SweepOptions& o) {
     auto r = read_robot_json(o.robot);
     if (!r) throw InputError(r.error());
     robot = std::move(r.value());
+  } else if (paper_flags) {
+    robot = paper_machine_31({.d1 = std::isnan(o.d1) ? 30.0 : o.d1,
+                              .d2 = std::isnan(o.d2) ? 120.0 : o.d2,
+                              .probe_length = o.probe_length});
+  }
+  if (robot) {
+    if (const auto g = paper_geometry(*robot); g && robot->tool_tip.x != o.probe_length) {
+      warning("robot '" + robot->name + "': its tool tip is " + short_number(robot->tool_tip.x) +
+              " mm in front of frame 5 (the rear end circle of §3.1) but --probe-length is " +
+              short_number(o.probe_length) + ": the probe's rear end circle is not at the clamping length d2");
+    }
   }
   auto path_r = read_path_csv(o.path, robot ? &*robot : nullptr);
   if (!path_r) throw InputError(path_r.error());
   ProbePath path = std::move(path_r.value());
+  const bool pose_input = !path.joint_space;
   if (path.joint_space) resolve_poses(path, *robot);
+  // Motion between points (docs/probe.md, "Motion between points"): the machine's own (joint
+  // interpolation) by default when it is known: joint paths, and pose paths for a robot with
+  // inverse kinematics (the paper's machine); straight pose interpolation otherwise or on request.
+  const bool can_joint = path.joint_space || (robot && has_inverse_kinematics(*robot));
+  if (o.interpolate == "joint" && !can_joint) {
+    throw InputError("--interpolate joint: " + o.path + " is a pose path and " +
+                     (robot ? "robot '" + robot->name + "' has no inverse kinematics" : std::string("no --robot is given")) +
+                     " (only the paper's machine of §3.1 has: --robot data/examples/probe_paper_machine.json or --d1/--d2)");
+  }
+  const bool joint_motion = o.interpolate == "pose" ? false : can_joint;
+  if (joint_motion && !path.joint_space) {
+    auto j = pose_path_to_joint_path(path, *robot, o.path);
+    if (!j) throw InputError(j.error());
+    path = std::move(j.value());
+  } else if (!joint_motion && path.joint_space) {
+    path.joint_space = false;  // straight pose interpolation between the forward-kinematics poses
+  }
+  const Robot* motion_robot = joint_motion && robot ? &*robot : nullptr;
   for (std::size_t i = 0; i < path.poses.size(); ++i)  // the exact tests' coordinate range (item 7)
     if (!coordinates_in_range(path.poses[i].tip))
       throw InputError(o.path + ":" + std::to_string(path.lines[i]) + ": probe tip " +
@@ -189,7 +234,7 @@ int run_sweep(const SweepOptions& o) {
   SweepResult r;
   {
     Progress p("sweep of " + std::to_string(path.size()) + " points (" + std::to_string(active_threads()) + " threads)");
-    r = sweep(w, path, robot ? &*robot : nullptr,
+    r = sweep(w, path, motion_robot,
               {.probe = shape,
                .continuous = !o.no_continuous,
                .clearance = !o.no_clearance,
@@ -218,8 +263,9 @@ int run_sweep(const SweepOptions& o) {
     j["inputs"] = {{"workpiece", {{"file", o.workpiece}, {"format", mesh.format}, {"units", workpiece_unit.unit},
                                   {"units_source", workpiece_unit.source}, {"scale_to_working_unit", workpiece_scale},
                                   {"triangles", w.mesh.num_triangles()}, {"vertices", w.mesh.num_vertices()}}},
-                   {"path", {{"file", o.path}, {"points", path.size()}, {"kind", path.joint_space ? "joints" : "poses"},
-                             {"columns", path.columns}}}};
+                   {"path", {{"file", o.path}, {"points", path.size()}, {"kind", pose_input ? "poses" : "joints"},
+                             {"columns", path.columns},
+                             {"inverse_kinematics", pose_input && path.joint_space}}}};
     if (mesh.format == "step") j["inputs"]["workpiece"]["linear_deflection"] = mesh.linear_deflection;
     if (robot) {
       j["inputs"]["robot"] = {{"file", o.robot}, {"name", robot->name}, {"joints", robot->joints.size()}};
@@ -233,6 +279,7 @@ int run_sweep(const SweepOptions& o) {
                   {"holder_box_depth", shape.holder_box_depth},
                   {"holder_box_length", shape.holder_box_length}};
     j["options"] = {{"hierarchy", hierarchy_name(hierarchy)},
+                    {"interpolate", joint_motion ? "joint" : "pose"},
                     {"patch_rule", o.patch_rule},
                     {"patch_size", o.patch_size},
                     {"continuous", !o.no_continuous},
@@ -275,6 +322,7 @@ int run_sweep(const SweepOptions& o) {
                        {"hits", p.hits},
                        {"tip", vec_json(path.poses[i].tip)},
                        {"axis", vec_json(path.poses[i].axis)}};
+      if (path.joint_space && i < path.joints.size()) e["joints"] = path.joints[i];
       if (!p.collides && p.triangle != kNone) {
         e["point_probe"] = vec_json(p.point_probe);
         e["point_workpiece"] = vec_json(p.point_workpiece);
@@ -342,7 +390,7 @@ int run_sweep(const SweepOptions& o) {
     if (!s) throw InputError(s.error());
   }
   if (!o.hits_obj.empty() || !o.probes_vtk.empty()) {
-    const CollisionGeometry g = collision_geometry(w, path, robot ? &*robot : nullptr, shape, r);
+    const CollisionGeometry g = collision_geometry(w, path, motion_robot, shape, r);
     for (const std::string& f : {o.hits_obj, o.probes_vtk}) {
       if (f.empty()) continue;
       const Status s = write_collision_geometry(f, g);
@@ -377,6 +425,14 @@ void add_sweep_command(CLI::App& app, int& exit_code) {
                                    "(header px,py,pz,ax,ay,az[,rx,ry,rz])")
       ->required()
       ->check(CLI::ExistingFile);
+  c->add_option("--d1", o->d1,
+                "use the paper's 3P+2R machine (Li, Zhou & Zheng 2008, §3.1) with this structural constant d1 "
+                "(mm; default 30 when only --d2 is given) instead of --robot");
+  c->add_option("--d2", o->d2, "the paper's machine's clamping length d2 (mm, > 0; default 120)");
+  c->add_option("--interpolate", o->interpolate,
+                "motion between path points: joint (the machine's own: joint paths, and pose paths through the "
+                "inverse kinematics of the paper's machine; the default when possible) or pose (straight tip line, "
+                "axis slerp)");
   c->add_option("--probe-radius", o->probe_radius, "probe cylinder radius (> 0)")->required();
   c->add_option("--probe-length", o->probe_length, "probe cylinder length from the tip back (> 0)")->required();
   c->add_option("--holder-radius", o->holder_radius, "optional holder cylinder behind the probe: radius");

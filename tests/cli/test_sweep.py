@@ -411,5 +411,80 @@ class Sweep(unittest.TestCase):
         self.assertEqual(text(keep), "previous\n")
 
 
+PAPER_ROBOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "data", "examples",
+                           "probe_paper_machine.json")
+HALF_SQRT3 = 0.86602540378443865
+
+
+class SweepPaperMachine(unittest.TestCase):
+    """Issue #28: the paper's 3P+2R machine (§3.1), pose paths through its inverse kinematics, and the
+    motion between points: joint interpolation (the machine's own, default) or pose interpolation."""
+
+    def _case(self):
+        # Tip fixed at T = (100, 200, -300), probe horizontal, turned from a = -60 to a = +60: the
+        # machine's joint-interpolated middle puts the tip at T + (15, 80, 0) (d1 = 30, d2 + l = 160);
+        # a small triangle there is struck only by that motion (pose interpolation keeps the tip at T).
+        c = (115.0, 278.0, -300.0)
+        work = write("ik_tri.obj", "v %r %r %r\nv %r %r %r\nv %r %r %r\nf 1 2 3\n" % (
+            c[0] - 1, c[1], c[2] - 1, c[0] + 1, c[1], c[2] - 1, c[0], c[1], c[2] + 1))
+        p = write("ik_path.csv", "px,py,pz,ax,ay,az\n100,200,-300,%r,0.5,0\n100,200,-300,%r,0.5,0\n"
+                  % (-HALF_SQRT3, HALF_SQRT3))
+        return work, p
+
+    def test_joint_interpolation_is_the_default_for_the_paper_machine(self):
+        work, p = self._case()
+        rc, out, err = run("--workpiece", work, "--robot", PAPER_ROBOT, "--path", p, *BASE, "--json", path("ik_j.json"))
+        self.assertEqual(rc, 1, err + out)
+        j = load(path("ik_j.json"))
+        self.assertEqual(j["options"]["interpolate"], "joint")
+        self.assertTrue(j["inputs"]["path"]["inverse_kinematics"])
+        self.assertEqual(j["inputs"]["path"]["kind"], "poses")
+        self.assertEqual(j["summary"]["colliding_points"], 0)
+        self.assertEqual(j["summary"]["colliding_segments"], 1)
+        self.assertAlmostEqual(j["points"][0]["joints"][3], -60.0, places=9)
+        self.assertAlmostEqual(j["points"][1]["joints"][3], 60.0, places=9)
+        seg = j["colliding_segments"][0]
+        self.assertTrue(any(a <= 0.5 <= b for a, b in seg["intervals"]), seg)
+        # The same machine from --d1/--d2 (probe length from --probe-length).
+        rc, out, err = run("--workpiece", work, "--d1", "30", "--d2", "120", "--path", p, *BASE, "--json",
+                           path("ik_d.json"))
+        self.assertEqual(rc, 1, err + out)
+        self.assertEqual(load(path("ik_d.json"))["points"][1]["joints"], j["points"][1]["joints"])
+
+    def test_pose_interpolation_on_request(self):
+        work, p = self._case()
+        rc, out, err = run("--workpiece", work, "--robot", PAPER_ROBOT, "--path", p, *BASE, "--interpolate", "pose",
+                           "--json", path("ik_p.json"))
+        self.assertEqual(rc, 0, err + out)
+        j = load(path("ik_p.json"))
+        self.assertEqual(j["options"]["interpolate"], "pose")
+        self.assertEqual(j["summary"]["colliding_segments"], 0)
+        # The same motion given as the machine's joint path, with --interpolate pose: also clear.
+        q = write("ik_joints.csv", "x,y,z,a,b\n%r,%r,300,-60,0\n%r,%r,300,60,0\n" % (
+            100 - 160 * -HALF_SQRT3 - 30 * 0.5, 200 - 160 * 0.5 - 30 * HALF_SQRT3,
+            100 - 160 * HALF_SQRT3 - 30 * 0.5, 200 - 160 * 0.5 + 30 * HALF_SQRT3))
+        rc, out, err = run("--workpiece", work, "--robot", PAPER_ROBOT, "--path", q, *BASE, "--interpolate", "pose")
+        self.assertEqual(rc, 0, err + out)
+        rc, out, err = run("--workpiece", work, "--robot", PAPER_ROBOT, "--path", q, *BASE)
+        self.assertEqual(rc, 1, err + out)
+        self.assertNotIn("joints", j["points"][0])
+
+    def test_bad_input(self):
+        work, p = self._case()
+        far = write("ik_far.csv", "px,py,pz,ax,ay,az\n0,0,-300,0,1,0\n# comment\n0,0,-2500,0,1,0\n")
+        cli_common.assert_input_error(
+            self, ["sweep", "--workpiece", work, "--robot", PAPER_ROBOT, "--path", far, *BASE, "--json", path("ik_far.json")],
+            ["ik_far.csv:4", "point 1", "not reachable", "joint z = 2500", "[-2000, 2000]"], [path("ik_far.json")])
+        cli_common.assert_input_error(self, ["sweep", "--workpiece", work, "--path", p, *BASE, "--interpolate", "joint"],
+                                      ["--interpolate joint", "no --robot"])
+        cli_common.assert_input_error(self, ["sweep", "--workpiece", work, "--robot", ROBOT, "--path", p, *BASE,
+                                             "--interpolate", "joint"], ["no inverse kinematics", "pivot-5-axis"])
+        cli_common.assert_input_error(self, ["sweep", "--workpiece", work, "--robot", PAPER_ROBOT, "--path", p, *BASE,
+                                             "--interpolate", "spline"], ["--interpolate", "spline"])
+        cli_common.assert_input_error(self, ["sweep", "--workpiece", work, "--robot", PAPER_ROBOT, "--d1", "30", "--path", p,
+                                             *BASE], ["--d1/--d2", "not both"])
+        cli_common.assert_input_error(self, ["sweep", "--workpiece", work, "--d2", "-5", "--path", p, *BASE], ["--d2"])
+
+
 if __name__ == "__main__":
     cli_common.main()
