@@ -46,10 +46,12 @@ void bind_bearing(py::module_& parent) {
 
   py::class_<ScarParams>(m, "ScarParams")
       .def(py::init([](double c, double w, double z0, double z1, double depth, double roughness, int border,
-                       std::uint64_t seed) { return ScarParams{c, w, z0, z1, depth, roughness, border, seed}; }),
+                       std::uint64_t seed, bool raised) {
+             return ScarParams{c, w, z0, z1, depth, roughness, border, seed, raised};
+           }),
            py::arg("angle_center_deg") = 0.0, py::arg("angle_width_deg") = 40.0, py::arg("z_min") = 10.0,
            py::arg("z_max") = 30.0, py::arg("depth") = 0.05, py::arg("roughness") = 0.6, py::arg("border") = 2,
-           py::arg("seed") = 1)
+           py::arg("seed") = 1, py::arg("raised") = false)
       .def_readwrite("angle_center_deg", &ScarParams::angle_center_deg)
       .def_readwrite("angle_width_deg", &ScarParams::angle_width_deg)
       .def_readwrite("z_min", &ScarParams::z_min)
@@ -57,14 +59,16 @@ void bind_bearing(py::module_& parent) {
       .def_readwrite("depth", &ScarParams::depth)
       .def_readwrite("roughness", &ScarParams::roughness)
       .def_readwrite("border", &ScarParams::border)
-      .def_readwrite("seed", &ScarParams::seed);
+      .def_readwrite("seed", &ScarParams::seed)
+      .def_readwrite("raised", &ScarParams::raised);  // outward scar (issue #27)
 
   py::class_<Roller>(m, "Roller", "A meshed roller (body frame: axis +z from the bottom end centre)")
       .def_readonly("params", &Roller::params)
       .def_readonly("mesh", &Roller::mesh)
       .def_readonly("displacement", &Roller::displacement)
       .def_readonly("scar", &Roller::scar)
-      .def_readonly("has_scar", &Roller::has_scar);
+      .def_readonly("has_scar", &Roller::has_scar)
+      .def_readonly("raise", &Roller::raise);  // largest outward displacement (issue #27)
 
   m.def(
       "make_roller",

@@ -21,10 +21,12 @@ struct ScarParams {
   double z_min = 10.0;            ///< window bottom, body-frame height, in [0, height)
   double z_max = 30.0;            ///< window top, in (z_min, height]
   double depth = 0.05;            ///< largest displacement (> 0, < the smallest radius)
-  bool raised = false;            ///< false: inward (a pit, the default); true: outward (a raised scar)
   double roughness = 0.6;         ///< diamond-square amplitude factor per level, in (0, 1]
   int border = 2;                 ///< median-filter band, in grid cells (>= 0)
   std::uint64_t seed = 1;
+  /// false: inward (a pit, the default); true: outward (a raised scar, issue #27). Last, so that
+  /// positional initialisers of the fields above keep their meaning.
+  bool raised = false;
 };
 
 Status validate(const ScarParams& s, const RollerParams& roller, const std::string& prefix = "scar");

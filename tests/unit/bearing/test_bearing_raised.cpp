@@ -181,8 +181,8 @@ SceneParams raised_scene() {
   p.spin_deg_per_frame = 7;
   p.gap = 0.2;
   p.scar_fraction = 1;
-  p.scar = {.angle_center_deg = 0, .angle_width_deg = 20, .z_min = 5, .z_max = 35, .depth = 2, .raised = true,
-            .border = 0};
+  p.scar = {.angle_center_deg = 0, .angle_width_deg = 20, .z_min = 5, .z_max = 35, .depth = 2, .border = 0,
+            .raised = true};
   return p;
 }
 
