@@ -13,7 +13,7 @@ Environment:
   INTERFERE_CMAKE_ARGS        extra configure arguments (split on spaces), e.g. -DINTERFERE_WITH_OCCT=OFF
   CMAKE_BUILD_PARALLEL_LEVEL  build jobs (default: the number of CPUs)
 Without INTERFERE_CMAKE_BUILD_DIR the CMake tree is build-pip/cmake (kept, so a second
-`pip install .` is incremental).
+`pip install .` is incremental) and setuptools' files go to build-pip/; with it, to DIR/python/setuptools.
 """
 
 import glob
@@ -99,7 +99,12 @@ class CMakeBuild(build_ext):
                  f"On Debian 12 the build needs: apt-get install {DEBIAN_BUILD_DEPS}")
 
 
-BUILD_BASE = os.path.join(ROOT, "build-pip")  # setuptools' own default, build/, is the CMake tree's name
+# setuptools' own files (build/lib.*, bdist.*, egg-info): not its default build/, the CMake tree's
+# usual name; inside the reused CMake tree when there is one, so the source tree stays untouched.
+if os.environ.get("INTERFERE_CMAKE_BUILD_DIR"):
+    BUILD_BASE = os.path.join(os.path.abspath(os.environ["INTERFERE_CMAKE_BUILD_DIR"]), "python", "setuptools")
+else:
+    BUILD_BASE = os.path.join(ROOT, "build-pip")
 os.makedirs(BUILD_BASE, exist_ok=True)
 
 setup(

@@ -7,6 +7,7 @@ with every public method and property of every class.
 """
 
 import ast
+import keyword
 import os
 import subprocess
 import sys
@@ -25,7 +26,8 @@ def declared(body):
 
 
 def public(obj):
-    return sorted(n for n in dir(obj) if not n.startswith("_"))
+    """Public names a stub can declare (a keyword such as bearing.Roller.raise cannot be)."""
+    return sorted(n for n in dir(obj) if not n.startswith("_") and not keyword.iskeyword(n))
 
 
 def missing_names(stub_text, module):

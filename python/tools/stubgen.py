@@ -19,7 +19,7 @@ import argparse
 import ast
 import builtins
 import importlib
-import inspect
+import keyword
 import re
 import sys
 import types
@@ -167,6 +167,9 @@ def parse_sig(sig, namer, scope, method):
 
 def emit_function(lines, indent, name, obj, namer, scope, kind):
     """kind: 'function', 'method' or 'static'."""
+    if keyword.iskeyword(name):
+        lines.append(f"{indent}# {name!r}: a Python keyword, not expressible in a stub")
+        return
     sigs = signatures(obj, name) or ["(*args, **kwargs) -> Any"]
     doc = summary(obj, name)
     for sig in sigs:
@@ -184,6 +187,9 @@ def emit_function(lines, indent, name, obj, namer, scope, kind):
 
 
 def emit_property(lines, indent, name, prop, namer, scope):
+    if keyword.iskeyword(name):  # e.g. bearing.Roller.raise: only getattr(x, "raise") reaches it
+        lines.append(f"{indent}# property {name!r}: a Python keyword, not expressible in a stub")
+        return
     ret = "Any"
     sigs = signatures(prop.fget, "") if prop.fget is not None else []
     if not sigs and prop.fget is not None:
@@ -233,7 +239,9 @@ def emit_class(lines, indent, name, cls, namer, scope, siblings):
             continue
         elif isinstance(value, (bool, int, float, str)):
             body.append(f"{inner}{attr}: ClassVar[{type(value).__name__}]")
-    lines.extend(body or [f"{inner}..."])
+    if all(ln.strip().startswith("#") for ln in body):
+        body.append(f"{inner}...")
+    lines.extend(body)
     lines.append("")
 
 
@@ -283,7 +291,9 @@ def generate(mod):
         lines.append(f"class {n}:  # submodule {sub.__name__}" + (f": {sub.__doc__}" if sub.__doc__ else ""))
         body = []
         emit_module(body, "    ", sub, namer, n)
-        lines.extend(body or ["    ..."])
+        if all(ln.strip().startswith("#") for ln in body):
+            body.append("    ...")
+        lines.extend(body)
     text = "\n".join(lines).rstrip() + "\n"
     ast.parse(text)  # a stub that does not parse is a generator bug: fail the build
     return text
