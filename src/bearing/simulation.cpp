@@ -286,7 +286,11 @@ Expected<SimulationResult> simulate(const SceneParams& p, bool keep_rows) {
         }
       }
       row.verdict = distance_verdict(row.distance, touch_tolerance(cyl_a[k], cyl_b[k]), p.clearance);
-      if (row.solver == 1 && row.verdict != Verdict::clash && row.verdict != Verdict::contact) {
+      // a raised scar's roller also on the standard value: apart from the intact cylinder by s0 and
+      // (raised bound) from every outward triangle by at least s0, the partner can still lie wholly
+      // inside the raised part of the solid (an inward scar's solid lies in the intact cylinder)
+      const bool raised_roller = s.scarred && !raised_bounds[static_cast<std::size_t>(s.variant)].empty();
+      if ((row.solver == 1 || raised_roller) && row.verdict != Verdict::clash && row.verdict != Verdict::contact) {
         // the surface minimum is apart: the partner may still lie wholly inside the roller
         const int inside = mesh_containment(part(static_cast<std::uint32_t>(2 * k)), cyl_b[k]);
         if (inside != 0) row.verdict = inside == 1 ? Verdict::clash : Verdict::undecided;
