@@ -13,7 +13,9 @@
 //     Phi(n) = min over A of w.(p - O) = min over the end circles j of [w.(c_j - O) - r_j |w_perp|]
 // (the support function of a frustum, w_perp = w's part perpendicular to A's axis). Phi is
 // maximised over the angle of n (1-D: sampled, then golden-section refinement), and the primal point
-// p* is the minimiser of w*.p over A (an end-circle point). Certificate: with V_g = (V - R0)/sqrt(1+k^2),
+// p* is the minimiser of w*.p over A: an end-circle point, or, when both end circles are active (a
+// kink of Phi: line contact), the best point of the generator joining the two (golden section of
+// the convex sd_B along it). Certificate: with V_g = (V - R0)/sqrt(1+k^2),
 //     V_g <= min over A of g <= s(A, B) <= sd_B(p*),
 // so when sd_B(p*) - V_g is within a few ulps of the pair's scale, s = sd_B(p*) to that accuracy
 // (path `cone`; this is the roller's side or end circle against B's cone surface, the bearing's case,
@@ -69,25 +71,25 @@ PairDistance cone_pair_distance(const Cylinder& a, const Cylinder& b) {
   const double cb = 1 / std::sqrt(1 + k * k);
   const Vec3 e1 = perpendicular_unit(u), e2 = cross(u, e1);
   const detail::Rim rims[2] = {{a.base, a.radius}, {a.top_center(), a.top()}};
-  // Phi(psi) and the end-circle point minimising w.p
-  const auto phi_at = [&](double psi, Vec3* at) {
+  // Phi(psi): the minimum of w.(p - O) over A (support function of the frustum at its end circles)
+  const auto phi_at = [&](double psi) {
     const Vec3 w = e1 * std::cos(psi) + e2 * std::sin(psi) - u * k;
     const Vec3 wp = w - d * dot(w, d);
     const double swp = norm(wp);
-    double best = 0;
-    for (int j = 0; j < 2; ++j) {
-      const double v = dot(w, rims[j].c - b.base) - rims[j].r * swp;
-      if (j == 0 || v < best) {
-        best = v;
-        if (at) *at = swp > 0 ? rims[j].c - wp * (rims[j].r / swp) : rims[j].c;
-      }
-    }
-    return best;
+    return std::min(dot(w, rims[0].c - b.base) - rims[0].r * swp, dot(w, rims[1].c - b.base) - rims[1].r * swp);
   };
-  const auto [psi, V] = detail::max_over_angle([&](double x) { return phi_at(x, nullptr); });
-  Vec3 p;
-  phi_at(psi, &p);
-  const double sdp = point_frustum_signed_distance(b, p);
+  const auto [psi, V] = detail::max_over_angle(phi_at);
+  // primal point: both end circles' minimisers of w.p at the optimal w (equal at a kink of Phi: line
+  // contact, the bearing's case), and the best point of the generator joining them (sd_B convex
+  // along it: golden section), which is where the minimum lies when both circles are active
+  const Vec3 w = e1 * std::cos(psi) + e2 * std::sin(psi) - u * k;
+  const Vec3 wp = w - d * dot(w, d);
+  const double swp = norm(wp);
+  const Vec3 p0 = swp > 0 ? rims[0].c - wp * (rims[0].r / swp) : rims[0].c;
+  const Vec3 p1 = swp > 0 ? rims[1].c - wp * (rims[1].r / swp) : rims[1].c;
+  const auto [lambda, sdp] =
+      golden_min([&](double x) { return point_frustum_signed_distance(b, p0 + (p1 - p0) * x); }, 0.0, 1.0, 64);
+  const Vec3 p = p0 + (p1 - p0) * lambda;
   const double vg = (V - b.radius) * cb;
   double scale = std::max({b.height, b.max_radius(), a.height, a.max_radius()});
   for (const Vec3& v : {a.base, b.base}) scale = std::max({scale, std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});

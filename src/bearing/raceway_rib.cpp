@@ -16,15 +16,15 @@
 // (b). A minimum on an end circle that is not (a) is at an arc end, i.e. on (b). For (b), each line
 // parallel to the ring axis at radius c and azimuth psi meets the convex roller in a segment (exact
 // line-frustum clipping, a quadratic); l is linear along it, so the segment's lower end is the
-// candidate, and psi is searched in 1-D: 64 samples over the roller's angular window, seeded also
+// candidate, and psi is searched in 1-D: 41 samples over the roller's angular window, seeded also
 // with the azimuth of the roller's point nearest to (c = ro) / farthest from (c = ri) the axis (where
-// a thin crossing arc lies), then golden-section refinement of every sampled local minimum.
+// a thin crossing arc lies), then golden-section refinement of the two best sampled local minima
+// and of the seed.
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
-#include <vector>
 
 #include "golden.h"
 #include "interfere/bearing/raceway.h"
@@ -121,24 +121,31 @@ Candidate shell_curve(const Cylinder& roller, const Rib& rib, double c, const Ve
     if (at) *at = p;
     return dot(p - rib.center, rib.normal);
   };
-  constexpr int kN = 64;
+  constexpr int kN = 40;
   const double step = (psi_hi - psi_lo) / kN;
   std::array<double, kN + 1> v{};
   for (int i = 0; i <= kN; ++i) v[i] = eval(psi_lo + i * step, nullptr);
-  Candidate best;
-  std::vector<double> starts;
+  std::array<int, kN + 1> mins{};
+  int nm = 0;
   for (int i = 0; i <= kN; ++i) {
     if (!(v[i] < kInf)) continue;
     const double l = i > 0 ? v[i - 1] : kInf, r = i < kN ? v[i + 1] : kInf;
-    if (v[i] <= l && v[i] <= r) starts.push_back(psi_lo + i * step);
+    if (v[i] <= l && v[i] <= r) mins[nm++] = i;
   }
-  std::sort(starts.begin(), starts.end(), [&](double x, double y) { return eval(x, nullptr) < eval(y, nullptr); });
-  if (starts.size() > 3) starts.resize(3);
-  starts.push_back(seed);
-  for (const double s0 : starts) {
-    const auto [psi, val] = golden_min([&](double x) { return eval(x, nullptr); }, s0 - step, s0 + step, 80);
+  std::sort(mins.begin(), mins.begin() + nm, [&](int x, int y) { return v[x] < v[y]; });
+  std::array<double, 3> starts{};
+  int ns = 0;
+  for (int k = 0; k < std::min(nm, 2); ++k) starts[ns++] = psi_lo + mins[k] * step;
+  starts[ns++] = seed;
+  Candidate best;
+  for (int k = 0; k < ns; ++k) {
+    const double s0 = starts[k];
+    const auto [psi, val] = golden_min([&](double x) { return eval(x, nullptr); }, s0 - step, s0 + step, 64);
     Vec3 p;
-    if (val < best.l && eval(psi, &p) < kInf) best.l = eval(psi, &p), best.p = p;
+    if (val < best.l) {
+      const double lp = eval(psi, &p);
+      if (lp < kInf) best.l = lp, best.p = p;
+    }
   }
   return best;
 }
@@ -199,11 +206,12 @@ PairDistance roller_rib_distance(const Cylinder& roller, const Rib& rib) {
   const RadialMin near = min_axis_distance(enclosing, rib.center, u);
   min_rho = near.rho;
   const auto azimuth = [&](const Vec3& p) { return std::atan2(dot(p - rib.center, a2), dot(p - rib.center, a1)); };
-  if (min_rho <= ro) {  // else the roller lies wholly outside the annulus
+  // a curve exists only where the roller crosses the cylinder (min_rho is a lower bound)
+  if (min_rho <= ro && max_rho >= ro) {
     const Candidate c = shell_curve(roller, rib, ro, a1, a2, psi_lo, psi_hi, azimuth(near.point));
     if (c.l < best.l) best = c;
   }
-  if (ri > 0 && max_rho >= ri) {
+  if (ri > 0 && min_rho <= ri && max_rho >= ri) {
     const Candidate c = shell_curve(roller, rib, ri, a1, a2, psi_lo, psi_hi, azimuth(far_p));
     if (c.l < best.l) best = c;
   }

@@ -627,9 +627,25 @@ TEST(BearingRaceway, ConeRandomPosesAgainstDenseReference) {
     const Vec3 on_cone = b.base + u * zc + radial * (R0 + (R1 - R0) * zc / hb);
     const double r0 = 4.5, r1 = i % 4 == 0 ? 4.5 : g.uniform(3.5, 4.5), h = 18;
     const double gap = i % 10 == 0 ? g.uniform(-1e-9, 1e-9) : g.uniform(-0.4, 0.4);
-    const Vec3 d = tilted(gen, g.uniform(0, 4) * kDeg, g.uniform(0, 2 * kPi));
-    const Cylinder a = roller(on_cone + nout * (0.5 * (r0 + r1) + gap), d, r0, r1, h);
+    Cylinder a;
+    if (i % 3 == 2) {
+      // line contact: the roller's generator facing B parallel to B's generator at distance gap
+      // (the roller narrows from r0 to r1: its axis is turned by its half angle alpha toward B, so
+      // that its generator base + r0 m -> top + r1 m is parallel to gen; m = the roller's radial
+      // direction toward B in the meridian plane)
+      const double alpha = std::atan((r0 - r1) / h);
+      const Vec3 d = gen * std::cos(alpha) - nout * std::sin(alpha);
+      const Vec3 m = (nout * std::cos(alpha) + gen * std::sin(alpha)) * -1.0;
+      a = roller(on_cone + nout * gap - m * (0.5 * (r0 + r1)), d, r0, r1, h);
+    } else {
+      const Vec3 d = tilted(gen, g.uniform(0, 4) * kDeg, g.uniform(0, 2 * kPi));
+      a = roller(on_cone + nout * (0.5 * (r0 + r1) + gap), d, r0, r1, h);
+    }
     const PairDistance pd = cone_pair_distance(a, b);
+    if (i % 3 == 2) {
+      EXPECT_NEAR(pd.distance, gap, 1e-12) << i;  // exact by construction
+      EXPECT_EQ(pd.path, AnalyticPath::cone) << i;
+    }
     ASSERT_TRUE(std::isfinite(pd.distance));
     const double ref = ref_cone(a, b);
     EXPECT_NEAR(pd.distance, ref, 1e-9 * std::max(1.0, std::fabs(ref))) << i << " path " << analytic_path_name(pd.path);
@@ -641,6 +657,26 @@ TEST(BearingRaceway, ConeRandomPosesAgainstDenseReference) {
   EXPECT_GT(overlap, 30);
   EXPECT_GT(clear, 30);
   EXPECT_GT(certified, kPoses * 9 / 10);
+}
+
+TEST(BearingRaceway, ConeGeneralPathAgainstDenseReference) {
+  // a roller standing on the cone's top face (B's end face, not its cone surface, is nearest): the
+  // lateral certificate cannot hold, the nested golden-section path runs
+  Rng g(11);
+  Cylinder b;
+  b.base = {0, 0, 0}, b.axis = {0, 0, 1}, b.height = 30, b.radius = 30, b.top_radius = 25;
+  int general = 0;
+  for (int i = 0; i < 12; ++i) {
+    const double gap = g.uniform(-0.4, 0.4);
+    const Vec3 d = tilted({0, 0, 1}, g.uniform(0, 3) * kDeg, g.uniform(0, 2 * kPi));
+    const Cylinder a = roller(Vec3{g.uniform(-15, 15), g.uniform(-15, 15), 30 + gap + 9}, d, 4.5, 3.8, 18);
+    const PairDistance pd = cone_pair_distance(a, b);
+    const double ref = ref_cone(a, b);
+    EXPECT_NEAR(pd.distance, ref, 1e-9 * std::max(1.0, std::fabs(ref))) << i;
+    EXPECT_NEAR(oracle_frustum_sd(b, pd.point_a), pd.distance, 1e-9) << i;
+    general += pd.path == AnalyticPath::general;
+  }
+  EXPECT_EQ(general, 12);
 }
 
 TEST(BearingRaceway, ValidationNamesTheParameter) {
