@@ -22,6 +22,7 @@ import re
 import shutil
 import subprocess
 import sys
+import sysconfig
 
 from setuptools import Extension, setup
 from setuptools.command.build_ext import build_ext
@@ -72,6 +73,11 @@ class CMakeBuild(build_ext):
                        glob.glob(os.path.join(package_dir, "_interfere*.pyd")))
         if not built:
             fail(f"the build left no _interfere extension in {package_dir} (is INTERFERE_BUILD_PYTHON on there?)")
+        suffix = sysconfig.get_config_var("EXT_SUFFIX") or ".so"
+        if not built[-1].endswith(suffix):
+            fail(f"{built[-1]} was built for another Python (this one, {sys.executable}, needs *{suffix}); "
+                 "reconfigure that tree with -DPython3_EXECUTABLE=" + sys.executable + " or build without "
+                 "INTERFERE_CMAKE_BUILD_DIR")
         target = self.get_ext_fullpath(ext.name)
         os.makedirs(os.path.dirname(target), exist_ok=True)
         shutil.copyfile(built[-1], target)
@@ -102,7 +108,11 @@ class CMakeBuild(build_ext):
 # setuptools' own files (build/lib.*, bdist.*, egg-info): not its default build/, the CMake tree's
 # usual name; inside the reused CMake tree when there is one, so the source tree stays untouched.
 if os.environ.get("INTERFERE_CMAKE_BUILD_DIR"):
-    BUILD_BASE = os.path.join(os.path.abspath(os.environ["INTERFERE_CMAKE_BUILD_DIR"]), "python", "setuptools")
+    _reuse = os.path.abspath(os.environ["INTERFERE_CMAKE_BUILD_DIR"])
+    if not os.path.isfile(os.path.join(_reuse, "CMakeCache.txt")):
+        fail(f"INTERFERE_CMAKE_BUILD_DIR={os.environ['INTERFERE_CMAKE_BUILD_DIR']} is not a configured CMake "
+             "build tree (no CMakeCache.txt)")
+    BUILD_BASE = os.path.join(_reuse, "python", "setuptools")
 else:
     BUILD_BASE = os.path.join(ROOT, "build-pip")
 os.makedirs(BUILD_BASE, exist_ok=True)
