@@ -7,6 +7,7 @@ pkgs=(build-essential cmake ninja-build python3 git
       libgtest-dev googletest libbenchmark-dev
       libcgal-dev libgmp-dev libmpfr-dev libfcl-dev
       pybind11-dev python3-dev python3-numpy
+      python3-setuptools python3-wheel python3-pip python3-venv  # (issue #30: `pip install --no-build-isolation .` and its ctest, python_pip_install)
       zlib1g-dev gmsh libgmsh-dev
       libpng-dev  # (issue #27: 16-bit grayscale PNG scar height maps, optional in CMake)
       libocct-data-exchange-dev libocct-ocaf-dev libocct-modeling-algorithms-dev
