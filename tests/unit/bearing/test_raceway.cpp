@@ -679,6 +679,31 @@ TEST(BearingRaceway, ConeGeneralPathAgainstDenseReference) {
   EXPECT_EQ(general, 12);
 }
 
+TEST(BearingRaceway, DegenerateConfigurationsAreFinite) {
+  // exactly coaxial, parallel, perpendicular, pointed (top radius 0) rollers; rollers through the
+  // ring axis; a roller end parallel to the rib face; coaxial cone pairs
+  const Bore bore{{0, 0, 0}, {0, 0, 1}, 40, 30};
+  const Cup cup{{0, 0, 0}, {0, 0, 1}, 40, 34, 30};
+  const Rib rib{{0, 0, 0}, {0, 0, 1}, 30, 36, {0, 0, 1}};
+  Cylinder cone;
+  cone.base = {0, 0, 0}, cone.axis = {0, 0, 1}, cone.height = 30, cone.radius = 30, cone.top_radius = 25;
+  const Vec3 dirs[] = {{0, 0, 1}, {0, 0, -1}, {1, 0, 0}, {0, 1, 0}, tilted({0, 0, 1}, 1e-300, 0), tilted({0, 0, 1}, 1e-9, 1)};
+  const Vec3 centres[] = {{0, 0, 15}, {34, 0, 15}, {0, 0, 0}, {0, 0, 45}, {30, 0, 31}, {0, 34, 10.000001}};
+  for (const Vec3& d : dirs)
+    for (const Vec3& c : centres)
+      for (const double r1 : {5.0, 0.0, 3.0}) {
+        const Cylinder r = roller(c, d, 5, r1, 20);
+        for (const PairDistance& pd : {roller_bore_distance(r, bore), roller_cup_distance(r, cup),
+                                       roller_rib_distance(r, rib), cone_pair_distance(r, cone)}) {
+          EXPECT_TRUE(std::isfinite(pd.distance)) << c.x << " " << c.y << " " << c.z << " " << r1;
+          EXPECT_TRUE(std::isfinite(pd.point_a.x + pd.point_a.y + pd.point_a.z));
+          EXPECT_TRUE(std::isfinite(pd.point_b.x + pd.point_b.y + pd.point_b.z));
+        }
+      }
+  // a coaxial pointed roller in the bore: its base circle decides, s = R - r
+  EXPECT_NEAR(roller_bore_distance(roller({0, 0, 15}, {0, 0, 1}, 5, 0, 20), bore).distance, 35, 1e-12);
+}
+
 TEST(BearingRaceway, ValidationNamesTheParameter) {
   Bore bore{{0, 0, 0}, {0, 0, 2}, 40, 30};
   Status s = validate_bore(bore, "bearing 1 outer ring");
