@@ -1,0 +1,152 @@
+#!/usr/bin/env python3
+"""End-to-end tests of `interfere bearing --assembly` (issue #27): the shipped example, the CSV rows
+and the JSON summary (schema_version 1) agreeing with each other, determinism across thread counts,
+a motion file, and bad input (exit 2, the JSON path / file and line named, no output written).
+
+Usage: test_bearing_assembly.py PATH_TO_INTERFERE WORK_DIR   (run by ctest). Standard library only.
+"""
+import json
+import math
+import os
+import sys
+import unittest
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import cli_common  # noqa: E402
+from cli_common import path, read_csv, load_json as load, read_text as slurp, write_text  # noqa: E402
+
+EXAMPLE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "data", "examples", "bearing_axle.json")
+
+COLUMNS = ["frame", "bearing", "kind", "a", "b", "distance", "interference", "ax", "ay", "az", "bx", "by", "bz",
+           "solver", "path", "scar", "exact", "verdict"]
+
+SMALL = {
+    "frames": 3, "seed": 4, "clearance": 0.05,
+    "motion": {"inner_deg_per_frame": 7, "max_tilt_deg": 0.1, "load": {"direction_deg": 270, "displacement": 0.08},
+               "pocket_play": 1.3, "axial_play": 1.05},
+    "scar": {"fraction": 0.25, "angle_width_deg": 90, "seed": 2},
+    "bearings": [
+        {"id": "cyl", "type": "cylindrical", "position": [0, 0, 0], "axis": [0, 0, 1],
+         "inner_ring": {"bore_radius": 20, "raceway_radius": 30, "width": 30, "rib": {"height": 3, "width": 4}},
+         "outer_ring": {"raceway_radius": 50.1, "outer_radius": 58, "width": 30},
+         "rollers": {"count": 8, "radius": 10, "length": 20, "pitch_radius": 40.05, "radial_segments": 16,
+                     "height_segments": 15},
+         "cage": {"pocket_clearance": 0.25, "web_thickness": 6}},
+        {"id": "tap", "type": "tapered", "position": [300, 0, 0], "axis": [1, 0, 0], "contact_angle_deg": 20,
+         "cone": {"bore_radius": 25, "clearance": 0.02}, "cup": {"outer_radius": 75, "clearance": 0.02},
+         "rollers": {"count": 10, "radius": 8, "top_radius": 9.5, "length": 30, "radial_segments": 16,
+                     "height_segments": 15},
+         "cage": {"pocket_clearance": 0.3, "web_thickness": 6}}]}
+
+
+def run(*args):
+    return cli_common.run(*args, command=("bearing",))
+
+
+def small(name="small.json", **changes):
+    d = json.loads(json.dumps(SMALL))
+    d.update(changes)
+    return write_text(name, json.dumps(d))
+
+
+class BearingAssembly(unittest.TestCase):
+    def test_example(self):
+        rc, out, err = run("--assembly", EXAMPLE, "--frames", "1", "--out", path("ex.csv"), "--json", path("ex.json"))
+        s = load("ex.json")
+        self.assertEqual(rc, s["exit_status"], err)
+        self.assertEqual(s["schema_version"], 1)
+        self.assertEqual(s["mode"], "assembly")
+        self.assertEqual(len(s["bearings"]), 4)
+        self.assertEqual(s["frames"], 1)
+        rows = read_csv("ex.csv")
+        self.assertEqual(len(rows), s["pairs_per_frame"])
+        self.assertEqual(s["parts"], sum(b["parts"] for b in s["bearings"]))
+        self.assertEqual(s["pairs_per_frame"], sum(b["pairs"] for b in s["bearings"]))
+        self.assertTrue(out.startswith(s["verdict"] + ":"), out)
+
+    def test_rows_and_summary(self):
+        rc, out, err = run("--assembly", small(), "--out", path("r.csv"), "--json", path("r.json"))
+        s = load("r.json")
+        self.assertEqual(rc, 1, err)  # the load presses rollers into the inner ring: clash
+        self.assertEqual(s["verdict"], "clash")
+        self.assertEqual(slurp("r.csv").split("\n", 1)[0].split(","), COLUMNS)
+        rows = read_csv("r.csv")
+        self.assertEqual(len(rows), 3 * s["pairs_per_frame"])
+        self.assertEqual(s["results"]["rows"], len(rows))
+        kinds = {r["kind"] for r in rows}
+        self.assertEqual(kinds, {"roller-inner", "roller-outer", "roller-rib", "roller-cage", "roller-roller",
+                                 "roller-cone", "roller-cup"})
+        for r in rows:
+            d = float(r["distance"])
+            self.assertTrue(math.isfinite(d))
+            self.assertEqual(float(r["interference"]), max(0.0, -d))
+            for c in ("ax", "ay", "az", "bx", "by", "bz"):
+                self.assertTrue(math.isfinite(float(r[c])))
+        for v in ("clash", "contact", "clearance", "clear", "undecided"):
+            self.assertEqual(s["results"]["verdicts"][v], sum(r["verdict"] == v for r in rows))
+        dmin = min(float(r["distance"]) for r in rows)
+        self.assertEqual(s["results"]["min_distance"], dmin)
+        self.assertEqual(s["worst"]["distance"], dmin)
+        self.assertEqual(s["results"]["scar_rows"], sum(r["scar"] == "1" for r in rows))
+        self.assertGreater(s["results"]["scar_rows"], 0)
+        self.assertEqual(len(s["frame_worst"]), 3)
+        for f, w in enumerate(s["frame_worst"]):
+            self.assertEqual(w["frame"], f)
+            self.assertEqual(w["distance"], min(float(r["distance"]) for r in rows if int(r["frame"]) == f))
+        self.assertEqual(s["bearings"][0]["scarred_rollers"], 2)
+        self.assertEqual(s["bearings"][1]["scarred_rollers"], 0)
+
+    def test_threads_and_seed(self):
+        run("--assembly", small(), "--threads", "1", "--out", path("t1.csv"))
+        run("--assembly", small(), "--threads", "2", "--out", path("t2.csv"))
+        self.assertEqual(slurp("t1.csv"), slurp("t2.csv"))
+        run("--assembly", small(), "--seed", "99", "--frames", "1", "--out", path("t3.csv"))
+        self.assertNotEqual(slurp("t1.csv").split("\n")[1:20], slurp("t3.csv").split("\n")[1:20])
+
+    def test_motion_file(self):
+        # every part still: its rest pose (body frame -> world) given for frame 0 only
+        rest = {"cyl": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0]}
+        lines = ["frame,body,r00,r01,r02,tx,r10,r11,r12,ty,r20,r21,r22,tz",
+                 "0,cyl/inner," + ",".join(map(str, rest["cyl"])),
+                 "1,cyl/inner,1,0,0,0,0,1,0,-0.2,0,0,1,0"]
+        motion = write_text("m.csv", "\n".join(lines) + "\n")
+        rc, out, err = run("--assembly", small(), "--motion", motion, "--out", path("m_rows.csv"), "--json",
+                           path("m.json"))
+        s = load("m.json")
+        self.assertEqual(s["frames"], 2)
+        self.assertEqual(s["motion"], motion)
+        rows = read_csv("m_rows.csv")
+        inner = [r for r in rows if r["kind"] == "roller-inner" and r["a"] == "cyl/roller6"]  # at 270 degrees
+        self.assertEqual(len(inner), 2)
+        # the inner ring moved 0.2 towards roller 6 in frame 1: 0.2 less clearance
+        self.assertAlmostEqual(float(inner[0]["distance"]) - float(inner[1]["distance"]), 0.2, delta=1e-9)
+        self.assertAlmostEqual(float(inner[0]["distance"]), 0.05, delta=1e-9)
+
+    def test_bad_input(self):
+        outputs = [path("bad.csv"), path("bad.json")]
+        bad = small("bad1.json", bearings=[dict(SMALL["bearings"][0], rollers=dict(SMALL["bearings"][0]["rollers"],
+                                                                                      pitch_radius=45))])
+        cli_common.assert_input_error(self, ["bearing", "--assembly", bad, "--out", outputs[0], "--json", outputs[1]],
+                                      ["bad1.json", "bearings[0].rollers.pitch_radius", "do not fit"], outputs)
+        bad = small("bad2.json", bearings=[dict(SMALL["bearings"][0], cage={"pocket_clearance": -0.1,
+                                                                           "web_thickness": 6})])
+        cli_common.assert_input_error(self, ["bearing", "--assembly", bad, "--out", outputs[0]],
+                                      ["bearings[0].cage.pocket_clearance", "smaller than its roller"], outputs)
+        bad = small("bad3.json", motion={"max_tilt_deg": 60})
+        cli_common.assert_input_error(self, ["bearing", "--assembly", bad, "--out", outputs[0]],
+                                      ["motion.max_tilt_deg", "Eq. (1)"], outputs)
+        bad = small("bad4.json", frame=3)
+        cli_common.assert_input_error(self, ["bearing", "--assembly", bad, "--out", outputs[0]],
+                                      ["bad4.json", "frame: unknown key"], outputs)
+        motion = write_text("bad.csv.in", "frame,body,r00,r01,r02,tx,r10,r11,r12,ty,r20,r21,r22,tz\n"
+                                          "0,cyl/roller42,1,0,0,0,0,1,0,0,0,0,1,0\n")
+        cli_common.assert_input_error(self, ["bearing", "--assembly", small(), "--motion", motion, "--out", outputs[0]],
+                                      ["bad.csv.in:2", "cyl/roller42"], outputs)
+        cli_common.assert_input_error(self, ["bearing", "--motion", motion, "--out", outputs[0]],
+                                      ["--motion needs --assembly"], outputs)
+        cli_common.assert_input_error(self, ["bearing", "--assembly", small(), "--pairs", "3", "--out", outputs[0]],
+                                      ["--assembly cannot be combined"], outputs)
+
+
+if __name__ == "__main__":
+    cli_common.main()
