@@ -158,9 +158,17 @@ void bind_probe(py::module_& m) {
       "(distance, point on cylinder, point on triangle); distance 0 exactly when they touch.");
   p.def(
       "three_projection_test",
-      [](py::handle c0, py::handle c1, double r, py::handle t) { return three_projection_test(cyl(c0, c1, r), tri(t)); },
+      [](py::handle c0, py::handle c1, double r, py::handle t, int edge) {
+        return three_projection_test(cyl(c0, c1, r), tri(t), edge);
+      },
+      py::arg("c0"), py::arg("c1"), py::arg("radius"), py::arg("triangle"), py::arg("edge") = 0,
+      "The paper's (incomplete) three-projection test as written (§3.4: along the axis, the triangle edge "
+      "triangle[edge] -> triangle[edge + 1], a diameter), for comparison.");
+  p.def(
+      "frame_projection_test",
+      [](py::handle c0, py::handle c1, double r, py::handle t) { return frame_projection_test(cyl(c0, c1, r), tri(t)); },
       py::arg("c0"), py::arg("c1"), py::arg("radius"), py::arg("triangle"),
-      "The paper's (incomplete) three-projection test, for comparison.");
+      "The project's earlier reconstruction (projections on the probe frame's planes; not §3.4), for comparison.");
 
   p.def(
       "box_triangle_intersect",

@@ -68,7 +68,9 @@ class CylinderTriangle(unittest.TestCase):
         s = 1 / math.sqrt(2)
         t = [(3, -3, 2.1), (-3, 3, 2.1), (2, 2, 2.1 - 4 * s)]
         c1 = (0, 0, 1)
-        self.assertTrue(probe.three_projection_test(self.C0, c1, self.R, t))
+        self.assertTrue(probe.frame_projection_test(self.C0, c1, self.R, t))
+        # The paper's own projections (along a triangle edge) separate this one.
+        self.assertFalse(probe.three_projection_test(self.C0, c1, self.R, t))
         self.assertFalse(probe.cylinder_triangle_intersect(self.C0, c1, self.R, t))
         d, pc, pt = probe.cylinder_triangle_distance(self.C0, c1, self.R, t)
         self.assertAlmostEqual(d, 0.1 / math.sqrt(2), places=9)

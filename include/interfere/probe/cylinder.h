@@ -1,7 +1,7 @@
 // The probe primitive: a solid finite cylinder, and its exact intersection test and distance to a
-// triangle (issue #5, item 3c). Li, Zhou & Zheng (J. Image and Graphics 13(11), 2008, §3.3) decide
+// triangle (issue #5, item 3c). Li, Zhou & Zheng (J. Image and Graphics 13(11), 2008, §3.4) decide
 // cylinder/triangle contact by three orthographic projections; that test is not complete (see
-// three_projection_test below and docs/probe.md), ours is exact in every configuration.
+// three_projection_test below, paper_tests.h and docs/probe.md), ours is exact in every configuration.
 #pragma once
 #include <array>
 #include <limits>
@@ -75,12 +75,18 @@ Aabb cylinder_box(const Cylinder& c);
 /// covered by a relative margin of 1e-12.
 Cylinder grown(const Cylinder& c, double delta);
 
-/// The paper's test (§3.3, reconstructed): the triangle and the cylinder are declared to intersect
-/// when their orthographic projections overlap on the three planes of the probe frame (the plane
-/// normal to the axis: disk vs triangle; two planes containing the axis: rectangle vs triangle).
-/// Necessary but NOT sufficient: it reports contact for triangles that a plane oblique to all three
-/// separates (tests/unit/probe/test_cylinder_triangle.cpp, ThreeProjectionIsIncomplete). Double
-/// precision; kept as the paper's baseline only.
-bool three_projection_test(const Cylinder& c, const std::array<Vec3, 3>& t);
+/// The project's earlier reconstruction (issue #5, NOT the paper's §3.4): the triangle and the
+/// cylinder are declared to intersect when their orthographic projections overlap on the three
+/// planes of the probe frame (the plane normal to the axis: disk vs triangle; two planes containing
+/// the axis: rectangle vs triangle). Necessary but NOT sufficient (test_cylinder_triangle.cpp,
+/// FrameProjectionIsIncomplete). Double precision; kept for comparison only.
+bool frame_projection_test(const Cylinder& c, const std::array<Vec3, 3>& t);
+
+/// The paper's test as written (Li, Zhou & Zheng 2008, §3.4): overlap of the projections along the
+/// cylinder axis, along the triangle edge t[edge] -> t[edge + 1] and along a diameter of the end
+/// circle (paper_tests.h, paper_projections, for each projection's outcome and the choice of
+/// diameter). Never misses a contact, reports false contacts (test_paper_tests.cpp). Double
+/// precision; an option beside the exact test, never the default.
+bool three_projection_test(const Cylinder& c, const std::array<Vec3, 3>& t, int edge = 0);
 
 }  // namespace interfere::probe

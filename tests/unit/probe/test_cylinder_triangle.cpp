@@ -1,6 +1,6 @@
 // Exact cylinder-triangle test (issue #5, items 3c and 7): against a dense brute-force reference on
 // random configurations, exact degenerate contacts (rim, edge parallel to the axis, triangle in the
-// end-cap plane) moved by one ulp, and the incompleteness of the paper's three-projection test.
+// end-cap plane) moved by one ulp, and the incompleteness of the frame-plane projection test (the paper's §3.4: test_paper_tests.cpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -209,31 +209,34 @@ TEST(ProbeCylinderTriangle, DegenerateTriangles) {
   EXPECT_FALSE(cylinder_triangle_intersect(c, {Vec3{-3, 1.5, 1}, Vec3{3, 1.5, 1}, Vec3{0, 1.5, 1}}));
 }
 
-TEST(ProbeCylinderTriangle, ThreeProjectionIsIncomplete) {
+TEST(ProbeCylinderTriangle, FrameProjectionIsIncomplete) {
   // Axis z, r = 1, length 1. The plane (x + y)/sqrt(2) + z = 2.1 is at distance 0.1/sqrt(2) from
   // the rim at azimuth 45 degrees and separates; a large triangle in it projects onto every frame
   // plane over the cylinder's projection.
   const Cylinder c{{0, 0, 0}, {0, 0, 1}, 1.0};
   const double s = 1 / std::sqrt(2.0);
   const Tri3 t{Vec3{3, -3, 2.1}, Vec3{-3, 3, 2.1}, Vec3{2, 2, 2.1 - 4 * s}};
-  EXPECT_TRUE(three_projection_test(c, t));        // the paper's test: contact (wrong)
+  EXPECT_TRUE(frame_projection_test(c, t));        // the frame-plane projections: contact (wrong)
   EXPECT_FALSE(cylinder_triangle_intersect(c, t));  // ours: clear
   const double ref = sampled_distance(c, t, 400);
   EXPECT_GT(ref, 0.05);  // brute force confirms a clear gap (0.1/|(s, s, 1)| = 0.0816)
   EXPECT_NEAR(cylinder_triangle_distance(c, t).distance, 0.1 / std::sqrt(2.0), 1e-9);
   // Where projections do not overlap, both agree.
   const Tri3 far{Vec3{5, 5, 5}, Vec3{6, 5, 5}, Vec3{5, 6, 5}};
-  EXPECT_FALSE(three_projection_test(c, far));
+  EXPECT_FALSE(frame_projection_test(c, far));
+  // The paper's own projections (§3.4, along an edge of the triangle) separate this one: its plane
+  // separates, and projecting along an edge in that plane maps the plane to a line.
+  EXPECT_FALSE(three_projection_test(c, t));
 }
 
-TEST(ProbeCylinderTriangle, ThreeProjectionNeverMissesAContact) {
+TEST(ProbeCylinderTriangle, FrameProjectionNeverMissesAContact) {
   std::mt19937_64 g(99);
   int false_contacts = 0;
   for (int it = 0; it < 2000; ++it) {
     const Cylinder c{rnd(g, 1.0), rnd(g, 1.0), 0.3};
     const Tri3 t{rnd(g, 1.5), rnd(g, 1.5), rnd(g, 1.5)};
     const bool exact = cylinder_triangle_intersect(c, t);
-    const bool paper = three_projection_test(c, t);
+    const bool paper = frame_projection_test(c, t);
     if (exact) EXPECT_TRUE(paper) << it;
     false_contacts += paper && !exact;
   }
