@@ -22,6 +22,7 @@
 #include "interfere/mesh/io.h"
 #include "interfere/probe/export.h"
 #include "interfere/probe/paper_machine.h"
+#include "interfere/probe/paper_tests.h"
 #include "interfere/probe/sweep.h"
 
 namespace interfere::cli {
@@ -45,6 +46,7 @@ struct SweepOptions {
   double patch_size = 0, patch_rule = 33, max_clearance = 0;
   int threads = 0, depth = 16;
   bool no_continuous = false, no_clearance = false;
+  bool paper_levels = false;  ///< --paper-levels: the paper's three levels beside the exact test
   ViewOutputs views;
 };
 
@@ -244,6 +246,18 @@ int run_sweep(const SweepOptions& o) {
                .clearance_limit = o.clearance});
   }
   for (const std::string& text : w.warnings) warning(text);
+  // The paper's hierarchy as written (§3.2-3.4) at every point, beside the exact verdicts (which
+  // decide): its false positives and false negatives are counted, never used.
+  std::vector<PaperPointCheck> paper;
+  std::size_t paper_colliding = 0, paper_fp = 0, paper_fn = 0;
+  if (o.paper_levels) {
+    Progress p("the paper's three levels at " + std::to_string(path.size()) + " points");
+    paper.resize(path.size());
+    for (std::size_t i = 0; i < path.size(); ++i) {
+      paper[i] = paper_point_check(w, shape, path.poses[i]);
+      paper_colliding += paper[i].collides, paper_fp += paper[i].false_positive(), paper_fn += paper[i].false_negative();
+    }
+  }
   const int status = verdict_exit_status(r.verdict, failing);
 
   // ---- outputs ----
@@ -306,6 +320,11 @@ int run_sweep(const SweepOptions& o) {
                     {"min_clearance_point", min_point},
                     {"candidate_tests", r.candidate_tests},
                     {"collision", r.any_collision()}};
+    if (o.paper_levels) {
+      j["summary"]["paper_levels"] = {{"colliding_points", paper_colliding},
+                                      {"false_positives", paper_fp},
+                                      {"false_negatives", paper_fn}};
+    }
     nlohmann::json pts = nlohmann::json::array();
     nlohmann::json colliding = nlohmann::json::array();
     for (std::size_t i = 0; i < r.points.size(); ++i) {
@@ -323,6 +342,17 @@ int run_sweep(const SweepOptions& o) {
                        {"tip", vec_json(path.poses[i].tip)},
                        {"axis", vec_json(path.poses[i].axis)}};
       if (path.joint_space && i < path.joints.size()) e["joints"] = path.joints[i];
+      if (o.paper_levels) {
+        const PaperPointCheck& pc = paper[i];
+        e["paper"] = {{"collides", pc.collides},
+                      {"exact_probe_contact", pc.exact},
+                      {"false_positive", pc.false_positive()},
+                      {"false_negative", pc.false_negative()},
+                      {"patches_passed", pc.patches_passed},
+                      {"triangles_passed", pc.triangles_passed},
+                      {"projections_passed", pc.projections_passed},
+                      {"hits", pc.hits}};
+      }
       if (!p.collides && p.triangle != kNone) {
         e["point_probe"] = vec_json(p.point_probe);
         e["point_workpiece"] = vec_json(p.point_workpiece);
@@ -410,6 +440,11 @@ int run_sweep(const SweepOptions& o) {
               "samples), %zu unresolved; min clearance %s %s\n",
               head, r.colliding_points, path.size(), r.inside_points, r.colliding_segments, r.between_samples_segments,
               r.unresolved_segments, csv_number(min_clear).c_str(), o.units.c_str());
+  if (o.paper_levels) {
+    std::printf("paper's three levels (§3.2-3.4, probe only): %zu points collide, %zu false positives, %zu false "
+                "negatives against the exact test\n",
+                paper_colliding, paper_fp, paper_fn);
+  }
   return status;
 }
 
@@ -448,6 +483,9 @@ void add_sweep_command(CLI::App& app, int& exit_code) {
                                              "distance-field, brute");
   c->add_option("--patch-size", o->patch_size, "patch box volume (absolute; overrides --patch-rule)");
   c->add_option("--patch-rule", o->patch_rule, "patch box volume = RULE x probe volume (the paper: 30-35; default 33)");
+  c->add_flag("--paper-levels", o->paper_levels,
+              "also run the paper's three levels as written (§3.2 box, §3.3 triangle/box, §3.4 three projections; "
+              "probe cylinder only) at every point and report where they disagree with the exact test (which decides)");
   c->add_flag("--no-continuous", o->no_continuous, "skip the check between consecutive points");
   c->add_flag("--no-clearance", o->no_clearance, "skip the clearance of non-colliding points");
   c->add_option("--max-clearance", o->max_clearance, "report clearances beyond this as null (faster; 0 = no limit)");

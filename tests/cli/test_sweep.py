@@ -486,5 +486,34 @@ class SweepPaperMachine(unittest.TestCase):
         cli_common.assert_input_error(self, ["sweep", "--workpiece", work, "--d2", "-5", "--path", p, *BASE], ["--d2"])
 
 
+class SweepPaperLevels(unittest.TestCase):
+    """Issue #28: --paper-levels runs the paper's three levels as written (§3.2-3.4) beside the exact test
+    and reports where they disagree; the exact test decides the verdict."""
+
+    def test_false_positive_reported(self):
+        # A clear triangle that all three of the paper's projections (edge 0, fixed diameter) call
+        # overlapping with the probe cylinder (0,0,0)-(0,0,2), r = 1 (test_paper_tests.cpp).
+        work = write("fp_tri.obj", "v -0.41762788177630833 -0.8210775298506976 2.0431113483579426\n"
+                     "v -0.5255325554798489 -0.11186297107474368 3.2267138360446035\n"
+                     "v -1.0452788651563281 -2.71650785719231 1.850198368577664\nf 1 2 3\n")
+        p = write("fp_path.csv", "px,py,pz,ax,ay,az\n0,0,0,0,0,-1\n0,0,-5,0,0,-1\n")
+        rc, out, err = run("--workpiece", work, "--path", p, "--probe-radius", "1", "--probe-length", "2",
+                           "--paper-levels", "--json", path("fp.json"))
+        self.assertEqual(rc, 0, err + out)  # the exact test decides: clear
+        j = load(path("fp.json"))
+        self.assertEqual(j["summary"]["colliding_points"], 0)
+        self.assertEqual(j["summary"]["paper_levels"], {"colliding_points": 1, "false_positives": 1,
+                                                        "false_negatives": 0})
+        self.assertTrue(j["points"][0]["paper"]["false_positive"])
+        self.assertEqual(j["points"][0]["paper"]["hits"], [0])
+        self.assertFalse(j["points"][1]["paper"]["collides"])
+        self.assertIn("1 false positives", out)
+        # Without the flag the report has no paper section.
+        rc, out, err = run("--workpiece", work, "--path", p, "--probe-radius", "1", "--probe-length", "2",
+                           "--json", path("fp2.json"))
+        self.assertEqual(rc, 0, err + out)
+        self.assertNotIn("paper_levels", load(path("fp2.json"))["summary"])
+
+
 if __name__ == "__main__":
     cli_common.main()

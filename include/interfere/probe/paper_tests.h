@@ -16,10 +16,13 @@
 //    tests/unit/probe/test_paper_tests.cpp searches for them).
 #pragma once
 #include <array>
+#include <cstdint>
+#include <vector>
 
 #include "interfere/core/aabb.h"
 #include "interfere/core/vec.h"
 #include "interfere/probe/cylinder.h"
+#include "interfere/probe/sweep.h"
 
 namespace interfere::probe {
 
@@ -55,5 +58,25 @@ struct PaperProjections {
 /// fixed one). A degenerate edge (zero length) counts as overlapping (no direction to project on).
 PaperProjections paper_projections(const Cylinder& c, const std::array<Vec3, 3>& t, int edge = 0,
                                    const Vec3& diameter = {});
+
+/// The paper's hierarchy at one path point, beside the exact test (issue #28; `interfere sweep
+/// --paper-levels`): §3.2 the probe's box (paper_cylinder_box) against each workpiece patch box
+/// (an edge of either box meeting a face of the other), §3.3 the triangles of the patches that pass
+/// against the probe box, §3.4 the three projections (edge `edge`, the fixed diameter) for the
+/// triangles that pass. The probe cylinder only (the paper has no holder). `exact` is the project's
+/// exact test over every triangle (no paper level in front of it), so `collides != exact` is the
+/// paper's error at this point: a false positive (collides, not exact) or a false negative.
+struct PaperPointCheck {
+  bool collides = false;                 ///< some triangle passed all three levels
+  bool exact = false;                    ///< the exact cylinder-triangle test: some triangle touches
+  std::uint32_t patches_passed = 0;      ///< patch boxes passing §3.2
+  std::uint32_t triangles_passed = 0;    ///< triangles passing §3.3
+  std::uint32_t projections_passed = 0;  ///< triangles passing §3.4
+  std::vector<std::uint32_t> hits;       ///< triangles passing all three levels, sorted
+  bool false_positive() const { return collides && !exact; }
+  bool false_negative() const { return !collides && exact; }
+};
+PaperPointCheck paper_point_check(const Workpiece& workpiece, const ProbeShape& shape, const ProbePose& pose,
+                                  int edge = 0);
 
 }  // namespace interfere::probe

@@ -211,3 +211,42 @@ TEST(PaperLevels, ThreeProjectionsCallClearPairsOverlapping) {
               example_gap, example[0].x, example[0].y, example[0].z, example[1].x, example[1].y, example[1].z,
               example[2].x, example[2].y, example[2].z);
 }
+
+TEST(PaperLevels, PointCheckReportsThePapersFalsePositive) {
+  // The first false positive of the seeded search above (printed there), as a one-triangle
+  // workpiece and the probe pose whose cylinder is (0,0,0)-(0,0,2), r = 1.
+  TriMesh m;
+  m.positions = {{-0.41762788177630833, -0.8210775298506976, 2.0431113483579426},
+                 {-0.5255325554798489, -0.11186297107474368, 3.2267138360446035},
+                 {-1.0452788651563281, -2.71650785719231, 1.850198368577664}};
+  m.triangles = {{0, 1, 2}};
+  const ProbeShape shape{.radius = 1, .length = 2};
+  const ProbePose pose{{0, 0, 0}, {0, 0, -1}};
+  const Cylinder c = cylinder_from_tip(pose.tip, pose.axis, shape.length, shape.radius);
+  ASSERT_EQ(c.c1.z, 2.0);
+  const oracle::Sampled samples = oracle::sample_cylinder(c, 0.005);
+  ASSERT_GT(oracle::sampled_distance(samples, m, INFINITY) - samples.h, 0);  // clear (another method)
+  const Workpiece w = prepare_workpiece(m, shape);
+  const PaperPointCheck pc = paper_point_check(w, shape, pose, 0);
+  EXPECT_FALSE(pc.exact);
+  EXPECT_EQ(pc.patches_passed, 1u);
+  EXPECT_EQ(pc.triangles_passed, 1u);
+  EXPECT_EQ(pc.projections_passed, 1u);
+  EXPECT_TRUE(pc.collides);
+  EXPECT_TRUE(pc.false_positive());
+  // The sweep's exact verdict for the same point: clear.
+  ProbePath path;
+  path.joint_space = false;
+  path.poses = {pose};
+  path.lines = {2};
+  const SweepResult r = sweep(w, path, nullptr, {.probe = shape, .continuous = false});
+  EXPECT_FALSE(r.points[0].collides);
+  // And a false negative of levels 1-2: a small triangle inside the probe's box, touching the probe.
+  TriMesh inside;
+  inside.positions = {{-0.2, -0.2, 1}, {0.2, -0.2, 1}, {0, 0.2, 1}};
+  inside.triangles = {{0, 1, 2}};
+  const PaperPointCheck miss = paper_point_check(prepare_workpiece(inside, shape), shape, pose, 0);
+  EXPECT_TRUE(miss.exact);
+  EXPECT_FALSE(miss.collides);
+  EXPECT_TRUE(miss.false_negative());
+}
