@@ -11,6 +11,7 @@
 
 #include "common.h"
 #include "interfere/bearing/assembly.h"
+#include "interfere/view/bearing_assembly_document.h"
 
 namespace interfere::cli {
 namespace {
@@ -149,11 +150,13 @@ int run_bearing_assembly(const BearingAssemblyOptions& o) {
     if (e.file.empty()) e.file = o.assembly;
     throw InputError(e);
   }
-  if (o.views.any()) throw InputError("--html, --glb and --pvd are not yet available with --assembly");
   const FailOn fail = fail_on(o.fail_on);
   check_output(o.out, {}, "--out");
   check_output(o.json, {}, "--json");
-  check_distinct_files({{"--assembly", o.assembly}, {"--motion", o.motion}}, {{"--out", o.out}, {"--json", o.json}});
+  check_view_outputs(o.views);
+  std::vector<NamedPath> outputs{{"--out", o.out}, {"--json", o.json}};
+  for (const NamedPath& v : o.views.paths()) outputs.push_back(v);
+  check_distinct_files({{"--assembly", o.assembly}, {"--motion", o.motion}}, outputs);
   set_threads(o.threads.value_or(0));
 
   Progress total("bearing assembly");
@@ -176,6 +179,11 @@ int run_bearing_assembly(const BearingAssemblyOptions& o) {
   const int status = verdict_exit_status(res.verdict, fail);
   if (!o.out.empty()) write_or_throw(write_output(o.out, [&](std::FILE* f) { return write_csv(f, *as, res); }));
   if (!o.json.empty()) write_or_throw(write_output(o.json, summary(*as, motion, res, spec->seed, status).dump(2) + "\n"));
+  if (o.views.any()) {
+    Expected<view::Document> doc = view::bearing_assembly_document(*as, motion, res);
+    if (!doc) throw InputError(doc.error());
+    write_views(o.views, std::move(*doc));
+  }
   const AssemblyRow& w = res.rows[res.worst];
   std::printf("%s: %zu bearings, %zu parts, %zu pairs x %d frames, %llu interfering pair-frames, worst %s %s-%s "
               "distance %.17g (frame %d)\n",

@@ -14,6 +14,7 @@ import unittest
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import cli_common  # noqa: E402
 from cli_common import path, read_csv, load_json as load, read_text as slurp, write_text  # noqa: E402
+from view_readers import read_glb, read_pvd  # noqa: E402
 
 EXAMPLE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "data", "examples", "bearing_axle.json")
 
@@ -121,6 +122,30 @@ class BearingAssembly(unittest.TestCase):
         # the inner ring moved 0.2 towards roller 6 in frame 1: 0.2 less clearance
         self.assertAlmostEqual(float(inner[0]["distance"]) - float(inner[1]["distance"]), 0.2, delta=1e-9)
         self.assertAlmostEqual(float(inner[0]["distance"]), 0.05, delta=1e-9)
+
+    def test_views_follow_the_csv(self):
+        rc, out, err = run("--assembly", small(), "--out", path("v.csv"), "--json", path("v.json"), "--glb",
+                           path("v.glb"), "--pvd", path("v.pvd"))
+        self.assertEqual(rc, 1, err)
+        s = load("v.json")
+        rows = read_csv("v.csv")
+        # runs of consecutive non-clear frames per pair (a, b and its feature), from the CSV
+        pairs = {}
+        for r in rows:
+            pairs.setdefault((r["a"], r["b"]), []).append(r["verdict"])
+        runs = sum(1 for v in pairs.values() for i in range(len(v)) if v[i] != "clear" and (i == 0 or v[i - 1] != v[i]))
+        doc, _ = read_glb(path("v.glb"))
+        groups = [n for n in doc["nodes"] if n.get("name") in ("bodies", "clashes")]
+        children = {g["name"]: g.get("children", []) for g in groups}
+        self.assertEqual(len(children["bodies"]), s["parts"])
+        self.assertEqual(len(children.get("clashes", [])), runs)
+        extras = doc["scenes"][doc.get("scene", 0)]["extras"]
+        self.assertEqual(len(extras["frames"]["labels"]), 3)
+        for f in range(3):
+            if any(r["verdict"] == "clash" for r in rows if int(r["frame"]) == f):
+                self.assertEqual(extras["frames"]["verdicts"][f], "clash")
+        steps = [d for d in read_pvd(path("v.pvd")) if d[2] == "bodies"]
+        self.assertEqual([d[0] for d in steps], [0.0, 1.0, 2.0])
 
     def test_bad_input(self):
         outputs = [path("bad.csv"), path("bad.json")]
