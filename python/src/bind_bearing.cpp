@@ -68,7 +68,7 @@ void bind_bearing(py::module_& parent) {
       .def_readonly("displacement", &Roller::displacement)
       .def_readonly("scar", &Roller::scar)
       .def_readonly("has_scar", &Roller::has_scar)
-      .def_readonly("raise", &Roller::raise);  // largest outward displacement (issue #27)
+      .def_readonly("max_raise", &Roller::raise);  // largest outward displacement (issue #27; `raise` is a Python keyword)
 
   m.def(
       "make_roller",

@@ -45,6 +45,14 @@ class BearingTest(unittest.TestCase):
         self.assertTrue(s.has_scar)
         self.assertGreater(max(s.displacement), 0)
         self.assertLessEqual(max(s.displacement), 0.5)
+        self.assertEqual(s.max_raise, 0.0)
+        # a raised scar (issue #27): the same map outward
+        up = bearing.make_roller(bearing.RollerParams(radius=5, height=20, radial_segments=16, height_segments=7),
+                                 bearing.ScarParams(angle_center_deg=0, angle_width_deg=90, z_min=5, z_max=15,
+                                                    depth=0.5, seed=3, raised=True))
+        self.assertFalse(bearing.ScarParams().raised)
+        self.assertEqual(list(up.displacement), [-d for d in s.displacement])
+        self.assertEqual(up.max_raise, max(s.displacement))
 
     def test_max_interference_distance_of_a_pair(self):
         b = bearing.Cylinder(base=(0, 0, 0), axis=(0, 0, 1), height=60, radius=30)
