@@ -380,29 +380,36 @@ double ref_rib(const Cylinder& c, const Rib& rib, bool* any) {
     }
     return best;
   };
-  const auto F = [&](double a) {
-    const Vec3 dir = fr.f1 * std::cos(a) + fr.f2 * std::sin(a);
-    const Vec3 b = c.base, t = c.base + fr.d * h;
-    return std::min({seg_min(b, b + dir * r0), seg_min(t, t + dir * r1), seg_min(b + dir * r0, t + dir * r1)});
-  };
-  double v = -dense_max_angle([&](double a) { return -F(a); }, 512);
-  // F is +inf where the angle's segments miss the shell, and its minimum can sit at the edge of the
-  // feasible angles (e.g. the end circle crossing rho = ri): bisect every feasible/infeasible pair
-  // of neighbouring samples to the edge and take F there (on the feasible side)
-  constexpr int kN = 512;
-  std::vector<double> fv(kN);
-  for (int i = 0; i < kN; ++i) fv[i] = F(2 * kPi * i / kN);
-  for (int i = 0; i < kN; ++i) {
-    const int j = (i + 1) % kN;
-    if ((fv[i] < 1e299) == (fv[j] < 1e299)) continue;
-    double in = 2 * kPi * i / kN, out = 2 * kPi * (i + 1) / kN;
-    if (!(fv[i] < 1e299)) std::swap(in, out);
-    for (int k = 0; k < 100; ++k) {
-      const double m = 0.5 * (in + out);
-      if (F(m) < 1e299) in = m;
-      else out = m;
+  // the three segment families (bottom-disk rays, top-disk rays, generators) separately: each is
+  // continuous in the angle where finite (+inf where it misses the shell)
+  double v = 1e300;
+  for (int fam = 0; fam < 3; ++fam) {
+    const auto F = [&](double a) {
+      const Vec3 dir = fr.f1 * std::cos(a) + fr.f2 * std::sin(a);
+      const Vec3 b = c.base, t = c.base + fr.d * h;
+      if (fam == 0) return seg_min(b, b + dir * r0);
+      if (fam == 1) return seg_min(t, t + dir * r1);
+      return seg_min(b + dir * r0, t + dir * r1);
+    };
+    v = std::min(v, -dense_max_angle([&](double a) { return -F(a); }, 512));
+    // the minimum can sit at the edge of the feasible angles (e.g. the end circle crossing
+    // rho = ri): bisect every feasible/infeasible pair of neighbouring samples to the edge and take
+    // F there (on the feasible side)
+    constexpr int kN = 512;
+    std::vector<double> fv(kN);
+    for (int i = 0; i < kN; ++i) fv[i] = F(2 * kPi * i / kN);
+    for (int i = 0; i < kN; ++i) {
+      const int j = (i + 1) % kN;
+      if ((fv[i] < 1e299) == (fv[j] < 1e299)) continue;
+      double in = 2 * kPi * i / kN, out = 2 * kPi * (i + 1) / kN;
+      if (!(fv[i] < 1e299)) std::swap(in, out);
+      for (int k = 0; k < 100; ++k) {
+        const double m = 0.5 * (in + out);
+        if (F(m) < 1e299) in = m;
+        else out = m;
+      }
+      v = std::min(v, F(in));
     }
-    v = std::min(v, F(in));
   }
   *any = v < 1e299;
   return v;
