@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "golden.h"
 #include "interfere/bearing/assembly.h"
@@ -179,13 +180,28 @@ AssemblyPairResult from_distance(const PairDistance& d, AssemblySolver solver, d
   return out;
 }
 
-/// Two-sided S = min(s(a, b), s(b, a)) with cone_pair_distance (tapered parts).
+/// Two-sided S = min(s(a, b), s(b, a)) with cone_pair_distance (tapered parts). When s(a, b) > 0 the
+/// solids are apart and both one-sided values are their Euclidean distance: the reverse is skipped.
 PairDistance two_sided_cone(const Cylinder& a, const Cylinder& b) {
   const PairDistance f = cone_pair_distance(a, b);
+  if (f.distance > 0) return f;
   PairDistance r = cone_pair_distance(b, a);
   if (f.distance <= r.distance) return f;
   std::swap(r.point_a, r.point_b);
   return r;
+}
+
+/// Two intact cylinders apart: s(a, b) > 0 is their Euclidean distance, equal to s(b, a), so the
+/// two-sided S is the forward value (part_pair.h would also compute the reverse, often by the slow
+/// general path). nullopt when they are not apart (then part_pair.h decides).
+std::optional<AssemblyPairResult> apart(const Cylinder& a, const Cylinder& b, double clearance) {
+  const PairDistance f = cylinder_pair_distance(a, b);
+  if (!(f.distance > 0)) return std::nullopt;
+  AssemblyPairResult out;
+  out.distance = f.distance, out.point_a = f.point_a, out.point_b = f.point_b;
+  out.solver = AssemblySolver::standard, out.path = f.path;
+  out.verdict = distance_verdict(f.distance, touch_tolerance(a, b), clearance);
+  return out;
 }
 
 ScenePart roller_part(const AssemblyPart& p, const Cylinder& c, const Transform& pose) {
@@ -218,12 +234,16 @@ AssemblyPairResult solve_pair(const Assembly& as, const AssemblyPair& pair, cons
       ScenePart race;
       race.cylinder = posed(g.raceway, pose_b);
       race.partner = true;
+      if (!ra.scarred)
+        if (auto r = apart(roller, race.cylinder, clearance)) return *r;
       return from_part_pair(decide_part_pair(roller_part(ra, roller, pose_a), race, clearance), clearance, tol);
     }
     case AssemblyPairKind::roller_roller: {
       const Cylinder other = posed_cylinder(b.rollers.radius, b.rollers.top_radius, b.rollers.length, pose_b);
       if (b.type == BearingType::tapered)
         return from_distance(two_sided_cone(roller, other), AssemblySolver::raceway, clearance, tol);
+      if (!ra.scarred && !pb.scarred)
+        if (auto r = apart(roller, other, clearance)) return *r;
       return from_part_pair(
           decide_part_pair(roller_part(ra, roller, pose_a), roller_part(pb, other, pose_b), clearance), clearance, tol);
     }
