@@ -21,9 +21,11 @@ std::vector<std::string> scar_import_inputs(const ScarImportOptions& o) {
 }
 
 nlohmann::json apply_scar_import(const ScarImportOptions& o, SceneParams& p) {
-  if (!o.map.empty() && !o.points.empty()) throw InputError("--scar-map and --scar-points exclude each other");
+  if (!o.map.empty() && !o.points.empty())
+    throw InputError("--scar-map and --scar-points exclude each other");
   if (!o.any()) {
-    if (o.scale || o.offset) throw InputError("--scar-map-scale / --scar-map-offset need --scar-map (a PNG)");
+    if (o.scale || o.offset)
+      throw InputError("--scar-map-scale / --scar-map-offset need --scar-map (a PNG)");
     if (o.window) throw InputError("--scar-points-window needs --scar-points");
     return nullptr;
   }
@@ -36,18 +38,23 @@ nlohmann::json apply_scar_import(const ScarImportOptions& o, SceneParams& p) {
   Expected<VertexHeights> heights = Error{.reason = "not read"};
   if (!o.map.empty()) {
     std::string ext = std::filesystem::path(o.map).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     Expected<HeightMap> map = Error{.reason = "not read"};
     if (ext == ".csv") {
-      if (o.scale || o.offset) throw InputError("--scar-map-scale / --scar-map-offset apply to a PNG map only");
+      if (o.scale || o.offset)
+        throw InputError("--scar-map-scale / --scar-map-offset apply to a PNG map only");
       map = read_scar_csv(o.map);
       j["kind"] = "csv";
     } else if (ext == ".png") {
-      if (!o.scale) throw InputError("--scar-map " + o.map + ": a PNG map needs --scar-map-scale (mm per pixel unit)");
-      const MapPlacement where{.angle_min_deg = p.scar.angle_center_deg - 0.5 * p.scar.angle_width_deg,
-                               .angle_max_deg = p.scar.angle_center_deg + 0.5 * p.scar.angle_width_deg,
-                               .z_min = p.scar.z_min,
-                               .z_max = p.scar.z_max};
+      if (!o.scale)
+        throw InputError("--scar-map " + o.map +
+                         ": a PNG map needs --scar-map-scale (mm per pixel unit)");
+      const MapPlacement where{
+          .angle_min_deg = p.scar.angle_center_deg - 0.5 * p.scar.angle_width_deg,
+          .angle_max_deg = p.scar.angle_center_deg + 0.5 * p.scar.angle_width_deg,
+          .z_min = p.scar.z_min,
+          .z_max = p.scar.z_max};
       map = read_scar_png(o.map, *o.scale, o.offset.value_or(0.0), where);
       j["kind"] = "png";
       j["scale"] = *o.scale;
@@ -65,7 +72,8 @@ nlohmann::json apply_scar_import(const ScarImportOptions& o, SceneParams& p) {
     j["file"] = o.map;
   } else {
     if (o.window && !(std::isfinite(*o.window) && *o.window >= 0))
-      throw InputError("--scar-points-window must be >= 0 (0 = automatic), got " + short_number(*o.window));
+      throw InputError("--scar-points-window must be >= 0 (0 = automatic), got " +
+                       short_number(*o.window));
     Expected<std::vector<Vec3>> pts = read_scar_points(o.points);
     if (!pts) throw InputError(pts.error());
     heights = scar_from_points(*pts, p.roller, {.window = o.window.value_or(0.0)}, o.points);
@@ -85,9 +93,9 @@ nlohmann::json apply_scar_import(const ScarImportOptions& o, SceneParams& p) {
   j["min_height"] = lo;
   j["max_height"] = hi;
   j["covered_window"] = {{"angle_center_deg", w.angle_center_deg},
-                 {"angle_width_deg", w.angle_width_deg},
-                 {"z_min", w.z_min},
-                 {"z_max", w.z_max}};
+                         {"angle_width_deg", w.angle_width_deg},
+                         {"z_min", w.z_min},
+                         {"z_max", w.z_max}};
   return j;
 }
 

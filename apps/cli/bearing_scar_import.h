@@ -3,7 +3,6 @@
 // diamond-square map.
 #pragma once
 #include <nlohmann/json.hpp>
-
 #include <optional>
 #include <string>
 
@@ -12,8 +11,8 @@
 namespace interfere::cli {
 
 struct ScarImportOptions {
-  std::string map;                     ///< --scar-map: .csv grid or 16-bit .png
-  std::string points;                  ///< --scar-points: x y z text, or .stl/.ply/.obj/.off
+  std::string map;                      ///< --scar-map: .csv grid or 16-bit .png
+  std::string points;                   ///< --scar-points: x y z text, or .stl/.ply/.obj/.off
   std::optional<double> scale, offset;  ///< --scar-map-scale / --scar-map-offset (PNG)
   std::optional<double> window;         ///< --scar-points-window (mm; 0 = automatic)
   bool any() const { return !map.empty() || !points.empty(); }

@@ -30,7 +30,8 @@ RaisedBound build_raised_bound(const Roller& roller, int triangles_per_sphere) {
       for (const std::uint32_t v : roller.mesh.triangles[t]) {
         const Vec3 d = roller.mesh.positions[v] - s.center;
         r2 = std::max(r2, dot(d, d));
-        scale = std::max({scale, std::fabs(roller.mesh.positions[v].x), std::fabs(roller.mesh.positions[v].y),
+        scale = std::max({scale, std::fabs(roller.mesh.positions[v].x),
+                          std::fabs(roller.mesh.positions[v].y),
                           std::fabs(roller.mesh.positions[v].z)});
       }
     // the margin covers the rounding of the centre, the square root and the pose (a few ulps of the

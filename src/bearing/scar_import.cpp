@@ -1,6 +1,8 @@
 // Imported scars (issue #27): the CSV height map, bilinear resampling onto the roller's vertex grid
 // (periodic in angle when the map wraps), applying heights as the scar, and the covered window.
 // The format and the rules are in scar_import.h.
+#include "interfere/bearing/scar_import.h"
+
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -9,8 +11,6 @@
 #include <fstream>
 #include <numbers>
 #include <sstream>
-
-#include "interfere/bearing/scar_import.h"
 
 namespace interfere::bearing {
 namespace {
@@ -22,8 +22,10 @@ std::string num(double v) {
 }
 
 std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r'))
+    s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
+    s.remove_suffix(1);
   return s;
 }
 
@@ -56,18 +58,21 @@ Error node_error(const HeightMap& map, int row, int col, const std::string& reas
   Error e{.file = map.source};
   if (!map.row_line.empty()) {
     e.line = map.row_line[static_cast<std::size_t>(row)];
-    e.reason = "field " + std::to_string(col + 2) + " (angle " + num(map.angle_deg[static_cast<std::size_t>(col)]) +
-               " deg, z " + num(map.z[static_cast<std::size_t>(row)]) + "): " + reason;
+    e.reason = "field " + std::to_string(col + 2) + " (angle " +
+               num(map.angle_deg[static_cast<std::size_t>(col)]) + " deg, z " +
+               num(map.z[static_cast<std::size_t>(row)]) + "): " + reason;
   } else if (map.from_png) {
-    e.reason = "pixel (" + std::to_string(col) + ", " + std::to_string(map.rows() - 1 - row) + "): " + reason;
+    e.reason = "pixel (" + std::to_string(col) + ", " + std::to_string(map.rows() - 1 - row) +
+               "): " + reason;
   } else {
-    e.reason = "node (row " + std::to_string(row) + ", column " + std::to_string(col) + "): " + reason;
+    e.reason =
+        "node (row " + std::to_string(row) + ", column " + std::to_string(col) + "): " + reason;
   }
   return e;
 }
 
-/// The interpolation interval of x in the increasing knots: k with knots[k] <= x <= knots[k + 1] and
-/// the weight of knots[k + 1]; false outside [knots.front(), knots.back()].
+/// The interpolation interval of x in the increasing knots: k with knots[k] <= x <= knots[k + 1]
+/// and the weight of knots[k + 1]; false outside [knots.front(), knots.back()].
 bool interval(const std::vector<double>& knots, double x, int& k, double& t) {
   if (!(x >= knots.front() && x <= knots.back())) return false;
   const auto it = std::upper_bound(knots.begin(), knots.end(), x);
@@ -86,7 +91,8 @@ bool HeightMap::wraps() const {
   if (c < 2) return false;
   const double step = 360.0 / c;
   for (int k = 0; k < c; ++k)
-    if (std::fabs(angle_deg[static_cast<std::size_t>(k)] - (angle_deg[0] + step * k)) > 1e-9 * 360) return false;
+    if (std::fabs(angle_deg[static_cast<std::size_t>(k)] - (angle_deg[0] + step * k)) > 1e-9 * 360)
+      return false;
   return true;
 }
 
@@ -126,11 +132,13 @@ Expected<HeightMap> parse_scar_csv(std::string_view text, const std::string& sou
       for (std::size_t c = 1; c < fields; ++c) {
         double a;
         if (!parse_number(cells[c], a))
-          return fail(line_no, "field " + std::to_string(c + 1) + ": angle '" + std::string(trim(cells[c])) +
+          return fail(line_no, "field " + std::to_string(c + 1) + ": angle '" +
+                                   std::string(trim(cells[c])) +
                                    "' is not a finite number (degrees)");
         if (!map.angle_deg.empty() && !(a > map.angle_deg.back()))
-          return fail(line_no, "field " + std::to_string(c + 1) + ": angles must increase strictly, got " + num(a) +
-                                   " after " + num(map.angle_deg.back()));
+          return fail(line_no, "field " + std::to_string(c + 1) +
+                                   ": angles must increase strictly, got " + num(a) + " after " +
+                                   num(map.angle_deg.back()));
         map.angle_deg.push_back(a);
       }
       if (!(map.angle_deg.back() - map.angle_deg.front() < 360))
@@ -138,21 +146,23 @@ Expected<HeightMap> parse_scar_csv(std::string_view text, const std::string& sou
                                  num(map.angle_deg.back() - map.angle_deg.front()) + ")");
     } else {
       if (cells.size() != fields)
-        return fail(line_no, "expected " + std::to_string(fields) + " fields like the header (z and " +
-                                 std::to_string(fields - 1) + " heights), got " + std::to_string(cells.size()));
+        return fail(line_no, "expected " + std::to_string(fields) +
+                                 " fields like the header (z and " + std::to_string(fields - 1) +
+                                 " heights), got " + std::to_string(cells.size()));
       double z;
       if (!parse_number(cells[0], z))
-        return fail(line_no, "field 1: z '" + std::string(trim(cells[0])) + "' is not a finite number (mm)");
+        return fail(line_no,
+                    "field 1: z '" + std::string(trim(cells[0])) + "' is not a finite number (mm)");
       if (!map.z.empty() && !(z > map.z.back()))
-        return fail(line_no, "field 1: z must increase strictly down the file, got " + num(z) + " after " +
-                                 num(map.z.back()));
+        return fail(line_no, "field 1: z must increase strictly down the file, got " + num(z) +
+                                 " after " + num(map.z.back()));
       map.z.push_back(z);
       map.row_line.push_back(line_no);
       for (std::size_t c = 1; c < fields; ++c) {
         double h;
         if (!parse_number(cells[c], h))
-          return fail(line_no, "field " + std::to_string(c + 1) + ": height '" + std::string(trim(cells[c])) +
-                                   "' is not a finite number (mm)");
+          return fail(line_no, "field " + std::to_string(c + 1) + ": height '" +
+                                   std::string(trim(cells[c])) + "' is not a finite number (mm)");
         map.height.push_back(h);
       }
     }
@@ -160,8 +170,9 @@ Expected<HeightMap> parse_scar_csv(std::string_view text, const std::string& sou
   }
   if (!header) return fail(-1, "no header line (a label cell, then the angles in degrees)");
   if (map.rows() < 2)
-    return fail(-1, "a height map needs at least 2 rows (z values) and 2 columns, got " + std::to_string(map.rows()) +
-                        " row(s) x " + std::to_string(map.cols()) + " column(s)");
+    return fail(-1, "a height map needs at least 2 rows (z values) and 2 columns, got " +
+                        std::to_string(map.rows()) + " row(s) x " + std::to_string(map.cols()) +
+                        " column(s)");
   return map;
 }
 
@@ -177,10 +188,12 @@ Expected<HeightMap> read_scar_csv(const std::string& path) {
 Expected<VertexHeights> resample_height_map(const HeightMap& map, const RollerParams& roller) {
   if (Status s = validate(roller); !s) return s.error();
   if (map.cols() < 2 || map.rows() < 2 ||
-      map.height.size() != static_cast<std::size_t>(map.cols()) * static_cast<std::size_t>(map.rows()))
+      map.height.size() !=
+          static_cast<std::size_t>(map.cols()) * static_cast<std::size_t>(map.rows()))
     return Error{.file = map.source,
-                 .reason = "a height map needs at least 2 x 2 values on its grid, got " + std::to_string(map.rows()) +
-                           " row(s) x " + std::to_string(map.cols()) + " column(s)"};
+                 .reason = "a height map needs at least 2 x 2 values on its grid, got " +
+                           std::to_string(map.rows()) + " row(s) x " + std::to_string(map.cols()) +
+                           " column(s)"};
   // nodes: finite, and not through the axis where the roller is (r(z) + h > 0)
   for (int r = 0; r < map.rows(); ++r)
     for (int c = 0; c < map.cols(); ++c) {
@@ -188,7 +201,8 @@ Expected<VertexHeights> resample_height_map(const HeightMap& map, const RollerPa
       if (!std::isfinite(h)) return node_error(map, r, c, "the height is not finite");
       if (z >= 0 && z <= roller.height && !(roller.radius_at(z) + h > 0))
         return node_error(map, r, c,
-                          "height " + num(h) + " would take the surface to or through the axis (radius " +
+                          "height " + num(h) +
+                              " would take the surface to or through the axis (radius " +
                               num(roller.radius_at(z)) + " at z " + num(z) + ")");
     }
   VertexHeights out;
@@ -231,20 +245,23 @@ Expected<VertexHeights> resample_height_map(const HeightMap& map, const RollerPa
   }
   if (out.covered_count() == 0)
     return Error{.file = map.source,
-                 .reason = "the height map (angles " + num(map.angle_deg.front()) + ".." + num(map.angle_deg.back()) +
-                           " deg, z " + num(map.z.front()) + ".." + num(map.z.back()) +
-                           " mm) covers no vertex of the roller (height " + num(roller.height) + ")"};
+                 .reason = "the height map (angles " + num(map.angle_deg.front()) + ".." +
+                           num(map.angle_deg.back()) + " deg, z " + num(map.z.front()) + ".." +
+                           num(map.z.back()) + " mm) covers no vertex of the roller (height " +
+                           num(roller.height) + ")"};
   return out;
 }
 
 Expected<int> apply_vertex_heights(Roller& roller, const VertexHeights& heights, int border) {
   if (heights.n != roller.n() || heights.m != roller.m() ||
-      heights.height.size() != roller.displacement.size() || heights.covered.size() != roller.displacement.size())
+      heights.height.size() != roller.displacement.size() ||
+      heights.covered.size() != roller.displacement.size())
     return Error{.file = heights.source,
                  .reason = "the scar heights are on a " + std::to_string(heights.n) + " x " +
-                           std::to_string(heights.m + 1) + " grid, the roller's is " + std::to_string(roller.n()) +
-                           " x " + std::to_string(roller.m() + 1)};
-  if (border < 0 || border > 64) return Error{.reason = "scar border must be in [0, 64], got " + std::to_string(border)};
+                           std::to_string(heights.m + 1) + " grid, the roller's is " +
+                           std::to_string(roller.n()) + " x " + std::to_string(roller.m() + 1)};
+  if (border < 0 || border > 64)
+    return Error{.reason = "scar border must be in [0, 64], got " + std::to_string(border)};
   std::vector<double> raw(heights.height.size(), 0.0);
   for (int j = 0; j <= roller.m(); ++j)
     for (int i = 0; i < roller.n(); ++i) {
@@ -253,12 +270,14 @@ Expected<int> apply_vertex_heights(Roller& roller, const VertexHeights& heights,
       const double h = heights.height[v];
       const double r = roller.params.radius_at(roller.z(j));
       if (!std::isfinite(h) || !(r + h > 0))
-        return Error{.file = heights.source,
-                     .reason = "vertex (" + std::to_string(i) + ", " + std::to_string(j) + ") at angle " +
-                               num(360.0 * i / roller.n()) + " deg, z " + num(roller.z(j)) + ": height " + num(h) +
-                               (std::isfinite(h) ? " would take the surface to or through the axis (radius " +
-                                                       num(r) + ")"
-                                                 : " is not finite")};
+        return Error{
+            .file = heights.source,
+            .reason =
+                "vertex (" + std::to_string(i) + ", " + std::to_string(j) + ") at angle " +
+                num(360.0 * i / roller.n()) + " deg, z " + num(roller.z(j)) + ": height " + num(h) +
+                (std::isfinite(h)
+                     ? " would take the surface to or through the axis (radius " + num(r) + ")"
+                     : " is not finite")};
       raw[v] = -h;
     }
   // the median of values that each keep r + h > 0 at their own ring may not at another ring of a
@@ -309,7 +328,9 @@ ScarParams covered_window(const VertexHeights& heights, const RollerParams& roll
   // the largest run of uncovered columns (cyclic) is the gap; the window is its complement
   int best_gap = 0, best_start = 0;
   for (int s = 0; s < n; ++s) {
-    if (column[static_cast<std::size_t>(s)] || column[static_cast<std::size_t>((s + n - 1) % n)] == 0) continue;
+    if (column[static_cast<std::size_t>(s)] ||
+        column[static_cast<std::size_t>((s + n - 1) % n)] == 0)
+      continue;
     int len = 0;
     while (len < n && !column[static_cast<std::size_t>((s + len) % n)]) ++len;
     if (len > best_gap) best_gap = len, best_start = s;

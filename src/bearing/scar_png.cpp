@@ -33,20 +33,29 @@ bool scar_png_supported() {
 #endif
 }
 
-Expected<HeightMap> read_scar_png(const std::string& path, double scale, double offset, const MapPlacement& where) {
-  if (!std::isfinite(scale)) return Error{.file = path, .reason = "--scar-map-scale must be finite, got " + num(scale)};
+Expected<HeightMap> read_scar_png(const std::string& path, double scale, double offset,
+                                  const MapPlacement& where) {
+  if (!std::isfinite(scale))
+    return Error{.file = path, .reason = "the PNG height scale must be finite, got " + num(scale)};
   if (!std::isfinite(offset))
-    return Error{.file = path, .reason = "--scar-map-offset must be finite, got " + num(offset)};
+    return Error{.file = path,
+                 .reason = "the PNG height offset must be finite, got " + num(offset)};
   if (!(std::isfinite(where.angle_min_deg) && std::isfinite(where.angle_max_deg) &&
-        where.angle_max_deg > where.angle_min_deg && where.angle_max_deg - where.angle_min_deg < 360))
-    return Error{.file = path, .reason = "the map's angles must satisfy angle_min < angle_max < angle_min + 360, got " +
-                                         num(where.angle_min_deg) + " .. " + num(where.angle_max_deg)};
+        where.angle_max_deg > where.angle_min_deg &&
+        where.angle_max_deg - where.angle_min_deg < 360))
+    return Error{
+        .file = path,
+        .reason = "the map's angles must satisfy angle_min < angle_max < angle_min + 360, got " +
+                  num(where.angle_min_deg) + " .. " + num(where.angle_max_deg)};
   if (!(std::isfinite(where.z_min) && std::isfinite(where.z_max) && where.z_max > where.z_min))
     return Error{.file = path,
-                 .reason = "the map's z range must satisfy z_min < z_max, got " + num(where.z_min) + " .. " + num(where.z_max)};
+                 .reason = "the map's z range must satisfy z_min < z_max, got " + num(where.z_min) +
+                           " .. " + num(where.z_max)};
 #ifndef INTERFERE_WITH_PNG
   (void)scale, (void)offset;
-  return Error{.file = path, .reason = "this build has no PNG reader (libpng was not found when it was configured)"};
+  return Error{
+      .file = path,
+      .reason = "this build has no PNG reader (libpng was not found when it was configured)"};
 #else
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
   if (!f) return Error{.file = path, .reason = "cannot open the scar height map"};
@@ -79,7 +88,9 @@ Expected<HeightMap> read_scar_png(const std::string& path, double scale, double 
   std::string problem;
   if (setjmp(png_jmpbuf(png))) {
     png_destroy_read_struct(&png, &info, nullptr);
-    return Error{.file = path, .reason = "invalid PNG: " + (ctx.message.empty() ? std::string("libpng error") : ctx.message)};
+    return Error{.file = path,
+                 .reason = "invalid PNG: " +
+                           (ctx.message.empty() ? std::string("libpng error") : ctx.message)};
   }
   png_init_io(png, f.get());
   png_set_sig_bytes(png, 8);
@@ -93,12 +104,14 @@ Expected<HeightMap> read_scar_png(const std::string& path, double scale, double 
                        : color == PNG_COLOR_TYPE_RGB_ALPHA  ? "RGBA"
                        : color == PNG_COLOR_TYPE_PALETTE    ? "palette"
                                                             : "unknown";
-    problem = std::string("a scar height map must be a 16-bit grayscale PNG, this one is ") + kind + ", " +
-              std::to_string(depth) + "-bit";
+    problem = std::string("a scar height map must be a 16-bit grayscale PNG, this one is ") + kind +
+              ", " + std::to_string(depth) + "-bit";
   } else if (w < 2 || h < 2) {
-    problem = "a height map needs at least 2 x 2 pixels, got " + std::to_string(w) + " x " + std::to_string(h);
+    problem = "a height map needs at least 2 x 2 pixels, got " + std::to_string(w) + " x " +
+              std::to_string(h);
   } else if (static_cast<double>(w) * h > 1e8) {
-    problem = "the image is too large (" + std::to_string(w) + " x " + std::to_string(h) + " > 10^8 pixels)";
+    problem = "the image is too large (" + std::to_string(w) + " x " + std::to_string(h) +
+              " > 10^8 pixels)";
   }
   if (!problem.empty()) {
     png_destroy_read_struct(&png, &info, nullptr);
@@ -118,18 +131,21 @@ Expected<HeightMap> read_scar_png(const std::string& path, double scale, double 
   map.z.resize(h);
   for (png_uint_32 x = 0; x < w; ++x)
     map.angle_deg[x] = x + 1 == w ? where.angle_max_deg
-                                  : where.angle_min_deg + (where.angle_max_deg - where.angle_min_deg) * x / (w - 1);
+                                  : where.angle_min_deg +
+                                        (where.angle_max_deg - where.angle_min_deg) * x / (w - 1);
   for (png_uint_32 r = 0; r < h; ++r)
     map.z[r] = r + 1 == h ? where.z_max : where.z_min + (where.z_max - where.z_min) * r / (h - 1);
   map.height.resize(static_cast<std::size_t>(w) * h);
   for (png_uint_32 r = 0; r < h; ++r) {
     const png_byte* row = rows[h - 1 - r];
     for (png_uint_32 x = 0; x < w; ++x) {
-      const unsigned v = (static_cast<unsigned>(row[2 * x]) << 8) | row[2 * x + 1];  // big-endian samples
+      const unsigned v =
+          (static_cast<unsigned>(row[2 * x]) << 8) | row[2 * x + 1];  // big-endian samples
       const double height = scale * v + offset;
       if (!std::isfinite(height))
-        return Error{.file = path, .reason = "pixel (" + std::to_string(x) + ", " + std::to_string(h - 1 - r) +
-                                             "): height " + num(height) + " is not finite"};
+        return Error{.file = path,
+                     .reason = "pixel (" + std::to_string(x) + ", " + std::to_string(h - 1 - r) +
+                               "): height " + num(height) + " is not finite"};
       map.height[static_cast<std::size_t>(r) * w + x] = height;
     }
   }

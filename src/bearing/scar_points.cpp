@@ -1,6 +1,7 @@
-// Imported scars from a point cloud (issue #27): per side vertex, the inverse-distance-weighted mean
-// (Shepard 1968, weights 1/d^2) of the radial deviations of the measured points within a window on
-// the unrolled nominal surface; the reader of "x y z" text files and of meshes (their vertices).
+// Imported scars from a point cloud (issue #27): per side vertex, the inverse-distance-weighted
+// mean (Shepard 1968, weights 1/d^2) of the radial deviations of the measured points within a
+// window on the unrolled nominal surface; the reader of "x y z" text files and of meshes (their
+// vertices).
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -27,15 +28,19 @@ std::string num(double v) {
 
 }  // namespace
 
-Expected<VertexHeights> scar_from_points(const std::vector<Vec3>& points, const RollerParams& roller,
-                                         const PointScarOptions& options, const std::string& source) {
+Expected<VertexHeights> scar_from_points(const std::vector<Vec3>& points,
+                                         const RollerParams& roller,
+                                         const PointScarOptions& options,
+                                         const std::string& source) {
   if (Status s = validate(roller); !s) return s.error();
   if (points.empty()) return Error{.file = source, .reason = "the scar point cloud has no point"};
   const int n = roller.radial_segments, m = roller.height_segments;
   const double rmax = std::max(roller.radius, roller.top()), h = roller.height;
   const double col = 2 * std::numbers::pi / n, dz = h / m;
   if (!(std::isfinite(options.window) && options.window >= 0))
-    return Error{.file = source, .reason = "the point window must be >= 0 (0 = automatic), got " + num(options.window)};
+    return Error{
+        .file = source,
+        .reason = "the point window must be >= 0 (0 = automatic), got " + num(options.window)};
   const double w = options.window > 0 ? options.window : std::hypot(rmax * col, dz);
   const double exact = 1e-12 * (rmax + h);
   // each point: angle, z, deviation; bucketed by grid column and ring for the window search
@@ -48,20 +53,25 @@ Expected<VertexHeights> scar_from_points(const std::vector<Vec3>& points, const 
   std::vector<std::vector<std::uint32_t>> bucket(static_cast<std::size_t>(n) * nbz);
   for (std::size_t k = 0; k < points.size(); ++k) {
     const Vec3& p = points[k];
-    const auto where = [&] { return "point " + std::to_string(k) + " (" + num(p.x) + ", " + num(p.y) + ", " + num(p.z) + ")"; };
+    const auto where = [&] {
+      return "point " + std::to_string(k) + " (" + num(p.x) + ", " + num(p.y) + ", " + num(p.z) +
+             ")";
+    };
     if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)))
       return Error{.file = source, .reason = where() + ": a coordinate is not finite"};
     if (p.z < -w || p.z > h + w) continue;  // beyond every vertex's window
     const double rho = std::hypot(p.x, p.y);
     const double r = roller.radius_at(std::clamp(p.z, 0.0, h));
     if (!(rho > 0))
-      return Error{.file = source, .reason = where() + ": on the roller's axis (its angle is undefined)"};
+      return Error{.file = source,
+                   .reason = where() + ": on the roller's axis (its angle is undefined)"};
     double phi = std::atan2(p.y, p.x);
     if (phi < 0) phi += 2 * std::numbers::pi;
     ps.push_back({phi, p.z, rho - r});
     const int bi = std::clamp(static_cast<int>(phi / col), 0, n - 1);
     const int bj = std::clamp(static_cast<int>(std::floor(p.z / dz + 0.5)), 0, m);
-    bucket[static_cast<std::size_t>(bj) * n + bi].push_back(static_cast<std::uint32_t>(ps.size() - 1));
+    bucket[static_cast<std::size_t>(bj) * n + bi].push_back(
+        static_cast<std::uint32_t>(ps.size() - 1));
   }
   VertexHeights out;
   out.n = n, out.m = m, out.source = source;
@@ -108,22 +118,26 @@ Expected<VertexHeights> scar_from_points(const std::vector<Vec3>& points, const 
       }
       if (out.covered[v] && !(rv + out.height[v] > 0))
         return Error{.file = source,
-                     .reason = "vertex (" + std::to_string(i) + ", " + std::to_string(j) + ") at angle " +
-                               num(360.0 * i / n) + " deg, z " + num(zv) + ": the points' deviation " +
-                               num(out.height[v]) + " would take the surface to or through the axis (radius " +
-                               num(rv) + ")"};
+                     .reason = "vertex (" + std::to_string(i) + ", " + std::to_string(j) +
+                               ") at angle " + num(360.0 * i / n) + " deg, z " + num(zv) +
+                               ": the points' deviation " + num(out.height[v]) +
+                               " would take the surface to or through the axis (radius " + num(rv) +
+                               ")"};
     }
   }
   if (out.covered_count() == 0)
-    return Error{.file = source,
-                 .reason = "no point lies within the window (" + num(w) + " mm) of a vertex of the roller: are the "
-                           "points in the roller's body frame (axis +z from the bottom end centre)?"};
+    return Error{
+        .file = source,
+        .reason = "no point lies within the window (" + num(w) +
+                  " mm) of a vertex of the roller: are the "
+                  "points in the roller's body frame (axis +z from the bottom end centre)?"};
   return out;
 }
 
 Expected<std::vector<Vec3>> read_scar_points(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (ext == ".stl" || ext == ".ply" || ext == ".obj" || ext == ".off") {
     Expected<TriMesh> mesh = read_mesh(path);
     if (!mesh) return mesh.error();
@@ -151,12 +165,16 @@ Expected<std::vector<Vec3>> read_scar_points(const std::string& path) {
       errno = 0;
       const double d = std::strtod(tok.c_str(), &end);
       if (end != tok.c_str() + tok.size() || !std::isfinite(d) || errno == ERANGE)
-        return Error{.file = path, .line = line_no,
-                     .reason = "field " + std::to_string(count + 1) + ": '" + tok + "' is not a finite number"};
+        return Error{.file = path,
+                     .line = line_no,
+                     .reason = "field " + std::to_string(count + 1) + ": '" + tok +
+                               "' is not a finite number"};
       v[count++] = d;
     }
     if (count != 3)
-      return Error{.file = path, .line = line_no, .reason = "expected 3 numbers x y z, got " + std::to_string(count)};
+      return Error{.file = path,
+                   .line = line_no,
+                   .reason = "expected 3 numbers x y z, got " + std::to_string(count)};
     pts.push_back({v[0], v[1], v[2]});
   }
   if (in.bad()) return Error{.file = path, .reason = "cannot read the scar point file"};

@@ -2,8 +2,8 @@
 // so the intact cylinder no longer bounds the roller. This is a cheap conservative bound of the
 // part that does: spheres (body frame) covering every triangle of the roller that has a vertex
 // displaced outward; sd_B (signed distance to an intact cylinder B) is 1-Lipschitz, so
-// sd_B(centre) - radius bounds it from below over a sphere's triangles. Every other triangle lies in
-// the intact solid (its vertices do, and the solid is convex), where sd_B >= s(intact, B).
+// sd_B(centre) - radius bounds it from below over a sphere's triangles. Every other triangle lies
+// in the intact solid (its vertices do, and the solid is convex), where sd_B >= s(intact, B).
 //
 // The simulation (simulation.h) uses it to decide whether the standard solver's value on the intact
 // cylinder can stand for a raised-scarred roller whose scar is out of the range of Eq. (1): only

@@ -1,6 +1,6 @@
-// Imported scars (issue #27, deliverable 2): a measured height map of a worn roller side — a CSV grid
-// over angle x axial position, a 16-bit grayscale PNG, or a point cloud (an x y z text file or a
-// mesh, e.g. a scanned STL of the worn region) in the roller's body frame — resampled onto the
+// Imported scars (issue #27, deliverable 2): a measured height map of a worn roller side — a CSV
+// grid over angle x axial position, a 16-bit grayscale PNG, or a point cloud (an x y z text file or
+// a mesh, e.g. a scanned STL of the worn region) in the roller's body frame — resampled onto the
 // roller's regular (angle x height) vertex grid (roller.h) and applied as the scar, in place of the
 // generated diamond-square map of scar.h (Jia & Zheng 2019, §2.2: a scar is a radial disturbance of
 // the surface points; this brings in a measured one).
@@ -61,11 +61,13 @@ struct HeightMap {
   std::vector<double> height;     ///< row-major: height[row * cols() + col], mm, positive outward
   std::string source;             ///< the file, for errors
   std::vector<std::int64_t> row_line;  ///< CSV: each row's 1-based line in the file; else empty
-  bool from_png = false;          ///< rows are pixel rows from the top (errors name pixels)
+  bool from_png = false;               ///< rows are pixel rows from the top (errors name pixels)
 
   int cols() const { return static_cast<int>(angle_deg.size()); }
   int rows() const { return static_cast<int>(z.size()); }
-  double at(int row, int col) const { return height[static_cast<std::size_t>(row) * angle_deg.size() + col]; }
+  double at(int row, int col) const {
+    return height[static_cast<std::size_t>(row) * angle_deg.size() + col];
+  }
   /// The columns wrap the whole circumference (see above).
   bool wraps() const;
 };
@@ -92,9 +94,10 @@ Expected<HeightMap> read_scar_csv(const std::string& path);
 Expected<HeightMap> parse_scar_csv(std::string_view text, const std::string& source);
 
 /// A 16-bit grayscale PNG, placed by `where`. Errors: not a PNG, not 16-bit gray, smaller than
-/// 2 x 2, non-finite scale/offset, a bad placement (angle_max > angle_min, span < 360; z_max > z_min).
-/// Builds without libpng answer that they have no PNG reader.
-Expected<HeightMap> read_scar_png(const std::string& path, double scale, double offset, const MapPlacement& where);
+/// 2 x 2, non-finite scale/offset, a bad placement (angle_max > angle_min, span < 360; z_max >
+/// z_min). Builds without libpng answer that they have no PNG reader.
+Expected<HeightMap> read_scar_png(const std::string& path, double scale, double offset,
+                                  const MapPlacement& where);
 /// Whether this build reads PNG (libpng found at configure time).
 bool scar_png_supported();
 
@@ -105,21 +108,23 @@ bool scar_png_supported();
 Expected<VertexHeights> resample_height_map(const HeightMap& map, const RollerParams& roller);
 
 struct PointScarOptions {
-  /// Search radius on the unrolled surface (mm); 0 = automatic: the diagonal of one grid cell at the
-  /// larger end radius, hypot(2 pi r_max / n, height / m).
+  /// Search radius on the unrolled surface (mm); 0 = automatic: the diagonal of one grid cell at
+  /// the larger end radius, hypot(2 pi r_max / n, height / m).
   double window = 0;
 };
 
 /// Points of the worn surface in the roller's body frame (above). Errors: no point, a non-finite
-/// coordinate, a point on the axis or whose deviation takes the surface through it (naming the point
-/// index, 0-based), a bad window, no vertex with a point within the window.
-Expected<VertexHeights> scar_from_points(const std::vector<Vec3>& points, const RollerParams& roller,
-                                         const PointScarOptions& options = {}, const std::string& source = "points");
+/// coordinate, a point on the axis or whose deviation takes the surface through it (naming the
+/// point index, 0-based), a bad window, no vertex with a point within the window.
+Expected<VertexHeights> scar_from_points(const std::vector<Vec3>& points,
+                                         const RollerParams& roller,
+                                         const PointScarOptions& options = {},
+                                         const std::string& source = "points");
 
-/// Reads a point cloud: .stl .ply .obj .off (any case): the mesh's vertices (welded: a scanned STL's
-/// facet corners once each; read by mesh/io.h); any other extension: a text file of "x y z" per
-/// line (separated by spaces, tabs or commas; '#' comments and blank lines skipped; exactly three
-/// finite numbers per line, errors name the line).
+/// Reads a point cloud: .stl .ply .obj .off (any case): the mesh's vertices (welded: a scanned
+/// STL's facet corners once each; read by mesh/io.h); any other extension: a text file of "x y z"
+/// per line (separated by spaces, tabs or commas; '#' comments and blank lines skipped; exactly
+/// three finite numbers per line, errors name the line).
 Expected<std::vector<Vec3>> read_scar_points(const std::string& path);
 
 /// Applies the heights as the roller's scar: displacement = -height on covered vertices (0

@@ -1,11 +1,12 @@
-// Raised scars (issue #27; the paper's §2.2: the disturbance is inward "in most cases", not always):
-// a signed displacement, and every place that assumed a scarred roller lies inside its intact
-// cylinder (part_pair.cpp's enclosing cylinder and containment shortcut, the simulation's broad
-// phase boxes and its "standard value when the scar is out of range" rule). Each test below failed
-// before the fix. Oracles: the analytic bump itself (a point inside it is inside the roller), the
-// independent bracket of the surface minimum (bearing_oracle.h: its own signed distance, subdivision
-// with a convexity bound) and, to select among many rows cheaply, the every-triangle reference
-// (scarred.h surface_reference; the rows the fixes are about are then bracketed independently).
+// Raised scars (issue #27; the paper's §2.2: the disturbance is inward "in most cases", not
+// always): a signed displacement, and every place that assumed a scarred roller lies inside its
+// intact cylinder (part_pair.cpp's enclosing cylinder and containment shortcut, the simulation's
+// broad phase boxes and its "standard value when the scar is out of range" rule). Each test below
+// failed before the fix. Oracles: the analytic bump itself (a point inside it is inside the
+// roller), the independent bracket of the surface minimum (bearing_oracle.h: its own signed
+// distance, subdivision with a convexity bound) and, to select among many rows cheaply, the
+// every-triangle reference (scarred.h surface_reference; the rows the fixes are about are then
+// bracketed independently).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -37,8 +38,8 @@ double bump(double phi, double z, double r, double c, double zc, double amp, dou
   return amp * t * t;
 }
 
-/// A roller with a raised analytic bump (displacement = -bump) centred on a vertex (angle, ring 32),
-/// labelled as scar where nonzero.
+/// A roller with a raised analytic bump (displacement = -bump) centred on a vertex (angle, ring
+/// 32), labelled as scar where nonzero.
 Roller raised_roller(double center_angle, double amp, const RollerParams& rp = {}) {
   Roller r = make_roller(rp).value();
   for (int j = 0; j <= r.m(); ++j)
@@ -78,7 +79,8 @@ TEST(BearingRaisedScar, GeneratedRaisedIsTheInwardMapNegated) {
   EXPECT_FALSE(ScarParams{}.raised);  // the default stays inward
   RollerParams rp;
   rp.radial_segments = 32, rp.height_segments = 31;
-  ScarParams s{.angle_center_deg = 30, .angle_width_deg = 80, .z_min = 5, .z_max = 35, .depth = 0.4};
+  ScarParams s{
+      .angle_center_deg = 30, .angle_width_deg = 80, .z_min = 5, .z_max = 35, .depth = 0.4};
   Roller in = make_roller(rp).value(), out = make_roller(rp).value();
   ASSERT_TRUE(apply_scar(in, s).has_value());
   s.raised = true;
@@ -116,7 +118,8 @@ TEST(BearingRaisedScar, PartnerInsideTheRaisedBumpIsClash) {
   b.cylinder = cyl({12, 0, zc - 0.3}, 0.6, 0.3);
   // the oracle: the partner's centre is 12 from the axis, the analytic bump surface 13 there
   ASSERT_LT(12.0, 10 + bump(0, zc, 10, 0, zc, 3, 6));
-  EXPECT_GT(oracle_min(roller, Transform::identity(), b.cylinder).lower, 0.1);  // it meets no triangle
+  EXPECT_GT(oracle_min(roller, Transform::identity(), b.cylinder).lower,
+            0.1);  // it meets no triangle
   EXPECT_EQ(mesh_containment(a, b.cylinder), 1);
   const PartPairResult r = decide_part_pair(a, b, 0);
   EXPECT_EQ(r.verdict, Verdict::clash);
@@ -124,10 +127,10 @@ TEST(BearingRaisedScar, PartnerInsideTheRaisedBumpIsClash) {
 }
 
 TEST(BearingRaisedScar, TwoScarredRollersBoundIncludesTheRaise) {
-  // Roller A (inward scar on its far side) at the origin; roller B 21 mm away (intact cylinders 1 mm
-  // apart) with a 3 mm raised bump facing A: B reaches 2 mm into A. No exact solver exists for two
-  // scarred rollers; the bound (A against the cylinder enclosing B) used the intact radius and said
-  // "clear" (a lower bound of +1 mm).
+  // Roller A (inward scar on its far side) at the origin; roller B 21 mm away (intact cylinders 1
+  // mm apart) with a 3 mm raised bump facing A: B reaches 2 mm into A. No exact solver exists for
+  // two scarred rollers; the bound (A against the cylinder enclosing B) used the intact radius and
+  // said "clear" (a lower bound of +1 mm).
   Roller ra = make_roller({}).value();
   ra.displacement[ra.side_vertex(32, 30)] = 0.01;  // at 180 degrees: facing away from B
   ra.scar[ra.side_vertex(32, 30)] = 1;
@@ -161,11 +164,13 @@ TEST(BearingRaisedScar, RaisedBoundCoversTheRaisedTriangles) {
   // every vertex of a triangle with a raised vertex lies in some sphere
   for (const Tri& t : roller.mesh.triangles) {
     bool raised = false;
-    for (const std::uint32_t v : t) raised |= v < roller.displacement.size() && roller.displacement[v] < 0;
+    for (const std::uint32_t v : t)
+      raised |= v < roller.displacement.size() && roller.displacement[v] < 0;
     if (!raised) continue;
     for (const std::uint32_t v : t) {
       bool in = false;
-      for (const RaisedBound::Sphere& s : rb.spheres) in |= norm(roller.mesh.positions[v] - s.center) <= s.radius;
+      for (const RaisedBound::Sphere& s : rb.spheres)
+        in |= norm(roller.mesh.positions[v] - s.center) <= s.radius;
       EXPECT_TRUE(in);
     }
   }
@@ -181,7 +186,12 @@ SceneParams raised_scene() {
   p.spin_deg_per_frame = 7;
   p.gap = 0.2;
   p.scar_fraction = 1;
-  p.scar = {.angle_center_deg = 0, .angle_width_deg = 20, .z_min = 5, .z_max = 35, .depth = 2, .border = 0,
+  p.scar = {.angle_center_deg = 0,
+            .angle_width_deg = 20,
+            .z_min = 5,
+            .z_max = 35,
+            .depth = 2,
+            .border = 0,
             .raised = true};
   return p;
 }
@@ -206,13 +216,15 @@ TEST(BearingRaisedScar, SimulationRowsSeeARaisedScarOutOfRange) {
   const auto r = simulate(p);
   ASSERT_TRUE(r.has_value()) << r.error().message();
   std::vector<Roller> variants;
-  for (std::size_t v = 0; v < r->scar_meshes.size(); ++v) variants.push_back(variant_roller(p, static_cast<int>(v)));
+  for (std::size_t v = 0; v < r->scar_meshes.size(); ++v)
+    variants.push_back(variant_roller(p, static_cast<int>(v)));
   int out_of_range_reaching = 0, checked = 0;
   for (std::size_t q = 0; q < r->rows.size(); ++q) {
     const PairFrame& row = r->rows[q];
     const int v = r->pair_variant[static_cast<std::size_t>(row.pair)];
     ASSERT_GE(v, 0);
-    const Cylinder b = posed_cylinder(p.partner_radius, -1, p.partner_height, partner_pose(p, r->spacing, row.pair));
+    const Cylinder b = posed_cylinder(p.partner_radius, -1, p.partner_height,
+                                      partner_pose(p, r->spacing, row.pair));
     // every row against the every-triangle reference (scarred.h); the rows the fix is about also
     // against the independent bracket (a few: it is slow)
     const Roller& roller = variants[static_cast<std::size_t>(v)];
@@ -238,13 +250,15 @@ TEST(BearingRaisedScar, SimulationRowsSeeARaisedScarOutOfRange) {
 TEST(BearingRaisedScar, BroadPhaseBoxesContainTheRaisedScar) {
   // Two pairs; roller 0's intact cylinder is 0.3 mm short of partner 1 (pitch 85.3: partner 1's
   // surface at 55.3, roller 0's at 45 + 10), its raised scar (up to 1.5 mm) reaches into it when it
-  // faces +x. The boxes were those of the intact cylinders: the pair never reached the narrow phase.
+  // faces +x. The boxes were those of the intact cylinders: the pair never reached the narrow
+  // phase.
   SceneParams p = raised_scene();
   p.pairs = 2, p.frames = 60, p.gap = 5, p.spacing = 85.3;
   const auto r = simulate(p);
   ASSERT_TRUE(r.has_value()) << r.error().message();
   const Roller v0 = variant_roller(p, r->pair_variant[0]);
-  const Cylinder partner1 = posed_cylinder(p.partner_radius, -1, p.partner_height, partner_pose(p, r->spacing, 1));
+  const Cylinder partner1 =
+      posed_cylinder(p.partner_radius, -1, p.partner_height, partner_pose(p, r->spacing, 1));
   int reaching = 0;
   for (int f = 0; f < p.frames; ++f) {
     const Transform& pose = r->roller_poses[static_cast<std::size_t>(f) * 2];
@@ -253,8 +267,10 @@ TEST(BearingRaisedScar, BroadPhaseBoxesContainTheRaisedScar) {
     ++reaching;
     const CrossPair* hit = nullptr;
     for (const CrossPair& c : r->cross_results)
-      if (c.frame == f && ((c.part_a == 0 && c.part_b == 3) || (c.part_a == 3 && c.part_b == 0))) hit = &c;
-    ASSERT_NE(hit, nullptr) << "frame " << f << ": roller 0 reaches " << -ref << " into partner 1, not reported";
+      if (c.frame == f && ((c.part_a == 0 && c.part_b == 3) || (c.part_a == 3 && c.part_b == 0)))
+        hit = &c;
+    ASSERT_NE(hit, nullptr) << "frame " << f << ": roller 0 reaches " << -ref
+                            << " into partner 1, not reported";
     EXPECT_EQ(hit->verdict, Verdict::clash);
     EXPECT_NEAR(hit->distance, ref, 1e-9);
     if (reaching <= 2) {  // and against the independent bracket
