@@ -19,6 +19,7 @@
 
 #include "assembly_internal.h"
 #include "interfere/bearing/assembly.h"
+#include "interfere/bearing/window.h"
 #include "interfere/scene/io.h"
 
 namespace interfere::bearing {
@@ -103,6 +104,27 @@ Expected<AssemblyMotion> read_assembly_motion(const Assembly& as, const std::str
                      .reason = f.label + ", body '" + as.parts[pose.body].id +
                                "': the pose is not a rotation (a bearing part is rigid): " + pose.pose.non_rigid_note()};
       current[pose.body] = pose.pose;
+      // a roller's tilt from its nominal direction (the lean in its axial plane) must lie in Eq. (1)'s
+      // validity range (window.h), as the description's max_tilt_deg must
+      const AssemblyPart& part = as.parts[pose.body];
+      if (part.kind != PartKind::roller) continue;
+      const BearingSpec& b = as.spec.bearings[part.bearing];
+      const BearingGeometry& g = as.geometry[part.bearing];
+      const Vec3 axis = g.frame.rotate({0, 0, 1}), u = pose.pose.rotate({0, 0, 1});
+      const Vec3 mid = pose.pose.apply({0, 0, 0.5 * b.rollers.length}) - g.frame.t;
+      const Vec3 radial = mid - axis * dot(mid, axis);
+      const double rn = norm(radial);
+      const Vec3 nominal = rn > 0 ? axis * std::cos(g.roller_lean) + radial * (std::sin(g.roller_lean) / rn) : axis;
+      const double tilt = std::atan2(norm(cross(u, nominal)), dot(u, nominal));
+      WindowParams wp;
+      wp.roller_radius = b.rollers.radius;
+      wp.partner_radius = b.type == BearingType::cylindrical ? b.inner_raceway : g.raceway.radius;
+      wp.height = b.rollers.length;
+      if (!(tilt < max_valid_tilt(wp)))
+        return Error{.file = path,
+                     .reason = f.label + ", body '" + part.id + "': the roller is tilted by " +
+                               short_number(tilt * 180 / kPi) + " degrees from its nominal axis, outside Eq. (1)'s validity range (below " +
+                               short_number(max_valid_tilt(wp) * 180 / kPi) + " degrees)"};
     }
     m.poses.push_back(current);
   }

@@ -145,6 +145,18 @@ TEST(BearingAssemblyRun, MotionFile) {
                                            pose_row(0, "cyl/inner", scaled)));
   ASSERT_FALSE(s);
   EXPECT_NE(s.error().message().find("cyl/inner"), std::string::npos) << s.error().message();
+  // a roller tilted beyond Eq. (1)'s validity range (45 degrees for r = 10, R = 30, h_b = 20)
+  Transform tilted = gen.poses[0][6];
+  const double c = std::cos(50 * kPi / 180), sn = std::sin(50 * kPi / 180);
+  const std::array<std::array<double, 3>, 3> rx{{{1, 0, 0}, {0, c, -sn}, {0, sn, c}}};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) tilted.r[i][j] = rx[i][j];
+  Expected<AssemblyMotion> t = read_assembly_motion(
+      as, write_file("asm_tilted.csv", "frame,body,r00,r01,r02,tx,r10,r11,r12,ty,r20,r21,r22,tz\n" +
+                                           pose_row(0, "cyl/roller3", tilted)));
+  ASSERT_FALSE(t);
+  EXPECT_NE(t.error().message().find("cyl/roller3"), std::string::npos) << t.error().message();
+  EXPECT_NE(t.error().message().find("Eq. (1)"), std::string::npos) << t.error().message();
 }
 
 }  // namespace
