@@ -1,4 +1,4 @@
-"""Tests of `interfere.probe` (issue #5): forward kinematics against the §3.1 closed form and a
+"""Tests of `interfere.probe` (issue #5): forward kinematics against the pivot machine's closed form and a
 hand-computed pose, the exact cylinder-triangle test (touching configurations, the paper's
 three-projection counterexample), the box holder (reference direction, exact box-triangle test, a
 pose only the box hits), a small sweep (hierarchies agree, a collision between samples).

@@ -515,5 +515,37 @@ class SweepPaperLevels(unittest.TestCase):
         self.assertNotIn("paper_levels", load(path("fp2.json"))["summary"])
 
 
+class SweepQuickStart(unittest.TestCase):
+    """Issue #28: the quick start of docs/probe.md names only shipped files and runs as written."""
+
+    def test_quick_start_runs_as_written(self):
+        import re
+        import shlex
+        import subprocess
+        root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+        with open(os.path.join(root, "docs", "probe.md"), encoding="utf-8") as f:
+            doc = f.read()
+        section = doc[doc.index("## Quick start"):]
+        block = re.search(r"```\n(.*?)```", section, re.S).group(1)
+        args = shlex.split(block.replace("\\\n", " "))
+        self.assertEqual(args[:2], ["interfere", "sweep"])
+        for a in args:
+            if a.startswith("data/"):
+                self.assertTrue(os.path.isfile(os.path.join(root, a)), a + " is not shipped")
+        # Inputs from the source tree, outputs in the work directory (as written, run from the root).
+        args = [os.path.join(os.path.abspath(root), a) if a.startswith("data/") else a for a in args[2:]]
+        work = path("quick_start")
+        os.makedirs(work, exist_ok=True)
+        r = subprocess.run([cli_common.EXE, "sweep"] + args, cwd=work, capture_output=True, text=True)
+        self.assertEqual(r.returncode, 1, r.stdout + r.stderr)
+        self.assertIn("COLLISION: 1 of 6 points collide (0 inside the workpiece), 2 colliding segments "
+                      "(0 only between samples), 0 unresolved; min clearance 0 mm", r.stdout)
+        j = load(os.path.join(work, "report.json"))
+        self.assertEqual(j["colliding_points"], [3])
+        self.assertEqual(j["options"]["interpolate"], "joint")
+        self.assertTrue(os.path.isfile(os.path.join(work, "points.csv")))
+        self.assertTrue(os.path.isfile(os.path.join(work, "hits.obj")))
+
+
 if __name__ == "__main__":
     cli_common.main()
