@@ -19,6 +19,7 @@
 
 #include "assembly_internal.h"
 #include "interfere/bearing/assembly.h"
+#include "interfere/bearing/assembly_scene.h"
 #include "interfere/bearing/window.h"
 #include "interfere/scene/io.h"
 
@@ -80,18 +81,7 @@ AssemblyMotion generate_motion(const Assembly& as, int frames, std::uint64_t see
 }
 
 Expected<AssemblyMotion> read_assembly_motion(const Assembly& as, const std::string& path) {
-  scene::Scene sc;
-  for (const AssemblyPart& p : as.parts) {
-    scene::Body body;
-    body.id = p.id;
-    body.name = p.id;
-    body.path = p.id;
-    body.mesh = p.mesh;
-    body.pose = p.rest;
-    body.source.kind = scene::SourceKind::primitive;
-    body.source.detail = part_kind_name(p.kind);
-    sc.bodies.push_back(std::move(body));
-  }
+  scene::Scene sc = assembly_scene(as);
   if (Status st = scene::read_motion(path, sc); !st) return st.error();
   AssemblyMotion m;
   m.source = path;
