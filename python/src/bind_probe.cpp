@@ -15,6 +15,8 @@
 
 #include "bindings.h"
 #include "interfere/probe/generate.h"
+#include "interfere/probe/paper_machine.h"
+#include "interfere/probe/paper_tests.h"
 #include "interfere/probe/sweep.h"
 
 namespace py = pybind11;
@@ -113,6 +115,36 @@ void bind_probe(py::module_& m) {
   p.def("paper_machine", [](double l) { return pivot_machine(l); }, py::arg("pivot_to_tip") = 150.0,
         "Former name of pivot_machine (kept for old scripts): NOT the paper's §3.1 machine.");
   p.def(
+      "paper_machine_31",
+      [](double d1, double d2, double l) {
+        if (!std::isfinite(d1) || !(d2 > 0) || !std::isfinite(d2) || !(l > 0) || !std::isfinite(l))
+          throw py::value_error("d1 finite, d2 and probe_length finite and > 0");
+        return paper_machine_31({.d1 = d1, .d2 = d2, .probe_length = l});
+      },
+      py::arg("d1") = 30.0, py::arg("d2") = 120.0, py::arg("probe_length") = 40.0,
+      "The paper's 3P+2R machine of §3.1 (joints x, y, z, a, b): rear end circle at (x + d1 cos a + d2 sin a cos b, "
+      "y - d1 sin a + d2 cos a cos b, -z + d2 sin b), tip probe_length further along the probe axis.");
+  p.def(
+      "inverse_kinematics",
+      [](const Robot& r, py::handle tip, py::handle axis, std::optional<std::vector<double>> previous) {
+        auto q = inverse_kinematics(r, {vec(tip, "tip"), vec(axis, "axis")}, previous ? &*previous : nullptr);
+        if (!q) raise_input_error(q.error());
+        return std::move(q.value());
+      },
+      py::arg("robot"), py::arg("tip"), py::arg("axis"), py::arg("previous") = py::none(),
+      "Joint values (x, y, z, a, b) of the §3.1 machine putting the tip at `tip` along `axis`, within the limits, "
+      "nearest to `previous`; raises InputError naming the violated joint.");
+  p.def(
+      "pose_path_to_joints",
+      [](const ProbePath& path, const Robot& r, const std::string& file) {
+        auto j = pose_path_to_joint_path(path, r, file);
+        if (!j) raise_input_error(j.error());
+        return std::move(j.value());
+      },
+      py::arg("path"), py::arg("robot"), py::arg("file") = "<path>",
+      "A pose path as the machine's joint path (inverse kinematics), so sweep(..., robot) checks the motion between "
+      "points along the machine's joints.");
+  p.def(
       "forward_kinematics",
       [](const Robot& r, const std::vector<double>& q) {
         if (q.size() != r.joints.size()) {
@@ -164,6 +196,16 @@ void bind_probe(py::module_& m) {
       py::arg("c0"), py::arg("c1"), py::arg("radius"), py::arg("triangle"), py::arg("edge") = 0,
       "The paper's (incomplete) three-projection test as written (§3.4: along the axis, the triangle edge "
       "triangle[edge] -> triangle[edge + 1], a diameter), for comparison.");
+  p.def(
+      "paper_projections",
+      [](py::handle c0, py::handle c1, double r, py::handle t, int edge, std::optional<std::array<double, 3>> d) {
+        const PaperProjections x =
+            paper_projections(cyl(c0, c1, r), tri(t), edge, d ? Vec3{(*d)[0], (*d)[1], (*d)[2]} : Vec3{});
+        return py::make_tuple(x.along_axis, x.along_edge, x.along_diameter);
+      },
+      py::arg("c0"), py::arg("c1"), py::arg("radius"), py::arg("triangle"), py::arg("edge") = 0,
+      py::arg("diameter") = py::none(),
+      "(along the axis, along the edge, along the diameter): does each of the paper's §3.4 projections overlap.");
   p.def(
       "frame_projection_test",
       [](py::handle c0, py::handle c1, double r, py::handle t) { return frame_projection_test(cyl(c0, c1, r), tri(t)); },

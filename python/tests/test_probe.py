@@ -77,6 +77,35 @@ class CylinderTriangle(unittest.TestCase):
         self.assertAlmostEqual(math.dist(pc, pt), d, places=9)
 
 
+class PaperMachine31(unittest.TestCase):
+    """Issue #28: the paper's §3.1 machine, its inverse kinematics and the paper's projections."""
+
+    def test_rear_circle_formula_and_inverse(self):
+        robot = probe.read_robot(os.path.join(os.path.dirname(ROBOT), "probe_paper_machine.json"))
+        q = [12.5, -40.0, 250.0, 33.0, -21.0]
+        tip, axis = probe.forward_kinematics(robot, q)
+        a, b = math.radians(q[3]), math.radians(q[4])
+        rear = (q[0] + 30 * math.cos(a) + 120 * math.sin(a) * math.cos(b),
+                q[1] - 30 * math.sin(a) + 120 * math.cos(a) * math.cos(b), -q[2] + 120 * math.sin(b))
+        for i in range(3):
+            self.assertAlmostEqual(tip[i] - 40 * axis[i], rear[i], places=9)
+        back = probe.inverse_kinematics(robot, tip, axis, previous=q)
+        for i in range(5):
+            self.assertAlmostEqual(back[i], q[i], places=9)
+        with self.assertRaises(itf.InputError) as e:
+            probe.inverse_kinematics(robot, (0, 0, -2500), (0, 1, 0))
+        self.assertIn("joint z", str(e.exception))
+        path = probe.pose_path_to_joints(probe.pose_path([(tip, axis)]), probe.paper_machine_31(30, 120, 40))
+        self.assertEqual(len(path.joints), 1)
+
+    def test_paper_projections_false_positive(self):
+        t = [(-0.41762788177630833, -0.8210775298506976, 2.0431113483579426),
+             (-0.5255325554798489, -0.11186297107474368, 3.2267138360446035),
+             (-1.0452788651563281, -2.71650785719231, 1.850198368577664)]
+        self.assertEqual(probe.paper_projections((0, 0, 0), (0, 0, 2), 1.0, t), (True, True, True))
+        self.assertFalse(probe.cylinder_triangle_intersect((0, 0, 0), (0, 0, 2), 1.0, t))
+
+
 class HolderBox(unittest.TestCase):
     # Probe down from tip z = 100, length 40; box 40 wide (along ref), 20 deep, 30 long behind it.
     WALL = itf.TriMesh([[18, -100, -100], [18, 100, -100], [18, 100, 300], [18, -100, 300]], [[0, 1, 2], [0, 2, 3]])
