@@ -78,14 +78,25 @@ void BM_ConePair(benchmark::State& state) {
 }
 BENCHMARK(BM_ConePair);
 
-// the fallback (nested golden-section) path: a roller standing on the cone's top face
-void BM_ConePairGeneral(benchmark::State& state) {
+// the end-face dual: a roller standing on the cone's top face
+void BM_ConePairEndFace(benchmark::State& state) {
   Cylinder b;
   b.base = {0, 0, 0}, b.axis = {0, 0, 1}, b.height = 30, b.radius = 30, b.top_radius = 25;
   const Cylinder a = make({5, 3, 38.9}, tilted({0, 0, 1}, 2 * kDeg, 1), 4.5, 3.8, 18);
   for (auto _ : state) benchmark::DoNotOptimize(cone_pair_distance(a, b));
 }
-BENCHMARK(BM_ConePairGeneral)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_ConePairEndFace)->Unit(benchmark::kMicrosecond);
+
+// the reverse direction s(cone ring, roller) of the two-sided value, over the same 256 poses as
+// BM_ConePair (the end-face dual, else the nested golden-section path)
+void BM_ConePairReverse(benchmark::State& state) {
+  Cylinder b;
+  b.base = {0, 0, 0}, b.axis = {0, 0, 1}, b.height = 30, b.radius = 30, b.top_radius = 25;
+  const auto rs = poses(30, 25, 30, +1, 4.5, 3.8, 18);
+  std::size_t i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(cone_pair_distance(b, rs[i++ & 255]));
+}
+BENCHMARK(BM_ConePairReverse)->Unit(benchmark::kMicrosecond);
 
 void BM_RollerRib(benchmark::State& state) {
   // inner ring rib, annulus 25..36 below rollers of radius 5 at pitch radius 34 (ends partly outside)

@@ -19,9 +19,12 @@
 //     V_g <= min over A of g <= s(A, B) <= sd_B(p*),
 // so when sd_B(p*) - V_g is within a few ulps of the pair's scale, s = sd_B(p*) to that accuracy
 // (path `cone`; this is the roller's side or end circle against B's cone surface, the bearing's case,
-// line contact included). Otherwise (B's end faces or rims nearest, A crossing B's axis, deep overlap)
-// sd_B is minimised over A by nested golden-section searches (sd_B convex, partial minimisation keeps
-// convexity; path `general`), as cylinder_pair_distance_general does for a cylinder B.
+// line contact included). Else the end faces join the bound (below: F = max(g, -z, z - h) <= sd_B,
+// equal inside B; its minimum over A through the dual over the simplex of the three, one end face
+// at a time; the same bracket certifies). Otherwise (both end faces, A crossing B's axis, deep
+// overlap) sd_B is minimised over A by nested golden-section searches (sd_B convex, partial
+// minimisation keeps convexity; path `general`), as cylinder_pair_distance_general does for a
+// cylinder B.
 #include <algorithm>
 #include <cmath>
 
@@ -100,6 +103,50 @@ PairDistance cone_pair_distance(const Cylinder& a, const Cylinder& b) {
     out.point_b = nearest_on_frustum_boundary(b, p);
     out.path = AnalyticPath::cone;
     return out;
+  }
+  // The end faces too: F = max(g, -z, z - h) <= sd_B everywhere (each is a supporting signed
+  // distance; inside B, F = sd_B), so s >= min over A of F = max over lambda in the simplex of
+  // min over A of sum lambda_i f_i (minimax), each term a support function of A. One end face at a
+  // time (lambda of the other = 0): an outer golden section over lambda0 (the partial maximum of a
+  // concave function) and, per lambda0, a local golden section over the azimuth warm-started from a
+  // full search; the primal point as above. Certified by the same bracket V <= s <= sd_B(p*).
+  {
+    PairDistance best_out;
+    double best_gap = 1e300;
+    for (const double side : {1.0, -1.0}) {  // +1: top face (z - h), -1: bottom face (-z)
+      const auto D = [&](double l0, double psi) {
+        const Vec3 w = (e1 * std::cos(psi) + e2 * std::sin(psi) - u * k) * (l0 * cb) + u * (side * (1 - l0));
+        const Vec3 wp = w - d * dot(w, d);
+        const double swp = norm(wp);
+        const double m = std::min(dot(w, rims[0].c - b.base) - rims[0].r * swp, dot(w, rims[1].c - b.base) - rims[1].r * swp);
+        return m - l0 * cb * b.radius - (side > 0 ? (1 - l0) * b.height : 0.0);
+      };
+      const double psi0 = detail::max_over_angle([&](double x) { return D(0.5, x); }).first;
+      constexpr double kWin = 0.35;
+      const auto inner = [&](double l0) {
+        return golden_min([&](double x) { return -D(l0, x); }, psi0 - kWin, psi0 + kWin, 48);
+      };
+      const auto [l0, negv] = golden_min([&](double l) { return inner(l).second; }, 0.0, 1.0, 52);
+      const double v = -negv;
+      const double ps = inner(l0).first;
+      const Vec3 w = (e1 * std::cos(ps) + e2 * std::sin(ps) - u * k) * (l0 * cb) + u * (side * (1 - l0));
+      const Vec3 wp = w - d * dot(w, d);
+      const double swp = norm(wp);
+      const Vec3 q0 = swp > 0 ? rims[0].c - wp * (rims[0].r / swp) : rims[0].c;
+      const Vec3 q1 = swp > 0 ? rims[1].c - wp * (rims[1].r / swp) : rims[1].c;
+      const auto [lam, sdq] =
+          golden_min([&](double x) { return point_frustum_signed_distance(b, q0 + (q1 - q0) * x); }, 0.0, 1.0, 64);
+      if (sdq - v < best_gap) {
+        best_gap = sdq - v;
+        best_out.distance = sdq;
+        best_out.point_a = q0 + (q1 - q0) * lam;
+      }
+    }
+    if (best_gap <= 0x1p-44 * scale) {
+      best_out.point_b = nearest_on_frustum_boundary(b, best_out.point_a);
+      best_out.path = AnalyticPath::cone;
+      return best_out;
+    }
   }
   return cone_general(a, b);
 }
