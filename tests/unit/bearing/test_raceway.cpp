@@ -728,8 +728,8 @@ TEST(BearingRaceway, ConeReverseRingIntoRoller) {
     const Vec3 gen = (radial * -5.0 + u * 30.0) / L, nout = (radial * 30.0 + u * 5.0) / L;
     const double zc = g.uniform(12, 18);
     const Vec3 on_cone = u * zc + radial * (30 - 5 * zc / 30);
-    const Cylinder a = roller(on_cone + nout * (4.1 + g.uniform(-0.4, 0.0)), tilted(gen, g.uniform(0, 3) * kDeg, g.uniform(0, 7)), 4.5, 3.7, 18);
-    const PairDistance pd = cone_pair_distance(b, a);
+    const Cylinder a = roller(on_cone + nout * (4.1 + g.uniform(-0.4, 0.0)), tilted(gen, g.uniform(0, 3) * kDeg, g.uniform(0, 7)), 4.5, i % 2 ? 3.7 : 4.5, 18);
+    const PairDistance pd = cone_pair_distance(b, a);  // an untapered roller too (i even)
     const double ref = ref_nested(b, a);
     EXPECT_NEAR(pd.distance, ref, 1e-9 * std::max(1.0, std::fabs(ref))) << i << " " << analytic_path_name(pd.path);
     EXPECT_NEAR(oracle_frustum_sd(a, pd.point_a), pd.distance, 1e-9) << i;
