@@ -203,30 +203,15 @@ Vec3 nearest_on_cylinder_boundary(const Cylinder& b, const Vec3& p) {
 }
 
 PairDistance cylinder_pair_distance_general(const Cylinder& a, const Cylinder& b) {
-  const Vec3 f1 = any_perpendicular(a.axis);
-  const Vec3 f2 = cross(a.axis, f1);
   const double hh = 0.5 * b.height;
   const Vec3 bc = b.center();
   const auto sd = [&](const Vec3& p) {
     const Vec3 v = p - bc;
     return signed_distance_rz(norm(cross(v, b.axis)), dot(v, b.axis), b.radius, hh);
   };
-  const auto point = [&](double t, double x, double y) { return a.base + a.axis * t + f1 * x + f2 * y; };
-  constexpr int kIter = 64;
-  const auto over_y = [&](double t, double x, double r) {
-    const double ym = std::sqrt(std::max(0.0, r * r - x * x));
-    return golden_min([&](double y) { return sd(point(t, x, y)); }, -ym, ym, kIter);
-  };
-  const auto over_x = [&](double t) {
-    const double r = a.radius + (a.top() - a.radius) * (t / a.height);
-    return golden_min([&](double x) { return over_y(t, x, r).second; }, -r, r, kIter);
-  };
-  const auto [t, value] = golden_min([&](double tt) { return over_x(tt).second; }, 0.0, a.height, kIter);
-  const double r = a.radius + (a.top() - a.radius) * (t / a.height);
-  const double x = over_x(t).first;
-  const double y = over_y(t, x, r).first;
+  const auto [p, value] = detail::nested_min_over_frustum(a, any_perpendicular(a.axis), sd);
   PairDistance out;
-  out.point_a = point(t, x, y);
+  out.point_a = p;
   out.distance = value;
   out.point_b = nearest_on_cylinder_boundary(b, out.point_a);
   out.path = AnalyticPath::general;

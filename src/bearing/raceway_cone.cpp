@@ -39,25 +39,10 @@ using detail::golden_min;
 using detail::perpendicular_unit;
 
 PairDistance cone_general(const Cylinder& a, const Cylinder& b) {
-  const Vec3 f1 = perpendicular_unit(a.axis);
-  const Vec3 f2 = cross(a.axis, f1);
-  const auto sd = [&](const Vec3& p) { return point_frustum_signed_distance(b, p); };
-  const auto point = [&](double t, double x, double y) { return a.base + a.axis * t + f1 * x + f2 * y; };
-  constexpr int kIter = 64;
-  const auto over_y = [&](double t, double x, double r) {
-    const double ym = std::sqrt(std::max(0.0, r * r - x * x));
-    return golden_min([&](double y) { return sd(point(t, x, y)); }, -ym, ym, kIter);
-  };
-  const auto over_x = [&](double t) {
-    const double r = detail::radius_at(a, t);
-    return golden_min([&](double x) { return over_y(t, x, r).second; }, -r, r, kIter);
-  };
-  const auto [t, value] = golden_min([&](double tt) { return over_x(tt).second; }, 0.0, a.height, kIter);
-  const double r = detail::radius_at(a, t);
-  const double x = over_x(t).first;
-  const double y = over_y(t, x, r).first;
+  const auto [p, value] = detail::nested_min_over_frustum(
+      a, perpendicular_unit(a.axis), [&](const Vec3& q) { return point_frustum_signed_distance(b, q); });
   PairDistance out;
-  out.point_a = point(t, x, y);
+  out.point_a = p;
   out.distance = value;
   out.point_b = nearest_on_frustum_boundary(b, out.point_a);
   out.path = AnalyticPath::general;
