@@ -256,7 +256,13 @@ Expected<SimulationResult> simulate(const SceneParams& p, bool keep_rows) {
       PairState& s = st[k];
       PairFrame& row = frame_rows[k];
       row.box_overlap = overlapping[k] != 0;
-      const PairDistance pd = cylinder_pair_distance(cyl_a[k], cyl_b[k]);
+      // An intact (unscarred, untapered) roller: the pair's two-sided value S = min(s(A, B), s(B, A))
+      // (part_pair.h; issue #27). A scarred roller: s(A, B) of the standard solver as the scarred
+      // solver's start and out-of-range value (its reverse depth has no exact solver; decide_part_pair
+      // brackets it), as is a tapered one.
+      const bool two_sided = !s.scarred && !cyl_a[k].tapered();
+      const PairDistance pd = two_sided ? two_sided_cylinder_distance(cyl_a[k], cyl_b[k])
+                                        : cylinder_pair_distance(cyl_a[k], cyl_b[k]);
       row.distance = pd.distance, row.point_a = pd.point_a, row.point_b = pd.point_b;
       row.path = static_cast<std::uint8_t>(pd.path);
       row.solver = 0, row.evaluated = 0, row.scar_in_range = false;
