@@ -1,6 +1,7 @@
 // Imported scars (issue #27): the CSV height map, bilinear resampling onto the roller's vertex grid
 // (periodic in angle when the map wraps), applying heights as the scar, and the covered window.
 // The format and the rules are in scar_import.h.
+#include "scar_number.h"
 #include "interfere/bearing/scar_import.h"
 
 #include <algorithm>
@@ -15,11 +16,7 @@
 namespace interfere::bearing {
 namespace {
 
-std::string num(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
+using detail::scar_number;
 
 std::string_view trim(std::string_view s) {
   while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r'))
@@ -59,8 +56,8 @@ Error node_error(const HeightMap& map, int row, int col, const std::string& reas
   if (!map.row_line.empty()) {
     e.line = map.row_line[static_cast<std::size_t>(row)];
     e.reason = "field " + std::to_string(col + 2) + " (angle " +
-               num(map.angle_deg[static_cast<std::size_t>(col)]) + " deg, z " +
-               num(map.z[static_cast<std::size_t>(row)]) + "): " + reason;
+               scar_number(map.angle_deg[static_cast<std::size_t>(col)]) + " deg, z " +
+               scar_number(map.z[static_cast<std::size_t>(row)]) + "): " + reason;
   } else if (map.from_png) {
     e.reason = "pixel (" + std::to_string(col) + ", " + std::to_string(map.rows() - 1 - row) +
                "): " + reason;
@@ -137,13 +134,13 @@ Expected<HeightMap> parse_scar_csv(std::string_view text, const std::string& sou
                                    "' is not a finite number (degrees)");
         if (!map.angle_deg.empty() && !(a > map.angle_deg.back()))
           return fail(line_no, "field " + std::to_string(c + 1) +
-                                   ": angles must increase strictly, got " + num(a) + " after " +
-                                   num(map.angle_deg.back()));
+                                   ": angles must increase strictly, got " + scar_number(a) + " after " +
+                                   scar_number(map.angle_deg.back()));
         map.angle_deg.push_back(a);
       }
       if (!(map.angle_deg.back() - map.angle_deg.front() < 360))
         return fail(line_no, "the angles must span less than 360 degrees (last - first = " +
-                                 num(map.angle_deg.back() - map.angle_deg.front()) + ")");
+                                 scar_number(map.angle_deg.back() - map.angle_deg.front()) + ")");
     } else {
       if (cells.size() != fields)
         return fail(line_no, "expected " + std::to_string(fields) +
@@ -154,8 +151,8 @@ Expected<HeightMap> parse_scar_csv(std::string_view text, const std::string& sou
         return fail(line_no,
                     "field 1: z '" + std::string(trim(cells[0])) + "' is not a finite number (mm)");
       if (!map.z.empty() && !(z > map.z.back()))
-        return fail(line_no, "field 1: z must increase strictly down the file, got " + num(z) +
-                                 " after " + num(map.z.back()));
+        return fail(line_no, "field 1: z must increase strictly down the file, got " + scar_number(z) +
+                                 " after " + scar_number(map.z.back()));
       map.z.push_back(z);
       map.row_line.push_back(line_no);
       for (std::size_t c = 1; c < fields; ++c) {
@@ -201,9 +198,9 @@ Expected<VertexHeights> resample_height_map(const HeightMap& map, const RollerPa
       if (!std::isfinite(h)) return node_error(map, r, c, "the height is not finite");
       if (z >= 0 && z <= roller.height && !(roller.radius_at(z) + h > 0))
         return node_error(map, r, c,
-                          "height " + num(h) +
+                          "height " + scar_number(h) +
                               " would take the surface to or through the axis (radius " +
-                              num(roller.radius_at(z)) + " at z " + num(z) + ")");
+                              scar_number(roller.radius_at(z)) + " at z " + scar_number(z) + ")");
     }
   VertexHeights out;
   out.n = roller.radial_segments, out.m = roller.height_segments, out.source = map.source;
@@ -245,10 +242,10 @@ Expected<VertexHeights> resample_height_map(const HeightMap& map, const RollerPa
   }
   if (out.covered_count() == 0)
     return Error{.file = map.source,
-                 .reason = "the height map (angles " + num(map.angle_deg.front()) + ".." +
-                           num(map.angle_deg.back()) + " deg, z " + num(map.z.front()) + ".." +
-                           num(map.z.back()) + " mm) covers no vertex of the roller (height " +
-                           num(roller.height) + ")"};
+                 .reason = "the height map (angles " + scar_number(map.angle_deg.front()) + ".." +
+                           scar_number(map.angle_deg.back()) + " deg, z " + scar_number(map.z.front()) + ".." +
+                           scar_number(map.z.back()) + " mm) covers no vertex of the roller (height " +
+                           scar_number(roller.height) + ")"};
   return out;
 }
 
@@ -274,9 +271,9 @@ Expected<int> apply_vertex_heights(Roller& roller, const VertexHeights& heights,
             .file = heights.source,
             .reason =
                 "vertex (" + std::to_string(i) + ", " + std::to_string(j) + ") at angle " +
-                num(360.0 * i / roller.n()) + " deg, z " + num(roller.z(j)) + ": height " + num(h) +
+                scar_number(360.0 * i / roller.n()) + " deg, z " + scar_number(roller.z(j)) + ": height " + scar_number(h) +
                 (std::isfinite(h)
-                     ? " would take the surface to or through the axis (radius " + num(r) + ")"
+                     ? " would take the surface to or through the axis (radius " + scar_number(r) + ")"
                      : " is not finite")};
       raw[v] = -h;
     }
@@ -289,7 +286,7 @@ Expected<int> apply_vertex_heights(Roller& roller, const VertexHeights& heights,
       if (!(roller.params.radius_at(roller.z(j)) - out[v] > 0))
         return Error{.file = heights.source,
                      .reason = "vertex (" + std::to_string(i) + ", " + std::to_string(j) +
-                               "): the border filter's height " + num(-out[v]) +
+                               "): the border filter's height " + scar_number(-out[v]) +
                                " would take the surface through the axis"};
     }
   int labelled = 0;

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "scar_number.h"
 #include "interfere/bearing/scar_import.h"
 
 #ifdef INTERFERE_WITH_PNG
@@ -15,15 +16,7 @@
 #endif
 
 namespace interfere::bearing {
-namespace {
-
-std::string num(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
-}  // namespace
+using detail::scar_number;
 
 bool scar_png_supported() {
 #ifdef INTERFERE_WITH_PNG
@@ -36,21 +29,21 @@ bool scar_png_supported() {
 Expected<HeightMap> read_scar_png(const std::string& path, double scale, double offset,
                                   const MapPlacement& where) {
   if (!std::isfinite(scale))
-    return Error{.file = path, .reason = "the PNG height scale must be finite, got " + num(scale)};
+    return Error{.file = path, .reason = "the PNG height scale must be finite, got " + scar_number(scale)};
   if (!std::isfinite(offset))
     return Error{.file = path,
-                 .reason = "the PNG height offset must be finite, got " + num(offset)};
+                 .reason = "the PNG height offset must be finite, got " + scar_number(offset)};
   if (!(std::isfinite(where.angle_min_deg) && std::isfinite(where.angle_max_deg) &&
         where.angle_max_deg > where.angle_min_deg &&
         where.angle_max_deg - where.angle_min_deg < 360))
     return Error{
         .file = path,
         .reason = "the map's angles must satisfy angle_min < angle_max < angle_min + 360, got " +
-                  num(where.angle_min_deg) + " .. " + num(where.angle_max_deg)};
+                  scar_number(where.angle_min_deg) + " .. " + scar_number(where.angle_max_deg)};
   if (!(std::isfinite(where.z_min) && std::isfinite(where.z_max) && where.z_max > where.z_min))
     return Error{.file = path,
-                 .reason = "the map's z range must satisfy z_min < z_max, got " + num(where.z_min) +
-                           " .. " + num(where.z_max)};
+                 .reason = "the map's z range must satisfy z_min < z_max, got " + scar_number(where.z_min) +
+                           " .. " + scar_number(where.z_max)};
 #ifndef INTERFERE_WITH_PNG
   (void)scale, (void)offset;
   return Error{
@@ -145,7 +138,7 @@ Expected<HeightMap> read_scar_png(const std::string& path, double scale, double 
       if (!std::isfinite(height))
         return Error{.file = path,
                      .reason = "pixel (" + std::to_string(x) + ", " + std::to_string(h - 1 - r) +
-                               "): height " + num(height) + " is not finite"};
+                               "): height " + scar_number(height) + " is not finite"};
       map.height[static_cast<std::size_t>(r) * w + x] = height;
     }
   }

@@ -14,19 +14,12 @@
 #include <numbers>
 #include <sstream>
 
+#include "scar_number.h"
 #include "interfere/bearing/scar_import.h"
 #include "interfere/mesh/io.h"
 
 namespace interfere::bearing {
-namespace {
-
-std::string num(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
-}  // namespace
+using detail::scar_number;
 
 Expected<VertexHeights> scar_from_points(const std::vector<Vec3>& points,
                                          const RollerParams& roller,
@@ -40,7 +33,7 @@ Expected<VertexHeights> scar_from_points(const std::vector<Vec3>& points,
   if (!(std::isfinite(options.window) && options.window >= 0))
     return Error{
         .file = source,
-        .reason = "the point window must be >= 0 (0 = automatic), got " + num(options.window)};
+        .reason = "the point window must be >= 0 (0 = automatic), got " + scar_number(options.window)};
   const double w = options.window > 0 ? options.window : std::hypot(rmax * col, dz);
   const double exact = 1e-12 * (rmax + h);
   // each point: angle, z, deviation; bucketed by grid column and ring for the window search
@@ -54,7 +47,7 @@ Expected<VertexHeights> scar_from_points(const std::vector<Vec3>& points,
   for (std::size_t k = 0; k < points.size(); ++k) {
     const Vec3& p = points[k];
     const auto where = [&] {
-      return "point " + std::to_string(k) + " (" + num(p.x) + ", " + num(p.y) + ", " + num(p.z) +
+      return "point " + std::to_string(k) + " (" + scar_number(p.x) + ", " + scar_number(p.y) + ", " + scar_number(p.z) +
              ")";
     };
     if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)))
@@ -119,16 +112,16 @@ Expected<VertexHeights> scar_from_points(const std::vector<Vec3>& points,
       if (out.covered[v] && !(rv + out.height[v] > 0))
         return Error{.file = source,
                      .reason = "vertex (" + std::to_string(i) + ", " + std::to_string(j) +
-                               ") at angle " + num(360.0 * i / n) + " deg, z " + num(zv) +
-                               ": the points' deviation " + num(out.height[v]) +
-                               " would take the surface to or through the axis (radius " + num(rv) +
+                               ") at angle " + scar_number(360.0 * i / n) + " deg, z " + scar_number(zv) +
+                               ": the points' deviation " + scar_number(out.height[v]) +
+                               " would take the surface to or through the axis (radius " + scar_number(rv) +
                                ")"};
     }
   }
   if (out.covered_count() == 0)
     return Error{
         .file = source,
-        .reason = "no point lies within the window (" + num(w) +
+        .reason = "no point lies within the window (" + scar_number(w) +
                   " mm) of a vertex of the roller: are the "
                   "points in the roller's body frame (axis +z from the bottom end centre)?"};
   return out;
