@@ -472,6 +472,7 @@ py::dict summary(const sc::SceneClashResult& r) {
   d["triangles"] = r.triangles;
   d["candidate_pairs"] = r.candidate_pairs;
   d["suppressed"] = r.suppressed;
+  d["core_runs"] = r.core_runs;
   d["clashes"] = r.clash_count;
   d["contacts"] = r.contact_count;
   d["clearances"] = r.clearance_count;

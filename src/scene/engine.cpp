@@ -14,6 +14,9 @@
 #include <set>
 #include <stdexcept>
 #include <tuple>
+#include <array>
+#include <cstdint>
+#include <memory>
 #include <unordered_map>
 
 #include "engine_internal.h"
@@ -148,6 +151,27 @@ struct Candidate {
   double clearance;
 };
 
+constexpr std::size_t kNone = static_cast<std::size_t>(-1);
+
+// What makes two units one problem in their first body's frame: the two meshes, b's pose in a's
+// frame (bit for bit) and the tests with their clearances, in the unit's order.
+struct ClassKey {
+  std::uintptr_t a = 0, b = 0;  // the meshes
+  std::array<double, 12> t{};
+  std::vector<std::pair<std::uint32_t, double>> tests;
+  bool operator<(const ClassKey& o) const { return std::tie(a, b, t, tests) < std::tie(o.a, o.b, o.t, o.tests); }
+};
+
+// A class of units decided once (its first unit), in the first body's local frame.
+struct FrameClass {
+  std::size_t unit = 0;  // the unit decided
+  Transform t;           // b's pose in a's frame
+  std::vector<std::vector<SceneClash>> found;               // per candidate of the unit, in the frame
+  std::vector<std::vector<std::array<Vec3, 2>>> where;      // their id locations
+  DepthMaps maps;
+  bool has_maps = false;
+};
+
 FramePairRow frame_pair_row(std::uint32_t frame, const Candidate& c, const std::vector<SceneClash>& list) {
   FramePairRow r{.frame = frame, .test = c.test, .a = c.a, .b = c.b};
   for (const SceneClash& s : list) {
@@ -195,6 +219,9 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
     st.local_box[i] = bounds_of(scene.bodies[i].mesh->positions);
   });
   std::vector<detail::WorldBody> world(n);
+  // Local models (decision frames) per mesh, kept over frames; the bodies that used them.
+  std::map<const TriMesh*, std::unique_ptr<detail::WorldBody>> locals;
+  std::vector<char> in_frame_unit(n, 0);
 
   // Selections per test.
   std::vector<TestPlan> plans(tests.size());
@@ -290,21 +317,8 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
         cands.push_back({static_cast<std::uint32_t>(p.order), u, v, pair_clearance(*p.test, bu, bv)});
       }
     }
-    // World geometry of the bodies the candidates need.
-    std::vector<char> need(n, 0);
-    for (const Candidate& c : cands) need[c.a] = need[c.b] = 1;
-    std::vector<std::uint32_t> todo;
-    for (std::uint32_t i = 0; i < n; ++i)
-      if (need[i] && st.stale[i]) todo.push_back(i);
-    tbb::parallel_for(std::size_t{0}, todo.size(), [&](std::size_t k) { refresh(scene, st, world, todo[k]); });
-    result.broad_seconds += since(t_broad);
-
-    // The exact core on every candidate.
-    const auto t_narrow = Clock::now();
-    std::vector<std::vector<SceneClash>> found(cands.size());
-    std::vector<std::vector<std::array<Vec3, 2>>> where(cands.size());  // the id locations
-    // One core run per body pair: the candidates of every test on the same pair share it, at the
-    // largest clearance among them, each test deriving its clashes from it (largest clearance
+    // Units: one core run per body pair. The candidates of every test on the same pair share it, at
+    // the largest clearance among them, each test deriving its clashes from it (largest clearance
     // first). Not shared: duplicates mode (no core), a caller that sees each test's core result
     // (on_pair), and clearances with a non-exact triangle test (the core then switches to exact).
     std::vector<std::size_t> order(cands.size());
@@ -326,32 +340,147 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
     for (std::size_t i = 0; i < order.size(); ++i)
       if (i == 0 || key(order[i]) != key(order[i - 1])) unit_start.push_back(i);
     unit_start.push_back(order.size());
-    const bool many_pairs = unit_start.size() - 1 >= 4 * static_cast<std::size_t>(tbb::this_task_arena::max_concurrency());
-    // Depth maps per unit (one body pair), and each candidate's unit.
-    std::vector<PairDepthMap> unit_maps(unit_start.size() - 1);
-    std::vector<char> unit_has_map(unit_start.size() - 1, 0);
+    const std::size_t units = unit_start.size() - 1;
+    // Decision frames (engine_internal.h, PairFrame): a unit is decided in its first body's local
+    // frame when that body's pose is a rotation and neither body is deformed in this frame, and
+    // units with the same two meshes, relative pose (bit for bit) and tests are one class, decided
+    // once (its first unit: any member gives the same answer bit for bit). In the world frame: a
+    // caller that sees the core's world result or world models (on_pair, nominal_fit), duplicates,
+    // mirrored or scaled poses, deformed bodies.
+    const bool frames_ok = !options.on_pair && !options.nominal_fit;
+    std::vector<std::size_t> unit_class(units, kNone);
+    std::vector<FrameClass> classes;
+    {
+      std::map<ClassKey, std::size_t> class_of;
+      std::vector<signed char> rigid(n, -1);
+      for (std::size_t u = 0; u < units; ++u) {
+        const Candidate& c = cands[order[unit_start[u]]];
+        if (!frames_ok || tests[c.test].mode == ClashMode::duplicates || st.shape[c.a] || st.shape[c.b]) continue;
+        if (rigid[c.a] < 0) rigid[c.a] = st.pose[c.a].is_rigid() ? 1 : 0;
+        if (!rigid[c.a]) continue;
+        ClassKey k;
+        k.a = reinterpret_cast<std::uintptr_t>(scene.bodies[c.a].mesh.get());
+        k.b = reinterpret_cast<std::uintptr_t>(scene.bodies[c.b].mesh.get());
+        const Transform t = st.pose[c.a] == st.pose[c.b] ? Transform{} : compose(inverse(st.pose[c.a]), st.pose[c.b]);
+        k.t = t.to_row_major();
+        for (std::size_t i = unit_start[u]; i < unit_start[u + 1]; ++i)
+          k.tests.emplace_back(cands[order[i]].test, cands[order[i]].clearance);
+        const auto [it, added] = class_of.emplace(std::move(k), classes.size());
+        if (added) classes.push_back({.unit = u, .t = t});
+        unit_class[u] = it->second;
+      }
+    }
+    // Models: the local ones of the frame units' meshes (built once, kept over frames), the world
+    // ones of the world units' bodies.
+    std::vector<const TriMesh*> new_locals;
+    std::vector<char> need(n, 0);
+    for (std::size_t u = 0; u < units; ++u) {
+      const Candidate& c = cands[order[unit_start[u]]];
+      if (unit_class[u] == kNone) {
+        need[c.a] = need[c.b] = 1;
+        continue;
+      }
+      in_frame_unit[c.a] = in_frame_unit[c.b] = 1;
+      for (const TriMesh* m : {scene.bodies[c.a].mesh.get(), scene.bodies[c.b].mesh.get()})
+        if (locals.emplace(m, nullptr).second) new_locals.push_back(m);
+    }
+    tbb::parallel_for(std::size_t{0}, new_locals.size(), [&](std::size_t k) {
+      auto w = std::make_unique<detail::WorldBody>();
+      w->own = make_model(*new_locals[k], {}, false);
+      w->box = w->own.mesh.bounds();
+      locals.find(new_locals[k])->second = std::move(w);  // (the node exists: a lookup, no insertion)
+    });
+    std::vector<std::uint32_t> todo;
+    for (std::uint32_t i = 0; i < n; ++i)
+      if (need[i] && st.stale[i]) todo.push_back(i);
+    tbb::parallel_for(std::size_t{0}, todo.size(), [&](std::size_t k) { refresh(scene, st, world, todo[k]); });
+    result.broad_seconds += since(t_broad);
+
+    // The exact core: once per class and per world unit, in parallel.
+    const auto t_narrow = Clock::now();
+    std::vector<std::vector<SceneClash>> found(cands.size());
+    std::vector<std::vector<std::array<Vec3, 2>>> where(cands.size());  // the id locations
+    std::vector<std::size_t> jobs;  // classes' first units, then the world units
+    for (const FrameClass& fc : classes) jobs.push_back(fc.unit);
+    for (std::size_t u = 0; u < units; ++u)
+      if (unit_class[u] == kNone) jobs.push_back(u);
+    if (!reference)
+      for (const std::size_t u : jobs) result.core_runs += tests[cands[order[unit_start[u]]].test].mode != ClashMode::duplicates;
+    const bool many_pairs = jobs.size() >= 4 * static_cast<std::size_t>(tbb::this_task_arena::max_concurrency());
+    std::vector<PairDepthMap> unit_maps(units);
+    std::vector<char> unit_has_map(units, 0);
     std::vector<std::size_t> cand_unit(cands.size());
-    for (std::size_t u = 0; u + 1 < unit_start.size(); ++u)
+    for (std::size_t u = 0; u < units; ++u)
       for (std::size_t i = unit_start[u]; i < unit_start[u + 1]; ++i) cand_unit[order[i]] = u;
-    tbb::parallel_for(std::size_t{0}, unit_start.size() - 1, [&](std::size_t u) {
+    const auto local_of = [&](std::uint32_t j) -> const std::vector<Vec3>& { return local_positions(scene, st, j); };
+    const std::uint32_t frame_no = static_cast<std::uint32_t>(moving ? f : 0);
+    tbb::parallel_for(std::size_t{0}, jobs.size(), [&](std::size_t job) {
+      const std::size_t u = jobs[job];
+      const std::uint32_t a = cands[order[unit_start[u]]].a, b = cands[order[unit_start[u]]].b;
+      FrameClass* fc = unit_class[u] == kNone ? nullptr : &classes[unit_class[u]];
+      detail::PairFrame frame;
+      Model moved;
+      if (fc) {
+        detail::WorldBody& la = *locals.at(scene.bodies[a].mesh.get());
+        detail::WorldBody& lb = *locals.at(scene.bodies[b].mesh.get());
+        const bool same = fc->t.is_identity();
+        if (!same) moved = detail::moved_model(lb.model(), fc->t);
+        frame = {.a = &la.model(), .b = same ? &lb.model() : &moved,
+                 .stats = [&la, &lb](int side) -> const MeshStats& { return side == 0 ? la.stats() : lb.stats(); },
+                 .box_a = la.box, .box_b = same ? lb.box : moved.mesh.bounds(),
+                 .to_frame = {Transform{}, fc->t}, .to_local = {Transform{}, same ? Transform{} : inverse(fc->t)},
+                 .world = false};
+      } else {
+        detail::WorldBody& wa = world[a];
+        detail::WorldBody& wb = world[b];
+        frame = {.a = &wa.model(), .b = &wb.model(),
+                 .stats = [&wa, &wb](int side) -> const MeshStats& { return side == 0 ? wa.stats() : wb.stats(); },
+                 .box_a = wa.box, .box_b = wb.box, .to_frame = {st.pose[a], st.pose[b]},
+                 .to_local = {inverse(st.pose[a]), inverse(st.pose[b])}, .world = true};
+      }
       detail::PairCore core;
       for (std::size_t i = unit_start[u]; i < unit_start[u + 1]; ++i) {
         const std::size_t k = order[i];
         const Candidate& c = cands[k];
-        const detail::PairContext ctx{scene, tests[c.test], c.test, options, world, st.pose,
-                                      [&](std::uint32_t j) -> const std::vector<Vec3>& { return local_positions(scene, st, j); },
-                                      many_pairs, bound_splits};
+        const detail::PairContext ctx{scene, tests[c.test], c.test, options, local_of, many_pairs, bound_splits};
         const bool dup = tests[c.test].mode == ClashMode::duplicates;
         if (!dup && i == unit_start[u]) {
-          core = detail::core_pair(ctx, c.a, c.b, c.clearance);
+          core = detail::core_pair(ctx, frame, c.a, c.b, c.clearance);
           if (core.maps_known && !reference &&
               (core.maps.a.inside + core.maps.a.undecided + core.maps.b.inside + core.maps.b.undecided) > 0) {
-            unit_maps[u] = detail::pair_depth_map(scene, world, static_cast<std::uint32_t>(moving ? f : 0), c.a, c.b, core.maps);
-            unit_has_map[u] = 1;
+            if (fc) fc->maps = std::move(core.maps), fc->has_maps = true;
+            else {
+              unit_maps[u] = detail::pair_depth_map(
+                  scene, [&](std::uint32_t body, std::uint32_t v) { return world[body].model().mesh.positions[v]; },
+                  frame_no, c.a, c.b, core.maps);
+              unit_has_map[u] = 1;
+            }
           }
           core.maps = {};
         }
-        found[k] = detail::derive_pair(ctx, c.a, c.b, c.clearance, dup ? nullptr : &core, where[k]);
+        if (fc) fc->found.push_back(detail::derive_pair(ctx, frame, c.a, c.b, c.clearance, &core, fc->where.emplace_back()));
+        else found[k] = detail::derive_pair(ctx, frame, c.a, c.b, c.clearance, dup ? nullptr : &core, where[k]);
+      }
+    });
+    // Every unit of a class: the class's clashes for its bodies, mapped to the world by its pose.
+    tbb::parallel_for(std::size_t{0}, units, [&](std::size_t u) {
+      if (unit_class[u] == kNone) return;
+      const FrameClass& fc = classes[unit_class[u]];
+      const Candidate& rep = cands[order[unit_start[fc.unit]]];
+      for (std::size_t i = unit_start[u]; i < unit_start[u + 1]; ++i) {
+        const std::size_t k = order[i];
+        const Candidate& c = cands[k];
+        found[k] = fc.found[i - unit_start[u]];
+        where[k] = fc.where[i - unit_start[u]];
+        detail::rehome(found[k], scene, rep.a, rep.b, c.a, c.b);
+        detail::place_clashes(found[k], st.pose[c.a], options.curves);
+      }
+      if (fc.has_maps) {
+        const Candidate& c = cands[order[unit_start[u]]];
+        unit_maps[u] = detail::pair_depth_map(
+            scene, [&](std::uint32_t body, std::uint32_t v) { return st.pose[body].apply(local_of(body)[v]); },
+            frame_no, c.a, c.b, fc.maps);
+        unit_has_map[u] = 1;
       }
     });
     if (reference) {  // only each pair's verdict
@@ -487,12 +616,15 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
   detail::summarise_frames(scene, tests, result);
   detail::group_clashes(result, options);
   // Open bodies that took part (their verdicts say undecided where it mattered).
-  for (std::size_t i = 0; i < n; ++i)
-    if (const MeshStats& s = world[i].lazy_stats; s.triangles > 0 && !s.closed())
+  for (std::size_t i = 0; i < n; ++i) {
+    const MeshStats* stats = &world[i].lazy_stats;  // (of its local model: a mesh's statistics, once)
+    if (stats->triangles == 0 && in_frame_unit[i]) stats = &locals.at(scene.bodies[i].mesh.get())->lazy_stats;
+    if (const MeshStats& s = *stats; s.triangles > 0 && !s.closed())
       result.warnings.push_back("body '" + scene.bodies[i].id + "' is not closed (" + std::to_string(s.open_edges) +
                                 " open, " + std::to_string(s.nonmanifold_edges) + " non-manifold, " +
                                 std::to_string(s.inconsistent_edges) +
                                 " inconsistently oriented edges): inside/outside is undecided where it matters");
+  }
   return result;
 }
 

@@ -89,7 +89,8 @@ void keep_deeper(bool& has, DeepestPoint& kept, const DeepestPoint& c) {
   }
 }
 
-PairDepthMap pair_depth_map(const Scene& scene, const std::vector<WorldBody>& world, std::uint32_t frame,
+PairDepthMap pair_depth_map(const Scene& scene, const std::function<Vec3(std::uint32_t, std::uint32_t)>& point,
+                            std::uint32_t frame,
                             std::uint32_t a, std::uint32_t b, const DepthMaps& maps) {
   PairDepthMap m{.frame = frame, .a = a, .b = b, .a_in_b = sparse(maps.a), .b_in_a = sparse(maps.b)};
   const auto consider = [&](std::uint32_t body, const DepthMap& map) {
@@ -98,7 +99,7 @@ PairDepthMap pair_depth_map(const Scene& scene, const std::vector<WorldBody>& wo
     const Body& x = scene.bodies[body];
     d.node = x.vertex_id(map.max_vertex);
     d.element = element_at(x, map.max_vertex);
-    d.point = world[body].model().mesh.positions[map.max_vertex];
+    d.point = point(body, map.max_vertex);
     keep_deeper(m.has_deepest, m.deepest, d);
   };
   consider(a, maps.a);

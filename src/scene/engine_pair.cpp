@@ -37,26 +37,16 @@ Aabb intersection(const Aabb& x, const Aabb& y) {
 // The body pair's duplicates test: the same triangle count, boxes within the tolerance, and every
 // vertex of each within the tolerance of the other's surface (the symmetric vertex-to-surface
 // distance bounds the placement error of one geometry placed twice).
-bool duplicates(const WorldBody& x, const WorldBody& y, double tol) {
-  if (x.model().mesh.num_triangles() != y.model().mesh.num_triangles()) return false;
+bool duplicates(const Model& x, const Aabb& box_x, const Model& y, const Aabb& box_y, double tol) {
+  if (x.mesh.num_triangles() != y.mesh.num_triangles()) return false;
   for (int k = 0; k < 3; ++k)
-    if (std::fabs(x.box.lo[k] - y.box.lo[k]) > tol || std::fabs(x.box.hi[k] - y.box.hi[k]) > tol) return false;
+    if (std::fabs(box_x.lo[k] - box_y.lo[k]) > tol || std::fabs(box_x.hi[k] - box_y.hi[k]) > tol) return false;
   const auto near = [tol](const Model& from, const Model& to) {
     for (const Vec3& p : from.mesh.positions)
       if (surface_distance(to, p) > tol) return false;
     return true;
   };
-  return near(x.model(), y.model()) && near(y.model(), x.model());
-}
-
-void set_sources(SceneClash& c, const Body& a, const Body& b) {
-  for (const auto& [tris, body, out] : {std::tuple{&c.triangles_a, &a, &c.source_ids_a},
-                                       std::tuple{&c.triangles_b, &b, &c.source_ids_b}}) {
-    out->reserve(tris->size());
-    for (const std::uint32_t t : *tris) out->push_back(body->source_id(t));
-    std::sort(out->begin(), out->end());
-    out->erase(std::unique(out->begin(), out->end()), out->end());
-  }
+  return near(x, y) && near(y, x);
 }
 
 // A representative point of a crossing region: the curve point nearest the middle of its box
@@ -73,14 +63,28 @@ Vec3 curve_point(const std::vector<Polyline>& curves, const Aabb& box) {
 
 }  // namespace
 
-PairCore core_pair(const PairContext& c, std::uint32_t a, std::uint32_t b, double clearance) {
+void set_sources(SceneClash& c, const Body& a, const Body& b) {
+  for (const auto& [tris, body, out] : {std::tuple{&c.triangles_a, &a, &c.source_ids_a},
+                                       std::tuple{&c.triangles_b, &b, &c.source_ids_b}}) {
+    out->reserve(tris->size());
+    for (const std::uint32_t t : *tris) out->push_back(body->source_id(t));
+    std::sort(out->begin(), out->end());
+    out->erase(std::unique(out->begin(), out->end()), out->end());
+  }
+}
+
+std::string inside_reason(const Body& inner, const Body& outer) {
+  return "body '" + inner.id + "' (or a component of it) lies inside body '" + outer.id + "'";
+}
+
+PairCore core_pair(const PairContext& c, const PairFrame& f, std::uint32_t a, std::uint32_t b, double clearance) {
   PairCore core;
-  WorldBody& wa = c.world[a];
-  WorldBody& wb = c.world[b];
+  const Model& ma = *f.a;
+  const Model& mb = *f.b;
   ClashRequest request = c.options.request;
   request.clearance = clearance;
-  request.stats = [&](int side) -> const MeshStats& { return side == 0 ? wa.stats() : wb.stats(); };
-  if (c.many_pairs && wa.model().mesh.num_triangles() + wb.model().mesh.num_triangles() < 100000)
+  request.stats = f.stats;
+  if (c.many_pairs && ma.mesh.num_triangles() + mb.mesh.num_triangles() < 100000)
     request.parallel = false;
   // Clearance pairs matter only for bodies whose surfaces do not meet and neither lies inside the
   // other (verdict clear without them; derive_pair reports regions, containment or undecided
@@ -92,24 +96,24 @@ PairCore core_pair(const PairContext& c, std::uint32_t a, std::uint32_t b, doubl
   // non-exact triangle test (the core switches to the exact one for a clearance).
   const bool two_step = clearance > 0 && !c.options.on_pair && request.regions && request.test == TriTest::exact;
   if (two_step) request.clearance = 0;
-  core.r = clash(wa.model(), wb.model(), request);
+  core.r = clash(ma, mb, request);
   if (two_step && core.r.verdict == Verdict::clear) {
     request.clearance = clearance;
     request.containment = false;
-    ClashResult second = clash(wa.model(), wb.model(), request);
+    ClashResult second = clash(ma, mb, request);
     second.containment = core.r.containment;
     second.warnings = std::move(core.r.warnings);
     core.r = std::move(second);
   }
   core.clearance = clearance;
-  if (c.options.on_pair) c.options.on_pair(c.test_index, a, b, core.r);
+  if (c.options.on_pair) c.options.on_pair(c.test_index, a, b, core.r);  // (world frame: engine.cpp)
   // Depth of crossing (or touching but overlapping) closed solids (the statistics are computed
   // here when not yet known: the depth needs inside/outside).
   const bool crossing = core.r.cross_pairs > 0 || core.r.touching_overlap;
   const bool inside = core.r.containment == Containment::a_inside_b || core.r.containment == Containment::b_inside_a;
-  if (c.options.depth && (crossing || (inside && c.options.depth_maps)) && wa.stats().closed() && wb.stats().closed()) {
+  if (c.options.depth && (crossing || (inside && c.options.depth_maps)) && f.stats(0).closed() && f.stats(1).closed()) {
     // (containment: the maps only; the pair's depth stays unmeasured as before)
-    const PenetrationDepth d = penetration_depth(wa.model(), wb.model(), core.r, c.depth_bound_splits,
+    const PenetrationDepth d = penetration_depth(ma, mb, core.r, c.depth_bound_splits,
                                                  c.options.depth_maps ? &core.maps : nullptr);
     if (crossing) core.depth = d, core.depth_known = true;
     core.maps_known = c.options.depth_maps;
@@ -125,31 +129,25 @@ void narrow_clearance(PairCore& core, double clearance) {
   core.clearance = clearance;
 }
 
-std::vector<SceneClash> evaluate_pair(const PairContext& c, std::uint32_t a, std::uint32_t b, double clearance,
-                                      std::vector<std::array<Vec3, 2>>& locations) {
-  if (c.test.mode == ClashMode::duplicates) return derive_pair(c, a, b, clearance, nullptr, locations);
-  PairCore core = core_pair(c, a, b, clearance);
-  return derive_pair(c, a, b, clearance, &core, locations);
-}
-
-std::vector<SceneClash> derive_pair(const PairContext& c, std::uint32_t a, std::uint32_t b, double clearance,
-                                    PairCore* core, std::vector<std::array<Vec3, 2>>& locations) {
+std::vector<SceneClash> derive_pair(const PairContext& c, const PairFrame& f, std::uint32_t a, std::uint32_t b,
+                                    double clearance, PairCore* core, std::vector<std::array<Vec3, 2>>& locations) {
   std::vector<SceneClash> out;
   locations.clear();
   // Id locations (engine_internal.h) in a's and in b's local frame, from the clash's own geometry
   // (curves, touching triangles, witness segments), so that they follow the clash, not the
   // triangles, and change when it moves on either body.
   const std::array<std::uint32_t, 2> ab{a, b};
-  const std::array<Transform, 2> to{inverse(c.poses[a]), inverse(c.poses[b])};
-  const auto local_box_center = [&](std::uint32_t body) {
+  const std::array<Transform, 2>& to = f.to_local;
+  const auto local_box_center = [&](int side) {
     Aabb box;
-    for (const Vec3& v : c.local_positions(body)) box.expand(v);
+    for (const Vec3& v : c.local_positions(ab[side])) box.expand(v);
     std::array<Vec3, 2> out;
-    for (int k = 0; k < 2; ++k) out[k] = body == ab[k] ? box.center() : to[k].apply(c.poses[body].apply(box.center()));
+    for (int k = 0; k < 2; ++k) out[k] = k == side ? box.center() : to[k].apply(f.to_frame[side].apply(box.center()));
     return out;
   };
-  WorldBody& wa = c.world[a];
-  WorldBody& wb = c.world[b];
+  const Model& ma = *f.a;
+  const Model& mb = *f.b;
+  const bool keep_curves = c.options.curves || !f.world;
   const Body& ba = c.scene.bodies[a];
   const Body& bb = c.scene.bodies[b];
   const auto base = [&](Verdict v, const char* kind) {
@@ -161,14 +159,14 @@ std::vector<SceneClash> derive_pair(const PairContext& c, std::uint32_t a, std::
     return s;
   };
   if (c.test.mode == ClashMode::duplicates) {
-    if (!duplicates(wa, wb, c.test.tolerance)) return out;
+    if (!duplicates(ma, f.box_a, mb, f.box_b, c.test.tolerance)) return out;
     SceneClash s = base(Verdict::clash, "duplicate");
-    s.box = wa.box;
-    s.box.expand(wb.box);
-    s.point = wa.box.center();
+    s.box = f.box_a;
+    s.box.expand(f.box_b);
+    s.point = f.box_a.center();
     s.reasons.push_back("the same geometry placed twice (within " + short_number(c.test.tolerance) + ")");
     out.push_back(std::move(s));
-    locations.push_back(local_box_center(a));
+    locations.push_back(local_box_center(0));
     return out;
   }
   narrow_clearance(*core, clearance);
@@ -180,7 +178,7 @@ std::vector<SceneClash> derive_pair(const PairContext& c, std::uint32_t a, std::
   const bool depth_known = core->depth_known;
   bool nominal = false;
   if (r.cross_pairs > 0 && !inside && !r.touching_overlap && c.test.nominal_fits_are_contacts && c.options.nominal_fit)
-    nominal = c.options.nominal_fit(a, b, wa.model(), wb.model(), r, depth.depth);
+    nominal = c.options.nominal_fit(a, b, ma, mb, r, depth.depth);  // (world frame: engine.cpp)
   // Penetration tolerance (hard mode): the upper bound decides, so no deeper clash is hidden.
   const bool shallow = r.cross_pairs > 0 && !inside && !r.touching_overlap && c.test.tolerance > 0 &&
                        c.test.mode != ClashMode::duplicates && depth_known && depth.depth_bound <= c.test.tolerance;
@@ -188,18 +186,17 @@ std::vector<SceneClash> derive_pair(const PairContext& c, std::uint32_t a, std::
   if (inside) {
     const bool a_in = r.containment == Containment::a_inside_b;
     SceneClash s = base(Verdict::clash, "inside");
-    s.box = a_in ? wa.box : wb.box;
+    s.box = a_in ? f.box_a : f.box_b;
     s.point = s.box.center();
     if (c.options.triangles) {
       auto& tris = a_in ? s.triangles_a : s.triangles_b;
-      tris.resize((a_in ? wa : wb).model().mesh.num_triangles());
+      tris.resize((a_in ? ma : mb).mesh.num_triangles());
       for (std::uint32_t t = 0; t < tris.size(); ++t) tris[t] = t;
       set_sources(s, ba, bb);
     }
-    s.reasons.push_back("body '" + (a_in ? ba.id : bb.id) + "' (or a component of it) lies inside body '" +
-                        (a_in ? bb.id : ba.id) + "'");
+    s.reasons.push_back(a_in ? inside_reason(ba, bb) : inside_reason(bb, ba));
     out.push_back(std::move(s));
-    locations.push_back(local_box_center(a_in ? a : b));
+    locations.push_back(local_box_center(a_in ? 0 : 1));
     return out;
   }
   // The pairs of each region (those whose triangle of a is one of the region's), in pair order:
@@ -248,7 +245,7 @@ std::vector<SceneClash> derive_pair(const PairContext& c, std::uint32_t a, std::
     if (g.cross_pairs == 0 || s.box.empty()) {
       for (const std::uint32_t i : region_pairs[gi]) {
         const TrianglePair& p = r.pairs[i];
-        const Aabb common = intersection(wa.model().mesh.triangle_box(p.a), wb.model().mesh.triangle_box(p.b));
+        const Aabb common = intersection(ma.mesh.triangle_box(p.a), mb.mesh.triangle_box(p.b));
         if (!common.empty()) s.box.expand(common);
       }
     }
@@ -261,7 +258,7 @@ std::vector<SceneClash> derive_pair(const PairContext& c, std::uint32_t a, std::
       if (where.empty()) {  // touching only: the common parts of the touching triangles, in this frame
         const std::vector<Vec3>& own = c.local_positions(ab[k]);
         const TriMesh& mesh_own = *c.scene.bodies[ab[k]].mesh;
-        const TriMesh& other = (k == 0 ? wb : wa).model().mesh;
+        const TriMesh& other = (k == 0 ? mb : ma).mesh;
         for (const std::uint32_t i : region_pairs[gi]) {
           const TrianglePair& p = r.pairs[i];
           Aabb t_own, t_other;
@@ -274,7 +271,7 @@ std::vector<SceneClash> derive_pair(const PairContext& c, std::uint32_t a, std::
       loc[k] = where.center();
     }
     locations.push_back(loc);
-    if (c.options.curves) s.curves = g.curves;
+    if (keep_curves) s.curves = g.curves;
     if (c.options.triangles) {
       s.triangles_a = g.triangles_a, s.triangles_b = g.triangles_b;
       set_sources(s, ba, bb);
@@ -284,12 +281,12 @@ std::vector<SceneClash> derive_pair(const PairContext& c, std::uint32_t a, std::
   if (!out.empty()) return out;
   if (r.verdict == Verdict::undecided) {  // no surface pair: containment could not be decided
     SceneClash s = base(Verdict::undecided, "undecided");
-    s.box = intersection(wa.box, wb.box);
-    if (s.box.empty()) s.box = wa.box, s.box.expand(wb.box);
+    s.box = intersection(f.box_a, f.box_b);
+    if (s.box.empty()) s.box = f.box_a, s.box.expand(f.box_b);
     s.point = s.box.center();
     s.reasons = r.verdict_reasons;
     out.push_back(std::move(s));
-    locations.push_back(local_box_center(a));
+    locations.push_back(local_box_center(0));
     return out;
   }
   if (!r.clearance.empty()) {

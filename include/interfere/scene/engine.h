@@ -239,6 +239,10 @@ struct SceneClashResult {
   std::size_t bodies = 0, triangles = 0;
   std::size_t candidate_pairs = 0;  ///< body pairs whose boxes (grown by the clearance) overlap, over tests and frames
   std::size_t suppressed = 0;       ///< candidate pairs left out by suppression rules
+  /// Runs of the exact core (over frames): body pairs with the same two meshes in the same relative
+  /// pose, bit for bit, and the same tests are decided once, in the first body's local frame (a
+  /// product's repeated joints; engine_frame.cpp), so this is at most the candidate pairs left.
+  std::size_t core_runs = 0;
   std::size_t clash_count = 0, contact_count = 0, clearance_count = 0, undecided_count = 0;
   Verdict verdict = Verdict::clear;  ///< the worst clash's (clear without any)
   std::vector<std::string> warnings;  ///< selections that select nothing, open bodies, ...
