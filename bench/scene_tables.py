@@ -229,6 +229,12 @@ def make_block(raw: dict) -> tuple[str, list]:
              + (" (this run: `--quick`, a smaller scene: the targets are not judged on it)" if raw["settings"].get("quick") else "")
              + ". Timings on this shared 2-core virtual machine vary by ±10–30 % between runs; "
                "compare rows of one run only.")
+    parts = raw.get("parts") or {}
+    if len({p.get("date_utc") for p in parts.values()}) > 1:  # parts from different runs
+        names = {"bench": "Google Benchmark rows", "memory": "peak memory", "process": "whole process"}
+        L.append("")
+        L.append("Parts measured in different runs: " + "; ".join(
+            f"{names.get(k, k)} {v.get('date_utc')} (load average {v.get('loadavg')})" for k, v in sorted(parts.items())) + ".")
     L.append("")
 
     # ---- targets
@@ -271,23 +277,24 @@ def make_block(raw: dict) -> tuple[str, list]:
     # ---- assembly
     L.append("### The assembly (all pairs)")
     L.append("")
-    L.append("| Run | Time (median) | min–max | Candidate pairs | Clashing body pairs | Contact body pairs | "
+    L.append("| Run | Time (median) | min–max | Candidate pairs | Core runs | Clashing body pairs | Contact body pairs | "
              "Clearance items | Undecided | prepare / broad / narrow |")
-    L.append("|---|---|---|---|---|---|---|---|---|")
+    L.append("|---|---|---|---|---|---|---|---|---|---|")
     for label, b in ((f"interfere, hard ({thr} threads)", hard), (f"interfere, hard + clearance 0.1 mm ({thr} threads)", both)):
         if not ok_row(b):
-            L.append(f"| {label} | {b.get('error') if b else 'not run'} | | | | | | | |")
+            L.append(f"| {label} | {b.get('error') if b else 'not run'} | | | | | | | | |")
             continue
         L.append(f"| {label} | {ms(b['ms'])} | {ms(b['ms_min'])}–{ms(b['ms_max'])} | {n(b.get('candidate_pairs'))} | "
+                 f"{n(b.get('core_runs'))} | "
                  f"{n(b.get('clash_pairs'))} | {n(b.get('contact_pairs'))} | {n(b.get('clearances'))} | "
                  f"{n(b.get('undecided'))} | {secs(b.get('prepare_s'))} / {secs(b.get('broad_s'))} / "
                  f"{secs(b.get('narrow_s'))} |")
     if ok_row(fcl):
         L.append(f"| FCL 0.7, DynamicAABBTree + collide (1 thread) | {ms(fcl['ms'])} | {ms(fcl['ms_min'])}–"
-                 f"{ms(fcl['ms_max'])} | {n(fcl.get('fcl_candidates'))} | {n(fcl.get('fcl_pairs'))} (colliding) | — | — "
-                 f"| — | — |")
+                 f"{ms(fcl['ms_max'])} | {n(fcl.get('fcl_candidates'))} | {n(fcl.get('fcl_candidates'))} | "
+                 f"{n(fcl.get('fcl_pairs'))} (colliding) | — | — | — | — |")
     elif fcl:
-        L.append(f"| FCL 0.7 | {fcl.get('error')} | | | | | | | |")
+        L.append(f"| FCL 0.7 | {fcl.get('error')} | | | | | | | | |")
     L.append("")
     if ok_row(both):
         L.append("Exactness against the assembly's construction (scene/generate.h knows which body pairs it made "
@@ -452,8 +459,15 @@ def main() -> int:
                                             **{k: v for k, v in env.items() if k.startswith("INTERFERE_BENCH_")}},
            "google_benchmark": {}, "assembly_process": None, "whole_process": None}
     old = json.loads(RAW.read_text()) if RAW.exists() else {}
+    # When and under what load each part was measured (a part skipped keeps its earlier stamp).
+    raw["parts"] = dict(old.get("parts", {}))
+
+    def stamp(part: str) -> None:
+        raw["parts"][part] = {"date_utc": machine_description()["date_utc"],
+                              "loadavg": " ".join(Path("/proc/loadavg").read_text().split()[:3])}
     started = time.monotonic()
     if "bench" not in skip:
+        stamp("bench")
         data = run_google_benchmark(build_dir / "bench" / "interfere_bench_scene", reps, env, args.filter)
         raw["google_benchmark"] = medians(data)
         raw["google_benchmark_context"] = data.get("context", {})
@@ -462,6 +476,7 @@ def main() -> int:
     else:
         raw["google_benchmark"] = old.get("google_benchmark", {})
     if "memory" not in skip:
+        stamp("memory")
         try:
             raw["assembly_process"] = run_json([build_dir / "bench" / "interfere_scene_run", "assembly", bodies, "48",
                                                 args.threads])
@@ -470,6 +485,7 @@ def main() -> int:
     else:
         raw["assembly_process"] = old.get("assembly_process")
     if "process" not in skip:
+        stamp("process")
         raw["whole_process"] = whole_process(build_dir, Path(args.cli), preps, min(preps, args.peer_repetitions), "1e6")
     else:
         raw["whole_process"] = old.get("whole_process")
