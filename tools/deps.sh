@@ -10,6 +10,7 @@ pkgs=(build-essential cmake ninja-build python3 git
       python3-setuptools python3-wheel python3-pip python3-venv  # (issue #30: `pip install --no-build-isolation .` and its ctest, python_pip_install)
       zlib1g-dev gmsh libgmsh-dev
       libpng-dev  # (issue #27: 16-bit grayscale PNG scar height maps, optional in CMake)
+      liburdfdom-dev  # (issue #28: URDF robots for the probe cell, optional in CMake)
       libocct-data-exchange-dev libocct-ocaf-dev libocct-modeling-algorithms-dev
       libocct-modeling-data-dev libocct-foundation-dev libocct-visualization-dev
       libmeshoptimizer-dev libopenmesh-dev
