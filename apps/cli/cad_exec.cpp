@@ -5,6 +5,7 @@
 
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <system_error>
@@ -21,6 +22,18 @@ void remember_arguments(char** argv) { g_argv = argv; }
 void require_cad_for_step_files(const std::vector<std::string>& files) {
   for (const std::string& f : files)
     if (is_step_file(f)) require_cad("STEP input " + f);
+}
+
+void use_installed_data_dir() {
+#if defined(INTERFERE_CAD_DATA_FROM_LIBEXEC)  // (share/interfere relative to libexec/interfere)
+  namespace fs = std::filesystem;
+  if (std::getenv("INTERFERE_DATA_DIR")) return;
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  if (ec) return;
+  const fs::path data = (self.parent_path() / INTERFERE_CAD_DATA_FROM_LIBEXEC).lexically_normal();
+  if (fs::is_regular_file(data / "features" / "library.json", ec)) ::setenv("INTERFERE_DATA_DIR", data.c_str(), 0);
+#endif
 }
 
 #if defined(INTERFERE_HAS_CAD)

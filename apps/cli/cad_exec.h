@@ -21,6 +21,12 @@ void remember_arguments(char** argv);
 /// OCCT: throws InputError "<what> needs interfere built with OpenCASCADE (INTERFERE_WITH_OCCT)".
 void require_cad(const std::string& what);
 
+/// interfere-cad, installed (<libexecdir>/interfere/): when INTERFERE_DATA_DIR is unset, points it
+/// at the install's share/interfere found relative to this executable, so that a relocated tree
+/// (a .deb under /usr, an unpacked package) reads its own feature data, not the configured
+/// prefix's. Elsewhere (the build tree, `interfere`): does nothing.
+void use_installed_data_dir();
+
 /// require_cad for every STEP file among `files`.
 void require_cad_for_step_files(const std::vector<std::string>& files);
 

@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
   app.parse_complete_callback([&] { Progress::set_quiet(quiet); });
   set_command_line(argc, argv);
   remember_arguments(argv);
+  use_installed_data_dir();
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {
