@@ -1,0 +1,179 @@
+// Hole recognition against the real-part truth set (issue #29, items 1-2): tests/data/hole_truth/
+// holds, per STEP file of ../shared/data/step (NIST CTC/FTC, gmsh), every hole with its type, from
+// tools/hole_truth/label_holes.cpp, an independent labeller (analytic surfaces and point
+// classification against the solid, no AAG). The recognizer's hole features are matched one to one
+// with the truth holes (coaxial, a common radius, overlapping axial extents of their triangles);
+// precision and recall per part, of the holes found and of their types. Skipped when the shared data
+// is absent. INTERFERE_HOLE_PR_JSON=<file> writes the table (tools/hole_truth/pr_table.py puts it in
+// docs/simplify.md).
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "interfere/cad/features.h"
+#include "interfere/cad/model.h"
+
+namespace interfere::cad {
+namespace {
+
+using json = nlohmann::json;
+
+const std::set<std::string> kHoleTypes{"through_hole", "blind_hole", "counterbored_hole", "countersunk_hole",
+                                       "stepped_hole"};
+
+struct TruthHole {
+  std::string type;
+  Vec3 p, a;
+  double h0 = 0, h1 = 0;
+  std::vector<double> radii;
+};
+
+struct Found {
+  std::string type;
+  Vec3 p, a;
+  std::vector<double> radii;
+  std::vector<Vec3> points;  // vertices of its triangles (world)
+};
+
+struct Score {
+  std::size_t truth = 0, reported = 0, found = 0, typed = 0;
+  double precision() const { return reported ? double(found) / double(reported) : 1.0; }
+  double recall() const { return truth ? double(found) / double(truth) : 1.0; }
+  double typed_precision() const { return reported ? double(typed) / double(reported) : 1.0; }
+  double typed_recall() const { return truth ? double(typed) / double(truth) : 1.0; }
+};
+
+bool matches(const TruthHole& t, const Found& f, double deflection) {
+  if (norm(cross(t.a, f.a)) > 1e-3) return false;
+  double rmax = 0;
+  for (double r : t.radii) rmax = std::max(rmax, r);
+  const Vec3 d = f.p - t.p;
+  if (norm(d - t.a * dot(d, t.a)) > 1e-3 * std::max(1.0, rmax) + 1e-3) return false;
+  bool radius = false;
+  for (double r : f.radii)
+    for (double q : t.radii) radius = radius || std::abs(r - q) <= 1e-3 * std::max(1.0, q);
+  if (!radius) return false;
+  double lo = 1e300, hi = -1e300;
+  for (const Vec3& q : f.points) {
+    const double h = dot(q - t.p, t.a);
+    lo = std::min(lo, h), hi = std::max(hi, h);
+  }
+  const double slack = 2 * deflection + 1e-3 * std::max(1.0, rmax);
+  return lo <= t.h1 + slack && hi >= t.h0 - slack;
+}
+
+std::filesystem::path truth_dir() { return std::filesystem::path(INTERFERE_SOURCE_DIR) / "tests" / "data" / "hole_truth"; }
+std::filesystem::path step_dir() { return std::filesystem::path(INTERFERE_SOURCE_DIR) / ".." / "shared" / "data" / "step"; }
+
+TEST(HoleTruth, PrecisionAndRecallPerPart) {
+  if (!std::filesystem::is_directory(step_dir())) GTEST_SKIP() << "../shared/data not present";
+  auto lib = default_feature_library();
+  ASSERT_TRUE(lib.has_value()) << lib.error().message();
+  std::vector<std::filesystem::path> files;
+  for (const auto& e : std::filesystem::directory_iterator(truth_dir()))
+    if (e.path().extension() == ".json") files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  ASSERT_GE(files.size(), 6u);
+  json table = json::array();
+  Score total;
+  std::map<std::string, Score> by_type;  // per truth type (recall) and reported type (precision)
+  std::size_t parts = 0;
+  for (const auto& tf : files) {
+    std::ifstream in(tf);
+    const json truth = json::parse(in);
+    const std::string file = truth.at("file");
+    const auto step = step_dir() / file;
+    if (!std::filesystem::exists(step)) continue;
+    auto model = import_step(step);
+    ASSERT_TRUE(model.has_value()) << file << ": " << model.error().message();
+    std::vector<TruthHole> holes;
+    for (const json& s : truth.at("solids"))
+      for (const json& h : s.at("holes")) {
+        if (h.at("type") == "closed_cavity") continue;
+        TruthHole t;
+        t.type = h.at("type");
+        const auto p = h.at("axis_point"), a = h.at("axis");
+        t.p = {p[0], p[1], p[2]}, t.a = {a[0], a[1], a[2]};
+        t.h0 = h.at("extent")[0], t.h1 = h.at("extent")[1];
+        for (const json& e : h.at("elements"))
+          if (e.at("kind") == "cylinder") t.radii.push_back(e.at("r0"));
+        holes.push_back(t);
+      }
+    std::vector<Found> found;
+    double deflection = 0;
+    for (const Instance& inst : model->instances) {
+      const Part& part = model->parts[inst.part];
+      deflection = std::max(deflection, part.tessellation_error());
+      for (const Feature& f : recognize_features(part.aag, *lib)) {
+        if (!kHoleTypes.count(f.type)) continue;
+        Found g;
+        g.type = f.type;
+        g.p = inst.placement.apply(f.axis_point);
+        g.a = inst.placement.apply(f.axis_point + f.axis) - g.p;
+        g.radii = f.radii;
+        for (std::size_t t = 0; t < part.mesh.num_triangles(); ++t)
+          if (std::binary_search(f.faces.begin(), f.faces.end(), part.face_ids[t]))
+            for (int k = 0; k < 3; ++k) g.points.push_back(inst.placement.apply(part.mesh.positions[part.mesh.triangles[t][k]]));
+        found.push_back(std::move(g));
+      }
+    }
+    // One to one, typed matches first.
+    Score s;
+    s.truth = holes.size(), s.reported = found.size();
+    std::vector<char> t_used(holes.size(), 0), f_used(found.size(), 0);
+    std::vector<char> t_typed(holes.size(), 0);
+    for (int pass = 0; pass < 2; ++pass)
+      for (std::size_t i = 0; i < holes.size(); ++i)
+        for (std::size_t j = 0; j < found.size() && !t_used[i]; ++j) {
+          if (f_used[j] || (pass == 0 && found[j].type != holes[i].type) || !matches(holes[i], found[j], deflection)) continue;
+          t_used[i] = f_used[j] = 1;
+          ++s.found;
+          if (found[j].type == holes[i].type) ++s.typed, t_typed[i] = 1;
+        }
+    for (std::size_t i = 0; i < holes.size(); ++i) {
+      Score& b = by_type[holes[i].type];
+      ++b.truth, b.found += t_used[i], b.typed += t_typed[i];
+    }
+    for (std::size_t j = 0; j < found.size(); ++j) ++by_type[found[j].type].reported;
+    ++parts;
+    total.truth += s.truth, total.reported += s.reported, total.found += s.found, total.typed += s.typed;
+    table.push_back({{"file", file}, {"truth", s.truth}, {"reported", s.reported}, {"found", s.found}, {"typed", s.typed},
+                     {"precision", s.precision()}, {"recall", s.recall()}, {"typed_precision", s.typed_precision()},
+                     {"typed_recall", s.typed_recall()}});
+    std::printf("%-28s truth %3zu reported %3zu  P %.3f R %.3f  typed P %.3f R %.3f\n", file.c_str(), s.truth, s.reported,
+                s.precision(), s.recall(), s.typed_precision(), s.typed_recall());
+  }
+  if (parts == 0) GTEST_SKIP() << "none of the truth set's STEP files present";
+  json types = json::object();
+  for (const auto& [type, b] : by_type) {
+    // by type: recall over truth holes of the type; precision over reported features of the type
+    // (typed matches counted for both).
+    std::size_t reported_typed = 0;
+    (void)reported_typed;
+    types[type] = {{"truth", b.truth}, {"reported", b.reported}, {"typed_found", b.typed}, {"found", b.found}};
+    std::printf("  %-18s truth %3zu found %3zu typed %3zu reported %3zu\n", type.c_str(), b.truth, b.found, b.typed, b.reported);
+  }
+  std::printf("TOTAL truth %zu reported %zu P %.3f R %.3f typed P %.3f R %.3f\n", total.truth, total.reported,
+              total.precision(), total.recall(), total.typed_precision(), total.typed_recall());
+  if (const char* out = std::getenv("INTERFERE_HOLE_PR_JSON")) {
+    std::ofstream o(out);
+    o << json{{"parts", table}, {"types", types},
+              {"total", {{"truth", total.truth}, {"reported", total.reported}, {"found", total.found}, {"typed", total.typed}}}}
+             .dump(1);
+  }
+  for (const json& row : table) {
+    RecordProperty(row.at("file").get<std::string>() + "_precision", std::to_string(row.at("precision").get<double>()));
+  }
+}
+
+}  // namespace
+}  // namespace interfere::cad
