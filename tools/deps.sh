@@ -11,6 +11,7 @@ pkgs=(build-essential cmake ninja-build python3 git
       zlib1g-dev gmsh libgmsh-dev
       libpng-dev  # (issue #27: 16-bit grayscale PNG scar height maps, optional in CMake)
       liburdfdom-dev  # (issue #28: URDF robots for the probe cell, optional in CMake)
+      libopenmpi-dev openmpi-bin  # (issue #31: interfere-mpi, -DINTERFERE_WITH_MPI=ON, and its mpirun tests)
       libocct-data-exchange-dev libocct-ocaf-dev libocct-modeling-algorithms-dev
       libocct-modeling-data-dev libocct-foundation-dev libocct-visualization-dev
       libmeshoptimizer-dev libopenmesh-dev
