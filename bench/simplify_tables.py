@@ -491,12 +491,12 @@ On a terminal the share of the collapses done is shown while it runs (`SimplifyO
 Exit status 0 on success, 2 on a usage or input error (the message names the file, line or entity); outputs are
 written atomically and only after every input was validated.
 
-**`simplify` report**: `input_triangles`, `target_triangles`, `output_triangles`, `output_vertices`, `reached`,
+**`simplify` report**: the keys every report has (docs/report.md), `input`, `output`, `units` and `units_source` (the working unit and where it came from), `input_triangles`, `target_triangles`, `output_triangles`, `output_vertices`, `reached`,
 `one_below` (ended one triangle below an odd budget, as a closed mesh loses triangles in pairs; a warning says so; STEP input: per part, the report's warnings count the parts),
 `collapses`, `rejected` {`link_condition`, `flipped_normal`, `self_intersection`, `last_face_triangle` (collapses refused as they would remove a face's last triangle)}, `guard_rerun`, `guard_reruns`, `input_contact_pairs` (the input's own intersecting or touching pairs: all of them where the guard refused collapses, else those near the plain result's new pairs; 0 when none were looked for), `inherited_pairs` (intersecting pairs of the result inside the input's contact zone, not both as in the input), `degenerate_triangles` (input triangles with two corners at one position, dropped with a warning; all degenerate is an error), `vertices` {`welded_input`,
 `seam`, `corner`, `locked`}, `feature_mode`, `feature_faces`, `sharp_angle` (null without), `regions` (distinct face or region ids of the input: B-Rep faces, `--regions`, `--sharp-angle`; 0 for none), `feature_triangles` {`input`, `output`},
 `seams`, `seams_relaxed_at` (`--seams auto`: the fewest triangles every seam allowed, when that was above the budget; 0 otherwise; STEP input: summed over the parts × instances), `max_error` (the limit in model units, null without one), `max_error_runs` (runs made for it; summed over the parts), `error_limited_budget` (the budget of the run returned where the limit raised it, else 0; STEP input: per part), `max_unmodified_cost`, `bbox_diagonal`, `hausdorff`, `hausdorff_features` (null without features), `error_bound`,
-`self_intersections` (with the flag), `seconds` {`simplify`, `total`, `phases` [{`phase`, `seconds`}] (wall time
+`self_intersections` (with the flag), `timings_s` {`simplify`, `total`, `phases` [{`phase`, `seconds`}] (wall time
 of simplify()'s phases, in order; summed over the parts of a STEP input)}, `warnings`; for STEP input `cad` {`parts`
 [{`name`, `faces`, `triangles`, `features`, `assembly_feature_faces`}], `instances` [{`name`, `part`, `path`,
 `face_id_offset`, `placement` (3×4 [R|t], part → world), `in_step`, `simplified_part`}], `step`, `units`, `file_length_units`, `warnings`}, `budget_rounds`, `tessellation_error` (the largest part's) and `parts_simplified` [{`part`, `model_part`, `name`, `file` (with `--parts-dir`), `instances`, `input_triangles`,
@@ -522,7 +522,7 @@ labelled with the curve type, bold on inner loops (where the minimal subgraphs a
 `edge`, `curve`, `convexity`, `angle`, `length`, `inner_loop`}], `minimal_subgraphs`}}], `instances` [{`name`,
 `part`, `path`, `placement` (3×4)}], `units` (always `mm`: OCCT converts the file's lengths to millimetres;
 every coordinate, radius, area and distance of both reports is in it), `file_length_units` (the length units
-the file declares, e.g. `["INCH"]`), `warnings`, `seconds` {`recognition`, `total`}.
+the file declares, e.g. `["INCH"]`), `warnings`, `timings_s` {`recognition`, `total`}, and the keys every report has (docs/report.md: `seconds` is the process's wall time).
 
 ## Feature library and rules (JSON)
 
@@ -815,7 +815,7 @@ def write_doc(raw):
                  "Compare rows of one run only.")
     lines.append("")
     # Where the time goes: simplify()'s own phase timers (SimplifyResult::phases, the report's
-    # seconds.phases), recorded by the benchmark as phase:<name> counters.
+    # timings_s.phases), recorded by the benchmark as phase:<name> counters.
     ph_rows = [n for n in ("Simplify/interfere/1e6/1pct", "Casing/interfere/P1") if n in r and "error" not in r[n]]
     if ph_rows:
         order = ["weld", "setup", "seams", "initial candidates", "passes: sort", "passes: select", "passes: apply",
@@ -826,7 +826,7 @@ def write_doc(raw):
             for k in sorted(r[n]):
                 if k.startswith("phase:") and k[6:] not in names:
                     names.append(k[6:])
-        lines.append("Where the time goes (ms, wall; `seconds.phases` of the report, same run):")
+        lines.append("Where the time goes (ms, wall; `timings_s.phases` of the report, same run):")
         lines.append("")
         lines.append("| phase | " + " | ".join(ph_rows) + " |")
         lines.append("|---|" + "---:|" * len(ph_rows))

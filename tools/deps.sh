@@ -19,7 +19,7 @@ pkgs=(build-essential cmake ninja-build python3 git
       calculix-ccx  # (tests, issue #26: the CalculiX solver writes the .frd results the reader is checked on)
       libexodusii-dev  # (issue #26: the Exodus II reader of interfere_fem, optional in CMake)
       netcdf-bin python3-meshio python3-netcdf4  # (tests, issue #26: meshio writes the Exodus test files, ncdump checks them)
-      python3-jsonschema python3-paraview  # (tests/view, issue #25: the glTF schema check; ParaView reads the .pvd series back)
+      python3-jsonschema python3-paraview  # (tests/view, issue #25: the glTF schema check; issue #30: the report schemas, docs/schema; ParaView reads the .pvd series back)
       chromium)  # (tests/viewer, issue #25: the HTML viewer page in headless Chromium via puppeteer-core; Node.js/npm come with the machine: do not apt-install npm)
 missing=()
 for p in "${pkgs[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done

@@ -12,6 +12,7 @@
 #include "common.h"
 #include "interfere/bearing/assembly.h"
 #include "interfere/view/bearing_assembly_document.h"
+#include "report_envelope.h"
 
 namespace interfere::cli {
 namespace {
@@ -178,7 +179,7 @@ int run_bearing_assembly(const BearingAssemblyOptions& o) {
   }
   const int status = verdict_exit_status(res.verdict, fail);
   if (!o.out.empty()) write_or_throw(write_output(o.out, [&](std::FILE* f) { return write_csv(f, *as, res); }));
-  if (!o.json.empty()) write_or_throw(write_output(o.json, summary(*as, motion, res, spec->seed, status).dump(2) + "\n"));
+  if (!o.json.empty()) write_or_throw(write_output(o.json, report_text(summary(*as, motion, res, spec->seed, status))));
   if (o.views.any()) {
     Expected<view::Document> doc = view::bearing_assembly_document(*as, motion, res);
     if (!doc) throw InputError(doc.error());

@@ -17,6 +17,7 @@
 #include "interfere/mesh/polyline.h"
 #include "interfere/view/fem_document.h"
 #include "report_json.h"
+#include "report_envelope.h"
 
 namespace interfere::cli {
 namespace {
@@ -362,7 +363,7 @@ int run_fem_clash(const ClashOptions& o, const ResolvedParts& parts, const Clash
           {"build", sres.build_seconds},
           {"query", query},
           {"total", total.seconds()}}}};
-    write_or_throw(write_output(o.json, j.dump(2) + "\n"));
+    write_or_throw(write_output(o.json, report_text(j)));
   }
   if (o.views.any()) {
     view::Document doc = series_view(a, b, o.scale, std::move(view_steps), sres, parts.units);

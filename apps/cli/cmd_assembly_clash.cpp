@@ -19,6 +19,7 @@
 #ifdef INTERFERE_HAS_CAD
 #include "interfere/cad/assembly_clash.h"
 #include "interfere/cad/model.h"
+#include "report_envelope.h"
 #endif
 
 namespace interfere::cli {
@@ -234,7 +235,7 @@ int run_assembly_clash(const AssemblyClashCliOptions& o) {
                               {"within_clearance", r.within_clearance}, {"undecided", r.undecided},
                               {"verdict", verdict_name(r.verdict)}, {"exit_status", status}, {"pairs", pairs},
                               {"warnings", warnings}, {"seconds", total.seconds()}};
-    const Status s = write_output(o.json, j.dump(2) + "\n");
+    const Status s = write_output(o.json, report_text(j));
     if (!s) throw InputError(s.error());
   }
   if (o.views.any()) write_views(o.views, assembly_document(o, *model, r));

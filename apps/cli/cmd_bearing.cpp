@@ -24,6 +24,7 @@
 #include "interfere/view/bearing_document.h"
 #include "view_output.h"
 #include "bearing_scar_import.h"
+#include "report_envelope.h"
 
 namespace interfere::cli {
 namespace {
@@ -328,7 +329,7 @@ int run_bearing(const BearingOptions& o) {
                    {"frames_per_second", res.frames_per_second},
                    {"cpu_seconds", res.cpu_seconds}};
     j["exit_status"] = status;
-    const Status s = write_output(o.json, j.dump(2) + "\n");
+    const Status s = write_output(o.json, report_text(j, 2, {{"parameters", o.params_file.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.params_file)}, {"scar_import", j["scar_import"]}}));
     if (!s) throw InputError(s.error());
   }
   if (o.views.any()) {

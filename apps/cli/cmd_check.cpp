@@ -8,6 +8,7 @@
 #include "interfere/core/atomic_file.h"
 #include "interfere/fem/bodies.h"
 #include "interfere/mesh/validate.h"
+#include "report_envelope.h"
 
 namespace interfere::cli {
 namespace {
@@ -73,6 +74,7 @@ int run_fem_check(const CheckOptions& o) {
                       {"bodies", bodies},
                       {"warnings", model_warnings}};
   if (!box.empty()) j["bbox"] = {{"min", {box.lo.x, box.lo.y, box.lo.z}}, {"max", {box.hi.x, box.hi.y, box.hi.z}}};
+  finish_report(j);
   if (!o.json.empty()) {
     const Status st = write_output(o.json, j.dump(2) + "\n");
     if (!st) throw InputError(st.error());
@@ -108,6 +110,7 @@ int run_check(CheckOptions o, const CLI::App& command) {
     j["warnings"] = part.warnings;
   }
   j.update(stats_json(s));
+  finish_report(j);
   if (!o.json.empty()) {
     const Status st = write_output(o.json, j.dump(2) + "\n");
     if (!st) throw InputError(st.error());

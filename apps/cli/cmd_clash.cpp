@@ -20,6 +20,7 @@
 #include "interfere/scene/report.h"
 #include "interfere/simplify/tagged_io.h"
 #include "report_json.h"
+#include "report_envelope.h"
 
 namespace interfere::cli {
 namespace {
@@ -286,7 +287,7 @@ int run_clash(ClashOptions o, const CLI::App& command) {
     j["verdict"] = verdict_name(result.verdict);
     j["warnings"] = result.warnings;
     j["exit_status"] = status;
-    write_or_throw(write_output(o.json, j.dump(2) + "\n"));
+    write_or_throw(write_output(o.json, report_text(j)));
   }
 
   if (o.views.any()) {

@@ -11,6 +11,7 @@
 #include "interfere/query/clash.h"
 #include "interfere/query/distance.h"
 #include "report_json.h"
+#include "report_envelope.h"
 
 namespace interfere::cli {
 namespace {
@@ -85,7 +86,7 @@ int run_distance(const DistanceOptions& o, const CLI::App& command) {
     j["verdict"] = verdict_name(verdict.verdict);
     j["warnings"] = verdict.warnings;
     j["exit_status"] = status;
-    const Status s = write_output(o.json, j.dump(2) + "\n");
+    const Status s = write_output(o.json, report_text(j));
     if (!s) throw InputError(s.error());
   }
   if (r.intersecting) {

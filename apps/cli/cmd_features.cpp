@@ -23,6 +23,7 @@
 #include "interfere/cad/model.h"
 #include "interfere/cad/pipeline.h"
 #include "interfere/cad/semantics.h"
+#include "report_envelope.h"
 #endif
 
 namespace interfere::cli {
@@ -201,7 +202,7 @@ int run_features(const FeaturesCliOptions& o) {
     if (!s) throw InputError(s.error());
   }
   if (!o.json.empty()) {
-    const Status s = write_output(o.json, report.dump(2) + "\n");
+    const Status s = write_output(o.json, report_text(report));
     if (!s) throw InputError(s.error());
   }
   if (o.views.any()) {

@@ -24,6 +24,7 @@
 #include "interfere/simplify/qem.h"
 #include "interfere/simplify/tagged_io.h"
 #include "simplify_cli.h"
+#include "report_envelope.h"
 
 namespace interfere::cli {
 namespace {
@@ -226,7 +227,7 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
   for (const auto& w : r.warnings)
     warning(w);
   if (!o.json.empty()) {
-    const Status s = write_output(o.json, report.dump(2) + "\n");
+    const Status s = write_output(o.json, report_text(report));
     if (!s) throw InputError(s.error());
   }
   if (o.views.any()) {

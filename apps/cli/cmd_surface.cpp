@@ -13,6 +13,7 @@
 #include "interfere/fem/io.h"
 #include "interfere/mesh/io.h"
 #include "interfere/mesh/validate.h"
+#include "report_envelope.h"
 
 namespace interfere::cli {
 namespace {
@@ -112,7 +113,7 @@ int run_surface(const SurfaceOptions& o) {
                         {"vertices", merged.positions.size()},
                         {"input_warnings", p.warnings},
                         {"timings_s", {{"read", p.read_seconds}, {"extract", p.extract_seconds}, {"total", total.seconds()}}}};
-    write_or_throw(write_output(o.json, j.dump(2) + "\n"));
+    write_or_throw(write_output(o.json, report_text(j)));
   }
   std::printf("surface: %zu part%s, %zu triangles, %zu vertices", p.chosen.size(), p.chosen.size() == 1 ? "" : "s",
               merged.triangles.size(), merged.positions.size());

@@ -24,6 +24,7 @@
 #include "interfere/probe/paper_machine.h"
 #include "interfere/probe/paper_tests.h"
 #include "interfere/probe/sweep.h"
+#include "report_envelope.h"
 
 namespace interfere::cli {
 namespace {
@@ -397,7 +398,7 @@ int run_sweep(const SweepOptions& o) {
                     {"clearance", r.clearance_seconds}, {"continuous", r.continuous_seconds},
                     {"total", total.seconds()}};
     j["exit_status"] = status;
-    const Status s = write_output(o.json, j.dump(1) + "\n");
+    const Status s = write_output(o.json, report_text(j, 1));
     if (!s) throw InputError(s.error());
   }
   if (!o.csv.empty()) {

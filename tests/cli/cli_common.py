@@ -9,6 +9,9 @@ import subprocess
 import sys
 import unittest
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import report_schema  # noqa: E402  (issue #30: every report the tests read is validated)
+
 EXE = None   # path of the interfere executable (set by main)
 WORK = None  # fresh work directory of the test module (set by main)
 
@@ -30,8 +33,11 @@ def read_text(name):
 
 
 def load_json(name):
+    """The JSON file `name`; a CLI report is validated against docs/schema first (report_schema.py)."""
     with open(path(name)) as f:
-        return json.load(f)
+        obj = json.load(f)
+    report_schema.validate(obj, path(name))
+    return obj
 
 
 def read_csv(name):
