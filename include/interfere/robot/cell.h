@@ -1,0 +1,101 @@
+// The whole inspection cell as a scene (issue #28, deliverable 3): a URDF robot's links, the probe
+// and its holder on the tool link, the workpiece and the fixtures become bodies of the scene engine
+// (scene/engine.h, scene::clash_scene), each path point one frame whose poses come from the
+// robot's forward kinematics. Three clash tests cover every pair that can meet:
+//   "tool": probe and holder vs workpiece and fixtures;
+//   "arm":  robot links vs workpiece and fixtures;
+//   "self": links, probe and holder among themselves, adjacent ones suppressed (consecutive link
+//           bodies of the chain, links with no geometry between them skipped; probe and holder
+//           with each other and with the last link body at or before the tool link).
+// Every body is a triangle mesh (the probe and holder are tessellated cylinders, `sides` facets,
+// inscribed): the scene engine's exact mesh core decides every pair. The probe-only sweep
+// (`interfere sweep`) keeps the exact cylinder test; docs/probe.md, "The cell as a scene", says
+// what differs.
+#pragma once
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "interfere/core/error.h"
+#include "interfere/robot/chain.h"
+#include "interfere/scene/clash_test.h"
+#include "interfere/scene/engine.h"
+#include "interfere/scene/scene.h"
+
+namespace interfere::robot {
+
+/// The probe on the robot: its end-circle centre `tip` and direction `axis` in the tool link's
+/// frame (mm); the probe cylinder goes back from the tip against the axis over probe_length, the
+/// optional holder cylinder (holder_radius, holder_length > 0) continues behind it.
+struct CellTool {
+  std::string link;  ///< tool link name (default: the chain's last link)
+  Vec3 tip{};
+  Vec3 axis{0, 0, 1};
+  double probe_radius = 0, probe_length = 0;
+  double holder_radius = 0, holder_length = 0;
+  int sides = 24;  ///< facets of the tessellated cylinders
+};
+
+/// A static body of the cell: the workpiece or a fixture (mesh in mm, local -> world pose).
+struct CellObject {
+  std::string id;
+  std::string file;
+  std::shared_ptr<const TriMesh> mesh;
+  Transform pose;
+};
+
+struct Cell {
+  std::string file;  ///< the cell JSON (errors, reports)
+  Chain robot;
+  std::string urdf;  ///< the URDF file read
+  Transform base;    ///< world <- robot root link
+  CellTool tool;
+  std::size_t tool_link = 0;  ///< index into robot.links
+  CellObject workpiece;
+  std::vector<CellObject> fixtures;
+  double clearance = 0;  ///< > 0: pairs closer than this are reported (clearance tests)
+  std::string path;      ///< optional joint path CSV named by the cell file (resolved), "" if none
+};
+
+/// Reads a cell file (docs/probe.md, "Cell file"):
+///   {"robot": {"urdf": "arm.urdf", "package_paths": ["dir"], "base": [12 numbers], "tool_link":
+///   "tool0"},
+///    "tool": {"tip": [x,y,z], "axis": [x,y,z], "probe_radius": r, "probe_length": l,
+///             "holder_radius": R, "holder_length": L, "sides": 24},
+///    "workpiece": {"mesh": "part.stl", "pose": [12 numbers]},
+///    "fixtures": [{"id": "clamp", "mesh": "clamp.stl", "pose": [...]}, ...],
+///    "clearance": 0, "path": "joints.csv"}
+/// Files are relative to the cell file; meshes in mm (STL, OBJ, PLY, OFF). Unknown keys, missing or
+/// non-finite numbers, sizes <= 0, an unknown tool link, unreadable files are errors naming the
+/// cell file, the line and the field (or the URDF/mesh file and its element).
+Expected<Cell> read_cell_json(const std::filesystem::path& file);
+Expected<Cell> parse_cell_json(const std::string& text, const std::filesystem::path& file);
+
+/// The cell's bodies and where they sit in the scene.
+struct CellScene {
+  scene::Scene scene;
+  std::vector<scene::ClashTest> tests;  ///< "tool", "arm", "self" (those with bodies on both sides)
+  std::vector<std::int64_t> link_body;  ///< per chain link: body index, -1 without geometry
+  std::int64_t probe_body = -1, holder_body = -1;
+  /// Per frame: the path point (index into the joint path) and, for frames between two points, the
+  /// fraction t in (0, 1) along the joint-space segment from that point to the next (0 at points).
+  std::vector<std::size_t> frame_point;
+  std::vector<double> frame_t;
+};
+
+/// Builds the scene: one frame per path point and, with `between` > 0, `between` evenly spaced
+/// frames inside each segment (joint interpolation: the robot's own motion between points). The
+/// between-point frames are samples, not a conservative sweep: a clash shorter than the spacing can
+/// be missed. Throws std::invalid_argument when a joint vector has the wrong size.
+CellScene cell_scene(const Cell& cell, const JointPath& path, std::size_t between = 0);
+
+/// The tool's cylinders at the tool link frame `tool_frame` (world <- tool link): probe (c0 at the
+/// tip) and holder (behind it; radius 0 when there is none), for reports and tests.
+struct ToolCylinders {
+  Vec3 tip, back, holder_back;
+  double probe_radius = 0, holder_radius = 0;
+};
+ToolCylinders tool_cylinders(const CellTool& tool, const Transform& tool_frame);
+
+}  // namespace interfere::robot

@@ -1,0 +1,359 @@
+// The inspection cell as a scene (issue #28, deliverable 3): a generated small cell (3-link arm of
+// URDF boxes and an OBJ link, probe and holder on the flange, a workpiece and two fixtures) along
+// a random joint path, decided by the scene engine, against a brute-force oracle that poses every
+// body itself from its own homogeneous transforms, and checks every pair the cell should check
+// (tool vs workpiece/fixtures, links vs workpiece/fixtures, non-adjacent links and tool among
+// themselves) with all triangle pairs (segment/triangle crossings by orient3d signs) plus a ray
+// parity test for a body lying inside another.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <numbers>
+#include <random>
+#include <set>
+
+#include "interfere/core/predicates.h"
+#include "interfere/mesh/generate.h"
+#include "interfere/mesh/io.h"
+#include "interfere/probe/export.h"
+#include "interfere/robot/cell.h"
+
+namespace fs = std::filesystem;
+using namespace interfere;
+using namespace interfere::robot;
+
+#if INTERFERE_TEST_URDF
+
+namespace {
+
+// Oracle transforms: 4x4 row-major matrices built from the URDF numbers written below.
+using M4 = std::array<std::array<double, 4>, 4>;
+M4 mul(const M4& a, const M4& b) {
+  M4 c{};
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+      for (int k = 0; k < 4; ++k) c[i][j] += a[i][k] * b[k][j];
+  return c;
+}
+M4 eye() {
+  return {{{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}}};
+}
+M4 trans(double x, double y, double z) {
+  M4 m = eye();
+  m[0][3] = x, m[1][3] = y, m[2][3] = z;
+  return m;
+}
+M4 rot_z(double deg) {
+  const double a = deg * std::numbers::pi / 180, c = std::cos(a), s = std::sin(a);
+  M4 m = eye();
+  m[0][0] = c, m[0][1] = -s, m[1][0] = s, m[1][1] = c;
+  return m;
+}
+M4 rot_y(double deg) {
+  const double a = deg * std::numbers::pi / 180, c = std::cos(a), s = std::sin(a);
+  M4 m = eye();
+  m[0][0] = c, m[0][2] = s, m[2][0] = -s, m[2][2] = c;
+  return m;
+}
+Vec3 apply_m4(const M4& m, const Vec3& p) {
+  return {m[0][0] * p.x + m[0][1] * p.y + m[0][2] * p.z + m[0][3],
+          m[1][0] * p.x + m[1][1] * p.y + m[1][2] * p.z + m[1][3],
+          m[2][0] * p.x + m[2][1] * p.y + m[2][2] * p.z + m[2][3]};
+}
+
+// The arm (metres in the URDF, mm here): base box; yaw joint about z at height 0.2 (link "turret",
+// box); pitch joint about y (link "upper", box along x, 0.4 long); pitch joint about y at x = 0.4
+// (link "fore", an OBJ box along x, 0.3 long); fixed flange at x = 0.3 with rpy (0, pi/2, 0): the
+// flange z axis points along the forearm's x... turned down by the pitch joints.
+const char* kArm = R"(<robot name="arm3">
+  <link name="base"><collision><origin xyz="0 0 0.05"/><geometry><box size="0.2 0.2 0.1"/></geometry></collision></link>
+  <link name="turret"><collision><origin xyz="0 0 -0.03"/><geometry><box size="0.12 0.12 0.06"/></geometry></collision></link>
+  <link name="upper"><collision><origin xyz="0.2 0 0"/><geometry><box size="0.36 0.06 0.06"/></geometry></collision></link>
+  <link name="fore"><collision><geometry><mesh filename="fore.obj" scale="0.001 0.001 0.001"/></geometry></collision></link>
+  <link name="flange"/>
+  <joint name="yaw" type="revolute"><parent link="base"/><child link="turret"/><origin xyz="0 0 0.2"/>
+    <axis xyz="0 0 1"/><limit lower="-3.2" upper="3.2" effort="1" velocity="1"/></joint>
+  <joint name="shoulder" type="revolute"><parent link="turret"/><child link="upper"/><axis xyz="0 1 0"/>
+    <limit lower="-3.2" upper="3.2" effort="1" velocity="1"/></joint>
+  <joint name="elbow" type="revolute"><parent link="upper"/><child link="fore"/><origin xyz="0.4 0 0"/>
+    <axis xyz="0 1 0"/><limit lower="-3.2" upper="3.2" effort="1" velocity="1"/></joint>
+  <joint name="tool" type="fixed"><parent link="fore"/><child link="flange"/><origin xyz="0.3 0 0" rpy="0 1.5707963267948966 0"/></joint>
+</robot>)";
+
+// Oracle link frames (mm, degrees), written from the URDF above by hand.
+std::vector<M4> oracle_frames(const std::vector<double>& q) {
+  std::vector<M4> f(5);
+  f[0] = eye();
+  f[1] = mul(mul(f[0], trans(0, 0, 200)), rot_z(q[0]));
+  f[2] = mul(f[1], rot_y(q[1]));
+  f[3] = mul(mul(f[2], trans(400, 0, 0)), rot_y(q[2]));
+  f[4] = mul(f[3], mul(trans(300, 0, 0), rot_y(90)));
+  return f;
+}
+
+struct Solid {
+  std::string id;
+  std::string tag;
+  TriMesh local;
+  int link = -1;  // -1: static
+  M4 pose = eye();
+};
+
+bool segment_crosses(const Vec3& p, const Vec3& q, const std::array<Vec3, 3>& t, bool& degenerate) {
+  const int sp = orient3d(t[0], t[1], t[2], p), sq = orient3d(t[0], t[1], t[2], q);
+  if (sp == 0 || sq == 0) {
+    if (sp == 0 && sq == 0) {  // coplanar: a touch only when their boxes meet
+      Aabb bs, bt;
+      bs.expand(p), bs.expand(q);
+      for (const Vec3& v : t) bt.expand(v);
+      degenerate = degenerate || (bs.lo.x <= bt.hi.x && bt.lo.x <= bs.hi.x && bs.lo.y <= bt.hi.y &&
+                                  bt.lo.y <= bs.hi.y && bs.lo.z <= bt.hi.z && bt.lo.z <= bs.hi.z);
+    } else {
+      const int a = orient3d(p, q, t[0], t[1]), b = orient3d(p, q, t[1], t[2]),
+                c = orient3d(p, q, t[2], t[0]);
+      if ((a >= 0 && b >= 0 && c >= 0) || (a <= 0 && b <= 0 && c <= 0)) degenerate = true;
+    }
+    return false;
+  }
+  if (sp == sq) return false;
+  const int a = orient3d(p, q, t[0], t[1]), b = orient3d(p, q, t[1], t[2]),
+            c = orient3d(p, q, t[2], t[0]);
+  if (a == 0 || b == 0 || c == 0) {
+    if ((a >= 0 && b >= 0 && c >= 0) || (a <= 0 && b <= 0 && c <= 0)) degenerate = true;
+    return false;
+  }
+  return (a > 0 && b > 0 && c > 0) || (a < 0 && b < 0 && c < 0);
+}
+
+TriMesh posed(const Solid& s) {
+  TriMesh m = s.local;
+  for (Vec3& p : m.positions) p = apply_m4(s.pose, p);
+  return m;
+}
+
+/// 1: the surfaces cross or one lies inside the other; 0: apart; -1: degenerate (touching).
+int brute_meets(const TriMesh& a, const TriMesh& b) {
+  bool degenerate = false;
+  for (std::size_t i = 0; i < a.num_triangles(); ++i) {
+    const auto ta = a.corners(i);
+    for (std::size_t j = 0; j < b.num_triangles(); ++j) {
+      const auto tb = b.corners(j);
+      for (int e = 0; e < 3; ++e) {
+        if (segment_crosses(ta[e], ta[(e + 1) % 3], tb, degenerate)) return 1;
+        if (segment_crosses(tb[e], tb[(e + 1) % 3], ta, degenerate)) return 1;
+      }
+    }
+  }
+  if (degenerate) return -1;
+  // No crossing: one inside the other iff a vertex of it is inside (ray parity along an odd
+  // direction).
+  auto inside = [&](const Vec3& p, const TriMesh& m) {
+    const Vec3 far = p + Vec3{1e5 * 0.5772, 1e5 * 0.3141, 1e5 * 0.7071};
+    int n = 0;
+    for (std::size_t t = 0; t < m.num_triangles(); ++t)
+      n += segment_crosses(p, far, m.corners(t), degenerate);
+    return n % 2 == 1;
+  };
+  const bool in = inside(a.positions[0], b) || inside(b.positions[0], a);
+  if (degenerate) return -1;
+  return in ? 1 : 0;
+}
+
+}  // namespace
+
+TEST(CellScene, RandomPathAgainstBruteForcePairs) {
+  const fs::path d = fs::temp_directory_path() / "interfere_robot_cell";
+  fs::remove_all(d);
+  fs::create_directories(d);
+  const TriMesh fore =
+      make_box({0, -25, -25}, {300, 25, 25});  // mm (OBJ read with scale 0.001 m -> mm)
+  ASSERT_TRUE(write_mesh(d / "fore.obj", fore));
+  std::ofstream(d / "arm3.urdf") << kArm;
+  const TriMesh plate = make_box({-150, -150, 0}, {150, 150, 30});
+  const TriMesh block = make_box({-20, -20, 0}, {20, 20, 120});
+  ASSERT_TRUE(write_mesh(d / "plate.stl", plate));
+  ASSERT_TRUE(write_mesh(d / "block.stl", block));
+  std::ofstream(d / "cell.json") << R"({
+  "robot": {"urdf": "arm3.urdf", "tool_link": "flange"},
+  "tool": {"tip": [0, 0, 120], "axis": [0, 0, 1], "probe_radius": 8, "probe_length": 50,
+           "holder_radius": 20, "holder_length": 70, "sides": 12},
+  "workpiece": {"mesh": "plate.stl", "pose": [1,0,0,600, 0,1,0,0, 0,0,1,0]},
+  "fixtures": [{"id": "post", "mesh": "block.stl", "pose": [0,-1,0,450, 1,0,0,180, 0,0,1,0]},
+               {"id": "post2", "mesh": "block.stl", "pose": [1,0,0,700, 0,1,0,-190, 0,0,1,0]}]
+})";
+  Expected<Cell> cell = read_cell_json(d / "cell.json");
+  ASSERT_TRUE(cell) << cell.error().message();
+  ASSERT_EQ(cell->robot.dof(), 3u);
+
+  // A random joint path around a pose reaching down towards the plate.
+  std::mt19937_64 rng(28);
+  std::uniform_real_distribution<double> yaw(-40, 40), sh(10, 60), el(20, 120);
+  JointPath path;
+  for (int i = 0; i < 40; ++i) {
+    path.q.push_back({yaw(rng), sh(rng), el(rng)});
+    path.lines.push_back(i + 2);
+  }
+  const CellScene cs = cell_scene(*cell, path);
+  ASSERT_EQ(cs.scene.frames.size(), path.size());
+  scene::SceneClashOptions opt;
+  opt.depth = false;
+  opt.curves = false;
+  const scene::SceneClashResult r = scene::clash_scene(cs.scene, cs.tests, opt);
+
+  // The oracle's own bodies and poses.
+  std::vector<Solid> solids;
+  const int link_of_body[] = {0, 1, 2, 3};
+  const TriMesh link_meshes[] = {make_box({-100, -100, 0}, {100, 100, 100}),
+                                 make_box({-60, -60, -60}, {60, 60, 0}),
+                                 make_box({20, -30, -30}, {380, 30, 30}), fore};
+  const char* link_names[] = {"base", "turret", "upper", "fore"};
+  for (int i = 0; i < 4; ++i)
+    solids.push_back(
+        {std::string("link:") + link_names[i], "link", link_meshes[i], link_of_body[i]});
+  // The tool in the flange frame: probe z in [70, 120], holder z in [0, 70] (same tessellation as
+  // the cell: the oracle checks the pair decisions, not the tessellation).
+  solids.push_back({"probe", "tool", probe::cylinder_mesh({{0, 0, 120}, {0, 0, 70}, 8}, 12), 4});
+  solids.push_back({"holder", "tool", probe::cylinder_mesh({{0, 0, 70}, {0, 0, 0}, 20}, 12), 4});
+  solids.push_back({"workpiece", "workpiece", plate, -1, mul(trans(600, 0, 0), eye())});
+  solids.push_back({"fixture:post", "fixture", block, -1, mul(trans(450, 180, 0), rot_z(90))});
+  solids.push_back({"fixture:post2", "fixture", block, -1, trans(700, -190, 0)});
+  auto adjacent = [&](const Solid& a, const Solid& b) {
+    if (a.tag == "tool" && b.tag == "tool") return true;
+    if (a.tag == "tool" || b.tag == "tool")
+      return (a.tag == "tool" ? b : a).link == 3;  // mounted on "fore"
+    return std::abs(a.link - b.link) == 1;
+  };
+  std::set<std::pair<std::string, std::string>> checked_pairs;
+  for (std::size_t i = 0; i < solids.size(); ++i) {
+    for (std::size_t j = i + 1; j < solids.size(); ++j) {
+      const Solid &a = solids[i], &b = solids[j];
+      const bool a_static = a.link < 0, b_static = b.link < 0;
+      if (a_static && b_static) continue;  // workpiece/fixtures are not checked among themselves
+      if (!a_static && !b_static && adjacent(a, b)) continue;
+      checked_pairs.insert(std::pair<std::string, std::string>(std::minmax(a.id, b.id)));
+    }
+  }
+  std::map<std::pair<std::size_t, std::pair<std::string, std::string>>, Verdict> engine;
+  for (const scene::FramePairRow& row : r.frame_pairs) {
+    const std::pair<std::string, std::string> key =
+        std::minmax(cs.scene.bodies[row.a].id, cs.scene.bodies[row.b].id);
+    EXPECT_TRUE(checked_pairs.count(key))
+        << key.first << " " << key.second << " reported but not a checked pair";
+    engine[{row.frame, key}] = row.verdict;
+  }
+  std::size_t meets = 0, apart = 0, degenerate = 0, disagreements = 0;
+  for (std::size_t f = 0; f < path.size(); ++f) {
+    const std::vector<M4> frames = oracle_frames(path.q[f]);
+    std::map<std::string, TriMesh> world;
+    for (Solid s : solids) {
+      if (s.link >= 0) s.pose = frames[static_cast<std::size_t>(s.link)];
+      world[s.id] = posed(s);
+    }
+    for (const auto& pair : checked_pairs) {
+      const int b = brute_meets(world[pair.first], world[pair.second]);
+      auto it = engine.find({f, pair});
+      const bool e =
+          it != engine.end() && (it->second == Verdict::clash || it->second == Verdict::contact);
+      if (b < 0) {
+        ++degenerate;
+        continue;
+      }
+      (b ? meets : apart) += 1;
+      if (e != (b == 1)) {
+        ++disagreements;
+        ADD_FAILURE() << "frame " << f << " pair " << pair.first << " / " << pair.second
+                      << ": engine " << e << ", brute force " << b;
+      }
+    }
+  }
+  EXPECT_EQ(disagreements, 0u);
+  EXPECT_GT(meets, 10u);  // the path does strike things
+  EXPECT_GT(apart, 100u);
+  EXPECT_EQ(degenerate, 0u);
+  RecordProperty("pairs_meeting", static_cast<int>(meets));
+  RecordProperty("pairs_apart", static_cast<int>(apart));
+}
+
+TEST(CellScene, SuppressedAdjacentPairsAndBetweenFrames) {
+  const fs::path d = fs::temp_directory_path() / "interfere_robot_cell2";
+  fs::remove_all(d);
+  fs::create_directories(d);
+  ASSERT_TRUE(write_mesh(d / "fore.obj", make_box({0, -25, -25}, {300, 25, 25})));
+  std::ofstream(d / "arm3.urdf") << kArm;
+  ASSERT_TRUE(write_mesh(d / "plate.stl", make_box({-150, -150, 0}, {150, 150, 30})));
+  std::ofstream(d / "cell.json") << R"({"robot": {"urdf": "arm3.urdf"},
+  "tool": {"tip": [0, 0, 120], "probe_radius": 8, "probe_length": 50},
+  "workpiece": {"mesh": "plate.stl"}})";
+  Expected<Cell> cell = read_cell_json(d / "cell.json");
+  ASSERT_TRUE(cell) << cell.error().message();
+  EXPECT_EQ(cell->tool_link, 4u);  // the last link by default
+  JointPath path{{{0, 10, 20}, {10, 30, 60}}, {2, 3}};
+  const CellScene cs = cell_scene(*cell, path, 3);
+  ASSERT_EQ(cs.scene.frames.size(), 5u);  // 2 points + 3 between
+  EXPECT_EQ(cs.frame_point, (std::vector<std::size_t>{0, 0, 0, 0, 1}));
+  EXPECT_DOUBLE_EQ(cs.frame_t[2], 0.5);
+  ASSERT_EQ(cs.tests.size(), 3u);
+  EXPECT_EQ(cs.tests[2].name, "self");
+  // base-turret, turret-upper, upper-fore, fore-probe (no holder).
+  EXPECT_EQ(cs.tests[2].suppressions.size(), 4u);
+  // The between frame's poses are the joint interpolation's: the turret at yaw 5.
+  const std::vector<Transform> mid = link_frames(cell->robot, {5, 20, 40});
+  const auto& poses = cs.scene.frames[2].poses;
+  bool found = false;
+  for (const auto& p : poses) {
+    if (cs.scene.bodies[p.body].id == "link:turret") {
+      found = true;
+      EXPECT_TRUE(p.pose == mid[1]);
+    }
+  }
+  EXPECT_TRUE(found);
+}
+
+TEST(CellScene, BadCellFilesNameTheField) {
+  const fs::path d = fs::temp_directory_path() / "interfere_robot_cell3";
+  fs::remove_all(d);
+  fs::create_directories(d);
+  ASSERT_TRUE(write_mesh(d / "fore.obj", make_box({0, -25, -25}, {300, 25, 25})));
+  std::ofstream(d / "arm3.urdf") << kArm;
+  ASSERT_TRUE(write_mesh(d / "plate.stl", make_box({-150, -150, 0}, {150, 150, 30})));
+  auto err = [&](const std::string& text) {
+    std::ofstream(d / "c.json") << text;
+    Expected<Cell> c = read_cell_json(d / "c.json");
+    EXPECT_FALSE(c) << text;
+    return c ? std::string() : c.error().message();
+  };
+  const std::string robot = R"("robot": {"urdf": "arm3.urdf"}, )";
+  const std::string wp = R"(, "workpiece": {"mesh": "plate.stl"})";
+  EXPECT_NE(err("{" + robot + R"("tool": {"probe_radius": 0, "probe_length": 5})" + wp + "}")
+                .find("tool.probe_radius: must be > 0"),
+            std::string::npos);
+  EXPECT_NE(
+      err("{" + robot + R"("tool": {"probe_radius": 1, "probe_length": 5, "colour": 1})" + wp + "}")
+          .find("tool.colour: unknown key"),
+      std::string::npos);
+  EXPECT_NE(
+      err(R"({"robot": {"urdf": "arm3.urdf", "tool_link": "hand"}, "tool": {"probe_radius": 1, "probe_length": 5})" +
+          wp + "}")
+          .find("robot.tool_link: 'hand' is not a link"),
+      std::string::npos);
+  EXPECT_NE(
+      err(R"({"robot": {"urdf": "none.urdf"}, "tool": {"probe_radius": 1, "probe_length": 5})" +
+          wp + "}")
+          .find("none.urdf"),
+      std::string::npos);
+  EXPECT_NE(
+      err("{" + robot +
+          R"("tool": {"probe_radius": 1, "probe_length": 5}, "workpiece": {"mesh": "gone.stl"}})")
+          .find("gone.stl"),
+      std::string::npos);
+  EXPECT_NE(
+      err("{" + robot +
+          R"("tool": {"probe_radius": 1, "probe_length": 5}, "workpiece": {"mesh": "plate.stl", "pose": [2,0,0,0, 0,1,0,0, 0,0,1,0]}})")
+          .find("workpiece.pose: not a rigid transform"),
+      std::string::npos);
+}
+
+#endif
