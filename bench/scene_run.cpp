@@ -10,6 +10,11 @@
 //   interfere_scene_run spheres DIR [triangles=1e6]
 //       writes DIR/sphere_a.stl and DIR/sphere_b.stl (binary STL): make_overlapping_spheres, two
 //       bumpy spheres overlapping about 1 % of their triangles, for the whole-process runs.
+//   interfere_scene_run scene-file DIR [bodies=10000] [segments=48]
+//       writes the generated assembly as users would give it: its five part meshes as binary STL
+//       (DIR/<type>.stl) and DIR/scene.json listing every body (file, id, path, tags, transform)
+//       with the benchmark's two tests, and prints the construction's pair counts (clashing,
+//       contact, gap) for the caller to check `interfere clash --scene DIR/scene.json` against.
 #include <sys/resource.h>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
@@ -26,6 +31,9 @@
 #include "interfere/mesh/io.h"
 #include "interfere/scene/engine.h"
 #include "interfere/scene/generate.h"
+
+#include <map>
+#include <nlohmann/json.hpp>
 
 namespace {
 
@@ -50,8 +58,8 @@ std::size_t number(const char* s) {
 int usage(const char* argv0) {
   std::fprintf(stderr,
                "usage: %s assembly [bodies=10000] [segments=48] [threads] [depth_bound_splits]\n   "
-               "    %s spheres DIR [triangles=1e6]\n",
-               argv0, argv0);
+               "    %s spheres DIR [triangles=1e6]\n       %s scene-file DIR [bodies=10000] [segments=48]\n",
+               argv0, argv0, argv0);
   return 2;
 }
 
@@ -77,6 +85,40 @@ int main(int argc, char** argv) {
     std::printf("{\"a\": \"%s\", \"b\": \"%s\", \"tris_a\": %zu, \"tris_b\": %zu}\n",
                 (dir / "sphere_a.stl").c_str(), (dir / "sphere_b.stl").c_str(), p.a.num_triangles(),
                 p.b.num_triangles());
+    return 0;
+  }
+  if (mode == "scene-file") {
+    if (argc < 3) return usage(argv[0]);
+    const std::filesystem::path dir = argv[2];
+    scene::AssemblyGenOptions o;
+    if (argc > 3) o.bodies = number(argv[3]);
+    if (argc > 4) o.segments = static_cast<int>(number(argv[4]));
+    scene::AssemblyInfo info;
+    const scene::Scene s = scene::generate_assembly(o, &info);
+    std::filesystem::create_directories(dir);
+    std::map<const TriMesh*, std::string> files;
+    nlohmann::json bodies = nlohmann::json::array();
+    for (const scene::Body& b : s.bodies) {
+      const std::string type = b.tags.empty() ? "part" : b.tags.front();
+      auto [it, added] = files.emplace(b.mesh.get(), type + ".stl");
+      if (added)
+        if (const Status st = write_mesh(dir / it->second, *b.mesh); !st) {
+          std::fprintf(stderr, "%s\n", st.error().message().c_str());
+          return 1;
+        }
+      const auto m = b.pose.to_row_major();
+      bodies.push_back({{"file", it->second}, {"id", b.id}, {"path", b.path}, {"tags", b.tags},
+                        {"transform", std::vector<double>(m.begin(), m.end())}});
+    }
+    const nlohmann::json doc{{"units", "mm"},
+                             {"bodies", bodies},
+                             {"tests", {{{"name", "hard"}, {"a", "*"}, {"mode", "hard"}},
+                                        {{"name", "clearance"}, {"a", "*"}, {"mode", "clearance"}, {"clearance", 0.1}}}}};
+    std::ofstream(dir / "scene.json") << doc.dump(1) << "\n";
+    std::printf("{\"scene\": \"%s\", \"bodies\": %zu, \"triangles\": %zu, \"clash_pairs\": %zu, "
+                "\"contact_pairs\": %zu, \"gap_pairs\": %zu}\n",
+                (dir / "scene.json").c_str(), s.bodies.size(), info.triangles, info.clash_pairs.size(),
+                info.contact_pairs.size(), info.gap_pairs.size());
     return 0;
   }
   if (mode != "assembly") return usage(argv[0]);

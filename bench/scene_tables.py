@@ -181,6 +181,39 @@ def whole_process(build_dir: Path, cli: Path, reps: int, peer_reps: int, triangl
     return res
 
 
+def scene_file_process(build_dir: Path, cli: Path, reps: int, bodies: str) -> dict:
+    """`interfere clash --scene scene.json` on the generated assembly written as users give it (five
+    binary STL part files, a scene file of every body), timed as a fresh process, its pair counts
+    checked against the construction's."""
+    res: dict = {"repetitions": reps, "wall_s": [], "reports": []}
+    with tempfile.TemporaryDirectory(prefix="interfere_scene_file_") as tmp:
+        info = run_json([build_dir / "bench" / "interfere_scene_run", "scene-file", tmp, bodies])
+        res["construction"] = info
+        report = Path(tmp) / "out.json"
+        cmd = [str(cli), "clash", "--scene", info["scene"], "--json", str(report)]
+        res["command"] = f"interfere clash --scene scene.json --json out.json"
+        for rep in range(reps + 1):  # round 0 warms the page cache (not counted)
+            if report.exists():
+                report.unlink()
+            t0 = time.perf_counter()
+            p = subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+            wall = time.perf_counter() - t0
+            if p.returncode not in (0, 1):
+                res["error"] = f"exit status {p.returncode}: {p.stderr.strip()[-400:]}"
+                log(f"scene file run failed: {res['error']}")
+                return res
+            if rep == 0:
+                continue
+            res["wall_s"].append(wall)
+            j = json.loads(report.read_text())
+            count = lambda test, v: sum(1 for q in j.get("pairs", []) if q.get("test") == test and q.get("verdict") == v)
+            res["reports"].append({"timings_s": j.get("timings_s"), "summary": j.get("summary"),
+                                   "clash_pairs": count("hard", "clash"), "contact_pairs": count("hard", "contact"),
+                                   "gap_pairs": count("clearance", "clearance")})
+        res["median_s"] = statistics.median(res["wall_s"])
+    return res
+
+
 # ----------------------------------------------------------------------------- report
 def verdict(ok) -> str:
     return "—" if ok is None else ("**PASS**" if ok else "**MISS**")
@@ -231,7 +264,8 @@ def make_block(raw: dict) -> tuple[str, list]:
                "compare rows of one run only.")
     parts = raw.get("parts") or {}
     if len({p.get("date_utc") for p in parts.values()}) > 1:  # parts from different runs
-        names = {"bench": "Google Benchmark rows", "memory": "peak memory", "process": "whole process"}
+        names = {"bench": "Google Benchmark rows", "memory": "peak memory", "process": "whole process",
+                 "scenefile": "scene file process"}
         L.append("")
         L.append("Parts measured in different runs: " + "; ".join(
             f"{names.get(k, k)} {v.get('date_utc')} (load average {v.get('loadavg')})" for k, v in sorted(parts.items())) + ".")
@@ -380,6 +414,31 @@ def make_block(raw: dict) -> tuple[str, list]:
         L.append("Not measured.")
     L.append("")
 
+    # ---- the assembly from files
+    sf = raw.get("scene_file_process")
+    L.append("### The assembly from files, as a user runs it")
+    L.append("")
+    if sf and "error" not in sf and sf.get("reports"):
+        c, rep = sf["construction"], sf["reports"][-1]
+        sm = rep.get("summary") or {}
+        ts = [r.get("timings_s") or {} for r in sf["reports"]]
+        def med(key):
+            v = [t[key] for t in ts if isinstance(t.get(key), (int, float))]
+            return statistics.median(v) if v else None
+        splits = ", ".join(f"{k} {secs(med(k))}" for k in ("prepare", "broad", "narrow", "total") if med(k) is not None)
+        L.append(f"The same assembly written as a user would give it: its five part meshes as binary STL files and a "
+                 f"scene file listing all {n(c['bodies'])} bodies ({n(c['triangles'])} triangles) with their poses, "
+                 f"tests `hard` and `clearance` 0.1 mm; `{sf['command']}` as a fresh process, "
+                 f"{len(sf['wall_s'])} runs after one untimed warm-up: **median {secs(sf['median_s'])}** "
+                 f"({secs(min(sf['wall_s']))}–{secs(max(sf['wall_s']))}; the report's own timings: {splits or '—'}), "
+                 f"{n(sm.get('core_runs'))} core runs for {n(sm.get('candidate_pairs'))} candidate pairs. Body pairs "
+                 f"against the construction: clashing {n(rep['clash_pairs'])} (construction {n(c['clash_pairs'])}), "
+                 f"contact {n(rep['contact_pairs'])} ({n(c['contact_pairs'])}), clearance gaps "
+                 f"{n(rep['gap_pairs'])} ({n(c['gap_pairs'])}).")
+    else:
+        L.append(f"Not measured: {sf.get('error') if sf else 'not run'}.")
+    L.append("")
+
     # ---- memory
     L.append("### Peak memory (own process)")
     L.append("")
@@ -430,7 +489,7 @@ def main() -> int:
                     help="whole-process runs of each peer (default 3: FCL's take 10-30 s each)")
     ap.add_argument("--threads", default="2", help="interfere's thread count (default 2, as the issue's targets)")
     ap.add_argument("--filter", default=None, help="--benchmark_filter for interfere_bench_scene")
-    ap.add_argument("--skip", default="", help="comma-separated parts to skip: bench, memory, process")
+    ap.add_argument("--skip", default="", help="comma-separated parts to skip: bench, memory, scenefile, process")
     ap.add_argument("--quick", action="store_true", help="1,000 bodies, 1 frame, 1 repetition, 3 process runs")
     ap.add_argument("--report-only", action="store_true", help="rewrite the doc from docs/scene-benchmarks.json")
     args = ap.parse_args()
@@ -484,6 +543,14 @@ def main() -> int:
             raw["assembly_process"] = {"error": str(e)}
     else:
         raw["assembly_process"] = old.get("assembly_process")
+    if "scenefile" not in skip:
+        stamp("scenefile")
+        try:
+            raw["scene_file_process"] = scene_file_process(build_dir, Path(args.cli), preps, bodies)
+        except (subprocess.CalledProcessError, ValueError, OSError) as e:
+            raw["scene_file_process"] = {"error": str(e)}
+    else:
+        raw["scene_file_process"] = old.get("scene_file_process")
     if "process" not in skip:
         stamp("process")
         raw["whole_process"] = whole_process(build_dir, Path(args.cli), preps, min(preps, args.peer_repetitions), "1e6")

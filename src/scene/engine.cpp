@@ -170,6 +170,7 @@ struct FrameClass {
   std::vector<std::vector<std::array<Vec3, 2>>> where;      // their id locations
   DepthMaps maps;
   bool has_maps = false;
+  ClashResult core;  // the core's result in the frame (SceneClashOptions::on_pair)
 };
 
 FramePairRow frame_pair_row(std::uint32_t frame, const Candidate& c, const std::vector<SceneClash>& list) {
@@ -344,10 +345,8 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
     // Decision frames (engine_internal.h, PairFrame): a unit is decided in its first body's local
     // frame when that body's pose is a rotation and neither body is deformed in this frame, and
     // units with the same two meshes, relative pose (bit for bit) and tests are one class, decided
-    // once (its first unit: any member gives the same answer bit for bit). In the world frame: a
-    // caller that sees the core's world result or world models (on_pair, nominal_fit), duplicates,
-    // mirrored or scaled poses, deformed bodies.
-    const bool frames_ok = !options.on_pair && !options.nominal_fit;
+    // once (its first unit: any member gives the same answer bit for bit). In the world frame:
+    // duplicates, mirrored or scaled poses, deformed bodies.
     std::vector<std::size_t> unit_class(units, kNone);
     std::vector<FrameClass> classes;
     {
@@ -355,7 +354,7 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
       std::vector<signed char> rigid(n, -1);
       for (std::size_t u = 0; u < units; ++u) {
         const Candidate& c = cands[order[unit_start[u]]];
-        if (!frames_ok || tests[c.test].mode == ClashMode::duplicates || st.shape[c.a] || st.shape[c.b]) continue;
+        if (tests[c.test].mode == ClashMode::duplicates || st.shape[c.a] || st.shape[c.b]) continue;
         if (rigid[c.a] < 0) rigid[c.a] = st.pose[c.a].is_rigid() ? 1 : 0;
         if (!rigid[c.a]) continue;
         ClassKey k;
@@ -372,7 +371,9 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
     }
     // Models: the local ones of the frame units' meshes (built once, kept over frames), the world
     // ones of the world units' bodies.
+    // A body's own world model (Body::world_model) at the identity pose is its mesh's local model.
     std::vector<const TriMesh*> new_locals;
+    std::map<const TriMesh*, const Model*> given;
     std::vector<char> need(n, 0);
     for (std::size_t u = 0; u < units; ++u) {
       const Candidate& c = cands[order[unit_start[u]]];
@@ -381,13 +382,17 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
         continue;
       }
       in_frame_unit[c.a] = in_frame_unit[c.b] = 1;
-      for (const TriMesh* m : {scene.bodies[c.a].mesh.get(), scene.bodies[c.b].mesh.get()})
+      for (const std::uint32_t i : {c.a, c.b}) {
+        const TriMesh* m = scene.bodies[i].mesh.get();
         if (locals.emplace(m, nullptr).second) new_locals.push_back(m);
+        if (scene.bodies[i].world_model && scene.bodies[i].pose.is_identity()) given.emplace(m, scene.bodies[i].world_model.get());
+      }
     }
     tbb::parallel_for(std::size_t{0}, new_locals.size(), [&](std::size_t k) {
       auto w = std::make_unique<detail::WorldBody>();
-      w->own = make_model(*new_locals[k], {}, false);
-      w->box = w->own.mesh.bounds();
+      if (const auto it = given.find(new_locals[k]); it != given.end()) w->prebuilt = it->second;
+      else w->own = make_model(*new_locals[k], {}, false);
+      w->box = w->model().mesh.bounds();
       locals.find(new_locals[k])->second = std::move(w);  // (the node exists: a lookup, no insertion)
     });
     std::vector<std::uint32_t> todo;
@@ -446,6 +451,7 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
         const bool dup = tests[c.test].mode == ClashMode::duplicates;
         if (!dup && i == unit_start[u]) {
           core = detail::core_pair(ctx, frame, c.a, c.b, c.clearance);
+          if (fc && options.on_pair) fc->core = core.r;  // (given to every member below)
           if (core.maps_known && !reference &&
               (core.maps.a.inside + core.maps.a.undecided + core.maps.b.inside + core.maps.b.undecided) > 0) {
             if (fc) fc->maps = std::move(core.maps), fc->has_maps = true;
@@ -474,6 +480,10 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
         where[k] = fc.where[i - unit_start[u]];
         detail::rehome(found[k], scene, rep.a, rep.b, c.a, c.b);
         detail::place_clashes(found[k], st.pose[c.a], options.curves);
+      }
+      if (options.on_pair) {  // (one candidate per unit with on_pair: no sharing between tests)
+        const Candidate& c = cands[order[unit_start[u]]];
+        options.on_pair(c.test, c.a, c.b, fc.core);
       }
       if (fc.has_maps) {
         const Candidate& c = cands[order[unit_start[u]]];

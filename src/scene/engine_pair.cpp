@@ -106,7 +106,7 @@ PairCore core_pair(const PairContext& c, const PairFrame& f, std::uint32_t a, st
     core.r = std::move(second);
   }
   core.clearance = clearance;
-  if (c.options.on_pair) c.options.on_pair(c.test_index, a, b, core.r);  // (world frame: engine.cpp)
+  if (c.options.on_pair && f.world) c.options.on_pair(c.test_index, a, b, core.r);  // (else per member: engine.cpp)
   // Depth of crossing (or touching but overlapping) closed solids (the statistics are computed
   // here when not yet known: the depth needs inside/outside).
   const bool crossing = core.r.cross_pairs > 0 || core.r.touching_overlap;
@@ -178,7 +178,7 @@ std::vector<SceneClash> derive_pair(const PairContext& c, const PairFrame& f, st
   const bool depth_known = core->depth_known;
   bool nominal = false;
   if (r.cross_pairs > 0 && !inside && !r.touching_overlap && c.test.nominal_fits_are_contacts && c.options.nominal_fit)
-    nominal = c.options.nominal_fit(a, b, ma, mb, r, depth.depth);  // (world frame: engine.cpp)
+    nominal = c.options.nominal_fit(a, b, ma, mb, r, depth.depth);
   // Penetration tolerance (hard mode): the upper bound decides, so no deeper clash is hidden.
   const bool shallow = r.cross_pairs > 0 && !inside && !r.touching_overlap && c.test.tolerance > 0 &&
                        c.test.mode != ClashMode::duplicates && depth_known && depth.depth_bound <= c.test.tolerance;

@@ -4,6 +4,9 @@
 #include <tbb/parallel_for.h>
 
 #include <filesystem>
+#include <map>
+#include <unordered_set>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 
@@ -75,22 +78,30 @@ void adopt(const BodySpec& spec, std::vector<Body>& bodies, bool filter) {
   bodies = std::move(kept);
 }
 
-// One mesh file: one body.
-Body mesh_body(const BodySpec& spec, double working_mm) {
-  const std::string unit = !spec.units.empty() ? spec.units : is_gltf(spec.file) ? "m" : "mm";
+// The unit a mesh file's body is read in.
+std::string mesh_unit(const BodySpec& spec) { return !spec.units.empty() ? spec.units : is_gltf(spec.file) ? "m" : "mm"; }
+
+// One mesh file read, welded and converted to the working unit.
+std::shared_ptr<const TriMesh> read_mesh_file(const BodySpec& spec, double working_mm) {
+  const std::string unit = mesh_unit(spec);
   const double scale = mm_per(unit, spec.file, spec.where + " units") / working_mm;
   auto m = read_mesh(spec.file);
   if (!m) fail(m.error());
   weld_exact(*m);
   if (scale != 1)
     for (Vec3& v : m->positions) v = v * scale;
+  return std::make_shared<const TriMesh>(std::move(*m));
+}
+
+// One mesh file: one body.
+Body mesh_body(const BodySpec& spec, std::shared_ptr<const TriMesh> mesh) {
   Body b;
   b.id = spec.id.empty() ? make_body_id(stem(spec.file)) : spec.id;
   b.name = spec.name.empty() ? stem(spec.file) : spec.name;
   b.path = spec.path.empty() ? "/" + b.name : spec.path;
   b.source = {SourceKind::mesh_file, spec.file, ""};
-  b.unit = unit;
-  b.mesh = std::make_shared<const TriMesh>(std::move(*m));
+  b.unit = mesh_unit(spec);
+  b.mesh = std::move(mesh);
   b.pose = spec.pose;
   b.tags = spec.tags;
   return b;
@@ -127,22 +138,39 @@ Expected<LoadedScene> load_scene(const std::vector<BodySpec>& specs, const LoadO
     auto steps = std::make_shared<std::vector<std::unique_ptr<StepSource>>>();
 #endif
     // Mesh files (one body each) are read, welded and converted in parallel first (item 8: many
-    // files); errors are reported in input order below, so the first bad file is always named.
-    std::vector<std::optional<Body>> pre(specs.size());
-    std::vector<std::optional<Error>> pre_error(specs.size());
-    tbb::parallel_for(std::size_t{0}, specs.size(), [&](std::size_t i) {
-      const BodySpec& spec = specs[i];
-      if (is_step(spec.file) || is_fem(spec.file) || is_gltf(spec.file)) return;
+    // files), each file once per unit: bodies that name the same file share its mesh, and the
+    // engine decides their pairs in the same relative pose once (engine_frame.cpp). Errors are
+    // reported in input order below, so the first bad file is always named.
+    std::vector<std::size_t> mesh_of(specs.size(), 0);
+    std::vector<std::size_t> first_spec;  // per distinct (file, unit): its first spec
+    {
+      std::map<std::pair<std::string, std::string>, std::size_t> index;
+      for (std::size_t i = 0; i < specs.size(); ++i) {
+        const BodySpec& spec = specs[i];
+        if (is_step(spec.file) || is_fem(spec.file) || is_gltf(spec.file)) continue;
+        std::error_code ec;
+        const std::filesystem::path canonical = std::filesystem::weakly_canonical(spec.file, ec);
+        const auto [it, added] = index.emplace(std::pair{ec ? spec.file : canonical.string(), mesh_unit(spec)}, first_spec.size());
+        if (added) first_spec.push_back(i);
+        mesh_of[i] = it->second;
+      }
+    }
+    std::vector<std::shared_ptr<const TriMesh>> meshes(first_spec.size());
+    std::vector<std::optional<Error>> mesh_error(first_spec.size());
+    tbb::parallel_for(std::size_t{0}, first_spec.size(), [&](std::size_t k) {
       try {
-        pre[i] = mesh_body(spec, working_mm);
+        meshes[k] = read_mesh_file(specs[first_spec[k]], working_mm);
       } catch (const LoadError& e) {
-        pre_error[i] = e.error;
+        mesh_error[k] = e.error;
       }
     });
+    std::unordered_set<std::string> listed;
     for (std::size_t si = 0; si < specs.size(); ++si) {
       const BodySpec& spec = specs[si];
-      out.files.push_back(spec.file);
-      if (o.reading) o.reading(spec.file);
+      if (listed.insert(spec.file).second) {  // (each file once)
+        out.files.push_back(spec.file);
+        if (o.reading) o.reading(spec.file);
+      }
       std::vector<Body> bodies;
       if (is_step(spec.file)) {
 #ifdef INTERFERE_HAS_CAD
@@ -205,8 +233,8 @@ Expected<LoadedScene> load_scene(const std::vector<BodySpec>& specs, const LoadO
           for (Body& b : bodies) b.unit = spec.units;
         adopt(spec, bodies, true);
       } else {
-        if (pre_error[si]) fail(*pre_error[si]);
-        bodies.push_back(std::move(*pre[si]));
+        if (mesh_error[mesh_of[si]]) fail(*mesh_error[mesh_of[si]]);
+        bodies.push_back(mesh_body(spec, meshes[mesh_of[si]]));
       }
       for (Body& b : bodies) {
         if (!b.mesh || b.mesh->num_triangles() == 0) fail(spec.file, "body '" + b.id + "' has no triangles");

@@ -197,15 +197,22 @@ struct SceneClashOptions {
   GroupBy group_by = GroupBy::pair;
   double group_distance = 0;  ///< location grouping: boxes closer than this join (0: touching boxes)
   /// Nominal-fit check (ClashTest::nominal_fits_are_contacts) supplied by sources that know B-Rep
-  /// faces (cad/assembly_scene.h): given the two bodies, their world models, the clash result and
-  /// the sampled depth, whether the crossings are only where faces coincide. Unset: none is.
+  /// faces (cad/assembly_scene.h): given the two bodies, their models, the clash result and the
+  /// sampled depth, whether the crossings are only where faces coincide. Unset: none is. The models
+  /// and the result are in the pair's decision frame: the world, or the first body's local frame
+  /// (its mesh as given, the other moved into it; src/scene/engine_frame.cpp), and a body pair in
+  /// the same relative pose as an earlier one with the same meshes gets that pair's answer, so the
+  /// answer must depend only on the geometry (and on what the bodies' meshes stand for).
   std::function<bool(std::uint32_t a, std::uint32_t b, const Model& wa, const Model& wb,
                      const ClashResult& r, double depth)>
       nominal_fit;
   /// Called once per checked candidate pair with the exact core's raw result (from any thread: the
   /// caller synchronises), test index, body indices (a's id < b's id): for callers that write
   /// per-pair outputs (`interfere clash A B`: --pairs, --region-a/-b) or aggregate per pair
-  /// (assembly-clash). Not called for duplicates tests.
+  /// (assembly-clash). Not called for duplicates tests. The result's geometry is in the pair's
+  /// decision frame: the first body's local frame when its pose is a rotation (the world when that
+  /// pose is the identity, as for `interfere clash A B`), else the world; pairs in the same relative
+  /// pose with the same meshes get the same result.
   std::function<void(std::size_t test, std::uint32_t a, std::uint32_t b, const ClashResult&)> on_pair;
   /// Called after each frame with (frames done, frame count): progress for long runs.
   std::function<void(std::size_t, std::size_t)> progress;
