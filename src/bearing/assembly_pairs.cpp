@@ -4,8 +4,11 @@
 //   roller-inner, roller-roller (cylindrical): part_pair.h (standard or scarred solver, two-sided);
 //   roller-roller (tapered): min(cone_pair_distance(a, b), cone_pair_distance(b, a)) (two-sided);
 //   roller-cone: the same two ways; roller-cup: roller_cup_distance; roller-outer:
-//   roller_bore_distance, a scarred roller by the maximum over its mesh vertices of the distance to
-//   the bore axis (rho is convex, so its maximum over a triangle is at a vertex: exact for the mesh);
+//   roller_bore_distance, a scarred roller by the maximum over its mesh clipped to the ring's width
+//   of the distance to the bore axis (rho is convex, so its maximum over a clipped triangle is at a
+//   vertex in the width or an edge's crossing of a side face: exact for the mesh). A value with path
+//   `apart` is a lower bound of the distance (raceway.h): it decides only a clear verdict, any
+//   other is undecided;
 //   roller-rib: roller_rib_distance; roller-cage: min over the web's triangles of the roller's signed
 //   distance (scarred.h's exact triangle minimum for cylinders; a nested golden-section search of the
 //   convex signed distance of a frustum for tapered rollers).
@@ -177,6 +180,10 @@ AssemblyPairResult from_distance(const PairDistance& d, AssemblySolver solver, d
   out.distance = d.distance, out.point_a = d.point_a, out.point_b = d.point_b;
   out.solver = solver, out.path = d.path;
   out.verdict = distance_verdict(d.distance, tol, clearance);
+  if (d.path == AnalyticPath::apart) {  // a lower bound of the distance (raceway.h): decides only clear
+    out.exact = false;
+    if (out.verdict != Verdict::clear) out.verdict = Verdict::undecided;
+  }
   return out;
 }
 
@@ -265,25 +272,48 @@ AssemblyPairResult solve_pair(const Assembly& as, const AssemblyPair& pair, cons
       bore.axis = pose_b.rotate(z);
       bore.radius = b.outer_raceway, bore.width = b.outer_width;
       if (!ra.scarred) return from_distance(roller_bore_distance(roller, bore), AssemblySolver::raceway, clearance, tol);
-      // the scarred mesh: s = R - max over its vertices (within the ring's width) of rho
-      double best = -1;
-      Vec3 far;
-      for (const Vec3& v : ra.mesh->positions) {
-        const Vec3 p = pose_a.apply(v), d = p - bore.base;
-        const double zz = dot(d, bore.axis);
-        if (zz < 0 || zz > bore.width) continue;
-        const double rho = norm(cross(d, bore.axis));
-        if (rho > best) best = rho, far = p;
+      // the scarred mesh: s = R - max of rho over the mesh's solid within the ring's width. rho is
+      // convex, so its maximum over a triangle clipped to the slab is at a vertex of the clipped
+      // polygon: a vertex in the slab or an edge's crossing of a side face (raceway.h's argument).
+      const Vec3 ax = bore.axis;
+      std::vector<Vec3> p(ra.mesh->positions.size());
+      std::vector<double> zs(p.size());
+      const auto rho_of = [&](const Vec3& x) { return norm(cross(x - bore.base, ax)); };
+      double all = -1, best = -1;  // max over every vertex (G), over the clipped mesh (G_K)
+      Vec3 far_all, far;
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        p[i] = pose_a.apply(ra.mesh->positions[i]), zs[i] = dot(p[i] - bore.base, ax);
+        const double rho = rho_of(p[i]);
+        if (rho > all) all = rho, far_all = p[i];
+        if (zs[i] >= 0 && zs[i] <= bore.width && rho > best) best = rho, far = p[i];
+      }
+      const double z_all = dot(far_all - bore.base, ax);
+      if (!(z_all >= 0 && z_all <= bore.width)) {  // the farthest vertex lies beyond a face: clip
+        for (const Tri& t : ra.mesh->triangles)
+          for (int e = 0; e < 3; ++e) {
+            const auto i = t[e], j = t[(e + 1) % 3];
+            for (const double level : {0.0, bore.width}) {
+              if (!((zs[i] < level && zs[j] > level) || (zs[i] > level && zs[j] < level))) continue;
+              const Vec3 x = p[i] + (p[j] - p[i]) * ((level - zs[i]) / (zs[j] - zs[i]));
+              if (const double rho = rho_of(x); rho > best) best = rho, far = x;
+            }
+          }
       }
       if (best < 0) return from_distance(roller_bore_distance(roller, bore), AssemblySolver::raceway, clearance, tol);
       PairDistance d;
-      d.distance = bore.radius - best;
+      d.path = AnalyticPath::bore;
+      if (z_all >= 0 && z_all <= bore.width) {
+        d.distance = bore.radius - all, far = far_all;
+      } else if (best >= bore.radius) {
+        d.distance = bore.radius - best;  // the clipped mesh reaches the raceway: the depth
+      } else {  // apart within the width: R - G is a lower bound of the distance (raceway.h)
+        d.distance = std::max(bore.radius - all, 0.0), far = far_all, d.path = AnalyticPath::apart;
+      }
       d.point_a = far;
-      const Vec3 foot = bore.base + bore.axis * dot(far - bore.base, bore.axis);
+      const Vec3 foot = bore.base + ax * dot(far - bore.base, ax);
       const Vec3 radial = far - foot;
       const double rn = norm(radial);
       d.point_b = rn > 0 ? foot + radial * (bore.radius / rn) : far;
-      d.path = AnalyticPath::bore;
       AssemblyPairResult out = from_distance(d, AssemblySolver::vertex, clearance, tol);
       out.scar = true;
       return out;

@@ -22,59 +22,30 @@ using detail::perpendicular_unit;
 using detail::Rim;
 using detail::max_axis_distance_on_rim;
 using detail::max_over_angle;
+using detail::max_convex_over_slab;
 
 Error bad(const char* what, const std::string& reason) { return Error{"", -1, -1, std::string(what) + "." + reason}; }
 
 bool finite3(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 bool unit(const Vec3& v) { return finite3(v) && std::fabs(norm(v) - 1) <= 1e-9; }
 
-/// The roller's axis segment clipped to the slab 0 <= z <= width of a ring (z measured from `base`
-/// along `u`): the sub-frustum's end circles (at axis parameters t0 <= t1), or, when no axis point
-/// lies in the slab, the axial gap between the roller and the slab with its witnesses.
-struct Clip {
-  bool empty = false;
-  Rim lo, hi;      ///< end circles of the clipped roller
-  PairDistance gap;  ///< when empty: distance = axial gap >= 0, path apart
-};
-
-Clip clip_to_slab(const Cylinder& roller, const Vec3& base, const Vec3& u, double width) {
-  const Vec3& d = roller.axis;
-  const double h = roller.height;
-  const double z0 = dot(roller.base - base, u), du = dot(d, u);
-  double t0 = 0, t1 = h;
-  if (du != 0) {
-    double a = (0 - z0) / du, b = (width - z0) / du;
-    if (a > b) std::swap(a, b);
-    t0 = std::max(t0, a), t1 = std::min(t1, b);
-  } else if (!(z0 >= 0 && z0 <= width)) {
-    t0 = 1, t1 = 0;  // parallel to the faces and outside the slab
-  }
-  Clip out;
-  if (t0 <= t1) {
-    out.lo = {roller.base + d * t0, detail::radius_at(roller, t0)};
-    out.hi = {roller.base + d * t1, detail::radius_at(roller, t1)};
-    return out;
-  }
-  // No axis point in the slab: the roller's axial extent [zmin, zmax] (end-circle extremes along u)
-  out.empty = true;
-  const Vec3 pu = u - d * du;  // u's part in the end-circle planes, length sin(angle)
-  const double spu = norm(pu);
-  const Vec3 dir = spu > 0 ? pu / spu : Vec3{0, 0, 0};
-  const Rim rims[2] = {{roller.base, roller.radius}, {roller.top_center(), roller.top()}};
-  const bool above = z0 > width;  // the roller lies beyond z = width: its lowest point matters
-  double best = above ? 1e300 : -1e300;
-  Vec3 bp;
-  for (const Rim& rim : rims) {
-    const Vec3 p = rim.c + dir * (above ? -rim.r : rim.r);
-    const double z = dot(p - base, u);
-    if (above ? z < best : z > best) best = z, bp = p;
-  }
-  const double gap = above ? best - width : -best;
-  out.gap.distance = std::max(gap, 0.0);
-  out.gap.point_a = bp;
-  out.gap.point_b = bp - u * (above ? best - width : best);
-  out.gap.path = AnalyticPath::apart;
+/// When the roller's solid misses the slab 0 <= z <= width of a ring (z along u from base): the
+/// axial gap between them, a lower bound of the distance (path apart), with its witnesses.
+PairDistance slab_gap(const detail::AxialExtent& e, const Vec3& base, const Vec3& u, double width) {
+  const bool above = e.zmin > width;  // the roller lies beyond z = width: its lowest point matters
+  const Vec3 p = above ? e.low : e.high;
+  const double z = dot(p - base, u);
+  PairDistance out;
+  out.distance = std::max(above ? z - width : -z, 0.0);
+  out.point_a = p;
+  out.point_b = p - u * (above ? z - width : z);
+  out.path = AnalyticPath::apart;
   return out;
+}
+
+bool in_slab(const Vec3& p, const Vec3& base, const Vec3& u, double width) {
+  const double z = dot(p - base, u);
+  return z >= 0 && z <= width;
 }
 
 /// Farthest point of the ellipse x0^2/e0^2 + x1^2/e1^2 = 1 (e0 >= e1 >= 0) from (y0, y1): returns the
@@ -246,55 +217,82 @@ Vec3 nearest_on_frustum_boundary(const Cylinder& c, const Vec3& p) {
   return c.base + c.axis * bz + ur * bx;
 }
 
+// Both raceway pairs (docs/bearing.md, "Raceways"): g convex (bore: rho - R; cup: the signed
+// distance beyond the cone line), the ring's material inside {g >= 0} /\ slab. With G = max of g over
+// the whole roller (an end circle) and G_K its maximum over K = roller /\ slab:
+//   - the maximiser of G lies in the slab: G_K = G, s = -G (exact);
+//   - else G_K by max_convex_over_slab: G_K >= 0 means the solids meet, s = -G_K (the depth, exact);
+//     G_K < 0: they are apart, and every point p of the roller is at least -g(p) from the material
+//     (it lies in {g >= 0}), so max(-G, 0) is a lower bound of the distance: reported with path
+//     `apart` (never a wrong clash or contact; the assembly leaves a non-clear verdict undecided).
 PairDistance roller_bore_distance(const Cylinder& roller, const Bore& bore) {
-  const Clip clip = clip_to_slab(roller, bore.base, bore.axis, bore.width);
-  if (clip.empty) return clip.gap;
-  // max of the convex rho over the (clipped) frustum: at an extreme point, i.e. on an end circle
-  const auto lo = max_axis_distance_on_rim(clip.lo, roller.axis, bore.base, bore.axis);
-  const auto hi = max_axis_distance_on_rim(clip.hi, roller.axis, bore.base, bore.axis);
-  const auto& m = hi.first > lo.first ? hi : lo;
+  const detail::AxialExtent ext = detail::axial_extent(roller, bore.base, bore.axis);
+  if (ext.zmax < 0 || ext.zmin > bore.width) return slab_gap(ext, bore.base, bore.axis, bore.width);
+  // max of the convex rho over the frustum: at an extreme point, i.e. on an end circle
+  const auto lo = max_axis_distance_on_rim({roller.base, roller.radius}, roller.axis, bore.base, bore.axis);
+  const auto hi = max_axis_distance_on_rim({roller.top_center(), roller.top()}, roller.axis, bore.base, bore.axis);
+  double rho = hi.first > lo.first ? hi.first : lo.first;
+  Vec3 pa = hi.first > lo.first ? hi.second : lo.second;
   PairDistance out;
-  out.distance = bore.radius - m.first;
-  out.point_a = m.second;
-  out.point_b = radial_to(m.second, bore.base, bore.axis, bore.radius);
   out.path = AnalyticPath::bore;
+  if (!in_slab(pa, bore.base, bore.axis, bore.width)) {
+    const auto rho_of = [&](const Vec3& p) { return norm(cross(p - bore.base, bore.axis)); };
+    const detail::SlabMax k = max_convex_over_slab(roller, bore.base, bore.axis, 0, bore.width, rho_of);
+    if (k.value < bore.radius) {
+      out.distance = std::max(bore.radius - rho, 0.0);
+      out.path = AnalyticPath::apart;
+    } else {
+      rho = k.value, pa = k.point;
+    }
+  }
+  if (out.path == AnalyticPath::bore) out.distance = bore.radius - rho;
+  out.point_a = pa;
+  out.point_b = radial_to(pa, bore.base, bore.axis, bore.radius);
   return out;
 }
 
 PairDistance roller_cup_distance(const Cylinder& roller, const Cup& cup) {
-  const Clip clip = clip_to_slab(roller, cup.base, cup.axis, cup.width);
-  if (clip.empty) return clip.gap;
+  const detail::AxialExtent ext = detail::axial_extent(roller, cup.base, cup.axis);
+  if (ext.zmax < 0 || ext.zmin > cup.width) return slab_gap(ext, cup.base, cup.axis, cup.width);
   const Vec3& u = cup.axis;
   const double k = (cup.top_radius - cup.radius) / cup.width;
   const double cb = 1 / std::sqrt(1 + k * k);
-  // g(p) = (rho - R0 - k z) cb: convex (rho convex, z linear), so its maximum over the clipped
-  // frustum is on an end circle; on a circle h(phi) = rho(phi) - k z(phi) is smooth where rho > 0.
+  // g(p) = (rho - R0 - k z) cb: convex (rho convex, z linear), so its maximum over the roller is
+  // on an end circle; on a circle h(phi) = rho(phi) - k z(phi) is smooth where rho > 0.
   const Vec3 f1 = perpendicular_unit(roller.axis), f2 = cross(roller.axis, f1);
-  const auto h_of = [&](const Rim& rim) {
-    return [&, rim](double phi) {
-      const Vec3 v = detail::rim_point(rim, f1, f2, phi) - cup.base;
-      const double z = dot(v, u);
-      return norm(cross(v, u)) - k * z;
-    };
+  const auto h_at = [&](const Vec3& p) {
+    const Vec3 v = p - cup.base;
+    return norm(cross(v, u)) - k * dot(v, u);
   };
-  const auto lo = max_over_angle(h_of(clip.lo));
-  const auto hi = max_over_angle(h_of(clip.hi));
+  const auto h_of = [&](const Rim& rim) {
+    return [&, rim](double phi) { return h_at(detail::rim_point(rim, f1, f2, phi)); };
+  };
+  const Rim rlo{roller.base, roller.radius}, rhi{roller.top_center(), roller.top()};
+  const auto lo = max_over_angle(h_of(rlo));
+  const auto hi = max_over_angle(h_of(rhi));
   const bool top = hi.second > lo.second;
-  const Rim& rim = top ? clip.hi : clip.lo;
-  const double phi = top ? hi.first : lo.first;
-  const Vec3 pa = detail::rim_point(rim, f1, f2, phi);
+  Vec3 pa = detail::rim_point(top ? rhi : rlo, f1, f2, top ? hi.first : lo.first);
+  PairDistance out;
+  out.path = AnalyticPath::cup;
+  if (!in_slab(pa, cup.base, u, cup.width)) {
+    const detail::SlabMax m = max_convex_over_slab(roller, cup.base, u, 0, cup.width, h_at);
+    if (m.value < cup.radius) {  // g < 0 over K: apart; the lower bound max(-G, 0)
+      out.distance = std::max(-(h_at(pa) - cup.radius) * cb, 0.0);
+      out.path = AnalyticPath::apart;
+    } else {
+      pa = m.point;
+    }
+  }
   const Vec3 v = pa - cup.base;
   const double z = dot(v, u), rho = norm(cross(v, u));
   const double g = (rho - cup.radius - k * z) * cb;  // signed distance beyond the cone line
-  PairDistance out;
-  out.distance = -g;
+  if (out.path == AnalyticPath::cup) out.distance = -g;
   out.point_a = pa;
   // the foot on the cone line (R0 + k z', z') of the meridian half-plane: move by -g along the
   // line's outward normal (1, -k) cb
   const Vec3 radial = v - u * z;
   const Vec3 ur = rho > 0 ? radial / rho : perpendicular_unit(u);
   out.point_b = cup.base + u * (z + g * k * cb) + ur * (rho - g * cb);
-  out.path = AnalyticPath::cup;
   return out;
 }
 

@@ -2,6 +2,7 @@
 #pragma once
 #include <algorithm>
 #include <array>
+#include <functional>
 #include <cmath>
 #include <numbers>
 #include <utility>
@@ -62,5 +63,32 @@ std::pair<double, double> max_over_angle(H&& h) {
   }
   return {best_phi, best};
 }
+
+}  // namespace interfere::bearing::detail
+
+namespace interfere::bearing::detail {
+
+/// The axial extent [zmin, zmax] (along unit u, from base) of a roller's solid and its extreme
+/// points: the end circles' points farthest down and up along u (raceway_slab.cpp).
+struct AxialExtent {
+  double zmin = 0, zmax = 0;
+  Vec3 low, high;
+};
+AxialExtent axial_extent(const Cylinder& roller, const Vec3& base, const Vec3& u);
+
+/// max over K = roller /\ {zlo <= z <= zhi} (z along u from base; K non-empty) of a convex f, and
+/// the point where it is reached (raceway_slab.cpp). The maximum of a convex function over the
+/// convex K is at an extreme point of K: on an end circle's arc within the slab, or on one of the
+/// two curves where the roller's lateral surface crosses the planes z = zlo, z = zhi. Each curve is
+/// parametrised by the roller's own angle; the angles where an end circle crosses a plane (closed
+/// form) split the circle into intervals on which every curve is either wholly inside the slab or
+/// wholly outside it; on each, f is sampled and every sampled local maximum refined by golden-
+/// section search, the intervals' ends (the curves' meeting points) included.
+struct SlabMax {
+  double value = 0;
+  Vec3 point;
+};
+SlabMax max_convex_over_slab(const Cylinder& roller, const Vec3& base, const Vec3& u, double zlo, double zhi,
+                             const std::function<double(const Vec3&)>& f);
 
 }  // namespace interfere::bearing::detail

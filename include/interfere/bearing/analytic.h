@@ -44,7 +44,7 @@ enum class AnalyticPath : std::uint8_t {
   cup,       ///< roller in a conical cup: 1-D maximisation over an end circle
   rib,       ///< roller end against a rib face (end circle or annulus-edge curve)
   cone,      ///< A against a cone frustum B: certified lateral (dual) solution
-  apart,     ///< no part of the roller within the ring's width / over the annulus: a lower bound
+  apart,     ///< a lower bound of the distance (the roller misses or overhangs the ring's width, misses the annulus)
 };
 const char* analytic_path_name(AnalyticPath p);
 

@@ -62,16 +62,22 @@ Status validate_rib(const Rib& rib, const char* what = "rib");
 
 /// 1. Roller (convex, possibly tapered) inside a concave cylindrical bore:
 ///        s = radius - max over K of rho(p)
-/// rho the distance to the bore axis, K the part of the roller whose axis lies in the ring's width:
-/// the roller's axis segment is clipped to the slab 0 <= z <= width first (a sub-frustum, still
-/// convex; all of the roller when its axis lies within the width, the bearing's normal state). The
-/// maximum of the convex rho over a frustum is reached on one of its two end circles; on a circle it
-/// is the farthest point of an ellipse (the circle projected along the bore axis) from a point (the
-/// axis), the unique root of a monotone function (closed form to rounding; raceway.cpp). s > 0 is
-/// the radial clearance (the Euclidean distance to the raceway surface), s < 0 the depth of the
-/// roller's farthest point beyond the raceway, measured radially. point_b: point_a moved radially
-/// onto the bore surface. When the whole axis segment lies outside the width, s is the axial gap
-/// between the roller and the ring's slab (>= 0, a lower bound of the distance; path `apart`).
+/// rho the distance to the bore axis, K = the roller's SOLID restricted to the ring's width (the
+/// slab 0 <= z <= width; a convex set, all of the roller in the bearing's normal state). The maximum
+/// of the convex rho over the whole frustum is reached on an end circle: the farthest point of an
+/// ellipse (the circle projected along the bore axis) from a point (the axis), the unique root of a
+/// monotone function (closed form to rounding; raceway.cpp). When that point lies in the width it is
+/// K's maximum too. Otherwise K's maximum is on an end circle's arc within the width or on the
+/// curves where the lateral surface crosses the side faces (raceway_slab.cpp). Cases:
+///   - s <= 0: the solids meet; -s is the depth of the roller's farthest point in the width beyond
+///     the raceway, measured radially (exact);
+///   - s > 0 with K's maximiser the whole roller's: s is the radial clearance, the Euclidean distance
+///     to the ring (exact; path `bore`);
+///   - s > 0 otherwise (the roller overhangs a side face): the reported value is max(radius - max
+///     over the whole roller of rho, 0), a lower bound of the distance (path `apart`);
+///   - K empty (the solid misses the width): the axial gap, a lower bound (path `apart`).
+/// point_b: point_a moved radially onto the bore surface. (Until issue #27's fix the roller's AXIS
+/// was clipped to the width: a roller lying across a side face came out as 0, "contact".)
 PairDistance roller_bore_distance(const Cylinder& roller, const Bore& bore);
 
 /// 2. Roller end against a rib face: with l(p) = (p - center).normal (the height above the face plane)
@@ -102,10 +108,13 @@ PairDistance cone_pair_distance(const Cylinder& a, const Cylinder& b);
 /// 4. Tapered (or cylindrical) roller inside a cup: g(p) = (rho(p) - R(z(p))) / sqrt(1 + k^2), the
 /// signed distance of p beyond the cone line in its meridian half-plane (k = dR/dz), is convex;
 ///        s = -max over K of g(p)
-/// with K as in roller_bore_distance (axis clipped to the width). The maximum is on an end circle of
-/// K: a 1-D maximisation over the circle's angle (dense bracketing then golden-section refinement of
-/// every bracketed maximum; raceway.cpp). point_b: the foot of point_a on the cone line. With
-/// top_radius == radius this is roller_bore_distance.
+/// with K the roller's solid within the width and the cases as in roller_bore_distance (s > 0 with
+/// the whole roller's maximiser in the width: the distance to the cone line, a lower bound of the
+/// distance to the ring that is exact when point_b lies in the width; overhanging and clear: path
+/// `apart`, max(-max over the roller of g, 0)). The maximum over an end circle: a 1-D maximisation
+/// over the circle's angle (dense bracketing then golden-section refinement of every bracketed
+/// maximum; raceway.cpp). point_b: the foot of point_a on the cone line. With top_radius == radius
+/// this is roller_bore_distance.
 PairDistance roller_cup_distance(const Cylinder& roller, const Cup& cup);
 
 /// The signed distance from p to a solid cone frustum (or cylinder): closed form in p's meridian

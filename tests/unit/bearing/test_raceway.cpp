@@ -102,32 +102,17 @@ double dense_max_angle(const std::function<double(double)>& f, int n, double* ar
   return best;
 }
 
-/// The roller's axis parameters whose axis point lies in the slab [0, w] of (base, u), as [t0, t1]
-/// (empty: t0 > t1): solved by bisection on the monotone z(t), independently of the solver's formula.
-void slab_clip(const Cylinder& c, const Vec3& base, const Vec3& u, double w, double& t0, double& t1) {
-  const auto z = [&](double t) { return dot(c.base + c.axis * t - base, u); };
-  const double za = z(0), zb = z(c.height);
-  const auto cross_at = [&](double level) {  // t with z(t) = level, z monotone on [0, h]
-    double a = 0, b = c.height;
-    for (int i = 0; i < 200; ++i) {
-      const double m = 0.5 * (a + b);
-      if ((z(m) < level) == (za < zb)) a = m;
-      else b = m;
-    }
-    return 0.5 * (a + b);
-  };
-  const double lo = std::min(za, zb), hi = std::max(za, zb);
-  if (hi < 0 || lo > w) {
-    t0 = 1, t1 = 0;
-    return;
-  }
-  if (za == zb) {
-    t0 = 0, t1 = c.height;
-    return;
-  }
-  double ta = za >= 0 && za <= w ? 0.0 : cross_at(za < 0 ? 0 : w);
-  double tb = zb >= 0 && zb <= w ? c.height : cross_at(zb < 0 ? 0 : w);
-  t0 = std::min(ta, tb), t1 = std::max(ta, tb);
+/// Where the roller's SOLID lies relative to the slab [0, w] of (base, u): -1 it misses the slab,
+/// 1 it lies wholly inside, 0 it crosses a side face (those poses are checked against their own
+/// reference in test_raceway_slab.cpp). The axial extent from the end circles' extreme points.
+int slab_state(const Cylinder& c, const Vec3& base, const Vec3& u, double w) {
+  const Vec3 pu = u - c.axis * dot(u, c.axis);
+  const double spu = std::sqrt(dot(pu, pu));
+  const double za = dot(c.base - base, u), zb = za + c.height * dot(c.axis, u);
+  const double lo = std::min(za - c.radius * spu, zb - r_top(c) * spu);
+  const double hi = std::max(za + c.radius * spu, zb + r_top(c) * spu);
+  if (hi < 0 || lo > w) return -1;
+  return lo >= 0 && hi <= w ? 1 : 0;
 }
 
 // ---------- references for the bore and the cup ----------
@@ -199,7 +184,7 @@ TEST(BearingRaceway, BoreHandCases) {
 
 TEST(BearingRaceway, BoreRandomPosesAgainstDenseReferences) {
   Rng g(2701);
-  int n = 0, overlap = 0, clear = 0, clipped = 0, touching = 0;
+  int n = 0, overlap = 0, clear = 0, crossing = 0, touching = 0;
   for (int i = 0; i < 400; ++i) {
     const Vec3 u = tilted({0, 0, 1}, g.uniform(0, 0.3), g.uniform(0, 2 * kPi));
     Bore bore{{g.uniform(-5, 5), g.uniform(-5, 5), g.uniform(-5, 5)}, u, 40, 30};
@@ -215,15 +200,18 @@ TEST(BearingRaceway, BoreRandomPosesAgainstDenseReferences) {
       for (int k = 0; k < 2; ++k) c.base = c.base + radial * roller_bore_distance(c, bore).distance;
     const PairDistance pd = roller_bore_distance(c, bore);
     ASSERT_TRUE(std::isfinite(pd.distance));
-    double t0, t1;
-    slab_clip(c, bore.base, bore.axis, bore.width, t0, t1);
-    if (t0 > t1) {
+    const int state = slab_state(c, bore.base, bore.axis, bore.width);
+    if (state == -1) {
       EXPECT_EQ(pd.path, AnalyticPath::apart);
       EXPECT_GE(pd.distance, 0);
       continue;
     }
+    if (state == 0) {  // across a side face: test_raceway_slab.cpp
+      ++crossing;
+      continue;
+    }
     ++n;
-    clipped += t0 > 0 || t1 < h;
+    const double t0 = 0, t1 = h;
     const double direct = 40 - ref_rims_max(c, t0, t1, [&](const Vec3& p) { return axis_dist(p, bore.base, u); });
     const double dual = 40 - ref_dual_max(c, t0, t1, bore.base, u, 0);
     EXPECT_NEAR(direct, dual, 1e-9) << i;
@@ -234,10 +222,10 @@ TEST(BearingRaceway, BoreRandomPosesAgainstDenseReferences) {
     EXPECT_NEAR(norm(pd.point_b - pd.point_a), std::fabs(pd.distance), 1e-9) << i;
     overlap += pd.distance < -1e-6, clear += pd.distance > 1e-6, touching += std::fabs(pd.distance) < 1e-6;
   }
-  EXPECT_GT(n, 350);
+  EXPECT_GT(n, 330);
   EXPECT_GT(overlap, 50);
   EXPECT_GT(clear, 50);
-  EXPECT_GT(clipped, 10);
+  EXPECT_GT(crossing, 10);
   EXPECT_GT(touching, 5);
   // the interior of the roller never exceeds the end circles (the extreme-point argument)
   Rng h(5);
@@ -302,9 +290,8 @@ TEST(BearingRaceway, CupRandomPosesAgainstDenseReferences) {
     const Cylinder c = roller(on_cone - nout * (0.5 * (r0 + r1) + gap), d, r0, r1, h);
     const PairDistance pd = roller_cup_distance(c, cup);
     ASSERT_TRUE(std::isfinite(pd.distance));
-    double t0, t1;
-    slab_clip(c, cup.base, u, w, t0, t1);
-    if (t0 > t1) continue;
+    if (slab_state(c, cup.base, u, w) != 1) continue;  // across a face: test_raceway_slab.cpp
+    const double t0 = 0, t1 = h;
     ++n;
     const double cb = 1 / std::sqrt(1 + k * k);
     const auto gfun = [&](const Vec3& p) {
