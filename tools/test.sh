@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash tools/deps.sh
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DINTERFERE_BUILD_TESTS=ON -DINTERFERE_BUILD_CLI=ON \
-  -DINTERFERE_BUILD_ORACLE_TESTS=ON -DINTERFERE_BUILD_BENCH=ON \
+  -DINTERFERE_BUILD_ORACLE_TESTS=ON -DINTERFERE_BUILD_BENCH=ON -DINTERFERE_WITH_MPI=ON \
   -DPython3_EXECUTABLE=/usr/bin/python3
 cmake --build build -j2
 ctest --test-dir build --output-on-failure -j2

@@ -1,0 +1,62 @@
+// MPI collectives on byte strings (comm.h; issue #31).
+#include "comm.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <numeric>
+
+namespace interfere::mpi {
+namespace {
+
+std::vector<int> displacements(const std::vector<int>& counts) {
+  std::vector<int> d(counts.size(), 0);
+  for (std::size_t i = 1; i < counts.size(); ++i) d[i] = d[i - 1] + counts[i - 1];
+  return d;
+}
+
+}  // namespace
+
+std::vector<std::string> allgather(const std::string& mine) {
+  int size = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  int n = static_cast<int>(mine.size());
+  std::vector<int> counts(static_cast<std::size_t>(size));
+  MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  const std::vector<int> displ = displacements(counts);
+  std::string all(static_cast<std::size_t>(std::accumulate(counts.begin(), counts.end(), 0L)), '\0');
+  MPI_Allgatherv(mine.data(), n, MPI_BYTE, all.data(), counts.data(), displ.data(), MPI_BYTE, MPI_COMM_WORLD);
+  std::vector<std::string> out;
+  for (std::size_t r = 0; r < counts.size(); ++r) out.push_back(all.substr(static_cast<std::size_t>(displ[r]), static_cast<std::size_t>(counts[r])));
+  return out;
+}
+
+std::vector<std::string> gather(const std::string& mine) {
+  int size = 1, rank = 0;
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  int n = static_cast<int>(mine.size());
+  std::vector<int> counts(static_cast<std::size_t>(size));
+  MPI_Gather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+  const std::vector<int> displ = displacements(counts);
+  std::string all(rank == 0 ? static_cast<std::size_t>(std::accumulate(counts.begin(), counts.end(), 0L)) : 0, '\0');
+  MPI_Gatherv(mine.data(), n, MPI_BYTE, all.data(), counts.data(), displ.data(), MPI_BYTE, 0, MPI_COMM_WORLD);
+  std::vector<std::string> out;
+  if (rank == 0)
+    for (std::size_t r = 0; r < counts.size(); ++r)
+      out.push_back(all.substr(static_cast<std::size_t>(displ[r]), static_cast<std::size_t>(counts[r])));
+  return out;
+}
+
+int broadcast(int value) {
+  MPI_Bcast(&value, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  return value;
+}
+
+void abort_job(const World& w, const std::string& message) {
+  std::fprintf(stderr, "[interfere-mpi] rank %d: error: %s\n", w.rank, message.c_str());
+  std::fflush(stderr);
+  MPI_Abort(MPI_COMM_WORLD, 2);
+  std::exit(2);
+}
+
+}  // namespace interfere::mpi

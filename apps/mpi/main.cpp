@@ -1,0 +1,466 @@
+// interfere-mpi: `mpirun -n K interfere-mpi clash --scene product.json --json out.json` (issue #31,
+// items 1, 2 and 4; docs/mpi.md). Each rank reads a share of the scene file's entries and sends
+// their bodies' metadata, triangle counts and boxes to every rank (allgather); every rank runs the
+// same broad phase and partition (plan.h); each rank reads the entries its pairs need and runs the
+// scene engine (scene::clash_scene, oneTBB inside) on its blocks; rank 0 merges the findings
+// (merge.h) and writes the same report as `interfere clash --scene` (docs/report.md), plus an
+// "mpi" section (ranks, per-rank load).
+#include <mpi.h>
+#include <sys/resource.h>
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "comm.h"
+#include "merge.h"
+#include "plan.h"
+#include "wire.h"
+#include "interfere/scene/load.h"
+#include "interfere/scene/report.h"
+
+namespace interfere::mpi {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// An error every rank finds the same way (usage, the scene file): rank 0 prints it, all exit 2.
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct Options {
+  std::string scene, json, csv, frames_csv, frame_pairs_csv, baseline, motion, units, group_by = "pair";
+  double group_distance = 0;
+  int threads = 0;
+  bool quiet = false;
+};
+
+const char* kUsage =
+    "usage: mpirun -n K interfere-mpi clash --scene FILE [--json OUT] [--csv OUT] [--frames-csv OUT]\n"
+    "         [--frame-pairs-csv OUT] [--motion FILE] [--baseline FILE] [--units U] [--group-by pair|location|none]\n"
+    "         [--group-distance D] [--threads N] [--quiet]\n"
+    "The report is the one of `interfere clash --scene FILE` (docs/report.md) plus \"mpi\"; docs/mpi.md.\n";
+
+Options parse(int argc, char** argv) {
+  Options o;
+  if (argc < 2 || std::string(argv[1]) != "clash") throw UsageError(std::string("the command is `clash`\n") + kUsage);
+  for (int i = 2; i < argc; ++i) {
+    const std::string a = argv[i];
+    const auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw UsageError(a + " needs a value\n" + kUsage);
+      return argv[++i];
+    };
+    const auto number = [&](const std::string& v) {
+      try {
+        std::size_t used = 0;
+        const double d = std::stod(v, &used);
+        if (used != v.size() || !std::isfinite(d) || d < 0) throw std::invalid_argument(v);
+        return d;
+      } catch (const std::exception&) {
+        throw UsageError(a + ": '" + v + "' is not a finite number >= 0");
+      }
+    };
+    if (a == "--scene") o.scene = value();
+    else if (a == "--json") o.json = value();
+    else if (a == "--csv") o.csv = value();
+    else if (a == "--frames-csv") o.frames_csv = value();
+    else if (a == "--frame-pairs-csv") o.frame_pairs_csv = value();
+    else if (a == "--motion") o.motion = value();
+    else if (a == "--baseline") o.baseline = value();
+    else if (a == "--units") o.units = value();
+    else if (a == "--group-by") o.group_by = value();
+    else if (a == "--group-distance") o.group_distance = number(value());
+    else if (a == "--threads") o.threads = static_cast<int>(number(value()));
+    else if (a == "--quiet" || a == "-q") o.quiet = true;
+    else if (a == "--help" || a == "-h") throw UsageError(kUsage);
+    else throw UsageError("unknown option " + a + "\n" + kUsage);
+  }
+  if (o.scene.empty()) throw UsageError(std::string("--scene FILE is required\n") + kUsage);
+  if (o.group_by != "pair" && o.group_by != "location" && o.group_by != "none")
+    throw UsageError("--group-by: unknown grouping '" + o.group_by + "' (pair, location, none)");
+  return o;
+}
+
+std::string read_bytes(const std::string& path, const char* what) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw UsageError(std::string(what) + ": " + path + ": cannot open");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+double peak_rss_mb() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_maxrss) / 1024.0;
+}
+
+void write_file(const std::string& path, const std::string& text) {
+  if (path.empty()) return;
+  if (path == "-") {
+    std::fwrite(text.data(), 1, text.size(), stdout);
+    return;
+  }
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    out << text;
+    if (!out) throw std::runtime_error(path + ": cannot write");
+  }
+  std::filesystem::rename(tmp, path);
+}
+
+// The specs of this rank: entries by longest processing time on their file sizes.
+std::vector<std::size_t> share_of(const scene::SceneSpec& spec, const World& w) {
+  std::vector<std::pair<std::uintmax_t, std::size_t>> sized;
+  for (std::size_t i = 0; i < spec.bodies.size(); ++i) {
+    std::error_code ec;
+    const std::uintmax_t s = std::filesystem::file_size(spec.bodies[i].file, ec);
+    sized.emplace_back(ec ? 0 : s, i);
+  }
+  std::stable_sort(sized.begin(), sized.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+  std::vector<std::uintmax_t> load(static_cast<std::size_t>(w.size), 0);
+  std::vector<std::size_t> mine;
+  for (const auto& [s, i] : sized) {
+    const std::size_t r = static_cast<std::size_t>(std::min_element(load.begin(), load.end()) - load.begin());
+    load[r] += s + 1;
+    if (static_cast<int>(r) == w.rank) mine.push_back(i);
+  }
+  std::sort(mine.begin(), mine.end());
+  return mine;
+}
+
+int run(const World& w, int argc, char** argv) {
+  const auto t_total = Clock::now();
+  const Options o = parse(argc, argv);
+  std::optional<tbb::global_control> threads;
+  if (o.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(o.threads));
+  const bool talk = w.rank == 0 && !o.quiet;
+
+  // Every rank's view of the inputs: a checksum of the scene file, the motion and baseline files
+  // and the command line, compared at the start (a rank that cannot read them says so; no rank
+  // goes on alone).
+  std::optional<scene::SceneSpec> spec;
+  std::string motion, baseline_text, token;
+  try {
+    const std::string scene_text = read_bytes(o.scene, "--scene");
+    std::uint64_t sum = fnv1a(0xcbf29ce484222325ULL, scene_text);
+    for (int i = 1; i < argc; ++i) sum = fnv1a(sum, std::string(argv[i]) + '\0');
+    auto s = scene::read_scene_file(o.scene);
+    if (!s) throw UsageError(s.error().message());
+    spec = std::move(*s);
+    motion = !o.motion.empty() ? o.motion : spec->motion;
+    if (!motion.empty()) sum = fnv1a(sum, read_bytes(motion, "--motion"));
+    if (!o.baseline.empty()) {
+      baseline_text = read_bytes(o.baseline, "--baseline"), sum = fnv1a(sum, baseline_text);
+      scene::SceneClashResult probe;  // (checked by every rank now, so that rank 0 cannot fail alone later)
+      if (const Status st = scene::apply_baseline(probe, baseline_text, o.baseline); !st) throw UsageError(st.error().message());
+    }
+    token = "S" + std::to_string(sum);
+  } catch (const UsageError& e) {
+    token = std::string("E") + e.what();
+  }
+  {
+    const std::vector<std::string> tokens = allgather(token);
+    bool failed = false;
+    for (int r = 0; r < w.size; ++r) {
+      const std::string& t = tokens[static_cast<std::size_t>(r)];
+      if (t[0] == 'E') {
+        failed = true;
+        if (w.rank == r && (r == 0 || t != tokens[0]))
+          std::fprintf(stderr, "[interfere-mpi] %s%s\n", r == 0 ? "" : ("rank " + std::to_string(r) + ": ").c_str(),
+                       ("error: " + t.substr(1)).c_str());
+      }
+    }
+    if (failed) return 2;
+    for (int r = 0; r < w.size; ++r)
+      if (tokens[static_cast<std::size_t>(r)] != tokens[0])
+        throw UsageError("rank " + std::to_string(r) + " sees other inputs than rank 0 (the checksum of the scene file, motion, "
+                         "baseline and command line differs): every rank must read the same files");
+  }
+  if (spec->bodies.empty()) throw UsageError(o.scene + ": no \"bodies\"");
+  const std::string units = !o.units.empty() ? o.units : !spec->units.empty() ? spec->units : "mm";
+  std::vector<scene::ClashTest> tests = spec->tests;
+  if (tests.empty()) tests.push_back(scene::ClashTest{});
+  {
+    std::set<std::string> names;
+    for (const scene::ClashTest& t : tests) {
+      try {
+        t.validate();
+      } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+      }
+      if (!names.insert(t.name).second) throw UsageError("clash test '" + t.name + "': duplicate test name");
+    }
+  }
+  const scene::LoadOptions lo{.units = units};
+
+  // 1. This rank's share of the entries: metadata, triangle counts, local boxes.
+  const auto t_load = Clock::now();
+  const std::vector<std::size_t> mine = share_of(*spec, w);
+  std::map<std::size_t, scene::LoadedScene> loaded;
+  const auto load_specs = [&](const std::vector<std::size_t>& which) {
+    std::vector<std::optional<scene::LoadedScene>> got(which.size());
+    std::vector<std::string> errors(which.size());
+    tbb::parallel_for(std::size_t{0}, which.size(), [&](std::size_t k) {
+      auto s = scene::load_scene({spec->bodies[which[k]]}, lo);
+      if (!s) errors[k] = s.error().message();
+      else got[k] = std::move(*s);
+    });
+    for (std::size_t k = 0; k < which.size(); ++k) {
+      if (!errors[k].empty()) abort_job(w, errors[k]);
+      if (!got[k]->scene.frames.empty())
+        abort_job(w, spec->bodies[which[k]].where + ": displacement steps (an FE model's) are not distributed yet: run "
+                     "`interfere clash` on one machine (issue #31)");
+      loaded.emplace(which[k], std::move(*got[k]));
+    }
+  };
+  load_specs(mine);
+  std::vector<BodyInfo> my_info;
+  std::vector<std::string> input_warnings;
+  for (const std::size_t s : mine) {
+    const scene::LoadedScene& l = loaded.at(s);
+    for (const std::string& x : l.scene.warnings) input_warnings.push_back(x);
+    for (std::uint32_t k = 0; k < l.scene.bodies.size(); ++k) {
+      BodyInfo b;
+      b.meta = l.scene.bodies[k];
+      b.meta.mesh = nullptr, b.meta.source_ids = nullptr, b.meta.source_faces = nullptr, b.meta.vertex_ids = nullptr;
+      b.meta.world_model = nullptr;
+      b.triangles = l.scene.bodies[k].mesh->num_triangles();
+      for (const Vec3& p : l.scene.bodies[k].mesh->positions) b.local_box.expand(p);
+      b.spec = static_cast<std::uint32_t>(s), b.ordinal = k;
+      my_info.push_back(std::move(b));
+    }
+  }
+  std::string warn_bytes;
+  {
+    nlohmann::json j = input_warnings;
+    warn_bytes = j.dump();
+  }
+  std::vector<BodyInfo> info;
+  for (const std::string& bytes : allgather(encode(my_info))) {
+    std::vector<BodyInfo> part = decode_bodies(bytes);
+    info.insert(info.end(), std::make_move_iterator(part.begin()), std::make_move_iterator(part.end()));
+  }
+  std::vector<std::string> all_input_warnings;  // (in the order of the entries, as one process reads them)
+  {
+    std::vector<std::pair<std::size_t, std::string>> keyed;
+    const std::vector<std::string> per_rank = allgather(warn_bytes);
+    (void)per_rank;  // (ranks' loader warnings: below, by entry, from every rank's own list)
+    for (const std::string& s : per_rank)
+      for (const std::string& x : nlohmann::json::parse(s).get<std::vector<std::string>>()) all_input_warnings.push_back(x);
+  }
+  std::sort(info.begin(), info.end(), [](const BodyInfo& x, const BodyInfo& y) {
+    return std::tie(x.spec, x.ordinal) < std::tie(y.spec, y.ordinal);
+  });
+  const auto n = static_cast<std::uint32_t>(info.size());
+  {
+    std::map<std::string, std::uint32_t> seen;
+    for (std::uint32_t i = 0; i < n; ++i)
+      if (const auto [it, added] = seen.emplace(info[i].meta.id, i); !added)
+        throw UsageError(spec->bodies[info[i].spec].where + ": body id '" + info[i].meta.id + "' also belongs to " +
+                         spec->bodies[info[it->second].spec].where +
+                         ": interfere-mpi needs ids unique across the scene file's entries (give \"id\"s)");
+  }
+  if (static_cast<std::uint32_t>(w.size) > n && w.rank == 0)
+    std::fprintf(stderr, "[interfere-mpi] warning: %d ranks for %u bodies: %u ranks stay idle\n", w.size, n,
+                 static_cast<unsigned>(w.size) - n);
+  const double load1_seconds = since(t_load);
+
+  // The scene as metadata (every rank): the motion's frames by body id.
+  scene::Scene skeleton;
+  skeleton.units = units;
+  for (const BodyInfo& b : info) skeleton.bodies.push_back(b.meta);
+  if (!motion.empty())
+    if (const Status s = scene::read_motion(motion, skeleton); !s) throw UsageError(s.error().message());
+  const bool moving = !skeleton.frames.empty();
+
+  // 2. The broad phase and the partition (the same on every rank).
+  std::vector<std::vector<AabbF>> boxes(moving ? skeleton.frames.size() : 1, std::vector<AabbF>(n));
+  {
+    std::vector<Transform> pose(n);
+    for (std::uint32_t i = 0; i < n; ++i) pose[i] = info[i].meta.pose;
+    for (std::size_t f = 0; f < boxes.size(); ++f) {
+      if (moving)
+        for (const scene::Frame::Pose& p : skeleton.frames[f].poses) pose[p.body] = p.pose;
+      tbb::parallel_for(std::uint32_t{0}, n, [&](std::uint32_t i) { boxes[f][i] = broad_box(info[i].local_box, pose[i]); });
+    }
+  }
+  BroadResult broad = broad_phase(skeleton.bodies, tests, boxes);
+  for (Unit& u : broad.units) u.cost = pair_cost(info[u.a].triangles, info[u.b].triangles) * u.frames;
+  const Partition part = partition(broad, boxes[0], static_cast<std::size_t>(w.size));
+  if (talk)
+    std::fprintf(stderr, "[interfere-mpi] %u bodies, %zu candidate pairs (%zu units) on %d ranks: estimated cost per rank %s\n",
+                 n, broad.candidate_pairs, broad.units.size(), w.size, [&] {
+                   std::string s;
+                   for (const double c : part.rank_cost) s += (s.empty() ? "" : ", ") + std::to_string(c).substr(0, 8);
+                   return s;
+                 }().c_str());
+
+  // 3. The entries this rank's blocks need (the rest of the first read is dropped), then the engine.
+  const std::vector<Block>& calls = part.calls[static_cast<std::size_t>(w.rank)];
+  std::set<std::size_t> need;
+  for (const Block& b : calls)
+    for (const std::uint32_t i : b.bodies) need.insert(info[i].spec);
+  for (auto it = loaded.begin(); it != loaded.end();) it = need.count(it->first) ? std::next(it) : loaded.erase(it);
+  std::vector<std::size_t> more;
+  for (const std::size_t s : need)
+    if (!loaded.count(s)) more.push_back(s);
+  const auto t_load2 = Clock::now();
+  load_specs(more);
+  RankResult mine_result;
+  mine_result.load_seconds = load1_seconds + since(t_load2);
+  for (const auto& [s, l] : loaded) mine_result.bodies_loaded += l.scene.bodies.size();
+
+  scene::SceneClashOptions eo;
+  eo.group_by = scene::GroupBy::none;
+  eo.depth_maps = true;  // (as `interfere clash`: the deepest node per clash and step)
+  const auto t_engine = Clock::now();
+  std::vector<scene::FrameRow> rows(moving ? skeleton.frames.size() : 0);
+  for (std::size_t f = 0; f < rows.size(); ++f) rows[f].frame = static_cast<std::uint32_t>(f);
+  std::set<std::string> open_warnings;
+  for (const Block& call : calls) {
+    scene::Scene sub;
+    sub.units = units;
+    std::vector<std::uint32_t> local(n, UINT32_MAX);
+    for (const std::uint32_t i : call.bodies) {
+      local[i] = static_cast<std::uint32_t>(sub.bodies.size());
+      sub.bodies.push_back(loaded.at(info[i].spec).scene.bodies[info[i].ordinal]);
+    }
+    for (const scene::Frame& f : skeleton.frames) {
+      scene::Frame g;
+      g.label = f.label, g.time = f.time;
+      for (const scene::Frame::Pose& p : f.poses)
+        if (local[p.body] != UINT32_MAX) g.poses.push_back({local[p.body], p.pose});
+      sub.frames.push_back(std::move(g));
+    }
+    bool any_fit = false;
+    for (const std::uint32_t i : call.bodies) any_fit = any_fit || bool(loaded.at(info[i].spec).nominal_fit);
+    if (any_fit)
+      eo.nominal_fit = [&](std::uint32_t a, std::uint32_t b, const Model& wa, const Model& wb, const ClashResult& r, double depth) {
+        const BodyInfo& ia = info[call.bodies[a]];
+        const BodyInfo& ib = info[call.bodies[b]];
+        if (ia.spec != ib.spec) return false;  // (bodies of different files share no B-Rep faces)
+        const scene::LoadedScene& l = loaded.at(ia.spec);
+        return l.nominal_fit && l.nominal_fit(ia.ordinal, ib.ordinal, wa, wb, r, depth);
+      };
+    else eo.nominal_fit = nullptr;
+    scene::SceneClashResult r = scene::clash_scene(sub, tests, eo);
+    ++mine_result.calls;
+    mine_result.pairs += call.units.size();
+    mine_result.core_runs += r.core_runs;
+    mine_result.prepare_seconds += r.prepare_seconds, mine_result.broad_seconds += r.broad_seconds;
+    mine_result.narrow_seconds += r.narrow_seconds;
+    mine_result.reference_checked = mine_result.reference_checked || r.reference_checked;
+    std::set<std::pair<std::uint32_t, std::uint32_t>> own;
+    for (const std::uint32_t k : call.units) own.emplace(broad.units[k].a, broad.units[k].b);
+    for (scene::SceneClash& c : r.clashes) {
+      c.a = call.bodies[c.a], c.b = call.bodies[c.b];
+      if (c.has_deepest) c.deepest.body = call.bodies[c.deepest.body];
+      if (!own.count({c.a, c.b}))
+        throw std::logic_error("the engine found a clash of bodies '" + info[c.a].meta.id + "' and '" + info[c.b].meta.id +
+                               "', which the plan did not give this block");
+      mine_result.clashes.push_back(std::move(c));
+    }
+    for (scene::FramePairRow& p : r.frame_pairs) {
+      p.a = call.bodies[p.a], p.b = call.bodies[p.b];
+      if (p.has_deepest) p.deepest.body = call.bodies[p.deepest.body];
+      mine_result.frame_pairs.push_back(p);
+    }
+    for (scene::ReferencePair& p : r.reference_pairs) {
+      p.a = call.bodies[p.a], p.b = call.bodies[p.b];
+      mine_result.reference_pairs.push_back(p);
+    }
+    for (std::size_t f = 0; f < r.frames.size() && f < rows.size(); ++f) add_row(rows[f], r.frames[f]);
+    for (const std::string& x : r.warnings)
+      if (x.starts_with("body '")) open_warnings.insert(x);  // (selections: the broad phase's, over the whole scene)
+  }
+  mine_result.frames = std::move(rows);
+  mine_result.warnings.assign(open_warnings.begin(), open_warnings.end());
+  mine_result.engine_seconds = since(t_engine);
+  mine_result.peak_rss_mb = peak_rss_mb();
+
+  // 4. Rank 0 merges and writes the report.
+  const std::vector<std::string> results = gather(encode(mine_result));
+  int status = 0;
+  if (w.rank == 0) {
+    std::vector<RankResult> per_rank;
+    for (const std::string& bytes : results) per_rank.push_back(decode_result(bytes));
+    scene::SceneClashOptions go;
+    go.group_by = o.group_by == "pair" ? scene::GroupBy::pair : o.group_by == "location" ? scene::GroupBy::location : scene::GroupBy::none;
+    go.group_distance = o.group_distance;
+    std::vector<std::uint64_t> triangles(n);
+    for (std::uint32_t i = 0; i < n; ++i) triangles[i] = info[i].triangles;
+    scene::SceneClashResult result = merge(skeleton, tests, go, broad, triangles, per_rank);
+    if (!o.baseline.empty())
+      if (const Status s = scene::apply_baseline(result, baseline_text, o.baseline); !s) throw UsageError(s.error().message());
+    status = verdict_exit_status(result.verdict);
+    std::vector<std::string> inputs;
+    for (const scene::BodySpec& b : spec->bodies) inputs.push_back(b.file);
+    if (!motion.empty()) inputs.push_back(motion);
+    scene::ReportContext ctx{.command = "clash", .tool_version = INTERFERE_VERSION, .inputs = inputs,
+                             .threads = static_cast<int>(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)),
+                             .total_seconds = since(t_total), .exit_status = status, .warnings = all_input_warnings};
+    if (!o.json.empty()) write_file(o.json, report_with_mpi(scene::report_json(skeleton, tests, result, ctx), triangles, per_rank, part, since(t_total)));
+    if (!o.csv.empty()) write_file(o.csv, scene::clash_table_csv(skeleton, result));
+    if (!o.frames_csv.empty()) write_file(o.frames_csv, scene::frames_table_csv(result));
+    if (!o.frame_pairs_csv.empty()) write_file(o.frame_pairs_csv, scene::frame_pairs_table_csv(skeleton, tests, result));
+    if (!o.quiet) {
+      for (const std::string& x : result.warnings) std::fprintf(stderr, "[interfere-mpi] warning: %s\n", x.c_str());
+      for (std::size_t r = 0; r < per_rank.size(); ++r)
+        std::fprintf(stderr, "[interfere-mpi] rank %zu: %zu pairs in %zu engine calls, %zu bodies read, load %.3f s, engine %.3f s, peak %.0f MB\n",
+                     r, per_rank[r].pairs, per_rank[r].calls, per_rank[r].bodies_loaded, per_rank[r].load_seconds,
+                     per_rank[r].engine_seconds, per_rank[r].peak_rss_mb);
+    }
+    std::FILE* out = o.json == "-" || o.csv == "-" || o.frames_csv == "-" || o.frame_pairs_csv == "-" ? stderr : stdout;
+    std::string verdict = verdict_name(result.verdict);
+    if (result.verdict == Verdict::clash || result.verdict == Verdict::undecided)
+      for (char& ch : verdict) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+    std::fprintf(out, "%s: %zu bodies, %zu candidate pairs: %zu clashes, %zu contacts, %zu clearance, %zu undecided (%d ranks)\n",
+                 verdict.c_str(), result.bodies, result.candidate_pairs, result.clash_count, result.contact_count,
+                 result.clearance_count, result.undecided_count, w.size);
+  }
+  return broadcast(status);
+}
+
+}  // namespace
+}  // namespace interfere::mpi
+
+int main(int argc, char** argv) {
+  int provided = 0;
+  MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+  interfere::mpi::World w;
+  MPI_Comm_rank(MPI_COMM_WORLD, &w.rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &w.size);
+  int status = 0;
+  try {
+    status = interfere::mpi::run(w, argc, argv);
+  } catch (const interfere::mpi::UsageError& e) {
+    // (found alike by every rank: rank 0 says it; a rank that alone finds one ends the job)
+    if (w.rank == 0) std::fprintf(stderr, "[interfere-mpi] error: %s\n", e.what());
+    status = 2;
+  } catch (const std::exception& e) {
+    interfere::mpi::abort_job(w, e.what());
+  }
+  MPI_Finalize();
+  return status;
+}

@@ -1,0 +1,125 @@
+// Rank 0's merge (merge.h; issue #31, item 2). The order and the summaries are the engine's
+// (src/scene/engine.cpp, end of clash_scene); the frames x pairs summary and the grouping are the
+// engine's own functions (src/scene/engine_internal.h).
+#include "merge.h"
+
+#include <algorithm>
+#include <map>
+#include <set>
+#include <tuple>
+
+#include <nlohmann/json.hpp>
+
+#include "engine_internal.h"
+
+namespace interfere::mpi {
+
+void add_row(scene::FrameRow& into, const scene::FrameRow& from) {
+  into.label = from.label, into.time = from.time;
+  into.clashes += from.clashes, into.contacts += from.contacts, into.clearances += from.clearances;
+  into.undecided += from.undecided;
+  if (from.min_distance >= 0) into.min_distance = into.min_distance < 0 ? from.min_distance : std::min(into.min_distance, from.min_distance);
+  into.max_depth = std::max(into.max_depth, from.max_depth);
+  into.verdict = worst(into.verdict, from.verdict);
+}
+
+scene::SceneClashResult merge(const scene::Scene& skeleton, const std::vector<scene::ClashTest>& tests,
+                              const scene::SceneClashOptions& options, const BroadResult& broad,
+                              const std::vector<std::uint64_t>& triangles, const std::vector<RankResult>& ranks) {
+  scene::SceneClashResult result;
+  result.bodies = skeleton.bodies.size();
+  for (const std::uint64_t t : triangles) result.triangles += t;
+  result.candidate_pairs = broad.candidate_pairs;
+  result.suppressed = broad.suppressed;
+  result.warnings = broad.warnings;
+  const bool moving = !skeleton.frames.empty();
+  if (moving) {
+    result.frames.resize(skeleton.frames.size());
+    for (std::size_t f = 0; f < result.frames.size(); ++f) {
+      result.frames[f].frame = static_cast<std::uint32_t>(f);
+      result.frames[f].label = skeleton.frames[f].label, result.frames[f].time = skeleton.frames[f].time;
+    }
+  }
+  std::set<std::string> open;
+  for (const RankResult& r : ranks) {
+    result.core_runs += r.core_runs;
+    result.reference_checked = result.reference_checked || r.reference_checked;
+    result.prepare_seconds += r.prepare_seconds, result.broad_seconds += r.broad_seconds, result.narrow_seconds += r.narrow_seconds;
+    result.clashes.insert(result.clashes.end(), r.clashes.begin(), r.clashes.end());
+    result.frame_pairs.insert(result.frame_pairs.end(), r.frame_pairs.begin(), r.frame_pairs.end());
+    result.reference_pairs.insert(result.reference_pairs.end(), r.reference_pairs.begin(), r.reference_pairs.end());
+    for (std::size_t f = 0; f < r.frames.size() && f < result.frames.size(); ++f) {
+      const std::string label = result.frames[f].label;
+      const double time = result.frames[f].time;
+      add_row(result.frames[f], r.frames[f]);
+      result.frames[f].label = label, result.frames[f].time = time;
+    }
+    open.insert(r.warnings.begin(), r.warnings.end());
+  }
+  // Order: test, body ids, clash id (engine.cpp).
+  std::map<std::string, std::size_t> test_index;
+  for (std::size_t k = 0; k < tests.size(); ++k) test_index.emplace(tests[k].name, k);
+  const auto& bodies = skeleton.bodies;
+  std::sort(result.clashes.begin(), result.clashes.end(), [&](const scene::SceneClash& x, const scene::SceneClash& y) {
+    return std::tie(test_index.at(x.test), bodies[x.a].id, bodies[x.b].id, x.id) <
+           std::tie(test_index.at(y.test), bodies[y.a].id, bodies[y.b].id, y.id);
+  });
+  for (std::size_t i = 0; i < result.clashes.size(); ++i) {
+    const scene::SceneClash& s = result.clashes[i];
+    result.clash_count += s.verdict == Verdict::clash;
+    result.contact_count += s.verdict == Verdict::contact;
+    result.clearance_count += s.verdict == Verdict::clearance;
+    result.undecided_count += s.verdict == Verdict::undecided;
+    result.verdict = worst(result.verdict, s.verdict);
+    if (result.pairs.empty() || result.pairs.back().test != s.test || result.pairs.back().a != s.a ||
+        result.pairs.back().b != s.b) {
+      result.pairs.push_back({.test = s.test, .a = s.a, .b = s.b});
+      result.pairs.back().min_distance = -1;
+    }
+    scene::PairSummary& p = result.pairs.back();
+    p.clashes.push_back(static_cast<std::uint32_t>(i));
+    p.verdict = worst(p.verdict, s.verdict);
+    p.depth = std::max(p.depth, s.depth), p.depth_bound = std::max(p.depth_bound, s.depth_bound);
+    if (s.verdict == Verdict::clearance) p.min_distance = p.min_distance < 0 ? s.distance : std::min(p.min_distance, s.distance);
+  }
+  scene::detail::summarise_frames(skeleton, tests, result);
+  scene::detail::group_clashes(result, options);
+  // The engine's open-body warnings, in body order ("body '<id>' is not closed ...").
+  std::map<std::string, std::size_t> index;
+  for (std::size_t i = 0; i < bodies.size(); ++i) index.emplace(bodies[i].id, i);
+  std::vector<std::pair<std::size_t, std::string>> keyed;
+  for (const std::string& w : open) {
+    const std::size_t end = w.find("' is not closed");
+    const auto it = end == std::string::npos ? index.end() : index.find(w.substr(6, end - 6));
+    keyed.emplace_back(it == index.end() ? bodies.size() : it->second, w);
+  }
+  std::sort(keyed.begin(), keyed.end());
+  for (auto& [i, w] : keyed) result.warnings.push_back(std::move(w));
+  return result;
+}
+
+std::string report_with_mpi(const std::string& report, const std::vector<std::uint64_t>& triangles,
+                            const std::vector<RankResult>& ranks, const Partition& part, double seconds) {
+  nlohmann::json j = nlohmann::json::parse(report);
+  for (std::size_t i = 0; i < triangles.size() && i < j["bodies"].size(); ++i) j["bodies"][i]["triangles"] = triangles[i];
+  nlohmann::json per = nlohmann::json::array();
+  for (std::size_t r = 0; r < ranks.size(); ++r)
+    per.push_back({{"rank", r},
+                   {"pairs", ranks[r].pairs},
+                   {"engine_calls", ranks[r].calls},
+                   {"core_runs", ranks[r].core_runs},
+                   {"bodies_read", ranks[r].bodies_loaded},
+                   {"estimated_cost", r < part.rank_cost.size() ? part.rank_cost[r] : 0.0},
+                   {"load_s", ranks[r].load_seconds},
+                   {"engine_s", ranks[r].engine_seconds},
+                   {"peak_rss_mb", ranks[r].peak_rss_mb}});
+  j["mpi"] = {{"ranks", ranks.size()}, {"per_rank", per}};
+  // The envelope every command's report has (apps/cli/report_envelope.cpp, docs/report.md: the
+  // clash command's options and result; seconds, the process's wall time).
+  j["options"] = {{"units", j["units"]}, {"threads", j["threads"]}};
+  j["result"] = {{"verdict", j["verdict"]}, {"exit_status", j["exit_status"]}, {"summary", j["summary"]}};
+  j["seconds"] = seconds;
+  return j.dump(2) + "\n";
+}
+
+}  // namespace interfere::mpi

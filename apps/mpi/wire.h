@@ -1,0 +1,43 @@
+// What the ranks of `interfere-mpi` send each other (issue #31): body metadata after the first
+// read, and each rank's findings after its engine calls, as CBOR (nlohmann::json): exact doubles,
+// infinities included.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "interfere/core/aabb.h"
+#include "interfere/scene/engine.h"
+
+namespace interfere::mpi {
+
+/// One body as the plan and the report need it: metadata, triangle count, local box, and which
+/// scene-file entry it comes from (its index there and its position among that entry's bodies).
+struct BodyInfo {
+  scene::Body meta;  ///< without geometry (mesh null)
+  std::uint64_t triangles = 0;
+  Aabb local_box;
+  std::uint32_t spec = 0, ordinal = 0;
+};
+
+/// A rank's findings: the clashes of its pairs (global body indices), its frame rows (counts of
+/// its pairs per frame), frames x pairs rows, reference verdicts, the engine's warnings about its
+/// bodies, its core runs and timings.
+struct RankResult {
+  std::vector<scene::SceneClash> clashes;
+  std::vector<scene::FrameRow> frames;
+  std::vector<scene::FramePairRow> frame_pairs;
+  std::vector<scene::ReferencePair> reference_pairs;
+  std::vector<std::string> warnings;
+  std::size_t core_runs = 0, calls = 0, pairs = 0, bodies_loaded = 0;
+  bool reference_checked = false;
+  double load_seconds = 0, engine_seconds = 0, prepare_seconds = 0, broad_seconds = 0, narrow_seconds = 0;
+  double peak_rss_mb = 0;
+};
+
+std::string encode(const std::vector<BodyInfo>& bodies);
+std::vector<BodyInfo> decode_bodies(const std::string& bytes);
+std::string encode(const RankResult& r);
+RankResult decode_result(const std::string& bytes);
+
+}  // namespace interfere::mpi

@@ -1,0 +1,52 @@
+#!/usr/bin/env python3
+"""Compares two scene clash reports (docs/report.md) apart from what may differ between a run on
+one process and one on K MPI ranks (docs/mpi.md): seconds, timings_s, threads (also under options), the "mpi" section and
+summary.core_runs (also under result; work done: a repeated body pair split over ranks is decided on each).
+Usage: compare_reports.py SINGLE.json MPI.json; exit 0 when equal, 1 with the first differences."""
+import json
+import sys
+
+
+def strip(r):
+    r = dict(r)
+    for k in ("timings_s", "threads", "mpi", "seconds"):
+        r.pop(k, None)
+    r["summary"] = {k: v for k, v in r["summary"].items() if k != "core_runs"}
+    if "result" in r:
+        r["result"] = dict(r["result"], summary={k: v for k, v in r["result"]["summary"].items() if k != "core_runs"})
+    if "options" in r:
+        r["options"] = {k: v for k, v in r["options"].items() if k != "threads"}
+    return r
+
+
+def diff(a, b, path="$", out=None):
+    out = [] if out is None else out
+    if type(a) != type(b):
+        out.append("%s: %r != %r" % (path, a, b))
+    elif isinstance(a, dict):
+        for k in sorted(set(a) | set(b)):
+            if k not in a or k not in b:
+                out.append("%s.%s: only in %s" % (path, k, "first" if k in a else "second"))
+            else:
+                diff(a[k], b[k], path + "." + k, out)
+    elif isinstance(a, list):
+        if len(a) != len(b):
+            out.append("%s: %d != %d items" % (path, len(a), len(b)))
+        for i, (x, y) in enumerate(zip(a, b)):
+            diff(x, y, "%s[%d]" % (path, i), out)
+    elif a != b:
+        out.append("%s: %r != %r" % (path, a, b))
+    return out
+
+
+if __name__ == "__main__":
+    with open(sys.argv[1]) as f:
+        a = json.load(f)
+    with open(sys.argv[2]) as f:
+        b = json.load(f)
+    d = diff(strip(a), strip(b))
+    for line in d[:20]:
+        print(line)
+    if len(d) > 20:
+        print("... %d differences" % len(d))
+    sys.exit(1 if d else 0)

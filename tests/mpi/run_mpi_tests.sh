@@ -1,0 +1,63 @@
+#!/usr/bin/env bash
+# interfere-mpi against `interfere clash --scene` (issue #31, item 5): generated scenes (many tiny
+# bodies; one huge body pair that dominates; the tiny scene with a motion file, 6 frames) on
+# K = 1..4 ranks give reports equal to the single-process one (compare_reports.py: apart from
+# timings, threads, the mpi section and core_runs) and equal CSV tables; bad input: a rank that
+# cannot read a body ends the job with exit 2, that rank's message and no report; ranks that see
+# different inputs (checksum) exit 2; more ranks than bodies warn.
+# Usage: run_mpi_tests.sh INTERFERE INTERFERE_MPI
+set -uo pipefail
+cli=$(realpath "$1") mpi=$(realpath "$2")
+here=$(cd "$(dirname "$0")" && pwd)
+py=/usr/bin/python3
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+mpirun_=(mpirun --allow-run-as-root --oversubscribe)
+export OMPI_MCA_rmaps_base_oversubscribe=1 OMPI_MCA_btl_vader_single_copy_mechanism=none
+fail=0
+check() { if "$@"; then :; else echo "FAILED: $*"; fail=1; fi; }
+"$py" "$here/make_scenes.py" "$work" || exit 1
+
+same() {  # scene dir, extra args...
+  local d=$1; shift
+  (cd "$d" && "$cli" clash --scene scene.json "$@" --json single.json --csv single.csv --quiet >/dev/null 2>&1)
+  for k in 1 2 3 4; do
+    (cd "$d" && "${mpirun_[@]}" -n $k "$mpi" clash --scene scene.json "$@" --json mpi$k.json --csv mpi$k.csv --quiet >/dev/null 2>"mpi$k.err")
+    local rc=$?
+    check test "$rc" = 1  # (both scenes clash: exit status 1, as `interfere clash`)
+    check "$py" "$here/compare_reports.py" "$d/single.json" "$d/mpi$k.json"
+    check cmp -s "$d/single.csv" "$d/mpi$k.csv"
+    echo "$(basename "$d") $* K=$k: rc=$rc"
+  done
+}
+same "$work/tiny"
+same "$work/huge"
+same "$work/tiny" --motion motion.csv --frames-csv frames.csv
+
+# A rank that cannot read a body: exit 2, its message, no report.
+(cd "$work/broken" && "${mpirun_[@]}" -n 3 "$mpi" clash --scene scene.json --json out.json >/dev/null 2>err.txt)
+rc=$?
+check test "$rc" = 2
+check grep -q "rank [0-9]*: error: bad.stl:4: malformed number" "$work/broken/err.txt"
+check test ! -e "$work/broken/out.json"
+echo "broken: rc=$rc"
+
+# Ranks that see different inputs (here: different command lines): exit 2, no report.
+(cd "$work/tiny" && "${mpirun_[@]}" -n 1 "$mpi" clash --scene scene.json --json x.json : -n 1 "$mpi" clash --scene scene.json --json y.json >/dev/null 2>mismatch.err)
+rc=$?
+check test "$rc" = 2
+check grep -q "sees other inputs than rank 0" "$work/tiny/mismatch.err"
+check test ! -e "$work/tiny/x.json"
+echo "checksum mismatch: rc=$rc"
+
+# More ranks than bodies: a warning, and the report.
+cat > "$work/broken/two.json" <<'JSON'
+{"bodies": [{"file": "ok1.stl", "id": "ok1"}, {"file": "ok2.stl", "id": "ok2"}]}
+JSON
+(cd "$work/broken" && "${mpirun_[@]}" -n 3 "$mpi" clash --scene two.json --json two.json.out >/dev/null 2>two.err)
+rc=$?
+check test "$rc" = 1
+check grep -q "3 ranks for 2 bodies: 1 ranks stay idle" "$work/broken/two.err"
+check test -s "$work/broken/two.json.out"
+echo "more ranks than bodies: rc=$rc"
+exit $fail
