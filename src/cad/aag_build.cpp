@@ -338,6 +338,64 @@ bool normal_on_edge(const TopoDS_Edge& e, const TopoDS_Face& f, double t, Vec3& 
   return face_normal(f, uv.X(), uv.Y(), p, n);
 }
 
+
+// Angular range and axial extent of a cylinder or cone face (issue #29): a hole's wall must close
+// the full circle, summed over the faces it is split into. Analytic faces: the angle is the surface's
+// u parameter, the range the face's u bounds (right-handed about node.axis: the end whose
+// neighbourhood holds the middle of the range is its start). Recognised B-spline faces: the largest
+// angular gap between 48 samples per boundary edge (a gap under 0.15 rad between samples counts as
+// closed). The axial extent comes from the boundary samples in both cases.
+void angular_range(const TopoDS_Face& f, AagNode& node) {
+  const Vec3 a = node.axis;
+  const auto [e1, e2] = across(a);
+  auto angle_of = [&](const Vec3& q) {
+    const Vec3 d = q - node.axis_point;
+    return std::atan2(dot(d, e2), dot(d, e1));
+  };
+  std::vector<double> angles;
+  double hmin = 1e300, hmax = -1e300;
+  for (TopExp_Explorer x(f, TopAbs_EDGE); x.More(); x.Next()) {
+    const TopoDS_Edge e = TopoDS::Edge(x.Current());
+    if (BRep_Tool::Degenerated(e)) continue;
+    BRepAdaptor_Curve c(e);
+    const double t0 = c.FirstParameter(), t1 = c.LastParameter();
+    if (!std::isfinite(t0) || !std::isfinite(t1)) continue;
+    for (int i = 0; i <= 48; ++i) {
+      const Vec3 q = v3(c.Value(t0 + (t1 - t0) * i / 48));
+      const double h = dot(q - node.axis_point, a);
+      hmin = std::min(hmin, h), hmax = std::max(hmax, h);
+      const Vec3 r = q - node.axis_point - a * h;
+      if (norm(r) > 1e-9 * std::max(1.0, node.radius)) angles.push_back(angle_of(q));
+    }
+  }
+  if (hmin > hmax) return;
+  node.axial_min = hmin, node.axial_max = hmax;
+  constexpr double two_pi = 2 * M_PI;
+  auto dir_at = [&](double t) { return e1 * std::cos(t) + e2 * std::sin(t); };
+  if (!node.from_bspline) {
+    BRepAdaptor_Surface s(f, Standard_True);
+    double u0, u1, v0, v1;
+    BRepTools::UVBounds(f, u0, u1, v0, v1);
+    const double span = std::min(u1 - u0, two_pi);
+    if (!(span > 0)) return;
+    node.arc_span = span;
+    const double vm = 0.5 * (v0 + v1);
+    const double t0 = angle_of(v3(s.Value(u0, vm))), tm = angle_of(v3(s.Value(0.5 * (u0 + u1), vm)));
+    double d = std::remainder(tm - t0, two_pi);
+    if (d < 0) d += two_pi;
+    // u runs right-handed about the axis when the middle lies half a span after u0.
+    const bool forward = std::abs(d - 0.5 * span) < std::abs((two_pi - d) - 0.5 * span);
+    node.arc_start = dir_at(forward ? t0 : angle_of(v3(s.Value(u1, vm))));
+    return;
+  }
+  if (angles.size() < 2) return;
+  std::sort(angles.begin(), angles.end());
+  double gap = angles.front() + two_pi - angles.back(), start = angles.front();
+  for (std::size_t i = 1; i < angles.size(); ++i)
+    if (angles[i] - angles[i - 1] > gap) gap = angles[i] - angles[i - 1], start = angles[i];
+  node.arc_span = gap < 0.15 ? two_pi : two_pi - gap;
+  node.arc_start = dir_at(start);
+}
 }  // namespace
 
 Aag build_aag(const TopoDS_Shape& shape, const TopTools_IndexedMapOfShape& faces, double tol) {
@@ -350,6 +408,7 @@ Aag build_aag(const TopoDS_Shape& shape, const TopTools_IndexedMapOfShape& faces
     AagNode& node = g.nodes[i - 1];
     node.face = static_cast<std::uint32_t>(i - 1);
     describe_surface(f, node, tol);
+    if (node.type == SurfaceType::cylinder || node.type == SurfaceType::cone) angular_range(f, node);
     GProp_GProps props;
     BRepGProp::SurfaceProperties(f, props);
     node.area = props.Mass();
@@ -405,6 +464,7 @@ Aag build_aag(const TopoDS_Shape& shape, const TopTools_IndexedMapOfShape& faces
     gp_Pnt cp;
     gp_Vec tv;
     c.D1(t, cp, tv);
+    arc.midpoint = v3(cp);
     Vec3 tan = unit({tv.X(), tv.Y(), tv.Z()});
     if (in_a == TopAbs_REVERSED) tan = -tan;
     Vec3 pa, na, pb, nb;

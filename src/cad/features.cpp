@@ -17,6 +17,7 @@
 #include <sstream>
 
 #include "data_dir.h"
+#include "hole_recognition.h"
 
 namespace interfere::cad {
 namespace {
@@ -358,7 +359,20 @@ std::vector<Feature> recognize_features(const Aag& input, const FeatureLibrary& 
   }
   std::vector<char> claimed(n, 0);
   std::vector<Feature> out;
+  // Holes (issue #29): the library's hole types are recognised from the walls' geometry and their
+  // ends (hole_recognition.cpp), not by matching "a concave cylinder between two planes"; their faces
+  // are claimed before the other patterns run.
+  std::set<std::string> hole_types;
+  for (const FeaturePattern& p : library.patterns)
+    if (detail::hole_types().count(p.type)) hole_types.insert(p.type);
+  std::vector<Feature> holes;
+  if (!hole_types.empty())
+    for (detail::HoleFeature& h : detail::recognize_holes(input, hole_types)) {
+      for (std::uint32_t f : h.owned) claimed[group_of[f]] = 1;
+      holes.push_back(std::move(h.feature));
+    }
   for (const FeaturePattern& p : library.patterns) {
+    if (hole_types.count(p.type)) continue;
     std::set<std::string> shared;
     for (const PatternCheck& ck : p.checks)
       if (ck.kind == "__shared") shared.insert(ck.roles[0]);
@@ -405,6 +419,7 @@ std::vector<Feature> recognize_features(const Aag& input, const FeatureLibrary& 
     std::sort(faces.begin(), faces.end());
     f.faces = std::move(faces);
   }
+  for (Feature& h : holes) out.push_back(std::move(h));
   std::sort(out.begin(), out.end(), [](const Feature& a, const Feature& b) {
     return a.type != b.type ? a.type < b.type : a.faces < b.faces;
   });

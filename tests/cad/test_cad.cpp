@@ -353,7 +353,10 @@ TEST(Features, CounterboreRolesAxesAndRadii) {
   EXPECT_EQ(g.nodes[f[0].roles.at("seat")].type, SurfaceType::plane);
   EXPECT_NEAR(f[0].axis_point.x, 20, 1e-9);
   EXPECT_NEAR(f[0].axis_point.y, 15, 1e-9);
-  EXPECT_EQ(f[0].faces.size(), 4u);
+  // counterbore, seat, bore, top and (issue #29) the exit face as "bottom".
+  EXPECT_EQ(f[0].faces.size(), 5u);
+  ASSERT_EQ(f[0].role_faces.at("bottom").size(), 1u);
+  EXPECT_EQ(g.nodes[f[0].roles.at("bottom")].type, SurfaceType::plane);
 }
 
 TEST(Features, MinimalSubgraphsSplitAtInnerLoopsAndConvexArcs) {

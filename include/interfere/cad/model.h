@@ -35,6 +35,12 @@ struct AagNode {
   double area = 0;
   std::uint32_t outer_loops = 0, inner_loops = 0;
   std::uint32_t triangles = 0;  ///< of the tessellation
+  /// cylinder/cone (issue #29): the face's angular range about `axis` (right-handed), from the unit
+  /// radial direction `arc_start` through `arc_span` radians (2 pi for a face closing the circle),
+  /// and its extent along `axis`, [axial_min, axial_max] from `axis_point`.
+  Vec3 arc_start;
+  double arc_span = 0;
+  double axial_min = 0, axial_max = 0;
 };
 
 /// AAG arc: one B-Rep edge shared by two different faces.
@@ -46,6 +52,7 @@ struct AagArc {
   double angle = 0;            ///< angle between the outward normals at the edge's middle, radians
   bool inner_loop_a = false, inner_loop_b = false;  ///< the edge lies on an inner loop of a / b
   double length = 0;
+  Vec3 midpoint;               ///< the edge's point at its middle parameter (issue #29)
 };
 
 struct Aag {
