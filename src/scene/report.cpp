@@ -7,6 +7,7 @@
 #include <map>
 #include <set>
 #include <tuple>
+#include <utility>
 
 namespace interfere::scene {
 namespace {
@@ -73,7 +74,7 @@ json clash_json(const Scene& scene, const SceneClash& c) {
   j["source_id_kind_a"] = source_id_kind_name(scene.bodies[c.a].source_id_kind);
   j["source_id_kind_b"] = source_id_kind_name(scene.bodies[c.b].source_id_kind);
   j["source_ids_a"] = c.source_ids_a;
-  j["source_ids_b"] = c.source_ids_b;
+  j["source_ids_b"] = c.source_ids_b;  // (copied: the result stays the caller's)
   if (c.verdict == Verdict::clearance) {
     j["witness_a"] = vec(c.witness_a);
     j["witness_b"] = vec(c.witness_b);
@@ -82,9 +83,9 @@ json clash_json(const Scene& scene, const SceneClash& c) {
   for (const Polyline& l : c.curves) {
     json pts = json::array();
     for (const Vec3& p : l.points) pts.push_back(vec(p));
-    curves.push_back({{"closed", l.closed}, {"length", l.length}, {"points", pts}});
+    curves.push_back({{"closed", l.closed}, {"length", l.length}, {"points", std::move(pts)}});
   }
-  j["curves"] = curves;
+  j["curves"] = std::move(curves);
   j["reasons"] = c.reasons;
   if (!c.frames.empty()) {
     j["frames"] = c.frames;
@@ -221,10 +222,10 @@ std::string report_json(const Scene& scene, const std::vector<ClashTest>& tests,
                   {"nominal_fits_are_contacts", t.nominal_fits_are_contacts},
                   {"id_grid", t.id_grid}});
   }
-  j["tests"] = jt;
+  j["tests"] = std::move(jt);
   json clashes = json::array();
   for (const SceneClash& c : r.clashes) clashes.push_back(clash_json(scene, c));
-  j["clashes"] = clashes;
+  j["clashes"] = std::move(clashes);
   json resolved = json::array();
   for (const SceneClash& c : r.resolved) {
     json x = json::parse(c.baseline_json);
@@ -232,7 +233,7 @@ std::string report_json(const Scene& scene, const std::vector<ClashTest>& tests,
     if (!c.user_fields.count("status")) x["status"] = "resolved";
     resolved.push_back(x);
   }
-  j["resolved"] = resolved;
+  j["resolved"] = std::move(resolved);
   json pairs = json::array();
   for (const PairSummary& p : r.pairs)
     pairs.push_back({{"test", p.test},
@@ -246,11 +247,11 @@ std::string report_json(const Scene& scene, const std::vector<ClashTest>& tests,
                      {"first_frame", p.first_frame < 0 ? json(nullptr) : json(p.first_frame)},
                      {"first_clash_frame", p.first_clash_frame < 0 ? json(nullptr) : json(p.first_clash_frame)},
                      {"reference_verdict", r.reference_checked ? json(verdict_name(p.reference_verdict)) : json(nullptr)}});
-  j["pairs"] = pairs;
+  j["pairs"] = std::move(pairs);
   json groups = json::array();
   for (const ClashGroup& g : r.groups)
     groups.push_back({{"id", g.id}, {"clashes", g.clashes}, {"box", box(g.box)}, {"verdict", verdict_name(g.verdict)}});
-  j["groups"] = groups;
+  j["groups"] = std::move(groups);
   json frames = json::array();
   for (const FrameRow& f : r.frames)
     frames.push_back({{"frame", f.frame},
@@ -263,7 +264,7 @@ std::string report_json(const Scene& scene, const std::vector<ClashTest>& tests,
                       {"min_distance", f.min_distance < 0 ? json(nullptr) : json(f.min_distance)},
                       {"max_depth", f.max_depth},
                       {"verdict", verdict_name(f.verdict)}});
-  j["frames"] = frames;
+  j["frames"] = std::move(frames);
   json frame_pairs = json::array();
   for (const FramePairRow& f : r.frame_pairs)
     frame_pairs.push_back({{"frame", f.frame},
@@ -279,14 +280,14 @@ std::string report_json(const Scene& scene, const std::vector<ClashTest>& tests,
                            {"max_depth", f.max_depth},
                            {"max_depth_bound", f.max_depth_bound},
                            {"deepest", f.has_deepest ? deepest_json(scene, f.deepest) : json(nullptr)}});
-  j["frame_pairs"] = frame_pairs;
+  j["frame_pairs"] = std::move(frame_pairs);
   json reference = json::array();
   for (const ReferencePair& p : r.reference_pairs)
     reference.push_back({{"test", tests[p.test].name},
                          {"body_a", scene.bodies[p.a].id},
                          {"body_b", scene.bodies[p.b].id},
                          {"verdict", verdict_name(p.verdict)}});
-  j["reference_pairs"] = reference;
+  j["reference_pairs"] = std::move(reference);
   std::vector<std::string> warnings = r.warnings;
   warnings.insert(warnings.end(), ctx.warnings.begin(), ctx.warnings.end());
   j["warnings"] = warnings;
