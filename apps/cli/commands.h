@@ -9,6 +9,8 @@ void add_clash_command(CLI::App& app, int& exit_code);
 void add_distance_command(CLI::App& app, int& exit_code);
 void add_check_command(CLI::App& app, int& exit_code);
 void add_sweep_command(CLI::App& app, int& exit_code);
+/// `interfere cell` (cmd_cell.cpp, issue #28): the inspection cell along a joint path.
+void add_cell_command(CLI::App& app, int& exit_code);
 void add_bearing_command(CLI::App& app, int& exit_code);
 void add_surface_command(CLI::App& app, int& exit_code);
 void add_simplify_command(CLI::App& app, int& exit_code);

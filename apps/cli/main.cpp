@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   add_distance_command(app, exit_code);
   add_check_command(app, exit_code);
   add_sweep_command(app, exit_code);
+  add_cell_command(app, exit_code);
   add_bearing_command(app, exit_code);
   add_surface_command(app, exit_code);
   add_simplify_command(app, exit_code);

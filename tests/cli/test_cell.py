@@ -1,0 +1,174 @@
+#!/usr/bin/env python3
+"""End-to-end tests of `interfere cell` (issue #28, deliverables 2 and 3): the URDF arm's forward
+kinematics against an independent composition of homogeneous transforms (the URDF's XML read here
+with xml.etree, rpy and axis-angle written out with numpy), per-point and per-pair reports, and bad
+input (exit 2, naming file, line or element and field, nothing written).
+
+Usage: test_cell.py PATH_TO_INTERFERE WORK_DIR   (run by ctest). Needs numpy (skipped without).
+"""
+import json
+import math
+import os
+import random
+import shutil
+import sys
+import unittest
+import xml.etree.ElementTree as ET
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import cli_common  # noqa: E402
+from cli_common import path, write_text as write, read_csv as table  # noqa: E402
+
+try:
+    import numpy as np
+except ImportError:  # pragma: no cover
+    np = None
+
+EXAMPLE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "examples", "probe")
+
+
+def run(*args):
+    return cli_common.run(*args, command=("cell",))
+
+
+def copy_example():
+    d = path("cell")
+    shutil.rmtree(d, ignore_errors=True)
+    shutil.copytree(EXAMPLE, d, ignore=shutil.ignore_patterns("*.json.out", "cell_report.*", "*.pyc"))
+    return d
+
+
+def urdf_fk(urdf_file, q_by_name):
+    """Link name -> 4x4 world <- link (mm), composing the URDF's joints by hand."""
+    root = ET.parse(urdf_file).getroot()
+
+    def rpy(r, p, y):
+        cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
+        return (np.array([[cy, -sy, 0], [sy, cy, 0], [0, 0, 1]]) @ np.array([[cp, 0, sp], [0, 1, 0], [-sp, 0, cp]])
+                @ np.array([[1, 0, 0], [0, cr, -sr], [0, sr, cr]]))
+
+    def rot(u, a):
+        u = np.asarray(u, float) / np.linalg.norm(u)
+        k = np.array([[0, -u[2], u[1]], [u[2], 0, -u[0]], [-u[1], u[0], 0]])
+        return np.eye(3) + math.sin(a) * k + (1 - math.cos(a)) * (k @ k)
+
+    joints = {j.find("parent").get("link"): j for j in root.findall("joint")}
+    children = {j.find("child").get("link") for j in root.findall("joint")}
+    link = [l.get("name") for l in root.findall("link") if l.get("name") not in children][0]
+    frames = {link: np.eye(4)}
+    while link in joints:
+        j = joints[link]
+        o = j.find("origin")
+        xyz = [float(v) for v in (o.get("xyz", "0 0 0") if o is not None else "0 0 0").split()]
+        r = [float(v) for v in (o.get("rpy", "0 0 0") if o is not None else "0 0 0").split()]
+        O = np.eye(4)
+        O[:3, :3] = rpy(*r)
+        O[:3, 3] = np.array(xyz) * 1000
+        M = np.eye(4)
+        if j.get("type") in ("revolute", "continuous"):
+            M[:3, :3] = rot([float(v) for v in j.find("axis").get("xyz").split()], math.radians(q_by_name[j.get("name")]))
+        elif j.get("type") == "prismatic":
+            M[:3, 3] = np.array([float(v) for v in j.find("axis").get("xyz").split()]) * q_by_name[j.get("name")]
+        child = j.find("child").get("link")
+        frames[child] = frames[link] @ O @ M
+        link = child
+    return frames
+
+
+@unittest.skipIf(np is None, "numpy not installed")
+class CellForwardKinematics(unittest.TestCase):
+    def test_link_poses_match_independent_composition(self):
+        d = copy_example()
+        names = ["shoulder_pan", "shoulder_lift", "elbow", "wrist_1", "wrist_2", "wrist_3"]
+        rng = random.Random(28)
+        rows = [[rng.uniform(-350, 350) for _ in names] for _ in range(25)]
+        # columns in another order than the chain's: matched by name
+        order = [5, 0, 3, 1, 4, 2]
+        write(os.path.join(d, "random.csv"),
+              ",".join(names[k] for k in order) + "\n" + "".join(",".join("%.9f" % r[k] for k in order) + "\n" for r in rows))
+        rc, out, err = run(os.path.join(d, "cell.json"), "--path", os.path.join(d, "random.csv"), "--poses",
+                           "--json", os.path.join(d, "random.json"))
+        self.assertIn(rc, (0, 1), err)
+        with open(os.path.join(d, "random.json")) as f:
+            report = json.load(f)
+        self.assertEqual(len(report["points"]), len(rows))
+        worst = 0.0
+        for p, r in zip(report["points"], rows):
+            q = {n: float("%.9f" % v) for n, v in zip(names, r)}
+            self.assertEqual(set(p["joints"]), set(names))
+            for n in names:
+                self.assertAlmostEqual(p["joints"][n], q[n], places=9)
+            ref = urdf_fk(os.path.join(d, "arm6r.urdf"), q)
+            for link, m in p["links"].items():
+                got = np.array(m).reshape(3, 4)
+                worst = max(worst, float(np.abs(got - ref[link][:3, :]).max()))
+            tool = ref["tool0"]
+            tip = tool[:3, :3] @ np.array([0, 0, 130.0]) + tool[:3, 3]
+            self.assertLess(np.abs(np.array(p["tip"]) - tip).max(), 1e-9)
+            self.assertLess(np.abs(np.array(p["axis"]) - tool[:3, 2]).max(), 1e-12)
+        self.assertLess(worst, 1e-9)  # mm (rotation entries: unitless), up to ~1e3 mm lengths
+
+    def test_example_report_per_point_and_pair(self):
+        d = copy_example()
+        rc, out, err = run(os.path.join(d, "cell.json"), "--json", os.path.join(d, "r.json"), "--csv", os.path.join(d, "r.csv"))
+        self.assertEqual(rc, 1, out + err)
+        with open(os.path.join(d, "r.json")) as f:
+            r = json.load(f)
+        colliding = [p["index"] for p in r["points"] if p["verdict"] == "clash"]
+        self.assertEqual(colliding, [5, 6, 7, 12, 13, 14])
+        pairs = {(p["a"], p["b"]): p["points"] for p in r["pairs"]}
+        self.assertEqual(pairs, {("probe", "workpiece"): [5, 6, 7], ("fixture:clamp", "holder"): [12, 13, 14]})
+        self.assertEqual([t["name"] for t in r["tests"]], ["tool", "arm", "self"])
+        # 6 link joints; probe and holder against wrist_3 (their mount); probe against holder
+        self.assertEqual(len(r["tests"][2]["suppressed"]), 6 + 2 + 1)
+        rows = table(os.path.join(d, "r.csv"))
+        self.assertEqual(len(rows), 15)
+        self.assertEqual(rows[5]["a"], "probe")
+        self.assertEqual(rows[5]["line"], "9")
+
+
+class CellBadInput(unittest.TestCase):
+    def bad(self, args, needles):
+        d = path("cell")
+        out = os.path.join(d, "bad.json")
+        cli_common.assert_input_error(self, ["cell", *args, "--json", out], needles, outputs=[out])
+
+    def test_unknown_and_missing_columns_and_limits(self):
+        d = copy_example()
+        cell = os.path.join(d, "cell.json")
+        write(os.path.join(d, "p1.csv"), "shoulder_pan,shoulder_lift,elbow,wrist_1,wrist_2,wrist_9\n0,0,0,0,0,0\n")
+        self.bad([cell, "--path", os.path.join(d, "p1.csv")], ["p1.csv:1:", "column 6 'wrist_9'", "not a movable joint"])
+        write(os.path.join(d, "p2.csv"), "shoulder_pan,shoulder_lift,elbow,wrist_1,wrist_2\n0,0,0,0,0\n")
+        self.bad([cell, "--path", os.path.join(d, "p2.csv")], ["p2.csv:1:", "joint 'wrist_3' has no column"])
+        write(os.path.join(d, "p3.csv"), "shoulder_pan,shoulder_lift,elbow,wrist_1,wrist_2,wrist_3\n0,0,0,0,0,0\n0,0,400,0,0,0\n")
+        self.bad([cell, "--path", os.path.join(d, "p3.csv")], ["p3.csv:3:", "'elbow'", "outside the joint's limits"])
+
+    def test_bad_urdf(self):
+        d = copy_example()
+        with open(os.path.join(d, "arm6r.urdf")) as f:
+            urdf = f.read()
+        write(os.path.join(d, "screw.urdf"), urdf.replace('name="elbow" type="revolute"', 'name="elbow" type="screw"'))
+        write(os.path.join(d, "nomesh.urdf"), urdf.replace("meshes/forearm_link.obj", "meshes/gone.obj"))
+        branch = urdf.replace("</robot>", '<link name="extra"/><joint name="side" type="fixed"><parent link="upper_arm_link"/>'
+                                          '<child link="extra"/></joint></robot>')
+        write(os.path.join(d, "branch.urdf"), branch)
+        for name, needles in [("screw.urdf", ["screw.urdf", "elbow", "screw"]),
+                              ("nomesh.urdf", ["nomesh.urdf", "link 'forearm_link'", "meshes/gone.obj", "not found"]),
+                              ("branch.urdf", ["branch.urdf", "link 'upper_arm_link'", "side", "serial"])]:
+            with open(os.path.join(d, "cell.json")) as f:
+                cell = json.load(f)
+            cell["robot"]["urdf"] = name
+            write(os.path.join(d, "c_" + name + ".json"), json.dumps(cell))
+            self.bad([os.path.join(d, "c_" + name + ".json")], needles)
+
+    def test_bad_cell_fields(self):
+        d = copy_example()
+        with open(os.path.join(d, "cell.json")) as f:
+            cell = json.load(f)
+        cell["tool"]["probe_radius"] = -1
+        write(os.path.join(d, "neg.json"), json.dumps(cell, indent=1))
+        self.bad([os.path.join(d, "neg.json")], ["neg.json:", "tool.probe_radius: must be > 0"])
+
+
+if __name__ == "__main__":
+    cli_common.main()
