@@ -7,8 +7,8 @@
 //     same cone) where their axial extents touch, whatever faces and edges the modeller split them
 //     into; a group is a wall when the union of its faces' angular ranges (AagNode::arc_start,
 //     arc_span) closes the circle, so fillets and corner rounds (quarter and half arcs) never are;
-//  2. a hole: coaxial walls joined by an arc or by a plane perpendicular to the axis adjacent to
-//     both (a counterbore's seat), ordered along the axis;
+//  2. a hole: coaxial walls joined by an arc or whose axial extents touch (a counterbore's seat plane
+//     has no height; an undercut between them is no wall), ordered along the axis;
 //  3. an end is closed (blind) by a plane perpendicular to the axis at the end's height facing into
 //     the hole (one or several faces: split floors; together at least half the end's disk), by a coaxial sphere or a floor fillet (a torus
 //     whose tube centre lies inside the wall), or by a cone ending at its apex (a drill point);
@@ -158,7 +158,7 @@ std::vector<HoleFeature> recognize_holes(const Aag& g, const std::set<std::strin
       for (std::uint32_t m : members) wall_of[m] = int(walls.size());
       walls.push_back(members);
     }
-  // 2. Holes: coaxial walls joined by an arc or by a perpendicular plane adjacent to both.
+  // 2. Holes: coaxial walls joined by an arc or whose axial extents touch (a seat plane has no height).
   UnionFind chain(walls.size());
   auto coaxial = [&](std::size_t w, std::size_t v) {
     const AagNode &a = g.nodes[walls[w][0]], &b = g.nodes[walls[v][0]];
@@ -187,18 +187,10 @@ std::vector<HoleFeature> recognize_holes(const Aag& g, const std::set<std::strin
       if (std::min(v0, v1) <= extent[w].second + tol && std::max(v0, v1) >= extent[w].first - tol) chain.join(std::uint32_t(w), std::uint32_t(v));
     }
   for (std::size_t w = 0; w < walls.size(); ++w) {
-    const AagNode& an = g.nodes[walls[w][0]];
     for (std::uint32_t f : walls[w])
       for (std::uint32_t nb : adj[f]) {
-        if (wall_of[nb] >= 0) {
-          if (std::size_t(wall_of[nb]) != w && coaxial(w, std::size_t(wall_of[nb]))) chain.join(std::uint32_t(w), std::uint32_t(wall_of[nb]));
-          continue;
-        }
-        const AagNode& p = g.nodes[nb];
-        if (p.type != SurfaceType::plane || std::abs(std::abs(dot(p.normal, an.axis)) - 1) > 1e-4) continue;
-        for (std::uint32_t q : adj[nb])
-          if (wall_of[q] >= 0 && std::size_t(wall_of[q]) != w && coaxial(w, std::size_t(wall_of[q])))
-            chain.join(std::uint32_t(w), std::uint32_t(wall_of[q]));
+        if (wall_of[nb] >= 0 && std::size_t(wall_of[nb]) != w && coaxial(w, std::size_t(wall_of[nb])))
+          chain.join(std::uint32_t(w), std::uint32_t(wall_of[nb]));
       }
   }
   std::map<std::uint32_t, std::vector<std::size_t>> holes;
