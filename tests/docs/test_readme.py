@@ -1,0 +1,146 @@
+#!/usr/bin/env python3
+"""Runs every code block of README.md as written (issue #30, item 6), so that none can rot.
+
+usage: test_readme.py SOURCE_DIR CLI_DIR PYTHON_MODULE_DIR STAGE_PREFIX WORK_DIR
+
+- The first block (the project's two commands: install, build and demo / every test) is what CI runs
+  (.ci/run calls tools/test.sh): checked to be exactly those two commands, not run here.
+- ```sh blocks: each command (continuation lines joined) runs with bash in WORK_DIR, where data/ and
+  examples/ link into the source tree and `interfere` is the built CLI (CLI_DIR first on PATH). Its
+  exit status must be 0, or N where its comment says "exit status N".
+- ```sh no-run covered-by=TEST blocks: TEST must be a ctest of this project (add_test(NAME TEST) in a
+  tests/ CMakeLists.txt), which runs those commands.
+- ```cpp: compiled against the installed package (find_package(interfere) from STAGE_PREFIX, the
+  ctest package_install's), linked with interfere::core, run in WORK_DIR: exit status 1 (the
+  README's pin goes through the plate) and a line starting "clash:".
+- ```python: run with the built module (PYTHON_MODULE_DIR on PYTHONPATH) in WORK_DIR.
+- ```json: parsed.
+Any other language is an error (a new kind of block needs a rule here).
+"""
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+
+def blocks(text):
+    out, cur, info, line_no = [], None, None, 0
+    for i, line in enumerate(text.split("\n"), 1):
+        m = re.match(r"^```(.*)$", line)
+        if m and cur is None:
+            cur, info, line_no = [], m.group(1).strip(), i
+        elif line.startswith("```") and cur is not None:
+            out.append((line_no, info, "\n".join(cur)))
+            cur = None
+        elif cur is not None:
+            cur.append(line)
+    if cur is not None:
+        raise SystemExit("README.md:%d: unclosed code block" % line_no)
+    return out
+
+
+def commands(body):
+    """Commands of a shell block: continuation lines joined, comment lines skipped."""
+    out, cur = [], ""
+    for line in body.split("\n"):
+        if not cur and (not line.strip() or line.lstrip().startswith("#")):
+            continue
+        if line.endswith("\\"):
+            cur += line[:-1] + " "
+            continue
+        out.append(cur + line)
+        cur = ""
+    return out
+
+
+def ctest_names(source):
+    names = set()
+    for root, _, files in os.walk(os.path.join(source, "tests")):
+        for f in files:
+            if f == "CMakeLists.txt":
+                names.update(re.findall(r"add_test\s*\(\s*NAME\s+([A-Za-z0-9_.-]+)", open(os.path.join(root, f)).read()))
+    return names
+
+
+def main():
+    source, cli_dir, pymod, stage, work = sys.argv[1:6]
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    for d in ("data", "examples"):
+        os.symlink(os.path.join(source, d), os.path.join(work, d))
+    env = dict(os.environ)
+    env["PATH"] = cli_dir + os.pathsep + env.get("PATH", "")
+    env["PYTHONPATH"] = pymod + os.pathsep + env.get("PYTHONPATH", "")
+    text = open(os.path.join(source, "README.md")).read()
+    found = blocks(text)
+    failures, ran = [], 0
+    names = ctest_names(source)
+    first = found[0]
+    if commands(first[2]) != ["bash tools/demo.sh   # installs dependencies, builds, clashes the bundled example, writes out/report.json",
+                              "bash tools/test.sh   # installs dependencies, builds everything and runs every test (ctest)"]:
+        failures.append("README.md:%d: the first block must be the two commands (demo, tests)" % first[0])
+    if "tools/test.sh" not in open(os.path.join(source, ".ci", "run")).read():
+        failures.append(".ci/run does not run tools/test.sh (the first block's second command)")
+    for line_no, info, body in found[1:]:
+        words = info.split()
+        lang = words[0] if words else ""
+        where = "README.md:%d (```%s)" % (line_no, info)
+        if "no-run" in words:
+            covered = [w.split("=", 1)[1] for w in words if w.startswith("covered-by=")]
+            if not covered or any(c not in names for c in covered):
+                failures.append("%s: no-run needs covered-by=TEST naming a ctest of this project (have: %s)" % (where, covered))
+            continue
+        ran += 1
+        if lang in ("sh", "bash"):
+            for cmd in commands(body):
+                m = re.search(r"#.*exit status (\d+)", cmd)
+                want = int(m.group(1)) if m else 0
+                p = subprocess.run(["bash", "-c", cmd], cwd=work, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                   text=True, timeout=600)
+                if p.returncode != want:
+                    failures.append("%s: `%s`: exit status %d, the README says %d\n%s%s" %
+                                    (where, cmd, p.returncode, want, p.stdout[-2000:], p.stderr[-2000:]))
+        elif lang == "cpp":
+            proj = os.path.join(work, "cpp_%d" % line_no)
+            os.makedirs(proj)
+            with open(os.path.join(proj, "main.cpp"), "w") as f:
+                f.write(body + "\n")
+            with open(os.path.join(proj, "CMakeLists.txt"), "w") as f:
+                f.write("cmake_minimum_required(VERSION 3.25)\nproject(readme_snippet CXX)\n"
+                        "set(CMAKE_CXX_STANDARD 20)\nfind_package(interfere REQUIRED)\n"
+                        "add_executable(app main.cpp)\ntarget_link_libraries(app PRIVATE interfere::core)\n")
+            build = os.path.join(proj, "build")
+            for step in (["cmake", "-S", proj, "-B", build, "-DCMAKE_BUILD_TYPE=Release", "-DCMAKE_PREFIX_PATH=" + stage],
+                         ["cmake", "--build", build, "-j2"]):
+                p = subprocess.run(step, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+                if p.returncode != 0:
+                    failures.append("%s: %s failed\n%s" % (where, " ".join(step[:2]), p.stdout[-3000:]))
+                    break
+            else:
+                p = subprocess.run([os.path.join(build, "app")], cwd=work, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                   text=True, timeout=300)
+                if p.returncode != 1 or not p.stdout.startswith("clash:"):
+                    failures.append("%s: the program exited %d (want 1, a clash) and printed %r %r" %
+                                    (where, p.returncode, p.stdout, p.stderr))
+        elif lang == "python":
+            p = subprocess.run([sys.executable, "-c", body], cwd=work, env=env, stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, text=True, timeout=600)
+            if p.returncode != 0:
+                failures.append("%s: exit status %d\n%s%s" % (where, p.returncode, p.stdout[-2000:], p.stderr[-3000:]))
+        elif lang == "json":
+            try:
+                json.loads(body)
+            except ValueError as e:
+                failures.append("%s: %s" % (where, e))
+        else:
+            failures.append("%s: no rule for this kind of block (tests/docs/test_readme.py)" % where)
+    for f in failures:
+        print(f)
+    print("README.md: %d blocks, %d run, %d failure(s)" % (len(found), ran, len(failures)))
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
