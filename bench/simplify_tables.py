@@ -154,7 +154,7 @@ quadric-error-metric edge collapses while the faces that take part in the curren
    curved entries on real parts) but recognised from their walls and ends (`src/cad/hole_recognition.cpp`):
    hole-sense cylinder and cone faces on one surface (coaxial, same radius or cone, touching extents) form a
    wall when their angular ranges close the circle, across split faces and edges (fillets and corner rounds
-   never do); coaxial walls joined by an arc, a seat plane or touching extents form a hole; an end is closed
+   never do); coaxial walls joined by an arc or touching extents (a seat has no height) form a hole; an end is closed
    by a floor plane at the end's height facing into the hole (split floors summed, at least half the end's
    disk), a drill-point apex, a coaxial sphere or a floor fillet, and open on any other face (planar, inclined,
    curved, another hole); from an open end: counterbored (a larger cylinder first), countersunk (a cone
