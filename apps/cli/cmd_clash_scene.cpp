@@ -2,12 +2,12 @@
 // more inputs, a scene file with "bodies", or scene options (--tests, --baseline, --csv, ...).
 // Builds the Scene (scene_input.cpp), the clash tests (command line, --tests file, scene file, or
 // the default all-pairs test), runs the scene engine, applies the baseline and writes the report.
-#include <memory>
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include <cmath>
 #include <fstream>
+#include <memory>
 #include <sstream>
 
 #include "cad_exec.h"

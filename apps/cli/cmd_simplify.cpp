@@ -25,6 +25,7 @@
 #include "interfere/simplify/tagged_io.h"
 #include "simplify_cli.h"
 #include "report_envelope.h"
+#include "progress_bar.h"
 
 namespace interfere::cli {
 namespace {
@@ -102,24 +103,16 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
   std::vector<SimplifyResult> part_results;
   {
     Progress progress("simplifying " + std::to_string(mesh.num_triangles()) + " triangles");
-    // On a terminal, the share of the collapses done, rewritten in place (every 10 %).
-    bool shown = false;
-    if (!Progress::quiet() && ::isatty(::fileno(stderr))) {
-      auto last = std::make_shared<int>(-1);
-      so.progress = [last, &shown](double f) {
-        const int pct = static_cast<int>(f * 10) * 10;
-        if (pct == *last) return;
-        *last = pct;
-        shown = true;
-        std::fprintf(stderr, "\r[interfere] simplifying: %3d %%", pct);
-        std::fflush(stderr);
-      };
-      so.stage = [&shown](const char* what) {
-        shown = true;
-        std::fprintf(stderr, "\r[interfere] simplifying: 100 %%, %s ...", what);
-        std::fflush(stderr);
-      };
-    }
+    // The share of the collapses done: a bar with ETA on a terminal, a line per tenth otherwise
+    // (progress_bar.h); a long stage after the collapses is announced on its own line.
+    auto bar = std::make_shared<std::unique_ptr<ProgressBar>>(std::make_unique<ProgressBar>("simplifying", 1000));
+    so.progress = [bar](double f) {
+      if (*bar) (*bar)->update(static_cast<std::size_t>(std::clamp(f, 0.0, 1.0) * 1000));
+    };
+    so.stage = [bar](const char* what) {
+      bar->reset();
+      if (!Progress::quiet()) std::fprintf(stderr, "[interfere] simplifying: %s ...\n", what);
+    };
     Expected<SimplifyResult> res = Error{};
 #ifdef INTERFERE_HAS_CAD
     if (cad_prepared) {
@@ -150,7 +143,7 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
     }
     r = std::move(*res);
     seconds = progress.seconds();
-    if (shown) std::fprintf(stderr, "\n");
+    bar->reset();
     so.progress = nullptr;
     so.stage = nullptr;
   }

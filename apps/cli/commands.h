@@ -1,5 +1,7 @@
 // Subcommands; each registers itself on the app and sets `exit_code` when it runs.
 #pragma once
+#include <string>
+
 namespace CLI {
 class App;
 }
@@ -16,4 +18,7 @@ void add_surface_command(CLI::App& app, int& exit_code);
 void add_simplify_command(CLI::App& app, int& exit_code);
 void add_features_command(CLI::App& app, int& exit_code);
 void add_assembly_clash_command(CLI::App& app, int& exit_code);
+/// `interfere completion bash` (cmd_completion.cpp); bash_completion(app) is the script it prints.
+void add_completion_command(CLI::App& app, int& exit_code);
+std::string bash_completion(const CLI::App& app);
 }  // namespace interfere::cli

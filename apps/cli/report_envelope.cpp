@@ -73,6 +73,9 @@ void fill(json& j, const std::string& command, const json& given_inputs) {
     result = pick(j, {"verdict", "exit_status", "candidate_pairs", "clashes", "clashes_within_tessellation_error",
                       "contacts", "within_clearance", "undecided"});
     result["instances"] = size_of(j, "instances");
+  } else {  // (a command not listed here yet: its verdict and summary)
+    options = pick(j, {"units", "threads"});
+    result = pick(j, {"verdict", "exit_status", "summary"});
   }
   if (!has_inputs) j["inputs"] = std::move(inputs);
   if (!has_options) j["options"] = std::move(options);

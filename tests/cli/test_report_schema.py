@@ -55,7 +55,9 @@ class ReportSchema(unittest.TestCase):
         for c in commands:
             if c == "completion":  # (writes a shell script, no report)
                 continue
-            self.assertTrue(os.path.exists(os.path.join(report_schema.SCHEMA_DIR, c + ".schema.json")), c)
+            self.assertTrue(os.path.exists(os.path.join(report_schema.SCHEMA_DIR, c + ".schema.json")),
+                            "`interfere %s` has no docs/schema/%s.schema.json: a command's report needs one (and "
+                            "report_envelope.h's report_text, and its keys in the enum of report.schema.json)" % (c, c))
         self.assertEqual(sorted(set(report_schema.load_schema("report")["properties"]["command"]["enum"])),
                          sorted(report_schema.schema_names()))
         made = set()

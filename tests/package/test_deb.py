@@ -107,7 +107,8 @@ class Package(unittest.TestCase):
         listing = run(["dpkg", "--root=" + ROOT, "-L", "interfere"], check=True).stdout.split()
         for f in ("/usr/bin/interfere", "/usr/share/doc/interfere/LICENSE", "/usr/share/doc/interfere/NOTICE",
                   "/usr/lib/cmake/interfere/interfereConfig.cmake", "/usr/lib/cmake/interfere/interfereTargets.cmake",
-                  "/usr/lib/libinterfere.a", "/usr/include/interfere/query/clash.h"):
+                  "/usr/lib/libinterfere.a", "/usr/include/interfere/query/clash.h",
+                  "/usr/share/bash-completion/completions/interfere"):
             self.assertIn(f, listing)
             self.assertTrue(os.path.isfile(ROOT + f), f)
         # the Python module is not in it (pip install ., README)

@@ -310,7 +310,7 @@ Expected<TriMesh> read_mesh_impl(const std::filesystem::path& path, const std::s
       default:
         return Error{name, -1, -1,
                      "cannot tell the mesh format from the extension '" +
-                         path.extension().string() + "' or the content; set ReadOptions::format"};
+                         path.extension().string() + "' or the content (STL, OBJ, PLY, OFF, GLB and glTF are read)"};
     }
   }  // the file bytes are released before welding
   if (!result) return result;
@@ -373,7 +373,7 @@ Status write_mesh_impl(const std::filesystem::path& path, const std::string& nam
       default:
         return Error{name, -1, -1,
                      "cannot tell the mesh format from the extension '" +
-                         path.extension().string() + "'; set WriteOptions::format"};
+                         path.extension().string() + "' (.stl, .obj, .ply and .off are written)"};
     }
   }
   if (f == MeshFormat::glb || f == MeshFormat::gltf)
