@@ -180,7 +180,10 @@ int run_scene_clash(const ClashOptions& o, const CLI::App& command, const std::v
   scene::ReportContext ctx{.command = "clash", .tool_version = INTERFERE_VERSION, .inputs = in.files,
                            .threads = active_threads(), .total_seconds = total.seconds(), .exit_status = status,
                            .warnings = input_warnings};
-  if (!o.json.empty()) write_or_throw(write_output(o.json, finish_report_text(scene::report_json(in.scene, tests, result, ctx))));
+  ctx.process_seconds = process_seconds();
+  // (scene::report_json writes every command's common keys itself: no second parse of a report
+  // that can be hundreds of MB)
+  if (!o.json.empty()) write_or_throw(write_output(o.json, scene::report_json(in.scene, tests, result, ctx)));
   if (!o.csv.empty()) write_or_throw(write_output(o.csv, scene::clash_table_csv(in.scene, result)));
   if (!o.frames_csv.empty()) write_or_throw(write_output(o.frames_csv, scene::frames_table_csv(result)));
   if (!o.frame_pairs_csv.empty())

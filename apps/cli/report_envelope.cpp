@@ -84,6 +84,8 @@ void fill(json& j, const std::string& command, const json& given_inputs) {
 
 }  // namespace
 
+double process_seconds() { return std::chrono::duration<double>(std::chrono::steady_clock::now() - g_start).count(); }
+
 void finish_report(json& j, const json& inputs) {
   const std::string command = j.value("command", "");
   if (!j.contains("schema_version")) j["schema_version"] = 1;
@@ -94,7 +96,7 @@ void finish_report(json& j, const json& inputs) {
   // `seconds` is the process's wall time; a command's own breakdown (simplify, features wrote it
   // under `seconds` before issue #30) is `timings_s`, as in every other report.
   if (j.contains("seconds") && j["seconds"].is_object() && !j.contains("timings_s")) j["timings_s"] = j["seconds"];
-  j["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - g_start).count();
+  j["seconds"] = process_seconds();
 }
 
 std::string report_text(json report, int indent, const json& inputs) {

@@ -22,7 +22,10 @@ void finish_report(nlohmann::json& report, const nlohmann::json& inputs = nullpt
 /// finish_report(report, inputs), serialised with `indent` and a final newline.
 std::string report_text(nlohmann::json report, int indent = 2, const nlohmann::json& inputs = nullptr);
 
-/// The same on a report serialised by the library (scene::report_json); returns it serialised.
+/// The wall time of the process so far (the reports' `seconds`).
+double process_seconds();
+
+/// The same on a report serialised by the library; returns it serialised.
 std::string finish_report_text(const std::string& report);
 
 }  // namespace interfere::cli

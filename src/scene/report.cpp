@@ -294,6 +294,10 @@ std::string report_json(const Scene& scene, const std::vector<ClashTest>& tests,
   j["threads"] = ctx.threads;
   j["timings_s"] = {{"prepare", r.prepare_seconds}, {"broad", r.broad_seconds}, {"narrow", r.narrow_seconds},
                     {"total", ctx.total_seconds}};
+  // The keys every command's report has (docs/report.md, docs/schema/report.schema.json).
+  j["options"] = {{"units", scene.units}, {"threads", ctx.threads}};
+  j["result"] = {{"verdict", j["verdict"]}, {"exit_status", ctx.exit_status}, {"summary", j["summary"]}};
+  j["seconds"] = ctx.process_seconds >= 0 ? ctx.process_seconds : ctx.total_seconds;
   return j.dump(2) + "\n";
 }
 

@@ -29,11 +29,15 @@ struct ReportContext {
   std::vector<std::string> inputs;  ///< the files read
   int threads = 0;
   double total_seconds = 0;
+  /// The report's `seconds` (docs/report.md: the process's wall time when the report is written);
+  /// < 0: total_seconds.
+  double process_seconds = -1;
   int exit_status = 0;
   std::vector<std::string> warnings;  ///< the caller's, besides the result's
 };
 
-/// The JSON report (2-space indented, ending in a newline).
+/// The JSON report (2-space indented, ending in a newline), with the keys every command's report
+/// has (schema_version, command, version, inputs, options, result, warnings, seconds; docs/report.md).
 std::string report_json(const Scene& scene, const std::vector<ClashTest>& tests, const SceneClashResult& result,
                         const ReportContext& context);
 
