@@ -11,6 +11,9 @@
 #include "commands.h"
 #include "common.h"
 #include "interfere/robot/cell.h"
+#include "interfere/view/scene_document.h"
+#include "report_envelope.h"
+#include "view_output.h"
 
 namespace interfere::cli {
 namespace {
@@ -22,6 +25,7 @@ struct CellOptions {
   std::size_t between = 0;
   bool poses = false;
   int threads = 0;
+  ViewOutputs views;  ///< --html, --glb, --pvd: the cell along the path (one step per frame)
 };
 
 nlohmann::json vec_json(const Vec3& v) {
@@ -51,12 +55,13 @@ int run_cell(const CellOptions& o) {
     throw InputError("--path: no joint path given (and the cell file names none)");
   Expected<JointPath> path = read_joint_csv(path_file, cell->robot);
   if (!path) throw InputError(path.error());
-  check_distinct_files({{"CELL", o.cell}, {"--path", path_file}},
-                       {{"--json", o.json}, {"--csv", o.csv}});
+  std::vector<NamedPath> outputs{{"--json", o.json}, {"--csv", o.csv}};
+  for (const NamedPath& v : o.views.paths()) outputs.push_back(v);
+  check_distinct_files({{"CELL", o.cell}, {"--path", path_file}}, outputs);
 
   const CellScene cs = cell_scene(*cell, *path, o.between);
   scene::SceneClashOptions opt;
-  opt.curves = false;
+  opt.curves = o.views.any();  // the viewer draws the intersection curves
   opt.reference = false;
   scene::SceneClashResult r;
   try {
@@ -192,7 +197,7 @@ int run_cell(const CellOptions& o) {
                     {"suppressed", r.suppressed},
                     {"verdict", verdict_name(r.verdict)}};
     j["exit_status"] = status;
-    write_or_throw(write_output(o.json, j.dump(1) + "\n"));
+    write_or_throw(write_output(o.json, report_text(j, 1)));
   }
   if (!o.csv.empty()) {
     std::string out = "point,line,t,verdict,test,a,b,pair_verdict,min_distance\n";
@@ -211,6 +216,17 @@ int run_cell(const CellOptions& o) {
       }
     }
     write_or_throw(write_output(o.csv, out));
+  }
+  if (o.views.any()) {
+    view::SceneDocumentOptions vo;
+    vo.title = "interfere cell: " + cell->robot.name + ", " + std::to_string(n) + " path points, " +
+               std::to_string(colliding_points) + " colliding";
+    vo.command = "cell";
+    vo.tool_version = INTERFERE_VERSION;
+    vo.flag_instances = true;
+    view::Document doc = view::scene_document(cs.scene, cs.tests, r, vo);
+    doc.units = "mm";
+    write_views(o.views, std::move(doc));
   }
   if (!is_standard_output(o.json) && !is_standard_output(o.csv)) {
     std::printf(
@@ -257,10 +273,12 @@ void add_cell_command(CLI::App& app, int& exit_code) {
   c->add_flag("--poses", o->poses,
               "JSON: every link's pose (world <- link, 12 numbers) at every point");
   add_fail_on_option(*c, o->fail_on);
+  add_view_options(*c, o->views);
   c->add_option("--threads", o->threads, "worker threads (0 = all cores)");
   c->callback([o, &exit_code] {
     check_output(o->json, {}, "--json");
     check_output(o->csv, {}, "--csv");
+    check_view_outputs(o->views);
     exit_code = run_cell(*o);
   });
 }

@@ -73,6 +73,10 @@ void fill(json& j, const std::string& command, const json& given_inputs) {
     result = pick(j, {"verdict", "exit_status", "candidate_pairs", "clashes", "clashes_within_tessellation_error",
                       "contacts", "within_clearance", "undecided"});
     result["instances"] = size_of(j, "instances");
+  } else if (command == "cell") {
+    inputs = pick(j, {"cell", "path"});
+    options = pick(j, {"units", "between"});
+    result = pick(j, {"exit_status", "summary"});
   } else {  // (a command not listed here yet: its verdict and summary)
     options = pick(j, {"units", "threads"});
     result = pick(j, {"verdict", "exit_status", "summary"});

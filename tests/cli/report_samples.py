@@ -3,7 +3,7 @@ tests/cli/test_report_schema.py. Standard library only.
 
 make_reports(exe, work) -> {name: path of the report} for: clash of two parts, of two FE bodies, of
 a scene (--scene with bodies) and of an FE model's bodies; distance; check of a mesh and of an FE
-model; sweep; bearing (simulation and assembly); surface; simplify; and, where the build has
+model; sweep; cell (examples/probe); bearing (simulation and assembly); surface; simplify; and, where the build has
 OpenCASCADE, features and assembly-clash (STEP). Each run must exit 0, 1 or 3."""
 import json
 import os
@@ -39,6 +39,7 @@ def runs(work):
         "bearing_assembly": ["bearing", "--assembly", e("bearing_axle.json"), "--frames", "1", "--out", w("ba.csv")],
         "surface": ["surface", f("tets_ascii.vtu"), w("surface.stl")],
         "simplify": ["simplify", e("plate.stl"), w("simplified.ply"), "--ratio", "0.5"],
+        "cell": ["cell", os.path.join(SOURCE, "examples", "probe", "cell.json")],
         "features": ["features", e("casing.step")],
         "assembly_clash": ["assembly-clash", e("casing.step")],
     }
