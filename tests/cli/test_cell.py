@@ -127,6 +127,36 @@ class CellForwardKinematics(unittest.TestCase):
         self.assertEqual(rows[5]["line"], "9")
 
 
+class CellReplay(unittest.TestCase):
+    def test_pvd_series_marks_the_colliding_points(self):
+        d = copy_example()
+        pvd = os.path.join(d, "replay.pvd")
+        rc, out, err = run(os.path.join(d, "cell.json"), "--pvd", pvd, "--html", os.path.join(d, "replay.html"))
+        self.assertEqual(rc, 1, out + err)
+        steps = ET.parse(pvd).getroot().findall("./Collection/DataSet")
+        self.assertEqual(sorted({float(s.get("timestep")) for s in steps}), [float(i) for i in range(15)])
+        try:
+            import vtk
+            from vtk.util.numpy_support import vtk_to_numpy
+        except ImportError:
+            self.skipTest("no VTK to read the series back")
+        reader = vtk.vtkXMLPolyDataReader()
+        with_clash = []
+        for s in steps:
+            if s.get("name") != "clashes":
+                continue
+            reader.SetFileName(os.path.join(d, s.get("file")))
+            reader.Update()
+            if reader.GetOutput().GetNumberOfCells():
+                with_clash.append(int(float(s.get("timestep"))))
+        self.assertEqual(with_clash, [5, 6, 7, 12, 13, 14])
+        reader.SetFileName(os.path.join(d, [s.get("file") for s in steps if s.get("name") == "bodies"][12]))
+        reader.Update()
+        ids = reader.GetOutput().GetFieldData().GetAbstractArray("body_ids")
+        self.assertIn("holder", [ids.GetValue(i) for i in range(ids.GetNumberOfValues())])
+        self.assertGreater(reader.GetOutput().GetNumberOfCells(), 600)
+
+
 class CellBadInput(unittest.TestCase):
     def bad(self, args, needles):
         d = path("cell")
