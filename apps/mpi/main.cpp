@@ -32,6 +32,7 @@
 #include "comm.h"
 #include "merge.h"
 #include "plan.h"
+#include "simulate.h"
 #include "wire.h"
 #include "interfere/scene/load.h"
 #include "interfere/scene/report.h"
@@ -329,7 +330,10 @@ int run(const World& w, int argc, char** argv) {
   load_specs(more);
   RankResult mine_result;
   mine_result.load_seconds = load1_seconds + since(t_load2);
-  for (const auto& [s, l] : loaded) mine_result.bodies_loaded += l.scene.bodies.size();
+  for (const auto& [s, l] : loaded) {
+    mine_result.bodies_loaded += l.scene.bodies.size();
+    for (const scene::Body& b : l.scene.bodies) mine_result.triangles_loaded += b.mesh->num_triangles();
+  }
 
   scene::SceneClashOptions eo;
   eo.group_by = scene::GroupBy::none;
@@ -367,6 +371,7 @@ int run(const World& w, int argc, char** argv) {
     scene::SceneClashResult r = scene::clash_scene(sub, tests, eo);
     ++mine_result.calls;
     mine_result.pairs += call.units.size();
+    for (const std::uint32_t k : call.units) mine_result.pair_triangles += info[broad.units[k].a].triangles + info[broad.units[k].b].triangles;
     mine_result.core_runs += r.core_runs;
     mine_result.prepare_seconds += r.prepare_seconds, mine_result.broad_seconds += r.broad_seconds;
     mine_result.narrow_seconds += r.narrow_seconds;
@@ -453,6 +458,11 @@ int main(int argc, char** argv) {
   MPI_Comm_size(MPI_COMM_WORLD, &w.size);
   int status = 0;
   try {
+    if (argc >= 2 && std::string(argv[1]) == "simulate") {  // (docs/scaling.md: the partitioner alone, rank 0)
+      if (w.rank == 0) status = interfere::mpi::simulate(argc - 2, argv + 2);
+      MPI_Finalize();
+      return status;
+    }
     status = interfere::mpi::run(w, argc, argv);
   } catch (const interfere::mpi::UsageError& e) {
     // (found alike by every rank: rank 0 says it; a rank that alone finds one ends the job)

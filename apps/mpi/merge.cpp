@@ -109,6 +109,8 @@ std::string report_with_mpi(const std::string& report, const std::vector<std::ui
                    {"engine_calls", ranks[r].calls},
                    {"core_runs", ranks[r].core_runs},
                    {"bodies_read", ranks[r].bodies_loaded},
+                   {"triangles_read", ranks[r].triangles_loaded},
+                   {"pair_triangles", ranks[r].pair_triangles},
                    {"estimated_cost", r < part.rank_cost.size() ? part.rank_cost[r] : 0.0},
                    {"load_s", ranks[r].load_seconds},
                    {"engine_s", ranks[r].engine_seconds},

@@ -6,6 +6,7 @@
 #include <numeric>
 #include <tuple>
 
+#include "engine_internal.h"
 #include "interfere/bvh/traverse.h"
 
 namespace interfere::mpi {
@@ -39,32 +40,20 @@ double test_margin(const scene::ClashTest& t) {
   return m;
 }
 
-// Pairs (x in a, y in other, x != y) with boxes_overlap(box x, box y, margin): a sweep on x over
-// `other` sorted by lo.x, the window widened by the largest extent of `other` and a slack, then
-// the traversal's own float test.
-void overlaps(const std::vector<std::uint32_t>& a, const std::vector<std::uint32_t>& other, const std::vector<AabbF>& box,
-              float margin, std::vector<std::pair<std::uint32_t, std::uint32_t>>& out) {
-  std::vector<std::uint32_t> sorted = other;
-  std::sort(sorted.begin(), sorted.end(), [&](std::uint32_t x, std::uint32_t y) {
-    return std::tie(box[x].lo[0], x) < std::tie(box[y].lo[0], y);
+// Pairs (x in a, y in other, x != y) with boxes_overlap(box x, box y, margin): the engine's own
+// traversal (engine.cpp: a box tree per selection, detail::build_box_tree, and for_each_overlap).
+void overlaps(const std::vector<std::uint32_t>& a, const std::vector<std::uint32_t>& other, bool within,
+              const std::vector<AabbF>& box, float margin, std::vector<std::pair<std::uint32_t, std::uint32_t>>& out) {
+  const auto boxes_of = [&](const std::vector<std::uint32_t>& sel) {
+    std::vector<AabbF> b(sel.size());
+    for (std::size_t i = 0; i < sel.size(); ++i) b[i] = box[sel[i]];
+    return b;
+  };
+  const Bvh tree_a = scene::detail::build_box_tree(boxes_of(a));
+  const Bvh tree_b = within ? Bvh{} : scene::detail::build_box_tree(boxes_of(other));
+  for_each_overlap(tree_a, within ? tree_a : tree_b, margin, [&](std::uint32_t x, std::uint32_t y) {
+    if (a[x] != other[y]) out.emplace_back(a[x], other[y]);
   });
-  std::vector<double> lo(sorted.size());
-  double width = 0;
-  for (std::size_t i = 0; i < sorted.size(); ++i) {
-    lo[i] = box[sorted[i]].lo[0];
-    width = std::max(width, static_cast<double>(box[sorted[i]].hi[0]) - box[sorted[i]].lo[0]);
-  }
-  for (const std::uint32_t x : a) {
-    const AabbF& bx = box[x];
-    const double slack = (std::fabs(static_cast<double>(bx.lo[0])) + std::fabs(static_cast<double>(bx.hi[0])) + margin) * 0x1p-20 + 1e-30;
-    const double from = static_cast<double>(bx.lo[0]) - margin - width - slack;
-    const double to = static_cast<double>(bx.hi[0]) + margin + slack;
-    auto it = std::lower_bound(lo.begin(), lo.end(), from);
-    for (std::size_t i = static_cast<std::size_t>(it - lo.begin()); i < lo.size() && lo[i] <= to; ++i) {
-      const std::uint32_t y = sorted[i];
-      if (y != x && boxes_overlap(bx, box[y], margin)) out.emplace_back(x, y);
-    }
-  }
 }
 
 }  // namespace
@@ -88,7 +77,7 @@ BroadResult broad_phase(const std::vector<scene::Body>& bodies, const std::vecto
     for (std::size_t k = 0; k < tests.size(); ++k) {
       const scene::ClashTest& t = tests[k];
       std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
-      overlaps(sel_a[k], t.b.empty() ? sel_a[k] : sel_b[k], boxes[f], round_up(test_margin(t)), pairs);
+      overlaps(sel_a[k], t.b.empty() ? sel_a[k] : sel_b[k], t.b.empty(), boxes[f], round_up(test_margin(t)), pairs);
       for (auto& [u, v] : pairs)
         if (bodies[v].id < bodies[u].id) std::swap(u, v);
       std::sort(pairs.begin(), pairs.end());
@@ -269,10 +258,18 @@ Partition partition(const BroadResult& broad, const std::vector<AabbF>& boxes, s
     out.rank_of_block[k] = static_cast<std::uint32_t>(r);
     out.rank_cost[r] += out.blocks[k].cost;
   }
-  for (std::uint32_t k = 0; k < out.blocks.size(); ++k) {
-    if (!cross[k]) continue;
+  // Pairs between groups, costliest first: to the less loaded of its groups' ranks unless that
+  // rank would pass the mean load by 1 %, else to the least loaded rank.
+  std::vector<std::uint32_t> crossing;
+  for (std::uint32_t k = 0; k < out.blocks.size(); ++k)
+    if (cross[k]) crossing.push_back(k);
+  std::stable_sort(crossing.begin(), crossing.end(), [&](std::uint32_t x, std::uint32_t y) { return out.blocks[x].cost > out.blocks[y].cost; });
+  const double cap = 1.01 * total / static_cast<double>(ranks);
+  for (const std::uint32_t k : crossing) {
     const std::uint32_t r0 = out.rank_of_block[cross_groups[k][0]], r1 = out.rank_of_block[cross_groups[k][1]];
-    const std::uint32_t r = out.rank_cost[r1] < out.rank_cost[r0] ? r1 : r0;
+    std::uint32_t r = out.rank_cost[r1] < out.rank_cost[r0] ? r1 : r0;
+    if (out.rank_cost[r] + out.blocks[k].cost > cap)
+      r = static_cast<std::uint32_t>(std::min_element(out.rank_cost.begin(), out.rank_cost.end()) - out.rank_cost.begin());
     out.rank_of_block[k] = r;
     out.rank_cost[r] += out.blocks[k].cost;
   }

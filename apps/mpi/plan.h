@@ -45,7 +45,8 @@ struct BroadResult {
 /// The broad phase over `bodies` (metadata only: ids, names, tags, ... for the selectors; meshes
 /// unused) with `boxes[frame][body]` (one frame for a static scene): the engine's candidate rule
 /// (engine.cpp: selections per test, boxes grown by the test's margin rounded up to float, the
-/// traversal's float test bvh/traverse.h boxes_overlap, suppression rules), by a sweep on x.
+/// traversal's float test bvh/traverse.h boxes_overlap, suppression rules), with the engine's own
+/// box trees (src/scene/engine_internal.h build_box_tree) and traversal (for_each_overlap).
 BroadResult broad_phase(const std::vector<scene::Body>& bodies, const std::vector<scene::ClashTest>& tests,
                         const std::vector<std::vector<AabbF>>& boxes);
 
@@ -71,8 +72,9 @@ struct Partition {
 
 /// Partitions the units over `ranks` (units' costs set): components as blocks, components costing
 /// more than total / (4 ranks) cut by the Morton order of their bodies' box centres; groups to
-/// ranks by longest processing time first, then each pair between groups to the less loaded of
-/// its two groups' ranks. Deterministic.
+/// ranks by longest processing time first, then each pair between groups (costliest first) to the
+/// less loaded of its two groups' ranks, or to the least loaded rank when that one would pass the
+/// mean load by 1 %. Deterministic.
 Partition partition(const BroadResult& broad, const std::vector<AabbF>& boxes, std::size_t ranks);
 
 /// FNV-1a (64 bits) of bytes, continuing from h.

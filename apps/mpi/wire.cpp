@@ -122,7 +122,7 @@ std::string encode(const RankResult& r) {
   j["reference_pairs"] = json::array();
   for (const scene::ReferencePair& p : r.reference_pairs) j["reference_pairs"].push_back({p.test, p.a, p.b, ev(p.verdict)});
   j["warnings"] = r.warnings;
-  j["n"] = {r.core_runs, r.calls, r.pairs, r.bodies_loaded};
+  j["n"] = {r.core_runs, r.calls, r.pairs, r.bodies_loaded, r.pair_triangles, r.triangles_loaded};
   j["reference_checked"] = r.reference_checked;
   j["t"] = {r.load_seconds, r.engine_seconds, r.prepare_seconds, r.broad_seconds, r.narrow_seconds, r.peak_rss_mb};
   const std::vector<std::uint8_t> v = json::to_cbor(j);
@@ -144,6 +144,7 @@ RankResult decode_result(const std::string& bytes) {
     r.reference_pairs.push_back({.test = p[0], .a = p[1], .b = p[2], .verdict = static_cast<Verdict>(p[3].get<int>())});
   r.warnings = j["warnings"].get<std::vector<std::string>>();
   r.core_runs = j["n"][0], r.calls = j["n"][1], r.pairs = j["n"][2], r.bodies_loaded = j["n"][3];
+  r.pair_triangles = j["n"][4], r.triangles_loaded = j["n"][5];
   r.reference_checked = j["reference_checked"];
   r.load_seconds = j["t"][0], r.engine_seconds = j["t"][1], r.prepare_seconds = j["t"][2], r.broad_seconds = j["t"][3];
   r.narrow_seconds = j["t"][4], r.peak_rss_mb = j["t"][5];

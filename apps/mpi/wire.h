@@ -30,6 +30,8 @@ struct RankResult {
   std::vector<scene::ReferencePair> reference_pairs;
   std::vector<std::string> warnings;
   std::size_t core_runs = 0, calls = 0, pairs = 0, bodies_loaded = 0;
+  std::uint64_t pair_triangles = 0;     ///< sum over its pairs of both bodies' triangles
+  std::uint64_t triangles_loaded = 0;   ///< of the bodies it read
   bool reference_checked = false;
   double load_seconds = 0, engine_seconds = 0, prepare_seconds = 0, broad_seconds = 0, narrow_seconds = 0;
   double peak_rss_mb = 0;

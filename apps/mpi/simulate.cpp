@@ -1,0 +1,113 @@
+// The partitioner on a synthetic product (simulate.h; issue #31, item 6).
+#include "simulate.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "plan.h"
+
+namespace interfere::mpi {
+
+int simulate(int argc, char** argv) {
+  // Parameters (docs/scaling.md): the product and the fitted cost model.
+  double bodies = 1e5, triangles = 1e9, pair_s = 2e-5, pair_tri_s = 2.5e-7, read_tri_s = 1e-7, body_bytes = 200,
+         tri_bytes = 200, bandwidth = 5e9, sigma = 1.0, base_mb = 60;
+  std::vector<double> ranks{8, 16, 32, 64, 128, 256, 512, 1024};
+  for (int i = 0; i + 1 < argc; i += 2) {
+    const std::string k = argv[i];
+    const double v = std::stod(argv[i + 1]);
+    if (k == "--bodies") bodies = v;
+    else if (k == "--triangles") triangles = v;
+    else if (k == "--pair-s") pair_s = v;
+    else if (k == "--pair-tri-s") pair_tri_s = v;
+    else if (k == "--read-tri-s") read_tri_s = v;
+    else if (k == "--tri-bytes") tri_bytes = v;
+    else if (k == "--base-mb") base_mb = v;
+    else if (k == "--bandwidth") bandwidth = v;
+    else if (k == "--sigma") sigma = v;
+    else if (k == "--ranks") ranks = {v};
+    else {
+      std::fprintf(stderr, "[interfere-mpi] simulate: unknown option %s\n", k.c_str());
+      return 2;
+    }
+  }
+  const auto n = static_cast<std::uint32_t>(bodies);
+  // Triangles per body: log-normal (sigma), scaled to the total; bodies on a cubic grid of pitch 1,
+  // each a box of half-size 0.45..0.6 (so about half the grid neighbours overlap: ~3 pairs a body).
+  std::mt19937_64 rng(31);
+  std::lognormal_distribution<double> size(0.0, sigma);
+  std::uniform_real_distribution<double> half(0.45, 0.6);
+  std::vector<double> tri(n);
+  double sum = 0;
+  for (double& t : tri) sum += t = size(rng);
+  std::vector<std::uint64_t> tris(n);
+  for (std::uint32_t i = 0; i < n; ++i) tris[i] = std::max<std::uint64_t>(12, static_cast<std::uint64_t>(tri[i] / sum * triangles));
+  const auto side = static_cast<std::uint32_t>(std::ceil(std::cbrt(static_cast<double>(n))));
+  std::vector<scene::Body> meta(n);
+  std::vector<AabbF> boxes(n);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    meta[i].id = "b" + std::to_string(1000000 + i);
+    const Vec3 c{static_cast<double>(i % side), static_cast<double>((i / side) % side), static_cast<double>(i / side / side)};
+    const double h = half(rng);
+    Aabb b;
+    b.lo = c - Vec3{h, h, h}, b.hi = c + Vec3{h, h, h};
+    boxes[i] = to_float_outward(b);
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  BroadResult broad = broad_phase(meta, {scene::ClashTest{}}, {boxes});
+  const double broad_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  double total = 0;
+  for (Unit& u : broad.units) total += u.cost = pair_s + pair_tri_s * static_cast<double>(tris[u.a] + tris[u.b]);
+  nlohmann::json out{{"bodies", n}, {"triangles", triangles}, {"candidate_pairs", broad.units.size()},
+                     {"serial_pair_s", total}, {"broad_phase_s", broad_s},
+                     {"model", {{"pair_s", pair_s}, {"pair_tri_s", pair_tri_s}, {"read_tri_s", read_tri_s},
+                                {"tri_bytes", tri_bytes}, {"body_bytes", body_bytes}, {"bandwidth", bandwidth}, {"base_mb", base_mb}}},
+                     {"ranks", nlohmann::json::array()}};
+  for (const double kd : ranks) {
+    const auto k = static_cast<std::size_t>(kd);
+    const auto t1 = std::chrono::steady_clock::now();
+    const Partition p = partition(broad, boxes, k);
+    const double partition_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+    double max_cost = 0, mean_cost = total / static_cast<double>(k);
+    for (const double c : p.rank_cost) max_cost = std::max(max_cost, c);
+    // Bodies and triangles each rank reads: its share in step 1 (n / k by size) and its blocks'.
+    std::uint64_t max_tri = 0, max_bodies = 0, sum_bodies = 0;
+    std::vector<char> in(n, 0);
+    for (std::size_t r = 0; r < k; ++r) {
+      std::uint64_t t = 0, b = 0;
+      for (const Block& blk : p.calls[r])
+        for (const std::uint32_t i : blk.bodies)
+          if (!in[i]) in[i] = 1, t += tris[i], ++b;
+      for (const Block& blk : p.calls[r])
+        for (const std::uint32_t i : blk.bodies) in[i] = 0;
+      max_tri = std::max(max_tri, t), max_bodies = std::max(max_bodies, b), sum_bodies += b;
+    }
+    const double share_tri = triangles / static_cast<double>(k);
+    const double allgather_bytes = body_bytes * n;  // every rank receives every body's metadata
+    const double time = (share_tri + static_cast<double>(max_tri)) * read_tri_s + broad_s + partition_s +
+                        allgather_bytes / bandwidth * std::log2(static_cast<double>(k)) + max_cost;
+    out["ranks"].push_back({{"ranks", k},
+                            {"blocks", p.blocks.size()},
+                            {"max_rank_pair_s", max_cost},
+                            {"mean_rank_pair_s", mean_cost},
+                            {"imbalance", mean_cost > 0 ? max_cost / mean_cost - 1 : 0},
+                            {"max_bodies_read", max_bodies},
+                            {"bodies_read_over_n", static_cast<double>(sum_bodies) / n},
+                            {"max_triangles_read", max_tri},
+                            {"allgather_bytes_per_rank", allgather_bytes},
+                            {"memory_per_rank_gb", (base_mb * 1e6 + static_cast<double>(max_tri) * tri_bytes + allgather_bytes * 4) / 1e9},
+                            {"partition_s", partition_s},
+                            {"predicted_s", time}});
+  }
+  std::printf("%s\n", out.dump(1).c_str());
+  return 0;
+}
+
+}  // namespace interfere::mpi
