@@ -1,6 +1,6 @@
 # Debian package of the command-line tool and the C++ library (issue #30, item 3), by CPack:
 #   cpack --config <build>/CPackConfig.cmake -G DEB        ->  interfere_<version>_<arch>.deb
-# It holds what `cmake --install` installs except the Python module (bin/interfere,
+# It holds what `cmake --install` installs except the Python module and interfere-mpi (bin/interfere,
 # libexec/interfere/interfere-cad, the static libraries, headers, the CMake package, the feature
 # data, LICENSE and NOTICE in share/doc/interfere), under /usr. The Python module is its own
 # install: `pip install --no-build-isolation .` (README, Install), because its directory
@@ -24,7 +24,8 @@ set(CPACK_PACKAGE_FILE_NAME "${CPACK_PACKAGE_NAME}-${PROJECT_VERSION}-${CMAKE_SY
 set(CPACK_GENERATOR DEB)
 set(CPACK_STRIP_FILES TRUE)  # (executables only: CMake never strips static archives)
 
-# Every component but `python` (python/CMakeLists.txt), in one package.
+# Every component but `python` (python/CMakeLists.txt) and `mpi` (apps/mpi: interfere-mpi would make
+# the package depend on OpenMPI; `cmake --install` installs it), in one package.
 set(CPACK_DEB_COMPONENT_INSTALL ON)
 set(CPACK_COMPONENTS_GROUPING ALL_COMPONENTS_IN_ONE)
 set(CPACK_COMPONENTS_ALL Unspecified)

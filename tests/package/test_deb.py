@@ -93,6 +93,7 @@ class Package(unittest.TestCase):
         # computed by dpkg-shlibdeps from the executables (not a hand-written list)
         for lib in ("libc6", "libstdc++6", "libtbb12"):
             self.assertIn(lib, names, depends)
+        self.assertFalse([n for n in names if "mpi" in n], depends)
         if os.path.exists(os.path.join(ROOT, "usr", "libexec", "interfere", "interfere-cad")):
             self.assertTrue(any(n.startswith("libocct-") for n in names), depends)
         for d in depends:  # each satisfied by this machine's packages (dpkg -i above checked it too)
@@ -111,8 +112,8 @@ class Package(unittest.TestCase):
                   "/usr/share/bash-completion/completions/interfere"):
             self.assertIn(f, listing)
             self.assertTrue(os.path.isfile(ROOT + f), f)
-        # the Python module is not in it (pip install ., README)
-        self.assertEqual([f for f in listing if "python" in f or f.endswith(".py")], [])
+        # the Python module is not in it (pip install ., README), nor interfere-mpi (OpenMPI)
+        self.assertEqual([f for f in listing if "python" in f or f.endswith(".py") or "mpi" in f], [])
         with open(os.path.join(ROOT, "usr", "share", "doc", "interfere", "LICENSE")) as f:
             self.assertIn("Apache License", f.read())
 
