@@ -301,6 +301,7 @@ struct CasingCase {
   cad::CadModel model;
   double deflection = 0;
   std::map<std::string, std::vector<std::uint32_t>> step_faces;
+  std::map<std::string, std::vector<std::uint32_t>> step_tris;  ///< annuli (TopFace/BottomFace, issue #29)
   std::map<std::string, TriMesh> step_feature;
   bool ok = false;
 };
@@ -329,17 +330,21 @@ const CasingCase& casing_case() {
   if (!lib) return c;
   auto rules = cad::default_semantic_rules(*lib);
   auto process = cad::parse_process(
-      R"({"steps":[{"id":"P1","parts":["*"],"constraint":"bolt"},{"id":"P2","parts":["*"],"constraint":"screw"}]})");
+      R"({"steps":[{"id":"P1","parts":["*"],"constraint":"screw"},{"id":"P2","parts":["*"],"constraint":"bolt"}]})");
   if (!rules || !process) return c;
   const cad::Part& part = c.model.parts[0];
   const auto feats = cad::recognize_features(part.aag, *lib);
   for (const char* step : {"P1", "P2"}) {
-    auto sel = cad::select_assembly_features(*process, step, *rules, part.name, feats);
+    auto sel = cad::select_assembly_features(*process, step, *rules, part.name, feats, &part.aag);
     if (!sel) return c;
     c.step_faces[step] = sel->faces;
+    c.step_tris[step] = cad::annulus_triangles(part.mesh, part.face_ids, sel->annuli);
+    const auto& annulus = c.step_tris[step];
     std::vector<std::uint32_t> tris;
     for (std::uint32_t t = 0; t < part.face_ids.size(); ++t)
-      if (std::binary_search(sel->faces.begin(), sel->faces.end(), part.face_ids[t])) tris.push_back(t);
+      if (std::binary_search(sel->faces.begin(), sel->faces.end(), part.face_ids[t]) ||
+          std::binary_search(annulus.begin(), annulus.end(), t))
+        tris.push_back(t);
     c.step_feature[step] = submesh(part.mesh, tris);
   }
   c.ok = true;
@@ -370,7 +375,8 @@ void bm_casing(benchmark::State& state, const std::string& step, bool guard, Fea
   if (!c) return;
   const cad::Part& part = c->model.parts[0];
   SimplifyOptions o{.target_triangles = casing_budget(part.mesh), .face_ids = part.face_ids,
-                    .feature_faces = c->step_faces.at(step), .feature_mode = mode};
+                    .feature_faces = c->step_faces.at(step), .feature_triangles = c->step_tris.at(step),
+                    .feature_mode = mode};
   o.measure_error = false;
   o.prevent_self_intersections = guard;
   TriMesh out;
@@ -396,8 +402,10 @@ void bm_casing_openmesh(benchmark::State& state, const std::string& step, bool l
   const TriMesh welded = weld_positions(part.mesh);  // triangle order kept
   std::vector<std::uint8_t> locked(welded.num_vertices(), 0);
   const auto& faces = c->step_faces.at(step);
+  const auto& annulus = c->step_tris.at(step);
   for (std::size_t t = 0; t < welded.num_triangles(); ++t)
-    if (std::binary_search(faces.begin(), faces.end(), part.face_ids[t]))
+    if (std::binary_search(faces.begin(), faces.end(), part.face_ids[t]) ||
+        std::binary_search(annulus.begin(), annulus.end(), std::uint32_t(t)))
       for (std::uint32_t v : welded.triangles[t]) locked[v] = 1;
   casing_report(state, *c, step, timed_openmesh(state, welded, casing_budget(welded), lock ? &locked : nullptr));
 }

@@ -162,10 +162,26 @@ quadric-error-metric edge collapses while the faces that take part in the curren
    `countersink`/`bore`/`seat`, `top` (the entry faces), `bottom` (the exit faces or the floor). The library's
    hole patterns only name the roles. Precision and recall on real parts: the truth-set table below.
 4. **Assembly semantics** (He & Xu §3): rules (`data/features/semantics.json`) map a constraint type to the
-   feature types and roles whose faces take part: `bolt` → through hole (wall) + top and bottom faces;
-   `gear_shaft` → ring (shoulder) face + the shaft cylinder it meets; `screw` → counterbored hole (bore,
-   counterbore, seat); plus `countersunk_screw`, `key`, `pin`, `locate`. A process description lists the steps
-   (`{"steps": [{"id": "P1", "parts": ["casing"], "constraint": "bolt"}, ...]}`, `"*"` = every part; ids unique,
+   feature types and roles whose faces take part, and the faces the paper's rules add (§3: "If feature Is Type
+   (Circular Through Hole), Then feature.Add(TopFace and BottomFace)"; `"add": ["TopFace", "BottomFace"]`):
+   `bolt` → through hole (wall) + TopFace and BottomFace; `gear_shaft` → ring (shoulder) face + the shaft
+   cylinder it meets; `screw` → counterbored or countersunk hole (bore, counterbore or countersink, seat) +
+   BottomFace (§4's FeatureE = {CounterboredHole, BottomFace}); plus `countersunk_screw`, `key`, `pin`,
+   `locate`. TopFace is the hole's `top` role, BottomFace its `bottom` role, else the AAG neighbours of its
+   innermost bore that are not its own faces (where the bore leaves the part). **Clamped annulus** (issue #29):
+   the added faces are kept only within `clamp_radius_factor` (default 2, ISO 7089 washers are about 2 d across)
+   times the hole's radius of its axis (TopFace: the largest radius, the counterbore's; BottomFace: the bore's),
+   not whole: a triangle of such a face is a feature triangle when its three corners lie within that distance of
+   the axis line (`annulus_triangles`, `SimplifyOptions::feature_triangles`; `0` keeps whole faces; reports:
+   `assembly_feature_annuli` [{`face`, `radius`, `axis`}], and in `cad.parts[]` of `simplify` also
+   `assembly_feature_annulus_triangles`). BRepMesh puts no vertex inside a planar face, so on planar faces the
+   triangles fan the hole's rim out to the face's far border and few lie inside (the rim is kept by the hole's
+   wall, whose triangles share its vertices; the AS1 plate's feature triangles fall from 868 of 876, its whole
+   top and bottom faces, to its hole walls' 420): the annulus takes triangles on curved and finely meshed faces. A hole whose planar
+   TopFace or BottomFace has less than half the annulus' area, π((k r)² − r²)/2, holds no washer or head and is
+   skipped by the rule with a warning naming it (the casing's Ø176 main bore, a through hole of the flange
+   ring: 28,000 mm² against 36,500; a nut's face is about 0.6 of it and stays). A process description lists the steps
+   (`{"steps": [{"id": "P1", "parts": ["casing"], "constraint": "screw"}, ...]}`, `"*"` = every part; ids unique,
    not empty, not `all`, and for `--step all` distinct as file names; no `parts`: every part, an empty list is an
    error); the faces of
    step P_i are selected automatically. A step names parts or component instances: a part used several times
@@ -439,9 +455,21 @@ For process step P with parts j having T_j triangles, F_j of them on the step's 
 (F_j = 0 for parts not in the step), and the renderer's maximum N_max:
 
 - if Σ T_j ≤ N_max: N_i = T_i (nothing to simplify);
-- else R = N_max − Σ F_j and N_i = F_i + ⌊R · (T_i − F_i) / Σ_j (T_j − F_j)⌋, the remaining triangles handed out
-  by largest remainder (ties: lower index), so that Σ N_i = N_max exactly;
-- if R < 0 (the features alone exceed the renderer's budget): N_i = F_i and a warning.
+- else every part has a floor, half its proportional share (the paper's N = N_max · N2 / N1, §3.3):
+  L_i = min(T_i, ⌊N_max · T_i / (2 Σ_j T_j)⌋), and protects P_i = max(F_i, L_i);
+- if Σ P_j ≤ N_max: R = N_max − Σ P_j and N_i = P_i + ⌊R · (T_i − P_i) / Σ_j (T_j − P_j)⌋;
+- else (the step's features exceed what the cap leaves: `features_exceed_budget`, a warning naming the parts and
+  their feature triangles): S = N_max − Σ L_j (at least N_max / 2) and N_i = L_i + ⌊S · (P_i − L_i) / Σ_j (P_j − L_j)⌋,
+  so the features are simplified too, in proportion, and no part goes below its floor;
+- in each case the remaining triangles are handed out by largest remainder (ties: lower index), so that
+  Σ N_i = N_max exactly: the cap is never exceeded by the shares and no part is starved.
+
+Until issue #29 the features were reserved first and, when they alone exceeded the cap, every part got N_i = F_i:
+above the cap, and parts without features nothing (CAx-IF AS1, bolt step on every part, `--renderer-max 1500`:
+3,570 triangles, the bolts at 10 and the rod at 2, Hausdorff 23.5 mm on the 200 mm rod). Now: 1,500 triangles, the
+bolts 40 each (Hausdorff 5.5 % of the bolt's diagonal), the rod 18 (0.9 %), the nuts 66, the brackets 204, the
+plate 306 (tests `Budget.*`, `AssemblyBudget.*`: the cap on a generated assembly and on AS1 when
+`../shared/data` is there, every part within 8 % (AS1: 6 %) of its size).
 
 `triangle_budgets()` in `simplify/budget.h`; `interfere simplify --renderer-max N` applies it to one part.
 

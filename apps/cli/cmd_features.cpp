@@ -143,10 +143,17 @@ int run_features(const FeaturesCliOptions& o) {
                                            static_cast<std::uint32_t>(&part - model->parts.data()), feats);
       if (!sel) throw InputError(o.process + ": " + sel.error().reason);
       for (const std::string& w : sel->warnings) warning(w);
+      // The clamped annuli of TopFace/BottomFace (issue #29): face, radius, axis.
+      nlohmann::json annuli = nlohmann::json::array();
+      for (const Annulus& a : sel->annuli)
+        annuli.push_back({{"face", a.face}, {"radius", a.radius},
+                          {"axis", {{"point", vec_json(a.axis_point)}, {"direction", vec_json(a.axis)}}}});
       if (o.step == "all") {
-        jp["steps"][step] = {{"assembly_feature_faces", sel->faces}, {"semantics_warnings", sel->warnings}};
+        jp["steps"][step] = {{"assembly_feature_faces", sel->faces}, {"assembly_feature_annuli", annuli},
+                             {"semantics_warnings", sel->warnings}};
       } else {
         jp["assembly_feature_faces"] = sel->faces;
+        jp["assembly_feature_annuli"] = annuli;
         jp["semantics_warnings"] = sel->warnings;
       }
       if (!o.dot.empty() && o.step != "all") dot_parts.back().assembly_faces = sel->faces;
@@ -156,7 +163,13 @@ int run_features(const FeaturesCliOptions& o) {
           face_label[face] = 0;
         }
       const std::string faces = fmt::format("{}", fmt::join(sel->faces, ","));
-      std::printf("  step %s: %zu assembly-feature faces [%s]\n", step.c_str(), sel->faces.size(), faces.c_str());
+      std::printf("  step %s: %zu assembly-feature faces [%s]", step.c_str(), sel->faces.size(), faces.c_str());
+      if (!sel->annuli.empty()) {
+        std::string an;
+        for (const Annulus& a : sel->annuli) an += fmt::format("{}{} r {:g}", an.empty() ? "" : ", ", a.face, a.radius);
+        std::printf(" and %zu clamped annuli [%s]", sel->annuli.size(), an.c_str());
+      }
+      std::printf("\n");
     }
     if (o.aag) {
       nlohmann::json nodes = nlohmann::json::array(), arcs = nlohmann::json::array();

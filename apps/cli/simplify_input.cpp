@@ -183,9 +183,14 @@ SimplifyInput load_simplify_input(const SimplifyCliOptions& o, [[maybe_unused]] 
     so.max_error = o.max_error_rel * diagonal;
   }
   if (o.renderer_max > 0) {  // the total is the renderer's maximum, the features reserved (docs/simplify.md)
-    const auto b = triangle_budgets({{in.mesh.num_triangles(), count_feature_triangles(so.face_ids, so.feature_faces)}},
-                                    o.renderer_max);
+    const std::size_t f = count_feature_triangles(so.face_ids, so.feature_faces);
+    const auto b = triangle_budgets({{in.mesh.num_triangles(), f}}, o.renderer_max);
     so.target_triangles = std::max<std::size_t>(1, b.budgets[0]);
+    // The cap holds (issue #29): feature triangles beyond it are simplified too, and said so (a STEP
+    // input's parts are named by simplify_assembly).
+    if (b.features_exceed_budget && !is_step_file(o.input))
+      warning("--renderer-max " + std::to_string(o.renderer_max) + " is below the " + std::to_string(f) +
+              " triangles of the feature faces or regions: the cap holds, so they are simplified too");
     so.ratio = 0;
   }
   return in;

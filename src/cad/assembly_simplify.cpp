@@ -28,7 +28,8 @@ Expected<AssemblySimplifyResult> simplify_assembly(const Prepared& prep, const S
   int& rounds = out.budget_rounds;
   std::vector<PartBudgetInput> in;
   for (const PreparedPart& p : prep.parts)
-    in.push_back({p.instances * p.mesh.num_triangles(), p.instances * count_feature_triangles(p.face_ids, p.feature_faces)});
+    in.push_back({p.instances * p.mesh.num_triangles(),
+                  p.instances * count_feature_triangles(p.face_ids, p.feature_faces, p.feature_triangles)});
   // Parts that stop above their share (seams, corners, locks, the guard) keep what they reached and
   // the others share the rest (rebalanced_budgets; the renderer's maximum is a cap), re-simplified
   // from their input when their budget drops; a few rounds, each fixing at least one more part, and
@@ -55,6 +56,7 @@ Expected<AssemblySimplifyResult> simplify_assembly(const Prepared& prep, const S
     po.ratio = 0;
     po.face_ids = p.face_ids;
     po.feature_faces = p.feature_faces;
+    po.feature_triangles = p.feature_triangles;
     auto r = simplify(p.mesh, po);
     if (!r) {
       Error e = r.error();
@@ -161,7 +163,20 @@ Expected<AssemblySimplifyResult> simplify_assembly(const Prepared& prep, const S
   if (parts_one_below > 0 && !all.reached)
     all.warnings.push_back(std::to_string(parts_one_below) + (parts_one_below == 1 ? " part" : " parts") +
                            " ended one triangle below an odd budget (closed meshes lose triangles in pairs)");
-  if (features_exceed) all.warnings.push_back("the step's feature triangles alone exceed the budget");
+  if (features_exceed) {
+    // Name the parts whose feature triangles are simplified too (issue #29: the cap holds).
+    std::string names;
+    std::size_t f_all = 0;
+    for (std::size_t i = 0; i < prep.parts.size(); ++i) {
+      if (in[i].feature_triangles == 0) continue;
+      f_all += in[i].feature_triangles;
+      names += (names.empty() ? "'" : ", '") + prep.parts[i].name + "' (" + std::to_string(in[i].feature_triangles) + ")";
+    }
+    all.warnings.push_back("the step's " + std::to_string(f_all) + " feature triangles (" + names +
+                           ") exceed the total budget " + std::to_string(total) +
+                           " less every part's floor (half its proportional share): the cap holds, so the features "
+                           "are simplified too, in proportion");
+  }
   all.bbox_diagonal = norm(prep.mesh.bounds().extent());
   out.features_exceed_budget = features_exceed;
   // all.error_bound: the largest part's (rigid placements keep distances).

@@ -27,7 +27,7 @@ bool part_in_step(const Process& process, const std::string& step, const CadMode
 Expected<Selection> part_step_selection(const Process& process, const std::string& step, const SemanticRules& rules,
                                         const CadModel& model, std::uint32_t part,
                                         const std::vector<Feature>& features) {
-  auto sel = select_step_features(process, step, rules, model.parts[part].name, features);
+  auto sel = select_step_features(process, step, rules, model.parts[part].name, features, &model.parts[part].aag);
   if (sel && !part_in_step(process, step, model, part)) return Selection{};
   return sel;
 }
@@ -143,7 +143,7 @@ Expected<Prepared> prepare(const CadModel& imported, const PipelineOptions& o, c
   }
   nlohmann::json rep;
   rep["parts"] = nlohmann::json::array();
-  std::vector<std::vector<std::uint32_t>> part_features(model->parts.size());
+  std::vector<std::vector<std::uint32_t>> part_features(model->parts.size()), part_annulus_tris(model->parts.size());
   // Each part once per kind of its instances: with the step's features (instances in the step) and
   // without (the others), so a step that names one of six identical bolts keeps only that bolt's.
   std::vector<std::uint32_t> with_features(model->parts.size(), kNoPart), without(model->parts.size(), kNoPart);
@@ -155,20 +155,28 @@ Expected<Prepared> prepare(const CadModel& imported, const PipelineOptions& o, c
                       {"features", nlohmann::json::array()}};
     for (const Feature& f : feats) jp["features"].push_back({{"type", f.type}, {"faces", f.faces}});
     if (process) {
-      auto sel = select_step_features(*process, o.step, *rules, part.name, feats);
+      auto sel = select_step_features(*process, o.step, *rules, part.name, feats, &part.aag);
       if (!sel) return Error{.file = o.process_file, .reason = sel.error().reason};
       if (part_in_step[i]) {
         part_features[i] = sel->faces;
+        part_annulus_tris[i] = annulus_triangles(part.mesh, part.face_ids, sel->annuli);
         for (const auto& w : sel->warnings) out.warnings.push_back(w);
+        for (const Annulus& a : sel->annuli)
+          jp["assembly_feature_annuli"].push_back({{"face", a.face}, {"radius", a.radius},
+                                                   {"axis", {{"point", {a.axis_point.x, a.axis_point.y, a.axis_point.z}},
+                                                             {"direction", {a.axis.x, a.axis.y, a.axis.z}}}}});
       }
       jp["assembly_feature_faces"] = part_features[i];
+      if (!jp.contains("assembly_feature_annuli")) jp["assembly_feature_annuli"] = nlohmann::json::array();
+      jp["assembly_feature_annulus_triangles"] = part_annulus_tris[i].size();
     }
     rep["parts"].push_back(jp);
-    const bool split = part_in_step[i] && part_out_of_step[i] && !part_features[i].empty();
+    const bool split = part_in_step[i] && part_out_of_step[i] && (!part_features[i].empty() || !part_annulus_tris[i].empty());
     if (part_in_step[i] || !part_out_of_step[i]) {
       with_features[i] = static_cast<std::uint32_t>(out.parts.size());
       out.parts.push_back({split ? part.name + " [" + o.step + "]" : part.name, part.mesh, part.face_ids,
-                           part_features[i], part.faces, 0, static_cast<std::uint32_t>(i), tessellation_error});
+                           part_features[i], part.faces, 0, static_cast<std::uint32_t>(i), tessellation_error,
+                           part_annulus_tris[i]});
     }
     if (part_out_of_step[i] && (split || !part_in_step[i])) {
       without[i] = static_cast<std::uint32_t>(out.parts.size());

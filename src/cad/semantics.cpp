@@ -6,6 +6,8 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <fstream>
 #include <sstream>
 
@@ -58,6 +60,17 @@ Expected<SemanticRules> parse_semantic_rules(const std::string& text, const Feat
           if (std::find(known.begin(), known.end(), role) == known.end())
             return Error{.file = source, .reason = "rule '" + r.name + "' names role '" + role + "' of '" +
                                                    n.feature + "', whose patterns have the roles " + quoted_list(known)};
+        n.add = jf.value("add", std::vector<std::string>{});
+        for (const std::string& a : n.add)
+          if (a != "TopFace" && a != "BottomFace")
+            return Error{.file = source, .reason = "rule '" + r.name + "' adds '" + a +
+                                                   "': the faces a rule can add are 'TopFace' and 'BottomFace'"};
+        n.clamp_radius_factor = jf.value("clamp_radius_factor", 2.0);
+        if (!(n.clamp_radius_factor == 0 || (n.clamp_radius_factor >= 1 && n.clamp_radius_factor < 1e6)))
+          return Error{.file = source, .reason = "rule '" + r.name + "': clamp_radius_factor " +
+                                                 std::to_string(n.clamp_radius_factor) +
+                                                 " must be 0 (whole faces) or at least 1 (times the hole's radius)"};
+        n.require_clamp_fit = jf.value("require_clamp_fit", true);
         r.needs.push_back(n);
       }
       out.rules.push_back(std::move(r));
@@ -134,15 +147,63 @@ bool step_includes(const Process& process, const std::string& step_id, const std
 
 Expected<Selection> select_assembly_features(const Process& process, const std::string& step_id,
                                              const SemanticRules& rules, const std::string& part_name,
-                                             const std::vector<Feature>& features) {
-  auto sel = select_step_features(process, step_id, rules, part_name, features);
+                                             const std::vector<Feature>& features, const Aag* aag) {
+  auto sel = select_step_features(process, step_id, rules, part_name, features, aag);
   if (sel && !step_includes(process, step_id, part_name)) return Selection{};
   return sel;
 }
 
+namespace {
+// He & Xu §3: "If feature Is Type (Circular Through Hole), Then feature.Add(TopFace and
+// BottomFace)". The faces `add` names for feature `f`: TopFace its "top" role; BottomFace its
+// "bottom" role, else (a counterbored or countersunk hole, whose pattern ends at the bore) the AAG
+// neighbours of its innermost bore that are not its own or top faces. Each with the radius its
+// clamped region is measured from (top: the largest of the feature's radii, bottom: the smallest).
+struct Added {
+  std::uint32_t face;
+  double radius;
+};
+std::vector<Added> added_faces(const Feature& f, const std::vector<std::string>& add, const Aag* aag) {
+  std::vector<Added> out;
+  if (add.empty()) return out;
+  double r_max = 0, r_min = 0;
+  for (double r : f.radii) r_max = std::max(r_max, r), r_min = r_min == 0 ? r : std::min(r_min, r);
+  const auto role = [&](const char* name) {
+    auto it = f.role_faces.find(name);
+    return it == f.role_faces.end() ? std::vector<std::uint32_t>{} : it->second;
+  };
+  const std::vector<std::uint32_t> top = role("top");
+  for (const std::string& a : add) {
+    if (a == "TopFace") {
+      for (std::uint32_t x : top) out.push_back({x, r_max});
+      continue;
+    }
+    std::vector<std::uint32_t> bottom = role("bottom");
+    if (bottom.empty() && aag) {
+      std::vector<std::uint32_t> bore = role("bore");
+      if (bore.empty()) bore = role("wall");
+      const auto own = [&](std::uint32_t x) {
+        return std::binary_search(f.faces.begin(), f.faces.end(), x) || std::find(top.begin(), top.end(), x) != top.end();
+      };
+      for (const AagArc& arc : aag->arcs) {
+        const bool a_in = std::find(bore.begin(), bore.end(), arc.a) != bore.end();
+        const bool b_in = std::find(bore.begin(), bore.end(), arc.b) != bore.end();
+        if (a_in == b_in) continue;
+        const std::uint32_t other = a_in ? arc.b : arc.a;
+        if (!own(other) && std::find(bottom.begin(), bottom.end(), other) == bottom.end()) bottom.push_back(other);
+      }
+    }
+    for (std::uint32_t x : bottom) out.push_back({x, r_min});
+  }
+  return out;
+}
+
+bool has_axis(const Feature& f) { return norm(f.axis) > 0.5; }
+}  // namespace
+
 Expected<Selection> select_step_features(const Process& process, const std::string& step_id,
                                          const SemanticRules& rules, const std::string& part_name,
-                                         const std::vector<Feature>& features) {
+                                         const std::vector<Feature>& features, const Aag* aag) {
   const ProcessStep* step = nullptr;
   for (const ProcessStep& s : process.steps)
     if (s.id == step_id) step = &s;
@@ -160,12 +221,42 @@ Expected<Selection> select_step_features(const Process& process, const std::stri
   Selection sel;
   for (const SemanticRule& r : rules.rules) {
     if (r.constraint != step->constraint) continue;
+    std::vector<std::string> missing;  // the needs' types found on none of the features
     for (const SemanticRule::Need& n : r.needs) {
       bool found = false;
       for (const Feature& f : features) {
         if (f.type != n.feature) continue;
         found = true;
+        // The faces the rule adds, clamped to the annulus around the hole (issue #29, item 3).
+        const std::vector<Added> added = added_faces(f, n.add, aag);
+        if (n.clamp_radius_factor > 0 && n.require_clamp_fit && aag) {
+          std::string misfit;
+          for (const Added& a : added) {
+            const AagNode& node = aag->nodes[a.face];
+            const double rc = n.clamp_radius_factor * a.radius;
+            // At least half the annulus: a nut's or a small lug's face is smaller than a washer
+            // but is itself the clamped face; a flange ring around a main bore is far smaller.
+            const double need = 0.5 * std::numbers::pi * (rc * rc - a.radius * a.radius);
+            if (node.type == SurfaceType::plane && a.radius > 0 && node.area < need)
+              misfit = "face " + std::to_string(a.face) + " (area " + std::to_string(std::lround(node.area)) +
+                       ") is smaller than half the clamped annulus of radius " + std::to_string(std::lround(rc)) + " (" +
+                       std::to_string(std::lround(need)) + ")";
+          }
+          if (!misfit.empty()) {
+            sel.warnings.push_back("step '" + step_id + "', part '" + part_name + "': rule '" + r.name + "' skips the '" +
+                                   f.type + "' of radius " + std::to_string(std::lround(f.radii.empty() ? 0.0 : f.radii.front())) +
+                                   " (faces " + std::to_string(f.faces.front()) + "...): " + misfit +
+                                   ", so no washer or head clamps there");
+            continue;
+          }
+        }
         sel.features_used.push_back(&f);
+        for (const Added& a : added) {
+          if (n.clamp_radius_factor > 0 && has_axis(f) && a.radius > 0)
+            sel.annuli.push_back({a.face, f.axis_point, f.axis, n.clamp_radius_factor * a.radius});
+          else
+            sel.faces.push_back(a.face);
+        }
         if (n.roles.empty()) {
           sel.faces.insert(sel.faces.end(), f.faces.begin(), f.faces.end());
         } else {
@@ -176,14 +267,50 @@ Expected<Selection> select_step_features(const Process& process, const std::stri
           }
         }
       }
-      if (!found)
-        sel.warnings.push_back("step '" + step_id + "', part '" + part_name + "': rule '" + r.name + "' found no '" +
-                               n.feature + "'");
+      if (!found) missing.push_back(n.feature);
     }
+    // One warning when the rule found none of its types (a rule naming alternatives, counterbored
+    // or countersunk holes for a screw, is satisfied by either).
+    if (!missing.empty() && missing.size() == r.needs.size())
+      sel.warnings.push_back("step '" + step_id + "', part '" + part_name + "': rule '" + r.name + "' found no " +
+                             (missing.size() == 1 ? "'" + missing[0] + "'" : quoted_list(missing)));
   }
   std::sort(sel.faces.begin(), sel.faces.end());
   sel.faces.erase(std::unique(sel.faces.begin(), sel.faces.end()), sel.faces.end());
+  // An annulus on a face kept whole anyway adds nothing.
+  std::erase_if(sel.annuli, [&](const Annulus& a) { return std::binary_search(sel.faces.begin(), sel.faces.end(), a.face); });
   return sel;
+}
+
+std::vector<std::uint32_t> annulus_triangles(const TriMesh& mesh, const std::vector<std::uint32_t>& face_ids,
+                                             const std::vector<Annulus>& annuli) {
+  std::vector<std::uint32_t> out;
+  if (annuli.empty()) return out;
+  std::vector<std::vector<const Annulus*>> by_face;
+  for (const Annulus& a : annuli) {
+    if (a.face >= by_face.size()) by_face.resize(std::size_t{a.face} + 1);
+    by_face[a.face].push_back(&a);
+  }
+  for (std::size_t t = 0; t < mesh.num_triangles() && t < face_ids.size(); ++t) {
+    if (face_ids[t] >= by_face.size()) continue;
+    for (const Annulus* a : by_face[face_ids[t]]) {
+      // Every corner within the radius of the axis (distance to the axis line): the region's own
+      // triangles. A triangle reaching out of it (on a planar face BRepMesh fans the hole's rim to
+      // the face's far border) is not taken: the rim it shares is kept by the hole's wall, and its
+      // far corners are no part of the clamped region.
+      bool inside = true;
+      for (int k = 0; k < 3 && inside; ++k) {
+        const Vec3 d = mesh.positions[mesh.triangles[t][k]] - a->axis_point;
+        const Vec3 q = d - dot(d, a->axis) * a->axis;
+        inside = dot(q, q) <= a->radius * a->radius;
+      }
+      if (inside) {
+        out.push_back(static_cast<std::uint32_t>(t));
+        break;
+      }
+    }
+  }
+  return out;
 }
 
 }  // namespace interfere::cad

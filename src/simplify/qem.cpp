@@ -258,6 +258,10 @@ Expected<SimplifyResult> simplify(const TriMesh& mesh, const SimplifyOptions& op
   if (!options.face_ids.empty() && options.face_ids.size() != nt)
     return Error{.reason = "face_ids has " + std::to_string(options.face_ids.size()) + " entries for " +
                            std::to_string(nt) + " triangles"};
+  for (std::uint32_t t : options.feature_triangles)
+    if (t >= nt)
+      return Error{.reason = "feature triangle " + std::to_string(t) + " is out of range: the mesh has " +
+                             std::to_string(nt) + " triangles"};
   if (!(options.sharp_angle_deg >= 0 && options.sharp_angle_deg < 180))
     return Error{.reason = "sharp angle " + short_number(options.sharp_angle_deg) +
                            " degrees: give a dihedral angle in (0, 180), or 0 for no sharp-edge regions"};
@@ -307,8 +311,12 @@ Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOp
       for (std::size_t t = 0; t < nt; ++t)
         feature_tri[t] = std::binary_search(features.begin(), features.end(), face[t]) ? 1 : 0;
     }
-    for (std::size_t t = 0; t < nt; ++t) r.feature_triangles_in += feature_tri[t];
   }
+  // Parts of larger faces (the clamped annuli of He & Xu's TopFace/BottomFace, issue #29).
+  for (std::uint32_t t : options.feature_triangles) feature_tri[t] = 1;
+  const bool any_feature = !features.empty() || !options.feature_triangles.empty();
+  if (any_feature)
+    for (std::size_t t = 0; t < nt; ++t) r.feature_triangles_in += feature_tri[t];
   if (!features.empty()) {  // ids no triangle carries keep nothing: named (the first ten)
     std::vector<std::uint8_t> carried(features.size(), 0);
     for (std::size_t t = 0; t < nt; ++t)
@@ -526,6 +534,10 @@ Expected<SimplifyResult> simplify_in_frame(const TriMesh& mesh, const SimplifyOp
   clock.lap("check");
   sp.reset();  // (its memory, about 150 bytes per input triangle, is not needed for the error)
   for (std::uint32_t t : out_origin) r.feature_triangles_out += feature_tri[t];
+  if (any_feature) {
+    r.feature_flags.resize(out_origin.size());
+    for (std::size_t i = 0; i < out_origin.size(); ++i) r.feature_flags[i] = feature_tri[out_origin[i]];
+  }
   if (splitting) {
     r.mesh = split.num_triangles() == out.num_triangles() ? std::move(split) : split_by_face(out, out_face);
   } else {

@@ -401,25 +401,29 @@ TEST(Semantics, EachStepSelectsItsAssemblyFeaturesOnTheCasing) {
   for (const Feature& f : feats) ++count[f.type];
   EXPECT_EQ(count["counterbored_hole"], 6);
   EXPECT_EQ(count["through_hole"], 7);  // 6 upper bolt holes and the casing's own bore
-  auto p1 = select_assembly_features(*process, "P1", *rules, casing.name, feats);
-  auto p2 = select_assembly_features(*process, "P2", *rules, casing.name, feats);
+  auto p1 = select_assembly_features(*process, "P1", *rules, casing.name, feats, &casing.aag);
+  auto p2 = select_assembly_features(*process, "P2", *rules, casing.name, feats, &casing.aag);
   auto p3 = select_assembly_features(*process, "P3", *rules, casing.name, feats);
   ASSERT_TRUE(p1.has_value() && p2.has_value() && p3.has_value());
-  // P1 bolt connection: the 6 upper bolt-hole walls (r = 6) with the upper flange's top and bottom
-  // faces, and (a through hole too) the casing's bore r = 88 with the casing's bottom face.
+  // P1 bolt connection: the 6 upper bolt-hole walls (r = 6) whole, the upper flange's top and
+  // bottom faces within 2 x 6 of each hole's axis (issue #29: the clamped annulus, not the whole
+  // faces); the casing's bore r = 88, a through hole too, is skipped with a warning: its flange ring
+  // cannot hold a washer of radius 176.
   std::map<int, int> p1_radii;
-  int planes = 0;
   for (auto f : p1->faces) {
     const AagNode& n = casing.aag.nodes[f];
-    if (n.type == SurfaceType::cylinder) {
-      ++p1_radii[int(std::lround(n.radius))];
-    } else {
-      EXPECT_EQ(n.type, SurfaceType::plane);
-      ++planes;
-    }
+    EXPECT_EQ(n.type, SurfaceType::cylinder);
+    ++p1_radii[int(std::lround(n.radius))];
   }
-  EXPECT_EQ(p1_radii, (std::map<int, int>{{6, 6}, {88, 1}}));
-  EXPECT_EQ(planes, 3);
+  EXPECT_EQ(p1_radii, (std::map<int, int>{{6, 6}}));
+  EXPECT_EQ(p1->annuli.size(), 12u);
+  std::set<std::uint32_t> planes;
+  for (const Annulus& a : p1->annuli) {
+    EXPECT_EQ(casing.aag.nodes[a.face].type, SurfaceType::plane);
+    EXPECT_NEAR(a.radius, 12.0, 1e-6);
+    planes.insert(a.face);
+  }
+  EXPECT_EQ(planes.size(), 2u);
   // P2 screw tightening: 6 x (bore r=5, counterbore r=9, seat).
   std::map<int, int> radii;
   int seats = 0;
@@ -430,6 +434,13 @@ TEST(Semantics, EachStepSelectsItsAssemblyFeaturesOnTheCasing) {
   }
   EXPECT_EQ(radii, (std::map<int, int>{{5, 6}, {9, 6}}));
   EXPECT_EQ(seats, 6);
+  // ... and the paper's BottomFace (§4, FeatureE = {CounterboredHole, BottomFace}): where each bore
+  // leaves the part (here the lower flange's underside), within 2 x 5 of its axis.
+  ASSERT_EQ(p2->annuli.size(), 6u);
+  for (const Annulus& a : p2->annuli) {
+    EXPECT_LT(casing.aag.nodes[a.face].normal.z, -0.99);
+    EXPECT_NEAR(a.radius, 10.0, 1e-6);
+  }
   EXPECT_TRUE(p3->faces.empty());  // the casing is not in P3
   EXPECT_FALSE(select_assembly_features(*process, "P9", *rules, casing.name, feats).has_value());
 }

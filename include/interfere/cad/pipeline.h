@@ -31,6 +31,10 @@ struct PreparedPart {
   /// measured on import). A simplification's error bound is relative to the tessellation; relative
   /// to the B-Rep add this.
   double tessellation_error = 0;
+  /// Triangles (part indices) kept as assembly features besides those of `feature_faces`: the
+  /// clamped annuli of the step's TopFace/BottomFace (Selection::annuli, issue #29), for
+  /// SimplifyOptions::feature_triangles.
+  std::vector<std::uint32_t> feature_triangles;
 };
 struct PreparedInstance {
   std::string name;

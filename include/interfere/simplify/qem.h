@@ -64,6 +64,10 @@ struct SimplifyOptions {
   std::vector<std::uint32_t> face_ids;
   /// Face ids whose triangles are assembly features (weighted or locked, see `feature_mode`).
   std::vector<std::uint32_t> feature_faces;
+  /// Triangle indices that are assembly features besides the triangles of `feature_faces`: part of
+  /// a larger face, e.g. the clamped annulus around a bolt hole on its top and bottom faces (He & Xu
+  /// §3's TopFace/BottomFace limited to the washer's reach, issue #29). Indices out of range: error.
+  std::vector<std::uint32_t> feature_triangles;
   FeatureMode feature_mode = FeatureMode::weight;
   /// > 0 (degrees): plain meshes without face ids are split into regions at edges whose dihedral
   /// angle (between the two triangles' normals) exceeds this, and the region borders are kept like
@@ -135,6 +139,9 @@ struct SimplifyResult {
   /// Per output triangle: its face id (SimplifyOptions::face_ids), or its sharp-edge region
   /// (sharp_angle_deg, as sharp_edge_regions numbers them); empty when neither was given.
   std::vector<std::uint32_t> face_ids;
+  /// Per output triangle: 1 when its input triangle was an assembly feature (feature_faces or
+  /// feature_triangles); empty without features.
+  std::vector<std::uint8_t> feature_flags;
   std::size_t input_triangles = 0, input_vertices_welded = 0;
   /// Input triangles with two corners at one position (dropped first, with a warning).
   std::size_t degenerate_triangles = 0;

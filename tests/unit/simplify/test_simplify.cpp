@@ -1243,20 +1243,69 @@ TEST(Simplify, ErrorBoundMakesDistancesOnSimplifiedPartsConservative) {
   EXPECT_GE(d1, d0 - sa->error_bound - sb->error_bound);
 }
 
+// The formula of budget.h written out in floating point (an independent oracle): floors, the
+// protected triangles, then the rest by share; each integer budget within 1 of it.
+std::vector<double> budget_oracle(const std::vector<PartBudgetInput>& parts, double n_max) {
+  double total = 0;
+  for (const auto& p : parts) total += double(p.triangles);
+  std::vector<double> floor, prot, out;
+  double sf = 0, sp = 0;
+  for (const auto& p : parts) {
+    floor.push_back(std::min(double(p.triangles), std::floor(n_max * double(p.triangles) / (2 * total))));
+    prot.push_back(std::max(floor.back(), double(p.feature_triangles)));
+    sf += floor.back(), sp += prot.back();
+  }
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    if (sp <= n_max) out.push_back(prot[i] + (n_max - sp) * (double(parts[i].triangles) - prot[i]) / (total - sp));
+    else out.push_back(floor[i] + (n_max - sf) * (prot[i] - floor[i]) / (sp - sf));
+  }
+  return out;
+}
+
 TEST(Budget, SharesAddUpToTheRendererMaximumAndReserveFeatures) {
   const std::vector<PartBudgetInput> parts{{35548, 4000}, {10000, 0}, {2000, 500}};
   const auto r = triangle_budgets(parts, 12000);
   ASSERT_EQ(r.budgets.size(), 3u);
   EXPECT_EQ(r.budgets[0] + r.budgets[1] + r.budgets[2], 12000u);
-  const double rest = 12000.0 - 4500.0, free_total = 31548.0 + 10000.0 + 1500.0;
-  EXPECT_NEAR(double(r.budgets[0]), 4000 + rest * 31548 / free_total, 1.0);
-  EXPECT_NEAR(double(r.budgets[1]), rest * 10000 / free_total, 1.0);
-  EXPECT_NEAR(double(r.budgets[2]), 500 + rest * 1500 / free_total, 1.0);
-  for (std::size_t i = 0; i < 3; ++i) EXPECT_GE(r.budgets[i], parts[i].feature_triangles);
+  EXPECT_FALSE(r.features_exceed_budget);
+  const auto oracle = budget_oracle(parts, 12000);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_NEAR(double(r.budgets[i]), oracle[i], 1.0) << i;
+    EXPECT_GE(r.budgets[i], parts[i].feature_triangles) << i;
+  }
   EXPECT_EQ(triangle_budgets(parts, 100000).budgets, (std::vector<std::size_t>{35548, 10000, 2000}));
+}
+
+// Issue #29, item 3: the step's features exceed the cap (the AS1 plate's whole top and bottom
+// faces: 868 of 876 triangles): the cap holds, and every part keeps at least half its proportional
+// share (before: the features' 3,508 triangles for a cap of 1,500, the bolts and the rod 0).
+TEST(Budget, TheCapHoldsAndNoPartIsStarvedWhenFeaturesExceedIt) {
+  const std::vector<PartBudgetInput> parts{{35548, 4000}, {10000, 0}, {2000, 500}};
   const auto over = triangle_budgets(parts, 3000);
   EXPECT_TRUE(over.features_exceed_budget);
-  EXPECT_EQ(over.budgets, (std::vector<std::size_t>{4000, 0, 500}));
+  EXPECT_EQ(over.budgets[0] + over.budgets[1] + over.budgets[2], 3000u);
+  const auto oracle = budget_oracle(parts, 3000);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_NEAR(double(over.budgets[i]), oracle[i], 1.0) << i;
+    EXPECT_GE(double(over.budgets[i]), std::floor(3000.0 * parts[i].triangles / (2 * 47548.0))) << i;
+  }
+  EXPECT_GT(over.budgets[1], 0u);  // the part without features keeps its floor
+  // AS1's counts (per part: triangles x instances, the features before the annuli).
+  const std::vector<PartBudgetInput> as1{{8 * 192, 8 * 184}, {132, 0}, {6 * 308, 0}, {2 * 596, 2 * 584}, {876, 868}};
+  for (std::size_t cap : {1u, 7u, 1500u, 3000u, 5583u}) {
+    const auto b = triangle_budgets(as1, cap);
+    std::size_t sum = 0;
+    for (std::size_t x : b.budgets) sum += x;
+    EXPECT_EQ(sum, cap) << cap;
+    const auto o = budget_oracle(as1, double(cap));
+    for (std::size_t i = 0; i < as1.size(); ++i) EXPECT_NEAR(double(b.budgets[i]), o[i], 1.0) << cap << " " << i;
+  }
+  const auto b1500 = triangle_budgets(as1, 1500);
+  EXPECT_GE(b1500.budgets[1], 17u);   // the rod: half of 132 * 1500 / 5584
+  EXPECT_GE(b1500.budgets[2], 248u);  // the six bolts
+  // One part (the CLI's total of a --renderer-max run): exactly the cap, features or not.
+  EXPECT_EQ(triangle_budgets({{5584, 3508}}, 1500).budgets[0], 1500u);
+  EXPECT_EQ(triangle_budgets({{5584, 5584}}, 1500).budgets[0], 1500u);
 }
 
 TEST(Budget, PartsThatStoppedAboveTheirShareAreTakenFromTheOthers) {
@@ -1270,9 +1319,9 @@ TEST(Budget, PartsThatStoppedAboveTheirShareAreTakenFromTheOthers) {
   EXPECT_EQ(r.budgets, (std::vector<std::size_t>{9000, shared.budgets[0], shared.budgets[1]}));
   EXPECT_EQ(r.budgets[0] + r.budgets[1] + r.budgets[2], 12000u);
   EXPECT_FALSE(r.features_exceed_budget);
-  // The fixed parts take it all: the others keep their feature triangles only (a warning case).
+  // The fixed parts take it all: nothing is left for the others (a warning case).
   const auto all = rebalanced_budgets(parts, 12000, {12500, std::nullopt, std::nullopt});
-  EXPECT_EQ(all.budgets, (std::vector<std::size_t>{12500, 0, 500}));
+  EXPECT_EQ(all.budgets, (std::vector<std::size_t>{12500, 0, 0}));
   EXPECT_TRUE(all.features_exceed_budget);
 }
 
