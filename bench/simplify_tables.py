@@ -161,6 +161,16 @@ quadric-error-metric edge collapses while the faces that take part in the curren
    narrowing inwards, entry chamfers included), stepped, blind, through. Roles: `wall`/`counterbore`/
    `countersink`/`bore`/`seat`, `top` (the entry faces), `bottom` (the exit faces or the floor). The library's
    hole patterns only name the roles. Precision and recall on real parts: the truth-set table below.
+   **MAAG matching** (§2.2, issue #29): `maag_decomposition(aag, library, GraphMatch)` runs the paper's
+   two stages as matching (split at inner loops into SG1, match each subgraph as it is, split the unmatched at
+   convex arcs into SG2, match again) against each pattern's own graph (its non-shared roles, attributes only,
+   no geometric checks), with exact attributed isomorphism (`GraphMatch::exact`) or the paper's steps 1-5
+   (`GraphMatch::paper`: equal counts, and every node of either graph has a partner with equal attributes and
+   first-order arcs). The paper's test accepts non-isomorphic graphs (unit test: the prism graph passes as
+   K3,3); on nine NIST/gmsh parts (524 subgraphs, 421 matched) the two never differ, because real minimal
+   AAGs have one to three nodes. Graph matching alone is not recognition (an isolated plane matches the ring
+   face's one-node graph, a hole wall the through hole's): `recognize_features` keeps whole-graph matching with
+   geometric checks, and holes as above.
 4. **Assembly semantics** (He & Xu §3): rules (`data/features/semantics.json`) map a constraint type to the
    feature types and roles whose faces take part, and the faces the paper's rules add (§3: "If feature Is Type
    (Circular Through Hole), Then feature.Add(TopFace and BottomFace)"; `"add": ["TopFace", "BottomFace"]`):

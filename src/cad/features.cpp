@@ -17,6 +17,7 @@
 #include <sstream>
 
 #include "data_dir.h"
+#include "aag_merge.h"
 #include "hole_recognition.h"
 
 namespace interfere::cad {
@@ -311,10 +312,8 @@ bool same_surface(const AagNode& a, const AagNode& b, double tol) {
 }
 }  // namespace
 
-std::vector<Feature> recognize_features(const Aag& input, const FeatureLibrary& library, double tolerance) {
-  // Faces split by the modeller (a hole as two half cylinders) are one surface: faces joined by a
-  // smooth arc and lying on the same plane/cylinder/cone/sphere are merged into one node first; the
-  // features are reported with every member face.
+namespace detail {
+MergedAag merge_split_faces(const Aag& input, double tolerance) {
   const std::size_t n_in = input.nodes.size();
   std::vector<std::uint32_t> parent(n_in);
   for (std::uint32_t i = 0; i < n_in; ++i) parent[i] = i;
@@ -328,25 +327,37 @@ std::vector<Feature> recognize_features(const Aag& input, const FeatureLibrary& 
       const std::uint32_t x = find(a.a), y = find(a.b);
       if (x != y) parent[std::max(x, y)] = std::min(x, y);
     }
-  std::vector<std::uint32_t> group_of(n_in), rep;
-  std::vector<std::vector<std::uint32_t>> members;
+  MergedAag m;
+  m.group_of.resize(n_in);
   for (std::uint32_t i = 0; i < n_in; ++i) {
     const std::uint32_t r = find(i);
-    if (r == i) group_of[i] = static_cast<std::uint32_t>(rep.size()), rep.push_back(i), members.emplace_back();
+    if (r == i) m.group_of[i] = static_cast<std::uint32_t>(m.rep.size()), m.rep.push_back(i), m.members.emplace_back();
   }
-  for (std::uint32_t i = 0; i < n_in; ++i) group_of[i] = group_of[find(i)], members[group_of[i]].push_back(i);
-  Aag aag;
-  for (std::uint32_t g = 0; g < rep.size(); ++g) {
-    aag.nodes.push_back(input.nodes[rep[g]]);
-    aag.nodes.back().face = g;
+  for (std::uint32_t i = 0; i < n_in; ++i) m.group_of[i] = m.group_of[find(i)], m.members[m.group_of[i]].push_back(i);
+  for (std::uint32_t g = 0; g < m.rep.size(); ++g) {
+    m.aag.nodes.push_back(input.nodes[m.rep[g]]);
+    m.aag.nodes.back().face = g;
   }
   for (const AagArc& a : input.arcs) {
-    const std::uint32_t x = group_of[a.a], y = group_of[a.b];
+    const std::uint32_t x = m.group_of[a.a], y = m.group_of[a.b];
     if (x == y) continue;
-    AagArc m = a;
-    m.a = std::min(x, y), m.b = std::max(x, y);
-    aag.arcs.push_back(m);
+    AagArc arc = a;
+    arc.a = std::min(x, y), arc.b = std::max(x, y);
+    m.aag.arcs.push_back(arc);
   }
+  return m;
+}
+}  // namespace detail
+
+std::vector<Feature> recognize_features(const Aag& input, const FeatureLibrary& library, double tolerance) {
+  // Faces split by the modeller (a hole as two half cylinders) are one surface: faces joined by a
+  // smooth arc and lying on the same plane/cylinder/cone/sphere are merged into one node first; the
+  // features are reported with every member face.
+  detail::MergedAag merged = detail::merge_split_faces(input, tolerance);
+  const Aag& aag = merged.aag;
+  const std::vector<std::uint32_t>& group_of = merged.group_of;
+  const std::vector<std::uint32_t>& rep = merged.rep;
+  const std::vector<std::vector<std::uint32_t>>& members = merged.members;
   Ctx c{aag, tolerance, {}, {}, {}};
   const std::size_t n = aag.nodes.size();
   c.arcs_of.resize(n);

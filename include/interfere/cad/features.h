@@ -65,6 +65,30 @@ struct Feature {
 /// convex arcs; each is a sorted list of face ids.
 std::vector<std::vector<std::uint32_t>> minimal_subgraphs(const Aag& aag);
 
+/// Graph matching of a minimal AAG against a library pattern's own nodes (its non-shared roles and the
+/// arcs between them; He & Xu §2.2, issue #29). Attributes: surface type and hole sense of a node,
+/// curve type and convexity of an arc; several arcs between two faces count once (per neighbouring
+/// face). No geometric checks.
+enum class GraphMatch : std::uint8_t {
+  exact,  ///< attributed graph isomorphism: a bijection of the nodes preserving node attributes and every arc
+  paper,  ///< the paper's steps 1-5: equal node and arc counts, and every node of either graph has a node of the
+          ///< other with equal attributes and equal first-order arcs (weaker: it accepts some non-isomorphic graphs)
+};
+
+struct MaagSubgraph {
+  std::vector<std::uint32_t> faces;  ///< face ids, sorted
+  int stage = 1;                     ///< 1: a subgraph of SG1 (split at inner loops) matched as it is; 2: of SG2
+  std::string type;                  ///< the first pattern (by priority) it matches; empty: none
+};
+
+/// The paper's two-stage decomposition used for matching (§2.2): (1) split the AAG at the arcs of inner
+/// loops into SG1; (2) match each subgraph of SG1 against the library; (3) split the unmatched ones at
+/// their convex arcs into SG2 and match those; (4) SG = the matched subgraphs of SG1 and all of SG2.
+/// Split faces (smooth arcs on one surface) are merged first, as recognize_features does. Sorted by
+/// smallest face.
+std::vector<MaagSubgraph> maag_decomposition(const Aag& aag, const FeatureLibrary& library, GraphMatch method,
+                                             double tolerance = 1e-6);
+
 /// All features, patterns tried by decreasing priority, each face claimed at most once per role
 /// kind ("owned" roles: the feature's own faces; shared base faces such as a hole's top face may
 /// be reused). Sorted by (type, smallest face).
