@@ -7,7 +7,8 @@ temporary root whose dpkg database is a copy of this machine's (so dpkg checks t
 Depends against the packages installed here, as `apt install ./interfere_*.deb` would, and touches
 nothing outside the root), then runs the installed tree: `interfere --version`, a mesh clash, a
 STEP clash and `features` (handed to the packaged libexec/interfere/interfere-cad), and checks that
-interfere-cad reads the packaged feature data, not the configured prefix's or the source tree's.
+interfere-cad reads the packaged feature data, not the configured prefix's or the source tree's;
+builds tests/consumer with find_package(interfere) from the unpacked package.
 Also checks that `cmake --install` (the installed_package fixture's tree) has LICENSE and NOTICE.
 
 Usage: test_deb.py BUILD_DIR WORK_DIR [STAGE_DIR]   (ctest package_deb). Exits 77 (skipped)
@@ -164,6 +165,22 @@ class Package(unittest.TestCase):
             self.assertIn(library, p.stderr)
         finally:
             os.replace(library + ".good", library)
+
+    def test_find_package_from_the_package(self):
+        # tests/consumer (as package_consumer builds it against `cmake --install`), against the
+        # unpacked package's /usr: its CMake files locate everything relative to themselves.
+        build = os.path.join(WORK, "consumer")
+        gen = ["-G", "Ninja"] if shutil.which("ninja") else []
+        p = run(["cmake", "-S", os.path.join(SOURCE, "tests", "consumer"), "-B", build, *gen,
+                 "-DCMAKE_BUILD_TYPE=Release", "-DCMAKE_PREFIX_PATH=" + os.path.join(ROOT, "usr")])
+        self.assertEqual(p.returncode, 0, p.stdout + p.stderr)
+        with open(os.path.join(build, "CMakeCache.txt")) as f:
+            self.assertIn("interfere_DIR:PATH=" + os.path.join(ROOT, "usr", "lib", "cmake", "interfere"), f.read())
+        p = run(["cmake", "--build", build, "-j2"])
+        self.assertEqual(p.returncode, 0, p.stdout + p.stderr)
+        env = dict(os.environ, INTERFERE_DATA_DIR=os.path.join(ROOT, "usr", "share", "interfere"))
+        p = run([os.path.join(build, "consumer")], cwd=build, env=env)
+        self.assertEqual(p.returncode, 0, p.stdout + p.stderr)
 
     def test_cmake_install_has_license_and_notice(self):
         if not STAGE:
