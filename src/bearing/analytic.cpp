@@ -72,6 +72,7 @@ const char* analytic_path_name(AnalyticPath p) {
     case AnalyticPath::rib: return "rib";
     case AnalyticPath::cone: return "cone";
     case AnalyticPath::apart: return "apart";
+    case AnalyticPath::slice: return "slice";
   }
   return "?";
 }
@@ -290,6 +291,60 @@ bool core_inside(const Cylinder& a, const Cylinder& b, PairDistance& out) {
 }
 }  // namespace
 
+namespace {
+/// The `slice` path (analytic.h): A and B untapered, axes within 60 degrees. sd_B(p) = phi(rho_B(p),
+/// z_B(p)) with phi(rho, z) the meridian-plane signed distance to B's rectangle, nondecreasing in
+/// rho; so min over A's cross-section by the plane across B's axis at height z of sd_B is
+/// G(z) = phi(F(z), z), F(z) the distance from B's axis point at z to that section, and
+/// s(A, B) = min over z of G(z). G is convex (partial minimisation of the convex sd_B over the
+/// convex A), so one golden-section search over the heights of the planes that meet A is exact.
+/// The section: A's infinite cylinder cut by the plane is an ellipse centred on A's axis
+/// (semi-axes r/|cos| along A's projected axis m, r across it), and A's end planes t_A = 0, h_A cut
+/// it along lines x = const (t_A is affine in x alone); the distance to ellipse /\ strip is the
+/// ellipse's (Eberly) when its nearest point lies in the strip, else the nearer of the two chords'
+/// (the nearest point of a convex set clipped by a strip lies on the strip's boundary when the
+/// unclipped one is outside it).
+bool slice_distance(const Cylinder& a, const Cylinder& b, PairDistance& out) {
+  const double ab = dot(a.axis, b.axis);
+  if (!(std::fabs(ab) >= 0.5)) return false;
+  Vec3 m = a.axis - b.axis * ab;
+  const double ma = norm(m);  // = m.a after normalising: t_A grows by ma per unit x
+  m = ma > 1e-300 ? m / ma : any_perpendicular(b.axis);
+  const Vec3 n = cross(b.axis, m);
+  const double r = a.radius, e0 = r / std::fabs(ab), e1 = r, ha = a.height, hh = 0.5 * b.height, R = b.radius;
+  const double w0 = dot(a.base - b.base, b.axis);  // B-height of A's base centre
+  const double za = w0, zb = w0 + ab * ha;         // B-heights of A's axis ends
+  const double lo = std::min(za, zb) - r * ma, hi = std::max(za, zb) + r * ma;  // planes meeting A
+  const auto nearest = [&](double z) {
+    const double tc = (z - w0) / ab;
+    const Vec3 c = a.base + a.axis * tc;  // A's axis in the plane
+    const Vec3 q = b.base + b.axis * z - c;
+    const double qx = dot(q, m), qy = dot(q, n);
+    const EllipsePoint ep = point_ellipse_distance(e0, e1, qx, qy);
+    const double tx = tc + ep.x0 * ma;
+    if (tx >= 0 && tx <= ha) return std::pair<Vec3, double>{c + m * ep.x0 + n * ep.x1, ep.distance};
+    std::pair<Vec3, double> best{c, std::numeric_limits<double>::infinity()};
+    if (ma > 0)
+      for (const double t : {0.0, ha}) {
+        const double x0 = (t - tc) / ma;
+        if (!(std::fabs(x0) <= e0)) continue;
+        const double ym = e1 * std::sqrt(std::max(0.0, 1 - (x0 / e0) * (x0 / e0)));
+        const double y = std::clamp(qy, -ym, ym), d = std::hypot(qx - x0, qy - y);
+        if (d < best.second) best = {c + m * x0 + n * y, d};
+      }
+    return best;
+  };
+  const auto value = [&](double z) { return signed_distance_rz(nearest(z).second, z - hh, R, hh); };
+  const auto [z, v] = golden_min(value, lo, hi, 110);
+  if (!std::isfinite(v)) return false;
+  out.distance = v;
+  out.point_a = nearest(z).first;
+  out.point_b = nearest_on_cylinder_boundary(b, out.point_a);
+  out.path = AnalyticPath::slice;
+  return true;
+}
+}  // namespace
+
 PairDistance cylinder_pair_distance(const Cylinder& a, const Cylinder& b) {
   const Vec3 bc = b.center();
   const RadialMin rm = a.tapered() ? min_axis_distance_tapered(a, bc, b.axis) : min_axis_distance(a, bc, b.axis);
@@ -301,6 +356,7 @@ PairDistance cylinder_pair_distance(const Cylinder& a, const Cylinder& b) {
   if (!certified) {
     PairDistance core;
     if (!a.tapered() && core_inside(a, b, core)) return core;
+    if (!a.tapered() && slice_distance(a, b, core)) return core;
     return cylinder_pair_distance_general(a, b);
   }
   PairDistance out;

@@ -24,7 +24,12 @@
 // the axis segment |z| <= h/2 - R or the mid-plane disk rho <= R - h/2 — s is exactly -min(R, h/2)
 // (the `core` path: a 1-D or 2-D convex search of sd_A over the core finds such a point); else a
 // general exact-to-rounding fallback minimises the convex sd_B over the convex A by nested
-// golden-section searches (partial minimisation keeps convexity).
+// golden-section searches (partial minimisation keeps convexity). Before that fallback, for an
+// untapered A whose axis is within 60 degrees of B's, the `slice` path: sd_B(p) = phi(rho_B, z_B)
+// with phi nondecreasing in rho, so s = min over z of phi(F(z), z), F(z) the distance from B's axis
+// point at height z to A's cross-section by the plane across B's axis there (an ellipse clipped by
+// A's end planes: point-to-ellipse distance or a chord's, closed form); the function is convex
+// (partial minimisation), so one golden-section search over z is exact (clear or overlapping).
 #pragma once
 #include <cstdint>
 
@@ -45,6 +50,7 @@ enum class AnalyticPath : std::uint8_t {
   rib,       ///< roller end against a rib face (end circle or annulus-edge curve)
   cone,      ///< A against a cone frustum B: certified lateral (dual) solution
   apart,     ///< a lower bound of the distance (the roller misses or overhangs the ring's width, misses the annulus)
+  slice,     ///< overlapping untapered pair, by B's cross-sections: a convex 1-D search (analytic.cpp)
 };
 const char* analytic_path_name(AnalyticPath p);
 

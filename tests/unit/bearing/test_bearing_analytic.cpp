@@ -89,12 +89,12 @@ TEST(BearingAnalytic, EndCircleContacts) {
     const PairDistance pd = cylinder_pair_distance(a, b);
     expect_rel(pd.distance, std::hypot(5.0, dz));
   }
-  // end face against end face, coaxial (B's axis pierces A: general path)
+  // end face against end face, coaxial (B's axis pierces A: the slice path, analytic.h)
   for (const double dz : {0.75, -0.25}) {
     const Cylinder a = cyl({0, 0, 60 + dz}, {0, 0, 1}, 40, 10);
     const PairDistance pd = cylinder_pair_distance(a, b);
     expect_rel(pd.distance, dz);
-    EXPECT_EQ(pd.path, AnalyticPath::general);
+    EXPECT_EQ(pd.path, AnalyticPath::slice);
   }
   // end disk of a perpendicular A against B's side
   for (const double gap : {0.75, -0.25}) {
