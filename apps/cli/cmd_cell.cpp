@@ -24,6 +24,8 @@ struct CellOptions {
   std::string cell, path, json, csv, fail_on;
   std::size_t between = 0;
   bool poses = false;
+  bool continuous = false;  ///< --continuous: the conservative check between points
+  int max_depth = 12;
   int threads = 0;
   ViewOutputs views;  ///< --html, --glb, --pvd: the cell along the path (one step per frame)
 };
@@ -85,7 +87,22 @@ int run_cell(const CellOptions& o) {
   std::size_t colliding_points = 0, colliding_segments = 0;
   for (Verdict v : point_verdict) colliding_points += v == Verdict::clash;
   for (Verdict v : segment_verdict) colliding_segments += v == Verdict::clash;
-  const int status = verdict_exit_status(r.verdict, failing);
+  // The conservative check between points (robot/cell.h, check_between_points).
+  std::vector<SegmentResult> between;
+  std::size_t seg_collide = 0, seg_unresolved = 0;
+  Verdict verdict = r.verdict;
+  if (o.continuous) {
+    BetweenOptions bo;
+    bo.max_depth = o.max_depth;
+    between = check_between_points(*cell, cs, *path, bo);
+    for (const SegmentResult& sr : between) {
+      seg_collide += sr.state == robot::SegmentState::collides;
+      seg_unresolved += sr.state == robot::SegmentState::unresolved;
+    }
+    if (seg_unresolved) verdict = worst(verdict, Verdict::undecided);
+    if (seg_collide) verdict = worst(verdict, Verdict::clash);
+  }
+  const int status = verdict_exit_status(verdict, failing);
 
   auto pair_json = [&](const scene::FramePairRow& row) {
     nlohmann::json e = {{"test", cs.tests[row.test].name},
@@ -188,6 +205,26 @@ int run_cell(const CellOptions& o) {
                        {"points", pts}});
     }
     j["pairs"] = std::move(pairs);
+    if (o.continuous) {
+      nlohmann::json js = nlohmann::json::array();
+      for (const SegmentResult& sr : between) {
+        nlohmann::json e = {{"from", sr.from},
+                            {"to", sr.from + 1},
+                            {"state", robot::segment_state_name(sr.state)},
+                            {"frames", sr.frames}};
+        if (sr.state == robot::SegmentState::collides) {
+          nlohmann::json ps = nlohmann::json::array();
+          for (const SegmentPair& p : sr.pairs)
+            ps.push_back({{"test", p.test}, {"a", p.a}, {"b", p.b}, {"t", p.t}});
+          e["t"] = sr.t;
+          e["pairs"] = std::move(ps);
+        }
+        if (sr.state == robot::SegmentState::unresolved)
+          e["unresolved_pairs"] = sr.unresolved_pairs;
+        js.push_back(std::move(e));
+      }
+      j["between_points"] = {{"max_depth", o.max_depth}, {"segments", std::move(js)}};
+    }
     j["summary"] = {{"points", n},
                     {"colliding_points", colliding_points},
                     {"colliding_segments", colliding_segments},
@@ -195,7 +232,10 @@ int run_cell(const CellOptions& o) {
                     {"bodies", bodies.size()},
                     {"candidate_pairs", r.candidate_pairs},
                     {"suppressed", r.suppressed},
-                    {"verdict", verdict_name(r.verdict)}};
+                    {"continuous", o.continuous},
+                    {"colliding_between", seg_collide},
+                    {"unresolved_between", seg_unresolved},
+                    {"verdict", verdict_name(verdict)}};
     j["exit_status"] = status;
     write_or_throw(write_output(o.json, report_text(j, 1)));
   }
@@ -233,7 +273,7 @@ int run_cell(const CellOptions& o) {
         "%s: %zu of %zu path points collide, %zu of %zu segments collide at a sampled "
         "between-point frame (%zu per segment); %zu bodies, %zu candidate body pairs checked "
         "over %zu frames (%zu adjacent pairs left out)\n",
-        r.verdict == Verdict::clash ? "COLLISION" : verdict_name(r.verdict), colliding_points, n,
+        verdict == Verdict::clash ? "COLLISION" : verdict_name(verdict), colliding_points, n,
         colliding_segments, n ? n - 1 : 0, o.between, bodies.size(), r.candidate_pairs,
         cs.scene.frames.size(), r.suppressed);
     std::map<std::string, std::size_t> by_pair;
@@ -243,6 +283,11 @@ int run_cell(const CellOptions& o) {
       }
     }
     for (const auto& [k, v] : by_pair) std::printf("  %s: %zu points\n", k.c_str(), v);
+    if (o.continuous) {
+      std::printf(
+          "between points (conservative, depth %d): %zu of %zu segments collide, %zu unresolved\n",
+          o.max_depth, seg_collide, between.size(), seg_unresolved);
+    }
   }
   return status;
 }
@@ -272,6 +317,11 @@ void add_cell_command(CLI::App& app, int& exit_code) {
                 "CSV table: one row per finding (point, test, body pair), or per clear point");
   c->add_flag("--poses", o->poses,
               "JSON: every link's pose (world <- link, 12 numbers) at every point");
+  c->add_flag(
+      "--continuous", o->continuous,
+      "also prove each segment clear or find where it collides: conservative per-body motion "
+      "bounds, intervals halved until decided; undecided segments are 'unresolved' (exit 3)");
+  c->add_option("--max-depth", o->max_depth, "--continuous: halvings of a segment (default 12)");
   add_fail_on_option(*c, o->fail_on);
   add_view_options(*c, o->views);
   c->add_option("--threads", o->threads, "worker threads (0 = all cores)");

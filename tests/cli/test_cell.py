@@ -127,6 +127,35 @@ class CellForwardKinematics(unittest.TestCase):
         self.assertEqual(rows[5]["line"], "9")
 
 
+class CellContinuous(unittest.TestCase):
+    def test_segments_proven_clear_or_colliding(self):
+        d = copy_example()
+        rc, out, err = run(os.path.join(d, "cell.json"), "--continuous", "--json", os.path.join(d, "c.json"))
+        self.assertEqual(rc, 1, out + err)
+        self.assertIn("7 of 14 segments collide, 0 unresolved", out)
+        with open(os.path.join(d, "c.json")) as f:
+            r = json.load(f)
+        segs = r["between_points"]["segments"]
+        self.assertEqual([s["from"] for s in segs if s["state"] == "collides"], [4, 5, 6, 7, 11, 12, 13])
+        self.assertEqual([s["state"] for s in segs if s["from"] in (0, 1, 2, 3, 8, 9, 10)], ["clear"] * 7)
+        s5 = [s for s in segs if s["from"] == 5][0]
+        self.assertEqual([(p["a"], p["b"]) for p in s5["pairs"]], [("probe", "workpiece")])
+        self.assertTrue(0 < s5["t"] < 1)
+        self.assertEqual(r["summary"]["colliding_between"], 7)
+
+    def test_between_only_collision(self):
+        d = copy_example()
+        with open(os.path.join(d, "path.csv")) as f:
+            lines = [l for l in f if not l.startswith("#")]
+        write(os.path.join(d, "jump.csv"), lines[0] + lines[5] + lines[9])  # x = 450 and 550: over the rib
+        rc, out, err = run(os.path.join(d, "cell.json"), "--path", os.path.join(d, "jump.csv"))
+        self.assertEqual(rc, 0, out + err)  # both points clear
+        rc, out, err = run(os.path.join(d, "cell.json"), "--path", os.path.join(d, "jump.csv"), "--continuous")
+        self.assertEqual(rc, 1, out + err)
+        self.assertIn("0 of 2 path points collide", out)
+        self.assertIn("1 of 1 segments collide", out)
+
+
 class CellReplay(unittest.TestCase):
     def test_pvd_series_marks_the_colliding_points(self):
         d = copy_example()

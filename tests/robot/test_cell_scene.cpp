@@ -357,3 +357,149 @@ TEST(CellScene, BadCellFilesNameTheField) {
 }
 
 #endif
+
+#if INTERFERE_TEST_URDF
+
+namespace {
+
+/// The arm3 cell of the tests above (plate and two posts), written to `d`.
+Expected<Cell> arm3_cell(const fs::path& d) {
+  fs::remove_all(d);
+  fs::create_directories(d);
+  if (Status s = write_mesh(d / "fore.obj", make_box({0, -25, -25}, {300, 25, 25})); !s) return s.error();
+  std::ofstream(d / "arm3.urdf") << kArm;
+  if (Status s = write_mesh(d / "plate.stl", make_box({-150, -150, 0}, {150, 150, 30})); !s) return s.error();
+  if (Status s = write_mesh(d / "block.stl", make_box({-20, -20, 0}, {20, 20, 120})); !s) return s.error();
+  std::ofstream(d / "cell.json") << R"({
+  "robot": {"urdf": "arm3.urdf", "tool_link": "flange"},
+  "tool": {"tip": [0, 0, 120], "axis": [0, 0, 1], "probe_radius": 8, "probe_length": 50,
+           "holder_radius": 20, "holder_length": 70, "sides": 12},
+  "workpiece": {"mesh": "plate.stl", "pose": [1,0,0,600, 0,1,0,0, 0,0,1,0]},
+  "fixtures": [{"id": "post", "mesh": "block.stl", "pose": [0,-1,0,450, 1,0,0,180, 0,0,1,0]},
+               {"id": "post2", "mesh": "block.stl", "pose": [1,0,0,700, 0,1,0,-190, 0,0,1,0]}]
+})";
+  return read_cell_json(d / "cell.json");
+}
+
+}  // namespace
+
+TEST(CellBetween, MotionBoundContainsEveryVertexMotion) {
+  Expected<Cell> cell = arm3_cell(fs::temp_directory_path() / "interfere_robot_between1");
+  ASSERT_TRUE(cell) << cell.error().message();
+  std::mt19937_64 rng(281);
+  std::uniform_real_distribution<double> u(-60, 60);
+  JointPath one{{{0, 0, 0}}, {1}};
+  const CellScene cs = cell_scene(*cell, one);
+  double tightest = 1e300;
+  for (int trial = 0; trial < 30; ++trial) {
+    std::vector<double> q0{u(rng), u(rng), u(rng)}, dq{u(rng) / 4, u(rng) / 4, u(rng) / 4};
+    const std::vector<double> bound = motion_bounds(*cell, cs, dq);
+    const std::vector<M4> f0 = oracle_frames(q0);
+    for (int s = 1; s <= 16; ++s) {  // along the joint-space line q0 + t dq, t in (0, 1]
+      const double t = s / 16.0;
+      const std::vector<M4> f1 = oracle_frames({q0[0] + t * dq[0], q0[1] + t * dq[1], q0[2] + t * dq[2]});
+      for (std::size_t b = 0; b < cs.scene.bodies.size(); ++b) {
+        const scene::Body& body = cs.scene.bodies[b];
+        int link = -1;
+        if (body.id == "link:turret") link = 1;
+        if (body.id == "link:upper") link = 2;
+        if (body.id == "link:fore") link = 3;
+        if (body.id == "probe" || body.id == "holder") link = 4;
+        if (link < 0) continue;
+        double moved = 0;
+        for (const Vec3& p : body.mesh->positions) {
+          moved = std::max(moved, norm(apply_m4(f1[link], p) - apply_m4(f0[link], p)));
+        }
+        EXPECT_LE(moved, bound[b] + 1e-9) << body.id << " trial " << trial;
+        if (s == 16 && moved > 1) tightest = std::min(tightest, bound[b] / moved);
+      }
+    }
+  }
+  EXPECT_LT(tightest, 10);  // not uselessly loose
+}
+
+TEST(CellBetween, ConservativeAgainstDenseSampling) {
+  Expected<Cell> cell = arm3_cell(fs::temp_directory_path() / "interfere_robot_between2");
+  ASSERT_TRUE(cell) << cell.error().message();
+  // A random walk in small steps around a pose reaching down towards the plate.
+  JointPath path;
+  std::mt19937_64 rng(282);
+  std::uniform_real_distribution<double> step(-6, 6);
+  std::vector<double> q{0, 35, 70};
+  for (int i = 0; i < 16; ++i) {
+    path.q.push_back(q);
+    path.lines.push_back(i + 2);
+    for (double& v : q) v += step(rng);
+  }
+  const CellScene cs = cell_scene(*cell, path);
+  BetweenOptions bo;
+  bo.max_depth = 8;
+  const std::vector<SegmentResult> seg = check_between_points(*cell, cs, path, bo);
+  ASSERT_EQ(seg.size(), path.size() - 1);
+  // Dense sampling: 63 frames inside each segment.
+  const CellScene dense = cell_scene(*cell, path, 63);
+  scene::SceneClashOptions opt;
+  opt.depth = false;
+  opt.curves = false;
+  const scene::SceneClashResult r = scene::clash_scene(dense.scene, dense.tests, opt);
+  std::vector<bool> dense_meets(seg.size(), false);
+  for (const scene::FramePairRow& row : r.frame_pairs) {
+    if (dense.frame_t[row.frame] > 0 && (row.verdict == Verdict::clash || row.verdict == Verdict::contact)) {
+      dense_meets[dense.frame_point[row.frame]] = true;
+    }
+  }
+  std::size_t collides = 0, clear = 0;
+  for (std::size_t s = 0; s < seg.size(); ++s) {
+    if (seg[s].state == SegmentState::clear) {
+      EXPECT_FALSE(dense_meets[s]) << "segment " << s << " proven clear but a sample meets";
+      ++clear;
+    }
+    if (dense_meets[s]) EXPECT_NE(seg[s].state, SegmentState::clear) << s;
+    if (seg[s].state == SegmentState::collides) {
+      ++collides;
+      EXPECT_FALSE(seg[s].pairs.empty());
+      EXPECT_GT(seg[s].t, 0);
+      EXPECT_LT(seg[s].t, 1);
+    }
+  }
+  EXPECT_GT(collides, 0u);
+  EXPECT_GT(clear, 0u);
+  RecordProperty("segments_collide", static_cast<int>(collides));
+  RecordProperty("segments_clear", static_cast<int>(clear));
+}
+
+TEST(CellBetween, CollisionOnlyBetweenPoints) {
+  // The shipped example (examples/probe): points 4 (x = 450) and 8 (x = 550) of its path are both
+  // clear; joint interpolation between them carries the probe through the rib (x 480..520).
+  const fs::path ex = fs::path(INTERFERE_SOURCE_DIR) / "examples" / "probe";
+  Expected<Cell> cell = read_cell_json(ex / "cell.json");
+  ASSERT_TRUE(cell) << cell.error().message();
+  Expected<JointPath> full = read_joint_csv(ex / "path.csv", cell->robot);
+  ASSERT_TRUE(full) << full.error().message();
+  JointPath path{{full->q[4], full->q[8]}, {full->lines[4], full->lines[8]}};
+  const CellScene cs = cell_scene(*cell, path);
+  scene::SceneClashOptions opt;
+  opt.depth = false;
+  const scene::SceneClashResult ends = scene::clash_scene(cs.scene, cs.tests, opt);
+  EXPECT_EQ(ends.verdict, Verdict::clear);
+  const std::vector<SegmentResult> seg = check_between_points(*cell, cs, path);
+  ASSERT_EQ(seg.size(), 1u);
+  EXPECT_EQ(seg[0].state, SegmentState::collides);
+  ASSERT_EQ(seg[0].pairs.size(), 1u);
+  EXPECT_EQ(seg[0].pairs[0].a, "probe");
+  EXPECT_EQ(seg[0].pairs[0].b, "workpiece");
+  EXPECT_EQ(seg[0].pairs[0].test, "tool");
+  // And the whole example path: segments 4-7 (into, over and out of the rib) and 11-13 (the clamp)
+  // collide, the others are proven clear.
+  const CellScene all = cell_scene(*cell, *full);
+  const std::vector<SegmentResult> segs = check_between_points(*cell, all, *full);
+  std::vector<std::size_t> colliding, unresolved;
+  for (const SegmentResult& r : segs) {
+    if (r.state == SegmentState::collides) colliding.push_back(r.from);
+    if (r.state == SegmentState::unresolved) unresolved.push_back(r.from);
+  }
+  EXPECT_EQ(colliding, (std::vector<std::size_t>{4, 5, 6, 7, 11, 12, 13}));
+  EXPECT_TRUE(unresolved.empty());
+}
+
+#endif

@@ -99,3 +99,45 @@ struct ToolCylinders {
 ToolCylinders tool_cylinders(const CellTool& tool, const Transform& tool_frame);
 
 }  // namespace interfere::robot
+
+namespace interfere::robot {
+
+/// The conservative check between path points (issue #28, deliverable 3): along each segment the
+/// robot moves by joint interpolation; a body's points move at most
+///   delta_k(interval) <= sum over movable joints j before link k of |dq_j| * R_jk  (revolute; dq
+///   in radians) or |dq_j| (prismatic),
+/// with R_jk >= the distance from joint j's origin to any point of link k's body, bounded from the
+/// chain's constant lengths (the joint origins' offsets and the body's mesh radius about its link
+/// origin) by the triangle inequality. A sub-interval is clear for a body pair when the pair's
+/// distance at its middle exceeds the sum of the two bodies' bounds over half the interval (static
+/// bodies: 0); a pair that meets at a middle makes the segment collide there; otherwise the
+/// interval is halved, up to `max_depth` levels, after which the segment is `unresolved` (never
+/// clear, never a collision). Distances come from the scene engine's clearance tests.
+struct BetweenOptions {
+  int max_depth = 12;  ///< halvings of a segment (2^-12 of it at the finest)
+  scene::SceneClashOptions engine;
+};
+enum class SegmentState : std::uint8_t { clear, collides, unresolved };
+const char* segment_state_name(SegmentState s);
+struct SegmentPair {
+  std::string test, a, b;  ///< body ids
+  double t = 0;  ///< parameter in (0, 1) of the first middle where the pair was found meeting
+};
+struct SegmentResult {
+  std::size_t from = 0;  ///< the segment from point `from` to `from + 1`
+  SegmentState state = SegmentState::clear;
+  double t = -1;  ///< collides: the smallest parameter where a meeting pair was found
+  std::vector<SegmentPair> pairs;  ///< collides: the pairs found meeting (one entry per pair)
+  std::vector<std::string> unresolved_pairs;  ///< "a / b" pairs left undecided at max_depth
+  std::size_t frames = 0;                     ///< middles checked
+};
+/// Checks every segment of `path` (cs = cell_scene(cell, path), for its bodies and tests).
+std::vector<SegmentResult> check_between_points(const Cell& cell, const CellScene& cs,
+                                                const JointPath& path,
+                                                const BetweenOptions& options = {});
+/// The motion bound delta of every body of cs.scene (0 for static bodies) when the joints move by
+/// |dq| (joint units: degrees, mm), for tests and reports.
+std::vector<double> motion_bounds(const Cell& cell, const CellScene& cs,
+                                  const std::vector<double>& dq);
+
+}  // namespace interfere::robot
