@@ -79,34 +79,43 @@ def urdf_fk(urdf_file, q_by_name):
 class CellForwardKinematics(unittest.TestCase):
     def test_link_poses_match_independent_composition(self):
         d = copy_example()
-        names = ["shoulder_pan", "shoulder_lift", "elbow", "wrist_1", "wrist_2", "wrist_3"]
-        rng = random.Random(28)
-        rows = [[rng.uniform(-350, 350) for _ in names] for _ in range(25)]
-        # columns in another order than the chain's: matched by name
-        order = [5, 0, 3, 1, 4, 2]
-        write(os.path.join(d, "random.csv"),
-              ",".join(names[k] for k in order) + "\n" + "".join(",".join("%.9f" % r[k] for k in order) + "\n" for r in rows))
-        rc, out, err = run(os.path.join(d, "cell.json"), "--path", os.path.join(d, "random.csv"), "--poses",
-                           "--json", os.path.join(d, "random.json"))
-        self.assertIn(rc, (0, 1), err)
-        with open(os.path.join(d, "random.json")) as f:
-            report = json.load(f)
-        self.assertEqual(len(report["points"]), len(rows))
-        worst = 0.0
-        for p, r in zip(report["points"], rows):
-            q = {n: float("%.9f" % v) for n, v in zip(names, r)}
-            self.assertEqual(set(p["joints"]), set(names))
-            for n in names:
-                self.assertAlmostEqual(p["joints"][n], q[n], places=9)
-            ref = urdf_fk(os.path.join(d, "arm6r.urdf"), q)
-            for link, m in p["links"].items():
-                got = np.array(m).reshape(3, 4)
-                worst = max(worst, float(np.abs(got - ref[link][:3, :]).max()))
-            tool = ref["tool0"]
-            tip = tool[:3, :3] @ np.array([0, 0, 130.0]) + tool[:3, 3]
-            self.assertLess(np.abs(np.array(p["tip"]) - tip).max(), 1e-9)
-            self.assertLess(np.abs(np.array(p["axis"]) - tool[:3, 2]).max(), 1e-12)
-        self.assertLess(worst, 1e-9)  # mm (rotation entries: unitless), up to ~1e3 mm lengths
+        # the UR5-type arm and the industrial arm (on a 300 mm pedestal: the cell's base pose)
+        for cell, urdf, base_z in (("cell.json", "arm6r.urdf", 0.0), ("cell_industrial.json", "industrial_6r.urdf", 300.0)):
+            with self.subTest(urdf=urdf):
+                root = ET.parse(os.path.join(d, urdf)).getroot()
+                movable = [j for j in root.findall("joint") if j.get("type") != "fixed"]
+                names = [j.get("name") for j in movable]
+                limits = [(math.degrees(float(j.find("limit").get("lower"))), math.degrees(float(j.find("limit").get("upper"))))
+                          for j in movable]
+                rng = random.Random(28)
+                rows = [[rng.uniform(lo, hi) for lo, hi in limits] for _ in range(25)]
+                order = [5, 0, 3, 1, 4, 2]  # columns in another order than the chain's: matched by name
+                write(os.path.join(d, "random.csv"), ",".join(names[k] for k in order) + "\n" +
+                      "".join(",".join("%.9f" % r[k] for k in order) + "\n" for r in rows))
+                rc, out, err = run(os.path.join(d, cell), "--path", os.path.join(d, "random.csv"), "--poses",
+                                   "--json", os.path.join(d, "random.json"))
+                self.assertIn(rc, (0, 1), err)
+                with open(os.path.join(d, "random.json")) as f:
+                    report = json.load(f)
+                self.assertEqual(len(report["points"]), len(rows))
+                worst = 0.0
+                base = np.eye(4)
+                base[2, 3] = base_z
+                for p, r in zip(report["points"], rows):
+                    q = {n: float("%.9f" % v) for n, v in zip(names, r)}
+                    self.assertEqual(set(p["joints"]), set(names))
+                    for n in names:
+                        self.assertAlmostEqual(p["joints"][n], q[n], places=9)
+                    ref = {k: base @ m for k, m in urdf_fk(os.path.join(d, urdf), q).items()}
+                    self.assertEqual(set(p["links"]), set(ref))
+                    for link, m in p["links"].items():
+                        got = np.array(m).reshape(3, 4)
+                        worst = max(worst, float(np.abs(got - ref[link][:3, :]).max()))
+                    tool = ref["tool0"]
+                    tip = tool[:3, :3] @ np.array([0, 0, 130.0]) + tool[:3, 3]
+                    self.assertLess(np.abs(np.array(p["tip"]) - tip).max(), 1e-9)
+                    self.assertLess(np.abs(np.array(p["axis"]) - tool[:3, 2]).max(), 1e-12)
+                self.assertLess(worst, 1e-9)  # mm (rotation entries: unitless), up to ~1e3 mm lengths
 
     def test_example_report_per_point_and_pair(self):
         d = copy_example()
