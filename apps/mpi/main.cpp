@@ -25,6 +25,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -229,18 +230,31 @@ int run(const World& w, int argc, char** argv) {
     });
     for (std::size_t k = 0; k < which.size(); ++k) {
       if (!errors[k].empty()) abort_job(w, errors[k]);
-      if (!got[k]->scene.frames.empty())
-        abort_job(w, spec->bodies[which[k]].where + ": displacement steps (an FE model's) are not distributed yet: run "
-                     "`interfere clash` on one machine (issue #31)");
       loaded.emplace(which[k], std::move(*got[k]));
     }
   };
   load_specs(mine);
   std::vector<BodyInfo> my_info;
-  std::vector<std::string> input_warnings;
+  nlohmann::json input_warnings = nlohmann::json::array();  // [entry, warning]
+  nlohmann::json steps = nlohmann::json::array();  // an FE entry's steps: [entry, labels, times, per step [[ordinal, box]]]
   for (const std::size_t s : mine) {
     const scene::LoadedScene& l = loaded.at(s);
-    for (const std::string& x : l.scene.warnings) input_warnings.push_back(x);
+    for (const std::string& x : l.scene.warnings) input_warnings.push_back({s, x});
+    if (!l.scene.frames.empty()) {
+      nlohmann::json labels = nlohmann::json::array(), times = nlohmann::json::array(), shapes = nlohmann::json::array();
+      for (const scene::Frame& f : l.scene.frames) {
+        if (!f.poses.empty()) abort_job(w, spec->bodies[s].where + ": steps with poses are not distributed (issue #31)");
+        labels.push_back(f.label), times.push_back(f.time);
+        nlohmann::json list = nlohmann::json::array();
+        for (const scene::Frame::Shape& sh : f.shapes) {
+          Aabb b;
+          for (const Vec3& p : *sh.positions) b.expand(p);
+          list.push_back({sh.body, b.lo.x, b.lo.y, b.lo.z, b.hi.x, b.hi.y, b.hi.z});
+        }
+        shapes.push_back(list);
+      }
+      steps.push_back({s, labels, times, shapes});
+    }
     for (std::uint32_t k = 0; k < l.scene.bodies.size(); ++k) {
       BodyInfo b;
       b.meta = l.scene.bodies[k];
@@ -254,8 +268,8 @@ int run(const World& w, int argc, char** argv) {
   }
   std::string warn_bytes;
   {
-    nlohmann::json j = input_warnings;
-    warn_bytes = j.dump();
+    const std::vector<std::uint8_t> v = nlohmann::json::to_cbor(nlohmann::json{input_warnings, steps});
+    warn_bytes.assign(v.begin(), v.end());
   }
   std::vector<BodyInfo> info;
   for (const std::string& bytes : allgather(encode(my_info))) {
@@ -263,12 +277,16 @@ int run(const World& w, int argc, char** argv) {
     info.insert(info.end(), std::make_move_iterator(part.begin()), std::make_move_iterator(part.end()));
   }
   std::vector<std::string> all_input_warnings;  // (in the order of the entries, as one process reads them)
+  nlohmann::json all_steps = nlohmann::json::array();
   {
     std::vector<std::pair<std::size_t, std::string>> keyed;
-    const std::vector<std::string> per_rank = allgather(warn_bytes);
-    (void)per_rank;  // (ranks' loader warnings: below, by entry, from every rank's own list)
-    for (const std::string& s : per_rank)
-      for (const std::string& x : nlohmann::json::parse(s).get<std::vector<std::string>>()) all_input_warnings.push_back(x);
+    for (const std::string& bytes : allgather(warn_bytes)) {
+      const nlohmann::json j = nlohmann::json::from_cbor(bytes);
+      for (const nlohmann::json& x : j[0]) keyed.emplace_back(x[0].get<std::size_t>(), x[1].get<std::string>());
+      for (const nlohmann::json& x : j[1]) all_steps.push_back(x);
+    }
+    std::stable_sort(keyed.begin(), keyed.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    for (auto& [e, x] : keyed) all_input_warnings.push_back(std::move(x));
   }
   std::sort(info.begin(), info.end(), [](const BodyInfo& x, const BodyInfo& y) {
     return std::tie(x.spec, x.ordinal) < std::tie(y.spec, y.ordinal);
@@ -293,20 +311,53 @@ int run(const World& w, int argc, char** argv) {
   for (const BodyInfo& b : info) skeleton.bodies.push_back(b.meta);
   if (!motion.empty())
     if (const Status s = scene::read_motion(motion, skeleton); !s) throw UsageError(s.error().message());
-  const bool moving = !skeleton.frames.empty();
-
-  // 2. The broad phase and the partition (the same on every rank).
-  std::vector<std::vector<AabbF>> boxes(moving ? skeleton.frames.size() : 1, std::vector<AabbF>(n));
-  {
-    std::vector<Transform> pose(n);
-    for (std::uint32_t i = 0; i < n; ++i) pose[i] = info[i].meta.pose;
-    for (std::size_t f = 0; f < boxes.size(); ++f) {
-      if (moving)
-        for (const scene::Frame::Pose& p : skeleton.frames[f].poses) pose[p.body] = p.pose;
-      tbb::parallel_for(std::uint32_t{0}, n, [&](std::uint32_t i) { boxes[f][i] = broad_box(info[i].local_box, pose[i]); });
+  // An FE entry's displacement steps (fem/bodies.h): frames that deform its bodies; every rank
+  // knows their labels, times and the deformed bodies' local boxes per step.
+  std::vector<std::vector<std::pair<std::uint32_t, Aabb>>> step_boxes;  // per frame: (global body, local box)
+  std::size_t fe_entry = SIZE_MAX;
+  if (all_steps.size() > 1) throw UsageError("two entries with displacement steps: a scene's motion comes from one source");
+  if (!all_steps.empty()) {
+    if (!motion.empty()) throw UsageError("--motion: the inputs already carry steps (an FE model's); give one motion");
+    const nlohmann::json& st = all_steps[0];
+    fe_entry = st[0].get<std::size_t>();
+    std::uint32_t first = 0;
+    while (first < n && info[first].spec != fe_entry) ++first;
+    for (std::size_t f = 0; f < st[1].size(); ++f) {
+      scene::Frame fr;
+      fr.label = st[1][f].get<std::string>(), fr.time = st[2][f].get<double>();
+      skeleton.frames.push_back(std::move(fr));
+      step_boxes.emplace_back();
+      for (const nlohmann::json& x : st[3][f]) {
+        Aabb b;
+        b.lo = {x[1].get<double>(), x[2].get<double>(), x[3].get<double>()}, b.hi = {x[4].get<double>(), x[5].get<double>(), x[6].get<double>()};
+        step_boxes.back().emplace_back(first + x[0].get<std::uint32_t>(), b);
+      }
     }
   }
-  BroadResult broad = broad_phase(skeleton.bodies, tests, boxes);
+  const bool moving = !skeleton.frames.empty();
+  bool deforms = false;
+  for (const auto& sb : step_boxes) deforms = deforms || !sb.empty();
+  const bool reference = moving && deforms;  // (SceneClashOptions::reference, on as in `interfere clash`)
+
+  // 2. The broad phase and the partition (the same on every rank).
+  // (with deformation, the reference configuration first: its pairs are checked, not counted)
+  const std::size_t uncounted = reference ? 1 : 0;
+  std::vector<std::vector<AabbF>> boxes(uncounted + (moving ? skeleton.frames.size() : 1), std::vector<AabbF>(n));
+  {
+    std::vector<Transform> pose(n);
+    std::vector<Aabb> local(n);
+    for (std::uint32_t i = 0; i < n; ++i) pose[i] = info[i].meta.pose, local[i] = info[i].local_box;
+    for (std::size_t pass = 0; pass < boxes.size(); ++pass) {
+      const std::size_t f = pass - uncounted;
+      if (moving && pass >= uncounted) {
+        for (const scene::Frame::Pose& p : skeleton.frames[f].poses) pose[p.body] = p.pose;
+        if (f < step_boxes.size())
+          for (const auto& [i, b] : step_boxes[f]) local[i] = b;
+      }
+      tbb::parallel_for(std::uint32_t{0}, n, [&](std::uint32_t i) { boxes[pass][i] = broad_box(local[i], pose[i]); });
+    }
+  }
+  BroadResult broad = broad_phase(skeleton.bodies, tests, boxes, uncounted);
   for (Unit& u : broad.units) u.cost = pair_cost(info[u.a].triangles, info[u.b].triangles) * u.frames;
   const Partition part = partition(broad, boxes[0], static_cast<std::size_t>(w.size));
   if (talk)
@@ -350,11 +401,18 @@ int run(const World& w, int argc, char** argv) {
       local[i] = static_cast<std::uint32_t>(sub.bodies.size());
       sub.bodies.push_back(loaded.at(info[i].spec).scene.bodies[info[i].ordinal]);
     }
-    for (const scene::Frame& f : skeleton.frames) {
+    const scene::LoadedScene* fe = fe_entry != SIZE_MAX && loaded.count(fe_entry) ? &loaded.at(fe_entry) : nullptr;
+    std::uint32_t fe_first = 0;
+    while (fe && fe_first < n && info[fe_first].spec != fe_entry) ++fe_first;
+    for (std::size_t fi = 0; fi < skeleton.frames.size(); ++fi) {
+      const scene::Frame& f = skeleton.frames[fi];
       scene::Frame g;
       g.label = f.label, g.time = f.time;
       for (const scene::Frame::Pose& p : f.poses)
         if (local[p.body] != UINT32_MAX) g.poses.push_back({local[p.body], p.pose});
+      if (fe)
+        for (const scene::Frame::Shape& sh : fe->scene.frames[fi].shapes)
+          if (local[fe_first + sh.body] != UINT32_MAX) g.shapes.push_back({local[fe_first + sh.body], sh.positions});
       sub.frames.push_back(std::move(g));
     }
     bool any_fit = false;
@@ -395,6 +453,14 @@ int run(const World& w, int argc, char** argv) {
       p.a = call.bodies[p.a], p.b = call.bodies[p.b];
       mine_result.reference_pairs.push_back(p);
     }
+    if (reference && !r.reference_checked) {
+      // A block none of whose bodies deforms: its reference configuration is every frame's (FE
+      // steps move no body), so its pairs' reference verdicts are those of frame 0.
+      std::map<std::tuple<std::uint32_t, std::uint32_t, std::uint32_t>, Verdict> v0;
+      for (const scene::FramePairRow& p : r.frame_pairs)
+        if (p.frame == 0) v0[{p.test, p.a, p.b}] = p.verdict;  // (rows already in global indices)
+      for (const auto& [k, v] : v0) mine_result.reference_pairs.push_back({std::get<0>(k), std::get<1>(k), std::get<2>(k), v});
+    }
     for (std::size_t f = 0; f < r.frames.size() && f < rows.size(); ++f) add_row(rows[f], r.frames[f]);
     for (const std::string& x : r.warnings)
       if (x.starts_with("body '")) open_warnings.insert(x);  // (selections: the broad phase's, over the whole scene)
@@ -415,7 +481,7 @@ int run(const World& w, int argc, char** argv) {
     go.group_distance = o.group_distance;
     std::vector<std::uint64_t> triangles(n);
     for (std::uint32_t i = 0; i < n; ++i) triangles[i] = info[i].triangles;
-    scene::SceneClashResult result = merge(skeleton, tests, go, broad, triangles, per_rank);
+    scene::SceneClashResult result = merge(skeleton, tests, go, broad, triangles, per_rank, reference);
     if (!o.baseline.empty())
       if (const Status s = scene::apply_baseline(result, baseline_text, o.baseline); !s) throw UsageError(s.error().message());
     status = verdict_exit_status(result.verdict);

@@ -25,8 +25,10 @@ void add_row(scene::FrameRow& into, const scene::FrameRow& from) {
 
 scene::SceneClashResult merge(const scene::Scene& skeleton, const std::vector<scene::ClashTest>& tests,
                               const scene::SceneClashOptions& options, const BroadResult& broad,
-                              const std::vector<std::uint64_t>& triangles, const std::vector<RankResult>& ranks) {
+                              const std::vector<std::uint64_t>& triangles, const std::vector<RankResult>& ranks,
+                              bool reference_checked) {
   scene::SceneClashResult result;
+  result.reference_checked = reference_checked;
   result.bodies = skeleton.bodies.size();
   for (const std::uint64_t t : triangles) result.triangles += t;
   result.candidate_pairs = broad.candidate_pairs;
@@ -43,7 +45,6 @@ scene::SceneClashResult merge(const scene::Scene& skeleton, const std::vector<sc
   std::set<std::string> open;
   for (const RankResult& r : ranks) {
     result.core_runs += r.core_runs;
-    result.reference_checked = result.reference_checked || r.reference_checked;
     result.prepare_seconds += r.prepare_seconds, result.broad_seconds += r.broad_seconds, result.narrow_seconds += r.narrow_seconds;
     result.clashes.insert(result.clashes.end(), r.clashes.begin(), r.clashes.end());
     result.frame_pairs.insert(result.frame_pairs.end(), r.frame_pairs.begin(), r.frame_pairs.end());

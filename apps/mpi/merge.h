@@ -19,10 +19,11 @@ void add_row(scene::FrameRow& into, const scene::FrameRow& from);
 /// pairs table and first frames (engine_frames.cpp), groups (engine_groups.cpp), the broad phase's
 /// candidate and suppressed counts and selection warnings, then the engine's open-body warnings
 /// in body order. core_runs: the ranks' sum (docs/mpi.md: repeated pairs on different ranks are
-/// decided on each).
+/// decided on each). `reference_checked`: the scene deforms (the engine's reference pass ran).
 scene::SceneClashResult merge(const scene::Scene& skeleton, const std::vector<scene::ClashTest>& tests,
                               const scene::SceneClashOptions& options, const BroadResult& broad,
-                              const std::vector<std::uint64_t>& triangles, const std::vector<RankResult>& ranks);
+                              const std::vector<std::uint64_t>& triangles, const std::vector<RankResult>& ranks,
+                              bool reference_checked);
 
 /// The report of scene::report_json (written from a scene of metadata, meshes not sent to rank 0)
 /// with every body's triangle count and an "mpi" section: ranks, per rank its pairs, engine

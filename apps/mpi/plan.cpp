@@ -59,7 +59,7 @@ void overlaps(const std::vector<std::uint32_t>& a, const std::vector<std::uint32
 }  // namespace
 
 BroadResult broad_phase(const std::vector<scene::Body>& bodies, const std::vector<scene::ClashTest>& tests,
-                        const std::vector<std::vector<AabbF>>& boxes) {
+                        const std::vector<std::vector<AabbF>>& boxes, std::size_t uncounted) {
   BroadResult r;
   const auto n = static_cast<std::uint32_t>(bodies.size());
   std::vector<std::vector<std::uint32_t>> sel_a(tests.size()), sel_b(tests.size());
@@ -82,12 +82,13 @@ BroadResult broad_phase(const std::vector<scene::Body>& bodies, const std::vecto
         if (bodies[v].id < bodies[u].id) std::swap(u, v);
       std::sort(pairs.begin(), pairs.end());
       pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-      r.candidate_pairs += pairs.size();
+      const bool counted = f >= uncounted;
+      if (counted) r.candidate_pairs += pairs.size();
       for (const auto& [u, v] : pairs) {
         bool suppressed = false;
         for (const scene::Suppression& s : t.suppressions) suppressed = suppressed || pair_matches(s.a, s.b, bodies[u], bodies[v]);
         if (suppressed) {
-          ++r.suppressed;
+          r.suppressed += counted;
           continue;
         }
         found.emplace_back(u, v, static_cast<std::uint32_t>(f));

@@ -47,8 +47,10 @@ struct BroadResult {
 /// (engine.cpp: selections per test, boxes grown by the test's margin rounded up to float, the
 /// traversal's float test bvh/traverse.h boxes_overlap, suppression rules), with the engine's own
 /// box trees (src/scene/engine_internal.h build_box_tree) and traversal (for_each_overlap).
+/// The first `uncounted` box sets (the reference configuration of deformed scenes) give units but
+/// are not counted in candidate_pairs and suppressed, as the engine's reference pass.
 BroadResult broad_phase(const std::vector<scene::Body>& bodies, const std::vector<scene::ClashTest>& tests,
-                        const std::vector<std::vector<AabbF>>& boxes);
+                        const std::vector<std::vector<AabbF>>& boxes, std::size_t uncounted = 0);
 
 /// Estimated cost of deciding a body pair in one frame (seconds on this machine, from the fitted
 /// model of docs/scaling.md): per pair, per triangle of the two bodies.

@@ -7,6 +7,9 @@ files, deterministic (seeded).
            tiny/motion.csv moves a few bodies over 6 frames (the time series).
   huge/    one huge body pair (two overlapping 40,000-triangle spheres) that dominates the cost,
            and a handful of tiny bodies around it.
+  fe/      an FE model (CalculiX .frd, 5 bodies of 2 x 2 x 2 HEX8, 4 displacement steps: a designed
+           contact, a body pushed into another, a body moving away) beside 3 STL boxes (two that
+           overlap each other, no body of theirs deformed; one touching an FE body).
   broken/  a scene whose last body file is not a mesh (a rank cannot read it).
 Usage: make_scenes.py OUT_DIR
 """
@@ -119,6 +122,69 @@ def huge(out):
     scene(os.path.join(out, "scene.json"), bodies, [{"name": "hard", "a": ["all"], "mode": "hard"}])
 
 
+CORNERS = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]
+
+
+def hex_box(bx, n, first_node, first_elem):
+    """n^3 HEX8 on box bx ((x0, x1), (y0, y1), (z0, z1)): ([(node id, xyz)], [(element id, [8 node ids])])
+    (as tests/cli/test_fem_inputs.py)."""
+    nodes, idx = [], {}
+    for k in range(n + 1):
+        for j in range(n + 1):
+            for i in range(n + 1):
+                idx[(i, j, k)] = first_node + len(nodes)
+                nodes.append((idx[(i, j, k)], tuple(bx[a][0] + (bx[a][1] - bx[a][0]) * (i, j, k)[a] / n for a in range(3))))
+    elems = []
+    for k in range(n):
+        for j in range(n):
+            for i in range(n):
+                elems.append((first_elem + len(elems), [idx[(i + a, j + b, k + c)] for a, b, c in CORNERS]))
+    return nodes, elems
+
+
+def fe(out, steps=4):
+    """CalculiX .frd, ASCII long format (tests/cli/test_fem_inputs.py write_frd): 1UMAT names, node
+    block 2C, element block 3C (he8, material g), one DISP block per step."""
+    os.makedirs(out, exist_ok=True)
+    boxes = [((0, 1), (0, 1), (0, 1)),          # B1 fixed
+             ((1, 2), (0, 1), (0, 1)),          # B2 touches B1 (designed contact), moves +x: apart
+             ((0, 1), (3, 4), (0, 1)),          # B3 moves +x into B4
+             ((1.2, 2.2), (3.2, 3.8), (0.2, 0.8)),  # B4 fixed
+             ((0, 1), (6, 7), (0, 1))]          # B5 fixed, near the STL box
+    vel = [(0, 0, 0), (0.1, 0, 0), (0.15, 0, 0), (0, 0, 0), (0, 0, 0)]
+    bodies = [hex_box(b, 2, 1 + 1000 * g, 1 + 100 * g) for g, b in enumerate(boxes)]
+    nodes = [nd for ns, _ in bodies for nd in ns]
+    body_of = {nid: g for g, (ns, _) in enumerate(bodies) for nid, _ in ns}
+    L = ["    1C"] + ["    1UMAT%5dB%d" % (g + 1, g + 1) for g in range(len(boxes))]
+    L.append("    2C" + " " * 18 + "%12d" % len(nodes) + " " * 37 + "1")
+    L += [" -1%10d%12.5E%12.5E%12.5E" % (nid, *x) for nid, x in nodes]
+    L.append(" -3")
+    nel = sum(len(e) for _, e in bodies)
+    L.append("    3C" + " " * 18 + "%12d" % nel + " " * 37 + "1")
+    for g, (_, elems) in enumerate(bodies):
+        for eid, v in elems:
+            L.append(" -1%10d%5d%5d%5d" % (eid, 1, 0, g + 1))
+            L.append(" -2" + "".join("%10d" % nn for nn in v))
+    L.append(" -3")
+    for st in range(steps):
+        L.append("    1PSTEP" + " " * 14 + "%12d%12d%12d" % (st + 1, st + 1, 1))
+        L.append("  100CL%5d%12.5E%12d%20s%2d%5d%10s%2s" % (101 + st, float(st), len(nodes), "", 0, st + 1, "", " 1"))
+        L += [" -4  DISP        4    1", " -5  D1          1    2    1    0", " -5  D2          1    2    2    0",
+              " -5  D3          1    2    3    0", " -5  ALL         1    2    0    0    1ALL"]
+        L += [" -1%10d%12.5E%12.5E%12.5E" % (nid, *(v * st for v in vel[body_of[nid]])) for nid, _ in nodes]
+        L.append(" -3")
+    L.append("9999")
+    with open(os.path.join(out, "model.frd"), "w") as f:
+        f.write("\n".join(L) + "\n")
+    write_stl(os.path.join(out, "m1.stl"), box((5, 0, 0), (6, 1, 1)))
+    write_stl(os.path.join(out, "m2.stl"), box((5.5, 0.5, 0.5), (6.5, 1.5, 1.5)))
+    write_stl(os.path.join(out, "m3.stl"), box((1, 6, 0), (2, 7, 1)))
+    scene(os.path.join(out, "scene.json"),
+          [{"file": "model.frd", "id": "fe"}, {"file": "m1.stl", "id": "m1"}, {"file": "m2.stl", "id": "m2"},
+           {"file": "m3.stl", "id": "m3"}],
+          [{"name": "hard", "a": ["all"], "mode": "hard"}])
+
+
 def broken(out):
     os.makedirs(out, exist_ok=True)
     write_stl(os.path.join(out, "ok1.stl"), box((0, 0, 0), (1, 1, 1)))
@@ -133,4 +199,5 @@ if __name__ == "__main__":
     out = sys.argv[1]
     tiny(os.path.join(out, "tiny"))
     huge(os.path.join(out, "huge"))
+    fe(os.path.join(out, "fe"))
     broken(os.path.join(out, "broken"))

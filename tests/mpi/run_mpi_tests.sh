@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # interfere-mpi against `interfere clash --scene` (issue #31, item 5): generated scenes (many tiny
-# bodies; one huge body pair that dominates; the tiny scene with a motion file, 6 frames) on
+# bodies; one huge body pair that dominates; the tiny scene with a motion file, 6 frames; an FE
+# model with 4 displacement steps beside mesh bodies) on
 # K = 1..4 ranks give reports equal to the single-process one (compare_reports.py: apart from
 # timings, threads, the mpi section and core_runs) and equal CSV tables; bad input: a rank that
 # cannot read a body ends the job with exit 2, that rank's message and no report; ranks that see
@@ -33,6 +34,7 @@ same() {  # scene dir, extra args...
 same "$work/tiny"
 same "$work/huge"
 same "$work/tiny" --motion motion.csv --frames-csv frames.csv
+same "$work/fe"  # (FE displacement steps, the reference configuration, designed contacts)
 
 # A rank that cannot read a body: exit 2, its message, no report.
 (cd "$work/broken" && "${mpirun_[@]}" -n 3 "$mpi" clash --scene scene.json --json out.json >/dev/null 2>err.txt)
