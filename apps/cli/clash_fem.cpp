@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <memory>
 #include <cmath>
 #include <limits>
 #include <filesystem>
@@ -18,6 +19,7 @@
 #include "interfere/view/fem_document.h"
 #include "report_json.h"
 #include "report_envelope.h"
+#include "progress_bar.h"
 
 namespace interfere::cli {
 namespace {
@@ -222,10 +224,21 @@ int run_fem_clash(const ClashOptions& o, const ResolvedParts& parts, const Clash
     };
   }
 
+  // Steps: a progress bar with rate and ETA on a terminal, a line per tenth otherwise (progress_bar.h).
+  std::unique_ptr<ProgressBar> step_bar;
+  std::size_t steps_done = 0;
+  if (series) {
+    step_bar = std::make_unique<ProgressBar>("steps", num_steps, "steps");
+    sr.on_step = [&, inner = std::move(sr.on_step)](const StepSummary& s, const ClashResult& r) {
+      if (inner) inner(s, r);
+      step_bar->update(++steps_done);
+    };
+  }
   Expected<SeriesResult> run = Error{};
   {
     Progress progress(series ? "clash per step (" + std::to_string(num_steps) + " steps)" : std::string("clash query"));
     run = clash_series(a.series(), b.series(), sr);
+    step_bar.reset();  // (ends the bar's line before the timing line)
   }
   if (!run) throw InputError(run.error());
   const SeriesResult& sres = *run;

@@ -51,7 +51,8 @@ std::string ProgressBar::line(std::size_t done, double seconds) const {
   if (done > 0 && seconds > 0) {
     const double rate = static_cast<double>(done) / seconds;
     if (!unit_.empty()) {
-      std::snprintf(buf, sizeof buf, "  %.3g %s/s", rate, unit_.c_str());
+      std::snprintf(buf, sizeof buf, rate >= 100 ? "  %.0f %s/s" : rate >= 10 ? "  %.1f %s/s" : "  %.3g %s/s", rate,
+                    unit_.c_str());
       s += buf;
     }
     s += "  ETA " + clock_text(static_cast<double>(total_ - done) / rate);

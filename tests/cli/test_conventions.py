@@ -185,5 +185,15 @@ class Conventions(unittest.TestCase):
         self.assertRegex(bars[-1], r"frames/s +ETA \d+:\d\d")
 
 
+    def test_fe_steps_progress(self):
+        fem = os.path.join(SOURCE, "tests", "data", "fem")
+        code, _, err = raw("clash", os.path.join(fem, "tets_ascii.vtu"), os.path.join(fem, "tets_ascii.vtu"),
+                           "--part-a", "MaterialIds -2", "--part-b", "MaterialIds 3", "--disp-a",
+                           os.path.join(fem, "tets_disp.csv"))
+        self.assertIn(code, (0, 1), err)
+        bars = [l for l in err.splitlines() if l.startswith("[interfere] steps [")]
+        self.assertTrue(bars, err)
+        self.assertRegex(bars[-1], r"\] 2/2 +\d+(\.\d+)? steps/s +ETA 0:00$")
+
 if __name__ == "__main__":
     cli_common.main()
