@@ -18,6 +18,7 @@
 // the middle's bound is above the ends' value the ends decide: exact. Otherwise the value is a
 // bound (exact = false) and the verdict comes from the mesh engine (query/clash.h) on the meshes.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -79,7 +80,29 @@ WebValue web_distance(const Cylinder& roller, const TriMesh& web, const Transfor
   for (std::size_t i = 0; i < p.size(); ++i) p[i] = cage_pose.apply(web.positions[i]), centre += p[i];
   centre = centre / static_cast<double>(p.size());
   if (!roller.tapered()) {
-    for (const Tri& t : web.triangles) {
+    // sd_roller(x) >= dist(x, axis segment) - radius everywhere (the roller lies in the capsule
+    // around its axis; inside, rho - R <= -min(R - rho, z, h - z)), so a triangle's bounding sphere
+    // gives a lower bound of its minimum: triangles whose bound is not below the best exact value
+    // so far are skipped (the value is the same, only the work is less; ties keep the first).
+    std::array<std::pair<double, std::size_t>, 64> order{};
+    const std::size_t nt = std::min<std::size_t>(web.triangles.size(), order.size());
+    for (std::size_t i = 0; i < nt; ++i) {
+      const Tri& t = web.triangles[i];
+      const Vec3 c = (p[t[0]] + p[t[1]] + p[t[2]]) / 3.0;
+      const double rad = std::max({norm(p[t[0]] - c), norm(p[t[1]] - c), norm(p[t[2]] - c)});
+      const double along = std::clamp(dot(c - roller.base, roller.axis), 0.0, roller.height);
+      const Vec3 foot = roller.base + roller.axis * along;
+      order[i] = {norm(c - foot) - rad - roller.radius - 1e-9 * (1 + norm(c - roller.base) + roller.height), i};
+    }
+    std::sort(order.begin(), order.begin() + nt);
+    for (std::size_t k = 0; k < nt; ++k) {
+      if (!(order[k].first < out.distance)) break;
+      const Tri& t = web.triangles[order[k].second];
+      const TriangleMin tm = triangle_min_signed_distance(roller, p[t[0]], p[t[1]], p[t[2]]);
+      if (tm.value < out.distance) out.distance = tm.value, out.point_b = tm.point;
+    }
+    for (std::size_t i = nt; i < web.triangles.size(); ++i) {  // (webs have 12 triangles)
+      const Tri& t = web.triangles[i];
       const TriangleMin tm = triangle_min_signed_distance(roller, p[t[0]], p[t[1]], p[t[2]]);
       if (tm.value < out.distance) out.distance = tm.value, out.point_b = tm.point;
     }
