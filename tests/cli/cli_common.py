@@ -17,9 +17,27 @@ WORK = None  # fresh work directory of the test module (set by main)
 
 
 def run(*args, command=()):
-    """Runs `interfere --quiet [command...] args...`; returns (exit status, stdout, stderr)."""
+    """Runs `interfere --quiet [command...] args...`; returns (exit status, stdout, stderr). A report
+    it wrote (`--json FILE`, exit status 0, 1 or 3) is validated against docs/schema (issue #30)."""
     p = subprocess.run([EXE, "--quiet", *command, *args], capture_output=True, text=True, timeout=120)
+    validate_written_report([*command, *args], p.returncode)
     return p.returncode, p.stdout, p.stderr
+
+
+def validate_written_report(argv, code):
+    """The report named by --json in `argv` against docs/schema, when the run wrote one."""
+    if code not in (0, 1, 3) or not report_schema.AVAILABLE:
+        return
+    for i, a in enumerate(argv[:-1]):
+        if a == "--json" and argv[i + 1] != "-":
+            target = os.path.abspath(argv[i + 1])  # (the run's working directory is this process's)
+            if os.path.isfile(target):
+                with open(target) as f:
+                    try:
+                        obj = json.load(f)
+                    except ValueError:
+                        return
+                report_schema.validate(obj, target)
 
 
 def path(name):
