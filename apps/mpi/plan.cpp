@@ -105,7 +105,9 @@ BroadResult broad_phase(const std::vector<scene::Body>& bodies, const std::vecto
 }
 
 double pair_cost(std::uint64_t na, std::uint64_t nb) {
-  // docs/scaling.md, "Cost model": fitted on this machine (tools/mpi_scaling.py).
+  // A fixed estimate, linear in the triangles (what balances memory and reading too). Not the
+  // fitted model of docs/scaling.md (tools/mpi_scaling.py), whose per-pair term is far larger on
+  // its sphere products, where half the candidates clash and carry a depth bound.
   return 2e-5 + 2.5e-7 * static_cast<double>(na + nb);
 }
 

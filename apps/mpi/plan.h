@@ -52,8 +52,8 @@ struct BroadResult {
 BroadResult broad_phase(const std::vector<scene::Body>& bodies, const std::vector<scene::ClashTest>& tests,
                         const std::vector<std::vector<AabbF>>& boxes, std::size_t uncounted = 0);
 
-/// Estimated cost of deciding a body pair in one frame (seconds on this machine, from the fitted
-/// model of docs/scaling.md): per pair, per triangle of the two bodies.
+/// Estimated cost of deciding a body pair in one frame (seconds, roughly): per pair, per triangle
+/// of the two bodies (a fixed estimate; docs/scaling.md fits a model to measured times).
 double pair_cost(std::uint64_t triangles_a, std::uint64_t triangles_b);
 
 struct Block {
