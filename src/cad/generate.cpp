@@ -9,6 +9,7 @@
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakeWire.hxx>
+#include <BRepBuilderAPI_Transform.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeRevol.hxx>
 #include <GeomAPI_PointsToBSpline.hxx>
@@ -35,6 +36,7 @@
 #include <TopTools_ListOfShape.hxx>
 #include <Standard_Failure.hxx>
 #include <TopoDS_Shape.hxx>
+#include <gp_Ax1.hxx>
 #include <gp_Ax2.hxx>
 #include <gp_Pln.hxx>
 
@@ -144,6 +146,37 @@ TopoDS_Shape build(TestPart p) {
       return BRepBuilderAPI_NurbsConvert(build(TestPart::box_through_hole)).Shape();
     case TestPart::countersunk_plate_nurbs:
       return BRepBuilderAPI_NurbsConvert(build(TestPart::countersunk_plate)).Shape();
+    case TestPart::pocket_block: {
+      // Pocket 15..45 x 10..30 from z 12 up, corners rounded r = 4; a through slot along y at x 5..13
+      // whose ends are half cylinders r = 4.
+      const double r = 4;
+      TopoDS_Shape tool = fuse(box(15 + r, 10, 12, 45 - r, 30, 21), box(15, 10 + r, 12, 45, 30 - r, 21));
+      for (double x : {15 + r, 45 - r})
+        for (double y : {10 + r, 30 - r}) tool = fuse(tool, cyl(x, y, 12, r, 9));
+      TopoDS_Shape slot = fuse(box(5, 8, -1, 13, 32, 21), fuse(cyl(9, 8, -1, 4, 22), cyl(9, 32, -1, 4, 22)));
+      return unify(cut(cut(box(0, 0, 0, 60, 40, 20), tool), slot));
+    }
+    case TestPart::inclined_entry_block: {
+      gp_Trsf t;
+      t.SetRotation(gp_Ax1(gp_Pnt(0, 15, 14), gp_Dir(1, 0, 0)), 30.0 * std::numbers::pi / 180);
+      const TopoDS_Shape wedge = BRepBuilderAPI_Transform(box(-1, -10, 14, 41, 60, 40), t).Shape();
+      return unify(cut(cut(box(0, 0, 0, 40, 30, 20), wedge), cyl(20, 15, -1, 4, 30)));
+    }
+    case TestPart::shaft_cross_hole: {
+      const TopoDS_Shape shaft = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(1, 0, 0)), 15, 60).Shape();
+      return unify(cut(shaft, cyl(30, 0, -20, 3, 40)));
+    }
+    case TestPart::blind_split_floor: {
+      ShapeUpgrade_ShapeDivideClosed split(build(TestPart::box_blind_hole));
+      split.SetNbSplitPoints(1);
+      split.Perform();
+      return split.Result();
+    }
+    case TestPart::crossing_holes: {
+      const TopoDS_Shape hx = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(-1, 20, 10), gp_Dir(1, 0, 0)), 4, 42).Shape();
+      const TopoDS_Shape hy = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(20, -1, 10), gp_Dir(0, 1, 0)), 3, 42).Shape();
+      return unify(cut(cut(box(0, 0, 0, 40, 40, 20), hx), hy));
+    }
   }
   return {};
 }
@@ -166,6 +199,11 @@ const char* test_part_name(TestPart p) {
     case TestPart::box_through_hole_split: return "box_through_hole_split";
     case TestPart::single_face: return "single_face";
     case TestPart::countersunk_plate_nurbs: return "countersunk_plate_nurbs";
+    case TestPart::pocket_block: return "pocket_block";
+    case TestPart::inclined_entry_block: return "inclined_entry_block";
+    case TestPart::shaft_cross_hole: return "shaft_cross_hole";
+    case TestPart::blind_split_floor: return "blind_split_floor";
+    case TestPart::crossing_holes: return "crossing_holes";
   }
   return "?";
 }

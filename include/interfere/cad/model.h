@@ -144,6 +144,12 @@ enum class TestPart {
   box_through_hole_split,  ///< box_through_hole with the closed hole face split in two half cylinders
   single_face,          ///< one planar 10 x 10 face, no solid (bad-input test: a warning, not an error)
   countersunk_plate_nurbs,  ///< countersunk_plate with every face converted to B-spline
+  // Hole recognition cases (issue #29):
+  pocket_block,         ///< 60x40x20 block, blind pocket 30x20x8 with r=4 corner rounds, through slot 8 wide with round ends: no hole
+  inclined_entry_block, ///< 40x30x20 block whose top is cut at 30 degrees through (y, z) = (15, 14), through hole r=4 along z entering the inclined face
+  shaft_cross_hole,     ///< cylinder r=15 along x, length 60, radial through hole r=3 along z (entry and exit on the curved face)
+  blind_split_floor,    ///< box_blind_hole with the wall split in two half cylinders (the floor circle in two edges)
+  crossing_holes,       ///< 40x40x20 block, through hole r=4 along x and one r=3 along y crossing it at mid-height
 };
 const char* test_part_name(TestPart p);
 Status write_test_part(TestPart part, const std::filesystem::path& step_file);
