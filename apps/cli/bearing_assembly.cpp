@@ -31,18 +31,18 @@ const char* path_name(const AssemblyPairResult& r) {
 }
 
 int write_csv(std::FILE* f, const Assembly& as, const AssemblyResult& r) {
-  std::fputs("frame,bearing,kind,a,b,distance,interference,ax,ay,az,bx,by,bz,solver,path,scar,exact,verdict\n", f);
+  std::fputs("frame,bearing,kind,a,b,distance,interference,ax,ay,az,bx,by,bz,solver,path,scar,exact,verdict,two_sided\n", f);
   for (const AssemblyRow& row : r.rows) {
     const AssemblyPair& p = as.pairs[row.pair];
     const AssemblyPairResult& x = row.result;
     std::string b = as.parts[p.b].id;
     if (p.kind == AssemblyPairKind::roller_cage) b += "#web" + std::to_string(p.feature);
     if (p.kind == AssemblyPairKind::roller_rib) b += p.feature == 0 ? "#rib0" : "#rib1";
-    std::fprintf(f, "%d,%s,%s,%s,%s,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%s,%s,%d,%d,%s\n", row.frame,
+    std::fprintf(f, "%d,%s,%s,%s,%s,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%s,%s,%d,%d,%s,%d\n", row.frame,
                  as.spec.bearings[as.parts[p.a].bearing].id.c_str(), assembly_pair_kind_name(p.kind),
                  as.parts[p.a].id.c_str(), b.c_str(), x.distance, x.distance < 0 ? -x.distance : 0.0, x.point_a.x,
                  x.point_a.y, x.point_a.z, x.point_b.x, x.point_b.y, x.point_b.z, assembly_solver_name(x.solver),
-                 path_name(x), x.scar ? 1 : 0, x.exact ? 1 : 0, verdict_name(x.verdict));
+                 path_name(x), x.scar ? 1 : 0, x.exact ? 1 : 0, verdict_name(x.verdict), x.two_sided ? 1 : 0);
   }
   return std::ferror(f) ? 1 : 0;
 }
@@ -69,6 +69,7 @@ nlohmann::json row_json(const Assembly& as, const AssemblyRow& row) {
           {"solver", assembly_solver_name(x.solver)},
           {"scar", x.scar},
           {"exact", x.exact},
+          {"two_sided", x.two_sided},
           {"verdict", verdict_name(x.verdict)}};
 }
 

@@ -248,8 +248,9 @@ ScenePart roller_part(const AssemblyPart& p, const Cylinder& c, const Transform&
 
 }  // namespace
 
-AssemblyPairResult solve_pair(const Assembly& as, const AssemblyPair& pair, const std::vector<Transform>& poses,
-                              double clearance) {
+namespace {
+AssemblyPairResult solve_one(const Assembly& as, const AssemblyPair& pair, const std::vector<Transform>& poses,
+                             double clearance) {
   const AssemblyPart& ra = as.parts[pair.a];
   const AssemblyPart& pb = as.parts[pair.b];
   const BearingSpec& b = as.spec.bearings[ra.bearing];
@@ -386,6 +387,25 @@ AssemblyPairResult solve_pair(const Assembly& as, const AssemblyPair& pair, cons
     }
   }
   return {};
+}
+
+}  // namespace
+
+AssemblyPairResult solve_pair(const Assembly& as, const AssemblyPair& pair, const std::vector<Transform>& poses,
+                              double clearance) {
+  AssemblyPairResult r = solve_one(as, pair, poses, clearance);
+  switch (pair.kind) {  // which rows are two-sided (assembly.h, AssemblyPairResult::two_sided)
+    case AssemblyPairKind::roller_inner:
+    case AssemblyPairKind::roller_roller:
+    case AssemblyPairKind::roller_cone: r.two_sided = true; break;
+    case AssemblyPairKind::roller_outer:
+      r.two_sided = r.exact && r.distance > 0 && r.path == AnalyticPath::bore;
+      break;
+    case AssemblyPairKind::roller_cage: r.two_sided = r.exact && r.distance > 0; break;
+    case AssemblyPairKind::roller_cup:
+    case AssemblyPairKind::roller_rib: r.two_sided = false; break;
+  }
+  return r;
 }
 
 }  // namespace interfere::bearing

@@ -19,7 +19,7 @@ from view_readers import read_glb, read_pvd  # noqa: E402
 EXAMPLE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "data", "examples", "bearing_axle.json")
 
 COLUMNS = ["frame", "bearing", "kind", "a", "b", "distance", "interference", "ax", "ay", "az", "bx", "by", "bz",
-           "solver", "path", "scar", "exact", "verdict"]
+           "solver", "path", "scar", "exact", "verdict", "two_sided"]
 
 SMALL = {
     "frames": 3, "seed": 4, "clearance": 0.05,
@@ -83,6 +83,12 @@ class BearingAssembly(unittest.TestCase):
             self.assertEqual(float(r["interference"]), max(0.0, -d))
             for c in ("ax", "ay", "az", "bx", "by", "bz"):
                 self.assertTrue(math.isfinite(float(r[c])))
+            # which rows are two-sided S = min(s(A,B), s(B,A)) (issue #27): the roller pairs, the inner
+            # raceways and cones; never the cup and rib rows; ring/web rows only as Euclidean clearances
+            if r["kind"] in ("roller-inner", "roller-roller", "roller-cone"):
+                self.assertEqual(r["two_sided"], "1", r)
+            elif r["kind"] in ("roller-cup", "roller-rib") or d <= 0:
+                self.assertEqual(r["two_sided"], "0", r)
         for v in ("clash", "contact", "clearance", "clear", "undecided"):
             self.assertEqual(s["results"]["verdicts"][v], sum(r["verdict"] == v for r in rows))
         dmin = min(float(r["distance"]) for r in rows)

@@ -215,6 +215,12 @@ struct AssemblyPairResult {
   AnalyticPath path = AnalyticPath::side;  ///< the analytic solver's path (standard, raceway)
   bool scar = false;          ///< a scarred surface was the one measured
   bool exact = true;          ///< false: distance is a bound (the verdict says what is decided)
+  /// true: the value is two-sided, S = min(s(A, B), s(B, A)) (roller-inner, roller-roller,
+  /// roller-cone), or a clearance that is the Euclidean distance (symmetric: roller-outer clear with
+  /// path bore, roller-cage clear). false: one direction only, the roller's depth in the ring part
+  /// (roller-outer, roller-cup, roller-rib) or the web's deepest point in the roller (roller-cage),
+  /// and clearances that are not the Euclidean distance (cup: to the cone line; rib: over the annulus).
+  bool two_sided = true;
   Verdict verdict = Verdict::clear;
 };
 
