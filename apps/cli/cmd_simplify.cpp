@@ -327,9 +327,9 @@ void add_simplify_command(CLI::App& app, int& exit_code) {
                 "region ids, or a STEP input's face ids as the output numbers them");
   c->add_flag("--lock", o->lock, "hard-lock feature faces (bit-identical) instead of the paper's cost weighting");
   c->add_option("--seams", o->seams,
-                "face seams kept: all (default), auto (all if the budget can be met so, else the borders of "
-                "assembly-feature faces only), features (those only: a CAD part of many small faces can go much "
-                "lower) or none (face ids as tags only)");
+                "face seams kept: auto (default: all if the budget can be met so, else the borders of "
+                "assembly-feature faces only, with a warning), all (every seam: a CAD part of many small faces "
+                "may stop above the budget), features (those only) or none (face ids as tags only)");
   c->add_option("--feature-mode", o->feature_mode,
                 "weight (paper: + maximum unmodified cost), last (feature edges strictly last) or lock");
   c->add_option("--sharp-angle", o->sharp_angle, "plain meshes: keep edges whose dihedral angle exceeds DEG degrees")

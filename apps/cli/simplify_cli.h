@@ -22,7 +22,7 @@
 namespace interfere::cli {
 
 struct SimplifyCliOptions {
-  std::string input, output, json, regions, features, step, process, format = "auto", feature_mode = "weight", seams = "all";
+  std::string input, output, json, regions, features, step, process, format = "auto", feature_mode = "weight", seams = "auto";
   std::string parts_dir;  ///< STEP input: each simplified part (prototype) also written here
   std::string units;      ///< --units: a mesh input's unit (default: m for glTF, mm otherwise; STEP: its own)
   std::string library, rules;  ///< --library, --rules: JSON files instead of the installed ones

@@ -127,7 +127,7 @@ void bind_simplify(py::module_& m) {
       py::arg("feature_faces") = std::vector<std::uint32_t>{}, py::arg("lock") = false, py::arg("sharp_angle") = 0.0,
       py::arg("prevent_self_intersections") = true, py::arg("measure_error") = true,
       py::arg("feature_mode") = std::string("weight"), py::arg("inherit_input_contacts") = true,
-      py::arg("seams") = std::string("all"), py::arg("max_error") = 0.0,
+      py::arg("seams") = std::string("auto"), py::arg("max_error") = 0.0,
       "Feature-preserving QEM simplification to `target` triangles (or `ratio` of them). face_ids: per-triangle "
       "face/region ids; feature_faces: ids kept (cost-weighted, or hard-locked with lock=True). "
       "prevent_self_intersections: no intersecting pair the input did not have; inherit_input_contacts=False makes "
@@ -457,7 +457,7 @@ void bind_simplify(py::module_& m) {
       },
       py::arg("path"), py::arg("target") = 0, py::arg("ratio") = 0.0, py::arg("renderer_max") = 0,
       py::arg("process") = std::string(), py::arg("step") = std::string(), py::arg("lock") = false,
-      py::arg("feature_mode") = std::string("weight"), py::arg("seams") = std::string("all"),
+      py::arg("feature_mode") = std::string("weight"), py::arg("seams") = std::string("auto"),
       py::arg("prevent_self_intersections") = true, py::arg("measure_error") = true, py::arg("max_error") = 0.0,
       py::arg("linear_deflection") = 0.0, py::arg("angular_deflection") = 0.5, py::arg("library") = std::string(),
       py::arg("rules") = std::string(),

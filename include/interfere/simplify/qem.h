@@ -39,11 +39,14 @@ enum class FeatureMode {
 
 /// Which face seams (edges between triangles of different face ids) the simplification keeps.
 enum class SeamMode {
-  all,       ///< every seam (the default: B-Rep faces stay separable, their borders simplified as polylines)
+  all,       ///< every seam (B-Rep faces stay separable, their borders simplified as polylines)
   features,  ///< the borders of feature faces only: seams between two other faces may be simplified away
   none,      ///< none: face ids are per-triangle tags only
   /// every seam if the budget can be met so; else (corners and seams hold the mesh above it) the
-  /// run is made again with `features` (the error is measured once, on the result returned)
+  /// run is made again with `features` (the error is measured once, on the result returned). The
+  /// default since issue #29, item 7: the budget asked for is met on CAD parts of many small faces
+  /// (NIST CTC-01 at 10 %: 282 triangles for 283, where `all` stops at 614), a warning gives the count
+  /// every seam allowed.
   as_needed,
 };
 
@@ -76,7 +79,7 @@ struct SimplifyOptions {
   /// Seams kept as constrained edges (open boundaries and non-manifold edges always are). Below
   /// `all`, a CAD part of many small faces, whose corners (where three faces meet) are never
   /// removed, can go far lower; each output triangle still carries its input triangle's face id.
-  SeamMode seams = SeamMode::all;
+  SeamMode seams = SeamMode::as_needed;
   /// Weight of the penalty planes through constrained edges (perpendicular to their triangles),
   /// relative to the area-weighted face quadrics (Garland & Heckbert §6.1).
   double seam_weight = 10.0;

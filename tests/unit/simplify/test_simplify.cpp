@@ -284,7 +284,7 @@ TEST(Simplify, FlatRegionsDoNotPileCollapsesOnOneVertex) {
 // six faces keeps its 8 corners, and its edges only lose vertices along themselves).
 TEST(Simplify, AnUnreachableBudgetNamesWhatHoldsTheRest) {
   const TriMesh box = make_box({0, 0, 0}, {1, 2, 3}, 6);
-  auto r = simplify(box, {.target_triangles = 4, .sharp_angle_deg = 30, .measure_error = false});
+  auto r = simplify(box, {.target_triangles = 4, .sharp_angle_deg = 30, .seams = SeamMode::all, .measure_error = false});
   ASSERT_TRUE(r.has_value());
   EXPECT_FALSE(r->reached);
   EXPECT_EQ(r->mesh.num_triangles(), 12u);  // two per face: the corners cannot go
@@ -884,7 +884,7 @@ TEST(Simplify, NoFaceWhoseSeamsAreKeptVanishes) {
   for (std::uint32_t f : in) smallest = std::min<std::size_t>(smallest, std::count(faces.begin(), faces.end(), f));
   ASSERT_LE(smallest, 8u);  // small faces indeed (without the rule, 32 of them vanish in the batched passes)
   for (bool batched : {true, false}) {
-    SimplifyOptions o{.target_triangles = 400, .face_ids = faces};
+    SimplifyOptions o{.target_triangles = 400, .face_ids = faces, .seams = SeamMode::all};
     o.prevent_self_intersections = false;
     o.measure_error = false;
     o.batched_passes = batched;

@@ -70,11 +70,12 @@ TEST(ViewerDecimate, BodiesUnderBudgetRegionsUntouched) {
   EXPECT_LE(after, 10000u);
   EXPECT_GE(after, 9900u);  // the budget is used, not wasted
   EXPECT_FALSE(r.over_budget);
-  // Shared by budget.h's formula with each mesh's floor of 100 as its reserved triangles:
-  // N_i = 100 + (10000 - 200) * (T_i - 100) / (100000 - 200) = 7946 and 2054 (a closed mesh may end
-  // one below an odd budget).
-  EXPECT_NEAR(static_cast<double>(d.meshes[0].mesh.num_triangles()), 7946, 1);
-  EXPECT_NEAR(static_cast<double>(d.meshes[1].mesh.num_triangles()), 2054, 1);
+  // Shared by budget.h's formula with each mesh's floor of 100 as its reserved triangles; since
+  // issue #29 every mesh first keeps half its proportional share (4000 and 1000), which is above
+  // that: N_i = P_i + (10000 - 5000) * (T_i - P_i) / (100000 - 5000) = 8000 and 2000 (a closed
+  // mesh may end one below an odd budget).
+  EXPECT_NEAR(static_cast<double>(d.meshes[0].mesh.num_triangles()), 8000, 1);
+  EXPECT_NEAR(static_cast<double>(d.meshes[1].mesh.num_triangles()), 2000, 1);
   // The region is bit-identical.
   EXPECT_EQ(d.meshes[2].mesh.positions, region_before.positions);
   EXPECT_EQ(d.meshes[2].mesh.triangles, region_before.triangles);
