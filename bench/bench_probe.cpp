@@ -10,6 +10,16 @@
 //   ProbeFull/<case>                    decisions + continuous + clearance of every point (BVH)
 //   ProbeBuild/<case>/<hierarchy>       building the hierarchy
 //   ProbePatches/<case>/<ratio>         the paper's patches at box/probe volume 8, 33, 100
+//   ProbePaperLevels/<case>/<level>/<path>/<ratio>  the paper's Table 1 levels timed one at a time
+//                                       (issue #28): 1 = §3.2 probe box vs patch boxes (box volume =
+//                                       ratio 8, 33 or 100 x probe volume, as Table 1) at every
+//                                       point, 2 = §3.3 triangle/box for the triangles of the patches
+//                                       that passed, 3 = §3.4 three projections for the triangles that
+//                                       passed, 0 = the exact cylinder-triangle test on those same
+//                                       triangles; path 0 = the standard path (stand-off 10 mm = 2
+//                                       probe radii), 1 = a near path (stand-off 1 mm, the probe
+//                                       tilted 30 degrees about its tip) where most points reach
+//                                       level 3. Probe only (the paper has no holder).
 //   ProbeScaling                        10^6-triangle saddle, 10^5 points: build + decisions +
 //                                       continuous check (INTERFERE_PROBE_SCALING_TRIANGLES /
 //                                       _POINTS override the sizes)
@@ -23,6 +33,7 @@
 #include <memory>
 
 #include "interfere/probe/generate.h"
+#include "interfere/probe/paper_tests.h"
 #include "interfere/probe/sweep.h"
 
 using namespace interfere;
@@ -145,6 +156,110 @@ void BM_ProbePatches(benchmark::State& state) {
   state.SetLabel(c.spec.name + "/" + std::to_string(state.range(1)));
 }
 
+/// The inputs of each paper level for one case and path, computed once (untimed).
+struct LevelInputs {
+  std::vector<Cylinder> probes;
+  std::vector<Aabb> probe_boxes;
+  std::vector<std::vector<std::uint32_t>> patches;    ///< per point: patches passing level 1
+  std::vector<std::vector<std::uint32_t>> triangles;  ///< per point: triangles passing level 2
+  std::size_t level3_passed = 0, exact_hits = 0, points_reaching_3 = 0;
+};
+
+/// The near path: stand-off 1 mm, each pose's axis tilted by 30 degrees about the tip.
+ProbePath near_path(const Case& c) {
+  PanelPathOptions o = c.spec.path;
+  o.standoff = 1.0;
+  ProbePath p = make_panel_path(c.spec.kind, o);
+  p.joint_space = false;
+  p.joints.clear();
+  for (ProbePose& q : p.poses) {
+    const Vec3 a = q.axis;
+    Vec3 e = cross(a, std::fabs(a.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0});
+    e = e / norm(e);
+    q.axis = a * std::cos(M_PI / 6) + e * std::sin(M_PI / 6);
+  }
+  return p;
+}
+
+const LevelInputs& level_inputs(int i, int near, double ratio) {
+  static std::map<std::tuple<int, int, double>, std::unique_ptr<LevelInputs>> cache;
+  auto& in = cache[{i, near, ratio}];
+  if (in) return *in;
+  in = std::make_unique<LevelInputs>();
+  const Case& c = get_case(i);
+  const Workpiece& w = get_workpiece(i, Hierarchy::patches, ratio);
+  const ProbePath path = near ? near_path(c) : c.path;
+  for (const ProbePose& q : path.poses) {
+    const Cylinder cyl = cylinder_from_tip(q.tip, q.axis, kProbe.length, kProbe.radius);
+    const Aabb box = paper_cylinder_box(cyl);
+    in->probes.push_back(cyl);
+    in->probe_boxes.push_back(box);
+    std::vector<std::uint32_t> ps, ts;
+    for (std::uint32_t p = 0; p < w.patches.size(); ++p) {
+      if (paper_box_test(box, w.patches.boxes[p]) || paper_box_test(w.patches.boxes[p], box)) ps.push_back(p);
+    }
+    for (std::uint32_t p : ps) {
+      for (std::uint32_t t : w.patches.tris[p]) {
+        if (paper_triangle_box_test(w.mesh.corners(t), box)) ts.push_back(t);
+      }
+    }
+    bool any3 = false;
+    for (std::uint32_t t : ts) {
+      const bool pass = paper_projections(cyl, w.mesh.corners(t)).all();
+      in->level3_passed += pass;
+      any3 = any3 || pass;
+      in->exact_hits += cylinder_triangle_intersect(cyl, w.mesh.corners(t));
+    }
+    in->points_reaching_3 += !ts.empty();
+    in->patches.push_back(std::move(ps));
+    in->triangles.push_back(std::move(ts));
+  }
+  return *in;
+}
+
+void BM_ProbePaperLevels(benchmark::State& state) {
+  const int i = static_cast<int>(state.range(0)), level = static_cast<int>(state.range(1));
+  const int near = static_cast<int>(state.range(2));
+  const double ratio = static_cast<double>(state.range(3));
+  const Workpiece& w = get_workpiece(i, Hierarchy::patches, ratio);
+  const LevelInputs& in = level_inputs(i, near, ratio);
+  std::size_t passed = 0, work = 0;
+  for (auto _ : state) {
+    passed = 0, work = 0;
+    for (std::size_t k = 0; k < in.probes.size(); ++k) {
+      if (level == 1) {
+        for (std::uint32_t p = 0; p < w.patches.size(); ++p) {
+          ++work;
+          passed += paper_box_test(in.probe_boxes[k], w.patches.boxes[p]) ||
+                    paper_box_test(w.patches.boxes[p], in.probe_boxes[k]);
+        }
+      } else if (level == 2) {
+        for (std::uint32_t p : in.patches[k]) {
+          for (std::uint32_t t : w.patches.tris[p]) {
+            ++work;
+            passed += paper_triangle_box_test(w.mesh.corners(t), in.probe_boxes[k]);
+          }
+        }
+      } else {
+        for (std::uint32_t t : in.triangles[k]) {
+          ++work;
+          passed += level == 3 ? paper_projections(in.probes[k], w.mesh.corners(t)).all()
+                               : cylinder_triangle_intersect(in.probes[k], w.mesh.corners(t));
+        }
+      }
+    }
+    benchmark::DoNotOptimize(passed);
+  }
+  state.counters["tests"] = static_cast<double>(work);
+  state.counters["passed"] = static_cast<double>(passed);
+  state.counters["points"] = static_cast<double>(in.probes.size());
+  state.counters["points_reaching_3"] = static_cast<double>(in.points_reaching_3);
+  state.counters["patches"] = static_cast<double>(w.patches.size());
+  state.counters["ratio"] = ratio;
+  state.SetLabel(get_case(i).spec.name + "/" + std::to_string(level) + (near ? "/near/" : "/standard/") +
+                 std::to_string(state.range(3)));
+}
+
 std::size_t env_size(const char* name, std::size_t fallback) {
   const char* v = std::getenv(name);
   return v ? static_cast<std::size_t>(std::atof(v)) : fallback;
@@ -201,6 +316,19 @@ void register_all() {
     }
     for (long ratio : {8L, 33L, 100L}) {
       benchmark::RegisterBenchmark("ProbePatches", BM_ProbePatches)->Args({i, ratio})->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(0.2);
+    }
+  }
+  for (int i = 0; i < 3; ++i) {
+    for (long near : {0L, 1L}) {
+      for (long ratio : {8L, 33L, 100L}) {
+        for (long level : {1L, 2L, 3L, 0L}) {
+          benchmark::RegisterBenchmark("ProbePaperLevels", BM_ProbePaperLevels)
+              ->Args({i, level, near, ratio})
+              ->Unit(benchmark::kMillisecond)
+              ->UseRealTime()
+              ->MinTime(0.05);
+        }
+      }
     }
   }
   benchmark::RegisterBenchmark("ProbeScaling", BM_ProbeScaling)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);

@@ -25,6 +25,14 @@ import sys
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 BEGIN = "<!-- BEGIN probe tables (bench/probe_tables.py) -->"
 END = "<!-- END probe tables -->"
+LEVELS_BEGIN = "<!-- BEGIN probe paper levels (bench/probe_tables.py) -->"
+LEVELS_END = "<!-- END probe paper levels -->"
+CASES = ["sheet", "shell", "saddle"]
+HIER = {0: "bvh", 1: "patches", 2: "grid", 3: "distance_field", 4: "brute_force"}
+HNAME = {"grid": "uniform spatial subdivision", "distance_field": "distance field",
+         "patches": "paper's patches (33x) + boxes", "bvh": "BVH (default)", "brute_force": "all triangles + boxes"}
+PAPER_SECONDS = {  # Li, Zhou & Zheng 2008, §4 as quoted by issue #5 (ranges over the three cases)
+    "ours": "0.22-1.12 s", "grid": "3.2-11.3 s", "distance_field": "2.4-8.9 s"}
 CASES = ["sheet", "shell", "saddle"]
 HIER = {0: "bvh", 1: "patches", 2: "grid", 3: "distance_field", 4: "brute_force"}
 HNAME = {"grid": "uniform spatial subdivision", "distance_field": "distance field",
@@ -179,6 +187,50 @@ def tables(rows, repetitions):
     return "\n".join(L)
 
 
+def levels_table(rows, repetitions):
+    """The paper's Table 1 levels timed one at a time (ProbePaperLevels rows; issue #28)."""
+    L = []
+    now = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    L.append("Measured %s on %s, %d logical CPUs, load average %s; median of %d repetitions; one thread; "
+             "wall time. Regenerate with `bench/probe_tables.py` (all tables) or `bench/probe_tables.py "
+             "--levels-only` (this one)." %
+             (now, cpu_model(), os.cpu_count(), " / ".join("%.1f" % x for x in os.getloadavg()), repetitions))
+    L.append("")
+    L.append("The probe alone (radius 5 mm, length 40 mm; the paper has no holder), patches of box volume 8, 33 "
+             "and 100 x the probe volume (Table 1's ratios). Each level runs on what the previous one passed, over all path points: §3.2 the probe's "
+             "box against every patch box (an edge of either box meeting a face of the other), §3.3 the "
+             "passing patches' triangles against the probe box, §3.4 the three projections (axis, edge 0, a "
+             "fixed diameter) of the triangles that passed §3.3; beside it, the exact cylinder-triangle test "
+             "on those same triangles. Paths: *standard* = the tables' paths above (stand-off 10 mm = 2 "
+             "probe radii, few points get past §3.3), *near* = the same raster at 1 mm stand-off with the "
+             "probe tilted 30 degrees about its tip (every point reaches §3.4; most touch the surface). "
+             "Counts: tests run / passed.")
+    L.append("")
+    L.append("| case | path | ratio | patches | points | points reaching §3.4 | §3.2 box ms | tests / passed | §3.3 tri/box ms | "
+             "tests / passed | §3.4 projections ms | tests / passed | exact test ms | same triangles / touching |")
+    L.append("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for i, c in enumerate(CASES):
+        for near, pname in ((0, "standard"), (1, "near")):
+            for ratio in (8, 33, 100):
+                cells = []
+                r1 = find(rows, "ProbePaperLevels/%d/1/%d/%d/" % (i, near, ratio))
+                for level in (1, 2, 3, 0):
+                    r = find(rows, "ProbePaperLevels/%d/%d/%d/%d/" % (i, level, near, ratio))
+                    cells += [fmt_ms(r["ms"]), "%d / %d" % (r["tests"], r["passed"])]
+                L.append("| %s | %s | %d | %d | %d | %d | %s |" % (c, pname, ratio, r1["patches"], r1["points"],
+                                                                  r1["points_reaching_3"], " | ".join(cells)))
+    L.append("")
+    return "\n".join(L)
+
+
+def replace_block(doc, begin, end, block):
+    if begin not in doc or end not in doc:
+        return None
+    head, rest = doc.split(begin, 1)
+    _, tail = rest.split(end, 1)
+    return head + begin + "\n" + block + "\n" + end + tail
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--build", default=os.path.join(ROOT, "build"))
@@ -186,7 +238,26 @@ def main():
     ap.add_argument("--repetitions", type=int, default=3)
     ap.add_argument("--json", default=None, help="keep the raw benchmark JSON here")
     ap.add_argument("--from-json", default=None, help="do not run: use this raw benchmark JSON")
+    ap.add_argument("--levels-only", action="store_true",
+                    help="run only the paper's-levels rows and rewrite only their table (issue #28)")
     a = ap.parse_args()
+    if a.levels_only:
+        exe = os.path.join(a.build, "bench", "interfere_bench_probe")
+        out = a.json or os.path.join(a.build, "bench", "probe_levels_bench.json")
+        cmd = [exe, "--benchmark_filter=ProbePaperLevels", "--benchmark_format=json", "--benchmark_out=" + out,
+               "--benchmark_out_format=json", "--benchmark_repetitions=%d" % a.repetitions]
+        subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
+        with open(out) as f:
+            block = levels_table(collect(json.load(f)), a.repetitions)
+        with open(a.doc) as f:
+            new = replace_block(f.read(), LEVELS_BEGIN, LEVELS_END, block)
+        if new is None:
+            sys.exit("%s: paper levels markers not found" % a.doc)
+        with open(a.doc + ".tmp", "w") as f:
+            f.write(new)
+        os.replace(a.doc + ".tmp", a.doc)
+        print(block)
+        return
     if a.from_json:
         with open(a.from_json) as f:
             data = json.load(f)
@@ -204,6 +275,9 @@ def main():
     head, rest = doc.split(BEGIN, 1)
     _, tail = rest.split(END, 1)
     new = head + BEGIN + "\n" + block + "\n" + END + tail
+    rows = collect(data)
+    if any(k.startswith("ProbePaperLevels/") for k in rows):
+        new = replace_block(new, LEVELS_BEGIN, LEVELS_END, levels_table(rows, a.repetitions)) or new
     tmp = a.doc + ".tmp"
     with open(tmp, "w") as f:
         f.write(new)
