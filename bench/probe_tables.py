@@ -33,12 +33,6 @@ HNAME = {"grid": "uniform spatial subdivision", "distance_field": "distance fiel
          "patches": "paper's patches (33x) + boxes", "bvh": "BVH (default)", "brute_force": "all triangles + boxes"}
 PAPER_SECONDS = {  # Li, Zhou & Zheng 2008, §4 as quoted by issue #5 (ranges over the three cases)
     "ours": "0.22-1.12 s", "grid": "3.2-11.3 s", "distance_field": "2.4-8.9 s"}
-CASES = ["sheet", "shell", "saddle"]
-HIER = {0: "bvh", 1: "patches", 2: "grid", 3: "distance_field", 4: "brute_force"}
-HNAME = {"grid": "uniform spatial subdivision", "distance_field": "distance field",
-         "patches": "paper's patches (33x) + boxes", "bvh": "BVH (default)", "brute_force": "all triangles + boxes"}
-PAPER_SECONDS = {  # Li, Zhou & Zheng 2008, §4 as quoted by issue #5 (ranges over the three cases)
-    "ours": "0.22-1.12 s", "grid": "3.2-11.3 s", "distance_field": "2.4-8.9 s"}
 
 
 def cpu_model():
