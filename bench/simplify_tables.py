@@ -171,6 +171,13 @@ quadric-error-metric edge collapses while the faces that take part in the curren
    AAGs have one to three nodes. Graph matching alone is not recognition (an isolated plane matches the ring
    face's one-node graph, a hole wall the through hole's): `recognize_features` keeps whole-graph matching with
    geometric checks, and holes as above.
+   **Mates from geometry** (issue #29 item 4, first part): `infer_mates(model, library)` (`cad/mates.h`) finds
+   insertions (a boss-sense cylinder of one instance coaxial with a recognised hole of another, of one of its
+   radii, overlapping along the axis: a bolt or rod in a hole, a nut on a bolt; the hole's type gives the
+   constraint: through/stepped → `bolt`, blind → `pin`, counterbored → `screw`, countersunk →
+   `countersunk_screw`) and planar contacts (planes back to back whose faces' boxes overlap). On AS1 (both
+   exports, the same answer): 22 insertions (bolt in bracket, plate and nut 6 each; rod in bracket and nut 2
+   each) and 16 planar contacts. Not yet used to select a step's features without a process file.
 4. **Assembly semantics** (He & Xu §3): rules (`data/features/semantics.json`) map a constraint type to the
    feature types and roles whose faces take part, and the faces the paper's rules add (§3: "If feature Is Type
    (Circular Through Hole), Then feature.Add(TopFace and BottomFace)"; `"add": ["TopFace", "BottomFace"]`):
