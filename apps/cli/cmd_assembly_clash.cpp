@@ -183,6 +183,11 @@ int run_assembly_clash(const AssemblyClashCliOptions& o) {
   write_clash_geometry(o, *model, r);
   for (const std::string& w : r.warnings) warning(w);
   const auto name = [&](std::uint32_t i) { return model->instances[i].name; };
+  // Pairs print by full instance path (issue #29, item 5: six different bolt x bracket pairs all
+  // read "bolt_1 x l-bracket_1"); the name where a model has no paths.
+  const auto path = [&](std::uint32_t i) {
+    return model->instances[i].path.empty() ? model->instances[i].name : model->instances[i].path;
+  };
   nlohmann::json pairs = nlohmann::json::array();
   std::size_t shallow = 0;  // clashes by crossing surfaces no deeper than the tessellation error
   for (const cad::InstancePairResult& p : r.pairs) {
@@ -190,6 +195,7 @@ int run_assembly_clash(const AssemblyClashCliOptions& o) {
     shallow += p.meeting == cad::InstanceMeeting::clash && p.cross_pairs > 0 && !inside && !p.touching_overlap &&
                p.depth <= p.tessellation_error;
     pairs.push_back({{"a", p.a}, {"b", p.b}, {"a_name", name(p.a)}, {"b_name", name(p.b)},
+                     {"a_path", path(p.a)}, {"b_path", path(p.b)},
                      {"meeting", cad::instance_meeting_name(p.meeting)}, {"cross_pairs", p.cross_pairs},
                      {"touch_pairs", p.touch_pairs}, {"touching_overlap", p.touching_overlap},
                      {"containment", containment_name(p.containment)}, {"regions", p.regions},
@@ -213,7 +219,7 @@ int run_assembly_clash(const AssemblyClashCliOptions& o) {
               (p.depth <= p.tessellation_error ? ": a nominal fit?)" : ")");
     if (p.meeting == cad::InstanceMeeting::clearance) what = "closest " + short_number(p.min_clearance) + " mm";
     for (const std::string& why : p.verdict_reasons) what += "; undecided: " + why;
-    std::printf("%-9s %s x %s: %s\n", cad::instance_meeting_name(p.meeting), name(p.a).c_str(), name(p.b).c_str(),
+    std::printf("%-9s %s x %s: %s\n", cad::instance_meeting_name(p.meeting), path(p.a).c_str(), path(p.b).c_str(),
                 what.c_str());
   }
   nlohmann::json instances = nlohmann::json::array();

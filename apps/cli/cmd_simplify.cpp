@@ -168,10 +168,10 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
           if (part_results[i].mesh.num_triangles() == 0) continue;
           index[i] = static_cast<std::uint32_t>(gparts.size());
           gparts.push_back({p.name, part_results[i].mesh, part_results[i].face_ids, p.feature_faces,
-                            part_results[i].error_bound});
+                            part_results[i].error_bound, 40, part_results[i].feature_flags});
         }
-        for (const cad::PreparedInstance& in : cad_prepared->instances)
-          if (index[in.part] != 0xffffffffu) ginst.push_back({in.name, index[in.part], in.placement});
+        for (const cad::PreparedInstance& in : cad_prepared->instances)  // (the product tree: issue #29)
+          if (index[in.part] != 0xffffffffu) ginst.push_back({in.name, index[in.part], in.placement, in.path});
       }
 #endif
       if (gparts.empty()) {

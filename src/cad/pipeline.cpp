@@ -192,7 +192,7 @@ Expected<Prepared> prepare(const CadModel& imported, const PipelineOptions& o, c
   for (std::size_t k = 0; k < model->instances.size(); ++k) {
     const Instance& inst = model->instances[k];
     const std::uint32_t variant = in_step[k] ? with_features[inst.part] : without[inst.part];
-    out.instances.push_back({inst.name, variant, inst.placement, base});
+    out.instances.push_back({inst.name, variant, inst.placement, base, inst.path});
     ++out.parts[variant].instances;
     rep["instances"].push_back({{"name", inst.name}, {"part", inst.part}, {"path", inst.path}, {"face_id_offset", base},
                                 {"placement", inst.placement.to_rows()}, {"in_step", in_step[k] != 0},

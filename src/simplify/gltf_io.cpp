@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <map>
 #include <utility>
 
 #include "interfere/core/atomic_file.h"
@@ -103,25 +104,47 @@ Status write_glb(const std::filesystem::path& path, const std::vector<GltfPart>&
     attributes["POSITION"] = a_pos;
     const std::vector<float> normals = vertex_normals(m);
     attributes["NORMAL"] = accessor(view(normals.data(), normals.size() * 4, kArrayBuffer), kFloat, nv, "VEC3");
-    if (ids) {
+    // Per triangle: an assembly feature (the flags, else the feature faces).
+    const bool flagged = !part.feature_flags.empty();
+    if (flagged && part.feature_flags.size() != part.mesh.num_triangles())
+      return Error{.file = file, .reason = what + ": feature flags do not match the triangles"};
+    std::vector<std::uint8_t> tri_feature(m.num_triangles(), 0);
+    if (flagged) {
+      for (std::size_t t = 0; t < m.num_triangles(); ++t) tri_feature[t] = part.feature_flags[t] != 0;
+    } else if (ids) {
       std::vector<std::uint32_t> feat = part.feature_faces;
       std::sort(feat.begin(), feat.end());
+      for (std::size_t t = 0; t < m.num_triangles(); ++t)
+        tri_feature[t] = std::binary_search(feat.begin(), feat.end(), part.face_ids[t]);
+    }
+    if (ids) {
       std::vector<float> face(nv, 0.0f), feature(nv, 0.0f);
       for (std::size_t t = 0; t < m.num_triangles(); ++t) {
         const std::uint32_t f = part.face_ids[t];
         if (f >= (1u << 24)) return Error{.file = file, .reason = what + ": face id " + std::to_string(f) + " >= 2^24"};
-        const float is_feature = std::binary_search(feat.begin(), feat.end(), f) ? 1.0f : 0.0f;
-        for (std::uint32_t v : m.triangles[t]) face[v] = static_cast<float>(f), feature[v] = is_feature;
+        for (std::uint32_t v : m.triangles[t]) face[v] = static_cast<float>(f);
       }
+      // A vertex is a feature vertex when a feature triangle uses it (faces are split apart, so
+      // on whole feature faces this is the face's flag).
+      for (std::size_t t = 0; t < m.num_triangles(); ++t)
+        if (tri_feature[t])
+          for (std::uint32_t v : m.triangles[t]) feature[v] = 1.0f;
       attributes["_FACE_ID"] = accessor(view(face.data(), face.size() * 4, kArrayBuffer), kFloat, nv, "SCALAR");
       attributes["_FEATURE"] = accessor(view(feature.data(), feature.size() * 4, kArrayBuffer), kFloat, nv, "SCALAR");
     }
-    std::vector<std::uint32_t> idx;
-    idx.reserve(3 * m.num_triangles());
-    for (const Tri& t : m.triangles) idx.insert(idx.end(), t.begin(), t.end());
-    const std::size_t a_idx = accessor(view(idx.data(), idx.size() * 4, kElementArrayBuffer), kUnsignedInt, idx.size(), "SCALAR");
-    nlohmann::json mesh{{"name", part.name},
-                        {"primitives", {{{"attributes", attributes}, {"indices", a_idx}, {"mode", 4}}}}};
+    // Two primitives on the same vertices: the part's triangles (material 0) and its assembly
+    // features (material 1), in triangle order each; an empty one is left out.
+    nlohmann::json primitives = nlohmann::json::array();
+    for (std::uint8_t want : {std::uint8_t{0}, std::uint8_t{1}}) {
+      std::vector<std::uint32_t> idx;
+      idx.reserve(3 * m.num_triangles());
+      for (std::size_t t = 0; t < m.num_triangles(); ++t)
+        if (tri_feature[t] == want) idx.insert(idx.end(), m.triangles[t].begin(), m.triangles[t].end());
+      if (idx.empty()) continue;
+      const std::size_t a_idx = accessor(view(idx.data(), idx.size() * 4, kElementArrayBuffer), kUnsignedInt, idx.size(), "SCALAR");
+      primitives.push_back({{"attributes", attributes}, {"indices", a_idx}, {"mode", 4}, {"material", want}});
+    }
+    nlohmann::json mesh{{"name", part.name}, {"primitives", primitives}};
     if (part.error_bound >= 0) mesh["extras"]["error_bound"] = part.error_bound;
     j["meshes"].push_back(mesh);
     largest_bound = std::max(largest_bound, part.error_bound);
@@ -131,6 +154,7 @@ Status write_glb(const std::filesystem::path& path, const std::vector<GltfPart>&
   nlohmann::json root{{"name", "interfere_root"}, {"children", nlohmann::json::array()}};
   if (scale > 0 && scale != 1) root["scale"] = {scale, scale, scale};
   j["nodes"] = nlohmann::json::array({root});
+  std::map<std::string, std::size_t> groups;  // path prefix -> its group node
   for (std::size_t i = 0; i < instances.size(); ++i) {
     const GltfInstance& in = instances[i];
     if (in.part >= parts.size())
@@ -143,11 +167,42 @@ Status write_glb(const std::filesystem::path& path, const std::vector<GltfPart>&
     mat[15] = 1;
     for (double x : mat)
       if (!std::isfinite(x)) return Error{.file = file, .reason = "glTF: instance " + std::to_string(i) + " placement is not finite"};
-    nlohmann::json node{{"name", in.name}, {"mesh", in.part}};
+    // The product hierarchy: a group node per level of the instance's path (created once per
+    // prefix), the instance's node under the last one, named by the path's last level.
+    std::size_t parent = 0;
+    std::string leaf = in.name;
+    if (!in.path.empty()) {
+      std::vector<std::string> levels;
+      for (std::size_t a = 0; a <= in.path.size();) {
+        const std::size_t b = std::min(in.path.find('/', a), in.path.size());
+        if (b > a) levels.push_back(in.path.substr(a, b - a));
+        a = b + 1;
+      }
+      if (!levels.empty()) leaf = levels.back(), levels.pop_back();
+      std::string prefix;
+      for (const std::string& level : levels) {
+        prefix += "/" + level;
+        auto it = groups.find(prefix);
+        if (it == groups.end()) {
+          it = groups.emplace(prefix, j["nodes"].size()).first;
+          j["nodes"][parent]["children"].push_back(j["nodes"].size());
+          j["nodes"].push_back({{"name", level}, {"children", nlohmann::json::array()}, {"extras", {{"path", prefix}}}});
+        }
+        parent = it->second;
+      }
+    }
+    nlohmann::json node{{"name", leaf}, {"mesh", in.part}};
+    if (!in.path.empty()) node["extras"]["path"] = in.path;
     if (!in.placement.is_identity()) node["matrix"] = mat;
-    j["nodes"][0]["children"].push_back(j["nodes"].size());
+    j["nodes"][parent]["children"].push_back(j["nodes"].size());
     j["nodes"].push_back(node);
   }
+  // Materials: the part (light grey) and its assembly features (orange), PBR metallic-roughness.
+  j["materials"] = nlohmann::json::array(
+      {{{"name", "part"}, {"pbrMetallicRoughness", {{"baseColorFactor", {0.72, 0.74, 0.78, 1.0}}, {"metallicFactor", 0.3}, {"roughnessFactor", 0.6}}}},
+       {{"name", "assembly feature"},
+        {"pbrMetallicRoughness", {{"baseColorFactor", {1.0, 0.45, 0.05, 1.0}}, {"metallicFactor", 0.1}, {"roughnessFactor", 0.5}}},
+        {"emissiveFactor", {0.25, 0.1, 0.0}}}});
   nlohmann::json scene{{"nodes", {0}}, {"extras", nlohmann::json::object()}};
   if (scale > 0) scene["extras"]["units"] = units, scene["extras"]["metres_per_unit"] = scale;
   if (largest_bound >= 0) scene["extras"]["error_bound"] = largest_bound;

@@ -980,6 +980,77 @@ class Features(unittest.TestCase):
         self.assertGreater(a["output_triangles"], a["target_triangles"])
         self.assertIn("corner vertices", err)
 
+    def test_gltf_is_twin_ready_hierarchy_and_feature_material(self):
+        # Issue #29, item 6: the glTF of a STEP assembly keeps its product tree (a group node per path
+        # level, the instance's node under it with extras.path) and shows the step's assembly features
+        # with their own material, on the mesh's second primitive; read back by this file's reader and,
+        # where Node and three.js are found, by three.js's GLTFLoader (an independent reader).
+        write_process("twin.json", [{"id": "P1", "parts": ["plate_2"], "constraint": "screw"}])
+        code, _, err = run("simplify", os.path.join(DATA, "assembly.step"), path("twin.glb"), "--ratio", "0.5",
+                           "--step", "P1", "--process", path("twin.json"), "--json", path("twin_r.json"))
+        self.assertEqual(code, 0, err)
+        r = load_json("twin_r.json")
+        doc, _, _ = read_glb(path("twin.glb"))
+        nodes = doc["nodes"]
+        parent = {c: i for i, n in enumerate(nodes) for c in n.get("children", [])}
+        self.assertEqual([m["name"] for m in doc["materials"]], ["part", "assembly feature"])
+        leaves = {n["extras"]["path"]: i for i, n in enumerate(nodes) if "mesh" in n and "extras" in n}
+        for inst in r["cad"]["instances"]:
+            self.assertIn(inst["path"], leaves)
+            levels = [x for x in inst["path"].split("/") if x]
+            i, chain = leaves[inst["path"]], []
+            while i in parent:
+                chain.append(nodes[i]["name"])
+                i = parent[i]
+            self.assertEqual(chain[::-1], levels)  # root, then one node per level
+        feature_tris = {}
+        for m in doc["meshes"]:
+            for p in m["primitives"]:
+                if p["material"] == 1:
+                    feature_tris[m["name"]] = doc["accessors"][p["indices"]]["count"] // 3
+        expect = {p["name"]: p["feature_triangles"]["output"] for p in r["parts_simplified"] if p["feature_triangles"]["output"]}
+        self.assertEqual(feature_tris, expect)
+        self.assertTrue(expect)
+        modules = [os.environ.get("INTERFERE_NODE_MODULES"),
+                   os.path.join(os.path.dirname(os.path.abspath(cli_common.EXE)), "..", "..", "viewer", "node_modules")]
+        modules = [m for m in modules if m and os.path.isfile(os.path.join(m, "three", "examples", "jsm", "loaders",
+                                                                          "GLTFLoader.js"))]
+        import shutil
+        import subprocess
+        if not modules or not shutil.which("node"):
+            self.skipTest("three.js or Node not found (INTERFERE_NODE_MODULES)")
+        script = os.path.join(ROOT, "tests", "view", "twin_summary.mjs")
+        out = subprocess.run(["node", script, path("twin.glb"), modules[0]], capture_output=True, text=True, timeout=60)
+        self.assertEqual(out.returncode, 0, out.stderr)
+        objects = json.loads(out.stdout)["objects"]
+        by_path = {o["path"]: o for o in objects if o["path"]}
+        for inst in r["cad"]["instances"]:
+            levels = [x for x in inst["path"].split("/") if x]
+            self.assertEqual(by_path[inst["path"]]["name"], levels[-1])
+            self.assertEqual(by_path[inst["path"]]["parent"], levels[-2] if len(levels) > 1 else "interfere_root")
+        shown = {}
+        for o in objects:
+            if o["mesh"] and o["material"] == "assembly feature":
+                shown[o["triangles"]] = shown.get(o["triangles"], 0) + 1
+        self.assertEqual(sorted(shown), sorted(set(expect.values())))
+
+    def test_assembly_clash_pairs_print_by_full_instance_path(self):
+        # Issue #29, item 5: pairs print by full instance path (on AS1 six different bolt x bracket
+        # pairs all read "bolt_1 x l-bracket_1"), the JSON gives a_path/b_path; distinct pairs never
+        # print alike.
+        code, out, err = run("assembly-clash", os.path.join(DATA, "assembly.step"), "--clearance", "100",
+                             "--json", path("names.json"))
+        self.assertIn(code, (0, 1), err)
+        r = load_json("names.json")
+        paths = [i["path"] for i in r["instances"]]
+        self.assertEqual(len(set(paths)), len(paths))
+        lines = [l for l in out.splitlines() if " x " in l]
+        self.assertEqual(len(lines), len(r["pairs"]))
+        self.assertEqual(len(set(l.split(":")[0] for l in lines)), len(lines))
+        for p, line in zip(r["pairs"], lines):
+            self.assertEqual((p["a_path"], p["b_path"]), (paths[p["a"]], paths[p["b"]]))
+            self.assertIn("%s x %s:" % (p["a_path"], p["b_path"]), line)
+
     def test_assembly_budget_is_met_exactly_when_the_parts_allow(self):
         # Every part of the test assembly is closed (an even triangle count): an even total is met
         # exactly, whatever the shares' rounding and odd per-part budgets; an odd one ends one below.
@@ -1186,13 +1257,20 @@ class Features(unittest.TestCase):
         self.assertEqual(sorted(m["name"] for m in doc["meshes"]), sorted(parts))
         root = doc["nodes"][0]
         self.assertEqual(root["scale"], [0.001, 0.001, 0.001])  # mm -> metres
-        self.assertEqual(len(root["children"]), 3)  # plate twice, shaft once
+        # The product tree (issue #29): the root holds the assembly's group node, whose children are
+        # the three instances (plate twice, shaft once).
+        self.assertEqual([doc["nodes"][c]["name"] for c in root["children"]], ["assembly"])
+        leaves = [n for n in doc["nodes"] if "mesh" in n]
+        self.assertEqual(len(leaves), 3)
+        self.assertEqual(sorted(doc["nodes"][root["children"][0]]["children"]),
+                         sorted(i for i, n in enumerate(doc["nodes"]) if "mesh" in n))
         triangles = 0
-        for child in root["children"]:
-            node = doc["nodes"][child]
+        for node in leaves:
             mesh = doc["meshes"][node["mesh"]]
-            prim = mesh["primitives"][0]
-            idx = read(prim["indices"])
+            prim = mesh["primitives"][0]  # (the part's triangles; its assembly features: a second one)
+            for p in mesh["primitives"][1:]:
+                self.assertEqual(p["attributes"], prim["attributes"])  # the same vertices
+            idx = [i for p in mesh["primitives"] for i in read(p["indices"])]
             pos = read(prim["attributes"]["POSITION"])
             face = read(prim["attributes"]["_FACE_ID"])
             feature = read(prim["attributes"]["_FEATURE"])

@@ -41,6 +41,7 @@ struct PreparedInstance {
   std::uint32_t part = 0;  ///< index into Prepared::parts
   Transform placement;
   std::uint32_t face_offset = 0;  ///< added to the part's face ids in the world mesh
+  std::string path;               ///< product-tree path (Instance::path)
 };
 
 struct Prepared {

@@ -6,6 +6,12 @@
 // vertices are split along face boundaries first, so every vertex has one face. The scene's
 // `extras` hold `units` and the largest `error_bound`, each mesh's `extras` its own bound and face
 // count. Written atomically (core/atomic_file.h).
+// Twin-ready (issue #29, item 6): each mesh has up to two primitives sharing its vertices, the part's
+// triangles with material "part" and the assembly-feature triangles with material "assembly
+// feature" (orange, so a plain viewer shows what was kept); instances with a product path
+// ("/as1/l-bracket-assembly_1/nut-bolt-assembly_2/bolt_1") are placed under group nodes, one per
+// path level (named by it, no transform: the instance's placement stays on its leaf), so the
+// product hierarchy is the node tree, and each leaf's `extras.path` is its full path.
 #pragma once
 #include <cstdint>
 #include <filesystem>
@@ -27,12 +33,17 @@ struct GltfPart {
   /// Without face ids: NORMAL is smooth within the regions between edges sharper than this
   /// (degrees; sharp_edge_regions); with them, within each face.
   double crease_deg = 40;
+  /// Per triangle: 1 for an assembly-feature triangle (SimplifyResult::feature_flags: faces and
+  /// clamped annuli); empty: the triangles of `feature_faces`.
+  std::vector<std::uint8_t> feature_flags;
 };
 
 struct GltfInstance {
   std::string name;
   std::uint32_t part = 0;  ///< index into the parts
   Transform placement;     ///< part coordinates -> world
+  /// Product path, "/"-separated (empty: the node is a child of the root, named `name`).
+  std::string path;
 };
 
 /// The container write_glb writes: binary GLB, or JSON .gltf with its buffer embedded as a base64
