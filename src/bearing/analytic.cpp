@@ -5,6 +5,8 @@
 // is what is nearest; a nested golden-section fallback for the general convex problem.
 #include "interfere/bearing/analytic.h"
 #include "golden.h"
+#include "interfere/bearing/raceway.h"
+#include "raceway_detail.h"
 
 #include <algorithm>
 #include <cmath>
@@ -291,59 +293,73 @@ bool core_inside(const Cylinder& a, const Cylinder& b, PairDistance& out) {
 }
 }  // namespace
 
-namespace {
-/// The `slice` path (analytic.h): A and B untapered, axes within 60 degrees. sd_B(p) = phi(rho_B(p),
-/// z_B(p)) with phi(rho, z) the meridian-plane signed distance to B's rectangle, nondecreasing in
-/// rho; so min over A's cross-section by the plane across B's axis at height z of sd_B is
-/// G(z) = phi(F(z), z), F(z) the distance from B's axis point at z to that section, and
-/// s(A, B) = min over z of G(z). G is convex (partial minimisation of the convex sd_B over the
-/// convex A), so one golden-section search over the heights of the planes that meet A is exact.
-/// The section: A's infinite cylinder cut by the plane is an ellipse centred on A's axis
-/// (semi-axes r/|cos| along A's projected axis m, r across it), and A's end planes t_A = 0, h_A cut
-/// it along lines x = const (t_A is affine in x alone); the distance to ellipse /\ strip is the
-/// ellipse's (Eberly) when its nearest point lies in the strip, else the nearer of the two chords'
-/// (the nearest point of a convex set clipped by a strip lies on the strip's boundary when the
-/// unclipped one is outside it).
+namespace detail {
+/// The `slice` path (analytic.h; also cone_pair_distance): A and B cylinders or cone frustums, axes
+/// within 60 degrees. sd_B(p) = phi(rho_B(p), z_B(p)), phi the meridian-plane signed distance to B's
+/// rectangle or trapezoid, nondecreasing in rho (B's section is closed under moving toward the axis,
+/// its complement under moving away); so min over A's cross-section by the plane across B's axis at
+/// height z of sd_B is G(z) = phi(F(z), z), F(z) the distance from B's axis point at z to that
+/// section, and s(A, B) = min over z of G(z). G is convex (partial minimisation of the convex sd_B
+/// over the convex A), so one golden-section search over the heights of the planes that meet A is
+/// exact. The section, in the plane's coordinates x along A's projected axis m and y across it
+/// (n = b x m, perpendicular to A's axis), origin at A's axis point (axis parameter tO): a point is
+/// in A's (double) cone when x^2 (1 - ma^2) + y^2 <= (r(tO) + k ma x)^2 (ma = |m . a|, k = dr/dt),
+/// i.e. c (x - xc)^2 + y^2 <= Q with c = 1 - ma^2 (1 + k^2) > 0 (required: 1/4 or more), xc =
+/// r(tO) k ma / c, Q = r(tO)^2 + c xc^2: an ellipse; A's end planes t = 0, h_A are lines x = const
+/// (t = tO + ma x). Distance to ellipse /\ strip: the ellipse's (Eberly) when its nearest point lies
+/// in the strip, else the nearer of the two chords' (the nearest point of a convex set clipped by a
+/// strip lies on the strip's boundary when the unclipped one is outside it).
 bool slice_distance(const Cylinder& a, const Cylinder& b, PairDistance& out) {
   const double ab = dot(a.axis, b.axis);
   if (!(std::fabs(ab) >= 0.5)) return false;
   Vec3 m = a.axis - b.axis * ab;
-  const double ma = norm(m);  // = m.a after normalising: t_A grows by ma per unit x
+  const double ma = norm(m);  // = m . a after normalising: t_A grows by ma per unit x
   m = ma > 1e-300 ? m / ma : any_perpendicular(b.axis);
   const Vec3 n = cross(b.axis, m);
-  const double r = a.radius, e0 = r / std::fabs(ab), e1 = r, ha = a.height, hh = 0.5 * b.height, R = b.radius;
+  const double ha = a.height, r0 = a.radius, r1 = a.top(), k = (r1 - r0) / ha;
+  const double c = 1 - ma * ma * (1 + k * k);
+  if (!(c >= 0.25)) return false;
   const double w0 = dot(a.base - b.base, b.axis);  // B-height of A's base centre
   const double za = w0, zb = w0 + ab * ha;         // B-heights of A's axis ends
-  const double lo = std::min(za, zb) - r * ma, hi = std::max(za, zb) + r * ma;  // planes meeting A
+  const double lo = std::min(za - r0 * ma, zb - r1 * ma), hi = std::max(za + r0 * ma, zb + r1 * ma);
+  const Vec3 eb = any_perpendicular(b.axis);
+  const auto phi = [&](double rho, double z) {
+    return b.tapered() ? point_frustum_signed_distance(b, b.base + b.axis * z + eb * rho)
+                       : signed_distance_rz(rho, z - 0.5 * b.height, b.radius, 0.5 * b.height);
+  };
   const auto nearest = [&](double z) {
-    const double tc = (z - w0) / ab;
-    const Vec3 c = a.base + a.axis * tc;  // A's axis in the plane
-    const Vec3 q = b.base + b.axis * z - c;
+    const double to = (z - w0) / ab, ro = r0 + k * to;
+    const double xc = ro * k * ma / c, q2 = ro * ro + c * xc * xc;
+    const double ey = std::sqrt(q2), ex = std::sqrt(q2 / c);
+    const Vec3 o = a.base + a.axis * to;  // A's axis in the plane
+    const Vec3 q = b.base + b.axis * z - o;
     const double qx = dot(q, m), qy = dot(q, n);
-    const EllipsePoint ep = point_ellipse_distance(e0, e1, qx, qy);
-    const double tx = tc + ep.x0 * ma;
-    if (tx >= 0 && tx <= ha) return std::pair<Vec3, double>{c + m * ep.x0 + n * ep.x1, ep.distance};
-    std::pair<Vec3, double> best{c, std::numeric_limits<double>::infinity()};
+    const EllipsePoint ep = point_ellipse_distance(ex, ey, qx - xc, qy);
+    const double tx = to + (xc + ep.x0) * ma;
+    if (tx >= 0 && tx <= ha) return std::pair<Vec3, double>{o + m * (xc + ep.x0) + n * ep.x1, ep.distance};
+    std::pair<Vec3, double> best{o, std::numeric_limits<double>::infinity()};
     if (ma > 0)
       for (const double t : {0.0, ha}) {
-        const double x0 = (t - tc) / ma;
-        if (!(std::fabs(x0) <= e0)) continue;
-        const double ym = e1 * std::sqrt(std::max(0.0, 1 - (x0 / e0) * (x0 / e0)));
-        const double y = std::clamp(qy, -ym, ym), d = std::hypot(qx - x0, qy - y);
-        if (d < best.second) best = {c + m * x0 + n * y, d};
+        const double x0 = (t - to) / ma, y2 = q2 - c * (x0 - xc) * (x0 - xc);
+        if (!(y2 >= 0)) continue;
+        const double ym = std::sqrt(y2), y = std::clamp(qy, -ym, ym), d = std::hypot(qx - x0, qy - y);
+        if (d < best.second) best = {o + m * x0 + n * y, d};
       }
     return best;
   };
-  const auto value = [&](double z) { return signed_distance_rz(nearest(z).second, z - hh, R, hh); };
+  const auto value = [&](double z) {  // +inf where rounding leaves an end plane's section empty
+    const double f = nearest(z).second;
+    return std::isfinite(f) ? phi(f, z) : std::numeric_limits<double>::infinity();
+  };
   const auto [z, v] = golden_min(value, lo, hi, 110);
   if (!std::isfinite(v)) return false;
   out.distance = v;
   out.point_a = nearest(z).first;
-  out.point_b = nearest_on_cylinder_boundary(b, out.point_a);
+  out.point_b = b.tapered() ? nearest_on_frustum_boundary(b, out.point_a) : nearest_on_cylinder_boundary(b, out.point_a);
   out.path = AnalyticPath::slice;
   return true;
 }
-}  // namespace
+}  // namespace detail
 
 PairDistance cylinder_pair_distance(const Cylinder& a, const Cylinder& b) {
   const Vec3 bc = b.center();
@@ -356,7 +372,7 @@ PairDistance cylinder_pair_distance(const Cylinder& a, const Cylinder& b) {
   if (!certified) {
     PairDistance core;
     if (!a.tapered() && core_inside(a, b, core)) return core;
-    if (!a.tapered() && slice_distance(a, b, core)) return core;
+    if (detail::slice_distance(a, b, core)) return core;
     return cylinder_pair_distance_general(a, b);
   }
   PairDistance out;

@@ -92,6 +92,8 @@ PairDistance cone_pair_distance(const Cylinder& a, const Cylinder& b) {
     out.path = AnalyticPath::cone;
     return out;
   }
+  // B's cross-sections (the slice path, analytic.h): exact for axes within 60 degrees, ~0.1 ms
+  if (PairDistance sl; detail::slice_distance(a, b, sl)) return sl;
   // The end faces too: F = max(g, -z, z - h) <= sd_B everywhere (each is a supporting signed
   // distance; inside B, F = sd_B), so s >= min over A of F = max over lambda in the simplex of
   // min over A of sum lambda_i f_i (minimax), each term a support function of A. One end face at a

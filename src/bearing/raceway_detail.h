@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "golden.h"
+#include "interfere/bearing/analytic.h"
 #include "interfere/bearing/cylinder.h"
 
 namespace interfere::bearing::detail {
@@ -84,6 +85,11 @@ AxialExtent axial_extent(const Cylinder& roller, const Vec3& base, const Vec3& u
 /// form) split the circle into intervals on which every curve is either wholly inside the slab or
 /// wholly outside it; on each, f is sampled and every sampled local maximum refined by golden-
 /// section search, the intervals' ends (the curves' meeting points) included.
+/// The `slice` path of the standard solver and of cone_pair_distance (analytic.cpp, analytic.h):
+/// s(A, B) for frustums A and B whose axes are within 60 degrees (and A's cone not too open for its
+/// tilt); false when it does not apply.
+bool slice_distance(const Cylinder& a, const Cylinder& b, PairDistance& out);
+
 struct SlabMax {
   double value = 0;
   Vec3 point;

@@ -24,12 +24,13 @@
 // the axis segment |z| <= h/2 - R or the mid-plane disk rho <= R - h/2 — s is exactly -min(R, h/2)
 // (the `core` path: a 1-D or 2-D convex search of sd_A over the core finds such a point); else a
 // general exact-to-rounding fallback minimises the convex sd_B over the convex A by nested
-// golden-section searches (partial minimisation keeps convexity). Before that fallback, for an
-// untapered A whose axis is within 60 degrees of B's, the `slice` path: sd_B(p) = phi(rho_B, z_B)
-// with phi nondecreasing in rho, so s = min over z of phi(F(z), z), F(z) the distance from B's axis
-// point at height z to A's cross-section by the plane across B's axis there (an ellipse clipped by
-// A's end planes: point-to-ellipse distance or a chord's, closed form); the function is convex
-// (partial minimisation), so one golden-section search over z is exact (clear or overlapping).
+// golden-section searches (partial minimisation keeps convexity). Before that fallback, for axes
+// within 60 degrees (A possibly tapered), the `slice` path: sd_B(p) = phi(rho_B, z_B) with phi
+// nondecreasing in rho, so s = min over z of phi(F(z), z), F(z) the distance from B's axis point at
+// height z to A's cross-section by the plane across B's axis there (an ellipse clipped by A's end
+// planes: point-to-ellipse distance or a chord's, closed form); the function is convex (partial
+// minimisation), so one golden-section search over z is exact (clear or overlapping). The same
+// path serves cone_pair_distance (raceway.h) for a tapered B.
 #pragma once
 #include <cstdint>
 

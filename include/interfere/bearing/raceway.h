@@ -98,7 +98,9 @@ PairDistance roller_rib_distance(const Cylinder& roller, const Rib& rib);
 /// of B's cone along p's meridian (sd_B >= g everywhere) is minimised over A through its dual (a
 /// 1-D search of a support function) and the bracket V_g <= s <= sd_B(p*) certifies the value when
 /// it closes (path `cone`, ~6 us; side and end-circle contact, line contact of tapered rollers);
-/// else the same with one of B's end faces in the bound (path `cone`, ~0.5 ms: A against B's end
+/// else, for axes within 60 degrees, B's cross-sections (path `slice`, analytic.h, ~0.1 ms: rollers
+/// side by side, the reverse s(cone ring, roller)); else the same with one of B's end faces in the
+/// bound (path `cone`, ~0.5 ms: A against B's end
 /// face or edge, e.g. the reverse s(cone ring, roller) of a two-sided value, also for an untapered
 /// roller B when A is tapered); otherwise the standard solver (untapered B) or a nested golden-section
 /// minimisation of the convex sd_B over A (path `general`, ~5 ms; clear pairs whose nearest points
