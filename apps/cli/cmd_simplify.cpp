@@ -147,6 +147,46 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
     so.progress = nullptr;
     so.stage = nullptr;
   }
+  // --lod: coarser levels of detail for the glTF (issue #29, item 6), each the same simplification to
+  // a fraction of the budget, written as MSFT_lod levels of every instance.
+  std::vector<double> lod_ratios;
+  for (std::size_t a = 0; a < o.lod.size();) {
+    const std::size_t b = std::min(o.lod.find(',', a), o.lod.size());
+    const std::string tok = o.lod.substr(a, b - a);
+    char* end = nullptr;
+    const double x = std::strtod(tok.c_str(), &end);
+    if (tok.empty() || end != tok.c_str() + tok.size() || !(x > 0 && x < 1) ||
+        (!lod_ratios.empty() && !(x < lod_ratios.back())))
+      throw InputError("--lod: '" + tok + "': give decreasing fractions of the budget in (0, 1), e.g. 0.5,0.1");
+    lod_ratios.push_back(x);
+    a = b + 1;
+  }
+  if (!lod_ratios.empty() && !glb) throw InputError("--lod writes MSFT_lod levels of a glTF output: OUT is not .glb/.gltf");
+  std::vector<std::vector<SimplifyResult>> lod_parts;  // per level: per part (STEP) or the one mesh
+  nlohmann::json lod_report = nlohmann::json::array();
+  for (double x : lod_ratios) {
+    Progress progress("simplifying level of detail " + short_number(x));
+    SimplifyOptions lo = so;
+    lo.target_triangles = std::max<std::size_t>(1, static_cast<std::size_t>(std::llround(x * double(r.target_triangles))));
+    lo.ratio = 0;
+    lo.measure_error = so.measure_error;
+#ifdef INTERFERE_HAS_CAD
+    if (cad_prepared) {
+      auto a = cad::simplify_assembly(*cad_prepared, lo);
+      if (!a) throw InputError(a.error());
+      lod_report.push_back({{"fraction", x}, {"target_triangles", lo.target_triangles},
+                            {"output_triangles", a->merged.mesh.num_triangles()}, {"error_bound", a->merged.error_bound}});
+      lod_parts.push_back(std::move(a->parts));
+      continue;
+    }
+#endif
+    auto one = simplify(mesh, lo);
+    if (!one) throw InputError(one.error());
+    lod_report.push_back({{"fraction", x}, {"target_triangles", lo.target_triangles},
+                          {"output_triangles", one->mesh.num_triangles()}, {"error_bound", one->error_bound}});
+    lod_parts.push_back({std::move(*one)});
+  }
+  if (!lod_ratios.empty()) report["lods"] = lod_report;
   std::size_t self = 0;
   if (o.check_self) {
     Progress progress("self-intersection check");
@@ -169,6 +209,12 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
           index[i] = static_cast<std::uint32_t>(gparts.size());
           gparts.push_back({p.name, part_results[i].mesh, part_results[i].face_ids, p.feature_faces,
                             part_results[i].error_bound, 40, part_results[i].feature_flags});
+          for (std::size_t k = 0; k < lod_parts.size(); ++k) {
+            const SimplifyResult& l = lod_parts[k][i];
+            if (l.mesh.num_triangles() == 0) break;
+            gparts.back().lods.push_back({p.name + " LOD" + std::to_string(k + 1), l.mesh, l.face_ids, p.feature_faces,
+                                          l.error_bound, 40, l.feature_flags});
+          }
         }
         for (const cad::PreparedInstance& in : cad_prepared->instances)  // (the product tree: issue #29)
           if (index[in.part] != 0xffffffffu) ginst.push_back({in.name, index[in.part], in.placement, in.path});
@@ -177,6 +223,10 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
       if (gparts.empty()) {
         gparts.push_back({std::filesystem::path(o.input).stem().string(), r.mesh, r.face_ids, so.feature_faces,
                           r.error_bound, o.crease_angle});
+        for (std::size_t k = 0; k < lod_parts.size(); ++k)
+          gparts.back().lods.push_back({gparts[0].name + " LOD" + std::to_string(k + 1), lod_parts[k][0].mesh,
+                                        lod_parts[k][0].face_ids, so.feature_faces, lod_parts[k][0].error_bound,
+                                        o.crease_angle});
         ginst.push_back({gparts[0].name, 0, Transform{}});
       }
       s = write_glb(o.output, gparts, ginst, per_part ? "mm" : input_unit.unit, output.container);
@@ -353,6 +403,9 @@ void add_simplify_command(CLI::App& app, int& exit_code) {
               "penetrating bodies) move (default: those are inherited within their zone)")
       ->excludes(no_guard);
   auto* no_error = c->add_flag("--no-error", o->no_error, "skip the Hausdorff measurement (error_bound is then -1)");
+  c->add_option("--lod", o->lod,
+                "glTF output: coarser levels of detail as decreasing fractions of the budget (e.g. 0.5,0.1), each "
+                "simplified the same way and written as MSFT_lod levels of every instance");
   auto* max_error = c->add_option("--max-error", o->max_error,
                                   "largest error bound allowed (model units): where the budget would exceed it, the "
                                   "fewest triangles found within it instead (a search over the budget, each step a "

@@ -26,6 +26,7 @@ struct SimplifyCliOptions {
   std::string parts_dir;  ///< STEP input: each simplified part (prototype) also written here
   std::string units;      ///< --units: a mesh input's unit (default: m for glTF, mm otherwise; STEP: its own)
   std::string library, rules;  ///< --library, --rules: JSON files instead of the installed ones
+  std::string lod;        ///< --lod R1,R2,...: glTF output, coarser levels (fractions of the budget) as MSFT_lod
   std::size_t target = 0;
   double ratio = 0;
   double sharp_angle = 0;

@@ -76,8 +76,15 @@ Status write_glb(const std::filesystem::path& path, const std::vector<GltfPart>&
     return j["accessors"].size() - 1;
   };
   double largest_bound = -1;
-  for (std::size_t pi = 0; pi < parts.size(); ++pi) {
-    const GltfPart& part = parts[pi];
+  // Every part's mesh, then the coarser levels' meshes (lod_mesh[pi][k]: the mesh of level k + 1).
+  std::vector<const GltfPart*> written;
+  std::vector<std::vector<std::size_t>> lod_mesh(parts.size());
+  for (std::size_t pi = 0; pi < parts.size(); ++pi) written.push_back(&parts[pi]);
+  for (std::size_t pi = 0; pi < parts.size(); ++pi)
+    for (const GltfPart& l : parts[pi].lods) lod_mesh[pi].push_back(written.size()), written.push_back(&l);
+  for (std::size_t wi = 0; wi < written.size(); ++wi) {
+    const GltfPart& part = *written[wi];
+    const std::size_t pi = wi;
     const std::string what = "glTF: part " + std::to_string(pi) + " ('" + part.name + "')";
     if (part.mesh.num_triangles() == 0) return Error{.file = file, .reason = what + " has no triangles"};
     const bool ids = !part.face_ids.empty();
@@ -147,7 +154,7 @@ Status write_glb(const std::filesystem::path& path, const std::vector<GltfPart>&
     nlohmann::json mesh{{"name", part.name}, {"primitives", primitives}};
     if (part.error_bound >= 0) mesh["extras"]["error_bound"] = part.error_bound;
     j["meshes"].push_back(mesh);
-    largest_bound = std::max(largest_bound, part.error_bound);
+    if (wi < parts.size()) largest_bound = std::max(largest_bound, part.error_bound);  // (the finest level's)
   }
   // Nodes: a root scaling model units to metres, one child per instance.
   const double scale = metres_per(units);
@@ -155,6 +162,7 @@ Status write_glb(const std::filesystem::path& path, const std::vector<GltfPart>&
   if (scale > 0 && scale != 1) root["scale"] = {scale, scale, scale};
   j["nodes"] = nlohmann::json::array({root});
   std::map<std::string, std::size_t> groups;  // path prefix -> its group node
+  bool lods_used = false;
   for (std::size_t i = 0; i < instances.size(); ++i) {
     const GltfInstance& in = instances[i];
     if (in.part >= parts.size())
@@ -194,8 +202,23 @@ Status write_glb(const std::filesystem::path& path, const std::vector<GltfPart>&
     nlohmann::json node{{"name", leaf}, {"mesh", in.part}};
     if (!in.path.empty()) node["extras"]["path"] = in.path;
     if (!in.placement.is_identity()) node["matrix"] = mat;
-    j["nodes"][parent]["children"].push_back(j["nodes"].size());
+    const std::size_t at = j["nodes"].size();
+    j["nodes"][parent]["children"].push_back(at);
     j["nodes"].push_back(node);
+    // MSFT_lod: one node per coarser level, outside the tree, listed finest first.
+    if (!lod_mesh[in.part].empty()) {
+      nlohmann::json ids = nlohmann::json::array(), coverage = nlohmann::json::array({0.5});
+      for (std::size_t k = 0; k < lod_mesh[in.part].size(); ++k) {
+        nlohmann::json lod{{"name", leaf + " LOD" + std::to_string(k + 1)}, {"mesh", lod_mesh[in.part][k]}};
+        if (!in.placement.is_identity()) lod["matrix"] = mat;
+        ids.push_back(j["nodes"].size());
+        j["nodes"].push_back(lod);
+        coverage.push_back(k + 1 == lod_mesh[in.part].size() ? 0.0 : 0.5 / double(2u << k));
+      }
+      j["nodes"][at]["extensions"]["MSFT_lod"] = {{"ids", ids}};
+      j["nodes"][at]["extras"]["MSFT_screencoverage"] = coverage;
+      lods_used = true;
+    }
   }
   // Materials: the part (light grey) and its assembly features (orange), PBR metallic-roughness.
   j["materials"] = nlohmann::json::array(
@@ -207,6 +230,7 @@ Status write_glb(const std::filesystem::path& path, const std::vector<GltfPart>&
   if (scale > 0) scene["extras"]["units"] = units, scene["extras"]["metres_per_unit"] = scale;
   if (largest_bound >= 0) scene["extras"]["error_bound"] = largest_bound;
   j["scenes"] = nlohmann::json::array({scene});
+  if (lods_used) j["extensionsUsed"] = {"MSFT_lod"};
   j["scene"] = 0;
   j["buffers"] = nlohmann::json::array({{{"byteLength", bin.size()}}});
   std::string ext = path.extension().string();

@@ -1034,6 +1034,44 @@ class Features(unittest.TestCase):
                 shown[o["triangles"]] = shown.get(o["triangles"], 0) + 1
         self.assertEqual(sorted(shown), sorted(set(expect.values())))
 
+    def test_gltf_lod_chain_in_one_run(self):
+        # Issue #29, item 6: --lod writes coarser levels (fractions of the budget) as MSFT_lod: every
+        # instance node lists one node per level (outside the scene tree, same placement, a mesh of its
+        # part's level) and its screen coverages; the report's lods give each level's triangles.
+        code, _, err = run("simplify", os.path.join(DATA, "assembly.step"), path("lod.glb"), "--ratio", "0.5",
+                           "--lod", "0.5,0.25", "--json", path("lod.json"))
+        self.assertEqual(code, 0, err)
+        r = load_json("lod.json")
+        self.assertEqual([l["fraction"] for l in r["lods"]], [0.5, 0.25])
+        self.assertEqual([l["target_triangles"] for l in r["lods"]], [200, 100])
+        self.assertTrue(all(l["output_triangles"] <= r["output_triangles"] for l in r["lods"]))
+        doc, _, _ = read_glb(path("lod.glb"))
+        self.assertEqual(doc["extensionsUsed"], ["MSFT_lod"])
+        nodes = doc["nodes"]
+        in_tree = {c for n in nodes for c in n.get("children", [])}
+        leaves = [n for n in nodes if "mesh" in n and "extensions" in n]
+        self.assertEqual(len(leaves), len(r["cad"]["instances"]))
+        level_tris = [0, 0]
+        for n in leaves:
+            ids = n["extensions"]["MSFT_lod"]["ids"]
+            self.assertEqual(len(ids), 2)
+            self.assertEqual(len(n["extras"]["MSFT_screencoverage"]), 3)
+            for k, i in enumerate(ids):
+                self.assertNotIn(i, in_tree)
+                self.assertEqual(nodes[i].get("matrix"), n.get("matrix"))
+                mesh = doc["meshes"][nodes[i]["mesh"]]
+                self.assertEqual(mesh["name"], doc["meshes"][n["mesh"]]["name"] + " LOD%d" % (k + 1))
+                level_tris[k] += sum(doc["accessors"][p["indices"]]["count"] // 3 for p in mesh["primitives"])
+        self.assertEqual(level_tris, [l["output_triangles"] for l in r["lods"]])
+        code, _, err = run("simplify", os.path.join(DATA, "assembly.step"), path("lod.ply"), "--ratio", "0.5",
+                           "--lod", "0.5")
+        self.assertEqual(code, 2)
+        self.assertIn("--lod", err)
+        code, _, err = run("simplify", os.path.join(DATA, "assembly.step"), path("lod2.glb"), "--ratio", "0.5",
+                           "--lod", "0.2,0.5")
+        self.assertEqual(code, 2)
+        self.assertIn("decreasing", err)
+
     def test_assembly_clash_pairs_print_by_full_instance_path(self):
         # Issue #29, item 5: pairs print by full instance path (on AS1 six different bolt x bracket
         # pairs all read "bolt_1 x l-bracket_1"), the JSON gives a_path/b_path; distinct pairs never

@@ -36,6 +36,11 @@ struct GltfPart {
   /// Per triangle: 1 for an assembly-feature triangle (SimplifyResult::feature_flags: faces and
   /// clamped annuli); empty: the triangles of `feature_faces`.
   std::vector<std::uint8_t> feature_flags;
+  /// Coarser levels of detail of the same part (issue #29, item 6), finest first: each is written as
+  /// its own mesh ("<name> LOD<k>") and every instance node gets the MSFT_lod extension pointing to
+  /// nodes of those meshes (same name + " LOD<k>", same placement, outside the scene tree), with
+  /// `extras.MSFT_screencoverage` (1/2^k thresholds). Their own `lods` are ignored.
+  std::vector<GltfPart> lods;
 };
 
 struct GltfInstance {
