@@ -177,6 +177,15 @@ int run(const World& w, int argc, char** argv) {
       scene::SceneClashResult probe;  // (checked by every rank now, so that rank 0 cannot fail alone later)
       if (const Status st = scene::apply_baseline(probe, baseline_text, o.baseline); !st) throw UsageError(st.error().message());
     }
+    // Outputs: their folders must exist (checked by every rank before any work; rank 0 writes them).
+    for (const auto& [flag, out] : {std::pair<const char*, const std::string*>{"--json", &o.json}, {"--csv", &o.csv},
+                                    {"--frames-csv", &o.frames_csv}, {"--frame-pairs-csv", &o.frame_pairs_csv}}) {
+      if (out->empty() || *out == "-") continue;
+      const std::filesystem::path dir = std::filesystem::absolute(*out).parent_path();
+      if (!std::filesystem::is_directory(dir)) throw UsageError(std::string(flag) + " " + *out + ": no folder " + dir.string());
+      if (std::filesystem::absolute(*out) == std::filesystem::absolute(o.scene))
+        throw UsageError(std::string(flag) + " " + *out + ": is the scene file");
+    }
     token = "S" + std::to_string(sum);
   } catch (const UsageError& e) {
     token = std::string("E") + e.what();
