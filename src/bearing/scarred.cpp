@@ -87,6 +87,46 @@ TriangleMin local_triangle_min(const LocalFrame& f, const Vec3& a, const Vec3& b
       return out;
     }
   }
+  // slices (analytic.h's slice path): sd_B = phi(rho, z) with phi nondecreasing in rho, so the
+  // minimum over the triangle is min over z of phi(F(z), z), F(z) the distance from B's axis to the
+  // triangle's section by the plane at height z (a segment: its edges' crossings); convex in z
+  // (partial minimisation of the convex sd_B over the triangle): one golden-section search.
+  const double zl = std::min({a.z, b.z, c.z}), zh = std::max({a.z, b.z, c.z});
+  const double span = std::max({std::fabs(a.x), std::fabs(a.y), std::fabs(a.z), std::fabs(b.x), std::fabs(b.y),
+                                std::fabs(b.z), std::fabs(c.x), std::fabs(c.y), std::fabs(c.z)});
+  if (zh - zl > 1e-6 * span) {
+    const auto section = [&](double z, Vec3* at) {
+      Vec3 pts[3];
+      int np = 0;
+      for (int k = 0; k < 3; ++k) {
+        const Vec3& e0 = v[static_cast<std::size_t>(k)];
+        const Vec3& e1 = v[static_cast<std::size_t>((k + 1) % 3)];
+        if (e0.z == z) pts[np++] = e0;
+        else if ((e0.z < z && e1.z > z) || (e0.z > z && e1.z < z))
+          pts[np++] = e0 + (e1 - e0) * ((z - e0.z) / (e1.z - e0.z));
+      }
+      if (np == 0) return kInf;
+      Vec3 p0 = pts[0], p1 = pts[0];  // the segment: the farthest pair
+      double far = -1;
+      for (int i = 0; i < np; ++i)
+        for (int j = i; j < np; ++j)
+          if (const double d2 = (pts[i].x - pts[j].x) * (pts[i].x - pts[j].x) + (pts[i].y - pts[j].y) * (pts[i].y - pts[j].y);
+              d2 > far)
+            far = d2, p0 = pts[i], p1 = pts[j];
+      const double dx = p1.x - p0.x, dy = p1.y - p0.y, l2 = dx * dx + dy * dy;
+      const double t = l2 > 0 ? std::clamp(-(p0.x * dx + p0.y * dy) / l2, 0.0, 1.0) : 0.0;
+      const Vec3 q{p0.x + dx * t, p0.y + dy * t, z};
+      if (at) *at = q;
+      return signed_distance_rz(std::sqrt(q.x * q.x + q.y * q.y), z, f.R, f.hh);
+    };
+    const auto [z, value] = golden_min([&](double zz) { return section(zz, nullptr); }, zl, zh, 100);
+    if (std::isfinite(value)) {
+      out.value = value;
+      section(z, &out.point);
+      out.certified = false;  // (not the closed form: counted as a fallback, as before)
+      return out;
+    }
+  }
   // general: nested golden-section over the barycentric coordinates (sd_B is convex)
   constexpr int kIter = 64;
   const Vec3 ab = b - a, ac = c - a;

@@ -14,6 +14,7 @@
 
 #include "interfere/bearing/analytic.h"
 #include "interfere/bearing/raceway.h"
+#include "interfere/bearing/scarred.h"
 #include "unit/bearing/bearing_oracle.h"
 
 using namespace interfere;
@@ -137,4 +138,26 @@ TEST(BearingSlice, RollersSideBySideAndRacewayIntoRoller) {
   EXPECT_GT(slice, 10);
   EXPECT_GT(clear, 5);
   EXPECT_GT(overlap, 5);
+}
+
+TEST(BearingSlice, LongTrianglesBesideACylinder) {
+  // cage-web-like triangles: long along the cylinder's axis, reaching past its end faces, beside or
+  // into its side (where the closed-form certificate fails: scarred.h's exact triangle minimum takes
+  // the slice search instead of the nested one). Against bearing_oracle's independent bracket.
+  std::mt19937_64 g(2721);
+  const auto uni = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(g); };
+  const Cylinder b = cyl({0, 0, 0}, {0, 0, 1}, 38, 10);
+  int fallbacks = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    const double x = 10 + uni(-0.5, 0.5), y = uni(-4, 4);
+    const Vec3 t0{x + uni(-0.1, 0.1), y - 3, uni(-8, 2)}, t1{x + uni(-0.1, 0.1), y + 3, uni(-8, 2)};
+    const Vec3 t2{x + uni(-0.1, 0.1), y + uni(-3, 3), uni(36, 46)};
+    const TriangleMin tm = triangle_min_signed_distance(b, t0, t1, t2);
+    fallbacks += !tm.certified;
+    const auto br = bearing_oracle::surface_min_bracket({{t0, t1, t2}}, b, 1e-10);
+    EXPECT_LE(tm.value, br.upper + 1e-9) << trial;
+    EXPECT_GE(tm.value, br.lower - 1e-9) << trial;
+    EXPECT_NEAR(bearing_oracle::oracle_sd(b, tm.point).value, tm.value, 1e-9) << trial;
+  }
+  EXPECT_GT(fallbacks, 10);
 }
