@@ -36,6 +36,25 @@ same "$work/huge"
 same "$work/tiny" --motion motion.csv --frames-csv frames.csv
 same "$work/fe"  # (FE displacement steps, the reference configuration, designed contacts)
 
+# A STEP assembly (instances sharing meshes, the nominal-fit rule) beside two mesh files, with a
+# baseline (statuses carried) and grouping by location: K = 2, 3 (skipped in a build without STEP).
+mkdir -p "$work/step"
+cp "$here/../fuzz/corpus/read_step/assembly.step" "$here/../../data/examples/plate.stl" "$here/../../data/examples/pin.obj" "$work/step/"
+cat > "$work/step/scene.json" <<'JSON'
+{"units": "mm", "bodies": [{"file": "assembly.step", "id": "asm"}, {"file": "plate.stl", "id": "plate"},
+  {"file": "pin.obj", "id": "pin", "transform": [1, 0, 0, 30, 0, 1, 0, 30, 0, 0, 1, 5]}]}
+JSON
+if (cd "$work/step" && "$cli" clash --scene scene.json --json base.json --quiet >/dev/null 2>&1; test $? = 1); then
+  (cd "$work/step" && "$cli" clash --scene scene.json --baseline base.json --group-by location --json single.json --quiet >/dev/null 2>&1)
+  for k in 2 3; do
+    (cd "$work/step" && "${mpirun_[@]}" -n $k "$mpi" clash --scene scene.json --baseline base.json --group-by location --json mpi$k.json --quiet >/dev/null 2>&1)
+    check "$py" "$here/compare_reports.py" "$work/step/single.json" "$work/step/mpi$k.json"
+    echo "step --baseline --group-by location K=$k"
+  done
+else
+  echo "step: skipped (no STEP reader in this build)"
+fi
+
 # A rank that cannot read a body: exit 2, its message, no report.
 (cd "$work/broken" && "${mpirun_[@]}" -n 3 "$mpi" clash --scene scene.json --json out.json >/dev/null 2>err.txt)
 rc=$?
