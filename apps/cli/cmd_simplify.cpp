@@ -209,11 +209,15 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
           index[i] = static_cast<std::uint32_t>(gparts.size());
           gparts.push_back({p.name, part_results[i].mesh, part_results[i].face_ids, p.feature_faces,
                             part_results[i].error_bound, 40, part_results[i].feature_flags});
+          gparts.back().has_color = p.has_color;  // (the STEP file's colour: issue #29)
+          std::copy(p.color, p.color + 3, gparts.back().color);
           for (std::size_t k = 0; k < lod_parts.size(); ++k) {
             const SimplifyResult& l = lod_parts[k][i];
             if (l.mesh.num_triangles() == 0) break;
             gparts.back().lods.push_back({p.name + " LOD" + std::to_string(k + 1), l.mesh, l.face_ids, p.feature_faces,
                                           l.error_bound, 40, l.feature_flags});
+            gparts.back().lods.back().has_color = p.has_color;
+            std::copy(p.color, p.color + 3, gparts.back().lods.back().color);
           }
         }
         for (const cad::PreparedInstance& in : cad_prepared->instances)  // (the product tree: issue #29)

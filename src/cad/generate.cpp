@@ -28,6 +28,8 @@
 #include <TDocStd_Document.hxx>
 #include <TopLoc_Location.hxx>
 #include <XCAFApp_Application.hxx>
+#include <Quantity_Color.hxx>
+#include <XCAFDoc_ColorTool.hxx>
 #include <XCAFDoc_DocumentTool.hxx>
 #include <XCAFDoc_ShapeTool.hxx>
 #include <gp_Trsf.hxx>
@@ -286,6 +288,10 @@ Status write_test_assembly(const std::filesystem::path& step_file) {
     TDataStd_Name::Set(plate, "plate");
     const TDF_Label shaft = st->AddShape(build(TestPart::stepped_shaft), Standard_False);
     TDataStd_Name::Set(shaft, "shaft");
+    // Surface colours (issue #29: kept in the glTF of `interfere simplify`).
+    const Handle(XCAFDoc_ColorTool) colours = XCAFDoc_DocumentTool::ColorTool(st->Label());
+    colours->SetColor(plate, Quantity_Color(0.8, 0.2, 0.1, Quantity_TOC_RGB), XCAFDoc_ColorSurf);
+    colours->SetColor(shaft, Quantity_Color(0.1, 0.3, 0.9, Quantity_TOC_RGB), XCAFDoc_ColorSurf);
     const TDF_Label assembly = st->NewShape();
     TDataStd_Name::Set(assembly, "assembly");
     gp_Trsf t2, r2, t3;

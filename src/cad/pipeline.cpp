@@ -176,12 +176,12 @@ Expected<Prepared> prepare(const CadModel& imported, const PipelineOptions& o, c
       with_features[i] = static_cast<std::uint32_t>(out.parts.size());
       out.parts.push_back({split ? part.name + " [" + o.step + "]" : part.name, part.mesh, part.face_ids,
                            part_features[i], part.faces, 0, static_cast<std::uint32_t>(i), tessellation_error,
-                           part_annulus_tris[i]});
+                           part_annulus_tris[i], part.has_color, {part.color[0], part.color[1], part.color[2]}});
     }
     if (part_out_of_step[i] && (split || !part_in_step[i])) {
       without[i] = static_cast<std::uint32_t>(out.parts.size());
-      out.parts.push_back(
-          {part.name, part.mesh, part.face_ids, {}, part.faces, 0, static_cast<std::uint32_t>(i), tessellation_error});
+      out.parts.push_back({part.name, part.mesh, part.face_ids, {}, part.faces, 0, static_cast<std::uint32_t>(i),
+                           tessellation_error, {}, part.has_color, {part.color[0], part.color[1], part.color[2]}});
     }
     if (!split && part_in_step[i]) without[i] = with_features[i];
   }

@@ -38,6 +38,8 @@
 #include <TopoDS_Face.hxx>
 #include <Transfer_TransientProcess.hxx>
 #include <XCAFApp_Application.hxx>
+#include <Quantity_Color.hxx>
+#include <XCAFDoc_ColorTool.hxx>
 #include <XCAFDoc_DocumentTool.hxx>
 #include <XCAFDoc_ShapeTool.hxx>
 #include <XSControl_TransferReader.hxx>
@@ -164,6 +166,7 @@ struct Walker {
   std::map<int, std::uint32_t> part_of_label;  // by label tag path hash
   std::map<std::string, std::uint32_t> part_by_entry;
   std::set<std::string> skipped;  ///< labels without faces, warned about once
+  Handle(XCAFDoc_ColorTool) colors;  ///< the document's colours (issue #29: kept in glTF)
 
   // `inst_name`: the component's own name ("" when it has none); `parent`: the name of the
   // product whose structure holds `label` ("" at the top).
@@ -206,6 +209,16 @@ struct Walker {
       }
       part_index = static_cast<std::uint32_t>(model.parts.size());
       model.parts.push_back(make_part(shape, name, o, model.warnings));
+      // Its colour: the product's or the shape's surface colour, else its generic one.
+      Quantity_Color c;
+      if (!colors.IsNull() &&
+          (colors->GetColor(ref, XCAFDoc_ColorSurf, c) || colors->GetColor(ref, XCAFDoc_ColorGen, c) ||
+           colors->GetColor(shape, XCAFDoc_ColorSurf, c) || colors->GetColor(shape, XCAFDoc_ColorGen, c))) {
+        Part& p = model.parts.back();
+        p.has_color = true;
+        p.color[0] = static_cast<float>(c.Red()), p.color[1] = static_cast<float>(c.Green()),
+        p.color[2] = static_cast<float>(c.Blue());
+      }
       if (model.parts.back().solids == 0)
         model.warnings.push_back("part '" + name + "' has no solid (open shell or faces only)");
       part_by_entry[entry.ToCString()] = part_index;
@@ -249,6 +262,7 @@ Expected<CadModel> import_step(const std::filesystem::path& path, const ImportOp
     XCAFApp_Application::GetApplication()->NewDocument("MDTV-XCAF", doc);
     STEPCAFControl_Reader reader;
     reader.SetNameMode(true);
+    reader.SetColorMode(true);
     // XSControl_Reader::ReadFile, in its steps, so that the reference graph is checked for cycles
     // before the session checks the entities (which follows cycles until the stack overflows).
     STEPControl_Reader& step = reader.ChangeReader();
@@ -301,7 +315,7 @@ Expected<CadModel> import_step(const std::filesystem::path& path, const ImportOp
           model.file_length_units.push_back(u);
       }
     }
-    Walker w{tool, options, model, {}, {}};
+    Walker w{tool, options, model, {}, {}, {}, XCAFDoc_DocumentTool::ColorTool(doc->Main())};
     for (int i = 1; i <= free.Length(); ++i) w.walk(free(i), TopLoc_Location(), "", "", "");
     // Instances named alike in one assembly (unnamed instances of one product): "#2", "#3", ...
     // in order, so that every path names one instance.

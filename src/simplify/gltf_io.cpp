@@ -76,6 +76,8 @@ Status write_glb(const std::filesystem::path& path, const std::vector<GltfPart>&
     return j["accessors"].size() - 1;
   };
   double largest_bound = -1;
+  std::map<std::array<float, 3>, std::size_t> colour_material;  // a STEP colour -> its material (from 2)
+  std::vector<nlohmann::json> coloured;
   // Every part's mesh, then the coarser levels' meshes (lod_mesh[pi][k]: the mesh of level k + 1).
   std::vector<const GltfPart*> written;
   std::vector<std::vector<std::size_t>> lod_mesh(parts.size());
@@ -149,7 +151,18 @@ Status write_glb(const std::filesystem::path& path, const std::vector<GltfPart>&
         if (tri_feature[t] == want) idx.insert(idx.end(), m.triangles[t].begin(), m.triangles[t].end());
       if (idx.empty()) continue;
       const std::size_t a_idx = accessor(view(idx.data(), idx.size() * 4, kElementArrayBuffer), kUnsignedInt, idx.size(), "SCALAR");
-      primitives.push_back({{"attributes", attributes}, {"indices", a_idx}, {"mode", 4}, {"material", want}});
+      std::size_t material = want;
+      if (want == 0 && part.has_color) {  // the part's own colour: a material of its own (by colour)
+        const std::array<float, 3> c{part.color[0], part.color[1], part.color[2]};
+        auto it = colour_material.find(c);
+        if (it == colour_material.end())
+          it = colour_material.emplace(c, 2 + colour_material.size()).first,
+          coloured.push_back({{"name", part.name},
+                              {"pbrMetallicRoughness", {{"baseColorFactor", {c[0], c[1], c[2], 1.0}}, {"metallicFactor", 0.3},
+                                                        {"roughnessFactor", 0.6}}}});
+        material = it->second;
+      }
+      primitives.push_back({{"attributes", attributes}, {"indices", a_idx}, {"mode", 4}, {"material", material}});
     }
     nlohmann::json mesh{{"name", part.name}, {"primitives", primitives}};
     if (part.error_bound >= 0) mesh["extras"]["error_bound"] = part.error_bound;
@@ -226,6 +239,7 @@ Status write_glb(const std::filesystem::path& path, const std::vector<GltfPart>&
        {{"name", "assembly feature"},
         {"pbrMetallicRoughness", {{"baseColorFactor", {1.0, 0.45, 0.05, 1.0}}, {"metallicFactor", 0.1}, {"roughnessFactor", 0.5}}},
         {"emissiveFactor", {0.25, 0.1, 0.0}}}});
+  for (const nlohmann::json& m : coloured) j["materials"].push_back(m);
   nlohmann::json scene{{"nodes", {0}}, {"extras", nlohmann::json::object()}};
   if (scale > 0) scene["extras"]["units"] = units, scene["extras"]["metres_per_unit"] = scale;
   if (largest_bound >= 0) scene["extras"]["error_bound"] = largest_bound;

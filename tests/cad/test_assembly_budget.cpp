@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <array>
 #include <fstream>
+#include <map>
 #include <numbers>
 
 #include "cad_test_util.h"
@@ -206,6 +208,27 @@ TEST(AssemblyBudget, As1WithRendererMax1500StaysWithinAndKeepsBoltsAndRod) {
     EXPECT_LE(h, 0.06 * d) << p.name << " " << r->parts[i].mesh.num_triangles() << " triangles";
     if (p.name == "bolt" || p.name == "rod") EXPECT_GE(r->parts[i].mesh.num_triangles(), 16u) << p.name;
   }
+}
+
+// Issue #29, item 6: STEP colours are read with the parts (and kept in the glTF, whose part material
+// takes them: tests/cli/test_simplify.py reads that back).
+TEST(AssemblyBudget, StepColoursAreReadWithTheParts) {
+  const auto file = dir() / "coloured.step";
+  ASSERT_TRUE(write_test_assembly(file).ok());
+  auto model = import_step(file);
+  ASSERT_TRUE(model.has_value()) << model.error().message();
+  std::map<std::string, std::array<float, 3>> want{{"plate", {0.8f, 0.2f, 0.1f}}, {"shaft", {0.1f, 0.3f, 0.9f}}};
+  ASSERT_EQ(model->parts.size(), 2u);
+  for (const Part& p : model->parts) {
+    ASSERT_TRUE(p.has_color) << p.name;
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(p.color[k], want.at(p.name)[k], 1e-3) << p.name << " " << k;
+  }
+  // A file without colours: none.
+  const auto plain = dir() / "plain_box.step";
+  ASSERT_TRUE(write_test_part(TestPart::box_through_hole, plain).ok());
+  auto m2 = import_step(plain);
+  ASSERT_TRUE(m2.has_value());
+  EXPECT_FALSE(m2->parts[0].has_color);
 }
 
 }  // namespace

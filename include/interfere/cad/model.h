@@ -81,6 +81,10 @@ struct Part {
   double tessellation_error() const {
     return tessellation_deviation > linear_deflection ? tessellation_deviation : linear_deflection;
   }
+  /// The part's colour as the STEP file gives it (XCAF surface or generic colour of its product or
+  /// shape; linear RGB in [0, 1]); has_color false where it gives none (issue #29: kept in glTF).
+  bool has_color = false;
+  float color[3] = {0, 0, 0};
 };
 
 struct Instance {
@@ -160,7 +164,8 @@ Status write_test_part(TestPart part, const std::filesystem::path& step_file);
 Status write_test_part(TestPart part, const std::filesystem::path& step_file,
                        const std::string& length_unit);
 
-/// An XCAF assembly "assembly" written with STEPCAFControl_Writer (names kept): part "plate"
+/// An XCAF assembly "assembly" written with STEPCAFControl_Writer (names kept; surface colours: plate
+/// (0.8, 0.2, 0.1), shaft (0.1, 0.3, 0.9)): part "plate"
 /// (counterbored_plate) as component "plate_1" at the identity and "plate_2" rotated 90 degrees about
 /// z then lifted by (0, 0, 20); part "shaft" (stepped_shaft) as "shaft_1" moved by (100, 0, 0).
 Status write_test_assembly(const std::filesystem::path& step_file);

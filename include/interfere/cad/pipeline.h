@@ -35,6 +35,8 @@ struct PreparedPart {
   /// clamped annuli of the step's TopFace/BottomFace (Selection::annuli, issue #29), for
   /// SimplifyOptions::feature_triangles.
   std::vector<std::uint32_t> feature_triangles;
+  bool has_color = false;  ///< Part::has_color, color
+  float color[3] = {0, 0, 0};
 };
 struct PreparedInstance {
   std::string name;

@@ -41,6 +41,10 @@ struct GltfPart {
   /// nodes of those meshes (same name + " LOD<k>", same placement, outside the scene tree), with
   /// `extras.MSFT_screencoverage` (1/2^k thresholds). Their own `lods` are ignored.
   std::vector<GltfPart> lods;
+  /// The part's own colour (a STEP file's, linear RGB): its triangles get a material of that colour
+  /// named after the part instead of the grey "part"; the features stay orange.
+  bool has_color = false;
+  float color[3] = {0, 0, 0};
 };
 
 struct GltfInstance {

@@ -64,6 +64,45 @@ TEST(Gltf, HeaderChunksAndErrors) {
   EXPECT_FALSE(std::filesystem::exists(bad));
 }
 
+// Issue #29, item 6: a part's own colour becomes its material (named after it); the assembly
+// features keep the orange one; per-triangle feature flags split the mesh into the two primitives.
+TEST(Gltf, PartColourAndFeatureMaterials) {
+  GltfPart part{"ball", make_sphere({.target_triangles = 200}), {}, {}, 0.25};
+  const std::size_t nt = part.mesh.num_triangles();
+  part.face_ids.assign(nt, 3);
+  part.feature_flags.assign(nt, 0);
+  for (std::size_t t = 0; t < nt; t += 4) part.feature_flags[t] = 1;
+  part.has_color = true;
+  part.color[0] = 0.8f, part.color[1] = 0.2f, part.color[2] = 0.1f;
+  GltfPart grey = part;
+  grey.name = "grey", grey.has_color = false;
+  const auto file = tmp("colour.glb");
+  ASSERT_TRUE(write_glb(file, {part, grey}, {{"a", 0, Transform{}, "/asm/sub/a"}, {"b", 1, Transform{}, "/asm/b"}}, "mm").ok());
+  std::ifstream in(file, std::ios::binary);
+  const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::uint32_t json_length = 0;
+  std::memcpy(&json_length, data.data() + 12, 4);
+  const auto doc = nlohmann::json::parse(data.substr(20, json_length));
+  ASSERT_EQ(doc["materials"].size(), 3u);
+  EXPECT_EQ(doc["materials"][2]["name"], "ball");
+  EXPECT_NEAR(doc["materials"][2]["pbrMetallicRoughness"]["baseColorFactor"][0].get<double>(), 0.8, 1e-6);
+  const auto& p0 = doc["meshes"][0]["primitives"];
+  ASSERT_EQ(p0.size(), 2u);
+  EXPECT_EQ(p0[0]["material"], 2);
+  EXPECT_EQ(p0[1]["material"], 1);
+  EXPECT_EQ(doc["accessors"][p0[1]["indices"].get<std::size_t>()]["count"].get<std::size_t>(), 3 * ((nt + 3) / 4));
+  EXPECT_EQ(doc["meshes"][1]["primitives"][0]["material"], 0);
+  // The hierarchy: root -> asm -> {sub -> a, b}.
+  const auto& nodes = doc["nodes"];
+  ASSERT_EQ(nodes[0]["children"].size(), 1u);
+  const auto& asm_node = nodes[nodes[0]["children"][0].get<std::size_t>()];
+  EXPECT_EQ(asm_node["name"], "asm");
+  ASSERT_EQ(asm_node["children"].size(), 2u);
+  EXPECT_EQ(nodes[asm_node["children"][0].get<std::size_t>()]["name"], "sub");
+  EXPECT_EQ(nodes[asm_node["children"][1].get<std::size_t>()]["extras"]["path"], "/asm/b");
+  std::filesystem::remove(file);
+}
+
 // The first mesh's POSITION and NORMAL arrays (float x, y, z per vertex) of a GLB file.
 struct GlbVertices {
   std::vector<Vec3> position, normal;
