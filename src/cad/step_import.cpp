@@ -170,8 +170,9 @@ struct Walker {
 
   // `inst_name`: the component's own name ("" when it has none); `parent`: the name of the
   // product whose structure holds `label` ("" at the top).
+  // `suffix`: "#k" for the k-th instance (k > 1) named alike in its assembly, added to its path level.
   void walk(const TDF_Label& label, const TopLoc_Location& loc, const std::string& path, const std::string& inst_name,
-            const std::string& parent) {
+            const std::string& parent, const std::string& suffix = "") {
     TDF_Label ref = label;
     TopLoc_Location here = loc;
     if (XCAFDoc_ShapeTool::IsReference(label)) {
@@ -184,11 +185,22 @@ struct Walker {
     if (name.empty() && ref != label) name = real_name(label);
     const bool sub_shape = name.empty() && inst_name.empty() && !parent.empty();
     if (name.empty()) name = parent.empty() ? "part" + std::to_string(model.parts.size()) : parent;
-    const std::string my_path = sub_shape ? path : path + "/" + (inst_name.empty() ? name : inst_name);
+    const std::string my_path = sub_shape ? path : path + "/" + (inst_name.empty() ? name : inst_name) + suffix;
     if (XCAFDoc_ShapeTool::IsAssembly(ref)) {
       TDF_LabelSequence comps;
       XCAFDoc_ShapeTool::GetComponents(ref, comps);
-      for (int i = 1; i <= comps.Length(); ++i) walk(comps(i), here, my_path, real_name(comps(i)), name);
+      // Unnamed instances of one product in one assembly (AP203: NAUOs without names) are told
+      // apart at their own level, "#2", "#3", ... (issue #29, item 5: before, AS1's two bracket
+      // sub-assemblies shared one path level and only the leaves got "#2".."#6").
+      std::map<std::string, int> seen;
+      for (int i = 1; i <= comps.Length(); ++i) {
+        const std::string inst = real_name(comps(i));
+        TDF_Label cref = comps(i);
+        if (XCAFDoc_ShapeTool::IsReference(comps(i))) XCAFDoc_ShapeTool::GetReferredShape(comps(i), cref);
+        const std::string level = inst.empty() ? real_name(cref) : inst;
+        const int k = level.empty() ? 1 : ++seen[level];
+        walk(comps(i), here, my_path, inst, name, k > 1 ? "#" + std::to_string(k) : std::string());
+      }
       return;
     }
     TCollection_AsciiString entry;

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <map>
 #include <numbers>
+#include <set>
 
 #include "cad_test_util.h"
 #include "interfere/cad/assembly_simplify.h"
@@ -229,6 +230,25 @@ TEST(AssemblyBudget, StepColoursAreReadWithTheParts) {
   auto m2 = import_step(plain);
   ASSERT_TRUE(m2.has_value());
   EXPECT_FALSE(m2->parts[0].has_color);
+}
+
+// Issue #29, item 5: AP203 names and instance paths (CAx-IF AS1, AP203 export, when ../shared/data is
+// there): products by name (not "=>[0:1:1:3]"), each instance's path unique and the second of two
+// like sub-assemblies told apart at its own level ("L_BRACKET_ASSEMBLY#2"), not only at its leaves.
+TEST(AssemblyBudget, Ap203PathsNameEachLevelsInstance) {
+  const std::filesystem::path f = std::filesystem::path(INTERFERE_SOURCE_DIR) / "../shared/data/step/as1_pe_203.stp";
+  if (!std::filesystem::exists(f)) GTEST_SKIP() << f << " absent";
+  auto model = import_step(f, {.build_aag = false});
+  ASSERT_TRUE(model.has_value()) << model.error().message();
+  std::set<std::string> names, paths;
+  for (const Part& p : model->parts) names.insert(p.name);
+  EXPECT_EQ(names, (std::set<std::string>{"PLATE", "L-BRACKET", "BOLT", "NUT", "ROD"}));
+  for (const Instance& in : model->instances) {
+    EXPECT_TRUE(paths.insert(in.path).second) << in.path;
+    EXPECT_EQ(in.path.find("=>"), std::string::npos) << in.path;
+  }
+  EXPECT_EQ(model->instances.size(), 18u);
+  EXPECT_TRUE(paths.count("/AS1_PE_ASM/L_BRACKET_ASSEMBLY#2/NUT_BOLT_ASSEMBLY#3/BOLT")) << *paths.begin();
 }
 
 }  // namespace
