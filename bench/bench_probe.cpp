@@ -20,6 +20,9 @@
 //                                       probe radii), 1 = a near path (stand-off 1 mm, the probe
 //                                       tilted 30 degrees about its tip) where most points reach
 //                                       level 3. Probe only (the paper has no holder).
+//   ProbeReplan/<case>/<standoff>       re-planning every colliding point (probe/replan.h; issue #28,
+//                                       deliverable 4): tilt cone 15 degrees, stand-off range
+//                                       0..<standoff> mm; counters: colliding points, found, ms each
 //   ProbeScaling                        10^6-triangle saddle, 10^5 points: build + decisions +
 //                                       continuous check (INTERFERE_PROBE_SCALING_TRIANGLES /
 //                                       _POINTS override the sizes)
@@ -34,6 +37,7 @@
 
 #include "interfere/probe/generate.h"
 #include "interfere/probe/paper_tests.h"
+#include "interfere/probe/replan.h"
 #include "interfere/probe/sweep.h"
 
 using namespace interfere;
@@ -124,6 +128,26 @@ void BM_ProbeFull(benchmark::State& state) {
   double min_clear = INFINITY;
   for (const PointResult& p : r.points) min_clear = std::min(min_clear, p.collides ? 0.0 : p.clearance);
   state.counters["clearance_seconds"] = r.clearance_seconds;
+  state.SetLabel(c.spec.name);
+}
+
+void BM_ProbeReplan(benchmark::State& state) {
+  const int i = static_cast<int>(state.range(0));
+  const Case& c = get_case(i);
+  const Workpiece& w = get_workpiece(i, Hierarchy::bvh);
+  const SweepResult r = sweep(w, c.path, &c.robot, {.probe = kProbe, .continuous = false, .clearance = false});
+  const ReplanRequest rq{.max_tilt_deg = 15, .standoff_min = 0, .standoff_max = static_cast<double>(state.range(1))};
+  ReplanResult p;
+  for (auto _ : state) {
+    p = replan(w, c.path, &c.robot, kProbe, r, rq);
+    benchmark::DoNotOptimize(p.found);
+  }
+  std::size_t tested = 0;
+  for (const ReplannedPoint& q : p.points) tested += q.poses_tested;
+  state.counters["colliding_points"] = static_cast<double>(p.points.size());
+  state.counters["found"] = static_cast<double>(p.found);
+  state.counters["poses_tested"] = static_cast<double>(tested);
+  state.counters["ms_per_point"] = p.points.empty() ? 0.0 : 1e3 * p.seconds / static_cast<double>(p.points.size());
   state.SetLabel(c.spec.name);
 }
 
@@ -331,6 +355,8 @@ void register_all() {
       }
     }
   }
+  for (long standoff : {0L, 3L})
+    benchmark::RegisterBenchmark("ProbeReplan", BM_ProbeReplan)->Args({2, standoff})->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(0.3);
   benchmark::RegisterBenchmark("ProbeScaling", BM_ProbeScaling)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 }
 

@@ -23,6 +23,7 @@
 #include "interfere/probe/export.h"
 #include "interfere/probe/paper_machine.h"
 #include "interfere/probe/paper_tests.h"
+#include "interfere/probe/replan.h"
 #include "interfere/probe/sweep.h"
 #include "report_envelope.h"
 
@@ -48,6 +49,9 @@ struct SweepOptions {
   int threads = 0, depth = 16;
   bool no_continuous = false, no_clearance = false;
   bool paper_levels = false;  ///< --paper-levels: the paper's three levels beside the exact test
+  double replan_tilt = 0;     ///< --replan-tilt: re-plan colliding points within this cone (degrees)
+  std::string replan_standoff;  ///< --replan-standoff MIN,MAX (mm, changes of the stand-off)
+  std::string replanned_path;   ///< --replanned-path: the path with the suggestions in place (CSV)
   ViewOutputs views;
 };
 
@@ -153,9 +157,28 @@ int run_sweep(const SweepOptions& o) {
   check_output(o.json, {}, "--json");
   check_output(o.csv, {}, "--csv");
   check_output(o.hits_obj, {".obj", ".vtk"}, "--hits-obj");
+  check_output(o.replanned_path, {".csv"}, "--replanned-path");
+  // Re-planning (issue #28, deliverable 4): the request checked before any work.
+  ReplanRequest replan_request;
+  const bool replanning = o.replan_tilt != 0 || !o.replan_standoff.empty() || !o.replanned_path.empty();
+  if (replanning) {
+    if (o.replan_tilt == 0) throw InputError("--replan-standoff/--replanned-path: give the tilt cone with --replan-tilt DEG");
+    replan_request.max_tilt_deg = o.replan_tilt;
+    if (!o.replan_standoff.empty()) {
+      double lo = 0, hi = 0;
+      char comma = 0, rest = 0;
+      if (std::sscanf(o.replan_standoff.c_str(), "%lf %c %lf %c", &lo, &comma, &hi, &rest) != 3 || comma != ',')
+        throw InputError("--replan-standoff: expected MIN,MAX (mm), got '" + o.replan_standoff + "'");
+      replan_request.standoff_min = lo, replan_request.standoff_max = hi;
+    }
+    if (const Status v = validate(replan_request); !v)
+      throw InputError(std::string(o.replan_standoff.empty() ? "--replan-tilt" : "--replan-tilt/--replan-standoff") +
+                       ": " + v.error().reason);
+  }
   check_output(o.probes_vtk, {".vtk", ".obj"}, "--probes-vtk");
   check_view_outputs(o.views);
-  std::vector<NamedPath> outputs{{"--json", o.json}, {"--csv", o.csv}, {"--hits-obj", o.hits_obj}, {"--probes-vtk", o.probes_vtk}};
+  std::vector<NamedPath> outputs{{"--json", o.json}, {"--csv", o.csv}, {"--hits-obj", o.hits_obj}, {"--probes-vtk", o.probes_vtk},
+                                 {"--replanned-path", o.replanned_path}};
   for (const NamedPath& v : o.views.paths()) outputs.push_back(v);
   check_distinct_files({{"--workpiece", o.workpiece}, {"--robot", o.robot}, {"--path", o.path}}, outputs);
   set_threads(o.threads);
@@ -260,6 +283,21 @@ int run_sweep(const SweepOptions& o) {
     }
   }
   const int status = verdict_exit_status(r.verdict, failing);
+  // Re-planning of the colliding points, then the re-planned path checked as the path was.
+  ReplanResult replanned;
+  SweepResult after;
+  ProbePath fixed;
+  if (replanning) {
+    Progress p("re-planning " + std::to_string(r.colliding_points) + " colliding points");
+    replanned = replan(w, path, robot ? &*robot : nullptr, shape, r, replan_request);
+    fixed = replanned_path(path, replanned);
+    after = sweep(w, fixed, motion_robot,
+                  {.probe = shape,
+                   .continuous = !o.no_continuous,
+                   .clearance = false,
+                   .max_depth = o.depth,
+                   .max_poses = o.max_poses});
+  }
 
   // ---- outputs ----
   double min_clear = std::numeric_limits<double>::infinity();
@@ -397,6 +435,32 @@ int run_sweep(const SweepOptions& o) {
     j["timings"] = {{"read", read_seconds}, {"build", w.build_seconds}, {"discrete", r.discrete_seconds},
                     {"clearance", r.clearance_seconds}, {"continuous", r.continuous_seconds},
                     {"total", total.seconds()}};
+    if (replanning) {
+      nlohmann::json rp = nlohmann::json::array();
+      for (const ReplannedPoint& q : replanned.points) {
+        nlohmann::json e{{"index", q.point}, {"line", q.line}, {"found", q.found}, {"poses_tested", q.poses_tested},
+                         {"target", {q.target.x, q.target.y, q.target.z}}};
+        if (q.found) {
+          e["tilt_deg"] = q.tilt_deg;
+          e["standoff_change"] = q.standoff_change;
+          e["tip"] = {q.pose.tip.x, q.pose.tip.y, q.pose.tip.z};
+          e["axis"] = {q.pose.axis.x, q.pose.axis.y, q.pose.axis.z};
+          e["joints"] = q.joints;
+        }
+        if (!q.reason.empty()) e["reason"] = q.reason;
+        rp.push_back(std::move(e));
+      }
+      j["replan"] = {{"max_tilt_deg", replan_request.max_tilt_deg},
+                     {"standoff_range", {replan_request.standoff_min, replan_request.standoff_max}},
+                     {"points", std::move(rp)},
+                     {"found", replanned.found},
+                     {"seconds", replanned.seconds},
+                     {"replanned_path", o.replanned_path.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.replanned_path)},
+                     {"after", {{"colliding_points", after.colliding_points},
+                                {"colliding_segments", after.colliding_segments},
+                                {"unresolved_segments", after.unresolved_segments},
+                                {"verdict", verdict_name(after.verdict)}}}};
+    }
     j["exit_status"] = status;
     const Status s = write_output(o.json, report_text(j, 1));
     if (!s) throw InputError(s.error());
@@ -420,6 +484,10 @@ int run_sweep(const SweepOptions& o) {
     const Status s = write_output(o.csv, out);
     if (!s) throw InputError(s.error());
   }
+  if (!o.replanned_path.empty()) {
+    const Status s = write_output(o.replanned_path, path_to_csv(fixed));
+    if (!s) throw InputError(s.error());
+  }
   if (!o.hits_obj.empty() || !o.probes_vtk.empty()) {
     const CollisionGeometry g = collision_geometry(w, path, motion_robot, shape, r);
     for (const std::string& f : {o.hits_obj, o.probes_vtk}) {
@@ -441,6 +509,11 @@ int run_sweep(const SweepOptions& o) {
               "samples), %zu unresolved; min clearance %s %s\n",
               head, r.colliding_points, path.size(), r.inside_points, r.colliding_segments, r.between_samples_segments,
               r.unresolved_segments, csv_number(min_clear).c_str(), o.units.c_str());
+  if (replanning)
+    std::printf("re-planned %zu of %zu colliding points (tilt <= %s deg); the re-planned path: %zu colliding points, %zu "
+                "colliding segments, %zu unresolved\n",
+                replanned.found, replanned.points.size(), csv_number(replan_request.max_tilt_deg).c_str(),
+                after.colliding_points, after.colliding_segments, after.unresolved_segments);
   if (o.paper_levels) {
     std::printf("paper's three levels (§3.2-3.4, probe only): %zu points collide, %zu false positives, %zu false "
                 "negatives against the exact test\n",
@@ -495,6 +568,13 @@ void add_sweep_command(CLI::App& app, int& exit_code) {
                 "poses tested per segment before the rest is reported unresolved (default 65536)");
   c->add_option("--clearance", o->clearance,
                 "requested clearance: points and segments closer than this get the verdict clearance (0 = none)");
+  c->add_option("--replan-tilt", o->replan_tilt,
+                "re-plan each colliding point: the nearest collision-free pose aiming at the same surface point with "
+                "its axis within DEG (0 < DEG < 90) of the original (docs/probe.md, \"Re-planning\")");
+  c->add_option("--replan-standoff", o->replan_standoff,
+                "with --replan-tilt: also vary the stand-off by MIN,MAX mm (default 0,0: kept)");
+  c->add_option("--replanned-path", o->replanned_path,
+                "with --replan-tilt: write the path with the suggestions in place (CSV, same columns)");
   add_fail_on_option(*c, o->fail_on);
   c->add_option("--threads", o->threads, "worker threads (0 = all cores)");
   c->add_option("--units", o->units,

@@ -456,9 +456,10 @@ Workpiece prepare_workpiece(TriMesh mesh, const ProbeShape& probe, const Workpie
 }
 
 bool pose_collides(const Workpiece& w, const ProbeShape& probe, const ProbePose& pose,
-                   std::vector<std::uint32_t>* hits, std::size_t* tests, bool* inside) {
+                   std::vector<std::uint32_t>* hits, std::size_t* tests, bool* inside, bool* undecided) {
   const PoseState st = pose_state(w, bodies_at(probe, pose), hits, tests, nullptr);
   if (inside) *inside = st == PoseState::inside;
+  if (undecided) *undecided = st == PoseState::undecided;
   return st == PoseState::touches || st == PoseState::inside;
 }
 

@@ -229,8 +229,12 @@ SweepResult sweep(const Workpiece& workpiece, const ProbePath& path, const Robot
 /// Exact: does the probe (or holder) at `pose` touch the workpiece or lie inside one of its closed
 /// components; appends the hit triangles to `hits` (sorted, unique) when not null, else returns at
 /// the first hit. `inside` (when not null) is set when the pose collides by containment only.
+/// `undecided` (when not null) is set when the pose touches nothing and whether it lies inside a
+/// closed component could not be decided (every ray degenerate): false is then returned, which is
+/// not a proof of clear (callers that need one check it).
 bool pose_collides(const Workpiece& workpiece, const ProbeShape& probe, const ProbePose& pose,
-                   std::vector<std::uint32_t>* hits = nullptr, std::size_t* tests = nullptr, bool* inside = nullptr);
+                   std::vector<std::uint32_t>* hits = nullptr, std::size_t* tests = nullptr, bool* inside = nullptr,
+                   bool* undecided = nullptr);
 
 /// Bound on how far any probe point moves on [t0, t1] of segment `from` away from its position at
 /// the midpoint (docs/probe.md, "Motion bound").
