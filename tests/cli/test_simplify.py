@@ -591,8 +591,10 @@ class Features(unittest.TestCase):
         code, out, err = run("features", os.path.join(DATA, "counterbored_plate.step"), "--json", path("f.json"), "--aag")
         self.assertEqual(code, 0, err)
         self.assertIn("counterbored_hole", out)
-        # The listing gives face ids, radii and the axis (point, direction).
-        self.assertIn("radii 6,3 axis (20, 15, 6) dir (0, 0, 1)", out)
+        # The listing gives face ids, radii and the axis (point, direction): since the hole
+        # recognition of issue #29 the axis starts at the opening (the plate's top, z = 10) and points
+        # into the part.
+        self.assertIn("radii 6,3 axis (20, 15, 10) dir (0, 0, -1)", out)
         r = load_json("f.json")
         feats = r["parts"][0]["features"]
         self.assertEqual([f["type"] for f in feats], ["counterbored_hole"])
