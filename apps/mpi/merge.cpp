@@ -57,32 +57,8 @@ scene::SceneClashResult merge(const scene::Scene& skeleton, const std::vector<sc
     }
     open.insert(r.warnings.begin(), r.warnings.end());
   }
-  // Order: test, body ids, clash id (engine.cpp).
-  std::map<std::string, std::size_t> test_index;
-  for (std::size_t k = 0; k < tests.size(); ++k) test_index.emplace(tests[k].name, k);
+  scene::detail::sort_and_summarise(skeleton, tests, result);  // (the engine's order and summaries)
   const auto& bodies = skeleton.bodies;
-  std::sort(result.clashes.begin(), result.clashes.end(), [&](const scene::SceneClash& x, const scene::SceneClash& y) {
-    return std::tie(test_index.at(x.test), bodies[x.a].id, bodies[x.b].id, x.id) <
-           std::tie(test_index.at(y.test), bodies[y.a].id, bodies[y.b].id, y.id);
-  });
-  for (std::size_t i = 0; i < result.clashes.size(); ++i) {
-    const scene::SceneClash& s = result.clashes[i];
-    result.clash_count += s.verdict == Verdict::clash;
-    result.contact_count += s.verdict == Verdict::contact;
-    result.clearance_count += s.verdict == Verdict::clearance;
-    result.undecided_count += s.verdict == Verdict::undecided;
-    result.verdict = worst(result.verdict, s.verdict);
-    if (result.pairs.empty() || result.pairs.back().test != s.test || result.pairs.back().a != s.a ||
-        result.pairs.back().b != s.b) {
-      result.pairs.push_back({.test = s.test, .a = s.a, .b = s.b});
-      result.pairs.back().min_distance = -1;
-    }
-    scene::PairSummary& p = result.pairs.back();
-    p.clashes.push_back(static_cast<std::uint32_t>(i));
-    p.verdict = worst(p.verdict, s.verdict);
-    p.depth = std::max(p.depth, s.depth), p.depth_bound = std::max(p.depth_bound, s.depth_bound);
-    if (s.verdict == Verdict::clearance) p.min_distance = p.min_distance < 0 ? s.distance : std::min(p.min_distance, s.distance);
-  }
   scene::detail::summarise_frames(skeleton, tests, result);
   scene::detail::group_clashes(result, options);
   // The engine's open-body warnings, in body order ("body '<id>' is not closed ...").

@@ -12,17 +12,7 @@
 namespace interfere::mpi {
 
 AabbF broad_box(const Aabb& local, const Transform& t) {
-  // (engine.cpp's broad_box, the same arithmetic: the plan must find the engine's candidates)
-  Aabb w;
-  for (int c = 0; c < 8; ++c)
-    w.expand(t.apply({c & 1 ? local.hi.x : local.lo.x, c & 2 ? local.hi.y : local.lo.y, c & 4 ? local.hi.z : local.lo.z}));
-  const Vec3 e = w.extent();
-  const double pad = (std::max({std::fabs(w.lo.x), std::fabs(w.lo.y), std::fabs(w.lo.z), std::fabs(w.hi.x),
-                                std::fabs(w.hi.y), std::fabs(w.hi.z)}) +
-                      std::max({e.x, e.y, e.z})) *
-                     0x1p-40;
-  w.lo = w.lo - Vec3{pad, pad, pad}, w.hi = w.hi + Vec3{pad, pad, pad};
-  return to_float_outward(w);
+  return scene::detail::broad_box(local, t);  // the engine's own: the plan finds the engine's candidates
 }
 
 namespace {

@@ -89,12 +89,6 @@ double first_hit(const Workpiece& w, const Vec3& o, const Vec3& d) {
 
 Vec3 unit(const Vec3& v) { return v / norm(v); }
 
-// Rodrigues' rotation of v about the unit n by phi.
-Vec3 rotate(const Vec3& v, const Vec3& n, double phi) {
-  const double c = std::cos(phi), s = std::sin(phi);
-  return v * c + cross(n, v) * s + n * (dot(n, v) * (1 - c));
-}
-
 // Stand-off changes to try, nearest the original first (ties: the smaller value).
 std::vector<double> standoffs(const ReplanRequest& r) {
   std::vector<double> s;
@@ -138,7 +132,7 @@ ReplannedPoint replan_point(const Workpiece& w, const ProbePath& path, const Rob
         ProbePose cand;
         cand.axis = unit(axis * std::cos(theta) + side * std::sin(theta));
         cand.tip = out.target - cand.axis * (s0 + s);
-        if (p0.has_ref()) cand.ref = k == 0 ? p0.ref : rotate(p0.ref, unit(cross(axis, cand.axis)), theta);
+        if (p0.has_ref()) cand.ref = k == 0 ? p0.ref : rotate_about(p0.ref, unit(cross(axis, cand.axis)), theta);
         std::vector<double> q;
         if (ik) {
           auto sol = inverse_kinematics(*robot, cand, previous);

@@ -463,13 +463,12 @@ bool pose_collides(const Workpiece& w, const ProbeShape& probe, const ProbePose&
   return st == PoseState::touches || st == PoseState::inside;
 }
 
-namespace {
-
-/// Rodrigues' rotation of v about the unit n by phi.
 Vec3 rotate_about(const Vec3& v, const Vec3& n, double phi) {
   const double c = std::cos(phi), s = std::sin(phi);
   return v * c + cross(n, v) * s + n * (dot(n, v) * (1 - c));
 }
+
+namespace {
 
 /// The motion of a pose-path segment a -> b: the frame at t is R(t) applied to a's, with
 /// R(t) = Rot(n, theta t) Rot(a.axis, psi t): the axis turns by the smallest rotation (theta about

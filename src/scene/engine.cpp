@@ -69,21 +69,6 @@ Aabb bounds_of(const std::vector<Vec3>& ps) {
   return b;
 }
 
-// The world box of a local box under an affine pose (its 8 corners), padded by a relative 2^-40 so
-// that rounding in the vertices' own transforms cannot leave it (the exact core decides anyway).
-AabbF broad_box(const Aabb& local, const Transform& t) {
-  Aabb w;
-  for (int c = 0; c < 8; ++c)
-    w.expand(t.apply({c & 1 ? local.hi.x : local.lo.x, c & 2 ? local.hi.y : local.lo.y, c & 4 ? local.hi.z : local.lo.z}));
-  const Vec3 e = w.extent();
-  const double pad = (std::max({std::fabs(w.lo.x), std::fabs(w.lo.y), std::fabs(w.lo.z), std::fabs(w.hi.x),
-                                std::fabs(w.hi.y), std::fabs(w.hi.z)}) +
-                      std::max({e.x, e.y, e.z})) *
-                     0x1p-40;
-  w.lo = w.lo - Vec3{pad, pad, pad}, w.hi = w.hi + Vec3{pad, pad, pad};
-  return to_float_outward(w);
-}
-
 // Brings the world model of body i to its current pose and shape: built once, then moved in place
 // and refitted (same topology).
 void refresh(const Scene& s, State& st, std::vector<detail::WorldBody>& world, std::size_t i) {
@@ -196,6 +181,53 @@ FramePairRow frame_pair_row(std::uint32_t frame, const Candidate& c, const std::
 
 }  // namespace
 
+namespace detail {
+
+// The world box of a local box under an affine pose (its 8 corners), padded by a relative 2^-40 so
+// that rounding in the vertices' own transforms cannot leave it (the exact core decides anyway).
+AabbF broad_box(const Aabb& local, const Transform& t) {
+  Aabb w;
+  for (int c = 0; c < 8; ++c)
+    w.expand(t.apply({c & 1 ? local.hi.x : local.lo.x, c & 2 ? local.hi.y : local.lo.y, c & 4 ? local.hi.z : local.lo.z}));
+  const Vec3 e = w.extent();
+  const double pad = (std::max({std::fabs(w.lo.x), std::fabs(w.lo.y), std::fabs(w.lo.z), std::fabs(w.hi.x),
+                                std::fabs(w.hi.y), std::fabs(w.hi.z)}) +
+                      std::max({e.x, e.y, e.z})) *
+                     0x1p-40;
+  w.lo = w.lo - Vec3{pad, pad, pad}, w.hi = w.hi + Vec3{pad, pad, pad};
+  return to_float_outward(w);
+}
+
+void sort_and_summarise(const Scene& scene, const std::vector<ClashTest>& tests, SceneClashResult& result) {
+  // Order: test, body ids, clash id.
+  std::map<std::string, std::size_t> test_index;  // (names are unique: clash_scene checks)
+  for (std::size_t k = 0; k < tests.size(); ++k) test_index.emplace(tests[k].name, k);
+  std::sort(result.clashes.begin(), result.clashes.end(), [&](const SceneClash& x, const SceneClash& y) {
+    return std::tie(test_index.at(x.test), scene.bodies[x.a].id, scene.bodies[x.b].id, x.id) <
+           std::tie(test_index.at(y.test), scene.bodies[y.a].id, scene.bodies[y.b].id, y.id);
+  });
+  for (std::size_t i = 0; i < result.clashes.size(); ++i) {
+    const SceneClash& s = result.clashes[i];
+    result.clash_count += s.verdict == Verdict::clash;
+    result.contact_count += s.verdict == Verdict::contact;
+    result.clearance_count += s.verdict == Verdict::clearance;
+    result.undecided_count += s.verdict == Verdict::undecided;
+    result.verdict = worst(result.verdict, s.verdict);
+    if (result.pairs.empty() || result.pairs.back().test != s.test || result.pairs.back().a != s.a ||
+        result.pairs.back().b != s.b) {
+      result.pairs.push_back({.test = s.test, .a = s.a, .b = s.b});
+      result.pairs.back().min_distance = -1;
+    }
+    PairSummary& p = result.pairs.back();
+    p.clashes.push_back(static_cast<std::uint32_t>(i));
+    p.verdict = worst(p.verdict, s.verdict);
+    p.depth = std::max(p.depth, s.depth), p.depth_bound = std::max(p.depth_bound, s.depth_bound);
+    if (s.verdict == Verdict::clearance) p.min_distance = p.min_distance < 0 ? s.distance : std::min(p.min_distance, s.distance);
+  }
+}
+
+}  // namespace detail
+
 SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& tests, const SceneClashOptions& options) {
   const auto t_prepare = Clock::now();
   scene.validate();
@@ -276,7 +308,7 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
       }
     }
     tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
-      if (box_dirty[i]) st.broad_box[i] = broad_box(st.local_box[i], st.pose[i]);
+      if (box_dirty[i]) st.broad_box[i] = detail::broad_box(st.local_box[i], st.pose[i]);
     });
     // Candidates of every test.
     std::vector<Candidate> cands;
@@ -598,31 +630,7 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
     if (options.progress) options.progress(f + 1, frame_count);
   }
 
-  // Order: test, body ids, clash id.
-  std::sort(result.clashes.begin(), result.clashes.end(), [&](const SceneClash& x, const SceneClash& y) {
-    std::size_t tx = 0, ty = 0;
-    for (std::size_t k = 0; k < tests.size(); ++k) tx = tests[k].name == x.test ? k : tx, ty = tests[k].name == y.test ? k : ty;
-    return std::tie(tx, scene.bodies[x.a].id, scene.bodies[x.b].id, x.id) <
-           std::tie(ty, scene.bodies[y.a].id, scene.bodies[y.b].id, y.id);
-  });
-  for (std::size_t i = 0; i < result.clashes.size(); ++i) {
-    const SceneClash& s = result.clashes[i];
-    result.clash_count += s.verdict == Verdict::clash;
-    result.contact_count += s.verdict == Verdict::contact;
-    result.clearance_count += s.verdict == Verdict::clearance;
-    result.undecided_count += s.verdict == Verdict::undecided;
-    result.verdict = worst(result.verdict, s.verdict);
-    if (result.pairs.empty() || result.pairs.back().test != s.test || result.pairs.back().a != s.a ||
-        result.pairs.back().b != s.b) {
-      result.pairs.push_back({.test = s.test, .a = s.a, .b = s.b});
-      result.pairs.back().min_distance = -1;
-    }
-    PairSummary& p = result.pairs.back();
-    p.clashes.push_back(static_cast<std::uint32_t>(i));
-    p.verdict = worst(p.verdict, s.verdict);
-    p.depth = std::max(p.depth, s.depth), p.depth_bound = std::max(p.depth_bound, s.depth_bound);
-    if (s.verdict == Verdict::clearance) p.min_distance = p.min_distance < 0 ? s.distance : std::min(p.min_distance, s.distance);
-  }
+  detail::sort_and_summarise(scene, tests, result);
   detail::summarise_frames(scene, tests, result);
   detail::group_clashes(result, options);
   // Open bodies that took part (their verdicts say undecided where it mattered).

@@ -50,6 +50,9 @@ struct ProbePose {
 inline constexpr double kMinReferenceSine = 1e-6;
 Vec3 perpendicular_reference(const Vec3& ref, const Vec3& axis);
 
+/// Rodrigues' rotation of v about the unit vector n by phi radians.
+Vec3 rotate_about(const Vec3& v, const Vec3& n, double phi);
+
 struct Robot {
   std::string name;
   Transform base;  ///< world <- DH frame 0
