@@ -13,6 +13,7 @@
 #include "interfere/bearing/assembly.h"
 #include "interfere/view/bearing_assembly_document.h"
 #include "report_envelope.h"
+#include "progress_bar.h"
 
 namespace interfere::cli {
 namespace {
@@ -176,7 +177,8 @@ int run_bearing_assembly(const BearingAssemblyOptions& o) {
   {
     Progress progress("solving " + std::to_string(as->pairs.size()) + " pairs x " +
                       std::to_string(motion.poses.size()) + " frames");
-    res = run_assembly(*as, motion);
+    ProgressBar bar("frames", motion.poses.size(), "frames");  // (progress_bar.h)
+    res = run_assembly(*as, motion, bar.callback());
   }
   const int status = verdict_exit_status(res.verdict, fail);
   if (!o.out.empty()) write_or_throw(write_output(o.out, [&](std::FILE* f) { return write_csv(f, *as, res); }));

@@ -20,6 +20,7 @@
 #include "interfere/cad/assembly_clash.h"
 #include "interfere/cad/model.h"
 #include "report_envelope.h"
+#include "progress_bar.h"
 #endif
 
 namespace interfere::cli {
@@ -176,9 +177,11 @@ int run_assembly_clash(const AssemblyClashCliOptions& o) {
   cad::AssemblyClashResult r;
   {
     Progress progress("clashing the pairs of " + std::to_string(model->instances.size()) + " instances");
+    ProgressBar bar("pairs", 1, "pairs");  // (the count comes with the first call; progress_bar.h)
     r = cad::assembly_clash(*model, {.clearance = o.clearance,
                                      .geometry = !o.regions.empty() || !o.curves.empty() || o.views.any(),
-                                     .depth_bound_splits = o.depth_bound_splits});
+                                     .depth_bound_splits = o.depth_bound_splits,
+                                     .progress = bar.callback()});
   }
   write_clash_geometry(o, *model, r);
   for (const std::string& w : r.warnings) warning(w);

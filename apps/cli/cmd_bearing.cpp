@@ -25,6 +25,7 @@
 #include "view_output.h"
 #include "bearing_scar_import.h"
 #include "report_envelope.h"
+#include "progress_bar.h"
 
 namespace interfere::cli {
 namespace {
@@ -271,7 +272,9 @@ int run_bearing(const BearingOptions& o) {
   Expected<SimulationResult> r = Error{.reason = "not run"};
   {
     Progress progress("simulating " + std::to_string(p.pairs) + " pairs x " + std::to_string(p.frames) + " frames");
-    r = simulate(p, !o.out.empty() || o.views.any());
+    // Frames: a bar with rate and ETA on a terminal, a line per tenth otherwise (progress_bar.h).
+    ProgressBar bar("frames", static_cast<std::size_t>(p.frames), "frames");
+    r = simulate(p, !o.out.empty() || o.views.any(), bar.callback());
   }
   if (!r) throw InputError(r.error());
   const SimulationResult& res = *r;

@@ -5,6 +5,7 @@
 // status by verdict_exit_status: 0 clear, 1 clash (or what --fail-on names), 2 input error, 3
 // undecided.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -14,6 +15,7 @@
 #include "interfere/view/scene_document.h"
 #include "report_envelope.h"
 #include "view_output.h"
+#include "progress_bar.h"
 
 namespace interfere::cli {
 namespace {
@@ -67,7 +69,11 @@ int run_cell(const CellOptions& o) {
   opt.reference = false;
   scene::SceneClashResult r;
   try {
+    // Frames (the path's points and in-between poses): progress_bar.h.
+    ProgressBar bar("frames", std::max<std::size_t>(cs.scene.frames.size(), 1), "frames");
+    opt.progress = bar.callback();
     r = scene::clash_scene(cs.scene, cs.tests, opt);
+    opt.progress = nullptr;
   } catch (const std::invalid_argument& e) {
     throw InputError(o.cell + ": " + e.what());
   }

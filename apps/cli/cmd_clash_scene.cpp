@@ -159,6 +159,9 @@ int run_scene_clash(const ClashOptions& o, const CLI::App& command, const std::v
   // Frames: a progress bar with rate and ETA on a terminal, a line per tenth otherwise (progress_bar.h).
   auto frame_bar = in.scene.frames.empty() ? nullptr : std::make_shared<ProgressBar>("frames", in.scene.frames.size(), "frames");
   if (frame_bar) eo.progress = [frame_bar](std::size_t done, std::size_t) { frame_bar->update(done); };
+  // A static scene: the body pairs (their count comes with the first call).
+  auto pair_bar = in.scene.frames.empty() ? std::make_shared<ProgressBar>("pairs", 1, "pairs") : nullptr;
+  if (pair_bar) eo.pair_progress = pair_bar->callback();
   scene::SceneClashResult result;
   {
     Progress progress(fmt::format("scene clash: {} bodies, {} tests{} ({} threads)", in.scene.bodies.size(), tests.size(),
@@ -170,7 +173,9 @@ int run_scene_clash(const ClashOptions& o, const CLI::App& command, const std::v
       throw InputError(e.what());
     }
     eo.progress = nullptr;
+    eo.pair_progress = nullptr;
     frame_bar.reset();  // (ends the bar's line before the timing line)
+    pair_bar.reset();
   }
   for (const std::string& w : result.warnings) warning(w);
   if (!o.baseline.empty())

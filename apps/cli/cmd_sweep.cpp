@@ -26,6 +26,7 @@
 #include "interfere/probe/replan.h"
 #include "interfere/probe/sweep.h"
 #include "report_envelope.h"
+#include "progress_bar.h"
 
 namespace interfere::cli {
 namespace {
@@ -260,6 +261,8 @@ int run_sweep(const SweepOptions& o) {
   SweepResult r;
   {
     Progress p("sweep of " + std::to_string(path.size()) + " points (" + std::to_string(active_threads()) + " threads)");
+    // The points, their clearances and the segments as one bar (progress_bar.h; the count from sweep).
+    ProgressBar bar("sweep", 1, "checks");
     r = sweep(w, path, motion_robot,
               {.probe = shape,
                .continuous = !o.no_continuous,
@@ -267,7 +270,8 @@ int run_sweep(const SweepOptions& o) {
                .max_clearance = o.max_clearance > 0 ? o.max_clearance : std::numeric_limits<double>::infinity(),
                .max_depth = o.depth,
                .max_poses = o.max_poses,
-               .clearance_limit = o.clearance});
+               .clearance_limit = o.clearance,
+               .progress = bar.callback()});
   }
   for (const std::string& text : w.warnings) warning(text);
   // The paper's hierarchy as written (§3.2-3.4) at every point, beside the exact verdicts (which

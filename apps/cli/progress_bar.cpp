@@ -60,8 +60,12 @@ std::string ProgressBar::line(std::size_t done, double seconds) const {
   return s;
 }
 
-void ProgressBar::update(std::size_t done) {
+void ProgressBar::update(std::size_t done, std::size_t total) {
   if (!enabled_) return;
+  const std::lock_guard lock(mutex_);
+  if (total > 0) total_ = total;
+  if (done < shown_) return;
+  shown_ = done;
   const auto now = std::chrono::steady_clock::now();
   const double seconds = std::chrono::duration<double>(now - start_).count();
   if (terminal_) {

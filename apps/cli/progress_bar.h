@@ -6,6 +6,8 @@
 #pragma once
 #include <chrono>
 #include <cstddef>
+#include <functional>
+#include <mutex>
 #include <string>
 
 namespace interfere::cli {
@@ -20,8 +22,16 @@ class ProgressBar {
   ProgressBar(const ProgressBar&) = delete;
   ProgressBar& operator=(const ProgressBar&) = delete;
 
-  /// `done` of `total` units finished (from one thread at a time).
-  void update(std::size_t done);
+  /// `done` of `total` units finished. Thread-safe (worker threads may report at once, in any
+  /// order: a count below one already shown is ignored). `total` > 0 replaces the total given at
+  /// construction (work whose size the library finds out: a scene's candidate pairs).
+  void update(std::size_t done, std::size_t total = 0);
+
+  /// A (done, count) callback for a library's progress option (e.g. SceneClashOptions::progress)
+  /// that updates this bar; the bar must outlive the calls.
+  std::function<void(std::size_t, std::size_t)> callback() {
+    return [this](std::size_t done, std::size_t total) { update(done, total); };
+  }
 
   /// The line shown for `done` units after `seconds` (no control characters): the bar, the count,
   /// the rate and the estimated time left.
@@ -32,6 +42,8 @@ class ProgressBar {
   std::size_t total_;
   bool terminal_, enabled_, drawn_ = false;
   int last_tenth_ = -1;
+  std::size_t shown_ = 0;
+  std::mutex mutex_;
   std::chrono::steady_clock::time_point start_, last_draw_;
 };
 

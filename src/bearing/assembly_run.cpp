@@ -1,6 +1,7 @@
 // Every pair of a bearing assembly at every frame (assembly.h, run_assembly). Each (frame, pair)
 // is a pure function of the poses (no temporal state), solved in parallel (oneTBB) into its own
 // slot: the rows, their order and every summary are identical for any thread count.
+#include <atomic>
 #include <chrono>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -9,18 +10,24 @@
 
 namespace interfere::bearing {
 
-AssemblyResult run_assembly(const Assembly& as, const AssemblyMotion& motion) {
+AssemblyResult run_assembly(const Assembly& as, const AssemblyMotion& motion,
+                            const std::function<void(std::size_t, std::size_t)>& progress) {
   const auto start = std::chrono::steady_clock::now();
   AssemblyResult out;
   out.frames = static_cast<int>(motion.poses.size());
   const std::size_t np = as.pairs.size();
   out.rows.resize(motion.poses.size() * np);
+  std::atomic<std::size_t> rows_done{0};  // (progress: whole frames done)
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.rows.size(), 4), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       AssemblyRow& row = out.rows[i];
       row.frame = static_cast<std::int32_t>(i / np);
       row.pair = static_cast<std::uint32_t>(i % np);
       row.result = solve_pair(as, as.pairs[row.pair], motion.poses[i / np], as.spec.clearance);
+    }
+    if (progress && np > 0) {
+      const std::size_t after = rows_done.fetch_add(r.size()) + r.size();
+      if (after / np != (after - r.size()) / np) progress(after / np, motion.poses.size());
     }
   });
   out.worst_per_frame.assign(motion.poses.size(), 0);

@@ -96,7 +96,8 @@ Transform partner_pose(const SceneParams& p, double spacing, int k) {
   return tb;
 }
 
-Expected<SimulationResult> simulate(const SceneParams& p, bool keep_rows) {
+Expected<SimulationResult> simulate(const SceneParams& p, bool keep_rows,
+                                    const std::function<void(std::size_t, std::size_t)>& progress) {
   if (Status s = validate(p); !s) return s.error();
   const double t_start = now();
   SimulationResult res;
@@ -336,6 +337,7 @@ Expected<SimulationResult> simulate(const SceneParams& p, bool keep_rows) {
       cp.solver = d.solver, cp.verdict = d.verdict;
       res.cross_results.push_back(cp);
     }
+    if (progress) progress(static_cast<std::size_t>(f) + 1, static_cast<std::size_t>(p.frames));
   }
   res.cpu_seconds = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
   const double busy = res.broad_seconds + res.narrow_seconds;

@@ -42,6 +42,7 @@ AssemblyClashResult assembly_clash(const CadModel& model, const AssemblyClashOpt
   eo.triangles = options.geometry;
   eo.group_by = scene::GroupBy::none;
   eo.nominal_fit = nominal_fit_check(model, s);
+  eo.pair_progress = options.progress;
   // The core's per-pair figures (counts, containment), by instance pair.
   struct Raw {
     std::size_t cross = 0, touch = 0, clearance = 0, regions = 0;

@@ -4,6 +4,7 @@
 // consecutive points (motion bound + grown bodies + bisection). See sweep.h. The holder box
 // (probe/box.h) is one more body: exact box-triangle test, culled as its bounding cylinder.
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <optional>
@@ -708,11 +709,18 @@ SweepResult sweep(const Workpiece& w, const ProbePath& path, const Robot* robot,
   const double max_clearance = std::max(req.max_clearance, limit);
   res.points.resize(n);
   std::vector<std::size_t> tests(n, 0);
+  // (progress: the points, their clearances, the segments)
+  const std::size_t work = n + ((req.clearance || limit > 0) ? n : 0) + ((req.continuous && n > 1) ? n - 1 : 0);
+  std::atomic<std::size_t> work_done{0};
   auto loop = [&](std::size_t count, auto&& body) {
+    auto step = [&](std::size_t i) {
+      body(i);
+      if (req.progress) req.progress(++work_done, work);
+    };
     if (req.parallel) {
-      tbb::parallel_for(std::size_t(0), count, [&](std::size_t i) { body(i); });
+      tbb::parallel_for(std::size_t(0), count, step);
     } else {
-      for (std::size_t i = 0; i < count; ++i) body(i);
+      for (std::size_t i = 0; i < count; ++i) step(i);
     }
   };
   // Discrete points: surface contact, then containment in a closed component.

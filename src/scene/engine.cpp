@@ -8,6 +8,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -451,6 +452,7 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
       for (std::size_t i = unit_start[u]; i < unit_start[u + 1]; ++i) cand_unit[order[i]] = u;
     const auto local_of = [&](std::uint32_t j) -> const std::vector<Vec3>& { return local_positions(scene, st, j); };
     const std::uint32_t frame_no = static_cast<std::uint32_t>(moving ? f : 0);
+    std::atomic<std::size_t> jobs_done{0};  // (pair_progress)
     tbb::parallel_for(std::size_t{0}, jobs.size(), [&](std::size_t job) {
       const std::size_t u = jobs[job];
       const std::uint32_t a = cands[order[unit_start[u]]].a, b = cands[order[unit_start[u]]].b;
@@ -499,6 +501,7 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
         if (fc) fc->found.push_back(detail::derive_pair(ctx, frame, c.a, c.b, c.clearance, &core, fc->where.emplace_back()));
         else found[k] = detail::derive_pair(ctx, frame, c.a, c.b, c.clearance, dup ? nullptr : &core, where[k]);
       }
+      if (!moving && !reference && options.pair_progress) options.pair_progress(++jobs_done, jobs.size());
     });
     // Every unit of a class: the class's clashes for its bodies, mapped to the world by its pose.
     tbb::parallel_for(std::size_t{0}, units, [&](std::size_t u) {

@@ -184,6 +184,47 @@ class Conventions(unittest.TestCase):
         self.assertIn("12/12", bars[-1])
         self.assertRegex(bars[-1], r"frames/s +ETA \d+:\d\d")
 
+    def test_long_commands_show_progress(self):
+        # bearing (assembly frames and pair frames), sweep, cell, assembly-clash and a static scene:
+        # plain lines on a pipe, the last at the whole count with a rate; none with --quiet.
+        probe = os.path.join(SOURCE, "examples", "probe")
+        scene = write_text("static.json", """{"bodies": [
+          {"id": "plate", "file": "%s"},
+          {"id": "pin-1", "file": "%s", "transform": [1,0,0,30, 0,1,0,30, 0,0,1,5]},
+          {"id": "pin-2", "file": "%s", "transform": [1,0,0,60, 0,1,0,30, 0,0,1,5]}]}""" % (
+            os.path.join(EX, "plate.stl"), os.path.join(EX, "pin.obj"), os.path.join(EX, "pin.obj")))
+        cases = [
+            (["bearing", "--assembly", os.path.join(EX, "bearing_axle.json"), "--frames", "12"], "frames", r"12/12 +[\d.]+ frames/s"),
+            (["bearing", "--params", os.path.join(EX, "bearing.parameters")], "frames", r"(\d+)/\1 +[\d.]+ frames/s"),
+            (["sweep", "--workpiece", os.path.join(EX, "plate.stl"), "--robot", os.path.join(EX, "probe_paper_machine.json"),
+              "--path", os.path.join(EX, "probe_path.csv"), "--probe-radius", "5", "--probe-length", "40"],
+             "sweep", r"(\d+)/\1 +[\d.]+ checks/s"),
+            (["cell", os.path.join(probe, "cell.json")], "frames", r"(\d+)/\1 +[\d.]+ frames/s"),
+            (["clash", "--scene", scene], "pairs", r"(\d+)/\1 +[\d.]+ pairs/s"),
+        ]
+        for args, what, last in cases:
+            with self.subTest(command=args[0], what=what):
+                code, _, err = raw(*args)
+                self.assertIn(code, (0, 1), err)
+                bars = [l for l in err.splitlines() if l.startswith("[interfere] %s [" % what)]
+                self.assertTrue(bars, err)
+                self.assertRegex(bars[-1], last)
+                self.assertRegex(bars[-1], r"ETA \d+:\d\d$")
+                self.assertNotIn("\r", err)
+                code, _, err = raw("--quiet", *args)
+                self.assertNotIn("[interfere] %s [" % what, err)
+
+    def test_assembly_clash_progress(self):
+        # the instance pairs of the test assembly (tests/cli/data/assembly.step, three plates; a 15 mm
+        # clearance makes a candidate pair); skipped where this build has no STEP reader (exit 2).
+        asm = os.path.join(SOURCE, "tests", "cli", "data", "assembly.step")
+        code, out, err = raw("assembly-clash", asm, "--clearance", "15")
+        if code == 2 and "OpenCASCADE" in err:
+            self.skipTest("no STEP reader in this build")
+        self.assertIn(code, (0, 1), err)
+        bars = [l for l in err.splitlines() if l.startswith("[interfere] pairs [")]
+        self.assertTrue(bars, err)
+        self.assertRegex(bars[-1], r"(\d+)/\1 +[\d.]+ pairs/s +ETA \d+:\d\d$")
 
     def test_fe_steps_progress(self):
         fem = os.path.join(SOURCE, "tests", "data", "fem")

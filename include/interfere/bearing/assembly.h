@@ -24,6 +24,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -269,6 +270,9 @@ struct AssemblyResult {
 };
 
 /// Every pair of every frame, in parallel over pairs (oneTBB), identical for any thread count.
-AssemblyResult run_assembly(const Assembly& as, const AssemblyMotion& motion);
+/// `progress`, when set, is called with (frames done, frame count) as frames finish, from worker
+/// threads, possibly at once (it must be thread-safe; the CLI's progress bar is).
+AssemblyResult run_assembly(const Assembly& as, const AssemblyMotion& motion,
+                            const std::function<void(std::size_t, std::size_t)>& progress = {});
 
 }  // namespace interfere::bearing

@@ -110,6 +110,9 @@ struct SimulationResult {
 Transform partner_pose(const SceneParams& p, double spacing, int k);
 
 /// Runs the simulation. `keep_rows` false keeps only the summary (benchmarks). Errors: validate().
-Expected<SimulationResult> simulate(const SceneParams& p, bool keep_rows = true);
+/// `progress`, when set, is called after each frame with (frames done, frame count), on the
+/// calling thread (the CLI's progress bar).
+Expected<SimulationResult> simulate(const SceneParams& p, bool keep_rows = true,
+                                    const std::function<void(std::size_t, std::size_t)>& progress = {});
 
 }  // namespace interfere::bearing

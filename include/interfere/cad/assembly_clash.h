@@ -6,6 +6,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,9 @@ struct AssemblyClashOptions {
   /// Splits per direction of a clashing pair for InstancePairResult::depth_bound (about 4 µs each;
   /// more: a tighter bound); 0: no bound.
   std::size_t depth_bound_splits = 5000;
+  /// Progress (done, count) as instance pairs are decided, from worker threads (thread-safe
+  /// callers only; scene::SceneClashOptions::pair_progress).
+  std::function<void(std::size_t, std::size_t)> progress;
 };
 
 /// How two instances meet: `clash` (their surfaces cross, one lies inside the other, or their

@@ -31,6 +31,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -165,6 +166,9 @@ struct SweepRequest {
   /// (points by their exact clearance; segments by a second refinement with the bodies grown by it).
   double clearance_limit = 0;
   bool parallel = true;     ///< oneTBB over path points and segments
+  /// Progress (done, count) over the passes' work items (points, their clearances, segments), from
+  /// worker threads, possibly at once (it must be thread-safe).
+  std::function<void(std::size_t, std::size_t)> progress;
 };
 
 struct PointResult {

@@ -216,6 +216,11 @@ struct SceneClashOptions {
   std::function<void(std::size_t test, std::uint32_t a, std::uint32_t b, const ClashResult&)> on_pair;
   /// Called after each frame with (frames done, frame count): progress for long runs.
   std::function<void(std::size_t, std::size_t)> progress;
+  /// A static scene (no frames): called as body pairs are decided with (done, count) of the
+  /// distinct pair jobs (pairs in the same relative pose with the same meshes are one), from worker
+  /// threads, possibly at once (it must be thread-safe): progress for large assemblies
+  /// (assembly-clash, clash --scene).
+  std::function<void(std::size_t, std::size_t)> pair_progress;
   /// When frames deform bodies (Frame::shapes, an FE model's load steps), check the bodies once
   /// more in their reference configuration (the scene's own meshes and poses) before frame 0, to
   /// tell designed contacts (bonded or tied interfaces: touching there already) from contacts and
