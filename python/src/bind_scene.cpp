@@ -484,7 +484,7 @@ py::dict summary(const sc::SceneClashResult& r) {
 
 sc::ReportContext context(const ReportData& d) {
   sc::ReportContext ctx;
-  ctx.command = "python: Scene.clash";
+  ctx.command = "clash";  // (the CLI clash report, docs/schema/clash.schema.json)
   ctx.tool_version = INTERFERE_VERSION;
   ctx.inputs = d.inputs;
   ctx.threads = d.threads;

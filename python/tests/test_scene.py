@@ -13,6 +13,7 @@ import json
 import math
 import os
 import struct
+import sys
 import tempfile
 import unittest
 
@@ -260,6 +261,19 @@ class ScenePython(unittest.TestCase):
         self.assertEqual([c["id"] for c in j["clashes"]], [c.id for c in one.clashes])
         self.assertEqual(one.exit_status(), 1)
         self.assertEqual(s.clash(itf.ClashTest(a="id:C,id:E")).exit_status(), 0)
+
+    def test_json_report_validates_against_the_schema(self):
+        # The CLI's clash report (issue #30, item 4): docs/schema/report.schema.json and
+        # clash.schema.json (tests/cli/report_schema.py; skipped without python3-jsonschema).
+        sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tests", "cli"))
+        import report_schema
+        if not report_schema.AVAILABLE:
+            self.skipTest("python3-jsonschema is not installed")
+        for r in (make_scene().clash(), make_scene().clash(itf.ClashTest(a="id:C,id:E"))):
+            j = json.loads(r.to_json())
+            self.assertEqual(j["command"], "clash")
+            self.assertTrue(report_schema.is_report(j))
+            self.assertEqual(report_schema.errors(j), [])
 
     def test_grouping(self):
         # The A-B clash box (x = 10, y, z in [2, 8]) and the A-D contact face (y = 10) are 2 apart.
