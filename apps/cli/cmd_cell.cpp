@@ -9,6 +9,7 @@
 #include <cmath>
 #include <map>
 
+#include "cell_pose_path.h"
 #include "commands.h"
 #include "common.h"
 #include "interfere/robot/cell.h"
@@ -30,6 +31,7 @@ struct CellOptions {
   int max_depth = 12;
   int threads = 0;
   ViewOutputs views;  ///< --html, --glb, --pvd: the cell along the path (one step per frame)
+  CellPoseInput pose;  ///< --pose-path, --ik-start, --write-joints (inverse kinematics)
 };
 
 nlohmann::json vec_json(const Vec3& v) {
@@ -54,14 +56,18 @@ int run_cell(const CellOptions& o) {
   const FailOn failing = fail_on(o.fail_on);
   Expected<Cell> cell = read_cell_json(o.cell);
   if (!cell) throw InputError(cell.error());
-  const std::string path_file = o.path.empty() ? cell->path : o.path;
+  const bool poses = !o.pose.file.empty();
+  const std::string path_file = poses ? o.pose.file : o.path.empty() ? cell->path : o.path;
   if (path_file.empty())
     throw InputError("--path: no joint path given (and the cell file names none)");
-  Expected<JointPath> path = read_joint_csv(path_file, cell->robot);
-  if (!path) throw InputError(path.error());
-  std::vector<NamedPath> outputs{{"--json", o.json}, {"--csv", o.csv}};
+  std::vector<NamedPath> outputs{
+      {"--json", o.json}, {"--csv", o.csv}, {"--write-joints", o.pose.write_joints}};
   for (const NamedPath& v : o.views.paths()) outputs.push_back(v);
-  check_distinct_files({{"CELL", o.cell}, {"--path", path_file}}, outputs);
+  check_distinct_files({{"CELL", o.cell}, {poses ? "--pose-path" : "--path", path_file}}, outputs);
+  nlohmann::json ik_report;  // --pose-path: the inverse kinematics per point
+  Expected<JointPath> path = poses ? Expected<JointPath>(cell_pose_joint_path(*cell, o.pose, ik_report))
+                                   : read_joint_csv(path_file, cell->robot);
+  if (!path) throw InputError(path.error());
 
   const CellScene cs = cell_scene(*cell, *path, o.between);
   scene::SceneClashOptions opt;
@@ -124,6 +130,7 @@ int run_cell(const CellOptions& o) {
     j["command"] = "cell";
     j["cell"] = o.cell;
     j["path"] = path_file;
+    if (poses) j["ik"] = std::move(ik_report);
     j["units"] = "mm";
     nlohmann::json joints = nlohmann::json::array();
     for (std::size_t m : cell->robot.movable) {
@@ -310,10 +317,22 @@ void add_cell_command(CLI::App& app, int& exit_code) {
   c->add_option("CELL", o->cell, "cell file (JSON: robot URDF, tool, workpiece, fixtures)")
       ->required()
       ->check(CLI::ExistingFile);
-  c->add_option("--path", o->path,
+  CLI::Option* path_opt = c->add_option("--path", o->path,
                 "joint path CSV, header = the robot's movable joint names (degrees, mm); default: "
                 "the cell's \"path\"")
       ->check(CLI::ExistingFile);
+  c->add_option("--pose-path", o->pose.file,
+                "probe pose path CSV (px,py,pz,ax,ay,az[,rx,ry,rz], as interfere sweep's) turned "
+                "into joints by numerical inverse kinematics, each point from the previous one's "
+                "solution; an unreachable point or one outside the joint limits is an error "
+                "naming its line")
+      ->check(CLI::ExistingFile)
+      ->excludes(path_opt);
+  c->add_option("--ik-start", o->pose.start,
+                "--pose-path: joint values (comma-separated, the robot's movable joints in chain "
+                "order) tried first for the first point: picks the branch");
+  c->add_option("--write-joints", o->pose.write_joints,
+                "--pose-path: write the solved joint path (CSV, header = joint names)");
   c->add_option(
       "--between", o->between,
       "also check N evenly spaced frames inside each segment (joint interpolation; samples, not a "
@@ -334,6 +353,7 @@ void add_cell_command(CLI::App& app, int& exit_code) {
   c->callback([o, &exit_code] {
     check_output(o->json, {}, "--json");
     check_output(o->csv, {}, "--csv");
+    check_output(o->pose.write_joints, {".csv"}, "--write-joints");
     check_view_outputs(o->views);
     exit_code = run_cell(*o);
   });

@@ -195,6 +195,70 @@ class CellReplay(unittest.TestCase):
         self.assertGreater(reader.GetOutput().GetNumberOfCells(), 600)
 
 
+@unittest.skipIf(np is None, "numpy not installed")
+class CellPosePath(unittest.TestCase):
+    """`interfere cell --pose-path` (numerical inverse kinematics, robot/ik.h): the solved joints
+    (--write-joints) put the tool at every pose by this file's own URDF composition (urdf_fk)."""
+
+    def test_random_poses_reached_on_both_arms(self):
+        d = copy_example()
+        for cell, urdf, base_z in (("cell.json", "arm6r.urdf", 0.0), ("cell_industrial.json", "industrial_6r.urdf", 300.0)):
+            with self.subTest(urdf=urdf):
+                root = ET.parse(os.path.join(d, urdf)).getroot()
+                movable = [j for j in root.findall("joint") if j.get("type") != "fixed"]
+                names = [j.get("name") for j in movable]
+                limits = [(math.degrees(float(j.find("limit").get("lower"))), math.degrees(float(j.find("limit").get("upper"))))
+                          for j in movable]
+                rng = random.Random(7)
+                base = np.eye(4)
+                base[2, 3] = base_z
+                poses = []
+                for _ in range(12):
+                    q = {n: rng.uniform(max(lo, -180), min(hi, 180)) for n, (lo, hi) in zip(names, limits)}
+                    tool = base @ urdf_fk(os.path.join(d, urdf), q)["tool0"]
+                    poses.append((tool[:3, :3] @ np.array([0, 0, 130.0]) + tool[:3, 3], tool[:3, 2]))
+                write(os.path.join(d, "poses.csv"), "# random poses\npx,py,pz,ax,ay,az\n" +
+                      "".join(",".join("%.17g" % v for v in [*t, *a]) + "\n" for t, a in poses))
+                joints = os.path.join(d, "solved.csv")
+                rc, out, err = run(os.path.join(d, cell), "--pose-path", os.path.join(d, "poses.csv"),
+                                   "--write-joints", joints, "--json", os.path.join(d, "poses.json"))
+                self.assertIn(rc, (0, 1), err)
+                with open(joints) as f:  # a comment line, the header, one row per point
+                    lines = [l.strip().split(",") for l in f if not l.startswith("#")]
+                rows = [dict(zip(lines[0], r)) for r in lines[1:]]
+                self.assertEqual(len(rows), len(poses))
+                for row, (t, a) in zip(rows, poses):
+                    q = {n: float(row[n]) for n in names}
+                    for n, (lo, hi) in zip(names, limits):
+                        self.assertTrue(lo <= q[n] <= hi, (n, q[n]))
+                    tool = base @ urdf_fk(os.path.join(d, urdf), q)["tool0"]
+                    tip = tool[:3, :3] @ np.array([0, 0, 130.0]) + tool[:3, 3]
+                    self.assertLess(np.linalg.norm(tip - t), 1e-9)
+                    self.assertLess(np.linalg.norm(np.cross(tool[:3, 2], a)), 1e-9)
+                    self.assertGreater(float(np.dot(tool[:3, 2], a)), 0)
+                with open(os.path.join(d, "poses.json")) as f:
+                    r = json.load(f)
+                self.assertEqual(len(r["ik"]["points"]), len(poses))
+                self.assertEqual([p["line"] for p in r["points"]], list(range(3, 3 + len(poses))))
+
+    def test_example_line_from_the_shipped_branch(self):
+        # The shipped pose path of the probe-only sweep, from the branch of path.csv's first row:
+        # the same six colliding points as the joint path, each point seeded by the previous one.
+        d = copy_example()
+        rc, out, err = run(os.path.join(d, "cell.json"), "--pose-path", os.path.join(d, "paper_path.csv"),
+                           "--ik-start=-18,-93,141,-138,-90,162", "--json", os.path.join(d, "pp.json"))
+        self.assertEqual(rc, 1, out + err)
+        with open(os.path.join(d, "pp.json")) as f:
+            r = json.load(f)
+        self.assertEqual([p["index"] for p in r["points"] if p["verdict"] == "clash"], [5, 6, 7, 12, 13, 14])
+        self.assertEqual(r["ik"]["branch_changes"], 0)
+        self.assertEqual([p["seed"] for p in r["ik"]["points"]], ["start"] + ["previous"] * 14)
+        self.assertLess(max(p["jump"] for p in r["ik"]["points"]), 10)
+        for p in r["points"]:
+            self.assertLess(abs(p["tip"][2] - 10), 1e-9)
+            self.assertLess(abs(p["axis"][2] + 1), 1e-12)
+
+
 class CellBadInput(unittest.TestCase):
     def bad(self, args, needles):
         d = path("cell")
@@ -210,6 +274,25 @@ class CellBadInput(unittest.TestCase):
         self.bad([cell, "--path", os.path.join(d, "p2.csv")], ["p2.csv:1:", "joint 'wrist_3' has no column"])
         write(os.path.join(d, "p3.csv"), "shoulder_pan,shoulder_lift,elbow,wrist_1,wrist_2,wrist_3\n0,0,0,0,0,0\n0,0,400,0,0,0\n")
         self.bad([cell, "--path", os.path.join(d, "p3.csv")], ["p3.csv:3:", "'elbow'", "outside the joint's limits"])
+
+    def test_pose_path_unreachable_and_bad_start(self):
+        d = copy_example()
+        cell = os.path.join(d, "cell.json")
+        write(os.path.join(d, "far.csv"), "px,py,pz,ax,ay,az\n400,0,10,0,0,-1\n# too far\n9000,0,10,0,0,-1\n")
+        self.bad([cell, "--pose-path", os.path.join(d, "far.csv")], ["far.csv:4:", "point 1", "unreachable"])
+        self.bad([cell, "--pose-path", os.path.join(d, "paper_path.csv"), "--ik-start", "0,0,0"],
+                 ["--ik-start", "3 values", "6 movable joints"])
+        self.bad([cell, "--pose-path", os.path.join(d, "path.csv")], ["path.csv:3:", "px,py,pz,ax,ay,az"])
+        with open(os.path.join(d, "industrial_6r.urdf")) as f:
+            write(os.path.join(d, "tight.urdf"), f.read().replace('lower="-1.919860000" upper="1.919860000"',
+                                                                   'lower="-0.1" upper="0.1"'))
+        with open(os.path.join(d, "cell_industrial.json")) as f:
+            c = json.load(f)
+        c["robot"]["urdf"] = "tight.urdf"
+        write(os.path.join(d, "tight.json"), json.dumps(c))
+        write(os.path.join(d, "one.csv"), "px,py,pz,ax,ay,az\n350,0,10,0,0,-1\n")
+        self.bad([os.path.join(d, "tight.json"), "--pose-path", os.path.join(d, "one.csv")],
+                 ["one.csv:2:", "point 0", "outside its limits"])
 
     def test_bad_urdf(self):
         d = copy_example()

@@ -1,0 +1,70 @@
+// `interfere cell --pose-path` (issue #28; cell_pose_path.h).
+#include "cell_pose_path.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "common.h"
+#include "interfere/probe/path.h"
+#include "interfere/robot/ik.h"
+
+namespace interfere::cli {
+
+robot::JointPath cell_pose_joint_path(const robot::Cell& cell, const CellPoseInput& in,
+                                      nlohmann::json& report) {
+  Expected<probe::ProbePath> poses = probe::read_path_csv(in.file, nullptr);
+  if (!poses) throw InputError(poses.error());
+  robot::IkOptions o;
+  if (!in.start.empty()) {
+    std::stringstream ss(in.start);
+    std::string item;
+    while (std::getline(ss, item, ',')) {
+      char* end = nullptr;
+      const double v = std::strtod(item.c_str(), &end);
+      if (end == item.c_str() || !std::isfinite(v))
+        throw InputError("--ik-start: '" + item + "' is not a finite number");
+      o.start.push_back(v);
+    }
+    if (o.start.size() != cell.robot.dof()) {
+      throw InputError("--ik-start: " + std::to_string(o.start.size()) + " values for the " +
+                       std::to_string(cell.robot.dof()) + " movable joints of " + cell.urdf);
+    }
+    if (Status s = robot::check_limits(cell.robot, o.start); !s)
+      throw InputError("--ik-start: " + s.error().reason);
+  }
+  const robot::IkTool tool = robot::cell_ik_tool(cell);
+  Expected<robot::PoseIkPath> r =
+      robot::pose_path_to_joints(cell.robot, cell.base, tool, *poses, in.file, o);
+  if (!r) throw InputError(r.error());
+  nlohmann::json pts = nlohmann::json::array();
+  std::size_t branch_changes = 0;
+  double worst_tip = 0, worst_angle = 0;
+  for (std::size_t i = 0; i < r->path.size(); ++i) {
+    pts.push_back({{"index", i},
+                   {"line", r->path.lines[i]},
+                   {"seed", r->seed[i]},
+                   {"jump", r->jump[i]},
+                   {"tip_error", r->position_error[i]},
+                   {"angle_error", r->angle_error[i]}});
+    branch_changes += i > 0 && r->seed[i] != "previous";
+    worst_tip = std::max(worst_tip, r->position_error[i]);
+    worst_angle = std::max(worst_angle, r->angle_error[i]);
+  }
+  report = {{"method", "damped least squares (Levenberg-Marquardt), previous point as seed"},
+            {"pose_path", in.file},
+            {"reference_direction", !poses->poses.empty() && poses->poses[0].has_ref()},
+            {"branch_changes", branch_changes},
+            {"max_tip_error", worst_tip},
+            {"max_angle_error", worst_angle},
+            {"points", std::move(pts)}};
+  if (!in.write_joints.empty()) {
+    write_or_throw(write_output(
+        in.write_joints,
+        robot::joint_path_csv(cell.robot, r->path,
+                              "joint path of " + cell.robot.name + " solved from the pose path " +
+                                  in.file + " by interfere cell --pose-path (degrees, mm)")));
+  }
+  return std::move(r->path);
+}
+
+}  // namespace interfere::cli
