@@ -54,12 +54,13 @@ struct Options {
   double group_distance = 0;
   int threads = 0;
   bool quiet = false;
+  CostModel cost;  ///< --cost-model PAIR_S,PAIR_TRI_S,BODY_TRI_S (default: plan.h, fitted in docs/scaling.md)
 };
 
 const char* kUsage =
     "usage: mpirun -n K interfere-mpi clash --scene FILE [--json OUT] [--csv OUT] [--frames-csv OUT]\n"
     "         [--frame-pairs-csv OUT] [--motion FILE] [--baseline FILE] [--units U] [--group-by pair|location|none]\n"
-    "         [--group-distance D] [--threads N] [--quiet]\n"
+    "         [--group-distance D] [--threads N] [--cost-model PAIR_S,PAIR_TRI_S,BODY_TRI_S] [--quiet]\n"
     "The report is the one of `interfere clash --scene FILE` (docs/report.md) plus \"mpi\"; docs/mpi.md.\n";
 
 Options parse(int argc, char** argv) {
@@ -92,7 +93,18 @@ Options parse(int argc, char** argv) {
     else if (a == "--group-by") o.group_by = value();
     else if (a == "--group-distance") o.group_distance = number(value());
     else if (a == "--threads") o.threads = static_cast<int>(number(value()));
-    else if (a == "--quiet" || a == "-q") o.quiet = true;
+    else if (a == "--cost-model") {
+      const std::string v = value();
+      std::vector<double> c;
+      std::size_t from = 0;
+      while (from <= v.size()) {
+        const std::size_t comma = std::min(v.find(',', from), v.size());
+        c.push_back(number(v.substr(from, comma - from)));
+        from = comma + 1;
+      }
+      if (c.size() != 3) throw UsageError("--cost-model: '" + v + "' is not three numbers PAIR_S,PAIR_TRI_S,BODY_TRI_S");
+      o.cost = {.pair_s = c[0], .pair_tri_s = c[1], .body_tri_s = c[2]};
+    } else if (a == "--quiet" || a == "-q") o.quiet = true;
     else if (a == "--help" || a == "-h") throw UsageError(kUsage);
     else throw UsageError("unknown option " + a + "\n" + kUsage);
   }
@@ -149,6 +161,21 @@ std::vector<std::size_t> share_of(const scene::SceneSpec& spec, const World& w) 
   }
   std::sort(mine.begin(), mine.end());
   return mine;
+}
+
+// The mesh key of body k of entry s (wire.h BodyInfo::mesh_key): equal keys where load_scene on
+// the whole scene file gives bodies one mesh (scene_load/load.cpp: a mesh file read once per
+// canonical path and unit; an entry's bodies sharing their part's mesh).
+std::uint64_t mesh_key(const scene::BodySpec& entry, std::size_t s, const scene::Scene& loaded, std::uint32_t k) {
+  const scene::Body& body = loaded.bodies[k];
+  if (body.source.kind == scene::SourceKind::mesh_file && loaded.bodies.size() == 1) {
+    std::error_code ec;
+    const std::filesystem::path canonical = std::filesystem::weakly_canonical(entry.file, ec);
+    return fnv1a(0xcbf29ce484222325ULL, "F" + (ec ? entry.file : canonical.string()) + "\n" + body.unit);
+  }
+  std::uint32_t first = 0;
+  while (loaded.bodies[first].mesh != body.mesh) ++first;
+  return fnv1a(0xcbf29ce484222325ULL, "E" + std::to_string(s) + ":" + std::to_string(first));
 }
 
 int run(const World& w, int argc, char** argv) {
@@ -266,6 +293,7 @@ int run(const World& w, int argc, char** argv) {
     }
     for (std::uint32_t k = 0; k < l.scene.bodies.size(); ++k) {
       BodyInfo b;
+      b.mesh_key = mesh_key(spec->bodies[s], s, l.scene, k);
       b.meta = l.scene.bodies[k];
       b.meta.mesh = nullptr, b.meta.source_ids = nullptr, b.meta.source_faces = nullptr, b.meta.vertex_ids = nullptr;
       b.meta.world_model = nullptr;
@@ -352,6 +380,7 @@ int run(const World& w, int argc, char** argv) {
   // (with deformation, the reference configuration first: its pairs are checked, not counted)
   const std::size_t uncounted = reference ? 1 : 0;
   std::vector<std::vector<AabbF>> boxes(uncounted + (moving ? skeleton.frames.size() : 1), std::vector<AabbF>(n));
+  std::vector<std::vector<Transform>> poses(boxes.size());
   {
     std::vector<Transform> pose(n);
     std::vector<Aabb> local(n);
@@ -364,11 +393,15 @@ int run(const World& w, int argc, char** argv) {
           for (const auto& [i, b] : step_boxes[f]) local[i] = b;
       }
       tbb::parallel_for(std::uint32_t{0}, n, [&](std::uint32_t i) { boxes[pass][i] = broad_box(local[i], pose[i]); });
+      poses[pass] = pose;
     }
   }
   BroadResult broad = broad_phase(skeleton.bodies, tests, boxes, uncounted);
-  for (Unit& u : broad.units) u.cost = pair_cost(info[u.a].triangles, info[u.b].triangles) * u.frames;
-  const Partition part = partition(broad, boxes[0], static_cast<std::size_t>(w.size));
+  for (Unit& u : broad.units) u.cost = o.cost.pair(info[u.a].triangles, info[u.b].triangles) * u.frames;
+  std::vector<std::uint64_t> triangles(n), mesh_keys(n);
+  for (std::uint32_t i = 0; i < n; ++i) triangles[i] = info[i].triangles, mesh_keys[i] = info[i].mesh_key;
+  join_classes(broad, mesh_keys, poses);  // (pairs the engine decides once stay on one rank)
+  const Partition part = partition(broad, boxes[0], triangles, o.cost, static_cast<std::size_t>(w.size));
   if (talk)
     std::fprintf(stderr, "[interfere-mpi] %u bodies, %zu candidate pairs (%zu units) on %d ranks: estimated cost per rank %s\n",
                  n, broad.candidate_pairs, broad.units.size(), w.size, [&] {
@@ -377,11 +410,12 @@ int run(const World& w, int argc, char** argv) {
                    return s;
                  }().c_str());
 
-  // 3. The entries this rank's blocks need (the rest of the first read is dropped), then the engine.
-  const std::vector<Block>& calls = part.calls[static_cast<std::size_t>(w.rank)];
+  // 3. The entries this rank's bodies come from (the rest of the first read is dropped), then one
+  // engine call on those bodies deciding exactly this rank's pairs (decide_pairs).
+  const std::vector<std::uint32_t>& my_units = part.rank_units[static_cast<std::size_t>(w.rank)];
+  const std::vector<std::uint32_t>& my_bodies = part.rank_bodies[static_cast<std::size_t>(w.rank)];
   std::set<std::size_t> need;
-  for (const Block& b : calls)
-    for (const std::uint32_t i : b.bodies) need.insert(info[i].spec);
+  for (const std::uint32_t i : my_bodies) need.insert(info[i].spec);
   for (auto it = loaded.begin(); it != loaded.end();) it = need.count(it->first) ? std::next(it) : loaded.erase(it);
   std::vector<std::size_t> more;
   for (const std::size_t s : need)
@@ -402,13 +436,19 @@ int run(const World& w, int argc, char** argv) {
   std::vector<scene::FrameRow> rows(moving ? skeleton.frames.size() : 0);
   for (std::size_t f = 0; f < rows.size(); ++f) rows[f].frame = static_cast<std::uint32_t>(f);
   std::set<std::string> open_warnings;
-  for (const Block& call : calls) {
+  if (!my_units.empty()) {
     scene::Scene sub;
     sub.units = units;
     std::vector<std::uint32_t> local(n, UINT32_MAX);
-    for (const std::uint32_t i : call.bodies) {
+    // Bodies with one mesh key share one mesh, as in one process (entries read separately here).
+    std::map<std::uint64_t, std::shared_ptr<const TriMesh>> shared;
+    for (const std::uint32_t i : my_bodies) {
       local[i] = static_cast<std::uint32_t>(sub.bodies.size());
       sub.bodies.push_back(loaded.at(info[i].spec).scene.bodies[info[i].ordinal]);
+      const auto [it, added] = shared.emplace(info[i].mesh_key, sub.bodies.back().mesh);
+      if (!added && it->second->triangles == sub.bodies.back().mesh->triangles &&
+          it->second->positions == sub.bodies.back().mesh->positions)
+        sub.bodies.back().mesh = it->second;
     }
     const scene::LoadedScene* fe = fe_entry != SIZE_MAX && loaded.count(fe_entry) ? &loaded.at(fe_entry) : nullptr;
     std::uint32_t fe_first = 0;
@@ -425,46 +465,48 @@ int run(const World& w, int argc, char** argv) {
       sub.frames.push_back(std::move(g));
     }
     bool any_fit = false;
-    for (const std::uint32_t i : call.bodies) any_fit = any_fit || bool(loaded.at(info[i].spec).nominal_fit);
+    for (const std::uint32_t i : my_bodies) any_fit = any_fit || bool(loaded.at(info[i].spec).nominal_fit);
     if (any_fit)
       eo.nominal_fit = [&](std::uint32_t a, std::uint32_t b, const Model& wa, const Model& wb, const ClashResult& r, double depth) {
-        const BodyInfo& ia = info[call.bodies[a]];
-        const BodyInfo& ib = info[call.bodies[b]];
+        const BodyInfo& ia = info[my_bodies[a]];
+        const BodyInfo& ib = info[my_bodies[b]];
         if (ia.spec != ib.spec) return false;  // (bodies of different files share no B-Rep faces)
         const scene::LoadedScene& l = loaded.at(ia.spec);
         return l.nominal_fit && l.nominal_fit(ia.ordinal, ib.ordinal, wa, wb, r, depth);
       };
-    else eo.nominal_fit = nullptr;
+    for (const std::uint32_t k : my_units) eo.decide_pairs.emplace_back(local[broad.units[k].a], local[broad.units[k].b]);
     scene::SceneClashResult r = scene::clash_scene(sub, tests, eo);
     ++mine_result.calls;
-    mine_result.pairs += call.units.size();
-    for (const std::uint32_t k : call.units) mine_result.pair_triangles += info[broad.units[k].a].triangles + info[broad.units[k].b].triangles;
+    mine_result.pairs += my_units.size();
+    mine_result.bodies_used = my_bodies.size();
+    for (const std::uint32_t i : my_bodies) mine_result.body_triangles += info[i].triangles;
+    for (const std::uint32_t k : my_units) mine_result.pair_triangles += info[broad.units[k].a].triangles + info[broad.units[k].b].triangles;
     mine_result.core_runs += r.core_runs;
     mine_result.prepare_seconds += r.prepare_seconds, mine_result.broad_seconds += r.broad_seconds;
     mine_result.narrow_seconds += r.narrow_seconds;
     mine_result.reference_checked = mine_result.reference_checked || r.reference_checked;
     std::set<std::pair<std::uint32_t, std::uint32_t>> own;
-    for (const std::uint32_t k : call.units) own.emplace(broad.units[k].a, broad.units[k].b);
+    for (const std::uint32_t k : my_units) own.emplace(broad.units[k].a, broad.units[k].b);
     for (scene::SceneClash& c : r.clashes) {
-      c.a = call.bodies[c.a], c.b = call.bodies[c.b];
-      if (c.has_deepest) c.deepest.body = call.bodies[c.deepest.body];
+      c.a = my_bodies[c.a], c.b = my_bodies[c.b];
+      if (c.has_deepest) c.deepest.body = my_bodies[c.deepest.body];
       if (!own.count({c.a, c.b}))
         throw std::logic_error("the engine found a clash of bodies '" + info[c.a].meta.id + "' and '" + info[c.b].meta.id +
-                               "', which the plan did not give this block");
+                               "', which the plan did not give this rank");
       mine_result.clashes.push_back(std::move(c));
     }
     for (scene::FramePairRow& p : r.frame_pairs) {
-      p.a = call.bodies[p.a], p.b = call.bodies[p.b];
-      if (p.has_deepest) p.deepest.body = call.bodies[p.deepest.body];
+      p.a = my_bodies[p.a], p.b = my_bodies[p.b];
+      if (p.has_deepest) p.deepest.body = my_bodies[p.deepest.body];
       mine_result.frame_pairs.push_back(p);
     }
     for (scene::ReferencePair& p : r.reference_pairs) {
-      p.a = call.bodies[p.a], p.b = call.bodies[p.b];
+      p.a = my_bodies[p.a], p.b = my_bodies[p.b];
       mine_result.reference_pairs.push_back(p);
     }
     if (reference && !r.reference_checked) {
-      // A block none of whose bodies deforms: its reference configuration is every frame's (FE
-      // steps move no body), so its pairs' reference verdicts are those of frame 0.
+      // None of this rank's bodies deforms: its reference configuration is every frame's (FE steps
+      // move no body), so its pairs' reference verdicts are those of frame 0.
       std::map<std::tuple<std::uint32_t, std::uint32_t, std::uint32_t>, Verdict> v0;
       for (const scene::FramePairRow& p : r.frame_pairs)
         if (p.frame == 0) v0[{p.test, p.a, p.b}] = p.verdict;  // (rows already in global indices)
@@ -488,14 +530,13 @@ int run(const World& w, int argc, char** argv) {
     scene::SceneClashOptions go;
     go.group_by = o.group_by == "pair" ? scene::GroupBy::pair : o.group_by == "location" ? scene::GroupBy::location : scene::GroupBy::none;
     go.group_distance = o.group_distance;
-    std::vector<std::uint64_t> triangles(n);
-    for (std::uint32_t i = 0; i < n; ++i) triangles[i] = info[i].triangles;
     scene::SceneClashResult result = merge(skeleton, tests, go, broad, triangles, per_rank, reference);
     if (!o.baseline.empty())
       if (const Status s = scene::apply_baseline(result, baseline_text, o.baseline); !s) throw UsageError(s.error().message());
     status = verdict_exit_status(result.verdict);
     std::vector<std::string> inputs;
-    for (const scene::BodySpec& b : spec->bodies) inputs.push_back(b.file);
+    for (const scene::BodySpec& b : spec->bodies)  // (each file once, as load_scene lists them)
+      if (std::find(inputs.begin(), inputs.end(), b.file) == inputs.end()) inputs.push_back(b.file);
     if (!motion.empty()) inputs.push_back(motion);
     scene::ReportContext ctx{.command = "clash", .tool_version = INTERFERE_VERSION, .inputs = inputs,
                              .threads = static_cast<int>(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)),

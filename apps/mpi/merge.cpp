@@ -1,6 +1,5 @@
-// Rank 0's merge (merge.h; issue #31, item 2). The order and the summaries are the engine's
-// (src/scene/engine.cpp, end of clash_scene); the frames x pairs summary and the grouping are the
-// engine's own functions (src/scene/engine_internal.h).
+// Rank 0's merge (merge.h; issue #31, item 2). The order, the summaries, the frames x pairs
+// summary and the grouping are the engine's own (scene::finish_result, the end of clash_scene).
 #include "merge.h"
 
 #include <algorithm>
@@ -10,7 +9,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include "engine_internal.h"
 
 namespace interfere::mpi {
 
@@ -57,10 +55,8 @@ scene::SceneClashResult merge(const scene::Scene& skeleton, const std::vector<sc
     }
     open.insert(r.warnings.begin(), r.warnings.end());
   }
-  scene::detail::sort_and_summarise(skeleton, tests, result);  // (the engine's order and summaries)
+  scene::finish_result(skeleton, tests, options, result);  // (the engine's order, summaries and groups)
   const auto& bodies = skeleton.bodies;
-  scene::detail::summarise_frames(skeleton, tests, result);
-  scene::detail::group_clashes(result, options);
   // The engine's open-body warnings, in body order ("body '<id>' is not closed ...").
   std::map<std::string, std::size_t> index;
   for (std::size_t i = 0; i < bodies.size(); ++i) index.emplace(bodies[i].id, i);
@@ -84,6 +80,8 @@ std::string report_with_mpi(const std::string& report, const std::vector<std::ui
     per.push_back({{"rank", r},
                    {"pairs", ranks[r].pairs},
                    {"engine_calls", ranks[r].calls},
+                   {"bodies_used", ranks[r].bodies_used},
+                   {"body_triangles", ranks[r].body_triangles},
                    {"core_runs", ranks[r].core_runs},
                    {"bodies_read", ranks[r].bodies_loaded},
                    {"triangles_read", ranks[r].triangles_loaded},

@@ -18,8 +18,8 @@ void add_row(scene::FrameRow& into, const scene::FrameRow& from);
 /// ids, clash id), counts, pair summaries, the frames table (the ranks' rows added), the frames x
 /// pairs table and first frames (engine_frames.cpp), groups (engine_groups.cpp), the broad phase's
 /// candidate and suppressed counts and selection warnings, then the engine's open-body warnings
-/// in body order. core_runs: the ranks' sum (docs/mpi.md: repeated pairs on different ranks are
-/// decided on each). `reference_checked`: the scene deforms (the engine's reference pass ran).
+/// in body order. core_runs: the ranks' sum (one process's: a class of pairs the engine decides
+/// once is kept on one rank, plan.h join_classes). `reference_checked`: the scene deforms (the engine's reference pass ran).
 scene::SceneClashResult merge(const scene::Scene& skeleton, const std::vector<scene::ClashTest>& tests,
                               const scene::SceneClashOptions& options, const BroadResult& broad,
                               const std::vector<std::uint64_t>& triangles, const std::vector<RankResult>& ranks,

@@ -1,17 +1,16 @@
 // The distribution plan of `interfere-mpi clash` (issue #31, item 2; docs/mpi.md): from what every
-// rank knows after the allgather (each body's metadata, world box and triangle count), the same
-// deterministic broad phase on every rank, the candidate body pairs (work units), their estimated
-// cost, and their partition into blocks and ranks. Pure functions, no MPI: unit-tested alone.
+// rank knows after the allgather (each body's metadata, world box, triangle count and mesh key),
+// the same deterministic broad phase on every rank (the engine's own: scene::BroadPhase), the
+// candidate body pairs (work units), their estimated cost (CostModel, fitted to measured ranks:
+// docs/scaling.md) and their partition over the ranks. Pure functions, no MPI: unit-tested alone.
 //
-// A block is a set of bodies decided by one call of the scene engine (scene::clash_scene) on the
-// sub-scene of those bodies, which decides every candidate pair among them; a body pair's clashes
-// depend only on the two bodies (engine.h: ids, locations, continuity over frames are per pair), so
-// a block gives the same clashes for its pairs as the whole scene does. Blocks never overlap in
-// pairs (no pair is decided twice, nothing is filtered afterwards): a connected component of the
-// candidate graph is a block; a component costing more than a share of a rank is cut into groups
-// of bodies by the spatial (Morton) order of their box centres, each group a block (its pairs
-// within), and each pair between two groups a block of its own two bodies, placed on the rank of
-// one of its groups. A rank runs its blocks in as few engine calls as keep that property.
+// Each rank then runs the scene engine once on the bodies its pairs need, deciding exactly its
+// pairs (scene::SceneClashOptions::decide_pairs): no pair is decided twice, nothing is filtered
+// afterwards. A body pair's clashes depend only on its two bodies (engine.h: ids, locations,
+// continuity over frames are per pair), so a rank gives the same clashes for its pairs as the
+// whole scene does. Pairs the engine decides once (the same two meshes in the same relative pose:
+// a product's repeated joints) are kept on one rank, so the ranks' core runs add up to one
+// process's.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -24,15 +23,15 @@
 
 namespace interfere::mpi {
 
-/// The broad phase's conservative world box of a body (the engine's: the local box's 8 corners
-/// under the pose, padded by a relative 2^-40, rounded outward to float).
+/// The broad phase's conservative world box of a body (scene::broad_box, the engine's).
 AabbF broad_box(const Aabb& local, const Transform& pose);
 
 /// One candidate body pair over every test and frame (a, b: global body indices, a's id < b's id).
 struct Unit {
   std::uint32_t a = 0, b = 0;
-  double cost = 0;       ///< estimated (plan_cost)
+  double cost = 0;           ///< estimated seconds (CostModel::pair over its frames)
   std::uint32_t frames = 0;  ///< frames in which some test has it as a candidate
+  std::uint32_t item = 0;    ///< its class group (join_classes): units of one item go to one rank
 };
 
 struct BroadResult {
@@ -43,41 +42,55 @@ struct BroadResult {
 };
 
 /// The broad phase over `bodies` (metadata only: ids, names, tags, ... for the selectors; meshes
-/// unused) with `boxes[frame][body]` (one frame for a static scene): the engine's candidate rule
-/// (engine.cpp: selections per test, boxes grown by the test's margin rounded up to float, the
-/// traversal's float test bvh/traverse.h boxes_overlap, suppression rules), with the engine's own
-/// box trees (src/scene/engine_internal.h build_box_tree) and traversal (for_each_overlap).
+/// unused) with `boxes[frame][body]` (one frame for a static scene): scene::BroadPhase, the
+/// engine's own (trees built for the first box set, refitted for the others, as clash_scene).
 /// The first `uncounted` box sets (the reference configuration of deformed scenes) give units but
-/// are not counted in candidate_pairs and suppressed, as the engine's reference pass.
+/// are not counted in candidate_pairs and suppressed, as the engine's reference pass. Every unit
+/// is its own item until join_classes.
 BroadResult broad_phase(const std::vector<scene::Body>& bodies, const std::vector<scene::ClashTest>& tests,
                         const std::vector<std::vector<AabbF>>& boxes, std::size_t uncounted = 0);
 
-/// Estimated cost of deciding a body pair in one frame (seconds, roughly): per pair, per triangle
-/// of the two bodies (a fixed estimate; docs/scaling.md fits a model to measured times).
+/// Joins into one item the units the engine decides once as a class (engine.h, relative_pose_key):
+/// the same two mesh keys and the same relative pose, bit for bit, in some configuration
+/// (`poses[config][body]`; every configuration is compared, a superset of the engine's rule, so
+/// an item may be larger than needed, never split). An item's units go to one rank, whose single
+/// engine call decides the class once, as one process does.
+void join_classes(BroadResult& broad, const std::vector<std::uint64_t>& mesh_key,
+                  const std::vector<std::vector<Transform>>& poses);
+
+/// Estimated seconds of the engine's work (docs/scaling.md fits the coefficients to every rank's
+/// measured engine time: tools/mpi_scaling.py): per candidate pair and frame, per triangle of its
+/// two bodies and frame, and per triangle of every body a rank holds (its model and tree built
+/// once, its statistics).
+struct CostModel {
+  double pair_s = 2.0e-4;
+  double pair_tri_s = 2.0e-7;
+  double body_tri_s = 1.0e-6;
+  double pair(std::uint64_t triangles_a, std::uint64_t triangles_b) const {
+    return pair_s + pair_tri_s * static_cast<double>(triangles_a + triangles_b);
+  }
+  double body(std::uint64_t triangles) const { return body_tri_s * static_cast<double>(triangles); }
+};
+
+/// The estimated cost of a pair in one frame by the default model (CostModel{}.pair).
 double pair_cost(std::uint64_t triangles_a, std::uint64_t triangles_b);
 
-struct Block {
-  std::vector<std::uint32_t> bodies;  ///< sorted global indices
-  std::vector<std::uint32_t> units;   ///< sorted indices into BroadResult::units: every candidate pair among `bodies`
-  double cost = 0;
-};
-
 struct Partition {
-  std::vector<Block> blocks;
-  std::vector<std::uint32_t> rank_of_block;
-  std::vector<double> rank_cost;
-  /// Per rank, its engine calls: blocks merged where the union of their bodies holds no pair of
-  /// another rank (every whole component of a rank in one call; a cut component's blocks on a rank
-  /// in one call when that holds, else one call each).
-  std::vector<std::vector<Block>> calls;
+  std::vector<std::vector<std::uint32_t>> rank_units;   ///< per rank: sorted indices into BroadResult::units
+  std::vector<std::vector<std::uint32_t>> rank_bodies;  ///< per rank: the bodies its units need (sorted)
+  std::vector<double> rank_cost;  ///< per rank: its units' costs + its bodies' (CostModel::body)
+  std::size_t pieces = 0;         ///< pieces placed (whole components, or runs of a cut one)
 };
 
-/// Partitions the units over `ranks` (units' costs set): components as blocks, components costing
-/// more than total / (4 ranks) cut by the Morton order of their bodies' box centres; groups to
-/// ranks by longest processing time first, then each pair between groups (costliest first) to the
-/// less loaded of its two groups' ranks, or to the least loaded rank when that one would pass the
-/// mean load by 1 %. Deterministic.
-Partition partition(const BroadResult& broad, const std::vector<AabbF>& boxes, std::size_t ranks);
+/// Partitions the units over `ranks` by estimated cost with locality: items (class groups) whole;
+/// a connected component of the candidate graph costing at most total / (4 ranks) is one piece (a
+/// body's pairs together); a larger one is cut into runs of its bodies' Morton order (box
+/// centres), each item owned by its first body in that order, so a body's pairs mostly stay in one
+/// piece. Pieces go to ranks costliest first, each to the rank where it ends earliest counting the
+/// body cost of the bodies that rank does not hold yet (so a cut component's neighbouring pieces
+/// prefer the rank that already reads their shared bodies). Deterministic.
+Partition partition(const BroadResult& broad, const std::vector<AabbF>& boxes, const std::vector<std::uint64_t>& triangles,
+                    const CostModel& model, std::size_t ranks);
 
 /// FNV-1a (64 bits) of bytes, continuing from h.
 std::uint64_t fnv1a(std::uint64_t h, const std::string& bytes);

@@ -17,7 +17,9 @@ namespace interfere::mpi {
 
 int simulate(int argc, char** argv) {
   // Parameters (docs/scaling.md): the product and the fitted cost model.
-  double bodies = 1e5, triangles = 1e9, pair_s = 2e-5, pair_tri_s = 2.5e-7, read_tri_s = 1e-7, body_bytes = 200,
+  const CostModel defaults;
+  double bodies = 1e5, triangles = 1e9, pair_s = defaults.pair_s, pair_tri_s = defaults.pair_tri_s,
+         body_tri_s = defaults.body_tri_s, read_tri_s = 1e-7, body_bytes = 200,
          tri_bytes = 200, bandwidth = 5e9, sigma = 1.0, base_mb = 60;
   std::vector<double> ranks{8, 16, 32, 64, 128, 256, 512, 1024};
   for (int i = 0; i + 1 < argc; i += 2) {
@@ -27,6 +29,7 @@ int simulate(int argc, char** argv) {
     else if (k == "--triangles") triangles = v;
     else if (k == "--pair-s") pair_s = v;
     else if (k == "--pair-tri-s") pair_tri_s = v;
+    else if (k == "--body-tri-s") body_tri_s = v;
     else if (k == "--read-tri-s") read_tri_s = v;
     else if (k == "--tri-bytes") tri_bytes = v;
     else if (k == "--base-mb") base_mb = v;
@@ -63,55 +66,42 @@ int simulate(int argc, char** argv) {
   const auto t0 = std::chrono::steady_clock::now();
   BroadResult broad = broad_phase(meta, {scene::ClashTest{}}, {boxes});
   const double broad_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  // The partition balances the program's own estimate (plan.h pair_cost), as a run would; the
-  // time of each rank is the fitted model's (pair_s, pair_tri_s) over its pairs.
+  // The partition balances the fitted model (plan.h CostModel: per pair, per triangle of a pair,
+  // per triangle of a body a rank holds), as a run given --cost-model does; a rank's modelled time
+  // is its pairs' and bodies' cost.
+  const CostModel model{.pair_s = pair_s, .pair_tri_s = pair_tri_s, .body_tri_s = body_tri_s};
   double total = 0;
-  std::vector<double> modelled(broad.units.size());
-  for (std::size_t k = 0; k < broad.units.size(); ++k) {
-    Unit& u = broad.units[k];
-    u.cost = pair_cost(tris[u.a], tris[u.b]);
-    total += modelled[k] = pair_s + pair_tri_s * static_cast<double>(tris[u.a] + tris[u.b]);
-  }
+  for (Unit& u : broad.units) total += u.cost = model.pair(tris[u.a], tris[u.b]);
+  for (std::uint32_t i = 0; i < n; ++i) total += model.body(tris[i]);
   nlohmann::json out{{"bodies", n}, {"triangles", triangles}, {"candidate_pairs", broad.units.size()},
                      {"serial_pair_s", total}, {"broad_phase_s", broad_s},
-                     {"model", {{"pair_s", pair_s}, {"pair_tri_s", pair_tri_s}, {"read_tri_s", read_tri_s},
+                     {"model", {{"pair_s", pair_s}, {"pair_tri_s", pair_tri_s}, {"body_tri_s", body_tri_s}, {"read_tri_s", read_tri_s},
                                 {"tri_bytes", tri_bytes}, {"body_bytes", body_bytes}, {"bandwidth", bandwidth}, {"base_mb", base_mb}}},
                      {"ranks", nlohmann::json::array()}};
   for (const double kd : ranks) {
     const auto k = static_cast<std::size_t>(kd);
     const auto t1 = std::chrono::steady_clock::now();
-    const Partition p = partition(broad, boxes, k);
+    const Partition p = partition(broad, boxes, tris, model, k);
     const double partition_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
-    double max_cost = 0, mean_cost = total / static_cast<double>(k), max_est = 0, mean_est = 0;
-    for (const double c : p.rank_cost) max_est = std::max(max_est, c), mean_est += c / static_cast<double>(k);
-    for (std::size_t r = 0; r < k; ++r) {
-      double c = 0;
-      for (const Block& blk : p.calls[r])
-        for (const std::uint32_t u : blk.units) c += modelled[u];
-      max_cost = std::max(max_cost, c);
-    }
-    // Bodies and triangles each rank reads: its share in step 1 (n / k by size) and its blocks'.
+    const double mean_cost = total / static_cast<double>(k);
+    const double max_cost = *std::max_element(p.rank_cost.begin(), p.rank_cost.end());
+    // Bodies and triangles each rank reads: its share in step 1 (n / k by size) and its pairs'.
     std::uint64_t max_tri = 0, max_bodies = 0, sum_bodies = 0;
-    std::vector<char> in(n, 0);
     for (std::size_t r = 0; r < k; ++r) {
-      std::uint64_t t = 0, b = 0;
-      for (const Block& blk : p.calls[r])
-        for (const std::uint32_t i : blk.bodies)
-          if (!in[i]) in[i] = 1, t += tris[i], ++b;
-      for (const Block& blk : p.calls[r])
-        for (const std::uint32_t i : blk.bodies) in[i] = 0;
-      max_tri = std::max(max_tri, t), max_bodies = std::max(max_bodies, b), sum_bodies += b;
+      std::uint64_t t = 0;
+      for (const std::uint32_t i : p.rank_bodies[r]) t += tris[i];
+      max_tri = std::max(max_tri, t), max_bodies = std::max<std::uint64_t>(max_bodies, p.rank_bodies[r].size());
+      sum_bodies += p.rank_bodies[r].size();
     }
     const double share_tri = triangles / static_cast<double>(k);
     const double allgather_bytes = body_bytes * n;  // every rank receives every body's metadata
     const double time = (share_tri + static_cast<double>(max_tri)) * read_tri_s + broad_s + partition_s +
                         allgather_bytes / bandwidth * std::log2(static_cast<double>(k)) + max_cost;
     out["ranks"].push_back({{"ranks", k},
-                            {"blocks", p.blocks.size()},
+                            {"pieces", p.pieces},
                             {"max_rank_pair_s", max_cost},
                             {"mean_rank_pair_s", mean_cost},
                             {"imbalance", mean_cost > 0 ? max_cost / mean_cost - 1 : 0},
-                            {"estimate_imbalance", mean_est > 0 ? max_est / mean_est - 1 : 0},
                             {"max_bodies_read", max_bodies},
                             {"bodies_read_over_n", static_cast<double>(sum_bodies) / n},
                             {"max_triangles_read", max_tri},

@@ -83,7 +83,7 @@ std::string encode(const std::vector<BodyInfo>& bodies) {
   for (const BodyInfo& b : bodies) {
     const scene::Body& m = b.meta;
     a.push_back({m.id, m.name, m.path, ev(m.source.kind), m.source.file, m.source.detail, m.unit, pose(m.pose), m.tags,
-                 ev(m.source_id_kind), m.tessellation_error, b.triangles, box(b.local_box), b.spec, b.ordinal});
+                 ev(m.source_id_kind), m.tessellation_error, b.triangles, box(b.local_box), b.spec, b.ordinal, b.mesh_key});
   }
   const std::vector<std::uint8_t> v = json::to_cbor(a);
   return {v.begin(), v.end()};
@@ -101,7 +101,7 @@ std::vector<BodyInfo> decode_bodies(const std::string& bytes) {
     m.tags = j[8].get<std::vector<std::string>>();
     m.source_id_kind = static_cast<scene::SourceIdKind>(j[9].get<int>());
     m.tessellation_error = j[10];
-    b.triangles = j[11], b.local_box = box(j[12]), b.spec = j[13], b.ordinal = j[14];
+    b.triangles = j[11], b.local_box = box(j[12]), b.spec = j[13], b.ordinal = j[14], b.mesh_key = j[15];
     out.push_back(std::move(b));
   }
   return out;
@@ -122,7 +122,7 @@ std::string encode(const RankResult& r) {
   j["reference_pairs"] = json::array();
   for (const scene::ReferencePair& p : r.reference_pairs) j["reference_pairs"].push_back({p.test, p.a, p.b, ev(p.verdict)});
   j["warnings"] = r.warnings;
-  j["n"] = {r.core_runs, r.calls, r.pairs, r.bodies_loaded, r.pair_triangles, r.triangles_loaded};
+  j["n"] = {r.core_runs, r.calls, r.pairs, r.bodies_loaded, r.pair_triangles, r.triangles_loaded, r.bodies_used, r.body_triangles};
   j["reference_checked"] = r.reference_checked;
   j["t"] = {r.load_seconds, r.engine_seconds, r.prepare_seconds, r.broad_seconds, r.narrow_seconds, r.peak_rss_mb};
   const std::vector<std::uint8_t> v = json::to_cbor(j);
@@ -145,6 +145,7 @@ RankResult decode_result(const std::string& bytes) {
   r.warnings = j["warnings"].get<std::vector<std::string>>();
   r.core_runs = j["n"][0], r.calls = j["n"][1], r.pairs = j["n"][2], r.bodies_loaded = j["n"][3];
   r.pair_triangles = j["n"][4], r.triangles_loaded = j["n"][5];
+  r.bodies_used = j["n"][6], r.body_triangles = j["n"][7];
   r.reference_checked = j["reference_checked"];
   r.load_seconds = j["t"][0], r.engine_seconds = j["t"][1], r.prepare_seconds = j["t"][2], r.broad_seconds = j["t"][3];
   r.narrow_seconds = j["t"][4], r.peak_rss_mb = j["t"][5];

@@ -18,6 +18,11 @@ struct BodyInfo {
   std::uint64_t triangles = 0;
   Aabb local_box;
   std::uint32_t spec = 0, ordinal = 0;
+  /// Which mesh it has, as the scene loader shares meshes (scene/load.h: bodies of one mesh file
+  /// and unit share it across entries; a STEP or glTF entry's instances share their part's): equal
+  /// keys, one mesh. FNV-1a of "F" + the file's canonical path + unit, or "E" + entry + the
+  /// ordinal of the entry's first body with that mesh.
+  std::uint64_t mesh_key = 0;
 };
 
 /// A rank's findings: the clashes of its pairs (global body indices), its frame rows (counts of
@@ -32,6 +37,8 @@ struct RankResult {
   std::size_t core_runs = 0, calls = 0, pairs = 0, bodies_loaded = 0;
   std::uint64_t pair_triangles = 0;     ///< sum over its pairs of both bodies' triangles
   std::uint64_t triangles_loaded = 0;   ///< of the bodies it read
+  std::size_t bodies_used = 0;          ///< bodies in its engine call (those its pairs need)
+  std::uint64_t body_triangles = 0;     ///< their triangles
   bool reference_checked = false;
   double load_seconds = 0, engine_seconds = 0, prepare_seconds = 0, broad_seconds = 0, narrow_seconds = 0;
   double peak_rss_mb = 0;

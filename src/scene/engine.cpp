@@ -112,30 +112,7 @@ void refresh(const Scene& s, State& st, std::vector<detail::WorldBody>& world, s
   st.stale[i] = 0;
 }
 
-struct TestPlan {
-  const ClashTest* test = nullptr;
-  std::size_t order = 0;
-  std::vector<std::uint32_t> a, b;  // selected body indices (b empty: within a)
-  double margin = 0;                // the largest distance at which a pair matters
-  double grid = 1;
-  Bvh tree_a, tree_b;
-};
-
-bool pair_matches(const Selection& x, const Selection& y, const Body& p, const Body& q) {
-  return (selects(x, p) && selects(y, q)) || (selects(x, q) && selects(y, p));
-}
-
-double pair_clearance(const ClashTest& t, const Body& p, const Body& q) {
-  if (t.mode != ClashMode::clearance) return 0;
-  for (const ClearanceOverride& o : t.clearance_overrides)
-    if (pair_matches(o.a, o.b, p, q)) return o.clearance;
-  return t.clearance;
-}
-
-struct Candidate {
-  std::uint32_t test, a, b;  // a's id < b's id
-  double clearance;
-};
+using Candidate = CandidatePair;  // (a's id < b's id)
 
 constexpr std::size_t kNone = static_cast<std::size_t>(-1);
 
@@ -184,21 +161,6 @@ FramePairRow frame_pair_row(std::uint32_t frame, const Candidate& c, const std::
 
 namespace detail {
 
-// The world box of a local box under an affine pose (its 8 corners), padded by a relative 2^-40 so
-// that rounding in the vertices' own transforms cannot leave it (the exact core decides anyway).
-AabbF broad_box(const Aabb& local, const Transform& t) {
-  Aabb w;
-  for (int c = 0; c < 8; ++c)
-    w.expand(t.apply({c & 1 ? local.hi.x : local.lo.x, c & 2 ? local.hi.y : local.lo.y, c & 4 ? local.hi.z : local.lo.z}));
-  const Vec3 e = w.extent();
-  const double pad = (std::max({std::fabs(w.lo.x), std::fabs(w.lo.y), std::fabs(w.lo.z), std::fabs(w.hi.x),
-                                std::fabs(w.hi.y), std::fabs(w.hi.z)}) +
-                      std::max({e.x, e.y, e.z})) *
-                     0x1p-40;
-  w.lo = w.lo - Vec3{pad, pad, pad}, w.hi = w.hi + Vec3{pad, pad, pad};
-  return to_float_outward(w);
-}
-
 void sort_and_summarise(const Scene& scene, const std::vector<ClashTest>& tests, SceneClashResult& result) {
   // Order: test, body ids, clash id.
   std::map<std::string, std::size_t> test_index;  // (names are unique: clash_scene checks)
@@ -229,6 +191,13 @@ void sort_and_summarise(const Scene& scene, const std::vector<ClashTest>& tests,
 
 }  // namespace detail
 
+void finish_result(const Scene& scene, const std::vector<ClashTest>& tests, const SceneClashOptions& options,
+                   SceneClashResult& result) {
+  detail::sort_and_summarise(scene, tests, result);
+  detail::summarise_frames(scene, tests, result);
+  detail::group_clashes(result, options);
+}
+
 SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& tests, const SceneClashOptions& options) {
   const auto t_prepare = Clock::now();
   scene.validate();
@@ -257,25 +226,21 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
   std::map<const TriMesh*, std::unique_ptr<detail::WorldBody>> locals;
   std::vector<char> in_frame_unit(n, 0);
 
-  // Selections per test.
-  std::vector<TestPlan> plans(tests.size());
+  // Selections per test (the broad phase: engine_broad.cpp), and each test's id grid.
+  BroadPhase broad(scene.bodies, tests);
+  result.warnings = broad.warnings();
+  std::vector<double> grid(tests.size());
   for (std::size_t k = 0; k < tests.size(); ++k) {
-    TestPlan& p = plans[k];
     const ClashTest& t = tests[k];
-    p.test = &t, p.order = k;
-    for (std::uint32_t i = 0; i < n; ++i) {
-      if (selects(t.a, scene.bodies[i])) p.a.push_back(i);
-      if (!t.b.empty() && selects(t.b, scene.bodies[i])) p.b.push_back(i);
-    }
-    if (p.a.empty()) result.warnings.push_back("clash test '" + t.name + "': selection A selects no body");
-    if (!t.b.empty() && p.b.empty()) result.warnings.push_back("clash test '" + t.name + "': selection B selects no body");
-    p.margin = t.mode == ClashMode::duplicates ? t.tolerance : 0;
-    if (t.mode == ClashMode::clearance) {
-      p.margin = t.clearance;
-      for (const ClearanceOverride& o : t.clearance_overrides) p.margin = std::max(p.margin, o.clearance);
-    }
-    p.grid = t.id_grid > 0 ? t.id_grid : t.tolerance > 0 ? t.tolerance : 1.0 / mm;
+    grid[k] = t.id_grid > 0 ? t.id_grid : t.tolerance > 0 ? t.tolerance : 1.0 / mm;
   }
+  // Decide only these pairs (SceneClashOptions::decide_pairs), as (smaller index, larger index).
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> decide;
+  for (const auto& [x, y] : options.decide_pairs) decide.emplace_back(std::min(x, y), std::max(x, y));
+  std::sort(decide.begin(), decide.end());
+  const auto decided = [&](const Candidate& c) {
+    return std::binary_search(decide.begin(), decide.end(), std::pair{std::min(c.a, c.b), std::max(c.a, c.b)});
+  };
   result.prepare_seconds = since(t_prepare);
 
   const bool moving = !scene.frames.empty();
@@ -309,48 +274,13 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
       }
     }
     tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
-      if (box_dirty[i]) st.broad_box[i] = detail::broad_box(st.local_box[i], st.pose[i]);
+      if (box_dirty[i]) st.broad_box[i] = broad_box(st.local_box[i], st.pose[i]);
     });
-    // Candidates of every test.
-    std::vector<Candidate> cands;
-    for (TestPlan& p : plans) {
-      const auto boxes_of = [&](const std::vector<std::uint32_t>& sel) {
-        std::vector<AabbF> b(sel.size());
-        for (std::size_t i = 0; i < sel.size(); ++i) b[i] = st.broad_box[sel[i]];
-        return b;
-      };
-      if (pass == 0) {
-        p.tree_a = detail::build_box_tree(boxes_of(p.a));
-        if (!p.b.empty()) p.tree_b = detail::build_box_tree(boxes_of(p.b));
-      } else {
-        detail::refit_box_tree(p.tree_a, boxes_of(p.a));
-        if (!p.b.empty()) detail::refit_box_tree(p.tree_b, boxes_of(p.b));
-      }
-      const bool within = p.test->b.empty();
-      const Bvh& other = within ? p.tree_a : p.tree_b;
-      const std::vector<std::uint32_t>& other_sel = within ? p.a : p.b;
-      std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
-      for_each_overlap(p.tree_a, other, round_up(p.margin), [&](std::uint32_t x, std::uint32_t y) {
-        std::uint32_t u = p.a[x], v = other_sel[y];
-        if (u == v) return;
-        if (scene.bodies[v].id < scene.bodies[u].id) std::swap(u, v);
-        pairs.emplace_back(u, v);
-      });
-      std::sort(pairs.begin(), pairs.end());
-      pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-      if (!reference) result.candidate_pairs += pairs.size();
-      for (const auto& [u, v] : pairs) {
-        const Body& bu = scene.bodies[u];
-        const Body& bv = scene.bodies[v];
-        bool suppressed = false;
-        for (const Suppression& s : p.test->suppressions) suppressed = suppressed || pair_matches(s.a, s.b, bu, bv);
-        if (suppressed) {
-          if (!reference) ++result.suppressed;
-          continue;
-        }
-        cands.push_back({static_cast<std::uint32_t>(p.order), u, v, pair_clearance(*p.test, bu, bv)});
-      }
-    }
+    // Candidates of every test (the reference pass's are checked, not counted).
+    std::size_t counted = 0, suppressed = 0;
+    std::vector<Candidate> cands = broad.candidates(st.broad_box, counted, suppressed);
+    if (!reference) result.candidate_pairs += counted, result.suppressed += suppressed;
+    if (!decide.empty()) std::erase_if(cands, [&](const Candidate& c) { return !decided(c); });
     // Units: one core run per body pair. The candidates of every test on the same pair share it, at
     // the largest clearance among them, each test deriving its clashes from it (largest clearance
     // first). Not shared: duplicates mode (no core), a caller that sees each test's core result
@@ -394,7 +324,7 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
         k.a = reinterpret_cast<std::uintptr_t>(scene.bodies[c.a].mesh.get());
         k.b = reinterpret_cast<std::uintptr_t>(scene.bodies[c.b].mesh.get());
         const Transform t = st.pose[c.a] == st.pose[c.b] ? Transform{} : compose(inverse(st.pose[c.a]), st.pose[c.b]);
-        k.t = t.to_row_major();
+        k.t = t.to_row_major();  // (= relative_pose_key(pose a, pose b))
         for (std::size_t i = unit_start[u]; i < unit_start[u + 1]; ++i)
           k.tests.emplace_back(cands[order[i]].test, cands[order[i]].clearance);
         const auto [it, added] = class_of.emplace(std::move(k), classes.size());
@@ -550,7 +480,7 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
         SceneClash& s = list[i];
         const std::array<Vec3, 2>& local = where[k][i];
         s.id = detail::clash_id(tests[c.test].name + "\n" + verdict_name(s.verdict), scene.bodies[c.a].id,
-                                scene.bodies[c.b].id, local, plans[c.test].grid);
+                                scene.bodies[c.b].id, local, grid[c.test]);
         keys.push_back({s.id, local[0]});
       }
       // Clashes of one pair in one grid cell: suffixes by location.
@@ -633,9 +563,7 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
     if (options.progress) options.progress(f + 1, frame_count);
   }
 
-  detail::sort_and_summarise(scene, tests, result);
-  detail::summarise_frames(scene, tests, result);
-  detail::group_clashes(result, options);
+  finish_result(scene, tests, options, result);
   // Open bodies that took part (their verdicts say undecided where it mattered).
   for (std::size_t i = 0; i < n; ++i) {
     const MeshStats* stats = &world[i].lazy_stats;  // (of its local model: a mesh's statistics, once)

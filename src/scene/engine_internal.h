@@ -23,13 +23,13 @@ namespace interfere::scene::detail {
 Bvh build_box_tree(const std::vector<AabbF>& boxes);
 void refit_box_tree(Bvh& tree, const std::vector<AabbF>& boxes);
 
-/// The conservative world box of a body's local box under its pose (engine.cpp): the 8 corners
-/// mapped, padded by a relative 2^-40 so that rounding in the vertices' own transforms cannot leave
-/// it, rounded outward to float. The broad phase's boxes (also interfere-mpi's plan).
-AabbF broad_box(const Aabb& local, const Transform& t);
+/// Whether selections x and y select bodies p and q (either way round), and the clearance a test
+/// requires of a pair (its override's, or the test's) (engine_broad.cpp).
+bool pair_matches(const Selection& x, const Selection& y, const Body& p, const Body& q);
+double pair_clearance(const ClashTest& t, const Body& p, const Body& q);
 
 /// Sorts result.clashes by test, body ids and clash id, and derives from them the counts, the
-/// verdict and the per-pair summaries (engine.cpp; also interfere-mpi's merge).
+/// verdict and the per-pair summaries (engine.cpp; finish_result).
 void sort_and_summarise(const Scene& scene, const std::vector<ClashTest>& tests, SceneClashResult& result);
 
 /// A body in the current frame: its world model (statistics computed at most once, on demand).

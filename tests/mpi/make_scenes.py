@@ -10,6 +10,8 @@ files, deterministic (seeded).
   fe/      an FE model (CalculiX .frd, 5 bodies of 2 x 2 x 2 HEX8, 4 displacement steps: a designed
            contact, a body pushed into another, a body moving away) beside 3 STL boxes (two that
            overlap each other, no body of theirs deformed; one touching an FE body).
+  repeats/ 12 joints of one plate file and one pin file (every joint its own two entries), in two
+           relative poses: one process decides 2 configurations (core_runs 2), and so must K ranks.
   broken/  a scene whose last body file is not a mesh (a rank cannot read it).
 Usage: make_scenes.py OUT_DIR
 """
@@ -185,6 +187,19 @@ def fe(out, steps=4):
           [{"name": "hard", "a": ["all"], "mode": "hard"}])
 
 
+def repeats(out):
+    os.makedirs(out, exist_ok=True)
+    write_stl(os.path.join(out, "plate.stl"), box((0, 0, 0), (2, 2, 0.5)))
+    write_stl(os.path.join(out, "pin.stl"), sphere((1, 1, 0.25), 0.5, 12, 7))
+    bodies = []
+    for i in range(12):
+        x = 4.0 * i  # (binary-exact offsets: the relative poses are equal bit for bit)
+        dx = 0.25 if i % 2 else 0.0
+        bodies.append({"file": "plate.stl", "id": "plate%02d" % i, "transform": [1, 0, 0, x, 0, 1, 0, 0, 0, 0, 1, 0]})
+        bodies.append({"file": "pin.stl", "id": "pin%02d" % i, "transform": [1, 0, 0, x + dx, 0, 1, 0, 0, 0, 0, 1, 0]})
+    scene(os.path.join(out, "scene.json"), bodies, [{"name": "hard", "a": ["all"], "mode": "hard"}])
+
+
 def broken(out):
     os.makedirs(out, exist_ok=True)
     write_stl(os.path.join(out, "ok1.stl"), box((0, 0, 0), (1, 1, 1)))
@@ -200,4 +215,5 @@ if __name__ == "__main__":
     tiny(os.path.join(out, "tiny"))
     huge(os.path.join(out, "huge"))
     fe(os.path.join(out, "fe"))
+    repeats(os.path.join(out, "repeats"))
     broken(os.path.join(out, "broken"))

@@ -3,7 +3,7 @@
 # bodies; one huge body pair that dominates; the tiny scene with a motion file, 6 frames; an FE
 # model with 4 displacement steps beside mesh bodies) on
 # K = 1..4 ranks give reports equal to the single-process one (compare_reports.py: apart from
-# timings, threads, the mpi section and core_runs) and equal CSV tables; bad input: a rank that
+# timings, threads and the mpi section; core_runs included) and equal CSV tables; bad input: a rank that
 # cannot read a body ends the job with exit 2, that rank's message and no report; ranks that see
 # different inputs (checksum) exit 2; more ranks than bodies warn.
 # Usage: run_mpi_tests.sh INTERFERE INTERFERE_MPI
@@ -35,6 +35,8 @@ same "$work/tiny"
 same "$work/huge"
 same "$work/tiny" --motion motion.csv --frames-csv frames.csv
 same "$work/fe"  # (FE displacement steps, the reference configuration, designed contacts)
+same "$work/repeats"  # (one file in many entries, repeated joints: core_runs as one process's)
+check "$py" -c 'import json,sys; r=json.load(open(sys.argv[1])); sys.exit(r["summary"]["core_runs"] != 2)' "$work/repeats/single.json"
 
 # A STEP assembly (instances sharing meshes, the nominal-fit rule) beside two mesh files, with a
 # baseline (statuses carried) and grouping by location: K = 2, 3 (skipped in a build without STEP).

@@ -4,12 +4,15 @@
 // its upper bound; distances for clearance), in parallel across pairs and inside large pairs
 // (nested oneTBB tasks). Results are identical for any thread count and any order of the bodies.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "interfere/bvh/bvh.h"
 #include "interfere/core/aabb.h"
 #include "interfere/mesh/polyline.h"
 #include "interfere/query/clash.h"
@@ -226,6 +229,15 @@ struct SceneClashOptions {
   /// tell designed contacts (bonded or tied interfaces: touching there already) from contacts and
   /// penetrations the load makes (issue #26, item 4). One frame's extra work.
   bool reference = true;
+  /// Decide these body pairs only (body indices, either order; issue #31): when not empty, the
+  /// broad phase still finds and counts every candidate (candidate_pairs, suppressed, selection
+  /// warnings), but only candidates of a listed pair are decided and reported (clashes, frame
+  /// rows, frames x pairs, reference verdicts, depth maps, core_runs). For callers that split one
+  /// scene's pairs among several runs (interfere-mpi: each rank runs the scene of the bodies its
+  /// pairs need, with its pairs here) and merge them with finish_result. Pairs in the same
+  /// relative pose with the same meshes are decided once per run, so a caller that wants one
+  /// process's core_runs keeps them in one run (PairClassKey).
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> decide_pairs;
 };
 
 struct SceneClashResult {
@@ -265,6 +277,63 @@ struct SceneClashResult {
 /// for an invalid scene or test (Scene::validate, ClashTest::validate, duplicate test names).
 SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& tests,
                              const SceneClashOptions& options = {});
+
+/// The end of clash_scene, for callers that merge the results of several runs on parts of one
+/// scene (decide_pairs; interfere-mpi): sorts the clashes by (test order, body a id, body b id,
+/// id), derives the clash counts, the verdict and the pair summaries, sorts the frames x pairs
+/// table, the reference verdicts and the depth maps and derives first frames, designed contacts and
+/// the designed / new counts (when reference_checked), then the groups of options.group_by. The
+/// result holds the runs' clashes, frame_pairs, reference_pairs and depth_maps with body indices
+/// into `scene` (whose bodies need ids only) and zero counts.
+void finish_result(const Scene& scene, const std::vector<ClashTest>& tests, const SceneClashOptions& options,
+                   SceneClashResult& result);
+
+/// The broad phase's conservative world box of a body with local bounds `local` under `pose` (the
+/// 8 corners mapped, padded by a relative 2^-40 so that rounding in the vertices' own transforms
+/// cannot leave it, rounded outward to float): clash_scene's candidate boxes.
+AabbF broad_box(const Aabb& local, const Transform& pose);
+
+/// One candidate of the broad phase: a body pair of a test (a's id < b's id) and the clearance the
+/// test requires of it (its override, or the test's; 0 unless clearance mode).
+struct CandidatePair {
+  std::uint32_t test = 0, a = 0, b = 0;
+  double clearance = 0;
+};
+
+/// clash_scene's broad phase (issue #24, item 3), also for callers that plan a distributed run
+/// (interfere-mpi, issue #31) on body metadata alone: per test its selections, box trees over
+/// their broad boxes (a BVH of boxes, built once and refitted for later configurations), the
+/// pairs whose boxes grown by the test's margin (its largest clearance, or the duplicates
+/// tolerance, rounded up to float) overlap by the traversal's float test (bvh/traverse.h), then
+/// the suppression rules.
+class BroadPhase {
+ public:
+  /// Selections of every test over `bodies` (ids, names, tags, paths, sources: meshes unused).
+  BroadPhase(const std::vector<Body>& bodies, const std::vector<ClashTest>& tests);
+  /// "clash test 'x': selection A selects no body" (and B), as clash_scene reports them.
+  const std::vector<std::string>& warnings() const { return warnings_; }
+  /// The candidates for the bodies' broad boxes in one configuration (boxes[i]: body i's
+  /// broad_box), in clash_scene's order (test, then body indices a, b), suppressed pairs left out;
+  /// adds the candidates found and those suppressed to the counters.
+  std::vector<CandidatePair> candidates(const std::vector<AabbF>& boxes, std::size_t& candidate_count,
+                                        std::size_t& suppressed_count);
+
+ private:
+  const std::vector<Body>& bodies_;
+  const std::vector<ClashTest>& tests_;
+  std::vector<std::vector<std::uint32_t>> a_, b_;  // selected body indices per test (b empty: within a)
+  std::vector<double> margin_;
+  std::vector<Bvh> tree_a_, tree_b_;
+  bool built_ = false;
+  std::vector<std::string> warnings_;
+};
+
+/// What makes two candidate body pairs one problem, decided once by clash_scene (engine_frame.cpp:
+/// pairs with the same two meshes in the same relative pose, bit for bit, decided in the first
+/// body's local frame): the relative pose of b in a's frame as clash_scene computes it (the
+/// identity when both poses are equal), row-major. With the two meshes, a caller can keep such
+/// pairs in one run (interfere-mpi keeps one process's core_runs that way).
+std::array<double, 12> relative_pose_key(const Transform& pose_a, const Transform& pose_b);
 
 /// The world model of every body (pose applied, BVH built; statistics computed lazily by the
 /// engine, not here), in parallel: what clash_scene prepares first, for callers that query bodies
