@@ -87,6 +87,7 @@ __all__ = [
 ]
 
 from ._interfere import probe  # noqa: F401,E402  (issue #5: interfere.probe)
+from ._interfere import cell  # noqa: F401,E402  (issue #28: interfere.cell)
 # FEM models (docs/fem.md, "Python"): read_fem, generators, surface extraction, clash per step.
 from ._interfere import (  # noqa: F401,E402
     FemMesh,

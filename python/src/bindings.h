@@ -27,6 +27,8 @@ class ThreadLimit {
 };
 
 void bind_probe(pybind11::module_& m);
+/// The inspection cell (bind_cell.cpp, issue #28): submodule `interfere.cell`.
+void bind_cell(pybind11::module_& m);
 void bind_bearing(pybind11::module_& m);
 
 /// FEM module (bind_fem.cpp): FemMesh, read_fem, generators, extract_surface, clash_series.

@@ -936,6 +936,7 @@ PYBIND11_MODULE(_interfere, m) {
   m.def("exact_fallback_count", &exact_fallback_count,
         "Exact-arithmetic fallbacks taken by the predicates since the process started.");
   interfere::python::bind_probe(m);
+  interfere::python::bind_cell(m);
   interfere::python::bind_bearing(m);
 
   interfere::python::bind_fem(m);
