@@ -171,13 +171,33 @@ quadric-error-metric edge collapses while the faces that take part in the curren
    AAGs have one to three nodes. Graph matching alone is not recognition (an isolated plane matches the ring
    face's one-node graph, a hole wall the through hole's): `recognize_features` keeps whole-graph matching with
    geometric checks, and holes as above.
-   **Mates from geometry** (issue #29 item 4, first part): `infer_mates(model, library)` (`cad/mates.h`) finds
+   **Mates from geometry** (issue #29 item 4): `infer_mates(model, library)` (`cad/mates.h`) finds
    insertions (a boss-sense cylinder of one instance coaxial with a recognised hole of another, of one of its
    radii, overlapping along the axis: a bolt or rod in a hole, a nut on a bolt; the hole's type gives the
    constraint: through/stepped → `bolt`, blind → `pin`, counterbored → `screw`, countersunk →
    `countersunk_screw`) and planar contacts (planes back to back whose faces' boxes overlap). On AS1 (both
    exports, the same answer): 22 insertions (bolt in bracket, plate and nut 6 each; rod in bracket and nut 2
-   each) and 16 planar contacts. Not yet used to select a step's features without a process file.
+   each) and 16 planar contacts. **Without a process file** (`PipelineOptions::mates`, `interfere simplify
+   --mates auto`, the default for a STEP input without `--process`) the mates pick the assembly features
+   (`select_mate_features`): each insertion's hole by the rule of its constraint applied to that hole alone
+   (a bolt in a through hole: its wall and the clamped TopFace/BottomFace annuli; a rule that keeps nothing of
+   it, or skips it for want of a clamped face, leaves the hole's own faces), the inserted cylinder (a bolt's
+   shank, a rod), and of a planar contact the side whose contact faces are smaller (a nut's or a head's seat,
+   a bracket's foot; both when equal: the larger face around a hole is covered by the hole's annulus, not kept
+   whole). A part's selection is the union over its instances' mates; instances in no mate are simplified
+   without features (`<part> [mates]` beside `<part>` where only some take part). Report: `cad.features_from`
+   (`mates`, `process`, `none`) and `cad.mates` [{`kind`, `a_path`, `b_path`, `feature_type`, `constraint`,
+   `faces_a`, `faces_b`}]; a part alone or parts apart have no mates and keep nothing; a process overrides
+   the mates. Tested on a generated bolted joint (plate, cover, two bolts and nuts: the 11 mates of its
+   construction, the kept faces found by their own geometry, kept triangle for triangle when locked) and on
+   AS1 (every instance in a mate, every part with its holes' walls or shank kept).
+   **Zero-clearance fits** (issue #29 item 4): `assembly_clash` also classifies from the B-Rep pairs whose
+   tessellations neither cross nor touch, or come only within the clearance: coincident faces back to back
+   (`coincide`, as for nominal fits) whose triangles come within 1e-7 of the parts' diagonals make a contact
+   (`zero_clearance_fit`). AS1's AP203 export places a bracket 1.3e-12 mm above the plate, 31 contacts
+   before, 32 now: every fit of AS1 is a contact in both exports at linear deflections 0 (default) and 1 mm,
+   with or without a clearance, and the bolted joint's 9 meeting pairs at four tessellations, its cover
+   lifted 1e-6 mm or not (lifted 0.01 mm it is a gap).
 4. **Assembly semantics** (He & Xu §3): rules (`data/features/semantics.json`) map a constraint type to the
    feature types and roles whose faces take part, and the faces the paper's rules add (§3: "If feature Is Type
    (Circular Through Hole), Then feature.Add(TopFace and BottomFace)"; `"add": ["TopFace", "BottomFace"]`):

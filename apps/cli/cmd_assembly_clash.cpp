@@ -106,7 +106,7 @@ view::Document assembly_document(const AssemblyClashCliOptions& o, const cad::Ca
   for (const cad::InstancePairResult& p : r.pairs) {
     view::ViewClash c;
     c.verdict = cad::instance_meeting_name(p.meeting);
-    c.kind = p.nominal_fit ? "nominal fit" : containment_name(p.containment);
+    c.kind = p.nominal_fit ? "nominal fit" : p.zero_clearance_fit ? "zero-clearance fit" : containment_name(p.containment);
     c.body_a = p.a, c.body_b = p.b;
     c.id = "I" + std::to_string(p.a) + "_" + std::to_string(p.b);
     if (p.cross_pairs > 0) c.depth = p.depth;
@@ -207,6 +207,7 @@ int run_assembly_clash(const AssemblyClashCliOptions& o) {
                      {"depth", p.cross_pairs > 0 ? nlohmann::json(p.depth) : nlohmann::json(nullptr)},
                      {"depth_bound", p.depth_bound > 0 ? nlohmann::json(p.depth_bound) : nlohmann::json(nullptr)},
                      {"tessellation_error", p.tessellation_error}, {"nominal_fit", p.nominal_fit},
+                     {"zero_clearance_fit", p.zero_clearance_fit},
                      {"verdict", cad::instance_meeting_name(p.meeting)}, {"verdict_reasons", p.verdict_reasons}});
     std::string what = std::to_string(p.cross_pairs) + " crossing, " + std::to_string(p.touch_pairs) + " touching pairs";
     if (p.containment == Containment::a_inside_b || p.containment == Containment::b_inside_a)
@@ -221,6 +222,9 @@ int run_assembly_clash(const AssemblyClashCliOptions& o) {
               " (tessellation error " + short_number(p.tessellation_error) + " mm" +
               (p.depth <= p.tessellation_error ? ": a nominal fit?)" : ")");
     if (p.meeting == cad::InstanceMeeting::clearance) what = "closest " + short_number(p.min_clearance) + " mm";
+    if (p.zero_clearance_fit)  // (issue #29: classified from the B-Rep, whatever the tessellation)
+      what += ", a zero-clearance fit: coincident B-Rep faces, their tessellations " + short_number(p.min_clearance) +
+              " mm apart";
     for (const std::string& why : p.verdict_reasons) what += "; undecided: " + why;
     std::printf("%-9s %s x %s: %s\n", cad::instance_meeting_name(p.meeting), path(p.a).c_str(), path(p.b).c_str(),
                 what.c_str());

@@ -269,7 +269,8 @@ int run_simplify(const SimplifyCliOptions& o, [[maybe_unused]] const ImportedMod
   report["seconds"]["phases"] = phases;
   if ((o.lock || o.feature_mode != "weight") && so.feature_faces.empty())
     r.warnings.push_back(std::string(o.lock ? "--lock" : "--feature-mode " + o.feature_mode) +
-                         ": there are no feature faces to keep (--features, or --step with --process for a STEP input)");
+                         ": there are no feature faces to keep (--features, or for a STEP input --step with --process or an assembly's "
+                         "mates)");
   report["warnings"] = r.warnings;
   for (const auto& w : r.warnings)
     warning(w);
@@ -371,6 +372,10 @@ void add_simplify_command(CLI::App& app, int& exit_code) {
                 "process step id whose assembly features are kept (STEP input, needs --process); 'all': every step, "
                 "the STEP file imported once, outputs named OUT_<step>.ext (and JSON_<step>.json, DIR/<step>/)");
   c->add_option("--process", o->process, "process description JSON (steps, parts, constraint types)");
+  c->add_option("--mates", o->mates,
+                "STEP input without --process: auto (default) keeps the assembly features the mates inferred from "
+                "the geometry pick (a bolt or rod in a hole of its diameter, a nut on a bolt, planar faces back to "
+                "back; report cad.mates), off keeps none");
   c->add_option("--library", o->library, "feature library JSON (default: the installed data/features/library.json)")
       ->check(CLI::ExistingFile);
   c->add_option("--rules", o->rules, "assembly-semantics rules JSON (default: data/features/semantics.json)")

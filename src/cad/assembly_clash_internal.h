@@ -18,6 +18,13 @@ namespace interfere::cad::detail {
 bool nominal_fit(const Part& part_a, const Transform& place_a, const Part& part_b, const Transform& place_b,
                  const Model& wa, const Model& wb, const ClashResult& r, double depth, double tessellation_error);
 
+/// Whether placed parts a and b meet on coincident B-Rep faces although their tessellations may not
+/// (assembly_fit.cpp, issue #29): a plane of each back to back, a cylinder or sphere of each of one
+/// radius back to back (coincide() within `tol`), whose placed triangles come within `reach`. `gap`:
+/// the smallest such distance. False for a part without faces or AAG.
+bool zero_clearance_fit(const Part& part_a, const Transform& place_a, const Part& part_b, const Transform& place_b,
+                        double tol, double reach, double* gap = nullptr);
+
 /// The same for instances a and b of `model`, world[i] the world model of instance i.
 inline bool nominal_fit(const CadModel& model, std::uint32_t a, std::uint32_t b, const std::vector<Model>& world,
                         const ClashResult& r, double depth, double tessellation_error) {

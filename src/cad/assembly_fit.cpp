@@ -2,11 +2,14 @@
 // InstancePairResult::nominal_fit): tessellations that cross only where B-Rep faces coincide (a
 // bolt in a hole of its own diameter), recognised from the faces' AAG parameters (issue #6, item 2)
 // placed by the instances' transforms.
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <set>
 
 #include "assembly_clash_internal.h"
+#include "interfere/np/distance.h"
 
 namespace interfere::cad::detail {
 namespace {
@@ -127,6 +130,76 @@ bool nominal_fit(const Part& part_a, const Transform& place_a, const Part& part_
           (q.b < part_b.face_ids.size() && fit_b.count(part_b.face_ids[q.b]));
   }
   return fit;
+}
+
+// Zero-clearance fits from the B-Rep (issue #29, item 4: "zero-clearance fits classified from the
+// B-Rep as contacts ... whatever the tessellation"): a pair whose tessellations neither cross nor
+// touch (an AP203 export's placements rounded to 1e-12 mm apart, a tessellation whose rims miss)
+// is still in contact where two of its B-Rep faces are one surface back to back (coincide(), the
+// same test as the nominal fit's) and their regions meet: the faces' triangles come within `reach`.
+bool zero_clearance_fit(const Part& part_a, const Transform& place_a, const Part& part_b, const Transform& place_b,
+                        double tol, double reach, double* gap) {
+  if (part_a.face_ids.empty() || part_b.face_ids.empty() || part_a.aag.nodes.empty() || part_b.aag.nodes.empty())
+    return false;
+  struct FaceTris {
+    PlacedFace face;
+    std::vector<std::array<Vec3, 3>> tris;
+    Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+  };
+  const auto faces_of = [](const Part& part, const Transform& t) {
+    std::map<std::uint32_t, FaceTris> out;
+    for (std::size_t i = 0; i < part.face_ids.size() && i < part.mesh.num_triangles(); ++i) {
+      const std::uint32_t f = part.face_ids[i];
+      if (f >= part.aag.nodes.size()) continue;
+      const SurfaceType type = part.aag.nodes[f].type;
+      if (type != SurfaceType::plane && type != SurfaceType::cylinder && type != SurfaceType::sphere) continue;
+      auto [it, fresh] = out.try_emplace(f);
+      FaceTris& ft = it->second;
+      std::array<Vec3, 3> c;
+      for (int k = 0; k < 3; ++k) {
+        c[k] = t.apply(part.mesh.positions[part.mesh.triangles[i][k]]);
+        ft.lo = {std::min(ft.lo.x, c[k].x), std::min(ft.lo.y, c[k].y), std::min(ft.lo.z, c[k].z)};
+        ft.hi = {std::max(ft.hi.x, c[k].x), std::max(ft.hi.y, c[k].y), std::max(ft.hi.z, c[k].z)};
+      }
+      if (fresh) {
+        ft.face = placed(part.aag.nodes[f], t);
+        if (type == SurfaceType::plane) ft.face.offset = dot(ft.face.normal / norm(ft.face.normal), (c[0] + c[1] + c[2]) / 3.0);
+      }
+      ft.tris.push_back(c);
+    }
+    return out;
+  };
+  const auto fa_all = faces_of(part_a, place_a), fb_all = faces_of(part_b, place_b);
+  const double angle = kFitTolerance;
+  bool found = false;
+  double best = reach;
+  for (const auto& [ia, fa] : fa_all)
+    for (const auto& [ib, fb] : fb_all) {
+      if (fa.face.type != fb.face.type) continue;
+      // Curved faces in contact lie back to back (a bolt's shank in a bore), not on one side (two
+      // bores in line, which meet at a rim only where their planes touch).
+      if (fa.face.type != SurfaceType::plane && fa.face.hole == fb.face.hole) continue;
+      if (fa.lo.x > fb.hi.x + reach || fb.lo.x > fa.hi.x + reach || fa.lo.y > fb.hi.y + reach ||
+          fb.lo.y > fa.hi.y + reach || fa.lo.z > fb.hi.z + reach || fb.lo.z > fa.hi.z + reach)
+        continue;
+      if (!coincide(fa.face, fb.face, tol, angle)) continue;
+      for (const auto& ta : fa.tris) {
+        if (std::min({ta[0].x, ta[1].x, ta[2].x}) > fb.hi.x + reach || std::max({ta[0].x, ta[1].x, ta[2].x}) < fb.lo.x - reach ||
+            std::min({ta[0].y, ta[1].y, ta[2].y}) > fb.hi.y + reach || std::max({ta[0].y, ta[1].y, ta[2].y}) < fb.lo.y - reach ||
+            std::min({ta[0].z, ta[1].z, ta[2].z}) > fb.hi.z + reach || std::max({ta[0].z, ta[1].z, ta[2].z}) < fb.lo.z - reach)
+          continue;
+        for (const auto& tb : fb.tris) {
+          const double d = triangle_triangle_closest(ta, tb).distance;
+          if (d <= best) best = d, found = true;
+          if (found && (!gap || best == 0)) {
+            if (gap) *gap = best;
+            return true;
+          }
+        }
+      }
+    }
+  if (found && gap) *gap = best;
+  return found;
 }
 
 }  // namespace interfere::cad::detail

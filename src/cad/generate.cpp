@@ -307,6 +307,44 @@ Status write_test_assembly(const std::filesystem::path& step_file) {
   });
 }
 
+// A bolted joint with known mates (issue #29, items 2 and 4): the mates are the construction's,
+// independent of any recognition. Plate 60x40x10 (z 0..10) and cover 60x40x6 (z 10..16 + gap), each
+// with through holes r = 4 at (+-15, 0); a bolt (shank r = 4 from z = -8 to the cover's top, head
+// r = 7, 5 high, on the cover) in each hole pair; a nut (r = 7, 6 high, bore r = 4) on each bolt under
+// the plate (z -6..0).
+Status write_bolted_test_assembly(const std::filesystem::path& step_file, double cover_gap) {
+  return write_xcaf(step_file, [cover_gap](const Handle(XCAFDoc_ShapeTool)& st) -> Status {
+    const double top = 16 + cover_gap;
+    TopoDS_Shape plate = box(-30, -20, 0, 30, 20, 10), cover = box(-30, -20, 10 + cover_gap, 30, 20, top);
+    for (double x : {-15.0, 15.0}) {
+      plate = cut(plate, cyl(x, 0, -1, 4, 12));
+      cover = cut(cover, cyl(x, 0, 9 + cover_gap, 4, 8));
+    }
+    const TopoDS_Shape bolt = unify(fuse(cyl(0, 0, -8, 4, top + 8), cyl(0, 0, top, 7, 5)));
+    const TopoDS_Shape nut = cut(cyl(0, 0, -6, 7, 6), cyl(0, 0, -7, 4, 8));
+    const TDF_Label lp = st->AddShape(plate, Standard_False), lc = st->AddShape(cover, Standard_False);
+    const TDF_Label lb = st->AddShape(bolt, Standard_False), ln = st->AddShape(nut, Standard_False);
+    TDataStd_Name::Set(lp, "plate");
+    TDataStd_Name::Set(lc, "cover");
+    TDataStd_Name::Set(lb, "bolt");
+    TDataStd_Name::Set(ln, "nut");
+    const TDF_Label assembly = st->NewShape();
+    TDataStd_Name::Set(assembly, "joint");
+    st->AddComponent(assembly, lp, TopLoc_Location(gp_Trsf()));  // (one instance each: named by its product)
+    st->AddComponent(assembly, lc, TopLoc_Location(gp_Trsf()));
+    int k = 0;
+    for (double x : {-15.0, 15.0}) {
+      gp_Trsf t;
+      t.SetTranslation(gp_Vec(x, 0, 0));
+      ++k;
+      TDataStd_Name::Set(st->AddComponent(assembly, lb, TopLoc_Location(t)), ("bolt_" + std::to_string(k)).c_str());
+      TDataStd_Name::Set(st->AddComponent(assembly, ln, TopLoc_Location(t)), ("nut_" + std::to_string(k)).c_str());
+    }
+    st->UpdateAssemblies();
+    return {};
+  });
+}
+
 // AP203 (CONFIG_CONTROL_DESIGN), shaped as CAD systems export it (as1_pe_203.stp): the product
 // PLATE holds its solid as a nameless sub-shape, no instance has a name of its own.
 Status write_test_assembly_ap203(const std::filesystem::path& step_file) {

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <optional>
 
+#include "interfere/cad/mates.h"
+
 namespace interfere::cad {
 namespace {
 constexpr std::uint32_t kNoPart = 0xffffffffu;
@@ -44,8 +46,15 @@ Expected<Semantics> load_semantics(const PipelineOptions& o) {
   if (!lib) return lib.error();
   Semantics sem{std::move(*lib), {}, std::nullopt};
   if (o.process_file.empty()) {
+    if (o.mates) {  // the rules the inferred mates' constraints apply
+      auto rules = o.rules_file.empty() ? default_semantic_rules(sem.library) : load_semantic_rules(o.rules_file, sem.library);
+      if (!rules) return rules.error();
+      sem.rules = std::move(*rules);
+      return sem;
+    }
     if (!o.rules_file.empty())
-      return Error{.file = o.rules_file, .reason = "semantic rules apply to the steps of a process: give a process too"};
+      return Error{.file = o.rules_file, .reason = "semantic rules apply to the steps of a process (or to the mates inferred "
+                                                   "from an assembly): give a process too"};
     return sem;
   }
   auto rules = o.rules_file.empty() ? default_semantic_rules(sem.library)
@@ -137,8 +146,13 @@ Expected<Prepared> prepare(const CadModel& imported, const PipelineOptions& o, c
   std::vector<std::uint8_t> part_in_step(model->parts.size(), 0), part_out_of_step(model->parts.size(), 0);
   if (process)
     for (auto& w : unknown_step_names(*process, o.step, *model)) out.warnings.push_back(std::move(w));
+  // Without a process: the features the mates inferred from the geometry pick (issue #29, item 4);
+  // the instances in a mate take part, as in a step.
+  std::optional<MateSelection> mates;
+  if (!process && o.mates) mates = select_mate_features(*model, *lib, *rules);
+  const std::string step_label = process ? o.step : "mates";
   for (std::size_t k = 0; k < model->instances.size(); ++k) {
-    in_step[k] = process && instance_in_step(*process, o.step, *model, k);
+    in_step[k] = process ? instance_in_step(*process, o.step, *model, k) : mates && mates->instances[k] != 0;
     (in_step[k] ? part_in_step : part_out_of_step)[model->instances[k].part] = 1;
   }
   nlohmann::json rep;
@@ -154,8 +168,9 @@ Expected<Prepared> prepare(const CadModel& imported, const PipelineOptions& o, c
     nlohmann::json jp{{"name", part.name}, {"faces", part.faces}, {"triangles", part.mesh.num_triangles()},
                       {"features", nlohmann::json::array()}};
     for (const Feature& f : feats) jp["features"].push_back({{"type", f.type}, {"faces", f.faces}});
-    if (process) {
-      auto sel = select_step_features(*process, o.step, *rules, part.name, feats, &part.aag);
+    if (process || mates) {
+      Expected<Selection> sel = mates ? Expected<Selection>(mates->parts[i])
+                                      : select_step_features(*process, o.step, *rules, part.name, feats, &part.aag);
       if (!sel) return Error{.file = o.process_file, .reason = sel.error().reason};
       if (part_in_step[i]) {
         part_features[i] = sel->faces;
@@ -174,7 +189,7 @@ Expected<Prepared> prepare(const CadModel& imported, const PipelineOptions& o, c
     const bool split = part_in_step[i] && part_out_of_step[i] && (!part_features[i].empty() || !part_annulus_tris[i].empty());
     if (part_in_step[i] || !part_out_of_step[i]) {
       with_features[i] = static_cast<std::uint32_t>(out.parts.size());
-      out.parts.push_back({split ? part.name + " [" + o.step + "]" : part.name, part.mesh, part.face_ids,
+      out.parts.push_back({split ? part.name + " [" + step_label + "]" : part.name, part.mesh, part.face_ids,
                            part_features[i], part.faces, 0, static_cast<std::uint32_t>(i), tessellation_error,
                            part_annulus_tris[i], part.has_color, {part.color[0], part.color[1], part.color[2]}});
     }
@@ -201,6 +216,18 @@ Expected<Prepared> prepare(const CadModel& imported, const PipelineOptions& o, c
   }
   out.feature_faces = world_feature_faces(out);
   if (!o.step.empty()) rep["step"] = o.step;
+  if (mates) {
+    for (const auto& w : mates->warnings) out.warnings.push_back(w);
+    rep["features_from"] = "mates";
+    rep["mates"] = nlohmann::json::array();
+    for (const Mate& m : mates->mates)
+      rep["mates"].push_back({{"kind", mate_kind_name(m.kind)}, {"a", m.instance_a}, {"b", m.instance_b},
+                              {"a_path", model->instances[m.instance_a].path}, {"b_path", model->instances[m.instance_b].path},
+                              {"feature_type", m.feature_type}, {"constraint", m.constraint},
+                              {"faces_a", m.faces_a}, {"faces_b", m.faces_b}});
+  } else {
+    rep["features_from"] = process ? "process" : "none";
+  }
   rep["units"] = model->units;
   rep["file_length_units"] = model->file_length_units;
   rep["warnings"] = out.warnings;

@@ -1091,6 +1091,41 @@ class Features(unittest.TestCase):
             self.assertEqual((p["a_path"], p["b_path"]), (paths[p["a"]], paths[p["b"]]))
             self.assertIn("%s x %s:" % (p["a_path"], p["b_path"]), line)
 
+    def test_mates_pick_the_features_without_a_process(self):
+        # Issue #29, item 4: a STEP assembly without --process keeps the features its mates pick (the
+        # generated bolted joint: each bolt through the cover, the plate and its nut; head, nut and
+        # cover seated); --mates off keeps none; assembly-clash finds its 9 fits, all contacts.
+        joint = os.path.join(DATA, "bolted_joint.step")
+        code, _, err = run("simplify", joint, path("mates.ply"), "--ratio", "0.3", "--lock", "--json",
+                           path("mates.json"))
+        self.assertEqual(code, 0, err)
+        r = load_json("mates.json")
+        self.assertEqual(r["cad"]["features_from"], "mates")
+        mates = r["cad"]["mates"]
+        self.assertEqual(sum(m["kind"] == "insertion" for m in mates), 6)
+        self.assertEqual(sum(m["kind"] == "planar_contact" for m in mates), 5)
+        self.assertTrue(all(m["constraint"] == "bolt" for m in mates if m["kind"] == "insertion"))
+        self.assertTrue(all(m["a_path"].startswith("/joint/") and m["b_path"].startswith("/joint/") for m in mates))
+        self.assertGreater(r["feature_triangles"]["input"], 0)
+        self.assertEqual(r["feature_triangles"]["input"], r["feature_triangles"]["output"])  # locked
+        for part in r["cad"]["parts"]:
+            self.assertTrue(part["assembly_feature_faces"], part["name"])  # every part mates
+        code, _, err = run("simplify", joint, path("nomates.ply"), "--ratio", "0.3", "--mates", "off", "--json",
+                           path("nomates.json"))
+        self.assertEqual(code, 0, err)
+        r = load_json("nomates.json")
+        self.assertEqual(r["cad"]["features_from"], "none")
+        self.assertEqual(r["feature_faces"], [])
+        code, _, err = run("simplify", joint, path("badmates.ply"), "--ratio", "0.3", "--mates", "on")
+        self.assertEqual(code, 2)
+        self.assertIn("--mates must be auto or off", err)
+        self.assertFalse(os.path.exists(path("badmates.ply")))
+        code, out, err = run("assembly-clash", joint, "--json", path("joint_clash.json"))
+        self.assertEqual(code, 0, err)
+        c = load_json("joint_clash.json")
+        self.assertEqual((c["contacts"], c["clashes"], len(c["pairs"])), (9, 0, 9))
+        self.assertEqual(len(set((p["a_path"], p["b_path"]) for p in c["pairs"])), 9)
+
     def test_assembly_budget_is_met_exactly_when_the_parts_allow(self):
         # Every part of the test assembly is closed (an even triangle count): an even total is met
         # exactly, whatever the shares' rounding and odd per-part budgets; an odd one ends one below.
@@ -1235,8 +1270,12 @@ class Features(unittest.TestCase):
                            path("own.process.json"))
         self.assertEqual(code, 2)
         self.assertIn("'cap_screw'", err)
-        # Rules without a process, or on a plain mesh, are option errors.
+        # Rules without a process apply to the mates inferred from an assembly (--mates auto, the
+        # default, issue #29); with --mates off, or on a plain mesh, they are option errors.
         code, _, err = run("simplify", plate, path("own3.ply"), "--ratio", "0.6", "--rules", path("own_rules.json"))
+        self.assertEqual(code, 0, err)
+        code, _, err = run("simplify", plate, path("own3.ply"), "--ratio", "0.6", "--rules", path("own_rules.json"),
+                           "--mates", "off")
         self.assertEqual(code, 2)
         self.assertIn("process", err)
         write_obj("own_sphere.obj", uv_sphere())

@@ -73,6 +73,11 @@ struct InstancePairResult {
   /// (the faces' parameters, placed by the instances' transforms; B-spline faces by their
   /// recognised cylinder, plane or sphere).
   bool nominal_fit = false;
+  /// A contact classified from the B-Rep (issue #29, item 4): the tessellations neither cross nor
+  /// touch (apart by `min_clearance`, rounding of the placements, e.g. 1.3e-12 mm in the AS1 AP203
+  /// export) or lie only within the clearance, but B-Rep faces of the two coincide back to back (as
+  /// for nominal_fit) and their triangles come within kFitTolerance of the parts' diagonals.
+  bool zero_clearance_fit = false;
   std::size_t regions = 0;
   double curve_length = 0;  ///< of the intersection curves
   std::vector<std::string> verdict_reasons;  ///< for `undecided`: what could not be decided

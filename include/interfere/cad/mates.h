@@ -7,6 +7,7 @@
 
 #include "interfere/cad/features.h"
 #include "interfere/cad/model.h"
+#include "interfere/cad/semantics.h"
 
 namespace interfere::cad {
 
@@ -33,5 +34,26 @@ struct Mate {
 std::vector<Mate> infer_mates(const CadModel& model, const FeatureLibrary& library, double relative_tolerance = 1e-6);
 
 const char* mate_kind_name(Mate::Kind k);
+
+/// The assembly features the inferred mates pick, per part (issue #29, item 4: "the assembly features
+/// are found without a hand-written process file"), as a process step would select them:
+/// - an insertion's hole: the rule of the mate's constraint (a through hole with a bolt in it: the
+///   `bolt` rule, wall + TopFace/BottomFace annuli; counterbored: `screw`; ...) applied to that hole
+///   alone; where the rule keeps nothing of it (a type the rule does not name, a face too small for
+///   the clamped annulus: the rule's warning is kept) the hole's own faces;
+/// - an insertion's inserted cylinder (a bolt's shank, a rod): its faces;
+/// - a planar contact: the contact faces of the side whose faces are smaller in total (a nut's or a
+///   head's seat, a bracket's foot; both sides when equal): the larger side's face around a hole is
+///   kept as the hole's annulus, not whole.
+/// A part used by several instances is simplified once: its selection is the union over the mates
+/// of all its instances. `instances[k]`: whether instance k takes part in a mate.
+struct MateSelection {
+  std::vector<Mate> mates;
+  std::vector<Selection> parts;       ///< per CadModel::parts (features_used left empty)
+  std::vector<std::uint8_t> instances;
+  std::vector<std::string> warnings;
+};
+/// Errors: none but the rules' (a mate's constraint without a rule falls back to the hole's faces).
+MateSelection select_mate_features(const CadModel& model, const FeatureLibrary& library, const SemanticRules& rules);
 
 }  // namespace interfere::cad

@@ -170,6 +170,13 @@ Status write_test_part(TestPart part, const std::filesystem::path& step_file,
 /// z then lifted by (0, 0, 20); part "shaft" (stepped_shaft) as "shaft_1" moved by (100, 0, 0).
 Status write_test_assembly(const std::filesystem::path& step_file);
 
+/// A bolted joint "joint" with known mates (issue #29): part "plate" (60x40x10, z 0..10) and part
+/// "cover" (60x40x6 on the plate, lifted by `cover_gap` mm), one instance each, with through holes
+/// r = 4 at (+-15, 0, z); part "bolt" (shank r = 4 from z = -8 through both, head r = 7 h = 5 on the
+/// cover) as "bolt_1", "bolt_2" at x = -15, 15; part "nut" (r = 7, h = 6, bore r = 4, under the plate)
+/// as "nut_1", "nut_2" on them. Every fit has zero clearance.
+Status write_bolted_test_assembly(const std::filesystem::path& step_file, double cover_gap = 0);
+
 /// An AP203 assembly "ASM" (STEP schema CONFIG_CONTROL_DESIGN) as CAD systems write them: product
 /// "PLATE" (counterbored_plate) holding its solid as a nameless sub-shape, at the identity; product
 /// "ROD" (stepped_shaft) at (100, 0, 0) and at (-100, 0, 0); no instance has a name of its own.

@@ -14,7 +14,11 @@ namespace interfere::cad {
 struct PipelineOptions {
   double linear_deflection = 0, angular_deflection = 0.5;
   std::string library_file, rules_file;  ///< empty = installed defaults
-  std::string process_file, step;        ///< both empty = no semantics (no features kept)
+  std::string process_file, step;        ///< both empty = no semantics (no features kept, unless `mates`)
+  /// Without a process (issue #29, item 4): the assembly features are those the mates inferred from
+  /// the geometry pick (select_mate_features with the rules of rules_file or the installed ones);
+  /// nothing is kept where the model has no mates. Ignored with a process.
+  bool mates = false;
 };
 
 struct PreparedPart {
@@ -57,7 +61,7 @@ struct Prepared {
 };
 
 /// The feature library, semantic rules and process of the options' files (the installed defaults
-/// where library_file or rules_file is empty; no rules without a process), read before a STEP file
+/// where library_file or rules_file is empty; no rules without a process, unless `mates`), read before a STEP file
 /// so that a mistake there is reported without the import's wait. With a process, options.step
 /// ("all": every step of it) is checked too: a step of the process whose constraint a rule knows.
 struct Semantics {
