@@ -55,6 +55,27 @@ def is_report(obj):
         "exit_status" in obj or "seconds" in obj or "interfere_version" in obj)
 
 
+def validate_outputs(argv, cwd=".", code=0):
+    """The report a CLI run wrote, validated (raises AssertionError): `argv` its arguments, where
+    `--json FILE` (relative to `cwd`, the run's working directory) names it; nothing when the run
+    could not have written one (exit status other than 0, 1 or 3, `--json -`, no such file) or
+    without python3-jsonschema. Returns the number of reports validated (0 or 1)."""
+    if code not in (0, 1, 3) or not AVAILABLE:
+        return 0
+    for i, a in enumerate(argv[:-1]):
+        if a == "--json" and argv[i + 1] != "-":
+            target = os.path.join(cwd, argv[i + 1])
+            if os.path.isfile(target):
+                with open(target) as f:
+                    try:
+                        obj = json.load(f)
+                    except ValueError:
+                        return 0  # (not a report: --json of a run that wrote none, an old file)
+                validate(obj, target)
+                return 1
+    return 0
+
+
 def validate(obj, where=""):
     """Raises AssertionError listing the errors when `obj` is a CLI report that does not validate."""
     if not AVAILABLE or not is_report(obj):

@@ -478,6 +478,7 @@ class TransformsAndOutputs(unittest.TestCase):
                                       capture_output=True, text=True, timeout=120, cwd=cwd)
         self.assertEqual(p.returncode, 1, p.stderr)
         rep = json.loads(p.stdout)  # stdout holds the report alone
+        cli_common.report_schema.validate(rep, "clash --json -")
         self.assertEqual(rep["verdict"], "clash")
         self.assertIn("CLASH", p.stderr)  # the summary line moved to stderr
         self.assertFalse(os.path.exists(os.path.join(cwd, "-")))
@@ -488,6 +489,7 @@ class TransformsAndOutputs(unittest.TestCase):
             self.assertEqual(p.returncode, 0, (args, p.stderr))
             rep = json.loads(p.stdout)
             self.assertIsInstance(rep, dict)
+            cli_common.report_schema.validate(rep, "%s --json -" % args[0])
             self.assertFalse(os.path.exists(os.path.join(cwd, "-")), args)
         rep = json.loads(cli_common.subprocess.run([cli_common.EXE, "--quiet", "distance", self.a, self.b, "--json", "-"],
                                                    capture_output=True, text=True, timeout=120, cwd=cwd).stdout)

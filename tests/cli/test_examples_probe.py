@@ -14,6 +14,9 @@ import shutil
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import report_schema  # noqa: E402  (the reports the README's commands write, against docs/schema)
+
 EXAMPLE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "examples", "probe")
 
 
@@ -50,6 +53,10 @@ def main():
                 argv = [sys.executable, *argv[1:]]
             p = subprocess.run(argv, cwd=work, capture_output=True, text=True, timeout=120)
             ran += 1
+            try:
+                report_schema.validate_outputs(argv, work, p.returncode)
+            except AssertionError as e:
+                failures.append("%s: %s" % (line, e))
             print("$", line, "->", p.returncode)
             if p.returncode != int(m.group(1)):
                 failures.append("%s: exit %d, README says %s\n%s%s" % (line, p.returncode, m.group(1), p.stdout, p.stderr))

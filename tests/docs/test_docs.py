@@ -12,7 +12,7 @@ a block is:
 
 - ```sh: every command (continuation lines joined; a here-document `<<'EOF'` ... `EOF` is part of
   its command) runs with bash; its exit status must be 0, or N where its comment says
-  "exit status N".
+  "exit status N"; the report it writes (`--json FILE`) must validate against docs/schema.
 - ```sh no-run covered-by=TEST: not run here (a cluster, an install as root, a rebuild); TEST must
   be a ctest of this project (add_test(NAME TEST) in a tests/ CMakeLists.txt) that runs it.
 - ```python: run with the module; ```cpp: compiled against the installed package
@@ -37,6 +37,7 @@ import io
 import json
 import os
 import re
+import shlex
 import shutil
 import subprocess
 import sys
@@ -106,7 +107,7 @@ class Doc:
         mpi_dir = os.path.join(os.path.dirname(self.cli_dir), "mpi")  # (interfere-mpi, when built)
         self.env["PATH"] = os.pathsep.join([self.cli_dir, mpi_dir, self.env.get("PATH", "")])
         self.env["PYTHONPATH"] = self.pymod + os.pathsep + self.env.get("PYTHONPATH", "")
-        self.failures, self.skipped, self.ran, self.not_run = [], [], 0, 0
+        self.failures, self.skipped, self.ran, self.not_run, self.reports = [], [], 0, 0, 0
         self.help_cache = {}
 
     def fail(self, where, text):
@@ -159,6 +160,15 @@ class Doc:
             elif p.returncode != want:
                 self.fail(where, "`%s`: exit status %d, the doc says %d\n%s%s" %
                           (cmd, p.returncode, want, p.stdout[-2000:], p.stderr[-2000:]))
+            else:  # the report it wrote (--json FILE) against docs/schema (issue #30, item 4)
+                try:
+                    argv = shlex.split(cmd.split("\n")[0], comments=True)
+                except ValueError:
+                    argv = []
+                try:
+                    self.reports += report_schema.validate_outputs(argv, self.work, p.returncode)
+                except AssertionError as e:
+                    self.fail(where, "`%s`: %s" % (cmd, e))
 
     def python(self, where, body):
         p = self.run([sys.executable, "-c", body])
@@ -264,7 +274,7 @@ def main():
     names = sys.argv[6:] or sorted(f for f in os.listdir(docs_dir) if f.endswith(".md"))
     os.makedirs(args[4], exist_ok=True)
     ctests = ctest_names(source)
-    total_fail, total = 0, [0, 0, 0, 0]
+    total_fail, total, reports = 0, [0, 0, 0, 0], 0
     for name in names:
         d = Doc(args, name)
         found = blocks(open(os.path.join(docs_dir, name)).read())
@@ -274,11 +284,13 @@ def main():
             print("skipped:", s)
         for f in d.failures:
             print("FAILED:", f)
-        print("docs/%s: %d blocks, %d run, %d not code or covered elsewhere, %d skipped, %d failure(s)" %
-              (name, len(found), d.ran, d.not_run, len(d.skipped), len(d.failures)))
+        print("docs/%s: %d blocks, %d run (%d reports validated), %d not run (not code, or covered elsewhere), "
+              "%d skipped, %d failure(s)" % (name, len(found), d.ran, d.reports, d.not_run, len(d.skipped), len(d.failures)))
+        reports += d.reports
         total_fail += len(d.failures)
         total = [total[0] + len(found), total[1] + d.ran, total[2] + d.not_run, total[3] + len(d.skipped)]
-    print("docs: %d blocks, %d run, %d not code or covered elsewhere, %d skipped, %d failure(s)" % (*total, total_fail))
+    print("docs: %d blocks, %d run, %d not run (not code, or covered elsewhere), %d skipped, %d failure(s); "
+          "%d reports validated against docs/schema" % (*total, total_fail, reports))
     return 1 if total_fail else 0
 
 

@@ -7,7 +7,8 @@ usage: test_readme.py SOURCE_DIR CLI_DIR PYTHON_MODULE_DIR STAGE_PREFIX WORK_DIR
   (.ci/run calls tools/test.sh): checked to be exactly those two commands, not run here.
 - ```sh blocks: each command (continuation lines joined) runs with bash in WORK_DIR, where data/ and
   examples/ link into the source tree and `interfere` is the built CLI (CLI_DIR first on PATH). Its
-  exit status must be 0, or N where its comment says "exit status N".
+  exit status must be 0, or N where its comment says "exit status N"; a report it writes (--json)
+  must validate against docs/schema.
 - ```sh no-run covered-by=TEST blocks: TEST must be a ctest of this project (add_test(NAME TEST) in a
   tests/ CMakeLists.txt), which runs those commands.
 - ```cpp: compiled against the installed package (find_package(interfere) from STAGE_PREFIX, the
@@ -20,9 +21,13 @@ Any other language is an error (a new kind of block needs a rule here).
 import json
 import os
 import re
+import shlex
 import shutil
 import subprocess
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "cli"))
+import report_schema  # noqa: E402  (reports the commands write, against docs/schema)
 
 
 def blocks(text):
@@ -102,6 +107,10 @@ def main():
                 if p.returncode != want:
                     failures.append("%s: `%s`: exit status %d, the README says %d\n%s%s" %
                                     (where, cmd, p.returncode, want, p.stdout[-2000:], p.stderr[-2000:]))
+                try:
+                    report_schema.validate_outputs(shlex.split(cmd, comments=True), work, p.returncode)
+                except (AssertionError, ValueError) as e:
+                    failures.append("%s: `%s`: %s" % (where, cmd, e))
         elif lang == "cpp":
             proj = os.path.join(work, "cpp_%d" % line_no)
             os.makedirs(proj)

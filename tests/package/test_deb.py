@@ -21,6 +21,9 @@ import subprocess
 import sys
 import unittest
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "cli"))
+import report_schema  # noqa: E402  (the packaged CLI's reports against docs/schema, issue #30)
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 SOURCE = os.path.abspath(os.path.join(HERE, "..", ".."))
 CASING = os.path.join(SOURCE, "data", "examples", "casing.step")
@@ -131,7 +134,9 @@ class Package(unittest.TestCase):
         p = run([self.exe(), "--quiet", "clash", a, b, "--json", report])
         self.assertEqual(p.returncode, 1, p.stdout + p.stderr)
         with open(report) as f:
-            self.assertEqual(json.load(f)["summary"]["clashes"], 1)
+            r = json.load(f)
+        report_schema.validate(r, report)
+        self.assertEqual(r["summary"]["clashes"], 1)
         p = run([self.exe(), "--quiet", "clash", a, c])
         self.assertEqual(p.returncode, 0, p.stdout + p.stderr)
 
@@ -147,13 +152,16 @@ class Package(unittest.TestCase):
         p = run([self.exe(), "--quiet", "clash", a, CASING, "--json", report])
         self.assertEqual(p.returncode, 1, p.stdout + p.stderr)  # the casing lies inside the box
         with open(report) as f:
-            self.assertEqual(json.load(f)["inputs"]["b"]["format"], "step")
+            r = json.load(f)
+        report_schema.validate(r, report)
+        self.assertEqual(r["inputs"]["b"]["format"], "step")
 
     def test_features_read_the_packaged_data(self):
         if not self.cad():
             self.skipTest("built without OpenCASCADE: no interfere-cad")
         p = run([self.exe(), "--quiet", "features", CASING, "--json", os.path.join(WORK, "features.json")])
         self.assertEqual(p.returncode, 0, p.stdout + p.stderr)
+        report_schema.validate_outputs(["--json", os.path.join(WORK, "features.json")])
         # A broken packaged feature library: the error names the packaged file, so that is the one read.
         library = os.path.join(ROOT, "usr", "share", "interfere", "features", "library.json")
         shutil.copyfile(library, library + ".good")

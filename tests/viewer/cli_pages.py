@@ -17,6 +17,9 @@ import shutil
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "cli"))
+import report_schema  # noqa: E402  (the reports against docs/schema, issue #30)
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 EXAMPLES = os.path.join(HERE, "..", "..", "data", "examples")
 EXE, WORK = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
@@ -68,6 +71,7 @@ def main():
     run("clash", "--scene", os.path.join(EXAMPLES, "scene.json"), "--json", rep, "--html", html)
     with open(rep) as f:
         report = json.load(f)
+    report_schema.validate(report, rep)
     origin = page_data(html)["origin"]
     point = report["clashes"][0]["point"]
     ok &= check("demo", html, {"rows": len(report["clashes"]), "clickRow": 0,
@@ -80,6 +84,7 @@ def main():
     run("clash", a, b, c, "--json", rep, "--html", html)
     with open(rep) as f:
         report = json.load(f)
+    report_schema.validate(report, rep)
     origin = page_data(html)["origin"]
     point = report["clashes"][0]["point"]
     ok &= check("scene", html, {"rows": len(report["clashes"]), "bodies": 3, "clickRow": 0,
