@@ -4,7 +4,11 @@ one process and one on K MPI ranks (docs/mpi.md): seconds, timings_s, threads (a
 section. summary.core_runs is compared: a class of pairs the engine decides once stays on one rank (issue #31).
 Usage: compare_reports.py SINGLE.json MPI.json; exit 0 when equal, 1 with the first differences."""
 import json
+import os
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "cli"))
+import report_schema  # noqa: E402  (both reports against docs/schema, issue #30)
 
 
 def strip(r):
@@ -41,6 +45,12 @@ if __name__ == "__main__":
         a = json.load(f)
     with open(sys.argv[2]) as f:
         b = json.load(f)
+    for r, name in ((a, sys.argv[1]), (b, sys.argv[2])):
+        try:
+            report_schema.validate(r, name)
+        except AssertionError as e:
+            print(e)
+            sys.exit(1)
     d = diff(strip(a), strip(b))
     for line in d[:20]:
         print(line)
