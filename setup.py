@@ -28,9 +28,15 @@ from setuptools import Extension, setup
 from setuptools.command.build_ext import build_ext
 
 ROOT = os.path.dirname(os.path.abspath(__file__))
-# The Debian packages a clean build needs (README "Install"); named when a step fails.
-DEBIAN_BUILD_DEPS = ("cmake g++ ninja-build libtbb-dev nlohmann-json3-dev zlib1g-dev pybind11-dev python3-dev "
-                     "python3-numpy python3-setuptools python3-wheel")
+# The Debian packages a clean build needs (README "Install"); named when a step fails. Before the
+# first configure, python/tools/build_deps.py names the ones this machine lacks (issue #30, "Bad
+# input"; INTERFERE_SKIP_DEPS_CHECK=1 skips that check, e.g. for dependencies outside the system
+# include directories that CMake is told about with INTERFERE_CMAKE_ARGS).
+sys.path.insert(0, os.path.join(ROOT, "python", "tools"))
+import build_deps  # noqa: E402
+
+DEBIAN_BUILD_DEPS = " ".join(build_deps.PACKAGES[:2] + ["ninja-build"] + build_deps.PACKAGES[2:] +
+                             ["python3-setuptools", "python3-wheel"])
 
 
 def project_version():
@@ -64,6 +70,10 @@ class CMakeBuild(build_ext):
                 fail(f"INTERFERE_CMAKE_BUILD_DIR={reuse} is not a configured CMake build tree (no CMakeCache.txt)")
         else:
             build_dir = os.path.join(ROOT, "build-pip", "cmake")
+            if not os.environ.get("INTERFERE_SKIP_DEPS_CHECK"):
+                lacking = build_deps.missing()
+                if lacking:
+                    fail(build_deps.message(lacking))
             self.configure(cmake, build_dir)
         jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL") or str(os.cpu_count() or 1)
         self.run_step([cmake, "--build", build_dir, "--target", "_interfere", "-j", jobs], "build")
