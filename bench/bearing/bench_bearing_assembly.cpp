@@ -5,7 +5,12 @@
 // (1,000 frames/s for 1,024 rollers) is measured here, not asserted anywhere.
 #include <benchmark/benchmark.h>
 
+#include <array>
+#include <chrono>
+#include <map>
+#include <ctime>
 #include <string>
+#include <vector>
 
 #include "interfere/bearing/assembly.h"
 
@@ -40,7 +45,9 @@ void BM_AssemblyExample(benchmark::State& state) {
 }
 BENCHMARK(BM_AssemblyExample)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 
-void BM_Assembly1024Rollers(benchmark::State& state) {
+/// The issue's target scene: 32 cylindrical bearings of 32 rollers, a quarter of them scarred with
+/// the scar in range every frame (angle_width 350 degrees).
+Expected<AssemblySpec> spec_1024() {
   std::string bearings;
   for (int i = 0; i < 32; ++i) {
     if (i) bearings += ",";
@@ -54,14 +61,83 @@ void BM_Assembly1024Rollers(benchmark::State& state) {
   const std::string text = R"({"seed": 3, "clearance": 0.05,
       "motion": {"max_tilt_deg": 0.05, "load": {"displacement": 0.08}, "pocket_play": 1.2, "axial_play": 1.02},
       "scar": {"fraction": 0.25, "angle_width_deg": 350, "seed": 5}, "bearings": [)" + bearings + "]}";
-  Expected<AssemblySpec> spec = parse_assembly(text, "1024 rollers");
+  return parse_assembly(text, "1024 rollers");
+}
+
+void BM_Assembly1024Rollers(benchmark::State& state) {
+  Expected<AssemblySpec> spec = spec_1024();
   if (!spec) {
     state.SkipWithError(spec.error().message().c_str());
     return;
   }
-  run_frames(state, *spec, 1);
+  run_frames(state, *spec, static_cast<int>(state.range(0)));
 }
-BENCHMARK(BM_Assembly1024Rollers)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+BENCHMARK(BM_Assembly1024Rollers)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+
+/// Where the time goes: the pairs of the 1,024-roller scene solved on this thread, kind by kind
+/// (pairs with a scarred part apart), over several frames; the thread's CPU time per batch (robust
+/// to other load on the machine) gives "us_<kind>[_scarred]" (microseconds per pair) and
+/// "ms_frame_..." (CPU milliseconds per frame); "n_<kind>_<solver>_<path>": pairs per frame that
+/// took that solver and path. solve_pair is the function run_assembly calls.
+double thread_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+void BM_Assembly1024ByKind(benchmark::State& state) {
+  Expected<AssemblySpec> spec = spec_1024();
+  if (!spec) {
+    state.SkipWithError(spec.error().message().c_str());
+    return;
+  }
+  Expected<Assembly> as = build_assembly(*spec);
+  if (!as) {
+    state.SkipWithError(as.error().message().c_str());
+    return;
+  }
+  const int frames = 4;
+  const AssemblyMotion motion = generate_motion(*as, frames, spec->seed);
+  constexpr std::size_t kinds = 7;
+  std::array<std::vector<std::size_t>, 2 * kinds> batch;
+  for (std::size_t i = 0; i < as->pairs.size(); ++i) {
+    const AssemblyPair& p = as->pairs[i];
+    const bool scarred = as->parts[p.a].scarred || as->parts[p.b].scarred;  // either part
+    batch[static_cast<std::size_t>(p.kind) + (scarred ? kinds : 0)].push_back(i);
+  }
+  std::array<double, 2 * kinds> seconds{};
+  std::map<std::string, double> paths;
+  for (auto _ : state) {
+    for (std::size_t k = 0; k < 2 * kinds; ++k) {
+      const double t0 = thread_seconds();
+      for (int f = 0; f < frames; ++f)
+        for (const std::size_t i : batch[k]) {
+          const AssemblyPairResult r = solve_pair(*as, as->pairs[i], motion.poses[static_cast<std::size_t>(f)], spec->clearance);
+          benchmark::DoNotOptimize(r.distance);
+        }
+      seconds[k] += thread_seconds() - t0;
+    }
+  }
+  for (int f = 0; f < frames; ++f)
+    for (const AssemblyPair& p : as->pairs) {
+      const AssemblyPairResult r = solve_pair(*as, p, motion.poses[static_cast<std::size_t>(f)], spec->clearance);
+      paths[std::string("n_") + assembly_pair_kind_name(p.kind) + "_" + assembly_solver_name(r.solver) + "_" +
+            analytic_path_name(r.path)] += 1;
+    }
+  const double runs = static_cast<double>(frames) * static_cast<double>(state.iterations());
+  double total = 0;
+  for (std::size_t k = 0; k < 2 * kinds; ++k) {
+    if (batch[k].empty()) continue;
+    const std::string name = std::string(assembly_pair_kind_name(static_cast<AssemblyPairKind>(k % kinds))) +
+                             (k >= kinds ? "_scarred" : "");
+    state.counters["us_" + name] = 1e6 * seconds[k] / (runs * static_cast<double>(batch[k].size()));
+    state.counters["ms_frame_" + name] = 1e3 * seconds[k] / runs;
+    total += seconds[k];
+  }
+  state.counters["ms_frame_total_cpu"] = 1e3 * total / runs;
+  for (const auto& [name, n] : paths) state.counters[name] = n / static_cast<double>(frames);
+}
+BENCHMARK(BM_Assembly1024ByKind)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 }  // namespace
 

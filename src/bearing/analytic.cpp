@@ -26,6 +26,20 @@ double get_root(double r0, double z0, double z1, double g) {
   const double n0 = r0 * z0;
   double s0 = z1 - 1, s1 = g < 0 ? 0 : std::hypot(n0, z1) - 1;
   double s = s0;
+  // Start nearer the root: G's tangent at s1 lies below the convex G, so its zero is at or left of
+  // the root (never past it): the monotone iteration below keeps its guarantees from there. For
+  // nearly circular ellipses (r0 ~ 1: nearly parallel axes, the common case in bearings) it lands
+  // within rounding of the root, and one or two steps finish. (Rounding may put G there slightly
+  // below 0: the step is then not taken.)
+  {
+    const double a = n0 / (s1 + r0), b = z1 / (s1 + 1);
+    const double gs = a * a + b * b - 1, dg = -2 * (a * a / (s1 + r0) + b * b / (s1 + 1));
+    const double t = s1 - gs / dg;
+    if (gs < 0 && dg < 0 && t > s0 && t < s1) {
+      const double at = n0 / (t + r0), bt = z1 / (t + 1);
+      if (at * at + bt * bt - 1 > 0) s = t;
+    }
+  }
   for (int i = 0; i < 60; ++i) {
     const double a = n0 / (s + r0), b = z1 / (s + 1);
     const double gs = a * a + b * b - 1;
@@ -266,6 +280,27 @@ bool core_inside(const Cylinder& a, const Cylinder& b, PairDistance& out) {
   const Vec3 bc = b.center();
   const double R = b.radius, hh = 0.5 * b.height;
   constexpr int kIter = 90;
+  // Exact skip: sd_A(p) >= rho_A(p) - R_A everywhere (A lies in its infinite cylinder), so when the
+  // whole core lies outside that infinite cylinder by more than any rounding of the searches below
+  // (margin), no evaluation can be negative and the search would return false: skip it. The core's
+  // smallest rho_A: a segment's distance to A's axis line (closed form), a disk's centre value less
+  // its radius (rho_A is 1-Lipschitz).
+  {
+    const double margin = 1e-9 * (1 + std::max({std::fabs(bc.x), std::fabs(bc.y), std::fabs(bc.z)}) +
+                                   std::max({std::fabs(a.base.x), std::fabs(a.base.y), std::fabs(a.base.z)}) +
+                                   a.height + a.radius + b.height + b.radius);
+    const auto perp = [&](const Vec3& v) { return v - a.axis * dot(v, a.axis); };
+    double rho_lo;
+    if (R <= hh) {
+      const Vec3 q0 = perp(bc - b.axis * (hh - R) - a.base), dq = perp(b.axis * (2 * (hh - R)));
+      const double dd = dot(dq, dq);
+      const double t = dd > 0 ? std::clamp(-dot(q0, dq) / dd, 0.0, 1.0) : 0.0;
+      rho_lo = norm(q0 + dq * t);
+    } else {
+      rho_lo = norm(perp(bc - a.base)) - (R - hh);
+    }
+    if (rho_lo - a.radius > margin) return false;
+  }
   Vec3 p;
   double value;
   if (R <= hh) {
@@ -369,6 +404,25 @@ PairDistance cylinder_pair_distance(const Cylinder& a, const Cylinder& b) {
   const double dr = rm.rho - R, dz = std::fabs(z) - hh;
   // certificate: at the minimiser of rho_B over A, sd_B = rho_B - R (B's side is nearest)
   const bool certified = rm.rho > 0 && (dr >= 0 ? dz <= 0 : dz <= dr);
+  if (!certified && !b.tapered()) {
+    // Apart solids: both one-sided values are their Euclidean distance, s(A, B) = s(B, A). So when
+    // the reverse closed form is certified with a positive value (B's point nearest A's axis has
+    // A's side nearest, outside A: the solids are apart), it is s(A, B) exactly. Nearly parallel
+    // rollers offset along their axes: A's nearest rim point lies beyond B's end (not certified),
+    // while B's lies within A's length (certified), and the searches below are not needed.
+    const Vec3 ac = a.center();
+    const RadialMin rr = min_axis_distance(b, ac, a.axis);
+    const double zr = dot(rr.point - ac, a.axis);
+    const double drr = rr.rho - a.radius, dzr = std::fabs(zr) - 0.5 * a.height;
+    if (!a.tapered() && rr.rho > 0 && drr > 0 && dzr <= 0) {
+      PairDistance out;
+      out.distance = drr;
+      out.point_b = rr.point;
+      out.point_a = nearest_on_cylinder_boundary(a, rr.point);
+      out.path = rr.path;
+      return out;
+    }
+  }
   if (!certified) {
     PairDistance core;
     if (!a.tapered() && core_inside(a, b, core)) return core;

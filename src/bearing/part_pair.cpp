@@ -151,10 +151,12 @@ PartPairResult decide_part_pair(const ScenePart& x, const ScenePart& y, double c
   if (exact) {
     // the reverse direction, B's depth into A (issue #27; the paper's Step 3: all four end circles)
     if (a.intact()) {
-      const PairDistance two = two_sided_cylinder_distance(a.cylinder, bc);
-      out.reverse = two.distance < out.distance;
-      out.distance = out.distance_lower = two.distance;
-      out.point_a = two.point_a, out.point_b = two.point_b, out.path = two.path;
+      // two_sided_cylinder_distance(a, bc) without recomputing the forward value solve() just gave
+      // (the same function of the same cylinders: bitwise the same result)
+      const PairDistance rev = cylinder_pair_distance(bc, a.cylinder);
+      out.reverse = rev.distance < out.distance;
+      if (out.reverse) out.distance = rev.distance, out.point_a = rev.point_b, out.point_b = rev.point_a, out.path = rev.path;
+      out.distance_lower = out.distance;
     } else if (!(out.distance > tol) && !contained) {
       // A scarred or tapered lies in its enclosing cylinder A0 (grown by a raised scar's raise):
       // s(B, A) >= s(B, A0). (Apart,
