@@ -26,6 +26,7 @@
 #include "golden.h"
 #include "interfere/bearing/assembly.h"
 #include "interfere/bearing/raceway.h"
+#include "interfere/bearing/ring_two_sided.h"
 #include "interfere/bearing/scarred.h"
 #include "interfere/query/clash.h"
 
@@ -136,6 +137,70 @@ WebValue web_distance(const Cylinder& roller, const TriMesh& web, const Transfor
   return out;
 }
 
+/// The web eroded by t (its six planes moved in by t; corners where three planes meet), posed.
+TriMesh eroded_web(const CageWeb& w, double t) {
+  CageWeb e = w;
+  for (double& d : e.offsets) d -= t;
+  for (int i = 0; i < 8; ++i) {
+    const int f[3] = {i & 1, 2 + ((i >> 1) & 1), 4 + ((i >> 2) & 1)};
+    const Vec3 &n1 = e.normals[f[0]], &n2 = e.normals[f[1]], &n3 = e.normals[f[2]];
+    const Vec3 c23 = cross(n2, n3), c31 = cross(n3, n1), c12 = cross(n1, n2);
+    e.corners[i] = (c23 * e.offsets[f[0]] + c31 * e.offsets[f[1]] + c12 * e.offsets[f[2]]) / dot(n1, c23);
+  }
+  return web_mesh(e);
+}
+
+/// Two-sided S of a roller and a cage web (ring_two_sided.h): `rev` = web_distance's value (the
+/// web's deepest point in the roller, <= 0 here); fwd, the roller's deepest point in the convex web,
+/// is the largest t for which the roller meets the web eroded by t. fwd <= min over the faces j of
+/// D_j = d_j - min over the roller of n_j.x (the roller's reach past face j): when -rev already
+/// reaches that bound, S = rev with no search. `exact` false when the web is too thin for the
+/// search (an eroded web would invert; never in a bearing).
+WebValue two_sided_web(const Cylinder& roller, const CageWeb& web, const Transform& pose, const WebValue& rev,
+                       bool* exact) {
+  double bound = std::numeric_limits<double>::infinity();
+  for (int j = 0; j < 6; ++j) {
+    const Vec3 n = pose.rotate(web.normals[j]);
+    const double d = web.offsets[j] + dot(n, pose.t);
+    const double cu = std::clamp(dot(n, roller.axis), -1.0, 1.0), s = std::sqrt(std::max(0.0, 1 - cu * cu));
+    const double support = std::min(dot(n, roller.base) - roller.radius * s, dot(n, roller.top_center()) - roller.top() * s);
+    bound = std::min(bound, d - support);
+  }
+  if (-rev.distance >= bound) return rev;
+  // the depth of the web's corner centroid in it (a lower bound of its inradius): eroding by up to
+  // half of it keeps the hexahedron's combinatorics (its corners where the same planes meet)
+  Vec3 centre;
+  for (const Vec3& c : web.corners) centre += c;
+  centre = centre / 8.0;
+  double thin = std::numeric_limits<double>::infinity();
+  for (int j = 0; j < 6; ++j) thin = std::min(thin, web.offsets[j] - dot(web.normals[j], centre));
+  if (!(bound <= 0.5 * thin)) *exact = false;
+  const double hi = std::min(bound, 0.5 * thin);
+  const Vec3 m = roller.center();
+  const double scale = std::max({std::fabs(m.x), std::fabs(m.y), std::fabs(m.z)}) + roller.height + roller.max_radius();
+  const auto at = [&](double t) {
+    const WebValue w = web_distance(roller, eroded_web(web, t), pose);
+    PairDistance d;
+    d.distance = w.distance, d.point_a = w.point_a, d.point_b = w.point_b;
+    return d;
+  };
+  const double fwd = erosion_root(at, hi, 0x1p-50 * scale);
+  if (!(fwd > -rev.distance)) return rev;
+  // the roller's point at depth fwd in the web (on the eroded web's surface, inside the roller's
+  // boundary region), and the web boundary point nearest it
+  const PairDistance w = at(fwd);
+  WebValue out;
+  out.distance = -fwd;
+  out.point_a = w.point_b;  // web_distance's point_b lies on the (eroded) web, in contact with the roller
+  double best = std::numeric_limits<double>::infinity();
+  for (int j = 0; j < 6; ++j) {
+    const Vec3 n = pose.rotate(web.normals[j]);
+    const double gap = web.offsets[j] + dot(n, pose.t) - dot(n, out.point_a);
+    if (gap < best) best = gap, out.point_b = out.point_a + n * gap;
+  }
+  return out;
+}
+
 /// A scarred roller split along its axis: the intact end pieces [0, z0], [z1, L] and the middle
 /// piece [z0, z1] grown by `raise` (the scar's largest outward displacement).
 struct Pieces {
@@ -207,6 +272,15 @@ AssemblyPairResult from_distance(const PairDistance& d, AssemblySolver solver, d
     out.exact = false;
     if (out.verdict != Verdict::clear) out.verdict = Verdict::undecided;
   }
+  return out;
+}
+
+/// A ring pair's two-sided value (ring_two_sided.h): a lower bound (the solver's `apart`) decides
+/// only `clear`; `two_sided` is set by solve_pair.
+AssemblyPairResult from_two_sided(const TwoSidedRing& t, double clearance, double tol) {
+  AssemblyPairResult out = from_distance(t.value, AssemblySolver::raceway, clearance, tol);
+  out.two_sided = t.exact;  // the value is S: the two-sided depth, or the Euclidean distance
+  if (t.value.distance <= 0 && !t.exact) out.exact = false;  // (a depth the ring's thinness could bound)
   return out;
 }
 
@@ -288,14 +362,14 @@ AssemblyPairResult solve_one(const Assembly& as, const AssemblyPair& pair, const
       cup.base = pose_b.apply({0, 0, g.ring_lo});
       cup.axis = pose_b.rotate(z);
       cup.radius = cup_r(g.ring_lo), cup.top_radius = cup_r(g.ring_hi), cup.width = g.ring_hi - g.ring_lo;
-      return from_distance(roller_cup_distance(roller, cup), AssemblySolver::raceway, clearance, tol);
+      return from_two_sided(two_sided_cup(roller, cup, b.cup_outer), clearance, tol);
     }
     case AssemblyPairKind::roller_outer: {
       Bore bore;
       bore.base = pose_b.apply({0, 0, -0.5 * b.outer_width});
       bore.axis = pose_b.rotate(z);
       bore.radius = b.outer_raceway, bore.width = b.outer_width;
-      if (!ra.scarred) return from_distance(roller_bore_distance(roller, bore), AssemblySolver::raceway, clearance, tol);
+      if (!ra.scarred) return from_two_sided(two_sided_bore(roller, bore, b.outer_radius), clearance, tol);
       // the scarred mesh: s = R - max of rho over the mesh's solid within the ring's width. rho is
       // convex, so its maximum over a triangle clipped to the slab is at a vertex of the clipped
       // polygon: a vertex in the slab or an edge's crossing of a side face (raceway.h's argument).
@@ -362,7 +436,17 @@ AssemblyPairResult solve_one(const Assembly& as, const AssemblyPair& pair, const
         d.distance = w.distance, d.point_a = w.point_a, d.point_b = w.point_b;
         return from_distance(d, AssemblySolver::web, clearance, tol);
       };
-      if (!ra.scarred) return one(roller);
+      if (!ra.scarred) {  // intact roller: two-sided (ring_two_sided.h)
+        if (rib) return from_two_sided(two_sided_rib(roller, face, b.rib_width), clearance, tol);
+        const WebValue rev = web_distance(roller, *web, pose_b);
+        bool exact = true;  // apart (rev > 0): the Euclidean distance, symmetric
+        const WebValue w = rev.distance > 0 ? rev : two_sided_web(roller, g.webs[pair.feature], pose_b, rev, &exact);
+        PairDistance d;
+        d.distance = w.distance, d.point_a = w.point_a, d.point_b = w.point_b;
+        AssemblyPairResult out = from_distance(d, AssemblySolver::web, clearance, tol);
+        out.exact = out.two_sided = exact;
+        return out;
+      }
       const Pieces pieces = split(roller, *ra.roller, scar_of(as.spec, b));
       AssemblyPairResult best;
       best.distance = std::numeric_limits<double>::infinity();
@@ -398,12 +482,19 @@ AssemblyPairResult solve_pair(const Assembly& as, const AssemblyPair& pair, cons
     case AssemblyPairKind::roller_inner:
     case AssemblyPairKind::roller_roller:
     case AssemblyPairKind::roller_cone: r.two_sided = true; break;
+    // intact rollers: solve_one set it (ring_two_sided.h: S, or a clearance that is the Euclidean
+    // distance); scarred rollers' ring rows stay one-sided (the ring's depth into the scarred mesh
+    // is not computed), except clearances that are the Euclidean distance
     case AssemblyPairKind::roller_outer:
-      r.two_sided = r.exact && r.distance > 0 && r.path == AnalyticPath::bore;
+      if (as.parts[pair.a].scarred) r.two_sided = r.exact && r.distance > 0 && r.path == AnalyticPath::bore;
       break;
-    case AssemblyPairKind::roller_cage: r.two_sided = r.exact && r.distance > 0; break;
-    case AssemblyPairKind::roller_cup:
-    case AssemblyPairKind::roller_rib: r.two_sided = false; break;
+    case AssemblyPairKind::roller_cage:
+      if (r.scar || as.parts[pair.a].scarred) r.two_sided = r.exact && r.distance > 0;
+      break;
+    case AssemblyPairKind::roller_rib:
+      if (as.parts[pair.a].scarred) r.two_sided = false;
+      break;
+    case AssemblyPairKind::roller_cup: break;
   }
   return r;
 }

@@ -77,6 +77,8 @@ class BearingAssembly(unittest.TestCase):
         kinds = {r["kind"] for r in rows}
         self.assertEqual(kinds, {"roller-inner", "roller-outer", "roller-rib", "roller-cage", "roller-roller",
                                  "roller-cone", "roller-cup"})
+        # scarred rollers: their roller-outer rows measure the scarred mesh (scar 1)
+        scarred = {r["a"] for r in rows if r["kind"] == "roller-outer" and r["scar"] == "1"}
         for r in rows:
             d = float(r["distance"])
             self.assertTrue(math.isfinite(d))
@@ -84,11 +86,15 @@ class BearingAssembly(unittest.TestCase):
             for c in ("ax", "ay", "az", "bx", "by", "bz"):
                 self.assertTrue(math.isfinite(float(r[c])))
             # which rows are two-sided S = min(s(A,B), s(B,A)) (issue #27): the roller pairs, the inner
-            # raceways and cones; never the cup and rib rows; ring/web rows only as Euclidean clearances
+            # raceways and cones always; the ring and web rows of intact rollers whenever they overlap
+            # (ring_two_sided.h); one-sided: scarred rollers' overlapping ring/web rows, and cup/rib
+            # clearances that are not the Euclidean distance
             if r["kind"] in ("roller-inner", "roller-roller", "roller-cone"):
                 self.assertEqual(r["two_sided"], "1", r)
-            elif r["kind"] in ("roller-cup", "roller-rib") or d <= 0:
-                self.assertEqual(r["two_sided"], "0", r)
+            elif d <= 0 and r["exact"] == "1" and r["a"] not in scarred:
+                self.assertEqual(r["two_sided"], "1", r)
+            elif d <= 0 and r["two_sided"] == "0":
+                self.assertIn(r["a"], scarred, r)
         for v in ("clash", "contact", "clearance", "clear", "undecided"):
             self.assertEqual(s["results"]["verdicts"][v], sum(r["verdict"] == v for r in rows))
         dmin = min(float(r["distance"]) for r in rows)

@@ -217,10 +217,10 @@ struct AssemblyPairResult {
   bool scar = false;          ///< a scarred surface was the one measured
   bool exact = true;          ///< false: distance is a bound (the verdict says what is decided)
   /// true: the value is two-sided, S = min(s(A, B), s(B, A)) (roller-inner, roller-roller,
-  /// roller-cone), or a clearance that is the Euclidean distance (symmetric: roller-outer clear with
-  /// path bore, roller-cage clear). false: one direction only, the roller's depth in the ring part
-  /// (roller-outer, roller-cup, roller-rib) or the web's deepest point in the roller (roller-cage),
-  /// and clearances that are not the Euclidean distance (cup: to the cone line; rib: over the annulus).
+  /// roller-cone; the ring and web rows of intact rollers, ring_two_sided.h), or a clearance that is
+  /// the Euclidean distance (symmetric). false: one direction only (a scarred roller's depth in the
+  /// outer ring or rib, the web's deepest point in a scarred roller), and clearances that are not
+  /// certified as the Euclidean distance (cup: to the cone line; rib: over the annulus).
   bool two_sided = true;
   Verdict verdict = Verdict::clear;
 };

@@ -4,9 +4,11 @@
 // evaluates signed distances written here from their definitions (the distance to a solid cylinder
 // or frustum in the meridian half-plane, the radius of a point about a ring axis), with the parts'
 // placement taken from the description (spec) and the poses, not from the solvers' descriptors.
-// The quantities are those assembly.h documents per pair kind (two-sided S for roller-inner,
-// roller-roller and roller-cone; the roller's radial reach beyond the bore/cup; the roller's depth
-// below the rib face over the rib's annulus; the web's deepest point in the roller).
+// The quantities are those assembly.h documents per pair kind: two-sided S for every pair of an
+// intact roller (issue #27; for the ring parts -max(the roller's deepest point in the ring part's
+// meridian polygon, the ring part's deepest point in the roller), see ring_two_sided.h); scarred
+// rollers' ring rows are one-sided (the reach beyond the bore, below the rib face, the web's
+// deepest point in the roller).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -255,9 +257,11 @@ double reference(const Assembly& as, const AssemblyPair& pair, const std::vector
     }
     case AssemblyPairKind::roller_outer:
     case AssemblyPairKind::roller_cup: {
-      // radius of the bore (or cup, at the point's height) minus the point's radius, normal to the cone line
+      // the ring's meridian polygon about its axis (z from the bearing's mid-plane): the raceway line
+      // rho = r_at_0 + k z (its signed distance g normal to it), the outside rho = out, the side
+      // faces z = lo, hi
       const Vec3 centre = ring.apply({0, 0, 0});
-      double lo = -0.5 * b.outer_width, hi = 0.5 * b.outer_width, k = 0, r_at_0 = b.outer_raceway;
+      double lo = -0.5 * b.outer_width, hi = 0.5 * b.outer_width, k = 0, r_at_0 = b.outer_raceway, out = b.outer_radius;
       if (b.type == BearingType::tapered) {
         const double beta = std::atan((b.rollers.top_radius - b.rollers.radius) / b.rollers.length);
         const double alpha = b.contact_angle_deg * kPi / 180, gamma = alpha - beta;
@@ -265,23 +269,51 @@ double reference(const Assembly& as, const AssemblyPair& pair, const std::vector
         const double apex = -(d1 + 0.5 * b.rollers.length) * std::cos(gamma);
         k = std::tan(alpha);
         r_at_0 = -apex * k + b.cup_clearance / std::cos(alpha);
-        lo = -1e9, hi = 1e9;  // the roller lies within the cup's width
+        const double zs = apex + d1 * std::cos(gamma) - b.rollers.radius * std::sin(gamma);
+        const double zb = apex + (d1 + b.rollers.length) * std::cos(gamma) + b.rollers.top_radius * std::sin(gamma);
+        lo = zs - 0.1 * b.rollers.length, hi = zb + 0.1 * b.rollers.length, out = b.cup_outer;
       }
-      if (pa.scarred) {  // the mesh: the maximum over its vertices (rho is convex)
+      const auto g_of = [&](const Vec3& p) {
+        const Vec3 d = p - centre;
+        const double z = dot(d, axis);
+        return (norm(d - axis * z) - r_at_0 - k * z) / std::sqrt(1 + k * k);
+      };
+      if (pa.scarred) {  // the mesh: the maximum of g over its vertices (one-sided for scarred rollers)
         double best = kInf;
         for (const Vec3& v : pa.mesh->positions) {
-          const Vec3 d = poses[pair.a].apply(v) - centre;
-          const double z = dot(d, axis);
+          const Vec3 p = poses[pair.a].apply(v);
+          const double z = dot(p - centre, axis);
           if (z < lo || z > hi) continue;
-          best = std::min(best, (r_at_0 + k * z - norm(d - axis * z)) / std::sqrt(1 + k * k));
+          best = std::min(best, -g_of(p));
         }
         return best;
       }
-      return solid_min(roller, [&](const Vec3& p) {
+      // two-sided (issue #27): fwd = the roller's deepest point in the polygon, rev = the ring's
+      // deepest point in the roller (on its raceway or side faces near the roller)
+      const auto ring_depth = [&](const Vec3& p) {
         const Vec3 d = p - centre;
-        const double z = dot(d, axis);
-        return (r_at_0 + k * z - norm(d - axis * z)) / std::sqrt(1 + k * k);
-      });
+        const double z = dot(d, axis), rho = norm(d - axis * z);
+        return std::min({g_of(p), out - rho, z - lo, hi - z});
+      };
+      const double clear = solid_min(roller, [&](const Vec3& p) { return -g_of(p); });
+      if (clear > 0) return clear;  // apart: the clearance to the raceway (the solver's value)
+      const double fwd = -solid_min(roller, [&](const Vec3& p) { return -ring_depth(p); });
+      const Vec3 e1 = std::fabs(axis.x) < 0.9 ? cross(axis, Vec3{1, 0, 0}) : cross(axis, Vec3{0, 1, 0});
+      const Vec3 ex = e1 / norm(e1), ey = cross(axis, ex);
+      const Vec3 c = roller.base + roller.axis * (0.5 * roller.h) - centre;
+      const double phi = std::atan2(dot(c, ey), dot(c, ex));
+      const auto ring_point = [&](int patch, double u, double v) {
+        const double a = phi + (u - 0.5) * 0.8;
+        const Vec3 radial = ex * std::cos(a) + ey * std::sin(a);
+        if (patch == 0) {
+          const double z = lo + v * (hi - lo);
+          return centre + axis * z + radial * (r_at_0 + k * z);
+        }
+        const double z = patch == 1 ? lo : hi, r0 = r_at_0 + k * z;
+        return centre + axis * z + radial * (r0 + v * (out - r0));
+      };
+      const double rev = -dense_min(3, ring_point, roller_sd, 720, 60, false);
+      return -std::max(fwd, rev);
     }
     case AssemblyPairKind::roller_rib: {
       // (a scarred roller: its intact cylinder; inward scars leave the value the intact one's, see below)
@@ -289,7 +321,33 @@ double reference(const Assembly& as, const AssemblyPair& pair, const std::vector
       const Vec3 c = ring.apply({0, 0, zf});
       const Vec3 n = pair.feature == 0 ? axis : -axis;
       const double in = b.inner_raceway, out = b.inner_raceway + b.rib_height;
-      return rib_reference(roller, c, axis, n, in, out);
+      const double one_sided = rib_reference(roller, c, axis, n, in, out);
+      if (one_sided > 0 || pa.scarred) return one_sided;
+      // two-sided (issue #27): the rib block in <= rho <= out, -width <= l <= 0 (rho = in joins the
+      // ring body: not a free surface); fwd = the roller's deepest point in it, rev = its deepest
+      // point in the roller (on the block's boundary: face, top, inner and back shells)
+      const auto rl = [&](const Vec3& p) {
+        const Vec3 d = p - c;
+        return std::pair{norm(d - axis * dot(d, axis)), dot(d, n)};
+      };
+      const auto block_depth = [&](const Vec3& p) {
+        const auto [rho, l] = rl(p);
+        return rho >= in ? std::min({-l, out - rho, l + b.rib_width}) : rho - in;
+      };
+      const double fwd = -solid_min(roller, [&](const Vec3& p) { return -block_depth(p); });
+      const Vec3 e1 = std::fabs(axis.x) < 0.9 ? cross(axis, Vec3{1, 0, 0}) : cross(axis, Vec3{0, 1, 0});
+      const Vec3 ex = e1 / norm(e1), ey = cross(axis, ex);
+      const Vec3 rc = roller.base + roller.axis * (0.5 * roller.h) - c;
+      const double phi = std::atan2(dot(rc, ey), dot(rc, ex));
+      const auto block_point = [&](int patch, double u, double v) {
+        const double a = phi + (u - 0.5) * 0.8;
+        const Vec3 radial = ex * std::cos(a) + ey * std::sin(a);
+        const double rho = patch == 0 || patch == 3 ? in + v * (out - in) : patch == 1 ? out : in;
+        const double l = patch == 0 ? 0 : patch == 3 ? -b.rib_width : -v * b.rib_width;
+        return c + n * l + radial * rho;
+      };
+      const double rev = -dense_min(4, block_point, roller_sd, 720, 60, false);
+      return -std::max(fwd, rev);
     }
     case AssemblyPairKind::roller_cage: {
       const TriMesh& web = as.webs[as.web_offset[pa.bearing] + pair.feature].mesh;
@@ -314,7 +372,21 @@ double reference(const Assembly& as, const AssemblyPair& pair, const std::vector
           return golden([&](double v) { return roller_sd(a + e1 * u + e2 * v); }, 0.0, 1.0 - u);
         }, 0.0, 1.0));
       }
-      return best;
+      if (best > 0 || pa.scarred) return best;  // apart (the Euclidean distance), or a scarred roller (one-sided)
+      // two-sided (issue #27): the roller's deepest point in the convex web, whose depth is the
+      // smallest distance to its face planes (from the posed mesh's triangles)
+      const auto web_depth = [&](const Vec3& p) {
+        double m = kInf;
+        for (const Tri& t : web.triangles) {
+          const Vec3 a = ring.apply(web.positions[t[0]]), b1 = ring.apply(web.positions[t[1]]),
+                     c1 = ring.apply(web.positions[t[2]]);
+          const Vec3 nn = cross(b1 - a, c1 - a);
+          m = std::min(m, -dot(p - a, nn) / norm(nn));
+        }
+        return m;
+      };
+      const double fwd = -solid_min(roller, [&](const Vec3& p) { return -web_depth(p); });
+      return std::min(best, -fwd);
     }
   }
   return kInf;
@@ -347,6 +419,7 @@ TEST(BearingAssemblyPairs, EverySolverAgainstADenseReference) {
         EXPECT_GE(r.distance, ref - 0.05);
       } else {
         EXPECT_TRUE(r.exact);
+        if (r.distance < 0) EXPECT_TRUE(r.two_sided);  // every overlapping intact row (issue #27)
         EXPECT_NEAR(r.distance, ref, 1e-9 * std::max(1.0, std::fabs(ref)));
         worst = std::max(worst, std::fabs(r.distance - ref));
       }
