@@ -35,8 +35,21 @@ ROOT = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(ROOT, "python", "tools"))
 import build_deps  # noqa: E402
 
+# The wheel carries the command-line tool (interfere/bin/interfere, and interfere-cad when
+# OpenCASCADE is found), so that `python -m interfere` works after `pip install .` alone;
+# INTERFERE_PIP_CLI=0 builds the module only (fewer dependencies, a shorter build).
+WITH_CLI = os.environ.get("INTERFERE_PIP_CLI", "1") not in ("0", "OFF", "off", "no")
 DEBIAN_BUILD_DEPS = " ".join(build_deps.PACKAGES[:2] + ["ninja-build"] + build_deps.PACKAGES[2:] +
-                             ["python3-setuptools", "python3-wheel"])
+                             (build_deps.CLI_PACKAGES if WITH_CLI else []) + ["python3-setuptools", "python3-wheel"])
+
+
+def cache_on(build_dir, name):
+    """Whether the CMake cache of `build_dir` has the option `name` ON."""
+    try:
+        with open(os.path.join(build_dir, "CMakeCache.txt")) as f:
+            return re.search(r"^%s:BOOL=(ON|TRUE|1|YES)$" % re.escape(name), f.read(), re.M | re.I) is not None
+    except OSError:
+        return False
 
 
 def project_version():
@@ -71,12 +84,18 @@ class CMakeBuild(build_ext):
         else:
             build_dir = os.path.join(ROOT, "build-pip", "cmake")
             if not os.environ.get("INTERFERE_SKIP_DEPS_CHECK"):
-                lacking = build_deps.missing()
+                lacking = build_deps.missing(cli=WITH_CLI)
                 if lacking:
                     fail(build_deps.message(lacking))
             self.configure(cmake, build_dir)
         jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL") or str(os.cpu_count() or 1)
-        self.run_step([cmake, "--build", build_dir, "--target", "_interfere", "-j", jobs], "build")
+        targets = ["_interfere"]
+        cli = WITH_CLI and cache_on(build_dir, "INTERFERE_BUILD_CLI")
+        if cli:
+            targets.append("interfere")
+            if cache_on(build_dir, "INTERFERE_WITH_OCCT"):
+                targets.append("interfere-cad")
+        self.run_step([cmake, "--build", build_dir, "--target", *targets, "-j", jobs], "build")
 
         package_dir = os.path.join(build_dir, "python", "interfere")
         built = sorted(glob.glob(os.path.join(package_dir, "_interfere*.so")) +
@@ -95,11 +114,20 @@ class CMakeBuild(build_ext):
         if not os.path.isfile(stub):
             fail(f"the build left no type stubs {stub} (python/tools/stubgen.py)")
         shutil.copyfile(stub, os.path.join(os.path.dirname(target), "_interfere.pyi"))
+        # The CLI next to the package (python -m interfere runs interfere/bin/interfere first).
+        bin_dir = os.path.join(os.path.dirname(target), "bin")
+        shutil.rmtree(bin_dir, ignore_errors=True)
+        for name in targets[1:]:
+            exe = os.path.join(build_dir, "apps", "cli", name)
+            if not os.path.isfile(exe):
+                fail(f"the build left no {exe}")
+            os.makedirs(bin_dir, exist_ok=True)
+            shutil.copy2(exe, os.path.join(bin_dir, name))  # (copy2: the executable bit too)
 
     def configure(self, cmake, build_dir):
         args = [cmake, "-S", ROOT, "-B", build_dir, "-DCMAKE_BUILD_TYPE=Release",
                 "-DINTERFERE_BUILD_PYTHON=ON", "-DINTERFERE_BUILD_TESTS=OFF", "-DINTERFERE_BUILD_ORACLE_TESTS=OFF",
-                "-DINTERFERE_BUILD_BENCH=OFF", "-DINTERFERE_BUILD_CLI=OFF",
+                "-DINTERFERE_BUILD_BENCH=OFF", "-DINTERFERE_BUILD_CLI=" + ("ON" if WITH_CLI else "OFF"),
                 f"-DPython3_EXECUTABLE={sys.executable}"]
         if not os.path.isfile(os.path.join(build_dir, "CMakeCache.txt")) and shutil.which("ninja"):
             args += ["-G", "Ninja"]

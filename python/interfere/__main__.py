@@ -1,9 +1,8 @@
 """``python -m interfere ARGS``: runs the ``interfere`` command-line tool with ARGS (docs/python.md).
 
-The wheel holds the Python module only, not the CLI (the CLI hands STEP inputs to a second
-executable, ``interfere-cad``, which needs OpenCASCADE; both come from the CMake build or its
-install). The executable is, in this order: ``$INTERFERE_CLI``; ``interfere`` next to this package
-(``interfere/bin/interfere``, for a layout that ships it); ``interfere`` on PATH. The process is
+``pip install .`` puts the CLI into the package (``interfere/bin/interfere``, and ``interfere-cad``
+for STEP input when OpenCASCADE was found; setup.py, ``INTERFERE_PIP_CLI=0`` leaves them out). The
+executable is, in this order: ``$INTERFERE_CLI``; ``interfere/bin/interfere``; ``interfere`` on PATH. The process is
 replaced by the CLI (exec), so its exit code is the CLI's (0 clear, 1 interference, 2 error).
 """
 
@@ -13,7 +12,8 @@ import sys
 
 _HELP = (
     "interfere: error: the `interfere` executable was not found (looked at $INTERFERE_CLI, {bundled} and PATH).\n"
-    "The Python package does not contain the command-line tool: build it with CMake "
+    "This Python package was built without the command-line tool (INTERFERE_PIP_CLI=0, or a build tree without it): "
+    "reinstall with `pip install .`, build it with CMake "
     "(cmake -S . -B build && cmake --build build --target interfere) and put build/apps/cli on PATH, "
     "install it (cmake --install build), or set INTERFERE_CLI to its path.\n"
 )

@@ -10,8 +10,9 @@
 3. from a directory outside the source tree, with the venv's python: `import interfere` comes from
    the venv, a small clash returns numpy arrays, `py.typed` and `_interfere.pyi` are installed and
    the stub declares every public name (stub_check.py), importing without numpy fails with an
-   ImportError naming numpy, and `python -m interfere --version` prints the CLI's version
-   (INTERFERE_CLI from ctest, else found on PATH).
+   ImportError naming numpy, and `python -m interfere --version` prints the CLI's version from
+   the CLI the wheel carries (interfere/bin/interfere; no INTERFERE_CLI, none on PATH) when this
+   build tree has the CLI, else from INTERFERE_CLI / PATH.
 Exits 77 (skipped) when the interpreter has no venv/ensurepip or the venv no pip.
 """
 
@@ -108,11 +109,27 @@ def main():
         return 1
     env = dict(os.environ)
     env.pop("INTERFERE_CLI", None)
-    env["PATH"] = os.path.dirname(os.path.abspath(cli)) + os.pathsep + env.get("PATH", "")
+    r = run([py, "-c", "import interfere, os; print(os.path.dirname(interfere.__file__))"], env=env, cwd=outside)
+    bundled = os.path.join(r.stdout.strip(), "bin", "interfere")
+    with open(os.path.join(o.build, "CMakeCache.txt")) as f:
+        has_cli = "INTERFERE_BUILD_CLI:BOOL=ON" in f.read()
+    if has_cli:  # the wheel carries the CLI: python -m interfere must find it with nothing on PATH
+        if not os.access(bundled, os.X_OK):
+            print(f"FAIL: the wheel has no executable {bundled}")
+            return 1
+        env["PATH"] = os.path.dirname(sys.executable)  # (no interfere there)
+    else:
+        env["PATH"] = os.path.dirname(os.path.abspath(cli)) + os.pathsep + env.get("PATH", "")
     r = run([py, "-m", "interfere", "--version"], env=env, cwd=outside)
     version = run([cli, "--version"]).stdout.strip()
     if r.returncode != 0 or not version or r.stdout.strip() != version:
         print(f"FAIL: python -m interfere --version printed {r.stdout!r}, the CLI {version!r}")
+        return 1
+    examples = os.path.join(o.source, "data", "examples")
+    r = run([py, "-m", "interfere", "-q", "clash", os.path.join(examples, "plate.stl"), os.path.join(examples, "pin.obj")],
+            env=env, cwd=outside)
+    if r.returncode != 1 or "CLASH" not in r.stdout:
+        print(f"FAIL: python -m interfere clash exited {r.returncode} (want 1, a clash)")
         return 1
     print("PASS")
     return 0

@@ -24,7 +24,13 @@ CHECKS = [
     ("python3-dev", ("python_h",)),
     ("python3-numpy", ("python", "numpy")),
 ]
+# The command-line tool, which the wheel carries too (setup.py, INTERFERE_PIP_CLI).
+CLI_CHECKS = [
+    ("libcli11-dev", ("header", "CLI/CLI.hpp")),
+    ("libfmt-dev", ("header", "fmt/format.h")),
+]
 PACKAGES = [p for p, _ in CHECKS]
+CLI_PACKAGES = [p for p, _ in CLI_CHECKS]
 
 
 def include_dirs(env=None):
@@ -38,16 +44,16 @@ def include_dirs(env=None):
     return dirs
 
 
-def missing(env=None, include=None, python_include=None):
+def missing(env=None, include=None, python_include=None, cli=False):
     """[(Debian package, what was not found)] for every check that fails (empty: nothing missing).
     `env` (PATH, CXX, CPATH), `include` (header directories) and `python_include` (the directory
-    of Python.h) default to this process's."""
+    of Python.h) default to this process's; `cli`: also what the command-line tool needs."""
     env = os.environ if env is None else env
     include = include_dirs(env) if include is None else include
     python_include = sysconfig.get_paths()["include"] if python_include is None else python_include
     path = env.get("PATH", "")
     out = []
-    for package, (kind, *what) in CHECKS:
+    for package, (kind, *what) in CHECKS + (CLI_CHECKS if cli else []):
         if kind == "cmd":
             names = []
             for w in what:
