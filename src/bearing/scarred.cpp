@@ -119,6 +119,32 @@ TriangleMin local_triangle_min(const LocalFrame& f, const Vec3& a, const Vec3& b
       if (at) *at = q;
       return signed_distance_rz(std::sqrt(q.x * q.x + q.y * q.y), z, f.R, f.hh);
     };
+    // A triangle outside B's infinite cylinder whose point nearest the axis lies beyond an end
+    // plane z = +-hh (a face overhanging a roller end, e.g. a cage web): the minimum is just past
+    // the end, where G(u) = hypot(F - R, u) (u = |z| - hh). With F modelled linearly between the end
+    // plane and that point, the minimiser is u* = -g k / (1 + k^2) (g = F(hh) - R, k = dF/du <= 0).
+    // Certificate, whatever the model: G is convex, so G(z* -+ delta) >= G(z*) puts the minimiser
+    // in [z* - delta, z* + delta], and there G >= G(z*) - max(G(z* -+ delta) - G(z*)) (the secant
+    // slopes bound it); accepted when that gap is below rounding-level tolerance, else the search.
+    if (!pierced && rho >= f.R && std::fabs(p.z) > f.hh) {
+      const double sgn = p.z > 0 ? 1.0 : -1.0, zb = sgn * f.hh, u1 = std::fabs(p.z) - f.hh;
+      if (zb > zl && zb < zh && u1 > 0) {
+        Vec3 qb;
+        const double gb = section(zb, &qb);
+        const double g = std::sqrt(qb.x * qb.x + qb.y * qb.y) - f.R, k = std::min(0.0, (rho - f.R - g) / u1);
+        const double zs = sgn * (f.hh + std::clamp(-g * k / (1 + k * k), 0.0, u1));
+        const double delta = 0x1p-30 * (zh - zl), tol = 0x1p-44 * (zh - zl + f.R + f.hh);
+        Vec3 q0;
+        const double g0 = section(zs, &q0);
+        const double gl = zs - delta > zl ? section(zs - delta, nullptr) : g0;
+        const double gr = zs + delta < zh ? section(zs + delta, nullptr) : g0;
+        const double gap = std::max(gl - g0, gr - g0);
+        if (std::isfinite(gb) && std::isfinite(g0) && gl >= g0 && gr >= g0 && gap <= tol) {
+          out.value = g0, out.point = q0, out.certified = false;
+          return out;
+        }
+      }
+    }
     const auto [z, value] = golden_min([&](double zz) { return section(zz, nullptr); }, zl, zh, 100);
     if (std::isfinite(value)) {
       out.value = value;
