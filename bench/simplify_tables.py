@@ -148,8 +148,8 @@ quadric-error-metric edge collapses while the faces that take part in the curren
    counts) followed by geometric checks (coaxial axes, radius order, a plane perpendicular to an axis,
    opposite/perpendicular planes). Patterns are tried by decreasing priority and each match claims its own
    (non-shared) faces, so a counterbore's bore is not also reported as a through hole. Shipped patterns:
-   `counterbored_hole`, `countersunk_hole`, `slot`, `blind_hole`, `through_step`, `ring_face` (shoulder),
-   `through_hole`, `boss` (outer cylinder). **Holes** (issue #29) are not matched as patterns ("a concave
+   `counterbored_hole`, `counterdrilled_hole`, `countersunk_hole`, `slot`, `blind_hole`, `through_step`,
+   `pocket`, `ring_face` (shoulder), `through_hole`, `boss` (outer cylinder). **Holes** (issue #29) are not matched as patterns ("a concave
    cylinder between two planes" took pocket corner rounds and slot ends for holes and missed split floors and
    curved entries on real parts) but recognised from their walls and ends (`src/cad/hole_recognition.cpp`):
    hole-sense cylinder and cone faces on one surface (coaxial, same radius or cone, touching extents) form a
@@ -157,9 +157,20 @@ quadric-error-metric edge collapses while the faces that take part in the curren
    never do); coaxial walls joined by an arc or touching extents (a seat has no height) form a hole; an end is closed
    by a floor plane at the end's height facing into the hole (split floors summed, at least half the end's
    disk), a drill-point apex, a coaxial sphere or a floor fillet, and open on any other face (planar, inclined,
-   curved, another hole); from an open end: counterbored (a larger cylinder first), countersunk (a cone
+   curved, another hole); from an open end: counterdrilled (a larger cylinder, then a cone narrowing to the
+   bore: a drill point's seat; roles `counterdrill`, `cone`, `bore`; the `screw` rule takes it like a
+   counterbore), counterbored (a larger cylinder first), countersunk (a cone
    narrowing inwards, entry chamfers included), stepped, blind, through. Roles: `wall`/`counterbore`/
-   `countersink`/`bore`/`seat`, `top` (the entry faces), `bottom` (the exit faces or the floor). The library's
+   `countersink`/`bore`/`seat`, `top` (the entry faces), `bottom` (the exit faces or the floor).
+   **Pockets** (issue #29; `src/cad/pocket_recognition.cpp`) are recognised in code too, since a pattern of
+   fixed size cannot state "walls all round": the closed form of the paper's through step (§2.2, Fig. 4: two
+   planes meeting at one concave arc), a planar floor every arc of which is concave, with at least three
+   walls standing on it (planes perpendicular to it, hole-sense corner rounds whose axis is its normal)
+   that close a ring (each wall meets two others); roles `floor`, `wall` (every wall). A through slot's or
+   a step's floor meets the outside at its open ends (convex arcs) and stays a `slot` (floor between two
+   opposite walls) or `through_step` (floor and one wall), a blind hole's floor has one wall. Tested on
+   generated parts (`tests/cad/test_feature_cases.cpp`: a counterdrilled plate; the pocket block's pocket
+   with four corner rounds, eight walls found by their triangles; slot and step blocks are no pockets). The library's
    hole patterns only name the roles. Precision and recall on real parts: the truth-set table below.
    **MAAG matching** (§2.2, issue #29): `maag_decomposition(aag, library, GraphMatch)` runs the paper's
    two stages as matching (split at inner loops into SG1, match each subgraph as it is, split the unmatched at

@@ -19,6 +19,7 @@
 #include "data_dir.h"
 #include "aag_merge.h"
 #include "hole_recognition.h"
+#include "pocket_recognition.h"
 
 namespace interfere::cad {
 namespace {
@@ -382,8 +383,18 @@ std::vector<Feature> recognize_features(const Aag& input, const FeatureLibrary& 
       for (std::uint32_t f : h.owned) claimed[group_of[f]] = 1;
       holes.push_back(std::move(h.feature));
     }
+  // Closed pockets (issue #29, item 3; pocket_recognition.cpp): a floor with walls all round, which
+  // a pattern of fixed size cannot state; claimed before the patterns too.
+  const bool pockets = library.has("pocket");
+  std::vector<detail::PocketFeature> pocket_list;
+  if (pockets)
+    for (detail::PocketFeature& pk : detail::recognize_pockets(aag, claimed)) {
+      claimed[pk.floor] = 1;
+      for (std::uint32_t w : pk.walls) claimed[w] = 1;
+      pocket_list.push_back(std::move(pk));
+    }
   for (const FeaturePattern& p : library.patterns) {
-    if (hole_types.count(p.type)) continue;
+    if (hole_types.count(p.type) || (pockets && p.type == "pocket")) continue;
     std::set<std::string> shared;
     for (const PatternCheck& ck : p.checks)
       if (ck.kind == "__shared") shared.insert(ck.roles[0]);
@@ -431,6 +442,18 @@ std::vector<Feature> recognize_features(const Aag& input, const FeatureLibrary& 
     f.faces = std::move(faces);
   }
   for (Feature& h : holes) out.push_back(std::move(h));
+  for (const detail::PocketFeature& pk : pocket_list) {
+    Feature f;
+    f.type = "pocket";
+    f.roles["floor"] = rep[pk.floor], f.roles["wall"] = rep[pk.walls.front()];
+    f.role_faces["floor"] = members[pk.floor];
+    for (std::uint32_t w : pk.walls) f.role_faces["wall"].insert(f.role_faces["wall"].end(), members[w].begin(), members[w].end());
+    std::sort(f.role_faces["wall"].begin(), f.role_faces["wall"].end());
+    f.faces = f.role_faces["floor"];
+    f.faces.insert(f.faces.end(), f.role_faces["wall"].begin(), f.role_faces["wall"].end());
+    std::sort(f.faces.begin(), f.faces.end());
+    out.push_back(std::move(f));
+  }
   std::sort(out.begin(), out.end(), [](const Feature& a, const Feature& b) {
     return a.type != b.type ? a.type < b.type : a.faces < b.faces;
   });

@@ -174,6 +174,12 @@ TopoDS_Shape build(TestPart p) {
       split.Perform();
       return split.Result();
     }
+    case TestPart::counterdrilled_plate: {
+      // The drill point's cone: 118 degrees, from r = 6 at z = 6 down to r = 3, 3 / tan(59 deg) lower.
+      const double h = 3 / std::tan(59.0 * std::numbers::pi / 180);
+      const TopoDS_Shape cone = BRepPrimAPI_MakeCone(gp_Ax2(gp_Pnt(20, 15, 6 - h), gp_Dir(0, 0, 1)), 3, 6, h).Shape();
+      return unify(cut(cut(cut(box(0, 0, 0, 40, 30, 10), cyl(20, 15, -1, 3, 12)), cyl(20, 15, 6, 6, 5)), cone));
+    }
     case TestPart::crossing_holes: {
       const TopoDS_Shape hx = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(-1, 20, 10), gp_Dir(1, 0, 0)), 4, 42).Shape();
       const TopoDS_Shape hy = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(20, -1, 10), gp_Dir(0, 1, 0)), 3, 42).Shape();
@@ -206,6 +212,7 @@ const char* test_part_name(TestPart p) {
     case TestPart::shaft_cross_hole: return "shaft_cross_hole";
     case TestPart::blind_split_floor: return "blind_split_floor";
     case TestPart::crossing_holes: return "crossing_holes";
+    case TestPart::counterdrilled_plate: return "counterdrilled_plate";
   }
   return "?";
 }

@@ -14,7 +14,8 @@
 //     whose tube centre lies inside the wall), or by a cone ending at its apex (a drill point);
 //     otherwise it is open, whatever face the wall meets there (planar, inclined, curved, another
 //     hole): arcs are taken per neighbouring face and by the end their middle lies nearest to;
-//  4. type, from an open end inwards: counterbored (a cylinder larger than the next cylinder),
+//  4. type, from an open end inwards: counterdrilled (a larger cylinder, then a cone narrowing to
+//     the next cylinder: a drill point's seat), counterbored (a cylinder larger than the next cylinder),
 //     countersunk (a cone narrowing inwards: countersinks and entry chamfers), stepped (other
 //     diameter changes), blind (one closed end), through. Holes closed at both ends are not holes.
 #include "hole_recognition.h"
@@ -126,7 +127,8 @@ struct Element {
 }  // namespace
 
 const std::set<std::string>& hole_types() {
-  static const std::set<std::string> t{"through_hole", "blind_hole", "counterbored_hole", "countersunk_hole", "stepped_hole"};
+  static const std::set<std::string> t{"through_hole",     "blind_hole",   "counterbored_hole", "counterdrilled_hole",
+                                       "countersunk_hole", "stepped_hole"};
   return t;
 }
 
@@ -301,8 +303,17 @@ std::vector<HoleFeature> recognize_holes(const Aag& g, const std::set<std::strin
     for (const Element* e : seq)
       if (!e->cone && std::none_of(radii.begin(), radii.end(), [&](double r) { return std::abs(r - e->r_lo) <= 1e-6 * std::max(1.0, r); }))
         radii.push_back(e->r_lo);
+    // Counterdrilled (ISO 10303-224's counterdrilled hole): a counterbore whose seat is a drill
+    // point's cone, narrowing inwards from the counterdrill to the bore, not a flat seat; the bore
+    // is the rest of the hole (one radius, no further seat: a chamfered step between two counterbore
+    // diameters, as in gmsh_Block, stays a counterbore).
+    bool counterdrilled = counterbored(seq) && seq.size() >= 3 && seq[1]->cone && !seq[2]->cone &&
+                          countersunk({seq[1], seq[2]}, from_hi);
+    for (std::size_t i = 3; counterdrilled && i < seq.size(); ++i)
+      counterdrilled = !seq[i]->cone && std::abs(seq[i]->r_lo - seq[2]->r_lo) <= 1e-6 * std::max(1.0, seq[2]->r_lo);
     std::string type;
-    if (counterbored(seq)) type = "counterbored_hole";
+    if (counterdrilled && types.count("counterdrilled_hole")) type = "counterdrilled_hole";
+    else if (counterbored(seq)) type = "counterbored_hole";
     else if (countersunk(seq, from_hi)) type = "countersunk_hole";
     else if (radii.size() >= 2) type = "stepped_hole";
     else type = (closed_lo || closed_hi) ? "blind_hole" : "through_hole";
@@ -321,7 +332,12 @@ std::vector<HoleFeature> recognize_holes(const Aag& g, const std::set<std::strin
     const auto& exit = from_hi ? entry_lo : entry_hi;
     const auto& floor = from_hi ? floor_lo : floor_hi;
     std::vector<std::uint32_t> seat;
-    if (type == "counterbored_hole" || type == "countersunk_hole") {
+    if (type == "counterdrilled_hole") {
+      add("counterdrill", seq[0]->faces);
+      add("cone", seq[1]->faces);
+      for (std::size_t i = 2; i < seq.size(); ++i) add("bore", seq[i]->faces);
+      add("bottom", floor);
+    } else if (type == "counterbored_hole" || type == "countersunk_hole") {
       add(type == "counterbored_hole" ? "counterbore" : "countersink", seq[0]->faces);
       for (std::size_t i = 1; i < seq.size(); ++i) add("bore", seq[i]->faces);
       if (type == "counterbored_hole") {

@@ -41,7 +41,7 @@ Vec3 unit(const Vec3& v) {
 
 std::string constraint_of(const std::string& hole_type) {
   if (hole_type == "blind_hole") return "pin";
-  if (hole_type == "counterbored_hole") return "screw";
+  if (hole_type == "counterbored_hole" || hole_type == "counterdrilled_hole") return "screw";
   if (hole_type == "countersunk_hole") return "countersunk_screw";
   return "bolt";
 }

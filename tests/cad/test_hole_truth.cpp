@@ -28,8 +28,8 @@ namespace {
 
 using json = nlohmann::json;
 
-const std::set<std::string> kHoleTypes{"through_hole", "blind_hole", "counterbored_hole", "countersunk_hole",
-                                       "stepped_hole"};
+const std::set<std::string> kHoleTypes{"through_hole",     "blind_hole",   "counterbored_hole", "counterdrilled_hole",
+                                       "countersunk_hole", "stepped_hole"};
 
 struct TruthHole {
   std::string type;

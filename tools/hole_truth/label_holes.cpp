@@ -9,7 +9,8 @@
 //   - a hole: coaxial walls (cylinders and cones) whose axial extents touch, ordered along the axis;
 //   - an end is closed (blind) when material lies on the axis within one radius beyond the last wall
 //     (a flat, filleted, conical or spherical floor), else open;
-//   - type: counterbored_hole (a larger cylinder at an open end followed by a smaller one),
+//   - type: counterdrilled_hole (a larger cylinder at an open end, a cone narrowing inwards, then the
+//     bore: one radius to the end), counterbored_hole (a larger cylinder at an open end followed by a smaller one),
 //     countersunk_hole (a cone at an open end narrowing inwards: countersinks and entry chamfers),
 //     stepped_hole (other multi-diameter holes), blind_hole (one closed end), through_hole.
 // B-spline faces are not labelled (the tool has no surface recognition of its own).
@@ -242,8 +243,19 @@ int main(int argc, char** argv) {
           if (!s.cone) cyl.push_back(s.r);
         return cyl.size() >= 2 && !seq[0].cone ? cyl[0] > cyl[1] * (1 + 1e-6) : false;
       };
+      // counterdrill (issue #29, item 3): a counterbore whose seat is a cone narrowing inwards to the
+      // bore, the rest of the hole one cylinder radius.
+      auto counterdrilled = [&](const std::vector<Surf>& seq, bool outer_hi) {
+        if (!counterbored(seq) || seq.size() < 3 || !seq[1].cone || seq[2].cone) return false;
+        const Surf& c = seq[1];
+        if (!(radius_at(c, outer_hi ? c.h1 : c.h0) > radius_at(c, outer_hi ? c.h0 : c.h1))) return false;
+        for (std::size_t i = 3; i < seq.size(); ++i)
+          if (seq[i].cone || std::abs(seq[i].r - seq[2].r) > 1e-6 * std::max(1.0, seq[2].r)) return false;
+        return true;
+      };
       std::string type;
       if (closed_lo && closed_hi) type = "closed_cavity";
+      else if (counterdrilled(in, from_hi) || (both_open && counterdrilled(rev, !from_hi))) type = "counterdrilled_hole";
       else if (counterbored(in) || (both_open && counterbored(rev))) type = "counterbored_hole";
       else if (narrowing_cone_at_open_end(in, from_hi) || (both_open && narrowing_cone_at_open_end(rev, !from_hi))) type = "countersunk_hole";
       else {

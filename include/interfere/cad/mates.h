@@ -19,7 +19,7 @@ struct Mate {
   Kind kind = Kind::insertion;
   std::uint32_t instance_a = 0, instance_b = 0;  ///< indices into CadModel::instances
   /// insertion: the hole's feature type (through_hole, blind_hole, ...) and the constraint it implies
-  /// (through_hole/stepped_hole: "bolt", blind_hole: "pin", counterbored_hole: "screw",
+  /// (through_hole/stepped_hole: "bolt", blind_hole: "pin", counterbored_hole and counterdrilled_hole: "screw",
   /// countersunk_hole: "countersunk_screw"); planar_contact: "plane" and "".
   std::string feature_type, constraint;
   std::vector<std::uint32_t> faces_a, faces_b;  ///< part face ids (a: the hole's faces; b: the cylinder / the planes)

@@ -154,6 +154,7 @@ enum class TestPart {
   shaft_cross_hole,     ///< cylinder r=15 along x, length 60, radial through hole r=3 along z (entry and exit on the curved face)
   blind_split_floor,    ///< box_blind_hole with the wall split in two half cylinders (the floor circle in two edges)
   crossing_holes,       ///< 40x40x20 block, through hole r=4 along x and one r=3 along y crossing it at mid-height
+  counterdrilled_plate, ///< 40x30x10 plate, bore r=3 through, counterdrill r=6 from the top to z=6 ending in a 118-degree drill point cone down to r=3
 };
 const char* test_part_name(TestPart p);
 Status write_test_part(TestPart part, const std::filesystem::path& step_file);
