@@ -137,67 +137,86 @@ WebValue web_distance(const Cylinder& roller, const TriMesh& web, const Transfor
   return out;
 }
 
-/// The web eroded by t (its six planes moved in by t; corners where three planes meet), posed.
-TriMesh eroded_web(const CageWeb& w, double t) {
-  CageWeb e = w;
-  for (double& d : e.offsets) d -= t;
-  for (int i = 0; i < 8; ++i) {
-    const int f[3] = {i & 1, 2 + ((i >> 1) & 1), 4 + ((i >> 2) & 1)};
-    const Vec3 &n1 = e.normals[f[0]], &n2 = e.normals[f[1]], &n3 = e.normals[f[2]];
-    const Vec3 c23 = cross(n2, n3), c31 = cross(n3, n1), c12 = cross(n1, n2);
-    e.corners[i] = (c23 * e.offsets[f[0]] + c31 * e.offsets[f[1]] + c12 * e.offsets[f[2]]) / dot(n1, c23);
-  }
-  return web_mesh(e);
+/// fwd of a roller and a convex web: max over the roller of F(x) = min_j (d_j - n_j.x), the depth of
+/// x in the web when F >= 0 (a convex polytope's interior depth is its smallest face-plane
+/// distance). F is concave and the roller convex, so G(tau) = max of F over the roller's disk at axial
+/// parameter tau is concave (partial maximisation over the fibres): a golden-section search over tau.
+/// On a disk |y| <= rho, F = min_j (b_j - m_j.y) is maximised at a point where one piece is maximised
+/// on the circle (y = -rho m_j/|m_j|), where two pieces are equal on the circle, or where three are
+/// equal inside (a vertex of the arrangement), or at the centre (pieces constant): all enumerated,
+/// exact to rounding. Returns (F max, its point).
+std::pair<double, Vec3> deepest_in_web(const Cylinder& roller, const std::array<Vec3, 6>& n, const std::array<double, 6>& d) {
+  const Vec3 u = roller.axis;
+  const Vec3 t1 = std::fabs(u.x) < 0.9 ? cross(u, Vec3{1, 0, 0}) : cross(u, Vec3{0, 1, 0});
+  const Vec3 e1 = t1 / norm(t1), e2 = cross(u, e1);
+  std::array<double, 6> mx{}, my{};
+  for (int j = 0; j < 6; ++j) mx[j] = dot(n[j], e1), my[j] = dot(n[j], e2);
+  const auto disk = [&](double tau, Vec3* at) {
+    const Vec3 c = roller.base + u * tau;
+    const double rho = roller.radius + (roller.top() - roller.radius) * tau / roller.height;
+    std::array<double, 6> b{};
+    for (int j = 0; j < 6; ++j) b[j] = d[j] - dot(n[j], c);
+    double best = -std::numeric_limits<double>::infinity(), bx = 0, by = 0;
+    const auto take = [&](double x, double y) {
+      double f = std::numeric_limits<double>::infinity();
+      for (int j = 0; j < 6; ++j) f = std::min(f, b[j] - mx[j] * x - my[j] * y);
+      if (f > best) best = f, bx = x, by = y;
+    };
+    take(0, 0);
+    for (int j = 0; j < 6; ++j)
+      if (const double l = std::hypot(mx[j], my[j]); l > 0) take(-rho * mx[j] / l, -rho * my[j] / l);
+    for (int i = 0; i < 6; ++i)
+      for (int j = i + 1; j < 6; ++j) {
+        const double wx = mx[j] - mx[i], wy = my[j] - my[i], beta = b[j] - b[i], w2 = wx * wx + wy * wy;
+        if (!(w2 > 0)) continue;
+        const double x0 = beta * wx / w2, y0 = beta * wy / w2, h2 = rho * rho - beta * beta / w2;
+        if (h2 >= 0) {
+          const double s = std::sqrt(h2 / w2);
+          take(x0 - wy * s, y0 + wx * s);
+          take(x0 + wy * s, y0 - wx * s);
+        }
+        for (int k = j + 1; k < 6; ++k) {
+          const double vx = mx[k] - mx[i], vy = my[k] - my[i], gamma = b[k] - b[i], det = wx * vy - wy * vx;
+          if (det == 0) continue;
+          const double x = (beta * vy - wy * gamma) / det, y = (wx * gamma - beta * vx) / det;
+          if (x * x + y * y <= rho * rho) take(x, y);
+        }
+      }
+    if (at) *at = c + e1 * bx + e2 * by;
+    return best;
+  };
+  const auto [tau, neg] = golden_min([&](double t) { return -disk(t, nullptr); }, 0.0, roller.height, 100);
+  Vec3 at;
+  const double best = disk(tau, &at);
+  (void)neg;
+  return {best, at};
 }
 
 /// Two-sided S of a roller and a cage web (ring_two_sided.h): `rev` = web_distance's value (the
-/// web's deepest point in the roller, <= 0 here); fwd, the roller's deepest point in the convex web,
-/// is the largest t for which the roller meets the web eroded by t. fwd <= min over the faces j of
-/// D_j = d_j - min over the roller of n_j.x (the roller's reach past face j): when -rev already
-/// reaches that bound, S = rev with no search. `exact` false when the web is too thin for the
-/// search (an eroded web would invert; never in a bearing).
-WebValue two_sided_web(const Cylinder& roller, const CageWeb& web, const Transform& pose, const WebValue& rev,
-                       bool* exact) {
+/// web's deepest point in the roller, <= 0 here), fwd = deepest_in_web (the roller's deepest point
+/// in the convex web). fwd <= min over the faces j of D_j = d_j - min over the roller of n_j.x (the
+/// roller's reach past face j): when -rev already reaches that bound, S = rev with no search.
+WebValue two_sided_web(const Cylinder& roller, const CageWeb& web, const Transform& pose, const WebValue& rev) {
+  std::array<Vec3, 6> n;
+  std::array<double, 6> d{};
   double bound = std::numeric_limits<double>::infinity();
   for (int j = 0; j < 6; ++j) {
-    const Vec3 n = pose.rotate(web.normals[j]);
-    const double d = web.offsets[j] + dot(n, pose.t);
-    const double cu = std::clamp(dot(n, roller.axis), -1.0, 1.0), s = std::sqrt(std::max(0.0, 1 - cu * cu));
-    const double support = std::min(dot(n, roller.base) - roller.radius * s, dot(n, roller.top_center()) - roller.top() * s);
-    bound = std::min(bound, d - support);
+    n[j] = pose.rotate(web.normals[j]);
+    d[j] = web.offsets[j] + dot(n[j], pose.t);
+    const double cu = std::clamp(dot(n[j], roller.axis), -1.0, 1.0), s = std::sqrt(std::max(0.0, 1 - cu * cu));
+    const double support = std::min(dot(n[j], roller.base) - roller.radius * s, dot(n[j], roller.top_center()) - roller.top() * s);
+    bound = std::min(bound, d[j] - support);
   }
   if (-rev.distance >= bound) return rev;
-  // the depth of the web's corner centroid in it (a lower bound of its inradius): eroding by up to
-  // half of it keeps the hexahedron's combinatorics (its corners where the same planes meet)
-  Vec3 centre;
-  for (const Vec3& c : web.corners) centre += c;
-  centre = centre / 8.0;
-  double thin = std::numeric_limits<double>::infinity();
-  for (int j = 0; j < 6; ++j) thin = std::min(thin, web.offsets[j] - dot(web.normals[j], centre));
-  if (!(bound <= 0.5 * thin)) *exact = false;
-  const double hi = std::min(bound, 0.5 * thin);
-  const Vec3 m = roller.center();
-  const double scale = std::max({std::fabs(m.x), std::fabs(m.y), std::fabs(m.z)}) + roller.height + roller.max_radius();
-  const auto at = [&](double t) {
-    const WebValue w = web_distance(roller, eroded_web(web, t), pose);
-    PairDistance d;
-    d.distance = w.distance, d.point_a = w.point_a, d.point_b = w.point_b;
-    return d;
-  };
-  const double fwd = erosion_root(at, hi, 0x1p-50 * scale);
+  const auto [fwd, x] = deepest_in_web(roller, n, d);
   if (!(fwd > -rev.distance)) return rev;
-  // the roller's point at depth fwd in the web (on the eroded web's surface, inside the roller's
-  // boundary region), and the web boundary point nearest it
-  const PairDistance w = at(fwd);
+  // the roller's point at depth fwd in the web, and the web boundary point nearest it (its face)
   WebValue out;
   out.distance = -fwd;
-  out.point_a = w.point_b;  // web_distance's point_b lies on the (eroded) web, in contact with the roller
+  out.point_a = x;
   double best = std::numeric_limits<double>::infinity();
-  for (int j = 0; j < 6; ++j) {
-    const Vec3 n = pose.rotate(web.normals[j]);
-    const double gap = web.offsets[j] + dot(n, pose.t) - dot(n, out.point_a);
-    if (gap < best) best = gap, out.point_b = out.point_a + n * gap;
-  }
+  for (int j = 0; j < 6; ++j)
+    if (const double gap = d[j] - dot(n[j], x); gap < best) best = gap, out.point_b = x + n[j] * gap;
   return out;
 }
 
@@ -439,13 +458,11 @@ AssemblyPairResult solve_one(const Assembly& as, const AssemblyPair& pair, const
       if (!ra.scarred) {  // intact roller: two-sided (ring_two_sided.h)
         if (rib) return from_two_sided(two_sided_rib(roller, face, b.rib_width), clearance, tol);
         const WebValue rev = web_distance(roller, *web, pose_b);
-        bool exact = true;  // apart (rev > 0): the Euclidean distance, symmetric
-        const WebValue w = rev.distance > 0 ? rev : two_sided_web(roller, g.webs[pair.feature], pose_b, rev, &exact);
+        // apart (rev > 0): the Euclidean distance, symmetric
+        const WebValue w = rev.distance > 0 ? rev : two_sided_web(roller, g.webs[pair.feature], pose_b, rev);
         PairDistance d;
         d.distance = w.distance, d.point_a = w.point_a, d.point_b = w.point_b;
-        AssemblyPairResult out = from_distance(d, AssemblySolver::web, clearance, tol);
-        out.exact = out.two_sided = exact;
-        return out;
+        return from_distance(d, AssemblySolver::web, clearance, tol);
       }
       const Pieces pieces = split(roller, *ra.roller, scar_of(as.spec, b));
       AssemblyPairResult best;

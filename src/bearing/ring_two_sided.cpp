@@ -123,11 +123,14 @@ double erosion_root(const std::function<PairDistance(double)>& at, double hi, do
   if (meets(db)) return b;
   double fa = std::min(at(a).distance, 0.0), fb = std::max(db.distance, std::numeric_limits<double>::min());
   int side = 0;
+  double width_two_steps_ago = 2 * (b - a), width_last = b - a;
   for (int it = 0; it < 200 && b - a > tol; ++it) {
     double x;
-    // Illinois (regula falsi, halving the value of an end kept twice); a bisection every third step
-    // and whenever a value is not usable keeps the bracket shrinking geometrically
-    if (it % 3 == 2 || !std::isfinite(fa) || !std::isfinite(fb) || !(fb > fa)) {
+    // Illinois (regula falsi, halving the value of an end kept twice, superlinear); a bisection
+    // whenever two steps did not halve the bracket or a value is not usable keeps it shrinking
+    const bool slow = b - a > 0.5 * width_two_steps_ago;
+    width_two_steps_ago = width_last, width_last = b - a;
+    if (slow || !std::isfinite(fa) || !std::isfinite(fb) || !(fb > fa)) {
       x = 0.5 * (a + b);
     } else {
       const double margin = 0.01 * (b - a);
