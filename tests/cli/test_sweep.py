@@ -526,8 +526,8 @@ class SweepQuickStart(unittest.TestCase):
         with open(os.path.join(root, "docs", "probe.md"), encoding="utf-8") as f:
             doc = f.read()
         section = doc[doc.index("## Quick start"):]
-        block = re.search(r"```\n(.*?)```", section, re.S).group(1)
-        args = shlex.split(block.replace("\\\n", " "))
+        block = re.search(r"```(?:sh)?\n(.*?)```", section, re.S).group(1)
+        args = shlex.split(block.replace("\\\n", " "), comments=True)  # (the fence says sh; a comment gives the exit status)
         self.assertEqual(args[:2], ["interfere", "sweep"])
         for a in args:
             if a.startswith("data/"):
