@@ -4,11 +4,12 @@
 // floor whose boundary is walls all round. Decided on the AAG:
 //  - the floor is a plane every arc of which is concave (material rises all round it: no edge where
 //    it meets the part's outside, as a through slot's or a step's floor does at its open ends);
-//  - its neighbours are walls standing on it: planes perpendicular to it, or hole-sense cylinders
-//    whose axis is its normal (corner rounds); at least three (one wall all round is a blind hole,
-//    recognised as such before, two are a slot);
-//  - the walls close a ring: each meets at least two other walls (a concave corner or a smooth
-//    round).
+//  - its neighbours are walls standing on it: planes perpendicular to it, or cylinders whose axis is
+//    its normal (corner rounds, and the convex blends of a profiled outline, as NIST CTC-01's
+//    pockets have); at least three (one wall all round is a blind hole, recognised as such before,
+//    two are a slot);
+//  - the walls close a ring: each meets at least two other walls (a concave corner, a smooth round,
+//    or a convex corner where the outline turns inwards).
 // Islands (bosses standing on the floor) are further walls of the floor's inner loops and are allowed.
 #include "pocket_recognition.h"
 
@@ -38,7 +39,7 @@ std::vector<PocketFeature> recognize_pockets(const Aag& g, const std::vector<cha
       const AagNode& wall = g.nodes[w];
       const bool standing =
           (wall.type == SurfaceType::plane && std::abs(dot(unit(wall.normal), up)) <= 1e-3) ||
-          (wall.type == SurfaceType::cylinder && wall.hole && norm(cross(unit(wall.axis), up)) <= 1e-3);
+          (wall.type == SurfaceType::cylinder && norm(cross(unit(wall.axis), up)) <= 1e-3);
       if (arc.convexity != Convexity::concave || claimed[w] || !standing) {
         ok = false;
         break;
@@ -54,7 +55,7 @@ std::vector<PocketFeature> recognize_pockets(const Aag& g, const std::vector<cha
       for (std::uint32_t ai : arcs_of[w]) {
         const AagArc& arc = g.arcs[ai];
         const std::uint32_t o = arc.a == w ? arc.b : arc.a;
-        if (o != w && arc.convexity != Convexity::convex && std::binary_search(walls.begin(), walls.end(), o) &&
+        if (o != w && std::binary_search(walls.begin(), walls.end(), o) &&
             std::find(others.begin(), others.end(), o) == others.end())
           others.push_back(o);
       }
