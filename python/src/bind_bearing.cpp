@@ -12,6 +12,7 @@
 #include "bindings.h"
 #include "interfere/bearing/analytic.h"
 #include "interfere/bearing/assembly.h"
+#include "interfere/bearing/scar_import.h"
 #include "interfere/bearing/scarred.h"
 #include "interfere/bearing/simulation.h"
 #include "interfere/bearing/window.h"
@@ -84,6 +85,84 @@ void bind_bearing(py::module_& parent) {
       },
       py::arg("params") = RollerParams{}, py::arg("scar") = std::nullopt,
       "Mesh a roller (cylinder or tapered), optionally with a diamond-square scar.");
+
+  // Imported scars (issue #27; scar_import.h, docs/bearing.md "Scars: raised and imported"): a measured
+  // height map (CSV grid over angle x z, or a 16-bit PNG placed on a window) or a point cloud / scanned
+  // mesh of the worn surface, resampled onto a roller's vertex grid. Heights in mm, positive outward.
+  py::class_<HeightMap>(m, "HeightMap", "A measured scar height map: columns angle_deg, rows z, height row-major")
+      .def_readonly("angle_deg", &HeightMap::angle_deg)
+      .def_readonly("z", &HeightMap::z)
+      .def_readonly("height", &HeightMap::height)
+      .def_readonly("source", &HeightMap::source)
+      .def_property_readonly("rows", &HeightMap::rows)
+      .def_property_readonly("cols", &HeightMap::cols)
+      .def_property_readonly("wraps", &HeightMap::wraps);
+  py::class_<VertexHeights>(m, "VertexHeights", "Heights on a roller's vertex grid (n columns x m + 1 rows)")
+      .def_readonly("n", &VertexHeights::n)
+      .def_readonly("m", &VertexHeights::m)
+      .def_readonly("height", &VertexHeights::height)
+      .def_property_readonly("covered", [](const VertexHeights& v) { return std::vector<bool>(v.covered.begin(), v.covered.end()); })
+      .def_readonly("source", &VertexHeights::source)
+      .def_property_readonly("covered_count", &VertexHeights::covered_count);
+  const auto value = [](auto&& e) {
+    if (!e) throw py::value_error(e.error().message());
+    return std::move(*e);
+  };
+  m.def("read_scar_csv", [value](const std::string& path) { return value(read_scar_csv(path)); }, py::arg("path"),
+        "Read a CSV height map (header: a label, then the column angles in degrees; then z, heights per line). "
+        "Errors (ValueError) name the file, line and field.");
+  m.def(
+      "parse_scar_csv",
+      [value](const std::string& text, const std::string& source) { return value(parse_scar_csv(text, source)); },
+      py::arg("text"), py::arg("source") = "scar.csv", "The same from text (source names it in errors).");
+  m.def("scar_png_supported", &scar_png_supported, "Whether this build reads 16-bit PNG height maps (libpng).");
+  m.def(
+      "read_scar_png",
+      [value](const std::string& path, double scale, double offset, double angle_min_deg, double angle_max_deg,
+              double z_min, double z_max) {
+        return value(read_scar_png(path, scale, offset, MapPlacement{angle_min_deg, angle_max_deg, z_min, z_max}));
+      },
+      py::arg("path"), py::arg("scale"), py::arg("offset") = 0.0, py::arg("angle_min_deg") = -20.0,
+      py::arg("angle_max_deg") = 20.0, py::arg("z_min") = 10.0, py::arg("z_max") = 30.0,
+      "A 16-bit grayscale PNG: height = scale * pixel + offset (mm), placed on the angle and z window "
+      "(the image seen from outside, +z up).");
+  m.def(
+      "read_scar_points",
+      [value](const std::string& path) {
+        std::vector<P3> out;
+        for (const Vec3& p : value(read_scar_points(path))) out.push_back(tup(p));
+        return out;
+      },
+      py::arg("path"),
+      "Points of the worn surface (roller body frame): an 'x y z' text file, or the vertices of a .stl .ply .obj "
+      ".off mesh (a scanned STL of the worn region).");
+  m.def(
+      "resample_height_map",
+      [value](const HeightMap& map, const RollerParams& roller) { return value(resample_height_map(map, roller)); },
+      py::arg("map"), py::arg("roller"), "Bilinear resampling of a height map onto the roller's vertex grid.");
+  m.def(
+      "scar_from_points",
+      [value](const std::vector<P3>& points, const RollerParams& roller, double window, const std::string& source) {
+        std::vector<Vec3> pts;
+        for (const P3& p : points) pts.push_back(vec(p));
+        return value(scar_from_points(pts, roller, PointScarOptions{window}, source));
+      },
+      py::arg("points"), py::arg("roller"), py::arg("window") = 0.0, py::arg("source") = "points",
+      "Inverse-distance-weighted heights per vertex from the points within `window` mm (0: one grid cell).");
+  m.def(
+      "make_roller_with_scar",
+      [value](const RollerParams& p, const VertexHeights& heights, int border) {
+        Roller r = value(make_roller(p));
+        value(apply_vertex_heights(r, heights, border));
+        return r;
+      },
+      py::arg("params"), py::arg("heights"), py::arg("border") = 0,
+      "Mesh a roller carrying an imported scar (heights from resample_height_map or scar_from_points; "
+      "border > 0: the generated scars' median filter over the covered region's border band).");
+  m.def(
+      "covered_window",
+      [](const VertexHeights& h, const RollerParams& roller) { return covered_window(h, roller); }, py::arg("heights"),
+      py::arg("roller"), "The smallest scar window holding every covered vertex (the range test's window).");
 
   py::class_<Cylinder>(m, "Cylinder")
       .def(py::init([](P3 base, P3 axis, double height, double radius, double top_radius) {
@@ -205,8 +284,10 @@ void bind_bearing(py::module_& parent) {
       "simulate",
       [](int pairs, int frames, const RollerParams& roller, double partner_radius, double partner_height, double gap,
          double max_tilt_deg, double spin_deg_per_frame, double scar_fraction, const ScarParams& scar,
-         std::uint64_t seed, const std::string& broad_phase, double spacing, double clearance) {
+         std::uint64_t seed, const std::string& broad_phase, double spacing, double clearance,
+         std::optional<VertexHeights> imported_scar) {
         SceneParams p;
+        if (imported_scar) p.imported_scar = std::move(*imported_scar);
         p.pairs = pairs, p.frames = frames, p.roller = roller, p.partner_radius = partner_radius;
         p.partner_height = partner_height, p.gap = gap, p.max_tilt_deg = max_tilt_deg;
         p.spin_deg_per_frame = spin_deg_per_frame, p.scar_fraction = scar_fraction, p.scar = scar, p.seed = seed;
@@ -225,7 +306,8 @@ void bind_bearing(py::module_& parent) {
       py::arg("partner_height") = 60.0, py::arg("gap") = 0.0, py::arg("max_tilt_deg") = 1.0,
       py::arg("spin_deg_per_frame") = 3.0, py::arg("scar_fraction") = 0.25, py::arg("scar") = ScarParams{},
       py::arg("seed") = 1, py::arg("broad_phase") = "sap", py::arg("spacing") = 0.0, py::arg("clearance") = 0.0,
-      "Run the dynamic simulation (interfere bearing) and return every pair's per-frame result, the non-clear "
+      py::arg("imported_scar") = std::nullopt,
+      "Run the dynamic simulation (interfere bearing; imported_scar: VertexHeights that every scarred roller carries, issue #27) and return every pair's per-frame result, the non-clear "
       "pairs of parts of different pairs (cross_results) and the verdict ('clash', 'contact', 'clearance', "
       "'clear', 'undecided').");
 
