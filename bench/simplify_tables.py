@@ -231,7 +231,16 @@ quadric-error-metric edge collapses while the faces that take part in the curren
    top and bottom faces, to its hole walls' 420): the annulus takes triangles on curved and finely meshed faces. A hole whose planar
    TopFace or BottomFace has less than half the annulus' area, π((k r)² − r²)/2, holds no washer or head and is
    skipped by the rule with a warning naming it (the casing's Ø176 main bore, a through hole of the flange
-   ring: 28,000 mm² against 36,500; a nut's face is about 0.6 of it and stays). A process description lists the steps
+   ring: 28,000 mm² against 36,500; a nut's face is about 0.6 of it and stays). **The paper's casing**
+   (§4, issue #29 item 4; `TestPart::paper_casing`): the working ring carries 6 radial counterbored screw
+   holes (bore r 3 out of the inner ring face, counterbore r 6), each end flange 6 plain bolt holes r 5.
+   P1 (`screw`) keeps the counterbored holes and, as BottomFace, the casing's inner ring face (the paper's
+   node 344) as an annulus of radius 6 around each hole; P2 (`bolt`) keeps the 12 flange holes with the
+   annuli of the flanges' top and bottom faces (24), none of the ring's holes, and skips the main bore
+   (`FeatureCases.PaperCasingStepsKeepThePapersFeatures`, faces found by their own geometry). The benchmark
+   casing (`data/examples/casing.step`, `TestPart::casing`) keeps its older geometry (counterbored holes on
+   the lower flange, whose BottomFace is the flange's underside) so that its tables stay comparable; the
+   benchmark is not moved to the paper's geometry. A process description lists the steps
    (`{"steps": [{"id": "P1", "parts": ["casing"], "constraint": "screw"}, ...]}`, `"*"` = every part; ids unique,
    not empty, not `all`, and for `--step all` distinct as file names; no `parts`: every part, an empty list is an
    error); the faces of

@@ -101,6 +101,31 @@ TopoDS_Shape casing() {
   return unify(s);
 }
 
+// He & Xu 2023 §4's casing (issue #29, item 4): "P1 screw tightening on the casing's working ring
+// (its counterbored holes, FeatureE = {CounterboredHole, BottomFace}: the inner ring face, node 344),
+// P2 bolting of the end flange (its circular through holes with the top and bottom faces)". The body
+// of `casing()` with plain through holes r = 5 in both end flanges and 6 radial counterbored screw
+// holes through the working ring at mid-height (outer wall r = 112 there): bore r = 3 from the inner
+// ring face (r = 88) out, counterbore r = 6 from r = 104 out.
+TopoDS_Shape paper_casing() {
+  const double h = 60, r_out = 100, r_in = 88, r_flange = 130, t = 12;
+  TopoDS_Shape s = casing_body(h, r_in, r_out);
+  s = fuse(s, cut(cyl(0, 0, 0, r_flange, t), cyl(0, 0, -1, r_in, t + 2)));
+  s = fuse(s, cut(cyl(0, 0, h - t, r_flange, t), cyl(0, 0, h - t - 1, r_in, t + 2)));
+  const int n = 6;
+  for (int i = 0; i < n; ++i) {
+    const double a = 2 * std::numbers::pi * (i + 0.5) / n;
+    const double x = 115 * std::cos(a), y = 115 * std::sin(a);
+    s = cut(s, cyl(x, y, -1, 5, t + 2));         // lower end flange: bolt hole r = 5
+    s = cut(s, cyl(x, y, h - t - 1, 5, t + 2));  // upper end flange: bolt hole r = 5
+    const double b = 2 * std::numbers::pi * i / n;
+    const gp_Dir radial(std::cos(b), std::sin(b), 0);
+    s = cut(s, BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(80 * radial.X(), 80 * radial.Y(), h / 2), radial), 3, 50).Shape());
+    s = cut(s, BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(104 * radial.X(), 104 * radial.Y(), h / 2), radial), 6, 30).Shape());
+  }
+  return unify(s);
+}
+
 // 400 x 400 x 10 plate with a 13 x 13 grid of counterbored holes (169 x 3 + 6 = 513 faces), cut
 // in one Boolean with all tools as arguments.
 TopoDS_Shape perforated_plate() {
@@ -135,6 +160,7 @@ TopoDS_Shape build(TestPart p) {
     case TestPart::near_miss_plate:
       return unify(cut(cut(box(0, 0, 0, 40, 30, 10), cyl(20, 15, -1, 3, 12)), cyl(22, 15, 6, 6, 5)));
     case TestPart::casing: return casing();
+    case TestPart::paper_casing: return paper_casing();
     case TestPart::perforated_plate: return perforated_plate();
     case TestPart::single_face:
       return BRepBuilderAPI_MakeFace(gp_Pln(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 0, 10, 0, 10).Face();
@@ -213,6 +239,7 @@ const char* test_part_name(TestPart p) {
     case TestPart::blind_split_floor: return "blind_split_floor";
     case TestPart::crossing_holes: return "crossing_holes";
     case TestPart::counterdrilled_plate: return "counterdrilled_plate";
+    case TestPart::paper_casing: return "paper_casing";
   }
   return "?";
 }

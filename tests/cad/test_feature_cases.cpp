@@ -136,5 +136,72 @@ TEST(FeatureCases, SlotsAndStepsAreNoPockets) {
   EXPECT_EQ(of_type(blind, "blind_hole").size(), 1u);
 }
 
+// He & Xu 2023 §4's casing as the paper states its steps (issue #29, item 4): P1, screw tightening of
+// the counterbored holes on the working ring, keeps them and the BottomFace, the casing's inner ring
+// face (the paper's node 344), as the clamped annulus around each hole; P2, bolting of the end
+// flanges' through holes, keeps their walls and the flanges' faces around them, and none of the
+// working ring's holes. Faces found by their own geometry (paper_casing's construction).
+TEST(FeatureCases, PaperCasingStepsKeepThePapersFeatures) {
+  const Part& p = part(TestPart::paper_casing);
+  const auto fs = features(TestPart::paper_casing);
+  EXPECT_EQ(of_type(fs, "counterbored_hole").size(), 6u);
+  EXPECT_EQ(of_type(fs, "through_hole").size(), 13u);  // 12 flange bolt holes, the main bore
+  const auto radial_cyl = [&](double r) {
+    return faces_where(p, [&](const AagNode& n) {
+      return n.type == SurfaceType::cylinder && n.hole && std::abs(n.radius - r) < 1e-6 && std::abs(n.axis.z) < 1e-6;
+    });
+  };
+  const auto axial_cyl = [&](double r) {
+    return faces_where(p, [&](const AagNode& n) {
+      return n.type == SurfaceType::cylinder && n.hole && std::abs(n.radius - r) < 1e-6 && std::abs(std::abs(n.axis.z) - 1) < 1e-6;
+    });
+  };
+  const auto r6 = radial_cyl(6), r3 = radial_cyl(3), r5 = axial_cyl(5), ring = axial_cyl(88);
+  ASSERT_GE(r6.size(), 6u);
+  ASSERT_GE(r3.size(), 6u);
+  ASSERT_GE(r5.size(), 12u);
+  ASSERT_FALSE(ring.empty());
+  auto lib = default_feature_library();
+  auto rules = default_semantic_rules(*lib);
+  ASSERT_TRUE(rules.has_value());
+  auto process = parse_process(R"({"steps":[{"id":"P1","constraint":"screw"},{"id":"P2","constraint":"bolt"}]})");
+  ASSERT_TRUE(process.has_value());
+  auto p1 = select_step_features(*process, "P1", *rules, "casing", fs, &p.aag);
+  auto p2 = select_step_features(*process, "P2", *rules, "casing", fs, &p.aag);
+  ASSERT_TRUE(p1.has_value() && p2.has_value());
+  const auto s1 = as_set(p1->faces), s2 = as_set(p2->faces);
+  const auto contains = [](const std::set<std::uint32_t>& a, const std::set<std::uint32_t>& b) {
+    return std::includes(a.begin(), a.end(), b.begin(), b.end());
+  };
+  const auto disjoint = [](const std::set<std::uint32_t>& a, const std::set<std::uint32_t>& b) {
+    return std::none_of(b.begin(), b.end(), [&](std::uint32_t f) { return a.count(f); });
+  };
+  // P1: the counterbored holes (counterbore, bore, seat) and the inner ring face's annuli (2 x r = 6).
+  EXPECT_TRUE(contains(s1, r6));
+  EXPECT_TRUE(contains(s1, r3));
+  EXPECT_TRUE(disjoint(s1, r5));
+  EXPECT_TRUE(disjoint(s1, ring));  // the inner ring face is kept around each hole only
+  ASSERT_EQ(p1->annuli.size(), 6u);
+  for (const Annulus& a : p1->annuli) {
+    EXPECT_TRUE(ring.count(a.face)) << "annulus on face " << a.face;
+    EXPECT_NEAR(a.radius, 6, 1e-6);
+    EXPECT_LT(std::abs(a.axis.z), 1e-6);  // a radial hole's axis
+  }
+  // P2: the flanges' bolt holes and their top and bottom faces' annuli (planes z = 0, 12, 48, 60);
+  // none of the working ring's holes; the main bore skipped (no washer fits its flange ring).
+  EXPECT_TRUE(contains(s2, r5));
+  EXPECT_TRUE(disjoint(s2, r6));
+  EXPECT_TRUE(disjoint(s2, r3));
+  EXPECT_EQ(p2->annuli.size(), 24u);  // 12 holes, a top and a bottom face each
+  for (const Annulus& a : p2->annuli) {
+    EXPECT_EQ(p.aag.nodes[a.face].type, SurfaceType::plane);
+    EXPECT_GT(std::abs(p.aag.nodes[a.face].normal.z), 0.999);
+    const double z = face_z(p, a.face);
+    EXPECT_TRUE(std::abs(z) < 1e-6 || std::abs(z - 12) < 1e-6 || std::abs(z - 48) < 1e-6 || std::abs(z - 60) < 1e-6) << z;
+  }
+  EXPECT_TRUE(std::any_of(p2->warnings.begin(), p2->warnings.end(),
+                          [](const std::string& w) { return w.find("radius 88") != std::string::npos; }));
+}
+
 }  // namespace
 }  // namespace interfere::cad

@@ -155,6 +155,7 @@ enum class TestPart {
   blind_split_floor,    ///< box_blind_hole with the wall split in two half cylinders (the floor circle in two edges)
   crossing_holes,       ///< 40x40x20 block, through hole r=4 along x and one r=3 along y crossing it at mid-height
   counterdrilled_plate, ///< 40x30x10 plate, bore r=3 through, counterdrill r=6 from the top to z=6 ending in a 118-degree drill point cone down to r=3
+  paper_casing,         ///< He & Xu 2023 §4's casing as the paper describes it: the casing body (bore r=88, B-spline working ring) with end flanges (r=130, 12 thick) holding 6 plain bolt holes r=5 each, and 6 radial counterbored screw holes (bore r=3 through to the inner ring face, counterbore r=6 from the outer wall to r=104) in the working ring at mid-height
 };
 const char* test_part_name(TestPart p);
 Status write_test_part(TestPart part, const std::filesystem::path& step_file);
