@@ -182,6 +182,16 @@ PairDistance roller_rib_distance(const Cylinder& roller, const Rib& rib) {
       }
     }
   }
+  // l is linear, so its minimum over the whole roller is plane_min (on a rim, (a)); when that point
+  // lies in the shell it is the minimum over K too, and no point of (b) can be lower: done.
+  if (best.l == plane_min) {
+    PairDistance out;
+    out.distance = best.l;
+    out.point_a = best.p;
+    out.point_b = best.p - n * best.l;
+    out.path = AnalyticPath::rib;
+    return out;
+  }
   // (b) the curves on rho = ro and rho = ri, searched over the roller's angular window seen from the
   // ring axis (bounding sphere of the roller: centre m, radius rb)
   const Vec3 a1 = perpendicular_unit(u), a2 = cross(u, a1);
