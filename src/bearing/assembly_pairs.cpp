@@ -486,14 +486,127 @@ AssemblyPairResult solve_one(const Assembly& as, const AssemblyPair& pair, const
       }
       return out;
     }
+    default: break;  // (the structural kinds: solve_structural)
   }
   return {};
+}
+
+/// A lower bound of a distance decides `clear` above the clearance (and the touch tolerance), else
+/// nothing: `undecided` (solver `bound`, not exact).
+AssemblyPairResult bound_result(double bound, const Vec3& a, const Vec3& b, double clearance, double tol) {
+  AssemblyPairResult out;
+  out.distance = bound, out.point_a = a, out.point_b = b;
+  out.solver = AssemblySolver::bound, out.path = AnalyticPath::apart;
+  out.exact = false, out.two_sided = false;
+  out.verdict = bound > tol && bound >= clearance ? Verdict::clear : Verdict::undecided;
+  return out;
+}
+
+/// cage-inner / cage-outer (issue #27, item 2): min over the webs' corners of a function that is a
+/// lower bound of the distance to the ring and linear or concave over a web (so its minimum over the
+/// convex web is at a corner):
+///   inner ring (cylindrical: inside the infinite cylinder rho <= r_i + rib height; tapered: inside
+///   the cone's infinite cone rho <= R0 + k z): the distance from x outside a convex cone region is at
+///   least g(x) = (rho - R0 - k z)/sqrt(1 + k^2) (the tangent plane along x's meridian supports it),
+///   and rho >= n.(x - O) for any unit n across the axis (the web centre's radial direction): linear;
+///   outer ring (material rho >= R(z), bore or cup): for x inside, the distance is the meridian
+///   distance to the raceway line, (R(z) - rho)/sqrt(1 + k^2): concave.
+/// bearing-bearing: min over the part pairs of the two bearings of |c_p - c_q| - r_p - r_q (bounding
+/// spheres, assembly.h PartSphere).
+AssemblyPairResult solve_structural(const Assembly& as, const AssemblyPair& pair, const std::vector<Transform>& poses,
+                                    double clearance) {
+  const AssemblyPart& pa = as.parts[pair.a];
+  const BearingSpec& b = as.spec.bearings[pa.bearing];
+  const BearingGeometry& g = as.geometry[pa.bearing];
+  const double tol = 0x1p-36 * (norm(poses[pair.a].t) + norm(poses[pair.b].t) + ring_radius(b) + b.rollers.length);
+  if (pair.kind == AssemblyPairKind::bearing_bearing) {
+    const int bi = pa.bearing, bj = as.parts[pair.b].bearing;
+    double best = std::numeric_limits<double>::infinity();
+    Vec3 wa, wb;
+    for (std::size_t i = 0; i < as.parts.size(); ++i) {
+      if (as.parts[i].bearing != bi) continue;
+      const Vec3 ci = poses[i].apply(as.parts[i].sphere.centre);
+      for (std::size_t j = 0; j < as.parts.size(); ++j) {
+        if (as.parts[j].bearing != bj) continue;
+        const Vec3 cj = poses[j].apply(as.parts[j].sphere.centre);
+        const double d = norm(cj - ci), v = d - as.parts[i].sphere.radius - as.parts[j].sphere.radius;
+        if (v >= best) continue;
+        if (v > tol && v >= clearance) {  // the spheres decide
+          best = v;
+          const Vec3 u = d > 0 ? (cj - ci) / d : Vec3{1, 0, 0};
+          wa = ci + u * as.parts[i].sphere.radius, wb = cj - u * as.parts[j].sphere.radius;
+          continue;
+        }
+        // the enclosing cylinders (their distance when apart is Euclidean: analytic.h)
+        const auto cyl = [&](std::size_t q) {
+          const PartSphere& sp = as.parts[q].sphere;
+          Cylinder c;
+          c.base = poses[q].apply({0, 0, sp.z_lo});
+          c.axis = poses[q].rotate({0, 0, 1});
+          c.height = sp.z_hi - sp.z_lo, c.radius = sp.cylinder_radius;
+          return c;
+        };
+        const PairDistance pd = cylinder_pair_distance(cyl(i), cyl(j));
+        const double w = std::max(v, std::min(pd.distance, std::max(pd.distance, 0.0)));
+        if (w < best) best = w, wa = pd.point_a, wb = pd.point_b;
+      }
+    }
+    return bound_result(best, wa, wb, clearance, tol);
+  }
+  const Transform& cage = poses[pair.a];
+  const Transform& ring = poses[pair.b];
+  const Vec3 axis = ring.rotate({0, 0, 1});
+  const bool inner = pair.kind == AssemblyPairKind::cage_inner;
+  // the raceway line in the ring frame: rho = R0 + k (z - z0)
+  double R0, k = 0, z0 = 0;
+  if (b.type == BearingType::cylindrical) {
+    R0 = inner ? b.inner_raceway + b.rib_height : b.outer_raceway;
+  } else if (inner) {
+    z0 = g.raceway.base.z, R0 = g.raceway.radius, k = (g.raceway.top() - g.raceway.radius) / g.raceway.height;
+  } else {
+    z0 = 0, k = std::tan(g.cup_half_angle);
+    R0 = (0 - g.apex_z) * k + b.cup_clearance / std::cos(g.cup_half_angle);
+  }
+  const double nk = std::sqrt(1 + k * k);
+  const Vec3 origin = ring.apply({0, 0, 0});
+  double best = std::numeric_limits<double>::infinity();
+  Vec3 wa, wb;
+  for (const CageWeb& web : g.webs) {
+    std::array<Vec3, 8> x;
+    Vec3 centre;
+    for (int i = 0; i < 8; ++i) x[i] = cage.apply(web.corners[i]), centre += x[i];
+    centre = centre / 8.0;
+    Vec3 n = (centre - origin) - axis * dot(centre - origin, axis);
+    const double nn = norm(n);
+    n = nn > 0 ? n / nn : Vec3{};
+    for (int i = 0; i < 8; ++i) {
+      const Vec3 d = x[i] - origin;
+      const double z = dot(d, axis);
+      const Vec3 radial = d - axis * z;
+      const double rho = norm(radial);
+      const double raceway = R0 + k * (z - z0);
+      double v;
+      Vec3 toward;  // unit direction from the corner toward the ring (witness)
+      if (inner) {
+        v = (dot(n, d) - raceway) / nk;
+        toward = (axis * k - n) / nk;
+      } else {
+        v = (raceway - rho) / nk;
+        toward = rho > 0 ? (radial / rho - axis * k) / nk : Vec3{};
+      }
+      if (v < best) best = v, wa = x[i], wb = x[i] + toward * v;
+    }
+  }
+  return bound_result(best, wa, wb, clearance, tol);
 }
 
 }  // namespace
 
 AssemblyPairResult solve_pair(const Assembly& as, const AssemblyPair& pair, const std::vector<Transform>& poses,
                               double clearance) {
+  if (pair.kind == AssemblyPairKind::cage_inner || pair.kind == AssemblyPairKind::cage_outer ||
+      pair.kind == AssemblyPairKind::bearing_bearing)
+    return solve_structural(as, pair, poses, clearance);
   AssemblyPairResult r = solve_one(as, pair, poses, clearance);
   switch (pair.kind) {  // which rows are two-sided (assembly.h, AssemblyPairResult::two_sided)
     case AssemblyPairKind::roller_inner:
@@ -512,6 +625,7 @@ AssemblyPairResult solve_pair(const Assembly& as, const AssemblyPair& pair, cons
       if (as.parts[pair.a].scarred) r.two_sided = false;
       break;
     case AssemblyPairKind::roller_cup: break;
+    default: break;  // (the structural kinds return above)
   }
   return r;
 }

@@ -67,6 +67,9 @@ const char* assembly_pair_kind_name(AssemblyPairKind k) {
     case AssemblyPairKind::roller_rib: return "roller-rib";
     case AssemblyPairKind::roller_cone: return "roller-cone";
     case AssemblyPairKind::roller_cup: return "roller-cup";
+    case AssemblyPairKind::cage_inner: return "cage-inner";
+    case AssemblyPairKind::cage_outer: return "cage-outer";
+    case AssemblyPairKind::bearing_bearing: return "bearing-bearing";
   }
   return "?";
 }
@@ -237,7 +240,38 @@ Expected<Assembly> build_assembly(const AssemblySpec& spec) {
       as.pairs.push_back({AssemblyPairKind::roller_cage, r, cage, k});                // the web ahead
       as.pairs.push_back({AssemblyPairKind::roller_roller, r, rollers[(k + 1) % z], 0});
     }
+    // the cage against the rings (issue #27, item 2): apart by the webs' radial band at rest, but a
+    // loaded or file-driven inner ring, or a displaced cage, can reach them
+    as.pairs.push_back({AssemblyPairKind::cage_inner, cage, inner, 0});
+    as.pairs.push_back({AssemblyPairKind::cage_outer, cage, outer, 0});
   }
+  // every part's bounding sphere: the mesh's, grown by the facets' sagitta about the part's axis
+  // (rings: the largest radius of a ring_segments polygon; rollers: radial_segments) and a raise
+  for (AssemblyPart& p : as.parts) {
+    Vec3 lo = p.mesh->positions.front(), hi = lo;
+    double rmax = 0;
+    for (const Vec3& v : p.mesh->positions) {
+      lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
+      hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
+      rmax = std::max(rmax, std::hypot(v.x, v.y));
+    }
+    p.sphere.centre = (lo + hi) * 0.5;
+    for (const Vec3& v : p.mesh->positions) p.sphere.radius = std::max(p.sphere.radius, norm(v - p.sphere.centre));
+    const BearingSpec& b = spec.bearings[p.bearing];
+    const int n = p.kind == PartKind::roller ? b.rollers.radial_segments : p.kind == PartKind::cage ? 0 : spec.ring_segments;
+    const double sagitta = n > 0 ? rmax * (1 - std::cos(kPi / n)) : 0.0;
+    const double grow = sagitta + (p.roller ? p.roller->raise : 0.0) + 1e-9 * (rmax + norm(p.sphere.centre));
+    p.sphere.radius += grow;
+    p.sphere.cylinder_radius = rmax + grow, p.sphere.z_lo = lo.z - grow, p.sphere.z_hi = hi.z + grow;
+  }
+  // every two bearings (issue #27, item 2): their enclosing cylinders are apart at rest (validated),
+  // but a motion (file) may bring them together
+  std::vector<std::uint32_t> outer_of;
+  for (std::size_t i = 0; i < as.parts.size(); ++i)
+    if (as.parts[i].kind == PartKind::outer) outer_of.push_back(static_cast<std::uint32_t>(i));
+  for (std::size_t i = 0; i < outer_of.size(); ++i)
+    for (std::size_t j = i + 1; j < outer_of.size(); ++j)
+      as.pairs.push_back({AssemblyPairKind::bearing_bearing, outer_of[i], outer_of[j], 0});
   return as;
 }
 

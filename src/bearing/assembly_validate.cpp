@@ -210,7 +210,7 @@ Status validate_assembly(const AssemblySpec& s) {
       if (Status st = validate(sc, rp, "scar"); !st) return fail(b.where, st.error().reason);
     }
   }
-  // bearings apart (no pairs between bearings are checked): their enclosing cylinders are disjoint
+  // bearings apart at rest (the bearing-bearing rows catch a motion that brings them together): their enclosing cylinders are disjoint
   for (std::size_t i = 0; i < s.bearings.size(); ++i)
     for (std::size_t j = i + 1; j < s.bearings.size(); ++j) {
       const Expected<BearingGeometry> gi = bearing_geometry(s.bearings[i]), gj = bearing_geometry(s.bearings[j]);

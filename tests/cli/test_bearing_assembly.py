@@ -76,7 +76,7 @@ class BearingAssembly(unittest.TestCase):
         self.assertEqual(s["results"]["rows"], len(rows))
         kinds = {r["kind"] for r in rows}
         self.assertEqual(kinds, {"roller-inner", "roller-outer", "roller-rib", "roller-cage", "roller-roller",
-                                 "roller-cone", "roller-cup"})
+                                 "roller-cone", "roller-cup", "cage-inner", "cage-outer", "bearing-bearing"})
         # scarred rollers: their roller-outer rows measure the scarred mesh (scar 1)
         scarred = {r["a"] for r in rows if r["kind"] == "roller-outer" and r["scar"] == "1"}
         for r in rows:
@@ -89,7 +89,11 @@ class BearingAssembly(unittest.TestCase):
             # raceways and cones always; the ring and web rows of intact rollers whenever they overlap
             # (ring_two_sided.h); one-sided: scarred rollers' overlapping ring/web rows, and cup/rib
             # clearances that are not the Euclidean distance
-            if r["kind"] in ("roller-inner", "roller-roller", "roller-cone"):
+            if r["kind"] in ("cage-inner", "cage-outer", "bearing-bearing"):
+                # structural rows (issue #27, item 2): a lower bound; clear here, nothing is displaced
+                self.assertEqual((r["solver"], r["exact"], r["verdict"]), ("bound", "0", "clear"), r)
+                self.assertGreater(d, 0)
+            elif r["kind"] in ("roller-inner", "roller-roller", "roller-cone"):
                 self.assertEqual(r["two_sided"], "1", r)
             elif d <= 0 and r["exact"] == "1" and r["a"] not in scarred:
                 self.assertEqual(r["two_sided"], "1", r)

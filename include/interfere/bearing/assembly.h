@@ -14,7 +14,8 @@
 // Rings and cage have that frame as body frame; a roller's body frame is make_roller's (axis +z from
 // its bottom end centre). Poses (motion) map body frames to the world.
 //
-// Pairs (per bearing; bearings of one assembly must lie apart, checked): roller-inner raceway and
+// Pairs (per bearing; bearings of one assembly must lie apart at rest, checked; the cage-ring and
+// bearing-bearing rows bound the rest from below every frame, issue #27 item 2): roller-inner raceway and
 // roller-roller (neighbours) by part_pair.h (standard or scarred solver, two-sided), roller-outer
 // bore (raceway.h; scarred rollers: the exact vertex maximum, see assembly_pairs.cpp), roller end-rib
 // (raceway.h), roller-cage web (exact: min over the web's triangles of the roller's signed distance,
@@ -142,6 +143,15 @@ struct BearingGeometry {
 };
 Expected<BearingGeometry> bearing_geometry(const BearingSpec& b);
 
+/// A part's bounding sphere in its body frame, grown by its meshes' faceting (the true surface lies
+/// within the sagitta of the inscribed facets) and a scar's outward raise: every point of the part.
+/// Also its enclosing cylinder about the body frame's z axis (radius, z_lo..z_hi), grown the same way.
+struct PartSphere {
+  Vec3 centre;
+  double radius = 0;
+  double cylinder_radius = 0, z_lo = 0, z_hi = 0;
+};
+
 struct AssemblyPart {
   std::string id;
   PartKind kind = PartKind::roller;
@@ -152,6 +162,7 @@ struct AssemblyPart {
   std::shared_ptr<const Model> solid;          ///< scarred rollers: body-frame model (containment)
   bool scarred = false;
   Transform rest;  ///< nominal pose (no motion)
+  PartSphere sphere;  ///< (bearing_bearing bound)
 };
 
 /// Meshes of the parts of one bearing (for views and the mesh engine).
@@ -176,6 +187,11 @@ enum class AssemblyPairKind : std::uint8_t {
   roller_rib,    ///< roller end - rib face of the inner ring
   roller_cone,   ///< tapered roller - cone raceway
   roller_cup,    ///< tapered roller - cup raceway
+  // issue #27, item 2: pairs that can touch only under large displacements; a conservative lower
+  // bound of their distance every frame (clear above the clearance, else undecided: never a wrong clear)
+  cage_inner,       ///< the cage's webs - the inner ring (its envelope: raceway and ribs; tapered: the cone)
+  cage_outer,       ///< the cage's webs - the outer ring (bore; tapered: the cup)
+  bearing_bearing,  ///< two bearings of the assembly (a, b: their outer rings stand for every part)
 };
 const char* assembly_pair_kind_name(AssemblyPairKind k);
 
@@ -184,6 +200,7 @@ struct AssemblyPair {
   std::uint32_t a = 0, b = 0;  ///< part indices (a: the roller)
   int feature = 0;             ///< roller_cage: the web index; roller_rib: 0 (z < 0 side) or 1
 };
+
 
 struct Assembly {
   AssemblySpec spec;
