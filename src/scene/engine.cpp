@@ -389,16 +389,33 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
       FrameClass* fc = unit_class[u] == kNone ? nullptr : &classes[unit_class[u]];
       detail::PairFrame frame;
       Model moved;
+      bool into_b = false;  // decided in b's local frame (a moved): clashes mapped back to a's
       if (fc) {
         detail::WorldBody& la = *locals.at(scene.bodies[a].mesh.get());
         detail::WorldBody& lb = *locals.at(scene.bodies[b].mesh.get());
         const bool same = fc->t.is_identity();
-        if (!same) moved = detail::moved_model(lb.model(), fc->t);
-        frame = {.a = &la.model(), .b = same ? &lb.model() : &moved,
-                 .stats = [&la, &lb](int side) -> const MeshStats& { return side == 0 ? la.stats() : lb.stats(); },
-                 .box_a = la.box, .box_b = same ? lb.box : moved.mesh.bounds(),
-                 .to_frame = {Transform{}, fc->t}, .to_local = {Transform{}, same ? Transform{} : inverse(fc->t)},
-                 .world = false};
+        // The body with fewer vertices is the one moved (issue #28): a 10^6-triangle workpiece
+        // against a robot link is decided in the workpiece's frame, the link's few thousand
+        // vertices re-posed, instead of the workpiece's million per pair and frame. The clashes
+        // are mapped back to a's frame below, so everything after this is unchanged. Not with
+        // on_pair (its ClashResult is in the decision frame) nor for a non-rigid relative pose.
+        into_b = !same && !options.on_pair &&
+                 lb.model().mesh.positions.size() > la.model().mesh.positions.size() && fc->t.is_rigid();
+        if (into_b) {
+          const Transform to_b = inverse(fc->t);  // a's local frame -> b's
+          moved = detail::moved_model(la.model(), to_b);
+          frame = {.a = &moved, .b = &lb.model(),
+                   .stats = [&la, &lb](int side) -> const MeshStats& { return side == 0 ? la.stats() : lb.stats(); },
+                   .box_a = moved.mesh.bounds(), .box_b = lb.box,
+                   .to_frame = {to_b, Transform{}}, .to_local = {fc->t, Transform{}}, .world = false};
+        } else {
+          if (!same) moved = detail::moved_model(lb.model(), fc->t);
+          frame = {.a = &la.model(), .b = same ? &lb.model() : &moved,
+                   .stats = [&la, &lb](int side) -> const MeshStats& { return side == 0 ? la.stats() : lb.stats(); },
+                   .box_a = la.box, .box_b = same ? lb.box : moved.mesh.bounds(),
+                   .to_frame = {Transform{}, fc->t}, .to_local = {Transform{}, same ? Transform{} : inverse(fc->t)},
+                   .world = false};
+        }
       } else {
         detail::WorldBody& wa = world[a];
         detail::WorldBody& wb = world[b];
@@ -428,7 +445,10 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
           }
           core.maps = {};
         }
-        if (fc) fc->found.push_back(detail::derive_pair(ctx, frame, c.a, c.b, c.clearance, &core, fc->where.emplace_back()));
+        if (fc) {
+          fc->found.push_back(detail::derive_pair(ctx, frame, c.a, c.b, c.clearance, &core, fc->where.emplace_back()));
+          if (into_b) detail::place_clashes(fc->found.back(), fc->t, true);  // b's frame -> a's
+        }
         else found[k] = detail::derive_pair(ctx, frame, c.a, c.b, c.clearance, dup ? nullptr : &core, where[k]);
       }
       if (!moving && !reference && options.pair_progress) options.pair_progress(++jobs_done, jobs.size());
