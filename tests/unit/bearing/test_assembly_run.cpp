@@ -159,5 +159,40 @@ TEST(BearingAssemblyRun, MotionFile) {
   EXPECT_NE(t.error().message().find("Eq. (1)"), std::string::npos) << t.error().message();
 }
 
+
+// Bad numbers and structure in a motion file (issue #27, "Bad input": poses for unknown parts,
+// never a NaN in the output): each an error naming the file and line, before any frame is solved.
+TEST(BearingAssemblyRun, MotionFileBadInputNamesFileAndLine) {
+  const Assembly as = lively();
+  const AssemblyMotion gen = generate_motion(as, 1, 5);
+  const std::string head = "frame,body,r00,r01,r02,tx,r10,r11,r12,ty,r20,r21,r22,tz\n";
+  const std::string good = pose_row(0, "cyl/inner", gen.poses[0][0]);
+  const auto error_of = [&](const std::string& name, const std::string& body) {
+    Expected<AssemblyMotion> m = read_assembly_motion(as, write_file(name, head + body));
+    return m ? std::string("(no error)") : m.error().message();
+  };
+  std::string nan_row = good;
+  nan_row.replace(nan_row.rfind(','), std::string::npos, ",nan\n");  // tz not a number
+  std::string inf_row = good;
+  inf_row.replace(inf_row.rfind(','), std::string::npos, ",inf\n");
+  for (const auto& [name, body] : std::vector<std::pair<std::string, std::string>>{
+           {"asm_nan.csv", good + nan_row},
+           {"asm_inf.csv", inf_row},
+           {"asm_short.csv", "0,cyl/inner,1,0,0\n"},
+           {"asm_twice.csv", good + good},
+           {"asm_order.csv", pose_row(1, "cyl/inner", gen.poses[0][0]) + good}}) {
+    const std::string e = error_of(name, body);
+    SCOPED_TRACE(name + ": " + e);
+    EXPECT_NE(e, "(no error)");
+    EXPECT_NE(e.find(name + ":"), std::string::npos);  // the file and its line
+    EXPECT_EQ(e.find("nan)"), std::string::npos);
+  }
+  // an unknown bearing id, and a missing file
+  EXPECT_NE(error_of("asm_other.csv", pose_row(0, "axle/roller0", gen.poses[0][0])).find("asm_other.csv:2"), std::string::npos);
+  Expected<AssemblyMotion> missing = read_assembly_motion(as, "/nonexistent/poses.csv");
+  ASSERT_FALSE(missing);
+  EXPECT_NE(missing.error().message().find("/nonexistent/poses.csv"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace interfere::bearing
