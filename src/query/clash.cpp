@@ -244,9 +244,27 @@ ClashResult clash(const Model& a, const Model& b, const ClashRequest& request) {
     // A component lies inside the other part only if its vertices lie in that part's box (the
     // tree's root box contains it): components with a vertex outside are skipped exactly, and only
     // where one remains are the other part's statistics needed (ClashRequest::stats: lazy).
-    const auto candidates = [](const TriMesh& part, const Bvh& other) {
+    const auto candidates = [](const Model& pm, const Bvh& other) {
+      const TriMesh& part = pm.mesh;
       const AabbF& o = other.nodes[0].box;
       std::vector<std::uint32_t> out;
+      const auto in_box = [&](const Vec3& p) {
+        return p.x >= o.lo[0] && p.x <= o.hi[0] && p.y >= o.lo[1] && p.y <= o.hi[1] && p.z >= o.lo[2] && p.z <= o.hi[2];
+      };
+      // A component in that box has every triangle in it: for a large part, first look for one
+      // such triangle through the part's own tree (only triangles whose boxes meet the box are
+      // visited); none, no candidate, and the connected-components pass over the whole part is
+      // skipped (issue #28: a 10^6-triangle workpiece against a robot link, per pair and frame).
+      if (part.num_triangles() > 4096 && !pm.bvh.empty()) {
+        bool any = false;
+        for_each_in_box(pm.bvh, o, [&](std::uint32_t t) {
+          if (!any) {
+            const Tri& f = part.triangles[t];
+            any = in_box(part.positions[f[0]]) && in_box(part.positions[f[1]]) && in_box(part.positions[f[2]]);
+          }
+        });
+        if (!any) return out;
+      }
       for (const std::uint32_t v : component_vertices(part)) {
         const Vec3& p = part.positions[v];
         if (p.x >= o.lo[0] && p.x <= o.hi[0] && p.y >= o.lo[1] && p.y <= o.hi[1] && p.z >= o.lo[2] && p.z <= o.hi[2])
@@ -254,7 +272,7 @@ ClashResult clash(const Model& a, const Model& b, const ClashRequest& request) {
       }
       return out;
     };
-    const std::vector<std::uint32_t> ca = candidates(a.mesh, b.bvh), cb = candidates(b.mesh, a.bvh);
+    const std::vector<std::uint32_t> ca = candidates(a, b.bvh), cb = candidates(b, a.bvh);
     const int a_in_b = ca.empty() ? 0 : closed(1) ? some_component_inside(b, a.mesh, ca) : -2;
     const int b_in_a = cb.empty() ? 0 : closed(0) ? some_component_inside(a, b.mesh, cb) : -2;
     const bool a_closed = b_in_a != -2, b_closed = a_in_b != -2;  // (as far as needed)

@@ -4,6 +4,7 @@
 
 #include "interfere/probe/cylinder.h"
 #include "interfere/probe/export.h"
+#include "interfere/query/model.h"
 #include "interfere/robot/cell.h"
 
 namespace interfere::robot {
@@ -82,12 +83,20 @@ CellScene cell_scene(const Cell& cell, const JointPath& path, std::size_t betwee
              f0[cell.tool_link], "tool", scene::SourceKind::primitive, cell.file,
              "cylinder r " + number(t.holder_radius) + " l " + number(t.holder_length)));
   }
-  // workpiece and fixtures
-  s.bodies.push_back(body("workpiece", "workpiece", cell.workpiece.mesh, cell.workpiece.pose,
-                          "workpiece", scene::SourceKind::mesh_file, cell.workpiece.file, ""));
+  // workpiece and fixtures: static, so their world models (BVH) are built once here and shared by
+  // every engine run on this scene (the check at the points and each halving level of
+  // check_between_points), instead of once per run (issue #28: a 10^6-triangle workpiece).
+  auto with_model = [](scene::Body b) {
+    b.world_model = std::make_shared<const Model>(
+        make_model(b.pose.is_identity() ? *b.mesh : transformed(*b.mesh, b.pose), {}, false));
+    return b;
+  };
+  s.bodies.push_back(with_model(body("workpiece", "workpiece", cell.workpiece.mesh,
+                                     cell.workpiece.pose, "workpiece", scene::SourceKind::mesh_file,
+                                     cell.workpiece.file, "")));
   for (const CellObject& o : cell.fixtures) {
-    s.bodies.push_back(body(scene::make_body_id("fixture:" + o.id), o.id, o.mesh, o.pose, "fixture",
-                            scene::SourceKind::mesh_file, o.file, ""));
+    s.bodies.push_back(with_model(body(scene::make_body_id("fixture:" + o.id), o.id, o.mesh, o.pose,
+                                       "fixture", scene::SourceKind::mesh_file, o.file, "")));
   }
   // tests
   const scene::ClashMode mode =

@@ -331,5 +331,35 @@ TEST(ClashVerdict, EveryComponentIsTestedForContainment) {
   EXPECT_EQ(clash(big, part).containment, Containment::b_inside_a);
 }
 
+// Parts above 4,096 triangles first look for one triangle wholly in the other part's box before
+// their components are computed (issue #28): the same answers as by construction. A finely divided
+// part with one component far away and one inside the big box is inside; one whose components
+// all reach outside the box (a large sphere crossing nothing) is not; a 4,800-triangle inner box
+// with the roles swapped is inside.
+TEST(ClashVerdict, LargePartsContainmentByConstruction) {
+  const Model big = make_model(make_box({0, 0, 0}, {10, 10, 10}));
+  TriMesh two = make_box({20, 0, 0}, {21, 1, 1}, 20);  // 4,800 triangles, outside
+  const TriMesh inner = make_box({4, 4, 4}, {5, 5, 5}, 20);
+  const auto base = static_cast<std::uint32_t>(two.positions.size());
+  two.positions.insert(two.positions.end(), inner.positions.begin(), inner.positions.end());
+  for (auto t : inner.triangles) two.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  ASSERT_GT(two.num_triangles(), 4096u);
+  const Model part = make_model(two);
+  EXPECT_EQ(clash(part, big).containment, Containment::a_inside_b);
+  EXPECT_EQ(clash(big, part).containment, Containment::b_inside_a);
+  // A large closed shell around the small box, touching nothing: the box is inside it, it is not
+  // inside the box (none of its triangles lies in the box's bounds).
+  const Model shell = make_model(make_sphere({.target_triangles = 20000, .radius = 30.0, .center = {5, 5, 5}}));
+  ASSERT_GT(shell.mesh.num_triangles(), 4096u);
+  EXPECT_EQ(clash(big, shell).containment, Containment::a_inside_b);
+  EXPECT_EQ(clash(shell, big).containment, Containment::b_inside_a);
+  // Apart: a large part beside the box.
+  const Model beside = make_model(make_box({11, 0, 0}, {12, 10, 10}, 20));
+  EXPECT_EQ(clash(beside, big).containment, Containment::none);
+  EXPECT_EQ(clash(big, beside).containment, Containment::none);
+  const Model inner_big = make_model(make_box({2, 2, 2}, {3, 3, 3}, 20));
+  EXPECT_EQ(clash(inner_big, big).containment, Containment::a_inside_b);
+}
+
 }  // namespace
 }  // namespace interfere
