@@ -572,8 +572,17 @@ machine:
 
 The target is **missed** (about 0.8 s at best here): the tessellation of the casing at the deflection that gives
 the paper's triangle count dominates, not the simplification or the error measurement (0.13 s in the issue, now
-inside the 0.084 s). Not yet tried: tessellating the B-spline faces in parallel per face or reusing a cached
-tessellation between the two steps (`--step all` already imports once for every step).
+inside the 0.084 s). BRepMesh already runs in parallel over the faces (`InParallel`); its time goes to the
+Delaunay triangulation of the finely meshed B-spline wall (`perf`: `BRepMesh_CircleInspector`, edge maps).
+**`--mesher delabella`** (`ImportOptions::delabella`, issue #29) triangulates each face with OCCT's Delabella
+Delaunay at the same deflections: 35,574 triangles instead of 35,516 (the paper's 35,548), the same features
+and simplified result size; in a standalone loop of the mesher alone 0.58–0.65 s against 0.85–0.96 s (load
+about 3). The whole command, 5 interleaved runs each, 2026-11-29 10:52 under a load of 4.2 on 2 cores (so far
+slower than the table above): in-process total (median) 1.73 s default, 1.33 s delabella, of which the import
+1.52 s and 1.01 s; wall 1.98 s and 1.57 s (in four earlier runs at load about 4: 1.09 s and 0.87–0.88 s). About a
+third less import time, but still above 0.5 s: the target stays **missed**, and Delabella is not the default
+(it changes every STEP tessellation the tests and tables count). Not tried: a tessellation cached between runs,
+coarser deflection for the faces that are no features (it changes the paper's input count).
 
 ## CLI
 

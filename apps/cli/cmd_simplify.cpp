@@ -342,7 +342,8 @@ int run_all_steps(const SimplifyCliOptions& o) {
     Progress progress("importing " + o.input);
     model = cad::import_step(o.input, {.linear_deflection = o.tessellation.linear_deflection,
                                        .angular_deflection = o.tessellation.angular_deflection,
-                                       .measure_deviation = true});  // (the parts' tessellation_error)
+                                       .measure_deviation = true,  // (the parts' tessellation_error)
+                                       .delabella = o.mesher == "delabella"});
   }
   if (!model) throw InputError(model.error());
   for (const SimplifyCliOptions& r : runs) {
@@ -376,6 +377,9 @@ void add_simplify_command(CLI::App& app, int& exit_code) {
                 "STEP input without --process: auto (default) keeps the assembly features the mates inferred from "
                 "the geometry pick (a bolt or rod in a hole of its diameter, a nut on a bolt, planar faces back to "
                 "back; report cad.mates), off keeps none");
+  c->add_option("--mesher", o->mesher,
+                "STEP input: default (BRepMesh's algorithm) or delabella (OCCT's Delabella Delaunay per face: the "
+                "same deflections, about a third less tessellation time on the casing, slightly different triangles)");
   c->add_option("--library", o->library, "feature library JSON (default: the installed data/features/library.json)")
       ->check(CLI::ExistingFile);
   c->add_option("--rules", o->rules, "assembly-semantics rules JSON (default: data/features/semantics.json)")

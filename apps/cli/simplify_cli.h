@@ -27,7 +27,8 @@ struct SimplifyCliOptions {
   std::string units;      ///< --units: a mesh input's unit (default: m for glTF, mm otherwise; STEP: its own)
   std::string library, rules;  ///< --library, --rules: JSON files instead of the installed ones
   std::string lod;        ///< --lod R1,R2,...: glTF output, coarser levels (fractions of the budget) as MSFT_lod
-  std::string mates = "auto";  ///< --mates auto|off: a STEP input without --process keeps what the inferred mates pick
+  std::string mates = "auto";
+  std::string mesher = "default";  ///< --mesher default|delabella: a STEP input's triangulation (cad::ImportOptions::delabella)  ///< --mates auto|off: a STEP input without --process keeps what the inferred mates pick
   std::size_t target = 0;
   double ratio = 0;
   double sharp_angle = 0;

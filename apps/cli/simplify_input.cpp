@@ -76,6 +76,9 @@ SimplifyOutput check_simplify_options(const SimplifyCliOptions& o) {
   if (step_input && (!o.regions.empty() || o.sharp_angle != 0))
     throw InputError("--regions/--sharp-angle are for plain meshes: a STEP input's regions are its B-Rep faces");
   if (o.mates != "auto" && o.mates != "off") throw InputError("--mates must be auto or off, not '" + o.mates + "'");
+  if (o.mesher != "default" && o.mesher != "delabella")
+    throw InputError("--mesher must be default or delabella, not '" + o.mesher + "'");
+  if (o.mesher != "default" && !step_input) throw InputError("--mesher tessellates a STEP input; " + o.input + " is a mesh");
   if (!step_input && (!o.step.empty() || !o.process.empty() || !o.library.empty() || !o.rules.empty()))
     throw InputError("--step/--process/--library/--rules need a STEP input (features are recognised on the B-Rep)");
   if (o.sharp_angle != 0 && !valid_angle(o.sharp_angle))
@@ -138,7 +141,8 @@ SimplifyInput load_simplify_input(const SimplifyCliOptions& o, [[maybe_unused]] 
     po.rules_file = o.rules;
     po.process_file = o.process;
     po.step = o.step;
-    po.mates = o.mates == "auto";  // (issue #29: without --process, the mates inferred from the assembly)
+    po.mates = o.mates == "auto";
+    po.delabella = o.mesher == "delabella";  // (issue #29: without --process, the mates inferred from the assembly)
     Progress progress(model ? "preparing step " + o.step : "importing " + o.input);
     auto prepared = model ? cad::prepare_for_simplify(*model, po) : cad::prepare_for_simplify(o.input, po);
     if (!prepared) throw InputError(prepared.error());

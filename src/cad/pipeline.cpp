@@ -121,7 +121,8 @@ Expected<Prepared> prepare_for_simplify(const std::string& step_file, const Pipe
   if (!sem) return sem.error();
   auto imported = import_step(step_file, {.linear_deflection = o.linear_deflection,
                                           .angular_deflection = o.angular_deflection,
-                                          .measure_deviation = true});  // (PreparedPart::tessellation_error)
+                                          .measure_deviation = true,
+                                          .delabella = o.delabella});  // (PreparedPart::tessellation_error)
   if (!imported) return imported.error();
   return prepare(*imported, o, *sem);
 }

@@ -13,6 +13,9 @@
 #include <Bnd_Box.hxx>
 #include <BRep_Tool.hxx>
 #include <BRepBndLib.hxx>
+#include <BRepMesh_Context.hxx>
+#include <BRepMesh_DelabellaMeshAlgoFactory.hxx>
+#include <BRepMesh_FaceDiscret.hxx>
 #include <BRepMesh_IncrementalMesh.hxx>
 #include <IFSelect_ReturnStatus.hxx>
 #include <IFSelect_WorkLibrary.hxx>
@@ -119,7 +122,19 @@ Part make_part(const TopoDS_Shape& shape, const std::string& name, const ImportO
     lin = std::max(lin, kMinDeflection);
   }
   p.linear_deflection = lin;
-  BRepMesh_IncrementalMesh mesher(shape, lin, Standard_False, o.angular_deflection, Standard_True);
+  if (o.delabella) {  // (ImportOptions::delabella: the same parameters, OCCT's Delabella Delaunay per face)
+    IMeshTools_Parameters params;
+    params.Deflection = lin, params.Angle = o.angular_deflection, params.Relative = Standard_False;
+    params.InParallel = Standard_True;
+    Handle(IMeshTools_Context) context = new BRepMesh_Context();
+    context->SetFaceDiscret(new BRepMesh_FaceDiscret(new BRepMesh_DelabellaMeshAlgoFactory()));
+    BRepMesh_IncrementalMesh mesher;
+    mesher.SetShape(shape);
+    mesher.ChangeParameters() = params;
+    mesher.Perform(context);
+  } else {
+    BRepMesh_IncrementalMesh mesher(shape, lin, Standard_False, o.angular_deflection, Standard_True);
+  }
   bool unmeasured = false;  // a face without UV nodes
   p.tessellation_deviation = 0;
   for (int i = 1; i <= faces.Extent(); ++i) {

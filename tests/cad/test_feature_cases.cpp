@@ -203,5 +203,28 @@ TEST(FeatureCases, PaperCasingStepsKeepThePapersFeatures) {
                           [](const std::string& w) { return w.find("radius 88") != std::string::npos; }));
 }
 
+// ImportOptions::delabella (issue #29, item 4: the casing's tessellation is most of its whole
+// command): OCCT's Delabella triangulation gives every face triangles within the deflection (as
+// measured on the surfaces) and the same features as the default algorithm.
+TEST(FeatureCases, DelabellaTessellationKeepsFacesAndFeatures) {
+  for (TestPart tp : {TestPart::counterbored_plate, TestPart::paper_casing}) {
+    const auto file = testing::scratch_dir("interfere_feature_cases") / (std::string(test_part_name(tp)) + "_d.step");
+    ASSERT_TRUE(write_test_part(tp, file).ok());
+    auto plain = import_step(file, {.measure_deviation = true});
+    auto fast = import_step(file, {.measure_deviation = true, .delabella = true});
+    ASSERT_TRUE(plain.has_value() && fast.has_value());
+    const Part &a = plain->parts.at(0), &b = fast->parts.at(0);
+    EXPECT_TRUE(b.untessellated_faces.empty());
+    EXPECT_EQ(as_set(b.face_ids).size(), b.faces) << test_part_name(tp);  // every face has triangles
+    EXPECT_GT(b.mesh.num_triangles(), 0u);
+    EXPECT_LE(b.tessellation_deviation, 2 * b.linear_deflection) << test_part_name(tp);
+    auto lib = default_feature_library();
+    std::multiset<std::string> ta, tb;
+    for (const Feature& f : recognize_features(a.aag, *lib)) ta.insert(f.type + ":" + std::to_string(f.faces.size()));
+    for (const Feature& f : recognize_features(b.aag, *lib)) tb.insert(f.type + ":" + std::to_string(f.faces.size()));
+    EXPECT_EQ(ta, tb) << test_part_name(tp);
+  }
+}
+
 }  // namespace
 }  // namespace interfere::cad

@@ -1126,6 +1126,28 @@ class Features(unittest.TestCase):
         self.assertEqual((c["contacts"], c["clashes"], len(c["pairs"])), (9, 0, 9))
         self.assertEqual(len(set((p["a_path"], p["b_path"]) for p in c["pairs"])), 9)
 
+    def test_mesher_delabella(self):
+        # --mesher delabella (issue #29): OCCT's Delabella triangulation of a STEP input, the same
+        # features; an unknown name, or a mesh input, is an option error.
+        plate = os.path.join(DATA, "counterbored_plate.step")
+        write_process("mesher.process.json", [{"id": "P1", "parts": ["*"], "constraint": "screw"}])
+        for mesher in ("default", "delabella"):
+            code, _, err = run("simplify", plate, path("mesher_%s.ply" % mesher), "--ratio", "0.5", "--step", "P1",
+                               "--process", path("mesher.process.json"), "--mesher", mesher, "--json",
+                               path("mesher_%s.json" % mesher))
+            self.assertEqual(code, 0, err)
+        a, b = load_json("mesher_default.json"), load_json("mesher_delabella.json")
+        self.assertEqual(len(a["feature_faces"]), len(b["feature_faces"]))
+        self.assertGreater(b["input_triangles"], 0)
+        code, _, err = run("simplify", plate, path("mesher_x.ply"), "--ratio", "0.5", "--mesher", "fast")
+        self.assertEqual(code, 2)
+        self.assertIn("--mesher must be default or delabella", err)
+        write_obj("mesher_sphere.obj", uv_sphere())
+        code, _, err = run("simplify", path("mesher_sphere.obj"), path("mesher_s.ply"), "--ratio", "0.5", "--mesher",
+                           "delabella")
+        self.assertEqual(code, 2)
+        self.assertIn("--mesher tessellates a STEP input", err)
+
     def test_assembly_budget_is_met_exactly_when_the_parts_allow(self):
         # Every part of the test assembly is closed (an even triangle count): an even total is met
         # exactly, whatever the shares' rounding and odd per-part budgets; an odd one ends one below.

@@ -19,6 +19,7 @@ struct PipelineOptions {
   /// the geometry pick (select_mate_features with the rules of rules_file or the installed ones);
   /// nothing is kept where the model has no mates. Ignored with a process.
   bool mates = false;
+  bool delabella = false;  ///< ImportOptions::delabella
 };
 
 struct PreparedPart {
