@@ -54,14 +54,60 @@ struct Options {
   double group_distance = 0;
   int threads = 0;
   bool quiet = false;
-  CostModel cost;  ///< --cost-model PAIR_S,PAIR_TRI_S,BODY_TRI_S (default: plan.h, fitted in docs/scaling.md)
+  // As `interfere clash --scene` (apps/cli/cmd_clash_scene.cpp): clash tests, the default test's
+  // clearance and tolerance, the exit status policy, the FE inputs' options.
+  std::vector<std::string> test_texts;
+  std::string tests_file, fail_on;
+  double clearance = 0, tolerance = 0;
+  bool clearance_given = false, tolerance_given = false;
+  std::string fem_field, fem_disp, fem_split = "auto";
+  double fem_scale = 1;
+  bool fem_linear_faces = false, reference = true;
+  CostModel cost;  ///< --cost-model PAIR_S,PAIR_TRI_S,BODY_TRI_S,READ_TRI_S (default: plan.h, fitted in docs/scaling.md)
 };
 
 const char* kUsage =
     "usage: mpirun -n K interfere-mpi clash --scene FILE [--json OUT] [--csv OUT] [--frames-csv OUT]\n"
     "         [--frame-pairs-csv OUT] [--motion FILE] [--baseline FILE] [--units U] [--group-by pair|location|none]\n"
-    "         [--group-distance D] [--threads N] [--cost-model PAIR_S,PAIR_TRI_S,BODY_TRI_S] [--quiet]\n"
+    "         [--group-distance D] [--test TEXT]... [--tests FILE] [--clearance D] [--tolerance T] [--fail-on LIST]\n"
+    "         [--field NAME] [--disp FILE] [--scale S] [--split MODE] [--linear-faces] [--no-reference]\n"
+    "         [--threads N] [--cost-model PAIR_S,PAIR_TRI_S,BODY_TRI_S,READ_TRI_S] [--quiet]\n"
     "The report is the one of `interfere clash --scene FILE` (docs/report.md) plus \"mpi\"; docs/mpi.md.\n";
+
+// Options of `interfere clash` that interfere-mpi does not offer, and why (docs/mpi.md, "Options").
+const char* not_offered(const std::string& flag) {
+  static const std::map<std::string, const char*> why{
+      {"--html", "views are drawn from one process's result: run `interfere clash --scene` with --html/--glb/--pvd"},
+      {"--glb", "views are drawn from one process's result: run `interfere clash --scene` with --html/--glb/--pvd"},
+      {"--pvd", "views are drawn from one process's result: run `interfere clash --scene` with --html/--glb/--pvd"},
+      {"--view-budget", "no views are written"},
+      {"--pairs", "it belongs to the two-part clash (A B)"},
+      {"--region-a", "it belongs to the two-part clash (A B)"},
+      {"--region-b", "it belongs to the two-part clash (A B)"},
+      {"--curves", "it belongs to the two-part clash (A B)"},
+      {"--regions-vtu", "it belongs to the two-part clash (A B)"},
+      {"--transform-a", "it belongs to the two-part clash (A B); give poses in the scene file"},
+      {"--transform-b", "it belongs to the two-part clash (A B); give poses in the scene file"},
+      {"--units-a", "it belongs to the two-part clash (A B); give units in the scene file"},
+      {"--units-b", "it belongs to the two-part clash (A B); give units in the scene file"},
+      {"--part", "it belongs to the two-part clash (A B); give \"select\" in the scene file"},
+      {"--part-a", "it belongs to the two-part clash (A B)"},
+      {"--part-b", "it belongs to the two-part clash (A B)"},
+      {"--disp-a", "it belongs to the two-part clash (A B); use --disp"},
+      {"--disp-b", "it belongs to the two-part clash (A B); use --disp"},
+      {"--field-a", "it belongs to the two-part clash (A B); use --field"},
+      {"--field-b", "it belongs to the two-part clash (A B); use --field"},
+      {"--step", "it belongs to the two-part clash (A B)"},
+      {"--broadphase", "it belongs to the two-part clash (A B); scenes use the engine's broad phase"},
+      {"--tri-test", "scenes use the exact triangle test only"},
+      {"--max-clearance-pairs", "it belongs to the two-part clash (A B)"},
+      {"--no-containment", "it belongs to the two-part clash (A B)"},
+      {"--depth", "it belongs to the two-part clash (A B); scenes always measure depth"},
+      {"--conservative", "it belongs to the two-part clash (A B)"},
+  };
+  const auto it = why.find(flag);
+  return it == why.end() ? nullptr : it->second;
+}
 
 Options parse(int argc, char** argv) {
   Options o;
@@ -82,7 +128,27 @@ Options parse(int argc, char** argv) {
         throw UsageError(a + ": '" + v + "' is not a finite number >= 0");
       }
     };
+    if (const char* why = not_offered(a)) throw UsageError(a + ": not offered by interfere-mpi: " + why + " (docs/mpi.md, \"Options\")");
     if (a == "--scene") o.scene = value();
+    else if (a == "--test") o.test_texts.push_back(value());
+    else if (a == "--tests") o.tests_file = value();
+    else if (a == "--clearance") o.clearance = number(value()), o.clearance_given = true;
+    else if (a == "--tolerance") o.tolerance = number(value()), o.tolerance_given = true;
+    else if (a == "--fail-on") o.fail_on = value();
+    else if (a == "--field") o.fem_field = value();
+    else if (a == "--disp") o.fem_disp = value();
+    else if (a == "--scale") {
+      const std::string v = value();
+      try {
+        std::size_t used = 0;
+        o.fem_scale = std::stod(v, &used);
+        if (used != v.size() || !std::isfinite(o.fem_scale)) throw std::invalid_argument(v);
+      } catch (const std::exception&) {
+        throw UsageError("--scale: '" + v + "' is not a finite number");
+      }
+    } else if (a == "--split") o.fem_split = value();
+    else if (a == "--linear-faces") o.fem_linear_faces = true;
+    else if (a == "--no-reference") o.reference = false;
     else if (a == "--json") o.json = value();
     else if (a == "--csv") o.csv = value();
     else if (a == "--frames-csv") o.frames_csv = value();
@@ -102,13 +168,17 @@ Options parse(int argc, char** argv) {
         c.push_back(number(v.substr(from, comma - from)));
         from = comma + 1;
       }
-      if (c.size() != 3) throw UsageError("--cost-model: '" + v + "' is not three numbers PAIR_S,PAIR_TRI_S,BODY_TRI_S");
-      o.cost = {.pair_s = c[0], .pair_tri_s = c[1], .body_tri_s = c[2]};
+      if (c.size() != 4) throw UsageError("--cost-model: '" + v + "' is not four numbers PAIR_S,PAIR_TRI_S,BODY_TRI_S,READ_TRI_S");
+      o.cost = {.pair_s = c[0], .pair_tri_s = c[1], .body_tri_s = c[2], .read_tri_s = c[3]};
     } else if (a == "--quiet" || a == "-q") o.quiet = true;
     else if (a == "--help" || a == "-h") throw UsageError(kUsage);
+    else if (!a.starts_with("-"))
+      throw UsageError("'" + a + "': interfere-mpi takes no input files on the command line: list every body in the --scene file");
     else throw UsageError("unknown option " + a + "\n" + kUsage);
   }
   if (o.scene.empty()) throw UsageError(std::string("--scene FILE is required\n") + kUsage);
+  if (!o.fail_on.empty() && !parse_fail_on(o.fail_on))
+    throw UsageError("--fail-on: '" + o.fail_on + "' is not a list of contact, clearance, undecided (comma-separated)");
   if (o.group_by != "pair" && o.group_by != "location" && o.group_by != "none")
     throw UsageError("--group-by: unknown grouping '" + o.group_by + "' (pair, location, none)");
   return o;
@@ -143,24 +213,33 @@ void write_file(const std::string& path, const std::string& text) {
   std::filesystem::rename(tmp, path);
 }
 
-// The specs of this rank: entries by longest processing time on their file sizes.
-std::vector<std::size_t> share_of(const scene::SceneSpec& spec, const World& w) {
-  std::vector<std::pair<std::uintmax_t, std::size_t>> sized;
+// The first reader of every entry (step 1): the entries in file order cut into K runs of about
+// equal file size, so that a rank reads neighbours in the file (a product's files are usually
+// listed part by part, and a generated one in space order) and the partition can leave most
+// bodies' pairs with the rank that read them already (plan.h: the read cost is saved there).
+std::vector<std::uint32_t> first_readers(const scene::SceneSpec& spec, const World& w) {
+  std::vector<std::uintmax_t> size(spec.bodies.size());
+  std::uintmax_t total = 0;
   for (std::size_t i = 0; i < spec.bodies.size(); ++i) {
     std::error_code ec;
     const std::uintmax_t s = std::filesystem::file_size(spec.bodies[i].file, ec);
-    sized.emplace_back(ec ? 0 : s, i);
+    total += size[i] = (ec ? 0 : s) + 1;
   }
-  std::stable_sort(sized.begin(), sized.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
-  std::vector<std::uintmax_t> load(static_cast<std::size_t>(w.size), 0);
-  std::vector<std::size_t> mine;
-  for (const auto& [s, i] : sized) {
-    const std::size_t r = static_cast<std::size_t>(std::min_element(load.begin(), load.end()) - load.begin());
-    load[r] += s + 1;
-    if (static_cast<int>(r) == w.rank) mine.push_back(i);
+  std::vector<std::uint32_t> reader(spec.bodies.size(), 0);
+  std::uintmax_t before = 0;
+  for (std::size_t i = 0; i < spec.bodies.size(); ++i) {
+    // The run holding this entry's middle byte.
+    const long double middle = static_cast<long double>(before) + static_cast<long double>(size[i]) / 2;
+    reader[i] = static_cast<std::uint32_t>(std::min<long double>(w.size - 1, middle * w.size / static_cast<long double>(total)));
+    before += size[i];
   }
-  std::sort(mine.begin(), mine.end());
-  return mine;
+  return reader;
+}
+
+double cpu_seconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
 }
 
 // The mesh key of body k of entry s (wire.h BodyInfo::mesh_key): equal keys where load_scene on
@@ -199,6 +278,8 @@ int run(const World& w, int argc, char** argv) {
     spec = std::move(*s);
     motion = !o.motion.empty() ? o.motion : spec->motion;
     if (!motion.empty()) sum = fnv1a(sum, read_bytes(motion, "--motion"));
+    if (!o.tests_file.empty()) sum = fnv1a(sum, read_bytes(o.tests_file, "--tests"));
+    if (!o.fem_disp.empty()) sum = fnv1a(sum, read_bytes(o.fem_disp, "--disp"));
     if (!o.baseline.empty()) {
       baseline_text = read_bytes(o.baseline, "--baseline"), sum = fnv1a(sum, baseline_text);
       scene::SceneClashResult probe;  // (checked by every rank now, so that rank 0 cannot fail alone later)
@@ -237,8 +318,31 @@ int run(const World& w, int argc, char** argv) {
   }
   if (spec->bodies.empty()) throw UsageError(o.scene + ": no \"bodies\"");
   const std::string units = !o.units.empty() ? o.units : !spec->units.empty() ? spec->units : "mm";
-  std::vector<scene::ClashTest> tests = spec->tests;
-  if (tests.empty()) tests.push_back(scene::ClashTest{});
+  // Tests as `interfere clash --scene`: --test texts, then --tests FILE, else the scene file's, else
+  // one default test (--clearance, --tolerance).
+  std::vector<scene::ClashTest> tests;
+  for (const std::string& t : o.test_texts) {
+    auto parsed = scene::parse_clash_test(t);
+    if (!parsed) throw UsageError("--test \"" + t + "\": " + parsed.error().reason);
+    if (parsed->name == "default" && o.test_texts.size() > 1) parsed->name = "test" + std::to_string(tests.size() + 1);
+    tests.push_back(std::move(*parsed));
+  }
+  if (!o.tests_file.empty()) {
+    auto s = scene::read_scene_file(o.tests_file);
+    if (!s) throw UsageError(s.error().message());
+    if (!s->bodies.empty()) throw UsageError("--tests " + o.tests_file + ": a tests file holds only \"tests\" (its bodies would be ignored)");
+    tests.insert(tests.end(), s->tests.begin(), s->tests.end());
+  }
+  if (tests.empty()) tests = spec->tests;
+  if (tests.empty()) {
+    scene::ClashTest t;
+    t.name = "default";
+    if (o.clearance > 0) t.mode = scene::ClashMode::clearance, t.clearance = o.clearance;
+    t.tolerance = o.tolerance;
+    tests.push_back(t);
+  } else if (o.clearance_given || o.tolerance_given) {
+    throw UsageError("--clearance/--tolerance set the default test; with --test/--tests/scene tests, give them in the tests");
+  }
   {
     std::set<std::string> names;
     for (const scene::ClashTest& t : tests) {
@@ -250,11 +354,16 @@ int run(const World& w, int argc, char** argv) {
       if (!names.insert(t.name).second) throw UsageError("clash test '" + t.name + "': duplicate test name");
     }
   }
-  const scene::LoadOptions lo{.units = units};
+  const scene::LoadOptions lo{.units = units, .fem_split = o.fem_split, .fem_linear_faces = o.fem_linear_faces,
+                              .fem_field = o.fem_field, .fem_disp = o.fem_disp, .fem_scale = o.fem_scale};
 
   // 1. This rank's share of the entries: metadata, triangle counts, local boxes.
   const auto t_load = Clock::now();
-  const std::vector<std::size_t> mine = share_of(*spec, w);
+  const double cpu_load1 = cpu_seconds();
+  const std::vector<std::uint32_t> entry_reader = first_readers(*spec, w);
+  std::vector<std::size_t> mine;
+  for (std::size_t i = 0; i < entry_reader.size(); ++i)
+    if (entry_reader[i] == static_cast<std::uint32_t>(w.rank)) mine.push_back(i);
   std::map<std::size_t, scene::LoadedScene> loaded;
   const auto load_specs = [&](const std::vector<std::size_t>& which) {
     std::vector<std::optional<scene::LoadedScene>> got(which.size());
@@ -309,9 +418,14 @@ int run(const World& w, int argc, char** argv) {
     warn_bytes.assign(v.begin(), v.end());
   }
   std::vector<BodyInfo> info;
-  for (const std::string& bytes : allgather(encode(my_info))) {
-    std::vector<BodyInfo> part = decode_bodies(bytes);
-    info.insert(info.end(), std::make_move_iterator(part.begin()), std::make_move_iterator(part.end()));
+  {
+    std::vector<std::string> all = allgather(encode(my_info));
+    my_info = {};
+    for (std::string& bytes : all) {
+      std::vector<BodyInfo> part = decode_bodies(bytes);
+      bytes = {};
+      info.insert(info.end(), std::make_move_iterator(part.begin()), std::make_move_iterator(part.end()));
+    }
   }
   std::vector<std::string> all_input_warnings;  // (in the order of the entries, as one process reads them)
   nlohmann::json all_steps = nlohmann::json::array();
@@ -341,11 +455,12 @@ int run(const World& w, int argc, char** argv) {
     std::fprintf(stderr, "[interfere-mpi] warning: %d ranks for %u bodies: %u ranks stay idle\n", w.size, n,
                  static_cast<unsigned>(w.size) - n);
   const double load1_seconds = since(t_load);
+  const double load1_cpu = cpu_seconds() - cpu_load1;
 
   // The scene as metadata (every rank): the motion's frames by body id.
   scene::Scene skeleton;
   skeleton.units = units;
-  for (const BodyInfo& b : info) skeleton.bodies.push_back(b.meta);
+  for (BodyInfo& b : info) skeleton.bodies.push_back(std::move(b.meta));  // (one copy of the metadata: memory a rank)
   if (!motion.empty())
     if (const Status s = scene::read_motion(motion, skeleton); !s) throw UsageError(s.error().message());
   // An FE entry's displacement steps (fem/bodies.h): frames that deform its bodies; every rank
@@ -374,7 +489,7 @@ int run(const World& w, int argc, char** argv) {
   const bool moving = !skeleton.frames.empty();
   bool deforms = false;
   for (const auto& sb : step_boxes) deforms = deforms || !sb.empty();
-  const bool reference = moving && deforms;  // (SceneClashOptions::reference, on as in `interfere clash`)
+  const bool reference = moving && deforms && o.reference;  // (SceneClashOptions::reference; --no-reference)
 
   // 2. The broad phase and the partition (the same on every rank).
   // (with deformation, the reference configuration first: its pairs are checked, not counted)
@@ -384,7 +499,7 @@ int run(const World& w, int argc, char** argv) {
   {
     std::vector<Transform> pose(n);
     std::vector<Aabb> local(n);
-    for (std::uint32_t i = 0; i < n; ++i) pose[i] = info[i].meta.pose, local[i] = info[i].local_box;
+    for (std::uint32_t i = 0; i < n; ++i) pose[i] = skeleton.bodies[i].pose, local[i] = info[i].local_box;
     for (std::size_t pass = 0; pass < boxes.size(); ++pass) {
       const std::size_t f = pass - uncounted;
       if (moving && pass >= uncounted) {
@@ -401,7 +516,9 @@ int run(const World& w, int argc, char** argv) {
   std::vector<std::uint64_t> triangles(n), mesh_keys(n);
   for (std::uint32_t i = 0; i < n; ++i) triangles[i] = info[i].triangles, mesh_keys[i] = info[i].mesh_key;
   join_classes(broad, mesh_keys, poses);  // (pairs the engine decides once stay on one rank)
-  const Partition part = partition(broad, boxes[0], triangles, o.cost, static_cast<std::size_t>(w.size));
+  std::vector<std::uint32_t> reader(n);
+  for (std::uint32_t i = 0; i < n; ++i) reader[i] = entry_reader[info[i].spec];
+  const Partition part = partition(broad, boxes[0], triangles, o.cost, static_cast<std::size_t>(w.size), reader);
   if (talk)
     std::fprintf(stderr, "[interfere-mpi] %u bodies, %zu candidate pairs (%zu units) on %d ranks: estimated cost per rank %s\n",
                  n, broad.candidate_pairs, broad.units.size(), w.size, [&] {
@@ -421,9 +538,11 @@ int run(const World& w, int argc, char** argv) {
   for (const std::size_t s : need)
     if (!loaded.count(s)) more.push_back(s);
   const auto t_load2 = Clock::now();
+  const double cpu_load2 = cpu_seconds();
   load_specs(more);
   RankResult mine_result;
   mine_result.load_seconds = load1_seconds + since(t_load2);
+  mine_result.load_cpu_seconds = load1_cpu + cpu_seconds() - cpu_load2;
   for (const auto& [s, l] : loaded) {
     mine_result.bodies_loaded += l.scene.bodies.size();
     for (const scene::Body& b : l.scene.bodies) mine_result.triangles_loaded += b.mesh->num_triangles();
@@ -432,7 +551,9 @@ int run(const World& w, int argc, char** argv) {
   scene::SceneClashOptions eo;
   eo.group_by = scene::GroupBy::none;
   eo.depth_maps = true;  // (as `interfere clash`: the deepest node per clash and step)
+  eo.reference = o.reference;
   const auto t_engine = Clock::now();
+  const double cpu_engine = cpu_seconds();
   std::vector<scene::FrameRow> rows(moving ? skeleton.frames.size() : 0);
   for (std::size_t f = 0; f < rows.size(); ++f) rows[f].frame = static_cast<std::uint32_t>(f);
   std::set<std::string> open_warnings;
@@ -491,7 +612,7 @@ int run(const World& w, int argc, char** argv) {
       c.a = my_bodies[c.a], c.b = my_bodies[c.b];
       if (c.has_deepest) c.deepest.body = my_bodies[c.deepest.body];
       if (!own.count({c.a, c.b}))
-        throw std::logic_error("the engine found a clash of bodies '" + info[c.a].meta.id + "' and '" + info[c.b].meta.id +
+        throw std::logic_error("the engine found a clash of bodies '" + skeleton.bodies[c.a].id + "' and '" + skeleton.bodies[c.b].id +
                                "', which the plan did not give this rank");
       mine_result.clashes.push_back(std::move(c));
     }
@@ -519,7 +640,9 @@ int run(const World& w, int argc, char** argv) {
   mine_result.frames = std::move(rows);
   mine_result.warnings.assign(open_warnings.begin(), open_warnings.end());
   mine_result.engine_seconds = since(t_engine);
+  mine_result.engine_cpu_seconds = cpu_seconds() - cpu_engine;
   mine_result.peak_rss_mb = peak_rss_mb();
+  mine_result.cpu_seconds = cpu_seconds();
 
   // 4. Rank 0 merges and writes the report.
   const std::vector<std::string> results = gather(encode(mine_result));
@@ -533,7 +656,7 @@ int run(const World& w, int argc, char** argv) {
     scene::SceneClashResult result = merge(skeleton, tests, go, broad, triangles, per_rank, reference);
     if (!o.baseline.empty())
       if (const Status s = scene::apply_baseline(result, baseline_text, o.baseline); !s) throw UsageError(s.error().message());
-    status = verdict_exit_status(result.verdict);
+    status = verdict_exit_status(result.verdict, o.fail_on.empty() ? FailOn{} : *parse_fail_on(o.fail_on));
     std::vector<std::string> inputs;
     for (const scene::BodySpec& b : spec->bodies)  // (each file once, as load_scene lists them)
       if (std::find(inputs.begin(), inputs.end(), b.file) == inputs.end()) inputs.push_back(b.file);

@@ -89,7 +89,10 @@ std::string report_with_mpi(const std::string& report, const std::vector<std::ui
                    {"estimated_cost", r < part.rank_cost.size() ? part.rank_cost[r] : 0.0},
                    {"load_s", ranks[r].load_seconds},
                    {"engine_s", ranks[r].engine_seconds},
-                   {"peak_rss_mb", ranks[r].peak_rss_mb}});
+                   {"peak_rss_mb", ranks[r].peak_rss_mb},
+                   {"cpu_s", ranks[r].cpu_seconds},
+                   {"load_cpu_s", ranks[r].load_cpu_seconds},
+                   {"engine_cpu_s", ranks[r].engine_cpu_seconds}});
   j["mpi"] = {{"ranks", ranks.size()}, {"per_rank", per}};
   // The envelope every command's report has (apps/cli/report_envelope.cpp, docs/report.md: the
   // clash command's options and result; seconds, the process's wall time).

@@ -7,6 +7,7 @@
 #include <numeric>
 #include <set>
 #include <tuple>
+#include <unordered_map>
 
 #include "interfere/scene/engine.h"
 
@@ -91,9 +92,18 @@ struct Piece {
 void join_classes(BroadResult& broad, const std::vector<std::uint64_t>& mesh_key,
                   const std::vector<std::vector<Transform>>& poses) {
   Dsu dsu(broad.units.size());
+  // Only units whose two mesh keys another unit shares can join (most products: few). A hash of
+  // the two keys: a collision only lets a unit through to the exact comparison below.
+  const auto pair_hash = [&](const Unit& u) { return mesh_key[u.a] * 0x9e3779b97f4a7c15ULL ^ (mesh_key[u.b] + 0x632be59bd9b4e019ULL); };
+  std::unordered_map<std::uint64_t, std::uint32_t> mesh_pairs;
+  mesh_pairs.reserve(broad.units.size());
+  for (const Unit& u : broad.units) ++mesh_pairs[pair_hash(u)];
+  std::vector<std::uint32_t> shared;
+  for (std::uint32_t k = 0; k < broad.units.size(); ++k)
+    if (mesh_pairs.at(pair_hash(broad.units[k])) > 1) shared.push_back(k);
   for (const std::vector<Transform>& pose : poses) {
     std::map<std::tuple<std::uint64_t, std::uint64_t, std::array<double, 12>>, std::uint32_t> first;
-    for (std::uint32_t k = 0; k < broad.units.size(); ++k) {
+    for (const std::uint32_t k : shared) {
       const Unit& u = broad.units[k];
       const auto key = std::tuple{mesh_key[u.a], mesh_key[u.b], scene::relative_pose_key(pose[u.a], pose[u.b])};
       const auto [it, added] = first.emplace(key, k);
@@ -112,7 +122,7 @@ void join_classes(BroadResult& broad, const std::vector<std::uint64_t>& mesh_key
 double pair_cost(std::uint64_t na, std::uint64_t nb) { return CostModel{}.pair(na, nb); }
 
 Partition partition(const BroadResult& broad, const std::vector<AabbF>& boxes, const std::vector<std::uint64_t>& triangles,
-                    const CostModel& model, std::size_t ranks) {
+                    const CostModel& model, std::size_t ranks, const std::vector<std::uint32_t>& reader) {
   Partition out;
   const std::size_t n = boxes.size();
   ranks = std::max<std::size_t>(ranks, 1);
@@ -148,7 +158,11 @@ Partition partition(const BroadResult& broad, const std::vector<AabbF>& boxes, c
     return b;
   };
   std::vector<double> body_cost(n);
-  for (std::size_t i = 0; i < n; ++i) body_cost[i] = model.body(i < triangles.size() ? triangles[i] : 0);
+  std::vector<double> read_cost(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    body_cost[i] = model.body(i < triangles.size() ? triangles[i] : 0);
+    read_cost[i] = reader.empty() ? 0.0 : model.read(i < triangles.size() ? triangles[i] : 0);
+  }
   double total = 0;
   std::vector<double> comp_cost(comp_items.size(), 0);
   std::vector<std::vector<std::uint32_t>> comp_bodies(comp_items.size());
@@ -215,7 +229,10 @@ Partition partition(const BroadResult& broad, const std::vector<AabbF>& boxes, c
   for (const std::uint32_t pi : order) {
     const Piece& p = pieces[pi];
     std::vector<std::uint32_t> cand{by_load.begin()->second};
-    for (const std::uint32_t b : p.bodies) cand.insert(cand.end(), holders[b].begin(), holders[b].end());
+    for (const std::uint32_t b : p.bodies) {
+      cand.insert(cand.end(), holders[b].begin(), holders[b].end());
+      if (b < reader.size() && reader[b] < ranks) cand.push_back(reader[b]);
+    }
     std::sort(cand.begin(), cand.end());
     cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
     std::uint32_t best = cand[0];
@@ -224,7 +241,8 @@ Partition partition(const BroadResult& broad, const std::vector<AabbF>& boxes, c
       const std::uint32_t r = cand[k];
       double end = out.rank_cost[r] + p.cost;
       for (const std::uint32_t b : p.bodies)
-        if (std::find(holders[b].begin(), holders[b].end(), r) == holders[b].end()) end += body_cost[b];
+        if (std::find(holders[b].begin(), holders[b].end(), r) == holders[b].end())
+          end += body_cost[b] + (b < reader.size() && reader[b] == r ? 0.0 : read_cost[b]);
       if (k == 0 || end < best_end) best = r, best_end = end;
     }
     by_load.erase({out.rank_cost[best], best});

@@ -66,10 +66,12 @@ struct CostModel {
   double pair_s = 2.0e-4;
   double pair_tri_s = 2.0e-7;
   double body_tri_s = 1.0e-6;
+  double read_tri_s = 5.0e-7;  ///< reading a body a rank did not read in the first step
   double pair(std::uint64_t triangles_a, std::uint64_t triangles_b) const {
     return pair_s + pair_tri_s * static_cast<double>(triangles_a + triangles_b);
   }
   double body(std::uint64_t triangles) const { return body_tri_s * static_cast<double>(triangles); }
+  double read(std::uint64_t triangles) const { return read_tri_s * static_cast<double>(triangles); }
 };
 
 /// The estimated cost of a pair in one frame by the default model (CostModel{}.pair).
@@ -88,9 +90,11 @@ struct Partition {
 /// centres), each item owned by its first body in that order, so a body's pairs mostly stay in one
 /// piece. Pieces go to ranks costliest first, each to the rank where it ends earliest counting the
 /// body cost of the bodies that rank does not hold yet (so a cut component's neighbouring pieces
-/// prefer the rank that already reads their shared bodies). Deterministic.
+/// prefer the rank that already reads their shared bodies). `reader` (optional): the rank that
+/// read each body in the first step; elsewhere a body also costs its read (CostModel::read), so
+/// pieces lean to the rank that read their bodies. Deterministic.
 Partition partition(const BroadResult& broad, const std::vector<AabbF>& boxes, const std::vector<std::uint64_t>& triangles,
-                    const CostModel& model, std::size_t ranks);
+                    const CostModel& model, std::size_t ranks, const std::vector<std::uint32_t>& reader = {});
 
 /// FNV-1a (64 bits) of bytes, continuing from h.
 std::uint64_t fnv1a(std::uint64_t h, const std::string& bytes);

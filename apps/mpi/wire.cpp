@@ -124,7 +124,7 @@ std::string encode(const RankResult& r) {
   j["warnings"] = r.warnings;
   j["n"] = {r.core_runs, r.calls, r.pairs, r.bodies_loaded, r.pair_triangles, r.triangles_loaded, r.bodies_used, r.body_triangles};
   j["reference_checked"] = r.reference_checked;
-  j["t"] = {r.load_seconds, r.engine_seconds, r.prepare_seconds, r.broad_seconds, r.narrow_seconds, r.peak_rss_mb};
+  j["t"] = {r.load_seconds, r.engine_seconds, r.prepare_seconds, r.broad_seconds, r.narrow_seconds, r.peak_rss_mb, r.cpu_seconds, r.load_cpu_seconds, r.engine_cpu_seconds};
   const std::vector<std::uint8_t> v = json::to_cbor(j);
   return {v.begin(), v.end()};
 }
@@ -148,7 +148,8 @@ RankResult decode_result(const std::string& bytes) {
   r.bodies_used = j["n"][6], r.body_triangles = j["n"][7];
   r.reference_checked = j["reference_checked"];
   r.load_seconds = j["t"][0], r.engine_seconds = j["t"][1], r.prepare_seconds = j["t"][2], r.broad_seconds = j["t"][3];
-  r.narrow_seconds = j["t"][4], r.peak_rss_mb = j["t"][5];
+  r.narrow_seconds = j["t"][4], r.peak_rss_mb = j["t"][5], r.cpu_seconds = j["t"][6];
+  r.load_cpu_seconds = j["t"][7], r.engine_cpu_seconds = j["t"][8];
   return r;
 }
 

@@ -42,6 +42,8 @@ struct RankResult {
   bool reference_checked = false;
   double load_seconds = 0, engine_seconds = 0, prepare_seconds = 0, broad_seconds = 0, narrow_seconds = 0;
   double peak_rss_mb = 0;
+  double cpu_seconds = 0;  ///< the rank's user + system CPU time (getrusage) at the end of its work
+  double load_cpu_seconds = 0, engine_cpu_seconds = 0;  ///< of its reads, of its engine call
 };
 
 std::string encode(const std::vector<BodyInfo>& bodies);

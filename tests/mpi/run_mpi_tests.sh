@@ -36,6 +36,9 @@ same "$work/huge"
 same "$work/tiny" --motion motion.csv --frames-csv frames.csv
 same "$work/fe"  # (FE displacement steps, the reference configuration, designed contacts)
 same "$work/repeats"  # (one file in many entries, repeated joints: core_runs as one process's)
+# Options as `interfere clash --scene`: clash tests on the command line, FE options.
+same "$work/tiny" --test "near: all clearance 0.2" --test "all hard"
+same "$work/fe" --scale 2 --no-reference
 check "$py" -c 'import json,sys; r=json.load(open(sys.argv[1])); sys.exit(r["summary"]["core_runs"] != 2)' "$work/repeats/single.json"
 
 # A STEP assembly (instances sharing meshes, the nominal-fit rule) beside two mesh files, with a
@@ -56,6 +59,14 @@ if (cd "$work/step" && "$cli" clash --scene scene.json --json base.json --quiet 
 else
   echo "step: skipped (no STEP reader in this build)"
 fi
+
+# An option of `interfere clash` that interfere-mpi does not offer: exit 2, the reason, no work.
+(cd "$work/tiny" && "${mpirun_[@]}" -n 2 "$mpi" clash --scene scene.json --json v.json --html v.html >/dev/null 2>notoffered.err)
+rc=$?
+check test "$rc" = 2
+check grep -q -- "--html: not offered by interfere-mpi" "$work/tiny/notoffered.err"
+check test ! -e "$work/tiny/v.json"
+echo "not offered (--html): rc=$rc"
 
 # A rank that cannot read a body: exit 2, its message, no report.
 (cd "$work/broken" && "${mpirun_[@]}" -n 3 "$mpi" clash --scene scene.json --json out.json >/dev/null 2>err.txt)
