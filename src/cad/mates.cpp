@@ -56,6 +56,7 @@ std::vector<Mate> infer_mates(const CadModel& model, const FeatureLibrary& libra
   Box all;
   // Per instance: holes, cylinders, plane face boxes, all in world coordinates.
   struct Placed {
+    Box box;  // the instance's placed triangles
     std::vector<Hole> holes;
     std::vector<Cyl> cyls;
     std::map<std::uint32_t, Box> plane_box;
@@ -71,6 +72,7 @@ std::vector<Mate> infer_mates(const CadModel& model, const FeatureLibrary& libra
       for (int c = 0; c < 3; ++c) {
         const Vec3 q = t.apply(part.mesh.positions[part.mesh.triangles[tri][c]]);
         all.add(q);
+        placed[k].box.add(q);
         if (f < part.aag.nodes.size() && part.aag.nodes[f].type == SurfaceType::plane) {
           placed[k].plane_box[f].add(q);
           placed[k].plane_point.emplace(f, q);
@@ -107,7 +109,9 @@ std::vector<Mate> infer_mates(const CadModel& model, const FeatureLibrary& libra
   std::vector<Mate> out;
   for (std::uint32_t ka = 0; ka < placed.size(); ++ka)
     for (std::uint32_t kb = 0; kb < placed.size(); ++kb) {
-      if (ka == kb) continue;
+      // Instances whose boxes are apart have no mate (a broad phase: an assembly of many instances
+      // is not tried face by face for every pair).
+      if (ka == kb || !placed[ka].box.overlaps(placed[kb].box, tol)) continue;
       // Insertions: a hole of a, a cylinder of b.
       for (const Hole& h : placed[ka].holes) {
         Mate m;
