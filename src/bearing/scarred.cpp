@@ -51,6 +51,40 @@ struct LocalFrame {
   double sd(const Vec3& q) const { return signed_distance_rz(std::sqrt(q.x * q.x + q.y * q.y), q.z, R, hh); }
 };
 
+/// The minimum of a convex G on [lo, hi] near a guess, certified: Newton steps on central differences
+/// (step d), each stencil x1 - d, x1, x1 + d checked by convexity. With every evaluation within eps
+/// of G: g0, g2 >= g1 + 2 eps puts the minimiser in [x1 - d, x1 + d], where G >= g1 - max(g0 - g1,
+/// g2 - g1) - 3 eps (the secants bound it); at an end (x1 - d = lo, g1 >= g0 + 2 eps, g2 >= g1 +
+/// 2 eps) the minimiser lies in [lo, x1] and G >= 2 g1 - g2 - 3 eps there. Accepted when the value
+/// returned is within `tol` of that bound; false: not certified (the caller searches).
+template <class G>
+bool certified_convex_min(G&& g, double lo, double hi, double z, double d, double eps, double tol, double& z_out,
+                          double& v_out) {
+  if (!(hi - lo > 4 * d) || !(d > 0)) return false;
+  for (int it = 0; it < 5; ++it) {
+    const double x1 = std::clamp(z, lo + d, hi - d);
+    const double g0 = g(x1 - d), g1 = g(x1), g2 = g(x1 + d);
+    if (!(std::isfinite(g0) && std::isfinite(g1) && std::isfinite(g2))) return false;
+    if (g0 >= g1 + 2 * eps && g2 >= g1 + 2 * eps && std::max(g0 - g1, g2 - g1) + 3 * eps <= tol) {
+      z_out = x1, v_out = g1;
+      return true;
+    }
+    if (x1 - d <= lo && g1 >= g0 + 2 * eps && g2 >= g1 + 2 * eps && g0 - 2 * g1 + g2 + 3 * eps <= tol) {
+      z_out = lo, v_out = g0;
+      return true;
+    }
+    if (x1 + d >= hi && g1 >= g2 + 2 * eps && g0 >= g1 + 2 * eps && g2 - 2 * g1 + g0 + 3 * eps <= tol) {
+      z_out = hi, v_out = g2;
+      return true;
+    }
+    const double curv = g2 - 2 * g1 + g0;
+    if (!(curv > 0)) return false;
+    z = x1 - d * (g2 - g0) / (2 * curv);
+    if (std::fabs(z - x1) < 0.25 * d && it > 0) return false;  // converged without a certificate (a kink)
+  }
+  return false;
+}
+
 /// Exact minimum of sd_B over a triangle given in B's local frame.
 TriangleMin local_triangle_min(const LocalFrame& f, const Vec3& a, const Vec3& b, const Vec3& c) {
   TriangleMin out;
@@ -127,19 +161,69 @@ TriangleMin local_triangle_min(const LocalFrame& f, const Vec3& a, const Vec3& b
     // in [z* - delta, z* + delta], and there G >= G(z*) - max(G(z* -+ delta) - G(z*)) (the secant
     // slopes bound it); accepted when that gap is below rounding-level tolerance, else the search.
     if (!pierced && rho >= f.R && std::fabs(p.z) > f.hh) {
-      const double sgn = p.z > 0 ? 1.0 : -1.0, zb = sgn * f.hh, u1 = std::fabs(p.z) - f.hh;
-      if (zb > zl && zb < zh && u1 > 0) {
-        Vec3 qb;
-        const double gb = section(zb, &qb);
-        const double g = std::sqrt(qb.x * qb.x + qb.y * qb.y) - f.R, k = std::min(0.0, (rho - f.R - g) / u1);
-        const double zs = sgn * (f.hh + std::clamp(-g * k / (1 + k * k), 0.0, u1));
-        const double delta = 0x1p-30 * (zh - zl), tol = 0x1p-44 * (zh - zl + f.R + f.hh);
+      // w: the distance past the end plane on p's side; the triangle's sections there start at
+      // w_near (0 when the end plane crosses the triangle, else its nearest vertex height)
+      const double sgn = p.z > 0 ? 1.0 : -1.0, wp = std::fabs(p.z) - f.hh;
+      const double w_near = std::max(0.0, (sgn > 0 ? zl : -zh) - f.hh);
+      const double z_near = sgn * (f.hh + w_near);
+      if (z_near >= zl && z_near <= zh && wp > w_near) {
+        Vec3 qn;
+        const double gn = section(z_near, &qn);
+        const double fn = std::sqrt(qn.x * qn.x + qn.y * qn.y) - f.R;  // F - R at w_near
+        const double k = std::min(0.0, (rho - f.R - fn) / (wp - w_near));
+        // G(w)^2 = (fn + k (w - w_near))^2 + w^2: stationary at w (1 + k^2) = -k (fn - k w_near)
+        const double ws = std::clamp(-k * (fn - k * w_near) / (1 + k * k), w_near, wp);
+        double zc, vc;
+        if (std::isfinite(gn) &&
+            certified_convex_min([&](double zz) { return section(zz, nullptr); }, zl, zh, sgn * (f.hh + ws),
+                                 0x1p-24 * (zh - zl), 0x1p-48 * (zh - zl + f.R + f.hh),
+                                 0x1p-40 * (zh - zl + f.R + f.hh), zc, vc)) {
+          out.value = vc, out.certified = false;
+          section(zc, &out.point);
+          return out;
+        }
+      }
+    }
+    // The same for a triangle reaching into B (a face pressed into a roller near its end: the
+    // original certificate fails when |z| - hh > rho - R at the point nearest the axis): inside,
+    // sd_B = max(rho - R, |z| - hh), so the minimum over the sections is where F - R = |z| - hh, a
+    // root of h(u) = F - R - (u - hh) (u = |z| on that side) between u_a = hh - (R - rho) (h >= 0:
+    // F >= rho) and u_b = |p.z| (h < 0), found by regula falsi (Illinois), then the same convexity
+    // certificate (a kink: the gap is about delta times the slope, delta at 2^-46 of the scale).
+    if (!pierced && rho > 0 && rho < f.R) {
+      const double sgn = p.z > 0 ? 1.0 : -1.0, scale = zh - zl + f.R + f.hh;
+      const auto h = [&](double u) {
+        Vec3 q;
+        const double gv = section(sgn * u, &q);
+        return std::isfinite(gv) ? std::sqrt(q.x * q.x + q.y * q.y) - f.R - (u - f.hh) : std::nan("");
+      };
+      double ua = f.hh - (f.R - rho), ub = std::fabs(p.z);
+      const double ulo = sgn > 0 ? zl : -zh;
+      double ha = ua > ulo ? h(ua) : std::nan(""), hb = ub > ua ? h(ub) : std::nan("");
+      if (ha >= 0 && hb < 0) {
+        const double root_tol = 0x1p-50 * scale;
+        int side = 0;
+        for (int it = 0; it < 60 && ub - ua > root_tol; ++it) {
+          const double uc = (ua * hb - ub * ha) / (hb - ha);
+          if (!(uc > ua && uc < ub)) break;
+          const double hc = h(uc);
+          if (!(hc == hc)) break;
+          if (hc >= 0) {
+            ua = uc, ha = hc;
+            if (side == -1) hb *= 0.5;
+            side = -1;
+          } else {
+            ub = uc, hb = hc;
+            if (side == 1) ha *= 0.5;
+            side = 1;
+          }
+        }
+        const double zs = sgn * (ha <= -hb ? ua : ub), delta = 0x1p-46 * scale, tol = 0x1p-43 * scale;
         Vec3 q0;
         const double g0 = section(zs, &q0);
         const double gl = zs - delta > zl ? section(zs - delta, nullptr) : g0;
         const double gr = zs + delta < zh ? section(zs + delta, nullptr) : g0;
-        const double gap = std::max(gl - g0, gr - g0);
-        if (std::isfinite(gb) && std::isfinite(g0) && gl >= g0 && gr >= g0 && gap <= tol) {
+        if (std::isfinite(g0) && gl >= g0 && gr >= g0 && std::max(gl - g0, gr - g0) <= tol) {
           out.value = g0, out.point = q0, out.certified = false;
           return out;
         }
