@@ -689,7 +689,9 @@ inherit_input_contacts=True, seams="auto", max_error=0)` → `SimplifyResult` (`
 error_bound)], [(name, part, Transform)], units="mm")`, `interfere.count_self_intersections(mesh)`, `interfere.triangle_budgets([(T, F), ...], renderer_max)`; when
 `interfere.HAVE_CAD`: `interfere.import_step(path, linear_deflection=0, angular_deflection=0.5)` (instances with
 their `placement`), `interfere.step_features(path, process="", step="", library="", rules="")` (per part `features`, `dot`, with a step `assembly_feature_faces`) and `interfere.prepare_step(path,
-process="", step="", linear_deflection=0, angular_deflection=0.5, library="", rules="")`, the CLI's STEP pipeline
+process="", step="", linear_deflection=0, angular_deflection=0.5, library="", rules="", mates=False,
+mesher="default")`, the CLI's STEP pipeline (`mates=True` without a process: the mates' features, as `--mates auto`;
+`mesher="delabella"` as `--mesher`)
 up to the simplification: `parts` ready for `simplify` (`name`, `mesh` in part coordinates, `face_ids`,
 `feature_faces` of the step, `faces`, `instances`, `model_part`; `<part> [<step>]` variants as in the CLI),
 `instances` (`name`, `part`, `placement`, `face_offset`), `warnings` and `report` (the CLI report's `cad` object);

@@ -311,13 +311,15 @@ void bind_simplify(py::module_& m) {
       "prepare_step",
       [](const std::filesystem::path& path, const std::string& process_file, const std::string& step,
          double linear_deflection, double angular_deflection, const std::string& library_file,
-         const std::string& rules_file) {
+         const std::string& rules_file, bool mates, const std::string& mesher) {
         if (process_file.empty() != step.empty()) throw py::value_error("process and step go together");
+        if (mesher != "default" && mesher != "delabella")
+          throw py::value_error("mesher must be 'default' or 'delabella', not '" + mesher + "'");
         Expected<cad::Prepared> r = Error{};
         {
           py::gil_scoped_release release;
           r = cad::prepare_for_simplify(path.string(), {linear_deflection, angular_deflection, library_file,
-                                                        rules_file, process_file, step});
+                                                        rules_file, process_file, step, mates, mesher == "delabella"});
         }
         if (!r) throw py::value_error(r.error().message());
         py::list parts;
@@ -335,8 +337,10 @@ void bind_simplify(py::module_& m) {
       },
       py::arg("path"), py::arg("process") = std::string(), py::arg("step") = std::string(),
       py::arg("linear_deflection") = 0.0, py::arg("angular_deflection") = 0.5, py::arg("library") = std::string(),
-      py::arg("rules") = std::string(),
-      "The CLI's STEP pipeline up to simplification: parts ready for interfere.simplify (name, mesh in part "
+      py::arg("rules") = std::string(), py::arg("mates") = false, py::arg("mesher") = std::string("default"),
+      "The CLI's STEP pipeline up to simplification (mates=True without a process: the assembly features the mates "
+      "inferred from the geometry pick, as `interfere simplify --mates auto`; mesher: 'default' or 'delabella', as "
+      "--mesher): parts ready for interfere.simplify (name, mesh in part "
       "coordinates, face_ids, feature_faces of the step, faces, instances, model_part, tessellation_error (the larger of "
       "the linear deflection and the measured deviation: relative to the B-Rep, add it to a simplification's error "
       "bound); a part whose instances "
