@@ -23,11 +23,20 @@
 //   ProbeReplan/<case>/<standoff>       re-planning every colliding point (probe/replan.h; issue #28,
 //                                       deliverable 4): tilt cone 15 degrees, stand-off range
 //                                       0..<standoff> mm; counters: colliding points, found, ms each
+//   ProbeNear/<case>/<hierarchy>        Tables 2-3 on near-surface paths (issue #28, deliverable
+//                                       5): the same rasters with the tip 2 mm from the surface and
+//                                       the probe tilted 20 degrees about its tip (within 2 probe
+//                                       radii; most points have a triangle in the probe's or the
+//                                       holder's box), probe + holder, decisions only; the patches at
+//                                       the paper's Table 2 ratios (31, 35, 32)
+//   ProbeNearContinuous/<case>          the same + the continuous check between points (BVH)
 //   ProbeScaling                        10^6-triangle saddle, 10^5 points: build + decisions +
 //                                       continuous check (INTERFERE_PROBE_SCALING_TRIANGLES /
 //                                       _POINTS override the sizes)
 #ifdef INTERFERE_BENCH_PROBE
 #include <benchmark/benchmark.h>
+
+#include <sys/resource.h>
 
 #include <chrono>
 #include <cmath>
@@ -284,6 +293,118 @@ void BM_ProbePaperLevels(benchmark::State& state) {
                  std::to_string(state.range(3)));
 }
 
+/// CPU seconds of the whole process (every thread, user + system): on a shared machine the wall
+/// time includes waiting for the cores, this does not.
+double process_cpu_seconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+/// Table 2's box / probe volume ratios of the paper, per case (31, 35, 32).
+double paper_ratio(int i) {
+  static const double r[] = {31, 35, 32};
+  return r[i];
+}
+
+/// The near-surface path of Tables 2-3 (issue #28): the standard raster's poses with the tip 2 mm
+/// from the surface along its normal (the colliding points keep their depth) and the axis tilted
+/// 20 degrees about the tip; a pose path (straight pose interpolation between points).
+const ProbePath& near_surface_path(int i) {
+  static std::map<int, std::unique_ptr<ProbePath>> cache;
+  auto& p = cache[i];
+  if (p) return *p;
+  const Case& c = get_case(i);
+  PanelPathOptions o = c.spec.path;
+  o.standoff = 2.0;
+  p = std::make_unique<ProbePath>(make_panel_path(c.spec.kind, o));
+  p->joint_space = false;
+  p->joints.clear();
+  for (ProbePose& q : p->poses) {
+    const Vec3 a = q.axis;
+    Vec3 e = cross(a, std::fabs(a.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0});
+    e = e / norm(e);
+    q.axis = a * std::cos(M_PI / 9) + e * std::sin(M_PI / 9);
+  }
+  return *p;
+}
+
+/// Points of `path` with a triangle whose box meets the box of the probe or of the holder: the
+/// points where any candidate search must run at least one exact test (method-independent).
+std::size_t points_reaching_exact(const TriMesh& mesh, const ProbePath& path) {
+  std::vector<Aabb> boxes(mesh.num_triangles());
+  for (std::uint32_t t = 0; t < mesh.num_triangles(); ++t) {
+    for (const Vec3& v : mesh.corners(t)) boxes[t].expand(v);
+  }
+  std::size_t n = 0;
+  for (const ProbePose& q : path.poses) {
+    const Cylinder probe = cylinder_from_tip(q.tip, q.axis, kProbe.length, kProbe.radius);
+    const Cylinder holder = cylinder_from_tip(q.tip - q.axis * kProbe.length, q.axis, kProbe.holder_length,
+                                              kProbe.holder_radius);
+    const Aabb bp = paper_cylinder_box(probe), bh = paper_cylinder_box(holder);
+    bool any = false;
+    for (std::uint32_t t = 0; t < mesh.num_triangles() && !any; ++t) any = boxes[t].overlaps(bp) || boxes[t].overlaps(bh);
+    n += any;
+  }
+  return n;
+}
+
+void BM_ProbeNear(benchmark::State& state) {
+  const int i = static_cast<int>(state.range(0));
+  const auto h = static_cast<Hierarchy>(state.range(1));
+  const Case& c = get_case(i);
+  const Workpiece& w = get_workpiece(i, h, h == Hierarchy::patches ? paper_ratio(i) : 33);
+  const ProbePath& path = near_surface_path(i);
+  SweepResult r;
+  const double cpu0 = process_cpu_seconds();
+  for (auto _ : state) {
+    r = sweep(w, path, nullptr, {.probe = kProbe, .continuous = false, .clearance = false});
+    benchmark::DoNotOptimize(r.colliding_points);
+  }
+  state.counters["process_cpu_ms"] = 1e3 * (process_cpu_seconds() - cpu0) / static_cast<double>(state.iterations());
+  counters(state, c, w, r);
+  state.counters["points"] = static_cast<double>(path.size());
+  static std::map<int, std::size_t> reaching;
+  if (!reaching.count(i)) reaching[i] = points_reaching_exact(c.mesh, path);
+  state.counters["reaching_exact"] = static_cast<double>(reaching[i]);
+  state.counters["ratio"] = h == Hierarchy::patches ? paper_ratio(i) : 0;
+  double tris = 0;
+  for (const auto& t : w.patches.tris) tris += static_cast<double>(t.size());
+  state.counters["triangles_per_patch"] = tris / static_cast<double>(std::max<std::size_t>(1, w.patches.size()));
+  state.SetLabel(c.spec.name + "/near/" + hierarchy_name(h));
+}
+
+void BM_ProbeNearBuild(benchmark::State& state) {
+  const int i = static_cast<int>(state.range(0));
+  const auto h = static_cast<Hierarchy>(state.range(1));
+  const Case& c = get_case(i);
+  for (auto _ : state) {
+    Workpiece w = prepare_workpiece(
+        c.mesh, kProbe, {.hierarchy = h, .patch_volume_ratio = h == Hierarchy::patches ? paper_ratio(i) : 33});
+    benchmark::DoNotOptimize(w.bvh.nodes.data());
+  }
+  state.SetLabel(c.spec.name + "/" + hierarchy_name(h));
+}
+
+void BM_ProbeNearContinuous(benchmark::State& state) {
+  const int i = static_cast<int>(state.range(0));
+  const Case& c = get_case(i);
+  const Workpiece& w = get_workpiece(i, Hierarchy::bvh);
+  const ProbePath& path = near_surface_path(i);
+  SweepResult r;
+  const double cpu0 = process_cpu_seconds();
+  for (auto _ : state) {
+    r = sweep(w, path, nullptr, {.probe = kProbe, .continuous = true, .clearance = false});
+    benchmark::DoNotOptimize(r.colliding_segments);
+  }
+  state.counters["process_cpu_ms"] = 1e3 * (process_cpu_seconds() - cpu0) / static_cast<double>(state.iterations());
+  counters(state, c, w, r);
+  state.counters["points"] = static_cast<double>(path.size());
+  state.counters["unresolved_segments"] = static_cast<double>(r.unresolved_segments);
+  state.SetLabel(c.spec.name + "/near");
+}
+
 std::size_t env_size(const char* name, std::size_t fallback) {
   const char* v = std::getenv(name);
   return v ? static_cast<std::size_t>(std::atof(v)) : fallback;
@@ -354,6 +475,25 @@ void register_all() {
         }
       }
     }
+  }
+  for (int i = 0; i < 3; ++i) {
+    for (Hierarchy h : hs) {
+      benchmark::RegisterBenchmark("ProbeNear", BM_ProbeNear)
+          ->Args({i, static_cast<long>(h)})
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime()
+          ->MinTime(0.3);
+      benchmark::RegisterBenchmark("ProbeNearBuild", BM_ProbeNearBuild)
+          ->Args({i, static_cast<long>(h)})
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime()
+          ->Iterations(h == Hierarchy::distance_field ? 1 : 20);
+    }
+    benchmark::RegisterBenchmark("ProbeNearContinuous", BM_ProbeNearContinuous)
+        ->Arg(i)
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime()
+        ->MinTime(0.3);
   }
   for (long standoff : {0L, 3L})
     benchmark::RegisterBenchmark("ProbeReplan", BM_ProbeReplan)->Args({2, standoff})->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(0.3);

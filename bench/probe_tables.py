@@ -221,6 +221,141 @@ def levels_table(rows, repetitions):
     return "\n".join(L)
 
 
+NEAR_BEGIN = "<!-- BEGIN probe near-surface tables (bench/probe_tables.py) -->"
+NEAR_END = "<!-- END probe near-surface tables -->"
+PAPER_T2 = {"sheet": (576, 31, 872, 0.22), "shell": (1152, 35, 1430, 0.67), "saddle": (2784, 32, 2366, 1.12)}
+PAPER_T3 = {"sheet": (0.22, 3.2, 2.4), "shell": (0.67, 5.6, 4.5), "saddle": (1.12, 11.3, 8.9)}
+
+
+def near_tables(rows, repetitions):
+    """Tables 2 and 3 of the paper on near-surface paths, and the issue #28 probe target (ProbeNear*)."""
+    L = []
+    now = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    L.append("Measured %s on %s, %d logical CPUs (oneTBB default threads), load average %s (other builds "
+             "running); median of %d repetitions. *wall* = elapsed time per run (includes waiting for a core "
+             "on this shared machine), *CPU* = CPU time of the whole process (all threads) per run. Regenerate "
+             "with `bench/probe_tables.py`." %
+             (now, cpu_model(), os.cpu_count(), " / ".join("%.1f" % x for x in os.getloadavg()), repetitions))
+    L.append("")
+    L.append("Near-surface paths: the rasters of the tables above with the probe tip 2 mm from the surface "
+             "(0.4 probe radius; the colliding points keep their tip 1 mm below it) and the axis tilted 20 "
+             "degrees about the tip, so the end circle's rim passes ~0.3 mm above a flat surface; probe "
+             "(r 5, l 40) and holder (r 12, l 30); pose paths (straight pose interpolation between points). "
+             "*Points reaching the exact level*: points with a triangle whose box meets the probe's or the "
+             "holder's box (any candidate search must run an exact test there); *exact tests*: the "
+             "cylinder-triangle tests the method ran over the path.")
+    L.append("")
+    L.append("#### Table 2 on near-surface paths (the paper's patches at its ratios)")
+    L.append("")
+    L.append("| case | triangles | ratio (paper) | patches | tri/patch | points (paper) | points reaching the exact level "
+             "| exact tests | colliding points | wall ms | CPU ms | paper |")
+    L.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for i, c in enumerate(CASES):
+        r = find(rows, "ProbeNear/%d/1/" % i)
+        pt = PAPER_T2[c]
+        L.append("| %s | %d | %d (%d) | %d | %.1f | %d (%d) | %d | %d | %d | %s | %s | %.2f s |" % (
+            c, r["triangles"], r["ratio"], pt[1], r["patches"], r["triangles_per_patch"], r["points"], pt[2],
+            r["reaching_exact"], r["candidate_tests"], r["colliding_points"], fmt_ms(r["ms"]),
+            fmt_ms(r["process_cpu_ms"]), pt[3]))
+    L.append("")
+    L.append("#### Table 3 on near-surface paths: the candidate searches compared")
+    L.append("")
+    L.append("| method | " + " | ".join("%s: wall ms | CPU ms | exact tests | build ms" % c for c in CASES) +
+             " | paper (s) |")
+    L.append("|---|" + "---:|---:|---:|---:|" * len(CASES) + "---|")
+    paper_col = {"patches": 0, "grid": 1, "distance_field": 2}
+    for h in (1, 2, 3, 0, 4):
+        name = HIER[h]
+        cells = []
+        for i in range(len(CASES)):
+            r = find(rows, "ProbeNear/%d/%d/" % (i, h))
+            b = find(rows, "ProbeNearBuild/%d/%d/" % (i, h))
+            cells += [fmt_ms(r["ms"]), fmt_ms(r["process_cpu_ms"]), "%d" % r["candidate_tests"], fmt_ms(b["ms"])]
+        paper = " / ".join("%.2f" % PAPER_T3[c][paper_col[name]] for c in CASES) if name in paper_col else ""
+        label = HNAME[name].replace("(33x)", "(paper ratios)")
+        L.append("| %s | %s | %s |" % (label, " | ".join(cells), paper))
+    L.append("")
+    L.append("| case | uniform subdivision / patches: ours (wall, CPU) | paper | distance field / patches: ours "
+             "(wall, CPU; build apart) | paper |")
+    L.append("|---|---:|---:|---:|---:|")
+    for i, c in enumerate(CASES):
+        p = find(rows, "ProbeNear/%d/1/" % i)
+        g = find(rows, "ProbeNear/%d/2/" % i)
+        d = find(rows, "ProbeNear/%d/3/" % i)
+        t3 = PAPER_T3[c]
+        L.append("| %s | %.2f, %.2f | %.1f | %.2f, %.2f | %.1f |" % (
+            c, g["ms"] / p["ms"], g["process_cpu_ms"] / p["process_cpu_ms"], t3[1] / t3[0],
+            d["ms"] / p["ms"], d["process_cpu_ms"] / p["process_cpu_ms"], t3[2] / t3[0]))
+    L.append("")
+    L.append("#### Target (issue #28): the 2,784-triangle workpiece, 2,366 points within 2 probe radii")
+    L.append("")
+    L.append("| target | wall | CPU (all threads) | verdict |")
+    L.append("|---|---:|---:|---|")
+    d = find(rows, "ProbeNear/2/0/")
+    cc = find(rows, "ProbeNearContinuous/2/")
+    for what, r, limit in (("probe + holder, all discrete points <= 5 ms (BVH)", d, 5),
+                           ("the same including the check between points <= 50 ms (%d colliding segments, %d "
+                            "unresolved)" % (cc["colliding_segments"], cc["unresolved_segments"]), cc, 50)):
+        wall_ok, cpu_ok = r["ms"] <= limit, r["process_cpu_ms"] <= limit
+        v = verdict(wall_ok) if wall_ok == cpu_ok else (
+            "**PASS** in CPU time, **MISS** in wall time under this load" if cpu_ok else "**MISS**")
+        L.append("| %s | %s ms | %s ms | %s |" % (what, fmt_ms(r["ms"]), fmt_ms(r["process_cpu_ms"]), v))
+    L.append("")
+    return "\n".join(L)
+
+
+CELL_BEGIN = "<!-- BEGIN probe full cell (bench/probe_tables.py) -->"
+CELL_END = "<!-- END probe full cell -->"
+
+
+def run_cell_bench(build, points, out_json):
+    exe = os.path.join(build, "bench", "interfere_bench_cell")
+    if not os.path.exists(exe):
+        return None
+    env = dict(os.environ, INTERFERE_CELL_POINTS=str(points))
+    subprocess.run([exe, "--benchmark_format=json", "--benchmark_out=" + out_json, "--benchmark_out_format=json"],
+                   check=True, stdout=subprocess.DEVNULL, env=env)
+    with open(out_json) as f:
+        return json.load(f)
+
+
+def cell_table(data):
+    """The full-cell target of issue #28 (interfere_bench_cell: CellFull rows, one run each)."""
+    rows = collect(data)
+    d = find(rows, "BM_CellFull/0")
+    c = find(rows, "BM_CellFull/1")
+    L = []
+    now = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    L.append("Measured %s on %s, %d logical CPUs (oneTBB default threads), load average %s (other builds "
+             "running); one run. Regenerate with `bench/probe_tables.py --cell-only --cell-points N`." %
+             (now, cpu_model(), os.cpu_count(), " / ".join("%.1f" % x for x in os.getloadavg())))
+    L.append("")
+    L.append("The cell: %d bodies, %d triangles (7 link meshes, %d triangles together; workpiece %d; the clamp "
+             "and two posts), %d path points (raster lines of 1,000 points, x = 350..700 mm, at y = -150..150 mm; "
+             "one line at y = 0 below 2,000 points; joints by the numerical inverse kinematics, untimed)." % (
+                 c["bodies"], c["triangles"], c["link_triangles"], c["workpiece_triangles"], c["points"]))
+    L.append("")
+    L.append("| run | scene build s | at the points s | between points s | total wall s | process CPU s | colliding "
+             "points | colliding / unresolved segments | frames checked between points |")
+    L.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for name, r in (("points only", d), ("points + between points (conservative)", c)):
+        L.append("| %s | %.3g | %.3g | %.3g | %.3g | %.3g | %d | %d / %d | %d |" % (
+            name, r["scene_seconds"], r["discrete_seconds"], r["between_seconds"], r["ms"] / 1e3,
+            r["process_cpu_seconds"], r["colliding_points"], r["colliding_segments"], r["unresolved_segments"],
+            r["between_frames"]))
+    L.append("")
+    scale = 1e5 / c["points"]
+    total = c["ms"] / 1e3 * scale
+    L.append("| target | measured | verdict |")
+    L.append("|---|---:|---|")
+    L.append("| 6R arm, 7 link meshes of ~5k triangles, fixtures, a 10^6-triangle workpiece, 10^5 points "
+             "including between points <= 5 s | %.3g s for %d points: %.0f s for 10^5 at this rate (linear "
+             "extrapolation; the run itself is %.0fx the target) | %s |" % (
+                 c["ms"] / 1e3, c["points"], total, total / 5, verdict(total <= 5)))
+    L.append("")
+    return "\n".join(L)
+
+
 def replace_block(doc, begin, end, block):
     if begin not in doc or end not in doc:
         return None
@@ -236,6 +371,11 @@ def main():
     ap.add_argument("--repetitions", type=int, default=3)
     ap.add_argument("--json", default=None, help="keep the raw benchmark JSON here")
     ap.add_argument("--from-json", default=None, help="do not run: use this raw benchmark JSON")
+    ap.add_argument("--cell-points", type=int, default=1000,
+                    help="path points of the full-cell benchmark (interfere_bench_cell; 10^5 is the target's size)")
+    ap.add_argument("--cell-only", action="store_true", help="run only the full-cell benchmark and rewrite its block")
+    ap.add_argument("--near-only", action="store_true",
+                    help="run only the near-surface rows (Tables 2-3, issue #28) and rewrite only their block")
     ap.add_argument("--levels-only", action="store_true",
                     help="run only the paper's-levels rows and rewrite only their table (issue #28)")
     a = ap.parse_args()
@@ -251,6 +391,37 @@ def main():
             new = replace_block(f.read(), LEVELS_BEGIN, LEVELS_END, block)
         if new is None:
             sys.exit("%s: paper levels markers not found" % a.doc)
+        with open(a.doc + ".tmp", "w") as f:
+            f.write(new)
+        os.replace(a.doc + ".tmp", a.doc)
+        print(block)
+        return
+    if a.cell_only:
+        data = run_cell_bench(a.build, a.cell_points, os.path.join(a.build, "bench", "probe_cell_bench.json"))
+        if data is None:
+            sys.exit("missing interfere_bench_cell (needs urdfdom)")
+        block = cell_table(data)
+        with open(a.doc) as f:
+            new = replace_block(f.read(), CELL_BEGIN, CELL_END, block)
+        if new is None:
+            sys.exit("%s: full cell markers not found" % a.doc)
+        with open(a.doc + ".tmp", "w") as f:
+            f.write(new)
+        os.replace(a.doc + ".tmp", a.doc)
+        print(block)
+        return
+    if a.near_only:
+        exe = os.path.join(a.build, "bench", "interfere_bench_probe")
+        out = a.json or os.path.join(a.build, "bench", "probe_near_bench.json")
+        cmd = [exe, "--benchmark_filter=ProbeNear", "--benchmark_format=json", "--benchmark_out=" + out,
+               "--benchmark_out_format=json", "--benchmark_repetitions=%d" % a.repetitions]
+        subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
+        with open(out) as f:
+            block = near_tables(collect(json.load(f)), a.repetitions)
+        with open(a.doc) as f:
+            new = replace_block(f.read(), NEAR_BEGIN, NEAR_END, block)
+        if new is None:
+            sys.exit("%s: near-surface markers not found" % a.doc)
         with open(a.doc + ".tmp", "w") as f:
             f.write(new)
         os.replace(a.doc + ".tmp", a.doc)
@@ -276,6 +447,13 @@ def main():
     rows = collect(data)
     if any(k.startswith("ProbePaperLevels/") for k in rows):
         new = replace_block(new, LEVELS_BEGIN, LEVELS_END, levels_table(rows, a.repetitions)) or new
+    if any(k.startswith("ProbeNear/") for k in rows):
+        near = near_tables(rows, a.repetitions)
+        new2 = replace_block(new, NEAR_BEGIN, NEAR_END, near)
+        if new2 is None:
+            sys.exit("%s: near-surface markers not found" % a.doc)
+        new = new2
+        print(near)
     tmp = a.doc + ".tmp"
     with open(tmp, "w") as f:
         f.write(new)
