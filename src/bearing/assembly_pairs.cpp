@@ -520,14 +520,32 @@ AssemblyPairResult solve_structural(const Assembly& as, const AssemblyPair& pair
   const BearingGeometry& g = as.geometry[pa.bearing];
   const double tol = 0x1p-36 * (norm(poses[pair.a].t) + norm(poses[pair.b].t) + ring_radius(b) + b.rollers.length);
   if (pair.kind == AssemblyPairKind::bearing_bearing) {
-    const int bi = pa.bearing, bj = as.parts[pair.b].bearing;
+    // a bearing's parts are contiguous in as.parts: inner, outer, cage, its rollers (build_assembly)
+    const auto range = [&](std::uint32_t outer) {
+      const std::size_t first = outer - 1;
+      return std::pair{first, first + 3 + static_cast<std::size_t>(as.spec.bearings[as.parts[outer].bearing].rollers.count)};
+    };
+    const auto [i0, i1] = range(pair.a);
+    const auto [j0, j1] = range(pair.b);
+    // first the two bearings' spheres (about their outer rings' centres, holding every part's sphere)
+    const auto bearing_sphere = [&](std::size_t outer, std::size_t first, std::size_t last) {
+      const Vec3 c = poses[outer].apply(as.parts[outer].sphere.centre);
+      double r = 0;
+      for (std::size_t q = first; q < last; ++q)
+        r = std::max(r, norm(poses[q].apply(as.parts[q].sphere.centre) - c) + as.parts[q].sphere.radius);
+      return std::pair{c, r};
+    };
+    const auto [ci, ri] = bearing_sphere(pair.a, i0, i1);
+    const auto [cj, rj] = bearing_sphere(pair.b, j0, j1);
+    if (const double v = norm(cj - ci) - ri - rj; v > tol && v >= clearance) {
+      const Vec3 u = (cj - ci) / norm(cj - ci);
+      return bound_result(v, ci + u * ri, cj - u * rj, clearance, tol);
+    }
     double best = std::numeric_limits<double>::infinity();
     Vec3 wa, wb;
-    for (std::size_t i = 0; i < as.parts.size(); ++i) {
-      if (as.parts[i].bearing != bi) continue;
+    for (std::size_t i = i0; i < i1; ++i) {
       const Vec3 ci = poses[i].apply(as.parts[i].sphere.centre);
-      for (std::size_t j = 0; j < as.parts.size(); ++j) {
-        if (as.parts[j].bearing != bj) continue;
+      for (std::size_t j = j0; j < j1; ++j) {
         const Vec3 cj = poses[j].apply(as.parts[j].sphere.centre);
         const double d = norm(cj - ci), v = d - as.parts[i].sphere.radius - as.parts[j].sphere.radius;
         if (v >= best) continue;
