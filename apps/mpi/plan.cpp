@@ -81,11 +81,6 @@ std::vector<std::uint64_t> morton(const std::vector<AabbF>& boxes) {
   return code;
 }
 
-struct Piece {
-  std::vector<std::uint32_t> items;
-  std::vector<std::uint32_t> bodies;  // sorted
-  double cost = 0;                    // its items' (the bodies' are counted where they are placed)
-};
 
 }  // namespace
 
@@ -142,124 +137,101 @@ Partition partition(const BroadResult& broad, const std::vector<AabbF>& boxes, c
   Dsu dsu(n);
   for (const std::vector<std::uint32_t>& units : item_units)
     for (const std::uint32_t k : units) dsu.join(broad.units[k].a, broad.units[k].b), dsu.join(broad.units[k].a, broad.units[units[0]].a);
-  std::vector<std::uint32_t> comp_of(n, UINT32_MAX);
-  std::vector<std::vector<std::uint32_t>> comp_items;  // in order of their first item
-  for (std::uint32_t i = 0; i < item_count; ++i) {
-    const std::uint32_t root = dsu.find(broad.units[item_units[i][0]].a);
-    if (comp_of[root] == UINT32_MAX) comp_of[root] = static_cast<std::uint32_t>(comp_items.size()), comp_items.emplace_back();
-    comp_items[comp_of[root]].push_back(i);
-  }
-  const auto bodies_of = [&](const std::vector<std::uint32_t>& items) {
-    std::vector<std::uint32_t> b;
-    for (const std::uint32_t i : items)
-      for (const std::uint32_t k : item_units[i]) b.push_back(broad.units[k].a), b.push_back(broad.units[k].b);
-    std::sort(b.begin(), b.end());
-    b.erase(std::unique(b.begin(), b.end()), b.end());
-    return b;
-  };
-  std::vector<double> body_cost(n);
-  std::vector<double> read_cost(n);
+  std::vector<double> body_cost(n), read_cost(n);
   for (std::size_t i = 0; i < n; ++i) {
     body_cost[i] = model.body(i < triangles.size() ? triangles[i] : 0);
     read_cost[i] = reader.empty() ? 0.0 : model.read(i < triangles.size() ? triangles[i] : 0);
   }
+  // Item weights: its cost and a share of its bodies' (each body's cost split among its items).
+  std::vector<std::uint32_t> degree(n, 0);
+  std::vector<std::vector<std::uint32_t>> item_bodies(item_count);
+  for (std::uint32_t i = 0; i < item_count; ++i) {
+    std::vector<std::uint32_t>& b = item_bodies[i];
+    for (const std::uint32_t k : item_units[i]) b.push_back(broad.units[k].a), b.push_back(broad.units[k].b);
+    std::sort(b.begin(), b.end());
+    b.erase(std::unique(b.begin(), b.end()), b.end());
+    for (const std::uint32_t x : b) ++degree[x];
+  }
+  std::vector<double> weight(item_count);
   double total = 0;
-  std::vector<double> comp_cost(comp_items.size(), 0);
-  std::vector<std::vector<std::uint32_t>> comp_bodies(comp_items.size());
-  for (std::size_t c = 0; c < comp_items.size(); ++c) {
-    comp_bodies[c] = bodies_of(comp_items[c]);
-    for (const std::uint32_t i : comp_items[c]) comp_cost[c] += item_cost[i];
-    for (const std::uint32_t b : comp_bodies[c]) comp_cost[c] += body_cost[b];
-    total += comp_cost[c];
+  for (std::uint32_t i = 0; i < item_count; ++i) {
+    weight[i] = item_cost[i];
+    for (const std::uint32_t x : item_bodies[i]) weight[i] += body_cost[x] / degree[x];
+    total += weight[i];
   }
-  const double limit = ranks > 1 ? total / static_cast<double>(4 * ranks) : total + 1;
+  // Position of an item on the space-filling curve: its component's first body in Morton order
+  // for a component costing at most total / (4 ranks) (kept together), else its own first body;
+  // grouped first by the rank that read that body (step 2), so that chunks follow the readers.
   const std::vector<std::uint64_t> code = morton(boxes);
-  std::vector<Piece> pieces;
-  for (std::size_t c = 0; c < comp_items.size(); ++c) {
-    if (comp_cost[c] <= limit || comp_items[c].size() == 1) {
-      Piece p;
-      p.items = comp_items[c], p.bodies = comp_bodies[c];
-      for (const std::uint32_t i : p.items) p.cost += item_cost[i];
-      pieces.push_back(std::move(p));
-      continue;
-    }
-    // Cut: the bodies in Morton order, each item owned by its first body there; runs of bodies
-    // holding about `limit` (their owned items and their own cost) are pieces.
-    std::vector<std::uint32_t> order = comp_bodies[c];
-    std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) { return std::tie(code[x], x) < std::tie(code[y], y); });
-    std::vector<std::uint32_t> rank_in(n, 0);
-    for (std::uint32_t k = 0; k < order.size(); ++k) rank_in[order[k]] = k;
-    std::vector<std::vector<std::uint32_t>> owned(order.size());
-    for (const std::uint32_t i : comp_items[c]) {
-      std::uint32_t owner = UINT32_MAX;
-      for (const std::uint32_t k : item_units[i])
-        owner = std::min({owner, rank_in[broad.units[k].a], rank_in[broad.units[k].b]});
-      owned[owner].push_back(i);
-    }
-    Piece p;
-    double acc = 0;
-    for (std::uint32_t k = 0; k < order.size(); ++k) {
-      for (const std::uint32_t i : owned[k]) p.items.push_back(i), p.cost += item_cost[i], acc += item_cost[i];
-      acc += body_cost[order[k]];
-      if (acc >= limit && !p.items.empty()) {
-        p.bodies = bodies_of(p.items);
-        pieces.push_back(std::move(p));
-        p = {}, acc = 0;
-      }
-    }
-    if (!p.items.empty()) p.bodies = bodies_of(p.items), pieces.push_back(std::move(p));
+  const auto before = [&](std::uint32_t x, std::uint32_t y) {
+    const std::uint32_t rx = reader.empty() ? 0 : reader[x], ry = reader.empty() ? 0 : reader[y];
+    return std::tie(rx, code[x], x) < std::tie(ry, code[y], y);
+  };
+  std::vector<std::uint32_t> comp_first(n, UINT32_MAX);
+  std::vector<double> comp_weight(n, 0);
+  for (std::uint32_t i = 0; i < item_count; ++i) {
+    const std::uint32_t root = dsu.find(item_bodies[i][0]);
+    comp_weight[root] += weight[i];
+    for (const std::uint32_t x : item_bodies[i])
+      if (comp_first[root] == UINT32_MAX || before(x, comp_first[root])) comp_first[root] = x;
   }
-  out.pieces = pieces.size();
-  // Placement: costliest first, each to the rank where it ends earliest (its cost plus the body
-  // cost of the bodies that rank does not hold yet), among the least loaded rank and the ranks
-  // holding one of its bodies.
-  std::vector<std::uint32_t> order(pieces.size());
+  const double small = ranks > 1 ? total / static_cast<double>(4 * ranks) : total + 1;
+  std::vector<std::uint32_t> position(item_count);
+  for (std::uint32_t i = 0; i < item_count; ++i) {
+    const std::uint32_t root = dsu.find(item_bodies[i][0]);
+    std::uint32_t first = item_bodies[i][0];
+    for (const std::uint32_t x : item_bodies[i])
+      if (before(x, first)) first = x;
+    position[i] = comp_weight[root] <= small ? comp_first[root] : first;
+  }
+  std::vector<std::uint32_t> order(item_count);
   std::iota(order.begin(), order.end(), 0u);
-  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) {
-    double cx = pieces[x].cost, cy = pieces[y].cost;
-    for (const std::uint32_t b : pieces[x].bodies) cx += body_cost[b];
-    for (const std::uint32_t b : pieces[y].bodies) cy += body_cost[b];
-    return cx > cy;
+  std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) {
+    if (position[x] != position[y]) return before(position[x], position[y]);
+    return x < y;
   });
-  out.rank_cost.assign(ranks, 0);
-  std::set<std::pair<double, std::uint32_t>> by_load;
-  for (std::uint32_t r = 0; r < ranks; ++r) by_load.emplace(0.0, r);
-  std::vector<std::vector<std::uint32_t>> holders(n);  // ranks holding a body
-  std::vector<std::uint32_t> rank_of_piece(pieces.size(), 0);
-  for (const std::uint32_t pi : order) {
-    const Piece& p = pieces[pi];
-    std::vector<std::uint32_t> cand{by_load.begin()->second};
-    for (const std::uint32_t b : p.bodies) {
-      cand.insert(cand.end(), holders[b].begin(), holders[b].end());
-      if (b < reader.size() && reader[b] < ranks) cand.push_back(reader[b]);
-    }
-    std::sort(cand.begin(), cand.end());
-    cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
-    std::uint32_t best = cand[0];
-    double best_end = 0;
-    for (std::size_t k = 0; k < cand.size(); ++k) {
-      const std::uint32_t r = cand[k];
-      double end = out.rank_cost[r] + p.cost;
-      for (const std::uint32_t b : p.bodies)
-        if (std::find(holders[b].begin(), holders[b].end(), r) == holders[b].end())
-          end += body_cost[b] + (b < reader.size() && reader[b] == r ? 0.0 : read_cost[b]);
-      if (k == 0 || end < best_end) best = r, best_end = end;
-    }
-    by_load.erase({out.rank_cost[best], best});
-    out.rank_cost[best] = best_end;
-    by_load.emplace(best_end, best);
-    for (const std::uint32_t b : p.bodies)
-      if (std::find(holders[b].begin(), holders[b].end(), best) == holders[b].end()) holders[b].push_back(best);
-    rank_of_piece[pi] = best;
+  // Giants first: an item heavier than the mean of what is left gets a rank of its own (the last
+  // ranks), then the curve is cut into runs of about equal weight over the other ranks, each run
+  // taking an item while the item's middle stays within the rank's share of what is left.
+  std::vector<std::uint32_t> rank_of(item_count, UINT32_MAX);
+  std::vector<std::uint32_t> by_weight(item_count);
+  std::iota(by_weight.begin(), by_weight.end(), 0u);
+  std::stable_sort(by_weight.begin(), by_weight.end(), [&](std::uint32_t x, std::uint32_t y) { return weight[x] > weight[y]; });
+  double left = total;
+  std::size_t free_ranks = ranks;
+  for (const std::uint32_t i : by_weight) {
+    if (free_ranks <= 1 || weight[i] <= left / static_cast<double>(free_ranks)) break;
+    rank_of[i] = static_cast<std::uint32_t>(--free_ranks);
+    left -= weight[i];
   }
+  std::uint32_t r = 0;
+  double acc = 0;
+  std::size_t runs = 0;
+  for (const std::uint32_t i : order) {
+    if (rank_of[i] != UINT32_MAX) continue;
+    const double share = left / static_cast<double>(free_ranks - r);
+    if (acc > 0 && acc + 0.5 * weight[i] > share && r + 1 < free_ranks) left -= acc, acc = 0, ++r;
+    if (acc == 0) ++runs;
+    rank_of[i] = r;
+    acc += weight[i];
+  }
+  out.pieces = runs + (ranks - free_ranks);
   out.rank_units.assign(ranks, {});
   out.rank_bodies.assign(ranks, {});
-  for (std::uint32_t pi = 0; pi < pieces.size(); ++pi) {
-    const std::uint32_t r = rank_of_piece[pi];
-    for (const std::uint32_t i : pieces[pi].items) out.rank_units[r].insert(out.rank_units[r].end(), item_units[i].begin(), item_units[i].end());
+  out.rank_cost.assign(ranks, 0);
+  std::vector<std::vector<std::uint32_t>> holders(n);
+  for (std::uint32_t i = 0; i < item_count; ++i) {
+    const std::uint32_t q = rank_of[i];
+    out.rank_units[q].insert(out.rank_units[q].end(), item_units[i].begin(), item_units[i].end());
+    out.rank_cost[q] += item_cost[i];
+    for (const std::uint32_t x : item_bodies[i])
+      if (std::find(holders[x].begin(), holders[x].end(), q) == holders[x].end()) holders[x].push_back(q);
   }
   for (std::uint32_t b = 0; b < n; ++b)
-    for (const std::uint32_t r : holders[b]) out.rank_bodies[r].push_back(b);
+    for (const std::uint32_t q : holders[b]) {
+      out.rank_bodies[q].push_back(b);
+      out.rank_cost[q] += body_cost[b] + (!reader.empty() && reader[b] != q ? read_cost[b] : 0.0);
+    }
   for (std::vector<std::uint32_t>& u : out.rank_units) std::sort(u.begin(), u.end());
   return out;
 }

@@ -81,18 +81,19 @@ struct Partition {
   std::vector<std::vector<std::uint32_t>> rank_units;   ///< per rank: sorted indices into BroadResult::units
   std::vector<std::vector<std::uint32_t>> rank_bodies;  ///< per rank: the bodies its units need (sorted)
   std::vector<double> rank_cost;  ///< per rank: its units' costs + its bodies' (CostModel::body)
-  std::size_t pieces = 0;         ///< pieces placed (whole components, or runs of a cut one)
+  std::size_t pieces = 0;         ///< runs of the curve and giants placed
 };
 
-/// Partitions the units over `ranks` by estimated cost with locality: items (class groups) whole;
-/// a connected component of the candidate graph costing at most total / (4 ranks) is one piece (a
-/// body's pairs together); a larger one is cut into runs of its bodies' Morton order (box
-/// centres), each item owned by its first body in that order, so a body's pairs mostly stay in one
-/// piece. Pieces go to ranks costliest first, each to the rank where it ends earliest counting the
-/// body cost of the bodies that rank does not hold yet (so a cut component's neighbouring pieces
-/// prefer the rank that already reads their shared bodies). `reader` (optional): the rank that
-/// read each body in the first step; elsewhere a body also costs its read (CostModel::read), so
-/// pieces lean to the rank that read their bodies. Deterministic.
+/// Partitions the units over `ranks` by estimated cost with locality: items (class groups) whole,
+/// each weighing its cost and a share of its bodies' (each body's CostModel::body split among the
+/// items that touch it). Items lie on a space-filling curve: grouped by the rank that read their
+/// first body in step 2 (`reader`, optional), then by the Morton order (box centres) of that body,
+/// a connected component costing at most total / (4 ranks) at its first body's place (kept
+/// together). An item heavier than the mean of what is left gets a rank of its own (one huge pair
+/// dominating); the curve is cut into runs of about equal weight over the other ranks, so a body's
+/// pairs mostly lie in one run and a rank holds a compact region of bodies (those at the runs'
+/// borders are held twice). rank_cost: each rank's items, its bodies' CostModel::body, and the
+/// read of bodies it did not read in step 2. Deterministic.
 Partition partition(const BroadResult& broad, const std::vector<AabbF>& boxes, const std::vector<std::uint64_t>& triangles,
                     const CostModel& model, std::size_t ranks, const std::vector<std::uint32_t>& reader = {});
 

@@ -85,6 +85,8 @@ int simulate(int argc, char** argv) {
     const double partition_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
     const double mean_cost = total / static_cast<double>(k);
     const double max_cost = *std::max_element(p.rank_cost.begin(), p.rank_cost.end());
+    double sum_cost = 0;  // (bodies held by two ranks counted twice: the halo's extra work)
+    for (const double c : p.rank_cost) sum_cost += c;
     // Bodies and triangles each rank reads: its share in step 1 (n / k by size) and its pairs'.
     std::uint64_t max_tri = 0, max_bodies = 0, sum_bodies = 0;
     for (std::size_t r = 0; r < k; ++r) {
@@ -101,7 +103,9 @@ int simulate(int argc, char** argv) {
                             {"pieces", p.pieces},
                             {"max_rank_pair_s", max_cost},
                             {"mean_rank_pair_s", mean_cost},
-                            {"imbalance", mean_cost > 0 ? max_cost / mean_cost - 1 : 0},
+                            {"imbalance", sum_cost > 0 ? max_cost / (sum_cost / static_cast<double>(k)) - 1 : 0},
+                            {"over_ideal", mean_cost > 0 ? max_cost / mean_cost - 1 : 0},
+                            {"halo_work", total > 0 ? sum_cost / total - 1 : 0},
                             {"max_bodies_read", max_bodies},
                             {"bodies_read_over_n", static_cast<double>(sum_bodies) / n},
                             {"max_triangles_read", max_tri},
