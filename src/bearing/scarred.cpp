@@ -52,16 +52,17 @@ struct LocalFrame {
 };
 
 /// The minimum of a convex G on [lo, hi] near a guess, certified: Newton steps on central differences
-/// (step d), each stencil x1 - d, x1, x1 + d checked by convexity. With every evaluation within eps
-/// of G: g0, g2 >= g1 + 2 eps puts the minimiser in [x1 - d, x1 + d], where G >= g1 - max(g0 - g1,
-/// g2 - g1) - 3 eps (the secants bound it); at an end (x1 - d = lo, g1 >= g0 + 2 eps, g2 >= g1 +
-/// 2 eps) the minimiser lies in [lo, x1] and G >= 2 g1 - g2 - 3 eps there. Accepted when the value
-/// returned is within `tol` of that bound; false: not certified (the caller searches).
+/// (step d, adapted to the curvature), each stencil x1 - d, x1, x1 + d checked by convexity. With
+/// every evaluation within eps of G: g0, g2 >= g1 + 2 eps puts the minimiser in [x1 - d, x1 + d],
+/// where G >= g1 - max(g0 - g1, g2 - g1) - 3 eps (the secants bound it); at an end (x1 - d = lo,
+/// g1 >= g0 + 2 eps, g2 >= g1 + 2 eps) the minimiser lies in [lo, x1] and G >= 2 g1 - g2 - 3 eps
+/// there. Accepted when the value returned is within `tol` of that bound; false: not certified (the
+/// caller searches).
 template <class G>
 bool certified_convex_min(G&& g, double lo, double hi, double z, double d, double eps, double tol, double& z_out,
                           double& v_out) {
-  if (!(hi - lo > 4 * d) || !(d > 0)) return false;
-  for (int it = 0; it < 5; ++it) {
+  for (int it = 0; it < 8; ++it) {
+    if (!(hi - lo > 4 * d) || !(d > 0)) return false;
     const double x1 = std::clamp(z, lo + d, hi - d);
     const double g0 = g(x1 - d), g1 = g(x1), g2 = g(x1 + d);
     if (!(std::isfinite(g0) && std::isfinite(g1) && std::isfinite(g2))) return false;
@@ -80,7 +81,16 @@ bool certified_convex_min(G&& g, double lo, double hi, double z, double d, doubl
     const double curv = g2 - 2 * g1 + g0;
     if (!(curv > 0)) return false;
     z = x1 - d * (g2 - g0) / (2 * curv);
-    if (std::fabs(z - x1) < 0.25 * d && it > 0) return false;  // converged without a certificate (a kink)
+    // the step d adapts to G's curvature: second differences (G'' d^2) above rounding (8 eps) and
+    // below the tolerance (tol / 4); steep sections of thin triangles need a smaller d, flat ones a
+    // larger one
+    if (curv < 8 * eps && std::fabs(z - x1) < 2 * d) {
+      d *= 4;
+    } else if (curv > 0.25 * tol && std::fabs(z - x1) < 2 * d) {
+      d *= 0.25;
+    } else if (std::fabs(z - x1) < 0.25 * d && it > 0) {
+      return false;  // converged without a certificate (a kink)
+    }
   }
   return false;
 }
