@@ -25,6 +25,7 @@
 #include "interfere/probe/paper_tests.h"
 #include "interfere/probe/replan.h"
 #include "interfere/probe/sweep.h"
+#include "interfere/robot/ik.h"
 #include "report_envelope.h"
 #include "progress_bar.h"
 
@@ -219,13 +220,29 @@ int run_sweep(const SweepOptions& o) {
   // interpolation) by default when it is known: joint paths, and pose paths for a robot with
   // inverse kinematics (the paper's machine); straight pose interpolation otherwise or on request.
   const bool can_joint = path.joint_space || (robot && has_inverse_kinematics(*robot));
-  if (o.interpolate == "joint" && !can_joint) {
+  // An explicit --interpolate joint for a DH robot without an analytic inverse (a 6-axis arm): the
+  // numerical inverse kinematics of robot/ik.h on the DH chain, each point from the previous one's
+  // solution (issue #28). The default stays straight pose interpolation for such robots.
+  const bool numeric_ik = o.interpolate == "joint" && !can_joint && robot;
+  if (o.interpolate == "joint" && !can_joint && !numeric_ik) {
     throw InputError("--interpolate joint: " + o.path + " is a pose path and " +
                      (robot ? "robot '" + robot->name + "' has no inverse kinematics" : std::string("no --robot is given")) +
                      " (only the paper's machine of §3.1 has: --robot data/examples/probe_paper_machine.json or --d1/--d2)");
   }
-  const bool joint_motion = o.interpolate == "pose" ? false : can_joint;
-  if (joint_motion && !path.joint_space) {
+  const bool joint_motion = o.interpolate == "pose" ? false : (can_joint || numeric_ik);
+  if (joint_motion && !path.joint_space && numeric_ik) {
+    robot::IkTool tool;
+    const robot::Chain chain = robot::chain_from_dh(*robot, &tool);
+    auto r = robot::pose_path_to_joints(chain, robot->base, tool, path, o.path);
+    if (!r) throw InputError(r.error());
+    ProbePath jp;
+    jp.joint_space = true;
+    for (const DhJoint& j : robot->joints) jp.columns.push_back(j.name);
+    jp.lines = r->path.lines;
+    jp.joints = std::move(r->path.q);
+    resolve_poses(jp, *robot);
+    path = std::move(jp);
+  } else if (joint_motion && !path.joint_space) {
     auto j = pose_path_to_joint_path(path, *robot, o.path);
     if (!j) throw InputError(j.error());
     path = std::move(j.value());
@@ -544,7 +561,8 @@ void add_sweep_command(CLI::App& app, int& exit_code) {
   c->add_option("--d2", o->d2, "the paper's machine's clamping length d2 (mm, > 0; default 120)");
   c->add_option("--interpolate", o->interpolate,
                 "motion between path points: joint (the machine's own: joint paths, and pose paths through the "
-                "inverse kinematics of the paper's machine; the default when possible) or pose (straight tip line, "
+                "inverse kinematics of the paper's machine; the default when possible; asked for explicitly, pose "
+                "paths of any other DH robot through numerical inverse kinematics) or pose (straight tip line, "
                 "axis slerp)");
   c->add_option("--probe-radius", o->probe_radius, "probe cylinder radius (> 0)")->required();
   c->add_option("--probe-length", o->probe_length, "probe cylinder length from the tip back (> 0)")->required();

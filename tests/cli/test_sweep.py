@@ -477,13 +477,65 @@ class SweepPaperMachine(unittest.TestCase):
             ["ik_far.csv:4", "point 1", "not reachable", "joint z = 2500", "[-2000, 2000]"], [path("ik_far.json")])
         cli_common.assert_input_error(self, ["sweep", "--workpiece", work, "--path", p, *BASE, "--interpolate", "joint"],
                                       ["--interpolate joint", "no --robot"])
-        cli_common.assert_input_error(self, ["sweep", "--workpiece", work, "--robot", ROBOT, "--path", p, *BASE,
-                                             "--interpolate", "joint"], ["no inverse kinematics", "pivot-5-axis"])
+        # A robot without an analytic inverse (the pivot machine): --interpolate joint now goes through
+        # the numerical inverse kinematics (SweepNumericalIk); the default stays pose interpolation.
+        rc, out, err = run("--workpiece", work, "--robot", ROBOT, "--path", p, *BASE, "--interpolate", "joint",
+                           "--json", path("pivot_j.json"))
+        self.assertIn(rc, (0, 1), err + out)
+        self.assertTrue(load(path("pivot_j.json"))["inputs"]["path"]["inverse_kinematics"])
         cli_common.assert_input_error(self, ["sweep", "--workpiece", work, "--robot", PAPER_ROBOT, "--path", p, *BASE,
                                              "--interpolate", "spline"], ["--interpolate", "spline"])
         cli_common.assert_input_error(self, ["sweep", "--workpiece", work, "--robot", PAPER_ROBOT, "--d1", "30", "--path", p,
                                              *BASE], ["--d1/--d2", "not both"])
         cli_common.assert_input_error(self, ["sweep", "--workpiece", work, "--d2", "-5", "--path", p, *BASE], ["--d2"])
+
+
+class SweepNumericalIk(unittest.TestCase):
+    """Issue #28: `--interpolate joint` with a DH 6-axis arm (no analytic inverse): the pose path goes
+    through the numerical inverse kinematics; the joints reported put the tool at every pose by this
+    test's own DH composition (Rz Tz Tx Rx written out here); the default stays pose interpolation."""
+
+    D = [89.159, 0, 0, 109.15, 94.65, 82.3]
+    A = [0, -425, -392.25, 0, 0, 0]
+    ALPHA = [90, 0, 0, 90, -90, 0]
+
+    def fk(self, q):
+        import math
+        m = [[1.0, 0, 0, 0], [0, 1.0, 0, 0], [0, 0, 1.0, 0], [0, 0, 0, 1.0]]
+        for d, a, al, th in zip(self.D, self.A, self.ALPHA, q):
+            t, al = math.radians(th), math.radians(al)
+            ct, st, ca, sa = math.cos(t), math.sin(t), math.cos(al), math.sin(al)
+            T = [[ct, -st * ca, st * sa, a * ct], [st, ct * ca, -ct * sa, a * st], [0, sa, ca, d], [0, 0, 0, 1]]
+            m = [[sum(m[i][k] * T[k][j] for k in range(4)) for j in range(4)] for i in range(4)]
+        tip = [m[i][0] * 0 + m[i][1] * 0 + m[i][2] * 150 + m[i][3] for i in range(3)]
+        return tip, [m[i][2] for i in range(3)]
+
+    def test_ur5_dh_pose_path(self):
+        import json
+        joints = [{"name": "q%d" % (i + 1), "type": "revolute", "a": self.A[i], "alpha": self.ALPHA[i], "d": self.D[i],
+                   "theta": 0, "min": -360, "max": 360} for i in range(6)]
+        robot = write("ur5_dh.json", json.dumps({"name": "ur5-dh", "units": "mm", "joints": joints,
+                                                 "tool": {"tip": [0, 0, 150], "axis": [0, 0, 1]}}))
+        poses = [self.fk(q) for q in ([10, -80, 90, -100, -90, 0], [14, -78, 88, -100, -90, 0], [18, -76, 86, -100, -90, 0])]
+        p = write("ur5_poses.csv", "px,py,pz,ax,ay,az\n" + "".join(
+            ",".join("%.17g" % v for v in t + a) + "\n" for t, a in poses))
+        work = plate_obj("ur5_plate.obj", -2000.0)
+        rc, out, err = run("--workpiece", work, "--robot", robot, "--path", p, *BASE, "--interpolate", "joint",
+                           "--json", path("ur5_j.json"))
+        self.assertEqual(rc, 0, err + out)
+        j = load(path("ur5_j.json"))
+        self.assertEqual(j["options"]["interpolate"], "joint")
+        self.assertTrue(j["inputs"]["path"]["inverse_kinematics"])
+        for pt, (t, a) in zip(j["points"], poses):
+            tip, axis = self.fk(pt["joints"])
+            self.assertLess(max(abs(x - y) for x, y in zip(tip, t)), 1e-9)
+            self.assertLess(max(abs(x - y) for x, y in zip(axis, a)), 1e-9)
+        rc, out, err = run("--workpiece", work, "--robot", robot, "--path", p, *BASE, "--json", path("ur5_p.json"))
+        self.assertEqual(rc, 0, err + out)
+        self.assertEqual(load(path("ur5_p.json"))["options"]["interpolate"], "pose")
+        far = write("ur5_far.csv", "px,py,pz,ax,ay,az\n0,0,5000,0,0,1\n")
+        cli_common.assert_input_error(self, ["sweep", "--workpiece", work, "--robot", robot, "--path", far, *BASE,
+                                             "--interpolate", "joint"], ["ur5_far.csv:2:", "unreachable"])
 
 
 class SweepPaperLevels(unittest.TestCase):
