@@ -22,9 +22,11 @@
 #include <limits>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "interfere/bearing/analytic.h"
+#include "interfere/bearing/part_pair.h"
 #include "interfere/bearing/scarred.h"
 #include "interfere/bearing/simulation.h"
 #include "interfere/bearing/window.h"
@@ -248,6 +250,67 @@ BENCHMARK(BM_SimulationScarsInRange)
     ->UseManualTime()
     ->Iterations(5)
     ->Unit(benchmark::kMillisecond);
+
+// Issue #27 (Table 3's regression after the two-sided intact rows, 83d6707): the cost of one intact
+// row of the Table 3 simulation (1,024 colliders, BM_Simulation's parameters) split by direction, on
+// the simulation's own poses of its first 20 frames. Argument: 0 = s(A, B) (roller into partner),
+// 1 = s(B, A) (partner into roller), 2 = both directions (two_sided_cylinder_distance, as the rows
+// were computed from 83d6707 on), 3 = intact_row_distance (the rows now: the reverse only when its
+// lower bound is below the forward value). Counters: the share of calls by AnalyticPath
+// (path_<name>) and, for 3, the share of rows that needed the reverse direction (reverse_needed).
+void BM_IntactRowDirections(benchmark::State& state) {
+  SceneParams p;
+  p.pairs = 512, p.frames = 20;
+  p.roller = {.radius = kr, .height = kH, .radial_segments = 64, .height_segments = 63};
+  p.gap = kGap;
+  p.max_tilt_deg = kAlpha / kDeg;
+  p.scar_fraction = 0.5;
+  p.scar = {.angle_center_deg = 0, .angle_width_deg = 40, .z_min = 0, .z_max = kH, .depth = 0.1, .seed = 3};
+  const Expected<SimulationResult> r = simulate(p, true);
+  if (!r) {
+    state.SkipWithError(r.error().reason.c_str());
+    return;
+  }
+  std::vector<std::pair<Cylinder, Cylinder>> rows;
+  for (std::size_t i = 0; i < r->roller_poses.size(); ++i) {
+    const int k = static_cast<int>(i % static_cast<std::size_t>(p.pairs));
+    if (r->pair_variant[static_cast<std::size_t>(k)] >= 0) continue;  // intact rollers only
+    rows.emplace_back(posed_cylinder(kr, p.roller.top_radius, kH, r->roller_poses[i]),
+                      posed_cylinder(p.partner_radius, -1, p.partner_height, partner_pose(p, r->spacing, k)));
+  }
+  const int mode = static_cast<int>(state.range(0));
+  std::vector<int> paths(16, 0);
+  std::size_t next = 0;
+  for (auto _ : state) {
+    const auto& [a, b] = rows[next];
+    next = next + 1 == rows.size() ? 0 : next + 1;
+    const PairDistance pd = mode == 0   ? cylinder_pair_distance(a, b)
+                            : mode == 1 ? cylinder_pair_distance(b, a)
+                            : mode == 2 ? two_sided_cylinder_distance(a, b)
+                                        : intact_row_distance(a, b);
+    benchmark::DoNotOptimize(pd);
+    if (static_cast<std::size_t>(state.iterations()) <= rows.size()) ++paths[static_cast<std::size_t>(pd.path)];
+  }
+  int total = 0;
+  for (int c : paths) total += c;
+  for (std::size_t q = 0; q < paths.size(); ++q)
+    if (paths[q] > 0)
+      state.counters[std::string("path_") + analytic_path_name(static_cast<AnalyticPath>(q))] =
+          static_cast<double>(paths[q]) / total;
+  if (mode == 3) {  // the rows whose forward value the reverse's lower bound did not certify
+    int needed = 0;
+    for (const auto& [a, b] : rows) {
+      const double fwd = cylinder_pair_distance(a, b).distance;
+      needed += !(fwd > 0) && !(intact_reverse_lower_bound(a, b) >= fwd);
+    }
+    state.counters["reverse_needed"] = static_cast<double>(needed) / static_cast<double>(rows.size());
+  }
+  state.counters["rows"] = static_cast<double>(rows.size());
+  static const char* const kLabel[] = {"forward s(roller, partner)", "reverse s(partner, roller)",
+                                       "both directions (83d6707)", "intact_row_distance (now)"};
+  state.SetLabel(kLabel[mode]);
+}
+BENCHMARK(BM_IntactRowDirections)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
 
 // Table 2: error of each method as the vertex count grows, the largest over 32 poses (spin swept
 // in steps of 0.437 degrees, so that the contact point falls anywhere between vertices):
