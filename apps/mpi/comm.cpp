@@ -53,7 +53,7 @@ int broadcast(int value) {
 }
 
 void abort_job(const World& w, const std::string& message) {
-  std::fprintf(stderr, "[interfere-mpi] rank %d: error: %s\n", w.rank, message.c_str());
+  std::fprintf(stderr, "interfere: error: rank %d: %s\n", w.rank, message.c_str());
   std::fflush(stderr);
   MPI_Abort(MPI_COMM_WORLD, 2);
   std::exit(2);

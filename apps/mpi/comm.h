@@ -19,7 +19,7 @@ std::vector<std::string> gather(const std::string& mine);
 /// Rank 0's value on every rank.
 int broadcast(int value);
 
-/// Prints "[interfere-mpi] rank R: error: MESSAGE" on stderr and ends the whole job with exit
+/// Prints "interfere: error: rank R: MESSAGE" on stderr and ends the whole job with exit
 /// status 2 (MPI_Abort): a failure only this rank sees (a body it cannot read, memory).
 [[noreturn]] void abort_job(const World& w, const std::string& message);
 

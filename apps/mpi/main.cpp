@@ -72,7 +72,14 @@ const char* kUsage =
     "         [--group-distance D] [--test TEXT]... [--tests FILE] [--clearance D] [--tolerance T] [--fail-on LIST]\n"
     "         [--field NAME] [--disp FILE] [--scale S] [--split MODE] [--linear-faces] [--no-reference]\n"
     "         [--threads N] [--cost-model PAIR_S,PAIR_TRI_S,BODY_TRI_S,READ_TRI_S] [--quiet]\n"
-    "The report is the one of `interfere clash --scene FILE` (docs/report.md) plus \"mpi\"; docs/mpi.md.\n";
+    "The report is the one of `interfere clash --scene FILE` (docs/report.md) plus \"mpi\"; docs/mpi.md.\n"
+    "Exit status: 0 clear, contact or clearance; 1 clash (or a verdict named by --fail-on); 2 usage or input error,\n"
+    "on any rank (message on stderr, nothing written); 3 undecided.\n";
+
+// --help and --version: printed on stdout by rank 0, exit status 0 (the CLI's conventions, issue #30 item 5).
+struct InfoRequest {
+  std::string text;
+};
 
 // Options of `interfere clash` that interfere-mpi does not offer, and why (docs/mpi.md, "Options").
 const char* not_offered(const std::string& flag) {
@@ -111,6 +118,8 @@ const char* not_offered(const std::string& flag) {
 
 Options parse(int argc, char** argv) {
   Options o;
+  if (argc >= 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h")) throw InfoRequest{kUsage};
+  if (argc >= 2 && std::string(argv[1]) == "--version") throw InfoRequest{std::string("interfere-mpi ") + INTERFERE_VERSION + "\n"};
   if (argc < 2 || std::string(argv[1]) != "clash") throw UsageError(std::string("the command is `clash`\n") + kUsage);
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
@@ -171,7 +180,8 @@ Options parse(int argc, char** argv) {
       if (c.size() != 4) throw UsageError("--cost-model: '" + v + "' is not four numbers PAIR_S,PAIR_TRI_S,BODY_TRI_S,READ_TRI_S");
       o.cost = {.pair_s = c[0], .pair_tri_s = c[1], .body_tri_s = c[2], .read_tri_s = c[3]};
     } else if (a == "--quiet" || a == "-q") o.quiet = true;
-    else if (a == "--help" || a == "-h") throw UsageError(kUsage);
+    else if (a == "--help" || a == "-h") throw InfoRequest{kUsage};
+    else if (a == "--version") throw InfoRequest{std::string("interfere-mpi ") + INTERFERE_VERSION + "\n"};
     else if (!a.starts_with("-"))
       throw UsageError("'" + a + "': interfere-mpi takes no input files on the command line: list every body in the --scene file");
     else throw UsageError("unknown option " + a + "\n" + kUsage);
@@ -306,8 +316,8 @@ int run(const World& w, int argc, char** argv) {
       if (t[0] == 'E') {
         failed = true;
         if (w.rank == r && (r == 0 || t != tokens[0]))
-          std::fprintf(stderr, "[interfere-mpi] %s%s\n", r == 0 ? "" : ("rank " + std::to_string(r) + ": ").c_str(),
-                       ("error: " + t.substr(1)).c_str());
+          std::fprintf(stderr, "interfere: error: %s%s\n", r == 0 ? "" : ("rank " + std::to_string(r) + ": ").c_str(),
+                       t.substr(1).c_str());
       }
     }
     if (failed) return 2;
@@ -703,9 +713,12 @@ int main(int argc, char** argv) {
       return status;
     }
     status = interfere::mpi::run(w, argc, argv);
+  } catch (const interfere::mpi::InfoRequest& info) {
+    if (w.rank == 0) std::fputs(info.text.c_str(), stdout);
+    status = 0;
   } catch (const interfere::mpi::UsageError& e) {
     // (found alike by every rank: rank 0 says it; a rank that alone finds one ends the job)
-    if (w.rank == 0) std::fprintf(stderr, "[interfere-mpi] error: %s\n", e.what());
+    if (w.rank == 0) std::fprintf(stderr, "interfere: error: %s\n", e.what());
     status = 2;
   } catch (const std::exception& e) {
     interfere::mpi::abort_job(w, e.what());

@@ -37,7 +37,7 @@ int simulate(int argc, char** argv) {
     else if (k == "--sigma") sigma = v;
     else if (k == "--ranks") ranks = {v};
     else {
-      std::fprintf(stderr, "[interfere-mpi] simulate: unknown option %s\n", k.c_str());
+      std::fprintf(stderr, "interfere: error: simulate: unknown option %s\n", k.c_str());
       return 2;
     }
   }

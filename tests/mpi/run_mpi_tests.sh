@@ -68,11 +68,25 @@ check grep -q -- "--html: not offered by interfere-mpi" "$work/tiny/notoffered.e
 check test ! -e "$work/tiny/v.json"
 echo "not offered (--html): rc=$rc"
 
+# The CLI's conventions (issue #30, item 5): --help with the exit statuses and --version on stdout, exit 0;
+# a usage error with the "interfere: error:" prefix, exit 2.
+"${mpirun_[@]}" -n 1 "$mpi" --help >"$work/help.txt" 2>&1
+check test $? = 0
+check grep -q "^Exit status: 0 clear" "$work/help.txt"
+"${mpirun_[@]}" -n 2 "$mpi" clash --version >"$work/version.txt" 2>&1
+check test $? = 0
+check grep -q "^interfere-mpi [0-9]" "$work/version.txt"
+check test "$(grep -c '^interfere-mpi ' "$work/version.txt")" = 1
+(cd "$work/tiny" && "${mpirun_[@]}" -n 2 "$mpi" clash --scene scene.json --bogus >/dev/null 2>bogus.err)
+check test $? = 2
+check grep -q "^interfere: error: unknown option --bogus" "$work/tiny/bogus.err"
+echo "conventions: help, version, error prefix"
+
 # A rank that cannot read a body: exit 2, its message, no report.
 (cd "$work/broken" && "${mpirun_[@]}" -n 3 "$mpi" clash --scene scene.json --json out.json >/dev/null 2>err.txt)
 rc=$?
 check test "$rc" = 2
-check grep -q "rank [0-9]*: error: bad.stl:4: malformed number" "$work/broken/err.txt"
+check grep -q "interfere: error: rank [0-9]*: bad.stl:4: malformed number" "$work/broken/err.txt"
 check test ! -e "$work/broken/out.json"
 echo "broken: rc=$rc"
 
