@@ -79,34 +79,11 @@ int run_scene_clash(const ClashOptions& o, const CLI::App& command, const std::v
   check_units(units);
 
   // Tests: --test texts, then --tests FILE, else the scene file's, else one default test.
-  std::vector<scene::ClashTest> tests;
-  for (const std::string& t : clash_tests) {
-    auto parsed = scene::parse_clash_test(t);
-    if (!parsed) throw InputError("--test \"" + t + "\": " + parsed.error().reason);
-    if (parsed->name == "default" && clash_tests.size() > 1) parsed->name = "test" + std::to_string(tests.size() + 1);
-    tests.push_back(std::move(*parsed));
-  }
-  if (!o.tests_file.empty()) {
-    auto s = scene::read_scene_file(o.tests_file);
-    if (!s) throw InputError(s.error());
-    if (!s->bodies.empty()) throw InputError("--tests " + o.tests_file + ": a tests file holds only \"tests\" (its bodies would be ignored)");
-    tests.insert(tests.end(), s->tests.begin(), s->tests.end());
-  }
-  if (tests.empty()) tests = file_spec.tests;
-  if (tests.empty()) {
-    scene::ClashTest t;
-    t.name = "default";
-    if (o.clearance > 0) t.mode = scene::ClashMode::clearance, t.clearance = o.clearance;
-    t.tolerance = o.tolerance;
-    tests.push_back(t);
-  } else if (command.count("--clearance") + command.count("--tolerance") > 0) {
-    throw InputError("--clearance/--tolerance set the default test; with --test/--tests/scene tests, give them in the tests");
-  }
-  try {
-    for (const scene::ClashTest& t : tests) t.validate();
-  } catch (const std::invalid_argument& e) {
-    throw InputError(e.what());
-  }
+  auto selected = scene::select_clash_tests({.texts = clash_tests, .tests_file = o.tests_file, .scene_tests = file_spec.tests,
+                                             .clearance = o.clearance, .tolerance = o.tolerance,
+                                             .default_options_given = command.count("--clearance") + command.count("--tolerance") > 0});
+  if (!selected) throw InputError(selected.error());
+  const std::vector<scene::ClashTest> tests = std::move(*selected);
 
   // Outputs: checked before any work.
   check_output(o.json, {}, "--json");

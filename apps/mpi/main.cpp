@@ -328,42 +328,12 @@ int run(const World& w, int argc, char** argv) {
   }
   if (spec->bodies.empty()) throw UsageError(o.scene + ": no \"bodies\"");
   const std::string units = !o.units.empty() ? o.units : !spec->units.empty() ? spec->units : "mm";
-  // Tests as `interfere clash --scene`: --test texts, then --tests FILE, else the scene file's, else
-  // one default test (--clearance, --tolerance).
-  std::vector<scene::ClashTest> tests;
-  for (const std::string& t : o.test_texts) {
-    auto parsed = scene::parse_clash_test(t);
-    if (!parsed) throw UsageError("--test \"" + t + "\": " + parsed.error().reason);
-    if (parsed->name == "default" && o.test_texts.size() > 1) parsed->name = "test" + std::to_string(tests.size() + 1);
-    tests.push_back(std::move(*parsed));
-  }
-  if (!o.tests_file.empty()) {
-    auto s = scene::read_scene_file(o.tests_file);
-    if (!s) throw UsageError(s.error().message());
-    if (!s->bodies.empty()) throw UsageError("--tests " + o.tests_file + ": a tests file holds only \"tests\" (its bodies would be ignored)");
-    tests.insert(tests.end(), s->tests.begin(), s->tests.end());
-  }
-  if (tests.empty()) tests = spec->tests;
-  if (tests.empty()) {
-    scene::ClashTest t;
-    t.name = "default";
-    if (o.clearance > 0) t.mode = scene::ClashMode::clearance, t.clearance = o.clearance;
-    t.tolerance = o.tolerance;
-    tests.push_back(t);
-  } else if (o.clearance_given || o.tolerance_given) {
-    throw UsageError("--clearance/--tolerance set the default test; with --test/--tests/scene tests, give them in the tests");
-  }
-  {
-    std::set<std::string> names;
-    for (const scene::ClashTest& t : tests) {
-      try {
-        t.validate();
-      } catch (const std::invalid_argument& e) {
-        throw UsageError(e.what());
-      }
-      if (!names.insert(t.name).second) throw UsageError("clash test '" + t.name + "': duplicate test name");
-    }
-  }
+  // Tests as `interfere clash --scene` (scene::select_clash_tests).
+  auto selected = scene::select_clash_tests({.texts = o.test_texts, .tests_file = o.tests_file, .scene_tests = spec->tests,
+                                             .clearance = o.clearance, .tolerance = o.tolerance,
+                                             .default_options_given = o.clearance_given || o.tolerance_given});
+  if (!selected) throw UsageError(selected.error().message());
+  const std::vector<scene::ClashTest> tests = std::move(*selected);
   const scene::LoadOptions lo{.units = units, .fem_split = o.fem_split, .fem_linear_faces = o.fem_linear_faces,
                               .fem_field = o.fem_field, .fem_disp = o.fem_disp, .fem_scale = o.fem_scale};
 

@@ -51,6 +51,23 @@ struct SceneSpec {
 /// errors naming the file and the JSON path ("scene.json: bodies[2].transform: ...").
 Expected<SceneSpec> read_scene_file(const std::string& path);
 
+/// Where the clash tests of a scene run come from (`interfere clash --scene`, interfere-mpi).
+struct TestSelection {
+  std::vector<std::string> texts;     ///< --test texts, in order
+  std::string tests_file;             ///< --tests FILE: a scene file holding only "tests"
+  std::vector<ClashTest> scene_tests;  ///< the scene file's "tests"
+  double clearance = 0;               ///< --clearance of the default test (> 0: clearance mode)
+  double tolerance = 0;               ///< --tolerance of the default test
+  bool default_options_given = false;  ///< --clearance or --tolerance was on the command line
+};
+
+/// The tests of a scene run: the --test texts (several unnamed ones become "test1", "test2", ...),
+/// then the tests of the --tests file, else the scene file's tests, else one test "default" from
+/// clearance and tolerance. Errors (naming the option or file): a text that does not parse, a
+/// tests file with bodies, --clearance/--tolerance beside explicit tests, an invalid test
+/// (ClashTest::validate), a duplicate test name.
+Expected<std::vector<ClashTest>> select_clash_tests(const TestSelection& selection);
+
 /// Reads motion into `scene` (its bodies must be in place): CSV with the header
 /// "frame,body,r00,r01,r02,tx,r10,r11,r12,ty,r20,r21,r22,tz" (optional column "time" after
 /// "frame"), one row per body and frame, frames in ascending order (integers, consecutive rows of
