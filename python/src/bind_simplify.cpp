@@ -412,10 +412,12 @@ void bind_simplify(py::module_& m) {
          const std::string& process_file, const std::string& step, bool lock, const std::string& feature_mode,
          const std::string& seams, bool prevent_self_intersections, bool measure_error, double max_error,
          double linear_deflection, double angular_deflection, const std::string& library_file,
-         const std::string& rules_file) {
+         const std::string& rules_file, bool mates, const std::string& mesher) {
         if (process_file.empty() != step.empty()) throw py::value_error("process and step go together");
         if ((target > 0) + (ratio > 0) + (renderer_max > 0) != 1)
           throw py::value_error("give one of target, ratio or renderer_max");
+        if (mesher != "default" && mesher != "delabella")
+          throw py::value_error("mesher must be 'default' or 'delabella', not '" + mesher + "'");
         SimplifyOptions o;
         o.target_triangles = target;
         o.ratio = ratio;
@@ -428,8 +430,11 @@ void bind_simplify(py::module_& m) {
         Expected<cad::AssemblySimplifyResult> r = Error{};
         {
           py::gil_scoped_release release;
+          // mates as the CLI's --mates auto|off (issue #29, item 4): on by default; ignored with a process
+          // (cad::PipelineOptions::mates), so a process step's features are kept either way.
           prep = cad::prepare_for_simplify(path.string(), {linear_deflection, angular_deflection, library_file,
-                                                           rules_file, process_file, step});
+                                                           rules_file, process_file, step, mates,
+                                                           mesher == "delabella"});
           if (prep && renderer_max > 0) {  // the total from the renderer's maximum (docs/simplify.md "Budget")
             const std::size_t f = count_feature_triangles(prep->face_ids, prep->feature_faces);
             o.target_triangles = std::max<std::size_t>(
@@ -464,9 +469,11 @@ void bind_simplify(py::module_& m) {
       py::arg("feature_mode") = std::string("weight"), py::arg("seams") = std::string("auto"),
       py::arg("prevent_self_intersections") = true, py::arg("measure_error") = true, py::arg("max_error") = 0.0,
       py::arg("linear_deflection") = 0.0, py::arg("angular_deflection") = 0.5, py::arg("library") = std::string(),
-      py::arg("rules") = std::string(),
+      py::arg("rules") = std::string(), py::arg("mates") = true, py::arg("mesher") = std::string("default"),
       "`interfere simplify` of a STEP file: every part simplified on its own to its share of one total budget "
-      "(target, ratio of the model's triangles, or from renderer_max), the step's assembly features kept; parts "
+      "(target, ratio of the model's triangles, or from renderer_max), the step's assembly features kept (without a "
+      "process: those the mates inferred from the geometry pick unless mates=False, as the CLI's default --mates "
+      "auto and --mates off; mates is ignored with a process; mesher: 'default' or 'delabella', as --mesher); parts "
       "that stop early leave the rest to the others. Returns result (SimplifyResult of every instance placed, face "
       "ids as prepare_step's world ids), parts [{name, result (part coordinates), budget (per instance, 0: not "
       "simplified), instances, feature_faces, model_part, tessellation_error}], instances, budget_rounds, features_exceed_budget, "

@@ -4,6 +4,8 @@ Run: PYTHONPATH=build/python python3 -m unittest discover -s python/tests -p 'te
 """
 import json
 import os
+import shutil
+import subprocess
 import tempfile
 import unittest
 
@@ -11,6 +13,15 @@ import interfere as itf
 
 DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tests", "cli", "data")
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+
+
+def cli_path():
+    """The `interfere` CLI: $INTERFERE_CLI, the build tree's (beside the module's build directory), or PATH."""
+    env = os.environ.get("INTERFERE_CLI")
+    if env:
+        return env
+    built = os.path.join(os.path.dirname(os.path.abspath(itf.__file__)), "..", "..", "apps", "cli", "interfere")
+    return built if os.access(built, os.X_OK) else shutil.which("interfere")
 
 
 def cap_faces(mesh):
@@ -357,6 +368,65 @@ class Cad(unittest.TestCase):
                         {"ratio": 0.5, "seams": "some"}, {"ratio": 0.5, "feature_mode": "x"}):
                 with self.assertRaises(ValueError, msg=str(bad)):
                     itf.simplify_step(asm, **bad)
+
+    def cli_simplify(self, d, path, *args):
+        """`interfere simplify PATH out.ply ARGS --json`: its report."""
+        cli = cli_path()
+        if not cli:
+            self.skipTest("no interfere CLI (set INTERFERE_CLI)")
+        report = os.path.join(d, "r.json")
+        p = subprocess.run([cli, "simplify", path, os.path.join(d, "out.ply"), *args, "--json", report],
+                           capture_output=True, text=True, timeout=300)
+        self.assertEqual(p.returncode, 0, p.stderr[-2000:])
+        with open(report) as f:
+            return json.load(f)
+
+    def assert_same_as_cli(self, s, cli):
+        r = s["result"]
+        self.assertEqual(s["report"]["features_from"], cli["cad"]["features_from"])
+        self.assertEqual(s["feature_faces"], cli["feature_faces"])
+        kept = [(p["name"], p.get("assembly_feature_faces", [])) for p in s["report"]["parts"]]
+        self.assertEqual(kept, [(p["name"], p.get("assembly_feature_faces", [])) for p in cli["cad"]["parts"]])
+        self.assertEqual((r.feature_triangles_in, r.feature_triangles_out),
+                         (cli["feature_triangles"]["input"], cli["feature_triangles"]["output"]))
+        self.assertEqual((r.input_triangles, len(r.mesh.triangles)), (cli["input_triangles"], cli["output_triangles"]))
+
+    def test_simplify_step_mates_by_default_as_the_cli(self):
+        # Issue #29, item 4: without a process both keep what the inferred mates pick by default
+        # (the CLI's --mates auto); mates=False is --mates off and keeps nothing.
+        joint = os.path.join(DATA, "bolted_joint.step")
+        with tempfile.TemporaryDirectory() as d:
+            s = itf.simplify_step(joint, ratio=0.5)
+            self.assertEqual(s["report"]["features_from"], "mates")
+            self.assertEqual(len(s["report"]["mates"]), 11)
+            self.assertTrue(all(p["feature_faces"] for p in s["parts"]))  # every part of the joint mates
+            self.assertGreater(s["result"].feature_triangles_in, 0)
+            self.assert_same_as_cli(s, self.cli_simplify(d, joint, "--ratio", "0.5"))
+            off = itf.simplify_step(joint, ratio=0.5, mates=False)
+            self.assertEqual(off["report"]["features_from"], "none")
+            self.assertEqual(off["feature_faces"], [])
+            self.assertEqual(off["result"].feature_triangles_in, 0)
+            self.assertNotEqual(off["feature_faces"], s["feature_faces"])
+            self.assert_same_as_cli(off, self.cli_simplify(d, joint, "--ratio", "0.5", "--mates", "off"))
+            # mesher: the same features on Delabella's triangles, as --mesher delabella.
+            fast = itf.simplify_step(joint, ratio=0.5, mesher="delabella")
+            self.assertEqual(fast["feature_faces"], s["feature_faces"])
+            self.assert_same_as_cli(fast, self.cli_simplify(d, joint, "--ratio", "0.5", "--mesher", "delabella"))
+            with self.assertRaisesRegex(ValueError, "mesher"):
+                itf.simplify_step(joint, ratio=0.5, mesher="fast")
+
+    def test_simplify_step_with_a_process_ignores_mates_as_the_cli(self):
+        # With a process the step's features are kept whatever mates says (the CLI ignores --mates).
+        asm = os.path.join(DATA, "assembly.step")
+        with tempfile.TemporaryDirectory() as d:
+            proc = plate_2_screw_process(d)
+            s = itf.simplify_step(asm, target=400, process=proc, step="P1")
+            self.assertEqual(s["report"]["features_from"], "process")
+            self.assertGreater(len(s["feature_faces"]), 0)
+            off = itf.simplify_step(asm, target=400, process=proc, step="P1", mates=False)
+            self.assertEqual(off["feature_faces"], s["feature_faces"])
+            self.assertEqual(off["result"].feature_triangles_out, s["result"].feature_triangles_out)
+            self.assert_same_as_cli(s, self.cli_simplify(d, asm, "--target", "400", "--process", proc, "--step", "P1"))
 
 
 if __name__ == "__main__":
