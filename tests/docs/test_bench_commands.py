@@ -22,8 +22,7 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from test_docs import commands  # noqa: E402
-from test_readme import blocks  # noqa: E402
+from doc_blocks import blocks, commands  # noqa: E402
 
 
 def cmake_text(source):

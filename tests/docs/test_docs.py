@@ -46,49 +46,10 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(HERE, "..", "cli"))
-from test_readme import blocks  # noqa: E402
+from doc_blocks import blocks, build_cpp_snippet, commands, ctest_names  # noqa: E402
 import report_schema  # noqa: E402
 
 NO_CAD = "interfere built with OpenCASCADE"
-
-
-def ctest_names(source):
-    """The add_test(NAME ...) names of every CMakeLists.txt of the source tree (build trees skipped)."""
-    names = set()
-    for root, dirs, files in os.walk(source):
-        dirs[:] = [d for d in dirs if not d.startswith(("build", ".")) and d not in ("node_modules", "shared")]
-        if "CMakeLists.txt" in files:
-            with open(os.path.join(root, "CMakeLists.txt")) as f:
-                names.update(re.findall(r"add_test\s*\(\s*NAME\s+([A-Za-z0-9_.-]+)", f.read()))
-    return names
-
-
-def commands(body):
-    """Commands of a shell block: continuation lines joined, comment lines skipped, a here-document
-    kept with its command."""
-    out, cur, heredoc = [], "", None
-    for line in body.split("\n"):
-        if heredoc is not None:
-            cur += "\n" + line
-            if line.strip() == heredoc:
-                out.append(cur)
-                cur, heredoc = "", None
-            continue
-        if not cur and (not line.strip() or line.lstrip().startswith("#")):
-            continue
-        if line.endswith("\\"):
-            cur += line[:-1] + " "
-            continue
-        m = re.search(r"<<-?\s*'?\"?([A-Za-z_]+)'?\"?", line)
-        if m and "#" not in line[:m.start()]:
-            cur += line
-            heredoc = m.group(1)
-            continue
-        out.append(cur + line)
-        cur = ""
-    if heredoc is not None:
-        raise ValueError("unclosed here-document (%s)" % heredoc)
-    return out
 
 
 class Doc:
@@ -186,21 +147,10 @@ class Doc:
             self.fail(where, "exit status %d\n%s%s" % (p.returncode, p.stdout[-2000:], p.stderr[-3000:]))
 
     def cpp(self, where, line_no, body, attrs):
-        proj = os.path.join(self.work, "cpp_%d" % line_no)
-        os.makedirs(proj)
-        with open(os.path.join(proj, "main.cpp"), "w") as f:
-            f.write(body + "\n")
-        with open(os.path.join(proj, "CMakeLists.txt"), "w") as f:
-            f.write("cmake_minimum_required(VERSION 3.25)\nproject(doc_snippet CXX)\n"
-                    "set(CMAKE_CXX_STANDARD 20)\nfind_package(interfere REQUIRED)\n"
-                    "add_executable(app main.cpp)\ntarget_link_libraries(app PRIVATE interfere::core)\n")
-        build = os.path.join(proj, "build")
-        for step in (["cmake", "-S", proj, "-B", build, "-DCMAKE_BUILD_TYPE=Release", "-DCMAKE_PREFIX_PATH=" + self.stage],
-                     ["cmake", "--build", build, "-j2"]):
-            p = subprocess.run(step, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-            if p.returncode != 0:
-                return self.fail(where, "%s failed\n%s" % (" ".join(step[:2]), p.stdout[-3000:]))
-        p = self.run([os.path.join(build, "app")], timeout=300)
+        app, error = build_cpp_snippet(os.path.join(self.work, "cpp_%d" % line_no), body, self.stage)
+        if error:
+            return self.fail(where, error)
+        p = self.run([app], timeout=300)
         want = int(attrs.get("exit", "0"))
         if p.returncode != want:
             self.fail(where, "the program exited %d (the doc says %d): %r %r" % (p.returncode, want, p.stdout, p.stderr))

@@ -28,45 +28,8 @@ import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "cli"))
 import report_schema  # noqa: E402  (reports the commands write, against docs/schema)
-
-
-def blocks(text):
-    out, cur, info, line_no = [], None, None, 0
-    for i, line in enumerate(text.split("\n"), 1):
-        m = re.match(r"^```(.*)$", line)
-        if m and cur is None:
-            cur, info, line_no = [], m.group(1).strip(), i
-        elif line.startswith("```") and cur is not None:
-            out.append((line_no, info, "\n".join(cur)))
-            cur = None
-        elif cur is not None:
-            cur.append(line)
-    if cur is not None:
-        raise SystemExit("README.md:%d: unclosed code block" % line_no)
-    return out
-
-
-def commands(body):
-    """Commands of a shell block: continuation lines joined, comment lines skipped."""
-    out, cur = [], ""
-    for line in body.split("\n"):
-        if not cur and (not line.strip() or line.lstrip().startswith("#")):
-            continue
-        if line.endswith("\\"):
-            cur += line[:-1] + " "
-            continue
-        out.append(cur + line)
-        cur = ""
-    return out
-
-
-def ctest_names(source):
-    names = set()
-    for root, _, files in os.walk(os.path.join(source, "tests")):
-        for f in files:
-            if f == "CMakeLists.txt":
-                names.update(re.findall(r"add_test\s*\(\s*NAME\s+([A-Za-z0-9_.-]+)", open(os.path.join(root, f)).read()))
-    return names
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from doc_blocks import blocks, build_cpp_snippet, commands, ctest_names  # noqa: E402
 
 
 def main():
@@ -112,23 +75,11 @@ def main():
                 except (AssertionError, ValueError) as e:
                     failures.append("%s: `%s`: %s" % (where, cmd, e))
         elif lang == "cpp":
-            proj = os.path.join(work, "cpp_%d" % line_no)
-            os.makedirs(proj)
-            with open(os.path.join(proj, "main.cpp"), "w") as f:
-                f.write(body + "\n")
-            with open(os.path.join(proj, "CMakeLists.txt"), "w") as f:
-                f.write("cmake_minimum_required(VERSION 3.25)\nproject(readme_snippet CXX)\n"
-                        "set(CMAKE_CXX_STANDARD 20)\nfind_package(interfere REQUIRED)\n"
-                        "add_executable(app main.cpp)\ntarget_link_libraries(app PRIVATE interfere::core)\n")
-            build = os.path.join(proj, "build")
-            for step in (["cmake", "-S", proj, "-B", build, "-DCMAKE_BUILD_TYPE=Release", "-DCMAKE_PREFIX_PATH=" + stage],
-                         ["cmake", "--build", build, "-j2"]):
-                p = subprocess.run(step, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-                if p.returncode != 0:
-                    failures.append("%s: %s failed\n%s" % (where, " ".join(step[:2]), p.stdout[-3000:]))
-                    break
+            app, error = build_cpp_snippet(os.path.join(work, "cpp_%d" % line_no), body, stage)
+            if error:
+                failures.append("%s: %s" % (where, error))
             else:
-                p = subprocess.run([os.path.join(build, "app")], cwd=work, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                p = subprocess.run([app], cwd=work, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                                    text=True, timeout=300)
                 if p.returncode != 1 or not p.stdout.startswith("clash:"):
                     failures.append("%s: the program exited %d (want 1, a clash) and printed %r %r" %
