@@ -337,7 +337,7 @@ void bind_simplify(py::module_& m) {
       },
       py::arg("path"), py::arg("process") = std::string(), py::arg("step") = std::string(),
       py::arg("linear_deflection") = 0.0, py::arg("angular_deflection") = 0.5, py::arg("library") = std::string(),
-      py::arg("rules") = std::string(), py::arg("mates") = false, py::arg("mesher") = std::string("default"),
+      py::arg("rules") = std::string(), py::arg("mates") = true, py::arg("mesher") = std::string("default"),
       "The CLI's STEP pipeline up to simplification (mates=True without a process: the assembly features the mates "
       "inferred from the geometry pick, as `interfere simplify --mates auto`; mesher: 'default' or 'delabella', as "
       "--mesher): parts ready for interfere.simplify (name, mesh in part "

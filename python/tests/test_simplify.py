@@ -259,14 +259,16 @@ class Cad(unittest.TestCase):
             self.assertEqual(f["shaft"]["assembly_feature_faces"], [])
 
     def test_prepare_step_with_mates_and_delabella(self):
-        # Issue #29: without a process, mates=True keeps what the mates inferred from the assembly pick
-        # (the CLI test data's bolted joint: every part mates); mesher='delabella' tessellates alike.
+        # Issue #29: without a process, mates=True (the default, as the CLI's --mates auto) keeps what the
+        # mates inferred from the assembly pick (the CLI test data's bolted joint: every part mates);
+        # mates=False keeps none; mesher='delabella' tessellates alike.
         joint = os.path.join(ROOT, "tests", "cli", "data", "bolted_joint.step")
         prep = itf.prepare_step(joint, mates=True)
         self.assertEqual(prep["report"]["features_from"], "mates")
         self.assertEqual(len(prep["report"]["mates"]), 11)
         self.assertTrue(all(p["feature_faces"] for p in prep["parts"]))
-        self.assertTrue(all(not p["feature_faces"] for p in itf.prepare_step(joint)["parts"]))
+        self.assertTrue(all(not p["feature_faces"] for p in itf.prepare_step(joint, mates=False)["parts"]))
+        self.assertEqual([p["feature_faces"] for p in itf.prepare_step(joint)["parts"]], [p["feature_faces"] for p in prep["parts"]])
         fast = itf.prepare_step(joint, mates=True, mesher="delabella")
         self.assertEqual([p["feature_faces"] for p in fast["parts"]], [p["feature_faces"] for p in prep["parts"]])
         with self.assertRaises(ValueError):
