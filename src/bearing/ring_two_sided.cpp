@@ -116,6 +116,17 @@ bool eroded_roller(const Cylinder& roller, double t, Cylinder* out) {
   return true;
 }
 
+// The reverse direction's root function: the roller eroded by t against the unchanged ring part
+// (bore, cup or rib); infinitely apart once the roller has eroded away.
+template <class Part>
+auto eroded_roller_against(const Cylinder& roller, const Part& part, PairDistance (*distance)(const Cylinder&, const Part&)) {
+  return [&roller, &part, distance](double t) -> PairDistance {
+    Cylinder e;
+    if (!eroded_roller(roller, t, &e)) return {kInf, {}, {}, AnalyticPath::apart};
+    return distance(e, part);
+  };
+}
+
 double erosion_root(const std::function<PairDistance(double)>& at, double hi, double tol) {
   double a = 0, b = hi;
   if (!(hi > 0)) return 0;
@@ -187,11 +198,7 @@ TwoSidedRing two_sided_bore(const Cylinder& roller, const Bore& bore, double out
   };
   const double fwd = erosion_root(fwd_at, rf, tol);
   // rev: the eroded roller meets the ring
-  const auto rev_at = [&](double t) -> PairDistance {
-    Cylinder e;
-    if (!eroded_roller(roller, t, &e)) return {kInf, {}, {}, AnalyticPath::apart};
-    return roller_bore_distance(e, bore);
-  };
+  const auto rev_at = eroded_roller_against(roller, bore, &roller_bore_distance);
   const double rev = erosion_root(rev_at, rf, tol);
   out.forward = fwd, out.reverse = rev;
   if (rev >= fwd) return from_reverse(roller, rev_at(rev), rev, out);
@@ -249,11 +256,7 @@ TwoSidedRing two_sided_cup(const Cylinder& roller, const Cup& cup, double outer_
     return outside_free ? d : outside_checked(d, roller, cup.base, a, t, cup.width - t, outer_radius - t, false, &unsure);
   };
   const double fwd = erosion_root(fwd_at, rf, tol);
-  const auto rev_at = [&](double t) -> PairDistance {
-    Cylinder e;
-    if (!eroded_roller(roller, t, &e)) return {kInf, {}, {}, AnalyticPath::apart};
-    return roller_cup_distance(e, cup);
-  };
+  const auto rev_at = eroded_roller_against(roller, cup, &roller_cup_distance);
   // (i) bounds rev by rf only for a roller within the width; else up to the roller's inradius
   const double hi = within ? rf : std::min(roller.height / 2, std::min(roller.radius, roller.top()));
   const double rev = erosion_root(rev_at, hi, tol);
@@ -312,11 +315,7 @@ TwoSidedRing two_sided_rib(const Cylinder& roller, const Rib& rib, double thickn
     return roller_rib_distance(roller, e);
   };
   const double fwd = erosion_root(fwd_at, rf, tol);
-  const auto rev_at = [&](double t) -> PairDistance {
-    Cylinder e;
-    if (!eroded_roller(roller, t, &e)) return {kInf, {}, {}, AnalyticPath::apart};
-    return roller_rib_distance(e, rib);
-  };
+  const auto rev_at = eroded_roller_against(roller, rib, &roller_rib_distance);
   const double rev = erosion_root(rev_at, rf, tol);
   out.forward = fwd, out.reverse = rev;
   if (rev >= fwd) return from_reverse(roller, rev_at(rev), rev, out);
