@@ -8,7 +8,6 @@
 #include <functional>
 
 #include "interfere/bearing/scarred.h"
-#include "interfere/bearing/simulation.h"
 #include "interfere/query/clash.h"
 #include "interfere/query/model.h"
 
@@ -112,16 +111,6 @@ Verdict bracket_verdict(double lo, double hi, double tol, double clearance) {
 }
 
 }  // namespace
-
-PairDistance two_sided_cylinder_distance(const Cylinder& a, const Cylinder& b) {
-  PairDistance fwd = cylinder_pair_distance(a, b);
-  const PairDistance rev = cylinder_pair_distance(b, a);
-  if (rev.distance < fwd.distance) {
-    fwd.distance = rev.distance, fwd.point_a = rev.point_b, fwd.point_b = rev.point_a;  // on a, on b
-    fwd.path = rev.path;
-  }
-  return fwd;
-}
 
 PartPairResult decide_part_pair(const ScenePart& x, const ScenePart& y, double clearance) {
   // roles: B must be an intact cylinder; prefer a partner as B (a roller against a partner is the

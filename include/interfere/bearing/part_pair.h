@@ -114,6 +114,19 @@ struct PartPairResult {
 /// (the forward one on a tie). For the simulation's own roller-partner rows.
 PairDistance two_sided_cylinder_distance(const Cylinder& a, const Cylinder& b);
 
+/// The two-sided value S = min(s(A, B), s(B, A)) of an intact untapered roller A and an untapered
+/// partner B, as the simulation's rows use it (issue #27): the value of two_sided_cylinder_distance
+/// (above; bitwise when the reverse is computed or skipped by the bound, to rounding when apart),
+/// the reverse direction computed only when it can be the smaller one. Skipped when A and B are
+/// apart (s(A, B) > 0: two convex solids at their Euclidean distance, which is symmetric) or when intact_reverse_lower_bound is not below s(A, B).
+PairDistance intact_row_distance(const Cylinder& a, const Cylinder& b);
+
+/// A lower bound of s(B, A) for untapered A and B (-inf when their axes are more than 60 degrees
+/// apart): planes across A's axis, sd_A >= max(rho_A - r, -z, z - h) on them, rho_A at least the
+/// distance from A's axis to the section of B's infinite cylinder (convex in z: secants of exact
+/// samples extended below it); cylinder_two_sided.cpp.
+double intact_reverse_lower_bound(const Cylinder& a, const Cylinder& b);
+
 /// Decides any two distinct parts of a scene (above). Deterministic (no temporal state).
 PartPairResult decide_part_pair(const ScenePart& x, const ScenePart& y, double clearance);
 

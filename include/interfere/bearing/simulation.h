@@ -105,19 +105,6 @@ struct SimulationResult {
   std::vector<std::int32_t> pair_variant;
 };
 
-/// The two-sided value S = min(s(A, B), s(B, A)) of an intact untapered roller A and an untapered
-/// partner B, as the simulation's rows use it (issue #27): the value of two_sided_cylinder_distance
-/// (part_pair.h; bitwise when the reverse is computed or skipped by the bound, to rounding when apart),
-/// the reverse direction computed only when it can be the smaller one. Skipped when A and B are apart (s(A, B) > 0: two convex solids at their Euclidean
-/// distance, which is symmetric) or when intact_reverse_lower_bound is not below s(A, B).
-PairDistance intact_row_distance(const Cylinder& a, const Cylinder& b);
-
-/// A lower bound of s(B, A) for untapered A and B (-inf when their axes are more than 60 degrees
-/// apart): planes across A's axis, sd_A >= max(rho_A - r, -z, z - h) on them, rho_A at least the
-/// distance from A's axis to the section of B's infinite cylinder (convex in z: secants of exact
-/// samples extended below it); simulation.cpp.
-double intact_reverse_lower_bound(const Cylinder& a, const Cylinder& b);
-
 /// Where the partner (the cylinder B) of pair k stands: body frame (axis +z from its base) -> world,
 /// for the grid pitch `spacing` (SimulationResult::spacing).
 Transform partner_pose(const SceneParams& p, double spacing, int k);
