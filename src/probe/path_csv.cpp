@@ -5,35 +5,11 @@
 #include <fstream>
 #include <sstream>
 
+#include "interfere/core/text_cells.h"
 #include "interfere/probe/path.h"
 
 namespace interfere::probe {
 namespace {
-
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
-  return s;
-}
-
-std::vector<std::string_view> split(std::string_view line) {
-  std::vector<std::string_view> out;
-  std::size_t start = 0;
-  for (std::size_t i = 0; i <= line.size(); ++i) {
-    if (i == line.size() || line[i] == ',') {
-      out.push_back(trim(line.substr(start, i - start)));
-      start = i + 1;
-    }
-  }
-  return out;
-}
-
-bool parse_double(std::string_view s, double& v) {
-  if (s.empty()) return false;
-  if (s.front() == '+') s.remove_prefix(1);
-  const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
-  return r.ec == std::errc() && r.ptr == s.data() + s.size() && std::isfinite(v);
-}
 
 std::string fmt(double v) {
   char buf[32];
@@ -65,7 +41,7 @@ Status read_header(const std::vector<std::string>& cols, const std::string& file
   };
   for (std::size_t i = 0; i < cols.size(); ++i) {
     double dummy;
-    if (cols[i].empty() || parse_double(cols[i], dummy)) {
+    if (cols[i].empty() || parse_finite_cell(cols[i], dummy)) {
       return fail(i + 1, "must be a name, got '" + cols[i] + "' (the first non-comment row is the header)");
     }
   }
@@ -139,14 +115,14 @@ Expected<ProbePath> parse_path_csv(std::string_view text, const std::string& fil
   while (pos <= text.size()) {
     std::size_t end = text.find('\n', pos);
     if (end == std::string_view::npos) end = text.size();
-    const std::string_view line = trim(text.substr(pos, end - pos));
+    const std::string_view line = trim_blanks(text.substr(pos, end - pos));
     ++line_no;
     pos = end + 1;
     if (line.empty() || line.front() == '#') {
       if (end == text.size()) break;
       continue;
     }
-    const std::vector<std::string_view> f = split(line);
+    const std::vector<std::string_view> f = split_csv_cells(line);
     if (!have_header) {
       have_header = true;
       for (auto s : f) header.emplace_back(s);
@@ -162,7 +138,7 @@ Expected<ProbePath> parse_path_csv(std::string_view text, const std::string& fil
     }
     std::vector<double> v(path.columns.size());
     for (std::size_t i = 0; i < f.size(); ++i) {
-      if (!parse_double(f[i], v[slot[i]])) {
+      if (!parse_finite_cell(f[i], v[slot[i]])) {
         return Error{.file = file, .line = line_no,
                      .reason = "field '" + header[i] + "' (column " + std::to_string(i + 1) +
                                "): not a finite number: '" + std::string(f[i]) + "'"};

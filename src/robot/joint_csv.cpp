@@ -1,34 +1,12 @@
 // Joint paths matched by joint name (issue #28, deliverable 2; robot/chain.h, JointPath).
-#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <sstream>
 
+#include "interfere/core/text_cells.h"
 #include "interfere/robot/chain.h"
 
 namespace interfere::robot {
-namespace {
-
-std::string trim(std::string_view s) {
-  std::size_t a = 0, b = s.size();
-  while (a < b && (s[a] == ' ' || s[a] == '\t' || s[a] == '\r')) ++a;
-  while (b > a && (s[b - 1] == ' ' || s[b - 1] == '\t' || s[b - 1] == '\r')) --b;
-  return std::string(s.substr(a, b - a));
-}
-
-std::vector<std::string> split(std::string_view line) {
-  std::vector<std::string> out;
-  std::size_t start = 0;
-  for (std::size_t i = 0; i <= line.size(); ++i) {
-    if (i == line.size() || line[i] == ',') {
-      out.push_back(trim(line.substr(start, i - start)));
-      start = i + 1;
-    }
-  }
-  return out;
-}
-
-}  // namespace
 
 Expected<JointPath> parse_joint_csv(std::string_view text, const std::string& file,
                                     const Chain& chain) {
@@ -40,14 +18,14 @@ Expected<JointPath> parse_joint_csv(std::string_view text, const std::string& fi
   while (pos <= text.size()) {
     std::size_t end = text.find('\n', pos);
     if (end == std::string_view::npos) end = text.size();
-    const std::string line = trim(text.substr(pos, end - pos));
+    const std::string_view line = trim_blanks(text.substr(pos, end - pos));
     pos = end + 1;
     ++line_no;
     if (line.empty() || line[0] == '#') {
       if (end == text.size()) break;
       continue;
     }
-    const std::vector<std::string> cells = split(line);
+    const std::vector<std::string_view> cells = split_csv_cells(line);
     if (!header) {
       header = true;
       std::vector<bool> seen(chain.dof(), false);
@@ -59,14 +37,14 @@ Expected<JointPath> parse_joint_csv(std::string_view text, const std::string& fi
             names += (names.empty() ? "" : ", ") + chain.joints[k].name;
           return Error{.file = file,
                        .line = line_no,
-                       .reason = "column " + std::to_string(c + 1) + " '" + cells[c] +
+                       .reason = "column " + std::to_string(c + 1) + " '" + std::string(cells[c]) +
                                  "': not a movable joint of robot '" + chain.name + "' (" + names +
                                  ")"};
         }
         if (seen[m]) {
           return Error{.file = file,
                        .line = line_no,
-                       .reason = "column " + std::to_string(c + 1) + " '" + cells[c] +
+                       .reason = "column " + std::to_string(c + 1) + " '" + std::string(cells[c]) +
                                  "': joint named twice"};
         }
         seen[m] = true;
@@ -93,21 +71,17 @@ Expected<JointPath> parse_joint_csv(std::string_view text, const std::string& fi
     for (std::size_t c = 0; c < cells.size(); ++c) {
       const ChainJoint& j = chain.joints[chain.movable[column_joint[c]]];
       double v = 0;
-      const char* b = cells[c].data();
-      const char* e = b + cells[c].size();
-      if (b != e && *b == '+') ++b;
-      const auto r = std::from_chars(b, e, v);
-      if (cells[c].empty() || r.ec != std::errc() || r.ptr != e || !std::isfinite(v)) {
+      if (!parse_finite_cell(cells[c], v)) {
         return Error{.file = file,
                      .line = line_no,
                      .reason = "column " + std::to_string(c + 1) + " '" + j.name + "': '" +
-                               cells[c] + "' is not a finite number"};
+                               std::string(cells[c]) + "' is not a finite number"};
       }
       if (!(v >= j.lower && v <= j.upper)) {
         return Error{.file = file,
                      .line = line_no,
                      .reason = "column " + std::to_string(c + 1) + " '" + j.name +
-                               "': " + cells[c] + " outside the joint's limits [" +
+                               "': " + std::string(cells[c]) + " outside the joint's limits [" +
                                short_number(j.lower) + ", " + short_number(j.upper) + "] (" +
                                (j.kind == JointKind::prismatic ? "mm" : "degrees") + ")"};
       }

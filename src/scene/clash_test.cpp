@@ -8,15 +8,10 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "interfere/core/text_cells.h"
+
 namespace interfere::scene {
 namespace {
-
-std::string_view trim(std::string_view s) {
-  const auto first = s.find_first_not_of(" \t\r\n");
-  if (first == std::string_view::npos) return {};
-  const auto last = s.find_last_not_of(" \t\r\n");
-  return s.substr(first, last - first + 1);
-}
 
 struct KindName {
   Selector::Kind kind;
@@ -51,18 +46,6 @@ std::size_t match_class(std::string_view pattern, std::size_t p, char c, bool& h
     }
   }
   return std::string_view::npos;
-}
-
-bool parse_number(std::string_view text, double& out) {
-  const char* first = text.data();
-  const char* last = text.data() + text.size();
-  if (first != last && *first == '+') ++first;
-  const auto [ptr, ec] = std::from_chars(first, last, out);
-  if (first == last || ptr != last) return false;
-  // Out of range leaves `out` untouched: strtod gives the overflow (inf) or underflow (0,
-  // denormal).
-  if (ec == std::errc::result_out_of_range) out = std::strtod(std::string(text).c_str(), nullptr);
-  return ec == std::errc() || ec == std::errc::result_out_of_range;
 }
 
 }  // namespace
@@ -111,14 +94,14 @@ bool glob_match(std::string_view pattern, std::string_view text) {
 }
 
 Expected<Selector> Selector::parse(std::string_view text) {
-  const std::string_view s = trim(text);
+  const std::string_view s = trim_blanks(text);
   if (s.empty())
     return Error{.reason = "empty selector (give \"*\", \"kind:pattern\" or a name glob)"};
   if (s == "*" || s == "all") return Selector{};
   const std::size_t colon = s.find(':');
   if (colon == std::string_view::npos) return Selector{Kind::name, std::string(s)};
-  const std::string_view kind = trim(s.substr(0, colon));
-  const std::string_view pattern = trim(s.substr(colon + 1));
+  const std::string_view kind = trim_blanks(s.substr(0, colon));
+  const std::string_view pattern = trim_blanks(s.substr(colon + 1));
   for (const KindName& k : kKinds) {
     if (kind != k.name) continue;
     if (pattern.empty())
@@ -171,7 +154,7 @@ bool selects(const Selection& s, const Body& body) {
 
 Expected<Selection> parse_selection(std::string_view text) {
   Selection out;
-  if (trim(text).empty()) return Error{.reason = "empty selection (give \"*\" for every body)"};
+  if (trim_blanks(text).empty()) return Error{.reason = "empty selection (give \"*\" for every body)"};
   // Split at commas outside bracket expressions ("name:[a,b]*" is one selector).
   std::size_t start = 0;
   bool in_class = false;
@@ -189,8 +172,8 @@ Expected<Selection> parse_selection(std::string_view text) {
       if (c != ',' || in_class) continue;
     }
     const std::string_view item = text.substr(start, i - start);
-    if (trim(item).empty())
-      return Error{.reason = "selection '" + std::string(trim(text)) +
+    if (trim_blanks(item).empty())
+      return Error{.reason = "selection '" + std::string(trim_blanks(text)) +
                              "': empty selector between commas"};
     auto s = Selector::parse(item);
     if (!s) return s.error();
@@ -213,7 +196,7 @@ const char* clash_mode_name(ClashMode m) {
 }
 
 Expected<ClashMode> parse_clash_mode(std::string_view text) {
-  const std::string_view s = trim(text);
+  const std::string_view s = trim_blanks(text);
   for (const ClashMode m : {ClashMode::hard, ClashMode::clearance, ClashMode::duplicates})
     if (s == clash_mode_name(m)) return m;
   return Error{.reason =
@@ -296,7 +279,7 @@ Expected<ClashTest> parse_clash_test(std::string_view text) {
   auto number = [&](const char* what, double& out) -> Status {
     if (k >= tokens.size())
       return Error{.reason = std::string("'") + what + "' needs a number" + grammar};
-    if (!parse_number(tokens[k], out) || !std::isfinite(out))
+    if (!parse_finite_cell(tokens[k], out))
       return Error{.reason = std::string("'") + what + "' needs a finite number, not '" +
                              std::string(tokens[k]) + "'"};
     ++k;

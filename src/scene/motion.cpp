@@ -11,6 +11,7 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "interfere/core/text_cells.h"
 #include "interfere/scene/io.h"
 #include "json_input.h"
 
@@ -19,12 +20,6 @@ namespace {
 
 constexpr const char* kPoseColumns[12] = {"r00", "r01", "r02", "tx",  "r10", "r11",
                                           "r12", "ty",  "r20", "r21", "r22", "tz"};
-
-std::string_view trim(std::string_view s) {
-  const auto first = s.find_first_not_of(" \t");
-  if (first == std::string_view::npos) return {};
-  return s.substr(first, s.find_last_not_of(" \t") - first + 1);
-}
 
 Transform from_row_major(const double (&v)[12]) {
   Transform t;
@@ -107,26 +102,6 @@ Status install(Scene& scene, std::vector<Frame> frames, const std::string& path)
 
 // ---- CSV ----
 
-std::vector<std::string_view> split(std::string_view line) {
-  std::vector<std::string_view> out;
-  std::size_t start = 0;
-  for (std::size_t i = 0; i <= line.size(); ++i)
-    if (i == line.size() || line[i] == ',')
-      out.push_back(trim(line.substr(start, i - start))), start = i + 1;
-  return out;
-}
-
-bool parse_double(std::string_view s, double& out) {
-  const char* first = s.data();
-  const char* last = s.data() + s.size();
-  if (first != last && *first == '+') ++first;
-  const auto [ptr, ec] = std::from_chars(first, last, out);
-  if (first == last || ptr != last) return false;
-  // Out of range leaves `out` untouched: strtod gives the overflow (inf) or underflow (0,
-  // denormal).
-  if (ec == std::errc::result_out_of_range) out = std::strtod(std::string(s).c_str(), nullptr);
-  return ec == std::errc() || ec == std::errc::result_out_of_range;
-}
 
 Status read_csv(const std::string& path, const std::string& text, Scene& scene) {
   std::size_t pos = text.rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0;  // UTF-8 byte order mark
@@ -145,8 +120,8 @@ Status read_csv(const std::string& path, const std::string& text, Scene& scene) 
     pos = end + 1;
     ++line_no;
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    if (trim(line).empty()) continue;
-    const std::vector<std::string_view> f = split(line);
+    if (trim_blanks(line).empty()) continue;
+    const std::vector<std::string_view> f = split_csv_cells(line);
     if (!header) {
       has_time = f.size() > 1 && f[1] == "time";
       std::vector<std::string> want = {"frame"};
@@ -180,7 +155,7 @@ Status read_csv(const std::string& path, const std::string& text, Scene& scene) 
     double time = static_cast<double>(number);
     if (has_time) {
       const std::string_view s = f[c++];
-      if (!parse_double(s, time) || !std::isfinite(time))
+      if (!parse_finite_cell(s, time))
         return fail("time: '" + std::string(s) + "' is not a finite number");
     }
     const std::string_view id = f[c++];
@@ -189,7 +164,7 @@ Status read_csv(const std::string& path, const std::string& text, Scene& scene) 
     double v[12];
     for (int k = 0; k < 12; ++k) {
       const std::string_view s = f[c++];
-      if (!parse_double(s, v[k]) || !std::isfinite(v[k]))
+      if (!parse_finite_cell(s, v[k]))
         return fail(std::string(kPoseColumns[k]) + ": '" + std::string(s) +
                     "' is not a finite number");
     }
