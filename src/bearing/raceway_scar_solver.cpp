@@ -1,0 +1,183 @@
+// A roller against a scarred raceway (raceway_scar_solver.h; issue #27): the raceway term by
+// scarred.h's exact branch and bound over the raceway grid's quadtree (Jia & Zheng 2019, §3.2, with
+// the raceway as the scarred part), the roller term by the same solver on the roller (convex
+// raceway) or by the exact vertex maximum of the meridian distance (concave raceway).
+#include "interfere/bearing/raceway_scar_solver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "interfere/bearing/scarred.h"
+
+namespace interfere::bearing {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+bool has_scar_vertex(const Roller& r, std::uint32_t triangle) {
+  if (triangle >= r.mesh.triangles.size()) return false;
+  const auto& t = r.mesh.triangles[triangle];
+  for (int k = 0; k < 3; ++k) {
+    const std::uint32_t v = t[static_cast<std::size_t>(k)];
+    if (v < r.scar.size() && r.scar[v]) return true;
+  }
+  return false;
+}
+
+/// A world point on the raceway under the roller's centre (the hint of the raceway term).
+Vec3 raceway_hint(const RacewayPairRoller& roller, const RacewayPairRing& ring, const Transform& surface_pose) {
+  const Vec3 c = roller.cylinder.center();
+  const Vec3 w = c - surface_pose.t;
+  const Transform& p = surface_pose;
+  const double x = p.r[0][0] * w.x + p.r[1][0] * w.y + p.r[2][0] * w.z;
+  const double y = p.r[0][1] * w.x + p.r[1][1] * w.y + p.r[2][1] * w.z;
+  const double z = std::clamp(p.r[0][2] * w.x + p.r[1][2] * w.y + p.r[2][2] * w.z, 0.0, ring.scar->geometry.width);
+  const double rho = std::hypot(x, y);
+  const double r = ring.scar->geometry.radius_at(z);
+  const Vec3 local = rho > 0 ? Vec3{x * r / rho, y * r / rho, z} : Vec3{r, 0, z};
+  return p.apply(local);
+}
+
+/// T_a for a concave raceway: minus the largest meridian distance beyond the grown surface over the
+/// roller's mesh clipped to the width (vertices in the width, edges' crossings of the side faces).
+void concave_roller_term(const RacewayPairRoller& roller, const RacewayPairRing& ring, RacewayScarPairResult& out) {
+  const RacewayScar& s = *ring.scar;
+  const RacewayGeometry& g = s.geometry;
+  const Transform sp = raceway_surface_pose(ring);
+  const Vec3 base = sp.t, ax = sp.rotate({0, 0, 1});
+  const double k = (g.top_radius - g.radius) / g.width, nk = std::sqrt(1 + k * k);
+  const Roller& m = *roller.mesh;
+  std::vector<Vec3> p(m.mesh.positions.size());
+  std::vector<double> zs(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) p[i] = roller.pose.apply(m.mesh.positions[i]), zs[i] = dot(p[i] - base, ax);
+  double best = -kInf;
+  Vec3 far;
+  std::uint32_t far_vertex = 0xffffffffu;
+  const auto consider = [&](const Vec3& x, double z, std::uint32_t vertex) {
+    const double rho = norm(cross(x - base, ax));
+    const double v = (rho - (g.radius_at(z) - s.raise)) / nk;
+    if (v > best) best = v, far = x, far_vertex = vertex;
+  };
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (zs[i] >= 0 && zs[i] <= g.width) consider(p[i], zs[i], static_cast<std::uint32_t>(i));
+  for (const auto& t : m.mesh.triangles)
+    for (int e = 0; e < 3; ++e) {
+      const std::uint32_t a = t[static_cast<std::size_t>(e)], b = t[static_cast<std::size_t>((e + 1) % 3)];
+      if (a > b) continue;  // each edge of the closed mesh once (its other triangle has it reversed)
+      for (const double level : {0.0, g.width}) {
+        const double za = zs[a] - level, zb = zs[b] - level;
+        if (!((za < 0 && zb > 0) || (za > 0 && zb < 0))) continue;
+        const double t01 = za / (za - zb);
+        consider(p[a] + (p[b] - p[a]) * t01, level, 0xffffffffu);
+      }
+    }
+  if (!(best > -kInf)) return;  // no part of the roller in the ring's width: no roller term
+  out.roller_term = -best;
+  // witness on the ring: the foot of `far` on the grown cone line in its meridian half-plane
+  const double z = dot(far - base, ax);
+  const Vec3 radial = far - base - ax * z;
+  const double rho = norm(radial);
+  const Vec3 n = rho > 0 ? (radial / rho - ax * k) / nk : Vec3{};
+  out.point_roller = far;
+  out.point_raceway = far - n * best;
+  out.carrier = far_vertex < m.scar.size() && m.scar[far_vertex] ? ScarCarrier::roller : ScarCarrier::none;
+}
+
+}  // namespace
+
+const char* scar_carrier_name(ScarCarrier c) {
+  switch (c) {
+    case ScarCarrier::none: return "none";
+    case ScarCarrier::roller: return "roller";
+    case ScarCarrier::raceway: return "raceway";
+  }
+  return "?";
+}
+
+Transform raceway_surface_pose(const RacewayPairRing& ring) {
+  Transform t = ring.pose;
+  t.t = ring.pose.apply({0, 0, ring.scar->geometry.z0});
+  return t;
+}
+
+Cylinder raceway_term_roller_solid(const RacewayPairRoller& roller, bool* exact) {
+  Cylinder a = roller.cylinder;
+  bool ok = true;
+  if (a.tapered()) {  // the cylinder of the larger radius encloses the frustum: a bound
+    a.radius = a.max_radius(), a.top_radius = -1, ok = false;
+  }
+  if (roller.mesh != nullptr && roller.mesh->raise > 0) a.radius += roller.mesh->raise;
+  if (exact != nullptr) *exact = ok;
+  return a;
+}
+
+RacewayScarPairResult raceway_scar_pair(const RacewayPairRoller& roller, const RacewayPairRing& ring) {
+  RacewayScarPairResult out;
+  const RacewayScar& s = *ring.scar;
+  const Transform sp = raceway_surface_pose(ring);
+  // raceway term: the scarred raceway surface against the roller's enclosing intact cylinder
+  bool exact = true;
+  const Cylinder a = raceway_term_roller_solid(roller, &exact);
+  ScarredSolver race_solver(&s.surface, &s.tree);
+  const MeshPairResult tr = race_solver.solve(sp, a, raceway_hint(roller, ring, sp));
+  out.raceway_term = tr.distance;
+  out.evaluated = tr.evaluated;
+  out.distance = tr.distance;
+  out.point_raceway = tr.point_a, out.point_roller = tr.point_b;
+  out.carrier = has_scar_vertex(s.surface, tr.triangle) ? ScarCarrier::raceway : ScarCarrier::none;
+  out.exact = exact;
+  bool grown = roller.mesh != nullptr && roller.mesh->raise > 0;  // A^ grown by the roller scar's raise
+  // roller term: the scarred roller against the ring's enclosing intact material
+  if (roller.mesh != nullptr && roller.tree != nullptr) {
+    RacewayScarPairResult r = out;
+    const RacewayGeometry& g = s.geometry;
+    if (raceway_concave(g.surface)) {
+      concave_roller_term(roller, ring, r);
+    } else {
+      Cylinder b;
+      b.base = sp.t, b.axis = sp.rotate({0, 0, 1}), b.height = g.width;
+      b.radius = std::max(g.radius, g.top_radius) + s.raise;  // a cone: its enclosing cylinder (a bound)
+      if (g.top_radius != g.radius) r.exact = false;
+      ScarredSolver roller_solver(roller.mesh, roller.tree);
+      const MeshPairResult ta = roller_solver.solve(roller.pose, b);
+      r.roller_term = ta.distance;
+      r.evaluated += ta.evaluated;
+      r.point_roller = ta.point_a, r.point_raceway = ta.point_b;
+      r.carrier = has_scar_vertex(*roller.mesh, ta.triangle) ? ScarCarrier::roller : ScarCarrier::none;
+    }
+    out.roller_term = r.roller_term;
+    out.evaluated = r.evaluated;
+    out.exact = r.exact;
+    if (r.roller_term < out.distance) {  // ties: the raceway term (a fixed rule, either order)
+      out.distance = r.roller_term;
+      out.point_roller = r.point_roller, out.point_raceway = r.point_raceway;
+      out.carrier = r.carrier;
+      grown = s.raise > 0;  // B^ grown by the raceway scar's raise
+    }
+  }
+  out.scar = out.carrier != ScarCarrier::none || grown;
+  return out;
+}
+
+RacewayScarPairResult raceway_scar_pair(const RacewayPairRing& ring, const RacewayPairRoller& roller) {
+  return raceway_scar_pair(roller, ring);
+}
+
+bool raceway_scar_in_range(const RacewayPairRoller& roller, const RacewayPairRing& ring, double margin) {
+  const RacewayScar& s = *ring.scar;
+  if (s.window.angle_width_deg >= 360) return true;
+  const Transform& p = ring.pose;
+  const Vec3 w = roller.cylinder.center() - p.t;
+  const double x = p.r[0][0] * w.x + p.r[1][0] * w.y + p.r[2][0] * w.z;
+  const double y = p.r[0][1] * w.x + p.r[1][1] * w.y + p.r[2][1] * w.z;
+  const double rho = std::hypot(x, y);
+  const double half_h = 0.5 * roller.cylinder.height;
+  const double grown = roller.cylinder.max_radius() + (roller.mesh != nullptr ? roller.mesh->raise : 0.0);
+  const double sphere = std::sqrt(half_h * half_h + grown * grown);
+  if (!(rho > sphere)) return true;  // the sphere holds the ring axis: every angle
+  const double half_span = std::asin(sphere / rho);
+  return scar_angle_contains(s.window, std::atan2(y, x), half_span + margin);
+}
+
+}  // namespace interfere::bearing
