@@ -81,8 +81,10 @@ py::object num(double v) { return std::isfinite(v) ? py::object(py::float_(v)) :
 void bind_probe(py::module_& m) {
   py::module_ p = m.def_submodule("probe", "Inspection-probe path checking (docs/probe.md).");
 
-  py::class_<Robot>(p, "Robot", "Serial DH chain (standard DH, angles in degrees) with the probe tool frame.")
+  py::class_<Robot>(p, "Robot", "Serial DH chain (standard or modified DH, angles in degrees) with the probe tool frame.")
       .def_readonly("name", &Robot::name)
+      .def_property_readonly("convention", [](const Robot& r) { return std::string(dh_convention_name(r.convention)); },
+                             "'standard' (distal) or 'modified' (proximal, Craig) Denavit-Hartenberg")
       .def_property_readonly("joint_names",
                              [](const Robot& r) {
                                std::vector<std::string> n;

@@ -47,16 +47,31 @@ Transform dh(double theta_deg, double d, double a, double alpha_deg) {
 
 }  // namespace
 
+const char* dh_convention_name(DhConvention c) {
+  return c == DhConvention::modified ? "modified" : "standard";
+}
+
+Transform dh_transform(DhConvention convention, const DhJoint& j, double v) {
+  const double theta = j.type == JointType::prismatic ? j.theta : j.theta + v;
+  const double d = j.type == JointType::prismatic ? j.d + v : j.d;
+  if (convention == DhConvention::standard) return dh(theta, d, j.a, j.alpha);
+  // modified: Rx(alpha) Tx(a) Rz(theta) Tz(d) = [Rx(alpha), (a, 0, 0)] * [Rz(theta), (0, 0, d)]
+  double st, ct, sa, ca;
+  sincos_deg(theta, st, ct);
+  sincos_deg(j.alpha, sa, ca);
+  Transform t;
+  t.r = {{{ct, -st, 0}, {st * ca, ct * ca, -sa}, {st * sa, ct * sa, ca}}};
+  t.t = {j.a, -sa * d, ca * d};
+  return t;
+}
+
 std::vector<Transform> forward_frames(const Robot& robot, const std::vector<double>& q) {
   std::vector<Transform> frames;
   frames.reserve(robot.joints.size() + 1);
   frames.push_back(robot.base);
   for (std::size_t i = 0; i < robot.joints.size(); ++i) {
-    const DhJoint& j = robot.joints[i];
     const double v = i < q.size() ? q[i] : 0.0;
-    const Transform t = j.type == JointType::prismatic ? dh(j.theta, j.d + v, j.a, j.alpha)
-                                                        : dh(j.theta + v, j.d, j.a, j.alpha);
-    frames.push_back(compose(frames.back(), t));
+    frames.push_back(compose(frames.back(), dh_transform(robot.convention, robot.joints[i], v)));
   }
   return frames;
 }

@@ -46,7 +46,7 @@ Robot paper_machine_31(const PaperMachine& m) {
 }
 
 std::optional<PaperGeometry> paper_geometry(const Robot& r) {
-  if (r.joints.size() != 5 || !same_rotation(r.base, kBase)) return std::nullopt;
+  if (r.joints.size() != 5 || r.convention != DhConvention::standard || !same_rotation(r.base, kBase)) return std::nullopt;
   struct Want {
     JointType type;
     double theta, alpha;

@@ -135,6 +135,25 @@ Expected<Robot> parse_robot_json(std::string_view text, const std::string& file_
                     uline);
     }
   }
+  // "standard" (the default) or "modified" DH (kinematics.h); the text robot_to_json writes ("standard
+  // DH: ...") is read back as its first word. Any other value is an error: read as the other
+  // convention, a table gives a different robot without a word.
+  if (auto it = doc.find("convention"); it != doc.end()) {
+    const std::int64_t cline = find_key_line(text, "convention");
+    const std::string c = it->is_string() ? it->get<std::string>() : std::string();
+    const auto starts = [&](const char* w) {
+      const std::string word(w);
+      return c == word || c.rfind(word + " DH", 0) == 0;
+    };
+    if (starts("standard")) robot.convention = DhConvention::standard;
+    else if (starts("modified")) robot.convention = DhConvention::modified;
+    else
+      return p.fail("convention",
+                    (it->is_string() ? "'" + c + "'" : std::string("not a string")) +
+                        ": expected \"standard\" (distal DH: T_i = Rz(theta) Tz(d) Tx(a) Rx(alpha)) or "
+                        "\"modified\" (proximal, Craig: T_i = Rx(alpha) Tx(a) Rz(theta) Tz(d))",
+                    cline);
+  }
   if (auto it = doc.find("base"); it != doc.end()) {
     if (!it->is_array() || it->size() != 12) {
       return p.fail("base", "expected 12 numbers (row-major [R|t])", find_key_line(text, "base"));
@@ -278,7 +297,9 @@ std::string robot_to_json(const Robot& robot) {
     base.insert(base.end(), {robot.base.r[r][0], robot.base.r[r][1], robot.base.r[r][2], robot.base.t[r]});
   }
   j["base"] = base;
-  j["convention"] = "standard DH: T_i = Rz(theta) Tz(d) Tx(a) Rx(alpha); angles in degrees";
+  j["convention"] = robot.convention == DhConvention::modified
+                        ? "modified DH: T_i = Rx(alpha) Tx(a) Rz(theta) Tz(d); angles in degrees"
+                        : "standard DH: T_i = Rz(theta) Tz(d) Tx(a) Rx(alpha); angles in degrees";
   for (const DhJoint& d : robot.joints) {
     json o{{"name", d.name}, {"type", d.type == JointType::prismatic ? "prismatic" : "revolute"},
            {"a", d.a}, {"alpha", d.alpha}, {"d", d.d}, {"theta", d.theta}};

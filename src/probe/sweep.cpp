@@ -553,14 +553,15 @@ double midpoint_and_bound(const ProbePath& path, const Robot* robot, const Probe
       for (const Vec3& v : bodies.box->corners) scale = std::max(scale, norm(v));
     }
     // Distal to proximal: D_j = D_{j+1} + (prismatic: h |dq|; revolute: h |dq| rho_j), rho_j the
-    // largest distance of the probe to joint j's axis (z of frame j-1) at the midpoint pose.
+    // largest distance of the probe to joint j's axis (z of frame j-1, or of frame j in the modified
+    // DH convention: joint_axis_frame) at the midpoint pose.
     for (std::size_t j = robot->joints.size(); j-- > 0;) {
       const double dq = std::fabs(b[j] - a[j]) * h;
       if (dq == 0) continue;
       if (robot->joints[j].type == JointType::prismatic) {
         bound += dq;
       } else {
-        const Transform& f = frames[j];
+        const Transform& f = frames[joint_axis_frame(*robot, j)];
         const Vec3 o = f.t, z{f.r[0][2], f.r[1][2], f.r[2][2]};
         double rho = 0;
         for (const Cylinder& c : bodies.cylinders) {

@@ -330,6 +330,22 @@ Transform rot_z(double deg) {
   return t;
 }
 
+/// Rx(alpha) Tx(a): the part of a modified DH row before its joint's motion.
+Transform rx_tx(const probe::DhJoint& j) {
+  const double al = j.alpha / kDeg, c = std::cos(al), s = std::sin(al);
+  Transform t;
+  t.r = {{{1, 0, 0}, {0, c, -s}, {0, s, c}}};
+  t.t = {j.a, 0, 0};
+  return t;
+}
+
+/// Tz(d): the part of a modified DH row after its joint's motion.
+Transform tz(double d) {
+  Transform t;
+  t.t = {0, 0, d};
+  return t;
+}
+
 /// Tz(d) Tx(a) Rx(alpha): the constant part of a standard DH transform.
 Transform dh_constant(const probe::DhJoint& j) {
   const double al = j.alpha / kDeg, c = std::cos(al), s = std::sin(al);
@@ -413,34 +429,35 @@ Expected<PoseIkPath> pose_path_to_joints(const Chain& chain, const Transform& ba
 }
 
 Chain chain_from_dh(const probe::Robot& robot, IkTool* tool) {
+  const bool modified = robot.convention == probe::DhConvention::modified;
   Chain c;
   c.name = robot.name;
   c.links.push_back({.name = "frame0", .mesh = nullptr, .mesh_files = {}});
-  Transform before;  // the previous joint's constant part (identity before joint 1)
   for (std::size_t i = 0; i < robot.joints.size(); ++i) {
     const probe::DhJoint& d = robot.joints[i];
+    // the movable joint: DH frame i -> the moving frame after its motion (about / along its z)
     ChainJoint j;
     j.name = d.name;
     j.kind = d.type == probe::JointType::revolute ? JointKind::revolute : JointKind::prismatic;
     j.parent = c.links.back().name;
     j.child = "moving" + std::to_string(i + 1);
-    j.origin = scene::compose(before, rot_z(d.theta));
+    j.origin = modified ? scene::compose(rx_tx(d), rot_z(d.theta)) : rot_z(d.theta);
     j.axis = {0, 0, 1};
     j.lower = d.min;
     j.upper = d.max;
     c.movable.push_back(c.joints.size());
     c.joints.push_back(j);
     c.links.push_back({.name = j.child, .mesh = nullptr, .mesh_files = {}});
-    before = dh_constant(d);
+    // the rest of the row, fixed: the moving frame -> DH frame i + 1
+    ChainJoint f;
+    f.name = "dh_frame" + std::to_string(i + 1);
+    f.kind = JointKind::fixed;
+    f.parent = j.child;
+    f.child = "frame" + std::to_string(i + 1);
+    f.origin = modified ? tz(d.d) : dh_constant(d);
+    c.joints.push_back(f);
+    c.links.push_back({.name = f.child, .mesh = nullptr, .mesh_files = {}});
   }
-  ChainJoint flange;
-  flange.name = "dh_frame" + std::to_string(robot.joints.size());
-  flange.kind = JointKind::fixed;
-  flange.parent = c.links.back().name;
-  flange.child = "frame" + std::to_string(robot.joints.size());
-  flange.origin = before;
-  c.joints.push_back(flange);
-  c.links.push_back({.name = flange.child, .mesh = nullptr, .mesh_files = {}});
   if (tool) {
     tool->link = c.links.size() - 1;
     tool->tip = robot.tool_tip;

@@ -7,6 +7,7 @@
 // naming the file, the line and (for limits) the joint.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -190,13 +191,48 @@ probe::Robot ur5_dh() {
   return r;
 }
 
+// The same robot as a modified (Craig) table: a_{i-1}, alpha_{i-1} shifted down one row, the last
+// row's Tx(a_n) Rx(alpha_n) moved into the tool.
+probe::Robot modified_of(const probe::Robot& s) {
+  probe::Robot m = s;
+  m.name = s.name + "-modified";
+  m.convention = probe::DhConvention::modified;
+  const std::size_t n = s.joints.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    m.joints[i].a = i ? s.joints[i - 1].a : 0;
+    m.joints[i].alpha = i ? s.joints[i - 1].alpha : 0;
+  }
+  const double al = s.joints[n - 1].alpha * M_PI / 180, c = std::cos(al), sn = std::sin(al);
+  const auto rx = [&](const Vec3& v) { return Vec3{v.x, c * v.y - sn * v.z, sn * v.y + c * v.z}; };
+  m.tool_tip = rx(s.tool_tip) + Vec3{s.joints[n - 1].a, 0, 0};
+  m.tool_axis = rx(s.tool_axis);
+  m.tool_ref = rx(s.tool_ref);
+  return m;
+}
+
 // chain_from_dh against probe::forward_kinematics (the DH module's own product of
-// Rz Tz Tx Rx), then FK(IK(pose)) = pose by that same independent forward kinematics.
+// Rz Tz Tx Rx, or Rx Tx Rz Tz), its links frame0..frameN against the DH frames, then FK(IK(pose))
+// = pose by that same independent forward kinematics.
 TEST(RobotIk, DhTableChainAndRoundTrip) {
-  for (const probe::Robot& robot : {ur5_dh(), probe::paper_machine_31()}) {
+  for (const probe::Robot& robot :
+       {ur5_dh(), modified_of(ur5_dh()), probe::paper_machine_31(), modified_of(probe::paper_machine_31())}) {
     IkTool tool;
     const Chain c = chain_from_dh(robot, &tool);
     ASSERT_EQ(c.dof(), robot.joints.size());
+    {
+      std::vector<double> q;
+      for (const probe::DhJoint& j : robot.joints) q.push_back(std::clamp(17.0, j.min, j.max));
+      const std::vector<Transform> want = probe::forward_frames(robot, q);
+      const std::vector<Transform> got = link_frames(c, q, robot.base);
+      for (std::size_t i = 0; i < want.size(); ++i) {
+        const std::int64_t k = c.find_link("frame" + std::to_string(i));
+        ASSERT_GE(k, 0) << i;
+        EXPECT_LE(norm(got[k].t - want[i].t), 1e-9) << robot.name << " frame" << i;
+        for (int r = 0; r < 3; ++r)
+          for (int col = 0; col < 3; ++col)
+            EXPECT_NEAR(got[k].r[r][col], want[i].r[r][col], 1e-12) << robot.name << " frame" << i;
+      }
+    }
     std::mt19937_64 rng(5);
     for (int k = 0; k < 30; ++k) {
       std::vector<double> q;

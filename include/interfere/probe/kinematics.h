@@ -4,10 +4,12 @@
 // The paper's own machine (Li, Zhou & Zheng 2008, §3.1) is in paper_machine.h
 // (data/examples/probe_paper_machine.json).
 //
-// Convention (standard DH, Craig's "distal" variant as in Spong & Vidyasagar):
-//   T_i = Rot_z(theta_i) * Trans_z(d_i) * Trans_x(a_i) * Rot_x(alpha_i),   world <- base * T_1 ... T_n,
-// joint i moves along / about z_{i-1}: a prismatic joint adds its value to d_i, a revolute joint to
-// theta_i. Units: lengths in the file's unit (mm for the bundled machine), angles in DEGREES in the
+// Conventions (the file's "convention" key; issue #28, deliverable 2):
+//   standard (distal, Spong & Vidyasagar; the default):
+//     T_i = Rot_z(theta_i) * Trans_z(d_i) * Trans_x(a_i) * Rot_x(alpha_i),  joint i about / along z_{i-1};
+//   modified (proximal, Craig), row i holding alpha_{i-1}, a_{i-1}, d_i, theta_i:
+//     T_i = Rot_x(alpha_{i-1}) * Trans_x(a_{i-1}) * Rot_z(theta_i) * Trans_z(d_i),  joint i about / along z_i;
+// world <- base * T_1 ... T_n; a prismatic joint adds its value to d_i, a revolute joint to theta_i. Units: lengths in the file's unit (mm for the bundled machine), angles in DEGREES in the
 // JSON file, in path files and in every joint-value vector of this API.
 #pragma once
 #include <array>
@@ -23,6 +25,9 @@
 namespace interfere::probe {
 
 enum class JointType { prismatic, revolute };
+
+enum class DhConvention { standard, modified };
+const char* dh_convention_name(DhConvention c);
 
 struct DhJoint {
   std::string name;
@@ -56,6 +61,7 @@ Vec3 rotate_about(const Vec3& v, const Vec3& n, double phi);
 struct Robot {
   std::string name;
   Transform base;  ///< world <- DH frame 0
+  DhConvention convention = DhConvention::standard;
   std::vector<DhJoint> joints;
   Vec3 tool_tip{};          ///< end-circle centre in the last DH frame
   Vec3 tool_axis{0, 0, 1};  ///< probe direction in the last DH frame (unit)
@@ -66,6 +72,15 @@ struct Robot {
 
 /// Frames world <- i for i = 0..n (frames[0] = base). `q` in joint units (degrees for revolute).
 std::vector<Transform> forward_frames(const Robot& robot, const std::vector<double>& q);
+
+/// Index into forward_frames(...) of the frame whose z axis (through its origin) is joint j's axis
+/// of motion: j (z_{j-1} of the 1-based table) in the standard convention, j + 1 in the modified one.
+inline std::size_t joint_axis_frame(const Robot& robot, std::size_t j) {
+  return robot.convention == DhConvention::modified ? j + 1 : j;
+}
+
+/// One row's transform T_i at joint value v (the convention's product above).
+Transform dh_transform(DhConvention convention, const DhJoint& joint, double v);
 
 /// The probe pose at joint values `q` (q.size() == joints.size()), `ref` included (zero when
 /// tool_ref is parallel to tool_axis).

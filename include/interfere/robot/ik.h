@@ -101,11 +101,12 @@ Expected<PoseIkPath> pose_path_to_joints(const Chain& chain, const Transform& ba
                                          const IkTool& tool, const probe::ProbePath& path,
                                          const std::string& file, const IkOptions& options = {});
 
-/// A DH chain of the probe module (probe/kinematics.h) as a Chain: joint i's origin is the
-/// previous joint's constant part Tz(d) Tx(a) Rx(alpha) times Rz(theta_i), its axis z; a final
-/// fixed joint carries the last constant part, so the last link's frame is DH frame n. Links have
-/// no geometry; names "frame0".."frameN". The tool (tool_tip, tool_axis, tool_ref) is returned in
-/// `tool` (link N) when not null. base = robot.base.
+/// A DH chain of the probe module (probe/kinematics.h, standard or modified convention) as a
+/// Chain whose links "frame0".."frameN" are the DH frames: per row a movable joint (frame i-1 ->
+/// "moving i"; origin Rz(theta_i), modified Rx(alpha) Tx(a) Rz(theta_i); axis z) and a fixed joint
+/// "dh_frame i" with the rest of the row (standard Tz(d) Tx(a) Rx(alpha), modified Tz(d)). Links
+/// have no geometry (a cell file attaches meshes to them). The tool (tool_tip, tool_axis, tool_ref)
+/// is returned in `tool` (link frameN) when not null. base = robot.base.
 Chain chain_from_dh(const probe::Robot& robot, IkTool* tool = nullptr);
 
 /// The joint path as CSV text: a comment line, the header (movable joint names) and one row per

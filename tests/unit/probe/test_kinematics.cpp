@@ -9,6 +9,7 @@
 
 #include "interfere/probe/kinematics.h"
 #include "interfere/probe/path.h"
+#include "interfere/probe/sweep.h"
 
 using namespace interfere;
 using namespace interfere::probe;
@@ -105,6 +106,99 @@ TEST(ProbeKinematics, BadRobotFiles) {
   EXPECT_NE(msg(R"({"joints": [9e999]})").find("robot.json: invalid JSON"), std::string::npos);
   EXPECT_NE(msg(R"({"joints": [{"type": "revolute", "a": 0, "alpha": 0, "d": 0, "theta": 0}]})").find("tool"),
             std::string::npos);
+}
+
+// Modified (Craig) DH, issue #28 deliverable 2: T_i = Rx(alpha_{i-1}) Tx(a_{i-1}) Rz(theta_i) Tz(d_i).
+TEST(ProbeKinematics, ModifiedConventionByHand) {
+  // Planar RR arm: row 2 carries a_1 = 2 (the link before joint 2); the tool is 1 along x_2.
+  Robot r;
+  r.convention = DhConvention::modified;
+  r.joints = {{"q1", JointType::revolute, 0, 0, 0, 0}, {"q2", JointType::revolute, 2, 0, 0, 0}};
+  r.tool_tip = {1, 0, 0};
+  r.tool_axis = {1, 0, 0};
+  const ProbePose p = forward_kinematics(r, {30, 60});
+  const double q1 = M_PI / 6, q12 = M_PI / 2;
+  expect_vec(p.tip, {2 * std::cos(q1) + std::cos(q12), 2 * std::sin(q1) + std::sin(q12), 0}, 1e-12);
+  expect_vec(p.axis, {std::cos(q12), std::sin(q12), 0}, 1e-12);
+  // A prismatic joint after a 90 degree twist moves along Rx(90) z = -y: d = 1 + 3.
+  Robot t;
+  t.convention = DhConvention::modified;
+  t.joints = {{"d1", JointType::prismatic, 0, 90, 1, 0}};
+  t.tool_tip = {0, 0, 0};
+  t.tool_axis = {0, 0, 1};
+  const ProbePose pt = forward_kinematics(t, {3});
+  expect_vec(pt.tip, {0, -4, 0}, 1e-12);
+  expect_vec(pt.axis, {0, -1, 0}, 1e-12);
+  EXPECT_EQ(joint_axis_frame(t, 0), 1u);
+}
+
+// A standard table and its modified form describe the same robot: the products
+// prod Rz Tz Tx Rx and prod Rx Tx Rz Tz (with a_{i-1}, alpha_{i-1} shifted down one row) differ only by
+// the last row's Tx(a_n) Rx(alpha_n), moved into the tool. Same poses, and the joint-path motion
+// bound of the sweep (about each joint's own axis: joint_axis_frame) is the same.
+TEST(ProbeKinematics, ModifiedTableOfAStandardRobot) {
+  std::mt19937_64 g(11);
+  std::uniform_real_distribution<double> len(-300, 300), ang(-180, 180);
+  for (int robot_no = 0; robot_no < 20; ++robot_no) {
+    Robot s, m;
+    m.convention = DhConvention::modified;
+    const int n = 6;
+    for (int i = 0; i < n; ++i) {
+      DhJoint j{"j" + std::to_string(i + 1), (robot_no + i) % 4 == 0 ? JointType::prismatic : JointType::revolute,
+                len(g), ang(g), len(g), ang(g)};
+      s.joints.push_back(j);
+    }
+    for (int i = 0; i < n; ++i) {
+      DhJoint j = s.joints[i];
+      j.a = i ? s.joints[i - 1].a : 0;
+      j.alpha = i ? s.joints[i - 1].alpha : 0;
+      m.joints.push_back(j);
+    }
+    s.tool_tip = {len(g), len(g), len(g)};
+    s.tool_axis = Vec3{0.3, -0.5, 0.81} / norm(Vec3{0.3, -0.5, 0.81});
+    // tool in the modified last frame: Tx(a_n) Rx(alpha_n) applied to the standard one
+    const double al = s.joints[n - 1].alpha * M_PI / 180, c = std::cos(al), sn = std::sin(al);
+    const auto rx = [&](const Vec3& v) { return Vec3{v.x, c * v.y - sn * v.z, sn * v.y + c * v.z}; };
+    m.tool_tip = rx(s.tool_tip) + Vec3{s.joints[n - 1].a, 0, 0};
+    m.tool_axis = rx(s.tool_axis);
+    m.tool_ref = rx(s.tool_ref);
+    std::vector<double> qa(n), qb(n);
+    for (int i = 0; i < n; ++i) qa[i] = ang(g), qb[i] = ang(g);
+    const ProbePose ps = forward_kinematics(s, qa), pm = forward_kinematics(m, qa);
+    expect_vec(pm.tip, ps.tip, 1e-9);
+    expect_vec(pm.axis, ps.axis, 1e-12);
+    ProbePath path;
+    path.joint_space = true;
+    path.joints = {qa, qb};
+    path.lines = {1, 2};
+    ProbeShape shape;
+    shape.holder_radius = 20, shape.holder_length = 60;
+    const double bs = motion_bound(path, &s, shape, 0, 0.25, 0.5);
+    const double bm = motion_bound(path, &m, shape, 0, 0.25, 0.5);
+    EXPECT_NEAR(bm, bs, 1e-9 * bs) << robot_no;
+  }
+}
+
+TEST(ProbeKinematics, ConventionKey) {
+  const char* body = R"(, "joints": [{"type": "revolute", "a": 0, "alpha": 0, "d": 0, "theta": 0}],
+ "tool": {"tip": [0,0,0], "axis": [0,0,1]}})";
+  for (const char* c : {"\"modified\"", "\"modified DH: T_i = Rx(alpha) Tx(a) Rz(theta) Tz(d)\""}) {
+    auto r = parse_robot_json(std::string("{\"convention\": ") + c + body, "r.json");
+    ASSERT_TRUE(r) << r.error().message();
+    EXPECT_EQ(r->convention, DhConvention::modified);
+    auto again = parse_robot_json(robot_to_json(*r), "again.json");
+    ASSERT_TRUE(again) << again.error().message();
+    EXPECT_EQ(again->convention, DhConvention::modified);
+  }
+  auto s = parse_robot_json(std::string("{\"convention\": \"standard\"") + body, "r.json");
+  ASSERT_TRUE(s);
+  EXPECT_EQ(s->convention, DhConvention::standard);
+  for (const char* c : {"\"Craig\"", "\"proximal\"", "3"}) {
+    auto bad = parse_robot_json(std::string("{\n\"convention\": ") + c + body, "r.json");
+    ASSERT_FALSE(bad) << c;
+    EXPECT_NE(bad.error().message().find("r.json:2"), std::string::npos) << bad.error().message();
+    EXPECT_NE(bad.error().message().find("convention"), std::string::npos) << bad.error().message();
+  }
 }
 
 TEST(ProbePath, JointAndPosePaths) {
