@@ -16,6 +16,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -227,13 +228,23 @@ void write_file(const std::string& path, const std::string& text) {
 // equal file size, so that a rank reads neighbours in the file (a product's files are usually
 // listed part by part, and a generated one in space order) and the partition can leave most
 // bodies' pairs with the rank that read them already (plan.h: the read cost is saved there).
+// The file sizes: each rank asks the file system for every K-th entry's, then they are exchanged.
 std::vector<std::uint32_t> first_readers(const scene::SceneSpec& spec, const World& w) {
-  std::vector<std::uintmax_t> size(spec.bodies.size());
-  std::uintmax_t total = 0;
-  for (std::size_t i = 0; i < spec.bodies.size(); ++i) {
+  const std::size_t m = spec.bodies.size(), k = static_cast<std::size_t>(w.size);
+  std::string mine;
+  for (std::size_t i = static_cast<std::size_t>(w.rank); i < m; i += k) {
     std::error_code ec;
-    const std::uintmax_t s = std::filesystem::file_size(spec.bodies[i].file, ec);
-    total += size[i] = (ec ? 0 : s) + 1;
+    const std::uint64_t s = std::filesystem::file_size(spec.bodies[i].file, ec);
+    const std::uint64_t v = (ec ? 0 : s) + 1;
+    mine.append(reinterpret_cast<const char*>(&v), sizeof v);
+  }
+  const std::vector<std::string> all = allgather(mine);
+  std::vector<std::uintmax_t> size(m);
+  std::uintmax_t total = 0;
+  for (std::size_t i = 0; i < m; ++i) {
+    std::uint64_t v = 0;
+    std::memcpy(&v, all[i % k].data() + sizeof v * (i / k), sizeof v);
+    total += size[i] = v;
   }
   std::vector<std::uint32_t> reader(spec.bodies.size(), 0);
   std::uintmax_t before = 0;
@@ -273,6 +284,15 @@ int run(const World& w, int argc, char** argv) {
   std::optional<tbb::global_control> threads;
   if (o.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(o.threads));
   const bool talk = w.rank == 0 && !o.quiet;
+  // Wall and CPU seconds of each step (wire.h kPhases), for the report's mpi section.
+  std::vector<std::array<double, 2>> phases(kPhaseCount, {0.0, 0.0});
+  auto phase_wall = t_total;
+  double phase_cpu = cpu_seconds();
+  const auto phase_done = [&](std::size_t k) {
+    const double c = cpu_seconds();
+    phases[k] = {since(phase_wall), c - phase_cpu};
+    phase_wall = Clock::now(), phase_cpu = c;
+  };
 
   // Every rank's view of the inputs: a checksum of the scene file, the motion and baseline files
   // and the command line, compared at the start (a rank that cannot read them says so; no rank
@@ -337,6 +357,8 @@ int run(const World& w, int argc, char** argv) {
   const scene::LoadOptions lo{.units = units, .fem_split = o.fem_split, .fem_linear_faces = o.fem_linear_faces,
                               .fem_field = o.fem_field, .fem_disp = o.fem_disp, .fem_scale = o.fem_scale};
 
+  phase_done(0);
+
   // 1. This rank's share of the entries: metadata, triangle counts, local boxes.
   const auto t_load = Clock::now();
   const double cpu_load1 = cpu_seconds();
@@ -392,6 +414,7 @@ int run(const World& w, int argc, char** argv) {
       my_info.push_back(std::move(b));
     }
   }
+  phase_done(1);
   std::string warn_bytes;
   {
     const std::vector<std::uint8_t> v = nlohmann::json::to_cbor(nlohmann::json{input_warnings, steps});
@@ -435,6 +458,7 @@ int run(const World& w, int argc, char** argv) {
     std::fprintf(stderr, "[interfere-mpi] warning: %d ranks for %u bodies: %u ranks stay idle\n", w.size, n,
                  static_cast<unsigned>(w.size) - n);
   const double load1_seconds = since(t_load);
+  phase_done(2);
   const double load1_cpu = cpu_seconds() - cpu_load1;
 
   // The scene as metadata (every rank): the motion's frames by body id.
@@ -507,6 +531,8 @@ int run(const World& w, int argc, char** argv) {
                    return s;
                  }().c_str());
 
+  phase_done(3);
+
   // 3. The entries this rank's bodies come from (the rest of the first read is dropped), then one
   // engine call on those bodies deciding exactly this rank's pairs (decide_pairs).
   const std::vector<std::uint32_t>& my_units = part.rank_units[static_cast<std::size_t>(w.rank)];
@@ -520,6 +546,7 @@ int run(const World& w, int argc, char** argv) {
   const auto t_load2 = Clock::now();
   const double cpu_load2 = cpu_seconds();
   load_specs(more);
+  phase_done(4);
   RankResult mine_result;
   mine_result.load_seconds = load1_seconds + since(t_load2);
   mine_result.load_cpu_seconds = load1_cpu + cpu_seconds() - cpu_load2;
@@ -621,6 +648,8 @@ int run(const World& w, int argc, char** argv) {
   mine_result.warnings.assign(open_warnings.begin(), open_warnings.end());
   mine_result.engine_seconds = since(t_engine);
   mine_result.engine_cpu_seconds = cpu_seconds() - cpu_engine;
+  phase_done(5);
+  mine_result.phases = phases;
   mine_result.peak_rss_mb = peak_rss_mb();
   mine_result.cpu_seconds = cpu_seconds();
 
@@ -638,8 +667,9 @@ int run(const World& w, int argc, char** argv) {
       if (const Status s = scene::apply_baseline(result, baseline_text, o.baseline); !s) throw UsageError(s.error().message());
     status = verdict_exit_status(result.verdict, o.fail_on.empty() ? FailOn{} : *parse_fail_on(o.fail_on));
     std::vector<std::string> inputs;
+    std::set<std::string> listed;
     for (const scene::BodySpec& b : spec->bodies)  // (each file once, as load_scene lists them)
-      if (std::find(inputs.begin(), inputs.end(), b.file) == inputs.end()) inputs.push_back(b.file);
+      if (listed.insert(b.file).second) inputs.push_back(b.file);
     if (!motion.empty()) inputs.push_back(motion);
     scene::ReportContext ctx{.command = "clash", .tool_version = INTERFERE_VERSION, .inputs = inputs,
                              .threads = static_cast<int>(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)),

@@ -76,7 +76,10 @@ std::string report_with_mpi(const std::string& report, const std::vector<std::ui
   nlohmann::json j = nlohmann::json::parse(report);
   for (std::size_t i = 0; i < triangles.size() && i < j["bodies"].size(); ++i) j["bodies"][i]["triangles"] = triangles[i];
   nlohmann::json per = nlohmann::json::array();
-  for (std::size_t r = 0; r < ranks.size(); ++r)
+  for (std::size_t r = 0; r < ranks.size(); ++r) {
+    nlohmann::json phases = nlohmann::json::object();
+    for (std::size_t k = 0; k < kPhaseCount && k < ranks[r].phases.size(); ++k)
+      phases[kPhases[k]] = {{"wall_s", ranks[r].phases[k][0]}, {"cpu_s", ranks[r].phases[k][1]}};
     per.push_back({{"rank", r},
                    {"pairs", ranks[r].pairs},
                    {"engine_calls", ranks[r].calls},
@@ -92,7 +95,9 @@ std::string report_with_mpi(const std::string& report, const std::vector<std::ui
                    {"peak_rss_mb", ranks[r].peak_rss_mb},
                    {"cpu_s", ranks[r].cpu_seconds},
                    {"load_cpu_s", ranks[r].load_cpu_seconds},
-                   {"engine_cpu_s", ranks[r].engine_cpu_seconds}});
+                   {"engine_cpu_s", ranks[r].engine_cpu_seconds},
+                   {"phases", phases}});
+  }
   j["mpi"] = {{"ranks", ranks.size()}, {"per_rank", per}};
   // The envelope every command's report has (apps/cli/report_envelope.cpp, docs/report.md: the
   // clash command's options and result; seconds, the process's wall time).

@@ -1,5 +1,8 @@
-// CBOR encoding of what the ranks exchange (wire.h; issue #31).
+// Encoding of what the ranks exchange (body records binary, findings CBOR) (wire.h; issue #31).
 #include "wire.h"
+
+#include <cstring>
+#include <stdexcept>
 
 #include <nlohmann/json.hpp>
 
@@ -15,18 +18,6 @@ Aabb box(const json& j) {
   Aabb b;
   b.lo = v3(j[0]), b.hi = v3(j[1]);
   return b;
-}
-json pose(const Transform& t) {
-  const auto m = t.to_row_major();
-  return json(std::vector<double>(m.begin(), m.end()));
-}
-Transform pose(const json& j) {
-  Transform t;
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) t.r[r][c] = j[4 * r + c].get<double>();
-  }
-  t.t = {j[3].get<double>(), j[7].get<double>(), j[11].get<double>()};
-  return t;
 }
 json deepest(const scene::DeepestPoint& d) {
   return json::array({d.body, d.vertex, d.node, d.element, d.depth, v3(d.point), d.frame});
@@ -78,31 +69,79 @@ scene::SceneClash clash(const json& j) {
 
 }  // namespace
 
+// Body metadata: a flat binary record a body (10^5 bodies: CBOR trees cost seconds a rank to
+// build and walk, and every rank decodes every body). Little-endian host order: the ranks of one
+// job run one binary.
+namespace {
+
+struct Writer {
+  std::string out;
+  template <class T>
+  void raw(const T& v) {
+    out.append(reinterpret_cast<const char*>(&v), sizeof v);
+  }
+  void str(const std::string& v) {
+    raw(static_cast<std::uint32_t>(v.size()));
+    out += v;
+  }
+};
+
+struct Reader {
+  const std::string& in;
+  std::size_t at = 0;
+  template <class T>
+  T raw() {
+    if (at + sizeof(T) > in.size()) throw std::runtime_error("interfere-mpi: truncated body record");
+    T v;
+    std::memcpy(&v, in.data() + at, sizeof v);
+    at += sizeof v;
+    return v;
+  }
+  std::string str() {
+    const auto n = raw<std::uint32_t>();
+    if (at + n > in.size()) throw std::runtime_error("interfere-mpi: truncated body record");
+    std::string v(in.data() + at, n);
+    at += n;
+    return v;
+  }
+};
+
+}  // namespace
+
 std::string encode(const std::vector<BodyInfo>& bodies) {
-  json a = json::array();
+  Writer w;
+  w.raw(static_cast<std::uint64_t>(bodies.size()));
   for (const BodyInfo& b : bodies) {
     const scene::Body& m = b.meta;
-    a.push_back({m.id, m.name, m.path, ev(m.source.kind), m.source.file, m.source.detail, m.unit, pose(m.pose), m.tags,
-                 ev(m.source_id_kind), m.tessellation_error, b.triangles, box(b.local_box), b.spec, b.ordinal, b.mesh_key});
+    w.str(m.id), w.str(m.name), w.str(m.path);
+    w.raw(static_cast<std::int32_t>(m.source.kind)), w.str(m.source.file), w.str(m.source.detail), w.str(m.unit);
+    w.raw(m.pose.to_row_major());
+    w.raw(static_cast<std::uint32_t>(m.tags.size()));
+    for (const std::string& t : m.tags) w.str(t);
+    w.raw(static_cast<std::int32_t>(m.source_id_kind)), w.raw(m.tessellation_error);
+    w.raw(b.triangles), w.raw(b.local_box.lo), w.raw(b.local_box.hi), w.raw(b.spec), w.raw(b.ordinal), w.raw(b.mesh_key);
   }
-  const std::vector<std::uint8_t> v = json::to_cbor(a);
-  return {v.begin(), v.end()};
+  return std::move(w.out);
 }
 
 std::vector<BodyInfo> decode_bodies(const std::string& bytes) {
-  const json a = json::from_cbor(bytes);
-  std::vector<BodyInfo> out;
-  for (const json& j : a) {
-    BodyInfo b;
+  Reader r{bytes};
+  std::vector<BodyInfo> out(r.raw<std::uint64_t>());
+  for (BodyInfo& b : out) {
     scene::Body& m = b.meta;
-    m.id = j[0], m.name = j[1], m.path = j[2];
-    m.source.kind = static_cast<scene::SourceKind>(j[3].get<int>());
-    m.source.file = j[4], m.source.detail = j[5], m.unit = j[6], m.pose = pose(j[7]);
-    m.tags = j[8].get<std::vector<std::string>>();
-    m.source_id_kind = static_cast<scene::SourceIdKind>(j[9].get<int>());
-    m.tessellation_error = j[10];
-    b.triangles = j[11], b.local_box = box(j[12]), b.spec = j[13], b.ordinal = j[14], b.mesh_key = j[15];
-    out.push_back(std::move(b));
+    m.id = r.str(), m.name = r.str(), m.path = r.str();
+    m.source.kind = static_cast<scene::SourceKind>(r.raw<std::int32_t>());
+    m.source.file = r.str(), m.source.detail = r.str(), m.unit = r.str();
+    const auto t = r.raw<std::array<double, 12>>();
+    for (int row = 0; row < 3; ++row)
+      for (int c = 0; c < 3; ++c) m.pose.r[row][c] = t[4 * row + c];
+    m.pose.t = {t[3], t[7], t[11]};
+    m.tags.resize(r.raw<std::uint32_t>());
+    for (std::string& x : m.tags) x = r.str();
+    m.source_id_kind = static_cast<scene::SourceIdKind>(r.raw<std::int32_t>());
+    m.tessellation_error = r.raw<double>();
+    b.triangles = r.raw<std::uint64_t>(), b.local_box.lo = r.raw<Vec3>(), b.local_box.hi = r.raw<Vec3>();
+    b.spec = r.raw<std::uint32_t>(), b.ordinal = r.raw<std::uint32_t>(), b.mesh_key = r.raw<std::uint64_t>();
   }
   return out;
 }
@@ -125,6 +164,7 @@ std::string encode(const RankResult& r) {
   j["n"] = {r.core_runs, r.calls, r.pairs, r.bodies_loaded, r.pair_triangles, r.triangles_loaded, r.bodies_used, r.body_triangles};
   j["reference_checked"] = r.reference_checked;
   j["t"] = {r.load_seconds, r.engine_seconds, r.prepare_seconds, r.broad_seconds, r.narrow_seconds, r.peak_rss_mb, r.cpu_seconds, r.load_cpu_seconds, r.engine_cpu_seconds};
+  j["ph"] = r.phases;
   const std::vector<std::uint8_t> v = json::to_cbor(j);
   return {v.begin(), v.end()};
 }
@@ -150,6 +190,7 @@ RankResult decode_result(const std::string& bytes) {
   r.load_seconds = j["t"][0], r.engine_seconds = j["t"][1], r.prepare_seconds = j["t"][2], r.broad_seconds = j["t"][3];
   r.narrow_seconds = j["t"][4], r.peak_rss_mb = j["t"][5], r.cpu_seconds = j["t"][6];
   r.load_cpu_seconds = j["t"][7], r.engine_cpu_seconds = j["t"][8];
+  r.phases = j["ph"].get<std::vector<std::array<double, 2>>>();
   return r;
 }
 

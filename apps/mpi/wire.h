@@ -1,7 +1,8 @@
 // What the ranks of `interfere-mpi` send each other (issue #31): body metadata after the first
-// read, and each rank's findings after its engine calls, as CBOR (nlohmann::json): exact doubles,
-// infinities included.
+// read (flat binary records: every rank decodes every body), and each rank's findings after its
+// engine calls, as CBOR (nlohmann::json): exact doubles, infinities included.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -25,6 +26,10 @@ struct BodyInfo {
   std::uint64_t mesh_key = 0;
 };
 
+/// The steps of a rank, timed (RankResult::phases; the report's mpi.per_rank[].phases).
+inline constexpr std::size_t kPhaseCount = 6;
+inline constexpr const char* kPhases[kPhaseCount] = {"inputs", "read", "exchange", "plan", "read_pairs", "engine"};
+
 /// A rank's findings: the clashes of its pairs (global body indices), its frame rows (counts of
 /// its pairs per frame), frames x pairs rows, reference verdicts, the engine's warnings about its
 /// bodies, its core runs and timings.
@@ -44,6 +49,8 @@ struct RankResult {
   double peak_rss_mb = 0;
   double cpu_seconds = 0;  ///< the rank's user + system CPU time (getrusage) at the end of its work
   double load_cpu_seconds = 0, engine_cpu_seconds = 0;  ///< of its reads, of its engine call
+  /// Wall and CPU seconds of each step of the rank (kPhases: where the time of a job goes).
+  std::vector<std::array<double, 2>> phases = std::vector<std::array<double, 2>>(kPhaseCount, {0.0, 0.0});
 };
 
 std::string encode(const std::vector<BodyInfo>& bodies);
