@@ -27,7 +27,7 @@ robot::JointPath cell_pose_joint_path(const robot::Cell& cell, const CellPoseInp
     }
     if (o.start.size() != cell.robot.dof()) {
       throw InputError("--ik-start: " + std::to_string(o.start.size()) + " values for the " +
-                       std::to_string(cell.robot.dof()) + " movable joints of " + cell.urdf);
+                       std::to_string(cell.robot.dof()) + " movable joints of " + cell.robot_file);
     }
     if (Status s = robot::check_limits(cell.robot, o.start); !s)
       throw InputError("--ik-start: " + s.error().reason);

@@ -141,10 +141,12 @@ int run_cell(const CellOptions& o) {
                         {"upper", jt.upper}});
     }
     j["robot"] = {{"name", cell->robot.name},
-                  {"urdf", cell->urdf},
+                  {"format", cell->robot_format},
+                  {"file", cell->robot_file},
                   {"joints", joints},
                   {"tool_link", cell->tool.link},
                   {"base", pose_json(cell->base)}};
+    if (cell->robot_format == "urdf") j["robot"]["urdf"] = cell->robot_file;  // as before DH cells
     nlohmann::json jb = nlohmann::json::array();
     for (const scene::Body& b : bodies) {
       jb.push_back({{"id", b.id},

@@ -265,7 +265,11 @@ void bind_cell(py::module_& m) {
   py::module_ c = m.def_submodule("cell", "The whole inspection cell along a path (docs/probe.md, \"The whole cell\").");
   py::class_<Cell, CellPtr>(c, "Cell", "An inspection cell read from its JSON file (immutable).")
       .def_property_readonly("file", [](const Cell& x) { return x.file; })
-      .def_property_readonly("urdf", [](const Cell& x) { return x.urdf; })
+      .def_property_readonly("urdf", [](const Cell& x) { return x.robot_format == "urdf" ? x.robot_file : std::string(); },
+                             "the URDF file read ('' for a DH robot)")
+      .def_property_readonly("robot_file", [](const Cell& x) { return x.robot_file; },
+                             "the robot description read (URDF or DH robot JSON)")
+      .def_property_readonly("robot_format", [](const Cell& x) { return x.robot_format; }, "'urdf' or 'dh'")
       .def_property_readonly("robot_name", [](const Cell& x) { return x.robot.name; })
       .def_property_readonly("dof", [](const Cell& x) { return x.robot.dof(); })
       .def_property_readonly("joint_names",

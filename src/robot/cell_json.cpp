@@ -7,6 +7,9 @@
 #include <sstream>
 
 #include "interfere/mesh/io.h"
+#include "interfere/probe/kinematics.h"
+#include "interfere/robot/ik.h"
+#include "interfere/scene/scene.h"
 #include "interfere/robot/cell.h"
 
 namespace interfere::robot {
@@ -150,31 +153,68 @@ Expected<Cell> parse_cell_json(const std::string& text, const std::filesystem::p
   // robot
   if (!doc.contains("robot")) return p.fail("cell.robot", "missing");
   const json& r = doc["robot"];
-  if (Status s = p.keys(r, "robot", {"urdf", "package_paths", "base", "tool_link", "comment"}); !s)
+  if (Status s = p.keys(r, "robot",
+                        {"urdf", "dh", "package_paths", "links", "base", "tool_link", "comment"});
+      !s)
     return s.error();
-  Expected<std::string> urdf = p.string(r, "robot", "urdf", true);
-  if (!urdf) return urdf.error();
-  UrdfOptions uo;
-  if (auto it = r.find("package_paths"); it != r.end()) {
-    if (!it->is_array()) return p.fail("robot.package_paths", "expected an array of directories");
-    for (const json& d : *it) {
-      if (!d.is_string()) return p.fail("robot.package_paths", "expected an array of directories");
-      uo.package_paths.push_back(p.dir / d.get<std::string>());
-    }
-  }
-  cell.urdf = (p.dir / *urdf).string();
-  Expected<Chain> chain = read_urdf(cell.urdf, uo);
-  if (!chain) return chain.error();
-  cell.robot = std::move(*chain);
+  // the robot: a URDF file, or a DH table of the probe module (standard or modified) whose DH
+  // frames frame0..frameN carry the meshes of "links" (issue #28, deliverable 2)
+  const bool is_dh = r.contains("dh");
+  if (is_dh == r.contains("urdf"))
+    return p.fail("robot", is_dh ? "give \"urdf\" or \"dh\", not both"
+                                 : "missing: \"urdf\" (a URDF file) or \"dh\" (a DH robot JSON)");
+  Expected<std::string> robot_file = p.string(r, "robot", is_dh ? "dh" : "urdf", true);
+  if (!robot_file) return robot_file.error();
+  cell.robot_file = (p.dir / *robot_file).string();
+  cell.robot_format = is_dh ? "dh" : "urdf";
   Expected<Transform> base = p.pose(r, "robot", "base");
   if (!base) return base.error();
   cell.base = *base;
+  if (is_dh) {
+    if (r.contains("package_paths"))
+      return p.fail("robot.package_paths", "only for a URDF robot (package:// mesh names)");
+    Expected<probe::Robot> dh = probe::read_robot_json(cell.robot_file);
+    if (!dh) return dh.error();
+    cell.robot = chain_from_dh(*dh);
+    cell.robot.file = cell.robot_file;
+    cell.base = scene::compose(cell.base, dh->base);  // the chain's frame0 is DH frame 0
+    if (auto it = r.find("links"); it != r.end()) {
+      if (!it->is_object())
+        return p.fail("robot.links", "expected an object {\"frameI\": {\"mesh\": ..., \"pose\": ...}}");
+      for (auto l = it->begin(); l != it->end(); ++l) {
+        const std::string where = "robot.links." + l.key();
+        const std::int64_t k = cell.robot.find_link(l.key());
+        if (k < 0 || l.key().rfind("frame", 0) != 0)
+          return p.fail(where, "not a DH frame of " + cell.robot_file + " (frame0..frame" +
+                                   std::to_string(dh->joints.size()) + ")");
+        Expected<CellObject> o = p.object(l.value(), where, false);
+        if (!o) return o.error();
+        ChainLink& link = cell.robot.links[static_cast<std::size_t>(k)];
+        link.mesh = std::make_shared<TriMesh>(transformed(*o->mesh, o->pose));  // link <- mesh
+        link.mesh_files = {o->file};
+      }
+    }
+  } else {
+    if (r.contains("links"))
+      return p.fail("robot.links", "only for a DH robot (a URDF file carries its links' meshes)");
+    UrdfOptions uo;
+    if (auto it = r.find("package_paths"); it != r.end()) {
+      if (!it->is_array()) return p.fail("robot.package_paths", "expected an array of directories");
+      for (const json& d : *it) {
+        if (!d.is_string()) return p.fail("robot.package_paths", "expected an array of directories");
+        uo.package_paths.push_back(p.dir / d.get<std::string>());
+      }
+    }
+    Expected<Chain> chain = read_urdf(cell.robot_file, uo);
+    if (!chain) return chain.error();
+    cell.robot = std::move(*chain);
+  }
   Expected<std::string> tool_link = p.string(r, "robot", "tool_link", false);
   if (!tool_link) return tool_link.error();
   cell.tool.link = tool_link->empty() ? cell.robot.links.back().name : *tool_link;
   const std::int64_t tl = cell.robot.find_link(cell.tool.link);
   if (tl < 0)
-    return p.fail("robot.tool_link", "'" + cell.tool.link + "' is not a link of " + cell.urdf);
+    return p.fail("robot.tool_link", "'" + cell.tool.link + "' is not a link of " + cell.robot_file);
   cell.tool_link = static_cast<std::size_t>(tl);
   // tool
   if (!doc.contains("tool")) return p.fail("cell.tool", "missing");

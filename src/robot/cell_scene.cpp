@@ -63,7 +63,8 @@ CellScene cell_scene(const Cell& cell, const JointPath& path, std::size_t betwee
     s.bodies.push_back(
         body(scene::make_body_id("link:" + l.name), l.name, l.mesh, f0[i], "link",
              l.mesh_files.empty() ? scene::SourceKind::primitive : scene::SourceKind::mesh_file,
-             l.mesh_files.empty() ? cell.urdf : l.mesh_files.front(), "URDF link " + l.name));
+             l.mesh_files.empty() ? cell.robot_file : l.mesh_files.front(),
+             (cell.robot_format == "dh" ? "DH link " : "URDF link ") + l.name));
   }
   // tool (in the tool link's frame)
   const CellTool& t = cell.tool;

@@ -48,7 +48,8 @@ struct CellObject {
 struct Cell {
   std::string file;  ///< the cell JSON (errors, reports)
   Chain robot;
-  std::string urdf;  ///< the URDF file read
+  std::string robot_file;   ///< the robot description read: a URDF file or a DH robot JSON
+  std::string robot_format;  ///< "urdf" or "dh"
   Transform base;    ///< world <- robot root link
   CellTool tool;
   std::size_t tool_link = 0;  ///< index into robot.links
@@ -61,6 +62,10 @@ struct Cell {
 /// Reads a cell file (docs/probe.md, "Cell file"):
 ///   {"robot": {"urdf": "arm.urdf", "package_paths": ["dir"], "base": [12 numbers], "tool_link":
 ///   "tool0"},
+///   or {"robot": {"dh": "robot.json", "links": {"frame3": {"mesh": "forearm.stl", "pose": [...]}},
+///   "base": [...]}} (a DH table of probe/kinematics.h, standard or modified; its DH frames
+///   frame0..frameN are the links, meshes attached with a link <- mesh pose; tool_link defaults to
+///   frameN; base places DH frame 0 with the table's own base after it),
 ///    "tool": {"tip": [x,y,z], "axis": [x,y,z], "probe_radius": r, "probe_length": l,
 ///             "holder_radius": R, "holder_length": L, "sides": 24},
 ///    "workpiece": {"mesh": "part.stl", "pose": [12 numbers]},
