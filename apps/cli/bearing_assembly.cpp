@@ -32,18 +32,23 @@ const char* path_name(const AssemblyPairResult& r) {
 }
 
 int write_csv(std::FILE* f, const Assembly& as, const AssemblyResult& r) {
-  std::fputs("frame,bearing,kind,a,b,distance,interference,ax,ay,az,bx,by,bz,solver,path,scar,exact,verdict,two_sided\n", f);
+  std::fputs("frame,bearing,kind,a,b,distance,interference,ax,ay,az,bx,by,bz,solver,path,scar,exact,verdict,two_sided,"
+             "scar_part\n",
+             f);
   for (const AssemblyRow& row : r.rows) {
     const AssemblyPair& p = as.pairs[row.pair];
     const AssemblyPairResult& x = row.result;
     std::string b = as.parts[p.b].id;
     if (p.kind == AssemblyPairKind::roller_cage) b += "#web" + std::to_string(p.feature);
     if (p.kind == AssemblyPairKind::roller_rib) b += p.feature == 0 ? "#rib0" : "#rib1";
-    std::fprintf(f, "%d,%s,%s,%s,%s,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%s,%s,%d,%d,%s,%d\n", row.frame,
+    // scar_part (issue #27): the id of the part whose scar the row measured, "-" when none
+    const std::string scar_part = x.scar_part == 1 ? as.parts[p.a].id : x.scar_part == 2 ? as.parts[p.b].id : "-";
+    std::fprintf(f, "%d,%s,%s,%s,%s,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%s,%s,%d,%d,%s,%d,%s\n", row.frame,
                  as.spec.bearings[as.parts[p.a].bearing].id.c_str(), assembly_pair_kind_name(p.kind),
                  as.parts[p.a].id.c_str(), b.c_str(), x.distance, x.distance < 0 ? -x.distance : 0.0, x.point_a.x,
                  x.point_a.y, x.point_a.z, x.point_b.x, x.point_b.y, x.point_b.z, assembly_solver_name(x.solver),
-                 path_name(x), x.scar ? 1 : 0, x.exact ? 1 : 0, verdict_name(x.verdict), x.two_sided ? 1 : 0);
+                 path_name(x), x.scar ? 1 : 0, x.exact ? 1 : 0, verdict_name(x.verdict), x.two_sided ? 1 : 0,
+                 scar_part.c_str());
   }
   return std::ferror(f) ? 1 : 0;
 }
@@ -71,6 +76,9 @@ nlohmann::json row_json(const Assembly& as, const AssemblyRow& row) {
           {"scar", x.scar},
           {"exact", x.exact},
           {"two_sided", x.two_sided},
+          {"scar_part", x.scar_part == 1   ? nlohmann::json(as.parts[p.a].id)
+                        : x.scar_part == 2 ? nlohmann::json(as.parts[p.b].id)
+                                           : nlohmann::json(nullptr)},
           {"verdict", verdict_name(x.verdict)}};
 }
 
@@ -90,12 +98,17 @@ nlohmann::json summary(const Assembly& as, const AssemblyMotion& m, const Assemb
   for (std::size_t b = 0; b < as.spec.bearings.size(); ++b) {
     const BearingSpec& s = as.spec.bearings[b];
     int scarred = 0, pairs = 0;
-    for (const AssemblyPart& p : as.parts) scarred += p.bearing == static_cast<int>(b) && p.scarred;
+    nlohmann::json raceway_scars = nlohmann::json::array();  // the scarred raceways' parts (issue #27)
+    for (const AssemblyPart& p : as.parts) {
+      scarred += p.bearing == static_cast<int>(b) && p.scarred;
+      if (p.bearing == static_cast<int>(b) && p.raceway_scar) raceway_scars.push_back(p.id);
+    }
     for (const AssemblyPair& p : as.pairs) pairs += as.parts[p.a].bearing == static_cast<int>(b);
     bearings.push_back({{"id", s.id},
                         {"type", bearing_type_name(s.type)},
                         {"rollers", s.rollers.count},
                         {"scarred_rollers", scarred},
+                        {"scarred_raceways", std::move(raceway_scars)},
                         {"pitch_radius", as.geometry[b].pitch_radius},
                         {"parts", s.rollers.count + 3},
                         {"pairs", pairs}});

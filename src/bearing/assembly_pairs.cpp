@@ -23,6 +23,7 @@
 #include <limits>
 #include <optional>
 
+#include "assembly_raceway_scars.h"
 #include "golden.h"
 #include "interfere/bearing/assembly.h"
 #include "interfere/bearing/raceway.h"
@@ -585,6 +586,7 @@ AssemblyPairResult solve_structural(const Assembly& as, const AssemblyPair& pair
     z0 = 0, k = std::tan(g.cup_half_angle);
     R0 = (0 - g.apex_z) * k + b.cup_clearance / std::cos(g.cup_half_angle);
   }
+  if (const auto& rs = as.parts[pair.b].raceway_scar) R0 += inner ? rs->raise : -rs->raise;  // a raised raceway scar
   const double nk = std::sqrt(1 + k * k);
   const Vec3 origin = ring.apply({0, 0, 0});
   double best = std::numeric_limits<double>::infinity();
@@ -625,7 +627,10 @@ AssemblyPairResult solve_pair(const Assembly& as, const AssemblyPair& pair, cons
   if (pair.kind == AssemblyPairKind::cage_inner || pair.kind == AssemblyPairKind::cage_outer ||
       pair.kind == AssemblyPairKind::bearing_bearing)
     return solve_structural(as, pair, poses, clearance);
+  // a roller in range of a scarred raceway (issue #27; raceway_scar_solver.h)
+  if (auto scarred_raceway = detail::solve_raceway_scar_row(as, pair, poses, clearance)) return *scarred_raceway;
   AssemblyPairResult r = solve_one(as, pair, poses, clearance);
+  if (r.scar) r.scar_part = as.parts[pair.a].scarred ? 1 : 2;  // which part's scarred mesh was measured
   switch (pair.kind) {  // which rows are two-sided (assembly.h, AssemblyPairResult::two_sided)
     case AssemblyPairKind::roller_inner:
     case AssemblyPairKind::roller_roller:

@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "assembly_internal.h"
+#include "assembly_raceway_scars.h"
 #include "interfere/bearing/assembly.h"
 
 namespace interfere::bearing {
@@ -186,6 +187,16 @@ Expected<Assembly> build_assembly(const AssemblySpec& spec) {
     const std::uint32_t inner = add(PartKind::inner, b.id + "/inner", inner_ring_mesh(b, *g, spec.ring_segments), g->frame, 0);
     const std::uint32_t outer = add(PartKind::outer, b.id + "/outer", outer_ring_mesh(b, *g, spec.ring_segments), g->frame, 0);
     const std::uint32_t cage = add(PartKind::cage, b.id + "/cage", cage_mesh(*g), g->frame, 0);
+    for (const RacewayScarSpec& sc : b.scars) {  // raceway scars (issue #27; raceway_scar.h)
+      const bool on_inner = sc.part == RacewaySurface::inner || sc.part == RacewaySurface::cone;
+      AssemblyPart& ring = as.parts[on_inner ? inner : outer];
+      if (ring.raceway_scar)
+        return Error{.file = spec.file, .reason = sc.where + ".part: the " + raceway_surface_name(sc.part) +
+                                                  " raceway has a scar already (one per raceway)"};
+      Expected<std::shared_ptr<const RacewayScar>> rs = detail::build_raceway_scar(spec, b, *g, sc);
+      if (!rs) return rs.error();
+      ring.raceway_scar = std::move(*rs);
+    }
     as.web_offset.push_back(static_cast<std::uint32_t>(as.webs.size()));
     for (const CageWeb& w : g->webs) as.webs.push_back(make_model(web_mesh(w)));
     // rollers, scarred ones spread evenly: roller k is scarred when floor((k+1) f) > floor(k f)
@@ -260,7 +271,8 @@ Expected<Assembly> build_assembly(const AssemblySpec& spec) {
     const BearingSpec& b = spec.bearings[p.bearing];
     const int n = p.kind == PartKind::roller ? b.rollers.radial_segments : p.kind == PartKind::cage ? 0 : spec.ring_segments;
     const double sagitta = n > 0 ? rmax * (1 - std::cos(kPi / n)) : 0.0;
-    const double grow = sagitta + (p.roller ? p.roller->raise : 0.0) + 1e-9 * (rmax + norm(p.sphere.centre));
+    const double grow = sagitta + (p.roller ? p.roller->raise : 0.0) + (p.raceway_scar ? p.raceway_scar->raise : 0.0) +
+                        1e-9 * (rmax + norm(p.sphere.centre));
     p.sphere.radius += grow;
     p.sphere.cylinder_radius = rmax + grow, p.sphere.z_lo = lo.z - grow, p.sphere.z_hi = hi.z + grow;
   }

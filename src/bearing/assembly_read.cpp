@@ -88,6 +88,13 @@ class Obj {
       if (!taken_.count(it.key())) fail(at(it.key()), "unknown key");
   }
   const std::string& path() const { return path_; }
+  const std::string& file() const { return file_; }
+  void boolean(const std::string& key, bool& out) {
+    const json* v = get(key);
+    if (v == nullptr) return;
+    if (!v->is_boolean()) fail(at(key), std::string("expected true or false, got ") + json_type(*v));
+    out = v->get<bool>();
+  }
 
  private:
   const json& j_;
@@ -116,6 +123,52 @@ void read_cage(Obj o, CageSpec& c) {
   o.num("web_thickness", c.web_thickness, true);
   o.num("width", c.width, false);
   o.finish();
+}
+
+/// bearings[i].scars[k] (issue #27; raceway_scar.h): a generated or imported raceway scar.
+RacewayScarSpec read_raceway_scar(Obj o, const BearingSpec& b) {
+  RacewayScarSpec s;
+  s.where = o.path();
+  s.scar.z_min = s.scar.z_max = -1;  // defaults: the middle half of the raceway's width
+  std::string part;
+  o.string("part", part, true);
+  const bool cyl = b.type == BearingType::cylindrical;
+  if (cyl && part == "inner") s.part = RacewaySurface::inner;
+  else if (cyl && part == "outer") s.part = RacewaySurface::outer;
+  else if (!cyl && part == "cone") s.part = RacewaySurface::cone;
+  else if (!cyl && part == "cup") s.part = RacewaySurface::cup;
+  else
+    o.fail(o.at("part"), std::string("expected ") + (cyl ? "\"inner\" or \"outer\"" : "\"cone\" or \"cup\"") +
+                             " (a " + bearing_type_name(b.type) + " bearing's raceways), got \"" + part + "\"");
+  o.string("map", s.map, false);
+  o.string("png", s.png, false);
+  o.string("points", s.points, false);
+  if (int(!s.map.empty()) + int(!s.png.empty()) + int(!s.points.empty()) > 1)
+    o.fail(o.path(), "map, png and points exclude each other (one imported scar per entry)");
+  o.num("angle_center_deg", s.scar.angle_center_deg, false);
+  o.num("angle_width_deg", s.scar.angle_width_deg, false);
+  o.num("z_min", s.scar.z_min, false);
+  o.num("z_max", s.scar.z_max, false);
+  if (s.imported()) {
+    for (const char* only : {"depth", "roughness", "seed", "raised"})
+      if (o.has(only)) o.fail(o.at(only), "only for a generated scar (not with map, png or points)");
+    o.integer("border", s.border, false);
+  } else {
+    o.num("depth", s.scar.depth, false);
+    o.num("roughness", s.scar.roughness, false);
+    o.integer("border", s.scar.border, false);
+    o.unsigned_integer("seed", s.scar.seed);
+    o.boolean("raised", s.scar.raised);
+  }
+  if (!s.png.empty()) {
+    o.num("scale", s.png_scale, true);
+    o.num("offset", s.png_offset, false);
+  }
+  if (!s.points.empty()) o.num("window", s.points_window, false);
+  o.integer("radial_segments", s.grid.radial_segments, false);
+  o.integer("height_segments", s.grid.height_segments, false);
+  o.finish();
+  return s;
 }
 
 BearingSpec read_bearing(Obj o, std::size_t index) {
@@ -160,6 +213,11 @@ BearingSpec read_bearing(Obj o, std::size_t index) {
     cup.num("outer_radius", b.cup_outer, true);
     cup.num("clearance", b.cup_clearance, false);
     cup.finish();
+  }
+  if (const json* scars = o.get("scars"); scars != nullptr) {
+    if (!scars->is_array()) o.fail(o.at("scars"), std::string("expected an array, got ") + json_type(*scars));
+    for (std::size_t k = 0; k < scars->size(); ++k)
+      b.scars.push_back(read_raceway_scar(Obj((*scars)[k], o.at("scars") + "[" + std::to_string(k) + "]", o.file()), b));
   }
   o.finish();
   return b;

@@ -19,7 +19,7 @@ from view_readers import read_glb, read_pvd  # noqa: E402
 EXAMPLE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "data", "examples", "bearing_axle.json")
 
 COLUMNS = ["frame", "bearing", "kind", "a", "b", "distance", "interference", "ax", "ay", "az", "bx", "by", "bz",
-           "solver", "path", "scar", "exact", "verdict", "two_sided"]
+           "solver", "path", "scar", "exact", "verdict", "two_sided", "scar_part"]
 
 SMALL = {
     "frames": 3, "seed": 4, "clearance": 0.05,
@@ -187,6 +187,42 @@ class BearingAssembly(unittest.TestCase):
                                       ["--motion needs --assembly"], outputs)
         cli_common.assert_input_error(self, ["bearing", "--assembly", small(), "--pairs", "3", "--out", outputs[0]],
                                       ["--assembly cannot be combined"], outputs)
+
+    def test_raceway_scars(self):
+        # issue #27: scars on the raceways (bearing_assembly: bearings[i].scars, raceway_scar.h): a
+        # raised generated scar on the inner raceway, a CSV map (a pit) on the outer bore; the rows of
+        # rollers in range use the scarred raceway solver and name the scarred ring in scar_part
+        write_text("bore_pit.csv", "z\\angle_deg, -20, 0, 20\n5, 0, 0, 0\n15, 0, -0.03, 0\n25, 0, 0, 0\n")
+        cyl = dict(SMALL["bearings"][0], scars=[
+            {"part": "inner", "angle_center_deg": 0, "angle_width_deg": 120, "depth": 0.04, "raised": True,
+             "seed": 3, "radial_segments": 256, "height_segments": 31},
+            {"part": "outer", "map": "bore_pit.csv", "radial_segments": 256, "height_segments": 31}])
+        f = small("raceway_scars.json", bearings=[cyl, SMALL["bearings"][1]], frames=4)
+        rc, out, err = run("--assembly", f, "--out", path("rs.csv"), "--json", path("rs.json"))
+        s = load("rs.json")
+        self.assertEqual(rc, s["exit_status"], err)
+        self.assertEqual(s["bearings"][0]["scarred_raceways"], ["cyl/inner", "cyl/outer"])
+        self.assertEqual(s["bearings"][1]["scarred_raceways"], [])
+        rows = read_csv(path("rs.csv"))
+        self.assertEqual(list(rows[0].keys()), COLUMNS)
+        race = [r for r in rows if r["kind"] in ("roller-inner", "roller-outer") and r["b"] in ("cyl/inner", "cyl/outer")
+                and r["solver"] == "scarred" and r["scar_part"] == r["b"]]
+        self.assertTrue(any(r["kind"] == "roller-inner" for r in race), "no inner raceway scar row")
+        self.assertTrue(any(r["kind"] == "roller-outer" for r in race), "no outer raceway scar row")
+        for r in rows:
+            self.assertIn(r["scar_part"], ("-", r["a"], r["b"].split("#")[0]), r)
+            self.assertEqual(r["scar_part"] != "-", r["scar"] == "1", r)
+        # bad input: the wrong raceway for the type, an unknown key, a window off the raceway, a map row off it
+        outputs = [path("bad.csv"), path("bad.json")]
+        for name, scar, expect in [
+                ("rs_bad1.json", {"part": "cone"}, ["bearings[0].scars[0].part", "inner"]),
+                ("rs_bad2.json", {"part": "inner", "bogus": 1}, ["bearings[0].scars[0].bogus: unknown key"]),
+                ("rs_bad3.json", {"part": "inner", "z_min": 10, "z_max": 31}, ["bearings[0].scars[0].z_max", "raceway"]),
+                ("rs_bad4.json", {"part": "outer", "map": "bore_off.csv"}, ["bore_off.csv:3", "outside the outer raceway"])]:
+            write_text("bore_off.csv", "z\\angle_deg, -20, 0, 20\n5, 0, 0, 0\n45, 0, -0.03, 0\n")
+            bad = small(name, bearings=[dict(SMALL["bearings"][0], scars=[scar]), SMALL["bearings"][1]])
+            cli_common.assert_input_error(self, ["bearing", "--assembly", bad, "--out", outputs[0], "--json", outputs[1]],
+                                          expect, outputs)
 
 
 if __name__ == "__main__":

@@ -32,6 +32,7 @@
 
 #include "interfere/bearing/part_pair.h"
 #include "interfere/bearing/quadtree.h"
+#include "interfere/bearing/raceway_scar.h"
 #include "interfere/bearing/roller.h"
 #include "interfere/bearing/scar.h"
 #include "interfere/core/error.h"
@@ -63,6 +64,21 @@ struct CageSpec {
   double width = 0;             ///< axial length of the webs along the roller axis; 0: the roller length
 };
 
+/// A scar on one of the bearing's raceways (issue #27; raceway_scar.h): `bearings[i].scars[k]`.
+/// Generated (the window keys) or imported (`map`: a CSV grid, `png`, `points`: a point cloud or a
+/// registered STL in the bearing's frame); docs/bearing.md, "Scars on raceways".
+struct RacewayScarSpec {
+  std::string where;  ///< "bearings[0].scars[1]" (messages)
+  RacewaySurface part = RacewaySurface::inner;  ///< inner, outer (cylindrical); cone, cup (tapered)
+  ScarParams scar;    ///< generated: window (angles in the bearing frame, z from the raceway's start), depth, ...
+  std::string map, png, points;  ///< imported (at most one; paths as given, relative to the JSON file)
+  double png_scale = 0, png_offset = 0;  ///< png: height = scale * pixel + offset (scale required)
+  double points_window = 0;              ///< points: PointScarOptions::window (0: automatic)
+  int border = 0;                        ///< imported: median filter band (generated: scar.border)
+  RacewayGrid grid;                      ///< the raceway grid (radial_segments, height_segments)
+  bool imported() const { return !map.empty() || !png.empty() || !points.empty(); }
+};
+
 struct BearingSpec {
   std::string id;  ///< unique; part ids are "<id>/inner", "<id>/outer", "<id>/cage", "<id>/roller<k>"
   std::string where;  ///< "bearings[2]" (messages)
@@ -79,6 +95,7 @@ struct BearingSpec {
   double contact_angle_deg = 0;  ///< cup half-angle alpha
   double cone_bore = 0, cone_clearance = 0;   ///< cone's bore radius; raceway offset inwards (normal)
   double cup_outer = 0, cup_clearance = 0;    ///< cup's outside radius; raceway offset outwards (normal)
+  std::vector<RacewayScarSpec> scars;  ///< raceway scars (issue #27), at most one per raceway
 };
 
 struct AssemblyMotionSpec {
@@ -163,6 +180,9 @@ struct AssemblyPart {
   bool scarred = false;
   Transform rest;  ///< nominal pose (no motion)
   PartSphere sphere;  ///< (bearing_bearing bound)
+  /// Rings: the scar on its raceway (issue #27; raceway_scar.h), else null. The ring's `mesh` stays
+  /// intact (display, mesh engine); roller-raceway rows in range of it use raceway_scar_solver.h.
+  std::shared_ptr<const RacewayScar> raceway_scar;
 };
 
 /// Meshes of the parts of one bearing (for views and the mesh engine).
@@ -240,6 +260,9 @@ struct AssemblyPairResult {
   /// certified as the Euclidean distance (cup: to the cone line; rib: over the annulus).
   bool two_sided = true;
   Verdict verdict = Verdict::clear;
+  /// Which part carries the scar that `scar` reports: 0 none, 1 part a (the roller), 2 part b (the
+  /// other roller, or the ring whose raceway is scarred; issue #27).
+  std::uint8_t scar_part = 0;
 };
 
 /// One pair at the given poses (world, per part).

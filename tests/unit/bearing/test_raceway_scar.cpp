@@ -339,3 +339,88 @@ TEST(RacewayScar, TaperedRollerOnAScarredConeIsFlaggedABound) {
   a.radius = 9.5, a.top_radius = -1;
   EXPECT_NEAR(r.distance, surface_min_bracket(raceway_triangles(*s, raceway_surface_pose(ring)), a, 1e-9).upper, 1e-9);
 }
+
+// ---- in bearing assemblies (bearings[i].scars; assembly_raceway_scars.h) ----
+
+#include "interfere/bearing/assembly.h"
+#include "assembly_fixture.h"
+
+namespace {
+std::string with_scars(const char* bearing, const std::string& scars) {
+  std::string b = bearing;
+  b.insert(b.rfind('}'), ", \"scars\": [" + scars + "]");
+  return b;
+}
+}  // namespace
+
+TEST(RacewayScarAssembly, RowsInRangeUseTheScarredRacewaySolver) {
+  using namespace interfere::bearing::test;
+  const std::string scars =
+      R"({"part": "inner", "angle_center_deg": 30, "angle_width_deg": 100, "depth": 0.04, "raised": true, "seed": 3,
+          "radial_segments": 256, "height_segments": 31},
+         {"part": "outer", "angle_center_deg": 250, "angle_width_deg": 120, "depth": 0.03, "seed": 4,
+          "radial_segments": 256, "height_segments": 31})";
+  const Expected<AssemblySpec> spec =
+      parse_assembly(assembly_json(kLively, with_scars(kCylindricalBearing, scars) + "," + kTaperedBearing), "a.json");
+  ASSERT_TRUE(spec.has_value()) << spec.error().message();
+  const Expected<AssemblySpec> plain_spec = parse_assembly(assembly_json(kLively, both_bearings()), "a.json");
+  ASSERT_TRUE(plain_spec.has_value());
+  const Expected<Assembly> as = build_assembly(*spec);
+  const Expected<Assembly> plain = build_assembly(*plain_spec);
+  ASSERT_TRUE(as.has_value()) << as.error().message();
+  ASSERT_TRUE(plain.has_value());
+  ASSERT_TRUE(as->parts[static_cast<std::size_t>(as->find("cyl/inner"))].raceway_scar);
+  ASSERT_TRUE(as->parts[static_cast<std::size_t>(as->find("cyl/outer"))].raceway_scar);
+  const AssemblyMotion motion = generate_motion(*as, 4, 3);
+  int scarred_rows = 0, intact_rows = 0;
+  for (const auto& poses : motion.poses)
+    for (std::size_t k = 0; k < as->pairs.size(); ++k) {
+      const AssemblyPair& pair = as->pairs[k];
+      const AssemblyPart& ring = as->parts[pair.b];
+      if (pair.kind != AssemblyPairKind::roller_inner && pair.kind != AssemblyPairKind::roller_outer) continue;
+      const AssemblyPairResult r = solve_pair(*as, pair, poses, 0.05);
+      const AssemblyPart& roller = as->parts[pair.a];
+      RacewayPairRoller rp{posed_cylinder(10, -1, 20, poses[pair.a]), roller.scarred ? roller.roller.get() : nullptr,
+                           roller.scarred ? roller.tree.get() : nullptr, poses[pair.a]};
+      const RacewayPairRing rr{ring.raceway_scar.get(), poses[pair.b]};
+      if (raceway_scar_in_range(rp, rr)) {
+        const RacewayScarPairResult d = raceway_scar_pair(rr, rp);
+        EXPECT_EQ(r.solver, AssemblySolver::scarred);
+        EXPECT_EQ(r.distance, d.distance);
+        EXPECT_EQ(r.point_a, d.point_roller);
+        EXPECT_EQ(r.scar, d.scar);
+        if (d.carrier == ScarCarrier::raceway) EXPECT_EQ(r.scar_part, 2);
+        ++scarred_rows;
+      } else {  // out of range: the intact ring's row, bitwise
+        const AssemblyPairResult q = solve_pair(*plain, plain->pairs[k], poses, 0.05);
+        EXPECT_EQ(r.distance, q.distance);
+        EXPECT_EQ(r.solver, q.solver);
+        ++intact_rows;
+      }
+    }
+  EXPECT_GT(scarred_rows, 0);
+  EXPECT_GT(intact_rows, 0);
+}
+
+TEST(RacewayScarAssembly, DescriptionErrorsNameThePath) {
+  using namespace interfere::bearing::test;
+  const auto error_of = [](const std::string& scars, const char* bearing = kCylindricalBearing) -> std::string {
+    const Expected<AssemblySpec> spec = parse_assembly(assembly_json("", with_scars(bearing, scars)), "a.json");
+    if (!spec) return spec.error().message();
+    const Expected<Assembly> as = build_assembly(*spec);
+    return as ? std::string() : as.error().message();
+  };
+  EXPECT_NE(error_of(R"({"part": "cup"})").find("bearings[0].scars[0].part"), std::string::npos);
+  EXPECT_NE(error_of(R"({"part": "inner"})", kTaperedBearing).find("bearings[0].scars[0].part"), std::string::npos);
+  EXPECT_NE(error_of(R"({"part": "inner", "bogus": 1})").find("bearings[0].scars[0].bogus: unknown key"), std::string::npos);
+  EXPECT_NE(error_of(R"({"part": "inner", "raised": 1})").find("bearings[0].scars[0].raised"), std::string::npos);
+  EXPECT_NE(error_of(R"({"part": "outer", "z_min": 2, "z_max": 30.5})").find("bearings[0].scars[0].z_max"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"({"part": "outer", "map": "m.csv", "depth": 0.1})").find("bearings[0].scars[0].depth"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"({"part": "inner"}, {"part": "inner", "seed": 2})").find("bearings[0].scars[1].part"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"({"part": "inner", "radial_segments": 4})").find("radial_segments"), std::string::npos);
+  EXPECT_NE(error_of(R"({"part": "outer", "map": "/nonexistent/m.csv"})").find("/nonexistent/m.csv"), std::string::npos);
+  EXPECT_EQ(error_of(R"({"part": "cone"}, {"part": "cup", "raised": true})", kTaperedBearing), "");
+}
