@@ -54,6 +54,7 @@ struct Ctx {
   double tol;
   std::vector<std::vector<std::uint32_t>> arcs_of;  // node -> arc indices
   std::vector<int> concave, convex;
+  std::vector<double> span;  // cylinder/cone: summed angular spans of the node's faces (split faces merged)
 };
 
 bool node_ok(const Ctx& c, const PatternNode& pn, std::uint32_t n) {
@@ -108,6 +109,12 @@ bool check_ok(const Ctx& c, const PatternCheck& ck, const std::vector<std::uint3
   if (ck.kind == "parallel_planes") return std::abs(std::abs(dot(N(0).normal, N(1).normal)) - 1) <= tol;
   if (ck.kind == "opposite_normals") return dot(N(0).normal, N(1).normal) <= -1 + tol;
   if (ck.kind == "perpendicular_planes") return std::abs(dot(N(0).normal, N(1).normal)) <= tol;
+  if (ck.kind == "full_circle") {
+    // Issue #29: a boss's wall goes all round; convex fillets and corner rounds (quarter arcs) do not.
+    for (std::uint32_t n : nodes)
+      if (!(c.span[n] >= 2 * M_PI - 0.02)) return false;
+    return true;
+  }
   return false;
 }
 
@@ -233,7 +240,7 @@ Expected<FeatureLibrary> parse_feature_library(const std::string& text, const st
         p.arcs.push_back(a);
       }
       static const std::set<std::string> kinds{"coaxial", "radius_less", "perpendicular_to_axis", "parallel_planes",
-                                               "opposite_normals", "perpendicular_planes"};
+                                               "opposite_normals", "perpendicular_planes", "full_circle"};
       for (const json& jc : jp.value("checks", json::array())) {
         PatternCheck c;
         c.kind = jc.at("kind").get<std::string>();
@@ -359,10 +366,12 @@ std::vector<Feature> recognize_features(const Aag& input, const FeatureLibrary& 
   const std::vector<std::uint32_t>& group_of = merged.group_of;
   const std::vector<std::uint32_t>& rep = merged.rep;
   const std::vector<std::vector<std::uint32_t>>& members = merged.members;
-  Ctx c{aag, tolerance, {}, {}, {}};
+  Ctx c{aag, tolerance, {}, {}, {}, {}};
   const std::size_t n = aag.nodes.size();
   c.arcs_of.resize(n);
-  c.concave.assign(n, 0), c.convex.assign(n, 0);
+  c.concave.assign(n, 0), c.convex.assign(n, 0), c.span.assign(n, 0);
+  for (std::uint32_t g = 0; g < n; ++g)
+    for (std::uint32_t f : members[g]) c.span[g] += input.nodes[f].arc_span;
   for (std::uint32_t i = 0; i < aag.arcs.size(); ++i) {
     const AagArc& a = aag.arcs[i];
     c.arcs_of[a.a].push_back(i), c.arcs_of[a.b].push_back(i);
@@ -383,18 +392,22 @@ std::vector<Feature> recognize_features(const Aag& input, const FeatureLibrary& 
       for (std::uint32_t f : h.owned) claimed[group_of[f]] = 1;
       holes.push_back(std::move(h.feature));
     }
-  // Closed pockets (issue #29, item 3; pocket_recognition.cpp): a floor with walls all round, which
-  // a pattern of fixed size cannot state; claimed before the patterns too.
-  const bool pockets = library.has("pocket");
-  std::vector<detail::PocketFeature> pocket_list;
-  if (pockets)
-    for (detail::PocketFeature& pk : detail::recognize_pockets(aag, claimed)) {
-      claimed[pk.floor] = 1;
-      for (std::uint32_t w : pk.walls) claimed[w] = 1;
-      pocket_list.push_back(std::move(pk));
+  // Floor features (issue #29, item 1; pocket_recognition.cpp): pockets, slots, blind slots and steps,
+  // a floor with walls standing on it, floor fillets between them and open sides, which patterns of
+  // fixed size cannot state (walls all round, fillets of any number); claimed before the patterns too.
+  std::set<std::string> floor_types;
+  for (const FeaturePattern& p : library.patterns)
+    if (detail::floor_feature_types().count(p.type)) floor_types.insert(p.type);
+  std::vector<detail::FloorFeature> floor_list;
+  if (!floor_types.empty())
+    for (detail::FloorFeature& ff : detail::recognize_floor_features(aag, claimed, floor_types)) {
+      claimed[ff.floor] = 1;
+      for (std::uint32_t w : ff.walls) claimed[w] = 1;
+      for (std::uint32_t w : ff.fillets) claimed[w] = 1;
+      floor_list.push_back(std::move(ff));
     }
   for (const FeaturePattern& p : library.patterns) {
-    if (hole_types.count(p.type) || (pockets && p.type == "pocket")) continue;
+    if (hole_types.count(p.type) || floor_types.count(p.type)) continue;
     std::set<std::string> shared;
     for (const PatternCheck& ck : p.checks)
       if (ck.kind == "__shared") shared.insert(ck.roles[0]);
@@ -442,16 +455,27 @@ std::vector<Feature> recognize_features(const Aag& input, const FeatureLibrary& 
     f.faces = std::move(faces);
   }
   for (Feature& h : holes) out.push_back(std::move(h));
-  for (const detail::PocketFeature& pk : pocket_list) {
+  for (const detail::FloorFeature& ff : floor_list) {
     Feature f;
-    f.type = "pocket";
-    f.roles["floor"] = rep[pk.floor], f.roles["wall"] = rep[pk.walls.front()];
-    f.role_faces["floor"] = members[pk.floor];
-    for (std::uint32_t w : pk.walls) f.role_faces["wall"].insert(f.role_faces["wall"].end(), members[w].begin(), members[w].end());
-    std::sort(f.role_faces["wall"].begin(), f.role_faces["wall"].end());
-    f.faces = f.role_faces["floor"];
-    f.faces.insert(f.faces.end(), f.role_faces["wall"].begin(), f.role_faces["wall"].end());
+    f.type = ff.type;
+    auto add = [&](const std::string& role, const std::vector<std::uint32_t>& groups) {
+      if (groups.empty()) return;
+      auto& v = f.role_faces[role];
+      for (std::uint32_t g : groups) v.insert(v.end(), members[g].begin(), members[g].end());
+      std::sort(v.begin(), v.end());
+      f.roles[role] = rep[*std::min_element(groups.begin(), groups.end(), [&](std::uint32_t a, std::uint32_t b) { return rep[a] < rep[b]; })];
+    };
+    add("floor", {ff.floor});
+    if (ff.type == "slot" || ff.type == "blind_slot") {
+      add("wall1", {ff.sides[0]}), add("wall2", {ff.sides[1]});
+      add("end", ff.ends);
+    } else {
+      add("wall", ff.walls);
+    }
+    add("fillet", ff.fillets);
+    for (const auto& [role, faces] : f.role_faces) f.faces.insert(f.faces.end(), faces.begin(), faces.end());
     std::sort(f.faces.begin(), f.faces.end());
+    f.faces.erase(std::unique(f.faces.begin(), f.faces.end()), f.faces.end());
     out.push_back(std::move(f));
   }
   std::sort(out.begin(), out.end(), [](const Feature& a, const Feature& b) {

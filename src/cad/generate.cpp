@@ -46,6 +46,7 @@
 #include <numbers>
 #include <utility>
 
+#include "generate_floor_parts.h"
 #include "interfere/cad/model.h"
 
 namespace interfere::cad {
@@ -161,6 +162,9 @@ TopoDS_Shape build(TestPart p) {
       return unify(cut(cut(box(0, 0, 0, 40, 30, 10), cyl(20, 15, -1, 3, 12)), cyl(22, 15, 6, 6, 5)));
     case TestPart::casing: return casing();
     case TestPart::paper_casing: return paper_casing();
+    case TestPart::slot_features_block:
+    case TestPart::filleted_pocket_block:
+    case TestPart::filleted_step_block: return detail::floor_feature_part(p);
     case TestPart::perforated_plate: return perforated_plate();
     case TestPart::single_face:
       return BRepBuilderAPI_MakeFace(gp_Pln(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 0, 10, 0, 10).Face();
@@ -240,6 +244,9 @@ const char* test_part_name(TestPart p) {
     case TestPart::crossing_holes: return "crossing_holes";
     case TestPart::counterdrilled_plate: return "counterdrilled_plate";
     case TestPart::paper_casing: return "paper_casing";
+    case TestPart::slot_features_block: return "slot_features_block";
+    case TestPart::filleted_pocket_block: return "filleted_pocket_block";
+    case TestPart::filleted_step_block: return "filleted_step_block";
   }
   return "?";
 }

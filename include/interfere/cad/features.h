@@ -26,7 +26,7 @@ struct PatternArc {
   std::vector<Convexity> convexity;
 };
 struct PatternCheck {
-  std::string kind;                ///< coaxial, radius_less, perpendicular_to_axis, parallel_planes, opposite_normals, perpendicular_planes, distinct
+  std::string kind;                ///< coaxial, radius_less, perpendicular_to_axis, parallel_planes, opposite_normals, perpendicular_planes, full_circle, distinct
   std::vector<std::string> roles;
 };
 struct FeaturePattern {

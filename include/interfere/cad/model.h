@@ -160,6 +160,10 @@ enum class TestPart {
   crossing_holes,       ///< 40x40x20 block, through hole r=4 along x and one r=3 along y crossing it at mid-height
   counterdrilled_plate, ///< 40x30x10 plate, bore r=3 through, counterdrill r=6 from the top to z=6 ending in a 118-degree drill point cone down to r=3
   paper_casing,         ///< He & Xu 2023 §4's casing as the paper describes it: the casing body (bore r=88, B-spline working ring) with end flanges (r=130, 12 thick) holding 6 plain bolt holes r=5 each, and 6 radial counterbored screw holes (bore r=3 through to the inner ring face, counterbore r=6 from the outer wall to r=104) in the working ring at mid-height
+  // Floor features with fillets (issue #29, item 1; src/cad/generate_floor_parts.cpp, BRepFilletAPI fillets):
+  slot_features_block,  ///< 80x60x30 block, vertical outer edges rounded r=4; through slot along x, y 5..17, floor z=22, floor fillets r=2; blind slot from x=0, y 25..35, floor z=24, round end r=5 about (40, 30); blind slot from x=80 to x=50, y 43..55, floor z=20, square end with corner rounds r=2
+  filleted_pocket_block, ///< 70x50x25 block, top outer edges rounded r=1.5; pocket x 15..55, y 10..40, floor z=15, corner rounds r=5, floor fillets r=2
+  filleted_step_block,  ///< 60x40x30 block; through step along x at y 0..12, floor z=20, wall y=12, floor fillet r=3, the wall's top edge rounded r=2; plain through step at y 30..40, floor z=22, wall y=30
 };
 const char* test_part_name(TestPart p);
 Status write_test_part(TestPart part, const std::filesystem::path& step_file);
