@@ -299,14 +299,16 @@ Status write_xcaf(const std::filesystem::path& step_file, Fill&& fill, const cha
   }
 }
 
-// One product named after the part (test_part_name), in `length_unit` (null: OCCT's setting, mm).
-Status write_part(TestPart part, const std::filesystem::path& step_file, const char* length_unit) {
+// One product named `name` (null: after the part, test_part_name), in `length_unit` (null: OCCT's
+// setting, mm).
+Status write_part(TestPart part, const std::filesystem::path& step_file, const char* length_unit,
+                  const char* name = nullptr) {
   return write_xcaf(
       step_file,
       [&](const Handle(XCAFDoc_ShapeTool)& st) -> Status {
         const TopoDS_Shape s = build(part);
         if (s.IsNull()) return Error{.reason = "solid construction failed"};
-        TDataStd_Name::Set(st->AddShape(s, Standard_False), test_part_name(part));
+        TDataStd_Name::Set(st->AddShape(s, Standard_False), name ? name : test_part_name(part));
         return {};
       },
       nullptr, length_unit);
@@ -321,6 +323,10 @@ Status write_test_part(TestPart part, const std::filesystem::path& step_file) {
 Status write_test_part(TestPart part, const std::filesystem::path& step_file,
                        const std::string& length_unit) {
   return write_part(part, step_file, length_unit.c_str());
+}
+
+Status write_test_part_named(TestPart part, const std::filesystem::path& step_file, const std::string& product_name) {
+  return write_part(part, step_file, nullptr, product_name.c_str());
 }
 
 Status write_test_assembly(const std::filesystem::path& step_file) {

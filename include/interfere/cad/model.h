@@ -173,6 +173,10 @@ Status write_test_part(TestPart part, const std::filesystem::path& step_file);
 /// error.
 Status write_test_part(TestPart part, const std::filesystem::path& step_file,
                        const std::string& length_unit);
+/// The same solid (mm) with its product named `product_name` instead of test_part_name(part): the
+/// bundled example data/examples/casing.step is TestPart::paper_casing named "casing"
+/// (tools/write_test_part/write_test_part.cpp; issue #29).
+Status write_test_part_named(TestPart part, const std::filesystem::path& step_file, const std::string& product_name);
 
 /// An XCAF assembly "assembly" written with STEPCAFControl_Writer (names kept; surface colours: plate
 /// (0.8, 0.2, 0.1), shaft (0.1, 0.3, 0.9)): part "plate"
