@@ -131,6 +131,7 @@ int run_scene_clash(const ClashOptions& o, const CLI::App& command, const std::v
   eo.group_by = group_by;
   eo.group_distance = o.group_distance;
   eo.nominal_fit = in.nominal_fit;
+  eo.zero_clearance_fits = in.zero_clearance_fits;  // (issue #29: as assembly-clash classifies them)
   eo.reference = o.reference;
   eo.depth_maps = true;  // (the deepest node per clash and step; the maps drawn by --pvd)
   // Frames: a progress bar with rate and ETA on a terminal, a line per tenth otherwise (progress_bar.h).

@@ -183,6 +183,8 @@ struct PyScene {
   std::vector<std::string> files;    ///< the files read (reported as the report's inputs)
   /// The nominal-fit check of the STEP assemblies read (scene/load.h), and what it refers to.
   NominalFit nominal_fit;
+  /// Their zero-clearance fits (scene/load.h; issue #29: as assembly-clash classifies them).
+  sc::SceneClashOptions::ZeroClearanceFits zero_clearance_fits;
   std::shared_ptr<void> keep_alive;
 };
 
@@ -252,6 +254,7 @@ PyScene scene_from_file(const std::string& path, const std::string& units_arg) {
     s.scene = std::move(l.scene);
     s.files.insert(s.files.end(), l.files.begin(), l.files.end());
     s.nominal_fit = std::move(l.nominal_fit);
+    s.zero_clearance_fits = std::move(l.zero_clearance_fits);
     s.keep_alive = std::move(l.keep_alive);
   }
   s.tests = spec->tests;
@@ -544,6 +547,7 @@ PyReport run_clash(const PyScene& s, py::handle tests_arg, py::handle baseline_a
   o.depth = depth;
   o.curves = curves;
   o.nominal_fit = s.nominal_fit;
+  o.zero_clearance_fits = s.zero_clearance_fits;
   const int threads = threads_arg.is_none() ? 0 : threads_arg.cast<int>();
   d->threads = threads;
   ThreadLimit limit(threads, "0 or None = all cores");

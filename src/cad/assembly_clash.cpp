@@ -28,73 +28,6 @@ const char* instance_meeting_name(InstanceMeeting m) {
   return "?";
 }
 
-namespace {
-
-// Zero-clearance fits classified from the B-Rep (issue #29, item 4): pairs of instances whose boxes
-// meet, which the tessellations show apart or not at all (placements rounded a hair apart: the AS1
-// AP203 export's bracket 1.3e-12 mm above its plate) but which have coincident B-Rep faces whose
-// triangles come within the fit tolerance (detail::zero_clearance_fit), are contacts: added, or
-// turned from `clearance` into `contact`.
-void add_zero_clearance_fits(const CadModel& model, AssemblyClashResult& out) {
-  const std::size_t n = model.instances.size();
-  std::vector<Aabb> box(n);
-  std::vector<double> diagonal(n, 0);
-  for (std::size_t k = 0; k < n; ++k) {
-    const Instance& inst = model.instances[k];
-    const Aabb local = model.parts[inst.part].mesh.bounds();
-    if (local.empty()) continue;
-    for (int c = 0; c < 8; ++c)
-      box[k].expand(inst.placement.apply({c & 1 ? local.hi.x : local.lo.x, c & 2 ? local.hi.y : local.lo.y,
-                                          c & 4 ? local.hi.z : local.lo.z}));
-    diagonal[k] = norm(local.extent());
-  }
-  std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> known;
-  for (std::size_t i = 0; i < out.pairs.size(); ++i) known[{out.pairs[i].a, out.pairs[i].b}] = i;
-  bool changed = false;
-  for (std::uint32_t a = 0; a < n; ++a)
-    for (std::uint32_t b = a + 1; b < n; ++b) {
-      if (box[a].empty() || box[b].empty()) continue;
-      const double tol = kFitTolerance * (diagonal[a] + diagonal[b]);
-      Aabb grown = box[a];
-      grown.lo = grown.lo - Vec3{tol, tol, tol}, grown.hi = grown.hi + Vec3{tol, tol, tol};
-      if (!grown.overlaps(box[b])) continue;
-      const auto it = known.find({a, b});
-      if (it != known.end() && out.pairs[it->second].meeting != InstanceMeeting::clearance) continue;
-      const Instance &ia = model.instances[a], &ib = model.instances[b];
-      double gap = 0;
-      if (!detail::zero_clearance_fit(model.parts[ia.part], ia.placement, model.parts[ib.part], ib.placement, tol, tol,
-                                      &gap))
-        continue;
-      if (it != known.end()) {
-        --out.within_clearance;
-        out.pairs[it->second].meeting = InstanceMeeting::contact;
-        out.pairs[it->second].zero_clearance_fit = true;
-      } else {
-        InstancePairResult p;
-        p.a = a, p.b = b;
-        p.meeting = InstanceMeeting::contact;
-        p.zero_clearance_fit = true;
-        p.min_clearance = gap;
-        p.tessellation_error = model.parts[ia.part].tessellation_error() + model.parts[ib.part].tessellation_error();
-        out.pairs.push_back(std::move(p));
-      }
-      ++out.contacts;
-      changed = true;
-    }
-  if (!changed) return;
-  // (A pair turned from clearance to contact may leave no clearance pair: the verdict is the worst
-  // of what is left.)
-  Verdict v = Verdict::clear;
-  for (const InstancePairResult& p : out.pairs)
-    v = worst(v, p.meeting == InstanceMeeting::clash       ? Verdict::clash
-                 : p.meeting == InstanceMeeting::undecided ? Verdict::undecided
-                 : p.meeting == InstanceMeeting::contact   ? Verdict::contact
-                                                           : Verdict::clearance);
-  out.verdict = v;
-}
-
-}  // namespace
-
 // A user of the scene engine (issue #24, item 3: one code path): the assembly as a scene
 // (assembly_scene.cpp), one all-pairs test (clearance mode when a clearance is asked for), the
 // nominal-fit rule as the engine's hook; the engine's clashes are folded back into instance pairs.
@@ -110,6 +43,11 @@ AssemblyClashResult assembly_clash(const CadModel& model, const AssemblyClashOpt
   eo.triangles = options.geometry;
   eo.group_by = scene::GroupBy::none;
   eo.nominal_fit = nominal_fit_check(model, s);
+  // Zero-clearance fits classified from the B-Rep (issue #29, item 4): pairs of instances whose
+  // tessellations the core shows apart, or not at all (placements rounded a hair apart: the AS1
+  // AP203 export's bracket 1.3e-12 mm above its plate), with coincident B-Rep faces whose triangles
+  // come within the fit tolerance are contacts: the engine's hook, as for clash --scene.
+  eo.zero_clearance_fits = zero_clearance_fit_check(model, s);
   eo.pair_progress = options.progress;
   // The core's per-pair figures (counts, containment), by instance pair.
   struct Raw {
@@ -143,7 +81,8 @@ AssemblyClashResult assembly_clash(const CadModel& model, const AssemblyClashOpt
     InstancePairResult p;
     const bool swapped = ps.a > ps.b;
     p.a = std::min(ps.a, ps.b), p.b = std::max(ps.a, ps.b);
-    const Raw& x = raw[{p.a, p.b}];
+    const auto seen = raw.find({p.a, p.b});
+    const Raw x = seen != raw.end() ? seen->second : Raw{};
     p.cross_pairs = x.cross, p.touch_pairs = x.touch, p.clearance_pairs = x.clearance;
     p.min_clearance = x.min_clearance, p.containment = x.containment, p.touching_overlap = x.touching_overlap;
     p.regions = x.regions, p.curve_length = x.curve_length;
@@ -160,6 +99,10 @@ AssemblyClashResult assembly_clash(const CadModel& model, const AssemblyClashOpt
     for (const std::uint32_t k : ps.clashes) {
       const scene::SceneClash& c = r.clashes[k];
       p.nominal_fit = p.nominal_fit || c.kind == "nominal_fit";
+      if (c.kind == "zero_clearance_fit") {
+        p.zero_clearance_fit = true;
+        if (seen == raw.end()) p.min_clearance = c.distance;  // (a pair the core never saw: the fit's gap)
+      }
       if (c.verdict == Verdict::undecided)
         p.verdict_reasons.insert(p.verdict_reasons.end(), c.reasons.begin(), c.reasons.end());
       if (options.geometry && p.meeting == InstanceMeeting::clash) {
@@ -181,7 +124,6 @@ AssemblyClashResult assembly_clash(const CadModel& model, const AssemblyClashOpt
     out.verdict = worst(out.verdict, ps.verdict);
     out.pairs.push_back(std::move(p));
   }
-  add_zero_clearance_fits(model, out);
   std::sort(out.pairs.begin(), out.pairs.end(),
             [](const InstancePairResult& x, const InstancePairResult& y) { return std::tie(x.a, x.b) < std::tie(y.a, y.b); });
   out.warnings = r.warnings;

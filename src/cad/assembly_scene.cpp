@@ -7,6 +7,8 @@
 #include <memory>
 
 #include "assembly_clash_internal.h"
+#include "interfere/cad/assembly_clash.h"
+#include "interfere/core/units.h"
 #include "interfere/mesh/validate.h"
 
 namespace interfere::cad {
@@ -110,19 +112,15 @@ bool placement_from(const Anchor& an, const TriMesh& local, const TriMesh& world
   return true;
 }
 
-}  // namespace
-
-std::function<bool(std::uint32_t, std::uint32_t, const Model&, const Model&, const ClashResult&,
-                   double)>
-nominal_fit_check(const CadModel& model, const scene::Scene& s) {
-  // Body -> instance of `model` (by the instance path assembly_scene puts in the source).
+// Body -> instance of `model` (by the instance path assembly_scene puts in the source; -1: a body
+// not from `model`, or whose mesh is not its part's tessellation).
+std::vector<std::int64_t> instances_of_bodies(const CadModel& model, const scene::Scene& s) {
   std::map<std::string, std::uint32_t> by_path;
   for (std::uint32_t i = 0; i < model.instances.size(); ++i)
     by_path.emplace(
         model.instances[i].path.empty() ? "/" + model.instances[i].name : model.instances[i].path,
         i);
-  auto instance = std::make_shared<std::vector<std::int64_t>>(s.bodies.size(), -1);
-  auto anchors = std::make_shared<std::map<const TriMesh*, Anchor>>();
+  std::vector<std::int64_t> instance(s.bodies.size(), -1);
   for (std::size_t b = 0; b < s.bodies.size(); ++b) {
     const scene::Body& body = s.bodies[b];
     if (body.source.kind != scene::SourceKind::step_instance || body.source.file != model.file ||
@@ -132,9 +130,21 @@ nominal_fit_check(const CadModel& model, const scene::Scene& s) {
     if (it == by_path.end()) continue;
     if (body.mesh->num_triangles() != model.parts[model.instances[it->second].part].face_ids.size())
       continue;
-    (*instance)[b] = it->second;
-    if (!anchors->count(body.mesh.get())) (*anchors)[body.mesh.get()] = anchor_of(*body.mesh);
+    instance[b] = it->second;
   }
+  return instance;
+}
+
+}  // namespace
+
+std::function<bool(std::uint32_t, std::uint32_t, const Model&, const Model&, const ClashResult&,
+                   double)>
+nominal_fit_check(const CadModel& model, const scene::Scene& s) {
+  auto instance = std::make_shared<std::vector<std::int64_t>>(instances_of_bodies(model, s));
+  auto anchors = std::make_shared<std::map<const TriMesh*, Anchor>>();
+  for (std::size_t b = 0; b < s.bodies.size(); ++b)
+    if ((*instance)[b] >= 0 && !anchors->count(s.bodies[b].mesh.get()))
+      (*anchors)[s.bodies[b].mesh.get()] = anchor_of(*s.bodies[b].mesh);
   return [&model, &s, instance, anchors](std::uint32_t a, std::uint32_t b, const Model& wa,
                                          const Model& wb, const ClashResult& r, double depth) {
     if (a >= instance->size() || b >= instance->size() || (*instance)[a] < 0 || (*instance)[b] < 0)
@@ -163,6 +173,39 @@ nominal_fit_check(const CadModel& model, const scene::Scene& s) {
     return detail::nominal_fit(pa, ta, pb, tb, wa, wb, r, depth,
                                pa.tessellation_error() + pb.tessellation_error());
   };
+}
+
+scene::SceneClashOptions::ZeroClearanceFits zero_clearance_fit_check(const CadModel& model, const scene::Scene& s) {
+  const auto instance = std::make_shared<std::vector<std::int64_t>>(instances_of_bodies(model, s));
+  // The bodies' poses in mm (STEP geometry is; a scene in other units scales its bodies' meshes
+  // and translations by 1 / mm per unit: scene_load), rigid only.
+  const double mm = millimetres_per_unit(s.units).value_or(1.0);
+  auto place = std::make_shared<std::vector<Transform>>(s.bodies.size());
+  for (std::size_t b = 0; b < s.bodies.size(); ++b) {
+    if ((*instance)[b] < 0) continue;
+    Transform t = s.bodies[b].pose;
+    t.t = t.t * mm;
+    if (!t.is_rigid()) (*instance)[b] = -1;
+    (*place)[b] = t;
+  }
+  scene::SceneClashOptions::ZeroClearanceFits z;
+  z.reach = [&model, instance, mm](std::uint32_t b) {
+    if (b >= instance->size() || (*instance)[b] < 0) return 0.0;
+    return kFitTolerance * norm(model.parts[model.instances[(*instance)[b]].part].mesh.bounds().extent()) / mm;
+  };
+  // As assembly-clash decided them until the scene engine asked (issue #29): faces within, and
+  // triangles reaching, kFitTolerance of the two parts' diagonals.
+  z.check = [&model, instance, place, mm](std::uint32_t a, std::uint32_t b, double* gap) {
+    if (a >= instance->size() || b >= instance->size() || (*instance)[a] < 0 || (*instance)[b] < 0) return false;
+    const Part& pa = model.parts[model.instances[(*instance)[a]].part];
+    const Part& pb = model.parts[model.instances[(*instance)[b]].part];
+    const double tol = kFitTolerance * (norm(pa.mesh.bounds().extent()) + norm(pb.mesh.bounds().extent()));
+    double g = 0;
+    if (!detail::zero_clearance_fit(pa, (*place)[a], pb, (*place)[b], tol, tol, &g)) return false;
+    if (gap) *gap = g / mm;
+    return true;
+  };
+  return z;
 }
 
 }  // namespace interfere::cad

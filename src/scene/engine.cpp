@@ -17,7 +17,9 @@
 #include <tuple>
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
+#include <optional>
 #include <unordered_map>
 
 #include "engine_internal.h"
@@ -197,6 +199,77 @@ void finish_result(const Scene& scene, const std::vector<ClashTest>& tests, cons
   detail::summarise_frames(scene, tests, result);
   detail::group_clashes(result, options);
 }
+
+namespace {
+
+// SceneClashOptions::zero_clearance_fits on a static scene (issue #29, item 4): the candidates of
+// every test over the broad boxes grown by the bodies' reach, each asked once; a fit is a contact
+// where the test found no clash, contact or undecided pair (its clearance record dropped).
+void add_zero_clearance_fits(const Scene& scene, const std::vector<ClashTest>& tests, const SceneClashOptions& options,
+                             BroadPhase& broad, const std::vector<AabbF>& boxes, const std::vector<Transform>& pose,
+                             const std::vector<double>& grid,
+                             const std::function<bool(const CandidatePair&)>& decided, SceneClashResult& result) {
+  const SceneClashOptions::ZeroClearanceFits& z = options.zero_clearance_fits;
+  std::vector<AabbF> grown = boxes;
+  bool any = false;
+  for (std::uint32_t i = 0; i < grown.size(); ++i) {
+    const double r = z.reach(i);
+    if (!(r > 0) || !(grown[i].lo[0] <= grown[i].hi[0])) continue;
+    for (int k = 0; k < 3; ++k)
+      grown[i].lo[k] = round_down(double(grown[i].lo[k]) - r), grown[i].hi[k] = round_up(double(grown[i].hi[k]) + r);
+    any = true;
+  }
+  if (!any) return;
+  std::size_t found = 0, suppressed = 0;
+  const std::vector<CandidatePair> cands = broad.candidates(grown, found, suppressed);
+  // What each (test, a, b) has already: 2 a clash, contact or undecided record, 1 clearance only.
+  std::map<std::tuple<std::string, std::uint32_t, std::uint32_t>, int> has;
+  for (const SceneClash& c : result.clashes) {
+    int& h = has[{c.test, c.a, c.b}];
+    h = std::max(h, c.verdict == Verdict::clearance ? 1 : 2);
+  }
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::optional<double>> asked;  // (each pair once)
+  std::vector<SceneClash> added;
+  std::set<std::tuple<std::string, std::uint32_t, std::uint32_t>> replaced;
+  for (const CandidatePair& c : cands) {
+    const ClashTest& t = tests[c.test];
+    if (!t.nominal_fits_are_contacts || t.mode == ClashMode::duplicates || !decided(c)) continue;
+    const auto it = has.find({t.name, c.a, c.b});
+    if (it != has.end() && it->second == 2) continue;
+    auto [at, fresh] = asked.try_emplace({std::min(c.a, c.b), std::max(c.a, c.b)});
+    if (fresh) {
+      double gap = 0;
+      if (z.check(c.a, c.b, &gap)) at->second = gap;
+    }
+    if (!at->second) continue;
+    SceneClash s;
+    s.test = t.name, s.a = c.a, s.b = c.b;
+    s.verdict = Verdict::contact;
+    s.kind = "zero_clearance_fit";
+    s.distance = *at->second;
+    const auto box_of = [](const AabbF& g) {
+      Aabb b;
+      b.expand(Vec3{g.lo[0], g.lo[1], g.lo[2]}), b.expand(Vec3{g.hi[0], g.hi[1], g.hi[2]});
+      return b;
+    };
+    const Aabb ba = box_of(grown[c.a]), bb = box_of(grown[c.b]);
+    s.box.lo = max(ba.lo, bb.lo), s.box.hi = min(ba.hi, bb.hi);  // (where the grown boxes meet)
+    if (s.box.empty()) s.box = box_of(grown[c.a]), s.box.expand(box_of(grown[c.b]));
+    s.point = s.box.center();
+    s.reasons.push_back("a zero-clearance fit: coincident B-Rep faces, whose tessellations come " +
+                        short_number(s.distance) + " apart there");
+    s.id = detail::clash_id(t.name + "\n" + verdict_name(s.verdict), scene.bodies[c.a].id, scene.bodies[c.b].id,
+                            {inverse(pose[c.a]).apply(s.point), inverse(pose[c.b]).apply(s.point)}, grid[c.test]);
+    replaced.insert({t.name, c.a, c.b});
+    added.push_back(std::move(s));
+  }
+  std::erase_if(result.clashes, [&](const SceneClash& c) {
+    return c.verdict == Verdict::clearance && replaced.count({c.test, c.a, c.b});
+  });
+  for (SceneClash& s : added) result.clashes.push_back(std::move(s));
+}
+
+}  // namespace
 
 SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& tests, const SceneClashOptions& options) {
   const auto t_prepare = Clock::now();
@@ -583,6 +656,9 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
     if (options.progress) options.progress(f + 1, frame_count);
   }
 
+  if (!moving && options.zero_clearance_fits.reach && options.zero_clearance_fits.check)
+    add_zero_clearance_fits(scene, tests, options, broad, st.broad_box, st.pose, grid,
+                            [&](const CandidatePair& c) { return decide.empty() || decided(c); }, result);
   finish_result(scene, tests, options, result);
   // Open bodies that took part (their verdicts say undecided where it mattered).
   for (std::size_t i = 0; i < n; ++i) {

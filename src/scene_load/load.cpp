@@ -115,6 +115,7 @@ struct StepSource {
   Scene sub;
   std::size_t first = 0;
   std::function<bool(std::uint32_t, std::uint32_t, const Model&, const Model&, const ClashResult&, double)> check;
+  SceneClashOptions::ZeroClearanceFits fits;
 };
 #endif
 
@@ -198,6 +199,7 @@ Expected<LoadedScene> load_scene(const std::vector<BodySpec>& specs, const LoadO
         step->sub.units = o.units;
         step->sub.bodies = bodies;
         step->check = cad::nominal_fit_check(step->model, step->sub);
+        step->fits = cad::zero_clearance_fit_check(step->model, step->sub);
         steps->push_back(std::move(step));
 #else
         fail(spec.file, spec.where + ": STEP input needs interfere built with OpenCASCADE (INTERFERE_WITH_OCCT)");
@@ -260,6 +262,20 @@ Expected<LoadedScene> load_scene(const std::vector<BodySpec>& specs, const LoadO
             return s->check(static_cast<std::uint32_t>(a - s->first), static_cast<std::uint32_t>(b - s->first), wa, wb, r, depth);
         }
         return false;  // bodies of different files share no B-Rep faces
+      };
+      // The same body ranges for the zero-clearance fits (issue #29: as assembly-clash classifies them).
+      out.zero_clearance_fits.reach = [steps](std::uint32_t a) {
+        for (const auto& s : *steps)
+          if (a >= s->first && a < s->first + s->sub.bodies.size()) return s->fits.reach(static_cast<std::uint32_t>(a - s->first));
+        return 0.0;
+      };
+      out.zero_clearance_fits.check = [steps](std::uint32_t a, std::uint32_t b, double* gap) {
+        for (const auto& s : *steps) {
+          const std::size_t n = s->sub.bodies.size();
+          if (a >= s->first && a < s->first + n && b >= s->first && b < s->first + n)
+            return s->fits.check(static_cast<std::uint32_t>(a - s->first), static_cast<std::uint32_t>(b - s->first), gap);
+        }
+        return false;
       };
     }
 #endif

@@ -361,6 +361,45 @@ class Sources(unittest.TestCase):
         self.assertEqual({c["body_a"]["name"], c["body_b"]["name"]}, {"plate", "plate_2"})
         self.assertEqual(c["source_id_kind_a"], "brep_face")
 
+    def test_step_zero_clearance_fits_as_assembly_clash(self):
+        """Issue #29, item 4: clash --scene classifies a STEP assembly's zero-clearance fits from the
+        B-Rep as assembly-clash does (one engine hook, cad::zero_clearance_fit_check). The bolted
+        joints of data/README.md: every meeting pair touches in its tessellation; with the cover
+        lifted 1e-6 mm (within 1e-7 of the parts' diagonals) cover x plate does not, yet is a fit.
+        Expected pairs by construction: each bolt with the plate, the cover and its nut, each nut
+        with the plate, the cover with the plate."""
+        expected = {tuple(sorted(("/joint/" + a, "/joint/" + b))) for a, b in [
+            ("bolt_1", "plate"), ("bolt_1", "cover"), ("bolt_1", "nut_1"), ("bolt_2", "plate"), ("bolt_2", "cover"),
+            ("bolt_2", "nut_2"), ("nut_1", "plate"), ("nut_2", "plate"), ("cover", "plate")]}
+        lifted_pair = ("/joint/cover", "/joint/plate")
+        for name in ("bolted_joint.step", "bolted_joint_lifted.step"):
+            step = os.path.join(HERE, "data", name)
+            for deflection in ("0", "0.5"):
+                for extra in ([], ["--clearance", "0.1"]):
+                    what = f"{name} --linear-deflection {deflection} {' '.join(extra)}"
+                    code, _, err = run("assembly-clash", step, "--linear-deflection", deflection, *extra,
+                                       "--json", path("zc_a.json"))
+                    if code == 2 and "OpenCASCADE" in err:
+                        self.skipTest("built without OpenCASCADE")
+                    self.assertEqual(code, 0, what + err)  # (contacts only: exit 0)
+                    code, _, err = run("clash", step, "--linear-deflection", deflection, *extra, "--json", path("zc_s.json"))
+                    self.assertEqual(code, 0, what + err)
+                    a, s = load_json("zc_a.json"), load_json("zc_s.json")
+                    a_pairs = {tuple(sorted((p["a_path"], p["b_path"]))): p for p in a["pairs"]}
+                    s_pairs = {}
+                    for c in s["clashes"]:
+                        s_pairs.setdefault(tuple(sorted((c["body_a"]["path"], c["body_b"]["path"]))), []).append(c)
+                    self.assertEqual(set(a_pairs), expected, what)
+                    self.assertEqual(set(s_pairs), expected, what)
+                    for k in expected:
+                        self.assertEqual(a_pairs[k]["meeting"], "contact", what + str(k))
+                        self.assertEqual({c["verdict"] for c in s_pairs[k]}, {"contact"}, what + str(k))
+                        fit = a_pairs[k]["zero_clearance_fit"]
+                        self.assertEqual(any(c["kind"] == "zero_clearance_fit" for c in s_pairs[k]), fit, what + str(k))
+                        if k == lifted_pair:  # (lifted: the tessellations meet nowhere there)
+                            self.assertEqual(fit, name == "bolted_joint_lifted.step", what)
+                    self.assertEqual(s["verdict"] if "verdict" in s else s["result"]["verdict"], "contact", what)
+
 
 if __name__ == "__main__":
     cc.main()

@@ -9,6 +9,7 @@
 #include "interfere/cad/model.h"
 #include "interfere/query/clash.h"
 #include "interfere/query/model.h"
+#include "interfere/scene/engine.h"
 #include "interfere/scene/scene.h"
 
 namespace interfere::cad {
@@ -34,5 +35,14 @@ scene::Scene assembly_scene(const CadModel& model);
 std::function<bool(std::uint32_t a, std::uint32_t b, const Model& wa, const Model& wb,
                    const ClashResult& r, double depth)>
 nominal_fit_check(const CadModel& model, const scene::Scene& s);
+
+/// The zero-clearance fits of assembly-clash (issue #29, item 4) for the scene engine
+/// (SceneClashOptions::zero_clearance_fits): two bodies of `s` from instances of `model` (as for
+/// nominal_fit_check), rigidly posed, with coincident B-Rep faces back to back (planes; cylinders or
+/// spheres of one radius) within kFitTolerance of the two parts' diagonals whose placed triangles come
+/// that near, are a contact whatever their tessellations (the AS1 AP203 export's bracket 1.3e-12 mm
+/// above its plate). `reach`: kFitTolerance of the body's part diagonal, in the scene's units. A
+/// body's placement is its pose (in mm: the scene's units converted). `model` must outlive it.
+scene::SceneClashOptions::ZeroClearanceFits zero_clearance_fit_check(const CadModel& model, const scene::Scene& s);
 
 }  // namespace interfere::cad

@@ -209,6 +209,19 @@ struct SceneClashOptions {
   std::function<bool(std::uint32_t a, std::uint32_t b, const Model& wa, const Model& wb,
                      const ClashResult& r, double depth)>
       nominal_fit;
+  /// Zero-clearance fits (issue #29, item 4), supplied by sources that know B-Rep faces
+  /// (cad/assembly_scene.h, zero_clearance_fit_check): `reach(i)` how far body i's broad box is grown
+  /// to find such pairs (0: none of its pairs is one), `check(a, b, gap)` whether bodies a and b meet
+  /// on coincident B-Rep faces though their tessellations may not (the smallest distance of their
+  /// placed triangles there in `gap`). A static scene only (no frames): a test with
+  /// nominal_fits_are_contacts (not duplicates) reports such a pair of its selections, where it found
+  /// no clash, contact or undecided pair, as a contact of kind "zero_clearance_fit" (distance: the
+  /// gap), replacing its clearance record. Unset: none is. The one classification of assembly-clash
+  /// and of clash --scene with STEP assemblies.
+  struct ZeroClearanceFits {
+    std::function<double(std::uint32_t body)> reach;
+    std::function<bool(std::uint32_t a, std::uint32_t b, double* gap)> check;
+  } zero_clearance_fits;
   /// Called once per checked candidate pair with the exact core's raw result (from any thread: the
   /// caller synchronises), test index, body indices (a's id < b's id): for callers that write
   /// per-pair outputs (`interfere clash A B`: --pairs, --region-a/-b) or aggregate per pair

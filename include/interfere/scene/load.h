@@ -35,6 +35,10 @@ struct LoadedScene {
   /// The nominal-fit check of the STEP assemblies read (SceneClashOptions::nominal_fit); unset
   /// without any. Refers to `keep_alive`.
   std::function<bool(std::uint32_t, std::uint32_t, const Model&, const Model&, const ClashResult&, double)> nominal_fit;
+  /// The zero-clearance fits of the STEP assemblies read (SceneClashOptions::zero_clearance_fits,
+  /// cad::zero_clearance_fit_check: the classification assembly-clash makes; issue #29); unset
+  /// without any. Refers to `keep_alive`.
+  SceneClashOptions::ZeroClearanceFits zero_clearance_fits;
   std::shared_ptr<void> keep_alive;
 };
 
