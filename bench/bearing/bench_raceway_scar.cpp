@@ -67,18 +67,20 @@ void run(benchmark::State& state, bool concave, bool raised, bool scarred_roller
   const Setup s = make_setup(concave, raised);
   const RacewayPairRing ring{&s.scar, Transform::identity()};
   std::size_t i = 0;
-  double evaluated = 0, count = 0, in_range = 0;
+  double evaluated = 0, count = 0, in_range = 0, nodes = 0, fallbacks = 0;
   for (auto _ : state) {
     const Transform& pose = s.poses[i++ & 255];
     RacewayPairRoller roller{posed_cylinder(10, -1, 38, pose), scarred_roller ? &s.roller : nullptr,
                              scarred_roller ? &s.tree : nullptr, pose};
     const RacewayScarPairResult r = raceway_scar_pair(roller, ring);
     benchmark::DoNotOptimize(r);
-    evaluated += r.evaluated, count += 1;
+    evaluated += r.evaluated, count += 1, nodes += r.nodes_visited, fallbacks += r.fallbacks;
     in_range += raceway_scar_in_range(roller, ring);
   }
   state.counters["triangles_evaluated"] = evaluated / std::max(count, 1.0);
   state.counters["in_range"] = in_range / std::max(count, 1.0);
+  state.counters["nodes_visited"] = nodes / std::max(count, 1.0);
+  state.counters["fallbacks"] = fallbacks / std::max(count, 1.0);
 }
 
 void BM_ScarredRollerScarredRaceway_Inner(benchmark::State& st) { run(st, false, false, true); }

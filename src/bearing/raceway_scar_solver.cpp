@@ -48,6 +48,59 @@ void concave_roller_term(const RacewayPairRoller& roller, const RacewayPairRing&
   const Vec3 base = sp.t, ax = sp.rotate({0, 0, 1});
   const double k = (g.top_radius - g.radius) / g.width, nk = std::sqrt(1 + k * k);
   const Roller& m = *roller.mesh;
+  // the whole roller (grown by its raise) within the width: no edge crosses a side face, so the
+  // maximum is at a vertex; a branch and bound down the roller's quadtree finds it (rho is
+  // 1-Lipschitz and R(z) |k|-Lipschitz: over a node's box of half-diagonal h the value is at most
+  // (rho(c) + h - R(z(c)) + |k| h + raise) / nk)
+  {
+    const Cylinder& c = roller.cylinder;
+    const double ca = std::fabs(dot(c.axis, ax)), sa = std::sqrt(std::max(0.0, 1 - ca * ca));
+    const double reach = (c.max_radius() + m.raise) * sa;
+    const double z0 = dot(c.base - base, ax), z1 = dot(c.top_center() - base, ax);
+    if (roller.tree != nullptr && std::min(z0, z1) - reach > 0 && std::max(z0, z1) + reach < g.width) {
+      const auto& nodes = roller.tree->nodes;
+      double best = -kInf;
+      Vec3 far;
+      std::uint32_t far_vertex = 0xffffffffu;
+      const auto value_at = [&](const Vec3& x, double* z_out) {
+        const double z = dot(x - base, ax);
+        if (z_out) *z_out = z;
+        return (norm(cross(x - base, ax)) - (g.radius_at(z) - s.raise)) / nk;
+      };
+      std::int32_t stack[512];
+      int top = 0;
+      for (const std::int32_t r : {roller.tree->side_root, roller.tree->bottom_root, roller.tree->top_root})
+        if (r >= 0) stack[top++] = r;
+      while (top > 0) {
+        const QuadNode& n = nodes[static_cast<std::size_t>(stack[--top])];
+        if (n.half_r < 0) continue;
+        const double h = std::sqrt(n.half_r * n.half_r + n.half_t * n.half_t + n.half_z * n.half_z);
+        const double ub = value_at(roller.pose.apply(n.box_center), nullptr) + (1 + std::fabs(k)) * h / nk;
+        if (ub < best) continue;  // (not <=: a tie with a smaller vertex id is kept, as the full scan)
+        if (n.child_count == 0) {
+          for (std::uint32_t t = 0; t < n.tri_count; ++t)
+            for (const std::uint32_t v : m.mesh.triangles[n.tri_first + t]) {
+              const Vec3 x = roller.pose.apply(m.mesh.positions[v]);
+              const double val = value_at(x, nullptr);
+              if (val > best || (val == best && v < far_vertex)) best = val, far = x, far_vertex = v;
+            }
+          continue;
+        }
+        for (std::int32_t q = 0; q < n.child_count && top < 512; ++q) stack[top++] = n.first_child + q;
+      }
+      if (best > -kInf) {
+        out.roller_term = -best;
+        const double z = dot(far - base, ax);
+        const Vec3 radial = far - base - ax * z;
+        const double rho = norm(radial);
+        const Vec3 nrm = rho > 0 ? (radial / rho - ax * k) / nk : Vec3{};
+        out.point_roller = far;
+        out.point_raceway = far - nrm * best;
+        out.carrier = far_vertex < m.scar.size() && m.scar[far_vertex] ? ScarCarrier::roller : ScarCarrier::none;
+        return;
+      }
+    }
+  }
   std::vector<Vec3> p(m.mesh.positions.size());
   std::vector<double> zs(p.size());
   for (std::size_t i = 0; i < p.size(); ++i) p[i] = roller.pose.apply(m.mesh.positions[i]), zs[i] = dot(p[i] - base, ax);
@@ -123,6 +176,7 @@ RacewayScarPairResult raceway_scar_pair(const RacewayPairRoller& roller, const R
   const MeshPairResult tr = race_solver.solve(sp, a, raceway_hint(roller, ring, sp));
   out.raceway_term = tr.distance;
   out.evaluated = tr.evaluated;
+  out.nodes_visited = tr.nodes_visited, out.fallbacks = tr.fallbacks;
   out.distance = tr.distance;
   out.point_raceway = tr.point_a, out.point_roller = tr.point_b;
   out.carrier = has_scar_vertex(s.surface, tr.triangle) ? ScarCarrier::raceway : ScarCarrier::none;
@@ -143,11 +197,13 @@ RacewayScarPairResult raceway_scar_pair(const RacewayPairRoller& roller, const R
       const MeshPairResult ta = roller_solver.solve(roller.pose, b);
       r.roller_term = ta.distance;
       r.evaluated += ta.evaluated;
+      r.nodes_visited += ta.nodes_visited, r.fallbacks += ta.fallbacks;
       r.point_roller = ta.point_a, r.point_raceway = ta.point_b;
       r.carrier = has_scar_vertex(*roller.mesh, ta.triangle) ? ScarCarrier::roller : ScarCarrier::none;
     }
     out.roller_term = r.roller_term;
     out.evaluated = r.evaluated;
+    out.nodes_visited = r.nodes_visited, out.fallbacks = r.fallbacks;
     out.exact = r.exact;
     if (r.roller_term < out.distance) {  // ties: the raceway term (a fixed rule, either order)
       out.distance = r.roller_term;

@@ -299,8 +299,15 @@ double node_lower_bound(const LocalFrame& f, const QuadNode& n) {
   const double etx = -f.m[0][0] * n.sin_mid + f.m[0][1] * n.cos_mid;
   const double ety = -f.m[1][0] * n.sin_mid + f.m[1][1] * n.cos_mid;
   const double ezx = f.m[0][2], ezy = f.m[1][2];
-  return rho - n.half_r * std::fabs(nx * erx + ny * ery) - n.half_t * std::fabs(nx * etx + ny * ety) -
-         n.half_z * std::fabs(nx * ezx + ny * ezy) - f.R;
+  const double lateral = rho - n.half_r * std::fabs(nx * erx + ny * ery) - n.half_t * std::fabs(nx * etx + ny * ety) -
+                         n.half_z * std::fabs(nx * ezx + ny * ezy) - f.R;
+  // sd_B >= |z| - hh too (the slab of B's end planes): boxes beyond B's ends (a raceway's grid
+  // past a roller's end, issue #27) are pruned by it where the lateral bound cannot
+  const double erz = f.m[2][0] * n.cos_mid + f.m[2][1] * n.sin_mid;
+  const double etz = -f.m[2][0] * n.sin_mid + f.m[2][1] * n.cos_mid;
+  const double axial = std::fabs(c.z) - n.half_r * std::fabs(erz) - n.half_t * std::fabs(etz) -
+                       n.half_z * std::fabs(f.m[2][2]) - f.hh;
+  return std::max(lateral, axial);
 }
 
 double wrap_pi(double a) {

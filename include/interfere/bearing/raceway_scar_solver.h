@@ -70,6 +70,8 @@ struct RacewayScarPairResult {
   double raceway_term = std::numeric_limits<double>::infinity();  ///< T_r
   double roller_term = std::numeric_limits<double>::infinity();   ///< T_a (+inf: intact roller)
   std::uint32_t evaluated = 0;  ///< triangles evaluated exactly (both terms)
+  std::uint32_t nodes_visited = 0;  ///< quadtree nodes visited (both terms)
+  std::uint32_t fallbacks = 0;      ///< triangles whose minimum needed scarred.h's search (both terms)
 };
 
 /// S of the pair (above). Preconditions: ring.scar set; the roller's cylinder valid (raceway.h).
