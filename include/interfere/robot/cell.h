@@ -117,9 +117,30 @@ namespace interfere::robot {
 /// distance at its middle exceeds the sum of the two bodies' bounds over half the interval (static
 /// bodies: 0); a pair that meets at a middle makes the segment collide there; otherwise the
 /// interval is halved, up to `max_depth` levels, after which the segment is `unresolved` (never
-/// clear, never a collision). Distances come from the scene engine's clearance tests.
+/// clear, never a collision). How the distances and bounds are obtained: BetweenMethod.
+///
+/// How a sub-interval's body pairs are proven clear:
+///   advancement (default): conservative advancement with certified distances (issue #28, speed):
+///     per body a motion bound measured at the middle pose (motion_bounds_at: each joint's angle
+///     change times the body's largest distance from that joint's axis there, plus prismatic
+///     strokes), per pair the smallest distance at the middle from the BVH distance query
+///     (query/distance.h, distance(); pairs whose bounding cubes are apart by more than the bound
+///     skip it). A pair whose distance exceeds the sum of its two bounds is clear over the whole
+///     sub-interval. The scene engine decides a middle only where a pair's surfaces meet there or
+///     one body could lie inside the other (a component's vertex inside the other's closed solid
+///     by exact ray parity, or near an open body's box), so the verdicts at the middles are the
+///     engine's as before; elsewhere no pair meets there.
+///   subdivision: the previous method, kept as the reference of the tests: each level's middles
+///     in one scene-engine run with clearance tests at the largest bound of the level, and the
+///     bound from the chain's whole reach (motion_bounds).
+/// Both refine the same dyadic intervals and stop a segment at the first level where a pair is
+/// found meeting, so they report the same states, pairs and parameters wherever the subdivision
+/// resolves every segment; advancement proves more segments clear within max_depth.
+enum class BetweenMethod : std::uint8_t { advancement, subdivision };
 struct BetweenOptions {
   int max_depth = 12;  ///< halvings of a segment (2^-12 of it at the finest)
+  BetweenMethod method = BetweenMethod::advancement;
+  bool parallel = true;  ///< advancement: middles of a level in parallel (results identical)
   scene::SceneClashOptions engine;
 };
 enum class SegmentState : std::uint8_t { clear, collides, unresolved };
@@ -135,6 +156,7 @@ struct SegmentResult {
   std::vector<SegmentPair> pairs;  ///< collides: the pairs found meeting (one entry per pair)
   std::vector<std::string> unresolved_pairs;  ///< "a / b" pairs left undecided at max_depth
   std::size_t frames = 0;                     ///< middles checked
+  std::size_t engine_frames = 0;  ///< of those, decided by a scene-engine run (advancement)
 };
 /// Checks every segment of `path` (cs = cell_scene(cell, path), for its bodies and tests).
 std::vector<SegmentResult> check_between_points(const Cell& cell, const CellScene& cs,
@@ -144,5 +166,15 @@ std::vector<SegmentResult> check_between_points(const Cell& cell, const CellScen
 /// |dq| (joint units: degrees, mm), for tests and reports.
 std::vector<double> motion_bounds(const Cell& cell, const CellScene& cs,
                                   const std::vector<double>& dq);
+/// The tighter bound of the advancement method: every point of each body (0 for static bodies)
+/// stays within the returned distance of its position at joint values q while the joints move by
+/// at most |dq| from q (joint units). Revolute joint j adds |dq_j| (radians) times rho_j, the
+/// largest distance of the body from joint j's axis at q (its bounding sphere's centre's distance
+/// from the axis plus its radius); prismatic joints add |dq_j|. Distal to proximal, a point's
+/// motion in joint j's frame is at most its motion in the next frame plus the chord of joint j's
+/// rotation at its radius at q (the argument of probe/sweep.cpp's joint-path bound). Never larger
+/// than motion_bounds(dq) (the smaller of the two is returned).
+std::vector<double> motion_bounds_at(const Cell& cell, const CellScene& cs,
+                                     const std::vector<double>& q, const std::vector<double>& dq);
 
 }  // namespace interfere::robot
