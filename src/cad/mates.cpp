@@ -2,15 +2,73 @@
 // recognize_features), boss-sense cylinders per part, both placed by the instances' transforms;
 // an insertion is a cylinder coaxial with a hole, of one of its radii, overlapping it along the axis
 // (a bolt or rod in a plate's hole, a nut on a bolt); a planar contact is two planes back to back
-// whose faces' world boxes overlap.
+// whose faces' regions overlap with a positive area (their tessellations, exact 2D predicates).
 #include "interfere/cad/mates.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 
+#include "interfere/core/predicates.h"
+
 namespace interfere::cad {
 namespace {
+
+using Tri = std::array<Vec3, 3>;
+
+/// Do two triangles lying (within rounding) in one plane of normal n overlap with a positive area?
+/// Projected along n's largest coordinate, both oriented counter-clockwise; their interiors are
+/// disjoint iff an edge line of one has the other entirely on its outer closed side (two convex
+/// polygons: a separating line can be taken through an edge). orient2d is exact on the projected
+/// coordinates: triangles touching along an edge or at a point do not overlap.
+bool triangles_overlap_2d(const Tri& a, const Tri& b, int drop) {
+  const int u = (drop + 1) % 3, v = (drop + 2) % 3;
+  double pa[3][2], pb[3][2];
+  for (int i = 0; i < 3; ++i) {
+    pa[i][0] = a[i][u], pa[i][1] = a[i][v];
+    pb[i][0] = b[i][u], pb[i][1] = b[i][v];
+  }
+  const auto ccw = [](double (&p)[3][2]) {
+    const int o = orient2d(p[0][0], p[0][1], p[1][0], p[1][1], p[2][0], p[2][1]);
+    if (o < 0) std::swap(p[1], p[2]);
+    return o != 0;
+  };
+  if (!ccw(pa) || !ccw(pb)) return false;  // a degenerate triangle has no area
+  const auto separates = [](const double (&p)[3][2], const double (&q)[3][2]) {
+    for (int e = 0; e < 3; ++e) {
+      const double* s = p[e];
+      const double* t = p[(e + 1) % 3];
+      bool all_out = true;
+      for (int k = 0; k < 3 && all_out; ++k) all_out = orient2d(s[0], s[1], t[0], t[1], q[k][0], q[k][1]) <= 0;
+      if (all_out) return true;
+    }
+    return false;
+  };
+  return !separates(pa, pb) && !separates(pb, pa);
+}
+
+/// Do two faces' triangles (world) in one plane of normal n overlap with a positive area?
+bool regions_overlap(const std::vector<Tri>& fa, const std::vector<Tri>& fb, const Vec3& n) {
+  const double ax = std::abs(n.x), ay = std::abs(n.y), az = std::abs(n.z);
+  const int drop = ax >= ay && ax >= az ? 0 : (ay >= az ? 1 : 2);
+  for (const Tri& a : fa) {
+    double lo[3], hi[3];
+    for (int d = 0; d < 3; ++d) {
+      lo[d] = std::min({a[0][d], a[1][d], a[2][d]});
+      hi[d] = std::max({a[0][d], a[1][d], a[2][d]});
+    }
+    for (const Tri& b : fb) {
+      bool apart = false;
+      for (int d = 0; d < 3 && !apart; ++d) {
+        if (d == drop) continue;
+        apart = std::max({b[0][d], b[1][d], b[2][d]}) <= lo[d] || std::min({b[0][d], b[1][d], b[2][d]}) >= hi[d];
+      }
+      if (!apart && triangles_overlap_2d(a, b, drop)) return true;
+    }
+  }
+  return false;
+}
 
 struct Cyl {  // a boss-sense cylinder face, placed
   std::uint32_t face = 0;
@@ -61,6 +119,7 @@ std::vector<Mate> infer_mates(const CadModel& model, const FeatureLibrary& libra
     std::vector<Cyl> cyls;
     std::map<std::uint32_t, Box> plane_box;
     std::map<std::uint32_t, Vec3> plane_point;  // a vertex of the face, world
+    std::map<std::uint32_t, std::vector<Tri>> plane_tris;  // the face's triangles, world
   };
   std::vector<Placed> placed(model.instances.size());
   for (std::size_t k = 0; k < model.instances.size(); ++k) {
@@ -69,15 +128,19 @@ std::vector<Mate> infer_mates(const CadModel& model, const FeatureLibrary& libra
     const Transform& t = inst.placement;
     for (std::size_t tri = 0; tri < part.mesh.num_triangles(); ++tri) {
       const std::uint32_t f = tri < part.face_ids.size() ? part.face_ids[tri] : 0;
+      const bool plane = f < part.aag.nodes.size() && part.aag.nodes[f].type == SurfaceType::plane;
+      Tri placed_tri;
       for (int c = 0; c < 3; ++c) {
         const Vec3 q = t.apply(part.mesh.positions[part.mesh.triangles[tri][c]]);
+        placed_tri[c] = q;
         all.add(q);
         placed[k].box.add(q);
-        if (f < part.aag.nodes.size() && part.aag.nodes[f].type == SurfaceType::plane) {
+        if (plane) {
           placed[k].plane_box[f].add(q);
           placed[k].plane_point.emplace(f, q);
         }
       }
+      if (plane) placed[k].plane_tris[f].push_back(placed_tri);
     }
     for (const Feature& f : features[inst.part]) {
       if (f.type.find("hole") == std::string::npos || norm(f.axis) == 0) continue;
@@ -146,8 +209,10 @@ std::vector<Mate> infer_mates(const CadModel& model, const FeatureLibrary& libra
           const AagNode& nb = pb.aag.nodes[fb];
           const Vec3 nB = unit(model.instances[kb].placement.rotate(nb.normal));
           if (norm(nA + nB) > angle || !ba.overlaps(bb, tol)) continue;
-          // One plane: a vertex of b on a's plane.
+          // One plane: a vertex of b on a's plane; and the faces' regions overlap (not only their
+          // boxes: a face around a pocket or hole, an L-shaped face).
           if (std::abs(dot(placed[kb].plane_point.at(fb) - qA, nA)) > tol) continue;
+          if (!regions_overlap(placed[ka].plane_tris.at(fa), placed[kb].plane_tris.at(fb), nA)) continue;
           if (std::find(m.faces_a.begin(), m.faces_a.end(), fa) == m.faces_a.end()) m.faces_a.push_back(fa);
           if (std::find(m.faces_b.begin(), m.faces_b.end(), fb) == m.faces_b.end()) m.faces_b.push_back(fb);
         }

@@ -96,5 +96,48 @@ TEST(Mates, ApartPartsHaveNoMates) {
   EXPECT_TRUE(infer_mates(*m, *lib).empty());
 }
 
+// A planar contact needs the two faces' regions to overlap, not only their boxes (issue #29: planar
+// mates compared face boxes). pocket_block's top face (z = 20) is a frame around the pocket opening
+// x 15..45, y 10..30; stepped_shaft's bottom disc (r = 10, normal -z) set down on that plane:
+//   centred in the opening (30, 20): inside it (tangent to two walls): the boxes overlap, the regions
+//   only touch at points: no contact;
+//   at (50, 20): the disc covers x 40..60, half of it on the frame: a contact with the top face.
+TEST(Mates, PlanarContactNeedsOverlappingRegions) {
+  const auto dir = std::filesystem::temp_directory_path();
+  const auto fa = dir / ("interfere_mates_pocket_" + std::to_string(::getpid()) + ".step");
+  const auto fb = dir / ("interfere_mates_shaft_" + std::to_string(::getpid()) + ".step");
+  ASSERT_TRUE(write_test_part(TestPart::pocket_block, fa).ok());
+  ASSERT_TRUE(write_test_part(TestPart::stepped_shaft, fb).ok());
+  auto block = import_step(fa), shaft = import_step(fb);
+  std::filesystem::remove(fa), std::filesystem::remove(fb);
+  ASSERT_TRUE(block.has_value()) << block.error().message();
+  ASSERT_TRUE(shaft.has_value()) << shaft.error().message();
+  ASSERT_EQ(block->parts.size(), 1u);
+  ASSERT_EQ(shaft->parts.size(), 1u);
+  auto lib = default_feature_library();
+  ASSERT_TRUE(lib.has_value());
+  for (const double x : {30.0, 50.0}) {
+    CadModel m = *block;
+    m.parts.push_back(shaft->parts[0]);
+    m.instances.resize(1);
+    m.instances[0].part = 0;
+    Instance s;
+    s.name = s.path = "shaft";
+    s.part = 1;
+    s.placement.t = {x, 20, 20};
+    m.instances.push_back(s);
+    std::size_t contacts = 0;
+    for (const Mate& mate : infer_mates(m, *lib)) {
+      if (mate.kind != Mate::Kind::planar_contact) continue;
+      ++contacts;
+      ASSERT_EQ(mate.faces_a.size(), 1u);
+      ASSERT_EQ(mate.faces_b.size(), 1u);
+      const AagNode& top = m.parts[m.instances[mate.instance_a].part].aag.nodes[mate.faces_a[0]];
+      EXPECT_EQ(top.type, SurfaceType::plane);
+    }
+    EXPECT_EQ(contacts, x == 30.0 ? 0u : 1u) << "shaft at x = " << x;
+  }
+}
+
 }  // namespace
 }  // namespace interfere::cad
