@@ -334,7 +334,7 @@ void bind_bearing(py::module_& parent) {
           py::gil_scoped_release release;
           r = run_assembly(*as, motion);
         }
-        py::list frame, kind, a, b, distance, pa, pb, solver, scar, exact, two_sided, verdict;
+        py::list frame, kind, a, b, distance, pa, pb, solver, scar, exact, two_sided, verdict, scar_part;
         for (const AssemblyRow& row : r.rows) {
           const AssemblyPair& p = as->pairs[row.pair];
           const AssemblyPairResult& x = row.result;
@@ -343,12 +343,16 @@ void bind_bearing(py::module_& parent) {
           distance.append(x.distance), pa.append(tup(x.point_a)), pb.append(tup(x.point_b));
           solver.append(assembly_solver_name(x.solver)), scar.append(x.scar), exact.append(x.exact);
           two_sided.append(x.two_sided), verdict.append(verdict_name(x.verdict));
+          // the part whose scar the row measured (issue #27: a scarred roller or a scarred raceway's ring)
+          if (x.scar_part == 1) scar_part.append(as->parts[p.a].id);
+          else if (x.scar_part == 2) scar_part.append(as->parts[p.b].id);
+          else scar_part.append(py::none());
         }
         py::dict out;
         out["frames"] = r.frames, out["pairs_per_frame"] = as->pairs.size(), out["frame"] = frame;
         out["kind"] = kind, out["a"] = a, out["b"] = b, out["distance"] = distance, out["point_a"] = pa;
         out["point_b"] = pb, out["solver"] = solver, out["scar"] = scar, out["exact"] = exact;
-        out["two_sided"] = two_sided, out["verdict"] = verdict_name(r.verdict);
+        out["two_sided"] = two_sided, out["verdict"] = verdict_name(r.verdict), out["scar_part"] = scar_part;
         out["row_verdict"] = verdict, out["worst"] = r.rows.empty() ? -1 : static_cast<long>(r.worst);
         out["motion"] = motion.source;
         return out;
@@ -357,7 +361,8 @@ void bind_bearing(py::module_& parent) {
       "Run a bearing assembly (JSON description, docs/bearing.md) over generated motion (frames, seed; the "
       "description's seed by default) or a motion file, and return every row as parallel lists: frame, kind, "
       "a, b, distance (> 0 clearance, < 0 minus the depth), point_a, point_b, solver, scar, exact, two_sided, "
-      "row_verdict; with frames, pairs_per_frame, worst (the row of the smallest distance), the verdict and "
+      "row_verdict, scar_part (the id of the part whose scar the row measured, or None; raceway scars: "
+      "bearings[i].scars); with frames, pairs_per_frame, worst (the row of the smallest distance), the verdict and "
       "the motion's source.");
 }
 

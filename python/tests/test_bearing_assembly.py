@@ -35,6 +35,40 @@ class BearingAssembly(unittest.TestCase):
         # the same seed, the same rows
         self.assertEqual(itf.bearing.run_assembly(EXAMPLE, frames=2, seed=7)["distance"], r["distance"])
 
+    def test_raceway_scars(self):
+        # issue #27: scars on raceways (bearings[i].scars): rows of rollers in range of the inner
+        # raceway's raised scar are solved by the scarred raceway solver and name the ring in scar_part
+        import json
+        import tempfile
+        with open(EXAMPLE) as f:
+            d = json.load(f)
+        d["scar"] = None
+        cyl = next(b for b in d["bearings"] if b["type"] == "cylindrical")
+        cyl["scars"] = [{"part": "inner", "angle_center_deg": 0, "angle_width_deg": 120, "depth": 0.04,
+                         "raised": True, "seed": 3, "radial_segments": 256, "height_segments": 31}]
+        d["bearings"] = [cyl]
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "raceway_scar.json")
+            with open(path, "w") as f:
+                json.dump(d, f)
+            r = itf.bearing.run_assembly(path, frames=3, seed=2)
+            n = r["frames"] * r["pairs_per_frame"]
+            self.assertEqual(len(r["scar_part"]), n)
+            inner = cyl["id"] + "/inner"
+            rows = [i for i in range(n) if r["scar_part"][i] == inner]
+            self.assertTrue(rows)
+            for i in rows:
+                self.assertEqual(r["kind"][i], "roller-inner")
+                self.assertEqual(r["solver"][i], "scarred")
+                self.assertTrue(r["scar"][i])
+            self.assertTrue(all(p is None for p, sc in zip(r["scar_part"], r["scar"]) if not sc))
+            bad = dict(d, bearings=[dict(cyl, scars=[{"part": "cone"}])])
+            with open(path, "w") as f:
+                json.dump(bad, f)
+            with self.assertRaises(ValueError) as cm:
+                itf.bearing.run_assembly(path)
+            self.assertIn("scars[0].part", str(cm.exception))
+
     def test_bad_input(self):
         with self.assertRaises(ValueError) as cm:
             itf.bearing.run_assembly("/nonexistent/bearing.json")
