@@ -7,6 +7,7 @@
 // "mpi" section (ranks, per-rank load).
 #include <mpi.h>
 #include <sys/resource.h>
+#include <unistd.h>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
@@ -21,6 +22,7 @@
 #include <fstream>
 #include <map>
 #include <memory>
+#include <new>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -54,6 +56,7 @@ struct Options {
   std::string scene, json, csv, frames_csv, frame_pairs_csv, baseline, motion, units, group_by = "pair";
   double group_distance = 0;
   int threads = 0;
+  double memory_limit_mb = 0;  ///< --memory-limit MB: address space a rank may add after its start (0: none)
   bool quiet = false;
   // As `interfere clash --scene` (apps/cli/cmd_clash_scene.cpp): clash tests, the default test's
   // clearance and tolerance, the exit status policy, the FE inputs' options.
@@ -72,7 +75,7 @@ const char* kUsage =
     "         [--frame-pairs-csv OUT] [--motion FILE] [--baseline FILE] [--units U] [--group-by pair|location|none]\n"
     "         [--group-distance D] [--test TEXT]... [--tests FILE] [--clearance D] [--tolerance T] [--fail-on LIST]\n"
     "         [--field NAME] [--disp FILE] [--scale S] [--split MODE] [--linear-faces] [--no-reference]\n"
-    "         [--threads N] [--cost-model PAIR_S,PAIR_TRI_S,BODY_TRI_S,READ_TRI_S] [--quiet]\n"
+    "         [--threads N] [--memory-limit MB] [--cost-model PAIR_S,PAIR_TRI_S,BODY_TRI_S,READ_TRI_S] [--quiet]\n"
     "The report is the one of `interfere clash --scene FILE` (docs/report.md) plus \"mpi\"; docs/mpi.md.\n"
     "Exit status: 0 clear, contact or clearance; 1 clash (or a verdict named by --fail-on); 2 usage or input error,\n"
     "on any rank (message on stderr, nothing written); 3 undecided.\n";
@@ -169,6 +172,7 @@ Options parse(int argc, char** argv) {
     else if (a == "--group-by") o.group_by = value();
     else if (a == "--group-distance") o.group_distance = number(value());
     else if (a == "--threads") o.threads = static_cast<int>(number(value()));
+    else if (a == "--memory-limit") o.memory_limit_mb = number(value());
     else if (a == "--cost-model") {
       const std::string v = value();
       std::vector<double> c;
@@ -257,6 +261,21 @@ std::vector<std::uint32_t> first_readers(const scene::SceneSpec& spec, const Wor
   return reader;
 }
 
+// --memory-limit MB: the rank's address space may grow by MB beyond what it has mapped now (after
+// MPI_Init: the MPI run-time's mappings are not counted), so that a rank short of memory fails an
+// allocation (std::bad_alloc: the job ends with its message, exit status 2) instead of being
+// killed by the kernel's out-of-memory killer, which no rank can report.
+void limit_memory(double mb) {
+  std::ifstream statm("/proc/self/statm");
+  unsigned long long pages = 0;
+  statm >> pages;
+  const rlim_t now = static_cast<rlim_t>(pages) * static_cast<rlim_t>(sysconf(_SC_PAGESIZE));
+  rlimit limit{};
+  getrlimit(RLIMIT_AS, &limit);
+  limit.rlim_cur = std::min(limit.rlim_max, now + static_cast<rlim_t>(mb * 1048576.0));
+  if (!statm || setrlimit(RLIMIT_AS, &limit) != 0) throw UsageError("--memory-limit: cannot limit the address space of a rank");
+}
+
 double cpu_seconds() {
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
@@ -284,6 +303,7 @@ int run(const World& w, int argc, char** argv) {
   std::optional<tbb::global_control> threads;
   if (o.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(o.threads));
   const bool talk = w.rank == 0 && !o.quiet;
+  if (o.memory_limit_mb > 0) limit_memory(o.memory_limit_mb);
   // Wall and CPU seconds of each step (wire.h kPhases), for the report's mpi section.
   std::vector<std::array<double, 2>> phases(kPhaseCount, {0.0, 0.0});
   auto phase_wall = t_total;
@@ -720,6 +740,9 @@ int main(int argc, char** argv) {
     // (found alike by every rank: rank 0 says it; a rank that alone finds one ends the job)
     if (w.rank == 0) std::fprintf(stderr, "interfere: error: %s\n", e.what());
     status = 2;
+  } catch (const std::bad_alloc&) {
+    // (this rank ran out of memory: its message, the whole job ends with exit status 2)
+    interfere::mpi::abort_job(w, "out of memory (std::bad_alloc): give the job more ranks or a rank more memory");
   } catch (const std::exception& e) {
     interfere::mpi::abort_job(w, e.what());
   }

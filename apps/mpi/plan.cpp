@@ -191,8 +191,7 @@ Partition partition(const BroadResult& broad, const std::vector<AabbF>& boxes, c
     return x < y;
   });
   // Giants first: an item heavier than the mean of what is left gets a rank of its own (the last
-  // ranks), then the curve is cut into runs of about equal weight over the other ranks, each run
-  // taking an item while the item's middle stays within the rank's share of what is left.
+  // ranks); the rest of the curve is cut into runs over the other ranks below.
   std::vector<std::uint32_t> rank_of(item_count, UINT32_MAX);
   std::vector<std::uint32_t> by_weight(item_count);
   std::iota(by_weight.begin(), by_weight.end(), 0u);
@@ -204,17 +203,55 @@ Partition partition(const BroadResult& broad, const std::vector<AabbF>& boxes, c
     rank_of[i] = static_cast<std::uint32_t>(--free_ranks);
     left -= weight[i];
   }
-  std::uint32_t r = 0;
-  double acc = 0;
-  std::size_t runs = 0;
-  for (const std::uint32_t i : order) {
-    if (rank_of[i] != UINT32_MAX) continue;
-    const double share = left / static_cast<double>(free_ranks - r);
-    if (acc > 0 && acc + 0.5 * weight[i] > share && r + 1 < free_ranks) left -= acc, acc = 0, ++r;
-    if (acc == 0) ++runs;
-    rank_of[i] = r;
-    acc += weight[i];
+  // The cut: runs of the curve over the other ranks minimising the busiest rank's true cost (its
+  // items, every body it holds at full cost, reads of bodies another rank read first) - not the
+  // weights above, in which a body at a run's border counts once though two ranks build it. The
+  // cost of a run only grows as it takes items, so filling each run up to a bound C in curve
+  // order gives the fewest runs for C (the linear-partition bottleneck problem); C is found by
+  // bisection above the mean of the weights. Deterministic.
+  std::vector<std::uint32_t> curve;
+  for (const std::uint32_t i : order)
+    if (rank_of[i] == UINT32_MAX) curve.push_back(i);
+  std::vector<std::uint32_t> stamp(n, UINT32_MAX);  // the last run that holds a body
+  const auto fill = [&](double bound, bool assign) {
+    std::fill(stamp.begin(), stamp.end(), UINT32_MAX);
+    std::uint32_t q = 0;
+    double acc = 0;
+    std::size_t runs = curve.empty() ? 0 : 1;
+    const auto added = [&](std::uint32_t i, std::uint32_t run) {
+      double c = item_cost[i];
+      for (const std::uint32_t x : item_bodies[i])
+        if (stamp[x] != run) c += body_cost[x] + (!reader.empty() && reader[x] != run ? read_cost[x] : 0.0);
+      return c;
+    };
+    for (const std::uint32_t i : curve) {
+      double c = added(i, q);
+      if (acc > 0 && acc + c > bound) {
+        ++q, ++runs, acc = 0;
+        if (q >= free_ranks && !assign) return runs;
+        c = added(i, q);
+      }
+      for (const std::uint32_t x : item_bodies[i]) stamp[x] = q;
+      acc += c;
+      if (assign) rank_of[i] = std::min<std::uint32_t>(q, static_cast<std::uint32_t>(free_ranks - 1));
+    }
+    return runs;
+  };
+  double lo = 0, whole = 0;
+  for (const std::uint32_t i : curve) {
+    lo += weight[i];
+    double c = item_cost[i];
+    for (const std::uint32_t x : item_bodies[i]) c += body_cost[x] + read_cost[x];
+    whole += c;
   }
+  lo /= static_cast<double>(std::max<std::size_t>(free_ranks, 1));
+  double hi = std::min(whole, 1.25 * lo);  // (widened until feasible, then bisected to 0.1 %)
+  while (hi < whole && fill(hi, false) > free_ranks) lo = hi, hi = std::min(whole, 2 * hi);
+  for (int step = 0; step < 40 && hi > lo * (1 + 1e-3); ++step) {
+    const double mid = 0.5 * (lo + hi);
+    (fill(mid, false) <= free_ranks ? hi : lo) = mid;
+  }
+  const std::size_t runs = fill(hi, true);
   out.pieces = runs + (ranks - free_ranks);
   out.rank_units.assign(ranks, {});
   out.rank_bodies.assign(ranks, {});

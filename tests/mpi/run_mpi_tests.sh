@@ -90,6 +90,15 @@ check grep -q "interfere: error: rank [0-9]*: bad.stl:4: malformed number" "$wor
 check test ! -e "$work/broken/out.json"
 echo "broken: rc=$rc"
 
+# A rank out of memory (--memory-limit 4: 4 MB of address space a rank beyond its start, less than
+# a 40,000-triangle body needs): exit 2, that rank's message, no report, no hang.
+(cd "$work/huge" && "${mpirun_[@]}" -n 2 "$mpi" clash --scene scene.json --json oom.json --memory-limit 4 >/dev/null 2>oom.err)
+rc=$?
+check test "$rc" = 2
+check grep -q "^interfere: error: rank [0-9]*: .*out of memory" "$work/huge/oom.err"
+check test ! -e "$work/huge/oom.json"
+echo "out of memory: rc=$rc"
+
 # Ranks that see different inputs (here: different command lines): exit 2, no report.
 (cd "$work/tiny" && "${mpirun_[@]}" -n 1 "$mpi" clash --scene scene.json --json x.json : -n 1 "$mpi" clash --scene scene.json --json y.json >/dev/null 2>mismatch.err)
 rc=$?

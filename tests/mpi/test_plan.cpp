@@ -222,6 +222,47 @@ TEST(MpiPlan, SkewedSceneIsBalanced) {
   }
 }
 
+// A dense grid of bodies of log-normal sizes (each box overlapping ~19 neighbours, as the
+// simulated product of docs/scaling.md): many ranks cut it into runs whose border bodies two ranks
+// build. The busiest rank's true cost (its pairs and every body it holds, counted again here) is
+// within 10 % of the mean of the ranks' true costs, for 2..64 ranks (the 10 % target of issue #31
+// at 256 ranks is for the simulated 10^5-body product).
+TEST(MpiPlan, GridRanksBalancedByTheirTrueCost) {
+  const std::size_t side = 22, n = side * side * side;
+  std::vector<scene::Body> bodies(n);
+  std::vector<std::uint64_t> tris(n);
+  std::vector<AabbF> boxes(n);
+  std::uint64_t state = 31;
+  const auto uniform = [&] {  // (splitmix64)
+    std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL, z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return static_cast<double>((z ^ (z >> 31)) >> 11) / 9007199254740992.0;
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    bodies[i].id = "g" + std::to_string(100000 + i);
+    tris[i] = 12 + static_cast<std::uint64_t>(2000 * std::exp(2 * uniform() - 1) * uniform());
+    const double x = static_cast<double>(i % side), y = static_cast<double>((i / side) % side), z = static_cast<double>(i / side / side);
+    const double h = 0.45 + 0.15 * uniform();
+    boxes[i] = to_float_outward(Aabb{{x - h, y - h, z - h}, {x + h, y + h, z + h}});
+  }
+  BroadResult b = broad_phase(bodies, {scene::ClashTest{}}, {boxes});
+  const CostModel model;
+  for (Unit& u : b.units) u.cost = model.pair(tris[u.a], tris[u.b]);
+  for (const std::size_t ranks : {2, 3, 8, 16, 64}) {
+    const Partition p = partition(b, boxes, tris, model, ranks);
+    expect_sound(b, p, ranks);
+    double most = 0, sum = 0;
+    for (std::size_t r = 0; r < ranks; ++r) {
+      double c = 0;
+      std::set<std::uint32_t> held;
+      for (const std::uint32_t k : p.rank_units[r]) c += b.units[k].cost, held.insert(b.units[k].a), held.insert(b.units[k].b);
+      for (const std::uint32_t i : held) c += model.body(tris[i]);
+      most = std::max(most, c), sum += c;
+    }
+    EXPECT_LE(most, 1.10 * sum / static_cast<double>(ranks)) << ranks << " ranks";
+  }
+}
+
 // Pairs of the same two meshes in the same relative pose (a product's repeated joints) are one
 // item, so one rank decides their class once: the ranks' engine runs (clash_scene with
 // decide_pairs on the bodies each rank needs) add up to one process's core_runs and clashes.
