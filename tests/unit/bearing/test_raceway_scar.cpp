@@ -424,3 +424,50 @@ TEST(RacewayScarAssembly, DescriptionErrorsNameThePath) {
   EXPECT_NE(error_of(R"({"part": "outer", "map": "/nonexistent/m.csv"})").find("/nonexistent/m.csv"), std::string::npos);
   EXPECT_EQ(error_of(R"({"part": "cone"}, {"part": "cup", "raised": true})", kTaperedBearing), "");
 }
+
+TEST(RacewayScar, ScarredTaperedRollerInAScarredCup) {
+  // a tapered roller with a (raised) scar of its own (roller.h, scar.h: tapered rollers carry scars
+  // as cylinders do) in a cup whose raceway carries a pit: the roller term (exact: the vertex maximum
+  // of the meridian distance) against dense samples, the raceway term (the tapered roller through
+  // its enclosing cylinder: a bound, flagged) against the bracket
+  const RacewayGeometry g{.surface = RacewaySurface::cup, .z0 = 0, .width = 40, .radius = 60, .top_radius = 70};
+  Expected<RacewayScar> s = make_raceway_scar(g, {.radial_segments = 512, .height_segments = 63},
+                                              ScarParams{.angle_center_deg = 0, .angle_width_deg = 40, .z_min = 2,
+                                                         .z_max = 38, .depth = 0.04, .border = 2, .seed = 8});
+  ASSERT_TRUE(s.has_value()) << s.error().message();
+  Expected<Roller> rl = make_roller({.radius = 8, .top_radius = 9.5, .height = 30, .radial_segments = 64,
+                                     .height_segments = 63});
+  ASSERT_TRUE(rl.has_value());
+  ASSERT_TRUE(apply_scar(*rl, {.angle_center_deg = 0, .angle_width_deg = 359, .z_min = 2, .z_max = 28,
+                               .depth = 0.03, .border = 2, .seed = 4, .raised = true})
+                  .has_value());
+  const RollerQuadtree tree = build_quadtree(*rl);
+  const double k = (g.top_radius - g.radius) / g.width, nk = std::sqrt(1 + k * k);
+  const RacewayPairRing ring{&*s, Transform::identity()};
+  int trial = 0;
+  for (const double press : {-0.02, 0.03})
+    for (const double spin : {0.0, 1.3}) {
+      const double tilt = std::atan(6.0 / 30.0);  // the outer generator along the cup's line
+      const double zr = 5 - 8 * std::sin(tilt);
+      const Transform pose = roller_pose({g.radius + k * zr - press - 8 * std::cos(tilt), 0, 5}, tilt, 0, spin);
+      RacewayPairRoller roller{posed_cylinder(8, 9.5, 30, pose), &*rl, &tree, pose};
+      const RacewayScarPairResult r = raceway_scar_pair(roller, ring);
+      EXPECT_FALSE(r.exact);
+      double sampled = -1e300;
+      for (const auto& t : roller_triangles(*rl, pose))
+        for (int u = 0; u <= 6; ++u)
+          for (int v = 0; u + v <= 6; ++v) {
+            const Vec3 p = t[0] + (t[1] - t[0]) * (u / 6.0) + (t[2] - t[0]) * (v / 6.0);
+            ASSERT_GT(p.z, 0);
+            ASSERT_LT(p.z, g.width);
+            sampled = std::max(sampled, (std::hypot(p.x, p.y) - (g.radius_at(p.z) - s->raise)) / nk);
+          }
+      EXPECT_NEAR(r.roller_term, -sampled, 1e-9 * std::max(1.0, std::fabs(sampled))) << trial;
+      Cylinder a = roller.cylinder;
+      a.radius = 9.5 + rl->raise, a.top_radius = -1;
+      expect_in_bracket(r.raceway_term, surface_min_bracket(raceway_triangles(*s, raceway_surface_pose(ring)), a, 1e-9),
+                        "cup raceway term", trial);
+      EXPECT_EQ(r.distance, std::min(r.raceway_term, r.roller_term));
+      ++trial;
+    }
+}
