@@ -4,6 +4,7 @@
 // consecutive points (motion bound + grown bodies + bisection). See sweep.h. The holder box
 // (probe/box.h) is one more body: exact box-triangle test, culled as its bounding cylinder.
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -168,10 +169,19 @@ Bodies bodies_at(const ProbeShape& s, const ProbePose& pose) {
   return b;
 }
 
-/// Every body grown by delta (contains every point within delta of it).
-Bodies grown_bodies(Bodies b, double delta) {
-  for (Cylinder& c : b.cylinders) c = grown(c, delta);
-  if (b.box) b.box = grown(*b.box, delta);
+
+/// Per-body motion bounds: the probe cylinder, the holder cylinder, the holder box (issue #28:
+/// each body grown by its own bound; the probe, nearest the surface, moves least when the axis
+/// turns about the tip).
+struct BodyDeltas {
+  std::array<double, 3> d{};
+  double max() const { return std::max({d[0], d[1], d[2]}); }
+};
+
+/// Every body grown by its own bound plus `extra`.
+Bodies grown_bodies(Bodies b, const BodyDeltas& delta, double extra) {
+  for (std::size_t k = 0; k < b.cylinders.size(); ++k) b.cylinders[k] = grown(b.cylinders[k], delta.d[k] + extra);
+  if (b.box) b.box = grown(*b.box, delta.d[2] + extra);
   return b;
 }
 
@@ -535,11 +545,12 @@ namespace {
 
 /// The midpoint pose of [t0, t1] on segment `from` and the motion bound around it (one forward
 /// kinematics evaluation for both).
-double midpoint_and_bound(const ProbePath& path, const Robot* robot, const ProbeShape& probe, std::uint32_t from,
-                          double t0, double t1, ProbePose& mid) {
+BodyDeltas midpoint_and_bound(const ProbePath& path, const Robot* robot, const ProbeShape& probe, std::uint32_t from,
+                              double t0, double t1, ProbePose& mid) {
   const double h = 0.5 * (t1 - t0);
   const double tm = 0.5 * (t0 + t1);
-  double bound = 0, scale = 1;
+  BodyDeltas bound;
+  double scale = 1;
   if (path.joint_space && robot) {
     const auto& a = path.joints[from];
     const auto& b = path.joints[from + 1];
@@ -552,25 +563,27 @@ double midpoint_and_bound(const ProbePath& path, const Robot* robot, const Probe
     if (bodies.box) {
       for (const Vec3& v : bodies.box->corners) scale = std::max(scale, norm(v));
     }
-    // Distal to proximal: D_j = D_{j+1} + (prismatic: h |dq|; revolute: h |dq| rho_j), rho_j the
-    // largest distance of the probe to joint j's axis (z of frame j-1, or of frame j in the modified
-    // DH convention: joint_axis_frame) at the midpoint pose.
+    // Distal to proximal, per body: D_j = D_{j+1} + (prismatic: h |dq|; revolute: h |dq| rho_j),
+    // rho_j the largest distance of the body to joint j's axis (z of frame j-1, or of frame j in
+    // the modified DH convention: joint_axis_frame) at the midpoint pose.
     for (std::size_t j = robot->joints.size(); j-- > 0;) {
       const double dq = std::fabs(b[j] - a[j]) * h;
       if (dq == 0) continue;
       if (robot->joints[j].type == JointType::prismatic) {
-        bound += dq;
+        for (double& d : bound.d) d += dq;
       } else {
         const Transform& f = frames[joint_axis_frame(*robot, j)];
         const Vec3 o = f.t, z{f.r[0][2], f.r[1][2], f.r[2][2]};
-        double rho = 0;
-        for (const Cylinder& c : bodies.cylinders) {
-          rho = std::max(rho, std::max(line_distance(c.c0, o, z), line_distance(c.c1, o, z)) + c.radius);
+        for (std::size_t k = 0; k < bodies.cylinders.size(); ++k) {
+          const Cylinder& c = bodies.cylinders[k];
+          const double rho = std::max(line_distance(c.c0, o, z), line_distance(c.c1, o, z)) + c.radius;
+          bound.d[k] += dq * (M_PI / 180.0) * rho;
         }
         if (bodies.box) {  // convex: the farthest point from a line is a corner
+          double rho = 0;
           for (const Vec3& v : bodies.box->corners) rho = std::max(rho, line_distance(v, o, z));
+          bound.d[2] += dq * (M_PI / 180.0) * rho;
         }
-        bound += dq * (M_PI / 180.0) * rho;
       }
     }
   } else {
@@ -578,15 +591,24 @@ double midpoint_and_bound(const ProbePath& path, const Robot* robot, const Probe
     const ProbePose& a = path.poses[from];
     const ProbePose& b = path.poses[from + 1];
     // R(t) = Rot(n, theta t) Rot(a.axis, psi t) (segment_rotation): a body point p (from the tip)
-    // moves by at most |t - tm| (theta |p| + |psi| dist(p, axis)), plus the tip's motion.
+    // moves by at most |t - tm| (theta |p| + |psi| dist(p, axis)), plus the tip's motion. Per
+    // body, |p| is at most its reach from the tip; the twist about the axis leaves the cylinders
+    // (symmetric about it) in place and moves the box by at most |psi| times its reach from the axis.
     const SegmentRotation rot = segment_rotation(a, b);
-    const double reach = probe.reach();
-    const double twist = probe.has_holder_box() ? std::fabs(rot.psi) * probe.axis_reach() : 0.0;
-    bound = h * (distance(a.tip, b.tip) + rot.theta * reach + twist);
-    scale = std::max({1.0, norm(a.tip), norm(b.tip), reach});
+    const double tip = distance(a.tip, b.tip);
+    bound.d[0] = h * (tip + rot.theta * std::hypot(probe.length, probe.radius));
+    if (probe.has_holder())
+      bound.d[1] = h * (tip + rot.theta * std::hypot(probe.length + probe.holder_length, probe.holder_radius));
+    if (probe.has_holder_box()) {
+      const double across = std::hypot(0.5 * probe.holder_box_width, 0.5 * probe.holder_box_depth);
+      bound.d[2] = h * (tip + rot.theta * std::hypot(probe.length + probe.holder_box_length, across) +
+                        std::fabs(rot.psi) * across);
+    }
+    scale = std::max({1.0, norm(a.tip), norm(b.tip), probe.reach()});
   }
   // Rounding of the midpoint pose and of the bound itself.
-  return bound * (1 + 1e-9) + 1e-12 * scale;
+  for (double& d : bound.d) d = d * (1 + 1e-9) + 1e-12 * scale;
+  return bound;
 }
 
 }  // namespace
@@ -594,7 +616,7 @@ double midpoint_and_bound(const ProbePath& path, const Robot* robot, const Probe
 double motion_bound(const ProbePath& path, const Robot* robot, const ProbeShape& probe, std::uint32_t from,
                     double t0, double t1) {
   ProbePose mid;
-  return midpoint_and_bound(path, robot, probe, from, t0, t1, mid);
+  return midpoint_and_bound(path, robot, probe, from, t0, t1, mid).max();
 }
 
 namespace {
@@ -646,7 +668,7 @@ Refined refine(const Workpiece& w, const ProbePath& path, const Robot* robot, co
     }
     out.unresolved.push_back({nd.t0, nd.t1});
     ProbePose pm;
-    const double delta = midpoint_and_bound(path, robot, req.probe, from, nd.t0, nd.t1, pm);
+    const double delta = midpoint_and_bound(path, robot, req.probe, from, nd.t0, nd.t1, pm).max();
     out.motion = std::max(out.motion, delta);
     out.smallest_gap = std::min(out.smallest_gap, gap(bodies_at(req.probe, pm)));
   };
@@ -664,9 +686,9 @@ Refined refine(const Workpiece& w, const ProbePath& path, const Robot* robot, co
       }
       ++out.poses;
       ProbePose pm;
-      const double delta = midpoint_and_bound(path, robot, req.probe, from, nd.t0, nd.t1, pm);
+      const BodyDeltas delta = midpoint_and_bound(path, robot, req.probe, from, nd.t0, nd.t1, pm);
       const Bodies at_mid = bodies_at(req.probe, pm);
-      if (!bodies_touch(w, grown_bodies(at_mid, delta + extra), nullptr, nullptr, nullptr)) {
+      if (!bodies_touch(w, grown_bodies(at_mid, delta, extra), nullptr, nullptr, nullptr)) {
         // The swept bodies miss every surface: every pose of the interval is on the same side of
         // each closed component as its ends (one collides only by lying inside: then all do).
         if (nd.c0 || nd.c1) out.hit.push_back({nd.t0, nd.t1});
