@@ -206,7 +206,8 @@ quadric-error-metric edge collapses while the faces that take part in the curren
    insertions (a boss-sense cylinder of one instance coaxial with a recognised hole of another, of one of its
    radii, overlapping along the axis: a bolt or rod in a hole, a nut on a bolt; the hole's type gives the
    constraint: through/stepped → `bolt`, blind → `pin`, counterbored → `screw`, countersunk →
-   `countersunk_screw`) and planar contacts (planes back to back whose faces' boxes overlap). On AS1 (both
+   `countersunk_screw`) and planar contacts (planes back to back whose faces' regions overlap with a positive area: their
+   triangles, exact 2D orientation tests; overlapping boxes are not enough, test Mates.PlanarContactNeedsOverlappingRegions). On AS1 (both
    exports, the same answer): 22 insertions (bolt in bracket, plate and nut 6 each; rod in bracket and nut 2
    each) and 16 planar contacts. **Without a process file** (`PipelineOptions::mates`, `interfere simplify
    --mates auto`, the default for a STEP input without `--process`) the mates pick the assembly features
