@@ -6,6 +6,7 @@
 
 #include "common.h"
 #include "interfere/probe/path.h"
+#include "interfere/robot/cell.h"
 #include "interfere/robot/ik.h"
 
 namespace interfere::cli {
@@ -15,7 +16,18 @@ robot::JointPath cell_pose_joint_path(const robot::Cell& cell, const CellPoseInp
   Expected<probe::ProbePath> poses = probe::read_path_csv(in.file, nullptr);
   if (!poses) throw InputError(poses.error());
   robot::IkOptions o;
-  if (!in.start.empty()) {
+  nlohmann::json first_branch;  // --ik-start collision-free: how the first point's branch was chosen
+  if (in.start == "collision-free") {
+    if (poses->poses.empty()) throw InputError(Error{.file = in.file, .reason = "no path points"});
+    Expected<robot::StartChoice> c = robot::collision_free_start(cell, poses->poses[0]);
+    if (!c) throw InputError(c.error());
+    o.start = c->q;
+    first_branch = {{"rule", "collision-free"},
+                    {"seed", c->seed},
+                    {"collision_free", c->collision_free},
+                    {"solutions_checked", c->candidates},
+                    {"solutions_colliding", c->colliding}};
+  } else if (!in.start.empty()) {
     std::stringstream ss(in.start);
     std::string item;
     while (std::getline(ss, item, ',')) {
@@ -57,6 +69,7 @@ robot::JointPath cell_pose_joint_path(const robot::Cell& cell, const CellPoseInp
             {"max_tip_error", worst_tip},
             {"max_angle_error", worst_angle},
             {"points", std::move(pts)}};
+  if (!first_branch.is_null()) report["first_branch"] = std::move(first_branch);
   if (!in.write_joints.empty()) {
     write_or_throw(write_output(
         in.write_joints,

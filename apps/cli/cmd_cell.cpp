@@ -332,7 +332,8 @@ void add_cell_command(CLI::App& app, int& exit_code) {
       ->excludes(path_opt);
   c->add_option("--ik-start", o->pose.start,
                 "--pose-path: joint values (comma-separated, the robot's movable joints in chain "
-                "order) tried first for the first point: picks the branch");
+                "order) tried first for the first point: picks the branch; or 'collision-free': the "
+                "first point solved from every seed and the first solution clear of everything used");
   c->add_option("--write-joints", o->pose.write_joints,
                 "--pose-path: write the solved joint path (CSV, header = joint names)");
   c->add_option(

@@ -258,6 +258,28 @@ class CellPosePath(unittest.TestCase):
             self.assertLess(abs(p["tip"][2] - 10), 1e-9)
             self.assertLess(abs(p["axis"][2] + 1), 1e-12)
 
+    def test_collision_free_first_branch(self):
+        # --ik-start collision-free (issue #28): the first point solved from every seed, the first
+        # solution clear of everything used as the start; without it the first converging seed
+        # ("home") puts the elbow through the plate.
+        d = copy_example()
+        rc, out, err = run(os.path.join(d, "cell.json"), "--pose-path", os.path.join(d, "paper_path.csv"),
+                           "--ik-start", "collision-free", "--json", os.path.join(d, "cf.json"))
+        self.assertIn(rc, (0, 1), out + err)
+        with open(os.path.join(d, "cf.json")) as f:
+            r = json.load(f)
+        fb = r["ik"]["first_branch"]
+        self.assertEqual(fb["rule"], "collision-free")
+        self.assertTrue(fb["collision_free"])
+        self.assertGreaterEqual(fb["solutions_checked"], 2)
+        self.assertGreaterEqual(fb["solutions_colliding"], 1)
+        self.assertEqual(r["points"][0]["verdict"], "clear")
+        self.assertEqual(r["ik"]["points"][0]["seed"], "start")
+        rc, out, err = run(os.path.join(d, "cell.json"), "--pose-path", os.path.join(d, "paper_path.csv"),
+                           "--json", os.path.join(d, "home.json"))
+        with open(os.path.join(d, "home.json")) as f:
+            self.assertEqual(json.load(f)["points"][0]["verdict"], "clash")
+
 
 class CellBadInput(unittest.TestCase):
     def bad(self, args, needles):

@@ -23,6 +23,8 @@
 #include "interfere/mesh/io.h"
 #include "interfere/probe/export.h"
 #include "interfere/robot/cell.h"
+#include "interfere/robot/ik.h"
+#include "interfere/probe/path.h"
 
 namespace fs = std::filesystem;
 using namespace interfere;
@@ -734,5 +736,48 @@ TEST(CellBetween, GrazingBetweenTwoClearPoints) {
   EXPECT_GE(meeting_found, 2u);
 }
 
+
+
+TEST(CellIkBranch, FirstPointCollisionFree) {
+  // The example's pose path: without a start the solver's first converging seed ("home") puts the
+  // elbow through the plate at the first point. collision_free_start solves the first pose from
+  // every seed, checks the distinct solutions in order and returns the first clear one: the tool
+  // is at the pose, the joints within their limits, the frame clear (a separate engine run), and
+  // the path solved from it starts there.
+  const fs::path ex = fs::path(INTERFERE_SOURCE_DIR) / "examples" / "probe";
+  Expected<Cell> cell = read_cell_json(ex / "cell.json");
+  ASSERT_TRUE(cell) << cell.error().message();
+  Expected<probe::ProbePath> poses = probe::read_path_csv(ex / "paper_path.csv", nullptr);
+  ASSERT_TRUE(poses) << poses.error().message();
+  const IkTool tool = cell_ik_tool(*cell);
+  auto first_clear = [&](const std::vector<double>& q) {
+    const CellScene cs = cell_scene(*cell, JointPath{{q}, {0}});
+    scene::SceneClashOptions eo;
+    eo.depth = false, eo.curves = false;
+    return scene::clash_scene(cs.scene, cs.tests, eo).verdict == Verdict::clear;
+  };
+  Expected<PoseIkPath> plain = pose_path_to_joints(cell->robot, cell->base, tool, *poses, "paper_path.csv");
+  ASSERT_TRUE(plain) << plain.error().message();
+  EXPECT_FALSE(first_clear(plain->path.q[0]));  // the problem
+  Expected<StartChoice> c = collision_free_start(*cell, poses->poses[0]);
+  ASSERT_TRUE(c) << c.error().message();
+  EXPECT_TRUE(c->collision_free);
+  EXPECT_GE(c->candidates, 2u);
+  EXPECT_GE(c->colliding, 1u);
+  EXPECT_TRUE(check_limits(cell->robot, c->q));
+  const probe::ProbePose at = tool_pose(cell->robot, cell->base, tool, c->q);
+  EXPECT_LT(norm(at.tip - poses->poses[0].tip), 1e-9);
+  EXPECT_LT(norm(at.axis - poses->poses[0].axis), 1e-9);
+  EXPECT_TRUE(first_clear(c->q));
+  IkOptions o;
+  o.start = c->q;
+  Expected<PoseIkPath> chosen = pose_path_to_joints(cell->robot, cell->base, tool, *poses, "paper_path.csv", o);
+  ASSERT_TRUE(chosen) << chosen.error().message();
+  EXPECT_EQ(chosen->seed[0], "start");
+  for (std::size_t m = 0; m < c->q.size(); ++m) EXPECT_NEAR(chosen->path.q[0][m], c->q[m], 1e-6);
+  RecordProperty("seed", c->seed);
+  RecordProperty("candidates", static_cast<int>(c->candidates));
+  RecordProperty("colliding", static_cast<int>(c->colliding));
+}
 
 #endif

@@ -19,6 +19,7 @@
 
 #include "interfere/core/error.h"
 #include "interfere/robot/chain.h"
+#include "interfere/robot/ik.h"
 #include "interfere/scene/clash_test.h"
 #include "interfere/scene/engine.h"
 #include "interfere/scene/scene.h"
@@ -176,5 +177,22 @@ std::vector<double> motion_bounds(const Cell& cell, const CellScene& cs,
 /// than motion_bounds(dq) (the smaller of the two is returned).
 std::vector<double> motion_bounds_at(const Cell& cell, const CellScene& cs,
                                      const std::vector<double>& q, const std::vector<double>& dq);
+
+/// The first path point's inverse-kinematics branch chosen with collisions in mind (issue #28): the
+/// pose `first` is solved from every seed on its own (options.start when given, home, then `seeds`
+/// deterministic pseudo-random configurations within the limits); the distinct solutions within the
+/// limits are checked in that order with the scene engine (every test of the cell, hard) and the
+/// first clear one is returned. None clear: the first solution, collision_free false. None at all:
+/// an error naming the cell file. Give the result as IkOptions::start to pose_path_to_joints so
+/// that the path follows that branch (`interfere cell --ik-start collision-free`).
+struct StartChoice {
+  std::vector<double> q;
+  std::string seed;             ///< "start", "home" or "seed k"
+  bool collision_free = false;
+  std::size_t candidates = 0;   ///< distinct solutions checked
+  std::size_t colliding = 0;    ///< of those, colliding (or undecided) ones
+};
+Expected<StartChoice> collision_free_start(const Cell& cell, const probe::ProbePose& first,
+                                           const IkOptions& options = {}, int seeds = 24);
 
 }  // namespace interfere::robot
