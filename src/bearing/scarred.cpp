@@ -10,6 +10,7 @@
 #include <limits>
 #include <numbers>
 
+#include "interfere/bearing/raceway.h"
 #include "interfere/core/predicates.h"
 #include "golden.h"
 
@@ -20,10 +21,31 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 using detail::golden_min;
 
 
-/// B's local frame (centre at the origin, axis +z) and the map body(A) -> local(B).
+/// The signed distance to a solid frustum in its meridian half-plane (rho >= 0, z from its centre):
+/// radius Rm + k z on -hh <= z <= hh. The section is the trapezoid |x| <= Rm + k z (convex,
+/// symmetric): inside, minus the distance to the nearest edge line (the lateral one, or an end);
+/// outside, the distance to the nearest of the three edge segments of the half x >= 0 (bottom, top,
+/// lateral). Nondecreasing in rho for a fixed z (a convex section symmetric about x = 0).
+double frustum_sd_rz(double rho, double z, double Rm, double k, double nk, double hh) {
+  const double r0 = Rm - k * hh, r1 = Rm + k * hh;
+  const double lat = (rho - (Rm + k * z)) / nk;  // signed distance to the lateral line
+  if (std::fabs(z) <= hh && lat <= 0) return std::max(std::fabs(z) - hh, lat);
+  const double db = std::hypot(std::max(rho - r0, 0.0), z + hh);
+  const double dt = std::hypot(std::max(rho - r1, 0.0), z - hh);
+  // the lateral segment (r0, -hh) .. (r1, hh): direction (2 k hh, 2 hh) ~ (k, 1)
+  const double w = std::clamp(((rho - r0) * k + (z + hh)) / (2 * hh * (1 + k * k)), 0.0, 1.0);
+  const double dl = std::hypot(rho - (r0 + w * 2 * k * hh), z - (-hh + w * 2 * hh));
+  return std::min({db, dt, dl});
+}
+
+/// B's local frame (centre at the origin, axis +z) and the map body(A) -> local(B). B is a cylinder
+/// (radius R) or a frustum (issue #27: a tapered roller, a tapered bearing's cone): radius
+/// Rm + k z on -hh <= z <= hh, nk = sqrt(1 + k^2).
 struct LocalFrame {
   Vec3 c, bx, by, u;
   double R = 1, hh = 1;
+  bool tapered = false;
+  double Rm = 1, k = 0, nk = 1;
   double m[3][3];  // local = m * body + o
   Vec3 o;
 
@@ -34,6 +56,8 @@ struct LocalFrame {
     bx = bx / norm(bx);
     by = cross(u, bx);
     R = b.radius, hh = 0.5 * b.height;
+    tapered = b.tapered();
+    if (tapered) Rm = 0.5 * (b.radius + b.top()), k = (b.top() - b.radius) / b.height, nk = std::sqrt(1 + k * k);
     const Vec3 rows[3] = {bx, by, u};
     for (int i = 0; i < 3; ++i) {
       for (int j = 0; j < 3; ++j)
@@ -48,7 +72,11 @@ struct LocalFrame {
             m[2][0] * p.x + m[2][1] * p.y + m[2][2] * p.z + o.z};
   }
   Vec3 world(const Vec3& q) const { return c + bx * q.x + by * q.y + u * q.z; }
-  double sd(const Vec3& q) const { return signed_distance_rz(std::sqrt(q.x * q.x + q.y * q.y), q.z, R, hh); }
+  /// sd_B in (rho, z), nondecreasing in rho.
+  double sd_rz(double rho, double z) const {
+    return tapered ? frustum_sd_rz(rho, z, Rm, k, nk, hh) : signed_distance_rz(rho, z, R, hh);
+  }
+  double sd(const Vec3& q) const { return sd_rz(std::sqrt(q.x * q.x + q.y * q.y), q.z); }
 };
 
 /// The minimum of a convex G on [lo, hi] near a guess, certified: Newton steps on central differences
@@ -124,7 +152,7 @@ TriangleMin local_triangle_min(const LocalFrame& f, const Vec3& a, const Vec3& b
       if (r < rho || (r == rho && std::fabs(q.z) < std::fabs(p.z))) rho = r, p = q;
     }
   }
-  if (!pierced && rho > 0) {
+  if (!pierced && rho > 0 && !f.tapered) {
     const double dr = rho - f.R, dz = std::fabs(p.z) - f.hh;
     if (dr >= 0 ? dz <= 0 : dz <= dr) {  // certificate: B's side is what is nearest
       out.value = dr, out.point = p, out.certified = true;
@@ -161,7 +189,7 @@ TriangleMin local_triangle_min(const LocalFrame& f, const Vec3& a, const Vec3& b
       const double t = l2 > 0 ? std::clamp(-(p0.x * dx + p0.y * dy) / l2, 0.0, 1.0) : 0.0;
       const Vec3 q{p0.x + dx * t, p0.y + dy * t, z};
       if (at) *at = q;
-      return signed_distance_rz(std::sqrt(q.x * q.x + q.y * q.y), z, f.R, f.hh);
+      return f.sd_rz(std::sqrt(q.x * q.x + q.y * q.y), z);
     };
     // A triangle outside B's infinite cylinder whose point nearest the axis lies beyond an end
     // plane z = +-hh (a face overhanging a roller end, e.g. a cage web): the minimum is just past
@@ -170,7 +198,8 @@ TriangleMin local_triangle_min(const LocalFrame& f, const Vec3& a, const Vec3& b
     // Certificate, whatever the model: G is convex, so G(z* -+ delta) >= G(z*) puts the minimiser
     // in [z* - delta, z* + delta], and there G >= G(z*) - max(G(z* -+ delta) - G(z*)) (the secant
     // slopes bound it); accepted when that gap is below rounding-level tolerance, else the search.
-    if (!pierced && rho >= f.R && std::fabs(p.z) > f.hh) {
+    // (cylinders only: a frustum B goes to the search below, which needs no closed form)
+    if (!f.tapered && !pierced && rho >= f.R && std::fabs(p.z) > f.hh) {
       // w: the distance past the end plane on p's side; the triangle's sections there start at
       // w_near (0 when the end plane crosses the triangle, else its nearest vertex height)
       const double sgn = p.z > 0 ? 1.0 : -1.0, wp = std::fabs(p.z) - f.hh;
@@ -200,7 +229,7 @@ TriangleMin local_triangle_min(const LocalFrame& f, const Vec3& a, const Vec3& b
     // root of h(u) = F - R - (u - hh) (u = |z| on that side) between u_a = hh - (R - rho) (h >= 0:
     // F >= rho) and u_b = |p.z| (h < 0), found by regula falsi (Illinois), then the same convexity
     // certificate (a kink: the gap is about delta times the slope, delta at 2^-46 of the scale).
-    if (!pierced && rho > 0 && rho < f.R) {
+    if (!f.tapered && !pierced && rho > 0 && rho < f.R) {
       const double sgn = p.z > 0 ? 1.0 : -1.0, scale = zh - zl + f.R + f.hh;
       const auto h = [&](double u) {
         Vec3 q;
@@ -282,7 +311,7 @@ struct Evaluator {
   MeshPairResult finish(const Cylinder& b) {
     MeshPairResult out = best;
     out.point_a = frame.world(best.point_a);
-    out.point_b = nearest_on_cylinder_boundary(b, out.point_a);
+    out.point_b = b.tapered() ? nearest_on_frustum_boundary(b, out.point_a) : nearest_on_cylinder_boundary(b, out.point_a);
     return out;
   }
 };
@@ -299,12 +328,24 @@ double node_lower_bound(const LocalFrame& f, const QuadNode& n) {
   const double etx = -f.m[0][0] * n.sin_mid + f.m[0][1] * n.cos_mid;
   const double ety = -f.m[1][0] * n.sin_mid + f.m[1][1] * n.cos_mid;
   const double ezx = f.m[0][2], ezy = f.m[1][2];
-  const double lateral = rho - n.half_r * std::fabs(nx * erx + ny * ery) - n.half_t * std::fabs(nx * etx + ny * ety) -
-                         n.half_z * std::fabs(nx * ezx + ny * ezy) - f.R;
   // sd_B >= |z| - hh too (the slab of B's end planes): boxes beyond B's ends (a raceway's grid
   // past a roller's end, issue #27) are pruned by it where the lateral bound cannot
   const double erz = f.m[2][0] * n.cos_mid + f.m[2][1] * n.sin_mid;
   const double etz = -f.m[2][0] * n.sin_mid + f.m[2][1] * n.cos_mid;
+  double lateral;
+  if (!f.tapered) {
+    lateral = rho - n.half_r * std::fabs(nx * erx + ny * ery) - n.half_t * std::fabs(nx * etx + ny * ety) -
+              n.half_z * std::fabs(nx * ezx + ny * ezy) - f.R;
+  } else {
+    // a frustum B: sd_B >= (rho - Rm - k z) / nk (the plane tangent to B's cone along a meridian
+    // supports the convex B; raceway_cone.cpp), and rho >= n.(x, y) for the unit n of the box
+    // centre's meridian, so sd_B >= w.q / nk - Rm / nk with w = (nx, ny, -k): linear, smallest over
+    // the box at the centre minus the half extents times |w . e|
+    lateral = (rho - f.k * c.z - n.half_r * std::fabs(nx * erx + ny * ery - f.k * erz) -
+               n.half_t * std::fabs(nx * etx + ny * ety - f.k * etz) -
+               n.half_z * std::fabs(nx * ezx + ny * ezy - f.k * f.m[2][2]) - f.Rm) /
+              f.nk;
+  }
   const double axial = std::fabs(c.z) - n.half_r * std::fabs(erz) - n.half_t * std::fabs(etz) -
                        n.half_z * std::fabs(f.m[2][2]) - f.hh;
   return std::max(lateral, axial);

@@ -2,7 +2,13 @@
 //
 // The quantity is (*) of analytic.h with A the roller's triangle mesh (the scarred surface itself,
 // not its vertices): s = min over the triangles T of A of min over p in T of sd_B(p), B an
-// untapered cylinder. Per triangle the minimum is exact to rounding: rho_B's minimum over T is a
+// intact cylinder or (issue #27: scarred tapered rollers against a tapered bearing's cone, a
+// neighbouring tapered roller) an intact cone frustum. Per triangle the minimum is exact to
+// rounding. A frustum B: sd_B = phi(rho, z) is nondecreasing in rho (a convex meridian section
+// symmetric about the axis), so the slice search below applies with phi the frustum's closed form;
+// the quadtree's node bound uses the plane tangent to B's cone along the box centre's meridian,
+// sd_B >= (rho - R(z)) / sqrt(1 + k^2) (raceway_cone.cpp's lateral bound), and the end slab. For a
+// cylinder B: rho_B's minimum over T is a
 // planar point-to-triangle distance after projecting along B's axis (closest points on the edges,
 // or 0 when B's axis pierces T); when sd_B = rho_B - R at that minimiser (certificate, as in
 // analytic.h) it is the triangle's value, otherwise a nested golden-section search over T's
