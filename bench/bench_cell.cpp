@@ -14,7 +14,8 @@
 //
 // Rows (wall time, oneTBB default threads, one iteration each):
 //   CellFull/discrete     cell_scene + clash_scene at every path point
-//   CellFull/continuous   the same + check_between_points (the conservative check between points)
+//   CellFull/continuous   the same + check_between_points (the conservative check between points:
+//                         conservative advancement with certified distances, robot/cell.h)
 // Counters: points, bodies, triangles, link triangles, colliding points / segments, unresolved,
 // seconds per phase, process CPU seconds.
 #ifdef INTERFERE_BENCH_CELL
@@ -146,7 +147,7 @@ void BM_CellFull(benchmark::State& state) {
   const bool continuous = state.range(0) != 0;
   const FullCell& fc = full_cell();
   double scene_s = 0, discrete_s = 0, between_s = 0, cpu = 0;
-  std::size_t colliding = 0, seg_collide = 0, seg_unresolved = 0, frames_checked = 0, bodies = 0;
+  std::size_t colliding = 0, seg_collide = 0, seg_unresolved = 0, frames_checked = 0, engine_frames = 0, bodies = 0;
   for (auto _ : state) {
     const double c0 = process_cpu_seconds();
     const auto t0 = std::chrono::steady_clock::now();
@@ -166,11 +167,12 @@ void BM_CellFull(benchmark::State& state) {
     between_s = std::chrono::duration<double>(t3 - t2).count();
     colliding = 0;
     for (const scene::FrameRow& f : r.frames) colliding += f.verdict == Verdict::clash;
-    seg_collide = seg_unresolved = frames_checked = 0;
+    seg_collide = seg_unresolved = frames_checked = engine_frames = 0;
     for (const SegmentResult& s : segs) {
       seg_collide += s.state == SegmentState::collides;
       seg_unresolved += s.state == SegmentState::unresolved;
       frames_checked += s.frames;
+      engine_frames += s.engine_frames;
     }
     bodies = cs.scene.bodies.size();
     benchmark::DoNotOptimize(colliding);
@@ -184,6 +186,7 @@ void BM_CellFull(benchmark::State& state) {
   state.counters["colliding_segments"] = static_cast<double>(seg_collide);
   state.counters["unresolved_segments"] = static_cast<double>(seg_unresolved);
   state.counters["between_frames"] = static_cast<double>(frames_checked);
+  state.counters["between_engine_frames"] = static_cast<double>(engine_frames);
   state.counters["scene_seconds"] = scene_s;
   state.counters["discrete_seconds"] = discrete_s;
   state.counters["between_seconds"] = between_s;

@@ -308,27 +308,28 @@ CELL_BEGIN = "<!-- BEGIN probe full cell (bench/probe_tables.py) -->"
 CELL_END = "<!-- END probe full cell -->"
 
 
-def run_cell_bench(build, points, out_json):
+def run_cell_bench(build, points, out_json, repetitions=3):
     exe = os.path.join(build, "bench", "interfere_bench_cell")
     if not os.path.exists(exe):
         return None
     env = dict(os.environ, INTERFERE_CELL_POINTS=str(points))
-    subprocess.run([exe, "--benchmark_format=json", "--benchmark_out=" + out_json, "--benchmark_out_format=json"],
+    subprocess.run([exe, "--benchmark_format=json", "--benchmark_out=" + out_json, "--benchmark_out_format=json",
+                    "--benchmark_repetitions=%d" % repetitions],
                    check=True, stdout=subprocess.DEVNULL, env=env)
     with open(out_json) as f:
         return json.load(f)
 
 
 def cell_table(data):
-    """The full-cell target of issue #28 (interfere_bench_cell: CellFull rows, one run each)."""
+    """The full-cell target of issue #28 (interfere_bench_cell: CellFull rows, medians of the repetitions)."""
     rows = collect(data)
     d = find(rows, "BM_CellFull/0")
     c = find(rows, "BM_CellFull/1")
     L = []
     now = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     L.append("Measured %s on %s, %d logical CPUs (oneTBB default threads), load average %s (other builds "
-             "running); one run. Regenerate with `bench/probe_tables.py --cell-only --cell-points N`." %
-             (now, cpu_model(), os.cpu_count(), " / ".join("%.1f" % x for x in os.getloadavg())))
+             "running); median of %d runs. Regenerate with `bench/probe_tables.py --cell-only --cell-points N`." %
+             (now, cpu_model(), os.cpu_count(), " / ".join("%.1f" % x for x in os.getloadavg()), c["runs"]))
     L.append("")
     L.append("The cell: %d bodies, %d triangles (7 link meshes, %d triangles together; workpiece %d; the clamp "
              "and two posts), %d path points (raster lines of 1,000 points, x = 350..700 mm, at y = -150..150 mm; "
@@ -336,13 +337,13 @@ def cell_table(data):
                  c["bodies"], c["triangles"], c["link_triangles"], c["workpiece_triangles"], c["points"]))
     L.append("")
     L.append("| run | scene build s | at the points s | between points s | total wall s | process CPU s | colliding "
-             "points | colliding / unresolved segments | frames checked between points |")
+             "points | colliding / unresolved segments | middles checked between points (of which by the scene engine) |")
     L.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
     for name, r in (("points only", d), ("points + between points (conservative)", c)):
-        L.append("| %s | %.3g | %.3g | %.3g | %.3g | %.3g | %d | %d / %d | %d |" % (
+        L.append("| %s | %.3g | %.3g | %.3g | %.3g | %.3g | %d | %d / %d | %d (%d) |" % (
             name, r["scene_seconds"], r["discrete_seconds"], r["between_seconds"], r["ms"] / 1e3,
             r["process_cpu_seconds"], r["colliding_points"], r["colliding_segments"], r["unresolved_segments"],
-            r["between_frames"]))
+            r["between_frames"], r.get("between_engine_frames", 0)))
     L.append("")
     scale = 1e5 / c["points"]
     total = c["ms"] / 1e3 * scale
@@ -397,7 +398,8 @@ def main():
         print(block)
         return
     if a.cell_only:
-        data = run_cell_bench(a.build, a.cell_points, os.path.join(a.build, "bench", "probe_cell_bench.json"))
+        data = run_cell_bench(a.build, a.cell_points, os.path.join(a.build, "bench", "probe_cell_bench.json"),
+                              a.repetitions)
         if data is None:
             sys.exit("missing interfere_bench_cell (needs urdfdom)")
         block = cell_table(data)
