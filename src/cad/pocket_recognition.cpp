@@ -6,7 +6,7 @@
 // 10303-224's closed pocket, slot and step): a planar floor, walls standing on it, and open sides
 // where the floor meets the part's outside (a convex arc). Decided on the AAG:
 //  - a floor: a plane; its outer-loop arcs are concave to walls, smooth to floor fillets, or convex
-//    (an open side). Any other arc (a concave arc to an inclined face, a smooth arc to a face that is
+//    (an open side; so is a smooth arc to a convex round). Any other arc (a concave arc to an inclined face, a smooth arc to a face that is
 //    no fillet) means the plane is no floor of these features. Arcs of the floor's inner loops
 //    (islands standing on it, holes through it) do not take part;
 //  - a wall stands on the floor: a plane perpendicular to it, or a cylinder whose axis is its normal
@@ -20,7 +20,8 @@
 //    blind_slot   open; one component: two opposite planes facing each other (the sides) and an end
 //                 closing them (one plane perpendicular to both, and/or rounds) - a slot closed at one end;
 //    slot         open; two components, each one plane, opposite and facing each other (a through slot);
-//    through_step open; one component of one plane (the paper's Fig. 4).
+//    through_step open; one component of one plane, whose only wall, seen from it as a floor, is this
+//                 floor (the paper's Fig. 4: two planes meeting at one concave arc).
 //    Other floors (an L-shaped corner of two walls, a floor with one wall all round: a blind hole's)
 //    are none of these.
 // Fillets are never a floor or wall of their own, so floor fillets and corner rounds are not reported
@@ -101,9 +102,12 @@ bool floor_of(const Graph& G, std::uint32_t fl, const std::vector<char>& claimed
     if (arc.convexity == Convexity::concave) {
       if (!standing(w, up)) return false;
       walls.push_back(nb);
-    } else {
-      if (!fillet(w, floor, up)) return false;
+    } else if (fillet(w, floor, up)) {
       if (std::find(fillets.begin(), fillets.end(), nb) == fillets.end()) fillets.push_back(nb), todo.push_back(nb);
+    } else if (w.type == SurfaceType::cylinder && !w.hole) {
+      open = true;  // a convex round where the floor meets the outside
+    } else {
+      return false;
     }
   }
   // The fillets' other neighbours.
@@ -186,6 +190,12 @@ std::vector<FloorFeature> recognize_floor_features(const Aag& g, const std::vect
       for (std::uint32_t i = 0; i < walls.size(); ++i) comps[find(i)].push_back(walls[i]);
       const auto is_plane = [&](std::uint32_t f) { return g.nodes[f].type == SurfaceType::plane; };
       if (comps.size() == 1 && walls.size() == 1 && is_plane(walls[0])) {
+        // The paper's step: two planes whose only concave arc is the one between them, so the wall,
+        // taken as a floor, has this floor as its one wall (a face standing on a base plate among
+        // others is no step of the base's).
+        std::vector<std::uint32_t> w2, f2;
+        bool open2 = false;
+        if (!floor_of(G, walls[0], claimed, w2, f2, open2) || !open2 || w2 != std::vector<std::uint32_t>{fl}) continue;
         c.f.type = "through_step", c.rank = 3;
       } else if (comps.size() == 2 && walls.size() == 2 && is_plane(walls[0]) && is_plane(walls[1]) &&
                  facing(g.nodes[walls[0]], g.nodes[walls[1]])) {

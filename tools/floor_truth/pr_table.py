@@ -1,0 +1,78 @@
+#!/usr/bin/env python3
+"""Floor-feature recognition (pockets, slots, blind slots, steps) precision/recall per part (issue #29,
+item 2) into docs/simplify.md.
+
+Runs the FloorTruth test (tests/cad/test_floor_truth.cpp) with INTERFERE_FLOOR_PR_JSON set and replaces
+the section between the markers <!-- floor-truth:begin --> and <!-- floor-truth:end --> of
+docs/simplify.md (put after the hole truth section when absent).
+
+usage: pr_table.py [BUILD_DIR]   (default: build)
+"""
+import json, os, subprocess, sys, tempfile
+
+root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+build = sys.argv[1] if len(sys.argv) > 1 else os.path.join(root, "build")
+out = tempfile.mktemp(suffix=".json")
+env = dict(os.environ, INTERFERE_FLOOR_PR_JSON=out)
+subprocess.run([os.path.join(build, "tests", "interfere_cad_tests"), "--gtest_filter=FloorTruth.*"], env=env, check=True,
+               stdout=subprocess.DEVNULL)
+now = json.load(open(out))
+
+def counts(d):
+    return ", ".join("%s %d" % (k, v) for k, v in sorted(d.items())) or "-"
+
+lines = ["<!-- floor-truth:begin -->",
+         "### Pockets, slots and steps on real parts (truth set)",
+         "",
+         "Truth: `tests/data/floor_truth/` (labeller `tools/floor_truth/label_floors.cpp`, no AAG: for every planar",
+         "face, rays cast just above it across its outer boundary against the solid decide where material rises to a",
+         "face standing on it (walled) and where the floor meets the outside (open); all walled: pocket, one straight",
+         "walled run: step (mutual: its wall, as a floor, has this floor as its one wall), two facing straight runs:",
+         "slot, one run turning half a turn: blind slot). A truth feature matches a recognised one (one to one, typed",
+         "first) when one of its floor points and at least 80 % of its walled boundary points lie on the feature's",
+         "triangles. Written by `tools/floor_truth/pr_table.py` from the test `FloorTruth.PrecisionAndRecallPerPart`",
+         "(which requires the totals' typed precision and recall to stay >= 0.85). The type definitions are the same",
+         "specification on both sides (the paper's library gives only the through step, Fig. 4; slot, blind slot and",
+         "pocket as in docs/simplify.md's feature list); the evidence is not: rays against the solid there, AAG arcs",
+         "(convexity, surface types) here. The labeller was written after the recognizer and the mutual-step rule was",
+         "added to both after the first comparison (CTC-01 and FTC-10 mismatches: faces standing on a base plate).",
+         "The parts and the 17 labels are the hole truth set's; the STEP files stay in `../shared/data/step` (skipped",
+         "when absent). Known, not investigated further: gmsh_Zylkopf's two pockets (labelled, not recognised),",
+         "gmsh_Block's slots and blind slots (the two disagree on which of its notches are closed at one end, and the",
+         "labels merged from several floors fail the 80 % rule), FTC-10's two steps and FTC-08's fourth pocket (not",
+         "recognised), trimesh_box_sides' 0.05 mm-wide faces (7 extra steps); CTC-01's slot is recognised with another",
+         "of its faces as the floor than the label's and fails the 80 % rule. The issue's 0.95 targets are hole targets;",
+         "here they are met on 11 of 17 parts (4 of them with no feature labelled or reported).",
+         "",
+         "| part | truth | reported | P / R | typed P / R | truth types | reported types |",
+         "|---|---|---|---|---|---|---|"]
+for r in now["parts"]:
+    lines.append("| %s | %d | %d | %.2f / %.2f | %.2f / %.2f | %s | %s |" % (
+        r["file"], r["truth"], r["reported"], r["precision"], r["recall"], r["typed_precision"], r["typed_recall"],
+        counts(r["truth_types"]), counts(r["reported_types"])))
+t = now["total"]
+P = t["found"] / t["reported"] if t["reported"] else 1.0
+R = t["found"] / t["truth"] if t["truth"] else 1.0
+tP = t["typed"] / t["reported"] if t["reported"] else 1.0
+tR = t["typed"] / t["truth"] if t["truth"] else 1.0
+lines.append("| **all** | %d | %d | %.2f / %.2f | %.2f / %.2f | | |" % (t["truth"], t["reported"], P, R, tP, tR))
+lines += ["", "Per type: truth features, found (any type), found with their type, reported features of the type:", "",
+          "| type | truth | found | typed | reported |", "|---|---|---|---|---|"]
+for k, v in sorted(now["types"].items()):
+    lines.append("| %s | %d | %d | %d | %d |" % (k, v["truth"], v["found"], v["typed_found"], v["reported"]))
+lines.append("<!-- floor-truth:end -->")
+section = "\n".join(lines) + "\n"
+
+doc = os.path.join(root, "docs", "simplify.md")
+text = open(doc).read()
+a, e = "<!-- floor-truth:begin -->", "<!-- floor-truth:end -->"
+if a in text:
+    i, j = text.index(a), text.index(e) + len(e) + 1
+    text = text[:i] + section + text[j:]
+else:
+    k = text.index("<!-- hole-truth:end -->")
+    k = text.index("\n", k) + 1
+    text = text[:k] + "\n" + section + text[k:]
+open(doc, "w").write(text)
+os.unlink(out)
+print(section)
