@@ -162,6 +162,11 @@ struct SweepRequest {
   double max_clearance = std::numeric_limits<double>::infinity();  ///< farther: reported as inf
   int max_depth = 16;       ///< continuous check resolution 2^-max_depth of a segment
   std::size_t max_poses = std::size_t(1) << 16;  ///< budget of poses tested per segment (and pass)
+  /// Pose paths: a candidate triangle whose plane the swept probe or holder cylinder stays clear of
+  /// (motion along the plane's normal: the tip's component plus the turn about the tip, per axial
+  /// slice) does not stop an interval from being cleared (issue #28, speed; docs/probe.md, "Plane
+  /// filter"). Sound either way; false keeps the isotropic motion bound alone.
+  bool plane_filter = true;
   /// Requested clearance (> 0): points and segments closer than this get Verdict::clearance
   /// (points by their exact clearance; segments by a second refinement with the bodies grown by it).
   double clearance_limit = 0;

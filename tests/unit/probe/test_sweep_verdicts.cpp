@@ -166,7 +166,8 @@ TEST(ProbeSweepStates, ConstantGapPassIsNeverACollision) {
   const ProbePath path = poses({{{-50, 0, 0.005}, kDown}, {{50, 0, 0.005}, kDown}});
   // At the old depth (12) the motion of the finest intervals (100 mm / 2^14 = 6.1 um) exceeds the
   // gap: unresolved, with the smallest gap measured, never a collision.
-  const SweepResult coarse = sweep(w, path, nullptr, {.probe = kProbe, .max_depth = 12});
+  // (the isotropic bound alone: the plane filter, below, proves this pass clear at once)
+  const SweepResult coarse = sweep(w, path, nullptr, {.probe = kProbe, .max_depth = 12, .plane_filter = false});
   EXPECT_EQ(coarse.colliding_segments, 0u);
   EXPECT_FALSE(coarse.any_collision());
   ASSERT_EQ(coarse.segments.size(), 1u);
@@ -180,14 +181,20 @@ TEST(ProbeSweepStates, ConstantGapPassIsNeverACollision) {
   EXPECT_GT(s.unresolved_motion, 0.005);  // why it could not be separated
   EXPECT_EQ(coarse.verdict, Verdict::undecided);
   // With the default resolution (2^-16) the motion bound falls below the gap: proved clear.
-  const SweepResult fine = sweep(w, path, nullptr, {.probe = kProbe});
+  const SweepResult fine = sweep(w, path, nullptr, {.probe = kProbe, .plane_filter = false});
   EXPECT_TRUE(fine.segments.empty());
   EXPECT_EQ(fine.verdict, Verdict::clear);
   // A pose budget too small for that proof: unresolved again, never clear or colliding.
-  const SweepResult budget = sweep(w, path, nullptr, {.probe = kProbe, .max_poses = 1000});
+  const SweepResult budget = sweep(w, path, nullptr, {.probe = kProbe, .max_poses = 1000, .plane_filter = false});
   ASSERT_EQ(budget.segments.size(), 1u);
   EXPECT_EQ(budget.segments[0].state, SegmentState::unresolved);
   EXPECT_EQ(budget.segments[0].poses_tested, 1000u);
+  // The plane filter (issue #28, the default): the motion is parallel to the plate and the axis does
+  // not turn, so the swept probe stays 5 um above the plate's plane: clear at the first middle,
+  // even at depth 12 and with a budget of one pose.
+  const SweepResult plane = sweep(w, path, nullptr, {.probe = kProbe, .max_depth = 12, .max_poses = 1});
+  EXPECT_TRUE(plane.segments.empty());
+  EXPECT_EQ(plane.verdict, Verdict::clear);
 }
 
 TEST(ProbeSweepStates, RealCrossingStillCollides) {
