@@ -17,6 +17,12 @@
 // middle piece, enclosed by the cylinder grown by the scar's largest outward displacement. When
 // the middle's bound is above the ends' value the ends decide: exact. Otherwise the value is a
 // bound (exact = false) and the verdict comes from the mesh engine (query/clash.h) on the meshes.
+// A tapered roller's pieces are the frustums between their end radii (the middle grown radially).
+// Scarred tapered rollers (issue #27; assembly_tapered_scars.h): roller-cone and roller-roller (one
+// scarred) by the scarred solver against the intact frustum, two-sided through the grown frustum's
+// bound (a bracket when it undercuts: verdict decided when both ends agree); two scarred neighbours:
+// a lower bound (clear) or the mesh engine's verdict; roller-cup: the exact vertex maximum of the
+// meridian distance beyond the cone line over the clipped mesh (the bore's code with k = tan alpha).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -24,6 +30,7 @@
 #include <optional>
 
 #include "assembly_raceway_scars.h"
+#include "assembly_tapered_scars.h"
 #include "golden.h"
 #include "interfere/bearing/assembly.h"
 #include "interfere/bearing/raceway.h"
@@ -231,22 +238,27 @@ Pieces split(const Cylinder& c, const Roller& r, const ScarParams& scar) {
   double raise = 0;
   for (double d : r.displacement) raise = std::max(raise, -d);
   const double z0 = std::clamp(scar.z_min, 0.0, c.height), z1 = std::clamp(scar.z_max, z0, c.height);
+  // a tapered roller (issue #27): each piece is the frustum between its end radii
+  const auto r_at = [&](double z) { return c.radius + (c.top() - c.radius) * (z / c.height); };
   Pieces out;
   if (z0 > 0) {
     Cylinder e = c;
     e.height = z0;
+    if (c.tapered()) e.top_radius = r_at(z0);
     out.ends.push_back(e);
   }
   if (z1 < c.height) {
     Cylinder e = c;
     e.base = c.base + c.axis * z1;
     e.height = c.height - z1;
+    if (c.tapered()) e.radius = r_at(z1);
     out.ends.push_back(e);
   }
   out.middle = c;
   out.middle.base = c.base + c.axis * z0;
   out.middle.height = std::max(z1 - z0, 1e-300);
   out.middle.radius = c.radius + raise;
+  if (c.tapered()) out.middle.radius = r_at(z0) + raise, out.middle.top_radius = r_at(z1) + raise;
   return out;
 }
 
@@ -328,6 +340,29 @@ std::optional<AssemblyPairResult> apart(const Cylinder& a, const Cylinder& b, do
   return out;
 }
 
+/// A scarred roller against an intact frustum (assembly_tapered_scars.h): solver `scarred`, exact
+/// when the two-sided bracket closes; its verdict when both ends agree, else undecided. `swapped`:
+/// the scarred roller is the row's part b.
+AssemblyPairResult from_scarred_frustum(const detail::ScarredFrustumValue& v, bool swapped, double clearance,
+                                        double tol) {
+  AssemblyPairResult out;
+  out.distance = v.distance;
+  out.point_a = swapped ? v.point_b : v.point_a;
+  out.point_b = swapped ? v.point_a : v.point_b;
+  out.solver = AssemblySolver::scarred;
+  out.scar = true;
+  out.exact = v.exact;
+  if (v.contained == 1) {
+    out.verdict = Verdict::clash;  // B inside the scarred roller's solid
+  } else if (v.contained < 0) {
+    out.verdict = Verdict::undecided, out.exact = false;
+  } else {
+    const Verdict hi = distance_verdict(v.distance, tol, clearance);
+    out.verdict = distance_verdict(v.lower, tol, clearance) == hi ? hi : Verdict::undecided;
+  }
+  return out;
+}
+
 ScenePart roller_part(const AssemblyPart& p, const Cylinder& c, const Transform& pose) {
   ScenePart s;
   s.cylinder = c;
@@ -338,6 +373,48 @@ ScenePart roller_part(const AssemblyPart& p, const Cylinder& c, const Transform&
   }
   s.pose = pose;
   return s;
+}
+
+/// Two neighbouring tapered rollers of which at least one is scarred (issue #27). One scarred: the
+/// scarred solver against the other's intact frustum (from_scarred_frustum). Both scarred: no exact
+/// solver (each is measured against the other's grown intact solid), so
+///   S >= min( s(A mesh, B0), s(B mesh, A0) ),  A0, B0 the grown intact frustums,
+/// a lower bound that decides `clear`; otherwise the mesh engine's verdict on the two meshes (solver
+/// `mesh`, not exact), as the cage rows of scarred rollers.
+AssemblyPairResult scarred_tapered_rollers(const AssemblyPart& ra, const Cylinder& a, const Transform& pose_a,
+                                           const AssemblyPart& rb, const Cylinder& b, const Transform& pose_b,
+                                           double clearance, double tol) {
+  if (!rb.scarred)
+    return from_scarred_frustum(
+        detail::scarred_against_frustum(*ra.roller, *ra.tree, ra.solid.get(), pose_a, a, b, tol), false, clearance, tol);
+  if (!ra.scarred)
+    return from_scarred_frustum(
+        detail::scarred_against_frustum(*rb.roller, *rb.tree, rb.solid.get(), pose_b, b, a, tol), true, clearance, tol);
+  const Cylinder a0 = detail::grown_roller_solid(a, ra.roller->raise), b0 = detail::grown_roller_solid(b, rb.roller->raise);
+  ScarredSolver sa(ra.roller.get(), ra.tree.get()), sb(rb.roller.get(), rb.tree.get());
+  const MeshPairResult fa = sa.solve(pose_a, b0), fb = sb.solve(pose_b, a0);
+  AssemblyPairResult out;
+  out.solver = AssemblySolver::bound, out.scar = true, out.exact = false, out.two_sided = false;
+  if (fa.distance <= fb.distance) out.distance = fa.distance, out.point_a = fa.point_a, out.point_b = fa.point_b;
+  else out.distance = fb.distance, out.point_a = fb.point_b, out.point_b = fb.point_a;
+  // apart surfaces could still hold one grown solid inside the other roller's solid: the centres
+  // (part_pair.h's mesh_containment) rule it out, else the mesh engine decides
+  bool inside = false;
+  if (out.distance > tol) {
+    ScenePart pa, pb;
+    pa.cylinder = a, pa.mesh = ra.roller.get(), pa.tree = ra.tree.get(), pa.solid = ra.solid.get(), pa.pose = pose_a;
+    pb.cylinder = b, pb.mesh = rb.roller.get(), pb.tree = rb.tree.get(), pb.solid = rb.solid.get(), pb.pose = pose_b;
+    Cylinder ia = a, ib = b;
+    ia.radius = std::min(a.radius, a.top()), ia.top_radius = -1;
+    ib.radius = std::min(b.radius, b.top()), ib.top_radius = -1;
+    inside = mesh_containment(pa, ib) != 0 || mesh_containment(pb, ia) != 0;
+  }
+  out.verdict = distance_verdict(out.distance, tol, clearance);
+  if (out.verdict != Verdict::clear || inside) {  // a lower bound decides only `clear`
+    out.verdict = mesh_verdict(*ra.mesh, pose_a, *rb.mesh, pose_b, clearance);
+    out.solver = AssemblySolver::mesh;
+  }
+  return out;
 }
 
 }  // namespace
@@ -365,14 +442,20 @@ AssemblyPairResult solve_one(const Assembly& as, const AssemblyPair& pair, const
     }
     case AssemblyPairKind::roller_roller: {
       const Cylinder other = posed_cylinder(b.rollers.radius, b.rollers.top_radius, b.rollers.length, pose_b);
-      if (b.type == BearingType::tapered)
+      if (b.type == BearingType::tapered) {
+        if (ra.scarred || pb.scarred) return scarred_tapered_rollers(ra, roller, pose_a, pb, other, pose_b, clearance, tol);
         return from_distance(two_sided_cone(roller, other), AssemblySolver::raceway, clearance, tol);
+      }
       if (!ra.scarred && !pb.scarred)
         if (auto r = apart(roller, other, clearance)) return *r;
       return from_part_pair(
           decide_part_pair(roller_part(ra, roller, pose_a), roller_part(pb, other, pose_b), clearance), clearance, tol);
     }
     case AssemblyPairKind::roller_cone:
+      if (ra.scarred)  // issue #27: the scarred solver against the cone's frustum (exact), two-sided bracket
+        return from_scarred_frustum(detail::scarred_against_frustum(*ra.roller, *ra.tree, ra.solid.get(), pose_a, roller,
+                                                                    posed(g.raceway, pose_b), tol),
+                                    false, clearance, tol);
       return from_distance(two_sided_cone(roller, posed(g.raceway, pose_b)), AssemblySolver::raceway, clearance, tol);
     case AssemblyPairKind::roller_cup: {
       Cup cup;
@@ -382,7 +465,16 @@ AssemblyPairResult solve_one(const Assembly& as, const AssemblyPair& pair, const
       cup.base = pose_b.apply({0, 0, g.ring_lo});
       cup.axis = pose_b.rotate(z);
       cup.radius = cup_r(g.ring_lo), cup.top_radius = cup_r(g.ring_hi), cup.width = g.ring_hi - g.ring_lo;
-      return from_two_sided(two_sided_cup(roller, cup, b.cup_outer), clearance, tol);
+      if (!ra.scarred) return from_two_sided(two_sided_cup(roller, cup, b.cup_outer), clearance, tol);
+      // a scarred tapered roller (issue #27): the largest meridian distance beyond the cup's cone
+      // line over its mesh clipped to the width (exact for the mesh, one-sided; as the bore's)
+      bool found = false;
+      const PairDistance d = detail::mesh_in_conical_bore(*ra.mesh, pose_a, cup.base, cup.axis, cup.radius,
+                                                          (cup.top_radius - cup.radius) / cup.width, cup.width, found);
+      if (!found) return from_distance(roller_cup_distance(roller, cup), AssemblySolver::raceway, clearance, tol);
+      AssemblyPairResult out = from_distance(d, AssemblySolver::vertex, clearance, tol);
+      out.scar = true;
+      return out;
     }
     case AssemblyPairKind::roller_outer: {
       Bore bore;
@@ -392,46 +484,12 @@ AssemblyPairResult solve_one(const Assembly& as, const AssemblyPair& pair, const
       if (!ra.scarred) return from_two_sided(two_sided_bore(roller, bore, b.outer_radius), clearance, tol);
       // the scarred mesh: s = R - max of rho over the mesh's solid within the ring's width. rho is
       // convex, so its maximum over a triangle clipped to the slab is at a vertex of the clipped
-      // polygon: a vertex in the slab or an edge's crossing of a side face (raceway.h's argument).
-      const Vec3 ax = bore.axis;
-      std::vector<Vec3> p(ra.mesh->positions.size());
-      std::vector<double> zs(p.size());
-      const auto rho_of = [&](const Vec3& x) { return norm(cross(x - bore.base, ax)); };
-      double all = -1, best = -1;  // max over every vertex (G), over the clipped mesh (G_K)
-      Vec3 far_all, far;
-      for (std::size_t i = 0; i < p.size(); ++i) {
-        p[i] = pose_a.apply(ra.mesh->positions[i]), zs[i] = dot(p[i] - bore.base, ax);
-        const double rho = rho_of(p[i]);
-        if (rho > all) all = rho, far_all = p[i];
-        if (zs[i] >= 0 && zs[i] <= bore.width && rho > best) best = rho, far = p[i];
-      }
-      const double z_all = dot(far_all - bore.base, ax);
-      if (!(z_all >= 0 && z_all <= bore.width)) {  // the farthest vertex lies beyond a face: clip
-        for (const Tri& t : ra.mesh->triangles)
-          for (int e = 0; e < 3; ++e) {
-            const auto i = t[e], j = t[(e + 1) % 3];
-            for (const double level : {0.0, bore.width}) {
-              if (!((zs[i] < level && zs[j] > level) || (zs[i] > level && zs[j] < level))) continue;
-              const Vec3 x = p[i] + (p[j] - p[i]) * ((level - zs[i]) / (zs[j] - zs[i]));
-              if (const double rho = rho_of(x); rho > best) best = rho, far = x;
-            }
-          }
-      }
-      if (best < 0) return from_distance(roller_bore_distance(roller, bore), AssemblySolver::raceway, clearance, tol);
-      PairDistance d;
-      d.path = AnalyticPath::bore;
-      if (z_all >= 0 && z_all <= bore.width) {
-        d.distance = bore.radius - all, far = far_all;
-      } else if (best >= bore.radius) {
-        d.distance = bore.radius - best;  // the clipped mesh reaches the raceway: the depth
-      } else {  // apart within the width: R - G is a lower bound of the distance (raceway.h)
-        d.distance = std::max(bore.radius - all, 0.0), far = far_all, d.path = AnalyticPath::apart;
-      }
-      d.point_a = far;
-      const Vec3 foot = bore.base + ax * dot(far - bore.base, ax);
-      const Vec3 radial = far - foot;
-      const double rn = norm(radial);
-      d.point_b = rn > 0 ? foot + radial * (bore.radius / rn) : far;
+      // polygon: a vertex in the slab or an edge's crossing of a side face (raceway.h's argument;
+      // assembly_tapered_scars.h, the cup's k = 0)
+      bool found = false;
+      const PairDistance d =
+          detail::mesh_in_conical_bore(*ra.mesh, pose_a, bore.base, bore.axis, bore.radius, 0.0, bore.width, found);
+      if (!found) return from_distance(roller_bore_distance(roller, bore), AssemblySolver::raceway, clearance, tol);
       AssemblyPairResult out = from_distance(d, AssemblySolver::vertex, clearance, tol);
       out.scar = true;
       return out;
@@ -633,8 +691,11 @@ AssemblyPairResult solve_pair(const Assembly& as, const AssemblyPair& pair, cons
   if (r.scar) r.scar_part = as.parts[pair.a].scarred ? 1 : 2;  // which part's scarred mesh was measured
   switch (pair.kind) {  // which rows are two-sided (assembly.h, AssemblyPairResult::two_sided)
     case AssemblyPairKind::roller_inner:
-    case AssemblyPairKind::roller_roller:
     case AssemblyPairKind::roller_cone: r.two_sided = true; break;
+    case AssemblyPairKind::roller_roller:  // (two scarred tapered rollers: a lower bound, one-sided)
+      r.two_sided = as.spec.bearings[as.parts[pair.a].bearing].type == BearingType::cylindrical ||
+                    (r.solver != AssemblySolver::bound && r.solver != AssemblySolver::mesh);
+      break;
     // intact rollers: solve_one set it (ring_two_sided.h: S, or a clearance that is the Euclidean
     // distance); scarred rollers' ring rows stay one-sided (the ring's depth into the scarred mesh
     // is not computed), except clearances that are the Euclidean distance
@@ -647,7 +708,9 @@ AssemblyPairResult solve_pair(const Assembly& as, const AssemblyPair& pair, cons
     case AssemblyPairKind::roller_rib:
       if (as.parts[pair.a].scarred) r.two_sided = false;
       break;
-    case AssemblyPairKind::roller_cup: break;
+    case AssemblyPairKind::roller_cup:  // scarred rollers: one-sided (the cup's depth into the mesh is not computed)
+      if (as.parts[pair.a].scarred) r.two_sided = false;
+      break;
     default: break;  // (the structural kinds return above)
   }
   return r;

@@ -215,8 +215,8 @@ Expected<Assembly> build_assembly(const AssemblySpec& spec) {
       p.kind = PartKind::roller, p.bearing = bearing, p.index = k;
       p.rest = detail::compose(g->frame, roller_local_pose(b, *g, 2 * kPi * k / z, 0, 0, 0));
       const double f = spec.scar_fraction;
-      const bool scarred = b.type == BearingType::cylindrical && f > 0 &&
-                           std::floor((k + 1) * f + 1e-12) > std::floor(k * f + 1e-12);
+      // (cylindrical and tapered rollers alike, issue #27: the scarred solver takes a frustum B)
+      const bool scarred = f > 0 && std::floor((k + 1) * f + 1e-12) > std::floor(k * f + 1e-12);
       if (scarred) {
         Roller r = *plain;
         ScarParams sc = spec.scar;

@@ -260,6 +260,7 @@ AssemblySpec read_root(const json& root, const std::string& file) {
       sc.num("roughness", s.scar.roughness, false);
       sc.integer("border", s.scar.border, false);
       sc.unsigned_integer("seed", s.scar.seed);
+      sc.boolean("raised", s.scar.raised);  // a raised (outward) roller scar (issue #27)
       sc.finish();
     }
   }

@@ -200,12 +200,13 @@ Status validate_assembly(const AssemblySpec& s) {
     if (m.load_displacement >= b.rollers.radius)
       return fail("motion.load.displacement", "must be below the roller radius " + num(b.rollers.radius) + " of " +
                                                   b.where + ", got " + num(m.load_displacement));
-    if (s.scar_fraction > 0 && b.type == BearingType::cylindrical) {
+    if (s.scar_fraction > 0) {
       ScarParams sc = s.scar;
       if (sc.z_min < 0) sc.z_min = 0.25 * b.rollers.length;
       if (sc.z_max < 0) sc.z_max = 0.75 * b.rollers.length;
       RollerParams rp;
       rp.radius = b.rollers.radius, rp.height = b.rollers.length;
+      if (b.type == BearingType::tapered) rp.top_radius = b.rollers.top_radius;  // depth below the small end's radius
       rp.radial_segments = b.rollers.radial_segments, rp.height_segments = b.rollers.height_segments;
       if (Status st = validate(sc, rp, "scar"); !st) return fail(b.where, st.error().reason);
     }

@@ -20,8 +20,11 @@
 // bore (raceway.h; scarred rollers: the exact vertex maximum, see assembly_pairs.cpp), roller end-rib
 // (raceway.h), roller-cage web (exact: min over the web's triangles of the roller's signed distance,
 // scarred.h's triangle minimum; tapered or scarred rollers: the mesh engine), tapered: roller-cone
-// (cone_pair_distance), roller-cup (roller_cup_distance). Sign convention of analytic.h: > 0
-// clearance, < 0 interference depth.
+// (cone_pair_distance), roller-cup (roller_cup_distance). Scarred tapered rollers (issue #27;
+// assembly_tapered_scars.h): roller-cone and roller-roller by the scarred solver against the intact
+// frustum (exact forward value, a two-sided bracket), two scarred neighbours by a lower bound and
+// the mesh engine, roller-cup by the exact vertex maximum, roller-cage split into frustum pieces.
+// Sign convention of analytic.h: > 0 clearance, < 0 interference depth.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -113,7 +116,7 @@ struct AssemblySpec {
   std::uint64_t seed = 1;
   double clearance = 0;          ///< >= 0: the clearance verdict below it
   int ring_segments = 96;        ///< segments around the rings' meshes (>= 8)
-  double scar_fraction = 0;      ///< of each cylindrical bearing's rollers, in [0, 1]
+  double scar_fraction = 0;      ///< of each bearing's rollers (cylindrical and tapered), in [0, 1]
   ScarParams scar;               ///< window; z_min/z_max < 0: 25 % / 75 % of the roller length
   AssemblyMotionSpec motion;
   std::vector<BearingSpec> bearings;

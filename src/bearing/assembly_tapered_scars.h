@@ -1,0 +1,53 @@
+// Scarred rollers of tapered bearings (issue #27, deliverable 2: scars on any part): the values of
+// a scarred roller's mesh against the intact frustums of a tapered bearing (its cone raceway, an
+// intact neighbouring tapered roller) and inside its cup, for the assembly's rows
+// (assembly_pairs.cpp). The scarred solver (scarred.h) takes the frustum B exactly; the reverse
+// direction (B's depth into the scarred roller) only has a bound, as in part_pair.h.
+#pragma once
+#include "interfere/bearing/analytic.h"
+#include "interfere/bearing/cylinder.h"
+#include "interfere/bearing/quadtree.h"
+#include "interfere/bearing/roller.h"
+#include "interfere/mesh/tri_mesh.h"
+
+namespace interfere {
+struct Model;
+}
+
+namespace interfere::bearing::detail {
+
+/// The intact solid holding a scarred roller's mesh: its frustum (or cylinder) grown radially by
+/// the scar's raise (Roller::raise; inward scars and the inscribed facets lie inside the intact one).
+Cylinder grown_roller_solid(const Cylinder& intact, double raise);
+
+/// S of a scarred roller A (mesh, quadtree, closed solid, pose; `intact` its posed intact frustum)
+/// and an intact frustum or cylinder B (part_pair.h's two-sided rule, B a frustum):
+///   s(A, B) = min over A's triangle surface of sd_B (scarred.h, exact);
+///   when that is > tol the surfaces are apart, and B lies inside A's solid (a clash) or outside
+///   (then S = s(A, B), the Euclidean distance): decided by mesh_containment (part_pair.h) with B's
+///   inscribed cylinder of its smaller radius (its centre is B's, at a smaller depth);
+///   else s(B, A) >= s(B, A0), A0 = grown_roller_solid (cone_pair_distance, raceway.h): when that
+///   bound is not below s(A, B), S = s(A, B) exactly, else S lies in [lower, distance] (exact false).
+struct ScarredFrustumValue {
+  double distance = 0;  ///< S, or the upper end of its bracket
+  double lower = 0;     ///< the bracket's lower end (== distance when exact)
+  Vec3 point_a, point_b;  ///< on A (the scarred roller), on B
+  bool exact = true;
+  int contained = 0;    ///< 1: B inside A's solid (clash), -1: undecided containment, 0: no
+};
+ScarredFrustumValue scarred_against_frustum(const Roller& mesh, const RollerQuadtree& tree, const Model* solid,
+                                            const Transform& pose, const Cylinder& intact, const Cylinder& b,
+                                            double tol);
+
+/// A closed mesh (posed by `pose`) inside a conical bore (a cylindrical bore when k = 0): material
+/// rho >= R0 + k z for z in [0, width] (z along the unit `axis` from `base`). With g(x) = (rho -
+/// R(z)) / sqrt(1 + k^2) (convex: its maximum over a triangle clipped to the slab lies at a vertex
+/// of the clipped polygon, a mesh vertex in the slab or an edge's crossing of a side face):
+///   s = -max over the mesh clipped to the width of g   (path `bore`; exact for the mesh, one-sided)
+/// when the whole mesh's maximiser lies in the width or the clipped maximum reaches the raceway;
+/// else max(-max over the whole mesh of g, 0), a lower bound of the distance (path `apart`).
+/// found = false when no part of the mesh lies in the width.
+PairDistance mesh_in_conical_bore(const TriMesh& mesh, const Transform& pose, const Vec3& base, const Vec3& axis,
+                                  double R0, double k, double width, bool& found);
+
+}  // namespace interfere::bearing::detail

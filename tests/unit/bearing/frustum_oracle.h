@@ -1,0 +1,116 @@
+// An independent oracle for the scarred solver against a frustum (issue #27; scarred.h): nothing
+// here calls the bearing module's distance code. frustum_oracle: the signed distance to a cone
+// frustum as a generic convex polygon walk in the meridian plane (the symmetric trapezoid, four
+// edges: outside the distance to the nearest edge point, inside minus the distance to the nearest
+// edge line) with a subgradient. frustum_min_bracket: the minimum of it over a set of triangles by
+// best-first subdivision (longest-edge bisection; centroid values are upper bounds, the lower bound
+// of a cell is the convexity bound at its centroid, also for the convex minorants (rho - R(z)) /
+// sqrt(1 + k^2), -z and z - h), refined until `tol` wide or the budget is spent.
+#pragma once
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <queue>
+#include <vector>
+
+#include "interfere/bearing/cylinder.h"
+
+namespace frustum_oracle_ns {
+
+using interfere::Vec3;
+using interfere::bearing::Cylinder;
+
+struct SdGrad {
+  double value = 0;
+  Vec3 grad;
+};
+
+/// sd to the frustum c (radius c.radius at the base, c.top() at the top) by a generic convex
+/// polygon walk in p's meridian plane.
+inline SdGrad frustum_oracle(const Cylinder& c, const Vec3& p) {
+  const Vec3 w = p - c.base;
+  const double z = dot(w, c.axis);
+  const Vec3 q = w - c.axis * z;
+  const double x = norm(q);
+  const Vec3 radial = x > 0 ? q / x : Vec3{1, 0, 0};
+  // counter-clockwise polygon in (x, z)
+  const std::array<std::array<double, 2>, 4> v = {{{-c.radius, 0}, {c.radius, 0}, {c.top(), c.height}, {-c.top(), c.height}}};
+  bool inside = true;
+  double best_out = 1e300, best_in = 1e300;
+  double gx = 0, gz = 0, ix = 0, iz = 0;
+  for (int e = 0; e < 4; ++e) {
+    const auto& a = v[static_cast<std::size_t>(e)];
+    const auto& b = v[static_cast<std::size_t>((e + 1) % 4)];
+    const double ex = b[0] - a[0], ez = b[1] - a[1], l = std::hypot(ex, ez);
+    const double nx = ez / l, nz = -ex / l;  // outward normal of a counter-clockwise polygon
+    const double line = (x - a[0]) * nx + (z - a[1]) * nz;
+    if (line > 0) inside = false;
+    if (-line < best_in) best_in = -line, ix = nx, iz = nz;
+    const double t = std::clamp(((x - a[0]) * ex + (z - a[1]) * ez) / (l * l), 0.0, 1.0);
+    const double dx = x - (a[0] + t * ex), dz = z - (a[1] + t * ez), d = std::hypot(dx, dz);
+    if (d < best_out) best_out = d, gx = d > 0 ? dx / d : nx, gz = d > 0 ? dz / d : nz;
+  }
+  if (inside) return {-best_in, radial * ix + c.axis * iz};
+  return {best_out, radial * gx + c.axis * gz};
+}
+
+struct Bracket {
+  double lower = 0, upper = 0;
+};
+
+inline Bracket frustum_min_bracket(const std::vector<std::array<Vec3, 3>>& triangles, const Cylinder& b, double tol,
+                            std::size_t budget = 6'000'000) {
+  struct Cell {
+    std::array<Vec3, 3> v;
+    double lower;
+    bool operator<(const Cell& o) const { return lower > o.lower; }
+  };
+  const double k = (b.top() - b.radius) / b.height, nk = std::sqrt(1 + k * k);
+  Bracket out;
+  out.upper = 1e300;
+  std::size_t evaluations = 0;
+  std::priority_queue<Cell> open;
+  const auto push = [&](const std::array<Vec3, 3>& v) {
+    const Vec3 c = (v[0] + v[1] + v[2]) / 3.0;
+    const SdGrad s = frustum_oracle(b, c);
+    ++evaluations;
+    out.upper = std::min(out.upper, s.value);
+    const auto bound = [&](double value, const Vec3& g) {
+      double lin = 0;
+      for (const Vec3& x : v) lin = std::min(lin, dot(g, x - c));
+      return value + lin;
+    };
+    const Vec3 w = c - b.base;
+    const double z = dot(w, b.axis);
+    const Vec3 q = w - b.axis * z;
+    const double rho = norm(q);
+    const Vec3 radial = rho > 0 ? q / rho : Vec3{0, 0, 0};
+    const double lateral = (rho - b.radius - k * z) / nk;
+    open.push({v, std::max({bound(s.value, s.grad), bound(lateral, (radial - b.axis * k) / nk), bound(-z, b.axis * -1.0),
+                            bound(z - b.height, b.axis)})});
+  };
+  for (const auto& t : triangles) {
+    for (const Vec3& x : t) out.upper = std::min(out.upper, frustum_oracle(b, x).value);
+    push(t);
+  }
+  while (!open.empty()) {
+    const Cell cell = open.top();
+    if (cell.lower >= out.upper - tol || evaluations >= budget) break;
+    open.pop();
+    const auto& v = cell.v;
+    int e0 = 0;
+    for (int e = 1; e < 3; ++e)
+      if (norm(v[(e + 1) % 3] - v[e]) > norm(v[(e0 + 1) % 3] - v[e0])) e0 = e;
+    const Vec3& p0 = v[e0];
+    const Vec3& p1 = v[(e0 + 1) % 3];
+    const Vec3& p2 = v[(e0 + 2) % 3];
+    const Vec3 m = (p0 + p1) * 0.5;
+    out.upper = std::min(out.upper, frustum_oracle(b, m).value);
+    push({p0, m, p2});
+    push({m, p1, p2});
+  }
+  out.lower = open.empty() ? out.upper : std::min(open.top().lower, out.upper);
+  return out;
+}
+
+}  // namespace frustum_oracle_ns
