@@ -155,13 +155,14 @@ Transform raceway_surface_pose(const RacewayPairRing& ring) {
 }
 
 Cylinder raceway_term_roller_solid(const RacewayPairRoller& roller, bool* exact) {
+  // the roller's intact solid (a frustum when tapered: scarred.h takes it exactly, issue #27), grown
+  // radially by a raised roller scar's raise
   Cylinder a = roller.cylinder;
-  bool ok = true;
-  if (a.tapered()) {  // the cylinder of the larger radius encloses the frustum: a bound
-    a.radius = a.max_radius(), a.top_radius = -1, ok = false;
+  if (roller.mesh != nullptr && roller.mesh->raise > 0) {
+    if (a.tapered()) a.top_radius = a.top() + roller.mesh->raise;
+    a.radius += roller.mesh->raise;
   }
-  if (roller.mesh != nullptr && roller.mesh->raise > 0) a.radius += roller.mesh->raise;
-  if (exact != nullptr) *exact = ok;
+  if (exact != nullptr) *exact = true;
   return a;
 }
 
@@ -191,8 +192,8 @@ RacewayScarPairResult raceway_scar_pair(const RacewayPairRoller& roller, const R
     } else {
       Cylinder b;
       b.base = sp.t, b.axis = sp.rotate({0, 0, 1}), b.height = g.width;
-      b.radius = std::max(g.radius, g.top_radius) + s.raise;  // a cone: its enclosing cylinder (a bound)
-      if (g.top_radius != g.radius) r.exact = false;
+      b.radius = g.radius + s.raise;  // a cone: the frustum (scarred.h takes it exactly, issue #27)
+      if (g.top_radius != g.radius) b.top_radius = g.top_radius + s.raise;
       ScarredSolver roller_solver(roller.mesh, roller.tree);
       const MeshPairResult ta = roller_solver.solve(roller.pose, b);
       r.roller_term = ta.distance;

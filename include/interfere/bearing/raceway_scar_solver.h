@@ -8,12 +8,14 @@
 //   raceway term  T_r = min over the scarred raceway's faceted surface (every triangle of its grid,
 //                       the scar and the intact rest; a convex raceway's end faces too, a concave
 //                       one's not) of sd_A^, the signed distance to the roller's enclosing intact
-//                       solid A^ (its cylinder; a raised roller scar grows it by the scar's raise,
-//                       Roller::raise; a tapered roller: the cylinder of its larger radius, a bound);
+//                       solid A^ (its cylinder or frustum; a raised roller scar grows it radially by
+//                       the scar's raise, Roller::raise; a tapered roller's frustum is taken exactly
+//                       by scarred.h since issue #27's tapered scars);
 //   roller term   T_a = (scarred rollers only) the scarred roller's surface against the raceway's
 //                       enclosing intact ring material B^ (the raceway moved toward the rollers by
 //                       the raceway scar's raise): convex raceway: min over the roller's triangles
-//                       of sd_B^ (B^ the raceway cylinder, scarred.h's exact solver); concave: minus
+//                       of sd_B^ (B^ the raceway cylinder or the cone's frustum, scarred.h's exact
+//                       solver); concave: minus
 //                       the largest meridian distance beyond B^'s surface over the roller's mesh
 //                       clipped to the ring's width (its vertices in the width and its edges'
 //                       crossings of the side faces: rho - R(z) is convex, its maximum over a
@@ -66,7 +68,9 @@ struct RacewayScarPairResult {
   /// The value depends on a scar: carrier != none, or the winning term's solid (A^ or B^) was
   /// grown by the other part's raised scar.
   bool scar = false;
-  bool exact = true;            ///< false: a tapered roller (or a scarred one on a cone), a bound
+  /// false: a bound. Since scarred.h takes frustums (issue #27), tapered rollers and cones are exact
+  /// too: always true today (kept for callers that check it).
+  bool exact = true;
   double raceway_term = std::numeric_limits<double>::infinity();  ///< T_r
   double roller_term = std::numeric_limits<double>::infinity();   ///< T_a (+inf: intact roller)
   std::uint32_t evaluated = 0;  ///< triangles evaluated exactly (both terms)

@@ -14,6 +14,7 @@
 #include "interfere/bearing/scar.h"
 #include "interfere/bearing/scar_import.h"
 #include "bearing_oracle.h"
+#include "frustum_oracle.h"
 
 using namespace interfere;
 using namespace interfere::bearing;
@@ -323,7 +324,7 @@ TEST(RacewayScar, ImportedMapsPointCloudsAndBadInput) {
   EXPECT_NE(pc2.error().reason.find("point 441"), std::string::npos) << pc2.error().reason;
 }
 
-TEST(RacewayScar, TaperedRollerOnAScarredConeIsFlaggedABound) {
+TEST(RacewayScar, TaperedRollerOnAScarredConeIsExact) {
   const RacewayGeometry g{.surface = RacewaySurface::cone, .z0 = 0, .width = 30, .radius = 40, .top_radius = 50};
   Expected<RacewayScar> s = make_raceway_scar(g, {.radial_segments = 256, .height_segments = 31},
                                               ScarParams{.angle_center_deg = 0, .angle_width_deg = 60, .z_min = 5,
@@ -333,11 +334,33 @@ TEST(RacewayScar, TaperedRollerOnAScarredConeIsFlaggedABound) {
   const Transform pose = roller_pose({55, 0, 0}, 0, 0, 0);
   RacewayPairRoller roller{posed_cylinder(8, 9.5, 30, pose), nullptr, nullptr, pose};
   const RacewayScarPairResult r = raceway_scar_pair(roller, ring);
-  EXPECT_FALSE(r.exact);
-  // a bound: the raceway against the enclosing cylinder is not above the raceway against the frustum
-  Cylinder a = roller.cylinder;
-  a.radius = 9.5, a.top_radius = -1;
-  EXPECT_NEAR(r.distance, surface_min_bracket(raceway_triangles(*s, raceway_surface_pose(ring)), a, 1e-9).upper, 1e-9);
+  // exact since issue #27's tapered scars (scarred.h takes the roller's frustum): the raceway's
+  // triangles against the frustum, in frustum_oracle.h's bracket
+  EXPECT_TRUE(r.exact);
+  const frustum_oracle_ns::Bracket br =
+      frustum_oracle_ns::frustum_min_bracket(raceway_triangles(*s, raceway_surface_pose(ring)), roller.cylinder, 1e-10);
+  ASSERT_LE(br.upper - br.lower, 1e-9);
+  EXPECT_GE(r.distance, br.lower - 1e-12);
+  EXPECT_LE(r.distance, br.upper + 1e-12);
+  // a scarred (raised) tapered roller: its roller term against the cone's frustum grown by the
+  // raceway scar's raise, exact too
+  Expected<Roller> rl = make_roller({.radius = 8, .top_radius = 9.5, .height = 30, .radial_segments = 32,
+                                     .height_segments = 31});
+  ASSERT_TRUE(rl.has_value());
+  ASSERT_TRUE(apply_scar(*rl, {.angle_center_deg = 180, .angle_width_deg = 120, .z_min = 2, .z_max = 28,
+                               .depth = 0.03, .border = 2, .seed = 9, .raised = true})
+                  .has_value());
+  const RollerQuadtree tree = build_quadtree(*rl);
+  const RacewayScarPairResult rs = raceway_scar_pair(RacewayPairRoller{roller.cylinder, &*rl, &tree, pose}, ring);
+  EXPECT_TRUE(rs.exact);
+  Cylinder cone;
+  cone.base = {0, 0, 0}, cone.axis = {0, 0, 1}, cone.height = 30, cone.radius = 40 + s->raise, cone.top_radius = 50 + s->raise;
+  const frustum_oracle_ns::Bracket bt = frustum_oracle_ns::frustum_min_bracket(roller_triangles(*rl, pose), cone, 1e-10);
+  ASSERT_LE(bt.upper - bt.lower, 1e-9);
+  EXPECT_GE(rs.roller_term, bt.lower - 1e-12);
+  EXPECT_LE(rs.roller_term, bt.upper + 1e-12);
+  EXPECT_LT(rs.roller_term, 0);  // the roller's top end reaches into the cone
+  EXPECT_EQ(rs.distance, std::min(rs.raceway_term, rs.roller_term));
 }
 
 // ---- in bearing assemblies (bearings[i].scars; assembly_raceway_scars.h) ----
@@ -428,8 +451,8 @@ TEST(RacewayScarAssembly, DescriptionErrorsNameThePath) {
 TEST(RacewayScar, ScarredTaperedRollerInAScarredCup) {
   // a tapered roller with a (raised) scar of its own (roller.h, scar.h: tapered rollers carry scars
   // as cylinders do) in a cup whose raceway carries a pit: the roller term (exact: the vertex maximum
-  // of the meridian distance) against dense samples, the raceway term (the tapered roller through
-  // its enclosing cylinder: a bound, flagged) against the bracket
+  // of the meridian distance) against dense samples, the raceway term (the tapered roller's frustum
+  // grown by its raise, exact since issue #27's tapered scars) against frustum_oracle.h's bracket
   const RacewayGeometry g{.surface = RacewaySurface::cup, .z0 = 0, .width = 40, .radius = 60, .top_radius = 70};
   Expected<RacewayScar> s = make_raceway_scar(g, {.radial_segments = 512, .height_segments = 63},
                                               ScarParams{.angle_center_deg = 0, .angle_width_deg = 40, .z_min = 2,
@@ -452,7 +475,7 @@ TEST(RacewayScar, ScarredTaperedRollerInAScarredCup) {
       const Transform pose = roller_pose({g.radius + k * zr - press - 8 * std::cos(tilt), 0, 5}, tilt, 0, spin);
       RacewayPairRoller roller{posed_cylinder(8, 9.5, 30, pose), &*rl, &tree, pose};
       const RacewayScarPairResult r = raceway_scar_pair(roller, ring);
-      EXPECT_FALSE(r.exact);
+      EXPECT_TRUE(r.exact);
       double sampled = -1e300;
       for (const auto& t : roller_triangles(*rl, pose))
         for (int u = 0; u <= 6; ++u)
@@ -464,9 +487,12 @@ TEST(RacewayScar, ScarredTaperedRollerInAScarredCup) {
           }
       EXPECT_NEAR(r.roller_term, -sampled, 1e-9 * std::max(1.0, std::fabs(sampled))) << trial;
       Cylinder a = roller.cylinder;
-      a.radius = 9.5 + rl->raise, a.top_radius = -1;
-      expect_in_bracket(r.raceway_term, surface_min_bracket(raceway_triangles(*s, raceway_surface_pose(ring)), a, 1e-9),
-                        "cup raceway term", trial);
+      a.radius = 8 + rl->raise, a.top_radius = 9.5 + rl->raise;
+      const frustum_oracle_ns::Bracket br =
+          frustum_oracle_ns::frustum_min_bracket(raceway_triangles(*s, raceway_surface_pose(ring)), a, 1e-10);
+      ASSERT_LE(br.upper - br.lower, 1e-9) << trial;
+      EXPECT_GE(r.raceway_term, br.lower - 1e-12) << trial;
+      EXPECT_LE(r.raceway_term, br.upper + 1e-12) << trial;
       EXPECT_EQ(r.distance, std::min(r.raceway_term, r.roller_term));
       ++trial;
     }
