@@ -77,8 +77,8 @@ class BearingAssembly(unittest.TestCase):
         kinds = {r["kind"] for r in rows}
         self.assertEqual(kinds, {"roller-inner", "roller-outer", "roller-rib", "roller-cage", "roller-roller",
                                  "roller-cone", "roller-cup", "cage-inner", "cage-outer", "bearing-bearing"})
-        # scarred rollers: their roller-outer rows measure the scarred mesh (scar 1)
-        scarred = {r["a"] for r in rows if r["kind"] == "roller-outer" and r["scar"] == "1"}
+        # scarred rollers: their roller-outer / roller-cup rows measure the scarred mesh (scar 1)
+        scarred = {r["a"] for r in rows if r["kind"] in ("roller-outer", "roller-cup") and r["scar"] == "1"}
         for r in rows:
             d = float(r["distance"])
             self.assertTrue(math.isfinite(d))
@@ -111,7 +111,7 @@ class BearingAssembly(unittest.TestCase):
             self.assertEqual(w["frame"], f)
             self.assertEqual(w["distance"], min(float(r["distance"]) for r in rows if int(r["frame"]) == f))
         self.assertEqual(s["bearings"][0]["scarred_rollers"], 2)
-        self.assertEqual(s["bearings"][1]["scarred_rollers"], 0)
+        self.assertEqual(s["bearings"][1]["scarred_rollers"], 2)  # tapered rollers carry scars too (issue #27)
 
     def test_threads_and_seed(self):
         run("--assembly", small(), "--threads", "1", "--out", path("t1.csv"))
@@ -223,6 +223,44 @@ class BearingAssembly(unittest.TestCase):
             bad = small(name, bearings=[dict(SMALL["bearings"][0], scars=[scar]), SMALL["bearings"][1]])
             cli_common.assert_input_error(self, ["bearing", "--assembly", bad, "--out", outputs[0], "--json", outputs[1]],
                                           expect, outputs)
+
+    def test_tapered_roller_scars(self):
+        # issue #27: scar.fraction scars tapered rollers too; their cone and neighbour rows are the
+        # scarred solver against the intact frustum (exact, or a two-sided bracket: exact 0 with a
+        # verdict both ends agree on, else undecided), their cup rows the exact vertex maximum (one-sided)
+        for raised in (False, True):
+            name = "tap_scars_%d" % raised
+            f = small(name + ".json", bearings=[SMALL["bearings"][1]],
+                      scar={"fraction": 0.5, "angle_width_deg": 120, "seed": 2, "raised": raised})
+            rc, out, err = run("--assembly", f, "--out", path(name + ".csv"), "--json", path(name + ".json.out"))
+            s = load(name + ".json.out")
+            self.assertEqual(rc, s["exit_status"], err)
+            self.assertIn(rc, (0, 1), err)
+            self.assertEqual(s["bearings"][0]["scarred_rollers"], 5)
+            rows = read_csv(path(name + ".csv"))
+            scarred = {r["a"] for r in rows if r["kind"] == "roller-cup" and r["scar"] == "1"}
+            self.assertEqual(len(scarred), 5)
+            cone = [r for r in rows if r["kind"] == "roller-cone" and r["a"] in scarred]
+            self.assertEqual(len(cone), 5 * 3)
+            for r in cone:
+                self.assertEqual((r["solver"], r["scar"], r["scar_part"], r["two_sided"]), ("scarred", "1", r["a"], "1"), r)
+                if r["exact"] == "0":  # a bracket: a verdict only where both ends agree
+                    self.assertNotEqual(r["verdict"], "clear", r)
+            pairs = [r for r in rows if r["kind"] == "roller-roller" and (r["a"] in scarred or r["b"] in scarred)]
+            self.assertEqual(len(pairs), 10 * 3)  # every roller pair has one scarred roller (every other one)
+            for r in pairs:
+                self.assertEqual((r["solver"], r["scar"]), ("scarred", "1"), r)
+                self.assertEqual(r["scar_part"], r["a"] if r["a"] in scarred else r["b"], r)
+            for r in rows:
+                if r["kind"] == "roller-cup" and r["a"] in scarred:
+                    self.assertEqual((r["solver"], r["two_sided"]), ("vertex", "0"), r)
+                self.assertTrue(math.isfinite(float(r["distance"])), r)
+            self.assertEqual(s["results"]["scar_rows"], sum(r["scar"] == "1" for r in rows))
+        # a scar deeper than the tapered rollers' small-end radius: exit 2 naming the parameter
+        outputs = [path("tap_bad.csv"), path("tap_bad.json")]
+        bad = small("tap_bad.json.in", bearings=[SMALL["bearings"][1]], scar={"fraction": 0.5, "depth": 8.5})
+        cli_common.assert_input_error(self, ["bearing", "--assembly", bad, "--out", outputs[0], "--json", outputs[1]],
+                                      ["depth"], outputs)
 
 
 if __name__ == "__main__":
