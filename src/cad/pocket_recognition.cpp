@@ -6,15 +6,16 @@
 // 10303-224's closed pocket, slot and step): a planar floor, walls standing on it, and open sides
 // where the floor meets the part's outside (a convex arc). Decided on the AAG:
 //  - a floor: a plane; its outer-loop arcs are concave to walls, smooth to floor fillets, or convex
-//    (an open side; so is a smooth arc to a convex round). Any other arc (a concave arc to an inclined face, a smooth arc to a face that is
+//    (an open side; so is a smooth arc to a convex round: a boss-sense cylinder or sphere, a torus
+//    that is no floor fillet). Any other arc (a concave arc to an inclined face, a smooth arc to a face that is
 //    no fillet) means the plane is no floor of these features. Arcs of the floor's inner loops
 //    (islands standing on it, holes through it) do not take part;
 //  - a wall stands on the floor: a plane perpendicular to it, or a cylinder whose axis is its normal
 //    (corner rounds, the round end of a slot, convex blends of a profiled outline);
 //  - a floor fillet joins the floor to a wall through smooth arcs: a concave cylinder whose axis lies
-//    parallel to the floor one radius above it, a torus about the floor's normal, or a sphere (corner
-//    blends); its own arcs lead (smoothly or at a concave arc) to walls, to further fillets, or
-//    (convex) to the outside;
+//    parallel to the floor one radius above it, a torus about the floor's normal whose tube centre lies
+//    one minor radius above it, or a concave sphere (corner blends); its own arcs lead (smoothly or at a
+//    concave arc) to walls, to further fillets, or (convex, or smooth to a convex round) to the outside;
 //  - the type, from the walls joined into components by their arcs:
 //    pocket       no open side; at least three walls closing a ring (each meets two others);
 //    blind_slot   open; one component: two opposite planes facing each other (the sides) and an end
@@ -72,8 +73,21 @@ bool fillet(const AagNode& f, const AagNode& floor, const Vec3& up) {
     const double h = dot(f.axis_point - floor.axis_point, up);
     return std::abs(h - f.radius) <= (f.from_bspline ? 1e-3 : 1e-5) * scale + 1e-6;
   }
-  if (f.type == SurfaceType::torus) return norm(cross(unit(f.axis), up)) <= tol;
-  return f.type == SurfaceType::sphere;
+  if (f.type == SurfaceType::torus) {
+    // A corner blend: its tube's centre circle one minor radius above the floor (a convex round of the
+    // floor's outline lies one minor radius below it).
+    const double h = dot(f.axis_point - floor.axis_point, up);
+    return norm(cross(unit(f.axis), up)) <= tol &&
+           std::abs(h - f.minor_radius) <= (f.from_bspline ? 1e-3 : 1e-5) * std::max(1.0, f.minor_radius) + 1e-6;
+  }
+  return f.type == SurfaceType::sphere && f.hole;
+}
+
+// A convex round (the blend of an outer edge): where the floor, or a floor fillet, meets it smoothly the
+// floor meets the outside.
+bool convex_round(const AagNode& f, const AagNode& floor, const Vec3& up) {
+  if (f.type == SurfaceType::cylinder || f.type == SurfaceType::sphere) return !f.hole;
+  return f.type == SurfaceType::torus && !fillet(f, floor, up);
 }
 
 struct Candidate {
@@ -104,8 +118,8 @@ bool floor_of(const Graph& G, std::uint32_t fl, const std::vector<char>& claimed
       walls.push_back(nb);
     } else if (fillet(w, floor, up)) {
       if (std::find(fillets.begin(), fillets.end(), nb) == fillets.end()) fillets.push_back(nb), todo.push_back(nb);
-    } else if (w.type == SurfaceType::cylinder && !w.hole) {
-      open = true;  // a convex round where the floor meets the outside
+    } else if (convex_round(w, floor, up)) {
+      open = true;
     } else {
       return false;
     }
@@ -125,7 +139,8 @@ bool floor_of(const Graph& G, std::uint32_t fl, const std::vector<char>& claimed
       if (claimed[nb]) return false;
       const AagNode& w = g.nodes[nb];
       if (standing(w, up)) walls.push_back(nb);
-      else if (arc.convexity == Convexity::smooth && fillet(w, floor, up)) fillets.push_back(nb), todo.push_back(nb);
+      else if (fillet(w, floor, up)) fillets.push_back(nb), todo.push_back(nb);  // smooth, or a mitred corner
+      else if (arc.convexity == Convexity::smooth && convex_round(w, floor, up)) open = true;
       else return false;
     }
   }
