@@ -244,9 +244,21 @@ def write_doc(v):
              "%.2f of `interfere clash --scene` (%.0f MB)."
              % (peak[2] / peak[1], peak[2], peak[1], peak[2] / v["single_rss_mb"], v["single_rss_mb"]))
     L.append("")
-    L.append("What does not shrink with K: every rank parses the whole scene file, receives every body's metadata and box, "
-             "and runs the whole broad phase and the partition (deterministic, the same everywhere), and the MPI run-time "
-             "and libraries (about %.0f MB resident in the smallest rank seen)." % v["base_mb"])
+    L.append("Where a rank's time goes (the report's `mpi.per_rank[].phases`; medians over the runs of the busiest rank's "
+             "CPU seconds, wall seconds in brackets): inputs = the scene file parsed and checksummed, read = its share of the "
+             "bodies read, exchange = every body's metadata and box received, plan = broad phase and partition, read_pairs = "
+             "bodies its pairs need that it did not read, engine = its engine call.\n")
+    names = ["inputs", "read", "exchange", "plan", "read_pairs", "engine"]
+    L.append("| K | " + " | ".join(names) + " |")
+    L.append("|---:|" + "---:|" * len(names))
+    for k in (1, 2):
+        busiest = [max(r["ranks"], key=lambda x: x["cpu_s"]) for r in by_k[k]]
+        L.append("| %d | %s |" % (k, " | ".join("%.1f (%.1f)" % (med([b["phases"][p]["cpu_s"] for b in busiest]),
+                                                                 med([b["phases"][p]["wall_s"] for b in busiest])) for p in names)))
+    L.append("")
+    L.append("What does not shrink with K: every rank parses the whole scene file (inputs), receives every body's metadata "
+             "and box (exchange), and runs the whole broad phase and the partition (plan: deterministic, the same "
+             "everywhere), and the MPI run-time and libraries (about %.0f MB resident in the smallest rank seen)." % v["base_mb"])
     L.append("")
     L.append("## Cost model\n")
     L.append("Fitted by non-negative least squares (no intercept, relative residuals) to every rank's engine CPU seconds (getrusage around its "
