@@ -46,9 +46,9 @@ bool meshes_clash(const TriMesh& a, const Transform& pa, const TriMesh& b, const
   return clash(ma, mb, rq).verdict == Verdict::clash;
 }
 
-std::string lively_tapered(bool raised) {
+std::string lively_tapered(bool raised, const char* fraction = "0.5") {
   std::string extra = test::kLively;
-  extra.replace(extra.find("\"fraction\": 0.3"), 15, "\"fraction\": 0.5");
+  extra.replace(extra.find("\"fraction\": 0.3"), 15, std::string("\"fraction\": ") + fraction);
   if (raised) extra.replace(extra.find("\"seed\": 5}"), 10, "\"seed\": 5, \"raised\": true}");
   return test::assembly_json(extra, test::kTaperedBearing);
 }
@@ -57,15 +57,18 @@ std::string lively_tapered(bool raised) {
 
 TEST(BearingAssemblyTaperedScars, ScarredRowsAgainstTheOracle) {
   std::map<std::string, int> seen;
-  for (const bool raised : {false, true}) {
-    Expected<AssemblySpec> s = parse_assembly(lively_tapered(raised), "t.json");
+  // half the rollers scarred (every roller pair has one scarred roller), inward and raised; then
+  // every roller scarred (every roller pair has two)
+  for (const int variant : {0, 1, 2}) {
+    const bool raised = variant == 1;
+    Expected<AssemblySpec> s = parse_assembly(lively_tapered(raised, variant == 2 ? "1" : "0.5"), "t.json");
     ASSERT_TRUE(s) << s.error().message();
     Expected<Assembly> built = build_assembly(*s);
     ASSERT_TRUE(built) << built.error().message();
     const Assembly& as = *built;
     int scarred = 0;
     for (const AssemblyPart& p : as.parts) scarred += p.scarred;
-    EXPECT_EQ(scarred, 6);  // half of the 12 tapered rollers
+    EXPECT_EQ(scarred, variant == 2 ? 12 : 6);  // half of the 12 tapered rollers, or all
     const AssemblyMotion motion = generate_motion(as, 3, as.spec.seed);
     const BearingSpec& b = as.spec.bearings[0];
     const BearingGeometry& g = as.geometry[0];
@@ -116,7 +119,9 @@ TEST(BearingAssemblyTaperedScars, ScarredRowsAgainstTheOracle) {
               // a lower bound: not above the scarred A against the intact B
               const Bracket br = frustum_min_bracket(posed_triangles(*pa.mesh, poses[pair.a]), roller_b, 1e-10 * scale);
               EXPECT_LE(r.distance, br.upper + 1e-9 * scale);
-              ++seen["roller pair, both scarred"];
+              if (r.verdict == Verdict::clear) EXPECT_GT(r.distance, 0);
+              ++seen[r.solver == AssemblySolver::mesh ? "roller pair, both scarred, mesh engine"
+                                                      : "roller pair, both scarred, clear by the bound"];
             } else {
               EXPECT_EQ(r.solver, AssemblySolver::scarred);
               if (pa.scarred) in_bracket(*pa.mesh, poses[pair.a], roller_b);
@@ -163,6 +168,43 @@ TEST(BearingAssemblyTaperedScars, ScarredRowsAgainstTheOracle) {
   EXPECT_GT(seen["cup"], 0);
   EXPECT_GT(seen["roller pair, one scarred"], 0);
   EXPECT_GT(seen["exact overlapping"], 0);  // the load presses scarred rollers into the cone
+  EXPECT_GT(seen["roller pair, both scarred, clear by the bound"], 0);
+}
+
+TEST(BearingAssemblyTaperedScars, TwoScarredNeighboursPressedTogether) {
+  // every roller scarred; roller 1 replaced by a parallel copy of roller 0 shifted toward roller 1's
+  // place by 14 (the small ends' radii are 8: the solids overlap by about 2) or by 20.5 (the large
+  // ends' radii are 9.5: apart by about 1.5): no exact solver; overlapping, the lower bound is not
+  // clear and the mesh engine decides clash; apart, the bound decides clear
+  Expected<AssemblySpec> s = parse_assembly(lively_tapered(false, "1"), "t.json");
+  ASSERT_TRUE(s) << s.error().message();
+  Expected<Assembly> as = build_assembly(*s);
+  ASSERT_TRUE(as) << as.error().message();
+  const AssemblyMotion motion = generate_motion(*as, 1, as->spec.seed);
+  for (const AssemblyPair& pair : as->pairs) {
+    if (pair.kind != AssemblyPairKind::roller_roller) continue;
+    for (const double shift : {14.0, 20.5}) {
+      std::vector<Transform> poses = motion.poses[0];
+      Transform moved = poses[pair.a];
+      const Vec3 d = poses[pair.b].t - poses[pair.a].t;
+      moved.t = poses[pair.a].t + d * (shift / norm(d));
+      poses[pair.b] = moved;
+      const AssemblyPairResult r = solve_pair(*as, pair, poses, as->spec.clearance);
+      EXPECT_FALSE(r.exact);
+      EXPECT_FALSE(r.two_sided);
+      EXPECT_TRUE(r.scar);
+      if (shift < 16) {
+        EXPECT_EQ(r.solver, AssemblySolver::mesh);
+        EXPECT_EQ(r.verdict, Verdict::clash);
+        EXPECT_LT(r.distance, 0);
+      } else {
+        EXPECT_EQ(r.solver, AssemblySolver::bound);
+        EXPECT_EQ(r.verdict, Verdict::clear);
+        EXPECT_FALSE(meshes_clash(*as->parts[pair.a].mesh, poses[pair.a], *as->parts[pair.b].mesh, poses[pair.b]));
+      }
+    }
+    break;  // one pair is enough
+  }
 }
 
 TEST(BearingAssemblyTaperedScars, ScarFractionScarsTaperedRollers) {
