@@ -268,6 +268,21 @@ TriangleMin local_triangle_min(const LocalFrame& f, const Vec3& a, const Vec3& b
         }
       }
     }
+    // A frustum B: the convex G(z) = phi(F(z), z) minimised by certified_convex_min (Newton steps on
+    // central differences with the convexity certificate above: accepted within 2^-40 of the scale),
+    // started at the height of the point nearest B's axis (or the centroid's); not certified: the
+    // golden-section search below
+    if (f.tapered) {
+      const double scale = zh - zl + f.Rm + std::fabs(f.k) * f.hh + f.hh;
+      const double start = !pierced && rho < kInf ? p.z : (a.z + b.z + c.z) / 3;
+      double zc, vc;
+      if (certified_convex_min([&](double zz) { return section(zz, nullptr); }, zl, zh, std::clamp(start, zl, zh),
+                               0x1p-24 * (zh - zl), 0x1p-48 * scale, 0x1p-40 * scale, zc, vc)) {
+        out.value = vc, out.certified = false;
+        section(zc, &out.point);
+        return out;
+      }
+    }
     const auto [z, value] = golden_min([&](double zz) { return section(zz, nullptr); }, zl, zh, 100);
     if (std::isfinite(value)) {
       out.value = value;
