@@ -156,6 +156,7 @@ void BM_CellFull(benchmark::State& state) {
     scene::SceneClashOptions opt;
     opt.curves = false;
     opt.reference = false;
+    opt.depth = false;  // as `interfere cell` without --depth
     const scene::SceneClashResult r = scene::clash_scene(cs.scene, cs.tests, opt);
     const auto t2 = std::chrono::steady_clock::now();
     std::vector<SegmentResult> segs;

@@ -157,7 +157,7 @@ py::dict ik_dict(const Cell& c, const py::object& poses, const py::object& start
 }
 
 py::dict run_cell(const Cell& c, const py::object& joints, const py::object& poses, const py::object& start,
-                  std::size_t between, bool continuous, int max_depth, int threads) {
+                  std::size_t between, bool continuous, int max_depth, int threads, bool depth) {
   if (!joints.is_none() && !poses.is_none()) throw py::value_error("give joints or poses, not both");
   if (max_depth < 0 || max_depth > 40) throw py::value_error("max_depth must be in 0..40");
   JointPath path;
@@ -183,6 +183,7 @@ py::dict run_cell(const Cell& c, const py::object& joints, const py::object& pos
     scene::SceneClashOptions opt;
     opt.curves = false;
     opt.reference = false;
+    opt.depth = depth;
     r = scene::clash_scene(cs.scene, cs.tests, opt);
     if (continuous) {
       BetweenOptions bo;
@@ -223,6 +224,7 @@ py::dict run_cell(const Cell& c, const py::object& joints, const py::object& pos
     e["b"] = cs.scene.bodies[row.b].id;
     e["verdict"] = verdict_name(row.verdict);
     e["min_distance"] = row.min_distance >= 0 ? py::object(py::float_(row.min_distance)) : py::object(py::none());
+    if (row.max_depth_bound > 0) e["depth"] = row.max_depth, e["depth_bound"] = row.max_depth_bound;  // depth=True
     pairs.append(e);
   }
   Verdict overall = r.verdict;
@@ -363,17 +365,18 @@ void bind_cell(py::module_& m) {
       .def(
           "run",
           [](const Cell& x, const py::object& joints, const py::object& poses, const py::object& start,
-             std::size_t between, bool continuous, int max_depth, int threads) {
-            return run_cell(x, joints, poses, start, between, continuous, max_depth, threads);
+             std::size_t between, bool continuous, int max_depth, int threads, bool depth) {
+            return run_cell(x, joints, poses, start, between, continuous, max_depth, threads, depth);
           },
           py::arg("joints") = py::none(), py::kw_only(), py::arg("poses") = py::none(), py::arg("start") = py::none(),
           py::arg("between") = 0, py::arg("continuous") = false, py::arg("max_depth") = 12, py::arg("threads") = 0,
+          py::arg("depth") = false,
           "Checks the cell along a path, as `interfere cell`: `joints` an (n, dof) array or a joint CSV file, "
           "or `poses` (CSV file or (n, 6)/(n, 9) array; inverse kinematics, `start` picks the first point's "
           "branch), or neither (the cell's own path). Returns a dict: verdict, points, lines, joints (n, dof), "
           "tip and axis (n, 3), verdicts (n,) str, collides (n,) bool, colliding_points, segment_verdicts "
           "(sampled frames, `between` per segment), pairs (one dict per finding: point, t, test, a, b, "
-          "verdict, min_distance), bodies, candidate_pairs, suppressed, ik (pose paths), and with "
+          "verdict, min_distance; with `depth=True` depth and depth_bound of clashes, as `--depth`), bodies, candidate_pairs, suppressed, ik (pose paths), and with "
           "`continuous=True` segment_states (clear / collides / unresolved) and segment_t. Releases the GIL.");
   c.def(
       "read_cell",

@@ -49,8 +49,9 @@ TriMesh cylinder_mesh(const Cylinder& c, int sides) {
   const std::uint32_t k0 = 2 * n, k1 = 2 * n + 1;
   for (std::uint32_t k = 0; k < n; ++k) {
     const std::uint32_t a = k, b = (k + 1) % n;
-    m.triangles.push_back({a, n + b, b});
-    m.triangles.push_back({a, n + a, n + b});
+    // sides outward: (e1, e2, u) is right-handed, so a -> b -> n + b turns about +radial
+    m.triangles.push_back({a, b, n + b});
+    m.triangles.push_back({a, n + b, n + a});
     m.triangles.push_back({k0, b, a});
     m.triangles.push_back({k1, n + a, n + b});
   }

@@ -134,6 +134,19 @@ class CellForwardKinematics(unittest.TestCase):
         self.assertEqual(len(rows), 15)
         self.assertEqual(rows[5]["a"], "probe")
         self.assertEqual(rows[5]["line"], "9")
+        # depth only with --depth; the same points and pairs, every clashing pair of the (closed) probe
+        # and holder with a depth bound
+        self.assertFalse(any("depth" in q for p in r["points"] for q in p.get("pairs", [])))
+        rc, out, err = run(os.path.join(d, "cell.json"), "--depth", "--json", os.path.join(d, "rd.json"))
+        self.assertEqual(rc, 1, out + err)
+        with open(os.path.join(d, "rd.json")) as f:
+            rd = json.load(f)
+        self.assertEqual([p["index"] for p in rd["points"] if p["verdict"] == "clash"], colliding)
+        found = [q for p in rd["points"] for q in p.get("pairs", []) if q["verdict"] == "clash"]
+        self.assertTrue(found)
+        for q in found:
+            self.assertGreater(q["depth_bound"], 0, q)
+            self.assertGreaterEqual(q["depth_bound"], q["depth"], q)
 
 
 class CellContinuous(unittest.TestCase):

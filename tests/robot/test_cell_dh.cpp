@@ -12,10 +12,12 @@
 #include <numbers>
 #include <random>
 #include <set>
+#include <sstream>
 #include <tuple>
 
 #include "interfere/mesh/generate.h"
 #include "interfere/mesh/io.h"
+#include "interfere/probe/export.h"
 #include "interfere/robot/cell.h"
 
 namespace fs = std::filesystem;
@@ -160,6 +162,53 @@ TEST(CellDh, SameVerdictsAsTheSameArmInUrdf) {
   fs::remove_all(dir);
 }
 #endif
+
+// The probe and holder are closed outward solids (probe::cylinder_mesh): a tool wholly inside a
+// fixture is a clash, not undecided (their sides faced inward before 2026-11-29: open bodies).
+TEST(CellDh, ToolInsideAFixtureIsAClash) {
+  const probe::Cylinder c{{1, 2, 3}, {4, -5, 30}, 7};
+  const TriMesh m = probe::cylinder_mesh(c, 24);
+  double volume = 0;  // signed, divergence theorem
+  for (std::size_t t = 0; t < m.num_triangles(); ++t) {
+    const auto q = m.corners(t);
+    volume += dot(q[0], cross(q[1], q[2])) / 6;
+  }
+  const double inscribed = 0.5 * 24 * std::sin(2 * std::numbers::pi / 24) * 49 * norm(c.c1 - c.c0);
+  EXPECT_NEAR(volume, inscribed, 1e-9 * inscribed);  // positive: outward
+
+  const fs::path dir = write_files("inside");
+  Expected<Cell> cell = read_cell_json(dir / "dh_cell.json");
+  ASSERT_TRUE(cell) << cell.error().message();
+  const std::vector<double> q{0, 0, 0};
+  const Transform tool = link_frames(cell->robot, q, cell->base)[cell->tool_link];
+  // a box around the probe (tool x in [-60, 0]) and holder ([-120, -60]), radius <= 20, posed at the tool
+  ASSERT_TRUE(write_mesh(dir / "enclosure.obj", make_box({-130, -30, -30}, {10, 30, 30})));
+  std::ostringstream pose;
+  pose.precision(17);
+  for (int r = 0; r < 3; ++r)
+    pose << (r ? "," : "") << tool.r[r][0] << "," << tool.r[r][1] << "," << tool.r[r][2] << "," << tool.t[r];
+  std::ofstream(dir / "inside.json")
+      << R"({"robot": {"dh": "arm.json", "base": [1,0,0,5, 0,1,0,-3, 0,0,1,2]},
+ "tool": {"tip": [0, 0, 0], "axis": [1, 0, 0], "probe_radius": 8, "probe_length": 60,
+          "holder_radius": 20, "holder_length": 60, "sides": 12},
+ "workpiece": {"mesh": "plate.obj", "pose": [1,0,0,550, 0,1,0,0, 0,0,1,-500]},
+ "fixtures": [{"id": "enclosure", "mesh": "enclosure.obj", "pose": [)"
+      << pose.str() << "]}]}\n";
+  Expected<Cell> inside = read_cell_json(dir / "inside.json");
+  ASSERT_TRUE(inside) << inside.error().message();
+  JointPath path;
+  path.q = {q};
+  path.lines = {2};
+  const CellScene cs = cell_scene(*inside, path);
+  std::map<std::string, int> verdict;
+  for (const PairKey& k : frame_verdicts(cs)) verdict[std::get<2>(k) + "|" + std::get<3>(k)] = std::get<4>(k);
+  for (const char* body : {"probe", "holder"}) {
+    const std::string key = std::min<std::string>(body, "fixture:enclosure") + "|" + std::max<std::string>(body, "fixture:enclosure");
+    ASSERT_TRUE(verdict.count(key)) << key;
+    EXPECT_EQ(verdict[key], static_cast<int>(Verdict::clash)) << key;
+  }
+  fs::remove_all(dir);
+}
 
 TEST(CellDh, BadRobotSectionsNameTheField) {
   const fs::path dir = write_files("bad");

@@ -10,7 +10,10 @@
 
 namespace interfere::probe {
 
-/// Closed triangulated cylinder (`sides` around, capped).
+/// Closed triangulated cylinder (`sides` around, capped), every face outward (a closed, consistently
+/// oriented solid for the scene engine: the cell's probe and holder, URDF <cylinder> links). Before
+/// 2026-11-29 the sides faced inward, so the engine treated these bodies as open (containment
+/// undecided).
 TriMesh cylinder_mesh(const Cylinder& c, int sides = 24);
 
 /// The box's 8 corners and its 12 boundary triangles (outward), exactly the solid that is tested.
