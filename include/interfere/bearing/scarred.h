@@ -6,6 +6,7 @@
 // neighbouring tapered roller) an intact cone frustum. Per triangle the minimum is exact to
 // rounding. A frustum B: sd_B = phi(rho, z) is nondecreasing in rho (a convex meridian section
 // symmetric about the axis), so the slice search below applies with phi the frustum's closed form;
+// (first Newton steps with a convexity certificate, then golden section when that fails);
 // the quadtree's node bound uses the plane tangent to B's cone along the box centre's meridian,
 // sd_B >= (rho - R(z)) / sqrt(1 + k^2) (raceway_cone.cpp's lateral bound), and the end slab. For a
 // cylinder B: rho_B's minimum over T is a
@@ -75,7 +76,8 @@ class ScarredSolver {
   MeshPairResult run(const Transform& pose, const Cylinder& b, const Vec3* hint);
 };
 
-/// Vertex methods: min over (some) vertices of sd_B. `window` = theta of Eq. (1) (radians).
+/// Vertex methods: min over (some) vertices of sd_B. `window` = theta of Eq. (1) (radians). B must be
+/// an untapered cylinder here (the paper's comparisons; cylinder.h's point distances).
 MeshPairResult vertex_brute_force(const Roller& roller, const Transform& pose, const Cylinder& b);
 MeshPairResult vertex_barbier_galin(const Roller& roller, const Transform& pose, const Cylinder& b);
 MeshPairResult vertex_quadtree_method(const Roller& roller, const RollerQuadtree& tree,
