@@ -48,6 +48,18 @@ void concave_roller_term(const RacewayPairRoller& roller, const RacewayPairRing&
   const Vec3 base = sp.t, ax = sp.rotate({0, 0, 1});
   const double k = (g.top_radius - g.radius) / g.width, nk = std::sqrt(1 + k * k);
   const Roller& m = *roller.mesh;
+  // T_a = -best at the roller's vertex `far`; its witness on the ring is the foot of `far` on the
+  // grown cone line in its meridian half-plane
+  const auto finish = [&](double best, const Vec3& far, std::uint32_t far_vertex) {
+    out.roller_term = -best;
+    const double z = dot(far - base, ax);
+    const Vec3 radial = far - base - ax * z;
+    const double rho = norm(radial);
+    const Vec3 nrm = rho > 0 ? (radial / rho - ax * k) / nk : Vec3{};
+    out.point_roller = far;
+    out.point_raceway = far - nrm * best;
+    out.carrier = far_vertex < m.scar.size() && m.scar[far_vertex] ? ScarCarrier::roller : ScarCarrier::none;
+  };
   // the whole roller (grown by its raise) within the width: no edge crosses a side face, so the
   // maximum is at a vertex; a branch and bound down the roller's quadtree finds it (rho is
   // 1-Lipschitz and R(z) |k|-Lipschitz: over a node's box of half-diagonal h the value is at most
@@ -89,14 +101,7 @@ void concave_roller_term(const RacewayPairRoller& roller, const RacewayPairRing&
         for (std::int32_t q = 0; q < n.child_count && top < 512; ++q) stack[top++] = n.first_child + q;
       }
       if (best > -kInf) {
-        out.roller_term = -best;
-        const double z = dot(far - base, ax);
-        const Vec3 radial = far - base - ax * z;
-        const double rho = norm(radial);
-        const Vec3 nrm = rho > 0 ? (radial / rho - ax * k) / nk : Vec3{};
-        out.point_roller = far;
-        out.point_raceway = far - nrm * best;
-        out.carrier = far_vertex < m.scar.size() && m.scar[far_vertex] ? ScarCarrier::roller : ScarCarrier::none;
+        finish(best, far, far_vertex);
         return;
       }
     }
@@ -126,15 +131,7 @@ void concave_roller_term(const RacewayPairRoller& roller, const RacewayPairRing&
       }
     }
   if (!(best > -kInf)) return;  // no part of the roller in the ring's width: no roller term
-  out.roller_term = -best;
-  // witness on the ring: the foot of `far` on the grown cone line in its meridian half-plane
-  const double z = dot(far - base, ax);
-  const Vec3 radial = far - base - ax * z;
-  const double rho = norm(radial);
-  const Vec3 n = rho > 0 ? (radial / rho - ax * k) / nk : Vec3{};
-  out.point_roller = far;
-  out.point_raceway = far - n * best;
-  out.carrier = far_vertex < m.scar.size() && m.scar[far_vertex] ? ScarCarrier::roller : ScarCarrier::none;
+  finish(best, far, far_vertex);
 }
 
 }  // namespace

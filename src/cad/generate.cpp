@@ -47,24 +47,17 @@
 #include <utility>
 
 #include "generate_floor_parts.h"
+#include "generate_shapes.h"
 #include "interfere/cad/model.h"
 
 namespace interfere::cad {
 namespace {
 
-TopoDS_Shape cyl(double x, double y, double z0, double r, double h) {
-  return BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(x, y, z0), gp_Dir(0, 0, 1)), r, h).Shape();
-}
-TopoDS_Shape box(double x0, double y0, double z0, double x1, double y1, double z1) {
-  return BRepPrimAPI_MakeBox(gp_Pnt(x0, y0, z0), gp_Pnt(x1, y1, z1)).Shape();
-}
-TopoDS_Shape cut(const TopoDS_Shape& a, const TopoDS_Shape& b) { return BRepAlgoAPI_Cut(a, b).Shape(); }
-TopoDS_Shape fuse(const TopoDS_Shape& a, const TopoDS_Shape& b) { return BRepAlgoAPI_Fuse(a, b).Shape(); }
-TopoDS_Shape unify(const TopoDS_Shape& s) {
-  ShapeUpgrade_UnifySameDomain u(s, Standard_True, Standard_True, Standard_False);
-  u.Build();
-  return u.Shape();
-}
+using detail::box;
+using detail::cut;
+using detail::cyl;
+using detail::fuse;
+using detail::unify;
 
 // Body: a solid of revolution whose outer wall is a B-spline bulge (r 100 -> 112 -> 100 over the
 // height; double curvature, so it tessellates into a fine grid like an aero-engine casing wall) around

@@ -22,23 +22,10 @@
 #include <functional>
 
 #include "generate_floor_parts.h"
+#include "generate_shapes.h"
 
 namespace interfere::cad::detail {
 namespace {
-
-TopoDS_Shape box(double x0, double y0, double z0, double x1, double y1, double z1) {
-  return BRepPrimAPI_MakeBox(gp_Pnt(x0, y0, z0), gp_Pnt(x1, y1, z1)).Shape();
-}
-TopoDS_Shape zcyl(double x, double y, double z0, double r, double h) {
-  return BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(x, y, z0), gp_Dir(0, 0, 1)), r, h).Shape();
-}
-TopoDS_Shape cut(const TopoDS_Shape& a, const TopoDS_Shape& b) { return BRepAlgoAPI_Cut(a, b).Shape(); }
-TopoDS_Shape fuse(const TopoDS_Shape& a, const TopoDS_Shape& b) { return BRepAlgoAPI_Fuse(a, b).Shape(); }
-TopoDS_Shape unify(const TopoDS_Shape& s) {
-  ShapeUpgrade_UnifySameDomain u(s, Standard_True, Standard_True, Standard_False);
-  u.Build();
-  return u.Shape();
-}
 
 // Fillets of radius r on the straight edges whose middle point and direction `pick` accepts.
 using EdgePick = std::function<bool(const gp_Pnt& mid, const gp_Dir& dir)>;
@@ -74,7 +61,7 @@ TopoDS_Shape slot_features_block() {
   const TopoDS_Shape t1 = fillet(box(-1, 5, 22, 81, 17, 31), 2,
                                  [](const gp_Pnt& m, const gp_Dir& d) { return along_x(d) && near(m.Z(), 22); });
   b = cut(b, t1);
-  b = cut(b, fuse(box(-1, 25, 24, 40, 35, 31), zcyl(40, 30, 24, 5, 7)));
+  b = cut(b, fuse(box(-1, 25, 24, 40, 35, 31), cyl(40, 30, 24, 5, 7)));
   const TopoDS_Shape t3 = fillet(box(50, 43, 20, 81, 55, 31), 2,
                                  [](const gp_Pnt& m, const gp_Dir& d) { return along_z(d) && near(m.X(), 50); });
   return unify(cut(b, t3));
