@@ -231,11 +231,11 @@ def near_tables(rows, repetitions):
     """Tables 2 and 3 of the paper on near-surface paths, and the issue #28 probe target (ProbeNear*)."""
     L = []
     now = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
-    L.append("Measured %s on %s, %d logical CPUs (oneTBB default threads), load average %s (other builds "
-             "running); median of %d repetitions. *wall* = elapsed time per run (includes waiting for a core "
+    L.append("Measured %s on %s, %d logical CPUs (oneTBB default threads), load average %s%s; median of %d repetitions. *wall* = elapsed time per run (includes waiting for a core "
              "on this shared machine), *CPU* = CPU time of the whole process (all threads) per run. Regenerate "
              "with `bench/probe_tables.py`." %
-             (now, cpu_model(), os.cpu_count(), " / ".join("%.1f" % x for x in os.getloadavg()), repetitions))
+             (now, cpu_model(), os.cpu_count(), " / ".join("%.1f" % x for x in os.getloadavg()),
+              " (other builds running)" if os.getloadavg()[0] > 2 else "", repetitions))
     L.append("")
     L.append("Near-surface paths: the rasters of the tables above with the probe tip 2 mm from the surface "
              "(0.4 probe radius; the colliding points keep their tip 1 mm below it) and the axis tilted 20 "
@@ -327,9 +327,9 @@ def cell_table(data):
     c = find(rows, "BM_CellFull/1")
     L = []
     now = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
-    L.append("Measured %s on %s, %d logical CPUs (oneTBB default threads), load average %s (other builds "
-             "running); median of %d runs. Regenerate with `bench/probe_tables.py --cell-only --cell-points N`." %
-             (now, cpu_model(), os.cpu_count(), " / ".join("%.1f" % x for x in os.getloadavg()), c["runs"]))
+    L.append("Measured %s on %s, %d logical CPUs (oneTBB default threads), load average %s%s; median of %d runs. Regenerate with `bench/probe_tables.py --cell-only --cell-points N`." %
+             (now, cpu_model(), os.cpu_count(), " / ".join("%.1f" % x for x in os.getloadavg()),
+              " (other builds running)" if os.getloadavg()[0] > 2 else "", c["runs"]))
     L.append("")
     L.append("The cell: %d bodies, %d triangles (7 link meshes, %d triangles together; workpiece %d; the clamp "
              "and two posts), %d path points (raster lines of 1,000 points, x = 350..700 mm, at y = -150..150 mm; "
