@@ -380,54 +380,42 @@ def main():
     ap.add_argument("--levels-only", action="store_true",
                     help="run only the paper's-levels rows and rewrite only their table (issue #28)")
     a = ap.parse_args()
-    if a.levels_only:
-        exe = os.path.join(a.build, "bench", "interfere_bench_probe")
-        out = a.json or os.path.join(a.build, "bench", "probe_levels_bench.json")
-        cmd = [exe, "--benchmark_filter=ProbePaperLevels", "--benchmark_format=json", "--benchmark_out=" + out,
-               "--benchmark_out_format=json", "--benchmark_repetitions=%d" % a.repetitions]
+    def probe_rows(bench_filter, default_json):
+        """interfere_bench_probe's rows matching bench_filter (medians over the repetitions)."""
+        out = a.json or os.path.join(a.build, "bench", default_json)
+        cmd = [os.path.join(a.build, "bench", "interfere_bench_probe"), "--benchmark_filter=" + bench_filter,
+               "--benchmark_format=json", "--benchmark_out=" + out, "--benchmark_out_format=json",
+               "--benchmark_repetitions=%d" % a.repetitions]
         subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
         with open(out) as f:
-            block = levels_table(collect(json.load(f)), a.repetitions)
+            return collect(json.load(f))
+
+    def rewrite_block(begin, end, block, what):
+        """Replaces the doc's block between the markers (written to a temporary file, then moved)."""
         with open(a.doc) as f:
-            new = replace_block(f.read(), LEVELS_BEGIN, LEVELS_END, block)
+            new = replace_block(f.read(), begin, end, block)
         if new is None:
-            sys.exit("%s: paper levels markers not found" % a.doc)
+            sys.exit("%s: %s markers not found" % (a.doc, what))
         with open(a.doc + ".tmp", "w") as f:
             f.write(new)
         os.replace(a.doc + ".tmp", a.doc)
         print(block)
+
+    if a.levels_only:
+        rewrite_block(LEVELS_BEGIN, LEVELS_END,
+                      levels_table(probe_rows("ProbePaperLevels", "probe_levels_bench.json"), a.repetitions),
+                      "paper levels")
         return
     if a.cell_only:
         data = run_cell_bench(a.build, a.cell_points, os.path.join(a.build, "bench", "probe_cell_bench.json"),
                               a.repetitions)
         if data is None:
             sys.exit("missing interfere_bench_cell (needs urdfdom)")
-        block = cell_table(data)
-        with open(a.doc) as f:
-            new = replace_block(f.read(), CELL_BEGIN, CELL_END, block)
-        if new is None:
-            sys.exit("%s: full cell markers not found" % a.doc)
-        with open(a.doc + ".tmp", "w") as f:
-            f.write(new)
-        os.replace(a.doc + ".tmp", a.doc)
-        print(block)
+        rewrite_block(CELL_BEGIN, CELL_END, cell_table(data), "full cell")
         return
     if a.near_only:
-        exe = os.path.join(a.build, "bench", "interfere_bench_probe")
-        out = a.json or os.path.join(a.build, "bench", "probe_near_bench.json")
-        cmd = [exe, "--benchmark_filter=ProbeNear", "--benchmark_format=json", "--benchmark_out=" + out,
-               "--benchmark_out_format=json", "--benchmark_repetitions=%d" % a.repetitions]
-        subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
-        with open(out) as f:
-            block = near_tables(collect(json.load(f)), a.repetitions)
-        with open(a.doc) as f:
-            new = replace_block(f.read(), NEAR_BEGIN, NEAR_END, block)
-        if new is None:
-            sys.exit("%s: near-surface markers not found" % a.doc)
-        with open(a.doc + ".tmp", "w") as f:
-            f.write(new)
-        os.replace(a.doc + ".tmp", a.doc)
-        print(block)
+        rewrite_block(NEAR_BEGIN, NEAR_END,
+                      near_tables(probe_rows("ProbeNear", "probe_near_bench.json"), a.repetitions), "near-surface")
         return
     if a.from_json:
         with open(a.from_json) as f:
