@@ -57,19 +57,24 @@ struct Bracket {
   std::size_t evaluations = 0;
 };
 
-inline Bracket surface_min_bracket(const std::vector<std::array<Vec3, 3>>& triangles,
-                                   const Cylinder& b, double tol, std::size_t budget = 4'000'000) {
+/// The bracket of the minimum of sd_B over the triangles (above), for any oracle `sd` of a solid B
+/// that is a cylinder or a cone frustum about b's axis (b.top() at the top): the convex minorants
+/// are (rho - R(z)) / sqrt(1 + k^2) (k the radius' slope; rho - R for a cylinder), -z and z - h.
+template <class Sd>
+Bracket min_bracket(const std::vector<std::array<Vec3, 3>>& triangles, const Cylinder& b, double tol,
+                    std::size_t budget, const Sd& sd) {
   struct Cell {
     std::array<Vec3, 3> v;
     double lower;
     bool operator<(const Cell& o) const { return lower > o.lower; }  // min-heap on lower
   };
+  const double k = (b.top() - b.radius) / b.height, nk = std::sqrt(1 + k * k);
   Bracket out;
   out.upper = 1e300;
   std::priority_queue<Cell> open;
   const auto push = [&](const std::array<Vec3, 3>& v) {
     const Vec3 c = (v[0] + v[1] + v[2]) / 3.0;
-    const SdGrad s = oracle_sd(b, c);
+    const SdGrad s = sd(b, c);
     ++out.evaluations;
     out.upper = std::min(out.upper, s.value);
     const auto bound = [&](double value, const Vec3& g) {
@@ -81,13 +86,13 @@ inline Bracket surface_min_bracket(const std::vector<std::array<Vec3, 3>>& trian
     const double z = dot(w, b.axis);
     const Vec3 q = w - b.axis * z;
     const double rho = norm(q);
-    const double lower =
-        std::max({bound(s.value, s.grad), bound(rho - b.radius, rho > 0 ? q / rho : Vec3{0, 0, 0}),
-                  bound(-z, b.axis * -1.0), bound(z - b.height, b.axis)});
-    open.push({v, lower});
+    const Vec3 radial = rho > 0 ? q / rho : Vec3{0, 0, 0};
+    const double lateral = (rho - b.radius - k * z) / nk;
+    open.push({v, std::max({bound(s.value, s.grad), bound(lateral, (radial - b.axis * k) / nk),
+                            bound(-z, b.axis * -1.0), bound(z - b.height, b.axis)})});
   };
   for (const auto& t : triangles) {
-    for (const Vec3& x : t) out.upper = std::min(out.upper, oracle_sd(b, x).value);
+    for (const Vec3& x : t) out.upper = std::min(out.upper, sd(b, x).value);
     push(t);
   }
   while (!open.empty()) {
@@ -96,19 +101,24 @@ inline Bracket surface_min_bracket(const std::vector<std::array<Vec3, 3>>& trian
     open.pop();
     // longest-edge bisection (the cells of thin triangles become well shaped)
     const auto& v = cell.v;
-    int k = 0;
+    int e0 = 0;
     for (int e = 1; e < 3; ++e)
-      if (norm(v[(e + 1) % 3] - v[e]) > norm(v[(k + 1) % 3] - v[k])) k = e;
-    const Vec3& p0 = v[k];
-    const Vec3& p1 = v[(k + 1) % 3];
-    const Vec3& p2 = v[(k + 2) % 3];
+      if (norm(v[(e + 1) % 3] - v[e]) > norm(v[(e0 + 1) % 3] - v[e0])) e0 = e;
+    const Vec3& p0 = v[e0];
+    const Vec3& p1 = v[(e0 + 1) % 3];
+    const Vec3& p2 = v[(e0 + 2) % 3];
     const Vec3 m = (p0 + p1) * 0.5;
-    out.upper = std::min(out.upper, oracle_sd(b, m).value);
+    out.upper = std::min(out.upper, sd(b, m).value);
     push({p0, m, p2});
     push({m, p1, p2});
   }
   out.lower = open.empty() ? out.upper : std::min(open.top().lower, out.upper);
   return out;
+}
+
+inline Bracket surface_min_bracket(const std::vector<std::array<Vec3, 3>>& triangles,
+                                   const Cylinder& b, double tol, std::size_t budget = 4'000'000) {
+  return min_bracket(triangles, b, tol, budget, oracle_sd);
 }
 
 /// A closed tessellation of the (possibly tapered) cylinder a with n sides, corners on its

@@ -13,6 +13,7 @@
 #include <queue>
 #include <vector>
 
+#include "bearing_oracle.h"
 #include "interfere/bearing/cylinder.h"
 
 namespace frustum_oracle_ns {
@@ -20,10 +21,8 @@ namespace frustum_oracle_ns {
 using interfere::Vec3;
 using interfere::bearing::Cylinder;
 
-struct SdGrad {
-  double value = 0;
-  Vec3 grad;
-};
+using bearing_oracle::SdGrad;
+using bearing_oracle::Bracket;
 
 /// sd to the frustum c (radius c.radius at the base, c.top() at the top) by a generic convex
 /// polygon walk in p's meridian plane.
@@ -54,63 +53,9 @@ inline SdGrad frustum_oracle(const Cylinder& c, const Vec3& p) {
   return {best_out, radial * gx + c.axis * gz};
 }
 
-struct Bracket {
-  double lower = 0, upper = 0;
-};
-
 inline Bracket frustum_min_bracket(const std::vector<std::array<Vec3, 3>>& triangles, const Cylinder& b, double tol,
-                            std::size_t budget = 6'000'000) {
-  struct Cell {
-    std::array<Vec3, 3> v;
-    double lower;
-    bool operator<(const Cell& o) const { return lower > o.lower; }
-  };
-  const double k = (b.top() - b.radius) / b.height, nk = std::sqrt(1 + k * k);
-  Bracket out;
-  out.upper = 1e300;
-  std::size_t evaluations = 0;
-  std::priority_queue<Cell> open;
-  const auto push = [&](const std::array<Vec3, 3>& v) {
-    const Vec3 c = (v[0] + v[1] + v[2]) / 3.0;
-    const SdGrad s = frustum_oracle(b, c);
-    ++evaluations;
-    out.upper = std::min(out.upper, s.value);
-    const auto bound = [&](double value, const Vec3& g) {
-      double lin = 0;
-      for (const Vec3& x : v) lin = std::min(lin, dot(g, x - c));
-      return value + lin;
-    };
-    const Vec3 w = c - b.base;
-    const double z = dot(w, b.axis);
-    const Vec3 q = w - b.axis * z;
-    const double rho = norm(q);
-    const Vec3 radial = rho > 0 ? q / rho : Vec3{0, 0, 0};
-    const double lateral = (rho - b.radius - k * z) / nk;
-    open.push({v, std::max({bound(s.value, s.grad), bound(lateral, (radial - b.axis * k) / nk), bound(-z, b.axis * -1.0),
-                            bound(z - b.height, b.axis)})});
-  };
-  for (const auto& t : triangles) {
-    for (const Vec3& x : t) out.upper = std::min(out.upper, frustum_oracle(b, x).value);
-    push(t);
-  }
-  while (!open.empty()) {
-    const Cell cell = open.top();
-    if (cell.lower >= out.upper - tol || evaluations >= budget) break;
-    open.pop();
-    const auto& v = cell.v;
-    int e0 = 0;
-    for (int e = 1; e < 3; ++e)
-      if (norm(v[(e + 1) % 3] - v[e]) > norm(v[(e0 + 1) % 3] - v[e0])) e0 = e;
-    const Vec3& p0 = v[e0];
-    const Vec3& p1 = v[(e0 + 1) % 3];
-    const Vec3& p2 = v[(e0 + 2) % 3];
-    const Vec3 m = (p0 + p1) * 0.5;
-    out.upper = std::min(out.upper, frustum_oracle(b, m).value);
-    push({p0, m, p2});
-    push({m, p1, p2});
-  }
-  out.lower = open.empty() ? out.upper : std::min(open.top().lower, out.upper);
-  return out;
+                                  std::size_t budget = 6'000'000) {
+  return bearing_oracle::min_bracket(triangles, b, tol, budget, frustum_oracle);
 }
 
 }  // namespace frustum_oracle_ns
