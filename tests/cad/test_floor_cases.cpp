@@ -18,18 +18,7 @@
 namespace interfere::cad {
 namespace {
 
-const Part& part(TestPart p) {
-  static std::map<TestPart, CadModel> cache;
-  if (auto it = cache.find(p); it == cache.end()) {
-    const auto file = testing::scratch_dir("interfere_floor_cases") / (std::string(test_part_name(p)) + ".step");
-    const Status s = write_test_part(p, file);
-    EXPECT_TRUE(s.ok()) << s.error().message();
-    auto m = import_step(file);
-    EXPECT_TRUE(m.has_value() && m->parts.size() == 1);
-    cache[p] = m.has_value() ? std::move(*m) : CadModel{};
-  }
-  return cache[p].parts.at(0);
-}
+const Part& part(TestPart p) { return testing::generated_part(p); }
 
 struct Box {
   double x0, y0, z0, x1, y1, z1;
