@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "truth_set.h"
 #include "interfere/cad/features.h"
 #include "interfere/cad/model.h"
 
@@ -81,16 +82,9 @@ bool matches(const TruthFeature& t, const Found& f, double tol) {
   return n >= 0.8 * double(t.walled.size());
 }
 
-struct Score {
-  std::size_t truth = 0, reported = 0, found = 0, typed = 0;
-  double precision() const { return reported ? double(found) / double(reported) : 1.0; }
-  double recall() const { return truth ? double(found) / double(truth) : 1.0; }
-  double typed_precision() const { return reported ? double(typed) / double(reported) : 1.0; }
-  double typed_recall() const { return truth ? double(typed) / double(truth) : 1.0; }
-};
+using testing::Score;
 
-std::filesystem::path truth_dir() { return std::filesystem::path(INTERFERE_SOURCE_DIR) / "tests" / "data" / "floor_truth"; }
-std::filesystem::path step_dir() { return std::filesystem::path(INTERFERE_SOURCE_DIR) / ".." / "shared" / "data" / "step"; }
+std::filesystem::path step_dir() { return testing::shared_step_dir(); }
 
 Vec3 vec(const json& a) { return {a[0].get<double>(), a[1].get<double>(), a[2].get<double>()}; }
 
@@ -98,10 +92,7 @@ TEST(FloorTruth, PrecisionAndRecallPerPart) {
   if (!std::filesystem::is_directory(step_dir())) GTEST_SKIP() << "../shared/data not present";
   auto lib = default_feature_library();
   ASSERT_TRUE(lib.has_value()) << lib.error().message();
-  std::vector<std::filesystem::path> files;
-  for (const auto& e : std::filesystem::directory_iterator(truth_dir()))
-    if (e.path().extension() == ".json") files.push_back(e.path());
-  std::sort(files.begin(), files.end());
+  const std::vector<std::filesystem::path> files = testing::truth_files("floor_truth");
   ASSERT_GE(files.size(), 6u);
   json table = json::array();
   Score total;

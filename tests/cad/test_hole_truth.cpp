@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "truth_set.h"
 #include "interfere/cad/features.h"
 #include "interfere/cad/model.h"
 
@@ -45,13 +46,7 @@ struct Found {
   std::vector<Vec3> points;  // vertices of its triangles (world)
 };
 
-struct Score {
-  std::size_t truth = 0, reported = 0, found = 0, typed = 0;
-  double precision() const { return reported ? double(found) / double(reported) : 1.0; }
-  double recall() const { return truth ? double(found) / double(truth) : 1.0; }
-  double typed_precision() const { return reported ? double(typed) / double(reported) : 1.0; }
-  double typed_recall() const { return truth ? double(typed) / double(truth) : 1.0; }
-};
+using testing::Score;
 
 bool matches(const TruthHole& t, const Found& f, double deflection) {
   if (norm(cross(t.a, f.a)) > 1e-3) return false;
@@ -72,17 +67,13 @@ bool matches(const TruthHole& t, const Found& f, double deflection) {
   return lo <= t.h1 + slack && hi >= t.h0 - slack;
 }
 
-std::filesystem::path truth_dir() { return std::filesystem::path(INTERFERE_SOURCE_DIR) / "tests" / "data" / "hole_truth"; }
-std::filesystem::path step_dir() { return std::filesystem::path(INTERFERE_SOURCE_DIR) / ".." / "shared" / "data" / "step"; }
+std::filesystem::path step_dir() { return testing::shared_step_dir(); }
 
 TEST(HoleTruth, PrecisionAndRecallPerPart) {
   if (!std::filesystem::is_directory(step_dir())) GTEST_SKIP() << "../shared/data not present";
   auto lib = default_feature_library();
   ASSERT_TRUE(lib.has_value()) << lib.error().message();
-  std::vector<std::filesystem::path> files;
-  for (const auto& e : std::filesystem::directory_iterator(truth_dir()))
-    if (e.path().extension() == ".json") files.push_back(e.path());
-  std::sort(files.begin(), files.end());
+  const std::vector<std::filesystem::path> files = testing::truth_files("hole_truth");
   ASSERT_GE(files.size(), 6u);
   json table = json::array();
   Score total;
