@@ -19,7 +19,8 @@
 // candidate, and psi is searched in 1-D: 41 samples over the roller's angular window, seeded also
 // with the azimuth of the roller's point nearest to (c = ro) / farthest from (c = ri) the axis (where
 // a thin crossing arc lies), then golden-section refinement of the two best sampled local minima
-// and of the seed.
+// and of the seed. (c) Before (b): the usual case in closed form with a KKT certificate
+// (outer_shell_closed_form below); (b) runs only where it does not apply.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -150,6 +151,47 @@ Candidate shell_curve(const Cylinder& roller, const Rib& rib, double c, const Ve
   return best;
 }
 
+/// (c) the closed form of the usual case (issue #27, speed): for a face with normal = +-axis, the
+/// minimum of l over the larger convex set H = {d'.(x - e) >= 0} ∩ {rho <= ro} (H ⊇ roller ∩
+/// {rho <= ro} ⊇ K; e the centre of the end facing the rib, d' the unit axis from it into the
+/// roller, n.d' > 0). On the plane d'.(x - e) = 0 the cylinder rho = ro is an ellipse,
+/// x(psi) = center + ro (cos psi a1 + sin psi a2) + z(psi) u with
+///   z(psi) = (d'.(e - center) - ro (cos psi d'.a1 + sin psi d'.a2)) / d'.u,
+/// and l = (n.u) z is smallest at (cos psi, sin psi) = (d'.a1, d'.a2) / h, h = |d' across u| > 0
+/// (n.u and d'.u have the same sign). That point x* satisfies the KKT conditions of min l over H:
+/// n = mu d' - lambda rho_hat with lambda = (n.d') h / |rho_hat across d'|^2 > 0 and mu = n.d' +
+/// lambda h > 0 (n is across rho_hat), and H is convex, so l(x*) is the minimum over H. When x* lies
+/// in the end disk it is a point of the roller with rho = ro, i.e. of K, so it is K's minimum: exact
+/// by a certificate, no search (the usual pose: the roller tilted outward, its lowest rim point
+/// beyond ro). Otherwise (x* outside the disk: the minimum is where the rim crosses rho = ro; or the
+/// lowest rim point inside ri, the non-convex side) nothing is returned and (b) searches.
+bool outer_shell_closed_form(const Cylinder& roller, const Rib& rib, Candidate& out) {
+  const Vec3& n = rib.normal;
+  const Vec3& u = rib.axis;
+  const bool same = n.x == u.x && n.y == u.y && n.z == u.z;
+  if (!same && !(n.x == -u.x && n.y == -u.y && n.z == -u.z)) return false;
+  const double nd = dot(n, roller.axis);
+  if (!(std::fabs(nd) >= 0.5)) return false;
+  const bool from_base = nd > 0;
+  const Vec3 dp = from_base ? roller.axis : roller.axis * -1.0;
+  const Vec3 e = from_base ? roller.base : roller.top_center();
+  const double r = from_base ? roller.radius : roller.top();
+  const Vec3 a1 = perpendicular_unit(u), a2 = cross(u, a1);
+  const double x1 = dot(dp, a1), x2 = dot(dp, a2), h = std::hypot(x1, x2);
+  if (!(h > 1e-12)) return false;  // the end parallel to the face: l constant on the ellipse
+  const double du = dot(dp, u), ro = rib.outer_radius;
+  const Vec3 radial = a1 * (x1 / h) + a2 * (x2 / h);
+  const double z = (dot(dp, e - rib.center) - ro * h) / du;
+  const Vec3 p = rib.center + radial * ro + u * z;
+  const Vec3 w = p - e;
+  const double off = dot(w, dp);
+  // in the disk with a margin far above the rounding of p (else (b) decides)
+  if (!(dot(w, w) - off * off < r * r * (1 - 0x1p-20))) return false;
+  out.l = same ? z : -z;  // l(p) = n.(p - center) = (n.u) z, without p's rounding
+  out.p = p;
+  return true;
+}
+
 }  // namespace
 
 PairDistance roller_rib_distance(const Cylinder& roller, const Rib& rib) {
@@ -189,6 +231,15 @@ PairDistance roller_rib_distance(const Cylinder& roller, const Rib& rib) {
     out.distance = best.l;
     out.point_a = best.p;
     out.point_b = best.p - n * best.l;
+    out.path = AnalyticPath::rib;
+    return out;
+  }
+  // (c) the usual case in closed form (certified; see outer_shell_closed_form)
+  if (Candidate c; outer_shell_closed_form(roller, rib, c)) {
+    PairDistance out;
+    out.distance = c.l;
+    out.point_a = c.p;
+    out.point_b = c.p - n * c.l;
     out.path = AnalyticPath::rib;
     return out;
   }
