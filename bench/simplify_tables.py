@@ -655,8 +655,8 @@ Tried this round and not kept (measured, `/tmp` harnesses on the same OCCT 7.6.3
   nodes from the deflection: angle steps from the largest radius, meridian steps by
   `GCPnts_TangentialDeflection`): with BRepMesh's Delaunay the node insertion itself is the cost (5,802
   nodes 0.37–0.46 s; more cells for its circle filter is slower still: 60 × 60 cells 5.5 s); with OCCT's
-  Delabella and the nodes registered first, 0.09 s for 10,773 triangles but 0.041 off the surface at the
-  holes' rims, and with deflection control (0.0204) 0.17 s for 11,661; at the paper's count it is no faster
+  Delabella and the nodes registered first, 0.09 s for 10,773 triangles but up to 0.041 off the surface (where on
+  the face not located), and with deflection control (0.0204) 0.17 s for 11,661; at the paper's count it is no faster
   per triangle than the default, and its count jumps with the deflection (0.0135: 26,836; 0.014: 43,074).
 - Process start (item c): `interfere-cad --version` costs 115 ms CPU, 75 % of it the dynamic loader binding
   ~95,000 relocations (OCCT built `BIND_NOW`); about a quarter are the visualisation and image libraries
