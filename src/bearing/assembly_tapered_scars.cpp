@@ -34,6 +34,7 @@ ScarredFrustumValue scarred_against_frustum(const Roller& mesh, const RollerQuad
   const MeshPairResult fwd = solver.solve(pose, b, hint.point_a);
   out.distance = out.lower = fwd.distance;
   out.point_a = fwd.point_a, out.point_b = fwd.point_b;
+  out.evaluated = fwd.evaluated;
   if (fwd.distance > tol) {
     // the surfaces are apart: B wholly inside A's solid or wholly outside it
     ScenePart a;

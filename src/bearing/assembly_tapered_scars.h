@@ -4,6 +4,8 @@
 // (assembly_pairs.cpp). The scarred solver (scarred.h) takes the frustum B exactly; the reverse
 // direction (B's depth into the scarred roller) only has a bound, as in part_pair.h.
 #pragma once
+#include <cstdint>
+
 #include "interfere/bearing/analytic.h"
 #include "interfere/bearing/cylinder.h"
 #include "interfere/bearing/quadtree.h"
@@ -34,6 +36,7 @@ struct ScarredFrustumValue {
   Vec3 point_a, point_b;  ///< on A (the scarred roller), on B
   bool exact = true;
   int contained = 0;    ///< 1: B inside A's solid (clash), -1: undecided containment, 0: no
+  std::uint32_t evaluated = 0;  ///< triangles the scarred solver evaluated exactly
 };
 ScarredFrustumValue scarred_against_frustum(const Roller& mesh, const RollerQuadtree& tree, const Model* solid,
                                             const Transform& pose, const Cylinder& intact, const Cylinder& b,

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <functional>
 
+#include "assembly_tapered_scars.h"
+#include "interfere/bearing/raceway.h"
 #include "interfere/bearing/scarred.h"
 #include "interfere/query/clash.h"
 #include "interfere/query/model.h"
@@ -112,14 +114,74 @@ Verdict bracket_verdict(double lo, double hi, double tol, double clearance) {
 
 }  // namespace
 
+PairDistance two_sided_frustum_distance(const Cylinder& a, const Cylinder& b, bool* reverse) {
+  if (reverse) *reverse = false;
+  const PairDistance f = cone_pair_distance(a, b);
+  if (f.distance > 0) return f;  // apart: both one-sided values are the Euclidean distance
+  PairDistance r = cone_pair_distance(b, a);
+  if (f.distance <= r.distance) return f;
+  std::swap(r.point_a, r.point_b);
+  if (reverse) *reverse = true;
+  return r;
+}
+
+namespace {
+
+/// A scarred roller A against an intact frustum (or cylinder) B, as the assemblies' tapered rows
+/// (assembly_tapered_scars.h, issue #27): the scarred solver's exact s(A, B), B's depth into A
+/// bracketed through A's grown intact frustum, containment of B in A's solid when apart.
+PartPairResult scarred_frustum_pair(const ScenePart& a, const ScenePart& b, bool swapped, double clearance) {
+  const double tol = touch_tolerance(a.cylinder, b.cylinder);
+  const detail::ScarredFrustumValue v =
+      detail::scarred_against_frustum(*a.mesh, *a.tree, a.solid, a.pose, a.cylinder, b.cylinder, tol);
+  PartPairResult out;
+  out.swapped = swapped;
+  out.solver = PartPairSolver::scarred;
+  out.distance = v.distance, out.distance_lower = v.lower;
+  out.point_a = v.point_a, out.point_b = v.point_b;
+  out.two_sided_exact = v.exact;
+  out.evaluated = v.evaluated;
+  if (v.contained == 1) {
+    out.verdict = Verdict::clash;
+  } else if (v.contained < 0) {
+    out.verdict = Verdict::undecided;
+    out.reason = "whether the partner lies inside the scarred roller: every ray direction was degenerate";
+  } else {
+    out.verdict = bracket_verdict(v.lower, v.distance, tol, clearance);
+    if (out.verdict == Verdict::undecided)
+      out.reason =
+          "two-sided depth: the frustum's depth into the scarred roller is only bounded (by its grown "
+          "intact frustum), and the bounds give different verdicts";
+  }
+  return out;
+}
+
+}  // namespace
+
 PartPairResult decide_part_pair(const ScenePart& x, const ScenePart& y, double clearance) {
-  // roles: B must be an intact cylinder; prefer a partner as B (a roller against a partner is the
-  // paper's pair), then an intact part; between parts of the same kind, the canonical order
-  const auto rank = [](const ScenePart& p) { return p.partner ? 2 : (p.intact() ? 1 : 0); };
+  // roles: B must be an intact part (a cylinder for the standard solver, a cylinder or frustum for
+  // the scarred one and for cone_pair_distance); prefer a partner as B (a roller against a partner
+  // is the paper's pair), then an intact cylinder, then an intact (tapered) frustum; between parts
+  // of the same kind, the canonical order
+  const auto rank = [](const ScenePart& p) {
+    return p.partner ? 3 : p.intact() ? 2 : p.mesh == nullptr ? 1 : 0;
+  };
   const int rx = rank(x), ry = rank(y);
   const bool swapped = rx != ry ? rx > ry : canonical_less(y, x);
   const ScenePart& a = swapped ? y : x;
   const ScenePart& b = swapped ? x : y;
+  // a tapered part and no scar, or one scar: the exact solvers of the tapered assemblies (issue #27,
+  // assembly_pairs.cpp's tapered rows; the same functions, hence the same values)
+  if (b.mesh == nullptr && (a.cylinder.tapered() || b.cylinder.tapered())) {
+    if (a.mesh != nullptr) return scarred_frustum_pair(a, b, swapped, clearance);
+    PartPairResult out;
+    const PairDistance d = two_sided_frustum_distance(a.cylinder, b.cylinder, &out.reverse);
+    out.swapped = swapped;
+    out.distance = out.distance_lower = d.distance;
+    out.point_a = d.point_a, out.point_b = d.point_b, out.path = d.path;
+    out.verdict = distance_verdict(d.distance, touch_tolerance(a.cylinder, b.cylinder), clearance);
+    return out;
+  }
   const bool exact = b.intact();
   const Cylinder bc = exact ? b.cylinder : enclosing(b);
   PartPairResult out = solve(a, bc);  // s(A, B) (or A against B's enclosing cylinder)
@@ -154,7 +216,8 @@ PartPairResult decide_part_pair(const ScenePart& x, const ScenePart& y, double c
       }
       out.distance_lower = out.distance;
     } else if (!(out.distance > tol) && !contained) {
-      // A scarred or tapered lies in its enclosing cylinder A0 (grown by a raised scar's raise):
+      // A scarred (untapered: a tapered one is scarred_frustum_pair's) lies in its enclosing
+      // cylinder A0 (grown by a raised scar's raise):
       // s(B, A) >= s(B, A0). (Apart,
       // s(A, B) > tol, both one-sided values are the distance of the solids: nothing to add.)
       const double lo = cylinder_pair_distance(bc, enclosing(a)).distance;
@@ -164,7 +227,7 @@ PartPairResult decide_part_pair(const ScenePart& x, const ScenePart& y, double c
                             : bracket_verdict(out.distance_lower, out.distance, tol, clearance);
     if (out.verdict == Verdict::undecided)
       out.reason =
-          "two-sided depth: the partner's depth into the scarred or tapered roller is only bounded "
+          "two-sided depth: the partner's depth into the scarred roller is only bounded "
           "(by its enclosing cylinder), and the bounds give different verdicts";
     return out;
   }
@@ -186,41 +249,10 @@ PartPairResult decide_part_pair(const ScenePart& x, const ScenePart& y, double c
     if (contained) out.verdict = Verdict::clash;
     return out;
   }
-  // a tapered, unscarred part contains the cylinder of its smaller radius: the other reaching into
-  // that one's interior reaches into it (S <= s(A, inner B), an upper bound); both ways
-  const auto inner_of = [](const Cylinder& c) {
-    Cylinder in = c;
-    in.radius = std::min(c.radius, c.top());
-    in.top_radius = -1;
-    return in;
-  };
-  PartPairResult best;
-  bool found = false;
-  if (b.mesh == nullptr) {
-    const Cylinder inner = inner_of(b.cylinder);
-    const PartPairResult in = solve(a, inner);
-    if (in.distance < -touch_tolerance(a.cylinder, inner)) best = in, found = true;
-  }
-  if (a.mesh == nullptr && b.mesh == nullptr) {  // B (a cylinder or frustum) against A's inner
-    const Cylinder inner = inner_of(a.cylinder);
-    const PartPairResult in = solve(b, inner);
-    if (in.distance < -touch_tolerance(b.cylinder, inner) && (!found || in.distance < best.distance)) {
-      best = in, found = true;
-      std::swap(best.point_a, best.point_b);  // on A, on B
-      best.reverse = true;
-    }
-  }
-  if (found) {
-    const double lower = out.distance;
-    out = best;
-    out.swapped = swapped, out.solver = PartPairSolver::bound, out.verdict = Verdict::clash;
-    out.distance_lower = std::min(lower, out.distance), out.two_sided_exact = false;
-    return out;
-  }
   out.verdict = Verdict::undecided;
   out.reason =
-      "two rollers that are both scarred or both tapered: no exact solver (B must be an intact "
-      "cylinder); against the cylinder enclosing the second one they are not clear";
+      "two scarred rollers: no exact solver (B must be intact); against the cylinder enclosing the "
+      "second one they are not clear";
   return out;
 }
 

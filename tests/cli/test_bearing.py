@@ -129,6 +129,46 @@ class Bearing(unittest.TestCase):
         self.assertEqual(s["verdict"], "clear")
         self.assertEqual(s["cross"], [])
 
+    def test_tapered_cross_pairs_are_exact(self):
+        # issue #27: parts of different pairs that are tapered (or one scarred) get the exact solvers of
+        # the tapered assemblies (two-sided cone_pair_distance, the scarred solver against a frustum),
+        # not enclosing-cylinder bounds that left close pairs undecided. Four upright rollers (radius
+        # 10 -> 8 over 40, no tilt) on a grid of pitch 19: rollers 0 and 2 (and 1 and 3) stand side by
+        # side, their bottoms overlapping by o = 1. Two equal frustums (slope k = 0.05) translated
+        # across: the rim at height z lies o - 2kz inside the other across its axis, so
+        # S = -z* with z* (sqrt(1 + k^2) + 2k) = o (sd = max(-(o - 2kz) / sqrt(1 + k^2), -z)).
+        common = ["--pairs", "4", "--frames", "2", "--radius", "10", "--top-radius", "8", "--height", "40",
+                  "--partner-radius", "5", "--partner-height", "40", "--gap", "1", "--spacing", "19",
+                  "--tilt", "0", "--vertices", "24"]
+        rc, out, err = run(*common, "--no-scar", "--json", path("taper.json"))
+        self.assertEqual(rc, 1, out + err)
+        s = load("taper.json")
+        k, o = 0.05, 1.0
+        exact = -o / (math.sqrt(1 + k * k) + 2 * k)
+        listed = {(c["frame"], c["a"]["pair"], c["a"]["part"], c["b"]["pair"], c["b"]["part"]): c for c in s["cross"]}
+        for frame in range(2):
+            for a, b in ((0, 2), (1, 3)):
+                c = listed.get((frame, a, "roller", b, "roller")) or listed[(frame, b, "roller", a, "roller")]
+                self.assertEqual(c["solver"], "standard")
+                self.assertEqual(c["verdict"], "clash")
+                self.assertAlmostEqual(c["distance"], exact, delta=1e-9)
+        self.assertEqual(s["results"]["cross_verdicts"]["undecided"], 0)
+        # a quarter scarred: roller 3 (scarred) against roller 1 (intact): the scarred solver on its
+        # mesh against the intact frustum, decided (the mesh lies within the scar's depth 0.05 and the
+        # facets' sagitta of the frustum: the value is within that of the intact one)
+        rc, out, err = run(*common, "--scar-fraction", "0.25", "--scar", "0,359,0,40,0.05", "--json",
+                           path("taper_scar.json"))
+        self.assertEqual(rc, 1, out + err)
+        s = load("taper_scar.json")
+        listed = {(c["frame"], c["a"]["pair"], c["a"]["part"], c["b"]["pair"], c["b"]["part"]): c for c in s["cross"]}
+        sagitta = 10 * (1 - math.cos(math.pi / 24))
+        for frame in range(2):
+            c = listed[(frame, 3, "roller", 1, "roller")]  # the scarred roller is A
+            self.assertEqual(c["solver"], "scarred")
+            self.assertEqual(c["verdict"], "clash")
+            self.assertLess(abs(c["distance"] - exact), 0.05 + sagitta + 1e-9)
+        self.assertEqual(s["results"]["cross_verdicts"]["undecided"], 0)
+
     def test_partner_inside_scarred_roller_is_clash(self):
         # a partner (R = 1, height 2) wholly inside its scarred roller: the scarred solver's surface
         # minimum is positive; the run used to exit 0

@@ -18,12 +18,16 @@
 //     solver on the triangle surface, else the standard solver);
 //   * two partners, or two rollers of which one is an intact (untapered, unscarred) cylinder: the
 //     intact one is B, the standard (or scarred) solver as above;
-//   * two rollers that are both scarred or both tapered: no exact solver exists (B must be an
-//     intact cylinder); A is solved against the cylinder that encloses B (grown by a raised scar's
-//     raise; a lower bound of the
-//     distance): clear when that bound is clear; a tapered, unscarred B also contains the
-//     cylinder of its smaller radius, and A reaching into that one is a clash (an upper bound of
-//     s); else undecided.
+//   * a tapered part and no scarred one (two tapered rollers, a tapered roller against a partner or
+//     an intact roller): the two-sided S of cone_pair_distance both ways (raceway.h; exact), the
+//     tapered assemblies' intact roller-cone and roller-roller value (issue #27);
+//   * a scarred roller against an intact tapered roller, or a scarred tapered roller against an
+//     intact cylinder: the scarred solver with B the intact frustum (scarred.h), exact forward,
+//     B's depth into A bracketed through A's grown intact frustum (assembly_tapered_scars.h,
+//     scarred_against_frustum: the tapered assemblies' scarred rows, the same function);
+//   * two scarred rollers: no exact solver exists (B must be intact); A is solved against the
+//     cylinder that encloses B (grown by a raised scar's raise; a lower bound of the distance):
+//     clear when that bound is clear, else undecided.
 // A triangle-surface solver reports the minimum over A's surface; when that is > 0, B could still
 // lie wholly inside A's solid: mesh_containment decides it (B's centre by exact ray parity).
 //
@@ -126,6 +130,12 @@ PairDistance intact_row_distance(const Cylinder& a, const Cylinder& b);
 /// distance from A's axis to the section of B's infinite cylinder (convex in z: secants of exact
 /// samples extended below it); cylinder_two_sided.cpp.
 double intact_reverse_lower_bound(const Cylinder& a, const Cylinder& b);
+
+/// S(a, b) = min(s(a, b), s(b, a)) for two intact cylinders or cone frustums with
+/// cone_pair_distance both ways (raceway.h); the reverse skipped when s(a, b) > 0 (apart: the
+/// Euclidean distance both ways). point_a on a, point_b on b; `reverse` (optional) set when
+/// s(b, a) is the smaller one. The tapered assemblies' intact rows and decide_part_pair.
+PairDistance two_sided_frustum_distance(const Cylinder& a, const Cylinder& b, bool* reverse = nullptr);
 
 /// Decides any two distinct parts of a scene (above). Deterministic (no temporal state).
 PartPairResult decide_part_pair(const ScenePart& x, const ScenePart& y, double clearance);

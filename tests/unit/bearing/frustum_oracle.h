@@ -58,4 +58,39 @@ inline Bracket frustum_min_bracket(const std::vector<std::array<Vec3, 3>>& trian
   return bearing_oracle::min_bracket(triangles, b, tol, budget, frustum_oracle);
 }
 
+/// s(A, B) = min over the SOLID a of sd_B (analytic.h), for frustums a and b: a convex program
+/// (sd_B convex, a convex), solved by the central-cut ellipsoid method in 3D (Shor, Nemirovski and
+/// Yudin): from a ball holding a, each step cuts the ellipsoid through its centre x with a
+/// subgradient of sd_A when x lies outside a (feasibility cut), else with one of sd_B (objective
+/// cut, recording sd_B(x)); the volume shrinks by a fixed factor per step, so the best recorded
+/// value converges to the minimum (sd_B is 1-Lipschitz). Stops when the ellipsoid's largest axis is
+/// below 1e-13 of a's size. Only frustum_oracle's values and subgradients are used.
+inline double frustum_solid_min(const Cylinder& a, const Cylinder& b) {
+  const double half = 0.5 * a.height, rmax = std::max(a.radius, a.top());
+  const double r0 = std::sqrt(half * half + rmax * rmax) * 1.01;
+  Vec3 x = a.base + a.axis * half;
+  double P[3][3] = {{r0 * r0, 0, 0}, {0, r0 * r0, 0}, {0, 0, r0 * r0}};
+  double best = 1e300;
+  const double stop = 1e-26 * r0 * r0;
+  for (int it = 0; it < 20000; ++it) {
+    const SdGrad in_a = frustum_oracle(a, x);
+    const SdGrad g = in_a.value <= 0 ? frustum_oracle(b, x) : in_a;
+    if (in_a.value <= 0) best = std::min(best, g.value);
+    const double gv[3] = {g.grad.x, g.grad.y, g.grad.z};
+    double Pg[3];
+    for (int r = 0; r < 3; ++r) Pg[r] = P[r][0] * gv[0] + P[r][1] * gv[1] + P[r][2] * gv[2];
+    const double gPg = gv[0] * Pg[0] + gv[1] * Pg[1] + gv[2] * Pg[2];
+    if (!(gPg > stop)) break;  // the ellipsoid is a point along g: converged
+    const double sq = std::sqrt(gPg);
+    for (double& v : Pg) v /= sq;
+    x = x - Vec3{Pg[0], Pg[1], Pg[2]} * 0.25;  // 1 / (n + 1)
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) P[r][c] = 1.125 * (P[r][c] - 0.5 * Pg[r] * Pg[c]);  // n^2 / (n^2 - 1), 2 / (n + 1)
+    for (int r = 0; r < 3; ++r)
+      for (int c = r + 1; c < 3; ++c) P[r][c] = P[c][r] = 0.5 * (P[r][c] + P[c][r]);
+    if (P[0][0] + P[1][1] + P[2][2] < stop) break;
+  }
+  return best;
+}
+
 }  // namespace frustum_oracle_ns

@@ -131,28 +131,31 @@ TEST(BearingPartPair, RolesSolversAndVerdicts) {
   EXPECT_EQ(d.verdict, Verdict::clash);
   EXPECT_NEAR(d.distance, -5, 1e-9);
   EXPECT_EQ(decide_part_pair(roller({0, 0, 0}), roller({20, 0, 0}), 0).verdict, Verdict::contact);
-  // two tapered rollers: no exact solver; apart (bound clear) or undecided, never clear when close
+  // two tapered rollers (issue #27): the exact two-sided value of cone_pair_distance both ways
   d = decide_part_pair(roller({0, 0, 0}, 6), roller({30, 0, 0}, 6), 0);
-  EXPECT_EQ(d.solver, PartPairSolver::bound);
+  EXPECT_EQ(d.solver, PartPairSolver::standard);
+  EXPECT_TRUE(d.two_sided_exact);
   EXPECT_EQ(d.verdict, Verdict::clear);
-  EXPECT_GT(d.distance, 0);
-  EXPECT_LE(d.distance, 10 + 1e-9);  // a lower bound of the true gap 30 - 10 - 10
-  // apart by 1 everywhere (radii 10 -> 6 against 6 -> 10, axes 17 apart), but the cylinder
-  // enclosing the second reaches into the first: undecided (never clear, never a guessed clash)
+  EXPECT_NEAR(d.distance, 10, 1e-9);  // the bottom rims, 30 - 10 - 10
+  // radii 10 -> 6 against 6 -> 10, axes 17 apart: parallel generators 1 apart across the axis
+  // (horizontally), 1 / sqrt(1 + 0.1^2) along their common normal (the enclosing cylinder of the
+  // second would reach into the first: the old bound was undecided)
   d = decide_part_pair(roller({0, 0, 0}, 6), ScenePart{.cylinder = cyl({17, 0, 0}, 40, 6, 10)}, 0);
-  EXPECT_EQ(d.verdict, Verdict::undecided);
-  EXPECT_FALSE(d.reason.empty());
-  // the bottoms overlap by 8: the second contains the cylinder of radius 6 (its top radius). The
-  // first's rim at height z, x = 10 - z/10, lies 2 + z/10 from that cylinder's axis: its signed
-  // distance max(2 + z/10 - 6, -z) is smallest, -40/11, at z = 40/11: a clash, s <= -40/11 (the
-  // true s, against the frustum of radius 10 - z/10: max(-8 + z/5, -z), is -20/3)
+  EXPECT_EQ(d.verdict, Verdict::clear);
+  EXPECT_NEAR(d.distance, 1 / std::sqrt(1.01), 1e-9);
+  // the same two frustums (10 -> 6) side by side, axes 12 apart: the first's rim at height z
+  // (x = 10 - z/10) lies inside the second by 8 - z/5 across the axis, (8 - z/5) / sqrt(1.01)
+  // from its cone, z above its bottom: sd = max(-(8 - z/5) / sqrt(1.01), -z), smallest where the
+  // two meet, z = 8 / (sqrt(1.01) + 0.2); s(B, A) is the same by the mirror symmetry
+  const double k = std::sqrt(1.01) + 0.2;
   d = decide_part_pair(roller({0, 0, 0}, 6), roller({12, 0, 0}, 6), 0);
   EXPECT_EQ(d.verdict, Verdict::clash);
-  EXPECT_EQ(d.solver, PartPairSolver::bound);
-  EXPECT_NEAR(d.distance, -40.0 / 11, 1e-9);
-  // overlapping by 1 at the bottoms only: not deep enough for the inner cylinder: undecided
+  EXPECT_EQ(d.solver, PartPairSolver::standard);
+  EXPECT_NEAR(d.distance, -8 / k, 1e-9);
+  // overlapping by 1 at the bottoms only: the same with 1 for 8 (the old bound was undecided)
   d = decide_part_pair(roller({0, 0, 0}, 6), roller({19, 0, 0}, 6), 0);
-  EXPECT_EQ(d.verdict, Verdict::undecided);
+  EXPECT_EQ(d.verdict, Verdict::clash);
+  EXPECT_NEAR(d.distance, -1 / k, 1e-9);
 }
 
 TEST(BearingPartPair, ScarredRollersAgainstEachOtherAndIntactOnes) {
