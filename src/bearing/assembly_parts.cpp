@@ -5,9 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include "assembly_internal.h"
 #include "assembly_raceway_scars.h"
+#include "assembly_roller_scars.h"
 #include "interfere/bearing/assembly.h"
 
 namespace interfere::bearing {
@@ -88,33 +90,73 @@ const char* assembly_solver_name(AssemblySolver s) {
   return "?";
 }
 
-TriMesh inner_ring_mesh(const BearingSpec& b, const BearingGeometry& g, int segments) {
+namespace {
+
+/// A ring's profile (a closed polygon in the (r, z) half-plane) and its raceway edge: from point
+/// `raceway` to the next one (cyclically).
+struct RingProfile {
+  std::vector<std::array<double, 2>> points;
+  std::size_t raceway = 0;
+};
+
+RingProfile inner_profile(const BearingSpec& b, const BearingGeometry& g) {
   if (b.type == BearingType::tapered) {
     const double lo = g.ring_lo, hi = g.ring_hi;
-    return revolve({{b.cone_bore, lo}, {g.raceway.radius, lo}, {g.raceway.top(), hi}, {b.cone_bore, hi}}, segments);
+    return {{{b.cone_bore, lo}, {g.raceway.radius, lo}, {g.raceway.top(), hi}, {b.cone_bore, hi}}, 1};
   }
   const double h = 0.5 * b.inner_width, w = b.rib_width, ri = b.inner_raceway, rr = ri + b.rib_height;
-  return revolve({{b.inner_bore, -h},
-                  {rr, -h},
-                  {rr, -h + w},
-                  {ri, -h + w},
-                  {ri, h - w},
-                  {rr, h - w},
-                  {rr, h},
-                  {b.inner_bore, h}},
-                 segments);
+  return {{{b.inner_bore, -h}, {rr, -h}, {rr, -h + w}, {ri, -h + w}, {ri, h - w}, {rr, h - w}, {rr, h}, {b.inner_bore, h}},
+          3};
 }
 
-TriMesh outer_ring_mesh(const BearingSpec& b, const BearingGeometry& g, int segments) {
+RingProfile outer_profile(const BearingSpec& b, const BearingGeometry& g) {
   if (b.type == BearingType::tapered) {
     const double lo = g.ring_lo, hi = g.ring_hi;
     const auto cup_r = [&](double z) {
       return (z - g.apex_z) * std::tan(g.cup_half_angle) + b.cup_clearance / std::cos(g.cup_half_angle);
     };
-    return revolve({{cup_r(lo), lo}, {b.cup_outer, lo}, {b.cup_outer, hi}, {cup_r(hi), hi}}, segments);
+    return {{{cup_r(lo), lo}, {b.cup_outer, lo}, {b.cup_outer, hi}, {cup_r(hi), hi}}, 3};
   }
   const double h = 0.5 * b.outer_width;
-  return revolve({{b.outer_raceway, -h}, {b.outer_radius, -h}, {b.outer_radius, h}, {b.outer_raceway, h}}, segments);
+  return {{{b.outer_raceway, -h}, {b.outer_radius, -h}, {b.outer_radius, h}, {b.outer_raceway, h}}, 3};
+}
+
+}  // namespace
+
+TriMesh inner_ring_mesh(const BearingSpec& b, const BearingGeometry& g, int segments) {
+  return revolve(inner_profile(b, g).points, segments);
+}
+
+TriMesh outer_ring_mesh(const BearingSpec& b, const BearingGeometry& g, int segments) {
+  return revolve(outer_profile(b, g).points, segments);
+}
+
+TriMesh scarred_ring_mesh(const BearingSpec& b, const BearingGeometry& g, const RacewayScar& scar) {
+  const bool inner = scar.geometry.surface == RacewaySurface::inner || scar.geometry.surface == RacewaySurface::cone;
+  RingProfile prof = inner ? inner_profile(b, g) : outer_profile(b, g);
+  // the raceway edge takes the scar grid's rows strictly between its ends (in the edge's order);
+  // the ends stay intact (at the ribs or the ring's faces)
+  const Roller& surf = scar.surface;
+  const int n = surf.n(), m = surf.m();
+  const std::size_t e = prof.raceway, p0 = prof.points.size();
+  const double za = prof.points[e][1], zb = prof.points[(e + 1) % p0][1];
+  std::vector<int> rows;
+  for (int k = 0; k <= m; ++k) {
+    const double z = scar.to_ring.t.z + surf.z(k);
+    if (z > std::min(za, zb) && z < std::max(za, zb)) rows.push_back(k);
+  }
+  if (zb < za) std::reverse(rows.begin(), rows.end());
+  std::vector<std::array<double, 2>> pts(prof.points.begin(), prof.points.begin() + static_cast<std::ptrdiff_t>(e) + 1);
+  for (const int k : rows) pts.push_back({prof.points[e][0], scar.to_ring.t.z + surf.z(k)});  // (radius replaced below)
+  pts.insert(pts.end(), prof.points.begin() + static_cast<std::ptrdiff_t>(e) + 1, prof.points.end());
+  TriMesh mesh = revolve(pts, n);
+  // the inserted vertices: the scar surface's (same angles 2 pi j / n, same rows), in the ring frame
+  const std::size_t p = pts.size();
+  for (int j = 0; j < n; ++j)
+    for (std::size_t r = 0; r < rows.size(); ++r)
+      mesh.positions[static_cast<std::size_t>(j) * p + e + 1 + r] =
+          scar.to_ring.apply(surf.mesh.positions[surf.side_vertex(j, rows[r])]);
+  return mesh;
 }
 
 TriMesh web_mesh(const CageWeb& w) {
@@ -196,6 +238,8 @@ Expected<Assembly> build_assembly(const AssemblySpec& spec) {
       Expected<std::shared_ptr<const RacewayScar>> rs = detail::build_raceway_scar(spec, b, *g, sc);
       if (!rs) return rs.error();
       ring.raceway_scar = std::move(*rs);
+      // the ring's mesh (views, .pvd) shows the scarred raceway (issue #27); no solver uses ring meshes
+      ring.mesh = std::make_shared<const TriMesh>(scarred_ring_mesh(b, *g, *ring.raceway_scar));
     }
     as.web_offset.push_back(static_cast<std::uint32_t>(as.webs.size()));
     for (const CageWeb& w : g->webs) as.webs.push_back(make_model(web_mesh(w)));
@@ -207,6 +251,13 @@ Expected<Assembly> build_assembly(const AssemblySpec& spec) {
     if (!plain) return plain.error();
     const auto shared_plain = std::make_shared<const Roller>(*plain);
     const auto shared_mesh = std::make_shared<const TriMesh>(plain->mesh);
+    // an imported roller scar (issue #27): resampled once onto this bearing's roller grid
+    std::optional<VertexHeights> imported;
+    if (spec.scar_import.any() && spec.scar_fraction > 0) {
+      Expected<VertexHeights> h = detail::roller_scar_heights(spec, b, rp);
+      if (!h) return h.error();
+      imported = std::move(*h);
+    }
     const int z = b.rollers.count;
     std::vector<std::uint32_t> rollers;
     for (int k = 0; k < z; ++k, ++roller_serial) {
@@ -223,7 +274,7 @@ Expected<Assembly> build_assembly(const AssemblySpec& spec) {
         if (sc.z_min < 0) sc.z_min = 0.25 * rp.height;
         if (sc.z_max < 0) sc.z_max = 0.75 * rp.height;
         sc.seed = spec.scar.seed + roller_serial;
-        Expected<int> applied = apply_scar(r, sc);
+        Expected<int> applied = imported ? apply_vertex_heights(r, *imported, spec.scar_import.border) : apply_scar(r, sc);
         if (!applied) return applied.error();
         p.scarred = true;
         p.tree = std::make_shared<const RollerQuadtree>(build_quadtree(r));

@@ -9,15 +9,12 @@
 #include "interfere/bearing/scar_import.h"
 
 namespace interfere::bearing::detail {
-namespace {
 
 std::string resolve(const AssemblySpec& spec, const std::string& path) {
   const std::filesystem::path p(path);
   if (p.is_absolute() || spec.file.empty()) return path;
   return (std::filesystem::path(spec.file).parent_path() / p).string();
 }
-
-}  // namespace
 
 RacewayGeometry raceway_geometry(const BearingSpec& b, const BearingGeometry& g, RacewaySurface part) {
   RacewayGeometry r;

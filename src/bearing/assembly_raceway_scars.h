@@ -11,6 +11,10 @@
 
 namespace interfere::bearing::detail {
 
+/// A file named in the description: as given when absolute (or when the description has no file),
+/// else relative to the assembly file's folder.
+std::string resolve(const AssemblySpec& spec, const std::string& path);
+
 /// The raceway `part` of bearing b in the bearing frame (the ring's body frame).
 RacewayGeometry raceway_geometry(const BearingSpec& b, const BearingGeometry& g, RacewaySurface part);
 

@@ -256,11 +256,29 @@ AssemblySpec read_root(const json& root, const std::string& file) {
       sc.num("angle_width_deg", s.scar.angle_width_deg, false);
       sc.num("z_min", s.scar.z_min, false);
       sc.num("z_max", s.scar.z_max, false);
-      sc.num("depth", s.scar.depth, false);
-      sc.num("roughness", s.scar.roughness, false);
-      sc.integer("border", s.scar.border, false);
-      sc.unsigned_integer("seed", s.scar.seed);
-      sc.boolean("raised", s.scar.raised);  // a raised (outward) roller scar (issue #27)
+      // an imported roller scar (issue #27): the keys of the raceway scars' imports
+      RollerScarImport& im = s.scar_import;
+      sc.string("map", im.map, false);
+      sc.string("png", im.png, false);
+      sc.string("points", im.points, false);
+      if (int(!im.map.empty()) + int(!im.png.empty()) + int(!im.points.empty()) > 1)
+        sc.fail("scar", "map, png and points exclude each other (one imported scar)");
+      if (im.any()) {
+        for (const char* only : {"depth", "roughness", "seed", "raised"})
+          if (sc.has(only)) sc.fail(sc.at(only), "only for a generated scar (not with map, png or points)");
+        sc.integer("border", im.border, false);
+        if (!im.png.empty()) {
+          sc.num("scale", im.png_scale, true);
+          sc.num("offset", im.png_offset, false);
+        }
+        if (!im.points.empty()) sc.num("window", im.points_window, false);
+      } else {
+        sc.num("depth", s.scar.depth, false);
+        sc.num("roughness", s.scar.roughness, false);
+        sc.integer("border", s.scar.border, false);
+        sc.unsigned_integer("seed", s.scar.seed);
+        sc.boolean("raised", s.scar.raised);  // a raised (outward) roller scar (issue #27)
+      }
       sc.finish();
     }
   }

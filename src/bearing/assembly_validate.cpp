@@ -193,6 +193,14 @@ Status validate_assembly(const AssemblySpec& s) {
   if (!(m.pocket_play >= 0 && m.pocket_play <= 4)) return fail("motion.pocket_play", "must lie in [0, 4], got " + num(m.pocket_play));
   if (!(m.axial_play >= 0 && m.axial_play <= 4)) return fail("motion.axial_play", "must lie in [0, 4], got " + num(m.axial_play));
   if (!(s.scar_fraction >= 0 && s.scar_fraction <= 1)) return fail("scar.fraction", "must lie in [0, 1], got " + num(s.scar_fraction));
+  const RollerScarImport& im = s.scar_import;  // an imported roller scar (issue #27)
+  if (im.any()) {
+    const std::string key = !im.map.empty() ? "scar.map" : !im.png.empty() ? "scar.png" : "scar.points";
+    if (!(s.scar_fraction > 0)) return fail("scar.fraction", "must be > 0 with " + key + " (the rollers that carry it)");
+    if (im.border < 0) return fail("scar.border", "must be >= 0, got " + std::to_string(im.border));
+    if (!im.png.empty() && !(im.png_scale != 0)) return fail("scar.scale", "must be non-zero (mm per pixel unit)");
+    if (!(im.points_window >= 0)) return fail("scar.window", "must be >= 0 (0 = automatic), got " + num(im.points_window));
+  }
   std::set<std::string> ids;
   for (const BearingSpec& b : s.bearings) {
     if (!ids.insert(b.id).second) return fail(b.where + ".id", "'" + b.id + "' is used by another bearing");
@@ -200,7 +208,7 @@ Status validate_assembly(const AssemblySpec& s) {
     if (m.load_displacement >= b.rollers.radius)
       return fail("motion.load.displacement", "must be below the roller radius " + num(b.rollers.radius) + " of " +
                                                   b.where + ", got " + num(m.load_displacement));
-    if (s.scar_fraction > 0) {
+    if (s.scar_fraction > 0 && !im.any()) {  // (an import: its reader and resampling check it)
       ScarParams sc = s.scar;
       if (sc.z_min < 0) sc.z_min = 0.25 * b.rollers.length;
       if (sc.z_max < 0) sc.z_max = 0.75 * b.rollers.length;

@@ -44,6 +44,21 @@ def run(*args):
     return cli_common.run(*args, command=("bearing",))
 
 
+def write_png16(name, w, h, samples):
+    """A 16-bit grayscale PNG (rows top first), written with zlib only."""
+    import struct
+    import zlib
+
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xffffffff)
+    raw = b"".join(b"\x00" + b"".join(struct.pack(">H", v) for v in samples[y * w:(y + 1) * w]) for y in range(h))
+    data = (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 16, 0, 0, 0, 0)) +
+            chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
+    with open(path(name), "wb") as f:
+        f.write(data)
+    return path(name)
+
+
 def small(name="small.json", **changes):
     d = json.loads(json.dumps(SMALL))
     d.update(changes)
@@ -223,6 +238,38 @@ class BearingAssembly(unittest.TestCase):
             bad = small(name, bearings=[dict(SMALL["bearings"][0], scars=[scar]), SMALL["bearings"][1]])
             cli_common.assert_input_error(self, ["bearing", "--assembly", bad, "--out", outputs[0], "--json", outputs[1]],
                                           expect, outputs)
+
+    def test_imported_roller_scars(self):
+        # issue #27, item 2 (scars on any part, generated or imported): the top-level scar with map (CSV),
+        # png (16-bit gray) or points puts one measured scar on every scarred roller of every bearing
+        # (resampled onto each bearing's roller grid); their rows measure the mesh (scar 1 on the
+        # roller-outer / roller-cup rows, the vertex maximum)
+        write_text("roller_bump.csv", "z\\angle_deg, -45, 0, 45\n5, 0, 0, 0\n10, 0, 0.03, 0\n15, 0, 0, 0\n")
+        write_png16("roller_bump.png", 5, 4, [0, 0, 0, 0, 0, 0, 1000, 3000, 1000, 0, 0, 1000, 3000, 1000, 0, 0, 0, 0, 0, 0])
+        for name, scar in [("csv", {"fraction": 0.25, "map": "roller_bump.csv"}),
+                           ("png", {"fraction": 0.25, "png": "roller_bump.png", "scale": 1e-5, "angle_center_deg": 0,
+                                    "angle_width_deg": 90, "z_min": 5, "z_max": 15})]:
+            f = small("roller_scar_%s.json" % name, scar=scar)
+            rc, out, err = run("--assembly", f, "--out", path("rsi.csv"), "--json", path("rsi.json"))
+            s = load("rsi.json")
+            self.assertEqual(rc, s["exit_status"], err)
+            self.assertEqual([b["scarred_rollers"] for b in s["bearings"]], [2, 2], name)  # a quarter of 8 and of 10
+            rows = read_csv(path("rsi.csv"))
+            scarred = {r["a"] for r in rows if r["kind"] in ("roller-outer", "roller-cup") and r["scar"] == "1"}
+            self.assertEqual(len(scarred), 4, name)
+        # bad input: generated-only keys with an import, two imports, a PNG without its scale, a file
+        # that is not a PNG, a map through the roller's axis (the file and line)
+        write_text("not.png", "not a png")
+        write_text("roller_deep.csv", "z\\angle_deg, -45, 0, 45\n5, 0, 0, 0\n10, 0, -10.5, 0\n")
+        outputs = [path("bad.csv"), path("bad.json")]
+        for name, scar, expect in [
+                ("rsi_bad1.json", {"fraction": 0.25, "map": "roller_bump.csv", "depth": 0.1}, ["scar.depth", "generated"]),
+                ("rsi_bad2.json", {"fraction": 0.25, "map": "roller_bump.csv", "points": "p.xyz"}, ["scar", "exclude"]),
+                ("rsi_bad3.json", {"fraction": 0.25, "png": "roller_bump.png"}, ["scar.scale: missing"]),
+                ("rsi_bad4.json", {"fraction": 0.25, "png": "not.png", "scale": 1e-5}, ["not.png", "not a PNG"]),
+                ("rsi_bad5.json", {"fraction": 0.25, "map": "roller_deep.csv"}, ["roller_deep.csv:3"])]:
+            cli_common.assert_input_error(self, ["bearing", "--assembly", small(name, scar=scar), "--out", outputs[0],
+                                                 "--json", outputs[1]], expect, outputs)
 
     def test_tapered_roller_scars(self):
         # issue #27: scar.fraction scars tapered rollers too; their cone and neighbour rows are the

@@ -101,6 +101,20 @@ struct BearingSpec {
   std::vector<RacewayScarSpec> scars;  ///< raceway scars (issue #27), at most one per raceway
 };
 
+/// An imported roller scar (issue #27, deliverable 2: scars on any part, generated or imported):
+/// the top-level `scar` with `map` (a CSV grid over angle x axial position), `png` (a 16-bit
+/// grayscale PNG, placed on the scar window, `scale` required) or `points` (an x y z text file, or
+/// a scanned .stl/.ply/.obj/.off whose vertices are the points) in the roller's body frame
+/// (scar_import.h), resolved against the assembly file's folder. Every scarred roller (scar.fraction)
+/// carries it, resampled onto its bearing's roller grid; docs/bearing.md, "Imported roller scars".
+struct RollerScarImport {
+  std::string map, png, points;          ///< at most one; paths as given
+  double png_scale = 0, png_offset = 0;  ///< png: height = scale * pixel + offset (scale required)
+  double points_window = 0;              ///< points: PointScarOptions::window (0: automatic)
+  int border = 0;                        ///< median filter band over the covered region's border
+  bool any() const { return !map.empty() || !png.empty() || !points.empty(); }
+};
+
 struct AssemblyMotionSpec {
   double inner_deg_per_frame = 5;  ///< inner ring rotation per frame (outer ring fixed)
   double max_tilt_deg = 0.05;      ///< roller tilt perturbation in its axial plane, |tilt| <= this; Eq. (1) valid
@@ -118,6 +132,7 @@ struct AssemblySpec {
   int ring_segments = 96;        ///< segments around the rings' meshes (>= 8)
   double scar_fraction = 0;      ///< of each bearing's rollers (cylindrical and tapered), in [0, 1]
   ScarParams scar;               ///< window; z_min/z_max < 0: 25 % / 75 % of the roller length
+  RollerScarImport scar_import;  ///< imported roller scar (scar.map / png / points), else generated
   AssemblyMotionSpec motion;
   std::vector<BearingSpec> bearings;
 };
@@ -183,14 +198,19 @@ struct AssemblyPart {
   bool scarred = false;
   Transform rest;  ///< nominal pose (no motion)
   PartSphere sphere;  ///< (bearing_bearing bound)
-  /// Rings: the scar on its raceway (issue #27; raceway_scar.h), else null. The ring's `mesh` stays
-  /// intact (display, mesh engine); roller-raceway rows in range of it use raceway_scar_solver.h.
+  /// Rings: the scar on its raceway (issue #27; raceway_scar.h), else null. The ring's `mesh` then
+  /// shows it (scarred_ring_mesh; display only: no row uses ring meshes); roller-raceway rows in
+  /// range of it use raceway_scar_solver.h.
   std::shared_ptr<const RacewayScar> raceway_scar;
 };
 
 /// Meshes of the parts of one bearing (for views and the mesh engine).
 TriMesh inner_ring_mesh(const BearingSpec& b, const BearingGeometry& g, int segments);
 TriMesh outer_ring_mesh(const BearingSpec& b, const BearingGeometry& g, int segments);
+/// The ring whose raceway carries `scar` (issue #27): the ring's profile revolved with the scar
+/// grid's angular segments, its raceway edge through the grid's rows with the scarred surface's
+/// vertices (the edge's ends, at the ribs or faces, intact): closed and outward, for views.
+TriMesh scarred_ring_mesh(const BearingSpec& b, const BearingGeometry& g, const RacewayScar& scar);
 TriMesh cage_mesh(const BearingGeometry& g);  ///< the Z webs, 12 triangles each
 TriMesh web_mesh(const CageWeb& w);
 
