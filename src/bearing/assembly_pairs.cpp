@@ -566,8 +566,38 @@ AssemblyPairResult solve_one(const Assembly& as, const AssemblyPair& pair, const
       const Pieces pieces = split(roller, *ra.roller, scar_of(as.spec, b));
       AssemblyPairResult best;
       best.distance = std::numeric_limits<double>::infinity();
-      for (const Cylinder& e : pieces.ends)
-        if (AssemblyPairResult r = one(e); r.distance < best.distance) best = r;
+      // rib (issue #27, speed): a piece's value is at least the lowest height over the face plane of
+      // the whole piece (roller_rib_distance: min over K of l, or a lower bound >= that), a closed
+      // form; a piece whose bound is above a value already known (with a margin far above rounding)
+      // cannot be below it: not solved. Pieces are solved lowest bound first, and the best is still
+      // the first smallest in the pieces' order, so the result is the same as solving them all.
+      const auto rib_low = [&](const Cylinder& c) {
+        const double nu = std::clamp(dot(face.normal, c.axis), -1.0, 1.0), s = std::sqrt(std::max(0.0, 1 - nu * nu));
+        return std::min(dot(c.base - face.center, face.normal) - c.radius * s,
+                        dot(c.top_center() - face.center, face.normal) - c.top() * s) -
+               1e-9 * (1 + norm(c.center() - face.center) + c.height);
+      };
+      if (rib) {
+        const std::size_t ne = pieces.ends.size();  // (at most 2)
+        std::array<double, 2> low{};
+        std::array<AssemblyPairResult, 2> r{};
+        std::array<bool, 2> solved{};
+        for (std::size_t i = 0; i < ne; ++i) low[i] = rib_low(pieces.ends[i]);
+        const std::size_t first = ne == 2 && low[1] < low[0] ? 1 : 0;
+        double known = std::numeric_limits<double>::infinity();
+        for (std::size_t k = 0; k < ne; ++k) {
+          const std::size_t i = k == 0 ? first : 1 - first;
+          if (low[i] > known) continue;
+          r[i] = one(pieces.ends[i]), solved[i] = true;
+          known = std::min(known, r[i].distance);
+        }
+        for (std::size_t i = 0; i < ne; ++i)
+          if (solved[i] && r[i].distance < best.distance) best = r[i];
+        if (rib_low(pieces.middle) > best.distance) return best;  // mid.distance > best: the ends decide
+      } else {
+        for (const Cylinder& e : pieces.ends)
+          if (AssemblyPairResult r = one(e); r.distance < best.distance) best = r;
+      }
       const AssemblyPairResult mid = one(pieces.middle);
       if (mid.distance > best.distance) return best;  // the intact ends decide: exact
       // the scarred middle may decide: a bound (the enclosing middle) and the mesh engine's verdict
