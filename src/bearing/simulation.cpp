@@ -258,13 +258,14 @@ Expected<SimulationResult> simulate(const SceneParams& p, bool keep_rows,
       PairState& s = st[k];
       PairFrame& row = frame_rows[k];
       row.box_overlap = overlapping[k] != 0;
-      // An intact (unscarred, untapered) roller: the pair's two-sided value S = min(s(A, B), s(B, A))
-      // (part_pair.h; issue #27). A scarred roller: s(A, B) of the standard solver as the scarred
-      // solver's start and out-of-range value (its reverse depth has no exact solver; decide_part_pair
-      // brackets it), as is a tapered one.
-      const bool two_sided = !s.scarred && !cyl_a[k].tapered();
-      const PairDistance pd = two_sided ? intact_row_distance(cyl_a[k], cyl_b[k])
-                                        : cylinder_pair_distance(cyl_a[k], cyl_b[k]);
+      // An intact (unscarred) roller: the pair's two-sided value S = min(s(A, B), s(B, A)) (part_pair.h;
+      // issue #27): untapered by intact_row_distance, tapered by two_sided_frustum_distance (the value
+      // decide_part_pair gives the same two parts). A scarred roller: s(A, B) of the standard solver as
+      // the scarred solver's start and out-of-range value (its reverse depth has no exact solver;
+      // decide_part_pair brackets it).
+      const PairDistance pd = s.scarred                ? cylinder_pair_distance(cyl_a[k], cyl_b[k])
+                              : cyl_a[k].tapered()     ? two_sided_frustum_distance(cyl_a[k], cyl_b[k])
+                                                       : intact_row_distance(cyl_a[k], cyl_b[k]);
       row.distance = pd.distance, row.point_a = pd.point_a, row.point_b = pd.point_b;
       row.path = static_cast<std::uint8_t>(pd.path);
       row.solver = 0, row.evaluated = 0, row.scar_in_range = false;

@@ -22,6 +22,7 @@
 #include "interfere/bearing/assembly.h"
 #include "interfere/bearing/part_pair.h"
 #include "interfere/bearing/scar.h"
+#include "interfere/bearing/simulation.h"
 #include "interfere/query/model.h"
 
 using namespace interfere;
@@ -229,4 +230,32 @@ TEST(PartPairFrustums, SameValuesAsTheTaperedAssemblyRows) {
   EXPECT_GT(seen["cone, scarred, overlapping"], 0);
   EXPECT_GT(seen["cone, intact, overlapping"], 0);
   EXPECT_GT(seen["roller pair, scarred, apart"] + seen["roller pair, scarred, overlapping"], 0);
+}
+
+TEST(PartPairFrustums, SimulationRowsOfTaperedRollersAreTwoSided) {
+  // interfere bearing --params with tapered rollers: an intact roller's own row is the two-sided S of
+  // two_sided_frustum_distance, the value decide_part_pair gives the same two parts (a cross pair), and
+  // the dense reference's
+  SceneParams p;
+  p.pairs = 4, p.frames = 4;
+  p.roller = {.radius = 10, .top_radius = 8, .height = 40, .radial_segments = 16, .height_segments = 15};
+  p.gap = -0.3, p.max_tilt_deg = 1, p.scar_fraction = 0;
+  const Expected<SimulationResult> r = simulate(p);
+  ASSERT_TRUE(r) << r.error().message();
+  ASSERT_EQ(r->rows.size(), 16u);
+  int reverse = 0;
+  for (std::size_t i = 0; i < r->rows.size(); ++i) {
+    const PairFrame& row = r->rows[i];
+    const Cylinder roller = posed_cylinder(10, 8, 40, r->roller_poses[i]);
+    const Cylinder partner = posed_cylinder(p.partner_radius, -1, p.partner_height, partner_pose(p, r->spacing, row.pair));
+    const PartPairResult d = decide_part_pair(ScenePart{.cylinder = partner, .partner = true}, ScenePart{.cylinder = roller}, 0);
+    EXPECT_EQ(row.distance, d.distance) << i;
+    EXPECT_TRUE(d.two_sided_exact);
+    reverse += d.reverse;
+    if (i % 4 == 0) {
+      const double ref = std::min(frustum_solid_min(roller, partner), frustum_solid_min(partner, roller));
+      EXPECT_NEAR(row.distance, ref, 1e-9 * (norm(roller.base) + 100)) << i;
+    }
+  }
+  std::printf("[ tapered rows ] %d of 16 decided by the partner's depth in the roller\n", reverse);
 }
