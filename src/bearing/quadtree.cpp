@@ -2,7 +2,8 @@
 // propagated to ancestors, virtual (averaged) vertices, calculation layer from Eq. (1) (the paper's
 // rule by default, the former "still spanning the window" rule as an option; issue #27); plus, for
 // the exact solver, oriented boxes (radial, tangential, axial at the node's middle angle) that
-// contain the node's triangles, and binary trees over the end-cap fans.
+// contain the node's triangles, and binary trees over the end-cap fans; and the exact solvers'
+// column-first bound tree of the same boxes (quadtree.h, BoundTree; issue #27).
 #include "interfere/bearing/quadtree.h"
 
 #include <algorithm>
@@ -17,9 +18,9 @@ struct Builder {
   const Roller& roller;
   RollerQuadtree& tree;
 
-  // Oriented bound of a set of body-frame points in the frame at angle phi.
-  template <class Points>
-  void bound(QuadNode& node, double phi, Points&& for_points) {
+  // Oriented bound of a set of body-frame points in the frame at angle phi (a QuadNode or a BoundNode).
+  template <class Node, class Points>
+  void bound(Node& node, double phi, Points&& for_points) {
     node.cos_mid = std::cos(phi), node.sin_mid = std::sin(phi);
     const double c = node.cos_mid, s = node.sin_mid;
     double lo[3] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
@@ -123,6 +124,63 @@ struct Builder {
     tree.nodes.emplace_back();
     return static_cast<std::int32_t>(tree.nodes.size() - 1);
   }
+
+  // The bound tree (quadtree.h, BoundTree): side cells [i0, i1) x [j0, j1) (column i spans vertex
+  // columns i .. i+1, wrapping), halved in columns down to one column, then in rows.
+  void bound_side(std::int32_t id, std::int32_t i0, std::int32_t i1, std::int32_t j0, std::int32_t j1) {
+    auto& nodes = tree.bounds.nodes;
+    bound(nodes[static_cast<std::size_t>(id)], column_angle(0.5 * (i0 + i1)), [&](auto&& f) {
+      for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i) f(roller.mesh.positions[roller.side_vertex(i, j)]);
+    });
+    std::int32_t a[2][4];  // the children's (i0, i1, j0, j1)
+    if (i1 - i0 > 1) {
+      const std::int32_t im = (i0 + i1) / 2;
+      a[0][0] = i0, a[0][1] = im, a[1][0] = im, a[1][1] = i1;
+      a[0][2] = a[1][2] = j0, a[0][3] = a[1][3] = j1;
+    } else if (j1 - j0 > 1) {
+      const std::int32_t jm = (j0 + j1) / 2;
+      a[0][0] = a[1][0] = i0, a[0][1] = a[1][1] = i1;
+      a[0][2] = j0, a[0][3] = jm, a[1][2] = jm, a[1][3] = j1;
+    } else {  // one cell: its two triangles
+      nodes[static_cast<std::size_t>(id)].tri_first = roller.side_triangle(i0, j0);
+      nodes[static_cast<std::size_t>(id)].tri_count = 2;
+      return;
+    }
+    const auto first = static_cast<std::int32_t>(nodes.size());
+    nodes.resize(nodes.size() + 2);
+    nodes[static_cast<std::size_t>(id)].first_child = first;
+    nodes[static_cast<std::size_t>(id)].child_count = 2;
+    for (int k = 0; k < 2; ++k) bound_side(first + k, a[k][0], a[k][1], a[k][2], a[k][3]);
+  }
+
+  // The bound tree over a cap's fan triangles [i0, i1) (as cap()).
+  void bound_cap(std::int32_t id, std::int32_t i0, std::int32_t i1, bool top) {
+    auto& nodes = tree.bounds.nodes;
+    const int j = top ? roller.m() : 0;
+    const std::size_t center = static_cast<std::size_t>(roller.n()) * (roller.m() + 1) + (top ? 1 : 0);
+    bound(nodes[static_cast<std::size_t>(id)], column_angle(0.5 * (i0 + i1)), [&](auto&& f) {
+      f(roller.mesh.positions[center]);
+      for (int i = i0; i <= i1; ++i) f(roller.mesh.positions[roller.side_vertex(i, j)]);
+    });
+    if (i1 - i0 <= 2) {
+      nodes[static_cast<std::size_t>(id)].tri_first = top ? roller.top_triangle(i0) : roller.bottom_triangle(i0);
+      nodes[static_cast<std::size_t>(id)].tri_count = static_cast<std::uint32_t>(i1 - i0);
+      return;
+    }
+    const std::int32_t im = (i0 + i1) / 2;
+    const auto first = static_cast<std::int32_t>(nodes.size());
+    nodes.resize(nodes.size() + 2);
+    nodes[static_cast<std::size_t>(id)].first_child = first;
+    nodes[static_cast<std::size_t>(id)].child_count = 2;
+    bound_cap(first, i0, im, top);
+    bound_cap(first + 1, im, i1, top);
+  }
+
+  std::int32_t bound_root() {
+    tree.bounds.nodes.emplace_back();
+    return static_cast<std::int32_t>(tree.bounds.nodes.size() - 1);
+  }
 };
 
 }  // namespace
@@ -164,6 +222,14 @@ RollerQuadtree build_quadtree(const Roller& roller, const QuadtreeOptions& optio
   b.cap(tree.bottom_root, 0, roller.n(), false);
   tree.top_root = b.root();
   b.cap(tree.top_root, 0, roller.n(), true);
+  // the exact solvers' bound tree: 2 n m - 1 side nodes, about 2 n per cap
+  tree.bounds.nodes.reserve(2 * static_cast<std::size_t>(roller.n()) * roller.m() + 4 * roller.n());
+  tree.bounds.side_root = b.bound_root();
+  b.bound_side(tree.bounds.side_root, 0, roller.n(), 0, roller.m());
+  tree.bounds.bottom_root = b.bound_root();
+  b.bound_cap(tree.bounds.bottom_root, 0, roller.n(), false);
+  tree.bounds.top_root = b.bound_root();
+  b.bound_cap(tree.bounds.top_root, 0, roller.n(), true);
   return tree;
 }
 

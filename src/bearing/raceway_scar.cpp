@@ -44,6 +44,10 @@ RacewayScar finish(const RacewayGeometry& g, const RacewayGrid& grid, Roller&& s
     empty.half_r = -1;
     out.tree.nodes.push_back(empty);
     out.tree.bottom_root = out.tree.top_root = static_cast<std::int32_t>(out.tree.nodes.size() - 1);
+    BoundNode none;  // the same in the exact solvers' bound tree (quadtree.h)
+    none.half_r = -1;
+    out.tree.bounds.nodes.push_back(none);
+    out.tree.bounds.bottom_root = out.tree.bounds.top_root = static_cast<std::int32_t>(out.tree.bounds.nodes.size() - 1);
   }
   VertexHeights h;
   h.n = out.surface.n(), h.m = out.surface.m();

@@ -5,7 +5,9 @@
 #include "interfere/bearing/raceway_scar_solver.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "interfere/bearing/scarred.h"
@@ -61,45 +63,89 @@ void concave_roller_term(const RacewayPairRoller& roller, const RacewayPairRing&
     out.carrier = far_vertex < m.scar.size() && m.scar[far_vertex] ? ScarCarrier::roller : ScarCarrier::none;
   };
   // the whole roller (grown by its raise) within the width: no edge crosses a side face, so the
-  // maximum is at a vertex; a branch and bound down the roller's quadtree finds it (rho is
-  // 1-Lipschitz and R(z) |k|-Lipschitz: over a node's box of half-diagonal h the value is at most
-  // (rho(c) + h - R(z(c)) + |k| h + raise) / nk)
+  // maximum is at a vertex; a branch and bound down the roller's bound tree (quadtree.h) finds it.
+  // The upper bound over a node's oriented box (centre c, unit axes E_i, half extents h_i): with
+  // nn the unit direction from the ring's axis to c and tt = ax x nn, a box point x has
+  // nn.P(x) <= rho(c) + sum h_i |nn.E_i| =: A and |tt.P(x)| <= sum h_i |tt.E_i| =: T (P the
+  // projection off the ring's axis), so rho(x) <= sqrt(A^2 + T^2); its axial position moves by at
+  // most Z = sum h_i |ax.E_i|, so R(z) >= R(z(c)) - |k| Z. Anisotropic: the roller's axis is nearly
+  // parallel to the ring's, so a node's long axial extent adds only its tilt to A, T and Z, where
+  // the former Lipschitz bound (rho(c) + h - R(z(c)) + |k| h, h the box's half-diagonal) added all
+  // of it and could not prune along the contact generator (issue #27; docs/bearing.md).
   {
     const Cylinder& c = roller.cylinder;
     const double ca = std::fabs(dot(c.axis, ax)), sa = std::sqrt(std::max(0.0, 1 - ca * ca));
     const double reach = (c.max_radius() + m.raise) * sa;
     const double z0 = dot(c.base - base, ax), z1 = dot(c.top_center() - base, ax);
     if (roller.tree != nullptr && std::min(z0, z1) - reach > 0 && std::max(z0, z1) + reach < g.width) {
-      const auto& nodes = roller.tree->nodes;
       double best = -kInf;
       Vec3 far;
       std::uint32_t far_vertex = 0xffffffffu;
-      const auto value_at = [&](const Vec3& x, double* z_out) {
+      const auto value_at = [&](const Vec3& x) {
         const double z = dot(x - base, ax);
-        if (z_out) *z_out = z;
         return (norm(cross(x - base, ax)) - (g.radius_at(z) - s.raise)) / nk;
       };
-      std::int32_t stack[512];
-      int top = 0;
-      for (const std::int32_t r : {roller.tree->side_root, roller.tree->bottom_root, roller.tree->top_root})
-        if (r >= 0) stack[top++] = r;
-      while (top > 0) {
-        const QuadNode& n = nodes[static_cast<std::size_t>(stack[--top])];
-        if (n.half_r < 0) continue;
-        const double h = std::sqrt(n.half_r * n.half_r + n.half_t * n.half_t + n.half_z * n.half_z);
-        const double ub = value_at(roller.pose.apply(n.box_center), nullptr) + (1 + std::fabs(k)) * h / nk;
-        if (ub < best) continue;  // (not <=: a tie with a smaller vertex id is kept, as the full scan)
-        if (n.child_count == 0) {
-          for (std::uint32_t t = 0; t < n.tri_count; ++t)
-            for (const std::uint32_t v : m.mesh.triangles[n.tri_first + t]) {
-              const Vec3 x = roller.pose.apply(m.mesh.positions[v]);
-              const double val = value_at(x, nullptr);
-              if (val > best || (val == best && v < far_vertex)) best = val, far = x, far_vertex = v;
-            }
-          continue;
+      const Vec3 rx = roller.pose.rotate({1, 0, 0}), ry = roller.pose.rotate({0, 1, 0}), rz = roller.pose.rotate({0, 0, 1});
+      // rounding: the vertices' values and the bounds are each within a few ulps of the coordinates
+      const double eps = std::numeric_limits<double>::epsilon(), coords = norm(roller.pose.t) + norm(base);
+      const auto node_ub = [&](const auto& n) {
+        if (n.half_r < 0) return -kInf;  // no triangles
+        const Vec3 er = rx * n.cos_mid + ry * n.sin_mid, et = ry * n.cos_mid - rx * n.sin_mid;
+        const Vec3 d = roller.pose.apply(n.box_center) - base;
+        const double zc = dot(d, ax);
+        const Vec3 pd = d - ax * zc;
+        const double rho = norm(pd);
+        double A = rho, T = 0;
+        if (rho > 0) {
+          const Vec3 nn = pd / rho, tt = cross(ax, nn);
+          A += n.half_r * std::fabs(dot(nn, er)) + n.half_t * std::fabs(dot(nn, et)) + n.half_z * std::fabs(dot(nn, rz));
+          T = n.half_r * std::fabs(dot(tt, er)) + n.half_t * std::fabs(dot(tt, et)) + n.half_z * std::fabs(dot(tt, rz));
+        } else {
+          A = n.half_r + n.half_t + n.half_z;
         }
-        for (std::int32_t q = 0; q < n.child_count && top < 512; ++q) stack[top++] = n.first_child + q;
-      }
+        const double Z = n.half_r * std::fabs(dot(ax, er)) + n.half_t * std::fabs(dot(ax, et)) + n.half_z * std::fabs(dot(ax, rz));
+        const double rz_lo = g.radius_at(zc) - std::fabs(k) * Z;
+        return (std::sqrt(A * A + T * T) - (rz_lo - s.raise)) / nk + 64 * eps * (A + T + std::fabs(rz_lo) + s.raise + coords);
+      };
+      const auto search = [&](const auto& nodes, std::array<std::int32_t, 3> roots) {
+        struct Item {
+          std::int32_t node;
+          double ub;
+        };
+        Item stack[512];
+        int top = 0;
+        for (const std::int32_t r : roots)
+          if (r >= 0) stack[top++] = {r, node_ub(nodes[static_cast<std::size_t>(r)])};
+        while (top > 0) {
+          const Item it = stack[--top];
+          if (it.ub < best) continue;  // (not <=: a tie with a smaller vertex id is kept, as the full scan)
+          const auto& n = nodes[static_cast<std::size_t>(it.node)];
+          if (n.child_count == 0) {
+            for (std::uint32_t t = 0; t < n.tri_count; ++t)
+              for (const std::uint32_t v : m.mesh.triangles[n.tri_first + t]) {
+                const Vec3 x = roller.pose.apply(m.mesh.positions[v]);
+                const double val = value_at(x);
+                if (val > best || (val == best && v < far_vertex)) best = val, far = x, far_vertex = v;
+              }
+            continue;
+          }
+          Item kids[4];
+          int count = 0;
+          for (std::int32_t q = 0; q < n.child_count && q < 4; ++q) {
+            const std::int32_t id = n.first_child + q;
+            const double ub = node_ub(nodes[static_cast<std::size_t>(id)]);
+            if (!(ub < best)) kids[count++] = {id, ub};
+          }
+          for (int i = 1; i < count; ++i)  // ascending upper bound: the largest is popped first
+            for (int j = i; j > 0 && kids[j - 1].ub > kids[j].ub; --j) std::swap(kids[j - 1], kids[j]);
+          for (int q = 0; q < count && top < 512; ++q) stack[top++] = kids[q];
+        }
+      };
+      const RollerQuadtree& tr = *roller.tree;
+      if (!tr.bounds.empty())
+        search(tr.bounds.nodes, {tr.bounds.side_root, tr.bounds.bottom_root, tr.bounds.top_root});
+      else
+        search(tr.nodes, {tr.side_root, tr.bottom_root, tr.top_root});
       if (best > -kInf) {
         finish(best, far, far_vertex);
         return;

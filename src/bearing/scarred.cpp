@@ -331,8 +331,9 @@ struct Evaluator {
   }
 };
 
-/// Lower bound of sd_B over a node's oriented box (see quadtree.h).
-double node_lower_bound(const LocalFrame& f, const QuadNode& n) {
+/// Lower bound of sd_B over a node's oriented box (see quadtree.h; a QuadNode or a BoundNode).
+template <class Node>
+double node_lower_bound(const LocalFrame& f, const Node& n) {
   if (n.half_r < 0) return kInf;  // no triangles
   const Vec3 c = f.local(n.box_center);
   const double rho = std::sqrt(c.x * c.x + c.y * c.y);
@@ -347,10 +348,37 @@ double node_lower_bound(const LocalFrame& f, const QuadNode& n) {
   // past a roller's end, issue #27) are pruned by it where the lateral bound cannot
   const double erz = f.m[2][0] * n.cos_mid + f.m[2][1] * n.sin_mid;
   const double etz = -f.m[2][0] * n.sin_mid + f.m[2][1] * n.cos_mid;
+  // The box's distance from B's axis in the box's own directions (issue #27). Project along B's
+  // axis: the box becomes c + sum s_i h_i g_i (|s_i| <= 1, g_r, g_t, g_z the projected axes); with
+  // u_r = g_r / |g_r| and u_t = u_r turned by 90 degrees, every point x of it has
+  //   |x.u_r| >= |c.u_r| - h_r |g_r| - h_t |g_t.u_r| - h_z |g_z.u_r| =: a,
+  //   |x.u_t| >= |c.u_t| - h_t |g_t.u_t| - h_z |g_z.u_t|             =: b   (g_r has no u_t part),
+  // so rho(x) >= sqrt(a^2 + b^2) (a, b clamped at 0). The linear bound below loses the curvature
+  // across the box's width: a cell one column beside the contact generator of two nearly parallel
+  // parts keeps about half its gap ((t^2 / 2) (1/r + 1/R) at tangential offset t) and was not
+  // pruned, so the search scanned the cells beside the contact line (3-8x the triangles on the
+  // benchmark, docs/bearing.md); a tilt across the contact line costs nothing here where b is 0.
+  // Used when the box's radial axis is not nearly along B's axis (|g_r| > 1/2: within 60 degrees
+  // of parallel; else -inf), less a rounding margin; the larger of it and the linear bound is taken.
+  const auto box_rho = [&] {
+    const double gr2 = erx * erx + ery * ery;
+    if (!(gr2 > 0.25)) return -kInf;
+    const double gr = std::sqrt(gr2), urx = erx / gr, ury = ery / gr;
+    const double cr = c.x * urx + c.y * ury, ct = c.y * urx - c.x * ury;
+    const double a = std::max(0.0, std::fabs(cr) - n.half_r * gr - n.half_t * std::fabs(etx * urx + ety * ury) -
+                                       n.half_z * std::fabs(ezx * urx + ezy * ury));
+    const double b = std::max(0.0, std::fabs(ct) - n.half_t * std::fabs(ety * urx - etx * ury) -
+                                       n.half_z * std::fabs(ezy * urx - ezx * ury));
+    const double margin = 16 * std::numeric_limits<double>::epsilon() *
+                          (rho + f.R + f.Rm + n.half_r + n.half_t + n.half_z + std::fabs(f.o.x) + std::fabs(f.o.y) +
+                           std::fabs(f.o.z));
+    return std::sqrt(a * a + b * b) - margin;
+  };
   double lateral;
   if (!f.tapered) {
     lateral = rho - n.half_r * std::fabs(nx * erx + ny * ery) - n.half_t * std::fabs(nx * etx + ny * ety) -
               n.half_z * std::fabs(nx * ezx + ny * ezy) - f.R;
+    lateral = std::max(lateral, box_rho() - f.R);  // (the curvature bound, above)
   } else {
     // a frustum B: sd_B >= (rho - Rm - k z) / nk (the plane tangent to B's cone along a meridian
     // supports the convex B; raceway_cone.cpp), and rho >= n.(x, y) for the unit n of the box
@@ -360,6 +388,11 @@ double node_lower_bound(const LocalFrame& f, const QuadNode& n) {
                n.half_t * std::fabs(nx * etx + ny * ety - f.k * etz) -
                n.half_z * std::fabs(nx * ezx + ny * ezy - f.k * f.m[2][2]) - f.Rm) /
               f.nk;
+    // the same support with rho bounded by the curvature bound (above) and k z by its largest
+    // value over the box: sd_B >= (rho - Rm - k z) / nk holds at every point
+    const double kz = f.k * c.z + std::fabs(f.k) * (n.half_r * std::fabs(erz) + n.half_t * std::fabs(etz) +
+                                                    n.half_z * std::fabs(f.m[2][2]));
+    lateral = std::max(lateral, (box_rho() - f.Rm - kz) / f.nk);
   }
   const double axial = std::fabs(c.z) - n.half_r * std::fabs(erz) - n.half_t * std::fabs(etz) -
                        n.half_z * std::fabs(f.m[2][2]) - f.hh;
@@ -395,6 +428,48 @@ MeshPairResult ScarredSolver::solve(const Transform& pose, const Cylinder& b, co
   return run(pose, b, &hint);
 }
 
+namespace {
+
+/// Depth-first branch and bound from the roots, the smaller child bound first; triangles already
+/// evaluated (the previous frame's, the hinted cell's) are skipped.
+template <class Node>
+void descend(Evaluator& ev, const std::vector<Node>& nodes, std::array<std::int32_t, 3> roots, std::uint32_t previous,
+             std::uint32_t hinted, std::uint32_t none) {
+  struct Item {
+    std::int32_t node;
+    double lb;
+  };
+  // depth-first: at most 3 pending siblings per level plus the roots (a few dozen entries)
+  Item stack[1024];
+  int top = 0;
+  for (const std::int32_t root : roots) stack[top++] = {root, node_lower_bound(ev.frame, nodes[static_cast<std::size_t>(root)])};
+  while (top > 0) {
+    const Item it = stack[--top];
+    if (it.lb >= ev.best.distance) continue;
+    const Node& n = nodes[static_cast<std::size_t>(it.node)];
+    ++ev.best.nodes_visited;
+    if (n.child_count == 0) {
+      for (std::uint32_t k = 0; k < n.tri_count; ++k) {
+        const std::uint32_t id = n.tri_first + k;
+        if (id != previous && (hinted == none || (id != hinted && id != hinted + 1))) ev.triangle(id);
+      }
+      continue;
+    }
+    Item kids[4];
+    int count = 0;
+    for (std::int32_t k = 0; k < n.child_count && k < 4; ++k) {
+      const std::int32_t id = n.first_child + k;
+      const double lb = node_lower_bound(ev.frame, nodes[static_cast<std::size_t>(id)]);
+      if (lb < ev.best.distance) kids[count++] = {id, lb};
+    }
+    for (int a = 1; a < count; ++a)  // descending lower bound: the smallest is popped first
+      for (int c = a; c > 0 && kids[c - 1].lb < kids[c].lb; --c) std::swap(kids[c - 1], kids[c]);
+    for (int k = 0; k < count && top < 1024; ++k) stack[top++] = kids[k];
+  }
+}
+
+}  // namespace
+
 MeshPairResult ScarredSolver::run(const Transform& pose, const Cylinder& b, const Vec3* hint) {
   Evaluator ev{*roller_, LocalFrame(pose, b), {}};
   ev.best.distance = kInf;
@@ -416,39 +491,13 @@ MeshPairResult ScarredSolver::run(const Transform& pose, const Cylinder& b, cons
       if (hinted + 1 != previous_) ev.triangle(hinted + 1);
     }
   }
-  struct Item {
-    std::int32_t node;
-    double lb;
-  };
-  // depth-first: at most 3 pending siblings per level plus the roots (a few dozen entries)
-  Item stack[1024];
-  int top = 0;
-  const auto& nodes = tree_->nodes;
-  for (const std::int32_t root : {tree_->side_root, tree_->bottom_root, tree_->top_root}) {
-    stack[top++] = {root, node_lower_bound(ev.frame, nodes[static_cast<std::size_t>(root)])};
-  }
-  while (top > 0) {
-    const Item it = stack[--top];
-    if (it.lb >= ev.best.distance) continue;
-    const QuadNode& n = nodes[static_cast<std::size_t>(it.node)];
-    ++ev.best.nodes_visited;
-    if (n.child_count == 0) {
-      for (std::uint32_t k = 0; k < n.tri_count; ++k) {
-        const std::uint32_t id = n.tri_first + k;
-        if (id != previous_ && (hinted == kNone || (id != hinted && id != hinted + 1))) ev.triangle(id);
-      }
-      continue;
-    }
-    Item kids[4];
-    int count = 0;
-    for (std::int32_t k = 0; k < n.child_count; ++k) {
-      const std::int32_t id = n.first_child + k;
-      const double lb = node_lower_bound(ev.frame, nodes[static_cast<std::size_t>(id)]);
-      if (lb < ev.best.distance) kids[count++] = {id, lb};
-    }
-    for (int a = 1; a < count; ++a)  // descending lower bound: the smallest is popped first
-      for (int c = a; c > 0 && kids[c - 1].lb < kids[c].lb; --c) std::swap(kids[c - 1], kids[c]);
-    for (int k = 0; k < count && top < 1024; ++k) stack[top++] = kids[k];
+  // the bound tree (quadtree.h: column-first, so a contact strip along a generator is reached
+  // at one column's width near the top); a tree assembled by hand without one: the quadtree
+  if (!tree_->bounds.empty()) {
+    const BoundTree& t = tree_->bounds;
+    descend(ev, t.nodes, {t.side_root, t.bottom_root, t.top_root}, previous_, hinted, kNone);
+  } else {
+    descend(ev, tree_->nodes, {tree_->side_root, tree_->bottom_root, tree_->top_root}, previous_, hinted, kNone);
   }
   previous_ = ev.best.triangle;
   return ev.finish(b);

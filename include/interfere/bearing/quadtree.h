@@ -10,6 +10,15 @@
 // triangles: an oriented box in the node's own (radial, tangential, axial) frame at its middle angle,
 // containing every vertex of every triangle of the node's cells (so the triangles too). The two end
 // caps get binary trees over their fan triangles with the same bounds.
+//
+// The exact solvers descend a second tree of the same boxes, `RollerQuadtree::bounds` (issue #27,
+// the target "a scarred roller against a scarred raceway, <= 20 us"): a binary tree over the side
+// cells that halves the columns first, down to single columns, and only then the rows. In a bearing
+// the parts' axes are nearly parallel, so a contact is a strip along a generator, one or two
+// columns wide and as long as the contact line; the quadtree halves both directions at once, so it
+// reaches the strip's width only at its deepest levels and carries every node along the strip
+// through them (about 2.5x the node bounds per solve, docs/bearing.md). The quadtree itself stays as
+// it is: the paper's method (§2.4) needs its levels.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -34,6 +43,25 @@ struct QuadNode {
   double cos_mid = 1, sin_mid = 0;  ///< the frame's radial direction (cos, sin, 0)
 };
 
+/// A node of the exact solvers' bound tree (`RollerQuadtree::bounds`): the same oriented box as
+/// QuadNode's exact bound, compact (80 bytes), children contiguous.
+struct BoundNode {
+  Vec3 box_center;  ///< body frame
+  double half_r = 0, half_t = 0, half_z = 0;  ///< < 0 (half_r): no triangles (an empty root)
+  double cos_mid = 1, sin_mid = 0;            ///< the frame's radial direction (cos, sin, 0)
+  std::int32_t first_child = -1, child_count = 0;
+  std::uint32_t tri_first = 0, tri_count = 0;  ///< leaves: triangle ids tri_first .. + tri_count - 1
+};
+
+/// Column-first binary tree over the side cells (a leaf: one cell, its 2 triangles) and binary trees
+/// over the end-cap fans (leaves of at most 2 triangles), roots as RollerQuadtree's. A root may be
+/// an empty node (half_r < 0: a raceway bore's caps, raceway_scar.h).
+struct BoundTree {
+  std::vector<BoundNode> nodes;
+  std::int32_t side_root = -1, bottom_root = -1, top_root = -1;
+  bool empty() const { return nodes.empty(); }
+};
+
 /// How the calculation layer (the level where the quadtree method starts, §2.4) is chosen for a
 /// window of half-width w (the range of Eq. (1) is [phi - w, phi + w] about the contact direction phi).
 enum class CalculationLayerRule {
@@ -55,6 +83,9 @@ struct RollerQuadtree {
   std::int32_t side_root = 0, bottom_root = -1, top_root = -1;
   std::int32_t depth = 0;  ///< deepest level of the side tree
   QuadtreeOptions options;
+  /// The exact solvers' tree (above): built by build_quadtree; when empty (a tree assembled by
+  /// hand) the solvers descend `nodes`.
+  BoundTree bounds;
   /// Per level of the side tree, the largest column count (i1 - i0) of its nodes.
   std::vector<std::int32_t> level_max_columns;
   /// The calculation layer for a window half-width `half_width` (radians, e.g. interference_window()
