@@ -280,7 +280,8 @@ def main():
     ap.add_argument("--size", type=int, default=640, help="pixels per view (default 640)")
     ap.add_argument("--summary", help="write the matching summary as JSON")
     ap.add_argument("--views", default="0,1,2,3",
-                    help="which of the views from (+1,+1,+1), (-1,-1,+1), (+1,-1,-1), (-1,+1,-1) (default all: 0,1,2,3)")
+                    help="which of the views from (+1,+1,+1), (-1,-1,+1), (+1,-1,-1), (-1,+1,-1) (default all: 0,1,2,3), "
+                         "or directions X:Y:Z (towards the eye)")
     ap.add_argument("--solids", help="S,...: only these solids (an assembly's parts hide each other's holes)")
     ap.add_argument("--zoom", help="X,Y,Z,R: the views show the sphere of radius R (mm) about X,Y,Z")
     ap.add_argument("--cut", action="store_true", help="with --zoom: a cutaway, no triangle nearer the eye than X,Y,Z")
@@ -406,7 +407,7 @@ def main():
     from matplotlib.patches import Patch
 
     size = args.size
-    views = [VIEWS[int(v)] for v in args.views.split(",")]
+    views = [tuple(float(x) for x in v.split(":")) if ":" in v else VIEWS[int(v)] for v in args.views.split(",")]
     nx = 1 if len(views) == 1 else 2
     ny = (len(views) + 1) // 2 if len(views) > 1 else 1
     fig, axs = plt.subplots(ny, nx, figsize=(nx * size / 100, ny * size / 100 + 0.6), dpi=100, squeeze=False)
@@ -429,7 +430,7 @@ def main():
         tri_buf = np.where(tri_buf >= 0, vt[np.maximum(tri_buf, 0)], -1)
         ax.imshow(shade(tris, tri_buf, face_id, colours, d, size), interpolation="nearest")
         ax.set_axis_off()
-        ax.set_title("view from (%+d,%+d,%+d)" % view, fontsize=8)
+        ax.set_title("view from (%+g,%+g,%+g)" % view, fontsize=8)
         if args.no_index:
             continue
         for pts, name, col, rad in marks:
