@@ -70,6 +70,30 @@ class BearingAssembly(unittest.TestCase):
                 itf.bearing.run_assembly(path)
             self.assertIn("scars[0].part", str(cm.exception))
 
+    def test_imported_roller_scars(self):
+        # issue #27: an imported roller scar (the top-level scar with map / png / points): every
+        # scarred roller carries the measured scar; their bore / cup rows measure the mesh
+        import json
+        import tempfile
+        with open(EXAMPLE) as f:
+            d = json.load(f)
+        d["scar"] = {"fraction": 0.25, "map": "roller_bump.csv"}
+        with tempfile.TemporaryDirectory() as tmp:
+            with open(os.path.join(tmp, "roller_bump.csv"), "w") as f:
+                f.write("z\\angle_deg, -45, 0, 45\n10, 0, 0, 0\n15, 0, 0.03, 0\n20, 0, 0, 0\n")
+            path = os.path.join(tmp, "roller_scar.json")
+            with open(path, "w") as f:
+                json.dump(d, f)
+            r = itf.bearing.run_assembly(path, frames=1, seed=2)
+            scarred = {a for a, k, sc in zip(r["a"], r["kind"], r["scar"]) if k in ("roller-outer", "roller-cup") and sc}
+            self.assertTrue(scarred)
+            d["scar"]["depth"] = 0.1  # a generated-only key with an import
+            with open(path, "w") as f:
+                json.dump(d, f)
+            with self.assertRaises(ValueError) as cm:
+                itf.bearing.run_assembly(path)
+            self.assertIn("scar.depth", str(cm.exception))
+
     def test_bad_input(self):
         with self.assertRaises(ValueError) as cm:
             itf.bearing.run_assembly("/nonexistent/bearing.json")
