@@ -122,7 +122,8 @@ TEST(BearingBoundTree, ScarredSolverEqualsTheFullScanBitwise) {
   int cases = 0;
   for (const bool raised : {false, true})
     for (const double top : {-1.0, 11.5}) {
-      const Roller r = scarred(64, 63, raised, 5 + raised, top);
+      // a power-of-two grid and an odd one (uneven halvings)
+      const Roller r = top < 0 && raised ? scarred(27, 13, raised, 5, top) : scarred(64, 63, raised, 5 + raised, top);
       const RollerQuadtree q = build_quadtree(r);
       for (int k = 0; k < 24; ++k) {
         const Transform pose = roller_pose({g.in(-2, 2), g.in(-2, 2), g.in(-2, 2)}, g.in(0, 0.3), g.in(0, 6.3), g.in(0, 6.3));
@@ -152,12 +153,14 @@ TEST(BearingBoundTree, ScarredSolverEqualsTheFullScanBitwise) {
 TEST(BearingBoundTree, RacewayTermsEqualFullScans) {
   // the pair solver's raceway term against surface_reference over the whole raceway grid, the convex
   // roller term against surface_reference over the roller, and a bore's roller term against the
-  // largest rho - (R - raise) over every roller vertex (the roller inside the width)
+  // largest rho - (R - raise) over every roller vertex (the roller inside the width); pitted and
+  // raised rollers and raceways
   SplitMix g{41};
-  const Roller rl = scarred(64, 63, false, 9);
-  const RollerQuadtree tree = build_quadtree(rl);
+  for (const bool roller_raised : {false, true})
   for (const bool concave : {false, true})
     for (const bool raised : {false, true}) {
+      const Roller rl = scarred(64, 63, roller_raised, 9);
+      const RollerQuadtree tree = build_quadtree(rl);
       const double R = concave ? 100.1 : 80;
       const RacewayGeometry geo{.surface = concave ? RacewaySurface::outer : RacewaySurface::inner, .z0 = -25,
                                 .width = 50, .radius = R, .top_radius = R};
@@ -177,10 +180,11 @@ TEST(BearingBoundTree, RacewayTermsEqualFullScans) {
         const RacewayPairRoller roller{posed_cylinder(10, -1, 38, pose), &rl, &tree, pose};
         const RacewayScarPairResult r = raceway_scar_pair(roller, ring);
         EXPECT_EQ(r.raceway_term, surface_reference(s->surface, sp, raceway_term_roller_solid(roller)).distance)
-            << concave << raised << " " << k;
+            << roller_raised << concave << raised << " " << k;
         if (!concave) {
           Cylinder b;
           b.base = sp.t, b.axis = {0, 0, 1}, b.height = 50, b.radius = R + s->raise;
+          // (the roller's cylinder in the raceway term is grown by its raise: raceway_term_roller_solid)
           EXPECT_EQ(r.roller_term, surface_reference(rl, pose, b).distance) << raised << " " << k;
         } else {
           double best = -1e300;
@@ -188,7 +192,7 @@ TEST(BearingBoundTree, RacewayTermsEqualFullScans) {
             const Vec3 x = pose.apply(v);
             ASSERT_GT(x.z, -25);
             ASSERT_LT(x.z, 25);
-            best = std::max(best, std::hypot(x.x, x.y) - (R - s->raise));
+            best = std::max(best, std::hypot(x.x, x.y) - (R - s->raise));  // every vertex, in the width
           }
           EXPECT_NEAR(r.roller_term, -best, 1e-13 * R) << raised << " " << k;
         }
