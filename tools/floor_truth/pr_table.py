@@ -38,8 +38,9 @@ lines = ["<!-- floor-truth:begin -->",
          "added to both after the first comparison (CTC-01 and FTC-10 mismatches: faces standing on a base plate).",
          "The parts and the 17 labels are the hole truth set's; the STEP files stay in `../shared/data/step` (skipped",
          "when absent). Checked by rendering (2026-11-29, `tools/hole_truth/render_labels.py --floors`: floors in the",
-         "type's colour, walls lighter; 10 of the 13 parts with features looked at, not AS1, trimesh_base_interface and",
-         "trimesh_box_sides). What they show: gmsh_Angled's",
+         "type's colour, walls lighter; 12 of the 13 parts with features looked at, not trimesh_box_sides' 98). What",
+         "they show: AS1's steps are its L-brackets' inner corners, trimesh_base_interface's slots its two edge notches;",
+         "gmsh_Angled's",
          "pockets are its hex nut traps; FTC-10's pocket, slots and steps, featuretype's pockets (one with an island)",
          "and blind slots are what one sees; engraved NIST letters are pockets (two letters each on CTC-01, CTC-02,",
          "FTC-06, FTC-09); CTC-01's three slots are a rectangular through window and edge notches read from an end",
@@ -82,6 +83,8 @@ lines += ["", "Per type: truth features, found (any type), found with their type
           "| type | truth | found | typed | reported |", "|---|---|---|---|---|"]
 for k, v in sorted(now["types"].items()):
     lines.append("| %s | %d | %d | %d | %d |" % (k, v["truth"], v["found"], v["typed_found"], v["reported"]))
+lines += ["", "![gmsh_Block's floor labels after the fixes: every cooling-fin gap a slot (red), blind slots beside the ribs "
+          "(blue), walls lighter](images/floor_truth_block.png)"]
 lines.append("<!-- floor-truth:end -->")
 section = "\n".join(lines) + "\n"
 

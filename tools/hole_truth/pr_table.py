@@ -106,7 +106,10 @@ for part, verdict, note in RENDER_CHECK:
     lines.append("| %s | %s | %s |" % (part, verdict, note))
 lines += ["",
           "Not checked by eye: the inside of closed cavities beyond the cutaways (gmsh_Block's crankcase, FTC-07's",
-          "bosses) rests on the tool's list of unlabelled concave surfaces, which has no full-circle entry on any part."]
+          "bosses) rests on the tool's list of unlabelled concave surfaces, which has no full-circle entry on any part.",
+          "",
+          "![CTC-01's hole labels rendered: through holes red, blind holes blue, unlabelled concave walls yellow]"
+          "(images/hole_truth_ctc01.png)"]
 lines.append("<!-- hole-truth:end -->")
 section = "\n".join(lines) + "\n"
 

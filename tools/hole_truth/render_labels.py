@@ -462,7 +462,8 @@ def main():
     fig.suptitle("%s: %s" % (title, ", ".join(x for x in (("%d holes" % nh) if args.holes else "",
                                                              ("%d floor features" % nf) if args.floors else "") if x)),
                  fontsize=9)
-    fig.subplots_adjust(left=0.005, right=0.995, top=0.95, bottom=0.05, wspace=0.01, hspace=0.06)
+    fig_h = ny * size / 100 + 0.6  # inches: room for the title above and the legend below
+    fig.subplots_adjust(left=0.005, right=0.995, top=1 - 0.4 / fig_h, bottom=0.55 / fig_h, wspace=0.01, hspace=0.06)
     fig.savefig(args.out)
     return report(summary, args)
 
