@@ -104,7 +104,11 @@ def run_mpi(mpi, scene_file, k, tag):
         raise SystemExit("interfere-mpi failed: " + p.stderr[-2000:])
     with open(out) as f:
         r = json.load(f)
-    return {"k": k, "job_s": r["seconds"], "mpirun_s": wall, "load": load, "ranks": r["mpi"]["per_rank"], "report": out,
+    ranks = r["mpi"]["per_rank"]
+    merge = r["mpi"].get("merge", {"wall_s": 0.0, "cpu_s": 0.0})
+    for x in ranks:  # busy: the rank's CPU seconds, rank 0's merge after the others' end included
+        x["busy_cpu_s"] = x["cpu_s"] + (merge["cpu_s"] if x["rank"] == 0 else 0.0)
+    return {"k": k, "job_s": r["seconds"], "mpirun_s": wall, "load": load, "ranks": ranks, "merge": merge, "report": out,
             "summary": r["summary"]}
 
 
@@ -181,6 +185,9 @@ def main():
                 reads.append(((x["triangles_read"],), x["load_cpu_s"]))
     pair_s, pair_tri_s, body_tri_s = nnls(rows, ["pair", "pair_tri", "body_tri"])
     (read_tri_s,) = nnls(reads, ["read_tri"])
+    # rank 0's gather and merge after its engine call, per candidate pair (its CPU seconds; K = 1
+    # runs: no waiting for another rank in them)
+    merge_pair_s = med([r["merge"]["cpu_s"] / max(1, r["summary"]["candidate_pairs"]) for r in runs + fit_runs if r["k"] == 1])
     base_mb = min(x["peak_rss_mb"] for r in runs + fit_runs for x in r["ranks"])
     tri_bytes = max((x["peak_rss_mb"] - base_mb) * 1e6 / x["triangles_read"] for r in runs + fit_runs for x in r["ranks"] if x["triangles_read"])
 
@@ -200,7 +207,7 @@ def write_doc(v):
     runs, n, s = v["runs"], v["n"], v["s"]
     by_k = {k: [r for r in runs if r["k"] == k] for k in (1, 2)}
     job = {k: med([r["job_s"] for r in by_k[k]]) for k in (1, 2)}
-    cpu_max = {k: med([max(x["cpu_s"] for x in r["ranks"]) for r in by_k[k]]) for k in (1, 2)}
+    cpu_max = {k: med([max(x["busy_cpu_s"] for x in r["ranks"]) for r in by_k[k]]) for k in (1, 2)}
     peak = {k: med([max(x["peak_rss_mb"] for x in r["ranks"]) for r in by_k[k]]) for k in (1, 2)}
     summ = runs[0]["summary"]
     L = []
@@ -217,15 +224,16 @@ def write_doc(v):
              % (v["gen_s"], n, v["tri_per_body"], summ["candidate_pairs"], summ["clashes"], 100.0 * summ["clashes"] / max(1, summ["candidate_pairs"])))
     L.append("")
     L.append("`interfere-mpi clash --scene scene.json --threads 1` on K = 1 and K = 2 ranks, alternated, %d times each. Job s: "
-             "rank 0's time from its start to the report (the report's `seconds`; the whole `mpirun` adds start-up and Open "
-             "MPI's ~2 s teardown after exit status 1); CPU s: each rank's user + system time (getrusage), which the other "
-             "work on the cores does not inflate; peak: each rank's peak resident memory. Load: the 1-minute load average "
+             "rank 0's time from its start to the merged result (the report's `seconds`; the whole `mpirun` adds start-up, "
+             "writing the report and Open MPI's ~2 s teardown after exit status 1); CPU s: each rank's user + system time "
+             "(getrusage) to the end of its engine call, rank 0's merge after it (the report's `mpi.merge`) added to rank "
+             "0's, which the other work on the cores inflates less than wall time; peak: each rank's peak resident memory. Load: the 1-minute load average "
              "before the run (2 cores: above 2, the ranks share their cores with other processes).\n" % v["repeats"])
     L.append("| run | K | load | job s | mpirun s | rank: pairs, bodies read, read s, engine s, CPU s, peak MB |")
     L.append("|---:|---:|---:|---:|---:|---|")
     for i, r in enumerate(runs):
         L.append("| %d | %d | %.2f | %.1f | %.1f | %s |" % (i // 2 + 1, r["k"], r["load"], r["job_s"], r["mpirun_s"], "; ".join(
-            "%d: %d, %d, %.1f, %.1f, %.1f, %.0f" % (x["rank"], x["pairs"], x["bodies_read"], x["load_s"], x["engine_s"], x["cpu_s"], x["peak_rss_mb"])
+            "%d: %d, %d, %.1f, %.1f, %.1f, %.0f" % (x["rank"], x["pairs"], x["bodies_read"], x["load_s"], x["engine_s"], x["busy_cpu_s"], x["peak_rss_mb"])
             for x in r["ranks"])))
     L.append("")
     L.append("Medians: K = 1 job %.1f s, busiest rank's CPU %.1f s, peak %.0f MB; K = 2 job %.1f s, busiest rank's CPU %.1f s, "
@@ -244,21 +252,28 @@ def write_doc(v):
              "%.2f of `interfere clash --scene` (%.0f MB)."
              % (peak[2] / peak[1], peak[2], peak[1], peak[2] / v["single_rss_mb"], v["single_rss_mb"]))
     L.append("")
-    L.append("Where a rank's time goes (the report's `mpi.per_rank[].phases`; medians over the runs of the busiest rank's "
-             "CPU seconds, wall seconds in brackets): inputs = the scene file parsed and checksummed, read = its share of the "
-             "bodies read, exchange = every body's metadata and box received, plan = broad phase and partition, read_pairs = "
-             "bodies its pairs need that it did not read, engine = its engine call.\n")
+    L.append("Where a rank's time goes (the report's `mpi.per_rank[].phases` and `mpi.merge`; medians over the runs of each "
+             "rank's CPU seconds, wall seconds in brackets): inputs = the scene file parsed and checksummed and the files of "
+             "every K-th entry checked, read = its share of the bodies read, exchange = every body's metadata and box "
+             "received, plan = broad phase and partition, read_pairs = bodies its pairs need that it did not read, engine = "
+             "its engine call, merge = rank 0's gather of the ranks' findings and merge (its wall seconds include waiting "
+             "for the last rank).\n")
     names = ["inputs", "read", "exchange", "plan", "read_pairs", "engine"]
-    L.append("| K | " + " | ".join(names) + " |")
-    L.append("|---:|" + "---:|" * len(names))
+    L.append("| K | rank | " + " | ".join(names) + " | merge | CPU s in all |")
+    L.append("|---:|---:|" + "---:|" * (len(names) + 2))
     for k in (1, 2):
-        busiest = [max(r["ranks"], key=lambda x: x["cpu_s"]) for r in by_k[k]]
-        L.append("| %d | %s |" % (k, " | ".join("%.1f (%.1f)" % (med([b["phases"][p]["cpu_s"] for b in busiest]),
-                                                                 med([b["phases"][p]["wall_s"] for b in busiest])) for p in names)))
+        for q in range(k):
+            xs = [r["ranks"][q] for r in by_k[k]]
+            merge = "%.1f (%.1f)" % (med([r["merge"]["cpu_s"] for r in by_k[k]]), med([r["merge"]["wall_s"] for r in by_k[k]])) if q == 0 else ""
+            L.append("| %d | %d | %s | %s | %.1f |" % (k, q, " | ".join("%.1f (%.1f)" % (med([x["phases"][p]["cpu_s"] for x in xs]),
+                                                                               med([x["phases"][p]["wall_s"] for x in xs])) for p in names),
+                                                     merge, med([x["busy_cpu_s"] for x in xs])))
     L.append("")
-    L.append("What does not shrink with K: every rank parses the whole scene file (inputs), receives every body's metadata "
-             "and box (exchange), and runs the whole broad phase and the partition (plan: deterministic, the same "
-             "everywhere), and the MPI run-time and libraries (about %.0f MB resident in the smallest rank seen)." % v["base_mb"])
+    L.append("What does not shrink with K: every rank parses the whole scene file (inputs; it asks the file system only "
+             "for every K-th entry's file), receives every body's metadata and box (exchange), and runs the whole broad "
+             "phase and the partition (plan: deterministic, the same everywhere); rank 0 gathers and merges every rank's "
+             "findings (merge: the partition gives rank 0 that much less engine work, `merge_pair_s` below); and the MPI "
+             "run-time and libraries (about %.0f MB resident in the smallest rank seen)." % v["base_mb"])
     L.append("")
     L.append("## Cost model\n")
     L.append("Fitted by non-negative least squares (no intercept, relative residuals) to every rank's engine CPU seconds (getrusage around its "
@@ -269,11 +284,14 @@ def write_doc(v):
     L.append("    engine time of a rank = %.3g s x pairs + %.3g s x (its pairs' triangles, both bodies) + %.3g s x (triangles of the bodies it holds)"
              % (v["pair_s"], v["pair_tri_s"], v["body_tri_s"]))
     L.append("    read time of a rank   = %.3g s x triangles read (CPU seconds of its reads and metadata exchange)" % v["read_tri_s"])
+    L.append("    merge on rank 0       = %.3g s x candidate pairs (rank 0's CPU seconds of its gather and merge, K = 1 runs, median)"
+             % v["merge_pair_s"])
     L.append("    memory of a rank      = %.0f MB + %.0f bytes x triangles read (the largest measured ratio)\n" % (v["base_mb"], v["tri_bytes"]))
-    L.append("`interfere-mpi clash --cost-model %.3g,%.3g,%.3g,%.3g` makes the partitioner balance this model (plan.h `CostModel`, "
-             "whose defaults are an earlier fit of this script); a rank's estimated cost is its pairs' cost plus its bodies' "
-             "(model building) plus reading the bodies it did not read in the first step.\n"
-             % (v["pair_s"], v["pair_tri_s"], v["body_tri_s"], v["read_tri_s"]))
+    L.append("`interfere-mpi clash --cost-model %.3g,%.3g,%.3g,%.3g,%.3g` makes the partitioner balance this model (plan.h `CostModel`, "
+             "whose defaults are an earlier fit of this script: the runs above used them); a rank's estimated cost is its "
+             "pairs' cost plus its bodies' (model building) plus reading the bodies it did not read in the first step, and "
+             "rank 0's run of the curve is shorter by its merge.\n"
+             % (v["pair_s"], v["pair_tri_s"], v["body_tri_s"], v["read_tri_s"], v["merge_pair_s"]))
     L.append("Fit residuals, per rank (measured engine CPU s / modelled):")
     L.append("")
     for r in runs + v["fit_runs"]:

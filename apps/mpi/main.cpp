@@ -28,7 +28,9 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <tuple>
+#include <unordered_map>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -67,7 +69,7 @@ struct Options {
   std::string fem_field, fem_disp, fem_split = "auto";
   double fem_scale = 1;
   bool fem_linear_faces = false, reference = true;
-  CostModel cost;  ///< --cost-model PAIR_S,PAIR_TRI_S,BODY_TRI_S,READ_TRI_S (default: plan.h, fitted in docs/scaling.md)
+  CostModel cost;  ///< --cost-model PAIR_S,PAIR_TRI_S,BODY_TRI_S,READ_TRI_S[,MERGE_PAIR_S] (default: plan.h, fitted in docs/scaling.md)
 };
 
 const char* kUsage =
@@ -75,7 +77,7 @@ const char* kUsage =
     "         [--frame-pairs-csv OUT] [--motion FILE] [--baseline FILE] [--units U] [--group-by pair|location|none]\n"
     "         [--group-distance D] [--test TEXT]... [--tests FILE] [--clearance D] [--tolerance T] [--fail-on LIST]\n"
     "         [--field NAME] [--disp FILE] [--scale S] [--split MODE] [--linear-faces] [--no-reference]\n"
-    "         [--threads N] [--memory-limit MB] [--cost-model PAIR_S,PAIR_TRI_S,BODY_TRI_S,READ_TRI_S] [--quiet]\n"
+    "         [--threads N] [--memory-limit MB] [--cost-model PAIR_S,PAIR_TRI_S,BODY_TRI_S,READ_TRI_S[,MERGE_PAIR_S]] [--quiet]\n"
     "The report is the one of `interfere clash --scene FILE` (docs/report.md) plus \"mpi\"; docs/mpi.md.\n"
     "Exit status: 0 clear, contact or clearance; 1 clash (or a verdict named by --fail-on); 2 usage or input error,\n"
     "on any rank (message on stderr, nothing written); 3 undecided.\n";
@@ -182,8 +184,10 @@ Options parse(int argc, char** argv) {
         c.push_back(number(v.substr(from, comma - from)));
         from = comma + 1;
       }
-      if (c.size() != 4) throw UsageError("--cost-model: '" + v + "' is not four numbers PAIR_S,PAIR_TRI_S,BODY_TRI_S,READ_TRI_S");
-      o.cost = {.pair_s = c[0], .pair_tri_s = c[1], .body_tri_s = c[2], .read_tri_s = c[3]};
+      if (c.size() != 4 && c.size() != 5)
+        throw UsageError("--cost-model: '" + v + "' is not four or five numbers PAIR_S,PAIR_TRI_S,BODY_TRI_S,READ_TRI_S[,MERGE_PAIR_S]");
+      o.cost.pair_s = c[0], o.cost.pair_tri_s = c[1], o.cost.body_tri_s = c[2], o.cost.read_tri_s = c[3];
+      if (c.size() == 5) o.cost.merge_pair_s = c[4];
     } else if (a == "--quiet" || a == "-q") o.quiet = true;
     else if (a == "--help" || a == "-h") throw InfoRequest{kUsage};
     else if (a == "--version") throw InfoRequest{std::string("interfere-mpi ") + INTERFERE_VERSION + "\n"};
@@ -232,16 +236,10 @@ void write_file(const std::string& path, const std::string& text) {
 // equal file size, so that a rank reads neighbours in the file (a product's files are usually
 // listed part by part, and a generated one in space order) and the partition can leave most
 // bodies' pairs with the rank that read them already (plan.h: the read cost is saved there).
-// The file sizes: each rank asks the file system for every K-th entry's, then they are exchanged.
-std::vector<std::uint32_t> first_readers(const scene::SceneSpec& spec, const World& w) {
+// The file sizes: each rank asked the file system for every K-th entry's (checked_share: `mine`,
+// one 8-byte size + 1 each), then they are exchanged.
+std::vector<std::uint32_t> first_readers(const scene::SceneSpec& spec, const World& w, const std::string& mine) {
   const std::size_t m = spec.bodies.size(), k = static_cast<std::size_t>(w.size);
-  std::string mine;
-  for (std::size_t i = static_cast<std::size_t>(w.rank); i < m; i += k) {
-    std::error_code ec;
-    const std::uint64_t s = std::filesystem::file_size(spec.bodies[i].file, ec);
-    const std::uint64_t v = (ec ? 0 : s) + 1;
-    mine.append(reinterpret_cast<const char*>(&v), sizeof v);
-  }
   const std::vector<std::string> all = allgather(mine);
   std::vector<std::uintmax_t> size(m);
   std::uintmax_t total = 0;
@@ -259,6 +257,29 @@ std::vector<std::uint32_t> first_readers(const scene::SceneSpec& spec, const Wor
     before += size[i];
   }
   return reader;
+}
+
+// Every K-th entry's file, from this rank's (rank, rank + K, ...): checked as read_scene_file
+// checks it (the scene file is parsed with check_body_files off, so that no rank stats every file
+// of the product); their sizes (+ 1, 8 bytes each) for first_readers. A problem: the entry's index
+// and read_scene_file's message (the ranks' first one in file order is reported, as one process).
+struct Share {
+  std::string sizes;
+  std::size_t bad = SIZE_MAX;
+  std::string why;
+};
+Share checked_share(const scene::SceneSpec& spec, const World& w) {
+  Share out;
+  for (std::size_t i = static_cast<std::size_t>(w.rank); i < spec.bodies.size(); i += static_cast<std::size_t>(w.size)) {
+    const Expected<std::uintmax_t> size = scene::check_body_file(spec.bodies[i]);
+    if (!size) {
+      out.bad = i, out.why = size.error().message();
+      break;
+    }
+    const std::uint64_t v = static_cast<std::uint64_t>(*size) + 1;
+    out.sizes.append(reinterpret_cast<const char*>(&v), sizeof v);
+  }
+  return out;
 }
 
 // --memory-limit MB: the rank's address space may grow by MB beyond what it has mapped now (after
@@ -319,11 +340,12 @@ int run(const World& w, int argc, char** argv) {
   // goes on alone).
   std::optional<scene::SceneSpec> spec;
   std::string motion, baseline_text, token;
+  Share share;
   try {
     const std::string scene_text = read_bytes(o.scene, "--scene");
     std::uint64_t sum = fnv1a(0xcbf29ce484222325ULL, scene_text);
     for (int i = 1; i < argc; ++i) sum = fnv1a(sum, std::string(argv[i]) + '\0');
-    auto s = scene::read_scene_file(o.scene);
+    auto s = scene::read_scene_file(o.scene, {.check_body_files = false});  // (each rank checks its share below)
     if (!s) throw UsageError(s.error().message());
     spec = std::move(*s);
     motion = !o.motion.empty() ? o.motion : spec->motion;
@@ -345,12 +367,24 @@ int run(const World& w, int argc, char** argv) {
         throw UsageError(std::string(flag) + " " + *out + ": is the scene file");
     }
     token = "S" + std::to_string(sum);
+    share = checked_share(*spec, w);
+    if (share.bad != SIZE_MAX) token = "F" + std::to_string(share.bad) + "\n" + share.why;
   } catch (const UsageError& e) {
     token = std::string("E") + e.what();
   }
   {
     const std::vector<std::string> tokens = allgather(token);
     bool failed = false;
+    // An entry's file missing (its rank's check): the first in file order, as one process says it.
+    std::size_t first_bad = SIZE_MAX;
+    std::string first_why;
+    for (const std::string& t : tokens)
+      if (t[0] == 'F')
+        if (const std::size_t i = std::stoull(t.substr(1)); i < first_bad) first_bad = i, first_why = t.substr(t.find('\n') + 1);
+    if (first_bad != SIZE_MAX && std::none_of(tokens.begin(), tokens.end(), [](const std::string& t) { return t[0] == 'E'; })) {
+      if (w.rank == 0) std::fprintf(stderr, "interfere: error: %s\n", first_why.c_str());
+      return 2;
+    }
     for (int r = 0; r < w.size; ++r) {
       const std::string& t = tokens[static_cast<std::size_t>(r)];
       if (t[0] == 'E') {
@@ -382,7 +416,7 @@ int run(const World& w, int argc, char** argv) {
   // 1. This rank's share of the entries: metadata, triangle counts, local boxes.
   const auto t_load = Clock::now();
   const double cpu_load1 = cpu_seconds();
-  const std::vector<std::uint32_t> entry_reader = first_readers(*spec, w);
+  const std::vector<std::uint32_t> entry_reader = first_readers(*spec, w, share.sizes);
   std::vector<std::size_t> mine;
   for (std::size_t i = 0; i < entry_reader.size(); ++i)
     if (entry_reader[i] == static_cast<std::uint32_t>(w.rank)) mine.push_back(i);
@@ -431,6 +465,7 @@ int run(const World& w, int argc, char** argv) {
       b.triangles = l.scene.bodies[k].mesh->num_triangles();
       for (const Vec3& p : l.scene.bodies[k].mesh->positions) b.local_box.expand(p);
       b.spec = static_cast<std::uint32_t>(s), b.ordinal = k;
+      if (l.zero_clearance_fits.reach && l.zero_clearance_fits.check) b.fit_reach = l.zero_clearance_fits.reach(k);
       my_info.push_back(std::move(b));
     }
   }
@@ -467,7 +502,8 @@ int run(const World& w, int argc, char** argv) {
   });
   const auto n = static_cast<std::uint32_t>(info.size());
   {
-    std::map<std::string, std::uint32_t> seen;
+    std::unordered_map<std::string_view, std::uint32_t> seen;
+    seen.reserve(n);
     for (std::uint32_t i = 0; i < n; ++i)
       if (const auto [it, added] = seen.emplace(info[i].meta.id, i); !added)
         throw UsageError(spec->bodies[info[i].spec].where + ": body id '" + info[i].meta.id + "' also belongs to " +
@@ -535,14 +571,33 @@ int run(const World& w, int argc, char** argv) {
       poses[pass] = pose;
     }
   }
-  BroadResult broad = broad_phase(skeleton.bodies, tests, boxes, uncounted);
+  // Zero-clearance fits of STEP assemblies (static scenes, as the engine's hook): the pairs whose
+  // broad boxes grown by the bodies' reach overlap are units too (an uncounted box set, as the
+  // engine asks them apart from its candidates), so that each is decided on one rank, whose engine
+  // call classifies it as one process does (SceneClashOptions::zero_clearance_fits, decide_pairs).
+  bool any_reach = false;
+  for (std::uint32_t i = 0; i < n; ++i) any_reach = any_reach || info[i].fit_reach > 0;
+  const bool fits = any_reach && !moving;
+  BroadResult broad = [&] {
+    if (!fits) return broad_phase(skeleton.bodies, tests, boxes, uncounted);
+    std::vector<std::vector<AabbF>> sets{boxes[0], boxes[0]};
+    for (std::uint32_t i = 0; i < n; ++i) {
+      AabbF& g = sets[0][i];
+      const double r = info[i].fit_reach;
+      if (!(r > 0) || !(g.lo[0] <= g.hi[0])) continue;
+      for (int k = 0; k < 3; ++k) g.lo[k] = round_down(double(g.lo[k]) - r), g.hi[k] = round_up(double(g.hi[k]) + r);
+    }
+    return broad_phase(skeleton.bodies, tests, sets, 1);
+  }();
+  if (fits) poses.insert(poses.begin(), poses[0]);  // (join_classes: one pose set per box set)
   for (Unit& u : broad.units) u.cost = o.cost.pair(info[u.a].triangles, info[u.b].triangles) * u.frames;
   std::vector<std::uint64_t> triangles(n), mesh_keys(n);
   for (std::uint32_t i = 0; i < n; ++i) triangles[i] = info[i].triangles, mesh_keys[i] = info[i].mesh_key;
   join_classes(broad, mesh_keys, poses);  // (pairs the engine decides once stay on one rank)
   std::vector<std::uint32_t> reader(n);
   for (std::uint32_t i = 0; i < n; ++i) reader[i] = entry_reader[info[i].spec];
-  const Partition part = partition(broad, boxes[0], triangles, o.cost, static_cast<std::size_t>(w.size), reader);
+  const Partition part = partition(broad, boxes[0], triangles, o.cost, static_cast<std::size_t>(w.size), reader,
+                                   o.cost.merge(broad.units.size()));  // (rank 0 merges after its engine call)
   if (talk)
     std::fprintf(stderr, "[interfere-mpi] %u bodies, %zu candidate pairs (%zu units) on %d ranks: estimated cost per rank %s\n",
                  n, broad.candidate_pairs, broad.units.size(), w.size, [&] {
@@ -622,6 +677,20 @@ int run(const World& w, int argc, char** argv) {
         const scene::LoadedScene& l = loaded.at(ia.spec);
         return l.nominal_fit && l.nominal_fit(ia.ordinal, ib.ordinal, wa, wb, r, depth);
       };
+    if (fits) {
+      bool any = false;
+      for (const std::uint32_t i : my_bodies) any = any || info[i].fit_reach > 0;
+      if (any) {
+        eo.zero_clearance_fits.reach = [&](std::uint32_t a) { return info[my_bodies[a]].fit_reach; };
+        eo.zero_clearance_fits.check = [&](std::uint32_t a, std::uint32_t b, double* gap) {
+          const BodyInfo& ia = info[my_bodies[a]];
+          const BodyInfo& ib = info[my_bodies[b]];
+          if (ia.spec != ib.spec) return false;  // (bodies of different files share no B-Rep faces)
+          const scene::LoadedScene& l = loaded.at(ia.spec);
+          return l.zero_clearance_fits.check && l.zero_clearance_fits.check(ia.ordinal, ib.ordinal, gap);
+        };
+      }
+    }
     for (const std::uint32_t k : my_units) eo.decide_pairs.emplace_back(local[broad.units[k].a], local[broad.units[k].b]);
     scene::SceneClashResult r = scene::clash_scene(sub, tests, eo);
     ++mine_result.calls;
@@ -674,6 +743,8 @@ int run(const World& w, int argc, char** argv) {
   mine_result.cpu_seconds = cpu_seconds();
 
   // 4. Rank 0 merges and writes the report.
+  const auto t_merge = Clock::now();
+  const double cpu_merge = cpu_seconds();
   const std::vector<std::string> results = gather(encode(mine_result));
   int status = 0;
   if (w.rank == 0) {
@@ -686,6 +757,9 @@ int run(const World& w, int argc, char** argv) {
     if (!o.baseline.empty())
       if (const Status s = scene::apply_baseline(result, baseline_text, o.baseline); !s) throw UsageError(s.error().message());
     status = verdict_exit_status(result.verdict, o.fail_on.empty() ? FailOn{} : *parse_fail_on(o.fail_on));
+    // (the gather, waiting for the last rank included, and the merge: CostModel::merge_pair_s)
+    const std::array<double, 2> merge_s{since(t_merge), cpu_seconds() - cpu_merge};
+    const double seconds = since(t_total);
     std::vector<std::string> inputs;
     std::set<std::string> listed;
     for (const scene::BodySpec& b : spec->bodies)  // (each file once, as load_scene lists them)
@@ -694,7 +768,7 @@ int run(const World& w, int argc, char** argv) {
     scene::ReportContext ctx{.command = "clash", .tool_version = INTERFERE_VERSION, .inputs = inputs,
                              .threads = static_cast<int>(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)),
                              .total_seconds = since(t_total), .exit_status = status, .warnings = all_input_warnings};
-    if (!o.json.empty()) write_file(o.json, report_with_mpi(scene::report_json(skeleton, tests, result, ctx), triangles, per_rank, part, since(t_total)));
+    if (!o.json.empty()) write_file(o.json, report_with_mpi(scene::report_json(skeleton, tests, result, ctx), triangles, per_rank, part, seconds, merge_s));
     if (!o.csv.empty()) write_file(o.csv, scene::clash_table_csv(skeleton, result));
     if (!o.frames_csv.empty()) write_file(o.frames_csv, scene::frames_table_csv(result));
     if (!o.frame_pairs_csv.empty()) write_file(o.frame_pairs_csv, scene::frame_pairs_table_csv(skeleton, tests, result));

@@ -72,7 +72,8 @@ scene::SceneClashResult merge(const scene::Scene& skeleton, const std::vector<sc
 }
 
 std::string report_with_mpi(const std::string& report, const std::vector<std::uint64_t>& triangles,
-                            const std::vector<RankResult>& ranks, const Partition& part, double seconds) {
+                            const std::vector<RankResult>& ranks, const Partition& part, double seconds,
+                            const std::array<double, 2>& merge_s) {
   nlohmann::json j = nlohmann::json::parse(report);
   for (std::size_t i = 0; i < triangles.size() && i < j["bodies"].size(); ++i) j["bodies"][i]["triangles"] = triangles[i];
   nlohmann::json per = nlohmann::json::array();
@@ -98,7 +99,7 @@ std::string report_with_mpi(const std::string& report, const std::vector<std::ui
                    {"engine_cpu_s", ranks[r].engine_cpu_seconds},
                    {"phases", phases}});
   }
-  j["mpi"] = {{"ranks", ranks.size()}, {"per_rank", per}};
+  j["mpi"] = {{"ranks", ranks.size()}, {"per_rank", per}, {"merge", {{"wall_s", merge_s[0]}, {"cpu_s", merge_s[1]}}}};
   // The envelope every command's report has (apps/cli/report_envelope.cpp, docs/report.md: the
   // clash command's options and result; seconds, the process's wall time).
   j["options"] = {{"units", j["units"]}, {"threads", j["threads"]}};

@@ -1,6 +1,7 @@
 // Rank 0's merge of the ranks' findings into one scene clash result (issue #31, item 2): the same
 // result, and so the same report, as scene::clash_scene on the whole scene on one process.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -28,8 +29,10 @@ scene::SceneClashResult merge(const scene::Scene& skeleton, const std::vector<sc
 /// The report of scene::report_json (written from a scene of metadata, meshes not sent to rank 0)
 /// with every body's triangle count and an "mpi" section: ranks, per rank its pairs, engine
 /// calls, bodies read, estimated cost, load and engine seconds and peak memory; and the envelope
-/// of every report (options, result, seconds: `seconds` the job's wall time on rank 0).
+/// of every report (options, result, seconds: `seconds` the job's wall time on rank 0, through the
+/// merge); mpi.merge: rank 0's wall and CPU seconds of the gather and merge (`merge_s`).
 std::string report_with_mpi(const std::string& report, const std::vector<std::uint64_t>& triangles,
-                            const std::vector<RankResult>& ranks, const Partition& part, double seconds);
+                            const std::vector<RankResult>& ranks, const Partition& part, double seconds,
+                            const std::array<double, 2>& merge_s);
 
 }  // namespace interfere::mpi

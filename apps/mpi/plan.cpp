@@ -41,6 +41,18 @@ BroadResult broad_phase(const std::vector<scene::Body>& bodies, const std::vecto
 
 namespace {
 
+// Lists of indices, one per item, stored flat: list i is flat[start[i] .. start[i + 1]).
+struct Lists {
+  std::vector<std::uint32_t> start, flat;
+  struct Range {
+    const std::uint32_t *b, *e;
+    const std::uint32_t* begin() const { return b; }
+    const std::uint32_t* end() const { return e; }
+    std::uint32_t operator[](std::size_t k) const { return b[k]; }
+  };
+  Range operator[](std::size_t i) const { return {flat.data() + start[i], flat.data() + start[i + 1]}; }
+};
+
 struct Dsu {
   std::vector<std::uint32_t> p;
   explicit Dsu(std::size_t n) : p(n) { std::iota(p.begin(), p.end(), 0u); }
@@ -117,16 +129,26 @@ void join_classes(BroadResult& broad, const std::vector<std::uint64_t>& mesh_key
 double pair_cost(std::uint64_t na, std::uint64_t nb) { return CostModel{}.pair(na, nb); }
 
 Partition partition(const BroadResult& broad, const std::vector<AabbF>& boxes, const std::vector<std::uint64_t>& triangles,
-                    const CostModel& model, std::size_t ranks, const std::vector<std::uint32_t>& reader) {
+                    const CostModel& model, std::size_t ranks, const std::vector<std::uint32_t>& reader, double first_extra) {
   Partition out;
   const std::size_t n = boxes.size();
   ranks = std::max<std::size_t>(ranks, 1);
   // Items: their units and cost. The units of a class share one core run: the costliest member's
   // cost, and 2 % of each other member's (its clashes mapped to its bodies).
+  // (items' units and bodies as flat lists with offsets: a product has ~10^6 items, most a single
+  // pair, whose lists one allocation each would cost more than the partition itself)
   std::uint32_t item_count = 0;
   for (const Unit& u : broad.units) item_count = std::max(item_count, u.item + 1);
-  std::vector<std::vector<std::uint32_t>> item_units(item_count);
-  for (std::uint32_t k = 0; k < broad.units.size(); ++k) item_units[broad.units[k].item].push_back(k);
+  const Lists item_units = [&] {
+    Lists l;
+    l.start.assign(item_count + 1, 0);
+    for (const Unit& u : broad.units) ++l.start[u.item + 1];
+    for (std::uint32_t i = 0; i < item_count; ++i) l.start[i + 1] += l.start[i];
+    l.flat.resize(broad.units.size());
+    std::vector<std::uint32_t> next(l.start.begin(), l.start.end() - 1);
+    for (std::uint32_t k = 0; k < broad.units.size(); ++k) l.flat[next[broad.units[k].item]++] = k;
+    return l;
+  }();
   std::vector<double> item_cost(item_count, 0);
   for (std::uint32_t i = 0; i < item_count; ++i) {
     double sum = 0, most = 0;
@@ -135,8 +157,9 @@ Partition partition(const BroadResult& broad, const std::vector<AabbF>& boxes, c
   }
   // Components of the candidate graph (a class joins its pairs' bodies too).
   Dsu dsu(n);
-  for (const std::vector<std::uint32_t>& units : item_units)
-    for (const std::uint32_t k : units) dsu.join(broad.units[k].a, broad.units[k].b), dsu.join(broad.units[k].a, broad.units[units[0]].a);
+  for (std::uint32_t i = 0; i < item_count; ++i)
+    for (const std::uint32_t k : item_units[i])
+      dsu.join(broad.units[k].a, broad.units[k].b), dsu.join(broad.units[k].a, broad.units[item_units[i][0]].a);
   std::vector<double> body_cost(n), read_cost(n);
   for (std::size_t i = 0; i < n; ++i) {
     body_cost[i] = model.body(i < triangles.size() ? triangles[i] : 0);
@@ -144,13 +167,17 @@ Partition partition(const BroadResult& broad, const std::vector<AabbF>& boxes, c
   }
   // Item weights: its cost and a share of its bodies' (each body's cost split among its items).
   std::vector<std::uint32_t> degree(n, 0);
-  std::vector<std::vector<std::uint32_t>> item_bodies(item_count);
+  Lists item_bodies;
+  item_bodies.start.reserve(item_count + 1);
+  item_bodies.flat.reserve(2 * broad.units.size());
+  item_bodies.start.push_back(0);
   for (std::uint32_t i = 0; i < item_count; ++i) {
-    std::vector<std::uint32_t>& b = item_bodies[i];
-    for (const std::uint32_t k : item_units[i]) b.push_back(broad.units[k].a), b.push_back(broad.units[k].b);
-    std::sort(b.begin(), b.end());
-    b.erase(std::unique(b.begin(), b.end()), b.end());
-    for (const std::uint32_t x : b) ++degree[x];
+    const auto first = static_cast<std::ptrdiff_t>(item_bodies.flat.size());
+    for (const std::uint32_t k : item_units[i]) item_bodies.flat.push_back(broad.units[k].a), item_bodies.flat.push_back(broad.units[k].b);
+    std::sort(item_bodies.flat.begin() + first, item_bodies.flat.end());
+    item_bodies.flat.erase(std::unique(item_bodies.flat.begin() + first, item_bodies.flat.end()), item_bodies.flat.end());
+    item_bodies.start.push_back(static_cast<std::uint32_t>(item_bodies.flat.size()));
+    for (const std::uint32_t x : item_bodies[i]) ++degree[x];
   }
   std::vector<double> weight(item_count);
   double total = 0;
@@ -193,7 +220,9 @@ Partition partition(const BroadResult& broad, const std::vector<AabbF>& boxes, c
   // Giants first: an item heavier than the mean of what is left gets a rank of its own (the last
   // ranks); the rest of the curve is cut into runs over the other ranks below.
   std::vector<std::uint32_t> rank_of(item_count, UINT32_MAX);
-  std::vector<std::uint32_t> by_weight(item_count);
+  // (no item heavier than the mean, as in most products: no sort needed)
+  const bool giants = ranks > 1 && std::any_of(weight.begin(), weight.end(), [&](double x) { return x > total / static_cast<double>(ranks); });
+  std::vector<std::uint32_t> by_weight(giants ? item_count : 0);
   std::iota(by_weight.begin(), by_weight.end(), 0u);
   std::stable_sort(by_weight.begin(), by_weight.end(), [&](std::uint32_t x, std::uint32_t y) { return weight[x] > weight[y]; });
   double left = total;
@@ -213,10 +242,13 @@ Partition partition(const BroadResult& broad, const std::vector<AabbF>& boxes, c
   for (const std::uint32_t i : order)
     if (rank_of[i] == UINT32_MAX) curve.push_back(i);
   std::vector<std::uint32_t> stamp(n, UINT32_MAX);  // the last run that holds a body
+  // Rank 0 merges every rank's findings after its engine call (first_extra seconds): its run
+  // starts that much full, so that it ends with the others (only when it takes part in the cut).
+  const double extra = free_ranks > 1 ? first_extra : 0.0;
   const auto fill = [&](double bound, bool assign) {
     std::fill(stamp.begin(), stamp.end(), UINT32_MAX);
     std::uint32_t q = 0;
-    double acc = 0;
+    double acc = extra;  // (rank 0's run starts with its work after the engine)
     std::size_t runs = curve.empty() ? 0 : 1;
     const auto added = [&](std::uint32_t i, std::uint32_t run) {
       double c = item_cost[i];
@@ -237,7 +269,7 @@ Partition partition(const BroadResult& broad, const std::vector<AabbF>& boxes, c
     }
     return runs;
   };
-  double lo = 0, whole = 0;
+  double lo = extra, whole = extra;
   for (const std::uint32_t i : curve) {
     lo += weight[i];
     double c = item_cost[i];
@@ -258,19 +290,19 @@ Partition partition(const BroadResult& broad, const std::vector<AabbF>& boxes, c
   out.rank_units.assign(ranks, {});
   out.rank_bodies.assign(ranks, {});
   out.rank_cost.assign(ranks, 0);
-  std::vector<std::vector<std::uint32_t>> holders(n);
   for (std::uint32_t i = 0; i < item_count; ++i) {
     const std::uint32_t q = rank_of[i];
     out.rank_units[q].insert(out.rank_units[q].end(), item_units[i].begin(), item_units[i].end());
     out.rank_cost[q] += item_cost[i];
-    for (const std::uint32_t x : item_bodies[i])
-      if (std::find(holders[x].begin(), holders[x].end(), q) == holders[x].end()) holders[x].push_back(q);
+    out.rank_bodies[q].insert(out.rank_bodies[q].end(), item_bodies[i].begin(), item_bodies[i].end());
   }
-  for (std::uint32_t b = 0; b < n; ++b)
-    for (const std::uint32_t q : holders[b]) {
-      out.rank_bodies[q].push_back(b);
-      out.rank_cost[q] += body_cost[b] + (!reader.empty() && reader[b] != q ? read_cost[b] : 0.0);
-    }
+  for (std::size_t q = 0; q < ranks; ++q) {
+    std::vector<std::uint32_t>& b = out.rank_bodies[q];
+    std::sort(b.begin(), b.end());
+    b.erase(std::unique(b.begin(), b.end()), b.end());
+    // (summed in body order, as before: the same rank_cost bit for bit)
+    for (const std::uint32_t x : b) out.rank_cost[q] += body_cost[x] + (!reader.empty() && reader[x] != q ? read_cost[x] : 0.0);
+  }
   for (std::vector<std::uint32_t>& u : out.rank_units) std::sort(u.begin(), u.end());
   return out;
 }

@@ -63,17 +63,22 @@ void join_classes(BroadResult& broad, const std::vector<std::uint64_t>& mesh_key
 /// two bodies and frame, and per triangle of every body a rank holds (its model and tree built
 /// once, its statistics).
 struct CostModel {
-  // Defaults: the fit of docs/scaling.md (2026-11-29, engine and read CPU seconds of the 10^5-body
-  // product and two sphere swarms at K = 1, 2; the pair-triangle term came out 0).
-  double pair_s = 1.51e-5;
+  // Defaults: the fit of docs/scaling.md of 2026-11-29 13:41 UTC (engine and read CPU seconds of
+  // the 10^5-body product and two sphere swarms at K = 1, 2; the pair-triangle term came out 0).
+  double pair_s = 2.34e-5;
   double pair_tri_s = 0;
-  double body_tri_s = 1.4e-6;
-  double read_tri_s = 4.56e-7;  ///< reading a body a rank did not read in the first step
+  double body_tri_s = 1.3e-6;
+  double read_tri_s = 4.57e-7;  ///< reading a body a rank did not read in the first step
+  /// Rank 0's gather and merge of every rank's findings after its engine call, per candidate pair
+  /// (unit) of the scene: rank 0's CPU seconds of it (the report's mpi.merge) on the lattice
+  /// product of docs/scaling.md, 2 x 10^4 bodies, K = 1: 0.25 s for 74,525 pairs (3.3e-6 s a pair).
+  double merge_pair_s = 3.5e-6;
   double pair(std::uint64_t triangles_a, std::uint64_t triangles_b) const {
     return pair_s + pair_tri_s * static_cast<double>(triangles_a + triangles_b);
   }
   double body(std::uint64_t triangles) const { return body_tri_s * static_cast<double>(triangles); }
   double read(std::uint64_t triangles) const { return read_tri_s * static_cast<double>(triangles); }
+  double merge(std::size_t units) const { return merge_pair_s * static_cast<double>(units); }
 };
 
 /// The estimated cost of a pair in one frame by the default model (CostModel{}.pair).
@@ -95,9 +100,12 @@ struct Partition {
 /// dominating); the curve is cut into runs of about equal weight over the other ranks, so a body's
 /// pairs mostly lie in one run and a rank holds a compact region of bodies (those at the runs'
 /// borders are held twice). rank_cost: each rank's items, its bodies' CostModel::body, and the
-/// read of bodies it did not read in step 2. Deterministic.
+/// read of bodies it did not read in step 2. `first_extra`: seconds rank 0 works beyond its items
+/// (merging every rank's findings: CostModel::merge), so its run of the curve is that much shorter
+/// (not counted in rank_cost). Deterministic.
 Partition partition(const BroadResult& broad, const std::vector<AabbF>& boxes, const std::vector<std::uint64_t>& triangles,
-                    const CostModel& model, std::size_t ranks, const std::vector<std::uint32_t>& reader = {});
+                    const CostModel& model, std::size_t ranks, const std::vector<std::uint32_t>& reader = {},
+                    double first_extra = 0);
 
 /// FNV-1a (64 bits) of bytes, continuing from h.
 std::uint64_t fnv1a(std::uint64_t h, const std::string& bytes);

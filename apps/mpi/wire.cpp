@@ -119,7 +119,7 @@ std::string encode(const std::vector<BodyInfo>& bodies) {
     w.raw(static_cast<std::uint32_t>(m.tags.size()));
     for (const std::string& t : m.tags) w.str(t);
     w.raw(static_cast<std::int32_t>(m.source_id_kind)), w.raw(m.tessellation_error);
-    w.raw(b.triangles), w.raw(b.local_box.lo), w.raw(b.local_box.hi), w.raw(b.spec), w.raw(b.ordinal), w.raw(b.mesh_key);
+    w.raw(b.triangles), w.raw(b.local_box.lo), w.raw(b.local_box.hi), w.raw(b.spec), w.raw(b.ordinal), w.raw(b.mesh_key), w.raw(b.fit_reach);
   }
   return std::move(w.out);
 }
@@ -142,6 +142,7 @@ std::vector<BodyInfo> decode_bodies(const std::string& bytes) {
     m.tessellation_error = r.raw<double>();
     b.triangles = r.raw<std::uint64_t>(), b.local_box.lo = r.raw<Vec3>(), b.local_box.hi = r.raw<Vec3>();
     b.spec = r.raw<std::uint32_t>(), b.ordinal = r.raw<std::uint32_t>(), b.mesh_key = r.raw<std::uint64_t>();
+    b.fit_reach = r.raw<double>();
   }
   return out;
 }

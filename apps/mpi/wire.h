@@ -24,6 +24,9 @@ struct BodyInfo {
   /// keys, one mesh. FNV-1a of "F" + the file's canonical path + unit, or "E" + entry + the
   /// ordinal of the entry's first body with that mesh.
   std::uint64_t mesh_key = 0;
+  /// How far its broad box grows to find its zero-clearance fits (scene::SceneClashOptions::
+  /// zero_clearance_fits, from a STEP assembly's B-Rep: LoadedScene::zero_clearance_fits); 0: none.
+  double fit_reach = 0;
 };
 
 /// The steps of a rank, timed (RankResult::phases; the report's mpi.per_rank[].phases).

@@ -110,17 +110,24 @@ Selection selection_at(const json& j, const std::string& path) {
   return out;
 }
 
-std::string resolve(const std::filesystem::path& dir, const std::string& file,
-                    const std::string& path) {
-  const std::filesystem::path f = file;
-  const std::filesystem::path full = f.is_relative() ? dir / f : f;
+/// Why the file `given` (resolved: `full`) cannot be read as an entry's file; empty: it can.
+std::string file_problem(const std::string& given, const std::filesystem::path& full) {
   std::error_code ec;
   const auto st = std::filesystem::status(full, ec);
   if (ec || !std::filesystem::exists(st))
-    bad(path, "file '" + file + "' not found" +
-                  (f.is_relative() ? " (looked for " + full.string() + ")" : ""));
-  if (std::filesystem::is_directory(st))
-    bad(path, "'" + full.string() + "' is a directory, not a file");
+    return "file '" + given + "' not found" +
+           (std::filesystem::path(given).is_relative() ? " (looked for " + full.string() + ")" : "");
+  if (std::filesystem::is_directory(st)) return "'" + full.string() + "' is a directory, not a file";
+  return {};
+}
+
+/// `file` resolved against `dir`; checked (file_problem) when `check`.
+std::string resolve(const std::filesystem::path& dir, const std::string& file,
+                    const std::string& path, bool check = true) {
+  const std::filesystem::path f = file;
+  const std::filesystem::path full = f.is_relative() ? dir / f : f;
+  if (check)
+    if (std::string why = file_problem(file, full); !why.empty()) bad(path, why);
   return full.string();
 }
 
@@ -128,6 +135,7 @@ struct Reader {
   std::string file;
   std::filesystem::path dir;
   std::map<std::string, std::string> ids;  // given id -> JSON path of its first use
+  bool check_files = true;                  // SceneFileOptions::check_body_files
 
   BodySpec body(const json& j, const std::string& path) {
     object_at(j, path);
@@ -135,7 +143,8 @@ struct Reader {
     BodySpec s;
     s.where = file + ": " + path;
     if (!j.contains("file")) bad(path, "missing \"file\"");
-    s.file = resolve(dir, string_at(j["file"], json_key(path, "file")), json_key(path, "file"));
+    s.given = string_at(j["file"], json_key(path, "file"));
+    s.file = resolve(dir, s.given, json_key(path, "file"), check_files);
     if (j.contains("id")) {
       const std::string p = json_key(path, "id");
       s.id = string_at(j["id"], p);
@@ -171,7 +180,8 @@ struct Reader {
     s.where = file + ": " + path;
     s.id = key;
     if (!j.contains("file")) bad(path, "missing \"file\"");
-    s.file = resolve(dir, string_at(j["file"], json_key(path, "file")), json_key(path, "file"));
+    s.given = string_at(j["file"], json_key(path, "file"));
+    s.file = resolve(dir, s.given, json_key(path, "file"), check_files);
     if (j.contains("units")) s.units = unit_at(j["units"], json_key(path, "units"));
     if (j.contains("transform"))
       s.pose = transform_at(j["transform"], json_key(path, "transform")), s.pose_given = true;
@@ -298,15 +308,25 @@ struct Reader {
 
 }  // namespace
 
-Expected<SceneSpec> read_scene_file(const std::string& path) {
+Expected<SceneSpec> read_scene_file(const std::string& path, const SceneFileOptions& options) {
   auto j = detail::read_json_file(path);
   if (!j) return j.error();
-  Reader r{.file = path, .dir = std::filesystem::path(path).parent_path(), .ids = {}};
+  Reader r{.file = path, .dir = std::filesystem::path(path).parent_path(), .ids = {},
+           .check_files = options.check_body_files};
   try {
     return r.read(*j);
   } catch (const Bad& b) {
     return Error{.file = path, .reason = b.path.empty() ? b.reason : b.path + ": " + b.reason};
   }
+}
+
+Expected<std::uintmax_t> check_body_file(const BodySpec& body) {
+  // (read_scene_file's message: where + ".file: " + why; the resolved file is body.file)
+  if (std::string why = file_problem(body.given.empty() ? body.file : body.given, body.file); !why.empty())
+    return Error{.reason = body.where + ".file: " + why};
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(body.file, ec);
+  return ec ? std::uintmax_t{0} : size;
 }
 
 }  // namespace interfere::scene

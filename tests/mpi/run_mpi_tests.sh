@@ -56,6 +56,23 @@ if (cd "$work/step" && "$cli" clash --scene scene.json --json base.json --quiet 
     check "$py" "$here/compare_reports.py" "$work/step/single.json" "$work/step/mpi$k.json"
     echo "step --baseline --group-by location K=$k"
   done
+  # Zero-clearance fits (08528bf: pairs of instances on coincident B-Rep faces are contacts of kind
+  # zero_clearance_fit, also where the tessellations do not meet: the lifted cover is 1e-6 mm off
+  # the plate, so their broad boxes need not overlap): the same report at K = 1..3, with the fits.
+  mkdir -p "$work/fits"
+  cp "$here/../cli/data/bolted_joint.step" "$here/../cli/data/bolted_joint_lifted.step" "$work/fits/"
+  cat > "$work/fits/scene.json" <<'JSON'
+{"units": "mm", "bodies": [{"file": "bolted_joint.step", "id": "j"},
+  {"file": "bolted_joint_lifted.step", "id": "l", "transform": [1, 0, 0, 500, 0, 1, 0, 0, 0, 0, 1, 0]}]}
+JSON
+  (cd "$work/fits" && "$cli" clash --scene scene.json --json single.json --csv single.csv --quiet >/dev/null 2>&1)
+  check test "$("$py" -c 'import json,sys; print(sum(c["kind"] == "zero_clearance_fit" for c in json.load(open(sys.argv[1]))["clashes"]) > 0)' "$work/fits/single.json")" = True
+  for k in 1 2 3; do
+    (cd "$work/fits" && "${mpirun_[@]}" -n $k "$mpi" clash --scene scene.json --json mpi$k.json --csv mpi$k.csv --quiet >/dev/null 2>&1)
+    check "$py" "$here/compare_reports.py" "$work/fits/single.json" "$work/fits/mpi$k.json"
+    check cmp -s "$work/fits/single.csv" "$work/fits/mpi$k.csv"
+    echo "step zero-clearance fits K=$k"
+  done
 else
   echo "step: skipped (no STEP reader in this build)"
 fi
@@ -106,6 +123,24 @@ check test "$rc" = 2
 check grep -q "sees other inputs than rank 0" "$work/tiny/mismatch.err"
 check test ! -e "$work/tiny/x.json"
 echo "checksum mismatch: rc=$rc"
+
+# Entries whose files are missing (each rank checks only its share of the entries, every K-th):
+# exit 2 and the message of one process (the first missing file in file order), no report.
+cat > "$work/broken/missing.json" <<'JSON'
+{"bodies": [{"file": "ok1.stl", "id": "ok1"}, {"file": "ok2.stl", "id": "ok2"}, {"file": "gone1.stl", "id": "g1"},
+            {"file": "sub/gone2.stl", "id": "g2"}]}
+JSON
+(cd "$work/broken" && "$cli" clash --scene missing.json --json m.json >/dev/null 2>missing1.err)
+check test $? = 2
+check grep -q "^interfere: error: missing.json: bodies\[2\].file: file 'gone1.stl' not found" "$work/broken/missing1.err"
+for k in 2 3 4; do
+  (cd "$work/broken" && "${mpirun_[@]}" -n $k "$mpi" clash --scene missing.json --json m.json >/dev/null 2>missing$k.err)
+  rc=$?
+  check test "$rc" = 2
+  check test "$(grep '^interfere: error' "$work/broken/missing$k.err")" = "$(grep '^interfere: error' "$work/broken/missing1.err")"
+  check test ! -e "$work/broken/m.json"
+done
+echo "missing files: rc=$rc"
 
 # More ranks than bodies: a warning, and the report.
 cat > "$work/broken/two.json" <<'JSON'

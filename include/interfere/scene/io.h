@@ -2,6 +2,7 @@
 // files, mesh files and glTF scenes. STEP assemblies (cad/assembly_scene.h) and FE models
 // (fem/bodies.h) are sources in their own libraries; the CLI and Python combine them.
 #pragma once
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,7 @@ namespace interfere::scene {
 struct BodySpec {
   std::string where;  ///< "scene.json: bodies[3]" (for messages)
   std::string file;   ///< resolved against the scene file's directory
+  std::string given;  ///< "file" as the scene file gives it (messages: check_body_file)
   std::string id;     ///< given id (a file that expands to several bodies: a prefix, "ID/child")
   std::string name, path;
   std::string units;  ///< the file's unit; empty: by its format (mm, glTF metres, STEP its own)
@@ -49,7 +51,19 @@ struct SceneSpec {
 /// The two-part form of `interfere clash --scene` ({"a": {...}, "b": {...}, "units"}) reads as
 /// two bodies with ids "a" and "b". Unknown keys, wrong types, missing files and duplicate ids are
 /// errors naming the file and the JSON path ("scene.json: bodies[2].transform: ...").
-Expected<SceneSpec> read_scene_file(const std::string& path);
+///
+/// With `check_body_files` false the entries' files are resolved without asking the file system
+/// (the motion file is still checked): a caller checks the entries it reads with check_body_file
+/// (interfere-mpi: each rank its share, so that no rank stats every file of a 10^5-body product).
+struct SceneFileOptions {
+  bool check_body_files = true;
+};
+Expected<SceneSpec> read_scene_file(const std::string& path, const SceneFileOptions& options = {});
+
+/// read_scene_file's check of an entry's file (it exists and is not a directory), with its message
+/// ("scene.json: bodies[3].file: file 'x.stl' not found (looked for /dir/x.stl)"); on success the
+/// file's size in bytes.
+Expected<std::uintmax_t> check_body_file(const BodySpec& body);
 
 /// Where the clash tests of a scene run come from (`interfere clash --scene`, interfere-mpi).
 struct TestSelection {

@@ -418,6 +418,31 @@ TEST(SceneFile, TwoPartForm) {
   EXPECT_EQ(s->bodies[0].where, path + ": a");
 }
 
+// interfere-mpi's ranks each check only their share of the entries' files (issue #31): with
+// check_body_files off the scene file reads without asking for the files, and check_body_file
+// then gives read_scene_file's own message for a missing file or a directory, and a file's size.
+TEST(SceneFile, BodyFilesCheckedLater) {
+  TempDir t(test_name());
+  t.write("a.stl", "12345");
+  t.write("d/x.stl", "x");
+  const std::string path = t.write("scene.json", R"({"bodies": [{"file": "a.stl"}, {"file": "gone.stl"}, {"file": "d"}]})");
+  auto whole = read_scene_file(path);
+  ASSERT_FALSE(whole);
+  auto s = read_scene_file(path, {.check_body_files = false});
+  ASSERT_TRUE(s) << s.error().message();
+  ASSERT_EQ(s->bodies.size(), 3u);
+  EXPECT_EQ(fs::path(s->bodies[1].file), t.dir / "gone.stl");
+  auto size = check_body_file(s->bodies[0]);
+  ASSERT_TRUE(size) << size.error().message();
+  EXPECT_EQ(*size, 5u);
+  auto gone = check_body_file(s->bodies[1]);
+  ASSERT_FALSE(gone);
+  EXPECT_EQ(gone.error().message(), whole.error().message());  // (the first problem in file order)
+  auto dir = check_body_file(s->bodies[2]);
+  ASSERT_FALSE(dir);
+  EXPECT_EQ(dir.error().message(), path + ": bodies[2].file: '" + (t.dir / "d").string() + "' is a directory, not a file");
+}
+
 /// The scene file `text` (in a directory holding a.stl and b.stl) fails with a message that begins
 /// with the file and `json_path`, and contains `fragment`.
 void expect_scene_error(const std::string& text, const std::string& json_path,
