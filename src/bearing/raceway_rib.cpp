@@ -192,6 +192,47 @@ bool outer_shell_closed_form(const Cylinder& roller, const Rib& rib, Candidate& 
   return true;
 }
 
+/// A lower bound of l over the roller's points with rho >= ro (so over the ro curve of (b)), for an
+/// untapered roller whose end e facing the rib (d' into the roller, n.d' > 0) leans toward the ring
+/// axis (m.d' <= 0, m the unit radial direction of e; the usual pose of (c)'s fallback: the lowest
+/// rim point inside ri). Every roller point is x = q + s d' with q in the end disk and s >= 0, so
+/// l(x) = l(q) + s n.d' >= l(q) and m.(q - center) >= m.(x - center); with |t.(x - center)| <= T
+/// (t = u x m), rho(x) >= ro gives m.(x - center) >= a = sqrt(ro^2 - T^2). The bound is the minimum
+/// of the linear l over the disk cut by m.(q - center) >= a: the disk's lowest point if it is
+/// kept, else the lower end of the chord (closed form), less a margin far above rounding. -inf
+/// where these conditions do not hold (issue #27, speed: the ro curve's search is then skipped
+/// when the bound is above the ri curve's value).
+double outer_curve_lower_bound(const Cylinder& roller, const Rib& rib) {
+  const Vec3& n = rib.normal;
+  const Vec3& u = rib.axis;
+  const double nd = dot(n, roller.axis);
+  if (roller.tapered() || !(std::fabs(nd) >= 0.5)) return -kInf;
+  const Vec3 dp = nd > 0 ? roller.axis : roller.axis * -1.0;
+  const Vec3 e = nd > 0 ? roller.base : roller.top_center();
+  const double r = roller.radius, L = roller.height, ro = rib.outer_radius;
+  const Vec3 v = e - rib.center;
+  const Vec3 across = v - u * dot(v, u);
+  const double rr = norm(across);
+  if (!(rr > 0)) return -kInf;
+  const Vec3 m = across / rr, t = cross(u, m);
+  const double md = dot(m, dp);
+  if (!(md <= 0) || !(rr - r - L * std::fabs(md) > 0)) return -kInf;  // (m.(x - center) > 0 on the roller)
+  const double T = std::fabs(dot(t, v)) + r + L * std::fabs(dot(t, dp));
+  if (!(T < ro)) return -kInf;
+  const double a = std::sqrt(ro * ro - T * T);
+  const Vec3 f1 = perpendicular_unit(dp), f2 = cross(dp, f1);
+  const double gx = dot(n, f1), gy = dot(n, f2), kx = dot(m, f1), ky = dot(m, f2);
+  const double g = std::hypot(gx, gy), k = std::hypot(kx, ky), le = dot(v, n);
+  const double margin = 1e-9 * (1 + rr + L);
+  const double lowest = le - r * g;  // the disk's lowest point
+  if (!(k > 0)) return -kInf;
+  const double b0 = a - dot(m, v), dist = b0 / k;  // the chord: (kx, ky).w = b0
+  if (!(g > 0) || (-r * (kx * gx + ky * gy) / g) >= b0 || !(dist < r)) return lowest - margin;
+  const double h = std::sqrt(std::max(0.0, r * r - dist * dist));
+  const double cx = kx / k * dist, cy = ky / k * dist, px = -ky / k * h, py = kx / k * h;
+  return le + std::min(gx * (cx + px) + gy * (cy + py), gx * (cx - px) + gy * (cy - py)) - margin;
+}
+
 }  // namespace
 
 PairDistance roller_rib_distance(const Cylinder& roller, const Rib& rib) {
@@ -268,14 +309,16 @@ PairDistance roller_rib_distance(const Cylinder& roller, const Rib& rib) {
   min_rho = near.rho;
   const auto azimuth = [&](const Vec3& p) { return std::atan2(dot(p - rib.center, a2), dot(p - rib.center, a1)); };
   // a curve exists only where the roller crosses the cylinder (min_rho is a lower bound)
-  if (min_rho <= ro && max_rho >= ro) {
+  // the ri curve first: when the ro curve's lower bound is above what is known, its search cannot
+  // change the result (the best is still the first smallest in the order (a), ro, ri)
+  const bool on_ro = min_rho <= ro && max_rho >= ro, on_ri = ri > 0 && min_rho <= ri && max_rho >= ri;
+  Candidate c_ri;
+  if (on_ri) c_ri = shell_curve(roller, rib, ri, a1, a2, psi_lo, psi_hi, azimuth(far_p));
+  if (on_ro && !(outer_curve_lower_bound(roller, rib) > std::min(best.l, c_ri.l))) {
     const Candidate c = shell_curve(roller, rib, ro, a1, a2, psi_lo, psi_hi, azimuth(near.point));
     if (c.l < best.l) best = c;
   }
-  if (ri > 0 && min_rho <= ri && max_rho >= ri) {
-    const Candidate c = shell_curve(roller, rib, ri, a1, a2, psi_lo, psi_hi, azimuth(far_p));
-    if (c.l < best.l) best = c;
-  }
+  if (c_ri.l < best.l) best = c_ri;
   PairDistance out;
   if (best.l < kInf) {
     out.distance = best.l;

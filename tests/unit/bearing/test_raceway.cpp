@@ -488,14 +488,15 @@ TEST(BearingRaceway, RibRandomPosesAgainstDenseReference) {
   EXPECT_GT(partial, 20);
 }
 
-// The assembly's usual rib pose (issue #27, speed): a roller tilted outward, its lowest rim point
-// beyond the rib's outer radius, so the minimum lies where the end disk crosses rho = ro, found in
-// closed form with a KKT certificate (raceway_rib.cpp, outer_shell_closed_form); the ring far from
-// the origin as in a 32-bearing scene, both end orientations, both face normals, small and large
-// tilts, also tilts with a tangential part.
-TEST(BearingRaceway, RibOutwardTiltAgainstDenseReference) {
-  Rng g(2711);
-  int n = 0, at_ro = 0;
+// The assembly's rib poses (issue #27, speed), the ring far from the origin as in a 32-bearing
+// scene, both end orientations, both face normals, small and large tilts with a tangential part:
+//   lean > 0: the roller tilted outward, its lowest rim point beyond the rib's outer radius: the
+//     minimum lies where the end disk crosses rho = ro, found in closed form with a KKT certificate
+//     (raceway_rib.cpp, outer_shell_closed_form);
+//   lean < 0: tilted inward, its lowest rim point often inside ri: the azimuth search of the ri
+//     curve, the ro curve skipped when its closed-form lower bound is above (outer_curve_lower_bound).
+void rib_tilt_cases(std::uint32_t seed, double lean, double pitch_lo, double pitch_hi, int* at_ro, int* at_ri) {
+  Rng g(seed);
   for (int i = 0; i < 120; ++i) {
     const Vec3 u = tilted({1, 0, 0}, g.uniform(0, 0.2), g.uniform(0, 2 * kPi));
     Rib rib;
@@ -506,13 +507,12 @@ TEST(BearingRaceway, RibOutwardTiltAgainstDenseReference) {
     const Vec3 e1 = unit_perp(u), e2 = cross(u, e1);
     const Vec3 radial = e1 * std::cos(az) + e2 * std::sin(az), tangent = cross(u, radial);
     const double tilt = (i % 3 == 0 ? g.uniform(0.005, 0.1) : g.uniform(0.1, 3)) * kDeg;
-    // leaning outward (the roller's far end moves away from the ring axis: its near rim's lowest
-    // point is the outer one), with a smaller tangential part
-    Vec3 d = rib.normal * std::cos(tilt) + radial * std::sin(tilt) * 0.9 + tangent * std::sin(tilt) * g.uniform(-0.4, 0.4);
+    Vec3 d = rib.normal * std::cos(tilt) + radial * (lean * std::sin(tilt) * 0.9) +
+             tangent * std::sin(tilt) * g.uniform(-0.4, 0.4);
     d = d / norm(d);
     Cylinder c;
     c.radius = 10, c.height = 38;
-    const Vec3 near = rib.center + radial * g.uniform(118, 122) + rib.normal * g.uniform(-0.5, 0.5);
+    const Vec3 near = rib.center + radial * g.uniform(pitch_lo, pitch_hi) + rib.normal * g.uniform(-0.5, 0.5);
     if (i % 4 < 2) {
       c.base = near, c.axis = d;  // the base faces the rib
     } else {
@@ -522,16 +522,27 @@ TEST(BearingRaceway, RibOutwardTiltAgainstDenseReference) {
     bool any = false;
     const double ref = ref_rib(c, rib, &any);
     ASSERT_TRUE(any) << i;
-    ++n;
     EXPECT_EQ(pd.path, AnalyticPath::rib) << i;
     EXPECT_NEAR(pd.distance, ref, 1e-9 * std::max(1.0, std::fabs(ref))) << i;
     EXPECT_NEAR(dot(pd.point_a - rib.center, rib.normal), pd.distance, 1e-9) << i;
     EXPECT_LE(oracle_frustum_sd(c, pd.point_a), 1e-9) << i;
     EXPECT_NEAR(dot(pd.point_b - rib.center, rib.normal), 0, 1e-9) << i;
-    at_ro += std::fabs(axis_dist(pd.point_a, rib.center, u) - rib.outer_radius) < 1e-9;
+    const double rho = axis_dist(pd.point_a, rib.center, u);
+    *at_ro += std::fabs(rho - rib.outer_radius) < 1e-9;
+    *at_ri += std::fabs(rho - rib.inner_radius) < 1e-9;
   }
-  EXPECT_EQ(n, 120);
+}
+
+TEST(BearingRaceway, RibOutwardTiltAgainstDenseReference) {
+  int at_ro = 0, at_ri = 0;
+  rib_tilt_cases(2711, 1, 119.8, 122, &at_ro, &at_ri);
   EXPECT_GT(at_ro, 100);  // the minimum on rho = ro in (nearly) all of them
+}
+
+TEST(BearingRaceway, RibInwardTiltAgainstDenseReference) {
+  int at_ro = 0, at_ri = 0;
+  rib_tilt_cases(2712, -1, 119, 120.2, &at_ro, &at_ri);  // the inner rim point near ri
+  EXPECT_GT(at_ri, 40);  // the lowest rim point inside ri: the minimum on rho = ri
 }
 
 // ---------- cone-cone ----------
