@@ -156,6 +156,53 @@ PartPairResult scarred_frustum_pair(const ScenePart& a, const ScenePart& b, bool
   return out;
 }
 
+/// Two scarred rollers (part_pair.h): no exact solver (each is B of the other's solver only through
+/// its grown intact solid), so S >= min(s(A mesh, B0), s(B mesh, A0)), A0 and B0 the intact frustums
+/// (or cylinders) grown by their raises (assembly_tapered_scars.h, grown_roller_solid): the lower
+/// bound the tapered assemblies take for two scarred neighbours. Clear when that is clear and neither
+/// solid holds the other (a grown solid apart from the other's surface lies wholly inside that solid
+/// or outside it: mesh_containment of its inscribed cylinder's centre; inside is a clash).
+PartPairResult two_scarred_rollers(const ScenePart& a, const ScenePart& b, bool swapped, double clearance) {
+  const Cylinder a0 = detail::grown_roller_solid(a.cylinder, a.mesh->raise);
+  const Cylinder b0 = detail::grown_roller_solid(b.cylinder, b.mesh->raise);
+  ScarredSolver sa(a.mesh, a.tree), sb(b.mesh, b.tree);
+  const MeshPairResult fa = sa.solve(a.pose, b0), fb = sb.solve(b.pose, a0);
+  PartPairResult out;
+  out.swapped = swapped, out.solver = PartPairSolver::bound, out.two_sided_exact = false;
+  out.evaluated = fa.evaluated + fb.evaluated;
+  if (fa.distance <= fb.distance) {
+    out.distance = fa.distance, out.point_a = fa.point_a, out.point_b = fa.point_b;
+  } else {
+    out.distance = fb.distance, out.point_a = fb.point_b, out.point_b = fb.point_a, out.reverse = true;
+  }
+  out.distance_lower = out.distance;
+  const double tol = touch_tolerance(a.cylinder, b.cylinder);
+  out.verdict = distance_verdict(out.distance, tol, clearance);
+  if (out.distance > tol) {
+    const auto inner = [](const Cylinder& c) {
+      Cylinder in = c;
+      in.radius = std::min(c.radius, c.top()), in.top_radius = -1;
+      return in;
+    };
+    const int in_a = mesh_containment(a, inner(b.cylinder)), in_b = mesh_containment(b, inner(a.cylinder));
+    if (in_a == 1 || in_b == 1) {
+      out.verdict = Verdict::clash;
+      return out;
+    }
+    if (in_a < 0 || in_b < 0) {
+      out.verdict = Verdict::undecided;
+      out.reason = "whether one scarred roller lies inside the other: every ray direction was degenerate";
+      return out;
+    }
+  }
+  if (out.verdict == Verdict::clear) return out;  // a lower bound decides only clear
+  out.verdict = Verdict::undecided;
+  out.reason =
+      "two scarred rollers: no exact solver (B must be intact); each mesh against the other's grown "
+      "intact solid is not clear";
+  return out;
+}
+
 }  // namespace
 
 PartPairResult decide_part_pair(const ScenePart& x, const ScenePart& y, double clearance) {
@@ -182,9 +229,11 @@ PartPairResult decide_part_pair(const ScenePart& x, const ScenePart& y, double c
     out.verdict = distance_verdict(d.distance, touch_tolerance(a.cylinder, b.cylinder), clearance);
     return out;
   }
-  const bool exact = b.intact();
-  const Cylinder bc = exact ? b.cylinder : enclosing(b);
-  PartPairResult out = solve(a, bc);  // s(A, B) (or A against B's enclosing cylinder)
+  if (b.mesh != nullptr) return two_scarred_rollers(a, b, swapped, clearance);
+  // B is an intact cylinder (a partner or an untapered roller), A an intact cylinder or a scarred
+  // untapered roller
+  const Cylinder& bc = b.cylinder;
+  PartPairResult out = solve(a, bc);  // s(A, B)
   out.swapped = swapped;
   const double tol = touch_tolerance(a.cylinder, bc);
   out.distance_lower = out.distance;
@@ -200,59 +249,34 @@ PartPairResult decide_part_pair(const ScenePart& x, const ScenePart& y, double c
       return out;
     }
   }
-  if (exact) {
-    // the reverse direction, B's depth into A (issue #27; the paper's Step 3: all four end circles)
-    if (a.intact()) {
-      // two_sided_cylinder_distance(a, bc) without recomputing the forward value solve() just gave
-      // (the same function of the same cylinders: bitwise the same result). The reverse (often the
-      // slow slice path) only when it can be the smaller one: skipped when intact_reverse_lower_bound
-      // (simulation.h, the bound of the simulation's intact rows) is not below s(A, B), so then
-      // s(B, A) >= s(A, B) and the result is the same bit for bit (issue #27, the assemblies'
-      // roller-inner and roller-roller pairs).
-      if (!(intact_reverse_lower_bound(a.cylinder, bc) >= out.distance)) {
-        const PairDistance rev = cylinder_pair_distance(bc, a.cylinder);
-        out.reverse = rev.distance < out.distance;
-        if (out.reverse) out.distance = rev.distance, out.point_a = rev.point_b, out.point_b = rev.point_a, out.path = rev.path;
-      }
-      out.distance_lower = out.distance;
-    } else if (!(out.distance > tol) && !contained) {
-      // A scarred (untapered: a tapered one is scarred_frustum_pair's) lies in its enclosing
-      // cylinder A0 (grown by a raised scar's raise):
-      // s(B, A) >= s(B, A0). (Apart,
-      // s(A, B) > tol, both one-sided values are the distance of the solids: nothing to add.)
-      const double lo = cylinder_pair_distance(bc, enclosing(a)).distance;
-      if (lo < out.distance) out.distance_lower = lo, out.two_sided_exact = false;
+  // the reverse direction, B's depth into A (issue #27; the paper's Step 3: all four end circles)
+  if (a.intact()) {
+    // two_sided_cylinder_distance(a, bc) without recomputing the forward value solve() just gave
+    // (the same function of the same cylinders: bitwise the same result). The reverse (often the
+    // slow slice path) only when it can be the smaller one: skipped when intact_reverse_lower_bound
+    // (simulation.h, the bound of the simulation's intact rows) is not below s(A, B), so then
+    // s(B, A) >= s(A, B) and the result is the same bit for bit (issue #27, the assemblies'
+    // roller-inner and roller-roller pairs).
+    if (!(intact_reverse_lower_bound(a.cylinder, bc) >= out.distance)) {
+      const PairDistance rev = cylinder_pair_distance(bc, a.cylinder);
+      out.reverse = rev.distance < out.distance;
+      if (out.reverse) out.distance = rev.distance, out.point_a = rev.point_b, out.point_b = rev.point_a, out.path = rev.path;
     }
-    out.verdict = contained ? Verdict::clash
-                            : bracket_verdict(out.distance_lower, out.distance, tol, clearance);
-    if (out.verdict == Verdict::undecided)
-      out.reason =
-          "two-sided depth: the partner's depth into the scarred roller is only bounded "
-          "(by its enclosing cylinder), and the bounds give different verdicts";
-    return out;
+    out.distance_lower = out.distance;
+  } else if (!(out.distance > tol) && !contained) {
+    // A scarred (untapered: a tapered one is scarred_frustum_pair's) lies in its enclosing
+    // cylinder A0 (grown by a raised scar's raise):
+    // s(B, A) >= s(B, A0). (Apart,
+    // s(A, B) > tol, both one-sided values are the distance of the solids: nothing to add.)
+    const double lo = cylinder_pair_distance(bc, enclosing(a)).distance;
+    if (lo < out.distance) out.distance_lower = lo, out.two_sided_exact = false;
   }
-  // no exact solver: A against the cylinder enclosing B is a lower bound of s(A, B); B's depth
-  // into A is bounded below by B's enclosing cylinder against A's: S >= the smaller of the two
-  out.solver = PartPairSolver::bound;
-  const Cylinder ac = enclosing(a);
-  const PairDistance rev = cylinder_pair_distance(bc, ac);
-  if (rev.distance < out.distance) {
-    out.distance = rev.distance, out.point_a = rev.point_b, out.point_b = rev.point_a;
-    out.path = rev.path, out.reverse = true;
-  }
-  out.distance_lower = out.distance;
-  out.two_sided_exact = false;
-  out.verdict = distance_verdict(out.distance, tol, clearance);
-  // the bound is a lower one: only a clear bound decides (or B's enclosing cylinder inside A's
-  // solid: then B is too)
-  if (out.verdict == Verdict::clear || contained) {
-    if (contained) out.verdict = Verdict::clash;
-    return out;
-  }
-  out.verdict = Verdict::undecided;
-  out.reason =
-      "two scarred rollers: no exact solver (B must be intact); against the cylinder enclosing the "
-      "second one they are not clear";
+  out.verdict = contained ? Verdict::clash
+                          : bracket_verdict(out.distance_lower, out.distance, tol, clearance);
+  if (out.verdict == Verdict::undecided)
+    out.reason =
+        "two-sided depth: the partner's depth into the scarred roller is only bounded "
+        "(by its enclosing cylinder), and the bounds give different verdicts";
   return out;
 }
 

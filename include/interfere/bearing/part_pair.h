@@ -25,9 +25,11 @@
 //     intact cylinder: the scarred solver with B the intact frustum (scarred.h), exact forward,
 //     B's depth into A bracketed through A's grown intact frustum (assembly_tapered_scars.h,
 //     scarred_against_frustum: the tapered assemblies' scarred rows, the same function);
-//   * two scarred rollers: no exact solver exists (B must be intact); A is solved against the
-//     cylinder that encloses B (grown by a raised scar's raise; a lower bound of the distance):
-//     clear when that bound is clear, else undecided.
+//   * two scarred rollers: no exact solver exists (B must be intact); each mesh is solved against
+//     the other's intact frustum or cylinder grown by its raise (assembly_tapered_scars.h,
+//     grown_roller_solid), the smaller a lower bound of S (the tapered assemblies' two scarred
+//     neighbours' bound): clear when that is clear and neither solid holds the other's centre
+//     (mesh_containment; inside: clash), else undecided.
 // A triangle-surface solver reports the minimum over A's surface; when that is > 0, B could still
 // lie wholly inside A's solid: mesh_containment decides it (B's centre by exact ray parity).
 //

@@ -259,3 +259,40 @@ TEST(PartPairFrustums, SimulationRowsOfTaperedRollersAreTwoSided) {
   }
   std::printf("[ tapered rows ] %d of 16 decided by the partner's depth in the roller\n", reverse);
 }
+
+TEST(PartPairFrustums, TwoScarredRollersTakeTheAssemblysBound) {
+  // every tapered roller scarred: neighbouring rollers have no exact solver; decide_part_pair's lower
+  // bound is the assembly's (each mesh against the other's grown intact frustum), clear when the
+  // assembly's bound is, never clear where the assembly asks the mesh engine and it is not clear
+  std::string extra = test::kLively;
+  extra.replace(extra.find("\"fraction\": 0.3"), 15, "\"fraction\": 1");
+  Expected<AssemblySpec> s = parse_assembly(test::assembly_json(extra, test::kTaperedBearing), "t.json");
+  ASSERT_TRUE(s) << s.error().message();
+  Expected<Assembly> built = build_assembly(*s);
+  ASSERT_TRUE(built) << built.error().message();
+  const Assembly& as = *built;
+  const BearingSpec& b = as.spec.bearings[0];
+  const AssemblyMotion motion = generate_motion(as, 2, as.spec.seed);
+  int rows = 0;
+  for (const auto& poses : motion.poses)
+    for (const AssemblyPair& pair : as.pairs) {
+      if (pair.kind != AssemblyPairKind::roller_roller) continue;
+      const auto part = [&](std::uint32_t k) {
+        const AssemblyPart& p = as.parts[k];
+        return ScenePart{.cylinder = posed_cylinder(b.rollers.radius, b.rollers.top_radius, b.rollers.length, poses[k]),
+                         .mesh = p.roller.get(), .tree = p.tree.get(), .solid = p.solid.get(), .pose = poses[k]};
+      };
+      const AssemblyPairResult r = solve_pair(as, pair, poses, as.spec.clearance);
+      const PartPairResult d = decide_part_pair(part(pair.a), part(pair.b), as.spec.clearance);
+      EXPECT_EQ(d.solver, PartPairSolver::bound);
+      EXPECT_FALSE(d.two_sided_exact);
+      if (r.solver == AssemblySolver::bound) {  // the assembly's bound decided: the same value, clear
+        EXPECT_EQ(d.distance, r.distance);
+        EXPECT_EQ(d.verdict, Verdict::clear);
+      } else {  // the mesh engine decided there: the bound did not
+        EXPECT_NE(d.verdict, Verdict::clear);
+      }
+      ++rows;
+    }
+  EXPECT_EQ(rows, 24);
+}
