@@ -40,13 +40,13 @@
 // one-sided values are their Euclidean distance, so S = s). decide_part_pair(x, y) and
 // decide_part_pair(y, x) run the same computation (roles by part type, ties broken by a canonical
 // order of the parts), so the value, witnesses and verdict are bitwise the same, only `swapped`
-// differs. s(B, A) is exact (the standard solver with the roles exchanged) when A is an intact
-// cylinder. When A is scarred or tapered no exact solver of B's depth into A exists (A must then be
-// B of a solver); A lies in its enclosing intact cylinder A0 (radius: the larger end radius plus a
-// raised scar's raise, Roller::raise), so s(B, A) >= s(B, A0): when that
-// bound is not below s(A, B), S = s(A, B) exactly, else S is bracketed by
-// [distance_lower, distance] and `two_sided_exact` is false (the verdict is decided only when both
-// ends give the same one; else undecided).
+// differs. s(B, A) is exact (the standard solver, or cone_pair_distance, with the roles exchanged)
+// when A is an intact cylinder or frustum. When A is scarred no exact solver of B's depth into A
+// exists (A must then be B of a solver); A lies in its intact solid grown by a raised scar's raise
+// (Roller::raise) A0 — its enclosing cylinder, or its grown frustum when a frustum is involved — so
+// s(B, A) >= s(B, A0): when that bound is not below s(A, B), S = s(A, B) exactly, else S is
+// bracketed by [distance_lower, distance] and `two_sided_exact` is false (the verdict is decided
+// only when both ends give the same one; else undecided).
 #pragma once
 #include <cstdint>
 #include <string>
