@@ -13,11 +13,14 @@
 // (holder strikes). INTERFERE_CELL_POINTS overrides the 10^5 points.
 //
 // Rows (wall time, oneTBB default threads, one iteration each):
-//   CellFull/discrete     cell_scene + clash_scene at every path point
-//   CellFull/continuous   the same + check_between_points (the conservative check between points:
-//                         conservative advancement with certified distances, robot/cell.h)
+//   CellFull/discrete     cell_scene + check_cell_path at every path point (certified distances
+//                         carried across points, the engine only where no certificate holds)
+//   CellFull/continuous   the same + the conservative check between points (robot/cell.h)
+//   CellPlain/2, /3       (INTERFERE_CELL_PLAIN=1 only) the plain run: clash_scene at every point,
+//                         check_between_points from scratch
 // Counters: points, bodies, triangles, link triangles, colliding points / segments, unresolved,
-// seconds per phase, process CPU seconds.
+// seconds per phase, process CPU seconds, certificates (BVH queries), engine pair decisions,
+// segments proven clear by the points' certificates alone.
 #ifdef INTERFERE_BENCH_CELL
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>
@@ -144,9 +147,11 @@ const FullCell& full_cell() {
 }
 
 void BM_CellFull(benchmark::State& state) {
-  const bool continuous = state.range(0) != 0;
+  const bool continuous = state.range(0) % 2 != 0;
+  const bool plain = state.range(0) >= 2;  // the plain run: clash_scene at every frame, check_between_points
   const FullCell& fc = full_cell();
-  double scene_s = 0, discrete_s = 0, between_s = 0, cpu = 0;
+  double scene_s = 0, discrete_s = 0, between_s = 0, certify_s = 0, cpu = 0;
+  std::size_t certificates = 0, queries = 0, engine_pairs = 0, certified_segments = 0;
   std::size_t colliding = 0, seg_collide = 0, seg_unresolved = 0, frames_checked = 0, engine_frames = 0, bodies = 0;
   for (auto _ : state) {
     const double c0 = process_cpu_seconds();
@@ -157,15 +162,20 @@ void BM_CellFull(benchmark::State& state) {
     opt.curves = false;
     opt.reference = false;
     opt.depth = false;  // as `interfere cell` without --depth
-    const scene::SceneClashResult r = scene::clash_scene(cs.scene, cs.tests, opt);
-    const auto t2 = std::chrono::steady_clock::now();
-    std::vector<SegmentResult> segs;
-    if (continuous) segs = check_between_points(fc.cell, cs, fc.path);
-    const auto t3 = std::chrono::steady_clock::now();
+    PathCheckOptions po;
+    po.engine = opt;
+    po.between = continuous;
+    po.accelerate = !plain;
+    PathCheckResult pr = check_cell_path(fc.cell, cs, fc.path, po);
     cpu = process_cpu_seconds() - c0;
+    const scene::SceneClashResult& r = pr.frames;
+    const std::vector<SegmentResult>& segs = pr.segments;
     scene_s = std::chrono::duration<double>(t1 - t0).count();
-    discrete_s = std::chrono::duration<double>(t2 - t1).count();
-    between_s = std::chrono::duration<double>(t3 - t2).count();
+    discrete_s = pr.certify_seconds + pr.engine_seconds;
+    between_s = pr.between_seconds;
+    certify_s = pr.certify_seconds;
+    certificates = pr.certificates, queries = pr.bvh_queries, engine_pairs = pr.engine_pair_frames;
+    certified_segments = pr.segments_certified;
     colliding = 0;
     for (const scene::FrameRow& f : r.frames) colliding += f.verdict == Verdict::clash;
     seg_collide = seg_unresolved = frames_checked = engine_frames = 0;
@@ -192,10 +202,20 @@ void BM_CellFull(benchmark::State& state) {
   state.counters["discrete_seconds"] = discrete_s;
   state.counters["between_seconds"] = between_s;
   state.counters["process_cpu_seconds"] = cpu;
-  state.SetLabel(continuous ? "continuous" : "discrete");
+  state.counters["certify_seconds"] = certify_s;
+  state.counters["certificates"] = static_cast<double>(certificates);
+  state.counters["bvh_queries"] = static_cast<double>(queries);
+  state.counters["engine_pair_frames"] = static_cast<double>(engine_pairs);
+  state.counters["certified_segments"] = static_cast<double>(certified_segments);
+  state.SetLabel(std::string(plain ? "plain " : "") + (continuous ? "continuous" : "discrete"));
 }
 
 BENCHMARK(BM_CellFull)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+// The plain run (every frame by the engine, every segment by check_between_points from scratch),
+// for comparison, with INTERFERE_CELL_PLAIN=1 only (about half a minute at 10^5 points).
+const bool kPlainRows = std::getenv("INTERFERE_CELL_PLAIN") &&
+                        benchmark::RegisterBenchmark("BM_CellPlain", BM_CellFull)
+                            ->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 
 }  // namespace
 #endif  // INTERFERE_BENCH_CELL

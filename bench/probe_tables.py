@@ -345,6 +345,14 @@ def cell_table(data):
             r["process_cpu_seconds"], r["colliding_points"], r["colliding_segments"], r["unresolved_segments"],
             r["between_frames"], r.get("between_engine_frames", 0)))
     L.append("")
+    if "certificates" in c:
+        L.append("Both rows use `check_cell_path` (robot/cell.h): certified distances carried across path points; "
+                 "%d certificates (%d of them BVH distance queries, the others bounding spheres), %d (pair, point) "
+                 "decisions left to the scene engine, %d of %d segments proven clear by the points' certificates "
+                 "alone (no middle); certificates took %.3g s of the points' time." % (
+                     c["certificates"], c["bvh_queries"], c["engine_pair_frames"], c["certified_segments"],
+                     c["points"] - 1, c["certify_seconds"]))
+        L.append("")
     scale = 1e5 / c["points"]
     total = c["ms"] / 1e3 * scale
     L.append("| target | measured | verdict |")

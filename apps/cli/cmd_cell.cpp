@@ -75,16 +75,22 @@ int run_cell(const CellOptions& o) {
   opt.curves = o.views.any();  // the viewer draws the intersection curves
   opt.reference = false;
   opt.depth = o.depth;  // off by default: the points' check is ~4x faster without the depth bounds
-  scene::SceneClashResult r;
+  // The frames (the path's points and in-between poses) and, with --continuous, the conservative
+  // check between points in one pass with certified distances carried across points
+  // (robot/cell.h, check_cell_path: the same verdicts as the engine at every frame).
+  PathCheckResult checked;
   try {
-    // Frames (the path's points and in-between poses): progress_bar.h.
     ProgressBar bar("frames", std::max<std::size_t>(cs.scene.frames.size(), 1), "frames");
-    opt.progress = bar.callback();
-    r = scene::clash_scene(cs.scene, cs.tests, opt);
-    opt.progress = nullptr;
+    PathCheckOptions po;
+    po.engine = opt;
+    po.engine.progress = bar.callback();
+    po.between = o.continuous;
+    po.between_options.max_depth = o.max_depth;
+    checked = check_cell_path(*cell, cs, *path, po);
   } catch (const std::invalid_argument& e) {
     throw InputError(o.cell + ": " + e.what());
   }
+  const scene::SceneClashResult& r = checked.frames;
   const auto& bodies = cs.scene.bodies;
   // Per frame: its findings (frame_pairs rows, sorted by frame).
   std::vector<std::vector<const scene::FramePairRow*>> rows(cs.scene.frames.size());
@@ -106,9 +112,7 @@ int run_cell(const CellOptions& o) {
   std::size_t seg_collide = 0, seg_unresolved = 0;
   Verdict verdict = r.verdict;
   if (o.continuous) {
-    BetweenOptions bo;
-    bo.max_depth = o.max_depth;
-    between = check_between_points(*cell, cs, *path, bo);
+    between = std::move(checked.segments);
     for (const SegmentResult& sr : between) {
       seg_collide += sr.state == robot::SegmentState::collides;
       seg_unresolved += sr.state == robot::SegmentState::unresolved;

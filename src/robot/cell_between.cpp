@@ -19,11 +19,11 @@
 #include "interfere/query/distance.h"
 #include "interfere/query/model.h"
 #include "interfere/robot/cell.h"
+#include "cell_internal.h"
 
 namespace interfere::robot {
+using namespace detail;  // (cell_internal.h)
 namespace {
-
-using PairKey = std::pair<std::uint32_t, std::uint32_t>;
 
 struct Interval {
   std::size_t segment = 0;
@@ -32,13 +32,9 @@ struct Interval {
   std::set<PairKey> pending;  ///< otherwise: the pairs not yet proven clear on it
 };
 
-/// Per body: the link it moves with (-1: static) and its mesh radius about that link's origin.
-struct BodyLink {
-  std::int64_t link = -1;
-  double radius = 0;
-};
+}  // namespace
 
-std::vector<BodyLink> body_links(const Cell& cell, const CellScene& cs) {
+std::vector<BodyLink> detail::body_links(const Cell& cell, const CellScene& cs) {
   std::vector<BodyLink> out(cs.scene.bodies.size());
   auto radius = [](const TriMesh& m) {
     double r = 0;
@@ -57,8 +53,6 @@ std::vector<BodyLink> body_links(const Cell& cell, const CellScene& cs) {
   return out;
 }
 
-}  // namespace
-
 const char* segment_state_name(SegmentState s) {
   switch (s) {
     case SegmentState::clear:
@@ -73,8 +67,12 @@ const char* segment_state_name(SegmentState s) {
 
 std::vector<double> motion_bounds(const Cell& cell, const CellScene& cs,
                                   const std::vector<double>& dq) {
+  return detail::reach_bounds(cell, detail::body_links(cell, cs), dq);
+}
+
+std::vector<double> detail::reach_bounds(const Cell& cell, const std::vector<BodyLink>& bl,
+                                         const std::vector<double>& dq) {
   const Chain& chain = cell.robot;
-  const std::vector<BodyLink> bl = body_links(cell, cs);
   std::vector<double> out(bl.size(), 0.0);
   for (std::size_t b = 0; b < bl.size(); ++b) {
     if (bl[b].link < 0) continue;
@@ -247,21 +245,7 @@ void finish(const CellScene& cs, std::vector<SegmentResult>& out,
 
 }  // namespace
 
-namespace {
-
-/// Per body: the link it moves with (-1: static), its bounding sphere in its own frame (centre
-/// of its box, radius to the farthest vertex), its local model (moving bodies; posed per middle
-/// by refit) or world model (static bodies), and whether it is closed (containment needs it).
-struct BodyGeom {
-  std::int64_t link = -1;
-  Vec3 centre;
-  double radius = 0;
-  std::shared_ptr<const Model> model;  ///< local (moving) or world (static)
-  bool closed = false;
-  std::vector<std::uint32_t> component_vertices;  ///< one vertex of each connected component
-};
-
-std::vector<BodyGeom> body_geometry(const Cell& cell, const CellScene& cs, bool models) {
+std::vector<BodyGeom> detail::body_geometry(const Cell& cell, const CellScene& cs, bool models) {
   const std::vector<BodyLink> bl = body_links(cell, cs);
   std::vector<BodyGeom> out(bl.size());
   for (std::size_t b = 0; b < bl.size(); ++b) {
@@ -293,9 +277,9 @@ std::vector<BodyGeom> body_geometry(const Cell& cell, const CellScene& cs, bool 
   return out;
 }
 
-std::vector<double> bounds_at(const Cell& cell, const std::vector<BodyGeom>& geom,
-                              const std::vector<Transform>& f, const std::vector<double>& dq,
-                              const std::vector<double>& reach_bound) {
+std::vector<double> detail::bounds_at(const Cell& cell, const std::vector<BodyGeom>& geom,
+                                      const std::vector<Transform>& f, const std::vector<double>& dq,
+                                      const std::vector<double>& reach_bound) {
   const Chain& chain = cell.robot;
   std::vector<double> out(geom.size(), 0.0);
   for (std::size_t b = 0; b < geom.size(); ++b) {
@@ -323,8 +307,7 @@ std::vector<double> bounds_at(const Cell& cell, const std::vector<BodyGeom>& geo
   return out;
 }
 
-/// World box of every point within `radius` of `c` (a cube), and its gap to another box.
-double box_gap(const Aabb& x, const Aabb& y) {
+double detail::box_gap(const Aabb& x, const Aabb& y) {
   double d2 = 0;
   for (int k = 0; k < 3; ++k) {
     const double g = std::max({0.0, x.lo[k] - y.hi[k], y.lo[k] - x.hi[k]});
@@ -333,14 +316,13 @@ double box_gap(const Aabb& x, const Aabb& y) {
   return std::sqrt(d2);
 }
 
-Aabb to_double(const AabbF& b) {
+Aabb detail::to_double(const AabbF& b) {
   Aabb r;
   for (int k = 0; k < 3; ++k) r.lo[k] = b.lo[k], r.hi[k] = b.hi[k];
   return r;
 }
 
-/// The body pairs the cell's tests check (each once, smaller index first), suppressions left out.
-std::vector<PairKey> test_pairs(const CellScene& cs) {
+std::vector<PairKey> detail::test_pairs(const CellScene& cs) {
   std::set<PairKey> out;
   const auto& bodies = cs.scene.bodies;
   for (const scene::ClashTest& ct : cs.tests) {
@@ -363,19 +345,33 @@ std::vector<PairKey> test_pairs(const CellScene& cs) {
   return {out.begin(), out.end()};
 }
 
+namespace {
+
 /// What the advancement found for one pair at one middle.
 struct PairAtMiddle {
   PairKey key;
   bool cleared = false;       ///< distance > bound sum: no surface contact on the sub-interval
-  bool needs_engine = false;  ///< surfaces meet, containment possible, or an open body
+  bool needs_engine = false;  ///< containment possible, an open body, or a non-exact engine test
+  /// The surfaces meet (two triangles intersect or touch, exact test; both bodies closed): the
+  /// engine's verdict there is clash or contact, so the pair meets without asking it.
+  bool meets = false;
 };
 
-std::vector<SegmentResult> check_advancement(const Cell& cell, const CellScene& cs,
-                                             const JointPath& path, const BetweenOptions& options) {
+}  // namespace
+
+std::vector<SegmentResult> detail::check_advancement(const Cell& cell, const CellScene& cs,
+                                                     const JointPath& path, const BetweenOptions& options,
+                                                     const std::vector<std::vector<PairKey>>* initial,
+                                                     const std::vector<BodyGeom>* given_geom) {
   const std::size_t segments = path.size() > 1 ? path.size() - 1 : 0;
   std::vector<SegmentResult> out(segments);
-  const std::vector<BodyGeom> geom = body_geometry(cell, cs, true);
+  const std::vector<BodyGeom> own_geom = given_geom ? std::vector<BodyGeom>{} : body_geometry(cell, cs, true);
+  const std::vector<BodyGeom>& geom = given_geom ? *given_geom : own_geom;
+  const std::vector<BodyLink> links = body_links(cell, cs);
   const std::vector<PairKey> all_pairs = test_pairs(cs);
+  // Meeting surfaces found by the exact triangle test are the engine's meeting too (its exact
+  // triangle test; a float filter could call some touches apart: then the engine decides).
+  const bool exact_meets = options.engine.request.test == TriTest::exact;
   // Coordinates' scale (rounding of the posed vertices and of the distances): absolute slack.
   double scale = 1;
   for (const BodyGeom& g : geom) {
@@ -412,7 +408,9 @@ std::vector<SegmentResult> check_advancement(const Cell& cell, const CellScene& 
   std::vector<Interval> level;
   for (std::size_t s = 0; s < segments; ++s) {
     out[s].from = s;
-    level.push_back({s, 0.0, 1.0, all_pairs});
+    // (given pending pairs: the others are proven clear on the whole segment already)
+    if (!initial) level.push_back({s, 0.0, 1.0, all_pairs});
+    else if (!(*initial)[s].empty()) level.push_back({s, 0.0, 1.0, (*initial)[s]});
   }
   std::vector<std::set<PairKey>> unresolved(segments);
   std::vector<std::map<PairKey, double>> meeting(segments);
@@ -431,7 +429,7 @@ std::vector<SegmentResult> check_advancement(const Cell& cell, const CellScene& 
       for (std::size_t j = 0; j < dof; ++j)
         md.q[j] = q0[j] + tm * (q1[j] - q0[j]), dq[j] = half * (q1[j] - q0[j]);
       const std::vector<Transform> f = link_frames(cell.robot, md.q, cell.base);
-      const std::vector<double> delta = bounds_at(cell, geom, f, dq, motion_bounds(cell, cs, dq));
+      const std::vector<double> delta = bounds_at(cell, geom, f, dq, reach_bounds(cell, links, dq));
       // Each body's world box at the middle: its bounding cube (moving) or its model's root box.
       std::vector<Aabb> cube(geom.size());
       for (std::size_t b = 0; b < geom.size(); ++b) {
@@ -504,6 +502,11 @@ std::vector<SegmentResult> check_advancement(const Cell& cell, const CellScene& 
         const Model& mb = model(key.second);
         const DistanceResult d = distance(ma, mb, {.upper_bound = bound});
         pm.cleared = !d.intersecting && d.distance > bound;
+        if (d.intersecting && exact_meets && geom[key.first].closed && geom[key.second].closed) {
+          pm.meets = true;
+          md.pairs.push_back(pm);
+          continue;
+        }
         pm.needs_engine = d.intersecting || could_contain(key.first, key.second, &mb) ||
                           could_contain(key.second, key.first, &ma);
         md.pairs.push_back(pm);
@@ -547,7 +550,17 @@ std::vector<SegmentResult> check_advancement(const Cell& cell, const CellScene& 
       scene::SceneClashOptions eo = options.engine;
       eo.depth = false, eo.curves = false, eo.triangles = false, eo.reference = false;
       eo.group_by = scene::GroupBy::none;
-      r = scene::clash_scene(sc, tests, eo);
+      // Only the middle's pending pairs are read: the engine decides only those.
+      std::vector<std::size_t> level_of(sc.frames.size());
+      for (std::size_t i = 0; i < level.size(); ++i)
+        if (frame_of[i] != SIZE_MAX) level_of[frame_of[i]] = i;
+      eo.decide_in_frame = [&](std::size_t fr, std::uint32_t a, std::uint32_t b) {
+        const PairKey key{std::min(a, b), std::max(a, b)};
+        for (const PairAtMiddle& pm : mid[level_of[fr]].pairs)
+          if (pm.key == key) return true;
+        return false;
+      };
+      r = engine_in_chunks(sc, tests, eo, options.parallel);
       for (const scene::FramePairRow& row : r.frame_pairs)
         rows[row.frame][{std::min(row.a, row.b), std::max(row.a, row.b)}] = &row;
     }
@@ -563,9 +576,11 @@ std::vector<SegmentResult> check_advancement(const Cell& cell, const CellScene& 
           auto it = rows[frame_of[i]].find(pm.key);
           if (it != rows[frame_of[i]].end()) row = it->second;
         }
-        if (row && (row->verdict == Verdict::clash || row->verdict == Verdict::contact)) {
-          // (keyed as the engine orders the pair, as the subdivision reports it)
-          auto [it, fresh] = meeting[iv.segment].emplace(PairKey{row->a, row->b}, tm);
+        if (pm.meets || (row && (row->verdict == Verdict::clash || row->verdict == Verdict::contact))) {
+          // (keyed as the engine orders the pair, by body id, as the subdivision reports it)
+          const auto& [x, y] = pm.key;
+          const PairKey engine_key = cs.scene.bodies[x].id < cs.scene.bodies[y].id ? PairKey{x, y} : PairKey{y, x};
+          auto [it, fresh] = meeting[iv.segment].emplace(engine_key, tm);
           if (!fresh) it->second = std::min(it->second, tm);
           continue;
         }
@@ -594,7 +609,31 @@ std::vector<SegmentResult> check_advancement(const Cell& cell, const CellScene& 
   return out;
 }
 
-}  // namespace
+scene::SceneClashResult detail::engine_in_chunks(const scene::Scene& sc, const std::vector<scene::ClashTest>& tests,
+                                                 const scene::SceneClashOptions& eo, bool parallel) {
+  const std::size_t n = sc.frames.size();
+  const std::size_t chunks =
+      parallel ? std::min<std::size_t>(n, 4 * static_cast<std::size_t>(tbb::this_task_arena::max_concurrency())) : 1;
+  if (chunks <= 1) return scene::clash_scene(sc, tests, eo);
+  std::vector<scene::SceneClashResult> part(chunks);
+  tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t c) {
+    const std::size_t lo = n * c / chunks, hi = n * (c + 1) / chunks;
+    scene::Scene piece;
+    piece.units = sc.units;
+    piece.bodies = sc.bodies;
+    piece.frames.assign(sc.frames.begin() + static_cast<std::ptrdiff_t>(lo),
+                        sc.frames.begin() + static_cast<std::ptrdiff_t>(hi));
+    scene::SceneClashOptions o = eo;
+    if (eo.decide_in_frame)
+      o.decide_in_frame = [&eo, lo](std::size_t f, std::uint32_t a, std::uint32_t b) { return eo.decide_in_frame(lo + f, a, b); };
+    part[c] = scene::clash_scene(piece, tests, o);
+    for (scene::FramePairRow& row : part[c].frame_pairs) row.frame += static_cast<std::uint32_t>(lo);
+  });
+  scene::SceneClashResult r;
+  for (scene::SceneClashResult& p : part)
+    r.frame_pairs.insert(r.frame_pairs.end(), p.frame_pairs.begin(), p.frame_pairs.end());
+  return r;
+}
 
 std::vector<double> motion_bounds_at(const Cell& cell, const CellScene& cs,
                                      const std::vector<double>& q, const std::vector<double>& dq) {
@@ -606,7 +645,7 @@ std::vector<SegmentResult> check_between_points(const Cell& cell, const CellScen
                                                 const JointPath& path,
                                                 const BetweenOptions& options) {
   return options.method == BetweenMethod::subdivision ? check_subdivision(cell, cs, path, options)
-                                                      : check_advancement(cell, cs, path, options);
+                                                      : detail::check_advancement(cell, cs, path, options);
 }
 
 }  // namespace interfere::robot

@@ -1,5 +1,7 @@
 // The inspection cell as a scene (issue #28, deliverable 3; robot/cell.h): bodies, tests with the
 // adjacent pairs suppressed, and one frame per path point (plus optional between-point frames).
+#include <tbb/parallel_for.h>
+
 #include <stdexcept>
 
 #include "interfere/probe/cylinder.h"
@@ -149,29 +151,31 @@ CellScene cell_scene(const Cell& cell, const JointPath& path, std::size_t betwee
   if (out.holder_body >= 0)
     moving.push_back(static_cast<std::uint32_t>(out.holder_body)),
         moving_link.push_back(cell.tool_link);
-  auto add_frame = [&](const std::vector<double>& q, std::size_t point, double u) {
+  // One frame per point and per sample between points, built in parallel (forward kinematics per
+  // frame: 10^5 points, issue #28's full cell).
+  const std::size_t per = between + 1;
+  const std::size_t count = path.size() ? (path.size() - 1) * per + 1 : 0;
+  s.frames.resize(count);
+  out.frame_point.resize(count);
+  out.frame_t.resize(count);
+  tbb::parallel_for(std::size_t(0), count, [&](std::size_t k) {
+    const std::size_t point = k / per, step = k % per;
+    const double u = step == 0 ? 0.0 : static_cast<double>(step) / static_cast<double>(between + 1);
+    std::vector<double> q = path.q[point];
+    if (step != 0) {
+      for (std::size_t j = 0; j < q.size(); ++j)
+        q[j] = path.q[point][j] + u * (path.q[point + 1][j] - path.q[point][j]);
+    }
     const std::vector<Transform> f = link_frames(chain, q, cell.base);
-    scene::Frame fr;
+    scene::Frame& fr = s.frames[k];
     fr.label = u == 0 ? "point " + std::to_string(point)
                       : "point " + std::to_string(point) + " + " + number(u);
     fr.time = static_cast<double>(point) + u;
-    for (std::size_t k = 0; k < moving.size(); ++k)
-      fr.poses.push_back({moving[k], f[moving_link[k]]});
-    s.frames.push_back(std::move(fr));
-    out.frame_point.push_back(point);
-    out.frame_t.push_back(u);
-  };
-  for (std::size_t i = 0; i < path.size(); ++i) {
-    add_frame(path.q[i], i, 0);
-    if (i + 1 == path.size()) break;
-    for (std::size_t k = 1; k <= between; ++k) {
-      const double u = static_cast<double>(k) / static_cast<double>(between + 1);
-      std::vector<double> q(chain.dof());
-      for (std::size_t j = 0; j < q.size(); ++j)
-        q[j] = path.q[i][j] + u * (path.q[i + 1][j] - path.q[i][j]);
-      add_frame(q, i, u);
-    }
-  }
+    fr.poses.reserve(moving.size());
+    for (std::size_t m = 0; m < moving.size(); ++m) fr.poses.push_back({moving[m], f[moving_link[m]]});
+    out.frame_point[k] = point;
+    out.frame_t[k] = u;
+  });
   return out;
 }
 

@@ -354,6 +354,8 @@ SceneClashResult clash_scene(const Scene& scene, const std::vector<ClashTest>& t
     std::vector<Candidate> cands = broad.candidates(st.broad_box, counted, suppressed);
     if (!reference) result.candidate_pairs += counted, result.suppressed += suppressed;
     if (!decide.empty()) std::erase_if(cands, [&](const Candidate& c) { return !decided(c); });
+    if (moving && !reference && options.decide_in_frame)
+      std::erase_if(cands, [&](const Candidate& c) { return !options.decide_in_frame(f, c.a, c.b); });
     // Units: one core run per body pair. The candidates of every test on the same pair share it, at
     // the largest clearance among them, each test deriving its clashes from it (largest clearance
     // first). Not shared: duplicates mode (no core), a caller that sees each test's core result

@@ -163,6 +163,43 @@ struct SegmentResult {
 std::vector<SegmentResult> check_between_points(const Cell& cell, const CellScene& cs,
                                                 const JointPath& path,
                                                 const BetweenOptions& options = {});
+/// The whole path at once (issue #28, speed): the check at the path's frames (as
+/// scene::clash_scene(cs.scene, cs.tests, engine)) and, with `between`, the conservative check
+/// between points (as check_between_points), with certified distances carried across path points
+/// (conservative advancement over the path): a body pair's certified distance at a point (a lower
+/// bound of the distance between the two bodies there, from their bounding spheres or the BVH
+/// distance query, with neither body inside the other by exact ray parity) proves the pair apart
+/// at the following points and on the segments between them for as long as the sum of the two
+/// bodies' motion bounds since that point (per segment the larger of motion_bounds_at at its two
+/// ends) stays below it, less the tests' largest clearance. The scene engine decides a pair at a
+/// frame only where no certificate covers it (SceneClashOptions::decide_in_frame), in chunks of
+/// frames run in parallel (cut after frames without a pair to decide, merged as one run makes
+/// them); between points only the pairs not proven clear on a segment go to the advancement
+/// (BetweenMethod::advancement; a segment with none is clear without a middle). Pairs with an open
+/// body are never certified (the engine decides them at every frame). Results: the frames' rows,
+/// frames x pairs table, clashes (ids, frames), pair summaries, verdict and candidate counts as the
+/// plain run's; core_runs smaller. Segments: the same collisions (state, t, pairs) as
+/// check_between_points; a segment it leaves unresolved may be proven clear here; fewer middles.
+struct PathCheckOptions {
+  scene::SceneClashOptions engine;  ///< the engine at the frames (as clash_scene's options)
+  bool between = false;             ///< also the conservative check between points
+  BetweenOptions between_options;
+  bool accelerate = true;  ///< false: the plain run (clash_scene on every frame, check_between_points)
+};
+struct PathCheckResult {
+  scene::SceneClashResult frames;
+  std::vector<SegmentResult> segments;  ///< with `between`
+  std::size_t certificates = 0;         ///< certified distances computed (spheres or BVH queries)
+  std::size_t bvh_queries = 0;          ///< of those, BVH distance queries
+  std::size_t engine_pair_frames = 0;   ///< (pair, frame) decisions left to the engine
+  std::size_t segments_certified = 0;   ///< segments proven clear by the points' certificates alone
+  /// Wall seconds: the certificates (motion bounds, distances), the engine at the frames, the
+  /// check between points.
+  double certify_seconds = 0, engine_seconds = 0, between_seconds = 0;
+};
+PathCheckResult check_cell_path(const Cell& cell, const CellScene& cs, const JointPath& path,
+                                const PathCheckOptions& options = {});
+
 /// The motion bound delta of every body of cs.scene (0 for static bodies) when the joints move by
 /// |dq| (joint units: degrees, mm), for tests and reports.
 std::vector<double> motion_bounds(const Cell& cell, const CellScene& cs,

@@ -251,6 +251,13 @@ struct SceneClashOptions {
   /// relative pose with the same meshes are decided once per run, so a caller that wants one
   /// process's core_runs keeps them in one run (PairClassKey).
   std::vector<std::pair<std::uint32_t, std::uint32_t>> decide_pairs;
+  /// Motion: decide a candidate pair in a frame only where this returns true for (frame, a, b)
+  /// (issue #28, the cell's path check): the others are still found and counted by the broad phase
+  /// (candidate_pairs, suppressed) but neither decided nor reported in that frame, as if clear
+  /// there. For callers that have proven those pairs apart by more than the test's clearance, with
+  /// neither body inside the other (robot/cell.h, check_cell_path: certified distances along the
+  /// path), or that read only some pairs' verdicts. Unset: every candidate is decided.
+  std::function<bool(std::size_t frame, std::uint32_t a, std::uint32_t b)> decide_in_frame;
 };
 
 struct SceneClashResult {
