@@ -194,9 +194,11 @@ quadric-error-metric edge collapses while the faces that take part in the curren
    sides joined by an end: one plane perpendicular to them and/or rounds: a slot closed at one end), `slot`
    (open; two facing planar walls, nothing else: a through slot), `through_step` (open; one planar wall whose
    only wall, taken as a floor, is this floor: the paper's two planes at one concave arc, so a face standing
-   on a base plate among others is no step). Each face belongs to one feature: pockets first, then blind
-   slots, slots, steps (a slot's wall is also "a floor with one wall"), larger floors first (a step's floor and
-   wall, a blind slot's floor and end, read either way). Roles: `floor`, `wall` (pocket, step) or `wall1`,
+   on a base plate among others is no step). A floor belongs to one feature and is no other feature's face:
+   pockets first, then blind slots, slots, steps (a slot's wall is also "a floor with one wall"), larger floors
+   first (a step's floor and wall, a blind slot's floor and end, read either way); features may share walls
+   and fillets (the gaps above and below one cooling fin), but not all their walls when of one type (a
+   rectangular window read as a slot from either end is one slot). Roles: `floor`, `wall` (pocket, step) or `wall1`,
    `wall2` (the sides) and `end` (blind slot), `fillet` (the floor fillets). Fillets and corner rounds are never
    a feature of their own: not floors, walls, holes (hole walls close the circle) or bosses (the boss pattern
    checks `full_circle`). Tested on generated parts with OCCT rolling-ball fillets

@@ -27,12 +27,15 @@
 //    are none of these.
 // Fillets are never a floor or wall of their own, so floor fillets and corner rounds are not reported
 // as features (and never as holes: hole_recognition.cpp requires walls closing the full circle).
-// Every face belongs to one feature at most: candidates are accepted pockets first, then blind slots,
-// slots and steps (a slot's side is also "a floor with one wall", a step, and loses to the slot); of
-// one rank, larger floors first.
+// A floor belongs to one feature and is no other feature's face: candidates are accepted pockets first,
+// then blind slots, slots and steps (a slot's side is also "a floor with one wall", a step, and loses to
+// the slot); of one rank, larger floors first. Walls and fillets may be shared (the gaps above and below
+// one cooling fin), but two features of one type never have the same walls (issue #29, item 2: found by
+// rendering the floor truth set, tools/hole_truth/render_labels.py).
 #include "pocket_recognition.h"
 
 #include <algorithm>
+#include <set>
 #include <cmath>
 #include <map>
 #include <numeric>
@@ -253,14 +256,25 @@ std::vector<FloorFeature> recognize_floor_features(const Aag& g, const std::vect
   std::stable_sort(cand.begin(), cand.end(), [&](const Candidate& a, const Candidate& b) {
     return a.rank != b.rank ? a.rank < b.rank : g.nodes[a.f.floor].area > g.nodes[b.f.floor].area;
   });
-  std::vector<char> taken(claimed.begin(), claimed.end());
+  // Features that only share walls or fillets (the gaps above and below one cooling fin, two slots either
+  // side of one rib) are two features; a candidate is another reading of a taken one when its floor is a
+  // face of the taken one, the taken one's floor is a face of it, or both are of one type between the same
+  // walls (a rectangular window read as a slot from either end face).
+  std::vector<char> taken(claimed.size(), 0), floor_taken(claimed.size(), 0);
+  std::set<std::pair<std::string, std::vector<std::uint32_t>>> wall_sets;
   std::vector<FloorFeature> out;
   for (Candidate& c : cand) {
     std::vector<std::uint32_t> owned = c.f.walls;
     owned.push_back(c.f.floor);
     owned.insert(owned.end(), c.f.fillets.begin(), c.f.fillets.end());
-    if (std::any_of(owned.begin(), owned.end(), [&](std::uint32_t f) { return taken[f] != 0; })) continue;
+    std::vector<std::uint32_t> walls = c.f.walls;
+    std::sort(walls.begin(), walls.end());
+    if (taken[c.f.floor] || wall_sets.count({c.f.type, walls}) ||
+        std::any_of(owned.begin(), owned.end(), [&](std::uint32_t f) { return claimed[f] != 0 || floor_taken[f] != 0; }))
+      continue;
     for (std::uint32_t f : owned) taken[f] = 1;
+    floor_taken[c.f.floor] = 1;
+    wall_sets.insert({c.f.type, std::move(walls)});
     out.push_back(std::move(c.f));
   }
   std::sort(out.begin(), out.end(), [](const FloorFeature& a, const FloorFeature& b) {

@@ -20,8 +20,9 @@ struct FloorFeature {
 };
 
 /// The floor features of `aag` (split faces already merged) of the types in `types` (pocket, slot,
-/// blind_slot, through_step): faces with `claimed[f]` set take no part. Each face belongs to one
-/// feature at most (pockets first, then blind slots, slots, steps). Sorted by type, then floor.
+/// blind_slot, through_step): faces with `claimed[f]` set take no part. A floor belongs to one feature
+/// and is no other's face (pockets first, then blind slots, slots, steps); walls and fillets may be
+/// shared, but not all of them by two features of one type. Sorted by type, then floor.
 std::vector<FloorFeature> recognize_floor_features(const Aag& aag, const std::vector<char>& claimed,
                                                    const std::set<std::string>& types);
 

@@ -204,11 +204,11 @@ TEST(FloorTruth, PrecisionAndRecallPerPart) {
               total.precision(), total.recall(), total.typed_precision(), total.typed_recall());
   // Regression floors (measured 2026-11-29: typed precision 0.88, recall 0.92 over 173 truth features;
   // after the labeller's two fixes found by rendering the labels (edge tolerance, features sharing only
-  // walls: gmsh_Zylkopf -2 wrong pockets, gmsh_Block 25 -> 52 features), the same recognizer measures
-  // 0.92 / 0.83 over 198); the 0.95 is a hole target and is not met here on every part
-  // (docs/simplify.md).
+  // walls: gmsh_Zylkopf -2 wrong pockets, gmsh_Block 25 -> 52 features) 0.92 / 0.83 over 198, and 0.91 /
+  // 0.90 with the recognizer's same fix); the 0.95 is a hole target and is not met here on every
+  // part (docs/simplify.md).
   EXPECT_GE(total.typed_precision(), 0.85);
-  EXPECT_GE(total.typed_recall(), 0.80);
+  EXPECT_GE(total.typed_recall(), 0.85);
   if (const char* out = std::getenv("INTERFERE_FLOOR_PR_JSON")) {
     std::ofstream o(out);
     o << json{{"parts", table}, {"types", types},
