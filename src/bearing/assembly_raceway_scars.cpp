@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
 
 #include "interfere/bearing/part_pair.h"
 #include "interfere/bearing/raceway_scar_solver.h"
@@ -107,8 +108,10 @@ std::optional<AssemblyPairResult> solve_raceway_scar_row(const Assembly& as, con
   out.solver = AssemblySolver::scarred;
   out.scar = r.scar;
   out.exact = r.exact;
-  // both directions are measured only when the roller is scarred too (raceway_scar_solver.h)
-  out.two_sided = r.roller_term < std::numeric_limits<double>::infinity();
+  // both directions are measured when the roller is scarred too (raceway_scar_solver.h); an intact
+  // roller's row is S = T_r when the surfaces are apart (the Euclidean distance, symmetric: the row
+  // is clear, as the assembly takes apart surfaces), one-sided when they overlap (docs/bearing.md)
+  out.two_sided = r.roller_term < std::numeric_limits<double>::infinity() || r.distance > 0;
   if (r.carrier == ScarCarrier::roller) out.scar_part = 1;
   else if (r.carrier == ScarCarrier::raceway) out.scar_part = 2;
   else if (r.scar) out.scar_part = r.distance == r.raceway_term ? 1 : 2;  // the solid grown by the other's raise

@@ -96,3 +96,34 @@ TEST(BearingAssemblyRingScarMesh, ScarredRacewaysAreDrawn) {
   EXPECT_EQ(plain->parts[0].mesh->positions.size(),
             inner_ring_mesh(b0, plain->geometry[0], plain->spec.ring_segments).positions.size());
 }
+
+TEST(RacewayScarIntactRoller, ApartRowsAreTwoSidedOverlappingOnesSaySo) {
+  // an intact roller in range of a raceway scar: apart surfaces (T_r > 0) are the Euclidean distance,
+  // symmetric, so the row is S (two_sided 1); overlapping rows are T_r alone (two_sided 0): the
+  // roller's depth in the scarred ring is not computed (docs/bearing.md, "Scars on raceways")
+  const std::string bearings =
+      with_scars(kCylindricalBearing,
+                 R"({"part": "inner", "angle_center_deg": 270, "angle_width_deg": 120, "depth": 0.03, "seed": 3,
+                     "radial_segments": 256, "height_segments": 31},
+                    {"part": "outer", "angle_center_deg": 90, "angle_width_deg": 120, "depth": 0.03, "raised": true, "seed": 4,
+                     "radial_segments": 256, "height_segments": 31})") +
+      "," + with_scars(kTaperedBearing, R"({"part": "cone", "angle_center_deg": 270, "angle_width_deg": 120, "depth": 0.03, "seed": 5,
+                                          "radial_segments": 256, "height_segments": 31})");
+  const Expected<AssemblySpec> spec = parse_assembly(
+      assembly_json(R"("frames": 3, "seed": 3, "motion": {"inner_deg_per_frame": 7, "max_tilt_deg": 0.1,
+                      "load": {"direction_deg": 270, "displacement": 0.08}},)", bearings), "a.json");
+  ASSERT_TRUE(spec) << spec.error().message();
+  const Expected<Assembly> as = build_assembly(*spec);
+  ASSERT_TRUE(as) << as.error().message();
+  const AssemblyResult res = run_assembly(*as, generate_motion(*as, 3, as->spec.seed));
+  int apart = 0, overlapping = 0;
+  for (const AssemblyRow& row : res.rows) {
+    const AssemblyPair& pair = as->pairs[row.pair];
+    const AssemblyPairResult& r = row.result;
+    if (!as->parts[pair.b].raceway_scar || r.solver != AssemblySolver::scarred || as->parts[pair.a].scarred) continue;
+    EXPECT_EQ(r.two_sided, r.distance > 0) << assembly_pair_kind_name(pair.kind);
+    (r.distance > 0 ? apart : overlapping) += 1;
+  }
+  EXPECT_GT(apart, 0);
+  EXPECT_GT(overlapping, 0);
+}
