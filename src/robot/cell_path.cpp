@@ -33,6 +33,8 @@ using namespace detail;  // (cell_internal.h)
 /// Segments a certificate looks ahead: its BVH query's upper bound is the motion of the pair
 /// over this many segments (a larger bound costs more per query, a smaller one more queries).
 constexpr std::size_t kLookahead = 64;
+/// Path points per block of a pair's walk (blocks run in parallel).
+constexpr std::size_t kBlock = 2048;
 
 /// Relative shortfall allowed in a certified distance (distance_lower_bound): the query stops once
 /// what is left cannot be nearer than this fraction below the best found.
@@ -339,19 +341,29 @@ PathCheckResult check_cell_path(const Cell& cell, const CellScene& cs, const Joi
     return seg_bound[k * nb + pairs[p].first] + seg_bound[k * nb + pairs[p].second];
   };
   constexpr double kRel = 1 + 1e-9;  // (relative rounding of the sums of bounds)
-  tbb::parallel_for(std::size_t(0), np, [&](std::size_t p) {
+  // Each pair's walk in blocks of points walked independently (a block starts with a certificate
+  // at its first point), so that one busy pair (the probe over the workpiece) does not hold up the
+  // rest; the blocks are fixed, so the results do not depend on the thread count. A segment is
+  // covered forwards (from a certificate at or before its first point, in the block of that
+  // point) or backwards (from a certificate at its last point): two flags, each written by one
+  // block only.
+  std::vector<char> covered_back(np * segments, 0);
+  const std::size_t blocks = (n + kBlock - 1) / kBlock;
+  tbb::parallel_for(std::size_t(0), np * blocks, [&](std::size_t job) {
+    const std::size_t p = job / blocks, lo = (job % blocks) * kBlock, hi = std::min(n, lo + kBlock);
     char* nd = need.data() + p * n_frames;
     char* cov = covered.data() + p * segments;
+    char* back = covered_back.data() + p * segments;
     double cert = -1, moved = 0;  // the current certificate and the motion since its point
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t i = lo; i < hi; ++i) {
       if (!(cert > 0 && moved * kRel < cert)) {
         double wanted = 0;
         for (std::size_t k = i; k < std::min(segments, i + kLookahead); ++k) wanted += pair_bound(p, k);
-        if (i > 0 && !cov[i - 1]) wanted = std::max(wanted, pair_bound(p, i - 1));
+        if (i > 0) wanted = std::max(wanted, pair_bound(p, i - 1));
         cert = certify(p, point_frame[i], wanted * kRel);
         moved = 0;
         if (cert > 0) {
-          if (i > 0 && !cov[i - 1] && pair_bound(p, i - 1) * kRel < cert) cov[i - 1] = 1;  // backwards
+          if (i > 0 && pair_bound(p, i - 1) * kRel < cert) back[i - 1] = 1;  // backwards
         } else {
           nd[point_frame[i]] = 1;
         }
@@ -361,11 +373,14 @@ PathCheckResult check_cell_path(const Cell& cell, const CellScene& cs, const Joi
         if (moved * kRel < cert) cov[i] = 1;
       }
     }
-    // Frames inside segments (cell_scene's `between` samples): covered with their segment, else
-    // each on its own.
+  });
+  for (std::size_t k = 0; k < covered.size(); ++k) covered[k] = covered[k] || covered_back[k];
+  // Frames inside segments (cell_scene's `between` samples): covered with their segment, else each
+  // on its own.
+  tbb::parallel_for(std::size_t(0), np, [&](std::size_t p) {
     for (std::size_t f = 0; f < n_frames; ++f) {
-      if (cs.frame_t[f] == 0 || cov[cs.frame_point[f]]) continue;
-      if (!(certify(p, f, 0) > 0)) nd[f] = 1;
+      if (cs.frame_t[f] == 0 || covered[p * segments + cs.frame_point[f]]) continue;
+      if (!(certify(p, f, 0) > 0)) need[p * n_frames + f] = 1;
     }
   });
   out.certificates = certificates, out.bvh_queries = queries;

@@ -266,6 +266,17 @@ TEST(CellPath, SameAsPlainInClearanceModeAndWithSampledFrames) {
   EXPECT_GT(t.colliding_frames, 0u);
 }
 
+TEST(CellPath, SameAsPlainOverSeveralWalkBlocks) {
+  // 4,500 points: each pair's walk runs in blocks of 2,048 points (cell_path.cpp), so certificates
+  // end and restart at block boundaries; the results stay the plain check's.
+  Expected<Cell> cell = generated_cell(fs::temp_directory_path() / "interfere_robot_path3");
+  ASSERT_TRUE(cell) << cell.error().message();
+  Tally t;
+  expect_same_as_plain(*cell, sweep_path(4500, -16.0), 0, t, false);
+  EXPECT_GT(t.colliding_frames, 0u);
+  EXPECT_GT(t.certified, 1000u);
+}
+
 TEST(CellPath, SameAsPlainOnTheExampleDensified) {
   const fs::path ex = fs::path(INTERFERE_SOURCE_DIR) / "examples" / "probe";
   Expected<Cell> cell = read_cell_json(ex / "cell.json");
