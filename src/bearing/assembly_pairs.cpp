@@ -206,8 +206,11 @@ std::pair<double, Vec3> deepest_in_web(const Cylinder& roller, const std::array<
     double best = -std::numeric_limits<double>::infinity(), bx = 0, by = 0;
     const auto take = [&](double x, double y) {
       double f = std::numeric_limits<double>::infinity();
-      for (int j = 0; j < 6; ++j) f = std::min(f, b[j] - mx[j] * x - my[j] * y);
-      if (f > best) best = f, bx = x, by = y;
+      for (int j = 0; j < 6; ++j) {
+        f = std::min(f, b[j] - mx[j] * x - my[j] * y);
+        if (!(f > best)) return;  // (f only decreases: this candidate cannot replace the best)
+      }
+      best = f, bx = x, by = y;
     };
     take(0, 0);
     for (int j = 0; j < 6; ++j)
