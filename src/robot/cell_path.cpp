@@ -305,17 +305,21 @@ PathCheckResult check_cell_path(const Cell& cell, const CellScene& cs, const Joi
     // The BVH distance query between the posed models.
     ++queries;
     std::vector<Model>& posed = posed_tls.local();
-    const auto model = [&](std::uint32_t x) -> const Model& {
-      if (geom[x].link < 0) return *geom[x].model;
-      const Transform& t = pose(x, f);
+    const auto posed_by = [&](std::uint32_t x, const Transform& t) -> const Model& {
       const std::vector<Vec3>& local = geom[x].model->mesh.positions;
       std::vector<Vec3> w(local.size());
       for (std::size_t v = 0; v < w.size(); ++v) w[v] = t.apply(local[v]);
       refit(posed[x], std::move(w));
       return posed[x];
     };
-    const Model& ma = model(a);
-    const Model& mb = model(b);
+    // Two moving bodies: in a's own frame (b posed relative to a: one refit instead of two; the
+    // distances and the sides of points are those of the world up to rounding, within the slack).
+    // A moving and a static body: the moving one posed in the world.
+    const bool both_moving = ga.link >= 0 && gb.link >= 0;
+    const Model& ma = ga.link < 0 ? *ga.model : both_moving ? *ga.model : posed_by(a, pose(a, f));
+    const Model& mb = gb.link < 0 ? *gb.model
+                      : both_moving ? posed_by(b, scene::compose(scene::inverse(pose(a, f)), pose(b, f)))
+                                    : posed_by(b, pose(b, f));
     const double dist = std::min(distance_lower_bound(ma, mb, need + 2 * slack), need + 2 * slack);
     if (!(dist > threshold + slack)) return -1;
     // Apart: each component of one body lies wholly inside or outside the other's solid; one
