@@ -63,16 +63,17 @@ void join_classes(BroadResult& broad, const std::vector<std::uint64_t>& mesh_key
 /// two bodies and frame, and per triangle of every body a rank holds (its model and tree built
 /// once, its statistics).
 struct CostModel {
-  // Defaults: the fit of docs/scaling.md of 2026-11-29 13:41 UTC (engine and read CPU seconds of
-  // the 10^5-body product and two sphere swarms at K = 1, 2; the pair-triangle term came out 0).
-  double pair_s = 2.34e-5;
+  // Defaults: the fit of docs/scaling.md of 2026-11-29 16:13 UTC (engine and read CPU seconds of
+  // the 10^5-body product and two sphere swarms at K = 1, 2; the pair-triangle term came out 0;
+  // its runs used the previous defaults, 2.34e-5, 0, 1.3e-6, 4.57e-7, 3.5e-6).
+  double pair_s = 1.81e-5;
   double pair_tri_s = 0;
-  double body_tri_s = 1.3e-6;
-  double read_tri_s = 4.57e-7;  ///< reading a body a rank did not read in the first step
+  double body_tri_s = 1.4e-6;
+  double read_tri_s = 5.03e-7;  ///< reading a body a rank did not read in the first step
   /// Rank 0's gather and merge of every rank's findings after its engine call, per candidate pair
-  /// (unit) of the scene: rank 0's CPU seconds of it (the report's mpi.merge) on the lattice
-  /// product of docs/scaling.md, 2 x 10^4 bodies, K = 1: 0.25 s for 74,525 pairs (3.3e-6 s a pair).
-  double merge_pair_s = 3.5e-6;
+  /// (unit) of the scene: rank 0's CPU seconds of it (the report's mpi.merge), median of the K = 1
+  /// runs of that fit (1.6 s for the product's 383,861 pairs).
+  double merge_pair_s = 4.23e-6;
   double pair(std::uint64_t triangles_a, std::uint64_t triangles_b) const {
     return pair_s + pair_tri_s * static_cast<double>(triangles_a + triangles_b);
   }
