@@ -35,6 +35,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bearing.h"
 #include "comm.h"
 #include "merge.h"
 #include "plan.h"
@@ -78,6 +79,7 @@ const char* kUsage =
     "         [--group-distance D] [--test TEXT]... [--tests FILE] [--clearance D] [--tolerance T] [--fail-on LIST]\n"
     "         [--field NAME] [--disp FILE] [--scale S] [--split MODE] [--linear-faces] [--no-reference]\n"
     "         [--threads N] [--memory-limit MB] [--cost-model PAIR_S,PAIR_TRI_S,BODY_TRI_S,READ_TRI_S[,MERGE_PAIR_S]] [--quiet]\n"
+    "       mpirun -n K interfere-mpi bearing --assembly FILE ... (frames in blocks per rank; `interfere-mpi bearing --help`)\n"
     "The report is the one of `interfere clash --scene FILE` (docs/report.md) plus \"mpi\"; docs/mpi.md.\n"
     "Exit status: 0 clear, contact or clearance; 1 clash (or a verdict named by --fail-on); 2 usage or input error,\n"
     "on any rank (message on stderr, nothing written); 3 undecided.\n";
@@ -126,7 +128,7 @@ Options parse(int argc, char** argv) {
   Options o;
   if (argc >= 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h")) throw InfoRequest{kUsage};
   if (argc >= 2 && std::string(argv[1]) == "--version") throw InfoRequest{std::string("interfere-mpi ") + INTERFERE_VERSION + "\n"};
-  if (argc < 2 || std::string(argv[1]) != "clash") throw UsageError(std::string("the command is `clash`\n") + kUsage);
+  if (argc < 2 || std::string(argv[1]) != "clash") throw UsageError(std::string("the command is `clash` or `bearing`\n") + kUsage);
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
     const auto value = [&]() -> std::string {
@@ -806,7 +808,10 @@ int main(int argc, char** argv) {
       MPI_Finalize();
       return status;
     }
-    status = interfere::mpi::run(w, argc, argv);
+    if (argc >= 2 && std::string(argv[1]) == "bearing")  // (issue #31 item 3: assembly frames in blocks per rank)
+      status = interfere::mpi::run_bearing(w, argc - 1, argv + 1);
+    else
+      status = interfere::mpi::run(w, argc, argv);
   } catch (const interfere::mpi::InfoRequest& info) {
     if (w.rank == 0) std::fputs(info.text.c_str(), stdout);
     status = 0;

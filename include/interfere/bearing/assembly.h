@@ -338,4 +338,9 @@ struct AssemblyResult {
 AssemblyResult run_assembly(const Assembly& as, const AssemblyMotion& motion,
                             const std::function<void(std::size_t, std::size_t)>& progress = {});
 
+/// The summaries of `out` (frames, worst_per_frame, worst, verdicts, verdict, the row counts) from
+/// its rows alone (frame-major, `pairs_per_frame` rows a frame), as run_assembly computes them:
+/// interfere-mpi (issue #31) merges the ranks' blocks of frames into one row list and calls it.
+void summarize_assembly(AssemblyResult& out, std::size_t pairs_per_frame);
+
 }  // namespace interfere::bearing

@@ -1,0 +1,258 @@
+// interfere-mpi bearing (issue #31, item 3; docs/mpi.md, "Time series"). Bearing assembly frames are
+// independent (assembly_run.cpp: each (frame, pair) is a pure function of that frame's poses), so
+// rank k of K solves frames [k F / K, (k + 1) F / K) with bearing::run_assembly on that block of the
+// motion (generated with the same seed on every rank, or read from the motion file by every rank),
+// the rows (trivially copyable) are gathered to rank 0 in rank order, renumbered to global frames,
+// summarised by bearing::summarize_assembly and written by the CLI's writer
+// (apps/cli/bearing_assembly_report.h): the same CSV, and the same JSON apart from timing, threads,
+// seconds and the added "mpi" section.
+#include "bearing.h"
+
+#include <tbb/global_control.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "bearing_assembly_report.h"
+#include "interfere/bearing/assembly.h"
+#include "report_envelope.h"
+
+namespace interfere::mpi {
+namespace {
+
+using namespace interfere::bearing;
+using Clock = std::chrono::steady_clock;
+
+struct InputError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct HelpRequest {};
+
+struct BearingOptions {
+  std::string assembly, motion, out, json, fail_on;
+  std::optional<int> frames;
+  std::optional<std::uint64_t> seed;
+  std::optional<double> clearance;
+  int threads = 0;
+  bool quiet = false;
+};
+
+const char* kBearingUsage =
+    "usage: mpirun -n K interfere-mpi bearing --assembly FILE [--motion FILE] [--frames N] [--seed S]\n"
+    "         [--clearance D] [--out ROWS.csv] [--json SUMMARY.json] [--fail-on LIST] [--threads N] [--quiet]\n"
+    "The outputs are those of `interfere bearing --assembly` (docs/bearing.md) plus \"mpi\" in the JSON; docs/mpi.md.\n";
+
+BearingOptions parse(int argc, char** argv) {
+  BearingOptions o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    const auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw InputError(a + " needs a value\n" + kBearingUsage);
+      return argv[++i];
+    };
+    const auto number = [&](const std::string& v) {
+      try {
+        std::size_t used = 0;
+        const double d = std::stod(v, &used);
+        if (used != v.size() || !std::isfinite(d)) throw std::invalid_argument(v);
+        return d;
+      } catch (const std::exception&) {
+        throw InputError(a + ": '" + v + "' is not a finite number");
+      }
+    };
+    const auto integer = [&](const std::string& v) -> long long {
+      try {
+        std::size_t used = 0;
+        const long long n = std::stoll(v, &used);
+        if (used != v.size()) throw std::invalid_argument(v);
+        return n;
+      } catch (const std::exception&) {
+        throw InputError(a + ": '" + v + "' is not an integer");
+      }
+    };
+    if (a == "--assembly") o.assembly = value();
+    else if (a == "--motion") o.motion = value();
+    else if (a == "--frames") o.frames = static_cast<int>(integer(value()));
+    else if (a == "--seed") {
+      const long long s = integer(value());
+      if (s < 0) throw InputError("--seed must be >= 0");
+      o.seed = static_cast<std::uint64_t>(s);
+    } else if (a == "--clearance") o.clearance = number(value());
+    else if (a == "--out") o.out = value();
+    else if (a == "--json") o.json = value();
+    else if (a == "--fail-on") o.fail_on = value();
+    else if (a == "--threads") o.threads = static_cast<int>(integer(value()));
+    else if (a == "--quiet" || a == "-q") o.quiet = true;
+    else if (a == "--help" || a == "-h") throw HelpRequest{};
+    else if (a == "--html" || a == "--glb" || a == "--pvd" || a == "--view-budget")
+      throw InputError(a + ": not offered by interfere-mpi: views are drawn from one process's result: run `interfere bearing "
+                           "--assembly` with --html/--glb/--pvd (docs/mpi.md, \"Options\")");
+    else throw InputError("unknown option " + a + "\n" + kBearingUsage);
+  }
+  if (o.assembly.empty()) throw InputError(std::string("--assembly FILE is required\n") + kBearingUsage);
+  if (o.frames && *o.frames < 1) throw InputError("--frames must be >= 1, got " + std::to_string(*o.frames));
+  if (!o.motion.empty() && o.frames) throw InputError("--frames cannot be combined with --motion (the file gives the frames)");
+  if (!o.fail_on.empty() && !parse_fail_on(o.fail_on))
+    throw InputError("--fail-on: '" + o.fail_on + "' is not a list of contact, clearance, undecided (comma-separated)");
+  if (o.threads < 0) throw InputError("--threads must be >= 0");
+  return o;
+}
+
+void write_file(const std::string& path, const std::string& text) {
+  if (path.empty()) return;
+  if (path == "-") {
+    std::fwrite(text.data(), 1, text.size(), stdout);
+    return;
+  }
+  const std::string tmp = path + ".tmp";
+  std::FILE* f = std::fopen(tmp.c_str(), "wb");
+  if (!f) throw std::runtime_error(path + ": cannot write");
+  const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+  if (std::fclose(f) != 0 || !ok) throw std::runtime_error(path + ": cannot write");
+  std::filesystem::rename(tmp, path);
+}
+
+std::string csv_text(const Assembly& as, const AssemblyResult& r) {
+  char* buf = nullptr;
+  std::size_t size = 0;
+  std::FILE* f = open_memstream(&buf, &size);
+  if (!f) throw std::runtime_error("cannot allocate the CSV text");
+  const int bad = cli::write_assembly_csv(f, as, r);
+  std::fclose(f);
+  std::string text(buf, size);
+  std::free(buf);
+  if (bad) throw std::runtime_error("cannot format the CSV rows");
+  return text;
+}
+
+int run_checked(const World& w, const BearingOptions& o) {
+  const auto t_total = Clock::now();
+  // The inputs: every rank reads them; the ranks agree on any error before the gather (a rank that
+  // alone failed would leave the others waiting), rank 0 printing the first rank's message.
+  std::optional<AssemblySpec> spec;
+  std::optional<Assembly> as;
+  AssemblyMotion motion;
+  std::string error;
+  try {
+    Expected<AssemblySpec> read = read_assembly_file(o.assembly);
+    if (!read) throw InputError(read.error().message());
+    spec = std::move(*read);
+    if (o.frames) spec->frames = *o.frames;
+    if (o.seed) spec->seed = *o.seed;
+    if (o.clearance) spec->clearance = *o.clearance;
+    if (Status s = validate_assembly(*spec); !s) {
+      Error e = s.error();
+      if (e.file.empty()) e.file = o.assembly;
+      throw InputError(e.message());
+    }
+    Expected<Assembly> built = build_assembly(*spec);
+    if (!built) throw InputError(built.error().message());
+    as = std::move(*built);
+    if (!o.motion.empty()) {
+      Expected<AssemblyMotion> m = read_assembly_motion(*as, o.motion);
+      if (!m) throw InputError(m.error().message());
+      motion = std::move(*m);
+    } else {
+      motion = generate_motion(*as, spec->frames, spec->seed);  // (frame f depends on (seed, f) only)
+    }
+  } catch (const InputError& e) {
+    error = e.what();
+  }
+  for (const std::string& e : allgather(error))
+    if (!e.empty()) throw InputError(e);
+  const FailOn fail = o.fail_on.empty() ? FailOn{} : *parse_fail_on(o.fail_on);
+  std::unique_ptr<tbb::global_control> threads;
+  if (o.threads > 0) threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o.threads);
+
+  // This rank's block of frames.
+  const std::size_t nf = motion.poses.size(), k = static_cast<std::size_t>(w.size), r = static_cast<std::size_t>(w.rank);
+  const std::size_t lo = r * nf / k, hi = (r + 1) * nf / k;
+  if (w.rank == 0 && k > nf && !o.quiet)
+    std::fprintf(stderr, "[interfere-mpi] warning: %d ranks for %zu frames: %zu ranks idle\n", w.size, nf, k - nf);
+  AssemblyMotion block;
+  block.source = motion.source;
+  block.poses.assign(motion.poses.begin() + static_cast<std::ptrdiff_t>(lo), motion.poses.begin() + static_cast<std::ptrdiff_t>(hi));
+  const auto t_run = Clock::now();
+  AssemblyResult mine;
+  if (!block.poses.empty()) mine = run_assembly(*as, block);
+  const double run_seconds = std::chrono::duration<double>(Clock::now() - t_run).count();
+  for (AssemblyRow& row : mine.rows) row.frame += static_cast<std::int32_t>(lo);
+
+  // Rows as bytes (the same executable on every rank), then the rank's block and seconds.
+  static_assert(std::is_trivially_copyable_v<AssemblyRow>);
+  std::string bytes(sizeof(double), '\0');
+  std::memcpy(bytes.data(), &run_seconds, sizeof(double));
+  bytes.append(reinterpret_cast<const char*>(mine.rows.data()), mine.rows.size() * sizeof(AssemblyRow));
+  const std::vector<std::string> all = gather(bytes);
+
+  int status = 0;
+  if (w.rank == 0) {
+    AssemblyResult res;
+    nlohmann::json ranks = nlohmann::json::array();
+    for (std::size_t q = 0; q < all.size(); ++q) {
+      double s = 0;
+      std::memcpy(&s, all[q].data(), sizeof(double));
+      const std::size_t n = (all[q].size() - sizeof(double)) / sizeof(AssemblyRow);
+      const std::size_t at = res.rows.size();
+      res.rows.resize(at + n);
+      if (n) std::memcpy(static_cast<void*>(res.rows.data() + at), all[q].data() + sizeof(double), n * sizeof(AssemblyRow));
+      ranks.push_back({{"rank", q}, {"frames", {q * nf / k, (q + 1) * nf / k}}, {"rows", n}, {"seconds", s}});
+    }
+    if (res.rows.size() != nf * as->pairs.size())
+      throw std::logic_error("gathered " + std::to_string(res.rows.size()) + " rows, expected " + std::to_string(nf * as->pairs.size()));
+    summarize_assembly(res, as->pairs.size());
+    res.frames = static_cast<int>(nf);
+    res.seconds = std::chrono::duration<double>(Clock::now() - t_total).count();
+    status = verdict_exit_status(res.verdict, fail);
+    const int nthreads = static_cast<int>(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+    if (!o.out.empty()) write_file(o.out, csv_text(*as, res));
+    if (!o.json.empty()) {
+      nlohmann::json j = cli::assembly_summary(*as, motion, res, spec->seed, status, nthreads);
+      j["mpi"] = {{"ranks", w.size}, {"per_rank", std::move(ranks)}};
+      write_file(o.json, cli::report_text(std::move(j)));
+    }
+    if (!o.quiet) {
+      const AssemblyRow& wr = res.rows[res.worst];
+      std::FILE* out = o.out == "-" || o.json == "-" ? stderr : stdout;
+      std::fprintf(out, "%s: %zu bearings, %zu parts, %zu pairs x %d frames, %llu interfering pair-frames, worst %s %s-%s "
+                   "distance %.17g (frame %d) (%d ranks)\n",
+                   verdict_name(res.verdict), as->spec.bearings.size(), as->parts.size(), as->pairs.size(), res.frames,
+                   static_cast<unsigned long long>(res.interfering_rows), assembly_pair_kind_name(as->pairs[wr.pair].kind),
+                   as->parts[as->pairs[wr.pair].a].id.c_str(), as->parts[as->pairs[wr.pair].b].id.c_str(),
+                   wr.result.distance, wr.frame, w.size);
+    }
+  }
+  return broadcast(status);
+}
+
+}  // namespace
+
+int run_bearing(const World& w, int argc, char** argv) {
+  BearingOptions o;
+  try {
+    o = parse(argc, argv);
+    return run_checked(w, o);
+  } catch (const HelpRequest&) {
+    if (w.rank == 0) std::fputs(kBearingUsage, stdout);
+    return 0;
+  } catch (const InputError& e) {
+    // (options, the assembly and the motion file: every rank finds it alike; rank 0 says it)
+    if (w.rank == 0) std::fprintf(stderr, "interfere: error: %s\n", e.what());
+    return 2;
+  }
+}
+
+}  // namespace interfere::mpi
