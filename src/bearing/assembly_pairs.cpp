@@ -359,17 +359,6 @@ AssemblyPairResult from_two_sided(const TwoSidedRing& t, double clearance, doubl
   return out;
 }
 
-/// Two-sided S = min(s(a, b), s(b, a)) with cone_pair_distance (tapered parts). When s(a, b) > 0 the
-/// solids are apart and both one-sided values are their Euclidean distance: the reverse is skipped.
-PairDistance two_sided_cone(const Cylinder& a, const Cylinder& b) {
-  const PairDistance f = cone_pair_distance(a, b);
-  if (f.distance > 0) return f;
-  PairDistance r = cone_pair_distance(b, a);
-  if (f.distance <= r.distance) return f;
-  std::swap(r.point_a, r.point_b);
-  return r;
-}
-
 /// Two intact cylinders apart: s(a, b) > 0 is their Euclidean distance, equal to s(b, a), so the
 /// two-sided S is the forward value (part_pair.h would also compute the reverse, often by the slow
 /// general path). nullopt when they are not apart (then part_pair.h decides).
@@ -406,10 +395,10 @@ AssemblyPairResult from_scarred_frustum(const detail::ScarredFrustumValue& v, bo
   return out;
 }
 
-ScenePart roller_part(const AssemblyPart& p, const Cylinder& c, const Transform& pose) {
+ScenePart roller_part(const AssemblyPart& p, const Cylinder& c, const Transform& pose, bool scarred) {
   ScenePart s;
   s.cylinder = c;
-  if (p.scarred) {
+  if (scarred) {
     s.mesh = p.roller.get();
     s.tree = p.tree.get();
     s.solid = p.solid.get();
@@ -463,9 +452,12 @@ AssemblyPairResult scarred_tapered_rollers(const AssemblyPart& ra, const Cylinde
 }  // namespace
 
 namespace {
+/// One row. `intact_roller`: the roller's intact cylinder instead of its scarred mesh (the
+/// raceway-scar rows' check, solve_pair).
 AssemblyPairResult solve_one(const Assembly& as, const AssemblyPair& pair, const std::vector<Transform>& poses,
-                             double clearance) {
+                             double clearance, bool intact_roller = false) {
   const AssemblyPart& ra = as.parts[pair.a];
+  const bool scarred = ra.scarred && !intact_roller;
   const AssemblyPart& pb = as.parts[pair.b];
   const BearingSpec& b = as.spec.bearings[ra.bearing];
   const BearingGeometry& g = as.geometry[ra.bearing];
@@ -479,27 +471,27 @@ AssemblyPairResult solve_one(const Assembly& as, const AssemblyPair& pair, const
       ScenePart race;
       race.cylinder = posed(g.raceway, pose_b);
       race.partner = true;
-      if (!ra.scarred)
+      if (!scarred)
         if (auto r = apart(roller, race.cylinder, clearance)) return *r;
-      return from_part_pair(decide_part_pair(roller_part(ra, roller, pose_a), race, clearance), clearance, tol);
+      return from_part_pair(decide_part_pair(roller_part(ra, roller, pose_a, scarred), race, clearance), clearance, tol);
     }
     case AssemblyPairKind::roller_roller: {
       const Cylinder other = posed_cylinder(b.rollers.radius, b.rollers.top_radius, b.rollers.length, pose_b);
       if (b.type == BearingType::tapered) {
-        if (ra.scarred || pb.scarred) return scarred_tapered_rollers(ra, roller, pose_a, pb, other, pose_b, clearance, tol);
-        return from_distance(two_sided_cone(roller, other), AssemblySolver::raceway, clearance, tol);
+        if (scarred || pb.scarred) return scarred_tapered_rollers(ra, roller, pose_a, pb, other, pose_b, clearance, tol);
+        return from_distance(two_sided_frustum_distance(roller, other), AssemblySolver::raceway, clearance, tol);
       }
-      if (!ra.scarred && !pb.scarred)
+      if (!scarred && !pb.scarred)
         if (auto r = apart(roller, other, clearance)) return *r;
       return from_part_pair(
-          decide_part_pair(roller_part(ra, roller, pose_a), roller_part(pb, other, pose_b), clearance), clearance, tol);
+          decide_part_pair(roller_part(ra, roller, pose_a, scarred), roller_part(pb, other, pose_b, pb.scarred), clearance), clearance, tol);
     }
     case AssemblyPairKind::roller_cone:
-      if (ra.scarred)  // issue #27: the scarred solver against the cone's frustum (exact), two-sided bracket
+      if (scarred)  // issue #27: the scarred solver against the cone's frustum (exact), two-sided bracket
         return from_scarred_frustum(detail::scarred_against_frustum(*ra.roller, *ra.tree, ra.solid.get(), pose_a, roller,
                                                                     posed(g.raceway, pose_b), tol),
                                     false, clearance, tol);
-      return from_distance(two_sided_cone(roller, posed(g.raceway, pose_b)), AssemblySolver::raceway, clearance, tol);
+      return from_distance(two_sided_frustum_distance(roller, posed(g.raceway, pose_b)), AssemblySolver::raceway, clearance, tol);
     case AssemblyPairKind::roller_cup: {
       Cup cup;
       const auto cup_r = [&](double zz) {
@@ -508,7 +500,7 @@ AssemblyPairResult solve_one(const Assembly& as, const AssemblyPair& pair, const
       cup.base = pose_b.apply({0, 0, g.ring_lo});
       cup.axis = pose_b.rotate(z);
       cup.radius = cup_r(g.ring_lo), cup.top_radius = cup_r(g.ring_hi), cup.width = g.ring_hi - g.ring_lo;
-      if (!ra.scarred) return from_two_sided(two_sided_cup(roller, cup, b.cup_outer), clearance, tol);
+      if (!scarred) return from_two_sided(two_sided_cup(roller, cup, b.cup_outer), clearance, tol);
       // a scarred tapered roller (issue #27): the largest meridian distance beyond the cup's cone
       // line over its mesh clipped to the width (exact for the mesh, one-sided; as the bore's)
       bool found = false;
@@ -524,7 +516,7 @@ AssemblyPairResult solve_one(const Assembly& as, const AssemblyPair& pair, const
       bore.base = pose_b.apply({0, 0, -0.5 * b.outer_width});
       bore.axis = pose_b.rotate(z);
       bore.radius = b.outer_raceway, bore.width = b.outer_width;
-      if (!ra.scarred) return from_two_sided(two_sided_bore(roller, bore, b.outer_radius), clearance, tol);
+      if (!scarred) return from_two_sided(two_sided_bore(roller, bore, b.outer_radius), clearance, tol);
       // the scarred mesh: s = R - max of rho over the mesh's solid within the ring's width. rho is
       // convex, so its maximum over a triangle clipped to the slab is at a vertex of the clipped
       // polygon: a vertex in the slab or an edge's crossing of a side face (raceway.h's argument;
@@ -557,7 +549,7 @@ AssemblyPairResult solve_one(const Assembly& as, const AssemblyPair& pair, const
         d.distance = w.distance, d.point_a = w.point_a, d.point_b = w.point_b;
         return from_distance(d, AssemblySolver::web, clearance, tol);
       };
-      if (!ra.scarred) {  // intact roller: two-sided (ring_two_sided.h)
+      if (!scarred) {  // intact roller: two-sided (ring_two_sided.h)
         if (rib) return from_two_sided(two_sided_rib(roller, face, b.rib_width), clearance, tol);
         const WebValue rev = web_distance(roller, *web, pose_b);
         // apart (rev > 0): the Euclidean distance, symmetric
@@ -751,6 +743,53 @@ AssemblyPairResult solve_structural(const Assembly& as, const AssemblyPair& pair
   return bound_result(best, wa, wb, clearance, tol);
 }
 
+/// The largest radial distance of a faceted scarred surface from its intact cylinder: the largest
+/// |height| plus the facets' sagitta r (1 - cos(pi / n)) (its vertices lie on the scarred surface).
+double facet_deviation(double largest_height, double radius, int segments) {
+  return largest_height + radius * (1 - std::cos(3.14159265358979323846 / segments));
+}
+
+/// A roller row in range of a scarred raceway (raceway_scar_solver.h) measures the roller against
+/// the raceway's faceted surface only: a roller sunk into the ring's material without crossing that
+/// surface (through the bore or a side face, e.g. a pose from a motion file) was reported clear
+/// (review of 2026-11-29). Check: the scarred ring and roller lie within delta (their largest
+/// heights and sagittas) of the intact ones, so S lies within delta of the intact row's value S0
+/// (the intact cylinder against the intact ring, exact and cheap). A value outside [S0 - delta,
+/// S0 + delta] is out of the solver's model: the row becomes S0's bracket (not exact, solver
+/// `bound`, the lower end reported): clash when its upper end is below the touch tolerance, else
+/// undecided. Never clear.
+AssemblyPairResult check_raceway_scar_row(const Assembly& as, const AssemblyPair& pair,
+                                          const std::vector<Transform>& poses, double clearance,
+                                          const AssemblyPairResult& scarred_row) {
+  const AssemblyPart& ra = as.parts[pair.a];
+  const AssemblyPart& pb = as.parts[pair.b];
+  const BearingSpec& b = as.spec.bearings[ra.bearing];
+  const RacewayScar& rs = *pb.raceway_scar;
+  double delta = facet_deviation(std::max(rs.window.depth, rs.raise),
+                                 std::max(rs.geometry.radius, rs.geometry.top_radius), rs.grid.radial_segments);
+  if (ra.scarred && ra.roller) {
+    double h = ra.roller->raise;
+    for (const double d : ra.roller->displacement) h = std::max(h, std::fabs(d));
+    delta += facet_deviation(h, std::max(b.rollers.radius, b.rollers.top_radius), ra.roller->n());
+  }
+  const AssemblyPairResult intact = solve_one(as, pair, poses, clearance, true);
+  const Cylinder roller = posed_cylinder(b.rollers.radius, b.rollers.top_radius, b.rollers.length, poses[pair.a]);
+  const double tol = tolerance_of(roller, ring_radius(b));
+  const double slack = delta * 1e-9 + tol;
+  if (intact.exact && scarred_row.distance <= intact.distance + delta + slack &&
+      scarred_row.distance >= intact.distance - delta - slack)
+    return scarred_row;
+  AssemblyPairResult out = intact;
+  out.distance = intact.distance - delta;
+  out.exact = false;
+  out.two_sided = false;
+  out.scar = true;
+  out.scar_part = scarred_row.scar_part ? scarred_row.scar_part : 2;
+  out.solver = AssemblySolver::bound;
+  out.verdict = intact.exact && intact.distance + delta < -tol ? Verdict::clash : Verdict::undecided;
+  return out;
+}
+
 }  // namespace
 
 AssemblyPairResult solve_pair(const Assembly& as, const AssemblyPair& pair, const std::vector<Transform>& poses,
@@ -759,7 +798,8 @@ AssemblyPairResult solve_pair(const Assembly& as, const AssemblyPair& pair, cons
       pair.kind == AssemblyPairKind::bearing_bearing)
     return solve_structural(as, pair, poses, clearance);
   // a roller in range of a scarred raceway (issue #27; raceway_scar_solver.h)
-  if (auto scarred_raceway = detail::solve_raceway_scar_row(as, pair, poses, clearance)) return *scarred_raceway;
+  if (auto scarred_raceway = detail::solve_raceway_scar_row(as, pair, poses, clearance))
+    return check_raceway_scar_row(as, pair, poses, clearance, *scarred_raceway);
   AssemblyPairResult r = solve_one(as, pair, poses, clearance);
   if (r.scar) r.scar_part = as.parts[pair.a].scarred ? 1 : 2;  // which part's scarred mesh was measured
   switch (pair.kind) {  // which rows are two-sided (assembly.h, AssemblyPairResult::two_sided)
