@@ -17,6 +17,7 @@
 #include "interfere/bearing/scar.h"
 #include "interfere/bearing/scarred.h"
 #include "interfere/core/vec.h"
+#include "unit/bearing/splitmix.h"
 
 using namespace interfere;
 using namespace interfere::bearing;
@@ -25,16 +26,7 @@ namespace {
 
 constexpr double kDeg = std::numbers::pi / 180;
 
-struct SplitMix {
-  std::uint64_t s;
-  double uniform() {
-    std::uint64_t z = (s += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return static_cast<double>((z ^ (z >> 31)) >> 11) * 0x1p-53;
-  }
-  double in(double a, double b) { return a + (b - a) * uniform(); }
-};
+using SplitMix = interfere::bearing::test::SplitMix;
 
 Roller scarred(int n, int m, bool raised, std::uint64_t seed, double top_radius = -1) {
   Expected<Roller> r = make_roller({.radius = 10, .top_radius = top_radius, .height = 38, .radial_segments = n,

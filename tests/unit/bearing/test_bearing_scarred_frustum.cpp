@@ -16,6 +16,7 @@
 #include "interfere/bearing/scar.h"
 #include "interfere/bearing/scarred.h"
 #include "frustum_oracle.h"
+#include "unit/bearing/splitmix.h"
 
 using namespace interfere;
 using namespace interfere::bearing;
@@ -42,16 +43,7 @@ std::vector<std::array<Vec3, 3>> posed_triangles(const Roller& r, const Transfor
 }
 
 /// A deterministic generator (splitmix64) for the poses.
-struct Rng {
-  std::uint64_t s;
-  double uniform() {
-    std::uint64_t z = (s += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return static_cast<double>((z ^ (z >> 31)) >> 11) * 0x1p-53;
-  }
-  double in(double a, double b) { return a + (b - a) * uniform(); }
-};
+using Rng = interfere::bearing::test::SplitMix;
 
 double check(const Roller& a, const RollerQuadtree& tree, const Transform& pose, const Cylinder& b, const char* what,
              int trial) {

@@ -24,6 +24,7 @@
 #include "interfere/bearing/scar.h"
 #include "interfere/bearing/simulation.h"
 #include "interfere/query/model.h"
+#include "unit/bearing/splitmix.h"
 
 using namespace interfere;
 using namespace interfere::bearing;
@@ -32,16 +33,7 @@ using namespace frustum_oracle_ns;
 namespace {
 
 /// splitmix64 uniform numbers (deterministic poses).
-struct Rng {
-  std::uint64_t s;
-  double uniform() {
-    std::uint64_t z = (s += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return static_cast<double>((z ^ (z >> 31)) >> 11) * 0x1p-53;
-  }
-  double in(double a, double b) { return a + (b - a) * uniform(); }
-};
+using Rng = interfere::bearing::test::SplitMix;
 
 Vec3 unit(const Vec3& v) { return v / norm(v); }
 
