@@ -754,8 +754,10 @@ double facet_deviation(double largest_height, double radius, int segments) {
 /// surface (through the bore or a side face, e.g. a pose from a motion file) was reported clear
 /// (review of 2026-11-29). Check: the scarred ring and roller lie within delta (their largest
 /// heights and sagittas) of the intact ones, so S lies within delta of the intact row's value S0
-/// (the intact cylinder against the intact ring, exact and cheap). A value outside [S0 - delta,
-/// S0 + delta] is out of the solver's model: the row becomes S0's bracket (not exact, solver
+/// (the intact cylinder against the intact ring, exact and cheap). A value above S0 + delta (or
+/// below S0 - 2 delta: with two scarred parts the row's S may lie up to delta below the scarred
+/// solids' value, docs/bearing.md "Two scarred parts") is out of the solver's model: the row
+/// becomes S0's bracket (not exact, solver
 /// `bound`, the lower end reported): clash when its upper end is below the touch tolerance, else
 /// undecided. Never clear.
 AssemblyPairResult check_raceway_scar_row(const Assembly& as, const AssemblyPair& pair,
@@ -777,7 +779,7 @@ AssemblyPairResult check_raceway_scar_row(const Assembly& as, const AssemblyPair
   const double tol = tolerance_of(roller, ring_radius(b));
   const double slack = delta * 1e-9 + tol;
   if (intact.exact && scarred_row.distance <= intact.distance + delta + slack &&
-      scarred_row.distance >= intact.distance - delta - slack)
+      scarred_row.distance >= intact.distance - 2 * delta - slack)
     return scarred_row;
   AssemblyPairResult out = intact;
   out.distance = intact.distance - delta;
