@@ -6,6 +6,8 @@
 #include <TopoDS_Shape.hxx>
 #include <gp_Trsf.hxx>
 
+#include <vector>
+
 #include "interfere/cad/model.h"
 
 namespace interfere::cad::detail {
@@ -19,5 +21,15 @@ Aag build_aag(const TopoDS_Shape& shape, const TopTools_IndexedMapOfShape& faces
 /// finds (tessellation_deviation.cpp); -1 when the triangulation has no UV nodes.
 double tessellation_deviation(const TopoDS_Face& face, const Poly_Triangulation& tri, const gp_Trsf& to_world,
                               double threshold);
+
+/// The shape to mesh where faces are split into angular sectors (sector_split.cpp, issue #29): `shape`
+/// (the part itself where no face qualifies or a check failed), and for each face of `faces`
+/// (0-based) its faces in `shape`, in order, oriented as there.
+struct SectorSplit {
+  TopoDS_Shape shape;
+  std::vector<std::vector<TopoDS_Face>> faces;
+  int split_faces = 0;  ///< faces divided into sectors
+};
+SectorSplit split_for_meshing(const TopoDS_Shape& shape, const TopTools_IndexedMapOfShape& faces);
 
 }  // namespace interfere::cad::detail

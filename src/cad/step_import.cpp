@@ -1,7 +1,8 @@
 // STEP import (issue #6, item 1) with OpenCASCADE 7.6: STEPCAFControl_Reader into an XCAF
 // document (names, assembly structure, instance locations), BRepMesh_IncrementalMesh tessellation
 // per part with every triangle tagged by its B-Rep face (vertices duplicated along face boundaries,
-// taken per face from Poly_Triangulation), then the part's AAG (aag_build.cpp).
+// taken per face from Poly_Triangulation; a face meshed as angular sectors, sector_split.cpp, gives
+// its sectors' triangles its id), then the part's AAG (aag_build.cpp, on the part as read).
 // Malformed files (step_guard.h): OCCT's translator dereferences null handles on some (a reference
 // to a missing or mistyped entity: SIGSEGV in StepToGeom) and recurses along reference cycles, so
 // the file is parsed in XSControl_Reader's steps with a cycle check before OCCT's entity checks,
@@ -122,6 +123,16 @@ Part make_part(const TopoDS_Shape& shape, const std::string& name, const ImportO
     lin = std::max(lin, kMinDeflection);
   }
   p.linear_deflection = lin;
+  // Expensive faces meshed as angular sectors (sector_split.cpp); `mesh_shape` is the part itself
+  // where none is split. The triangles of a face's sectors are the face's, tagged with its id.
+  detail::SectorSplit split;
+  if (o.sector_split) {
+    split = detail::split_for_meshing(shape, faces);
+  } else {
+    split.shape = shape;
+    for (int i = 1; i <= faces.Extent(); ++i) split.faces.push_back({TopoDS::Face(faces(i))});
+  }
+  const TopoDS_Shape& mesh_shape = split.shape;
   if (o.delabella) {  // (ImportOptions::delabella: the same parameters, OCCT's Delabella Delaunay per face)
     IMeshTools_Parameters params;
     params.Deflection = lin, params.Angle = o.angular_deflection, params.Relative = Standard_False;
@@ -129,42 +140,53 @@ Part make_part(const TopoDS_Shape& shape, const std::string& name, const ImportO
     Handle(IMeshTools_Context) context = new BRepMesh_Context();
     context->SetFaceDiscret(new BRepMesh_FaceDiscret(new BRepMesh_DelabellaMeshAlgoFactory()));
     BRepMesh_IncrementalMesh mesher;
-    mesher.SetShape(shape);
+    mesher.SetShape(mesh_shape);
     mesher.ChangeParameters() = params;
     mesher.Perform(context);
   } else {
-    BRepMesh_IncrementalMesh mesher(shape, lin, Standard_False, o.angular_deflection, Standard_True);
+    BRepMesh_IncrementalMesh mesher(mesh_shape, lin, Standard_False, o.angular_deflection, Standard_True);
   }
   bool unmeasured = false;  // a face without UV nodes
   p.tessellation_deviation = 0;
   for (int i = 1; i <= faces.Extent(); ++i) {
-    const TopoDS_Face f = TopoDS::Face(faces(i));
-    TopLoc_Location loc;
-    Handle(Poly_Triangulation) tri = BRep_Tool::Triangulation(f, loc);
-    if (tri.IsNull() || tri->NbTriangles() == 0) {
+    const std::vector<TopoDS_Face>& pieces = split.faces[static_cast<std::size_t>(i - 1)];
+    const bool any = std::any_of(pieces.begin(), pieces.end(), [](const TopoDS_Face& f) {
+      TopLoc_Location l;
+      const Handle(Poly_Triangulation) t = BRep_Tool::Triangulation(f, l);
+      return !t.IsNull() && t->NbTriangles() > 0;
+    });
+    if (!any) {
       p.untessellated_faces.push_back(static_cast<std::uint32_t>(i - 1));
       warnings.push_back("part '" + name + "': face " + std::to_string(i - 1) + " failed to tessellate");
       continue;
     }
-    const gp_Trsf tr = loc.Transformation();
-    const auto base = static_cast<std::uint32_t>(p.mesh.positions.size());
-    for (int n = 1; n <= tri->NbNodes(); ++n) {
-      gp_Pnt q = tri->Node(n);
-      q.Transform(tr);
-      p.mesh.positions.push_back({q.X(), q.Y(), q.Z()});
-    }
-    const bool reversed = f.Orientation() == TopAbs_REVERSED;
-    for (int t = 1; t <= tri->NbTriangles(); ++t) {
-      int a, b, c;
-      tri->Triangle(t).Get(a, b, c);
-      if (reversed) std::swap(b, c);
-      p.mesh.triangles.push_back({base + std::uint32_t(a - 1), base + std::uint32_t(b - 1), base + std::uint32_t(c - 1)});
-      p.face_ids.push_back(static_cast<std::uint32_t>(i - 1));
-    }
-    if (o.measure_deviation) {
-      const double d = detail::tessellation_deviation(f, *tri, tr, lin);
-      if (d < 0) unmeasured = true;
-      p.tessellation_deviation = std::max(p.tessellation_deviation, d);
+    for (const TopoDS_Face& f : pieces) {  // (one piece: the face itself)
+      TopLoc_Location loc;
+      Handle(Poly_Triangulation) tri = BRep_Tool::Triangulation(f, loc);
+      if (tri.IsNull() || tri->NbTriangles() == 0) {  // (a sector failed: the face counts as tessellated)
+        warnings.push_back("part '" + name + "': a sector of face " + std::to_string(i - 1) + " failed to tessellate");
+        continue;
+      }
+      const gp_Trsf tr = loc.Transformation();
+      const auto base = static_cast<std::uint32_t>(p.mesh.positions.size());
+      for (int n = 1; n <= tri->NbNodes(); ++n) {
+        gp_Pnt q = tri->Node(n);
+        q.Transform(tr);
+        p.mesh.positions.push_back({q.X(), q.Y(), q.Z()});
+      }
+      const bool reversed = f.Orientation() == TopAbs_REVERSED;
+      for (int t = 1; t <= tri->NbTriangles(); ++t) {
+        int a, b, c;
+        tri->Triangle(t).Get(a, b, c);
+        if (reversed) std::swap(b, c);
+        p.mesh.triangles.push_back({base + std::uint32_t(a - 1), base + std::uint32_t(b - 1), base + std::uint32_t(c - 1)});
+        p.face_ids.push_back(static_cast<std::uint32_t>(i - 1));
+      }
+      if (o.measure_deviation) {
+        const double d = detail::tessellation_deviation(f, *tri, tr, lin);
+        if (d < 0) unmeasured = true;
+        p.tessellation_deviation = std::max(p.tessellation_deviation, d);
+      }
     }
   }
   if (!o.measure_deviation || unmeasured) p.tessellation_deviation = -1;
