@@ -332,8 +332,12 @@ struct Evaluator {
 };
 
 /// Lower bound of sd_B over a node's oriented box (see quadtree.h; a QuadNode or a BoundNode).
+/// `cut` (issue #27, Table 3 with the scars in range): the bound is the max of three terms (linear
+/// lateral, curvature, axial); when the two cheap ones (no square root of the curvature term)
+/// already reach `cut`, their max is returned (a smaller lower bound, still >= cut): a caller that
+/// prunes at lb >= cut decides the same, and every value below `cut` is the full bound, unchanged.
 template <class Node>
-double node_lower_bound(const LocalFrame& f, const Node& n) {
+double node_lower_bound(const LocalFrame& f, const Node& n, double cut = kInf) {
   if (n.half_r < 0) return kInf;  // no triangles
   const Vec3 c = f.local(n.box_center);
   const double rho = std::sqrt(c.x * c.x + c.y * c.y);
@@ -374,10 +378,13 @@ double node_lower_bound(const LocalFrame& f, const Node& n) {
                            std::fabs(f.o.z));
     return std::sqrt(a * a + b * b) - margin;
   };
+  const double axial = std::fabs(c.z) - n.half_r * std::fabs(erz) - n.half_t * std::fabs(etz) -
+                       n.half_z * std::fabs(f.m[2][2]) - f.hh;
   double lateral;
   if (!f.tapered) {
     lateral = rho - n.half_r * std::fabs(nx * erx + ny * ery) - n.half_t * std::fabs(nx * etx + ny * ety) -
               n.half_z * std::fabs(nx * ezx + ny * ezy) - f.R;
+    if (const double cheap = std::max(lateral, axial); cheap >= cut) return cheap;
     lateral = std::max(lateral, box_rho() - f.R);  // (the curvature bound, above)
   } else {
     // a frustum B: sd_B >= (rho - Rm - k z) / nk (the plane tangent to B's cone along a meridian
@@ -392,10 +399,9 @@ double node_lower_bound(const LocalFrame& f, const Node& n) {
     // value over the box: sd_B >= (rho - Rm - k z) / nk holds at every point
     const double kz = f.k * c.z + std::fabs(f.k) * (n.half_r * std::fabs(erz) + n.half_t * std::fabs(etz) +
                                                     n.half_z * std::fabs(f.m[2][2]));
+    if (const double cheap = std::max(lateral, axial); cheap >= cut) return cheap;
     lateral = std::max(lateral, (box_rho() - f.Rm - kz) / f.nk);
   }
-  const double axial = std::fabs(c.z) - n.half_r * std::fabs(erz) - n.half_t * std::fabs(etz) -
-                       n.half_z * std::fabs(f.m[2][2]) - f.hh;
   return std::max(lateral, axial);
 }
 
@@ -459,7 +465,15 @@ void descend(Evaluator& ev, const std::vector<Node>& nodes, std::array<std::int3
     int count = 0;
     for (std::int32_t k = 0; k < n.child_count && k < 4; ++k) {
       const std::int32_t id = n.first_child + k;
-      const double lb = node_lower_bound(ev.frame, nodes[static_cast<std::size_t>(id)]);
+      const Node& kid = nodes[static_cast<std::size_t>(id)];
+      // the kid's own children are what the descent loads next (depth first, the smaller bound
+      // first): their cache lines are fetched while the kid's bound is computed (issue #27, Table
+      // 3: the node loads were the largest single cost of a scarred row; no effect on any value)
+      if (kid.child_count > 0) {
+        const char* next = reinterpret_cast<const char*>(&nodes[static_cast<std::size_t>(kid.first_child)]);
+        for (std::size_t b = 0; b < 2 * sizeof(Node); b += 64) __builtin_prefetch(next + b);
+      }
+      const double lb = node_lower_bound(ev.frame, kid, ev.best.distance);
       if (lb < ev.best.distance) kids[count++] = {id, lb};
     }
     for (int a = 1; a < count; ++a)  // descending lower bound: the smallest is popped first

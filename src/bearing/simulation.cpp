@@ -4,7 +4,9 @@
 // pairs that the broad phase reports is decided as well (part_pair.h), each with its verdict.
 #include "interfere/bearing/simulation.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -204,6 +206,31 @@ Expected<SimulationResult> simulate(const SceneParams& p, bool keep_rows,
     for (const Roller& v : variants) res.scar_meshes.push_back(v.mesh);
     for (const PairState& s : st) res.pair_variant.push_back(s.scarred ? s.variant : -1);
   }
+  // boxes grown by half the clearance and the touch band (part_pair.h), so that every pair of parts
+  // within the clearance or touching (up to rounding of the boxes) reaches the narrow phase (a raised
+  // scar's roller also by its raise: its solid lies in its cylinder grown radially by it, and a box
+  // grown by it in every direction contains that cylinder's box)
+  const auto grown = [&](const Cylinder& c, double raise) {
+    Box3 box = cylinder_box(c);
+    const double m = 0.5 * p.clearance + touch_tolerance(c, c) + raise;
+    box.lo = box.lo - Vec3{m, m, m}, box.hi = box.hi + Vec3{m, m, m};
+    return box;
+  };
+  // the partners stand still: their cylinders and boxes once (issue #27, Table 3: the frame loop
+  // recomputed them for every pair in every frame, to the same values)
+  for (std::size_t k = 0; k < n; ++k) {
+    cyl_b[k] = posed_cylinder(R, -1, p.partner_height, partner_pose(p, S, static_cast<int>(k)));
+    boxes[2 * k + 1] = grown(cyl_b[k], 0.0);
+  }
+  // The frame loop's two parallel passes over the pairs (poses, then rows) hand the same blocks of
+  // pairs to the same threads in every frame (issue #27, Table 3 with the scars in range: a scarred
+  // row's solve descends ~70 nodes of its roller's bound tree near last frame's contact, which then
+  // stay in that core's cache; with work stealing a block moved between the cores from frame to
+  // frame). Blocks of 16 pairs: a scarred row costs ~15 intact ones, so smaller blocks than the
+  // default balance the cores better. Each pair is solved into its own slot: the results do not
+  // depend on which thread solves it.
+  tbb::affinity_partitioner pose_affinity, row_affinity;
+  constexpr std::size_t kGrain = 16;
   res.min_distance = std::numeric_limits<double>::infinity();
   res.setup_seconds = now() - t_start;
   res.threads = tbb::this_task_arena::max_concurrency();
@@ -211,39 +238,29 @@ Expected<SimulationResult> simulate(const SceneParams& p, bool keep_rows,
 
   for (int f = 0; f < p.frames; ++f) {
     const double t0 = now();
-    tbb::parallel_for(std::size_t{0}, n, [&](std::size_t k) {
-      PairState& s = st[k];
-      if (f > 0 && p.tilt_step > 0) {
-        SplitMix64 g{mix(p.seed, k, static_cast<std::uint64_t>(f))};
-        s.tx += p.tilt_step * g.symmetric(), s.ty += p.tilt_step * g.symmetric();
-        const double l = std::hypot(s.tx, s.ty);
-        if (l > 1) s.tx /= l, s.ty /= l;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain), [&](const tbb::blocked_range<std::size_t>& br) {
+      for (std::size_t k = br.begin(); k != br.end(); ++k) {
+        PairState& s = st[k];
+        if (f > 0 && p.tilt_step > 0) {
+          SplitMix64 g{mix(p.seed, k, static_cast<std::uint64_t>(f))};
+          s.tx += p.tilt_step * g.symmetric(), s.ty += p.tilt_step * g.symmetric();
+          const double l = std::hypot(s.tx, s.ty);
+          if (l > 1) s.tx /= l, s.ty /= l;
+        }
+        const double ox = (static_cast<int>(k) % cols) * S, oy = (static_cast<int>(k) / cols) * S;
+        const double tilt = alpha * std::min(1.0, std::hypot(s.tx, s.ty));
+        const double az = std::atan2(s.ty, s.tx);
+        const double spin = s.spin0 + f * p.spin_deg_per_frame * kDeg;
+        poses[k] = roller_pose({ox + D, oy, 0}, tilt, az, spin);
+        cyl_a[k] = posed_cylinder(r, p.roller.top_radius, hb, poses[k]);
+        boxes[2 * k] = grown(cyl_a[k], s.scarred ? variants[static_cast<std::size_t>(s.variant)].raise : 0.0);
+        PairFrame& row = frame_rows[k];
+        row.frame = f, row.pair = static_cast<std::int32_t>(k);
+        row.tilt_deg = tilt / kDeg, row.azimuth_deg = az / kDeg;
+        row.spin_deg = std::fmod(spin / kDeg, 360.0);
+        row.scarred_roller = s.scarred;
       }
-      const double ox = (static_cast<int>(k) % cols) * S, oy = (static_cast<int>(k) / cols) * S;
-      const double tilt = alpha * std::min(1.0, std::hypot(s.tx, s.ty));
-      const double az = std::atan2(s.ty, s.tx);
-      const double spin = s.spin0 + f * p.spin_deg_per_frame * kDeg;
-      poses[k] = roller_pose({ox + D, oy, 0}, tilt, az, spin);
-      cyl_a[k] = posed_cylinder(r, p.roller.top_radius, hb, poses[k]);
-      cyl_b[k] = posed_cylinder(R, -1, p.partner_height, partner_pose(p, S, static_cast<int>(k)));
-      // boxes grown by half the clearance and the touch band (part_pair.h), so that every pair of
-      // parts within the clearance or touching (up to rounding of the boxes) reaches the narrow phase
-      // (a raised scar's roller also by its raise: its solid lies in its cylinder grown radially by
-      // it, and a box grown by it in every direction contains that cylinder's box)
-      const auto grown = [&](const Cylinder& c, double raise) {
-        Box3 box = cylinder_box(c);
-        const double m = 0.5 * p.clearance + touch_tolerance(c, c) + raise;
-        box.lo = box.lo - Vec3{m, m, m}, box.hi = box.hi + Vec3{m, m, m};
-        return box;
-      };
-      boxes[2 * k] = grown(cyl_a[k], s.scarred ? variants[static_cast<std::size_t>(s.variant)].raise : 0.0);
-      boxes[2 * k + 1] = grown(cyl_b[k], 0.0);
-      PairFrame& row = frame_rows[k];
-      row.frame = f, row.pair = static_cast<std::int32_t>(k);
-      row.tilt_deg = tilt / kDeg, row.azimuth_deg = az / kDeg;
-      row.spin_deg = std::fmod(spin / kDeg, 360.0);
-      row.scarred_roller = s.scarred;
-    });
+    }, pose_affinity);
     const std::vector<IndexPair> pairs = broad->update(boxes);
     std::fill(overlapping.begin(), overlapping.end(), 0);
     cross.clear();
@@ -254,62 +271,65 @@ Expected<SimulationResult> simulate(const SceneParams& p, bool keep_rows,
     res.cross_pairs += cross.size();
     res.broad_pairs_total += pairs.size();
     const double t1 = now();
-    tbb::parallel_for(std::size_t{0}, n, [&](std::size_t k) {
-      PairState& s = st[k];
-      PairFrame& row = frame_rows[k];
-      row.box_overlap = overlapping[k] != 0;
-      // An intact (unscarred) roller: the pair's two-sided value S = min(s(A, B), s(B, A)) (part_pair.h;
-      // issue #27): untapered by intact_row_distance, tapered by two_sided_frustum_distance (the value
-      // decide_part_pair gives the same two parts). A scarred roller: s(A, B) of the standard solver as
-      // the scarred solver's start and out-of-range value (its reverse depth has no exact solver;
-      // decide_part_pair brackets it).
-      const PairDistance pd = s.scarred                ? cylinder_pair_distance(cyl_a[k], cyl_b[k])
-                              : cyl_a[k].tapered()     ? two_sided_frustum_distance(cyl_a[k], cyl_b[k])
-                                                       : intact_row_distance(cyl_a[k], cyl_b[k]);
-      row.distance = pd.distance, row.point_a = pd.point_a, row.point_b = pd.point_b;
-      row.path = static_cast<std::uint8_t>(pd.path);
-      row.solver = 0, row.evaluated = 0, row.scar_in_range = false;
-      if (s.scarred) {
-        const ScarParams& sp = scar_window;
-        const double phi = contact_direction_angle(poses[k], cyl_b[k], hb);
-        // §3.1: the scar is in the range of Eq. (1) (half-width theta/2 about the contact direction)
-        bool in_range = scar_angle_contains(sp, phi, 0.5 * res.theta + 2 * col);
-        if (!in_range) {  // exactness guard: the standard witness itself on the scar window
-          const Transform& T = poses[k];
-          const Vec3 w = pd.point_a - T.t;
-          const double bx = T.r[0][0] * w.x + T.r[1][0] * w.y + T.r[2][0] * w.z;
-          const double by = T.r[0][1] * w.x + T.r[1][1] * w.y + T.r[2][1] * w.z;
-          const double bz = T.r[0][2] * w.x + T.r[1][2] * w.y + T.r[2][2] * w.z;
-          in_range = scar_angle_contains(sp, std::atan2(by, bx), 2 * col) && bz >= sp.z_min - cell_z &&
-                     bz <= sp.z_max + cell_z;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain), [&](const tbb::blocked_range<std::size_t>& br) {
+      for (std::size_t k = br.begin(); k != br.end(); ++k) {
+        PairState& s = st[k];
+        PairFrame& row = frame_rows[k];
+        row.box_overlap = overlapping[k] != 0;
+        // An intact (unscarred) roller: the pair's two-sided value S = min(s(A, B), s(B, A)) (part_pair.h;
+        // issue #27): untapered by intact_row_distance, tapered by two_sided_frustum_distance (the value
+        // decide_part_pair gives the same two parts). A scarred roller: s(A, B) of the standard solver as
+        // the scarred solver's start and out-of-range value (its reverse depth has no exact solver;
+        // decide_part_pair brackets it).
+        const PairDistance pd = s.scarred                ? cylinder_pair_distance(cyl_a[k], cyl_b[k])
+                                : cyl_a[k].tapered()     ? two_sided_frustum_distance(cyl_a[k], cyl_b[k])
+                                                         : intact_row_distance(cyl_a[k], cyl_b[k]);
+        row.distance = pd.distance, row.point_a = pd.point_a, row.point_b = pd.point_b;
+        row.path = static_cast<std::uint8_t>(pd.path);
+        row.solver = 0, row.evaluated = 0, row.scar_in_range = false;
+        if (s.scarred) {
+          const ScarParams& sp = scar_window;
+          const double phi = contact_direction_angle(poses[k], cyl_b[k], hb);
+          // §3.1: the scar is in the range of Eq. (1) (half-width theta/2 about the contact direction)
+          bool in_range = scar_angle_contains(sp, phi, 0.5 * res.theta + 2 * col);
+          if (!in_range) {  // exactness guard: the standard witness itself on the scar window
+            const Transform& T = poses[k];
+            const Vec3 w = pd.point_a - T.t;
+            const double bx = T.r[0][0] * w.x + T.r[1][0] * w.y + T.r[2][0] * w.z;
+            const double by = T.r[0][1] * w.x + T.r[1][1] * w.y + T.r[2][1] * w.z;
+            const double bz = T.r[0][2] * w.x + T.r[1][2] * w.y + T.r[2][2] * w.z;
+            in_range = scar_angle_contains(sp, std::atan2(by, bx), 2 * col) && bz >= sp.z_min - cell_z &&
+                       bz <= sp.z_max + cell_z;
+          }
+          row.scar_in_range = in_range;
+          // a raised scar (issue #27) may reach deeper than the intact cylinder from anywhere: the
+          // standard value stands only when no outward-displaced triangle can come below it
+          const RaisedBound& rb = raised_bounds[static_cast<std::size_t>(s.variant)];
+          const bool raised_reach = !rb.empty() && raised_lower_bound(rb, poses[k], cyl_b[k]) < pd.distance;
+          if (in_range || raised_reach) {
+            const MeshPairResult mr = s.solver.solve(poses[k], cyl_b[k], pd.point_a);
+            row.distance = mr.distance, row.point_a = mr.point_a, row.point_b = mr.point_b;
+            row.solver = 1, row.evaluated = mr.evaluated;
+          }
         }
-        row.scar_in_range = in_range;
-        // a raised scar (issue #27) may reach deeper than the intact cylinder from anywhere: the
-        // standard value stands only when no outward-displaced triangle can come below it
-        const RaisedBound& rb = raised_bounds[static_cast<std::size_t>(s.variant)];
-        const bool raised_reach = !rb.empty() && raised_lower_bound(rb, poses[k], cyl_b[k]) < pd.distance;
-        if (in_range || raised_reach) {
-          const MeshPairResult mr = s.solver.solve(poses[k], cyl_b[k], pd.point_a);
-          row.distance = mr.distance, row.point_a = mr.point_a, row.point_b = mr.point_b;
-          row.solver = 1, row.evaluated = mr.evaluated;
+        row.verdict = distance_verdict(row.distance, touch_tolerance(cyl_a[k], cyl_b[k]), p.clearance);
+        // a raised scar's roller also on the standard value: apart from the intact cylinder by s0 and
+        // (raised bound) from every outward triangle by at least s0, the partner can still lie wholly
+        // inside the raised part of the solid (an inward scar's solid lies in the intact cylinder)
+        const bool raised_roller = s.scarred && !raised_bounds[static_cast<std::size_t>(s.variant)].empty();
+        if ((row.solver == 1 || raised_roller) && row.verdict != Verdict::clash && row.verdict != Verdict::contact) {
+          // the surface minimum is apart: the partner may still lie wholly inside the roller
+          const int inside = mesh_containment(part(static_cast<std::uint32_t>(2 * k)), cyl_b[k]);
+          if (inside != 0) row.verdict = inside == 1 ? Verdict::clash : Verdict::undecided;
         }
       }
-      row.verdict = distance_verdict(row.distance, touch_tolerance(cyl_a[k], cyl_b[k]), p.clearance);
-      // a raised scar's roller also on the standard value: apart from the intact cylinder by s0 and
-      // (raised bound) from every outward triangle by at least s0, the partner can still lie wholly
-      // inside the raised part of the solid (an inward scar's solid lies in the intact cylinder)
-      const bool raised_roller = s.scarred && !raised_bounds[static_cast<std::size_t>(s.variant)].empty();
-      if ((row.solver == 1 || raised_roller) && row.verdict != Verdict::clash && row.verdict != Verdict::contact) {
-        // the surface minimum is apart: the partner may still lie wholly inside the roller
-        const int inside = mesh_containment(part(static_cast<std::uint32_t>(2 * k)), cyl_b[k]);
-        if (inside != 0) row.verdict = inside == 1 ? Verdict::clash : Verdict::undecided;
-      }
-    });
+    }, row_affinity);
     // every other box overlap: parts of different pairs (part_pair.h)
     cross_out.resize(cross.size());
-    tbb::parallel_for(std::size_t{0}, cross.size(), [&](std::size_t c) {
-      cross_out[c] = decide_part_pair(part(cross[c].first), part(cross[c].second), p.clearance);
-    });
+    if (!cross.empty())
+      tbb::parallel_for(std::size_t{0}, cross.size(), [&](std::size_t c) {
+        cross_out[c] = decide_part_pair(part(cross[c].first), part(cross[c].second), p.clearance);
+      });
     const double t2 = now();
     res.broad_seconds += t1 - t0;
     res.narrow_seconds += t2 - t1;

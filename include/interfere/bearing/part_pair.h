@@ -49,6 +49,7 @@
 // only when both ends give the same one; else undecided).
 #pragma once
 #include <cstdint>
+#include <limits>
 #include <string>
 
 #include "interfere/bearing/analytic.h"
@@ -124,7 +125,8 @@ PairDistance two_sided_cylinder_distance(const Cylinder& a, const Cylinder& b);
 /// partner B, as the simulation's rows use it (issue #27): the value of two_sided_cylinder_distance
 /// (above; bitwise when the reverse is computed or skipped by the bound, to rounding when apart),
 /// the reverse direction computed only when it can be the smaller one. Skipped when A and B are
-/// apart (s(A, B) > 0: two convex solids at their Euclidean distance, which is symmetric) or when intact_reverse_lower_bound is not below s(A, B).
+/// apart (s(A, B) > 0: two convex solids at their Euclidean distance, which is symmetric) or when
+/// intact_reverse_tangent_bound or intact_reverse_lower_bound is not below s(A, B).
 PairDistance intact_row_distance(const Cylinder& a, const Cylinder& b);
 
 /// A lower bound of s(B, A) for untapered A and B (-inf when their axes are more than 60 degrees
@@ -132,6 +134,13 @@ PairDistance intact_row_distance(const Cylinder& a, const Cylinder& b);
 /// distance from A's axis to the section of B's infinite cylinder (convex in z: secants of exact
 /// samples extended below it); cylinder_two_sided.cpp.
 double intact_reverse_lower_bound(const Cylinder& a, const Cylinder& b);
+
+/// The same kind of lower bound of s(B, A) (untapered A and B, axes within 60 degrees, else -inf),
+/// from tangents of the section distance instead of secants of exact samples: any supporting line
+/// of B's elliptic section gives a line below it (cylinder_two_sided.cpp), no root finding; refined
+/// (at most two more tangents) while below `target`. Issue #27: intact_row_distance tries it first.
+double intact_reverse_tangent_bound(const Cylinder& a, const Cylinder& b,
+                                    double target = std::numeric_limits<double>::infinity());
 
 /// S(a, b) = min(s(a, b), s(b, a)) for two intact cylinders or cone frustums with
 /// cone_pair_distance both ways (raceway.h); the reverse skipped when s(a, b) > 0 (apart: the

@@ -262,3 +262,129 @@ TEST(BearingSimulation, IntactRowReverseBoundIsSound) {
     EXPECT_LE(intact_reverse_lower_bound(a, b), cylinder_pair_distance(b, a).distance + 1e-12);
   }
 }
+
+// Issue #27, Table 3 with the scars in range: intact_row_distance tries intact_reverse_tangent_bound
+// before the secant bound. (1) The tangent bound never exceeds s(B, A) (the reverse standard solver,
+// and on every 25th pose the independent facet bracket of B's surface); (2) on Table 3's geometry
+// (r = 10, h = 40 pressed into R = 30 at the pivot, tilt <= 1 degree, any azimuth) it alone decides
+// the skip for nearly every pose where the secant bound does; (3) where A and B overlap the row value
+// equals two_sided_cylinder_distance bit for bit (the same numbers compared: a skip is proven by
+// either bound with a margin far above the reverse solver's rounding).
+TEST(BearingSimulation, IntactRowTangentBoundIsSound) {
+  SplitMix64 g{4099};
+  const auto u = [&] { return g.symmetric(); };
+  int bracketed = 0, decided = 0, finite = 0;
+  for (int it = 0; it < 1000; ++it) {
+    Cylinder a, b;
+    a.radius = 3 + 7 * (u() + 1), a.height = 6 + 20 * (u() + 1);
+    b.radius = 3 + 14 * (u() + 1), b.height = 6 + 30 * (u() + 1);
+    Vec3 ax{u(), u(), u()};
+    ax = ax / norm(ax);
+    const Vec3 bx = ax + Vec3{u(), u(), u()} * (0.35 * (u() + 1));
+    a.axis = ax, b.axis = bx / norm(bx);
+    a.base = Vec3{u(), u(), u()} * 20, b.base = a.base + Vec3{u(), u(), u()} * 25;
+    const double tb = intact_reverse_tangent_bound(a, b);
+    const double rev = cylinder_pair_distance(b, a).distance;
+    EXPECT_LE(tb, rev + 1e-12 * (1 + std::fabs(rev))) << "pose " << it;
+    const double fwd = cylinder_pair_distance(a, b).distance;
+    EXPECT_LE(intact_reverse_tangent_bound(a, b, fwd), rev + 1e-12 * (1 + std::fabs(rev))) << "pose " << it;
+    finite += std::isfinite(tb);
+    if (it % 25 == 0 && std::isfinite(tb)) {
+      const bearing_oracle::Bracket br =
+          bearing_oracle::surface_min_bracket(bearing_oracle::cylinder_triangles(b, 256), a, 1e-4);
+      EXPECT_LE(tb, br.upper + 1e-12) << "pose " << it;
+      ++bracketed;
+    }
+    if (fwd <= 0) {
+      const PairDistance row = intact_row_distance(a, b), two = two_sided_cylinder_distance(a, b);
+      EXPECT_EQ(row.distance, two.distance) << "pose " << it;
+      EXPECT_EQ(row.point_a, two.point_a) << "pose " << it;
+      EXPECT_EQ(row.point_b, two.point_b) << "pose " << it;
+      decided += intact_reverse_tangent_bound(a, b, fwd) >= fwd;
+    }
+  }
+  EXPECT_GE(bracketed, 30);
+  EXPECT_GT(finite, 500);
+  EXPECT_GT(decided, 10);  // the tangent skip is exercised on random poses too
+
+  // Table 3's geometry: the roller pivots about its bottom centre at R + r - 0.05 from B's axis
+  int skip_secant = 0, skip_tangent = 0, overlapping = 0;
+  for (int it = 0; it < 2000; ++it) {
+    const double tilt = (u() + 1) * 0.5 * 0.0174533, az = 3.2 * u(), spin = 3.2 * u();
+    const Transform pose = roller_pose({39.95, 0, 0}, tilt, az, spin);
+    const Cylinder a = posed_cylinder(10, -1, 40, pose);
+    Cylinder b;
+    b.base = {0, 0, -10}, b.axis = {0, 0, 1}, b.height = 60, b.radius = 30;
+    const double fwd = cylinder_pair_distance(a, b).distance;
+    const double rev = cylinder_pair_distance(b, a).distance;
+    const double tb = intact_reverse_tangent_bound(a, b, fwd);
+    EXPECT_LE(tb, rev + 1e-12) << "pose " << it;
+    if (fwd > 0) continue;
+    ++overlapping;
+    skip_secant += intact_reverse_lower_bound(a, b) >= fwd;
+    skip_tangent += tb >= fwd;
+    const PairDistance row = intact_row_distance(a, b), two = two_sided_cylinder_distance(a, b);
+    EXPECT_EQ(row.distance, two.distance) << "pose " << it;
+    EXPECT_EQ(row.point_a, two.point_a) << "pose " << it;
+  }
+  EXPECT_GT(overlapping, 1900);
+  EXPECT_GT(skip_secant, overlapping * 9 / 10);
+  EXPECT_GE(skip_tangent, skip_secant - overlapping / 100);
+}
+
+// Issue #27, Table 3 with the scars in range (every scarred roller's scar band all around its side, so
+// the scarred solver runs in every frame): the frame loop's blocked passes with the affinity
+// partitioner give the same rows for 1, 2 and 3 threads, and every scarred row equals a cold solve
+// (a fresh ScarredSolver: no previous triangle, no hint) and the exact surface reference bit for bit:
+// the temporal coherence and the pruning change only the work, ties included.
+TEST(BearingSimulation, ScarsInRangeRowsEqualColdSolvesForAnyThreadCount) {
+  SceneParams p = small_scene();
+  p.pairs = 40, p.frames = 12;
+  p.spin_deg_per_frame = 3.0, p.gap = -0.05;
+  p.scar = {.angle_center_deg = 0, .angle_width_deg = 359, .z_min = 0, .z_max = 40, .depth = 0.1, .seed = 3};
+  p.broad_phase = BroadPhaseKind::bvh;
+  std::vector<SimulationResult> runs;
+  for (const int threads : {1, 2, 3}) {
+    tbb::global_control c(tbb::global_control::max_allowed_parallelism, threads);
+    auto r = simulate(p);
+    ASSERT_TRUE(r.has_value()) << r.error().message();
+    runs.push_back(std::move(*r));
+  }
+  for (std::size_t t = 1; t < runs.size(); ++t) {
+    ASSERT_EQ(runs[t].rows.size(), runs[0].rows.size());
+    for (std::size_t k = 0; k < runs[0].rows.size(); ++k) {
+      ASSERT_TRUE(same(runs[0].rows[k], runs[t].rows[k])) << "threads run " << t << " row " << k;
+      ASSERT_EQ(runs[0].rows[k].evaluated, runs[t].rows[k].evaluated) << k;
+      ASSERT_EQ(runs[0].rows[k].verdict, runs[t].rows[k].verdict) << k;
+    }
+  }
+  const SimulationResult& r = runs[0];
+  EXPECT_EQ(r.scarred_solves, static_cast<std::uint64_t>(r.scarred_rollers) * p.frames);
+  std::vector<Roller> variants;
+  std::vector<RollerQuadtree> trees;
+  for (std::size_t v = 0; v < r.scar_meshes.size(); ++v) {
+    Roller roller = *make_roller(p.roller);
+    ScarParams sp = p.scar;
+    sp.seed = p.scar.seed + v;
+    ASSERT_TRUE(apply_scar(roller, sp).has_value());
+    ASSERT_EQ(roller.mesh.positions, r.scar_meshes[v].positions);
+    variants.push_back(std::move(roller));
+  }
+  for (const Roller& v : variants) trees.push_back(build_quadtree(v));
+  int checked = 0;
+  for (std::size_t i = 0; i < r.rows.size(); ++i) {
+    const PairFrame& row = r.rows[i];
+    if (row.solver != 1) continue;
+    const auto v = static_cast<std::size_t>(r.pair_variant[static_cast<std::size_t>(row.pair)]);
+    const Cylinder b = posed_cylinder(p.partner_radius, -1, p.partner_height, partner_pose(p, r.spacing, row.pair));
+    ScarredSolver cold(&variants[v], &trees[v]);
+    const MeshPairResult c = cold.solve(r.roller_poses[i], b);
+    const MeshPairResult ref = surface_reference(variants[v], r.roller_poses[i], b);
+    ASSERT_EQ(row.distance, c.distance) << "frame " << row.frame << " pair " << row.pair;
+    ASSERT_EQ(row.point_a, c.point_a) << "frame " << row.frame << " pair " << row.pair;
+    ASSERT_EQ(c.distance, ref.distance) << "frame " << row.frame << " pair " << row.pair;
+    ASSERT_EQ(c.triangle, ref.triangle) << "frame " << row.frame << " pair " << row.pair;
+    ++checked;
+  }
+  EXPECT_EQ(checked, r.scarred_rollers * p.frames);
+}
