@@ -32,6 +32,41 @@ void wait_for_all() {
 
 }  // namespace
 
+Gathered allgather_buffer(const std::string& mine) {
+  int size = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  int n = static_cast<int>(mine.size());
+  std::vector<int> counts(static_cast<std::size_t>(size));
+  wait_for_all();
+  MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  const std::vector<int> displ = displacements(counts);
+  Gathered out;
+  out.all.resize(static_cast<std::size_t>(std::accumulate(counts.begin(), counts.end(), 0L)));
+  MPI_Allgatherv(mine.data(), n, MPI_BYTE, out.all.data(), counts.data(), displ.data(), MPI_BYTE, MPI_COMM_WORLD);
+  for (std::size_t r = 0; r < counts.size(); ++r) out.offset.push_back(static_cast<std::size_t>(displ[r]));
+  out.offset.push_back(out.all.size());
+  return out;
+}
+
+Gathered gather_buffer(const std::string& mine) {
+  int size = 1, rank = 0;
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  int n = static_cast<int>(mine.size());
+  std::vector<int> counts(static_cast<std::size_t>(size));
+  wait_for_all();
+  MPI_Gather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+  const std::vector<int> displ = displacements(counts);
+  Gathered out;
+  if (rank == 0) out.all.resize(static_cast<std::size_t>(std::accumulate(counts.begin(), counts.end(), 0L)));
+  MPI_Gatherv(mine.data(), n, MPI_BYTE, out.all.data(), counts.data(), displ.data(), MPI_BYTE, 0, MPI_COMM_WORLD);
+  if (rank == 0) {
+    for (std::size_t r = 0; r < counts.size(); ++r) out.offset.push_back(static_cast<std::size_t>(displ[r]));
+    out.offset.push_back(out.all.size());
+  }
+  return out;
+}
+
 std::vector<std::string> allgather(const std::string& mine) {
   int size = 1;
   MPI_Comm_size(MPI_COMM_WORLD, &size);

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace interfere::mpi {
@@ -14,6 +15,18 @@ struct World {
 
 /// Every rank's bytes, on every rank, in rank order.
 std::vector<std::string> allgather(const std::string& mine);
+
+/// Every rank's bytes received into one buffer (no copy per rank: the body records of a 10^5-body
+/// product are megabytes on every rank); part(r) is rank r's.
+struct Gathered {
+  std::string all;
+  std::vector<std::size_t> offset;  ///< ranks + 1 offsets into `all`
+  std::size_t size() const { return offset.empty() ? 0 : offset.size() - 1; }
+  std::string_view part(std::size_t r) const { return std::string_view(all).substr(offset[r], offset[r + 1] - offset[r]); }
+};
+Gathered allgather_buffer(const std::string& mine);
+/// As gather, into one buffer on rank 0 (empty elsewhere).
+Gathered gather_buffer(const std::string& mine);
 /// Every rank's bytes on rank 0 (empty elsewhere).
 std::vector<std::string> gather(const std::string& mine);
 /// Rank 0's value on every rank.

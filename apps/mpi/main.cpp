@@ -330,13 +330,12 @@ int run(const World& w, int argc, char** argv) {
   }
   std::vector<BodyInfo> info;
   {
-    std::vector<std::string> all = allgather(encode(my_info));
+    const Gathered all = allgather_buffer(encode(my_info, spec->bodies));
     my_info = {};
-    for (std::string& bytes : all) {
-      std::vector<BodyInfo> part = decode_bodies(bytes);
-      bytes = {};
-      info.insert(info.end(), std::make_move_iterator(part.begin()), std::make_move_iterator(part.end()));
-    }
+    std::size_t count = 0;
+    for (std::size_t r = 0; r < all.size(); ++r) count += count_bodies(all.part(r));
+    info.reserve(count);
+    for (std::size_t r = 0; r < all.size(); ++r) decode_bodies(all.part(r), spec->bodies, info);
   }
   std::vector<std::string> all_input_warnings;  // (in the order of the entries, as one process reads them)
   nlohmann::json all_steps = nlohmann::json::array();
@@ -373,6 +372,7 @@ int run(const World& w, int argc, char** argv) {
   // The scene as metadata (every rank): the motion's frames by body id.
   scene::Scene skeleton;
   skeleton.units = units;
+  skeleton.bodies.reserve(info.size());
   for (BodyInfo& b : info) skeleton.bodies.push_back(std::move(b.meta));  // (one copy of the metadata: memory a rank)
   if (!motion.empty())
     if (const Status s = scene::read_motion(motion, skeleton); !s) throw UsageError(s.error().message());
@@ -598,11 +598,13 @@ int run(const World& w, int argc, char** argv) {
   // 4. Rank 0 merges and writes the report.
   const auto t_merge = Clock::now();
   const double cpu_merge = cpu_seconds();
-  const std::vector<std::string> results = gather(encode(mine_result));
+  // (rank 0 keeps its own findings as they are: only the other ranks' are encoded and sent)
+  const Gathered results = gather_buffer(w.rank == 0 ? std::string() : encode(mine_result));
   int status = 0;
   if (w.rank == 0) {
     std::vector<RankResult> per_rank;
-    for (const std::string& bytes : results) per_rank.push_back(decode_result(bytes));
+    per_rank.push_back(std::move(mine_result));
+    for (std::size_t r = 1; r < results.size(); ++r) per_rank.push_back(decode_result(results.part(r)));
     scene::SceneClashOptions go;
     go.group_by = o.group_by == "pair" ? scene::GroupBy::pair : o.group_by == "location" ? scene::GroupBy::location : scene::GroupBy::none;
     go.group_distance = o.group_distance;

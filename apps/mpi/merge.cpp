@@ -3,6 +3,7 @@
 #include "merge.h"
 
 #include <algorithm>
+#include <iterator>
 #include <map>
 #include <set>
 #include <tuple>
@@ -23,7 +24,7 @@ void add_row(scene::FrameRow& into, const scene::FrameRow& from) {
 
 scene::SceneClashResult merge(const scene::Scene& skeleton, const std::vector<scene::ClashTest>& tests,
                               const scene::SceneClashOptions& options, const BroadResult& broad,
-                              const std::vector<std::uint64_t>& triangles, const std::vector<RankResult>& ranks,
+                              const std::vector<std::uint64_t>& triangles, std::vector<RankResult>& ranks,
                               bool reference_checked) {
   scene::SceneClashResult result;
   result.reference_checked = reference_checked;
@@ -41,12 +42,17 @@ scene::SceneClashResult merge(const scene::Scene& skeleton, const std::vector<sc
     }
   }
   std::set<std::string> open;
-  for (const RankResult& r : ranks) {
+  std::size_t clashes = 0, frame_pairs = 0, reference_pairs = 0;
+  for (const RankResult& r : ranks)
+    clashes += r.clashes.size(), frame_pairs += r.frame_pairs.size(), reference_pairs += r.reference_pairs.size();
+  result.clashes.reserve(clashes), result.frame_pairs.reserve(frame_pairs), result.reference_pairs.reserve(reference_pairs);
+  for (RankResult& r : ranks) {
     result.core_runs += r.core_runs;
     result.prepare_seconds += r.prepare_seconds, result.broad_seconds += r.broad_seconds, result.narrow_seconds += r.narrow_seconds;
-    result.clashes.insert(result.clashes.end(), r.clashes.begin(), r.clashes.end());
+    std::move(r.clashes.begin(), r.clashes.end(), std::back_inserter(result.clashes));
     result.frame_pairs.insert(result.frame_pairs.end(), r.frame_pairs.begin(), r.frame_pairs.end());
     result.reference_pairs.insert(result.reference_pairs.end(), r.reference_pairs.begin(), r.reference_pairs.end());
+    r.clashes = {}, r.frame_pairs = {}, r.reference_pairs = {};
     for (std::size_t f = 0; f < r.frames.size() && f < result.frames.size(); ++f) {
       const std::string label = result.frames[f].label;
       const double time = result.frames[f].time;

@@ -21,9 +21,11 @@ void add_row(scene::FrameRow& into, const scene::FrameRow& from);
 /// candidate and suppressed counts and selection warnings, then the engine's open-body warnings
 /// in body order. core_runs: the ranks' sum (one process's: a class of pairs the engine decides
 /// once is kept on one rank, plan.h join_classes). `reference_checked`: the scene deforms (the engine's reference pass ran).
+/// The ranks' clashes, frames x pairs rows and reference verdicts are moved out of `ranks` (the
+/// rest of each RankResult stays for report_with_mpi).
 scene::SceneClashResult merge(const scene::Scene& skeleton, const std::vector<scene::ClashTest>& tests,
                               const scene::SceneClashOptions& options, const BroadResult& broad,
-                              const std::vector<std::uint64_t>& triangles, const std::vector<RankResult>& ranks,
+                              const std::vector<std::uint64_t>& triangles, std::vector<RankResult>& ranks,
                               bool reference_checked);
 
 /// The report of scene::report_json (written from a scene of metadata, meshes not sent to rank 0)

@@ -99,14 +99,28 @@ std::vector<std::uint64_t> morton(const std::vector<AabbF>& boxes) {
 void join_classes(BroadResult& broad, const std::vector<std::uint64_t>& mesh_key,
                   const std::vector<std::vector<Transform>>& poses) {
   Dsu dsu(broad.units.size());
-  // Only units whose two mesh keys another unit shares can join (most products: few). A hash of
-  // the two keys: a collision only lets a unit through to the exact comparison below.
+  // Only units whose two mesh keys another unit shares can join (most products: few). Two units
+  // with the same two keys are either the same two bodies (a unit is one pair: no) or have a body
+  // whose mesh key another body has too: units of two bodies with mesh keys of their own are left
+  // out first (a product of distinct parts: every unit, without hashing the units at all). A hash
+  // of the two keys: a collision only lets a unit through to the exact comparison below.
+  std::vector<char> repeated(mesh_key.size(), 0);
+  {
+    std::vector<std::uint32_t> by_key(mesh_key.size());
+    std::iota(by_key.begin(), by_key.end(), 0u);
+    std::sort(by_key.begin(), by_key.end(), [&](std::uint32_t x, std::uint32_t y) { return mesh_key[x] < mesh_key[y]; });
+    for (std::size_t i = 1; i < by_key.size(); ++i)
+      if (mesh_key[by_key[i]] == mesh_key[by_key[i - 1]]) repeated[by_key[i]] = repeated[by_key[i - 1]] = 1;
+  }
   const auto pair_hash = [&](const Unit& u) { return mesh_key[u.a] * 0x9e3779b97f4a7c15ULL ^ (mesh_key[u.b] + 0x632be59bd9b4e019ULL); };
-  std::unordered_map<std::uint64_t, std::uint32_t> mesh_pairs;
-  mesh_pairs.reserve(broad.units.size());
-  for (const Unit& u : broad.units) ++mesh_pairs[pair_hash(u)];
-  std::vector<std::uint32_t> shared;
+  std::vector<std::uint32_t> candidates;
   for (std::uint32_t k = 0; k < broad.units.size(); ++k)
+    if (repeated[broad.units[k].a] || repeated[broad.units[k].b]) candidates.push_back(k);
+  std::unordered_map<std::uint64_t, std::uint32_t> mesh_pairs;
+  mesh_pairs.reserve(candidates.size());
+  for (const std::uint32_t k : candidates) ++mesh_pairs[pair_hash(broad.units[k])];
+  std::vector<std::uint32_t> shared;
+  for (const std::uint32_t k : candidates)
     if (mesh_pairs.at(pair_hash(broad.units[k])) > 1) shared.push_back(k);
   for (const std::vector<Transform>& pose : poses) {
     std::map<std::tuple<std::uint64_t, std::uint64_t, std::array<double, 12>>, std::uint32_t> first;

@@ -70,10 +70,14 @@ struct CostModel {
   double pair_tri_s = 0;
   double body_tri_s = 1.4e-6;
   double read_tri_s = 5.03e-7;  ///< reading a body a rank did not read in the first step
-  /// Rank 0's gather and merge of every rank's findings after its engine call, per candidate pair
-  /// (unit) of the scene: rank 0's CPU seconds of it (the report's mpi.merge), median of the K = 1
-  /// runs of that fit (1.6 s for the product's 383,861 pairs).
-  double merge_pair_s = 4.23e-6;
+  /// Work rank 0 does after its engine call and before the others' findings arrive, per candidate
+  /// pair (unit) of the scene: its run of the curve is that much shorter. Default 0: rank 0's
+  /// merge needs every rank's findings, so it starts only when the last rank ends (the gather);
+  /// a shorter run for rank 0 only made it wait (10^5-body product, K = 2, 17:18 UTC: rank 0's
+  /// engine ended 1.6 s before rank 1's, then it merged for 1.5 s). Since the merge got cheap
+  /// (binary findings, rank 0's own not encoded: issue #31) the job is the balanced engine runs
+  /// plus that short merge. Until then: 4.23e-6 (rank 0's merge CPU seconds per pair, K = 1).
+  double merge_pair_s = 0;
   double pair(std::uint64_t triangles_a, std::uint64_t triangles_b) const {
     return pair_s + pair_tri_s * static_cast<double>(triangles_a + triangles_b);
   }
