@@ -1,6 +1,7 @@
 // JSON inputs of the scene layer (src/scene/json_input.h).
 #include "json_input.h"
 
+#include <algorithm>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -13,63 +14,38 @@ struct DuplicateKey {
   std::string path;
 };
 
-/// Tracks the JSON path of the parser's position through nlohmann's callback events, to name a
-/// duplicate key.
-struct PathTracker {
+/// Finds a key given twice in one object, naming its JSON path, in one SAX pass (no document
+/// built), after the plain parse. nlohmann's callback parser rescans the enclosing array at every
+/// closing object, so a scene file of 10^5 bodies took 3.5 s to read that way (issue #31: every
+/// MPI rank reads it). The path is built only for the message: per level the array index or the
+/// current key, and the keys seen so far (few per object: a list; many: a set).
+struct DuplicateKeyCheck {
+  using json = nlohmann::json;
   struct Level {
     bool array = false;
     std::size_t next = 0;  ///< arrays: index of the next element
-    std::string key;       ///< objects: the key whose value is being read
-    std::set<std::string> keys;
-    std::string path;
+    std::vector<std::string> keys;  ///< objects: the keys so far (the last one is being read)
+    std::set<std::string> many;     ///< (every key, once an object has more than 16)
   };
   std::vector<Level> stack;
+  std::size_t depth = 0;  ///< levels in use (stack keeps its buffers for the next objects)
 
-  void open(bool array) {
+  std::string path_of(std::size_t levels) const {
     std::string path;
-    if (!stack.empty()) {
-      Level& parent = stack.back();
-      path =
-          parent.array ? json_index(parent.path, parent.next++) : json_key(parent.path, parent.key);
+    for (std::size_t d = 0; d + 1 < levels; ++d) {
+      const Level& l = stack[d];
+      path = l.array ? json_index(path, l.next - 1) : json_key(path, l.keys.back());
     }
-    stack.push_back({.array = array, .path = std::move(path)});
+    return path;
   }
-  bool operator()(int /*depth*/, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
-    using E = nlohmann::json::parse_event_t;
-    switch (event) {
-      case E::object_start:
-        open(false);
-        break;
-      case E::array_start:
-        open(true);
-        break;
-      case E::object_end:
-      case E::array_end:
-        if (!stack.empty()) stack.pop_back();
-        break;
-      case E::key:
-        if (!stack.empty()) {
-          Level& top = stack.back();
-          top.key = parsed.get<std::string>();
-          if (!top.keys.insert(top.key).second) throw DuplicateKey{json_key(top.path, top.key)};
-        }
-        break;
-      case E::value:
-        if (!stack.empty() && stack.back().array) ++stack.back().next;
-        break;
-    }
-    return true;
+  void open(bool array) {
+    if (depth > 0 && stack[depth - 1].array) ++stack[depth - 1].next;
+    if (stack.size() == depth) stack.emplace_back();
+    Level& l = stack[depth++];
+    l.array = array, l.next = 0, l.keys.clear(), l.many.clear();
   }
-};
-
-/// The same path tracking as a SAX handler (no document built): a second, linear pass after the
-/// plain parse. nlohmann's callback parser rescans the enclosing array at every closing object, so
-/// a scene file of 10^5 bodies took 3.5 s to read that way (issue #31: every MPI rank reads it).
-struct DuplicateKeyCheck {
-  using json = nlohmann::json;
-  PathTracker t;
   bool scalar() {
-    if (!t.stack.empty() && t.stack.back().array) ++t.stack.back().next;
+    if (depth > 0 && stack[depth - 1].array) ++stack[depth - 1].next;
     return true;
   }
   bool null() { return scalar(); }
@@ -80,24 +56,30 @@ struct DuplicateKeyCheck {
   bool string(json::string_t&) { return scalar(); }
   bool binary(json::binary_t&) { return scalar(); }
   bool start_object(std::size_t) {
-    t.open(false);
+    open(false);
     return true;
   }
   bool end_object() {
-    if (!t.stack.empty()) t.stack.pop_back();
+    if (depth > 0) --depth;
     return true;
   }
   bool start_array(std::size_t) {
-    t.open(true);
+    open(true);
     return true;
   }
   bool end_array() { return end_object(); }
   bool key(json::string_t& k) {
-    if (!t.stack.empty()) {
-      PathTracker::Level& top = t.stack.back();
-      top.key = k;
-      if (!top.keys.insert(top.key).second) throw DuplicateKey{json_key(top.path, top.key)};
+    if (depth == 0) return true;
+    Level& top = stack[depth - 1];
+    bool twice = false;
+    if (top.keys.size() < 16) {
+      twice = std::find(top.keys.begin(), top.keys.end(), k) != top.keys.end();
+      if (!twice && top.keys.size() == 15) top.many.insert(top.keys.begin(), top.keys.end()), top.many.insert(k);
+    } else {
+      twice = !top.many.insert(k).second;
     }
+    if (twice) throw DuplicateKey{json_key(path_of(depth), k)};
+    top.keys.push_back(k);
     return true;
   }
   bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception& e) { throw e; }

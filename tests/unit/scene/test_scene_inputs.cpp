@@ -418,6 +418,19 @@ TEST(SceneFile, TwoPartForm) {
   EXPECT_EQ(s->bodies[0].where, path + ": a");
 }
 
+// Entries' files resolved against the scene file's folder as std::filesystem's `folder / file`
+// gives them (read_scene_file joins the strings, issue #31): relative, absolute, with "..".
+TEST(SceneFile, FilesResolvedAsFilesystemPaths) {
+  TempDir t(test_name());
+  const std::string path = t.write("scene.json", R"({"bodies": [{"file": "a.stl"}, {"file": "/abs/b.stl"},
+      {"file": "sub/../c.stl"}, {"file": "./d.stl"}, {"file": "e/"}]})");
+  auto s = read_scene_file(path, {.check_body_files = false});
+  ASSERT_TRUE(s) << s.error().message();
+  const fs::path dir = fs::path(path).parent_path();
+  for (const BodySpec& b : s->bodies) EXPECT_EQ(b.file, (dir / b.given).string()) << b.given;
+  EXPECT_EQ(s->bodies[1].file, "/abs/b.stl");
+}
+
 // interfere-mpi's ranks each check only their share of the entries' files (issue #31): with
 // check_body_files off the scene file reads without asking for the files, and check_body_file
 // then gives read_scene_file's own message for a missing file or a directory, and a file's size.
@@ -495,6 +508,15 @@ TEST(SceneFile, DuplicateIds) {
   // A key twice in one object (a JSON parser keeps the last silently).
   expect_scene_error(R"({"bodies": [{"file": "a.stl", "file": "b.stl"}]})", "bodies[0].file",
                      "given twice");
+  // The path of the key, built only for the message (issue #31): in arrays of arrays, and in an
+  // object with many keys (the check keeps a set of them past 16).
+  expect_scene_error(R"({"bodies": [], "x": [[1, {"a": 1, "b": [{"c": 0, "c": 1}]}]]})", "x[0][1].b[0].c",
+                     "given twice");
+  std::string many = R"({"tests": [{}, {)";
+  for (int k = 0; k < 40; ++k) many += "\"k" + std::to_string(k) + "\": 0, ";
+  expect_scene_error(many + R"("k7": 1}]})", "tests[1].k7", "given twice");
+  expect_scene_error(many + R"("k39": 1}], "tests": []})", "tests[1].k39", "given twice");
+  expect_scene_error(R"({"bodies": [{"file": "a.stl"}], "units": "mm", "units": "m"})", "units", "given twice");
 }
 
 TEST(SceneFile, WrongTypesAndValues) {
