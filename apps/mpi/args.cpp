@@ -1,5 +1,12 @@
-// interfere-mpi's command line (args.h; issue #31, docs/mpi.md "Options").
+// interfere-mpi's command line (args.h; issue #31, docs/mpi.md "Options"), read with CLI11 as the
+// CLI's (apps/cli/main.cpp). Values are taken as text and converted here, so that a bad value is
+// reported as before ("--clearance: 'x' is not a finite number >= 0"); options that CLI11 does not
+// know are kept as extras and named: an option of `interfere clash` not offered here (its reason),
+// any other option ("unknown option --x"), a file on the command line. Usage errors: UsageError
+// (exit status 2, the flag named); --help and --version: InfoRequest (stdout, exit status 0).
 #include "args.h"
+
+#include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -48,6 +55,75 @@ const char* not_offered(const std::string& flag) {
   return it == why.end() ? nullptr : it->second;
 }
 
+// A CLI11 parser of argv[first..]: no help flag of its own (ours prints the synopsis), extras
+// allowed (named by `extras` below), an option given twice takes its last value (as before).
+struct Parser {
+  CLI::App app;
+  std::string usage;
+  bool help = false, version = false;
+
+  explicit Parser(std::string text) : app("interfere-mpi"), usage(std::move(text)) {
+    app.set_help_flag();
+    app.allow_extras();
+    app.add_flag("-h,--help", help);
+    app.add_flag("--version", version);
+  }
+  CLI::Option* text(const std::string& name, std::string& into) {
+    return app.add_option(name, into)->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  }
+  bool given(const std::string& name) const { return app.count(name) > 0; }
+  void parse(int argc, char** argv, int first) {
+    std::vector<std::string> args;  // (CLI11 takes them in reverse order)
+    for (int i = argc - 1; i >= first; --i) args.emplace_back(argv[i]);
+    try {
+      app.parse(args);
+    } catch (const CLI::ParseError& e) {
+      throw UsageError(std::string(e.what()) + "\n" + usage);  // (CLI11's text names the flag: "--scene: 1 required TEXT missing")
+    }
+    if (help) throw InfoRequest{usage};
+    if (version) throw InfoRequest{std::string("interfere-mpi ") + INTERFERE_VERSION + "\n"};
+  }
+  // The first extra: an option not offered, an unknown option, a file on the command line.
+  void extras(bool clash) const {
+    for (const std::string& a : app.remaining()) {
+      const std::string flag = a.substr(0, a.find('='));
+      if (clash)
+        if (const char* why = not_offered(flag))
+          throw UsageError(flag + ": not offered by interfere-mpi: " + why + " (docs/mpi.md, \"Options\")");
+      if (!clash && (flag == "--html" || flag == "--glb" || flag == "--pvd" || flag == "--view-budget"))
+        throw UsageError(flag + ": not offered by interfere-mpi: views are drawn from one process's result: run `interfere bearing "
+                                "--assembly` with --html/--glb/--pvd (docs/mpi.md, \"Options\")");
+      if (!a.starts_with("-"))
+        throw UsageError("'" + a + "': interfere-mpi takes no input files on the command line" +
+                         (clash ? ": list every body in the --scene file" : ""));
+      throw UsageError("unknown option " + flag + "\n" + usage);
+    }
+  }
+};
+
+// "--flag: 'v' is not a finite number [>= 0]", "... is not an integer".
+double to_number(const std::string& flag, const std::string& v, bool non_negative) {
+  try {
+    std::size_t used = 0;
+    const double d = std::stod(v, &used);
+    if (used != v.size() || !std::isfinite(d) || (non_negative && d < 0)) throw std::invalid_argument(v);
+    return d;
+  } catch (const std::exception&) {
+    throw UsageError(flag + ": '" + v + "' is not a finite number" + (non_negative ? " >= 0" : ""));
+  }
+}
+
+long long to_integer(const std::string& flag, const std::string& v) {
+  try {
+    std::size_t used = 0;
+    const long long n = std::stoll(v, &used);
+    if (used != v.size()) throw std::invalid_argument(v);
+    return n;
+  } catch (const std::exception&) {
+    throw UsageError(flag + ": '" + v + "' is not an integer");
+  }
+}
+
 }  // namespace
 
 const char* const kUsage =
@@ -61,90 +137,110 @@ const char* const kUsage =
     "Exit status: 0 clear, contact or clearance; 1 clash (or a verdict named by --fail-on); 2 usage or input error,\n"
     "on any rank (message on stderr, nothing written); 3 undecided.\n";
 
+const char* const kBearingUsage =
+    "usage: mpirun -n K interfere-mpi bearing --assembly FILE [--motion FILE] [--frames N] [--seed S]\n"
+    "         [--clearance D] [--out ROWS.csv] [--json SUMMARY.json] [--fail-on LIST] [--threads N] [--quiet]\n"
+    "The outputs are those of `interfere bearing --assembly` (docs/bearing.md) plus \"mpi\" in the JSON; docs/mpi.md.\n";
+
 Options parse_clash(int argc, char** argv) {
   Options o;
   if (argc >= 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h")) throw InfoRequest{kUsage};
   if (argc >= 2 && std::string(argv[1]) == "--version") throw InfoRequest{std::string("interfere-mpi ") + INTERFERE_VERSION + "\n"};
   if (argc < 2 || std::string(argv[1]) != "clash") throw UsageError(std::string("the command is `clash` or `bearing`\n") + kUsage);
-  for (int i = 2; i < argc; ++i) {
-    const std::string a = argv[i];
-    const auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw UsageError(a + " needs a value\n" + kUsage);
-      return argv[++i];
-    };
-    const auto number = [&](const std::string& v) {
-      try {
-        std::size_t used = 0;
-        const double d = std::stod(v, &used);
-        if (used != v.size() || !std::isfinite(d) || d < 0) throw std::invalid_argument(v);
-        return d;
-      } catch (const std::exception&) {
-        throw UsageError(a + ": '" + v + "' is not a finite number >= 0");
-      }
-    };
-    if (const char* why = not_offered(a)) throw UsageError(a + ": not offered by interfere-mpi: " + why + " (docs/mpi.md, \"Options\")");
-    if (a == "--scene") o.scene = value();
-    else if (a == "--test") o.test_texts.push_back(value());
-    else if (a == "--tests") o.tests_file = value();
-    else if (a == "--clearance") o.clearance = number(value()), o.clearance_given = true;
-    else if (a == "--tolerance") o.tolerance = number(value()), o.tolerance_given = true;
-    else if (a == "--fail-on") o.fail_on = value();
-    else if (a == "--field") o.fem_field = value();
-    else if (a == "--disp") o.fem_disp = value();
-    else if (a == "--scale") {
-      const std::string v = value();
-      try {
-        std::size_t used = 0;
-        o.fem_scale = std::stod(v, &used);
-        if (used != v.size() || !std::isfinite(o.fem_scale)) throw std::invalid_argument(v);
-      } catch (const std::exception&) {
-        throw UsageError("--scale: '" + v + "' is not a finite number");
-      }
-    } else if (a == "--split") o.fem_split = value();
-    else if (a == "--linear-faces") o.fem_linear_faces = true;
-    else if (a == "--no-reference") o.reference = false;
-    else if (a == "--json") o.json = value();
-    else if (a == "--csv") o.csv = value();
-    else if (a == "--frames-csv") o.frames_csv = value();
-    else if (a == "--frame-pairs-csv") o.frame_pairs_csv = value();
-    else if (a == "--motion") o.motion = value();
-    else if (a == "--baseline") o.baseline = value();
-    else if (a == "--units") o.units = value();
-    else if (a == "--group-by") o.group_by = value();
-    else if (a == "--group-distance") o.group_distance = number(value());
-    else if (a == "--threads") o.threads = static_cast<int>(number(value()));
-    else if (a == "--memory-limit") o.memory_limit_mb = number(value());
-    else if (a == "--distribute") {
-      const std::string v = value();
-      if (v == "pairs") o.distribute = Distribute::pairs;
-      else if (v == "frames") o.distribute = Distribute::frames;
-      else throw UsageError("--distribute: '" + v + "' is not pairs or frames");
+  Parser p(kUsage);
+  std::string clearance, tolerance, scale, group_distance, threads, memory_limit, cost_model, distribute;
+  p.text("--scene", o.scene);
+  p.app.add_option("--test", o.test_texts)->allow_extra_args(false);  // (repeatable, one text each)
+  p.text("--tests", o.tests_file);
+  p.text("--clearance", clearance);
+  p.text("--tolerance", tolerance);
+  p.text("--fail-on", o.fail_on);
+  p.text("--field", o.fem_field);
+  p.text("--disp", o.fem_disp);
+  p.text("--scale", scale);
+  p.text("--split", o.fem_split);
+  p.app.add_flag("--linear-faces", o.fem_linear_faces);
+  bool no_reference = false;
+  p.app.add_flag("--no-reference", no_reference);
+  p.text("--json", o.json);
+  p.text("--csv", o.csv);
+  p.text("--frames-csv", o.frames_csv);
+  p.text("--frame-pairs-csv", o.frame_pairs_csv);
+  p.text("--motion", o.motion);
+  p.text("--baseline", o.baseline);
+  p.text("--units", o.units);
+  p.text("--group-by", o.group_by);
+  p.text("--group-distance", group_distance);
+  p.text("--threads", threads);
+  p.text("--memory-limit", memory_limit);
+  p.text("--distribute", distribute);
+  p.text("--cost-model", cost_model);
+  p.app.add_flag("-q,--quiet", o.quiet);
+  p.parse(argc, argv, 2);
+  p.extras(true);
+  o.reference = !no_reference;
+  if (p.given("--clearance")) o.clearance = to_number("--clearance", clearance, true), o.clearance_given = true;
+  if (p.given("--tolerance")) o.tolerance = to_number("--tolerance", tolerance, true), o.tolerance_given = true;
+  if (p.given("--scale")) o.fem_scale = to_number("--scale", scale, false);
+  if (p.given("--group-distance")) o.group_distance = to_number("--group-distance", group_distance, true);
+  if (p.given("--threads")) o.threads = static_cast<int>(to_number("--threads", threads, true));
+  if (p.given("--memory-limit")) o.memory_limit_mb = to_number("--memory-limit", memory_limit, true);
+  if (p.given("--distribute")) {
+    if (distribute == "pairs") o.distribute = Distribute::pairs;
+    else if (distribute == "frames") o.distribute = Distribute::frames;
+    else throw UsageError("--distribute: '" + distribute + "' is not pairs or frames");
+  }
+  if (p.given("--cost-model")) {
+    std::vector<double> c;
+    std::size_t from = 0;
+    while (from <= cost_model.size()) {
+      const std::size_t comma = std::min(cost_model.find(',', from), cost_model.size());
+      c.push_back(to_number("--cost-model", cost_model.substr(from, comma - from), true));
+      from = comma + 1;
     }
-    else if (a == "--cost-model") {
-      const std::string v = value();
-      std::vector<double> c;
-      std::size_t from = 0;
-      while (from <= v.size()) {
-        const std::size_t comma = std::min(v.find(',', from), v.size());
-        c.push_back(number(v.substr(from, comma - from)));
-        from = comma + 1;
-      }
-      if (c.size() != 4 && c.size() != 5)
-        throw UsageError("--cost-model: '" + v + "' is not four or five numbers PAIR_S,PAIR_TRI_S,BODY_TRI_S,READ_TRI_S[,MERGE_PAIR_S]");
-      o.cost.pair_s = c[0], o.cost.pair_tri_s = c[1], o.cost.body_tri_s = c[2], o.cost.read_tri_s = c[3];
-      if (c.size() == 5) o.cost.merge_pair_s = c[4];
-    } else if (a == "--quiet" || a == "-q") o.quiet = true;
-    else if (a == "--help" || a == "-h") throw InfoRequest{kUsage};
-    else if (a == "--version") throw InfoRequest{std::string("interfere-mpi ") + INTERFERE_VERSION + "\n"};
-    else if (!a.starts_with("-"))
-      throw UsageError("'" + a + "': interfere-mpi takes no input files on the command line: list every body in the --scene file");
-    else throw UsageError("unknown option " + a + "\n" + kUsage);
+    if (c.size() != 4 && c.size() != 5)
+      throw UsageError("--cost-model: '" + cost_model + "' is not four or five numbers PAIR_S,PAIR_TRI_S,BODY_TRI_S,READ_TRI_S[,MERGE_PAIR_S]");
+    o.cost.pair_s = c[0], o.cost.pair_tri_s = c[1], o.cost.body_tri_s = c[2], o.cost.read_tri_s = c[3];
+    if (c.size() == 5) o.cost.merge_pair_s = c[4];
   }
   if (o.scene.empty()) throw UsageError(std::string("--scene FILE is required\n") + kUsage);
   if (!o.fail_on.empty() && !parse_fail_on(o.fail_on))
     throw UsageError("--fail-on: '" + o.fail_on + "' is not a list of contact, clearance, undecided (comma-separated)");
   if (o.group_by != "pair" && o.group_by != "location" && o.group_by != "none")
     throw UsageError("--group-by: unknown grouping '" + o.group_by + "' (pair, location, none)");
+  return o;
+}
+
+BearingOptions parse_bearing(int argc, char** argv) {
+  BearingOptions o;
+  Parser p(kBearingUsage);
+  std::string frames, seed, clearance, threads;
+  p.text("--assembly", o.assembly);
+  p.text("--motion", o.motion);
+  p.text("--frames", frames);
+  p.text("--seed", seed);
+  p.text("--clearance", clearance);
+  p.text("--out", o.out);
+  p.text("--json", o.json);
+  p.text("--fail-on", o.fail_on);
+  p.text("--threads", threads);
+  p.app.add_flag("-q,--quiet", o.quiet);
+  p.parse(argc, argv, 1);
+  p.extras(false);
+  if (p.given("--frames")) o.frames = static_cast<int>(to_integer("--frames", frames));
+  if (p.given("--seed")) {
+    const long long s = to_integer("--seed", seed);
+    if (s < 0) throw UsageError("--seed must be >= 0");
+    o.seed = static_cast<std::uint64_t>(s);
+  }
+  if (p.given("--clearance")) o.clearance = to_number("--clearance", clearance, false);
+  if (p.given("--threads")) o.threads = static_cast<int>(to_integer("--threads", threads));
+  if (o.assembly.empty()) throw UsageError(std::string("--assembly FILE is required\n") + kBearingUsage);
+  if (o.frames && *o.frames < 1) throw UsageError("--frames must be >= 1, got " + std::to_string(*o.frames));
+  if (!o.motion.empty() && o.frames) throw UsageError("--frames cannot be combined with --motion (the file gives the frames)");
+  if (!o.fail_on.empty() && !parse_fail_on(o.fail_on))
+    throw UsageError("--fail-on: '" + o.fail_on + "' is not a list of contact, clearance, undecided (comma-separated)");
+  if (o.threads < 0) throw UsageError("--threads must be >= 0");
   return o;
 }
 

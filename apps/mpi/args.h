@@ -1,8 +1,11 @@
-// interfere-mpi's command line (issue #31; docs/mpi.md, "Run" and "Options"): the options of
-// `mpirun -n K interfere-mpi clash --scene FILE ...`, their meaning that of `interfere clash
-// --scene` (apps/cli/cmd_clash_scene.cpp) plus interfere-mpi's own (--distribute, --cost-model,
-// --memory-limit).
+// interfere-mpi's command line (issue #31; docs/mpi.md, "Run" and "Options"), read with CLI11 as
+// the CLI's: the options of `mpirun -n K interfere-mpi clash --scene FILE ...`, their meaning that
+// of `interfere clash --scene` (apps/cli/cmd_clash_scene.cpp) plus interfere-mpi's own
+// (--distribute, --cost-model, --memory-limit); and those of `interfere-mpi bearing`, as
+// `interfere bearing --assembly`.
 #pragma once
+#include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -50,5 +53,20 @@ extern const char* const kUsage;
 
 /// argv[1] is "clash" (or --help / --version: InfoRequest). Throws UsageError naming the flag.
 Options parse_clash(int argc, char** argv);
+
+/// `interfere-mpi bearing` (bearing.h): as `interfere bearing --assembly`.
+struct BearingOptions {
+  std::string assembly, motion, out, json, fail_on;
+  std::optional<int> frames;
+  std::optional<std::uint64_t> seed;
+  std::optional<double> clearance;
+  int threads = 0;
+  bool quiet = false;
+};
+
+extern const char* const kBearingUsage;
+
+/// argv[0] is "bearing". Throws UsageError naming the flag, InfoRequest for --help / --version.
+BearingOptions parse_bearing(int argc, char** argv);
 
 }  // namespace interfere::mpi

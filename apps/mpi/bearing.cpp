@@ -25,6 +25,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "args.h"
 #include "bearing_assembly_report.h"
 #include "interfere/bearing/assembly.h"
 #include "report_envelope.h"
@@ -38,78 +39,6 @@ using Clock = std::chrono::steady_clock;
 struct InputError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
-
-struct HelpRequest {};
-
-struct BearingOptions {
-  std::string assembly, motion, out, json, fail_on;
-  std::optional<int> frames;
-  std::optional<std::uint64_t> seed;
-  std::optional<double> clearance;
-  int threads = 0;
-  bool quiet = false;
-};
-
-const char* kBearingUsage =
-    "usage: mpirun -n K interfere-mpi bearing --assembly FILE [--motion FILE] [--frames N] [--seed S]\n"
-    "         [--clearance D] [--out ROWS.csv] [--json SUMMARY.json] [--fail-on LIST] [--threads N] [--quiet]\n"
-    "The outputs are those of `interfere bearing --assembly` (docs/bearing.md) plus \"mpi\" in the JSON; docs/mpi.md.\n";
-
-BearingOptions parse(int argc, char** argv) {
-  BearingOptions o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    const auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw InputError(a + " needs a value\n" + kBearingUsage);
-      return argv[++i];
-    };
-    const auto number = [&](const std::string& v) {
-      try {
-        std::size_t used = 0;
-        const double d = std::stod(v, &used);
-        if (used != v.size() || !std::isfinite(d)) throw std::invalid_argument(v);
-        return d;
-      } catch (const std::exception&) {
-        throw InputError(a + ": '" + v + "' is not a finite number");
-      }
-    };
-    const auto integer = [&](const std::string& v) -> long long {
-      try {
-        std::size_t used = 0;
-        const long long n = std::stoll(v, &used);
-        if (used != v.size()) throw std::invalid_argument(v);
-        return n;
-      } catch (const std::exception&) {
-        throw InputError(a + ": '" + v + "' is not an integer");
-      }
-    };
-    if (a == "--assembly") o.assembly = value();
-    else if (a == "--motion") o.motion = value();
-    else if (a == "--frames") o.frames = static_cast<int>(integer(value()));
-    else if (a == "--seed") {
-      const long long s = integer(value());
-      if (s < 0) throw InputError("--seed must be >= 0");
-      o.seed = static_cast<std::uint64_t>(s);
-    } else if (a == "--clearance") o.clearance = number(value());
-    else if (a == "--out") o.out = value();
-    else if (a == "--json") o.json = value();
-    else if (a == "--fail-on") o.fail_on = value();
-    else if (a == "--threads") o.threads = static_cast<int>(integer(value()));
-    else if (a == "--quiet" || a == "-q") o.quiet = true;
-    else if (a == "--help" || a == "-h") throw HelpRequest{};
-    else if (a == "--html" || a == "--glb" || a == "--pvd" || a == "--view-budget")
-      throw InputError(a + ": not offered by interfere-mpi: views are drawn from one process's result: run `interfere bearing "
-                           "--assembly` with --html/--glb/--pvd (docs/mpi.md, \"Options\")");
-    else throw InputError("unknown option " + a + "\n" + kBearingUsage);
-  }
-  if (o.assembly.empty()) throw InputError(std::string("--assembly FILE is required\n") + kBearingUsage);
-  if (o.frames && *o.frames < 1) throw InputError("--frames must be >= 1, got " + std::to_string(*o.frames));
-  if (!o.motion.empty() && o.frames) throw InputError("--frames cannot be combined with --motion (the file gives the frames)");
-  if (!o.fail_on.empty() && !parse_fail_on(o.fail_on))
-    throw InputError("--fail-on: '" + o.fail_on + "' is not a list of contact, clearance, undecided (comma-separated)");
-  if (o.threads < 0) throw InputError("--threads must be >= 0");
-  return o;
-}
 
 void write_file(const std::string& path, const std::string& text) {
   if (path.empty()) return;
@@ -168,6 +97,19 @@ int run_checked(const World& w, const BearingOptions& o) {
     } else {
       motion = generate_motion(*as, spec->frames, spec->seed);  // (frame f depends on (seed, f) only)
     }
+    // Outputs: their folders must exist, and no output may be an input (checked by every rank
+    // before any work, as `interfere bearing` checks them first; rank 0 writes them at the end).
+    for (const auto& [flag, out] : {std::pair<const char*, const std::string*>{"--out", &o.out}, {"--json", &o.json}}) {
+      if (out->empty() || *out == "-") continue;
+      const std::filesystem::path path = std::filesystem::absolute(*out);
+      if (!std::filesystem::is_directory(path.parent_path()))
+        throw InputError(std::string(flag) + " " + *out + ": no folder " + path.parent_path().string());
+      for (const std::string* input : {&o.assembly, &o.motion})
+        if (!input->empty() && path == std::filesystem::absolute(*input))
+          throw InputError(std::string(flag) + " " + *out + ": is an input file");
+    }
+    if (!o.out.empty() && o.out != "-" && !o.json.empty() && std::filesystem::absolute(o.out) == std::filesystem::absolute(o.json))
+      throw InputError("--out and --json name the same file " + o.out);
   } catch (const InputError& e) {
     error = e.what();
   }
@@ -243,11 +185,14 @@ int run_checked(const World& w, const BearingOptions& o) {
 int run_bearing(const World& w, int argc, char** argv) {
   BearingOptions o;
   try {
-    o = parse(argc, argv);
+    o = parse_bearing(argc, argv);  // (args.h: CLI11)
     return run_checked(w, o);
-  } catch (const HelpRequest&) {
-    if (w.rank == 0) std::fputs(kBearingUsage, stdout);
+  } catch (const InfoRequest& info) {
+    if (w.rank == 0) std::fputs(info.text.c_str(), stdout);
     return 0;
+  } catch (const UsageError& e) {
+    if (w.rank == 0) std::fprintf(stderr, "interfere: error: %s\n", e.what());
+    return 2;
   } catch (const InputError& e) {
     // (options, the assembly and the motion file: every rank finds it alike; rank 0 says it)
     if (w.rank == 0) std::fprintf(stderr, "interfere: error: %s\n", e.what());

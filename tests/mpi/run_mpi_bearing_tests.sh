@@ -2,11 +2,13 @@
 # interfere-mpi bearing against `interfere bearing --assembly` (issue #31, items 3 and 5): the bundled
 # bearing example's frames in blocks per rank, K = 1..4 (also 3 frames on 4 ranks: an idle rank, a
 # warning), generated motion and a motion file: the same CSV byte for byte and the same JSON apart
-# from timing, threads, seconds and the "mpi" section; bad input exits 2 with the message.
+# from timing, threads, seconds and the "mpi" section (which validates against
+# docs/schema/bearing.schema.json); bad input exits 2 with the message (outputs checked first).
 # Usage: run_mpi_bearing_tests.sh INTERFERE INTERFERE_MPI ASSEMBLY.json
 set -uo pipefail
 cli=$(realpath "$1") mpi=$(realpath "$2") asm=$(realpath "$3")
 py=/usr/bin/python3
+export HERE=$(cd "$(dirname "$0")" && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 mpirun_=(mpirun --allow-run-as-root --oversubscribe)
@@ -17,8 +19,15 @@ cd "$work" || exit 1
 
 same_json() {  # single.json mpi.json ranks
   "$py" - "$@" <<'PY'
-import json, sys
+import json, os, sys
+sys.path.insert(0, os.path.join(os.environ["HERE"], "..", "cli"))
+import report_schema  # (the "mpi" section against docs/schema/bearing.schema.json)
 a, b = (json.load(open(p)) for p in sys.argv[1:3])
+try:
+    report_schema.validate(b, sys.argv[2])
+except AssertionError as e:
+    print(e)
+    sys.exit(1)
 m = b.pop("mpi", None)
 ok = m is not None and m["ranks"] == int(sys.argv[3]) and len(m["per_rank"]) == int(sys.argv[3])
 for r in (a, b):
@@ -77,4 +86,16 @@ check grep -q -- "--frames" bad.err
 "${mpirun_[@]}" -n 2 "$mpi" bearing --assembly "$asm" --html v.html >/dev/null 2>bad.err
 check test $? = 2
 check grep -q "not offered" bad.err
+# Outputs checked before any work (the folder must exist), options read with CLI11: a missing value
+# and a bad number name their flag; exit 2, nothing written.
+"${mpirun_[@]}" -n 2 "$mpi" bearing --assembly "$asm" --out nofolder/rows.csv --json ok.json >/dev/null 2>bad.err
+check test $? = 2
+check grep -q "^interfere: error: --out nofolder/rows.csv: no folder" bad.err
+check test ! -e ok.json
+"${mpirun_[@]}" -n 2 "$mpi" bearing --assembly "$asm" --frames >/dev/null 2>bad.err
+check test $? = 2
+check grep -q "^interfere: error: --frames:" bad.err
+"${mpirun_[@]}" -n 2 "$mpi" bearing --assembly "$asm" --clearance wide >/dev/null 2>bad.err
+check test $? = 2
+check grep -q "^interfere: error: --clearance: 'wide' is not a finite number" bad.err
 exit $fail

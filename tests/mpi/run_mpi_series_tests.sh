@@ -7,7 +7,7 @@
 # their bodies keep their ids from frame 0: the blocks are run again from further back, mpi.reruns
 # > 0), with a 12-frame motion of rigid clusters (no border needs history: mpi.reruns = 0), an FE
 # model with 4 and with 12 load steps (also --scale 2 --no-reference). A static scene with --distribute
-# frames goes by pairs (warning); a bad --distribute value: exit 2.
+# frames goes by pairs (warning); a bad --distribute value: exit 2; usage errors name the flag (CLI11).
 # Usage: run_mpi_series_tests.sh INTERFERE INTERFERE_MPI
 set -uo pipefail
 cli=$(realpath "$1") mpi=$(realpath "$2")
@@ -70,4 +70,18 @@ check test $? = 2
 check grep -q "^interfere: error: --distribute: 'steps' is not pairs or frames" "$work/tiny/bad.err"
 check test ! -e "$work/tiny/bad.json"
 echo "bad --distribute: exit 2"
+
+# The command line (CLI11, apps/mpi/args.cpp): a missing value, a bad number, a file on the command
+# line: exit 2, the flag named; a pairs report's "mpi" section validates against docs/schema.
+for bad in "--scene|--scene: 1 required" "--scene scene.json --clearance x|--clearance: 'x' is not a finite number >= 0" \
+           "--scene scene.json more.stl|'more.stl': interfere-mpi takes no input files" \
+           "--scene scene.json --test|--test: 1 required"; do
+  args=${bad%%|*} want=${bad#*|}
+  # shellcheck disable=SC2086
+  (cd "$work/tiny" && "${mpirun_[@]}" -n 2 "$mpi" clash $args >/dev/null 2>args.err)
+  check test $? = 2
+  check grep -q -- "^interfere: error: $want" "$work/tiny/args.err"
+  echo "usage error ($args): exit 2"
+done
+check "$py" -c 'import json,os,sys; sys.path.insert(0, os.path.join(sys.argv[1], "..", "cli")); import report_schema; report_schema.validate(json.load(open(sys.argv[2])), sys.argv[2])' "$here" "$work/tiny/static.json"
 exit $fail
