@@ -28,6 +28,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <tuple>
 
 #include "assembly_raceway_scars.h"
 #include "assembly_tapered_scars.h"
@@ -99,12 +100,99 @@ struct WebValue {
   double distance = std::numeric_limits<double>::infinity();
   Vec3 point_a, point_b;
 };
-WebValue web_distance(const Cylinder& roller, const TriMesh& web, const Transform& cage_pose) {
+/// The closed form of web_distance for a web apart from the roller across one of its faces (issue
+/// #27, speed; docs/bearing.md "Cage webs in closed form"). The web is {x : n_j.x <= d_j, j = 0..5}.
+/// For a face j, g_j = min over the roller of n_j.x - d_j is the support function of the roller (a
+/// cylinder or frustum is the convex hull of its end circles: the lowest point is on the rim of the
+/// lower end, x* = end centre - r_end (n_j - (n_j.u) u) / |n_j - (n_j.u) u|). When g_j > 0 the
+/// plane n_j.x = d_j separates the two solids, so every web point is at least g_j from the roller;
+/// when moreover the foot p* = x* - g_j n_j lies in the web (inside every other face plane, by a
+/// margin far above rounding), p* is a web point at distance g_j from the roller point x*: the
+/// distance of the two solids, hence the minimum over the web's triangles of the roller's signed
+/// distance (web_distance's value; apart, the web's centre is outside the roller), exact to
+/// rounding. nullopt when no face certifies it (overlapping solids, a foot past a face's edge): the
+/// triangle minima decide. Only the face of the largest g_j can certify (the distance is >= every
+/// g_j, and a certified one equals it).
+std::optional<WebValue> separated_web(const Cylinder& roller, const CageWeb& web, const Transform& cage_pose) {
+  std::array<Vec3, 6> n;
+  std::array<double, 6> d{};
+  int best = -1;
+  double g = 0;
+  Vec3 low;
+  for (int j = 0; j < 6; ++j) {
+    n[j] = cage_pose.rotate(web.normals[j]);
+    d[j] = web.offsets[j] + dot(n[j], cage_pose.t);
+    const double cu = std::clamp(dot(n[j], roller.axis), -1.0, 1.0), s = std::sqrt(std::max(0.0, 1 - cu * cu));
+    const double vb = dot(n[j], roller.base) - roller.radius * s, vt = dot(n[j], roller.top_center()) - roller.top() * s;
+    const double gj = std::min(vb, vt) - d[j];
+    if (!(gj > g)) continue;
+    g = gj, best = j;
+    const Vec3 w = n[j] - roller.axis * cu;
+    const double wn = norm(w);
+    low = vb <= vt ? roller.base : roller.top_center();
+    if (wn > 0) low = low - w * ((vb <= vt ? roller.radius : roller.top()) / wn);
+  }
+  if (best < 0) return std::nullopt;
+  const Vec3 foot = low - n[best] * g;
+  const double scale = std::max({std::fabs(foot.x), std::fabs(foot.y), std::fabs(foot.z)}) + roller.height +
+                       roller.max_radius();
+  const double margin = 0x1p-36 * scale;
+  int outside = -1;
+  for (int k = 0; k < 6; ++k)
+    if (k != best && !(dot(n[k], foot) - d[k] < -margin)) {
+      if (outside >= 0 || (k ^ 1) == best) return std::nullopt;
+      outside = k;
+    }
   WebValue out;
-  std::vector<Vec3> p(web.positions.size());
+  if (outside < 0) {
+    out.distance = g;
+    out.point_b = foot;
+    out.point_a = roller.tapered() ? nearest_on_frustum_boundary(roller, foot) : nearest_on_cylinder_boundary(roller, foot);
+    return out;
+  }
+  // the foot lies past one neighbouring face k (a roller overhanging the web's end): the nearest web
+  // point is then looked for on the edge where faces j and k meet, against the cylinder's side (the
+  // closest points of that edge and the roller's axis segment). A candidate pair (p on the web, x
+  // on the roller) at distance D is certified by its direction v = (x - p) / D: every web point has
+  // v.w <= max over the web's corners of v.c, every roller point v.y >= the roller's support in
+  // direction v (its end circles), so the distance of the solids is at least
+  // L = min_roller v.y - max_web v.w; accepted when D - L is within rounding of the scale
+  if (roller.tapered()) return std::nullopt;
+  std::array<Vec3, 2> edge;
+  int ne = 0;
+  for (int i = 0; i < 8; ++i)
+    if (((i >> (best / 2)) & 1) == best % 2 && ((i >> (outside / 2)) & 1) == outside % 2)
+      edge[static_cast<std::size_t>(ne++)] = cage_pose.apply(web.corners[static_cast<std::size_t>(i)]);
+  const ClosestPoints ep = segment_segment_closest(edge[0], edge[1], roller.base, roller.top_center());
+  const Vec3 p = ep.p, x = nearest_on_cylinder_boundary(roller, p);
+  const double dist = norm(x - p);
+  if (!(dist > 0)) return std::nullopt;
+  const Vec3 v = (x - p) / dist;
+  double web_max = -std::numeric_limits<double>::infinity();
+  for (const Vec3& c : web.corners) web_max = std::max(web_max, dot(v, cage_pose.apply(c)));
+  const double cu = std::clamp(dot(v, roller.axis), -1.0, 1.0), sv = std::sqrt(std::max(0.0, 1 - cu * cu));
+  const double roller_min = std::min(dot(v, roller.base), dot(v, roller.top_center())) - roller.radius * sv;
+  const double lower = roller_min - web_max;
+  if (!(lower > 0) || !(dist - lower <= 0x1p-44 * scale)) return std::nullopt;
+  out.distance = dist;
+  out.point_a = x, out.point_b = p;
+  return out;
+}
+
+WebValue web_distance(const Cylinder& roller, const TriMesh& web, const Transform& cage_pose,
+                      const CageWeb* faces = nullptr) {
+  if (faces)
+    if (std::optional<WebValue> v = separated_web(roller, *faces, cage_pose)) return *v;
+  WebValue out;
+  // the posed corners (webs have 8: no allocation per call; issue #27, speed)
+  std::array<Vec3, 8> small;
+  std::vector<Vec3> large;
+  if (web.positions.size() > small.size()) large.resize(web.positions.size());
+  Vec3* const p = large.empty() ? small.data() : large.data();
+  const std::size_t np = web.positions.size();
   Vec3 centre;
-  for (std::size_t i = 0; i < p.size(); ++i) p[i] = cage_pose.apply(web.positions[i]), centre += p[i];
-  centre = centre / static_cast<double>(p.size());
+  for (std::size_t i = 0; i < np; ++i) p[i] = cage_pose.apply(web.positions[i]), centre += p[i];
+  centre = centre / static_cast<double>(np);
   if (!roller.tapered()) {
     // sd_roller(x) >= dist(x, axis segment) - radius everywhere (the roller lies in the capsule
     // around its axis; inside, rho - R <= -min(R - rho, z, h - z)), so a triangle's bounding sphere
@@ -243,6 +331,82 @@ std::pair<double, Vec3> deepest_in_web(const Cylinder& roller, const std::array<
   return {best, at};
 }
 
+/// The roller's deepest point in the convex web in closed form (issue #27, speed; docs/bearing.md
+/// "Cage webs in closed form"): max over the roller of F(x) = min_j a_j(x), a_j(x) = d_j - n_j.x.
+/// (1) One face: x_j, the roller's point lowest along n_j (on the rim of an end circle), maximises
+/// a_j over the roller; when every other a_k(x_j) is above a_j(x_j) (by a margin far above
+/// rounding), F <= a_j <= a_j(x_j) = F(x_j) everywhere: the maximum. (2) Two faces (a cylinder
+/// overhanging the web's end face k while pressed into face j): when x_j has a_k < a_j and x_k has
+/// a_j < a_k, the maximum of the concave min(a_j, a_k) has a_j = a_k, i.e. it is the largest a_j
+/// over the roller cut by the plane H: (n_j - n_k).x = d_j - d_k, attained on the boundary of that
+/// section; for the side's ellipse c + R e cos t + R (w - u (m.w)/(m.u)) sin t (c the axis point
+/// in H, m H's unit normal, e = u x m / |u x m|, w = u x e) the largest a_j is at (cos t, sin t) =
+/// -(n_j.A, n_j.B)/|.|: when that point lies within the roller's length (by the margin) it is the
+/// maximum over the section, and when the other four faces are above it there, F's maximum.
+/// Returns false when neither certifies (deepest_in_web searches).
+bool deepest_closed_form(const Cylinder& roller, const std::array<Vec3, 6>& n, const std::array<double, 6>& d,
+                         double& fwd, Vec3& at) {
+  const double scale = std::max({std::fabs(roller.base.x), std::fabs(roller.base.y), std::fabs(roller.base.z)}) +
+                       roller.height + roller.max_radius();
+  const double margin = 0x1p-36 * scale;
+  const auto lowest = [&](const Vec3& nj) {  // the roller point lowest along nj
+    const double cu = std::clamp(dot(nj, roller.axis), -1.0, 1.0);
+    const double s = std::sqrt(std::max(0.0, 1 - cu * cu));
+    const bool base = dot(nj, roller.base) - roller.radius * s <= dot(nj, roller.top_center()) - roller.top() * s;
+    Vec3 x = base ? roller.base : roller.top_center();
+    const Vec3 w = nj - roller.axis * cu;
+    if (const double wn = norm(w); wn > 0) x = x - w * ((base ? roller.radius : roller.top()) / wn);
+    return x;
+  };
+  const auto a = [&](int j, const Vec3& x) { return d[j] - dot(n[j], x); };
+  // the face whose reach is smallest (two_sided_web's bound)
+  int j = 0;
+  std::array<Vec3, 6> low;
+  std::array<double, 6> reach{};
+  for (int k = 0; k < 6; ++k) {
+    low[k] = lowest(n[k]), reach[k] = a(k, low[k]);
+    if (reach[k] < reach[j]) j = k;
+  }
+  int below = -1;
+  for (int k = 0; k < 6; ++k)
+    if (k != j && !(a(k, low[j]) > reach[j] + margin)) {
+      if (below >= 0) return false;
+      below = k;
+    }
+  if (below < 0) {
+    fwd = reach[j], at = low[j];
+    return true;
+  }
+  const int k = below;
+  if (roller.tapered() || (k ^ 1) == j || !(a(j, low[k]) < a(k, low[k]) - margin)) return false;
+  Vec3 m = n[j] - n[k];
+  const double mn = norm(m);
+  if (!(mn > 0)) return false;
+  m = m / mn;
+  const double hd = (d[j] - d[k]) / mn;  // H: m.x = hd
+  const Vec3& u = roller.axis;
+  const double mu = dot(m, u);
+  if (!(std::fabs(mu) > 1e-3)) return false;
+  const Vec3 em = cross(u, m);
+  const double en = norm(em);
+  if (!(en > 1e-3)) return false;
+  const Vec3 e = em / en, w = cross(u, e);
+  const double sc = (hd - dot(m, roller.base)) / mu;  // the axis point in H
+  const Vec3 c = roller.base + u * sc;
+  const Vec3 A = e * roller.radius, B = (w - u * (dot(m, w) / mu)) * roller.radius;
+  const double na = dot(n[j], A), nb = dot(n[j], B), r = std::hypot(na, nb);
+  if (!(r > 0)) return false;
+  const double ct = -na / r, st = -nb / r;
+  const double along = sc - roller.radius * st * dot(m, w) / mu;  // the point's axial coordinate
+  if (!(along > margin && along < roller.height - margin)) return false;
+  const Vec3 x = c + A * ct + B * st;
+  const double f = std::min(a(j, x), a(k, x));
+  for (int l = 0; l < 6; ++l)
+    if (l != j && l != k && !(a(l, x) > f + margin)) return false;
+  fwd = f, at = x;
+  return true;
+}
+
 /// Two-sided S of a roller and a cage web (ring_two_sided.h): `rev` = web_distance's value (the
 /// web's deepest point in the roller, <= 0 here), fwd = deepest_in_web (the roller's deepest point
 /// in the convex web). fwd <= min over the faces j of D_j = d_j - min over the roller of n_j.x (the
@@ -259,7 +423,9 @@ WebValue two_sided_web(const Cylinder& roller, const CageWeb& web, const Transfo
     bound = std::min(bound, d[j] - support);
   }
   if (-rev.distance >= bound) return rev;
-  const auto [fwd, x] = deepest_in_web(roller, n, d);
+  double fwd;
+  Vec3 x;
+  if (!deepest_closed_form(roller, n, d, fwd, x)) std::tie(fwd, x) = deepest_in_web(roller, n, d);
   if (!(fwd > -rev.distance)) return rev;
   // the roller's point at depth fwd in the web, and the web boundary point nearest it (its face)
   WebValue out;
@@ -274,12 +440,22 @@ WebValue two_sided_web(const Cylinder& roller, const CageWeb& web, const Transfo
 /// A scarred roller split along its axis: the intact end pieces [0, z0], [z1, L] and the middle
 /// piece [z0, z1] grown by `raise` (the scar's largest outward displacement).
 struct Pieces {
-  std::vector<Cylinder> ends;
+  /// (an array, not a vector: no allocation per call; issue #27, speed)
+  struct Ends {
+    std::array<Cylinder, 2> e;
+    std::size_t n = 0;
+    std::size_t size() const { return n; }
+    const Cylinder& operator[](std::size_t i) const { return e[i]; }
+    const Cylinder* begin() const { return e.data(); }
+    const Cylinder* end() const { return e.data() + n; }
+    void push_back(const Cylinder& c) { e[n++] = c; }
+  } ends;
   Cylinder middle;
 };
 Pieces split(const Cylinder& c, const Roller& r, const ScarParams& scar) {
-  double raise = 0;
-  for (double d : r.displacement) raise = std::max(raise, -d);
+  // the scar's largest outward displacement, max(0, -min displacement): Roller::raise, set by
+  // update_positions() with the same loop (issue #27, speed: it was recomputed here per call)
+  const double raise = r.raise;
   const double z0 = std::clamp(scar.z_min, 0.0, c.height), z1 = std::clamp(scar.z_max, z0, c.height);
   // a tapered roller (issue #27): each piece is the frustum between its end radii
   const auto r_at = [&](double z) { return c.radius + (c.top() - c.radius) * (z / c.height); };
@@ -521,6 +697,15 @@ AssemblyPairResult solve_one(const Assembly& as, const AssemblyPair& pair, const
       // convex, so its maximum over a triangle clipped to the slab is at a vertex of the clipped
       // polygon: a vertex in the slab or an edge's crossing of a side face (raceway.h's argument;
       // assembly_tapered_scars.h, the cup's k = 0)
+      // (issue #27, speed: the roller's side columns that cannot hold the maximiser are skipped,
+      // the same value and witness; the whole mesh when that does not apply)
+      if (const auto by_columns =
+              detail::roller_in_bore_by_columns(*ra.roller, pose_a, bore.base, bore.axis, bore.radius, bore.width,
+                                                ra.scar_height)) {
+        AssemblyPairResult out = from_distance(*by_columns, AssemblySolver::vertex, clearance, tol);
+        out.scar = true;
+        return out;
+      }
       bool found = false;
       const PairDistance d =
           detail::mesh_in_conical_bore(*ra.mesh, pose_a, bore.base, bore.axis, bore.radius, 0.0, bore.width, found);
@@ -544,14 +729,14 @@ AssemblyPairResult solve_one(const Assembly& as, const AssemblyPair& pair, const
       const TriMesh* web = rib ? nullptr : &as.webs[as.web_offset[ra.bearing] + pair.feature].mesh;
       const auto one = [&](const Cylinder& c) -> AssemblyPairResult {
         if (rib) return from_distance(roller_rib_distance(c, face), AssemblySolver::raceway, clearance, tol);
-        const WebValue w = web_distance(c, *web, pose_b);
+        const WebValue w = web_distance(c, *web, pose_b, &g.webs[pair.feature]);
         PairDistance d;
         d.distance = w.distance, d.point_a = w.point_a, d.point_b = w.point_b;
         return from_distance(d, AssemblySolver::web, clearance, tol);
       };
       if (!scarred) {  // intact roller: two-sided (ring_two_sided.h)
         if (rib) return from_two_sided(two_sided_rib(roller, face, b.rib_width), clearance, tol);
-        const WebValue rev = web_distance(roller, *web, pose_b);
+        const WebValue rev = web_distance(roller, *web, pose_b, &g.webs[pair.feature]);
         // apart (rev > 0): the Euclidean distance, symmetric
         const WebValue w = rev.distance > 0 ? rev : two_sided_web(roller, g.webs[pair.feature], pose_b, rev);
         PairDistance d;
@@ -770,8 +955,7 @@ AssemblyPairResult check_raceway_scar_row(const Assembly& as, const AssemblyPair
   double delta = facet_deviation(std::max(rs.window.depth, rs.raise),
                                  std::max(rs.geometry.radius, rs.geometry.top_radius), rs.grid.radial_segments);
   if (ra.scarred && ra.roller) {
-    double h = ra.roller->raise;
-    for (const double d : ra.roller->displacement) h = std::max(h, std::fabs(d));
+    const double h = ra.scar_height;  // max(raise, largest |displacement|), build_assembly
     delta += facet_deviation(h, std::max(b.rollers.radius, b.rollers.top_radius), ra.roller->n());
   }
   const AssemblyPairResult intact = solve_one(as, pair, poses, clearance, true);

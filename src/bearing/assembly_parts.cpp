@@ -277,6 +277,8 @@ Expected<Assembly> build_assembly(const AssemblySpec& spec) {
         Expected<int> applied = imported ? apply_vertex_heights(r, *imported, spec.scar_import.border) : apply_scar(r, sc);
         if (!applied) return applied.error();
         p.scarred = true;
+        p.scar_height = r.raise;  // max(raise, largest |displacement|): the raceway-scar rows' check
+        for (const double d : r.displacement) p.scar_height = std::max(p.scar_height, std::fabs(d));
         p.tree = std::make_shared<const RollerQuadtree>(build_quadtree(r));
         p.solid = std::make_shared<const Model>(make_model(r.mesh));
         p.mesh = std::make_shared<const TriMesh>(r.mesh);

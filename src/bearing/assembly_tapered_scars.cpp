@@ -1,6 +1,7 @@
 // Scarred rollers of tapered bearings (assembly_tapered_scars.h; issue #27, deliverable 2).
 #include "assembly_tapered_scars.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -51,12 +52,76 @@ ScarredFrustumValue scarred_against_frustum(const Roller& mesh, const RollerQuad
   return out;
 }
 
+std::optional<PairDistance> roller_in_bore_by_columns(const Roller& roller, const Transform& pose, const Vec3& base,
+                                                      const Vec3& axis, double R0, double width, double scar_height) {
+  const int n = roller.n(), m = roller.m();
+  const TriMesh& mesh = roller.mesh;
+  if (n < 3 || m < 1 || mesh.positions.size() != static_cast<std::size_t>(n) * static_cast<std::size_t>(m + 1) + 2)
+    return std::nullopt;
+  // (the bound needs 0 <= r: every inward displacement below the smallest radius)
+  if (!(scar_height < std::min(roller.params.radius, roller.params.top()))) return std::nullopt;
+  const double h = roller.params.height;
+  const double r_max = std::max(roller.params.radius, roller.params.top()) + std::max(roller.raise, 0.0);
+  const Vec3 u = pose.rotate({0, 0, 1});
+  const auto across = [&](const Vec3& v) { return v - axis * dot(v, axis); };
+  const Vec3 q0 = across(pose.t - base), q1 = across(pose.t + u * h - base);
+  const double qq = std::max(dot(q0, q0), dot(q1, q1));
+  double all2 = -1, best2 = -1;  // the largest rho^2 over every vertex, over those in the width
+  std::uint32_t all_i = 0;
+  Vec3 far_all;
+  const auto vertex = [&](std::uint32_t idx) {
+    const Vec3 x = pose.apply(mesh.positions[idx]);
+    const double z = dot(x - base, axis);
+    const Vec3 c = cross(x - base, axis);
+    const double r2 = dot(c, c);
+    if (r2 > all2 || (r2 == all2 && idx < all_i)) all2 = r2, all_i = idx, far_all = x;
+    if (z >= 0 && z <= width && r2 > best2) best2 = r2;
+  };
+  // the column bounds; the largest first
+  std::vector<double> bound(static_cast<std::size_t>(n));
+  int first = 0;
+  // the column directions by rotating (1, 0) by 2 pi / n step by step (a few ulps off the mesh's
+  // cos and sin per step: far below the margin)
+  const Vec3 ex = pose.rotate({1, 0, 0}), ey = pose.rotate({0, 1, 0});
+  const double cd = std::cos(roller.angle(1)), sd = std::sin(roller.angle(1));
+  double ca = 1, sa = 0;
+  for (int i = 0; i < n; ++i) {
+    const Vec3 w = ex * ca + ey * sa;
+    const double cn = ca * cd - sa * sd;
+    sa = sa * cd + ca * sd, ca = cn;
+    const Vec3 pw = across(w);
+    const double lin = std::max(dot(q0, w), dot(q1, w));
+    bound[static_cast<std::size_t>(i)] = qq + std::max(0.0, 2 * r_max * lin + r_max * r_max * dot(pw, pw));
+    if (bound[static_cast<std::size_t>(i)] > bound[static_cast<std::size_t>(first)]) first = i;
+  }
+  const auto column = [&](int i) {
+    for (int j = 0; j <= m; ++j) vertex(roller.side_vertex(i, j));
+  };
+  vertex(static_cast<std::uint32_t>(n * (m + 1))), vertex(static_cast<std::uint32_t>(n * (m + 1) + 1));  // the end centres
+  column(first);
+  for (int i = 0; i < n; ++i) {
+    const double b = bound[static_cast<std::size_t>(i)];
+    if (i != first && !(b + 0x1p-30 * b < best2)) column(i);
+  }
+  const double z_all = dot(far_all - base, axis);
+  if (!(all2 >= 0) || !(z_all >= 0 && z_all <= width)) return std::nullopt;
+  // mesh_in_conical_bore's result when its maximiser lies in the width
+  PairDistance d;
+  d.path = AnalyticPath::bore;
+  d.distance = -(std::sqrt(all2) - R0);
+  d.point_a = far_all;
+  const double z = dot(far_all - base, axis);
+  const Vec3 foot = base + axis * z;
+  const Vec3 radial = far_all - foot;
+  const double rn = norm(radial);
+  d.point_b = rn > 0 ? foot + radial * (R0 / rn) : far_all;
+  return d;
+}
+
 PairDistance mesh_in_conical_bore(const TriMesh& mesh, const Transform& pose, const Vec3& base, const Vec3& axis,
                                   double R0, double k, double width, bool& found) {
   constexpr double kNegInf = -std::numeric_limits<double>::infinity();
   const double nk = std::sqrt(1 + k * k);
-  std::vector<Vec3> p(mesh.positions.size());
-  std::vector<double> zs(p.size());
   // g of a point at axial position z: (rho - R(z)) / nk (a cylindrical bore: rho - R0)
   const auto g_of = [&](const Vec3& x, double z) {
     const double rho = norm(cross(x - base, axis));
@@ -64,15 +129,37 @@ PairDistance mesh_in_conical_bore(const TriMesh& mesh, const Transform& pose, co
   };
   double all = kNegInf, best = kNegInf;  // max over every vertex (G), over the clipped mesh (G_K)
   Vec3 far_all, far;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    p[i] = pose.apply(mesh.positions[i]), zs[i] = dot(p[i] - base, axis);
-    const double g = g_of(p[i], zs[i]);
-    if (g > all) all = g, far_all = p[i];
-    if (zs[i] >= 0 && zs[i] <= width && g > best) best = g, far = p[i];
+  if (k == 0) {
+    // a cylindrical bore (issue #27, speed): g = sqrt(rho^2) - R0 is non-decreasing in rho^2 (so
+    // are the rounded square root and subtraction), so the largest g is sqrt(largest rho^2) - R0,
+    // the same double as the largest of the g: one square root per call instead of per vertex, and
+    // the posed positions are not stored (recomputed below in the rare clipped case)
+    double all2 = -1, best2 = -1;
+    for (const Vec3& v : mesh.positions) {
+      const Vec3 x = pose.apply(v);
+      const double z = dot(x - base, axis);
+      const Vec3 c = cross(x - base, axis);
+      const double r2 = dot(c, c);
+      if (r2 > all2) all2 = r2, far_all = x;
+      if (z >= 0 && z <= width && r2 > best2) best2 = r2, far = x;
+    }
+    if (all2 >= 0) all = std::sqrt(all2) - R0;
+    if (best2 >= 0) best = std::sqrt(best2) - R0;
+  } else {
+    for (const Vec3& v : mesh.positions) {
+      const Vec3 x = pose.apply(v);
+      const double z = dot(x - base, axis);
+      const double g = g_of(x, z);
+      if (g > all) all = g, far_all = x;
+      if (z >= 0 && z <= width && g > best) best = g, far = x;
+    }
   }
   const double z_all = dot(far_all - base, axis);
   const bool all_in = z_all >= 0 && z_all <= width;
   if (!all_in) {  // the farthest vertex lies beyond a side face: clip
+    std::vector<Vec3> p(mesh.positions.size());
+    std::vector<double> zs(p.size());
+    for (std::size_t i = 0; i < p.size(); ++i) p[i] = pose.apply(mesh.positions[i]), zs[i] = dot(p[i] - base, axis);
     for (const Tri& t : mesh.triangles)
       for (int e = 0; e < 3; ++e) {
         const auto i = t[e], j = t[(e + 1) % 3];

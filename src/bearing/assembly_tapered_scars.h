@@ -4,6 +4,7 @@
 // (assembly_pairs.cpp). The scarred solver (scarred.h) takes the frustum B exactly; the reverse
 // direction (B's depth into the scarred roller) only has a bound, as in part_pair.h.
 #pragma once
+#include <optional>
 #include <cstdint>
 
 #include "interfere/bearing/analytic.h"
@@ -52,5 +53,20 @@ ScarredFrustumValue scarred_against_frustum(const Roller& mesh, const RollerQuad
 /// found = false when no part of the mesh lies in the width.
 PairDistance mesh_in_conical_bore(const TriMesh& mesh, const Transform& pose, const Vec3& base, const Vec3& axis,
                                   double R0, double k, double width, bool& found);
+
+/// mesh_in_conical_bore for a cylindrical bore (k = 0) and a meshed roller (roller.h's vertex
+/// layout), the same value and witness (issue #27, speed): a side column i (the vertices at angle
+/// theta_i) lies at x = t + z u + r w_i, 0 <= z <= h, 0 <= r <= r_max (the largest radius plus the
+/// raise), so with q(z) the projection of t + z u - base across the bore axis,
+///   rho^2 = |q(z)|^2 + 2 r q(z).w_i + r^2 |P w_i|^2
+///        <= max(|q(0)|^2, |q(h)|^2) + max(0, 2 r_max max(q(0).w_i, q(h).w_i) + r_max^2 |P w_i|^2)
+/// (convex in r and in z, linear q.w): a column whose bound is below the largest rho^2 found (by a
+/// relative margin far above rounding) holds no maximiser and is skipped. The vertices compared
+/// are those mesh_in_conical_bore compares (rho^2, ties to the lowest index). nullopt when the
+/// mesh does not have the roller's layout, `scar_height` (the largest |displacement|,
+/// AssemblyPart::scar_height) is not below the smallest radius (r >= 0 is needed), or the
+/// maximiser lies outside the width (the caller then runs mesh_in_conical_bore).
+std::optional<PairDistance> roller_in_bore_by_columns(const Roller& roller, const Transform& pose, const Vec3& base,
+                                                      const Vec3& axis, double R0, double width, double scar_height);
 
 }  // namespace interfere::bearing::detail

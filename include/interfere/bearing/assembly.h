@@ -196,6 +196,10 @@ struct AssemblyPart {
   std::shared_ptr<const RollerQuadtree> tree;  ///< scarred rollers
   std::shared_ptr<const Model> solid;          ///< scarred rollers: body-frame model (containment)
   bool scarred = false;
+  /// Scarred rollers: max(roller->raise, the largest |displacement|), set once by build_assembly
+  /// (the raceway-scar rows' check, assembly_pairs.cpp; issue #27: it looped over the roller's
+  /// displacements per row). 0 otherwise.
+  double scar_height = 0;
   Transform rest;  ///< nominal pose (no motion)
   PartSphere sphere;  ///< (bearing_bearing bound)
   /// Rings: the scar on its raceway (issue #27; raceway_scar.h), else null. The ring's `mesh` then

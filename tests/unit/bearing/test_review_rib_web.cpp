@@ -481,7 +481,7 @@ void web_poses(const Built& f, int trials, int web_stride, unsigned long long se
   std::vector<Transform> poses = f.motion.poses[0];
   Rng g(seed);
   int apart = 0, overlap = 0, rows = 0;
-  double worst = 0;
+  double worst = 0, closed_form_worst = 0;
   const double gaps[] = {-0.3, -1e-3, -1e-9, 0.0, 1e-9, 1e-6, 1e-3, 0.5};
   for (const AssemblyPair& pair : as.pairs) {
     if (pair.kind != AssemblyPairKind::roller_cage || as.parts[pair.a].scarred) continue;
@@ -534,7 +534,13 @@ void web_poses(const Built& f, int trials, int web_stride, unsigned long long se
       if (r.distance > 0) {
         double all = kInf;
         for (const Triangle& tt : web) all = std::min(all, triangle_min_signed_distance(roller, tt[0], tt[1], tt[2]).value);
-        EXPECT_EQ(r.distance, all) << what;  // nothing below was skipped
+        // nothing below was skipped. Since issue #27's web closed form (assembly_pairs.cpp
+        // separated_web: a separating face plane and its foot in the face, or the edge candidate
+        // certified by its direction) an apart row is that closed form, exact to rounding but not
+        // bit for bit the triangle minima's value: equal to rounding of the coordinates
+        const double scale = std::max({std::fabs(roller.base.x), std::fabs(roller.base.y), std::fabs(roller.base.z)}) + R + h;
+        EXPECT_NEAR(r.distance, all, 0x1p-44 * scale) << what;
+        closed_form_worst = std::max(closed_form_worst, std::fabs(r.distance - all) / scale);
         ++apart;
       } else {
         ++overlap;
@@ -545,8 +551,8 @@ void web_poses(const Built& f, int trials, int web_stride, unsigned long long se
     }
     poses[pair.a] = f.motion.poses[0][pair.a];
   }
-  std::printf("[ review ] web rows %d (apart %d, overlapping %d), largest |solver - ref| %.3g\n", rows, apart, overlap,
-              worst);
+  std::printf("[ review ] web rows %d (apart %d, overlapping %d), largest |solver - ref| %.3g, apart rows: largest "
+              "|solver - all triangles| / scale %.3g\n", rows, apart, overlap, worst, closed_form_worst);
   EXPECT_GT(apart, rows / 5);
   EXPECT_GT(overlap, rows / 5);
 }
