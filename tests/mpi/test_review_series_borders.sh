@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# Review of 92c0a27 (issue #31, item 3): `interfere-mpi clash --distribute frames` against
+# `interfere clash --scene` on review_make_border_series.py's adversarial series: clashes at the
+# blocks' borders for every K, an id carried from frame 0 to the end (reruns chained back to frame 0),
+# a one-frame clash, one id in two separate frames, two clashes of one pair whose nearest-location
+# matching crosses, a verdict changing every frame; K = 1..8 on 9 frames (every border position) and
+# K = 1..6 on 3 frames (K larger than the frames: idle ranks). Oracle: the one process's report
+# (compare_reports.py) and its CSV tables byte for byte; the exit status.
+# Usage: test_review_series_borders.sh INTERFERE INTERFERE_MPI
+set -uo pipefail
+cli=$(realpath "$1") mpi=$(realpath "$2")
+here=$(cd "$(dirname "$0")" && pwd)
+py=/usr/bin/python3
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+mpirun_=(mpirun --allow-run-as-root --oversubscribe)
+export OMPI_MCA_rmaps_base_oversubscribe=1 OMPI_MCA_btl_vader_single_copy_mechanism=none
+fail=0
+check() { if "$@"; then :; else echo "FAILED: $*"; fail=1; fi; }
+"$py" "$here/review_make_border_series.py" "$work" || exit 1
+d=$work/border
+series() {  # motion file, largest K
+  local m=$1 kmax=$2
+  (cd "$d" && "$cli" clash --scene scene.json --motion "$m" --json single.json --csv single.csv --frames-csv single_f.csv \
+     --frame-pairs-csv single_p.csv --quiet >/dev/null 2>single.err)
+  local src=$?
+  check "$py" -c 'import json,sys; r=json.load(open(sys.argv[1])); c=r["summary"]; sys.exit(0 if c.get("clashes", 0) >= 3 else 1)' "$d/single.json"
+  for k in $(seq 1 "$kmax"); do
+    (cd "$d" && timeout 300 "${mpirun_[@]}" -n "$k" "$mpi" clash --scene scene.json --motion "$m" --distribute frames \
+       --json mpi$k.json --csv mpi$k.csv --frames-csv mpi${k}_f.csv --frame-pairs-csv mpi${k}_p.csv --quiet >/dev/null 2>"mpi$k.err")
+    local rc=$?
+    check test "$rc" = "$src"
+    check "$py" "$here/compare_reports.py" "$d/single.json" "$d/mpi$k.json"
+    check cmp -s "$d/single.csv" "$d/mpi$k.csv"
+    check cmp -s "$d/single_f.csv" "$d/mpi${k}_f.csv"
+    check cmp -s "$d/single_p.csv" "$d/mpi${k}_p.csv"
+    local n
+    n=$("$py" -c 'import json,sys; m=json.load(open(sys.argv[1]))["mpi"]; print(m["reruns"], m["rounds"])' "$d/mpi$k.json" 2>/dev/null)
+    echo "$m K=$k: rc=$rc (single $src) reruns/rounds=$n"
+  done
+}
+series motion9.csv 8
+series motion3.csv 6
+exit $fail
