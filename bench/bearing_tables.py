@@ -346,22 +346,45 @@ def main():
     L.append("range only while the spin carries it past the contact, so only the \"scarred solves / frame\" of the")
     L.append("scarred rollers run the mesh solver in a frame. **With the scars in range** every scarred roller")
     L.append("carries a scar band all around its side (359 degrees, its whole length), so that the mesh solver")
-    L.append("runs for every scarred roller in every frame (our BVH broad phase; same motion, best of 5 runs of")
-    L.append("200 frames):")
+    L.append("runs for every scarred roller in every frame (our BVH broad phase; same motion, 5 runs of 200")
+    L.append("frames: the best run, the least disturbed on this shared machine, and the median run):")
     L.append("")
-    L.append("| rollers | colliders | scarred rollers | scarred solves / frame | frames/s wall / CPU-time bound |")
-    L.append("|---|---|---|---|---|")
+    L.append("| rollers | colliders | scarred rollers | scarred solves / frame | frames/s wall: best / median "
+             "| CPU-time bound: best / median |")
+    L.append("|---|---|---|---|---|---|")
     for (rollers, pct), b in sorted(inr.items()):
-        L.append("| %d | %d | %d (%d %%) | %.1f | **%.0f / %.0f** |" % (
-            rollers, b["colliders"], b["scarred_rollers"], pct, b["scarred_solves_per_frame"], b["fps"], b["fps_cpu"]))
+        L.append("| %d | %d | %d (%d %%) | %.1f | **%.0f** / %.0f | %.0f / %.0f |" % (
+            rollers, b["colliders"], b["scarred_rollers"], pct, b["scarred_solves_per_frame"], b["fps"],
+            b.get("fps_median", b["fps"]), b["fps_cpu"], b.get("fps_cpu_median", b["fps_cpu"])))
+    L.append("")
+    L.append("What a frame of this case costs, and what was cut (issue #27; perf on the benchmark): the 768")
+    L.append("intact rows spent 80 % of their time in the lower bound of the reverse direction s(B, A) (five")
+    L.append("point-to-ellipse bisections); `intact_reverse_tangent_bound` gives the same kind of proven bound from")
+    L.append("support lines of the partner's elliptic section (no root finding) and decides the same skips")
+    L.append("(~0.15 instead of ~0.85 µs). The 256 scarred solves (~3.5 µs each, most of the frame now) descend")
+    L.append("the bound tree: the node bound returns early when its two cheap terms already reach the pruning")
+    L.append("cut, and a node's children are prefetched while its bound is computed (the node loads were the")
+    L.append("largest single cost). The frame loop computes the partners' cylinders and boxes once, gives the")
+    L.append("same blocks of 16 pairs to the same cores every frame (`tbb::affinity_partitioner`: a roller's")
+    L.append("tree path stays in that core's cache) and runs the serial BVH update beside the rows. Every row's")
+    L.append("value, point pair, verdict and evaluated-triangle count is bit-identical to the code before these")
+    L.append("changes (7 scenes, 1 and 2 threads; BearingSimulation tests). Before them (17:11 UTC, load 0.9):")
+    L.append("752 frames/s wall, 379 by the CPU-time bound, for 1,024 rollers.")
     L.append("")
     t = inr.get((1024, 25))
     if t:
-        v = "PASS" if t["fps"] >= 1000 else ("PASS on CPU time, MISS by the wall clock" if t["fps_cpu"] >= 1000 else "MISS")
+        med = t.get("fps_median", t["fps"])
+        if med >= 1000:
+            v = "PASS (best and median run)"
+        elif t["fps"] >= 1000:
+            v = "PASS by the best run, the median run %.0f below the target" % med
+        else:
+            v = "PASS on CPU time, MISS by the wall clock" if t["fps_cpu"] >= 1000 else "MISS"
         L.append("Target (issue #27): 1,024 rollers, a quarter scarred, the scar in range every frame: >= 1,000 frames/s "
-                 "on 2 cores: **%.0f fps wall clock, >= %.0f fps on %d dedicated cores (CPU-time bound) — %s**. "
-                 "(This scene has the rollers and one partner each, not yet the rings and cages of bearing "
-                 "assemblies that the target names.)" % (t["fps"], t["fps_cpu"], os.cpu_count() or 0, v))
+                 "on 2 cores: **%.0f fps wall clock (median %.0f), >= %.0f fps on %d dedicated cores (CPU-time "
+                 "bound) — %s**. (This scene has the rollers and one partner each, not yet the rings and cages of "
+                 "bearing assemblies that the target names: the assemblies' table, \"Bearing assemblies\".)"
+                 % (t["fps"], med, t["fps_cpu"], os.cpu_count() or 0, v))
     L.append("")
     L.append(END)
     text = "\n".join(L)
