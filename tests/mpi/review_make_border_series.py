@@ -3,7 +3,7 @@
 item 3): clashes placed at the blocks' borders for every K, so that the border check and the reruns
 are exercised where they are weakest. Deterministic.
 
-  border/scene.json + motion9.csv (9 frames) and motion3.csv (3 frames, for K > frames):
+  border/scene.json + motion9.csv (9 frames), motion3.csv and motion1.csv (3 frames and 1, for K > frames):
     wall      10 x 10 x 1 plate, static.
     slider    1 mm cube sliding along the wall's top 0.6 mm a frame (a clash that moves on both
               bodies every frame: its id is carried from frame 0 to the end, so every border needs
@@ -61,6 +61,7 @@ def main(out):
 
     motion(os.path.join(d, "motion9.csv"), 9)
     motion(os.path.join(d, "motion3.csv"), 3)
+    motion(os.path.join(d, "motion1.csv"), 1)
 
 
 if __name__ == "__main__":
