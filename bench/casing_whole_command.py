@@ -27,7 +27,7 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
-DEFLECTION = 0.01694  # data/examples/README.md: 35,576 triangles, the paper's 35,548 case
+DEFLECTION = 0.01696  # data/examples/README.md: 35,556 triangles, the paper's 35,548 case
 
 
 def children_cpu():

@@ -1,5 +1,6 @@
 // Internal (src/cad only): OCCT-side helpers shared by the importer and the AAG builder.
 #pragma once
+#include <IMeshTools_MeshAlgoFactory.hxx>
 #include <Poly_Triangulation.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <TopoDS_Face.hxx>
@@ -31,5 +32,7 @@ struct SectorSplit {
   int split_faces = 0;  ///< faces divided into sectors
 };
 SectorSplit split_for_meshing(const TopoDS_Shape& shape, const TopTools_IndexedMapOfShape& faces);
+/// BRepMesh's algorithms for `split.shape`: OCCT's Delabella for the sectors, the default for the other faces.
+Handle(IMeshTools_MeshAlgoFactory) sector_algo_factory(const SectorSplit& split);
 
 }  // namespace interfere::cad::detail

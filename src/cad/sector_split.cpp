@@ -17,10 +17,19 @@
 // cross change (ShapeUpgrade_FaceDivide with a ShapeBuild_ReShape context applied to the whole part:
 // a neighbour sharing a crossed edge gets that edge in two pieces, so the shared edge is discretised
 // once and the meshes weld).
+//
+// The sectors are triangulated by OCCT's Delabella Delaunay (BRepMesh_DelabellaMeshAlgoFactory, the
+// same deflection control), every other face by BRepMesh's default algorithm as before
+// (SectorAlgoFactory): on the casing's sectors it halves the meshing time on one thread (0.50 ->
+// 0.27 s CPU, load 6), closed, measured deviation 0.01690 at 0.01694 (docs/simplify.md).
 #ifndef OCC_CONVERT_SIGNALS
 #define OCC_CONVERT_SIGNALS
 #endif
 #include <BRepAdaptor_Surface.hxx>
+#include <BRepMesh_DelabellaMeshAlgoFactory.hxx>
+#include <BRepMesh_MeshAlgoFactory.hxx>
+#include <IMeshData_Face.hxx>
+#include <IMeshTools_MeshAlgo.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Tool.hxx>
 #include <ShapeBuild_ReShape.hxx>
@@ -112,7 +121,46 @@ std::vector<double> split_values(const TopoDS_Face& face) {
   return values;
 }
 
+// Per face: Delabella for the sectors, the default algorithm for the rest. BRepMesh asks the factory
+// for an algorithm per face (BRepMesh_FaceDiscret), so each face gets its own pair.
+class SectorAlgo : public IMeshTools_MeshAlgo {
+ public:
+  SectorAlgo(Handle(IMeshTools_MeshAlgo) plain, Handle(IMeshTools_MeshAlgo) sector,
+             const TopTools_IndexedMapOfShape& sectors)
+      : plain_(std::move(plain)), sector_(std::move(sector)), sectors_(sectors) {}
+  void Perform(const IMeshData::IFaceHandle& face, const IMeshTools_Parameters& parameters,
+               const Message_ProgressRange& range) override {
+    (sectors_.Contains(face->GetFace()) ? sector_ : plain_)->Perform(face, parameters, range);
+  }
+
+ private:
+  Handle(IMeshTools_MeshAlgo) plain_, sector_;
+  const TopTools_IndexedMapOfShape& sectors_;
+};
+
+class SectorAlgoFactory : public IMeshTools_MeshAlgoFactory {
+ public:
+  explicit SectorAlgoFactory(TopTools_IndexedMapOfShape sectors) : sectors_(std::move(sectors)) {}
+  Handle(IMeshTools_MeshAlgo) GetAlgo(const GeomAbs_SurfaceType type,
+                                      const IMeshTools_Parameters& parameters) const override {
+    return new SectorAlgo(plain_->GetAlgo(type, parameters), sector_->GetAlgo(type, parameters), sectors_);
+  }
+
+ private:
+  TopTools_IndexedMapOfShape sectors_;
+  Handle(IMeshTools_MeshAlgoFactory) plain_ = new BRepMesh_MeshAlgoFactory();
+  Handle(IMeshTools_MeshAlgoFactory) sector_ = new BRepMesh_DelabellaMeshAlgoFactory();
+};
+
 }  // namespace
+
+Handle(IMeshTools_MeshAlgoFactory) sector_algo_factory(const SectorSplit& split) {
+  TopTools_IndexedMapOfShape sectors;
+  for (const std::vector<TopoDS_Face>& pieces : split.faces)
+    if (pieces.size() > 1)
+      for (const TopoDS_Face& f : pieces) sectors.Add(f);
+  return new SectorAlgoFactory(std::move(sectors));
+}
 
 SectorSplit split_for_meshing(const TopoDS_Shape& shape, const TopTools_IndexedMapOfShape& faces) {
   SectorSplit r;

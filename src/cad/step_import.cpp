@@ -133,12 +133,16 @@ Part make_part(const TopoDS_Shape& shape, const std::string& name, const ImportO
     for (int i = 1; i <= faces.Extent(); ++i) split.faces.push_back({TopoDS::Face(faces(i))});
   }
   const TopoDS_Shape& mesh_shape = split.shape;
-  if (o.delabella) {  // (ImportOptions::delabella: the same parameters, OCCT's Delabella Delaunay per face)
+  // (ImportOptions::delabella: the same parameters, OCCT's Delabella Delaunay per face; sectors are
+  // always meshed with it, sector_split.cpp)
+  if (o.delabella || split.split_faces > 0) {
     IMeshTools_Parameters params;
     params.Deflection = lin, params.Angle = o.angular_deflection, params.Relative = Standard_False;
     params.InParallel = Standard_True;
     Handle(IMeshTools_Context) context = new BRepMesh_Context();
-    context->SetFaceDiscret(new BRepMesh_FaceDiscret(new BRepMesh_DelabellaMeshAlgoFactory()));
+    context->SetFaceDiscret(new BRepMesh_FaceDiscret(
+        o.delabella ? Handle(IMeshTools_MeshAlgoFactory)(new BRepMesh_DelabellaMeshAlgoFactory())
+                    : detail::sector_algo_factory(split)));
     BRepMesh_IncrementalMesh mesher;
     mesher.SetShape(mesh_shape);
     mesher.ChangeParameters() = params;

@@ -18,7 +18,7 @@ TEST(ExampleFiles, CasingIsThePaperCasing) {
   const auto bundled = std::filesystem::path(INTERFERE_SOURCE_DIR) / "data" / "examples" / "casing.step";
   const auto fresh = testing::scratch_dir("interfere_cad_tests") / "paper_casing_as_casing.step";
   ASSERT_TRUE(write_test_part_named(TestPart::paper_casing, fresh, "casing").ok());
-  for (const double deflection : {0.5, 0.01694}) {
+  for (const double deflection : {0.5, 0.01696}) {
     auto a = import_step(bundled, {.linear_deflection = deflection});
     auto b = import_step(fresh, {.linear_deflection = deflection});
     ASSERT_TRUE(a.has_value()) << a.error().message();
@@ -41,7 +41,7 @@ TEST(ExampleFiles, CasingIsThePaperCasing) {
     EXPECT_EQ(pa.mesh.num_triangles(), pb.mesh.num_triangles()) << "deflection " << deflection;
     // The README's and the docs' count: the paper's 35,548 case (35,552 at 0.0205 until the wall was
     // meshed as sectors, issue #29: test_sector_split.cpp).
-    if (deflection == 0.01694) EXPECT_EQ(pa.mesh.num_triangles(), 35576u);
+    if (deflection == 0.01696) EXPECT_EQ(pa.mesh.num_triangles(), 35556u);
   }
 }
 
