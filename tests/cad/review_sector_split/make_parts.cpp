@@ -98,5 +98,17 @@ int main(int argc, char** argv) {
     cone = drill(cone, {{20, 8, 2, 8, 30}, {150, 12, 1.5, 6, 30}, {265, 6, 2, 10, 30}});
     write(dir, "cone_apex_holes", cone);
   }
+  // 8. A torus (R 30, r 8) with 4 vertical through holes at irregular angles, away from its V seam
+  //    (the outer equator): 8 rims as inner wires, 4 angular groups.
+  {
+    TopoDS_Shape torus = BRepPrimAPI_MakeTorus(30, 8).Shape();
+    for (const double deg : {12.0, 101.0, 188.0, 297.0}) {
+      const double a = deg * M_PI / 180;
+      const double rr = deg > 150 ? 29.0 : 31.5, rh = deg > 150 ? 2.5 : 1.8;
+      const TopoDS_Shape c = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(rr * std::cos(a), rr * std::sin(a), -12), gp_Dir(0, 0, 1)), rh, 24).Shape();
+      torus = BRepAlgoAPI_Cut(torus, c).Shape();
+    }
+    write(dir, "torus_top_holes", torus);
+  }
   return 0;
 }
