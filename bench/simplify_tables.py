@@ -278,7 +278,7 @@ quadric-error-metric edge collapses while the faces that take part in the curren
    annuli of the flanges' top and bottom faces (24), none of the ring's holes, and skips the main bore
    (`FeatureCases.PaperCasingStepsKeepThePapersFeatures`, faces found by their own geometry). The bundled
    example `data/examples/casing.step` is this part (product `casing`, written by `tools/write_test_part`;
-   35,576 triangles at linear deflection 0.01694, the paper's 35,548; 35,552 at 0.0205 until its working-ring
+   35,556 triangles at linear deflection 0.01696, the paper's 35,548; 35,552 at 0.0205 until its working-ring
    wall was meshed as angular sectors, "Whole command on the casing"; issue #29). The simplification
    benchmark's casing (`TestPart::casing`, `bench/bench_simplify.cpp`) keeps the older geometry
    (counterbored holes on the lower flange, whose BottomFace is the flange's underside) so that its tables
@@ -671,83 +671,87 @@ Tried this round and not kept (measured, `/tmp` harnesses on the same OCCT 7.6.3
 - OCCT's allocator (`MMGT_OPT=1`: 1.6 s more system time), `MMGT_CLEAR=0`, the TBB malloc proxy: within
   the noise or slower.
 
-Third round (issue #29, 19:20 UTC): **the working-ring wall meshed as angular sectors**
-(`src/cad/sector_split.cpp`, `ImportOptions::sector_split`, on by default). BRepMesh meshes a face on one
-thread, and its initial grid (`BRepMesh_BoundaryParamsRangeSplitter`) takes a line at the parameter of every
-boundary node of the face, its holes' rims included, so on the wall (5 counterbore rims as inner wires, the
-sixth crossing the seam and part of the outer wire) the grid and the Delaunay insertion into it grow about
-quadratically with the rims' nodes. The importer now divides such a face before meshing, at isoparametric
-lines of the angle in the middle of the gaps between its rims, one rim per sector, and gives the sectors'
-triangles the face's id; the AAG, feature recognition, face ids and seams stay on the B-Rep as read. The
-rule: a face whose surface is a surface of revolution, cylinder, cone, sphere or torus, periodic in the
-angle, covering the whole turn, with at least 3 inner wires in at least 3 angular groups (rims overlapping in
-angle form one group); a split line is placed only in a gap wider than 0.1 % of the turn and farther than a
-tenth of the gap from every vertex of the face. The division is `ShapeUpgrade_FaceDivide` with a
-`ShapeBuild_ReShape` context applied to the whole part, so the two circle edges each line crosses are split
-for the neighbouring faces too and every shared edge is discretised once (the meshes weld); a failed or
-unexpected division (not the sectors asked for, a face of the result not traced to one face of the part)
-meshes the part unsplit. Measured first with BRepMesh alone (a `/tmp` harness, one thread, load 2.5–3):
-0.43–0.60 s for the part → 0.21 s with 5 sectors (0.25 s with 3, two rims each); inside `import_step`
-(the same process, alternated, load 3.5): 1.33 → 0.87 s wall, 0.85 → 0.56 s CPU.
+Third round (issue #29, 19:20–19:40 UTC): **the working-ring wall meshed as angular sectors, the sectors
+triangulated by Delabella** (`src/cad/sector_split.cpp`, `ImportOptions::sector_split`, on by default).
+BRepMesh meshes a face on one thread, and its initial grid (`BRepMesh_BoundaryParamsRangeSplitter`) takes a
+line at the parameter of every boundary node of the face, its holes' rims included, so on the wall (5
+counterbore rims as inner wires, the sixth crossing the seam and part of the outer wire) the grid and the
+Delaunay insertion into it grow about quadratically with the rims' nodes. The importer now divides such a
+face before meshing, at isoparametric lines of the angle in the middle of the gaps between its rims, one rim
+per sector, and gives the sectors' triangles the face's id; the AAG, feature recognition, face ids and seams
+stay on the B-Rep as read. The rule: a face whose surface is a surface of revolution, cylinder, cone, sphere
+or torus, periodic in the angle, covering the whole turn, with at least 3 inner wires in at least 3 angular
+groups (rims overlapping in angle form one group); a split line is placed only in a gap wider than 0.1 % of
+the turn and farther than a tenth of the gap from every vertex of the face. The division is
+`ShapeUpgrade_FaceDivide` with a `ShapeBuild_ReShape` context applied to the whole part, so the two circle
+edges each line crosses are split for the neighbouring faces too and every shared edge is discretised once
+(the meshes weld); a failed or unexpected division (not the sectors asked for, a face of the result not
+traced to one face of the part) meshes the part unsplit. The sectors are triangulated by OCCT's Delabella
+(`BRepMesh_DelabellaMeshAlgoFactory`, the same deflection control) through a per-face algorithm factory;
+every other face of every part keeps BRepMesh's default algorithm. Measured first with BRepMesh alone (`/tmp`
+harnesses, one thread): 0.43–0.60 s for the part unsplit → 0.21 s with 5 sectors (0.25 s with 3, two rims
+each; load 2.5–3); then at 0.01694, load 6: sectors 0.49–0.53 s CPU → 0.26–0.28 s with Delabella on them
+(with `InParallel`, as the importer runs it: 0.64–0.71 → 0.37–0.46 s CPU).
 
-What it changes in the tessellations: at the same deflection the sectors need fewer triangles (the unsplit
-face's grid was over-dense), within the deflection as measured (`tessellation_deviation.cpp`) and closed:
+What it changes in the tessellations: the sectors need fewer triangles at the same deflection (the unsplit
+face's grid was over-dense), stay within the deflection as measured (`tessellation_deviation.cpp`) and closed:
 
 | casing (`data/examples/casing.step`) | unsplit | sectors |
 |---|---:|---:|
-| at 0.0205: triangles (the wall's) | 35,552 (27,843) | 29,930 (22,205) |
+| at 0.0205: triangles (the wall's) | 35,552 (27,843) | 29,926 (22,201) |
 | at 0.0205: measured deviation | 0.02044 | 0.02045 |
-| at 0.01694: triangles (the wall's) | 40,380 (31,948) | 35,576 (27,136) |
-| at 0.01694: measured deviation | 0.01692 | 0.01694 |
+| at 0.01696: triangles (the wall's) | 40,430 (31,998) | 35,556 (27,118) |
+| at 0.01696: measured deviation | 0.01693 | 0.01694 |
 
 The other faces that change are the inner ring face (a cylinder with the 6 screw bores: also split, 735 →
-737 triangles at 0.01694) and four planar flange faces (1–3 triangles each: the split circle edges, the
-vertices ShapeUpgrade copies). The
-paper's 35,548 case is therefore now `--linear-deflection 0.01694` (35,576 triangles; the closest on a grid
-0.0160–0.0180 by 0.00005 refined by 0.00001; `data/examples/README.md`, `ExampleFiles.CasingIsThePaperCasing`).
-Of the 24 generated test parts, `tests/cli/data` and the 21 files of `shared/data/step` (NIST CTC/FTC, gmsh,
-AS1, ...) at their default deflections only `paper_casing` changes (4,842 → 4,622 triangles); the
-benchmark's `TestPart::casing` does not. Checked by `SectorSplit.*` (tests/cad/test_sector_split.cpp): the
-mesh welded by exact coordinates has every edge in two triangles, once each way, and the unsplit mesh's Euler
-characteristic; each face's triangle area within 0.5 % of its B-Rep area; one thread and many give the same
-triangles bit for bit; five other test parts identical with and without. The simplify results: P1 35,576 →
-5,200, Hausdorff 0.213 (error bound 0.264), P2 0.243 (0.271); the welded input closed, genus 19.
+737 triangles at 0.01696) and four planar flange faces (1–3 triangles each: the split circle edges, the
+vertices ShapeUpgrade copies). The paper's 35,548 case is therefore now `--linear-deflection 0.01696` (35,556
+triangles; the closest on a grid 0.0160–0.0180 by 0.00005 refined by 0.00001; `data/examples/README.md`,
+`ExampleFiles.CasingIsThePaperCasing`). Of the 24 generated test parts, the 4 files of `tests/cli/data` and
+the 21 of `shared/data/step` (NIST CTC/FTC, gmsh, AS1, ...) at their default deflections only `paper_casing`
+changes (4,842 → 4,618 triangles, measured deviation 0.3654 → 0.371); the benchmark's `TestPart::casing`
+does not. Checked by `SectorSplit.*` (tests/cad/test_sector_split.cpp): the mesh welded by exact coordinates
+has every edge in two triangles, once each way, and the unsplit mesh's Euler characteristic; each face's
+triangle area within 0.5 % of its B-Rep area; one thread and many give the same triangles bit for bit; five
+other test parts identical with and without. The simplification: P1 35,556 → 5,200, Hausdorff 0.202 (error
+bound 0.251; before 0.235 and 0.293), P2 0.235 (0.272; before 0.284 and 0.309), no self-intersections, the
+welded input closed (17,742 vertices, genus 19 as before); `--threads 1` and the default give the same PLY.
 
 The whole command, `python3 bench/casing_whole_command.py --runs 9 --variant head=HEAD_INTERFERE_CAD:0.0205
 --variant new=build/apps/cli/interfere-cad --variant launcher=build/apps/cli/interfere` (`head`: the build
 before this change, `interfere-cad` with the HEAD `step_import.cpp` linked in, at the old case's 0.0205;
-`new`: with it, at 0.01694; `launcher`: the `interfere` command; both cases 35,5xx → 5,200; 9 interleaved
-runs of each for P1 and P2, medians of the 18; load average 4.5 before, 7.1 after):
+`new`: with it, at 0.01696; `launcher`: the `interfere` command; both cases 35,55x → 5,200; 9 interleaved
+runs of each for P1 and P2, medians of the 18; 19:38 UTC, load average 4.4 before, 7.6 after):
 
-| what | head (0.0205) | new (0.01694) | launcher (0.01694) |
+| what | head (0.0205) | new (0.01696) | launcher (0.01696) |
 |---|---:|---:|---:|
-| whole command, wall | 2.17 s | 1.86 s | 2.08 s |
-| CPU time of the process (all threads) | 1.27 s | 1.06 s | 1.13 s |
-| the report's `timings_s.total` | 1.90 s | 1.62 s | 1.82 s |
-| of it: STEP import (total less simplification) | 1.64 s | 1.33 s | 1.50 s |
-| of it: simplification with the error measurement | 0.23 s | 0.32 s | 0.32 s |
-| of that: the error measurement | 0.19 s | 0.23 s | 0.25 s |
+| whole command, wall | 2.55 s | 1.79 s | 2.13 s |
+| CPU time of the process (all threads) | 1.26 s | 0.97 s | 1.01 s |
+| the report's `timings_s.total` | 2.29 s | 1.53 s | 1.83 s |
+| of it: STEP import (total less simplification) | 1.99 s | 1.17 s | 1.36 s |
+| of it: simplification with the error measurement | 0.30 s | 0.43 s | 0.44 s |
+| of that: the error measurement | 0.24 s | 0.31 s | 0.33 s |
 
-(An earlier 7-run set at load 6.0: wall 2.15 → 1.65 s, CPU 1.34 → 1.15 s; `new` at 0.0205, 29,930 → 5,200:
-1.32 s wall, 0.89 s CPU.) Under this load the wall times spread from 0.8 to 4.6 s; the CPU time is the
-steadier measure. Where the import's time goes now (stages of the same calls, one process, load 5): read 0.06 s
-CPU and transfer 0.04–0.06 s CPU (0.11–0.23 s and 0.07–0.23 s wall), the division 0.01 s, BRepMesh 0.5 s on one
-thread, of it the wall's five sectors 0.04–0.10 s each (0.32–0.57 s together, meshed alone), the flange faces
-0.015 s each; deviation and AAG 0.02 s each. Tried and not kept: also splitting the sectors along the meridian
-above and below the rims (15 pieces): 32,046 triangles at 0.01694 (another count for the paper's case), 0.35–0.46 s
-against 0.43–0.71 s for the 5 sectors under load 5, within the noise.
+Under this load the wall times spread from 1.1 to 3.7 s and the error measurement of one binary from 0.13 to
+0.34 s over three runs; the CPU time is the steadier measure. (Sectors without Delabella, 19:20 UTC, load
+4.5–7.1, 35,576 triangles at 0.01694: wall 2.17 → 1.86 s, CPU 1.27 → 1.06 s.) Where the import's time goes now
+(stages of the same calls in one process, sectors with the default algorithm, load 5): read 0.06 s CPU and
+transfer 0.04–0.06 s CPU (0.11–0.23 s and 0.07–0.23 s wall), the division 0.01 s, BRepMesh 0.5 s on one thread
+(the wall's five sectors 0.04–0.10 s each, the flange faces 0.015 s each; with Delabella on the sectors about
+half), deviation and AAG 0.02 s each. Tried and not kept: also splitting the sectors along the meridian above
+and below the rims (15 pieces, default algorithm): 32,046 triangles at 0.01694 (another count for the paper's
+case), 0.35–0.46 s against 0.43–0.71 s for the 5 sectors under load 5, within the noise.
 
 The simplification's own part of the target is untouched by this: ≤ 15 ms, **PASS** in the Targets table
-below (the benchmark's rows, default weighting). The whole command's ≤ 0.5 s is **MISS**: 1.9–2.1 s wall
-(1.06–1.13 s CPU) under a load of 4.5–7 on this 2-core VM, to be re-measured on a quiet machine with the
-command above. Left: BRepMesh of the sectors (about 0.3 s on one thread; meshed in parallel, `InParallel`,
-not measured on a quiet machine), the process start (0.12 s CPU, the dynamic loader; `TKXCAF` pulls in the visualisation libraries) and
-the XCAF read and transfer (0.1–0.2 s), the error measurement (0.2 s: 160,000 samples of the input, already in
-parallel). Delabella (`--mesher delabella`) saved about a third of the unsplit meshing; on the sectors (35,614
-triangles at 0.01694, closed) its time is not measured. Not tried: a tessellation (or the whole imported model) cached between runs, a coarser
-deflection on faces that are no features (it changes the paper's input count), a structured mesher of our
-own for the wall (grid cells inside the face as two triangles each, a constrained triangulation only along
-the rims), fewer error samples with a certified bound.
+below (the benchmark's rows, default weighting). The whole command's ≤ 0.5 s is **MISS** here: 1.8–2.1 s wall
+(0.97–1.01 s CPU) under a load of 4.4–7.6 on this 2-core VM, to be re-measured on a quiet machine with the
+command above. Left: BRepMesh (about 0.25 s on one thread, the sectors in parallel with `InParallel`), the
+process start (0.12 s CPU, the dynamic loader; `TKXCAF` pulls in the visualisation libraries) and the XCAF read
+and transfer (0.1–0.2 s), the error measurement (0.2–0.3 s: 160,000 samples of the input, already in parallel).
+Not tried: a tessellation (or the whole imported model) cached between runs, a coarser deflection on faces that
+are no features (it changes the paper's input count), a structured mesher of our own for the wall (grid cells
+inside the face as two triangles each, a constrained triangulation only along the rims), fewer error samples
+with a certified bound.
 
 ## CLI
 
