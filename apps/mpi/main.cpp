@@ -260,7 +260,7 @@ int run(const World& w, int argc, char** argv) {
   const scene::LoadOptions lo{.units = units, .fem_split = o.fem_split, .fem_linear_faces = o.fem_linear_faces,
                               .fem_field = o.fem_field, .fem_disp = o.fem_disp, .fem_scale = o.fem_scale};
   // --distribute frames: each rank a block of the frames for the whole scene (series.h); nothing
-  // returned: the scene has no frames, or a block border needs the body pairs' way (docs/mpi.md).
+  // returned: the scene has no frames, so it goes by body pairs (docs/mpi.md, "Time series").
   if (o.distribute == Distribute::frames)
     if (const std::optional<int> done = run_frames(w, o, {*spec, tests, lo, motion, baseline_text, t_total})) return *done;
 

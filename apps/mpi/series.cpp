@@ -8,15 +8,16 @@
 //
 // What crosses a block border: a clash's id. The engine carries a clash of a pair and kind from
 // the previous frame (engine.h, SceneClash::id: matched by id, then by nearest location), so rank
-// k > 0 starts one frame early (frame lo - 1, the previous rank's last) to have the previous
-// frame's clashes, and drops that frame's findings. Its run started there without history, so
-// its ids at lo - 1 are the clashes' own ids; if they equal the ids the owner of frame lo - 1 gave
-// the same clashes (per test and body pair, as sets), the engine's state at frame lo is the one
-// process's and so are the ids from there on. Rank 0 checks every border; where one differs (a
-// clash that kept an earlier id across the border), the job goes by body pairs instead (exact by
-// construction; a warning), so the report is always one process's. The early frame's counts
-// (candidates, suppressed, core runs) are subtracted, from a second engine call on that frame
-// alone.
+// k > 0 starts its run early, at frame `start` < lo (first lo - 1, the previous rank's last), to
+// have the previous frames' clashes, and drops those frames' findings. Its run started there
+// without history, so its ids at `start` are the clashes' own ids; if they equal the ids the owner
+// of frame `start` reported (per test and body pair, as sets), the engine's state there is the one
+// process's and so are the ids from there on. Rank 0 checks the borders in rank order; a rank
+// whose ids differ (a clash that kept an earlier id across the border) runs again from twice as
+// far back, down to frame 0 (one process's chain itself), so the report is always one process's.
+// The early frames' counts (candidates, suppressed, core runs) are taken off, from one more engine
+// call on frames [start, lo) alone. Not caught by the set check: two clashes of one pair whose
+// carried ids are each other's own ids at `start` (docs/mpi.md).
 #include "series.h"
 
 #include <tbb/global_control.h>

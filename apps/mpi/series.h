@@ -30,9 +30,8 @@ struct SeriesInputs {
 };
 
 /// Runs the frames-distributed check; the exit status (every rank the same), or nothing when the
-/// job is to go by body pairs instead (a static scene; or a block border where a clash's id
-/// continuity from the previous frame could not be reproduced: docs/mpi.md), every rank alike.
-/// Input errors every rank finds alike are thrown as UsageError.
+/// scene has no frames (the job then goes by body pairs; every rank alike). Input errors every
+/// rank finds alike are thrown as UsageError.
 std::optional<int> run_frames(const World& w, const Options& o, const SeriesInputs& in);
 
 }  // namespace interfere::mpi
