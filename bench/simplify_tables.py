@@ -679,16 +679,22 @@ counterbore rims as inner wires, the sixth crossing the seam and part of the out
 Delaunay insertion into it grow about quadratically with the rims' nodes. The importer now divides such a
 face before meshing, at isoparametric lines of the angle in the middle of the gaps between its rims, one rim
 per sector, and gives the sectors' triangles the face's id; the AAG, feature recognition, face ids and seams
-stay on the B-Rep as read. The rule: a face whose surface is a surface of revolution, cylinder, cone, sphere
-or torus, periodic in the angle, covering the whole turn, with at least 3 inner wires in at least 3 angular
-groups (rims overlapping in angle form one group); a split line is placed only in a gap wider than 0.1 % of
+stay on the B-Rep as read. The rule: a face whose surface is a surface of revolution, cylinder, cone or
+torus, periodic in the angle, covering the whole turn, without a degenerated edge (a pole or an apex), with at
+least 3 inner wires in at least 3 angular groups (rims overlapping in angle form one group); a split line is placed only in a gap wider than 0.1 % of
 the turn and farther than a tenth of the gap from every vertex of the face. The division is
 `ShapeUpgrade_FaceDivide` with a `ShapeBuild_ReShape` context applied to the whole part, so the two circle
 edges each line crosses are split for the neighbouring faces too and every shared edge is discretised once
 (the meshes weld); a failed or unexpected division (not the sectors asked for, a face of the result not
-traced to one face of the part) meshes the part unsplit. The sectors are triangulated by OCCT's Delabella
-(`BRepMesh_DelabellaMeshAlgoFactory`, the same deflection control) through a per-face algorithm factory;
-every other face of every part keeps BRepMesh's default algorithm. Measured first with BRepMesh alone (`/tmp`
+traced to one face of the part) meshes the part unsplit. The sectors of surfaces of revolution and cylinders
+are triangulated by OCCT's Delabella (`BRepMesh_DelabellaMeshAlgoFactory`, the same deflection control)
+through a per-face algorithm factory; every other face of every part, cones' and tori's sectors included,
+keeps BRepMesh's default algorithm. Why those limits (a `/tmp` harness on generated solids with 3, 4 and 7
+radial holes at deflections 0, 0.05 and 0.01, each import welded by exact coordinates): a sphere split
+through its poles left 10–26 more unwelded edges there (spheres and faces with degenerated edges are not
+split: identical to before); a cone's sectors by Delabella measured up to 0.076 off at 0.05 (by the default
+algorithm 0.056–0.059, unsplit 0.049–0.056: BRepMesh overshoots on cones either way); tubes with holes in
+line and staggered: closed, within the deflection as unsplit. Measured first with BRepMesh alone (`/tmp`
 harnesses, one thread): 0.43–0.60 s for the part unsplit → 0.21 s with 5 sectors (0.25 s with 3, two rims
 each; load 2.5–3); then at 0.01694, load 6: sectors 0.49–0.53 s CPU → 0.26–0.28 s with Delabella on them
 (with `InParallel`, as the importer runs it: 0.64–0.71 → 0.37–0.46 s CPU).
