@@ -2,8 +2,8 @@
 // inner wires are meshed as angular sectors. Attacked on other surfaces than the casing's B-spline
 // wall (tests/cad/review_sector_split/make_parts.cpp wrote the parts with OCCT, committed as STEP):
 // a tube with a hole across the seam and four at irregular angles, a cone with blind holes, two tori,
-// (sphere_holes and cone_apex_holes, faces with a pole, are generated too: not checked here, see the
-// review report: their split meshes are less closed than the unsplit ones, which are not closed either)
+// a sphere and a pointed cone (faces with a pole: split, they had more open and misoriented edges than
+// unsplit, which BRepMesh leaves open at the poles too; not split since 4150427),
 // a cylinder whose rims form only 2 angular groups (must not be split: the tessellation
 // identical to the unsplit one), a cylinder with nearly touching rim groups and a rim beside the seam.
 // Oracles of their own: a weld by exact coordinates (every edge in two triangles, once each way), the
@@ -111,8 +111,10 @@ void check_part(const std::string& name, ImportOptions o, bool expect_split, boo
   // closed and consistently oriented where the unsplit mesh is; never worse than it
   EXPECT_LE(a.bad, b.bad) << "open or non-manifold edges (split: " << split << ")";
   EXPECT_LE(a.misoriented, b.misoriented) << "misoriented edges (split: " << split << ")";
-  EXPECT_EQ(b.bad, 0u);
-  EXPECT_EQ(b.misoriented, 0u);
+  if (!expect_unsplit) {  // (sphere_holes and cone_apex_holes: BRepMesh's own poles are not closed)
+    EXPECT_EQ(b.bad, 0u);
+    EXPECT_EQ(b.misoriented, 0u);
+  }
   if (b.bad == 0)
     EXPECT_EQ(static_cast<long>(a.vertices) - static_cast<long>(a.edges) + static_cast<long>(on.mesh.num_triangles()),
               static_cast<long>(b.vertices) - static_cast<long>(b.edges) + static_cast<long>(off.mesh.num_triangles()));
@@ -159,6 +161,17 @@ TEST(ReviewSectorSplit, SurfacesOfRevolutionWithRimsAreClosedAndTrue) {
 TEST(ReviewSectorSplit, RimsInTwoGroupsAreNotSplit) {
   check_part("cylinder_two_groups", {}, false, true);
   check_part("cylinder_two_groups", {.linear_deflection = 0.05}, false, true);
+}
+
+// A face with a pole on the axis (a sphere, a pointed cone's apex: a degenerated edge in OCCT): every
+// split line runs into the pole and each sector got its own copy of the pole node (exact weld: 3 pole
+// vertices, edges in 4-6 triangles, 8 bad and 14 misoriented edges on the sphere where the unsplit
+// mesh has 4 and 4). Such faces are not split (sector_split.cpp since 4150427): the tessellation is the unsplit one.
+TEST(ReviewSectorSplit, PolesAreNotSplit) {
+  for (const char* p : {"sphere_holes", "cone_apex_holes"}) {
+    check_part(p, {}, false, true);
+    check_part(p, {.linear_deflection = 0.05}, false, true);
+  }
 }
 
 TEST(ReviewSectorSplit, MeasuredDeviationWithinTheDeflection) {
