@@ -538,8 +538,10 @@ AssemblyPairResult from_two_sided(const TwoSidedRing& t, double clearance, doubl
 /// Two intact cylinders apart: s(a, b) > 0 is their Euclidean distance, equal to s(b, a), so the
 /// two-sided S is the forward value (part_pair.h would also compute the reverse, often by the slow
 /// general path). nullopt when they are not apart (then part_pair.h decides).
-std::optional<AssemblyPairResult> apart(const Cylinder& a, const Cylinder& b, double clearance) {
+std::optional<AssemblyPairResult> apart(const Cylinder& a, const Cylinder& b, double clearance,
+                                        PairDistance* forward = nullptr) {
   const PairDistance f = cylinder_pair_distance(a, b);
+  if (forward) *forward = f;  // (for decide_part_pair when they are not apart: the same call)
   if (!(f.distance > 0)) return std::nullopt;
   AssemblyPairResult out;
   out.distance = f.distance, out.point_a = f.point_a, out.point_b = f.point_b;
@@ -647,9 +649,14 @@ AssemblyPairResult solve_one(const Assembly& as, const AssemblyPair& pair, const
       ScenePart race;
       race.cylinder = posed(g.raceway, pose_b);
       race.partner = true;
+      PairDistance forward;
       if (!scarred)
-        if (auto r = apart(roller, race.cylinder, clearance)) return *r;
-      return from_part_pair(decide_part_pair(roller_part(ra, roller, pose_a, scarred), race, clearance), clearance, tol);
+        if (auto r = apart(roller, race.cylinder, clearance, &forward)) return *r;
+      // (issue #27, speed: the forward value apart() computed is decide_part_pair's own first call,
+      // cylinder_pair_distance(roller, raceway): passed on, not recomputed; bitwise the same)
+      return from_part_pair(decide_part_pair(roller_part(ra, roller, pose_a, scarred), race, clearance,
+                                             scarred ? nullptr : &forward),
+                            clearance, tol);
     }
     case AssemblyPairKind::roller_roller: {
       const Cylinder other = posed_cylinder(b.rollers.radius, b.rollers.top_radius, b.rollers.length, pose_b);

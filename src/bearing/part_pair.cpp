@@ -33,9 +33,9 @@ Cylinder enclosing(const Cylinder& c, double raise = 0) {
 Cylinder enclosing(const ScenePart& p) { return enclosing(p.cylinder, p.mesh ? p.mesh->raise : 0.0); }
 
 /// A against the intact cylinder b: the scarred solver on A's surface, else the standard solver.
-PartPairResult solve(const ScenePart& a, const Cylinder& b) {
+PartPairResult solve(const ScenePart& a, const Cylinder& b, const PairDistance* known = nullptr) {
   PartPairResult out;
-  const PairDistance pd = cylinder_pair_distance(a.cylinder, b);
+  const PairDistance pd = known ? *known : cylinder_pair_distance(a.cylinder, b);  // (known: that same call's result)
   out.path = pd.path;
   if (a.mesh == nullptr) {
     out.distance = pd.distance, out.point_a = pd.point_a, out.point_b = pd.point_b;
@@ -205,7 +205,7 @@ PartPairResult two_scarred_rollers(const ScenePart& a, const ScenePart& b, bool 
 
 }  // namespace
 
-PartPairResult decide_part_pair(const ScenePart& x, const ScenePart& y, double clearance) {
+PartPairResult decide_part_pair(const ScenePart& x, const ScenePart& y, double clearance, const PairDistance* forward) {
   // roles: B must be an intact part (a cylinder for the standard solver, a cylinder or frustum for
   // the scarred one and for cone_pair_distance); prefer a partner as B (a roller against a partner
   // is the paper's pair), then an intact cylinder, then an intact (tapered) frustum; between parts
@@ -233,7 +233,7 @@ PartPairResult decide_part_pair(const ScenePart& x, const ScenePart& y, double c
   // B is an intact cylinder (a partner or an untapered roller), A an intact cylinder or a scarred
   // untapered roller
   const Cylinder& bc = b.cylinder;
-  PartPairResult out = solve(a, bc);  // s(A, B)
+  PartPairResult out = solve(a, bc, swapped ? nullptr : forward);  // s(A, B) (A = x: forward is that call)
   out.swapped = swapped;
   const double tol = touch_tolerance(a.cylinder, bc);
   out.distance_lower = out.distance;

@@ -149,6 +149,11 @@ double intact_reverse_tangent_bound(const Cylinder& a, const Cylinder& b,
 PairDistance two_sided_frustum_distance(const Cylinder& a, const Cylinder& b, bool* reverse = nullptr);
 
 /// Decides any two distinct parts of a scene (above). Deterministic (no temporal state).
-PartPairResult decide_part_pair(const ScenePart& x, const ScenePart& y, double clearance);
+/// `forward` (optional): cylinder_pair_distance(x.cylinder, y.cylinder) when the caller already
+/// has it (issue #27, speed: the assemblies' intact roller-inner rows compute it first to find apart
+/// pairs); used only where this function would make that same call (x in the role of A), so the
+/// result is bitwise the same with or without it.
+PartPairResult decide_part_pair(const ScenePart& x, const ScenePart& y, double clearance,
+                                const PairDistance* forward = nullptr);
 
 }  // namespace interfere::bearing
