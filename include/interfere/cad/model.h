@@ -122,7 +122,7 @@ struct ImportOptions {
   /// (issue #29: its tessellation is most of the whole command), slightly different triangles.
   bool delabella = false;
   /// Meshes a closed surface of revolution with several holes' rims as inner wires as angular
-  /// sectors (one rim each, triangulated by OCCT's Delabella; the triangles keep the face's id): BRepMesh's grid on such a face grows
+  /// sectors (one rim each, Delabella on surfaces of revolution and cylinders; the triangles keep the face's id): BRepMesh's grid on such a face grows
   /// about quadratically with the rims' nodes (issue #29: the casing's wall, 0.5-0.9 s alone; docs/simplify.md,
   /// "Whole command on the casing", the rule). Off: every face meshed whole, as before.
   bool sector_split = true;
