@@ -179,10 +179,83 @@ std::optional<WebValue> separated_web(const Cylinder& roller, const CageWeb& web
   return out;
 }
 
+/// The web's deepest point in an overlapping cylinder in closed form (issue #27, speed;
+/// docs/bearing.md "Cage webs in closed form"): inside the roller the depth is min(R - rho, z, h - z)
+/// (rho the distance to the axis line, z along it), at most R - rho. The web point nearest the axis
+/// line: the corners projected along the axis give a convex polygon (its hull), whose point q nearest
+/// the axis is on an edge (c_a, c_b): x = c_a + lambda (c_b - c_a) is a web point over q, moved along
+/// the axis within the web (the line's interval in the six face planes) to the z nearest h/2. With
+/// v the unit direction from the axis to q (across the axis), every web point has rho >= v.(w -
+/// base) >= L = min over the corners, so the depth anywhere in the web is at most R - L; when at x
+/// the radial piece binds (min(z, h - z) >= R - rho(x) + margin) and rho(x) - L is within 2^-44 of
+/// the scale, the largest depth is R - rho(x), exact to rounding, and the row's value (the minimum
+/// of the roller's signed distance over the web) is rho(x) - R. nullopt otherwise (the axis through
+/// the web, an end piece binding, a tapered roller): the triangle minima decide.
+std::optional<WebValue> deepest_web_point(const Cylinder& roller, const CageWeb& web, const Transform& cage_pose) {
+  if (roller.tapered()) return std::nullopt;
+  const Vec3& u = roller.axis;
+  const Vec3 t1 = std::fabs(u.x) < 0.9 ? cross(u, Vec3{1, 0, 0}) : cross(u, Vec3{0, 1, 0});
+  const Vec3 e1 = t1 / norm(t1), e2 = cross(u, e1);
+  std::array<Vec3, 8> c;
+  std::array<std::array<double, 2>, 8> q{};
+  for (int i = 0; i < 8; ++i) {
+    c[i] = cage_pose.apply(web.corners[static_cast<std::size_t>(i)]);
+    const Vec3 d = c[i] - roller.base;
+    q[i] = {dot(d, e1), dot(d, e2)};
+  }
+  // the nearest point to the origin of the projected corners' hull: every segment between two
+  // corners (28; the hull's edges are among them), the nearest point of the nearest segment; the
+  // origin inside the hull (the axis through the web) is refused by the certificate below (L < 0)
+  double best = std::numeric_limits<double>::infinity();
+  int ia = 0, ib = 0;
+  double lambda = 0;
+  for (int a = 0; a < 8; ++a)
+    for (int b = a; b < 8; ++b) {
+      const double dx = q[b][0] - q[a][0], dy = q[b][1] - q[a][1], l2 = dx * dx + dy * dy;
+      const double t = l2 > 0 ? std::clamp(-(q[a][0] * dx + q[a][1] * dy) / l2, 0.0, 1.0) : 0.0;
+      const double px = q[a][0] + dx * t, py = q[a][1] + dy * t, r2 = px * px + py * py;
+      if (r2 < best) best = r2, ia = a, ib = b, lambda = t;
+    }
+  Vec3 x = c[ia] + (c[ib] - c[ia]) * lambda;
+  const Vec3 dx = x - roller.base;
+  const double z0 = dot(dx, u);
+  Vec3 radial = dx - u * z0;
+  const double rn = norm(radial);
+  if (!(rn > 0) || !(rn < roller.radius)) return std::nullopt;
+  const Vec3 v = radial / rn;
+  double lower = std::numeric_limits<double>::infinity();
+  for (const Vec3& ci : c) lower = std::min(lower, dot(v, ci - roller.base));
+  // the web's interval on the line x + t u, and the t whose z is nearest h / 2
+  double tlo = -std::numeric_limits<double>::infinity(), thi = std::numeric_limits<double>::infinity();
+  for (int j = 0; j < 6; ++j) {
+    const Vec3 n = cage_pose.rotate(web.normals[static_cast<std::size_t>(j)]);
+    const double dj = web.offsets[static_cast<std::size_t>(j)] + dot(n, cage_pose.t);
+    const double nu = dot(n, u), gap = dj - dot(n, x);  // n.(x + t u) <= dj
+    if (nu > 0) thi = std::min(thi, gap / nu);
+    else if (nu < 0) tlo = std::max(tlo, gap / nu);
+    else if (gap < 0) return std::nullopt;
+  }
+  const double t = std::clamp(0.5 * roller.height - z0, std::min(0.0, tlo), std::max(0.0, thi));
+  x = x + u * t;
+  const double z = dot(x - roller.base, u);
+  const Vec3 rad = (x - roller.base) - u * z;
+  const double rho = norm(rad);
+  const double scale = std::max({std::fabs(x.x), std::fabs(x.y), std::fabs(x.z)}) + roller.height + roller.radius;
+  if (!(lower > 0) || !(rho - lower <= 0x1p-44 * scale)) return std::nullopt;
+  if (!(std::min(z, roller.height - z) >= roller.radius - rho + 0x1p-36 * scale)) return std::nullopt;
+  WebValue out;
+  out.distance = rho - roller.radius;
+  out.point_b = x;
+  out.point_a = roller.base + u * z + rad * (roller.radius / rho);
+  return out;
+}
+
 WebValue web_distance(const Cylinder& roller, const TriMesh& web, const Transform& cage_pose,
                       const CageWeb* faces = nullptr) {
   if (faces)
     if (std::optional<WebValue> v = separated_web(roller, *faces, cage_pose)) return *v;
+  if (faces)
+    if (std::optional<WebValue> v = deepest_web_point(roller, *faces, cage_pose)) return *v;
   WebValue out;
   // the posed corners (webs have 8: no allocation per call; issue #27, speed)
   std::array<Vec3, 8> small;
