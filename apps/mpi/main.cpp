@@ -37,6 +37,7 @@
 
 #include "args.h"
 #include "bearing.h"
+#include "cell.h"
 #include "comm.h"
 #include "merge.h"
 #include "plan.h"
@@ -663,6 +664,8 @@ int main(int argc, char** argv) {
     }
     if (argc >= 2 && std::string(argv[1]) == "bearing")  // (issue #31 item 3: assembly frames in blocks per rank)
       status = interfere::mpi::run_bearing(w, argc - 1, argv + 1);
+    else if (argc >= 2 && std::string(argv[1]) == "cell")  // (issue #31 item 3: path points in blocks per rank)
+      status = interfere::mpi::run_cell(w, argc - 1, argv + 1);
     else
       status = interfere::mpi::run(w, argc, argv);
   } catch (const interfere::mpi::InfoRequest& info) {
