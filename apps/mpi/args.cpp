@@ -133,6 +133,7 @@ const char* const kUsage =
     "         [--field NAME] [--disp FILE] [--scale S] [--split MODE] [--linear-faces] [--no-reference]\n"
     "         [--threads N] [--distribute pairs|frames] [--memory-limit MB] [--cost-model PAIR_S,PAIR_TRI_S,BODY_TRI_S,READ_TRI_S[,MERGE_PAIR_S]] [--quiet]\n"
     "       mpirun -n K interfere-mpi bearing --assembly FILE ... (frames in blocks per rank; `interfere-mpi bearing --help`)\n"
+    "       mpirun -n K interfere-mpi cell CELL [--path FILE] ... (path points in blocks per rank; `interfere-mpi cell --help`)\n"
     "The report is the one of `interfere clash --scene FILE` (docs/report.md) plus \"mpi\"; docs/mpi.md.\n"
     "Exit status: 0 clear, contact or clearance; 1 clash (or a verdict named by --fail-on); 2 usage or input error,\n"
     "on any rank (message on stderr, nothing written); 3 undecided.\n";
@@ -146,7 +147,7 @@ Options parse_clash(int argc, char** argv) {
   Options o;
   if (argc >= 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h")) throw InfoRequest{kUsage};
   if (argc >= 2 && std::string(argv[1]) == "--version") throw InfoRequest{std::string("interfere-mpi ") + INTERFERE_VERSION + "\n"};
-  if (argc < 2 || std::string(argv[1]) != "clash") throw UsageError(std::string("the command is `clash` or `bearing`\n") + kUsage);
+  if (argc < 2 || std::string(argv[1]) != "clash") throw UsageError(std::string("the command is `clash`, `bearing` or `cell`\n") + kUsage);
   Parser p(kUsage);
   std::string clearance, tolerance, scale, group_distance, threads, memory_limit, cost_model, distribute;
   p.text("--scene", o.scene);
