@@ -4,7 +4,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "common.h"
+#include "common.h"  // (InputError only: also built into interfere-mpi, without common.cpp)
 #include "interfere/probe/path.h"
 #include "interfere/robot/cell.h"
 #include "interfere/robot/ik.h"
@@ -70,14 +70,13 @@ robot::JointPath cell_pose_joint_path(const robot::Cell& cell, const CellPoseInp
             {"max_angle_error", worst_angle},
             {"points", std::move(pts)}};
   if (!first_branch.is_null()) report["first_branch"] = std::move(first_branch);
-  if (!in.write_joints.empty()) {
-    write_or_throw(write_output(
-        in.write_joints,
-        robot::joint_path_csv(cell.robot, r->path,
-                              "joint path of " + cell.robot.name + " solved from the pose path " +
-                                  in.file + " by interfere cell --pose-path (degrees, mm)")));
-  }
   return std::move(r->path);
+}
+
+std::string cell_joints_csv(const robot::Cell& cell, const robot::JointPath& path, const CellPoseInput& in) {
+  return robot::joint_path_csv(cell.robot, path,
+                               "joint path of " + cell.robot.name + " solved from the pose path " + in.file +
+                                   " by interfere cell --pose-path (degrees, mm)");
 }
 
 }  // namespace interfere::cli

@@ -19,7 +19,11 @@ struct CellPoseInput {
 /// (per point: seed, largest joint change, tip and axis errors). Throws InputError naming the
 /// file, the line and the point (unreachable, outside the joint limits, not a pose path) or the
 /// flag (--ik-start).
+/// Writes nothing (--write-joints: cell_joints_csv), so that `interfere-mpi cell` (issue #31), which
+/// solves the whole path on every rank, shares it.
 robot::JointPath cell_pose_joint_path(const robot::Cell& cell, const CellPoseInput& in,
                                       nlohmann::json& report);
+/// --write-joints: the solved joint path as CSV text (header = joint names).
+std::string cell_joints_csv(const robot::Cell& cell, const robot::JointPath& path, const CellPoseInput& in);
 
 }  // namespace interfere::cli

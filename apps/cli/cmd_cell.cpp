@@ -53,6 +53,8 @@ int run_cell(const CellOptions& o) {
   Expected<JointPath> path = poses ? Expected<JointPath>(cell_pose_joint_path(*cell, o.pose, ik_report))
                                    : read_joint_csv(path_file, cell->robot);
   if (!path) throw InputError(path.error());
+  if (poses && !o.pose.write_joints.empty())
+    write_or_throw(write_output(o.pose.write_joints, cell_joints_csv(*cell, *path, o.pose)));
 
   const CellScene cs = cell_scene(*cell, *path, o.between);
   scene::SceneClashOptions opt;

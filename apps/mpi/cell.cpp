@@ -12,12 +12,14 @@
 // merges its chunks, derives the pair summaries and verdict (scene::finish_result) and writes the
 // report through the CLI's writer (apps/cli/cell_report.h).
 //
+// --pose-path (with --ik-start, --write-joints): each point's inverse kinematics is seeded with the
+// previous point's solution, so every rank solves the whole path first (cell_pose_joint_path, the
+// CLI's call) and then takes its block; rank 0 writes --write-joints.
+//
 // Not offered (usage error, exit 2): --continuous (its certified distances are carried across
 // path points and its blocks of points and look-ahead are counted from point 0, so a block's
 // segments could be left `unresolved`, with other `frames` counts, where one process proves them
-// clear), --pose-path / --ik-start / --write-joints (each point's inverse kinematics is seeded with
-// the previous point's solution: solve the path once with `interfere cell --pose-path ...
-// --write-joints FILE` and give FILE as --path), and the views (--html, --glb, --pvd).
+// clear) and the views (--html, --glb, --pvd).
 #include "cell.h"
 
 #include <tbb/global_control.h>
@@ -37,7 +39,9 @@
 #include <nlohmann/json.hpp>
 
 #include "args.h"
+#include "cell_pose_path.h"
 #include "cell_report.h"
+#include "common.h"  // (cli::InputError, which cell_pose_joint_path throws; nothing of common.cpp)
 #include "interfere/robot/cell.h"
 #include "interfere/scene/engine.h"
 #include "report_envelope.h"
@@ -54,17 +58,19 @@ struct InputError : std::runtime_error {
 };
 
 const char* const kCellUsage =
-    "usage: mpirun -n K interfere-mpi cell CELL [--path FILE] [--between N] [--json OUT] [--csv OUT] [--poses]\n"
-    "         [--depth] [--fail-on LIST] [--threads N] [--quiet]\n"
+    "usage: mpirun -n K interfere-mpi cell CELL [--path FILE | --pose-path FILE [--ik-start Q|collision-free]\n"
+    "         [--write-joints OUT.csv]] [--between N] [--json OUT] [--csv OUT] [--poses] [--depth] [--fail-on LIST]\n"
+    "         [--threads N] [--quiet]\n"
     "The path's points split in blocks per rank; the outputs are those of `interfere cell` (docs/probe.md)\n"
-    "plus \"mpi\" in the JSON. Not offered: --continuous, --pose-path, --ik-start, --write-joints, --html,\n"
-    "--glb, --pvd (docs/mpi.md, \"Time series\").\n";
+    "plus \"mpi\" in the JSON (a pose path is solved whole on every rank first). Not offered: --continuous,\n"
+    "--html, --glb, --pvd (docs/mpi.md, \"Time series\").\n";
 
 struct CellArgs {
   std::string cell, path, json, csv, fail_on;
   std::size_t between = 0;
   bool poses = false, depth = false, quiet = false;
   int max_depth = 12, threads = 0;
+  cli::CellPoseInput pose;  ///< --pose-path, --ik-start, --write-joints
 };
 
 CellArgs parse_cell(int argc, char** argv) {
@@ -72,7 +78,7 @@ CellArgs parse_cell(int argc, char** argv) {
   CLI::App app("interfere-mpi cell");
   app.set_help_flag();
   bool help = false, version = false, continuous = false;
-  std::string pose_path, ik_start, write_joints, html, glb, pvd, budget;
+  std::string html, glb, pvd, budget;
   app.add_flag("-h,--help", help);
   app.add_flag("--version", version);
   app.add_option("CELL", o.cell);
@@ -87,9 +93,9 @@ CellArgs parse_cell(int argc, char** argv) {
   app.add_option("--threads", o.threads);
   app.add_flag("-q,--quiet", o.quiet);
   app.add_flag("--continuous", continuous);
-  app.add_option("--pose-path", pose_path);
-  app.add_option("--ik-start", ik_start);
-  app.add_option("--write-joints", write_joints);
+  app.add_option("--pose-path", o.pose.file);
+  app.add_option("--ik-start", o.pose.start);
+  app.add_option("--write-joints", o.pose.write_joints);
   app.add_option("--html", html);
   app.add_option("--glb", glb);
   app.add_option("--pvd", pvd);
@@ -106,14 +112,10 @@ CellArgs parse_cell(int argc, char** argv) {
         "--continuous: not offered by interfere-mpi cell: the conservative check between points carries certified "
         "distances across path points (from point 0), so a block of points could leave segments 'unresolved' that one "
         "process proves clear: run `interfere cell --continuous` (docs/mpi.md, \"Time series\")");
-  for (const auto& [flag, value] : {std::pair<const char*, const std::string*>{"--pose-path", &pose_path},
-                                    {"--ik-start", &ik_start},
-                                    {"--write-joints", &write_joints}})
-    if (app.count(flag))
-      throw UsageError(std::string(flag) +
-                       ": not offered by interfere-mpi cell: the inverse kinematics seeds each point with the previous "
-                       "point's solution (one chain over the whole path): run `interfere cell --pose-path FILE "
-                       "--write-joints JOINTS.csv` once and give JOINTS.csv as --path (docs/mpi.md, \"Time series\")");
+  if (app.count("--pose-path") && app.count("--path")) throw UsageError("--pose-path excludes --path");
+  if (!o.pose.write_joints.empty() &&
+      (o.pose.write_joints.size() < 4 || o.pose.write_joints.substr(o.pose.write_joints.size() - 4) != ".csv"))
+    throw UsageError("--write-joints: " + o.pose.write_joints + ": unsupported extension (give a .csv file)");
   for (const char* flag : {"--html", "--glb", "--pvd", "--view-budget"})
     if (app.count(flag))
       throw UsageError(std::string(flag) +
@@ -159,17 +161,26 @@ int run_checked(const World& w, const CellArgs& o) {
   std::optional<Cell> cell;
   JointPath path;
   std::string path_file, error;
+  bool poses = false;
+  nlohmann::json ik_report;  // --pose-path: the inverse kinematics per point
   try {
     Expected<Cell> read = read_cell_json(o.cell);
     if (!read) throw InputError(read.error().message());
     cell = std::move(*read);
-    path_file = o.path.empty() ? cell->path : o.path;
+    poses = !o.pose.file.empty();
+    path_file = poses ? o.pose.file : o.path.empty() ? cell->path : o.path;
     if (path_file.empty()) throw InputError("--path: no joint path given (and the cell file names none)");
-    Expected<JointPath> p = read_joint_csv(path_file, cell->robot);
-    if (!p) throw InputError(p.error().message());
-    path = std::move(*p);
+    if (poses) {
+      path = cli::cell_pose_joint_path(*cell, o.pose, ik_report);  // (the whole path, on every rank)
+    } else {
+      Expected<JointPath> p = read_joint_csv(path_file, cell->robot);
+      if (!p) throw InputError(p.error().message());
+      path = std::move(*p);
+    }
     // Outputs: their folders must exist, no output may be an input, --json and --csv differ.
-    for (const auto& [flag, out] : {std::pair<const char*, const std::string*>{"--json", &o.json}, {"--csv", &o.csv}}) {
+    for (const auto& [flag, out] : {std::pair<const char*, const std::string*>{"--json", &o.json},
+                                    {"--csv", &o.csv},
+                                    {"--write-joints", &o.pose.write_joints}}) {
       if (out->empty() || *out == "-") continue;
       const std::filesystem::path abs = std::filesystem::absolute(*out);
       if (!std::filesystem::is_directory(abs.parent_path()))
@@ -180,7 +191,14 @@ int run_checked(const World& w, const CellArgs& o) {
     if (!o.json.empty() && o.json != "-" && !o.csv.empty() &&
         std::filesystem::absolute(o.json) == std::filesystem::absolute(o.csv))
       throw InputError("--json and --csv name the same file " + o.json);
+    if (!o.pose.write_joints.empty())
+      for (const std::string* out : {&o.json, &o.csv})
+        if (!out->empty() && *out != "-" &&
+            std::filesystem::absolute(*out) == std::filesystem::absolute(o.pose.write_joints))
+          throw InputError("--write-joints and another output name the same file " + *out);
   } catch (const InputError& e) {
+    error = e.what();
+  } catch (const cli::InputError& e) {  // (cell_pose_joint_path: the pose path, --ik-start)
     error = e.what();
   }
   for (const std::string& e : allgather(error))
@@ -247,6 +265,7 @@ int run_checked(const World& w, const CellArgs& o) {
 
   int status = 0;
   if (w.rank == 0) {
+    if (poses && !o.pose.write_joints.empty()) write_file(o.pose.write_joints, cli::cell_joints_csv(*cell, path, o.pose));
     const CellScene cs = cell_scene(*cell, path, o.between);  // (the whole path: the report's frames)
     scene::SceneClashResult r;
     std::unordered_map<std::string, std::size_t> by_id;
@@ -290,6 +309,8 @@ int run_checked(const World& w, const CellArgs& o) {
     cli::CellReportOptions ro;
     ro.cell_file = o.cell;
     ro.path_file = path_file;
+    ro.ik = poses;
+    if (poses) ro.ik_report = std::move(ik_report);
     ro.between = o.between;
     ro.max_depth = o.max_depth;
     ro.link_poses = o.poses;

@@ -5,7 +5,9 @@
 # byte and the same JSON apart from seconds and the "mpi" section (compare_reports.py), with and
 # without --between samples (a segment at a block border owned by the earlier rank), --poses,
 # --depth, and a cell with a clearance (clearance rows, min_distance); 2 points on 4 ranks (idle
-# ranks, a warning); bad input exits 2 with the message (a bad path file, options not offered).
+# ranks, a warning); a probe pose path (--pose-path, inverse kinematics solved whole on every
+# rank; --ik-start collision-free, --write-joints byte-equal); bad input exits 2 with the message
+# (a bad path file, an unreachable pose, options not offered).
 # Usage: run_mpi_cell_tests.sh INTERFERE INTERFERE_MPI EXAMPLES_PROBE_DIR
 set -uo pipefail
 cli=$(realpath "$1") mpi=$(realpath "$2") ex=$(realpath "$3")
@@ -18,7 +20,7 @@ export OMPI_MCA_rmaps_base_oversubscribe=1 OMPI_MCA_btl_vader_single_copy_mechan
 fail=0
 check() { if "$@"; then :; else echo "FAILED: $*"; fail=1; fi; }
 cd "$work" || exit 1
-cp "$ex"/cell.json "$ex"/arm6r.urdf "$ex"/workpiece.obj "$ex"/clamp.obj "$ex"/path.csv .
+cp "$ex"/cell.json "$ex"/arm6r.urdf "$ex"/workpiece.obj "$ex"/clamp.obj "$ex"/path.csv "$ex"/paper_path.csv .
 cp -r "$ex"/meshes . 2>/dev/null
 # The denser path: 2 points between each two of path.csv's (linear in the joints), 43 points.
 "$py" - path.csv > dense.csv <<'PY'
@@ -65,6 +67,11 @@ same between cell.json 1 2 3 4 -- --path dense.csv --between 2 --poses
 same depth cell.json 2 3 -- --path path.csv --between 1 --depth
 same clearance clear.json 1 2 3 4 -- --path dense.csv --between 3
 same idle cell.json 4 -- --path two.csv --between 2
+same ik cell.json 1 2 3 -- --pose-path paper_path.csv --between 1
+same ikstart cell.json 3 -- --pose-path paper_path.csv --ik-start collision-free --write-joints ikstart.joints.csv
+"$cli" cell cell.json --pose-path paper_path.csv --ik-start collision-free --write-joints single.joints.csv >/dev/null 2>&1
+check test -s ikstart.joints.csv
+check cmp -s single.joints.csv ikstart.joints.csv
 check grep -q "ranks idle" idle.mpi4.err
 # (the example collides: the comparisons above saw clash rows at a block's points and samples)
 check grep -q ",clash," between.single.csv
@@ -82,9 +89,14 @@ check test ! -e bad.json
 "${mpirun_[@]}" -n 2 "$mpi" cell cell.json --continuous --json bad.json >/dev/null 2>bad.err
 check test $? = 2
 check grep -q "^interfere: error: --continuous: not offered" bad.err
-"${mpirun_[@]}" -n 2 "$mpi" cell cell.json --pose-path path.csv >/dev/null 2>bad.err
+printf 'px,py,pz,ax,ay,az\n400,0,10,0,0,-1\n# too far\n9000,0,10,0,0,-1\n' > far.csv
+"${mpirun_[@]}" -n 2 "$mpi" cell cell.json --pose-path far.csv --json bad.json >/dev/null 2>bad.err
 check test $? = 2
-check grep -q "^interfere: error: --pose-path: not offered" bad.err
+check grep -q "far.csv:4:.*unreachable" bad.err
+check test ! -e bad.json
+"${mpirun_[@]}" -n 2 "$mpi" cell cell.json --pose-path paper_path.csv --path path.csv >/dev/null 2>bad.err
+check test $? = 2
+check grep -q "^interfere: error: --pose-path excludes --path" bad.err
 "${mpirun_[@]}" -n 2 "$mpi" cell cell.json --html v.html >/dev/null 2>bad.err
 check test $? = 2
 check grep -q "not offered" bad.err
