@@ -15,10 +15,21 @@ namespace {
 
 // A convex polygon (a triangle of `from` cut by planes). `lost`: a cut had more vertices than fit
 // (then the piece is smaller than the cut and must not be used: the bound would miss points).
+// Only the first n vertices are written, copied or read (issue #29: no zero fill of the ten at each
+// cut).
 struct Poly {
-  std::array<Vec3, 10> v;
+  union {
+    std::array<Vec3, 10> v;
+  };
   int n = 0;
   bool lost = false;
+  Poly() {}
+  Poly(const Poly& o) : n(o.n), lost(o.lost) { std::copy(o.v.begin(), o.v.begin() + o.n, v.begin()); }
+  Poly& operator=(const Poly& o) {
+    n = o.n, lost = o.lost;
+    std::copy(o.v.begin(), o.v.begin() + o.n, v.begin());
+    return *this;
+  }
 };
 
 // The polygon's part on the positive side of the plane n.(x - o) >= 0 (Sutherland-Hodgman).
