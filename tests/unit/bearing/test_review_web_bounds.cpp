@@ -11,7 +11,8 @@
 // solver apart where the solids overlap) shows as the solver's value above the upper bound; a row
 // the solver calls touching or overlapping must have a point common to both solids (within touch:
 // min of max(roller's signed distance, web's plane distance) by a random pattern search from the
-// solver's witness segment). Cylindrical and tapered bearings.
+// solver's witness segment), and its value at most any web point's signed distance to the roller
+// (the web's deepest point, eb034ed's closed form). Cylindrical and tapered bearings.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -199,6 +200,9 @@ void web_rows(const char* bearing, double r0, double r1, double h, std::uint64_t
           const double common = common_point(c, planes, pts, own);
           EXPECT_LE(common, 1e-9 * scale) << "solver " << r.distance << " but no common point found (web surface "
                                           << up << ")";
+          // S = min(s(roller, web), s(web, roller)) <= s(web, roller) = min over the web of sd_roller <= any
+          // web point's sd_roller (eb034ed's closed form for the web's deepest point: not shallower)
+          EXPECT_LE(r.distance, up + 1e-9 * scale) << "shallower than a web point's depth in the roller";
         }
         return r;
       };
@@ -224,9 +228,9 @@ void web_rows(const char* bearing, double r0, double r1, double h, std::uint64_t
   EXPECT_GT(near_checked, 20);
 }
 
-TEST(ReviewWebBounds, ApartRowsLieBetweenIndependentBoundsAtLargeTilts) { web_rows(test::kCylindricalBearing, 10, -1, 20, 2026, 4); }
+TEST(ReviewWebBounds, ApartRowsLieBetweenIndependentBoundsAtLargeTilts) { web_rows(test::kCylindricalBearing, 10, -1, 20, 2026, 12); }
 
 // the tapered bearing's webs and frustum rollers (radius 8 -> 9.5, length 30; assembly_fixture.h)
-TEST(ReviewWebBounds, TaperedRollersAtLargeTilts) { web_rows(test::kTaperedBearing, 8, 9.5, 30, 2027, 2); }
+TEST(ReviewWebBounds, TaperedRollersAtLargeTilts) { web_rows(test::kTaperedBearing, 8, 9.5, 30, 2027, 8); }
 
 }  // namespace interfere::bearing
