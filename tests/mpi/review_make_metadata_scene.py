@@ -2,7 +2,8 @@
 """A scene whose bodies use every field the interfere-mpi body records abbreviate behind flags (review
 of 8b228c5, issue #31: id equal to the entry's or not, name equal to the id or not, path '/'+name,
 equal to the name, or other, file as given with '..' and './', identity pose bit for bit or with
--0.0 / a tiny translation, tags, units other than mm), repeated meshes in equal relative poses (units
+-0.0 / a tiny translation, tags, units other than mm, names/paths/tags with quotes, backslashes,
+newlines and non-ASCII that mimic the report's own layout), repeated meshes in equal relative poses (units
 joined into classes: core_runs) and in different ones. Usage: review_make_metadata_scene.py OUT_DIR"""
 import json
 import os
@@ -32,6 +33,8 @@ def main(out):
         {"file": "parts/ball.stl", "id": "ball-in", "units": "in", "transform": [1, 0, 0, 0.3, 0, 1, 0, 0.3, 0, 0, 1, 0.1],
          "tags": ["ball"]},                                                                       # inches: 25.4 x
         {"file": "parts/ball.stl", "id": "ball", "name": "ball", "path": "/ball", "transform": [0, -1, 0, 8, 1, 0, 0, 8, 0, 0, 1, 1.2]},
+        {"file": "parts/box.stl", "id": "odd", "name": "Bolt \"M6\" \\ \u00fcn\u00ef\n  \"triangles\": 7,", "path": "/A/\"q\"/\t",
+         "transform": [1, 0, 0, 8.2, 0, 1, 0, 8.2, 0, 0, 1, 0.9], "tags": ["t,1", "\"x\""]},   # text the report edit must not trip on
     ]
     tests = [{"name": "hard", "a": ["all"], "mode": "hard"},
              {"name": "near", "a": ["tag:fastener"], "b": ["id:plate"], "mode": "clearance", "clearance": 0.4}]
