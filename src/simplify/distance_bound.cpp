@@ -15,21 +15,10 @@ namespace {
 
 // A convex polygon (a triangle of `from` cut by planes). `lost`: a cut had more vertices than fit
 // (then the piece is smaller than the cut and must not be used: the bound would miss points).
-// Only the first n vertices are written, copied or read (issue #29: no zero fill of the ten at each
-// cut).
 struct Poly {
-  union {
-    std::array<Vec3, 10> v;
-  };
+  std::array<Vec3, 10> v;
   int n = 0;
   bool lost = false;
-  Poly() {}
-  Poly(const Poly& o) : n(o.n), lost(o.lost) { std::copy(o.v.begin(), o.v.begin() + o.n, v.begin()); }
-  Poly& operator=(const Poly& o) {
-    n = o.n, lost = o.lost;
-    std::copy(o.v.begin(), o.v.begin() + o.n, v.begin());
-    return *this;
-  }
 };
 
 // The polygon's part on the positive side of the plane n.(x - o) >= 0 (Sutherland-Hodgman).
@@ -111,20 +100,7 @@ double d2_to(const Vec3& x, const Corners& t) {
   return squared_norm(closest_point_on_triangle(x, t) - x);
 }
 
-// A candidate: its corners and their sliver test, computed once (issue #29; closest_point gives
-// closest_point_on_triangle's bits). Left unfilled where not written (no zero fill of the 64).
-struct Cand {
-  Cand() {}
-  union {
-    Corners c;
-  };
-  bool sliver;
-};
-double d2_to(const Vec3& x, const Cand& t) {
-  return squared_norm(closest_point(x, t.c, t.sliver) - x);
-}
-
-double convex_bound2(const Poly& p, const Cand* cand, int nc, double floor2, int depth,
+double convex_bound2(const Poly& p, const Corners* cand, int nc, double floor2, int depth,
                      int& budget) {
   if (p.n == 0) return 0;
   --budget;
@@ -144,7 +120,7 @@ double convex_bound2(const Poly& p, const Cand* cand, int nc, double floor2, int
   // edges along its normal) is bounded by t alone; the pieces beyond each edge plane in turn go to
   // the other candidates (an input triangle across a fan of output triangles: one level each).
   {
-    const Corners& t = cand[bi].c;
+    const Corners& t = cand[bi];
     const Vec3 nt = cross(t[1] - t[0], t[2] - t[0]);
     if (squared_norm(nt) > 0) {
       Poly rest = p;
@@ -162,7 +138,7 @@ double convex_bound2(const Poly& p, const Cand* cand, int nc, double floor2, int
           (rest.n > 0 || pieces > 1)) {  // progress: p is cut (else the pairwise split below)
         double worst = 0;
         for (int k = 0; k < rest.n && worst < best; ++k)
-          worst = std::max(worst, d2_to(rest.v[k], cand[bi]));
+          worst = std::max(worst, d2_to(rest.v[k], t));
         for (int k = 0; k < 3 && worst < best; ++k)
           if (out[k].n > 0)
             worst = std::max(worst, convex_bound2(out[k], cand, nc, floor2, depth - 1, budget));
@@ -180,7 +156,7 @@ double convex_bound2(const Poly& p, const Cand* cand, int nc, double floor2, int
     if (d < dj) dj = d, bj = i;
   }
   Vec3 n, o;
-  if (bj < 0 || !separating_plane(cand[bi].c, cand[bj].c, x, n, o)) return best;
+  if (bj < 0 || !separating_plane(cand[bi], cand[bj], x, n, o)) return best;
   const Poly p1 = clip(p, n, o), p2 = clip(p, n * -1.0, o);
   if (p1.n == 0 || p2.n == 0 || p1.lost || p2.lost) return best;
   const double b1 = convex_bound2(p1, cand, nc, floor2, depth - 1, budget);
@@ -194,12 +170,9 @@ constexpr int kMaxCandidates = 64;
 // convex_bound2 of triangle c with the candidates' triangle numbers, as a distance.
 double convex_bound(const TriMesh& to, const std::array<Vec3, 3>& c, const std::uint32_t* cand,
                     int nc, double floor, int depth, int budget) {
-  std::array<Cand, kMaxCandidates> corners;
+  std::array<Corners, kMaxCandidates> corners;
   nc = std::min(nc, kMaxCandidates);
-  for (int i = 0; i < nc; ++i) {
-    corners[i].c = to.corners(cand[i]);
-    corners[i].sliver = sliver_test(corners[i].c);
-  }
+  for (int i = 0; i < nc; ++i) corners[i] = to.corners(cand[i]);
   Poly p;
   p.n = 3;
   std::copy(c.begin(), c.end(), p.v.begin());

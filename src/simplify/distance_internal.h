@@ -25,45 +25,16 @@ inline const Near& nearer(const Near& x, const Near& y) {
   return x.d <= y.d ? x : y;
 }
 
-/// An entry of the search tree's leaves, in leaf order (entry i is bvh.prims[i]): its float box,
-/// the corners of its triangle of `to` (a piece's owner) and closest_point_on_triangle's sliver test
-/// of them, precomputed (issue #29: the leaves read one array in order instead of the mesh's
-/// triangles and positions, and the closest point skips the test that depends on the triangle
-/// alone).
-struct LeafTri {
-  std::array<Vec3, 3> c;
-  AabbF box;
-  std::uint32_t tri = 0;
-  std::uint32_t sliver = 0;
-};
-
 /// The search tree of `to` (piece_bvh.cpp): the BVH over pieces of its sliver triangles (owner:
 /// the triangle of each piece) or, without slivers, over its triangles (owner empty).
 struct PieceBvh {
   Bvh bvh;
   std::vector<std::uint32_t> owner;
-  std::vector<LeafTri> leaf;
   const std::uint32_t* owners() const { return owner.empty() ? nullptr : owner.data(); }
 };
 PieceBvh piece_bvh(const TriMesh& to, std::size_t max_pieces);
 
-/// closest_point_on_triangle's sliver test of the triangle c (np/distance.cpp), as it computes it.
-bool sliver_test(const std::array<Vec3, 3>& c);
-
-/// closest_point_on_triangle(p, c), the same bits (np/distance.cpp's arithmetic, in its order),
-/// with its sliver test given (sliver_test(c)).
-Vec3 closest_point(const Vec3& p, const std::array<Vec3, 3>& c, bool sliver);
-inline Vec3 closest_point(const Vec3& p, const LeafTri& t) {
-  return closest_point(p, t.c, t.sliver != 0);
-}
-
-/// nearest_triangle_d2(to, bvh.bvh, p, tri, stop_d2, seed, bvh.owners()) on the leaf entries
-/// (piece_bvh.cpp): the same traversal, the same pruning and the same result bit for bit; the
-/// boxes' distances are kept on the stack instead of computed again when a node is taken.
-double nearest_d2(const TriMesh& to, const PieceBvh& bvh, const Vec3& p, std::uint32_t* tri,
-                  double stop_d2, std::uint32_t seed);
-
-/// nearest_d2 as a distance.
+/// nearest_triangle_d2 on that tree, as a distance.
 Near nearest(const TriMesh& to, const PieceBvh& bvh, const Vec3& p, double stop_d2 = -1,
              std::uint32_t seed = kNoSeed);
 

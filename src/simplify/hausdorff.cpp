@@ -22,7 +22,7 @@ namespace detail {
 Near nearest(const TriMesh& to, const PieceBvh& bvh, const Vec3& p, double stop_d2,
              std::uint32_t seed) {
   Near n;
-  n.d = std::sqrt(nearest_d2(to, bvh, p, &n.tri, stop_d2, seed));
+  n.d = std::sqrt(nearest_triangle_d2(to, bvh.bvh, p, &n.tri, stop_d2, seed, bvh.owners()));
   return n;
 }
 

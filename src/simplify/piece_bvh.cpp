@@ -15,7 +15,6 @@
 #include <vector>
 
 #include "distance_internal.h"
-#include "interfere/np/distance.h"
 
 namespace interfere::detail {
 namespace {
@@ -71,123 +70,7 @@ void cut(const TriMesh& m, std::size_t t, int n, int apex, std::size_t at, TriMe
   }
 }
 
-// The leaf entries of r's tree (distance_internal.h, LeafTri), filled in parallel.
-void attach_leaves(const TriMesh& m, PieceBvh& r) {
-  const Bvh& b = r.bvh;
-  r.leaf.resize(b.prims.size());
-  const std::uint32_t* own = r.owners();
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, b.prims.size(), 4096),
-                    [&](const tbb::blocked_range<std::size_t>& range) {
-                      for (std::size_t i = range.begin(); i < range.end(); ++i) {
-                        LeafTri& e = r.leaf[i];
-                        e.tri = own ? own[b.prims[i]] : b.prims[i];
-                        e.c = m.corners(e.tri);
-                        e.box = b.prim_boxes[i];
-                        e.sliver = sliver_test(e.c);
-                      }
-                    });
-}
-
-// As query/distance.cpp's.
-double point_box_d2(const Vec3& p, const AabbF& b) {
-  double d2 = 0;
-  for (int k = 0; k < 3; ++k) {
-    const double g = std::max(
-        {0.0, static_cast<double>(b.lo[k]) - p[k], p[k] - static_cast<double>(b.hi[k])});
-    d2 += g * g;
-  }
-  return d2;
-}
-
 }  // namespace
-
-bool sliver_test(const std::array<Vec3, 3>& c) {
-  const Vec3 ab = c[1] - c[0], ac = c[2] - c[0];
-  const double l2 = std::max({squared_norm(ab), squared_norm(ac), squared_norm(c[2] - c[1])});
-  return squared_norm(cross(ab, ac)) <= 1e-8 * l2 * l2;
-}
-
-// np/distance.cpp's closest_point_on_triangle (Ericson 2005, §5.1.5) with its sliver test given;
-// a sliver, and the cases where it falls back to its sliver routine, go to it whole.
-Vec3 closest_point(const Vec3& p, const std::array<Vec3, 3>& t, bool sliver) {
-  if (sliver) return closest_point_on_triangle(p, t);
-  const Vec3& a = t[0];
-  const Vec3& b = t[1];
-  const Vec3& c = t[2];
-  const Vec3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
-  if (d1 <= 0 && d2 <= 0) return a;
-  const Vec3 bp = p - b;
-  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
-  if (d3 >= 0 && d4 <= d3) return b;
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0 && d1 - d3 > 0) return a + ab * (d1 / (d1 - d3));
-  const Vec3 cp = p - c;
-  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
-  if (d6 >= 0 && d5 <= d6) return c;
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0 && d2 - d6 > 0) return a + ac * (d2 / (d2 - d6));
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0 && (d4 - d3) + (d5 - d6) > 0)
-    return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-  const double sum = va + vb + vc;
-  if (!(sum > 0)) return closest_point_on_triangle(p, t);
-  const Vec3 q = a + ab * (vb / sum) + ac * (vc / sum);
-  return is_finite(q) ? q : closest_point_on_triangle(p, t);
-}
-
-// query/distance.cpp's nearest_triangle_d2, step for step (depth-first, nearer child first, the
-// same stack and overflow), on the leaf entries.
-double nearest_d2(const TriMesh& to, const PieceBvh& tree, const Vec3& p, std::uint32_t* tri,
-                  double stop_d2, std::uint32_t seed) {
-  const Bvh& bvh = tree.bvh;
-  double best = std::numeric_limits<double>::infinity();
-  if (bvh.nodes.empty() || to.triangles.empty()) return best;
-  if (seed != kNoTriangle) {
-    best = squared_norm(closest_point_on_triangle(p, to.corners(seed)) - p);
-    if (tri) *tri = seed;
-    if (best <= stop_d2) return best;
-  }
-  struct Entry {
-    std::uint32_t node;
-    double d2;  // point_box_d2 of the node's box
-  };
-  Entry stack[128];
-  int top = 0;
-  stack[top++] = {0, point_box_d2(p, bvh.nodes[0].box)};
-  std::vector<Entry> spill;
-  const LeafTri* leaf = tree.leaf.data();
-  while (top > 0 || !spill.empty()) {
-    const Entry e = top > 0 ? stack[--top] : spill.back();
-    if (top == 0 && !spill.empty() && e.node == spill.back().node) spill.pop_back();
-    if (e.d2 >= best) continue;
-    const BvhNode& n = bvh.nodes[e.node];
-    if (n.is_leaf()) {
-      for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
-        const LeafTri& l = leaf[i];
-        if (point_box_d2(p, l.box) >= best) continue;
-        const double d2 = squared_norm(closest_point(p, l) - p);
-        if (d2 < best) {
-          best = d2;
-          if (tri) *tri = l.tri;
-          if (best <= stop_d2) return best;
-        }
-      }
-      continue;
-    }
-    const std::uint32_t c0 = n.first, c1 = n.first + 1;
-    const double d0 = point_box_d2(p, bvh.nodes[c0].box), d1 = point_box_d2(p, bvh.nodes[c1].box);
-    const Entry near = d0 <= d1 ? Entry{c0, d0} : Entry{c1, d1};
-    const Entry far = d0 <= d1 ? Entry{c1, d1} : Entry{c0, d0};
-    for (const Entry& c : {far, near}) {  // near is taken first
-      if (top < 128)
-        stack[top++] = c;
-      else
-        spill.push_back(c);
-    }
-  }
-  return best;
-}
 
 // Strip i of a triangle cut from its apex c0 (the corner opposite the shortest edge): between the
 // cuts at s_i = i / k along both edges from c0 (the first strip a triangle, the others quads as two
@@ -208,7 +91,6 @@ PieceBvh piece_bvh(const TriMesh& m, std::size_t max_pieces) {
     }
     if (pieces == nt || most < kMinStrips) {
       r.bvh = build_bvh(m);
-      attach_leaves(m, r);
       return r;
     }
     if (pieces <= max_pieces) break;
@@ -250,7 +132,6 @@ PieceBvh piece_bvh(const TriMesh& m, std::size_t max_pieces) {
       n.box.expand(b.nodes[n.first + 1].box);
     }
   }
-  attach_leaves(m, r);
   return r;
 }
 
