@@ -776,6 +776,29 @@ are no features (it changes the paper's input count), a structured mesher of our
 inside the face as two triangles each, a constrained triangulation only along the rims), fewer error samples
 with a certified bound.
 
+The error measurement alone (issue #29, 2026-11-29 20:00–20:15 UTC; the two meshes of the P1 case written by
+the command, 35,556 and 5,200 triangles, read back in a `/tmp` harness; load average 2.5–3.9): `hausdorff(input,
+result)` with the bound takes 0.12–0.13 s CPU on one thread (median of 15 runs; 0.13–0.17 s wall on two threads
+under that load: the second core is mostly someone else's), the same values as in the command (Hausdorff
+0.2016, bound 0.25146). Where it goes (callgrind, one thread): the tree searches (`nearest_triangle_d2`) 36 % of
+the instructions, `closest_point_on_triangle` 33 % (about three quarters of that for the bound's convexity
+candidates, `convex_bound2`, the rest in the searches), the bound's clipping and candidates (`clip`,
+`convex_bound2`) 17 %, tree builds 3 %. The searches, input → result: 17,742 vertices (4.9 closest points and 33
+tree nodes per query: no seed), 53,334 edge midpoints (1.9 and 9), 35,556 centroids (2.2 and 12), the
+refinement of the triangles above 1.25× the sampled maximum 17,478 (2.4 and 13); result → input 15,564.
+Tried and reverted (c14aaec, d5e4245, reverted in 873655d; each the same bits, casing P1/P2 output byte for
+byte): the leaves as one array in leaf order with the corners and `closest_point_on_triangle`'s sliver test
+precomputed (the search's own copy of the traversal, box distances kept on the stack), the convexity
+candidates' sliver tests computed once, no zero fill of the clipping polygons: 18 % fewer instructions
+(1.94 → 1.60 · 10^9 for the harness) but no less CPU time (0.119–0.130 s before, 0.125–0.139 s after; with
+per-triangle sliver flags instead of the leaf array 0.127–0.140 s): the sliver test is off the critical path,
+and the leaf array (104 bytes an entry, a sliver's corners copied for each of its pieces) outgrows the caches.
+What is left for this part is therefore fewer queries, not cheaper ones: seeds for the vertex searches (each
+from a neighbour's triangle; it changes which triangle a stopped search reports, hence the bound's bits,
+which must then be re-certified), fewer convexity candidates where the Lipschitz or region bound already
+covers a triangle, and the 35,556 centroid queries, which only matter where they raise the sampled maximum or
+serve the bound.
+
 ## CLI
 
 ```text synopsis
