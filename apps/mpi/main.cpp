@@ -38,6 +38,7 @@
 #include "args.h"
 #include "bearing.h"
 #include "cell.h"
+#include "sweep.h"
 #include "comm.h"
 #include "merge.h"
 #include "plan.h"
@@ -666,6 +667,8 @@ int main(int argc, char** argv) {
       status = interfere::mpi::run_bearing(w, argc - 1, argv + 1);
     else if (argc >= 2 && std::string(argv[1]) == "cell")  // (issue #31 item 3: path points in blocks per rank)
       status = interfere::mpi::run_cell(w, argc - 1, argv + 1);
+    else if (argc >= 2 && std::string(argv[1]) == "sweep")  // (issue #31 item 3: probe path points in blocks per rank)
+      status = interfere::mpi::run_sweep(w, argc - 1, argv + 1);
     else
       status = interfere::mpi::run(w, argc, argv);
   } catch (const interfere::mpi::InfoRequest& info) {

@@ -1,0 +1,593 @@
+// interfere-mpi sweep (issue #31, item 3; docs/mpi.md, "Sweep path points"). probe::sweep decides
+// every path point alone (pose_state and clearance_of at that pose) and every segment from its two
+// end points alone (refine on path segment s, with the points' own verdicts): nothing is carried
+// from point 0 (src/probe/sweep.cpp), so the path splits exactly in blocks. Rank k of K takes points
+// [k n / K, (k + 1) n / K) and runs sweep on that sub-path with the request of `interfere sweep`;
+// with the check between points the segment from a block's last point to the next block's first is
+// the earlier rank's: its sub-path runs to that border point, whose own row is dropped (it is the
+// next rank's) and whose candidate tests are taken off (sweep on that point alone). Rank 0 renumbers
+// the segments, recounts the totals as sweep does, and writes the report through the CLI's writer
+// (apps/cli/sweep_report.h).
+//
+// What is carried along the path is done whole on every rank before the blocks: a pose path's
+// inverse kinematics (the paper's machine: the branch of the previous point; --interpolate joint on
+// a DH arm: each point seeded with the previous point's solution), exactly as `interfere sweep`.
+//
+// Not offered (usage error, exit 2): re-planning (--replan-tilt, --replan-standoff,
+// --replanned-path: the re-planned path is checked again whole after the sweep), --paper-levels
+// (not split yet), the views (--html, --glb, --pvd), STEP workpieces (read by the CLI's CAD reader,
+// which interfere-mpi does not link) and STEP tessellation options.
+#include "sweep.h"
+
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+
+#include <CLI/CLI.hpp>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <sys/resource.h>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "args.h"
+#include "interfere/core/coordinate_range.h"
+#include "interfere/core/units.h"
+#include "interfere/mesh/io.h"
+#include "interfere/probe/export.h"
+#include "interfere/probe/paper_machine.h"
+#include "interfere/probe/sweep.h"
+#include "interfere/robot/ik.h"
+#include "report_envelope.h"
+#include "sweep_report.h"
+
+namespace interfere::mpi {
+namespace {
+
+using namespace interfere::probe;
+using Clock = std::chrono::steady_clock;
+
+struct InputError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+const char* const kSweepUsage =
+    "usage: mpirun -n K interfere-mpi sweep --workpiece MESH --path FILE --probe-radius R --probe-length L\n"
+    "         [the other options of `interfere sweep`] [--quiet]\n"
+    "The path's points split in blocks per rank; the outputs are those of `interfere sweep` (docs/probe.md)\n"
+    "plus \"mpi\" in the JSON. Not offered: --replan-tilt, --replan-standoff, --replanned-path, --paper-levels,\n"
+    "--html, --glb, --pvd, STEP workpieces (docs/mpi.md, \"Sweep path points\").\n";
+
+struct SweepArgs {
+  cli::SweepOptions o;
+  bool quiet = false;
+};
+
+SweepArgs parse_sweep(int argc, char** argv) {
+  SweepArgs a;
+  cli::SweepOptions& o = a.o;
+  CLI::App app("interfere-mpi sweep");
+  app.set_help_flag();
+  bool help = false, version = false;
+  std::string budget;
+  app.add_flag("-h,--help", help);
+  app.add_flag("--version", version);
+  app.add_option("--workpiece", o.workpiece);
+  app.add_option("--robot", o.robot);
+  app.add_option("--path", o.path);
+  app.add_option("--d1", o.d1);
+  app.add_option("--d2", o.d2);
+  app.add_option("--interpolate", o.interpolate);
+  app.add_option("--probe-radius", o.probe_radius);
+  app.add_option("--probe-length", o.probe_length);
+  app.add_option("--holder-radius", o.holder_radius);
+  app.add_option("--holder-length", o.holder_length);
+  app.add_option("--holder-box", o.holder_box);
+  app.add_option("--json", o.json);
+  app.add_option("--csv", o.csv);
+  app.add_option("--hits-obj", o.hits_obj);
+  app.add_option("--probes-vtk", o.probes_vtk);
+  app.add_option("--hierarchy", o.hierarchy);
+  app.add_option("--patch-size", o.patch_size);
+  app.add_option("--patch-rule", o.patch_rule);
+  app.add_flag("--paper-levels", o.paper_levels);
+  app.add_flag("--no-continuous", o.no_continuous);
+  app.add_flag("--no-clearance", o.no_clearance);
+  app.add_option("--max-clearance", o.max_clearance);
+  app.add_option("--depth", o.depth);
+  app.add_option("--max-poses", o.max_poses);
+  app.add_option("--clearance", o.clearance);
+  app.add_option("--replan-tilt", o.replan_tilt);
+  app.add_option("--replan-standoff", o.replan_standoff);
+  app.add_option("--replanned-path", o.replanned_path);
+  app.add_option("--fail-on", o.fail_on);
+  app.add_option("--threads", o.threads);
+  app.add_option("--units", o.units);
+  app.add_option("--units-workpiece", o.units_workpiece);
+  app.add_option("--html", o.views.html);
+  app.add_option("--glb", o.views.glb);
+  app.add_option("--pvd", o.views.pvd);
+  app.add_option("--view-budget", budget);
+  app.add_flag("-q,--quiet", a.quiet);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    throw UsageError(std::string(e.what()) + "\n" + kSweepUsage);
+  }
+  if (help) throw InfoRequest{kSweepUsage};
+  if (version) throw InfoRequest{std::string("interfere-mpi ") + INTERFERE_VERSION + "\n"};
+  for (const char* flag : {"--replan-tilt", "--replan-standoff", "--replanned-path"})
+    if (app.count(flag))
+      throw UsageError(std::string(flag) +
+                       ": not offered by interfere-mpi sweep: re-planning checks the re-planned path again, whole, "
+                       "after the sweep: run `interfere sweep` (docs/mpi.md, \"Sweep path points\")");
+  if (o.paper_levels)
+    throw UsageError("--paper-levels: not offered by interfere-mpi sweep (not split across ranks yet): run `interfere "
+                     "sweep --paper-levels` (docs/mpi.md, \"Sweep path points\")");
+  for (const char* flag : {"--html", "--glb", "--pvd", "--view-budget"})
+    if (app.count(flag))
+      throw UsageError(std::string(flag) +
+                       ": not offered by interfere-mpi sweep: views are drawn from one process's result: run `interfere "
+                       "sweep` with --html/--glb/--pvd (docs/mpi.md, \"Options\")");
+  if (o.workpiece.empty() || o.path.empty() || !app.count("--probe-radius") || !app.count("--probe-length"))
+    throw UsageError(std::string("--workpiece, --path, --probe-radius and --probe-length are required\n") + kSweepUsage);
+  if (!o.fail_on.empty() && !parse_fail_on(o.fail_on))
+    throw UsageError("--fail-on: '" + o.fail_on + "' is not a list of contact, clearance, undecided (comma-separated)");
+  if (o.threads < 0) throw UsageError("--threads must be >= 0");
+  return a;
+}
+
+void positive(double v, const char* flag, bool allow_zero = false) {
+  if (!std::isfinite(v) || v < 0 || (!allow_zero && v == 0))
+    throw InputError(std::string(flag) + ": must be a finite number " + (allow_zero ? ">= 0" : "> 0") + ", got " +
+                     (std::isnan(v) ? std::string("nothing") : std::to_string(v)));
+}
+
+std::array<double, 3> parse_holder_box(const std::string& s) {
+  std::array<double, 3> v{};
+  std::size_t start = 0, k = 0;
+  bool ok = true;
+  for (std::size_t i = 0; i <= s.size() && ok; ++i) {
+    if (i < s.size() && s[i] != ',') continue;
+    const std::string field = s.substr(start, i - start);
+    start = i + 1;
+    char* end = nullptr;
+    const double x = field.empty() ? NAN : std::strtod(field.c_str(), &end);
+    ok = k < 3 && end && *end == 0 && std::isfinite(x) && x > 0;
+    if (ok) v[k++] = x;
+  }
+  if (!ok || k != 3)
+    throw InputError("--holder-box: expected three numbers > 0 as W,D,L (width, depth, length), got '" + s + "'");
+  return v;
+}
+
+Hierarchy parse_hierarchy(const std::string& s) {
+  if (s == "bvh") return Hierarchy::bvh;
+  if (s == "patches") return Hierarchy::patches;
+  if (s == "grid") return Hierarchy::grid;
+  if (s == "distance-field" || s == "distance_field" || s == "field") return Hierarchy::distance_field;
+  if (s == "brute" || s == "brute-force") return Hierarchy::brute_force;
+  throw InputError("--hierarchy: unknown hierarchy '" + s + "' (bvh, patches, grid, distance-field, brute)");
+}
+
+std::string lower_ext(const std::string& f) {
+  std::string e = std::filesystem::path(f).extension().string();
+  for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return e;
+}
+
+double mm_per(const std::string& unit, const char* flag) {
+  const std::optional<double> m = millimetres_per_unit(unit);
+  if (!m) throw InputError(std::string(flag) + ": unknown unit '" + unit + "' (" + known_units() + ")");
+  return *m;
+}
+
+void write_file(const std::string& path, const std::string& text) {
+  if (path.empty()) return;
+  if (path == "-") {
+    std::fwrite(text.data(), 1, text.size(), stdout);
+    return;
+  }
+  const std::string tmp = path + ".tmp";
+  std::FILE* f = std::fopen(tmp.c_str(), "wb");
+  if (!f) throw std::runtime_error(path + ": cannot write");
+  const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+  if (std::fclose(f) != 0 || !ok) throw std::runtime_error(path + ": cannot write");
+  std::filesystem::rename(tmp, path);
+}
+
+double cpu_now() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+// ---- the rows on the wire (plain bytes: every rank is the same build on the same kind of machine) ----
+struct Writer {
+  std::string b;
+  template <class T> void put(const T& v) { b.append(reinterpret_cast<const char*>(&v), sizeof v); }
+  template <class T> void vec(const std::vector<T>& v) {
+    put<std::uint64_t>(v.size());
+    b.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+  }
+};
+struct Reader {
+  std::string_view b;
+  std::size_t at = 0;
+  template <class T> void get(T& v) {
+    if (at + sizeof v > b.size()) throw std::logic_error("interfere-mpi sweep: short rank message");
+    std::memcpy(&v, b.data() + at, sizeof v);
+    at += sizeof v;
+  }
+  template <class T> void vec(std::vector<T>& v) {
+    std::uint64_t n = 0;
+    get(n);
+    if (at + n * sizeof(T) > b.size()) throw std::logic_error("interfere-mpi sweep: short rank message");
+    v.resize(n);
+    if (n) std::memcpy(v.data(), b.data() + at, n * sizeof(T));
+    at += n * sizeof(T);
+  }
+};
+
+struct SweepHeader {
+  std::uint64_t lo = 0, hi = 0, points = 0, segments = 0, candidate_tests = 0;
+  double seconds = 0, cpu_seconds = 0, discrete = 0, clearance = 0, continuous = 0;
+};
+
+void put_point(Writer& w, const PointResult& p) {
+  w.put(p.collides), w.put(p.inside), w.put(p.undecided), w.put(p.verdict), w.put(p.holder), w.put(p.clearance);
+  w.put(p.triangle), w.put(p.patch), w.vec(p.hits), w.put(p.point_probe), w.put(p.point_workpiece);
+}
+void get_point(Reader& r, PointResult& p) {
+  r.get(p.collides), r.get(p.inside), r.get(p.undecided), r.get(p.verdict), r.get(p.holder), r.get(p.clearance);
+  r.get(p.triangle), r.get(p.patch), r.vec(p.hits), r.get(p.point_probe), r.get(p.point_workpiece);
+}
+void put_segment(Writer& w, const SegmentResult& s) {
+  w.put(s.from), w.put(s.state), w.put(s.verdict), w.vec(s.intervals), w.vec(s.unresolved), w.put(s.smallest_gap);
+  w.put(s.unresolved_motion), w.put(s.clearance_state), w.vec(s.clearance_intervals), w.vec(s.clearance_unresolved);
+  w.put(s.between_samples), w.vec(s.triangles), w.put(s.poses_tested);
+}
+void get_segment(Reader& r, SegmentResult& s) {
+  r.get(s.from), r.get(s.state), r.get(s.verdict), r.vec(s.intervals), r.vec(s.unresolved), r.get(s.smallest_gap);
+  r.get(s.unresolved_motion), r.get(s.clearance_state), r.vec(s.clearance_intervals), r.vec(s.clearance_unresolved);
+  r.get(s.between_samples), r.vec(s.triangles), r.get(s.poses_tested);
+}
+
+/// Points [lo, hi) of `path` (its poses, lines and joint rows).
+ProbePath sub_path(const ProbePath& path, std::size_t lo, std::size_t hi) {
+  ProbePath s;
+  s.joint_space = path.joint_space;
+  s.columns = path.columns;
+  for (std::size_t i = lo; i < hi; ++i) {
+    s.poses.push_back(path.poses[i]);
+    s.lines.push_back(path.lines[i]);
+    if (i < path.joints.size()) s.joints.push_back(path.joints[i]);
+  }
+  return s;
+}
+
+int run_checked(const World& world, const SweepArgs& a) {
+  const auto t_total = Clock::now();
+  const cli::SweepOptions& o = a.o;
+  // ---- the inputs, as `interfere sweep` reads them: every rank, the ranks agreeing on any error ----
+  std::string error;
+  std::optional<Robot> robot;
+  ProbePath path;
+  TriMesh mesh;
+  MeshReadInfo info;
+  ProbeShape shape;
+  Hierarchy hierarchy = Hierarchy::bvh;
+  bool pose_input = false, joint_motion = false;
+  std::string unit, unit_source;
+  double workpiece_scale = 1, read_seconds = 0;
+  FailOn failing;
+  try {
+    positive(o.probe_radius, "--probe-radius");
+    positive(o.probe_length, "--probe-length");
+    positive(o.holder_radius, "--holder-radius", true);
+    positive(o.holder_length, "--holder-length", true);
+    if ((o.holder_radius > 0) != (o.holder_length > 0))
+      throw InputError("--holder-radius and --holder-length: give both (> 0) or neither");
+    std::array<double, 3> box{};
+    if (!o.holder_box.empty()) {
+      box = parse_holder_box(o.holder_box);
+      if (o.holder_radius > 0 || o.holder_length > 0)
+        throw InputError("--holder-box and --holder-radius/--holder-length: give one holder, a box or a cylinder");
+    }
+    positive(o.patch_size, "--patch-size", true);
+    positive(o.patch_rule, "--patch-rule");
+    positive(o.max_clearance, "--max-clearance", true);
+    positive(o.clearance, "--clearance", true);
+    if (o.clearance > 0 && o.no_clearance)
+      throw InputError("--clearance and --no-clearance: a requested clearance needs the clearance");
+    if (o.clearance > 0 && o.max_clearance > 0 && o.max_clearance < o.clearance)
+      throw InputError("--max-clearance must be at least --clearance (clearances beyond it are not measured)");
+    if (o.max_poses < 1) throw InputError("--max-poses: must be >= 1");
+    if (!o.fail_on.empty()) failing = *parse_fail_on(o.fail_on);
+    if (o.depth < 1 || o.depth > 40) throw InputError("--depth: must be in [1, 40]");
+    const double working_mm = mm_per(o.units, "--units");
+    for (const std::string* f : {&o.workpiece, &o.path, &o.robot})
+      if (!f->empty() && !std::filesystem::is_regular_file(*f)) throw InputError(*f + ": no such file");
+    const std::string ext = lower_ext(o.workpiece);
+    if (ext == ".step" || ext == ".stp")
+      throw InputError("--workpiece " + o.workpiece +
+                       ": STEP workpieces are not offered by interfere-mpi sweep (the CLI's CAD reader is not linked "
+                       "in): write it as a mesh (`interfere surface`) or run `interfere sweep`");
+    if (!o.units_workpiece.empty()) {
+      (void)mm_per(o.units_workpiece, "--units-workpiece");
+      unit = o.units_workpiece, unit_source = "given (--units-workpiece)";
+    } else if (ext == ".glb" || ext == ".gltf") {
+      unit = "m", unit_source = "glTF (metres by its specification)";
+    } else {
+      unit = "mm", unit_source = "default (mm; give --units-a/--units-b when not)";
+    }
+    workpiece_scale = mm_per(unit, "--units-workpiece") / working_mm;
+    if ((!o.robot.empty() || !std::isnan(o.d1) || !std::isnan(o.d2)) && o.units != "mm")
+      throw InputError("--units " + o.units +
+                       ": a sweep with --robot works in mm (robot files and joint paths are in mm); convert the "
+                       "workpiece to mm");
+    hierarchy = parse_hierarchy(o.hierarchy);
+    if (!o.interpolate.empty() && o.interpolate != "joint" && o.interpolate != "pose")
+      throw InputError("--interpolate: unknown motion '" + o.interpolate + "' (joint or pose)");
+    const bool paper_flags = !std::isnan(o.d1) || !std::isnan(o.d2);
+    if (paper_flags && !o.robot.empty())
+      throw InputError("--d1/--d2 build the paper's machine (§3.1): give them or --robot, not both");
+    if (paper_flags) {
+      if (!std::isnan(o.d1) && !std::isfinite(o.d1)) throw InputError("--d1: must be a finite number");
+      if (!std::isnan(o.d2)) positive(o.d2, "--d2");
+    }
+    // Outputs: their folders must exist, no output may be an input or another output.
+    std::vector<std::pair<const char*, const std::string*>> outs{
+        {"--json", &o.json}, {"--csv", &o.csv}, {"--hits-obj", &o.hits_obj}, {"--probes-vtk", &o.probes_vtk}};
+    for (std::size_t i = 0; i < outs.size(); ++i) {
+      const auto& [flag, out] = outs[i];
+      if (out->empty() || *out == "-") continue;
+      const std::filesystem::path abs = std::filesystem::absolute(*out);
+      if (!std::filesystem::is_directory(abs.parent_path()))
+        throw InputError(std::string(flag) + " " + *out + ": no folder " + abs.parent_path().string());
+      for (const std::string* input : {&o.workpiece, &o.path, &o.robot})
+        if (!input->empty() && std::filesystem::absolute(*input) == abs)
+          throw InputError(std::string(flag) + " " + *out + ": is an input file");
+      for (std::size_t k = 0; k < i; ++k)
+        if (!outs[k].second->empty() && *outs[k].second != "-" && std::filesystem::absolute(*outs[k].second) == abs)
+          throw InputError(std::string(flag) + " and " + outs[k].first + " name the same file " + *out);
+    }
+    for (const std::string* f : {&o.hits_obj, &o.probes_vtk})
+      if (!f->empty() && lower_ext(*f) != ".obj" && lower_ext(*f) != ".vtk")
+        throw InputError(*f + ": unsupported extension (give .obj or .vtk)");
+    shape = ProbeShape{.radius = o.probe_radius,
+                       .length = o.probe_length,
+                       .holder_radius = o.holder_radius,
+                       .holder_length = o.holder_length,
+                       .holder_box_width = box[0],
+                       .holder_box_depth = box[1],
+                       .holder_box_length = box[2]};
+    const auto t_read = Clock::now();
+    if (!o.robot.empty()) {
+      auto r = read_robot_json(o.robot);
+      if (!r) throw InputError(r.error().message());
+      robot = std::move(r.value());
+    } else if (paper_flags) {
+      robot = paper_machine_31({.d1 = std::isnan(o.d1) ? 30.0 : o.d1,
+                                .d2 = std::isnan(o.d2) ? 120.0 : o.d2,
+                                .probe_length = o.probe_length});
+    }
+    auto path_r = read_path_csv(o.path, robot ? &*robot : nullptr);
+    if (!path_r) throw InputError(path_r.error().message());
+    path = std::move(path_r.value());
+    pose_input = !path.joint_space;
+    if (path.joint_space) resolve_poses(path, *robot);
+    // The motion between points and the inverse kinematics of a pose path: the whole path on every
+    // rank (each point's solution follows the previous point's), as `interfere sweep`.
+    const bool can_joint = path.joint_space || (robot && has_inverse_kinematics(*robot));
+    const bool numeric_ik = o.interpolate == "joint" && !can_joint && robot;
+    if (o.interpolate == "joint" && !can_joint && !numeric_ik)
+      throw InputError("--interpolate joint: " + o.path + " is a pose path and " +
+                       (robot ? "robot '" + robot->name + "' has no inverse kinematics" : std::string("no --robot is given")) +
+                       " (only the paper's machine of §3.1 has: --robot data/examples/probe_paper_machine.json or --d1/--d2)");
+    joint_motion = o.interpolate == "pose" ? false : (can_joint || numeric_ik);
+    if (joint_motion && !path.joint_space && numeric_ik) {
+      robot::IkTool tool;
+      const robot::Chain chain = robot::chain_from_dh(*robot, &tool);
+      auto r = robot::pose_path_to_joints(chain, robot->base, tool, path, o.path);
+      if (!r) throw InputError(r.error().message());
+      ProbePath jp;
+      jp.joint_space = true;
+      for (const DhJoint& j : robot->joints) jp.columns.push_back(j.name);
+      jp.lines = r->path.lines;
+      jp.joints = std::move(r->path.q);
+      resolve_poses(jp, *robot);
+      path = std::move(jp);
+    } else if (joint_motion && !path.joint_space) {
+      auto j = pose_path_to_joint_path(path, *robot, o.path);
+      if (!j) throw InputError(j.error().message());
+      path = std::move(j.value());
+    } else if (!joint_motion && path.joint_space) {
+      path.joint_space = false;
+    }
+    for (std::size_t i = 0; i < path.poses.size(); ++i)
+      if (!coordinates_in_range(path.poses[i].tip))
+        throw InputError(o.path + ":" + std::to_string(path.lines[i]) + ": probe tip " +
+                         coordinate_range_reason(path.poses[i].tip));
+    if (shape.has_holder_box()) {
+      const Status frames = check_reference_frames(path, o.path);
+      if (!frames) throw InputError(frames.error().message());
+    }
+    auto m = read_mesh(o.workpiece, {}, &info);
+    if (!m) throw InputError(m.error().message());
+    mesh = std::move(*m);
+    if (workpiece_scale != 1) {
+      for (Vec3& v : mesh.positions) v = v * workpiece_scale;
+      if (const std::size_t i = first_out_of_range(mesh.positions); i < mesh.positions.size())
+        throw InputError(o.workpiece + ": vertex " + std::to_string(i) + " (after welding), once converted to " +
+                         o.units + ": " + coordinate_range_reason(mesh.positions[i]));
+    }
+    read_seconds = std::chrono::duration<double>(Clock::now() - t_read).count();
+  } catch (const InputError& e) {
+    error = e.what();
+  }
+  for (const std::string& e : allgather(error))
+    if (!e.empty()) throw InputError(e);
+  std::unique_ptr<tbb::global_control> threads;
+  if (o.threads > 0)
+    threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o.threads);
+  const int thread_count = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
+  const Robot* motion_robot = joint_motion && robot ? &*robot : nullptr;
+
+  // ---- this rank's block (every rank builds the whole workpiece's hierarchy) ----
+  const Workpiece w = prepare_workpiece(std::move(mesh), shape,
+                                        {.hierarchy = hierarchy, .patch_volume_ratio = o.patch_rule, .patch_volume = o.patch_size});
+  const std::size_t n = path.size(), k = static_cast<std::size_t>(world.size), rank = static_cast<std::size_t>(world.rank);
+  const std::size_t lo = rank * n / k, hi = (rank + 1) * n / k;
+  if (world.rank == 0 && k > n && !a.quiet)
+    std::fprintf(stderr, "[interfere-mpi] warning: %d ranks for %zu path points: %zu ranks idle\n", world.size, n, k - n);
+  const bool border = !o.no_continuous && lo < hi && hi < n;
+  const SweepRequest request{.probe = shape,
+                             .continuous = !o.no_continuous,
+                             .clearance = !o.no_clearance,
+                             .max_clearance = o.max_clearance > 0 ? o.max_clearance : std::numeric_limits<double>::infinity(),
+                             .max_depth = o.depth,
+                             .max_poses = o.max_poses,
+                             .clearance_limit = o.clearance};
+  const auto t_run = Clock::now();
+  SweepHeader head;
+  head.lo = lo, head.hi = hi;
+  Writer out;
+  if (lo < hi) {
+    const SweepResult r = sweep(w, sub_path(path, lo, hi + (border ? 1 : 0)), motion_robot, request);
+    head.points = hi - lo, head.segments = r.segments.size();
+    head.candidate_tests = r.candidate_tests;
+    head.discrete = r.discrete_seconds, head.clearance = r.clearance_seconds, head.continuous = r.continuous_seconds;
+    if (border) {
+      // The border point's row is the next rank's: its exact tests are taken off (the same tests
+      // at the same pose: sweep on that point alone, discrete pass only).
+      SweepRequest one = request;
+      one.continuous = false, one.clearance = false, one.clearance_limit = 0;
+      head.candidate_tests -= sweep(w, sub_path(path, hi, hi + 1), motion_robot, one).candidate_tests;
+    }
+    for (std::size_t i = 0; i < hi - lo; ++i) put_point(out, r.points[i]);
+    for (SegmentResult s : r.segments) {
+      s.from += static_cast<std::uint32_t>(lo);
+      put_segment(out, s);
+    }
+  }
+  head.seconds = std::chrono::duration<double>(Clock::now() - t_run).count();
+  head.cpu_seconds = cpu_now();
+  std::string bytes(sizeof head, '\0');
+  std::memcpy(bytes.data(), &head, sizeof head);
+  bytes += out.b;
+  const std::vector<std::string> all = gather(bytes);
+
+  int status = 0;
+  if (world.rank == 0) {
+    // ---- merge in rank order (= point order), the totals counted as sweep counts them ----
+    SweepResult r;
+    nlohmann::json ranks = nlohmann::json::array();
+    for (std::size_t q = 0; q < all.size(); ++q) {
+      SweepHeader h;
+      std::memcpy(&h, all[q].data(), sizeof h);
+      Reader in{std::string_view(all[q]).substr(sizeof h)};
+      for (std::uint64_t i = 0; i < h.points; ++i) get_point(in, r.points.emplace_back());
+      for (std::uint64_t i = 0; i < h.segments; ++i) get_segment(in, r.segments.emplace_back());
+      r.candidate_tests += h.candidate_tests;
+      r.discrete_seconds += h.discrete, r.clearance_seconds += h.clearance, r.continuous_seconds += h.continuous;
+      ranks.push_back({{"rank", q},
+                       {"points", {h.lo, h.hi}},
+                       {"seconds", h.seconds},
+                       {"cpu_seconds", h.cpu_seconds}});
+    }
+    if (r.points.size() != n)
+      throw std::logic_error("gathered " + std::to_string(r.points.size()) + " point rows, expected " + std::to_string(n));
+    for (const PointResult& p : r.points) {
+      r.colliding_points += p.collides, r.inside_points += p.inside, r.undecided_points += p.undecided;
+      r.verdict = worst(r.verdict, p.verdict);
+    }
+    for (std::size_t s = 0; s < r.segments.size(); ++s) {
+      const SegmentResult& g = r.segments[s];
+      if (s > 0 && g.from <= r.segments[s - 1].from) throw std::logic_error("segment rows out of order");
+      r.verdict = worst(r.verdict, g.verdict);
+      r.colliding_segments += g.state == SegmentState::collides;
+      r.unresolved_segments += g.state == SegmentState::unresolved;
+      r.between_samples_segments += g.between_samples;
+    }
+    for (const std::string& text : w.warnings)
+      if (!a.quiet) std::fprintf(stderr, "interfere: warning: %s\n", text.c_str());
+    status = verdict_exit_status(r.verdict, failing);
+    const std::vector<PaperPointCheck> paper;
+    const ReplanRequest replan_request;
+    const ReplanResult replanned;
+    const SweepResult after;
+    const cli::SweepRun run{.o = o,
+                            .format = mesh_format_name(info.format),
+                            .unit = unit,
+                            .unit_source = unit_source,
+                            .workpiece_scale = workpiece_scale,
+                            .linear_deflection = 0,
+                            .w = w,
+                            .path = path,
+                            .pose_input = pose_input,
+                            .robot = robot ? &*robot : nullptr,
+                            .shape = shape,
+                            .hierarchy = hierarchy,
+                            .joint_motion = joint_motion,
+                            .threads = thread_count,
+                            .r = r,
+                            .paper = paper,
+                            .replanning = false,
+                            .replan_request = replan_request,
+                            .replanned = replanned,
+                            .after = after,
+                            .read_seconds = read_seconds,
+                            .total_seconds = std::chrono::duration<double>(Clock::now() - t_total).count(),
+                            .status = status};
+    if (!o.json.empty()) {
+      nlohmann::json j = cli::sweep_report_json(run);
+      j["mpi"] = {{"ranks", world.size},
+                  {"seconds", std::chrono::duration<double>(Clock::now() - t_total).count()},
+                  {"per_rank", std::move(ranks)}};
+      write_file(o.json, cli::report_text(std::move(j), 1));
+    }
+    if (!o.csv.empty()) write_file(o.csv, cli::sweep_report_csv(path, r));
+    if (!o.hits_obj.empty() || !o.probes_vtk.empty()) {
+      const CollisionGeometry g = collision_geometry(w, path, motion_robot, shape, r);
+      for (const std::string& f : {o.hits_obj, o.probes_vtk}) {
+        if (f.empty()) continue;
+        const Status s = write_collision_geometry(f, g);
+        if (!s) throw std::runtime_error(s.error().message());
+      }
+    }
+    if (!a.quiet && o.json != "-" && o.csv != "-") {
+      cli::print_sweep_summary(run);
+      std::printf("(%d ranks)\n", world.size);
+    }
+  }
+  return broadcast(status);
+}
+
+}  // namespace
+
+int run_sweep(const World& w, int argc, char** argv) {
+  try {
+    return run_checked(w, parse_sweep(argc, argv));
+  } catch (const InfoRequest& info) {
+    if (w.rank == 0) std::fputs(info.text.c_str(), stdout);
+    return 0;
+  } catch (const UsageError& e) {
+    if (w.rank == 0) std::fprintf(stderr, "interfere: error: %s\n", e.what());
+    return 2;
+  } catch (const InputError& e) {
+    if (w.rank == 0) std::fprintf(stderr, "interfere: error: %s\n", e.what());
+    return 2;
+  }
+}
+
+}  // namespace interfere::mpi
