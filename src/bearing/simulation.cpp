@@ -7,7 +7,6 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
-#include <tbb/task_group.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -262,23 +261,21 @@ Expected<SimulationResult> simulate(const SceneParams& p, bool keep_rows,
         row.scarred_roller = s.scarred;
       }
     }, pose_affinity);
-    // The broad phase (serial) runs beside the rows (issue #27, Table 3: it was the frame's serial
-    // part): no row depends on it (each pair's own row is solved whether or not its boxes overlap;
-    // the flag is set after both). Its own duration is broad_seconds with the pose pass; the rest of
-    // the frame is narrow_seconds, so that their sum stays the frame's wall-clock time.
+    const std::vector<IndexPair> pairs = broad->update(boxes);
+    std::fill(overlapping.begin(), overlapping.end(), 0);
+    cross.clear();
+    for (const auto& [i, j] : pairs) {
+      if (i / 2 == j / 2) overlapping[i / 2] = 1;
+      else cross.push_back({i, j});
+    }
+    res.cross_pairs += cross.size();
+    res.broad_pairs_total += pairs.size();
     const double t1 = now();
-    std::vector<IndexPair> pairs;
-    double broad_task = 0;
-    tbb::task_group broad_group;
-    broad_group.run([&] {
-      const double tb = now();
-      pairs = broad->update(boxes);
-      broad_task = now() - tb;
-    });
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain), [&](const tbb::blocked_range<std::size_t>& br) {
       for (std::size_t k = br.begin(); k != br.end(); ++k) {
         PairState& s = st[k];
         PairFrame& row = frame_rows[k];
+        row.box_overlap = overlapping[k] != 0;
         // An intact (unscarred) roller: the pair's two-sided value S = min(s(A, B), s(B, A)) (part_pair.h;
         // issue #27): untapered by intact_row_distance, tapered by two_sided_frustum_distance (the value
         // decide_part_pair gives the same two parts). A scarred roller: s(A, B) of the standard solver as
@@ -327,16 +324,6 @@ Expected<SimulationResult> simulate(const SceneParams& p, bool keep_rows,
         }
       }
     }, row_affinity);
-    broad_group.wait();
-    std::fill(overlapping.begin(), overlapping.end(), 0);
-    cross.clear();
-    for (const auto& [i, j] : pairs) {
-      if (i / 2 == j / 2) overlapping[i / 2] = 1;
-      else cross.push_back({i, j});
-    }
-    for (std::size_t k = 0; k < n; ++k) frame_rows[k].box_overlap = overlapping[k] != 0;
-    res.cross_pairs += cross.size();
-    res.broad_pairs_total += pairs.size();
     // every other box overlap: parts of different pairs (part_pair.h)
     cross_out.resize(cross.size());
     if (!cross.empty())
@@ -344,8 +331,8 @@ Expected<SimulationResult> simulate(const SceneParams& p, bool keep_rows,
         cross_out[c] = decide_part_pair(part(cross[c].first), part(cross[c].second), p.clearance);
       });
     const double t2 = now();
-    res.broad_seconds += (t1 - t0) + broad_task;
-    res.narrow_seconds += (t2 - t1) - broad_task;
+    res.broad_seconds += t1 - t0;
+    res.narrow_seconds += t2 - t1;
     for (const PairFrame& row : frame_rows) {
       if (row.distance < res.min_distance) res.min_distance = row.distance, res.worst = row;
       res.interfering_rows += row.distance < 0;

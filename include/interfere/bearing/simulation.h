@@ -91,9 +91,6 @@ struct SimulationResult {
   double min_distance = 0;              ///< over all rows
   PairFrame worst;                      ///< the row with min_distance (first in frame, pair order)
   std::uint64_t interfering_rows = 0;
-  /// Wall-clock seconds. broad: the pose pass and the broad phase's own duration (it runs beside the
-  /// rows, issue #27); narrow: the rest of the frames (rows, cross pairs); their sum is the frame
-  /// loop's time without the per-frame bookkeeping.
   double setup_seconds = 0, broad_seconds = 0, narrow_seconds = 0, total_seconds = 0;
   double frames_per_second = 0;         ///< frames / (broad + narrow seconds)
   double cpu_seconds = 0;               ///< process CPU time (all threads) of the frame loop
