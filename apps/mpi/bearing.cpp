@@ -26,6 +26,7 @@
 #include <nlohmann/json.hpp>
 
 #include "args.h"
+#include "driver.h"
 #include "bearing_assembly_report.h"
 #include "interfere/bearing/assembly.h"
 #include "report_envelope.h"
@@ -36,23 +37,7 @@ namespace {
 using namespace interfere::bearing;
 using Clock = std::chrono::steady_clock;
 
-struct InputError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
 
-void write_file(const std::string& path, const std::string& text) {
-  if (path.empty()) return;
-  if (path == "-") {
-    std::fwrite(text.data(), 1, text.size(), stdout);
-    return;
-  }
-  const std::string tmp = path + ".tmp";
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (!f) throw std::runtime_error(path + ": cannot write");
-  const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-  if (std::fclose(f) != 0 || !ok) throw std::runtime_error(path + ": cannot write");
-  std::filesystem::rename(tmp, path);
-}
 
 std::string csv_text(const Assembly& as, const AssemblyResult& r) {
   char* buf = nullptr;
@@ -183,21 +168,7 @@ int run_checked(const World& w, const BearingOptions& o) {
 }  // namespace
 
 int run_bearing(const World& w, int argc, char** argv) {
-  BearingOptions o;
-  try {
-    o = parse_bearing(argc, argv);  // (args.h: CLI11)
-    return run_checked(w, o);
-  } catch (const InfoRequest& info) {
-    if (w.rank == 0) std::fputs(info.text.c_str(), stdout);
-    return 0;
-  } catch (const UsageError& e) {
-    if (w.rank == 0) std::fprintf(stderr, "interfere: error: %s\n", e.what());
-    return 2;
-  } catch (const InputError& e) {
-    // (options, the assembly and the motion file: every rank finds it alike; rank 0 says it)
-    if (w.rank == 0) std::fprintf(stderr, "interfere: error: %s\n", e.what());
-    return 2;
-  }
+  return run_guarded(w, [&] { return run_checked(w, parse_bearing(argc, argv)); });  // (args.h: CLI11)
 }
 
 }  // namespace interfere::mpi

@@ -39,6 +39,7 @@
 #include <nlohmann/json.hpp>
 
 #include "args.h"
+#include "driver.h"
 #include "cell_pose_path.h"
 #include "cell_report.h"
 #include "common.h"  // (cli::InputError, which cell_pose_joint_path throws; nothing of common.cpp)
@@ -53,9 +54,6 @@ namespace {
 using namespace interfere::robot;
 using Clock = std::chrono::steady_clock;
 
-struct InputError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
 
 const char* const kCellUsage =
     "usage: mpirun -n K interfere-mpi cell CELL [--path FILE | --pose-path FILE [--ik-start Q|collision-free]\n"
@@ -128,19 +126,6 @@ CellArgs parse_cell(int argc, char** argv) {
   return o;
 }
 
-void write_file(const std::string& path, const std::string& text) {
-  if (path.empty()) return;
-  if (path == "-") {
-    std::fwrite(text.data(), 1, text.size(), stdout);
-    return;
-  }
-  const std::string tmp = path + ".tmp";
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (!f) throw std::runtime_error(path + ": cannot write");
-  const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-  if (std::fclose(f) != 0 || !ok) throw std::runtime_error(path + ": cannot write");
-  std::filesystem::rename(tmp, path);
-}
 
 double cpu_now() {
   rusage u{};
@@ -336,19 +321,7 @@ int run_checked(const World& w, const CellArgs& o) {
 }  // namespace
 
 int run_cell(const World& w, int argc, char** argv) {
-  try {
-    return run_checked(w, parse_cell(argc, argv));
-  } catch (const InfoRequest& info) {
-    if (w.rank == 0) std::fputs(info.text.c_str(), stdout);
-    return 0;
-  } catch (const UsageError& e) {
-    if (w.rank == 0) std::fprintf(stderr, "interfere: error: %s\n", e.what());
-    return 2;
-  } catch (const InputError& e) {
-    // (options, the cell and the path file: every rank finds it alike; rank 0 says it)
-    if (w.rank == 0) std::fprintf(stderr, "interfere: error: %s\n", e.what());
-    return 2;
-  }
+  return run_guarded(w, [&] { return run_checked(w, parse_cell(argc, argv)); });
 }
 
 }  // namespace interfere::mpi

@@ -36,6 +36,7 @@
 #include <nlohmann/json.hpp>
 
 #include "args.h"
+#include "driver.h"
 #include "bearing.h"
 #include "cell.h"
 #include "sweep.h"
@@ -68,20 +69,6 @@ double peak_rss_mb() {
   return static_cast<double>(u.ru_maxrss) / 1024.0;
 }
 
-void write_file(const std::string& path, const std::string& text) {
-  if (path.empty()) return;
-  if (path == "-") {
-    std::fwrite(text.data(), 1, text.size(), stdout);
-    return;
-  }
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    out << text;
-    if (!out) throw std::runtime_error(path + ": cannot write");
-  }
-  std::filesystem::rename(tmp, path);
-}
 
 // The first reader of every entry (step 1): the entries in file order cut into K runs of about
 // equal file size, so that a rank reads neighbours in the file (a product's files are usually

@@ -39,6 +39,7 @@
 #include <nlohmann/json.hpp>
 
 #include "args.h"
+#include "driver.h"
 #include "interfere/core/coordinate_range.h"
 #include "interfere/core/units.h"
 #include "interfere/mesh/io.h"
@@ -55,9 +56,6 @@ namespace {
 using namespace interfere::probe;
 using Clock = std::chrono::steady_clock;
 
-struct InputError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
 
 const char* const kSweepUsage =
     "usage: mpirun -n K interfere-mpi sweep --workpiece MESH --path FILE --probe-radius R --probe-length L\n"
@@ -190,19 +188,6 @@ double mm_per(const std::string& unit, const char* flag) {
   return *m;
 }
 
-void write_file(const std::string& path, const std::string& text) {
-  if (path.empty()) return;
-  if (path == "-") {
-    std::fwrite(text.data(), 1, text.size(), stdout);
-    return;
-  }
-  const std::string tmp = path + ".tmp";
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (!f) throw std::runtime_error(path + ": cannot write");
-  const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-  if (std::fclose(f) != 0 || !ok) throw std::runtime_error(path + ": cannot write");
-  std::filesystem::rename(tmp, path);
-}
 
 double cpu_now() {
   rusage u{};
@@ -576,18 +561,7 @@ int run_checked(const World& world, const SweepArgs& a) {
 }  // namespace
 
 int run_sweep(const World& w, int argc, char** argv) {
-  try {
-    return run_checked(w, parse_sweep(argc, argv));
-  } catch (const InfoRequest& info) {
-    if (w.rank == 0) std::fputs(info.text.c_str(), stdout);
-    return 0;
-  } catch (const UsageError& e) {
-    if (w.rank == 0) std::fprintf(stderr, "interfere: error: %s\n", e.what());
-    return 2;
-  } catch (const InputError& e) {
-    if (w.rank == 0) std::fprintf(stderr, "interfere: error: %s\n", e.what());
-    return 2;
-  }
+  return run_guarded(w, [&] { return run_checked(w, parse_sweep(argc, argv)); });
 }
 
 }  // namespace interfere::mpi
