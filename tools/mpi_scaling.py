@@ -272,7 +272,7 @@ def write_doc(v):
     L.append("What does not shrink with K: every rank parses the whole scene file (inputs; it asks the file system only "
              "for every K-th entry's file), receives every body's metadata and box (exchange), and runs the whole broad "
              "phase and the partition (plan: deterministic, the same everywhere); rank 0 gathers and merges every rank's "
-             "findings (merge: the partition gives rank 0 that much less engine work, `merge_pair_s` below); and the MPI "
+             "findings (merge: it needs every rank's findings, so it follows the last rank's engine call; the partition does not shorten rank 0's run by it, plan.h `merge_pair_s` = 0); and the MPI "
              "run-time and libraries (about %.0f MB resident in the smallest rank seen)." % v["base_mb"])
     L.append("")
     L.append("## Cost model\n")
@@ -284,14 +284,14 @@ def write_doc(v):
     L.append("    engine time of a rank = %.3g s x pairs + %.3g s x (its pairs' triangles, both bodies) + %.3g s x (triangles of the bodies it holds)"
              % (v["pair_s"], v["pair_tri_s"], v["body_tri_s"]))
     L.append("    read time of a rank   = %.3g s x triangles read (CPU seconds of its reads and metadata exchange)" % v["read_tri_s"])
-    L.append("    merge on rank 0       = %.3g s x candidate pairs (rank 0's CPU seconds of its gather and merge, K = 1 runs, median)"
+    L.append("    merge on rank 0       = %.3g s x candidate pairs (rank 0's CPU seconds of its gather and merge, K = 1 runs, median; after the last rank ends)"
              % v["merge_pair_s"])
     L.append("    memory of a rank      = %.0f MB + %.0f bytes x triangles read (the largest measured ratio)\n" % (v["base_mb"], v["tri_bytes"]))
-    L.append("`interfere-mpi clash --cost-model %.3g,%.3g,%.3g,%.3g,%.3g` makes the partitioner balance this model (plan.h `CostModel`, "
+    L.append("`interfere-mpi clash --cost-model %.3g,%.3g,%.3g,%.3g` makes the partitioner balance this model (plan.h `CostModel`, "
              "whose defaults are an earlier fit of this script: the runs above used them); a rank's estimated cost is its "
-             "pairs' cost plus its bodies' (model building) plus reading the bodies it did not read in the first step, and "
-             "rank 0's run of the curve is shorter by its merge.\n"
-             % (v["pair_s"], v["pair_tri_s"], v["body_tri_s"], v["read_tri_s"], v["merge_pair_s"]))
+             "pairs' cost plus its bodies' (model building) plus reading the bodies it did not read in the first step; the "
+             "merge is not balanced against (a fifth value would shorten rank 0's run by it, which only made rank 0 wait).\n"
+             % (v["pair_s"], v["pair_tri_s"], v["body_tri_s"], v["read_tri_s"]))
     L.append("Fit residuals, per rank (measured engine CPU s / modelled):")
     L.append("")
     for r in runs + v["fit_runs"]:
