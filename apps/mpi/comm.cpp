@@ -67,38 +67,17 @@ Gathered gather_buffer(const std::string& mine) {
   return out;
 }
 
-std::vector<std::string> allgather(const std::string& mine) {
-  int size = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &size);
-  int n = static_cast<int>(mine.size());
-  std::vector<int> counts(static_cast<std::size_t>(size));
-  wait_for_all();
-  MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
-  const std::vector<int> displ = displacements(counts);
-  std::string all(static_cast<std::size_t>(std::accumulate(counts.begin(), counts.end(), 0L)), '\0');
-  MPI_Allgatherv(mine.data(), n, MPI_BYTE, all.data(), counts.data(), displ.data(), MPI_BYTE, MPI_COMM_WORLD);
+namespace {
+std::vector<std::string> split(const Gathered& g) {
   std::vector<std::string> out;
-  for (std::size_t r = 0; r < counts.size(); ++r) out.push_back(all.substr(static_cast<std::size_t>(displ[r]), static_cast<std::size_t>(counts[r])));
+  for (std::size_t r = 0; r < g.size(); ++r) out.emplace_back(g.part(r));
   return out;
 }
+}  // namespace
 
-std::vector<std::string> gather(const std::string& mine) {
-  int size = 1, rank = 0;
-  MPI_Comm_size(MPI_COMM_WORLD, &size);
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  int n = static_cast<int>(mine.size());
-  std::vector<int> counts(static_cast<std::size_t>(size));
-  wait_for_all();
-  MPI_Gather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
-  const std::vector<int> displ = displacements(counts);
-  std::string all(rank == 0 ? static_cast<std::size_t>(std::accumulate(counts.begin(), counts.end(), 0L)) : 0, '\0');
-  MPI_Gatherv(mine.data(), n, MPI_BYTE, all.data(), counts.data(), displ.data(), MPI_BYTE, 0, MPI_COMM_WORLD);
-  std::vector<std::string> out;
-  if (rank == 0)
-    for (std::size_t r = 0; r < counts.size(); ++r)
-      out.push_back(all.substr(static_cast<std::size_t>(displ[r]), static_cast<std::size_t>(counts[r])));
-  return out;
-}
+std::vector<std::string> allgather(const std::string& mine) { return split(allgather_buffer(mine)); }
+
+std::vector<std::string> gather(const std::string& mine) { return split(gather_buffer(mine)); }
 
 int broadcast(int value) {
   wait_for_all();  // (the other ranks wait for rank 0's merge without spinning)
