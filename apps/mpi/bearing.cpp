@@ -37,8 +37,6 @@ namespace {
 using namespace interfere::bearing;
 using Clock = std::chrono::steady_clock;
 
-
-
 std::string csv_text(const Assembly& as, const AssemblyResult& r) {
   char* buf = nullptr;
   std::size_t size = 0;

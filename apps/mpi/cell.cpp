@@ -54,7 +54,6 @@ namespace {
 using namespace interfere::robot;
 using Clock = std::chrono::steady_clock;
 
-
 const char* const kCellUsage =
     "usage: mpirun -n K interfere-mpi cell CELL [--path FILE | --pose-path FILE [--ik-start Q|collision-free]\n"
     "         [--write-joints OUT.csv]] [--between N] [--json OUT] [--csv OUT] [--poses] [--depth] [--fail-on LIST]\n"
@@ -125,7 +124,6 @@ CellArgs parse_cell(int argc, char** argv) {
   if (o.threads < 0) throw UsageError("--threads must be >= 0");
   return o;
 }
-
 
 double cpu_now() {
   rusage u{};

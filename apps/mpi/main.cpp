@@ -69,7 +69,6 @@ double peak_rss_mb() {
   return static_cast<double>(u.ru_maxrss) / 1024.0;
 }
 
-
 // The first reader of every entry (step 1): the entries in file order cut into K runs of about
 // equal file size, so that a rank reads neighbours in the file (a product's files are usually
 // listed part by part, and a generated one in space order) and the partition can leave most

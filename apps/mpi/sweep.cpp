@@ -56,7 +56,6 @@ namespace {
 using namespace interfere::probe;
 using Clock = std::chrono::steady_clock;
 
-
 const char* const kSweepUsage =
     "usage: mpirun -n K interfere-mpi sweep --workpiece MESH --path FILE --probe-radius R --probe-length L\n"
     "         [the other options of `interfere sweep`] [--quiet]\n"
@@ -187,7 +186,6 @@ double mm_per(const std::string& unit, const char* flag) {
   if (!m) throw InputError(std::string(flag) + ": unknown unit '" + unit + "' (" + known_units() + ")");
   return *m;
 }
-
 
 double cpu_now() {
   rusage u{};
