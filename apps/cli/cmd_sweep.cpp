@@ -35,48 +35,12 @@ namespace {
 
 using namespace interfere::probe;
 
-void positive(double v, const char* flag, bool allow_zero = false) {
-  if (!std::isfinite(v) || v < 0 || (!allow_zero && v == 0)) {
-    throw InputError(std::string(flag) + ": must be a finite number " + (allow_zero ? ">= 0" : "> 0") + ", got " +
-                     (std::isnan(v) ? std::string("nothing") : std::to_string(v)));
-  }
-}
-
-/// --holder-box W,D,L: three finite numbers > 0 (width, depth, length).
-std::array<double, 3> parse_holder_box(const std::string& s) {
-  std::array<double, 3> v{};
-  std::size_t start = 0, k = 0;
-  bool ok = true;
-  for (std::size_t i = 0; i <= s.size() && ok; ++i) {
-    if (i < s.size() && s[i] != ',') continue;
-    const std::string field = s.substr(start, i - start);
-    start = i + 1;
-    char* end = nullptr;
-    const double x = field.empty() ? NAN : std::strtod(field.c_str(), &end);
-    ok = k < 3 && end && *end == 0 && std::isfinite(x) && x > 0;
-    if (ok) v[k++] = x;
-  }
-  if (!ok || k != 3) {
-    throw InputError("--holder-box: expected three numbers > 0 as W,D,L (width, depth, length), got '" + s + "'");
-  }
-  return v;
-}
-
-Hierarchy parse_hierarchy(const std::string& s) {
-  if (s == "bvh") return Hierarchy::bvh;
-  if (s == "patches") return Hierarchy::patches;
-  if (s == "grid") return Hierarchy::grid;
-  if (s == "distance-field" || s == "distance_field" || s == "field") return Hierarchy::distance_field;
-  if (s == "brute" || s == "brute-force") return Hierarchy::brute_force;
-  throw InputError("--hierarchy: unknown hierarchy '" + s + "' (bvh, patches, grid, distance-field, brute)");
-}
-
 int run_sweep(const SweepOptions& o) {
   // ---- validate every input before computing or writing anything ----
-  positive(o.probe_radius, "--probe-radius");
-  positive(o.probe_length, "--probe-length");
-  positive(o.holder_radius, "--holder-radius", true);
-  positive(o.holder_length, "--holder-length", true);
+  check_positive(o.probe_radius, "--probe-radius");
+  check_positive(o.probe_length, "--probe-length");
+  check_positive(o.holder_radius, "--holder-radius", true);
+  check_positive(o.holder_length, "--holder-length", true);
   if ((o.holder_radius > 0) != (o.holder_length > 0)) {
     throw InputError("--holder-radius and --holder-length: give both (> 0) or neither");
   }
@@ -87,10 +51,10 @@ int run_sweep(const SweepOptions& o) {
       throw InputError("--holder-box and --holder-radius/--holder-length: give one holder, a box or a cylinder");
     }
   }
-  positive(o.patch_size, "--patch-size", true);
-  positive(o.patch_rule, "--patch-rule");
-  positive(o.max_clearance, "--max-clearance", true);
-  positive(o.clearance, "--clearance", true);
+  check_positive(o.patch_size, "--patch-size", true);
+  check_positive(o.patch_rule, "--patch-rule");
+  check_positive(o.max_clearance, "--max-clearance", true);
+  check_positive(o.clearance, "--clearance", true);
   if (o.clearance > 0 && o.no_clearance) throw InputError("--clearance and --no-clearance: a requested clearance needs the clearance");
   if (o.clearance > 0 && o.max_clearance > 0 && o.max_clearance < o.clearance) {
     throw InputError("--max-clearance must be at least --clearance (clearances beyond it are not measured)");
@@ -121,7 +85,7 @@ int run_sweep(const SweepOptions& o) {
   }
   if (paper_flags) {
     if (!std::isnan(o.d1) && !std::isfinite(o.d1)) throw InputError("--d1: must be a finite number");
-    if (!std::isnan(o.d2)) positive(o.d2, "--d2");
+    if (!std::isnan(o.d2)) check_positive(o.d2, "--d2");
   }
   check_output(o.json, {}, "--json");
   check_output(o.csv, {}, "--csv");

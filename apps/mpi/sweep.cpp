@@ -142,39 +142,6 @@ SweepArgs parse_sweep(int argc, char** argv) {
   return a;
 }
 
-void positive(double v, const char* flag, bool allow_zero = false) {
-  if (!std::isfinite(v) || v < 0 || (!allow_zero && v == 0))
-    throw InputError(std::string(flag) + ": must be a finite number " + (allow_zero ? ">= 0" : "> 0") + ", got " +
-                     (std::isnan(v) ? std::string("nothing") : std::to_string(v)));
-}
-
-std::array<double, 3> parse_holder_box(const std::string& s) {
-  std::array<double, 3> v{};
-  std::size_t start = 0, k = 0;
-  bool ok = true;
-  for (std::size_t i = 0; i <= s.size() && ok; ++i) {
-    if (i < s.size() && s[i] != ',') continue;
-    const std::string field = s.substr(start, i - start);
-    start = i + 1;
-    char* end = nullptr;
-    const double x = field.empty() ? NAN : std::strtod(field.c_str(), &end);
-    ok = k < 3 && end && *end == 0 && std::isfinite(x) && x > 0;
-    if (ok) v[k++] = x;
-  }
-  if (!ok || k != 3)
-    throw InputError("--holder-box: expected three numbers > 0 as W,D,L (width, depth, length), got '" + s + "'");
-  return v;
-}
-
-Hierarchy parse_hierarchy(const std::string& s) {
-  if (s == "bvh") return Hierarchy::bvh;
-  if (s == "patches") return Hierarchy::patches;
-  if (s == "grid") return Hierarchy::grid;
-  if (s == "distance-field" || s == "distance_field" || s == "field") return Hierarchy::distance_field;
-  if (s == "brute" || s == "brute-force") return Hierarchy::brute_force;
-  throw InputError("--hierarchy: unknown hierarchy '" + s + "' (bvh, patches, grid, distance-field, brute)");
-}
-
 std::string lower_ext(const std::string& f) {
   std::string e = std::filesystem::path(f).extension().string();
   for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -274,22 +241,22 @@ int run_checked(const World& world, const SweepArgs& a) {
   double workpiece_scale = 1, read_seconds = 0;
   FailOn failing;
   try {
-    positive(o.probe_radius, "--probe-radius");
-    positive(o.probe_length, "--probe-length");
-    positive(o.holder_radius, "--holder-radius", true);
-    positive(o.holder_length, "--holder-length", true);
+    cli::check_positive(o.probe_radius, "--probe-radius");
+    cli::check_positive(o.probe_length, "--probe-length");
+    cli::check_positive(o.holder_radius, "--holder-radius", true);
+    cli::check_positive(o.holder_length, "--holder-length", true);
     if ((o.holder_radius > 0) != (o.holder_length > 0))
       throw InputError("--holder-radius and --holder-length: give both (> 0) or neither");
     std::array<double, 3> box{};
     if (!o.holder_box.empty()) {
-      box = parse_holder_box(o.holder_box);
+      box = cli::parse_holder_box(o.holder_box);
       if (o.holder_radius > 0 || o.holder_length > 0)
         throw InputError("--holder-box and --holder-radius/--holder-length: give one holder, a box or a cylinder");
     }
-    positive(o.patch_size, "--patch-size", true);
-    positive(o.patch_rule, "--patch-rule");
-    positive(o.max_clearance, "--max-clearance", true);
-    positive(o.clearance, "--clearance", true);
+    cli::check_positive(o.patch_size, "--patch-size", true);
+    cli::check_positive(o.patch_rule, "--patch-rule");
+    cli::check_positive(o.max_clearance, "--max-clearance", true);
+    cli::check_positive(o.clearance, "--clearance", true);
     if (o.clearance > 0 && o.no_clearance)
       throw InputError("--clearance and --no-clearance: a requested clearance needs the clearance");
     if (o.clearance > 0 && o.max_clearance > 0 && o.max_clearance < o.clearance)
@@ -318,7 +285,7 @@ int run_checked(const World& world, const SweepArgs& a) {
       throw InputError("--units " + o.units +
                        ": a sweep with --robot works in mm (robot files and joint paths are in mm); convert the "
                        "workpiece to mm");
-    hierarchy = parse_hierarchy(o.hierarchy);
+    hierarchy = cli::parse_hierarchy(o.hierarchy);
     if (!o.interpolate.empty() && o.interpolate != "joint" && o.interpolate != "pose")
       throw InputError("--interpolate: unknown motion '" + o.interpolate + "' (joint or pose)");
     const bool paper_flags = !std::isnan(o.d1) || !std::isnan(o.d2);
@@ -326,7 +293,7 @@ int run_checked(const World& world, const SweepArgs& a) {
       throw InputError("--d1/--d2 build the paper's machine (§3.1): give them or --robot, not both");
     if (paper_flags) {
       if (!std::isnan(o.d1) && !std::isfinite(o.d1)) throw InputError("--d1: must be a finite number");
-      if (!std::isnan(o.d2)) positive(o.d2, "--d2");
+      if (!std::isnan(o.d2)) cli::check_positive(o.d2, "--d2");
     }
     // Outputs: their folders must exist, no output may be an input or another output.
     std::vector<std::pair<const char*, const std::string*>> outs{
@@ -416,6 +383,8 @@ int run_checked(const World& world, const SweepArgs& a) {
     }
     read_seconds = std::chrono::duration<double>(Clock::now() - t_read).count();
   } catch (const InputError& e) {
+    error = e.what();
+  } catch (const cli::InputError& e) {  // (the option checks shared with interfere sweep: sweep_report.h)
     error = e.what();
   }
   for (const std::string& e : allgather(error))
