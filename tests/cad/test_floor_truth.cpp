@@ -149,17 +149,10 @@ TEST(FloorTruth, PrecisionAndRecallPerPart) {
       }
     }
     const double tol = 2 * deflection + 1e-3;
-    Score s;
-    s.truth = feats.size(), s.reported = found.size();
-    std::vector<char> t_used(feats.size(), 0), f_used(found.size(), 0), t_typed(feats.size(), 0);
-    for (int pass = 0; pass < 2; ++pass)
-      for (std::size_t i = 0; i < feats.size(); ++i)
-        for (std::size_t j = 0; j < found.size() && !t_used[i]; ++j) {
-          if (f_used[j] || (pass == 0 && found[j].type != feats[i].type) || !matches(feats[i], found[j], tol)) continue;
-          t_used[i] = f_used[j] = 1;
-          ++s.found;
-          if (found[j].type == feats[i].type) ++s.typed, t_typed[i] = 1;
-        }
+    const testing::Matching m =
+        testing::match_one_to_one(feats, found, [&](const TruthFeature& t, const Found& f) { return matches(t, f, tol); });
+    const std::vector<char>& t_typed = m.truth_typed;
+    const std::vector<char>& f_used = m.found_used;
     if (std::getenv("INTERFERE_FLOOR_DEBUG")) {
       for (std::size_t i = 0; i < feats.size(); ++i)
         if (!t_typed[i])
@@ -178,30 +171,17 @@ TEST(FloorTruth, PrecisionAndRecallPerPart) {
           std::printf("  extra %s box (%.3f, %.3f, %.3f)-(%.3f, %.3f, %.3f)\n", found[j].type.c_str(), found[j].lo.x, found[j].lo.y,
                       found[j].lo.z, found[j].hi.x, found[j].hi.y, found[j].hi.z), std::printf("   %s\n", found[j].roles.c_str());
     }
-    for (std::size_t i = 0; i < feats.size(); ++i) {
-      Score& b = by_type[feats[i].type];
-      ++b.truth, b.found += t_used[i], b.typed += t_typed[i];
-    }
-    for (std::size_t j = 0; j < found.size(); ++j) ++by_type[found[j].type].reported;
+    testing::add_part(m, feats, found, by_type, total);
     ++parts;
-    total.truth += s.truth, total.reported += s.reported, total.found += s.found, total.typed += s.typed;
     std::map<std::string, int> truth_types, found_types;
     for (const auto& t : feats) ++truth_types[t.type];
     for (const auto& f : found) ++found_types[f.type];
-    table.push_back({{"file", file}, {"truth", s.truth}, {"reported", s.reported}, {"found", s.found}, {"typed", s.typed},
-                     {"precision", s.precision()}, {"recall", s.recall()}, {"typed_precision", s.typed_precision()},
-                     {"typed_recall", s.typed_recall()}, {"truth_types", truth_types}, {"reported_types", found_types}});
-    std::printf("%-34s truth %3zu reported %3zu  P %.3f R %.3f  typed P %.3f R %.3f\n", file.c_str(), s.truth, s.reported,
-                s.precision(), s.recall(), s.typed_precision(), s.typed_recall());
+    json row = testing::part_row(file, m.score, 34);
+    row["truth_types"] = truth_types, row["reported_types"] = found_types;
+    table.push_back(std::move(row));
   }
   if (parts == 0) GTEST_SKIP() << "none of the truth set's STEP files present";
-  json types = json::object();
-  for (const auto& [type, b] : by_type) {
-    types[type] = {{"truth", b.truth}, {"reported", b.reported}, {"typed_found", b.typed}, {"found", b.found}};
-    std::printf("  %-14s truth %3zu found %3zu typed %3zu reported %3zu\n", type.c_str(), b.truth, b.found, b.typed, b.reported);
-  }
-  std::printf("TOTAL truth %zu reported %zu P %.3f R %.3f typed P %.3f R %.3f\n", total.truth, total.reported,
-              total.precision(), total.recall(), total.typed_precision(), total.typed_recall());
+  const json types = testing::type_rows(by_type, total, 14);
   // Regression floors (measured 2026-11-29: typed precision 0.88, recall 0.92 over 173 truth features;
   // after the labeller's two fixes found by rendering the labels (edge tolerance, features sharing only
   // walls: gmsh_Zylkopf -2 wrong pockets, gmsh_Block 25 -> 52 features) 0.92 / 0.83 over 198, and 0.91 /
@@ -209,12 +189,7 @@ TEST(FloorTruth, PrecisionAndRecallPerPart) {
   // part (docs/simplify.md).
   EXPECT_GE(total.typed_precision(), 0.85);
   EXPECT_GE(total.typed_recall(), 0.85);
-  if (const char* out = std::getenv("INTERFERE_FLOOR_PR_JSON")) {
-    std::ofstream o(out);
-    o << json{{"parts", table}, {"types", types},
-              {"total", {{"truth", total.truth}, {"reported", total.reported}, {"found", total.found}, {"typed", total.typed}}}}
-             .dump(1);
-  }
+  testing::write_pr_json("INTERFERE_FLOOR_PR_JSON", table, types, total);
 }
 
 }  // namespace

@@ -120,47 +120,17 @@ TEST(HoleTruth, PrecisionAndRecallPerPart) {
       }
     }
     // One to one, typed matches first.
-    Score s;
-    s.truth = holes.size(), s.reported = found.size();
-    std::vector<char> t_used(holes.size(), 0), f_used(found.size(), 0);
-    std::vector<char> t_typed(holes.size(), 0);
-    for (int pass = 0; pass < 2; ++pass)
-      for (std::size_t i = 0; i < holes.size(); ++i)
-        for (std::size_t j = 0; j < found.size() && !t_used[i]; ++j) {
-          if (f_used[j] || (pass == 0 && found[j].type != holes[i].type) || !matches(holes[i], found[j], deflection)) continue;
-          t_used[i] = f_used[j] = 1;
-          ++s.found;
-          if (found[j].type == holes[i].type) ++s.typed, t_typed[i] = 1;
-        }
-    for (std::size_t i = 0; i < holes.size(); ++i) {
-      Score& b = by_type[holes[i].type];
-      ++b.truth, b.found += t_used[i], b.typed += t_typed[i];
-    }
-    for (std::size_t j = 0; j < found.size(); ++j) ++by_type[found[j].type].reported;
+    const testing::Matching m =
+        testing::match_one_to_one(holes, found, [&](const TruthHole& t, const Found& f) { return matches(t, f, deflection); });
+    testing::add_part(m, holes, found, by_type, total);
     ++parts;
-    total.truth += s.truth, total.reported += s.reported, total.found += s.found, total.typed += s.typed;
-    table.push_back({{"file", file}, {"truth", s.truth}, {"reported", s.reported}, {"found", s.found}, {"typed", s.typed},
-                     {"precision", s.precision()}, {"recall", s.recall()}, {"typed_precision", s.typed_precision()},
-                     {"typed_recall", s.typed_recall()}});
-    std::printf("%-28s truth %3zu reported %3zu  P %.3f R %.3f  typed P %.3f R %.3f\n", file.c_str(), s.truth, s.reported,
-                s.precision(), s.recall(), s.typed_precision(), s.typed_recall());
+    table.push_back(testing::part_row(file, m.score, 28));
   }
   if (parts == 0) GTEST_SKIP() << "none of the truth set's STEP files present";
-  json types = json::object();
-  for (const auto& [type, b] : by_type) {
-    // by type: recall over truth holes of the type; precision over reported features of the type
-    // (typed matches counted for both).
-    types[type] = {{"truth", b.truth}, {"reported", b.reported}, {"typed_found", b.typed}, {"found", b.found}};
-    std::printf("  %-18s truth %3zu found %3zu typed %3zu reported %3zu\n", type.c_str(), b.truth, b.found, b.typed, b.reported);
-  }
-  std::printf("TOTAL truth %zu reported %zu P %.3f R %.3f typed P %.3f R %.3f\n", total.truth, total.reported,
-              total.precision(), total.recall(), total.typed_precision(), total.typed_recall());
-  if (const char* out = std::getenv("INTERFERE_HOLE_PR_JSON")) {
-    std::ofstream o(out);
-    o << json{{"parts", table}, {"types", types},
-              {"total", {{"truth", total.truth}, {"reported", total.reported}, {"found", total.found}, {"typed", total.typed}}}}
-             .dump(1);
-  }
+  // By type: recall over truth holes of the type; precision over reported features of the type
+  // (typed matches counted for both).
+  const json types = testing::type_rows(by_type, total, 18);
+  testing::write_pr_json("INTERFERE_HOLE_PR_JSON", table, types, total);
   // Issue #29 target: precision and recall >= 0.95 per part and per hole type, types included.
   for (const json& row : table) {
     EXPECT_GE(row.at("typed_precision").get<double>(), 0.95) << row.at("file");
