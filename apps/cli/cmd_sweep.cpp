@@ -28,6 +28,7 @@
 #include "interfere/robot/ik.h"
 #include "report_envelope.h"
 #include "progress_bar.h"
+#include "sweep_inputs.h"
 #include "sweep_report.h"
 
 namespace interfere::cli {
@@ -37,29 +38,7 @@ using namespace interfere::probe;
 
 int run_sweep(const SweepOptions& o) {
   // ---- validate every input before computing or writing anything ----
-  check_positive(o.probe_radius, "--probe-radius");
-  check_positive(o.probe_length, "--probe-length");
-  check_positive(o.holder_radius, "--holder-radius", true);
-  check_positive(o.holder_length, "--holder-length", true);
-  if ((o.holder_radius > 0) != (o.holder_length > 0)) {
-    throw InputError("--holder-radius and --holder-length: give both (> 0) or neither");
-  }
-  std::array<double, 3> box{};
-  if (!o.holder_box.empty()) {
-    box = parse_holder_box(o.holder_box);
-    if (o.holder_radius > 0 || o.holder_length > 0) {
-      throw InputError("--holder-box and --holder-radius/--holder-length: give one holder, a box or a cylinder");
-    }
-  }
-  check_positive(o.patch_size, "--patch-size", true);
-  check_positive(o.patch_rule, "--patch-rule");
-  check_positive(o.max_clearance, "--max-clearance", true);
-  check_positive(o.clearance, "--clearance", true);
-  if (o.clearance > 0 && o.no_clearance) throw InputError("--clearance and --no-clearance: a requested clearance needs the clearance");
-  if (o.clearance > 0 && o.max_clearance > 0 && o.max_clearance < o.clearance) {
-    throw InputError("--max-clearance must be at least --clearance (clearances beyond it are not measured)");
-  }
-  if (o.max_poses < 1) throw InputError("--max-poses: must be >= 1");
+  const ProbeShape shape = check_sweep_probe(o);
   const FailOn failing = fail_on(o.fail_on);
   if (o.depth < 1 || o.depth > 40) throw InputError("--depth: must be in [1, 40]");
   check_units(o.units);
@@ -69,24 +48,7 @@ int run_sweep(const SweepOptions& o) {
       part_unit({.file = o.workpiece, .units = o.units_workpiece, .units_flag = "--units-workpiece"});
   const double workpiece_scale =
       unit_in_mm(workpiece_unit.unit, "--units-workpiece") / unit_in_mm(o.units, "--units");
-  if ((!o.robot.empty() || !std::isnan(o.d1) || !std::isnan(o.d2)) && o.units != "mm") {
-    // The robot file and a joint path's prismatic values are in mm (a robot file's "units" must be
-    // mm): another working unit would mix units silently (issue #23, item 9).
-    throw InputError("--units " + o.units + ": a sweep with --robot works in mm (robot files and joint paths are in "
-                     "mm); convert the workpiece to mm");
-  }
-  const Hierarchy hierarchy = parse_hierarchy(o.hierarchy);
-  if (!o.interpolate.empty() && o.interpolate != "joint" && o.interpolate != "pose") {
-    throw InputError("--interpolate: unknown motion '" + o.interpolate + "' (joint or pose)");
-  }
-  const bool paper_flags = !std::isnan(o.d1) || !std::isnan(o.d2);
-  if (paper_flags && !o.robot.empty()) {
-    throw InputError("--d1/--d2 build the paper's machine (§3.1): give them or --robot, not both");
-  }
-  if (paper_flags) {
-    if (!std::isnan(o.d1) && !std::isfinite(o.d1)) throw InputError("--d1: must be a finite number");
-    if (!std::isnan(o.d2)) check_positive(o.d2, "--d2");
-  }
+  const Hierarchy hierarchy = check_sweep_machine(o);
   check_output(o.json, {}, "--json");
   check_output(o.csv, {}, "--csv");
   check_output(o.hits_obj, {".obj", ".vtk"}, "--hits-obj");
@@ -115,26 +77,10 @@ int run_sweep(const SweepOptions& o) {
   for (const NamedPath& v : o.views.paths()) outputs.push_back(v);
   check_distinct_files({{"--workpiece", o.workpiece}, {"--robot", o.robot}, {"--path", o.path}}, outputs);
   set_threads(o.threads);
-  const ProbeShape shape{.radius = o.probe_radius,
-                         .length = o.probe_length,
-                         .holder_radius = o.holder_radius,
-                         .holder_length = o.holder_length,
-                         .holder_box_width = box[0],
-                         .holder_box_depth = box[1],
-                         .holder_box_length = box[2]};
 
   Progress total("sweep");
   const auto t_read = std::chrono::steady_clock::now();
-  std::optional<Robot> robot;
-  if (!o.robot.empty()) {
-    auto r = read_robot_json(o.robot);
-    if (!r) throw InputError(r.error());
-    robot = std::move(r.value());
-  } else if (paper_flags) {
-    robot = paper_machine_31({.d1 = std::isnan(o.d1) ? 30.0 : o.d1,
-                              .d2 = std::isnan(o.d2) ? 120.0 : o.d2,
-                              .probe_length = o.probe_length});
-  }
+  const std::optional<Robot> robot = read_sweep_robot(o);
   if (robot) {
     if (const auto g = paper_geometry(*robot); g && robot->tool_tip.x != o.probe_length) {
       warning("robot '" + robot->name + "': its tool tip is " + short_number(robot->tool_tip.x) +
@@ -142,59 +88,13 @@ int run_sweep(const SweepOptions& o) {
               short_number(o.probe_length) + ": the probe's rear end circle is not at the clamping length d2");
     }
   }
-  auto path_r = read_path_csv(o.path, robot ? &*robot : nullptr);
-  if (!path_r) throw InputError(path_r.error());
-  ProbePath path = std::move(path_r.value());
-  const bool pose_input = !path.joint_space;
-  if (path.joint_space) resolve_poses(path, *robot);
-  // Motion between points (docs/probe.md, "Motion between points"): the machine's own (joint
-  // interpolation) by default when it is known: joint paths, and pose paths for a robot with
-  // inverse kinematics (the paper's machine); straight pose interpolation otherwise or on request.
-  const bool can_joint = path.joint_space || (robot && has_inverse_kinematics(*robot));
-  // An explicit --interpolate joint for a DH robot without an analytic inverse (a 6-axis arm): the
-  // numerical inverse kinematics of robot/ik.h on the DH chain, each point from the previous one's
-  // solution (issue #28). The default stays straight pose interpolation for such robots.
-  const bool numeric_ik = o.interpolate == "joint" && !can_joint && robot;
-  if (o.interpolate == "joint" && !can_joint && !numeric_ik) {
-    throw InputError("--interpolate joint: " + o.path + " is a pose path and " +
-                     (robot ? "robot '" + robot->name + "' has no inverse kinematics" : std::string("no --robot is given")) +
-                     " (only the paper's machine of §3.1 has: --robot data/examples/probe_paper_machine.json or --d1/--d2)");
-  }
-  const bool joint_motion = o.interpolate == "pose" ? false : (can_joint || numeric_ik);
-  if (joint_motion && !path.joint_space && numeric_ik) {
-    robot::IkTool tool;
-    const robot::Chain chain = robot::chain_from_dh(*robot, &tool);
-    auto r = robot::pose_path_to_joints(chain, robot->base, tool, path, o.path);
-    if (!r) throw InputError(r.error());
-    ProbePath jp;
-    jp.joint_space = true;
-    for (const DhJoint& j : robot->joints) jp.columns.push_back(j.name);
-    jp.lines = r->path.lines;
-    jp.joints = std::move(r->path.q);
-    resolve_poses(jp, *robot);
-    path = std::move(jp);
-  } else if (joint_motion && !path.joint_space) {
-    auto j = pose_path_to_joint_path(path, *robot, o.path);
-    if (!j) throw InputError(j.error());
-    path = std::move(j.value());
-  } else if (!joint_motion && path.joint_space) {
-    path.joint_space = false;  // straight pose interpolation between the forward-kinematics poses
-  }
+  SweepPath swept = read_sweep_path(o, robot ? &*robot : nullptr, shape);
+  const ProbePath& path = swept.path;
+  const bool pose_input = swept.pose_input, joint_motion = swept.joint_motion;
   const Robot* motion_robot = joint_motion && robot ? &*robot : nullptr;
-  for (std::size_t i = 0; i < path.poses.size(); ++i)  // the exact tests' coordinate range (item 7)
-    if (!coordinates_in_range(path.poses[i].tip))
-      throw InputError(o.path + ":" + std::to_string(path.lines[i]) + ": probe tip " +
-                       coordinate_range_reason(path.poses[i].tip));
-  if (shape.has_holder_box()) {
-    const Status frames = check_reference_frames(path, o.path);
-    if (!frames) throw InputError(frames.error());
-  }
   PartMesh mesh = read_part_mesh(o.workpiece, o.tessellation);
   if (workpiece_scale != 1) {
-    for (Vec3& v : mesh.mesh.positions) v = v * workpiece_scale;
-    if (const std::size_t i = first_out_of_range(mesh.mesh.positions); i < mesh.mesh.positions.size())
-      throw InputError(o.workpiece + ": vertex " + std::to_string(i) + " (after welding), once converted to " +
-                       o.units + ": " + coordinate_range_reason(mesh.mesh.positions[i]));
+    scale_workpiece(mesh.mesh.positions, workpiece_scale, o);
     mesh.linear_deflection *= workpiece_scale;
   }
   const double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_read).count();
@@ -211,15 +111,9 @@ int run_sweep(const SweepOptions& o) {
     Progress p("sweep of " + std::to_string(path.size()) + " points (" + std::to_string(active_threads()) + " threads)");
     // The points, their clearances and the segments as one bar (progress_bar.h; the count from sweep).
     ProgressBar bar("sweep", 1, "checks");
-    r = sweep(w, path, motion_robot,
-              {.probe = shape,
-               .continuous = !o.no_continuous,
-               .clearance = !o.no_clearance,
-               .max_clearance = o.max_clearance > 0 ? o.max_clearance : std::numeric_limits<double>::infinity(),
-               .max_depth = o.depth,
-               .max_poses = o.max_poses,
-               .clearance_limit = o.clearance,
-               .progress = bar.callback()});
+    SweepRequest request = sweep_request(o, shape);
+    request.progress = bar.callback();
+    r = sweep(w, path, motion_robot, request);
   }
   for (const std::string& text : w.warnings) warning(text);
   // The paper's hierarchy as written (§3.2-3.4) at every point, beside the exact verdicts (which
@@ -292,14 +186,7 @@ int run_sweep(const SweepOptions& o) {
     const Status s = write_output(o.replanned_path, path_to_csv(fixed));
     if (!s) throw InputError(s.error());
   }
-  if (!o.hits_obj.empty() || !o.probes_vtk.empty()) {
-    const CollisionGeometry g = collision_geometry(w, path, motion_robot, shape, r);
-    for (const std::string& f : {o.hits_obj, o.probes_vtk}) {
-      if (f.empty()) continue;
-      const Status s = write_collision_geometry(f, g);
-      if (!s) throw InputError(s.error());
-    }
-  }
+  if (const Status s = write_sweep_geometry(o, w, path, motion_robot, shape, r); !s) throw InputError(s.error());
   if (o.views.any()) {
     Expected<view::Document> doc = view::probe_document(w.mesh, shape, path, r);
     if (!doc) throw InputError(doc.error());

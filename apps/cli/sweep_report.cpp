@@ -261,39 +261,4 @@ void print_sweep_summary(const SweepRun& run) {
   }
 }
 
-void check_positive(double v, const char* flag, bool allow_zero) {
-  if (!std::isfinite(v) || v < 0 || (!allow_zero && v == 0)) {
-    throw InputError(std::string(flag) + ": must be a finite number " + (allow_zero ? ">= 0" : "> 0") + ", got " +
-                     (std::isnan(v) ? std::string("nothing") : std::to_string(v)));
-  }
-}
-
-std::array<double, 3> parse_holder_box(const std::string& s) {
-  std::array<double, 3> v{};
-  std::size_t start = 0, k = 0;
-  bool ok = true;
-  for (std::size_t i = 0; i <= s.size() && ok; ++i) {
-    if (i < s.size() && s[i] != ',') continue;
-    const std::string field = s.substr(start, i - start);
-    start = i + 1;
-    char* end = nullptr;
-    const double x = field.empty() ? NAN : std::strtod(field.c_str(), &end);
-    ok = k < 3 && end && *end == 0 && std::isfinite(x) && x > 0;
-    if (ok) v[k++] = x;
-  }
-  if (!ok || k != 3) {
-    throw InputError("--holder-box: expected three numbers > 0 as W,D,L (width, depth, length), got '" + s + "'");
-  }
-  return v;
-}
-
-probe::Hierarchy parse_hierarchy(const std::string& s) {
-  if (s == "bvh") return probe::Hierarchy::bvh;
-  if (s == "patches") return probe::Hierarchy::patches;
-  if (s == "grid") return probe::Hierarchy::grid;
-  if (s == "distance-field" || s == "distance_field" || s == "field") return probe::Hierarchy::distance_field;
-  if (s == "brute" || s == "brute-force") return probe::Hierarchy::brute_force;
-  throw InputError("--hierarchy: unknown hierarchy '" + s + "' (bvh, patches, grid, distance-field, brute)");
-}
-
 }  // namespace interfere::cli

@@ -75,12 +75,4 @@ std::string sweep_report_csv(const probe::ProbePath& path, const probe::SweepRes
 /// The summary lines `interfere sweep` prints.
 void print_sweep_summary(const SweepRun& run);
 
-// The option checks `interfere sweep` and `interfere-mpi sweep` share (cli::InputError naming the flag):
-/// v finite and > 0 (>= 0 with allow_zero).
-void check_positive(double v, const char* flag, bool allow_zero = false);
-/// --holder-box W,D,L: three finite numbers > 0 (width, depth, length).
-std::array<double, 3> parse_holder_box(const std::string& s);
-/// --hierarchy NAME: bvh, patches, grid, distance-field, brute.
-probe::Hierarchy parse_hierarchy(const std::string& s);
-
 }  // namespace interfere::cli

@@ -32,13 +32,13 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
-#include <sys/resource.h>
 #include <unordered_map>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "args.h"
+#include "block_outputs.h"
 #include "driver.h"
 #include "cell_pose_path.h"
 #include "cell_report.h"
@@ -46,6 +46,7 @@
 #include "interfere/robot/cell.h"
 #include "interfere/scene/engine.h"
 #include "report_envelope.h"
+#include "usage.h"
 #include "wire.h"
 
 namespace interfere::mpi {
@@ -123,13 +124,6 @@ CellArgs parse_cell(int argc, char** argv) {
     throw UsageError("--fail-on: '" + o.fail_on + "' is not a list of contact, clearance, undecided (comma-separated)");
   if (o.threads < 0) throw UsageError("--threads must be >= 0");
   return o;
-}
-
-double cpu_now() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
-         1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
 }
 
 // What a rank sends besides its RankResult (frame rows, frames x pairs rows, clashes; global frames).
@@ -240,11 +234,8 @@ int run_checked(const World& w, const CellArgs& o) {
     }
   }
   head.seconds = std::chrono::duration<double>(Clock::now() - t_run).count();
-  head.cpu_seconds = cpu_now();
-  std::string bytes(sizeof head, '\0');
-  std::memcpy(bytes.data(), &head, sizeof head);
-  bytes += encode(mine);
-  const std::vector<std::string> all = gather(bytes);
+  head.cpu_seconds = cpu_seconds();
+  const std::vector<std::string> all = gather_blocks(head, encode(mine));
 
   int status = 0;
   if (w.rank == 0) {
@@ -255,8 +246,7 @@ int run_checked(const World& w, const CellArgs& o) {
     nlohmann::json ranks = nlohmann::json::array();
     for (std::size_t q = 0; q < all.size(); ++q) {
       CellHeader h;
-      std::memcpy(&h, all[q].data(), sizeof h);
-      RankResult part = decode_result(std::string_view(all[q]).substr(sizeof h));
+      RankResult part = decode_result(block_rows(all[q], h));
       for (scene::FrameRow& row : part.frames) r.frames.push_back(std::move(row));
       for (scene::FramePairRow& row : part.frame_pairs) r.frame_pairs.push_back(row);
       // (ranks in frame order: a clash's first entry is kept, later ranks' frames added, as
@@ -300,18 +290,10 @@ int run_checked(const World& w, const CellArgs& o) {
     ro.fail_on = fail;
     const cli::CellTotals totals = cli::cell_totals(run, ro);
     status = totals.status;
-    if (!o.json.empty()) {
-      nlohmann::json j = cli::cell_report_json(run, ro, totals);
-      j["mpi"] = {{"ranks", w.size},
-                  {"seconds", std::chrono::duration<double>(Clock::now() - t_total).count()},
-                  {"per_rank", std::move(ranks)}};
-      write_file(o.json, cli::report_text(std::move(j), 1));
-    }
-    if (!o.csv.empty()) write_file(o.csv, cli::cell_report_csv(run));
-    if (!o.quiet && o.json != "-" && o.csv != "-") {
-      cli::print_cell_summary(stdout, run, ro, totals);
-      std::printf("(%d ranks)\n", w.size);
-    }
+    const BlockOutputs outputs{.json = o.json, .csv = o.csv, .quiet = o.quiet, .start = t_total};
+    write_block_reports(w, outputs, std::move(ranks), [&] { return cli::cell_report_json(run, ro, totals); },
+                        [&] { return cli::cell_report_csv(run); });
+    print_block_summary(w, outputs, [&] { cli::print_cell_summary(stdout, run, ro, totals); });
   }
   return broadcast(status);
 }

@@ -45,6 +45,7 @@
 #include "plan.h"
 #include "series.h"
 #include "simulate.h"
+#include "usage.h"
 #include "wire.h"
 #include "interfere/scene/load.h"
 #include "interfere/scene/report.h"
@@ -61,12 +62,6 @@ std::string read_bytes(const std::string& path, const char* what) {
   std::ostringstream s;
   s << in.rdbuf();
   return s.str();
-}
-
-double peak_rss_mb() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return static_cast<double>(u.ru_maxrss) / 1024.0;
 }
 
 // The first reader of every entry (step 1): the entries in file order cut into K runs of about
@@ -132,12 +127,6 @@ void limit_memory(double mb) {
   getrlimit(RLIMIT_AS, &limit);
   limit.rlim_cur = std::min(limit.rlim_max, now + static_cast<rlim_t>(mb * 1048576.0));
   if (!statm || setrlimit(RLIMIT_AS, &limit) != 0) throw UsageError("--memory-limit: cannot limit the address space of a rank");
-}
-
-double cpu_seconds() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
 }
 
 // The mesh key of body k of entry s (wire.h BodyInfo::mesh_key): equal keys where load_scene on

@@ -31,12 +31,13 @@
 #include <map>
 #include <set>
 #include <stdexcept>
-#include <sys/resource.h>
 #include <tuple>
 
 #include <nlohmann/json.hpp>
 
+#include "driver.h"
 #include "merge.h"
+#include "usage.h"
 #include "wire.h"
 #include "interfere/query/verdict.h"
 #include "interfere/scene/engine.h"
@@ -47,33 +48,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
-double cpu_now() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-}
-
-double peak_mb() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return static_cast<double>(u.ru_maxrss) / 1024.0;
-}
-
-void write_text(const std::string& path, const std::string& text) {
-  if (path.empty()) return;
-  if (path == "-") {
-    std::fwrite(text.data(), 1, text.size(), stdout);
-    return;
-  }
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    out << text;
-    if (!out) throw std::runtime_error(path + ": cannot write");
-  }
-  std::filesystem::rename(tmp, path);
-}
 
 // The scene of frames [first, last) of `s`: frame `first` carries every pose and shape frames
 // 0..first set (the engine's state there), the later ones as they are.
@@ -126,7 +100,7 @@ std::optional<int> run_frames(const World& w, const Options& o, const SeriesInpu
   // The whole scene on every rank, as one process reads it (scene_load: meshes, glTF, STEP, FE
   // models with their steps); the same error everywhere, so rank 0 says it.
   const auto t_read = Clock::now();
-  const double cpu_read = cpu_now();
+  const double cpu_read = cpu_seconds();
   auto loaded = scene::load_scene(in.spec.bodies, in.load);
   if (!loaded) throw UsageError(loaded.error().message());
   scene::LoadedScene ls = std::move(*loaded);
@@ -137,7 +111,7 @@ std::optional<int> run_frames(const World& w, const Options& o, const SeriesInpu
     if (const Status s = scene::read_motion(in.motion, ls.scene); !s) throw UsageError(s.error().message());
     ls.files.push_back(in.motion);
   }
-  const double read_s = since(t_read), read_cpu = cpu_now() - cpu_read;
+  const double read_s = since(t_read), read_cpu = cpu_seconds() - cpu_read;
   const scene::Scene& sc = ls.scene;
   const std::size_t nf = sc.frames.size(), k = static_cast<std::size_t>(w.size), r = static_cast<std::size_t>(w.rank);
   if (nf == 0) {
@@ -160,7 +134,7 @@ std::optional<int> run_frames(const World& w, const Options& o, const SeriesInpu
     Block blk = blk0;
     blk.start = start;
     const auto t_engine = Clock::now();
-    const double cpu_engine = cpu_now();
+    const double cpu_engine = cpu_seconds();
     RankResult mine;
     std::size_t candidates = 0, suppressed = 0, calls = 0;
     if (blk.hi > blk.lo) {
@@ -203,15 +177,15 @@ std::optional<int> run_frames(const World& w, const Options& o, const SeriesInpu
       mine.warnings = std::move(res.warnings);
       mine.prepare_seconds = res.prepare_seconds, mine.broad_seconds = res.broad_seconds, mine.narrow_seconds = res.narrow_seconds;
     }
-    engine_s += since(t_engine), engine_cpu += cpu_now() - cpu_engine;
+    engine_s += since(t_engine), engine_cpu += cpu_seconds() - cpu_engine;
     mine.calls = calls;
     mine.bodies_loaded = mine.bodies_used = sc.bodies.size();
     for (const scene::Body& b : sc.bodies) mine.triangles_loaded += b.mesh->num_triangles();
     mine.body_triangles = mine.triangles_loaded;
     mine.load_seconds = read_s, mine.load_cpu_seconds = read_cpu;
     mine.engine_seconds = engine_s, mine.engine_cpu_seconds = engine_cpu;
-    mine.peak_rss_mb = peak_mb();
-    mine.cpu_seconds = cpu_now();
+    mine.peak_rss_mb = peak_rss_mb();
+    mine.cpu_seconds = cpu_seconds();
     // To rank 0: the block and its counts (CBOR), then the findings (wire.h).
     const std::vector<std::uint8_t> head = nlohmann::json::to_cbor(nlohmann::json{
         {"lo", blk.lo}, {"hi", blk.hi}, {"start", blk.start}, {"candidates", candidates}, {"suppressed", suppressed}});
@@ -285,7 +259,7 @@ std::optional<int> run_frames(const World& w, const Options& o, const SeriesInpu
     if (std::all_of(verified.begin(), verified.end(), [](char v) { return v != 0; })) break;
   }
   const auto t_merge = Clock::now();
-  const double cpu_merge = cpu_now();
+  const double cpu_merge = cpu_seconds();
 
   int status = 0;
   if (w.rank == 0) {
@@ -374,13 +348,13 @@ std::optional<int> run_frames(const World& w, const Options& o, const SeriesInpu
                   {"rounds", rounds},
                   {"reruns", reruns},
                   {"per_rank", per},
-                  {"merge", {{"wall_s", since(t_merge)}, {"cpu_s", cpu_now() - cpu_merge}}}};
+                  {"merge", {{"wall_s", since(t_merge)}, {"cpu_s", cpu_seconds() - cpu_merge}}}};
       j["seconds"] = since(in.start);
-      write_text(o.json, j.dump(2) + "\n");
+      write_file(o.json, j.dump(2) + "\n");
     }
-    if (!o.csv.empty()) write_text(o.csv, scene::clash_table_csv(sc, result));
-    if (!o.frames_csv.empty()) write_text(o.frames_csv, scene::frames_table_csv(result));
-    if (!o.frame_pairs_csv.empty()) write_text(o.frame_pairs_csv, scene::frame_pairs_table_csv(sc, in.tests, result));
+    if (!o.csv.empty()) write_file(o.csv, scene::clash_table_csv(sc, result));
+    if (!o.frames_csv.empty()) write_file(o.frames_csv, scene::frames_table_csv(result));
+    if (!o.frame_pairs_csv.empty()) write_file(o.frame_pairs_csv, scene::frame_pairs_table_csv(sc, in.tests, result));
     if (!o.quiet) {
       for (const std::string& x : result.warnings) std::fprintf(stderr, "[interfere-mpi] warning: %s\n", x.c_str());
       for (std::size_t q = 0; q < ranks.size(); ++q)

@@ -33,12 +33,12 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
-#include <sys/resource.h>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "args.h"
+#include "block_outputs.h"
 #include "driver.h"
 #include "interfere/core/coordinate_range.h"
 #include "interfere/core/units.h"
@@ -48,7 +48,9 @@
 #include "interfere/probe/sweep.h"
 #include "interfere/robot/ik.h"
 #include "report_envelope.h"
+#include "sweep_inputs.h"
 #include "sweep_report.h"
+#include "usage.h"
 
 namespace interfere::mpi {
 namespace {
@@ -154,13 +156,6 @@ double mm_per(const std::string& unit, const char* flag) {
   return *m;
 }
 
-double cpu_now() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
-         1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-}
-
 // ---- the rows on the wire (plain bytes: every rank is the same build on the same kind of machine) ----
 struct Writer {
   std::string b;
@@ -241,27 +236,7 @@ int run_checked(const World& world, const SweepArgs& a) {
   double workpiece_scale = 1, read_seconds = 0;
   FailOn failing;
   try {
-    cli::check_positive(o.probe_radius, "--probe-radius");
-    cli::check_positive(o.probe_length, "--probe-length");
-    cli::check_positive(o.holder_radius, "--holder-radius", true);
-    cli::check_positive(o.holder_length, "--holder-length", true);
-    if ((o.holder_radius > 0) != (o.holder_length > 0))
-      throw InputError("--holder-radius and --holder-length: give both (> 0) or neither");
-    std::array<double, 3> box{};
-    if (!o.holder_box.empty()) {
-      box = cli::parse_holder_box(o.holder_box);
-      if (o.holder_radius > 0 || o.holder_length > 0)
-        throw InputError("--holder-box and --holder-radius/--holder-length: give one holder, a box or a cylinder");
-    }
-    cli::check_positive(o.patch_size, "--patch-size", true);
-    cli::check_positive(o.patch_rule, "--patch-rule");
-    cli::check_positive(o.max_clearance, "--max-clearance", true);
-    cli::check_positive(o.clearance, "--clearance", true);
-    if (o.clearance > 0 && o.no_clearance)
-      throw InputError("--clearance and --no-clearance: a requested clearance needs the clearance");
-    if (o.clearance > 0 && o.max_clearance > 0 && o.max_clearance < o.clearance)
-      throw InputError("--max-clearance must be at least --clearance (clearances beyond it are not measured)");
-    if (o.max_poses < 1) throw InputError("--max-poses: must be >= 1");
+    shape = cli::check_sweep_probe(o);
     if (!o.fail_on.empty()) failing = *parse_fail_on(o.fail_on);
     if (o.depth < 1 || o.depth > 40) throw InputError("--depth: must be in [1, 40]");
     const double working_mm = mm_per(o.units, "--units");
@@ -281,20 +256,7 @@ int run_checked(const World& world, const SweepArgs& a) {
       unit = "mm", unit_source = "default (mm; give --units-a/--units-b when not)";
     }
     workpiece_scale = mm_per(unit, "--units-workpiece") / working_mm;
-    if ((!o.robot.empty() || !std::isnan(o.d1) || !std::isnan(o.d2)) && o.units != "mm")
-      throw InputError("--units " + o.units +
-                       ": a sweep with --robot works in mm (robot files and joint paths are in mm); convert the "
-                       "workpiece to mm");
-    hierarchy = cli::parse_hierarchy(o.hierarchy);
-    if (!o.interpolate.empty() && o.interpolate != "joint" && o.interpolate != "pose")
-      throw InputError("--interpolate: unknown motion '" + o.interpolate + "' (joint or pose)");
-    const bool paper_flags = !std::isnan(o.d1) || !std::isnan(o.d2);
-    if (paper_flags && !o.robot.empty())
-      throw InputError("--d1/--d2 build the paper's machine (§3.1): give them or --robot, not both");
-    if (paper_flags) {
-      if (!std::isnan(o.d1) && !std::isfinite(o.d1)) throw InputError("--d1: must be a finite number");
-      if (!std::isnan(o.d2)) cli::check_positive(o.d2, "--d2");
-    }
+    hierarchy = cli::check_sweep_machine(o);
     // Outputs: their folders must exist, no output may be an input or another output.
     std::vector<std::pair<const char*, const std::string*>> outs{
         {"--json", &o.json}, {"--csv", &o.csv}, {"--hits-obj", &o.hits_obj}, {"--probes-vtk", &o.probes_vtk}};
@@ -314,77 +276,21 @@ int run_checked(const World& world, const SweepArgs& a) {
     for (const std::string* f : {&o.hits_obj, &o.probes_vtk})
       if (!f->empty() && lower_ext(*f) != ".obj" && lower_ext(*f) != ".vtk")
         throw InputError(*f + ": unsupported extension (give .obj or .vtk)");
-    shape = ProbeShape{.radius = o.probe_radius,
-                       .length = o.probe_length,
-                       .holder_radius = o.holder_radius,
-                       .holder_length = o.holder_length,
-                       .holder_box_width = box[0],
-                       .holder_box_depth = box[1],
-                       .holder_box_length = box[2]};
     const auto t_read = Clock::now();
-    if (!o.robot.empty()) {
-      auto r = read_robot_json(o.robot);
-      if (!r) throw InputError(r.error().message());
-      robot = std::move(r.value());
-    } else if (paper_flags) {
-      robot = paper_machine_31({.d1 = std::isnan(o.d1) ? 30.0 : o.d1,
-                                .d2 = std::isnan(o.d2) ? 120.0 : o.d2,
-                                .probe_length = o.probe_length});
-    }
-    auto path_r = read_path_csv(o.path, robot ? &*robot : nullptr);
-    if (!path_r) throw InputError(path_r.error().message());
-    path = std::move(path_r.value());
-    pose_input = !path.joint_space;
-    if (path.joint_space) resolve_poses(path, *robot);
+    robot = cli::read_sweep_robot(o);
     // The motion between points and the inverse kinematics of a pose path: the whole path on every
     // rank (each point's solution follows the previous point's), as `interfere sweep`.
-    const bool can_joint = path.joint_space || (robot && has_inverse_kinematics(*robot));
-    const bool numeric_ik = o.interpolate == "joint" && !can_joint && robot;
-    if (o.interpolate == "joint" && !can_joint && !numeric_ik)
-      throw InputError("--interpolate joint: " + o.path + " is a pose path and " +
-                       (robot ? "robot '" + robot->name + "' has no inverse kinematics" : std::string("no --robot is given")) +
-                       " (only the paper's machine of §3.1 has: --robot data/examples/probe_paper_machine.json or --d1/--d2)");
-    joint_motion = o.interpolate == "pose" ? false : (can_joint || numeric_ik);
-    if (joint_motion && !path.joint_space && numeric_ik) {
-      robot::IkTool tool;
-      const robot::Chain chain = robot::chain_from_dh(*robot, &tool);
-      auto r = robot::pose_path_to_joints(chain, robot->base, tool, path, o.path);
-      if (!r) throw InputError(r.error().message());
-      ProbePath jp;
-      jp.joint_space = true;
-      for (const DhJoint& j : robot->joints) jp.columns.push_back(j.name);
-      jp.lines = r->path.lines;
-      jp.joints = std::move(r->path.q);
-      resolve_poses(jp, *robot);
-      path = std::move(jp);
-    } else if (joint_motion && !path.joint_space) {
-      auto j = pose_path_to_joint_path(path, *robot, o.path);
-      if (!j) throw InputError(j.error().message());
-      path = std::move(j.value());
-    } else if (!joint_motion && path.joint_space) {
-      path.joint_space = false;
-    }
-    for (std::size_t i = 0; i < path.poses.size(); ++i)
-      if (!coordinates_in_range(path.poses[i].tip))
-        throw InputError(o.path + ":" + std::to_string(path.lines[i]) + ": probe tip " +
-                         coordinate_range_reason(path.poses[i].tip));
-    if (shape.has_holder_box()) {
-      const Status frames = check_reference_frames(path, o.path);
-      if (!frames) throw InputError(frames.error().message());
-    }
+    cli::SweepPath swept = cli::read_sweep_path(o, robot ? &*robot : nullptr, shape);
+    path = std::move(swept.path);
+    pose_input = swept.pose_input, joint_motion = swept.joint_motion;
     auto m = read_mesh(o.workpiece, {}, &info);
     if (!m) throw InputError(m.error().message());
     mesh = std::move(*m);
-    if (workpiece_scale != 1) {
-      for (Vec3& v : mesh.positions) v = v * workpiece_scale;
-      if (const std::size_t i = first_out_of_range(mesh.positions); i < mesh.positions.size())
-        throw InputError(o.workpiece + ": vertex " + std::to_string(i) + " (after welding), once converted to " +
-                         o.units + ": " + coordinate_range_reason(mesh.positions[i]));
-    }
+    if (workpiece_scale != 1) cli::scale_workpiece(mesh.positions, workpiece_scale, o);
     read_seconds = std::chrono::duration<double>(Clock::now() - t_read).count();
   } catch (const InputError& e) {
     error = e.what();
-  } catch (const cli::InputError& e) {  // (the option checks shared with interfere sweep: sweep_report.h)
+  } catch (const cli::InputError& e) {  // (the checks and reads shared with interfere sweep: sweep_inputs.h)
     error = e.what();
   }
   for (const std::string& e : allgather(error))
@@ -403,13 +309,7 @@ int run_checked(const World& world, const SweepArgs& a) {
   if (world.rank == 0 && k > n && !a.quiet)
     std::fprintf(stderr, "[interfere-mpi] warning: %d ranks for %zu path points: %zu ranks idle\n", world.size, n, k - n);
   const bool border = !o.no_continuous && lo < hi && hi < n;
-  const SweepRequest request{.probe = shape,
-                             .continuous = !o.no_continuous,
-                             .clearance = !o.no_clearance,
-                             .max_clearance = o.max_clearance > 0 ? o.max_clearance : std::numeric_limits<double>::infinity(),
-                             .max_depth = o.depth,
-                             .max_poses = o.max_poses,
-                             .clearance_limit = o.clearance};
+  const SweepRequest request = cli::sweep_request(o, shape);
   const auto t_run = Clock::now();
   SweepHeader head;
   head.lo = lo, head.hi = hi;
@@ -433,11 +333,8 @@ int run_checked(const World& world, const SweepArgs& a) {
     }
   }
   head.seconds = std::chrono::duration<double>(Clock::now() - t_run).count();
-  head.cpu_seconds = cpu_now();
-  std::string bytes(sizeof head, '\0');
-  std::memcpy(bytes.data(), &head, sizeof head);
-  bytes += out.b;
-  const std::vector<std::string> all = gather(bytes);
+  head.cpu_seconds = cpu_seconds();
+  const std::vector<std::string> all = gather_blocks(head, out.b);
 
   int status = 0;
   if (world.rank == 0) {
@@ -446,8 +343,7 @@ int run_checked(const World& world, const SweepArgs& a) {
     nlohmann::json ranks = nlohmann::json::array();
     for (std::size_t q = 0; q < all.size(); ++q) {
       SweepHeader h;
-      std::memcpy(&h, all[q].data(), sizeof h);
-      Reader in{std::string_view(all[q]).substr(sizeof h)};
+      Reader in{block_rows(all[q], h)};
       for (std::uint64_t i = 0; i < h.points; ++i) get_point(in, r.points.emplace_back());
       for (std::uint64_t i = 0; i < h.segments; ++i) get_segment(in, r.segments.emplace_back());
       r.candidate_tests += h.candidate_tests;
@@ -501,26 +397,12 @@ int run_checked(const World& world, const SweepArgs& a) {
                             .read_seconds = read_seconds,
                             .total_seconds = std::chrono::duration<double>(Clock::now() - t_total).count(),
                             .status = status};
-    if (!o.json.empty()) {
-      nlohmann::json j = cli::sweep_report_json(run);
-      j["mpi"] = {{"ranks", world.size},
-                  {"seconds", std::chrono::duration<double>(Clock::now() - t_total).count()},
-                  {"per_rank", std::move(ranks)}};
-      write_file(o.json, cli::report_text(std::move(j), 1));
-    }
-    if (!o.csv.empty()) write_file(o.csv, cli::sweep_report_csv(path, r));
-    if (!o.hits_obj.empty() || !o.probes_vtk.empty()) {
-      const CollisionGeometry g = collision_geometry(w, path, motion_robot, shape, r);
-      for (const std::string& f : {o.hits_obj, o.probes_vtk}) {
-        if (f.empty()) continue;
-        const Status s = write_collision_geometry(f, g);
-        if (!s) throw std::runtime_error(s.error().message());
-      }
-    }
-    if (!a.quiet && o.json != "-" && o.csv != "-") {
-      cli::print_sweep_summary(run);
-      std::printf("(%d ranks)\n", world.size);
-    }
+    const BlockOutputs outputs{.json = o.json, .csv = o.csv, .quiet = a.quiet, .start = t_total};
+    write_block_reports(world, outputs, std::move(ranks), [&] { return cli::sweep_report_json(run); },
+                        [&] { return cli::sweep_report_csv(path, r); });
+    if (const Status s = cli::write_sweep_geometry(o, w, path, motion_robot, shape, r); !s)
+      throw std::runtime_error(s.error().message());
+    print_block_summary(world, outputs, [&] { cli::print_sweep_summary(run); });
   }
   return broadcast(status);
 }
