@@ -21,6 +21,7 @@
 #include "interfere/mesh/generate.h"
 #include "interfere/mesh/io.h"
 #include "interfere/robot/cell.h"
+#include "cell_checks.h"
 
 namespace fs = std::filesystem;
 using namespace interfere;
@@ -29,6 +30,9 @@ using namespace interfere::robot;
 #if INTERFERE_TEST_URDF
 
 namespace {
+
+using checks::dense_meets;
+using checks::describe;
 
 // A yaw-pitch-pitch arm (metres in the URDF): base box, turret, upper arm (box along x, 0.4
 // long), forearm (box along x, 0.3 long), flange at its end turned so that its z axis points
@@ -110,35 +114,6 @@ std::vector<std::string> describe(const scene::SceneClashResult& r) {
     out.push_back(s.str());
   }
   return out;
-}
-
-std::vector<std::string> describe(const std::vector<SegmentResult>& segs) {
-  std::vector<std::string> out;
-  for (const SegmentResult& r : segs) {
-    std::ostringstream o;
-    o.precision(17);
-    o << r.from << " " << segment_state_name(r.state) << " t " << r.t;
-    for (const SegmentPair& p : r.pairs) o << " [" << p.test << " " << p.a << " " << p.b << " " << p.t << "]";
-    for (const std::string& u : r.unresolved_pairs) o << " {" << u << "}";
-    out.push_back(o.str());
-  }
-  return out;
-}
-
-/// Per segment, whether any of `samples` evenly spaced frames strictly inside it has a meeting
-/// pair (the engine at each sample).
-std::vector<bool> dense_meets(const Cell& cell, const JointPath& path, std::size_t samples) {
-  const CellScene dense = cell_scene(cell, path, samples);
-  scene::SceneClashOptions opt;
-  opt.depth = false;
-  opt.curves = false;
-  const scene::SceneClashResult r = scene::clash_scene(dense.scene, dense.tests, opt);
-  std::vector<bool> meets(path.size() > 1 ? path.size() - 1 : 0, false);
-  for (const scene::FramePairRow& row : r.frame_pairs) {
-    if (dense.frame_t[row.frame] > 0 && row.verdict != Verdict::clear && row.verdict != Verdict::clearance)
-      meets[dense.frame_point[row.frame]] = true;
-  }
-  return meets;
 }
 
 /// "" when equal, else the first line that differs (both versions).

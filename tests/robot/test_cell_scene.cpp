@@ -25,10 +25,12 @@
 #include "interfere/robot/cell.h"
 #include "interfere/robot/ik.h"
 #include "interfere/probe/path.h"
+#include "cell_checks.h"
 
 namespace fs = std::filesystem;
 using namespace interfere;
 using namespace interfere::robot;
+using namespace interfere::robot::checks;
 
 #if INTERFERE_TEST_URDF
 
@@ -97,6 +99,16 @@ std::vector<M4> oracle_frames(const std::vector<double>& q) {
   f[3] = mul(mul(f[2], trans(400, 0, 0)), rot_y(q[2]));
   f[4] = mul(f[3], mul(trans(300, 0, 0), rot_y(90)));
   return f;
+}
+
+/// The oracle frame (oracle_frames) a cell body moves with: 1 turret, 2 upper arm, 3 forearm, 4 the
+/// tool (probe, holder); -1: fixed (workpiece, fixtures, base).
+int oracle_link(const std::string& id) {
+  if (id == "link:turret") return 1;
+  if (id == "link:upper") return 2;
+  if (id == "link:fore") return 3;
+  if (id == "probe" || id == "holder") return 4;
+  return -1;
 }
 
 struct Solid {
@@ -405,11 +417,7 @@ TEST(CellBetween, MotionBoundContainsEveryVertexMotion) {
       const std::vector<M4> f1 = oracle_frames({q0[0] + t * dq[0], q0[1] + t * dq[1], q0[2] + t * dq[2]});
       for (std::size_t b = 0; b < cs.scene.bodies.size(); ++b) {
         const scene::Body& body = cs.scene.bodies[b];
-        int link = -1;
-        if (body.id == "link:turret") link = 1;
-        if (body.id == "link:upper") link = 2;
-        if (body.id == "link:fore") link = 3;
-        if (body.id == "probe" || body.id == "holder") link = 4;
+        const int link = oracle_link(body.id);
         if (link < 0) continue;
         double moved = 0;
         for (const Vec3& p : body.mesh->positions) {
@@ -442,24 +450,14 @@ TEST(CellBetween, ConservativeAgainstDenseSampling) {
   const std::vector<SegmentResult> seg = check_between_points(*cell, cs, path, bo);
   ASSERT_EQ(seg.size(), path.size() - 1);
   // Dense sampling: 63 frames inside each segment.
-  const CellScene dense = cell_scene(*cell, path, 63);
-  scene::SceneClashOptions opt;
-  opt.depth = false;
-  opt.curves = false;
-  const scene::SceneClashResult r = scene::clash_scene(dense.scene, dense.tests, opt);
-  std::vector<bool> dense_meets(seg.size(), false);
-  for (const scene::FramePairRow& row : r.frame_pairs) {
-    if (dense.frame_t[row.frame] > 0 && (row.verdict == Verdict::clash || row.verdict == Verdict::contact)) {
-      dense_meets[dense.frame_point[row.frame]] = true;
-    }
-  }
+  const std::vector<bool> meets = dense_meets(*cell, path, 63);
   std::size_t collides = 0, clear = 0;
   for (std::size_t s = 0; s < seg.size(); ++s) {
     if (seg[s].state == SegmentState::clear) {
-      EXPECT_FALSE(dense_meets[s]) << "segment " << s << " proven clear but a sample meets";
+      EXPECT_FALSE(meets[s]) << "segment " << s << " proven clear but a sample meets";
       ++clear;
     }
-    if (dense_meets[s]) EXPECT_NE(seg[s].state, SegmentState::clear) << s;
+    if (meets[s]) EXPECT_NE(seg[s].state, SegmentState::clear) << s;
     if (seg[s].state == SegmentState::collides) {
       ++collides;
       EXPECT_FALSE(seg[s].pairs.empty());
@@ -510,21 +508,6 @@ TEST(CellBetween, CollisionOnlyBetweenPoints) {
 
 namespace {
 
-/// The segments' states, pairs (test, bodies, parameter) and unresolved pairs as one comparable
-/// text per segment.
-std::vector<std::string> describe(const std::vector<SegmentResult>& segs) {
-  std::vector<std::string> out;
-  for (const SegmentResult& r : segs) {
-    std::ostringstream o;
-    o.precision(17);
-    o << r.from << " " << segment_state_name(r.state) << " t " << r.t;
-    for (const SegmentPair& p : r.pairs) o << " [" << p.test << " " << p.a << " " << p.b << " " << p.t << "]";
-    for (const std::string& u : r.unresolved_pairs) o << " {" << u << "}";
-    out.push_back(o.str());
-  }
-  return out;
-}
-
 /// The advancement against the subdivision on one path: where the subdivision resolves a segment,
 /// the same state, pairs and parameters; where it leaves one unresolved, the advancement never
 /// reports a collision there that ... (it may prove it clear). Also 1 thread vs the default.
@@ -564,31 +547,6 @@ void expect_same_as_subdivision(const Cell& cell, const JointPath& path, int max
   }
 }
 
-/// Per segment, whether any of `samples` evenly spaced frames strictly inside it has a meeting
-/// pair (the exact engine test at each sample; an independent check of the conservative sweep).
-std::vector<bool> dense_meets(const Cell& cell, const JointPath& path, std::size_t samples) {
-  const CellScene dense = cell_scene(cell, path, samples);
-  scene::SceneClashOptions opt;
-  opt.depth = false;
-  opt.curves = false;
-  const scene::SceneClashResult r = scene::clash_scene(dense.scene, dense.tests, opt);
-  std::vector<bool> meets(path.size() > 1 ? path.size() - 1 : 0, false);
-  for (const scene::FramePairRow& row : r.frame_pairs) {
-    if (dense.frame_t[row.frame] > 0 && row.verdict != Verdict::clear && row.verdict != Verdict::clearance)
-      meets[dense.frame_point[row.frame]] = true;  // clash, contact or undecided
-  }
-  return meets;
-}
-
-/// Whether the path's points are all clear (the engine at the points).
-bool points_clear(const Cell& cell, const JointPath& path) {
-  const CellScene cs = cell_scene(cell, path);
-  scene::SceneClashOptions opt;
-  opt.depth = false;
-  opt.curves = false;
-  return scene::clash_scene(cs.scene, cs.tests, opt).verdict == Verdict::clear;
-}
-
 }  // namespace
 
 TEST(CellBetween, MotionBoundAtContainsEveryVertexMotion) {
@@ -611,11 +569,7 @@ TEST(CellBetween, MotionBoundAtContainsEveryVertexMotion) {
       const std::vector<M4> f1 = oracle_frames({q[0] + t * dq[0], q[1] + t * dq[1], q[2] + t * dq[2]});
       for (std::size_t b = 0; b < cs.scene.bodies.size(); ++b) {
         const scene::Body& body = cs.scene.bodies[b];
-        int link = -1;
-        if (body.id == "link:turret") link = 1;
-        if (body.id == "link:upper") link = 2;
-        if (body.id == "link:fore") link = 3;
-        if (body.id == "probe" || body.id == "holder") link = 4;
+        const int link = oracle_link(body.id);
         if (link < 0) {
           EXPECT_EQ(at[b], 0.0) << body.id;
           continue;
@@ -750,12 +704,7 @@ TEST(CellIkBranch, FirstPointCollisionFree) {
   Expected<probe::ProbePath> poses = probe::read_path_csv(ex / "paper_path.csv", nullptr);
   ASSERT_TRUE(poses) << poses.error().message();
   const IkTool tool = cell_ik_tool(*cell);
-  auto first_clear = [&](const std::vector<double>& q) {
-    const CellScene cs = cell_scene(*cell, JointPath{{q}, {0}});
-    scene::SceneClashOptions eo;
-    eo.depth = false, eo.curves = false;
-    return scene::clash_scene(cs.scene, cs.tests, eo).verdict == Verdict::clear;
-  };
+  auto first_clear = [&](const std::vector<double>& q) { return points_clear(*cell, JointPath{{q}, {0}}); };
   Expected<PoseIkPath> plain = pose_path_to_joints(cell->robot, cell->base, tool, *poses, "paper_path.csv");
   ASSERT_TRUE(plain) << plain.error().message();
   EXPECT_FALSE(first_clear(plain->path.q[0]));  // the problem
