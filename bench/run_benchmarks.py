@@ -259,43 +259,39 @@ def _elapsed(s: float) -> str:
     return f"{int(s // 60)}:{int(s % 60):02d}"
 
 
-def run_big(build_dir: Path, n: str, threads: str | None) -> dict | None:
-    exe = build_dir / "bench" / "interfere_big_run"
+def _run_big_exe(build_dir: Path, exe_name: str, what: str, n: str, size_key: str, size_text: str,
+                 threads: str | None, done) -> dict | None:
+    """bench/<exe_name> N [THREADS]: its JSON on stdout, dated, with the line done(result) logged;
+    {size_key: N, "error": ...} when it fails, None when it is not built. `what` names the run in the
+    log ("big run", "FEM big run")."""
+    exe = build_dir / "bench" / exe_name
     if not exe.exists():
-        log(f"{exe} not found; big run skipped")
+        log(f"{exe} not found; {what} skipped")
         return None
     cmd = [str(exe), n] + ([threads] if threads else [])
-    log(f"running interfere_big_run at {n} triangles per part ...")
+    log(f"running {exe_name} at {n} {size_text} ...")
     try:
         cp = run(cmd, capture=True)
     except subprocess.CalledProcessError as e:
-        log(f"big run {n} failed: exit {e.returncode}")
-        return {"triangles_per_part": float(n), "error": f"exit status {e.returncode}"}
+        log(f"{what} {n} failed: exit {e.returncode}")
+        return {size_key: float(n), "error": f"exit status {e.returncode}"}
     result = json.loads(cp.stdout)
-    log(f"      done: build + query {result.get('build_and_query_s', 0):.3g} s, peak "
-        f"{result.get('peak_rss_bytes', 0) / GB:.2f} GB")
+    log("      done: " + done(result))
     result["date_utc"] = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     return result
+
+
+def run_big(build_dir: Path, n: str, threads: str | None) -> dict | None:
+    return _run_big_exe(build_dir, "interfere_big_run", "big run", n, "triangles_per_part", "triangles per part",
+                        threads, lambda r: f"build + query {r.get('build_and_query_s', 0):.3g} s, peak "
+                                           f"{r.get('peak_rss_bytes', 0) / GB:.2f} GB")
 
 
 def run_fem_big(build_dir: Path, n: str, threads: str | None) -> dict | None:
     """interfere_fem_big_run: a generated 1e7-tet MSH read, extracted and clashed (issue #3)."""
-    exe = build_dir / "bench" / "interfere_fem_big_run"
-    if not exe.exists():
-        log(f"{exe} not found; FEM big run skipped")
-        return None
-    cmd = [str(exe), n] + ([threads] if threads else [])
-    log(f"running interfere_fem_big_run at {n} tets ...")
-    try:
-        cp = run(cmd, capture=True)
-    except subprocess.CalledProcessError as e:
-        log(f"FEM big run {n} failed: exit {e.returncode}")
-        return {"elements": float(n), "error": f"exit status {e.returncode}"}
-    result = json.loads(cp.stdout)
-    result["date_utc"] = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
-    log(f"      done: read {result.get('read_s', 0):.3g} s, extract {result.get('extract_s', 0):.3g} s, "
-        f"peak {result.get('peak_rss_gb', {}).get('end', 0):.2f} GB")
-    return result
+    return _run_big_exe(build_dir, "interfere_fem_big_run", "FEM big run", n, "elements", "tets", threads,
+                        lambda r: f"read {r.get('read_s', 0):.3g} s, extract {r.get('extract_s', 0):.3g} s, "
+                                  f"peak {r.get('peak_rss_gb', {}).get('end', 0):.2f} GB")
 
 
 # ----------------------------------------------------------------------------- helpers
@@ -409,6 +405,20 @@ def disagreement(peer: str, where: str, b: dict | None, kind: str) -> str | None
     elif b.get("first_missing_kind") is not None:
         text += f" (exact test: {CONTACT_KIND.get(int(b['first_missing_kind']), '?')})"
     return text
+
+
+def peer_disagreements(where: str, fp_where: str, fcl: dict | None, cgal: dict | None, examples: list,
+                       fcl_fp: tuple[str, dict] | None) -> tuple[str, dict] | None:
+    """The FCL and CGAL rows' first extra and missing pairs (disagreement, at `where`) appended to
+    examples; returns FCL's first false positive (fp_where, row), the one given if already found."""
+    for peer, b in (("FCL", fcl), ("CGAL", cgal)):
+        for kind in ("extra", "missing"):
+            text = disagreement(peer, where, b, kind)
+            if text:
+                examples.append(text)
+                if peer == "FCL" and kind == "extra" and fcl_fp is None:
+                    fcl_fp = (fp_where, b)
+    return fcl_fp
 
 
 def missing_extra_sentence(fcl_fp: tuple[str, dict] | None, meshes: str, cgal_rows: list) -> str:
@@ -532,13 +542,7 @@ def exact_make_section(w, res: "Results", data: dict) -> None:
             "collision" if fcl["fcl_collides"] else "**no collision**")
         times = " / ".join(fmt_time(seconds(b)) for b in (ours, fcl, cgal))
         w(f"| {label} | {tris} | {op} | {oc} | {fp} | {fd} | {fcoll} | {cp} | {cd} | {times} |")
-        for peer, b in (("FCL", fcl), ("CGAL", cgal)):
-            for kind in ("extra", "missing"):
-                text = disagreement(peer, f"on {label}", b, kind)
-                if text:
-                    examples.append(text)
-                    if peer == "FCL" and kind == "extra" and fcl_fp is None:
-                        fcl_fp = (f"{label}", b)
+        fcl_fp = peer_disagreements(f"on {label}", f"{label}", fcl, cgal, examples, fcl_fp)
     w("")
     # A one-line summary of what this run found, from the counters (not a fixed claim).
     fcl_bad = [exact_scene_label(sc)[0] for sc in scenes for b in [res.get(f"Exact/{sc}/fcl")]
@@ -867,13 +871,7 @@ def make_markdown(data: dict, machine: dict, big: dict | None, big_small: dict |
         for lab, sb, sq, tot, pairs, miss, extra in rows:
             w(f"| {n} | {lab} | {fmt_time(sb)} | {fmt_time(sq)} | {fmt_time(tot)} | {fmt_int(pairs)} | "
               f"{fmt_int(miss)} | {fmt_int(extra)} |")
-        for peer, b in (("FCL", fc), ("CGAL", cg)):
-            for kind in ("extra", "missing"):
-                text = disagreement(peer, f"at {n}", b, kind)
-                if text:
-                    examples.append(text)
-                    if peer == "FCL" and kind == "extra" and fcl_false_positive is None:
-                        fcl_false_positive = (f"at {n}", b)
+        fcl_false_positive = peer_disagreements(f"at {n}", f"at {n}", fc, cg, examples, fcl_false_positive)
     w("")
     w(missing_extra_sentence(fcl_false_positive, "the sphere pairs",
                              [res.get(f"Peer/cgal/box_intersection_d/{n}") for n in sizes]))
@@ -1118,28 +1116,22 @@ def main() -> int:
     if args.threads:
         threads = str(max(int(t) for t in args.threads.split(",")))
     big_small = run_big(build_dir, "1e6", threads)
-    big = None
-    big_note = ""
-    if args.big:
-        big = run_big(build_dir, args.big_n, threads)
-    elif old_json.exists():
-        try:
-            prev = json.loads(old_json.read_text()).get("big_run")
-            if prev and "error" not in prev:
-                big, big_note = prev, f"from the run of {prev.get('date_utc', 'an earlier date')}"
-        except (OSError, ValueError):
-            pass
 
-    fem_big, fem_big_note = None, ""
-    if args.big:
-        fem_big = run_fem_big(build_dir, args.big_n, threads)
-    elif old_json.exists():
-        try:
-            prev = json.loads(old_json.read_text()).get("fem_big_run")
-            if prev and "error" not in prev:
-                fem_big, fem_big_note = prev, f"from the run of {prev.get('date_utc', 'an earlier date')}"
-        except (OSError, ValueError):
-            pass
+    def big_or_previous(runner, key: str) -> tuple[dict | None, str]:
+        """With --big the run itself; else the kept report's `key` row (unless it failed), with a note."""
+        if args.big:
+            return runner(build_dir, args.big_n, threads), ""
+        if old_json.exists():
+            try:
+                prev = json.loads(old_json.read_text()).get(key)
+                if prev and "error" not in prev:
+                    return prev, f"from the run of {prev.get('date_utc', 'an earlier date')}"
+            except (OSError, ValueError):
+                pass
+        return None, ""
+
+    big, big_note = big_or_previous(run_big, "big_run")
+    fem_big, fem_big_note = big_or_previous(run_fem_big, "fem_big_run")
 
     md, targets, info = make_markdown(data, machine, big, big_small, big_note, fem_big, fem_big_note)
     docs.mkdir(parents=True, exist_ok=True)
