@@ -16,7 +16,8 @@ void remember_arguments(char** argv);
 
 /// Called where a run needs OpenCASCADE, before anything is written; `what` names it ("STEP input
 /// B.step", "`interfere features`"). interfere-cad: returns. interfere: replaces this process with
-/// interfere-cad (execv, the same arguments, so reports show the same command line); throws
+/// interfere-cad (execv, the same arguments, so reports show the same command line; unless the user
+/// set GLIBC_TUNABLES, its environment gets glibc malloc settings for it, cad_exec.cpp); throws
 /// InputError naming the executable's paths when it is missing or cannot run. A build without
 /// OCCT: throws InputError "<what> needs interfere built with OpenCASCADE (INTERFERE_WITH_OCCT)".
 void require_cad(const std::string& what);
