@@ -46,13 +46,21 @@ def cpu_model():
     return platform.processor() or "unknown CPU"
 
 
-def run_bench(exe, repetitions, out_json):
-    cmd = [exe, "--benchmark_format=json", "--benchmark_out=" + out_json, "--benchmark_out_format=json",
-           "--benchmark_repetitions=%d" % repetitions]
-    print("running", " ".join(cmd), file=sys.stderr)
-    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
+def google_benchmark(exe, repetitions, out_json, bench_filter=None, env=None, announce=False):
+    """exe's Google Benchmark JSON (also left in out_json): `repetitions` runs of each row, only those
+    matching bench_filter when given; env: the process environment (None: this one's)."""
+    cmd = [exe] + (["--benchmark_filter=" + bench_filter] if bench_filter else []) + [
+        "--benchmark_format=json", "--benchmark_out=" + out_json, "--benchmark_out_format=json",
+        "--benchmark_repetitions=%d" % repetitions]
+    if announce:
+        print("running", " ".join(cmd), file=sys.stderr)
+    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, env=env)
     with open(out_json) as f:
         return json.load(f)
+
+
+def run_bench(exe, repetitions, out_json):
+    return google_benchmark(exe, repetitions, out_json, announce=True)
 
 
 def collect(data):
@@ -312,12 +320,7 @@ def run_cell_bench(build, points, out_json, repetitions=3):
     exe = os.path.join(build, "bench", "interfere_bench_cell")
     if not os.path.exists(exe):
         return None
-    env = dict(os.environ, INTERFERE_CELL_POINTS=str(points))
-    subprocess.run([exe, "--benchmark_format=json", "--benchmark_out=" + out_json, "--benchmark_out_format=json",
-                    "--benchmark_repetitions=%d" % repetitions],
-                   check=True, stdout=subprocess.DEVNULL, env=env)
-    with open(out_json) as f:
-        return json.load(f)
+    return google_benchmark(exe, repetitions, out_json, env=dict(os.environ, INTERFERE_CELL_POINTS=str(points)))
 
 
 def cell_table(data):
@@ -395,12 +398,8 @@ def main():
     def probe_rows(bench_filter, default_json):
         """interfere_bench_probe's rows matching bench_filter (medians over the repetitions)."""
         out = a.json or os.path.join(a.build, "bench", default_json)
-        cmd = [os.path.join(a.build, "bench", "interfere_bench_probe"), "--benchmark_filter=" + bench_filter,
-               "--benchmark_format=json", "--benchmark_out=" + out, "--benchmark_out_format=json",
-               "--benchmark_repetitions=%d" % a.repetitions]
-        subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
-        with open(out) as f:
-            return collect(json.load(f))
+        return collect(google_benchmark(os.path.join(a.build, "bench", "interfere_bench_probe"), a.repetitions, out,
+                                        bench_filter))
 
     def rewrite_block(begin, end, block, what):
         """Replaces the doc's block between the markers (written to a temporary file, then moved)."""
