@@ -8,15 +8,13 @@ docs/simplify.md (put after the hole truth section when absent).
 
 usage: pr_table.py [BUILD_DIR]   (default: build)
 """
-import json, os, subprocess, sys, tempfile
+import os, sys
 
-root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "truth_common"))
+from pr_common import ROOT as root, replace_section, run_truth_test, total_ratios, type_table
+
 build = sys.argv[1] if len(sys.argv) > 1 else os.path.join(root, "build")
-out = tempfile.mktemp(suffix=".json")
-env = dict(os.environ, INTERFERE_FLOOR_PR_JSON=out)
-subprocess.run([os.path.join(build, "tests", "interfere_cad_tests"), "--gtest_filter=FloorTruth.*"], env=env, check=True,
-               stdout=subprocess.DEVNULL)
-now = json.load(open(out))
+now = run_truth_test(build, "INTERFERE_FLOOR_PR_JSON", "FloorTruth.*")
 
 def counts(d):
     return ", ".join("%s %d" % (k, v) for k, v in sorted(d.items())) or "-"
@@ -78,30 +76,20 @@ for r in now["parts"]:
         r["file"], r["truth"], r["reported"], r["precision"], r["recall"], r["typed_precision"], r["typed_recall"],
         counts(r["truth_types"]), counts(r["reported_types"])))
 t = now["total"]
-P = t["found"] / t["reported"] if t["reported"] else 1.0
-R = t["found"] / t["truth"] if t["truth"] else 1.0
-tP = t["typed"] / t["reported"] if t["reported"] else 1.0
-tR = t["typed"] / t["truth"] if t["truth"] else 1.0
-lines.append("| **all** | %d | %d | %.2f / %.2f | %.2f / %.2f | | |" % (t["truth"], t["reported"], P, R, tP, tR))
-lines += ["", "Per type: truth features, found (any type), found with their type, reported features of the type:", "",
-          "| type | truth | found | typed | reported |", "|---|---|---|---|---|"]
-for k, v in sorted(now["types"].items()):
-    lines.append("| %s | %d | %d | %d | %d |" % (k, v["truth"], v["found"], v["typed_found"], v["reported"]))
+lines.append("| **all** | %d | %d | %.2f / %.2f | %.2f / %.2f | | |" % ((t["truth"], t["reported"]) + total_ratios(t)))
+lines += ["", "Per type: truth features, found (any type), found with their type, reported features of the type:", ""]
+lines += type_table(now["types"])
 lines += ["", "![gmsh_Block's floor labels after the fixes: every cooling-fin gap a slot (red), blind slots beside the ribs "
           "(blue), walls lighter](images/floor_truth_block.png)"]
 lines.append("<!-- floor-truth:end -->")
 section = "\n".join(lines) + "\n"
 
-doc = os.path.join(root, "docs", "simplify.md")
-text = open(doc).read()
-a, e = "<!-- floor-truth:begin -->", "<!-- floor-truth:end -->"
-if a in text:
-    i, j = text.index(a), text.index(e) + len(e) + 1
-    text = text[:i] + section + text[j:]
-else:
+
+def after_hole_truth(text):
     k = text.index("<!-- hole-truth:end -->")
     k = text.index("\n", k) + 1
-    text = text[:k] + "\n" + section + text[k:]
-open(doc, "w").write(text)
-os.unlink(out)
+    return text[:k] + "\n" + section + text[k:]
+
+
+replace_section("floor-truth", section, after_hole_truth)
 print(section)

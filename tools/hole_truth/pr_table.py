@@ -8,7 +8,10 @@ same table measured before the recognition of issue #29 (commit before it), show
 
 usage: pr_table.py [BUILD_DIR]   (default: build)
 """
-import json, os, subprocess, sys, tempfile
+import json, os, sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "truth_common"))
+from pr_common import ROOT as root, replace_section, run_truth_test, total_ratios, type_table
 
 # Per part: what rendering the labels showed (tools/hole_truth/render_labels.py, looked at by hand).
 RENDER_CHECK = [
@@ -38,13 +41,8 @@ RENDER_CHECK = [
     ("trimesh_featuretype.STEP", "OK", "-"),
 ]
 
-root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 build = sys.argv[1] if len(sys.argv) > 1 else os.path.join(root, "build")
-out = tempfile.mktemp(suffix=".json")
-env = dict(os.environ, INTERFERE_HOLE_PR_JSON=out)
-subprocess.run([os.path.join(build, "tests", "interfere_cad_tests"), "--gtest_filter=HoleTruth.*"], env=env, check=True,
-               stdout=subprocess.DEVNULL)
-now = json.load(open(out))
+now = run_truth_test(build, "INTERFERE_HOLE_PR_JSON", "HoleTruth.*")
 before = json.load(open(os.path.join(root, "tools", "hole_truth", "pr_before.json")))
 b = {r["file"]: r for r in before["parts"]}
 
@@ -78,17 +76,12 @@ for r in now["parts"]:
     lines.append("| %s | %d | %d | %s | %s | %s | %s |" % (r["file"], r["truth"], r["reported"], pr(o) if o else "-", pr(r),
                                                         tpr(o) if o else "-", tpr(r)))
 def tot(t):
-    P = t["found"] / t["reported"] if t["reported"] else 1.0
-    R = t["found"] / t["truth"] if t["truth"] else 1.0
-    tP = t["typed"] / t["reported"] if t["reported"] else 1.0
-    tR = t["typed"] / t["truth"] if t["truth"] else 1.0
+    P, R, tP, tR = total_ratios(t)
     return "%.2f / %.2f" % (P, R), "%.2f / %.2f" % (tP, tR)
 bt, nt = tot(before["total"]), tot(now["total"])
 lines.append("| **all** | %d | %d | %s | %s | %s | %s |" % (now["total"]["truth"], now["total"]["reported"], bt[0], nt[0], bt[1], nt[1]))
-lines += ["", "Per hole type (now): truth holes, found (any type), found with their type, reported features of the type:", "",
-          "| type | truth | found | typed | reported |", "|---|---|---|---|---|"]
-for k, v in sorted(now["types"].items()):
-    lines.append("| %s | %d | %d | %d | %d |" % (k, v["truth"], v["found"], v["typed_found"], v["reported"]))
+lines += ["", "Per hole type (now): truth holes, found (any type), found with their type, reported features of the type:", ""]
+lines += type_table(now["types"])
 lines += ["",
           "**Checked by rendering** (2026-11-29, `tools/hole_truth/render_labels.py`: each part tessellated by",
           "`tools/hole_truth/tessellate_faces.cpp` (OCCT, the labellers' face numbering, no `src/cad` code), every",
@@ -113,16 +106,12 @@ lines += ["",
 lines.append("<!-- hole-truth:end -->")
 section = "\n".join(lines) + "\n"
 
-doc = os.path.join(root, "docs", "simplify.md")
-text = open(doc).read()
-a, e = "<!-- hole-truth:begin -->", "<!-- hole-truth:end -->"
-if a in text:
-    i, j = text.index(a), text.index(e) + len(e) + 1
-    text = text[:i] + section + text[j:]
-else:
+
+def under_benchmarks(text):
     k = text.index("## Benchmarks")
     k = text.index("\n", k) + 1
-    text = text[:k] + "\n" + section + "\n" + text[k:]
-open(doc, "w").write(text)
-os.unlink(out)
+    return text[:k] + "\n" + section + "\n" + text[k:]
+
+
+replace_section("hole-truth", section, under_benchmarks)
 print(section)
