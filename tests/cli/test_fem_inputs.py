@@ -25,6 +25,7 @@ import unittest
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import cli_common  # noqa: E402
 from cli_common import assert_input_error, load_json, path, run  # noqa: E402
+from hex_blocks import CORNERS, hex_box  # noqa: E402
 
 try:
     import meshio
@@ -37,24 +38,6 @@ except ImportError:  # tools/deps.sh installs python3-meshio and python3-netcdf4
 A_BOX = ((0.0, 1.0), (0.0, 1.0), (0.0, 1.0))
 B_BOX = ((1.5, 2.5), (1.3, 1.9), (0.2, 0.8))
 STEPS, V = 4, 0.125
-CORNERS = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]
-
-
-def hex_box(box, n, first_node, first_elem):
-    """n^3 HEX8 on `box`: ([(node id, (x, y, z))], [(element id, [8 node ids])]), VTK/Abaqus order."""
-    nodes, idx = [], {}
-    for k in range(n + 1):
-        for j in range(n + 1):
-            for i in range(n + 1):
-                idx[(i, j, k)] = first_node + len(nodes)
-                nodes.append((idx[(i, j, k)], tuple(box[a][0] + (box[a][1] - box[a][0]) * (i, j, k)[a] / n for a in range(3))))
-    elems = []
-    for k in range(n):
-        for j in range(n):
-            for i in range(n):
-                elems.append((first_elem + len(elems), [idx[(i + a, j + b, k + c)] for a, b, c in CORNERS]))
-    return nodes, elems
-
 
 A = hex_box(A_BOX, 2, 1, 1)
 B = hex_box(B_BOX, 2, 1001, 101)

@@ -21,6 +21,9 @@ import random
 import struct
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "cli"))
+from hex_blocks import hex_box  # noqa: E402  (tests/cli/hex_blocks.py)
+
 
 def sphere(c, r, nu, nv):
     """Closed UV sphere, outward triangles."""
@@ -122,26 +125,6 @@ def huge(out):
         write_stl(os.path.join(out, name + ".stl"), sphere(c, 1.5, 10, 6))
         bodies.append({"file": name + ".stl", "id": name})
     scene(os.path.join(out, "scene.json"), bodies, [{"name": "hard", "a": ["all"], "mode": "hard"}])
-
-
-CORNERS = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]
-
-
-def hex_box(bx, n, first_node, first_elem):
-    """n^3 HEX8 on box bx ((x0, x1), (y0, y1), (z0, z1)): ([(node id, xyz)], [(element id, [8 node ids])])
-    (as tests/cli/test_fem_inputs.py)."""
-    nodes, idx = [], {}
-    for k in range(n + 1):
-        for j in range(n + 1):
-            for i in range(n + 1):
-                idx[(i, j, k)] = first_node + len(nodes)
-                nodes.append((idx[(i, j, k)], tuple(bx[a][0] + (bx[a][1] - bx[a][0]) * (i, j, k)[a] / n for a in range(3))))
-    elems = []
-    for k in range(n):
-        for j in range(n):
-            for i in range(n):
-                elems.append((first_elem + len(elems), [idx[(i + a, j + b, k + c)] for a, b, c in CORNERS]))
-    return nodes, elems
 
 
 def fe(out, steps=4):
