@@ -32,6 +32,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+from gbench_json import google_benchmark_json  # noqa: E402
 from run_benchmarks import machine_description  # noqa: E402
 
 DOC = ROOT / "docs" / "fem-benchmarks.md"
@@ -69,13 +70,7 @@ def build(build_dir: Path, jobs: int) -> None:
 
 
 def google_benchmark(exe: Path, repetitions: int, env: dict) -> dict:
-    with tempfile.NamedTemporaryFile(suffix=".json", delete=False) as f:
-        out = Path(f.name)
-    run([exe, "--benchmark_format=console", f"--benchmark_out={out}", "--benchmark_out_format=json",
-         f"--benchmark_repetitions={repetitions}"], check=True, env=env)
-    data = json.loads(out.read_text())
-    out.unlink()
-    return data
+    return google_benchmark_json(run, exe, repetitions, env)
 
 
 def medians(data: dict) -> dict:

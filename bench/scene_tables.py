@@ -34,6 +34,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+from gbench_json import google_benchmark_json  # noqa: E402
 from run_benchmarks import machine_description  # noqa: E402
 
 DOC = ROOT / "docs" / "scene-benchmarks.md"
@@ -73,16 +74,7 @@ def build(build_dir: Path, cli_build: Path, jobs: int) -> None:
 
 # ----------------------------------------------------------------------------- runs
 def run_google_benchmark(exe: Path, repetitions: int, env: dict, bench_filter: str | None) -> dict:
-    with tempfile.NamedTemporaryFile(suffix=".json", delete=False) as f:
-        out = Path(f.name)
-    cmd = [exe, "--benchmark_format=console", f"--benchmark_out={out}", "--benchmark_out_format=json",
-           f"--benchmark_repetitions={repetitions}"]
-    if bench_filter:
-        cmd.append(f"--benchmark_filter={bench_filter}")
-    run(cmd, check=True, env=env)
-    data = json.loads(out.read_text())
-    out.unlink()
-    return data
+    return google_benchmark_json(run, exe, repetitions, env, bench_filter)
 
 
 def medians(data: dict) -> dict:
