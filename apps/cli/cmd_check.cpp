@@ -35,6 +35,17 @@ double signed_volume(const TriMesh& m) {
 // and surface read it) at the step: closed, outward (closed with a positive enclosed volume: the
 // extraction orients outward, shells keep their own order), volume, the counts of mesh_stats and
 // the body's surface warnings; the model's warnings (reader, extraction) beside them.
+/// The report finished, written to --json (when given) and printed; `interfere check` exits 0.
+int print_check_report(nlohmann::json& j, const std::string& json_path) {
+  finish_report(j);
+  if (!json_path.empty()) {
+    const Status st = write_output(json_path, j.dump(2) + "\n");
+    if (!st) throw InputError(st.error());
+  }
+  std::printf("%s\n", j.dump(2).c_str());
+  return kClear;
+}
+
 int run_fem_check(const CheckOptions& o) {
   const FemSurfaces s = read_fem_surfaces(o.file, fem_part_options(o.fem, 0), o.fem.step, o.fem.scale, "input", true);
   const FemPart& p = s.part;
@@ -74,13 +85,7 @@ int run_fem_check(const CheckOptions& o) {
                       {"bodies", bodies},
                       {"warnings", model_warnings}};
   if (!box.empty()) j["bbox"] = {{"min", {box.lo.x, box.lo.y, box.lo.z}}, {"max", {box.hi.x, box.hi.y, box.hi.z}}};
-  finish_report(j);
-  if (!o.json.empty()) {
-    const Status st = write_output(o.json, j.dump(2) + "\n");
-    if (!st) throw InputError(st.error());
-  }
-  std::printf("%s\n", j.dump(2).c_str());
-  return kClear;
+  return print_check_report(j, o.json);
 }
 
 int run_check(CheckOptions o, const CLI::App& command) {
@@ -110,13 +115,7 @@ int run_check(CheckOptions o, const CLI::App& command) {
     j["warnings"] = part.warnings;
   }
   j.update(stats_json(s));
-  finish_report(j);
-  if (!o.json.empty()) {
-    const Status st = write_output(o.json, j.dump(2) + "\n");
-    if (!st) throw InputError(st.error());
-  }
-  std::printf("%s\n", j.dump(2).c_str());
-  return kClear;
+  return print_check_report(j, o.json);
 }
 
 }  // namespace
