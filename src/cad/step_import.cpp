@@ -49,9 +49,12 @@
 #include <XSControl_TransferReader.hxx>
 #include <XSControl_WorkSession.hxx>
 
+#include <tbb/task_group.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <fstream>
 #include <map>
 #include <mutex>
@@ -150,6 +153,21 @@ Part make_part(const TopoDS_Shape& shape, const std::string& name, const ImportO
   } else {
     BRepMesh_IncrementalMesh mesher(mesh_shape, lin, Standard_False, o.angular_deflection, Standard_True);
   }
+  // The AAG (on the part as read) is built while the triangles are collected and measured: after
+  // BRepMesh both only read the B-Rep (issue #29: the casing's import, AAG 12 ms beside the
+  // collection's 25 ms). OCCT's failures and signals in it are caught there and rethrown here.
+  Aag aag;
+  std::exception_ptr aag_failed;
+  tbb::task_group aag_task;
+  if (o.build_aag)
+    aag_task.run([&] {
+      try {
+        OCC_CATCH_SIGNALS
+        aag = detail::build_aag(shape, faces, o.canonical_tolerance);
+      } catch (...) {
+        aag_failed = std::current_exception();
+      }
+    });
   bool unmeasured = false;  // a face without UV nodes
   p.tessellation_deviation = 0;
   for (int i = 1; i <= faces.Extent(); ++i) {
@@ -194,8 +212,10 @@ Part make_part(const TopoDS_Shape& shape, const std::string& name, const ImportO
     }
   }
   if (!o.measure_deviation || unmeasured) p.tessellation_deviation = -1;
+  aag_task.wait();
+  if (aag_failed) std::rethrow_exception(aag_failed);
   if (!o.build_aag) return p;
-  p.aag = detail::build_aag(shape, faces, o.canonical_tolerance);
+  p.aag = std::move(aag);
   for (std::size_t t = 0; t < p.face_ids.size(); ++t) ++p.aag.nodes[p.face_ids[t]].triangles;
   return p;
 }
