@@ -5,16 +5,9 @@
 # from timing, threads, seconds and the "mpi" section (which validates against
 # docs/schema/bearing.schema.json); bad input exits 2 with the message (outputs checked first).
 # Usage: run_mpi_bearing_tests.sh INTERFERE INTERFERE_MPI ASSEMBLY.json
-set -uo pipefail
-cli=$(realpath "$1") mpi=$(realpath "$2") asm=$(realpath "$3")
-py=/usr/bin/python3
-export HERE=$(cd "$(dirname "$0")" && pwd)
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-mpirun_=(mpirun --allow-run-as-root --oversubscribe)
-export OMPI_MCA_rmaps_base_oversubscribe=1 OMPI_MCA_btl_vader_single_copy_mechanism=none
-fail=0
-check() { if "$@"; then :; else echo "FAILED: $*"; fail=1; fi; }
+source "$(dirname "$0")/common.sh"
+asm=$(realpath "$3")
+export HERE=$here
 cd "$work" || exit 1
 
 same_json() {  # single.json mpi.json ranks

@@ -9,16 +9,8 @@
 # rank; --ik-start collision-free, --write-joints byte-equal); bad input exits 2 with the message
 # (a bad path file, an unreachable pose, options not offered).
 # Usage: run_mpi_cell_tests.sh INTERFERE INTERFERE_MPI EXAMPLES_PROBE_DIR
-set -uo pipefail
-cli=$(realpath "$1") mpi=$(realpath "$2") ex=$(realpath "$3")
-py=/usr/bin/python3
-here=$(cd "$(dirname "$0")" && pwd)
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-mpirun_=(mpirun --allow-run-as-root --oversubscribe)
-export OMPI_MCA_rmaps_base_oversubscribe=1 OMPI_MCA_btl_vader_single_copy_mechanism=none
-fail=0
-check() { if "$@"; then :; else echo "FAILED: $*"; fail=1; fi; }
+source "$(dirname "$0")/common.sh"
+ex=$(realpath "$3")
 cd "$work" || exit 1
 cp "$ex"/cell.json "$ex"/arm6r.urdf "$ex"/workpiece.obj "$ex"/clamp.obj "$ex"/path.csv "$ex"/paper_path.csv .
 cp -r "$ex"/meshes . 2>/dev/null

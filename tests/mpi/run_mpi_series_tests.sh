@@ -9,16 +9,7 @@
 # model with 4 and with 12 load steps (also --scale 2 --no-reference). A static scene with --distribute
 # frames goes by pairs (warning); a bad --distribute value: exit 2; usage errors name the flag (CLI11).
 # Usage: run_mpi_series_tests.sh INTERFERE INTERFERE_MPI
-set -uo pipefail
-cli=$(realpath "$1") mpi=$(realpath "$2")
-here=$(cd "$(dirname "$0")" && pwd)
-py=/usr/bin/python3
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-mpirun_=(mpirun --allow-run-as-root --oversubscribe)
-export OMPI_MCA_rmaps_base_oversubscribe=1 OMPI_MCA_btl_vader_single_copy_mechanism=none
-fail=0
-check() { if "$@"; then :; else echo "FAILED: $*"; fail=1; fi; }
+source "$(dirname "$0")/common.sh"
 "$py" "$here/make_scenes.py" "$work" || exit 1
 "$py" "$here/make_series.py" "$work/series" || exit 1
 mpi_key() {  # report, python expression on m (its mpi section)
@@ -34,11 +25,7 @@ frames() {  # scene dir, reruns expected at K >= 2 (zero, some or any), extra ar
     (cd "$d" && "${mpirun_[@]}" -n $k "$mpi" clash --scene scene.json "$@" --distribute frames --json mpi$k.json --csv mpi$k.csv \
        --frames-csv mpi${k}_f.csv --frame-pairs-csv mpi${k}_p.csv --quiet >/dev/null 2>"mpi$k.err")
     local rc=$?
-    check test "$rc" = "$src"
-    check "$py" "$here/compare_reports.py" "$d/single.json" "$d/mpi$k.json"
-    check cmp -s "$d/single.csv" "$d/mpi$k.csv"
-    check cmp -s "$d/single_f.csv" "$d/mpi${k}_f.csv"
-    check cmp -s "$d/single_p.csv" "$d/mpi${k}_p.csv"
+    same_frames_outputs "$d" "$k" "$src" "$rc"
     check test "$(mpi_key "$d/mpi$k.json" 'm["distribute"], m["ranks"]')" = "('frames', $k)"
     local n
     n=$(mpi_key "$d/mpi$k.json" 'm["reruns"]')

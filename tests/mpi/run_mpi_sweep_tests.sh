@@ -9,16 +9,8 @@
 # (idle ranks, a warning); bad input exits 2 with the message (a bad path file, a missing one,
 # options not offered), nothing written.
 # Usage: run_mpi_sweep_tests.sh INTERFERE INTERFERE_MPI DATA_EXAMPLES_DIR
-set -uo pipefail
-cli=$(realpath "$1") mpi=$(realpath "$2") ex=$(realpath "$3")
-py=/usr/bin/python3
-here=$(cd "$(dirname "$0")" && pwd)
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-mpirun_=(mpirun --allow-run-as-root --oversubscribe)
-export OMPI_MCA_rmaps_base_oversubscribe=1 OMPI_MCA_btl_vader_single_copy_mechanism=none
-fail=0
-check() { if "$@"; then :; else echo "FAILED: $*"; fail=1; fi; }
+source "$(dirname "$0")/common.sh"
+ex=$(realpath "$3")
 cd "$work" || exit 1
 cp "$ex"/plate.stl "$ex"/probe_paper_machine.json "$ex"/probe_path.csv .
 # The denser path: 3 poses between each two of probe_path.csv's (tip linear, axis normalised).

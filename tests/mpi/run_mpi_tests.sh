@@ -7,19 +7,10 @@
 # cannot read a body ends the job with exit 2, that rank's message and no report; ranks that see
 # different inputs (checksum) exit 2; more ranks than bodies warn.
 # Usage: run_mpi_tests.sh INTERFERE INTERFERE_MPI
-set -uo pipefail
-cli=$(realpath "$1") mpi=$(realpath "$2")
-here=$(cd "$(dirname "$0")" && pwd)
-py=/usr/bin/python3
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-mpirun_=(mpirun --allow-run-as-root --oversubscribe)
-export OMPI_MCA_rmaps_base_oversubscribe=1 OMPI_MCA_btl_vader_single_copy_mechanism=none
+source "$(dirname "$0")/common.sh"
 # rank 0 also writes each report through its parsed document and stops (exit 2, "the report's text
 # edit differs") unless that equals the text edit it writes otherwise (merge.cpp report_with_mpi)
 export INTERFERE_MPI_CHECK_REPORT_EDIT=1
-fail=0
-check() { if "$@"; then :; else echo "FAILED: $*"; fail=1; fi; }
 "$py" "$here/make_scenes.py" "$work" || exit 1
 
 same() {  # scene dir, extra args...

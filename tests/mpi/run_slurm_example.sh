@@ -6,12 +6,8 @@
 # The report it writes must equal `interfere clash --scene` on the same scene (compare_reports.py).
 # This checks the script's command line and its use of the Slurm variables, not Slurm itself.
 # Usage: run_slurm_example.sh INTERFERE INTERFERE_MPI DOCS_MPI_MD
-set -uo pipefail
-cli=$(realpath "$1") mpi=$(realpath "$2") doc=$(realpath "$3")
-here=$(cd "$(dirname "$0")" && pwd)
-py=/usr/bin/python3
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+source "$(dirname "$0")/common.sh"
+doc=$(realpath "$3")
 "$py" "$here/make_scenes.py" "$work" >/dev/null || exit 1
 # the fenced block that holds the #SBATCH lines
 "$py" - "$doc" "$work/job.sh" <<'PY' || exit 1
@@ -33,7 +29,6 @@ exec mpirun --allow-run-as-root --oversubscribe -n "$SLURM_NTASKS" "$@"
 SH
 printf '#!/bin/sh\nexit 0\n' > "$work/bin/module"
 chmod +x "$work/bin/srun" "$work/bin/module"
-export OMPI_MCA_rmaps_base_oversubscribe=1 OMPI_MCA_btl_vader_single_copy_mechanism=none
 d="$work/tiny"
 cp "$d/scene.json" "$d/product.json"
 (cd "$d" && "$cli" clash --scene product.json --json single.json --quiet >/dev/null 2>&1)

@@ -3,17 +3,8 @@
 # scene, whose bodies use every field the flat body records abbreviate behind flags and repeated meshes
 # (classes): K = 1..4 reports equal to one process (compare_reports.py, core_runs included) and the
 # CSV byte for byte. Usage: test_review_metadata.sh INTERFERE INTERFERE_MPI
-set -uo pipefail
-cli=$(realpath "$1") mpi=$(realpath "$2")
-here=$(cd "$(dirname "$0")" && pwd)
-py=/usr/bin/python3
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-mpirun_=(mpirun --allow-run-as-root --oversubscribe)
-export OMPI_MCA_rmaps_base_oversubscribe=1 OMPI_MCA_btl_vader_single_copy_mechanism=none
+source "$(dirname "$0")/common.sh"
 export INTERFERE_MPI_CHECK_REPORT_EDIT=1  # (a07cf4d: rank 0 also builds the report's text the slow way and compares)
-fail=0
-check() { if "$@"; then :; else echo "FAILED: $*"; fail=1; fi; }
 "$py" "$here/review_make_metadata_scene.py" "$work" || exit 1
 (cd "$work" && "$cli" clash --scene scene.json --json single.json --csv single.csv --quiet >/dev/null 2>&1)
 src=$?

@@ -8,16 +8,7 @@
 # baseline report, grouping by location and none, --fail-on. Oracle: the one process's report
 # (compare_reports.py) and its CSV tables byte for byte; the exit status.
 # Usage: test_review_series_borders.sh INTERFERE INTERFERE_MPI
-set -uo pipefail
-cli=$(realpath "$1") mpi=$(realpath "$2")
-here=$(cd "$(dirname "$0")" && pwd)
-py=/usr/bin/python3
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-mpirun_=(mpirun --allow-run-as-root --oversubscribe)
-export OMPI_MCA_rmaps_base_oversubscribe=1 OMPI_MCA_btl_vader_single_copy_mechanism=none
-fail=0
-check() { if "$@"; then :; else echo "FAILED: $*"; fail=1; fi; }
+source "$(dirname "$0")/common.sh"
 "$py" "$here/review_make_border_series.py" "$work" || exit 1
 d=$work/border
 series() {  # motion file, largest K, extra arguments (to both)...
@@ -31,11 +22,7 @@ series() {  # motion file, largest K, extra arguments (to both)...
     (cd "$d" && timeout 300 "${mpirun_[@]}" -n "$k" "$mpi" clash --scene scene.json --motion "$m" "$@" --distribute frames \
        --json mpi$k.json --csv mpi$k.csv --frames-csv mpi${k}_f.csv --frame-pairs-csv mpi${k}_p.csv --quiet >/dev/null 2>"mpi$k.err")
     local rc=$?
-    check test "$rc" = "$src"
-    check "$py" "$here/compare_reports.py" "$d/single.json" "$d/mpi$k.json"
-    check cmp -s "$d/single.csv" "$d/mpi$k.csv"
-    check cmp -s "$d/single_f.csv" "$d/mpi${k}_f.csv"
-    check cmp -s "$d/single_p.csv" "$d/mpi${k}_p.csv"
+    same_frames_outputs "$d" "$k" "$src" "$rc"
     local n
     n=$("$py" -c 'import json,sys; m=json.load(open(sys.argv[1]))["mpi"]; print(m["reruns"], m["rounds"])' "$d/mpi$k.json" 2>/dev/null)
     echo "$m $* K=$k: rc=$rc (single $src) reruns/rounds=$n"
