@@ -181,6 +181,148 @@ struct Builder {
     tree.bounds.nodes.emplace_back();
     return static_cast<std::int32_t>(tree.bounds.nodes.size() - 1);
   }
+
+  // ---- Coplanar facet strips (quadtree.h, FacetStrips; issue #27) ----
+  struct Piece {
+    std::int32_t j0, j1;  // cells [j0, j1) of the column
+    bool strip;           // a planar run of >= 2 cells (else one cell, its own triangles)
+  };
+  const Vec3& at(int i, int j) const { return roller.mesh.positions[roller.side_vertex(i, j)]; }
+  // Cell (i, j) is a vertical rectangle in the body frame, exactly: both vertex columns keep their
+  // (x, y) from row j to row j + 1 and each row has one z (so consecutive such cells of a column
+  // share their vertex columns and their union is one planar rectangle)
+  bool flat_cell(int i, int j) const {
+    const Vec3 &a0 = at(i, j), &a1 = at(i, j + 1), &b0 = at(i + 1, j), &b1 = at(i + 1, j + 1);
+    return a0.x == a1.x && a0.y == a1.y && b0.x == b1.x && b0.y == b1.y && a0.z == b0.z && a1.z == b1.z &&
+           a0.z < a1.z;
+  }
+  std::vector<Piece> pieces_of_column(int i) const {
+    std::vector<Piece> out;
+    const int m = roller.m();
+    for (int j = 0; j < m;) {
+      int e = j;
+      while (e < m && flat_cell(i, e)) ++e;
+      if (e - j >= 2) {
+        out.push_back({j, e, true});
+        j = e;
+      } else {
+        out.push_back({j, j + 1, false});
+        ++j;
+      }
+    }
+    return out;
+  }
+  std::int32_t strip_node() {
+    tree.strips.tree.nodes.emplace_back();
+    return static_cast<std::int32_t>(tree.strips.tree.nodes.size() - 1);
+  }
+  void strip_children(std::int32_t id, std::int32_t& first) {
+    auto& nodes = tree.strips.tree.nodes;
+    first = static_cast<std::int32_t>(nodes.size());
+    nodes.resize(nodes.size() + 2);
+    nodes[static_cast<std::size_t>(id)].first_child = first;
+    nodes[static_cast<std::size_t>(id)].child_count = 2;
+  }
+  void add_mesh_triangle(std::int32_t leaf, std::uint32_t t) {
+    FacetStrips& fs = tree.strips;
+    const Tri& tri = roller.mesh.triangles[t];
+    fs.corners.push_back({tri[0], tri[1], tri[2]});
+    fs.mesh_triangle.push_back(t);
+    fs.strip_cells.push_back({0, 0, 0});
+    fs.leaf_of_triangle[t] = leaf;
+  }
+  // side columns [i0, i1): the same boxes as bound_side's column nodes; one column: its pieces
+  void strips_side(std::int32_t id, std::int32_t i0, std::int32_t i1) {
+    bound(tree.strips.tree.nodes[static_cast<std::size_t>(id)], column_angle(0.5 * (i0 + i1)), [&](auto&& f) {
+      for (int j = 0; j <= roller.m(); ++j)
+        for (int i = i0; i <= i1; ++i) f(at(i, j));
+    });
+    if (i1 - i0 > 1) {
+      const std::int32_t im = (i0 + i1) / 2;
+      std::int32_t first;
+      strip_children(id, first);
+      strips_side(first, i0, im);
+      strips_side(first + 1, im, i1);
+      return;
+    }
+    const std::vector<Piece> pieces = pieces_of_column(i0);
+    strips_column(id, i0, pieces, 0, static_cast<std::int32_t>(pieces.size()), true);
+  }
+  void strips_column(std::int32_t id, std::int32_t i, const std::vector<Piece>& pieces, std::int32_t s0,
+                     std::int32_t s1, bool boxed) {
+    FacetStrips& fs = tree.strips;
+    const std::int32_t ja = pieces[static_cast<std::size_t>(s0)].j0, jb = pieces[static_cast<std::size_t>(s1 - 1)].j1;
+    if (!boxed) {
+      bound(fs.tree.nodes[static_cast<std::size_t>(id)], column_angle(i + 0.5), [&](auto&& f) {
+        for (int j = ja; j <= jb; ++j)
+          for (int c = i; c <= i + 1; ++c) f(at(c, j));
+      });
+    }
+    if (s1 - s0 == 1) {
+      const Piece& p = pieces[static_cast<std::size_t>(s0)];
+      BoundNode& node = fs.tree.nodes[static_cast<std::size_t>(id)];
+      node.tri_first = static_cast<std::uint32_t>(fs.corners.size());
+      if (p.strip) {
+        const std::uint32_t a0 = roller.side_vertex(i, p.j0), b0 = roller.side_vertex(i + 1, p.j0);
+        const std::uint32_t a1 = roller.side_vertex(i, p.j1), b1 = roller.side_vertex(i + 1, p.j1);
+        fs.corners.push_back({a0, b0, b1});
+        fs.corners.push_back({a0, b1, a1});
+        for (int k = 0; k < 2; ++k) {
+          fs.mesh_triangle.push_back(FacetStrips::kStrip);
+          fs.strip_cells.push_back({i, p.j0, p.j1});
+        }
+        for (int j = p.j0; j < p.j1; ++j) {
+          const std::uint32_t t = roller.side_triangle(i, j);
+          fs.leaf_of_triangle[t] = fs.leaf_of_triangle[t + 1] = id;
+        }
+      } else {
+        const std::uint32_t t = roller.side_triangle(i, p.j0);
+        add_mesh_triangle(id, t);
+        add_mesh_triangle(id, t + 1);
+      }
+      fs.tree.nodes[static_cast<std::size_t>(id)].tri_count = 2;
+      (void)node;
+      return;
+    }
+    const std::int32_t sm = (s0 + s1) / 2;
+    std::int32_t first;
+    strip_children(id, first);
+    strips_column(first, i, pieces, s0, sm, false);
+    strips_column(first + 1, i, pieces, sm, s1, false);
+  }
+  // the caps: as bound_cap, the fan triangles as entries
+  void strips_cap(std::int32_t id, std::int32_t i0, std::int32_t i1, bool top) {
+    const int j = top ? roller.m() : 0;
+    const std::size_t center = static_cast<std::size_t>(roller.n()) * (roller.m() + 1) + (top ? 1 : 0);
+    bound(tree.strips.tree.nodes[static_cast<std::size_t>(id)], column_angle(0.5 * (i0 + i1)), [&](auto&& f) {
+      f(roller.mesh.positions[center]);
+      for (int i = i0; i <= i1; ++i) f(at(i, j));
+    });
+    if (i1 - i0 <= 2) {
+      const std::uint32_t first_tri = top ? roller.top_triangle(i0) : roller.bottom_triangle(i0);
+      tree.strips.tree.nodes[static_cast<std::size_t>(id)].tri_first =
+          static_cast<std::uint32_t>(tree.strips.corners.size());
+      tree.strips.tree.nodes[static_cast<std::size_t>(id)].tri_count = static_cast<std::uint32_t>(i1 - i0);
+      for (int k = 0; k < i1 - i0; ++k) add_mesh_triangle(id, first_tri + static_cast<std::uint32_t>(k));
+      return;
+    }
+    const std::int32_t im = (i0 + i1) / 2;
+    std::int32_t first;
+    strip_children(id, first);
+    strips_cap(first, i0, im, top);
+    strips_cap(first + 1, im, i1, top);
+  }
+  void build_strips() {
+    FacetStrips& fs = tree.strips;
+    fs.leaf_of_triangle.assign(roller.mesh.triangles.size(), -1);
+    fs.tree.nodes.reserve(4 * static_cast<std::size_t>(roller.n()) * 4 + 4 * roller.n());
+    fs.tree.side_root = strip_node();
+    strips_side(fs.tree.side_root, 0, roller.n());
+    fs.tree.bottom_root = strip_node();
+    strips_cap(fs.tree.bottom_root, 0, roller.n(), false);
+    fs.tree.top_root = strip_node();
+    strips_cap(fs.tree.top_root, 0, roller.n(), true);
+  }
 };
 
 }  // namespace
@@ -230,6 +372,8 @@ RollerQuadtree build_quadtree(const Roller& roller, const QuadtreeOptions& optio
   b.bound_cap(tree.bounds.bottom_root, 0, roller.n(), false);
   tree.bounds.top_root = b.bound_root();
   b.bound_cap(tree.bounds.top_root, 0, roller.n(), true);
+  // the scarred solver's tree of coplanar facet strips (quadtree.h, FacetStrips)
+  b.build_strips();
   return tree;
 }
 

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -331,6 +332,95 @@ struct Evaluator {
   }
 };
 
+/// The same over the entries of a FacetStrips tree (quadtree.h; issue #27): an entry is a mesh
+/// triangle or one of the two triangles of a planar strip of intact cells. Ties keep the lowest
+/// entry index (deterministic: the entries' order is fixed when the tree is built).
+struct StripEvaluator {
+  const Roller& roller;
+  const FacetStrips& fs;
+  LocalFrame frame;
+  MeshPairResult best;
+  std::uint32_t best_entry = 0xffffffffu;
+
+  void entry(std::uint32_t e) {
+    const std::array<std::uint32_t, 3>& c = fs.corners[e];
+    const TriangleMin tm = local_triangle_min(frame, frame.local(roller.mesh.positions[c[0]]),
+                                              frame.local(roller.mesh.positions[c[1]]),
+                                              frame.local(roller.mesh.positions[c[2]]));
+    ++best.evaluated;
+    best.fallbacks += tm.certified ? 0 : 1;
+    if (tm.value < best.distance || (tm.value == best.distance && e < best_entry)) {
+      best.distance = tm.value;
+      best_entry = e;
+      best.point_a = tm.point;  // local for now
+    }
+  }
+  void leaf(const BoundNode& n) {
+    for (std::uint32_t k = 0; k < n.tri_count; ++k) entry(n.tri_first + k);
+  }
+  /// An end cap is skipped when it cannot hold a value below the best by more than 2^-44 of the
+  /// local scale (issue #27: the cap's fan triangles next to a contact at the rim tie with the side's
+  /// value, so their box bounds never prune them). sd_B is convex, so with g its gradient (a
+  /// subgradient: the active piece inside B) at the best point y, sd_B(x) >= sd_B(y) + g.(x - y)
+  /// for every x; the cap is the fan over its centre and rim vertices, inside their convex hull, so
+  /// over the cap sd_B >= sd_B(y) + min over those vertices of g.(v - y). When y is the rim point
+  /// where the cap's minimum is (its minimum over the rim, which the side's triangles hold), that is
+  /// sd_B(y) to rounding. Cylinders only (a frustum B: false, the cap tree is searched).
+  bool cap_cannot_improve(bool top) const {
+    if (frame.tapered || best_entry == 0xffffffffu) return false;
+    const Vec3& y = best.point_a;  // local
+    const double rho = std::sqrt(y.x * y.x + y.y * y.y);
+    const double dr = rho - frame.R, dz = std::fabs(y.z) - frame.hh, sz = y.z < 0 ? -1.0 : 1.0;
+    Vec3 g;
+    if (dr > 0 && dz > 0) {
+      const double len = std::hypot(dr, dz);
+      g = {dr / len * y.x / rho, dr / len * y.y / rho, dz / len * sz};
+    } else if (dr >= dz) {
+      if (!(rho > 0)) return false;
+      g = {y.x / rho, y.y / rho, 0};
+    } else {
+      g = {0, 0, sz};
+    }
+    const int n = roller.n(), j = top ? roller.m() : 0;
+    const auto& pos = roller.mesh.positions;
+    double low = dot(g, frame.local(pos[static_cast<std::size_t>(n) * (roller.m() + 1) + (top ? 1 : 0)]) - y);
+    for (int i = 0; i < n; ++i) low = std::min(low, dot(g, frame.local(pos[roller.side_vertex(i, j)]) - y));
+    const double scale = std::fabs(y.x) + std::fabs(y.y) + std::fabs(y.z) + frame.R + frame.hh;
+    return frame.sd(y) + low >= best.distance - 0x1p-44 * scale;
+  }
+  /// The mesh triangle under the witness (a strip entry: the cell of its run that holds the
+  /// witness, then the cell's triangle by the side of its diagonal v(i, j) .. v(i+1, j+1)).
+  std::uint32_t mesh_triangle() const {
+    if (best_entry == 0xffffffffu) return 0xffffffffu;
+    const std::uint32_t t = fs.mesh_triangle[best_entry];
+    if (t != FacetStrips::kStrip) return t;
+    const auto [i, j0, j1] = fs.strip_cells[best_entry];
+    const Vec3 q = best.point_a - frame.o;  // body = m^T (local - o)
+    const Vec3 p{frame.m[0][0] * q.x + frame.m[1][0] * q.y + frame.m[2][0] * q.z,
+                 frame.m[0][1] * q.x + frame.m[1][1] * q.y + frame.m[2][1] * q.z,
+                 frame.m[0][2] * q.x + frame.m[1][2] * q.y + frame.m[2][2] * q.z};
+    const auto& pos = roller.mesh.positions;
+    int j = j0;
+    while (j + 1 < j1 && pos[roller.side_vertex(i, j + 1)].z <= p.z) ++j;
+    const Vec3& a = pos[roller.side_vertex(i, j)];
+    const Vec3& b = pos[roller.side_vertex(i + 1, j)];
+    const double ex = b.x - a.x, ey = b.y - a.y, l2 = ex * ex + ey * ey;
+    const double tt = l2 > 0 ? ((p.x - a.x) * ex + (p.y - a.y) * ey) / l2 : 0.0;
+    const double dz = pos[roller.side_vertex(i, j + 1)].z - a.z;
+    const double ss = dz > 0 ? (p.z - a.z) / dz : 0.0;
+    return roller.side_triangle(i, j) + (tt >= ss ? 0u : 1u);
+  }
+  MeshPairResult finish(const Cylinder& b) {
+    MeshPairResult out = best;
+    out.triangle = mesh_triangle();
+    out.point_a = frame.world(best.point_a);
+    out.point_b = b.tapered() ? nearest_on_frustum_boundary(b, out.point_a) : nearest_on_cylinder_boundary(b, out.point_a);
+    return out;
+  }
+};
+
+std::atomic<bool> g_facet_strips{true};
+
 /// Lower bound of sd_B over a node's oriented box (see quadtree.h; a QuadNode or a BoundNode).
 /// `cut` (issue #27, Table 3 with the scars in range): the bound is the max of three terms (linear
 /// lateral, curvature, axial); when the two cheap ones (no square root of the curvature term)
@@ -482,9 +572,94 @@ void descend(Evaluator& ev, const std::vector<Node>& nodes, std::array<std::int3
   }
 }
 
+/// The same descent over a FacetStrips tree; the leaves already evaluated (`skip`) are not again.
+void descend_strips(StripEvaluator& ev, const BoundTree& t, std::int32_t skip0, std::int32_t skip1) {
+  const std::vector<BoundNode>& nodes = t.nodes;
+  struct Item {
+    std::int32_t node;
+    double lb;
+  };
+  Item stack[1024];
+  int top = 0;
+  // the side first (popped first), then the caps, each skipped when the side's best point shows it
+  // cannot hold a lower value (cap_cannot_improve)
+  for (const std::int32_t root : {t.top_root, t.bottom_root, t.side_root})
+    stack[top++] = {root, node_lower_bound(ev.frame, nodes[static_cast<std::size_t>(root)])};
+  while (top > 0) {
+    const Item it = stack[--top];
+    if (it.lb >= ev.best.distance) continue;
+    if ((it.node == t.bottom_root || it.node == t.top_root) && ev.cap_cannot_improve(it.node == t.top_root)) continue;
+    const BoundNode& n = nodes[static_cast<std::size_t>(it.node)];
+    ++ev.best.nodes_visited;
+    if (n.child_count == 0) {
+      if (it.node != skip0 && it.node != skip1) ev.leaf(n);
+      continue;
+    }
+    Item kids[2];
+    int count = 0;
+    for (std::int32_t k = 0; k < n.child_count && k < 2; ++k) {
+      const std::int32_t id = n.first_child + k;
+      const BoundNode& kid = nodes[static_cast<std::size_t>(id)];
+      if (kid.child_count > 0) {
+        const char* next = reinterpret_cast<const char*>(&nodes[static_cast<std::size_t>(kid.first_child)]);
+        for (std::size_t b = 0; b < 2 * sizeof(BoundNode); b += 64) __builtin_prefetch(next + b);
+      }
+      const double lb = node_lower_bound(ev.frame, kid, ev.best.distance);
+      if (lb < ev.best.distance) kids[count++] = {id, lb};
+    }
+    if (count == 2 && kids[0].lb < kids[1].lb) std::swap(kids[0], kids[1]);  // the smaller popped first
+    for (int k = 0; k < count && top < 1024; ++k) stack[top++] = kids[k];
+  }
+}
+
+}  // namespace
+
+void set_facet_strips_for_testing(bool enabled) { g_facet_strips.store(enabled, std::memory_order_relaxed); }
+
+namespace {
+/// The side cell under a hint (body-frame angle and height): its first triangle, or kNone.
+std::uint32_t hinted_cell(const Roller& roller, const Transform& pose, const Vec3& hint) {
+  const Vec3 w = hint - pose.t;
+  const double x = pose.r[0][0] * w.x + pose.r[1][0] * w.y + pose.r[2][0] * w.z;
+  const double y = pose.r[0][1] * w.x + pose.r[1][1] * w.y + pose.r[2][1] * w.z;
+  const double z = pose.r[0][2] * w.x + pose.r[1][2] * w.y + pose.r[2][2] * w.z;
+  const int n = roller.n(), m = roller.m();
+  const double u = wrap_pi(std::atan2(y, x)) / (2 * std::numbers::pi) * n;
+  const double v = z / roller.params.height * m;
+  if (!(std::isfinite(u) && std::isfinite(v))) return 0xffffffffu;
+  const int i = std::clamp(static_cast<int>(u), 0, n - 1), j = std::clamp(static_cast<int>(v), 0, m - 1);
+  return roller.side_triangle(i, j);
+}
 }  // namespace
 
 MeshPairResult ScarredSolver::run(const Transform& pose, const Cylinder& b, const Vec3* hint) {
+  // the tree of coplanar facet strips (quadtree.h, FacetStrips; issue #27): a planar run of intact
+  // cells is one rectangle (two triangles), so a contact line along a generator, where the cells'
+  // bounds tie, costs two triangle minima instead of one per cell. The value is the minimum over
+  // the same point set (the runs are exactly the union of their cells); the first bounds come from
+  // the leaves holding the previous frame's triangle and the hinted cell.
+  if (!tree_->strips.empty() && g_facet_strips.load(std::memory_order_relaxed)) {
+    const FacetStrips& fs = tree_->strips;
+    StripEvaluator ev{*roller_, fs, LocalFrame(pose, b), {}};
+    ev.best.distance = kInf;
+    ev.best.triangle = kNone;
+    std::int32_t skip0 = -1, skip1 = -1;
+    if (previous_ != kNone && previous_ < fs.leaf_of_triangle.size()) {
+      skip0 = fs.leaf_of_triangle[previous_];
+      if (skip0 >= 0) ev.leaf(fs.tree.nodes[static_cast<std::size_t>(skip0)]);
+    }
+    if (hint) {
+      const std::uint32_t h = hinted_cell(*roller_, pose, *hint);
+      if (h != kNone && h < fs.leaf_of_triangle.size()) {
+        skip1 = fs.leaf_of_triangle[h];
+        if (skip1 >= 0 && skip1 != skip0) ev.leaf(fs.tree.nodes[static_cast<std::size_t>(skip1)]);
+      }
+    }
+    descend_strips(ev, fs.tree, skip0, skip1);
+    MeshPairResult out = ev.finish(b);
+    previous_ = out.triangle;
+    return out;
+  }
   Evaluator ev{*roller_, LocalFrame(pose, b), {}};
   ev.best.distance = kInf;
   ev.best.triangle = 0xffffffffu;

@@ -20,6 +20,7 @@
 // through them (about 2.5x the node bounds per solve, docs/bearing.md). The quadtree itself stays as
 // it is: the paper's method (§2.4) needs its levels.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -62,6 +63,30 @@ struct BoundTree {
   bool empty() const { return nodes.empty(); }
 };
 
+/// Coplanar facet strips (issue #27, the 1,024-roller target): the exact solver's tree over maximal
+/// planar pieces of the surface. In a side column i, a run of cells (i, j0) .. (i, j1 - 1) whose
+/// vertices keep the same (x, y) down each of the two vertex columns (an intact run: the body-frame
+/// positions are computed identically for every height, roller.cpp) and the same z across the two
+/// columns per row is exactly one planar rectangle, the union of its cells' triangles; it is stored
+/// as two triangles (v(i, j0), v(i+1, j0), v(i+1, j1)) and (v(i, j0), v(i+1, j1), v(i, j1)), so the
+/// minimum of sd_B over the run is the minimum over those two. Cells where the test fails (a scar
+/// window's displaced vertices) keep their own two triangles; the caps their fan triangles.
+/// The tree: column-first as BoundTree (the same oriented boxes over the same vertices), a single
+/// column split over its pieces (runs and single cells) instead of its rows; a leaf is one piece.
+/// Leaves index `pieces` (tri_first .. + tri_count - 1) of `corners`.
+struct FacetStrips {
+  BoundTree tree;
+  std::vector<std::array<std::uint32_t, 3>> corners;  ///< per entry: vertex ids of the roller mesh
+  /// per entry: the mesh triangle it is (a cell's or a cap's), or kStrip for a strip triangle
+  std::vector<std::uint32_t> mesh_triangle;
+  /// per entry of a strip: its column and rows [j0, j1) (else 0)
+  std::vector<std::array<std::int32_t, 3>> strip_cells;
+  /// per mesh triangle: the leaf node of `tree` that holds it (for the solvers' first bounds)
+  std::vector<std::int32_t> leaf_of_triangle;
+  static constexpr std::uint32_t kStrip = 0xffffffffu;
+  bool empty() const { return tree.empty(); }
+};
+
 /// How the calculation layer (the level where the quadtree method starts, §2.4) is chosen for a
 /// window of half-width w (the range of Eq. (1) is [phi - w, phi + w] about the contact direction phi).
 enum class CalculationLayerRule {
@@ -86,6 +111,9 @@ struct RollerQuadtree {
   /// The exact solvers' tree (above): built by build_quadtree; when empty (a tree assembled by
   /// hand) the solvers descend `nodes`.
   BoundTree bounds;
+  /// The scarred solver's tree of coplanar facet strips (above; built by build_quadtree; empty: the
+  /// solver descends `bounds`).
+  FacetStrips strips;
   /// Per level of the side tree, the largest column count (i1 - i0) of its nodes.
   std::vector<std::int32_t> level_max_columns;
   /// The calculation layer for a window half-width `half_width` (radians, e.g. interference_window()

@@ -19,7 +19,9 @@
 //  - surface_reference: every triangle (the exact reference).
 //  - ScarredSolver: branch and bound down the roller's quadtree (bounds from quadtree.h), started
 //    from the previous frame's minimising triangle (temporal coherence, §3.2) so that the first
-//    upper bound is already (nearly) tight. Equal to surface_reference to rounding.
+//    upper bound is already (nearly) tight. Equal to surface_reference to rounding. It descends the
+//    tree of coplanar facet strips (quadtree.h, FacetStrips; issue #27): a planar run of intact
+//    cells of one column is minimised as one rectangle (two triangles), the scar's cells as before.
 //  - vertex methods (the paper's and its comparisons, approximate by construction): brute force over
 //    all vertices; Barbier–Galin distance over all vertices; the paper's quadtree method
 //    (calculation layer, virtual vertices, scar descent) over the window of Eq. (1).
@@ -75,6 +77,11 @@ class ScarredSolver {
   std::uint32_t previous_ = kNone;
   MeshPairResult run(const Transform& pose, const Cylinder& b, const Vec3* hint);
 };
+
+/// Test-only (issue #27): ScarredSolver descends the tree of coplanar facet strips
+/// (RollerQuadtree::strips, quadtree.h) when enabled (the default), else the cell tree
+/// (RollerQuadtree::bounds) as before the strips; for comparing the two. Process-wide.
+void set_facet_strips_for_testing(bool enabled);
 
 /// Vertex methods: min over (some) vertices of sd_B. `window` = theta of Eq. (1) (radians). B must be
 /// an untapered cylinder here (the paper's comparisons; cylinder.h's point distances).

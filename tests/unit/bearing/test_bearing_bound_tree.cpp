@@ -132,10 +132,17 @@ TEST(BearingBoundTree, ScarredSolverEqualsTheFullScanBitwise) {
         b.height = 50, b.radius = 80;
         if (k % 4 == 3) b.top_radius = 80.5;
         b.base = mid + out * (80 + 10 - g.in(-0.05, 0.1)) - b.axis * 25.0;
-        ScarredSolver solver(&r, &q);
-        const MeshPairResult got = solver.solve(pose, b);
+        // the cell tree (RollerQuadtree::bounds): bit for bit; the tree of coplanar facet strips
+        // (the default since issue #27's 1,024-roller work; test_bearing_facet_strips.cpp) minimises
+        // a planar run of cells as one rectangle, the same value to rounding: within 2^-40 of the scale
+        set_facet_strips_for_testing(false);
+        const MeshPairResult got = ScarredSolver(&r, &q).solve(pose, b);
+        set_facet_strips_for_testing(true);
+        const MeshPairResult strips = ScarredSolver(&r, &q).solve(pose, b);
         const MeshPairResult ref = surface_reference(r, pose, b);
         EXPECT_EQ(got.distance, ref.distance) << "raised " << raised << " top " << top << " case " << k;
+        EXPECT_NEAR(strips.distance, ref.distance, 0x1p-40 * (norm(pose.t - b.center()) + 80 + 25 + 40))
+            << "raised " << raised << " top " << top << " case " << k;
         ++cases;
       }
     }
