@@ -20,7 +20,8 @@
 // with the azimuth of the roller's point nearest to (c = ro) / farthest from (c = ri) the axis (where
 // a thin crossing arc lies), then golden-section refinement of the two best sampled local minima
 // and of the seed. (c) Before (b): the usual case in closed form with a KKT certificate
-// (outer_shell_closed_form below); (b) runs only where it does not apply.
+// (outer_shell_closed_form below); (d) the inner case (the lowest rim point inside ri) in closed
+// form with a certificate (inner_shell_closed_form); (b) runs only where neither applies.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -192,6 +193,141 @@ bool outer_shell_closed_form(const Cylinder& roller, const Rib& rib, Candidate& 
   return true;
 }
 
+/// (d) the inner case in closed form (issue #27, speed): the roller's end e facing the rib (d' into
+/// the roller, n.d' > 0, n = +-u) has its lowest rim point g inside ri (rho(g) < ri), where (c) does
+/// not apply. With z0(x) the lowest l over the roller's points above the point x of the face plane
+/// (projected along n; Omega the roller's projection), min over K of l = min of z0 over Omega with
+/// ri <= rho <= ro; z0 is convex (the lower boundary of a convex solid) with its minimum at g's foot,
+/// inside ri, so for any p of Omega in the annulus the segment from p to g's foot crosses rho = ri at
+/// a point no higher than p: the minimum is on the circle C = {rho = ri} (never on the ro curve).
+/// Candidates: the two points R1, R2 where the rim of e crosses C (Newton on |R(phi)|^2 - ri^2 from
+/// the crossings of the projected rim's circle with C), points of K; z* = the lower of l(R1), l(R2).
+/// Certificate that z0 >= z* - eps on C within the roller's angular window: every roller point is
+/// q + s d' with q in the end disk and 0 <= s <= L, so z0(x) = P(x) + s_min(x)/(n.d') (P the end
+/// disk's plane, s_min >= 0); at R_k the disk's projection lies in nu_k.(x - R_k) <= 0, nu_k = w -
+/// d'(w.n)/(n.d') (w the rim's outward unit at R_k), so s_min(x) >= nu_k.(x - R_k)/(nu_k.d') when
+/// nu_k.d' > 0, and x is in Omega only if nu_k.(x - R_k) <= L nu_k.d' (only if nu_k.(x - R_k) <= 0
+/// when nu_k.d' <= 0). Each of these lower bounds (P itself; P + nu_k.(x - R_k)/((n.d')(nu_k.d')))
+/// and exclusions is linear in x, so on C it holds on an arc (closed form, acos); the certificate is
+/// that the arcs where a bound is >= z* - eps or x is excluded cover the window. eps = 2^-44 of the
+/// scale: the value l(R) is exact to that (and to rounding, the margins being far above it).
+/// Untapered rollers only (the q + s d' form); false when any condition fails (then (b) searches).
+bool inner_shell_closed_form(const Cylinder& roller, const Rib& rib, Candidate& out) {
+  const Vec3& n = rib.normal;
+  const Vec3& u = rib.axis;
+  if (roller.tapered()) return false;
+  const bool same = n.x == u.x && n.y == u.y && n.z == u.z;
+  if (!same && !(n.x == -u.x && n.y == -u.y && n.z == -u.z)) return false;
+  const double ri = rib.inner_radius;
+  if (!(ri > 0)) return false;
+  const double nd = dot(n, roller.axis);
+  if (!(std::fabs(nd) >= 0.5)) return false;
+  const Vec3 dp = nd > 0 ? roller.axis : roller.axis * -1.0;
+  const Vec3 e = nd > 0 ? roller.base : roller.top_center();
+  const double r = roller.radius, L = roller.height, dn = std::fabs(nd);
+  const Vec3 np = n - dp * dn;  // n's part in the disk's plane; -np/|np| points to the lowest rim point
+  const double snp = norm(np);
+  if (!(snp > 1e-12)) return false;
+  // (np is n less its part along d': cancellation when the roller is nearly parallel to n; the
+  // direction is made orthogonal to d' again so that the rim points lie in the end plane to rounding)
+  Vec3 f1 = np * (-1.0 / snp);
+  f1 = f1 - dp * dot(f1, dp);
+  f1 = f1 / norm(f1);
+  const Vec3 f2 = cross(dp, f1);
+  const auto horiz = [&](const Vec3& v) { return v - n * dot(v, n); };  // across the ring axis
+  const Vec3 a = horiz(e - rib.center), b = horiz(f1) * r, c = horiz(f2) * r;
+  const double scale = std::max({std::fabs(rib.center.x), std::fabs(rib.center.y), std::fabs(rib.center.z)}) +
+                       norm(e - rib.center) + L + r + rib.outer_radius;
+  const double eps = 0x1p-44 * scale;
+  // the lowest rim point strictly inside ri (else (b) decides)
+  if (!(dot(a + b, a + b) < ri * ri * (1 - 0x1p-30))) return false;
+  const auto f = [&](double phi, double* df) {
+    const double cs = std::cos(phi), sn = std::sin(phi);
+    const Vec3 x = a + b * cs + c * sn;
+    if (df) *df = 2 * dot(x, c * cs - b * sn);
+    return dot(x, x) - ri * ri;
+  };
+  // starting angles: the projected rim taken as the circle (centre a, radius r) against C
+  const double am = norm(a);
+  if (!(am > 0)) return false;
+  const double cos_t = std::clamp((am * am + r * r - ri * ri) / (2 * am * r), -1.0, 1.0);
+  const double t = std::acos(cos_t);  // angle at a between -a (toward the ring axis) and a crossing
+  const Vec3 toward = a * (-1.0 / am);
+  const double base_phi = std::atan2(dot(toward, c), dot(toward, b));  // phi of the rim point toward the axis
+  struct Crossing {
+    Vec3 R, w;
+    double l = kInf;
+  };
+  std::array<Crossing, 2> cr{};
+  for (int k = 0; k < 2; ++k) {
+    double phi = k == 0 ? base_phi - t : base_phi + t;
+    for (int it = 0; it < 16; ++it) {  // (whether it reached C is checked below)
+      double df = 0;
+      const double fv = f(phi, &df);
+      if (!(df != 0) || !std::isfinite(fv)) break;
+      const double step = fv / df;
+      phi -= step;
+      if (!(std::fabs(step) > 0x1p-50 * (1 + std::fabs(phi)))) break;
+    }
+    if (!std::isfinite(phi)) return false;
+    cr[k].w = f1 * std::cos(phi) + f2 * std::sin(phi);
+    cr[k].R = e + cr[k].w * r;
+    if (!(std::fabs(norm(horiz(cr[k].R - rib.center)) - ri) <= eps)) return false;  // Newton did not reach C
+    cr[k].l = dot(cr[k].R - rib.center, n);
+  }
+  const Crossing& best = cr[1].l < cr[0].l ? cr[1] : cr[0];
+  const double zs = best.l;
+  // the roller's angular window seen from the ring axis (bounding sphere), as (b)
+  const Vec3 a1 = perpendicular_unit(u), a2 = cross(u, a1);
+  const Vec3 m = roller.center() - rib.center;
+  const double mx = dot(m, a1), my = dot(m, a2), D = std::hypot(mx, my);
+  const double rb = std::hypot(0.5 * L, r);
+  if (!(D > rb * 1.000001)) return false;
+  const double psi_m = std::atan2(my, mx), half = std::asin(std::min(1.0, rb / D)) * 1.000001 + 1e-12;
+  // the arcs of C (angles relative to psi_m) where k0 + G.x >= 0, x = ri (cos, sin) in (a1, a2)
+  std::array<std::pair<double, double>, 15> arcs{};
+  int na = 0;
+  bool whole = false;
+  const auto add = [&](double k0, const Vec3& G) {
+    const double gx = dot(G, a1), gy = dot(G, a2), amp = ri * std::hypot(gx, gy);
+    if (k0 >= amp) {
+      whole = true;
+      return;
+    }
+    if (!(k0 > -amp)) return;  // nowhere (or not a number)
+    const double h = std::acos(std::clamp(-k0 / amp, -1.0, 1.0)) * (1 - 0x1p-30);
+    double cen = std::atan2(gy, gx) - psi_m;
+    cen = std::remainder(cen, 2 * std::numbers::pi);
+    for (const double sh : {-2 * std::numbers::pi, 0.0, 2 * std::numbers::pi}) arcs[na++] = {cen + sh - h, cen + sh + h};
+  };
+  const Vec3 gradP = horiz(dp) * (-1.0 / dn);  // P(x) = l(R) + gradP.(x - R) on the face plane
+  add(eps - dot(gradP, horiz(best.R - rib.center)), gradP);  // P >= z* - eps
+  for (const Crossing& ck : cr) {
+    const double wn = dot(ck.w, n);
+    const Vec3 nu = horiz(ck.w - dp * (wn / dn));
+    const double nud = -wn / dn;  // nu.d'
+    const double nr = dot(nu, horiz(ck.R - rib.center));
+    const double margin = 0x1p-40 * scale * norm(nu);
+    if (nud > 0) {
+      const Vec3 G = gradP + nu * (1 / (dn * nud));  // P + s_min/(n.d') >= z* - eps
+      add(ck.l - zs + eps - dot(G, horiz(ck.R - rib.center)), G);
+      add(-nr - L * nud - margin, nu);  // outside Omega: nu.(x - R) > L nu.d'
+    } else {
+      add(-nr - margin, nu);  // outside Omega: nu.(x - R) > 0
+    }
+  }
+  if (!whole) {
+    std::sort(arcs.begin(), arcs.begin() + na);
+    double reach = -half;
+    for (int i = 0; i < na && reach < half; ++i)
+      if (arcs[i].first <= reach) reach = std::max(reach, arcs[i].second);
+    if (!(reach >= half)) return false;
+  }
+  out.l = zs;
+  out.p = best.R;
+  return true;
+}
+
 /// A lower bound of l over the roller's points with rho >= ro (so over the ro curve of (b)), for an
 /// untapered roller whose end e facing the rib (d' into the roller, n.d' > 0) leans toward the ring
 /// axis (m.d' <= 0, m the unit radial direction of e; the usual pose of (c)'s fallback: the lowest
@@ -281,6 +417,17 @@ PairDistance roller_rib_distance(const Cylinder& roller, const Rib& rib) {
     out.distance = c.l;
     out.point_a = c.p;
     out.point_b = c.p - n * c.l;
+    out.path = AnalyticPath::rib;
+    return out;
+  }
+  // (d) the inner case in closed form (certified; see inner_shell_closed_form): the minimum over K
+  // is on the ri curve, at the rim's crossing R; an (a) candidate can only tie it
+  if (Candidate c; inner_shell_closed_form(roller, rib, c)) {
+    if (c.l < best.l) best = c;
+    PairDistance out;
+    out.distance = best.l;
+    out.point_a = best.p;
+    out.point_b = best.p - n * best.l;
     out.path = AnalyticPath::rib;
     return out;
   }
