@@ -14,6 +14,10 @@ with the load average before and after.
 
 A variant is LABEL=EXECUTABLE[:DEFLECTION] (the `interfere` launcher or `interfere-cad`, which the launcher
 hands STEP input to); the default deflection is the README's (data/examples/README.md: the paper's 35,548 case).
+The launcher runs `interfere-cad` with glibc malloc settings in its environment (GLIBC_TUNABLES, unless set
+already: apps/cli/cad_exec.cpp, issue #29); a variant that is `interfere-cad` itself runs without them unless
+GLIBC_TUNABLES is set for this script. On a loaded machine, `chrt -r 10 python3 bench/casing_whole_command.py`
+(as root) keeps the runs apart from the other work (docs/simplify.md, "Fourth round").
 """
 import argparse
 import json
