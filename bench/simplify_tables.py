@@ -834,6 +834,9 @@ reports equal on the casing, `nist_ctc_01`, `as1-oc-214` and `as1_pe_203`):
    `glibc.malloc.arena_max=1` on top no change. (The second round's `mallopt` trim threshold and top pad
    changed nothing because the mmap threshold, which sends those arrays to `mmap`, stayed.) `interfere-cad`
    run directly does not get them: give it the same `GLIBC_TUNABLES` to time it as the launcher runs it.
+   The price is memory: the casing's peak resident set 63 → 73 MB; other STEP inputs simplified to
+   `--ratio 0.1` (one run each under `chrt -r 10`, the launcher before and after): `nist_ctc_02` 1.53 → 1.21 s
+   wall (86 → 97 MB), `gmsh_Zylkopf` 0.42 → 0.38 s (55 → 68 MB), `as1-oc-214` 0.36 → 0.31 s (55 → 63 MB).
 2. **Both Hausdorff directions at once** (`hausdorff.cpp`, `tbb::parallel_invoke`; each computed as before,
    the same bits): each direction has serial steps (its tree, the fans, the convex regions, the refinement's
    sort) that the other's parallel loops fill. Error phase 0.081 → 0.074–0.076 s (medians of 10 and 16
