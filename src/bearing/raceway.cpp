@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <string>
 
@@ -59,6 +60,7 @@ bool in_slab(const Vec3& p, const Vec3& base, const Vec3& u, double width) {
 struct Far {
   double distance = 0, x0 = 0, x1 = 0;
 };
+constexpr double kInf = std::numeric_limits<double>::infinity();
 Far farthest_on_ellipse(double e0, double e1, double y0, double y1) {
   const double s0 = y0 < 0 ? -1.0 : 1.0, s1 = y1 < 0 ? -1.0 : 1.0;
   const double a0 = std::fabs(y0), a1 = std::fabs(y1);
@@ -70,14 +72,52 @@ Far farthest_on_ellipse(double e0, double e1, double y0, double y1) {
       const double q0 = n0 / mu, q1 = n1 / (mu + gap);
       return q0 * q0 + q1 * q1 - 1;
     };
-    double lo = 0, hi = std::hypot(n0, n1);
-    for (int i = 0; i < 1100; ++i) {
-      const double mid = 0.5 * (lo + hi);
-      if (mid <= lo || mid >= hi) break;
-      if (G(mid) > 0) lo = mid;
-      else hi = mid;
+    const double top = std::hypot(n0, n1);
+    double mu = top;
+    // (issue #27, speed) G as evaluated is non-increasing in mu (each rounded operation is monotone),
+    // so the bisection below ends at min(top, the least double t with G(t) <= 0), whatever its path.
+    // t is found directly: Newton from n0 (G(n0) >= 0; G is convex and decreasing, so the iterates
+    // rise to the root), then a walk by ulps to where G changes sign. The bisection remains for the
+    // cases where the walk does not settle within 64 steps; both give the same bits. Start: the root
+    // is at least max(n0, top - gap) (G(mu) >= (n0^2 + n1^2)/(mu + gap)^2 - 1), taken 2^-40 lower so
+    // that it lies left of the root in spite of rounding.
+    bool found = false;
+    {
+      double x = std::max(n0, (top - gap) * (1 - 0x1p-40));
+      for (int i = 0; i < 40; ++i) {
+        const double q0 = n0 / x, q1 = n1 / (x + gap);
+        const double g = q0 * q0 + q1 * q1 - 1;
+        const double dg = -2 * (q0 * q0 / x + q1 * q1 / (x + gap));
+        if (!(g > 0) || !(dg < 0)) break;
+        const double next = x - g / dg;
+        if (!(next > x) || !std::isfinite(next)) break;
+        x = next;
+      }
+      double t = x;
+      int steps = 0;
+      if (std::isfinite(t) && t > 0) {
+        while (G(t) > 0 && steps < 64) t = std::nextafter(t, kInf), ++steps;
+        while (steps < 64) {
+          const double below = std::nextafter(t, 0.0);
+          if (!(below > 0) || G(below) > 0) break;
+          t = below, ++steps;
+        }
+        if (steps < 64 && G(t) <= 0 && !(std::nextafter(t, 0.0) > 0 && G(std::nextafter(t, 0.0)) <= 0)) {
+          mu = std::min(top, t), found = true;
+        }
+      }
     }
-    const double mu = hi;  // G(hi) <= 0: X0 <= e0 (the point is on or just inside the ellipse)
+    if (!found) {
+      double lo = 0, hi = top;
+      for (int i = 0; i < 1100; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        if (mid <= lo || mid >= hi) break;
+        if (G(mid) > 0) lo = mid;
+        else hi = mid;
+      }
+      mu = hi;
+    }
+    // G(mu) <= 0: X0 <= e0 (the point is on or just inside the ellipse)
     X0 = std::min(e0, a0 * e0 * e0 / mu);
     X1 = e1 > 0 ? std::min(e1, a1 * e1 * e1 / (mu + gap)) : 0.0;
     // project onto the ellipse along x1 (the bisection's last ulp): x0 is the accurate coordinate
