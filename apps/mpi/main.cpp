@@ -36,6 +36,7 @@
 #include <nlohmann/json.hpp>
 
 #include "args.h"
+#include "clash_outputs.h"
 #include "driver.h"
 #include "bearing.h"
 #include "cell.h"
@@ -601,9 +602,7 @@ int run(const World& w, int argc, char** argv) {
                              .threads = static_cast<int>(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)),
                              .total_seconds = since(t_total), .exit_status = status, .warnings = all_input_warnings};
     if (!o.json.empty()) write_file(o.json, report_with_mpi(scene::report_json(skeleton, tests, result, ctx), triangles, per_rank, part, seconds, merge_s));
-    if (!o.csv.empty()) write_file(o.csv, scene::clash_table_csv(skeleton, result));
-    if (!o.frames_csv.empty()) write_file(o.frames_csv, scene::frames_table_csv(result));
-    if (!o.frame_pairs_csv.empty()) write_file(o.frame_pairs_csv, scene::frame_pairs_table_csv(skeleton, tests, result));
+    write_clash_tables(o, skeleton, tests, result);
     if (!o.quiet) {
       for (const std::string& x : result.warnings) std::fprintf(stderr, "[interfere-mpi] warning: %s\n", x.c_str());
       for (std::size_t r = 0; r < per_rank.size(); ++r)
@@ -611,10 +610,8 @@ int run(const World& w, int argc, char** argv) {
                      r, per_rank[r].pairs, per_rank[r].calls, per_rank[r].bodies_loaded, per_rank[r].load_seconds,
                      per_rank[r].engine_seconds, per_rank[r].peak_rss_mb);
     }
-    std::FILE* out = o.json == "-" || o.csv == "-" || o.frames_csv == "-" || o.frame_pairs_csv == "-" ? stderr : stdout;
-    std::string verdict = verdict_name(result.verdict);
-    if (result.verdict == Verdict::clash || result.verdict == Verdict::undecided)
-      for (char& ch : verdict) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+    std::FILE* out = summary_stream(o);
+    const std::string verdict = summary_verdict(result.verdict);
     std::fprintf(out, "%s: %zu bodies, %zu candidate pairs: %zu clashes, %zu contacts, %zu clearance, %zu undecided (%d ranks)\n",
                  verdict.c_str(), result.bodies, result.candidate_pairs, result.clash_count, result.contact_count,
                  result.clearance_count, result.undecided_count, w.size);

@@ -35,6 +35,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "clash_outputs.h"
 #include "driver.h"
 #include "merge.h"
 #include "usage.h"
@@ -352,9 +353,7 @@ std::optional<int> run_frames(const World& w, const Options& o, const SeriesInpu
       j["seconds"] = since(in.start);
       write_file(o.json, j.dump(2) + "\n");
     }
-    if (!o.csv.empty()) write_file(o.csv, scene::clash_table_csv(sc, result));
-    if (!o.frames_csv.empty()) write_file(o.frames_csv, scene::frames_table_csv(result));
-    if (!o.frame_pairs_csv.empty()) write_file(o.frame_pairs_csv, scene::frame_pairs_table_csv(sc, in.tests, result));
+    write_clash_tables(o, sc, in.tests, result);
     if (!o.quiet) {
       for (const std::string& x : result.warnings) std::fprintf(stderr, "[interfere-mpi] warning: %s\n", x.c_str());
       for (std::size_t q = 0; q < ranks.size(); ++q)
@@ -362,10 +361,8 @@ std::optional<int> run_frames(const World& w, const Options& o, const SeriesInpu
                      heads[q]["lo"].get<std::size_t>(), heads[q]["hi"].get<std::size_t>(), ranks[q].calls,
                      ranks[q].engine_seconds, ranks[q].peak_rss_mb);
     }
-    std::FILE* out = o.json == "-" || o.csv == "-" || o.frames_csv == "-" || o.frame_pairs_csv == "-" ? stderr : stdout;
-    std::string verdict = verdict_name(result.verdict);
-    if (result.verdict == Verdict::clash || result.verdict == Verdict::undecided)
-      for (char& ch : verdict) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+    std::FILE* out = summary_stream(o);
+    const std::string verdict = summary_verdict(result.verdict);
     std::fprintf(out, "%s: %zu bodies, %zu candidate pairs: %zu clashes, %zu contacts, %zu clearance, %zu undecided; %zu frames (%d ranks, by frames)\n",
                  verdict.c_str(), result.bodies, result.candidate_pairs, result.clash_count, result.contact_count,
                  result.clearance_count, result.undecided_count, nf, w.size);
