@@ -46,9 +46,10 @@ void require_cad(const std::string&) {}
 // page faults in (about 2 us a page on this project's VMs), and freed memory at the heap's top is
 // handed back and faulted in again. With these the arrays come from the heap (mmap threshold
 // 32 MiB), which grows 64 MiB at a time (top pad) and is not trimmed (trim threshold 1 GiB: the
-// process is short-lived, its peak unchanged), in transparent huge pages where the kernel allows
-// them for madvised memory (hugetlb=1: malloc madvises its heaps). The casing P1/P2: 13,000 ->
-// 2,000 minor page faults, CPU time 0.99 -> 0.77 s (docs/simplify.md, "Whole command on the casing").
+// process is short-lived), in transparent huge pages where the kernel allows
+// them for madvised memory (hugetlb=1: malloc madvises its heaps). The casing P1/P2: 13,300 ->
+// 1,900 minor page faults, CPU time 0.90 -> 0.71 s, peak resident set 63 -> 73 MB (docs/simplify.md,
+// "Whole command on the casing", fourth round).
 static void use_cad_malloc_settings() {
   if (std::getenv("GLIBC_TUNABLES")) return;
   ::setenv("GLIBC_TUNABLES",
