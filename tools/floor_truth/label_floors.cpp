@@ -58,6 +58,8 @@
 #include <gp_Lin.hxx>
 #include <gp_Pln.hxx>
 
+#include "../truth_common/step_solids.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -67,18 +69,7 @@
 
 namespace {
 
-struct V {
-  double x = 0, y = 0, z = 0;
-};
-V operator+(V a, V b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-V operator-(V a, V b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-V operator*(V a, double s) { return {a.x * s, a.y * s, a.z * s}; }
-double dot(V a, V b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-V cross(V a, V b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-double len(V a) { return std::sqrt(dot(a, a)); }
-V unit(V a) { return a * (1 / len(a)); }
-V pv(const gp_Pnt& p) { return {p.X(), p.Y(), p.Z()}; }
-gp_Pnt to_pnt(V a) { return gp_Pnt(a.x, a.y, a.z); }
+using namespace truth;
 
 struct Sample {
   V p, d;  // boundary point, in-face direction
@@ -97,27 +88,11 @@ struct Cand {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::fprintf(stderr, "usage: label_floors FILE.stp\n");
-    return 2;
-  }
-  STEPControl_Reader reader;
-  if (reader.ReadFile(argv[1]) != IFSelect_RetDone) {
-    std::fprintf(stderr, "cannot read %s\n", argv[1]);
-    return 1;
-  }
-  reader.TransferRoots();
-  const TopoDS_Shape shape = reader.OneShape();
-  std::printf("{\"file\": \"%s\", \"labeller\": \"tools/floor_truth/label_floors.cpp\", \"solids\": [\n",
-              std::string(argv[1]).substr(std::string(argv[1]).find_last_of('/') + 1).c_str());
-  int solid_index = 0;
-  for (TopExp_Explorer sx(shape, TopAbs_SOLID); sx.More(); sx.Next(), ++solid_index) {
-    const TopoDS_Solid solid = TopoDS::Solid(sx.Current());
-    Bnd_Box box;
-    BRepBndLib::Add(solid, box);
-    double bx0, by0, bz0, bx1, by1, bz1;
-    box.Get(bx0, by0, bz0, bx1, by1, bz1);
-    const double diag = len(V{bx1 - bx0, by1 - by0, bz1 - bz0});
+  const StepSolids step = read_step_solids(argc, argv, "label_floors", "tools/floor_truth/label_floors.cpp");
+  if (step.status) return step.status;
+  for (int solid_index = 0; solid_index < static_cast<int>(step.solids.size()); ++solid_index) {
+    const TopoDS_Solid& solid = step.solids[solid_index];
+    const double diag = diagonal(solid);
     // h above the B-Rep's edge tolerance: a ray closer to the floor's edge than that grazes the wall's
     // boundary and reads as a wall where there is none (gmsh_Zylkopf: edge tolerance 4.4e-3 mm > 1e-4 of
     // its 42 mm diagonal; its bolt seats, open to the outside through a notch, were labelled pockets;

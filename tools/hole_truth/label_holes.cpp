@@ -33,6 +33,8 @@
 #include <gp_Cone.hxx>
 #include <gp_Cylinder.hxx>
 
+#include "../truth_common/step_solids.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -41,18 +43,7 @@
 
 namespace {
 
-struct V {
-  double x = 0, y = 0, z = 0;
-};
-V operator+(V a, V b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-V operator-(V a, V b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-V operator*(V a, double s) { return {a.x * s, a.y * s, a.z * s}; }
-double dot(V a, V b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-V cross(V a, V b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-double len(V a) { return std::sqrt(dot(a, a)); }
-V unit(V a) { return a * (1 / len(a)); }
-V pv(const gp_Pnt& p) { return {p.X(), p.Y(), p.Z()}; }
-V dv(const gp_Dir& p) { return {p.X(), p.Y(), p.Z()}; }
+using namespace truth;
 
 // One analytic surface: cylinder (half_angle 0) or cone; radius at axis_point; axis unit.
 struct Surf {
@@ -73,27 +64,11 @@ struct Element {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::fprintf(stderr, "usage: label_holes FILE.stp\n");
-    return 2;
-  }
-  STEPControl_Reader reader;
-  if (reader.ReadFile(argv[1]) != IFSelect_RetDone) {
-    std::fprintf(stderr, "cannot read %s\n", argv[1]);
-    return 1;
-  }
-  reader.TransferRoots();
-  const TopoDS_Shape shape = reader.OneShape();
-  std::printf("{\"file\": \"%s\", \"labeller\": \"tools/hole_truth/label_holes.cpp\", \"solids\": [\n",
-              std::string(argv[1]).substr(std::string(argv[1]).find_last_of('/') + 1).c_str());
-  int solid_index = 0;
-  for (TopExp_Explorer sx(shape, TopAbs_SOLID); sx.More(); sx.Next(), ++solid_index) {
-    const TopoDS_Solid solid = TopoDS::Solid(sx.Current());
-    Bnd_Box box;
-    BRepBndLib::Add(solid, box);
-    double bx0, by0, bz0, bx1, by1, bz1;
-    box.Get(bx0, by0, bz0, bx1, by1, bz1);
-    const double diag = len(V{bx1 - bx0, by1 - by0, bz1 - bz0});
+  const StepSolids step = read_step_solids(argc, argv, "label_holes", "tools/hole_truth/label_holes.cpp");
+  if (step.status) return step.status;
+  for (int solid_index = 0; solid_index < static_cast<int>(step.solids.size()); ++solid_index) {
+    const TopoDS_Solid& solid = step.solids[solid_index];
+    const double diag = diagonal(solid);
     BRepClass3d_SolidClassifier cls(solid);
     auto inside = [&](V q) {
       cls.Perform(gp_Pnt(q.x, q.y, q.z), 1e-7);
