@@ -867,7 +867,9 @@ before=OLD/interfere --variant after=build/apps/cli/interfere` (`before`: the la
 
 Repeated at 22:35 UTC (load 9.3–9.8, where SCHED_RR no longer kept the runs apart: both slower): 0.829 →
 0.635 s wall, CPU 1.093 → 0.856 s, import 0.492 → 0.344 s, error 0.095 → 0.076 s (after/before 0.77; in the
-first run 0.81). Where the time goes, by stage (a build with timers between the importer's steps, not
+first run 0.81); and at 22:50 UTC with the final build (load 3.7–5.1, the machine in a slow phase: both
+slower again): 0.801 → 0.588 s wall (0.73), CPU 1.079 → 0.815 s, import 0.469 → 0.327 s, error 0.091 → 0.072
+s. Only the ratio carries over between such runs: applied to the quiet 0.586 s it gives 0.43–0.47 s. Where the time goes, by stage (a build with timers between the importer's steps, not
 committed; both columns with items 2 and 3, `before` without the malloc settings; 12 interleaved runs each
 under `chrt -r 10`, load 8.2–9.7, medians; wall 0.756 → 0.614 s):
 
