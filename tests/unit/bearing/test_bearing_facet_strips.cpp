@@ -197,6 +197,22 @@ TEST(BearingFacetStrips, EveryCellOnceAndStripsOnlyWherePlanar) {
       const BoundNode& node = fs.tree.nodes[static_cast<std::size_t>(stack.back())];
       stack.pop_back();
       for (std::int32_t k = 0; k < node.child_count; ++k) stack.push_back(node.first_child + k);
+      // the box contains the vertices of every entry below it
+      {
+        std::vector<std::int32_t> below{static_cast<std::int32_t>(&node - fs.tree.nodes.data())};
+        while (!below.empty()) {
+          const BoundNode& d = fs.tree.nodes[static_cast<std::size_t>(below.back())];
+          below.pop_back();
+          for (std::int32_t k = 0; k < d.child_count; ++k) below.push_back(d.first_child + k);
+          for (std::uint32_t e = d.tri_first; d.child_count == 0 && e < d.tri_first + d.tri_count; ++e)
+            for (const std::uint32_t v : fs.corners[e]) {
+              const Vec3 q = r.mesh.positions[v] - node.box_center;
+              EXPECT_LE(std::fabs(q.x * node.cos_mid + q.y * node.sin_mid), node.half_r);
+              EXPECT_LE(std::fabs(-q.x * node.sin_mid + q.y * node.cos_mid), node.half_t);
+              EXPECT_LE(std::fabs(q.z), node.half_z);
+            }
+        }
+      }
       if (node.child_count > 0) continue;
       for (std::uint32_t e = node.tri_first; e < node.tri_first + node.tri_count; ++e) {
         const std::uint32_t t = fs.mesh_triangle[e];
