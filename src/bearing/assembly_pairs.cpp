@@ -32,6 +32,7 @@
 
 #include "assembly_raceway_scars.h"
 #include "assembly_tapered_scars.h"
+#include "scarred_two_sided.h"
 #include "golden.h"
 #include "interfere/bearing/assembly.h"
 #include "interfere/bearing/raceway.h"
@@ -696,6 +697,13 @@ AssemblyPairResult scarred_tapered_rollers(const AssemblyPart& ra, const Cylinde
     inside = mesh_containment(pa, ib) != 0 || mesh_containment(pb, ia) != 0;
   }
   out.verdict = distance_verdict(out.distance, tol, clearance);
+  if (out.distance > tol && !inside)  // the solids are apart: their exact distance (scarred_two_sided.h)
+    if (const auto e = detail::scarred_meshes_apart(*ra.roller, pose_a, *rb.roller, *rb.solid, pose_b, fa.point_a)) {
+      out.distance = e->distance, out.point_a = e->point_a, out.point_b = e->point_b;
+      out.solver = AssemblySolver::scarred, out.exact = true, out.two_sided = true;
+      out.verdict = distance_verdict(out.distance, tol, clearance);
+      return out;
+    }
   if (out.verdict != Verdict::clear || inside) {  // a lower bound decides only `clear`
     out.verdict = mesh_verdict(*ra.mesh, pose_a, *rb.mesh, pose_b, clearance);
     out.solver = AssemblySolver::mesh;
@@ -768,6 +776,8 @@ AssemblyPairResult solve_one(const Assembly& as, const AssemblyPair& pair, const
       if (!found) return from_distance(roller_cup_distance(roller, cup), AssemblySolver::raceway, clearance, tol);
       AssemblyPairResult out = from_distance(d, AssemblySolver::vertex, clearance, tol);
       out.scar = true;
+      out.two_sided = detail::scarred_ring_two_sided(d, cup.base, cup.axis, (cup.top_radius - cup.radius) / cup.width,
+                                                     cup.width, b.cup_outer, *ra.mesh, pose_a);  // (scarred_two_sided.h)
       return out;
     }
     case AssemblyPairKind::roller_outer: {
@@ -787,6 +797,8 @@ AssemblyPairResult solve_one(const Assembly& as, const AssemblyPair& pair, const
                                                 ra.scar_height)) {
         AssemblyPairResult out = from_distance(*by_columns, AssemblySolver::vertex, clearance, tol);
         out.scar = true;
+        out.two_sided = detail::scarred_ring_two_sided(*by_columns, bore.base, bore.axis, 0, bore.width, b.outer_radius,
+                                                       *ra.mesh, pose_a);
         return out;
       }
       bool found = false;
@@ -795,6 +807,7 @@ AssemblyPairResult solve_one(const Assembly& as, const AssemblyPair& pair, const
       if (!found) return from_distance(roller_bore_distance(roller, bore), AssemblySolver::raceway, clearance, tol);
       AssemblyPairResult out = from_distance(d, AssemblySolver::vertex, clearance, tol);
       out.scar = true;
+      out.two_sided = detail::scarred_ring_two_sided(d, bore.base, bore.axis, 0, bore.width, b.outer_radius, *ra.mesh, pose_a);
       return out;
     }
     case AssemblyPairKind::roller_rib:
@@ -1075,14 +1088,15 @@ AssemblyPairResult solve_pair(const Assembly& as, const AssemblyPair& pair, cons
     case AssemblyPairKind::roller_inner:
     case AssemblyPairKind::roller_cone: r.two_sided = true; break;
     case AssemblyPairKind::roller_roller:  // (two scarred tapered rollers: a lower bound, one-sided)
-      r.two_sided = as.spec.bearings[as.parts[pair.a].bearing].type == BearingType::cylindrical ||
-                    (r.solver != AssemblySolver::bound && r.solver != AssemblySolver::mesh);
+      r.two_sided = r.solver != AssemblySolver::bound && r.solver != AssemblySolver::mesh;
       break;
     // intact rollers: solve_one set it (ring_two_sided.h: S, or a clearance that is the Euclidean
     // distance); scarred rollers' ring rows stay one-sided (the ring's depth into the scarred mesh
     // is not computed), except clearances that are the Euclidean distance
     case AssemblyPairKind::roller_outer:
-      if (as.parts[pair.a].scarred) r.two_sided = r.exact && r.distance > 0 && r.path == AnalyticPath::bore;
+      if (as.parts[pair.a].scarred)  // (or S certified, scarred_two_sided.h)
+        r.two_sided = r.exact && ((r.distance > 0 && r.path == AnalyticPath::bore) ||
+                                  (r.distance <= 0 && r.two_sided && r.solver == AssemblySolver::vertex));
       break;
     case AssemblyPairKind::roller_cage:
       if (r.scar || as.parts[pair.a].scarred) r.two_sided = r.exact && r.distance > 0;
@@ -1091,7 +1105,7 @@ AssemblyPairResult solve_pair(const Assembly& as, const AssemblyPair& pair, cons
       if (as.parts[pair.a].scarred) r.two_sided = false;
       break;
     case AssemblyPairKind::roller_cup:  // scarred rollers: one-sided (the cup's depth into the mesh is not computed)
-      if (as.parts[pair.a].scarred) r.two_sided = false;
+      if (as.parts[pair.a].scarred) r.two_sided = r.exact && r.two_sided && r.solver == AssemblySolver::vertex && r.distance <= 0;
       break;
     default: break;  // (the structural kinds return above)
   }

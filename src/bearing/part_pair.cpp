@@ -8,6 +8,7 @@
 #include <functional>
 
 #include "assembly_tapered_scars.h"
+#include "scarred_two_sided.h"
 #include "interfere/bearing/raceway.h"
 #include "interfere/bearing/scarred.h"
 #include "interfere/query/clash.h"
@@ -194,6 +195,18 @@ PartPairResult two_scarred_rollers(const ScenePart& a, const ScenePart& b, bool 
       out.reason = "whether one scarred roller lies inside the other: every ray direction was degenerate";
       return out;
     }
+    // the surfaces do not meet (A's surface is clear of B0, which holds B's) and neither solid
+    // holds the other: the solids are apart, and S = s(A, B) = s(B, A) is their Euclidean distance,
+    // the smallest triangle-triangle distance (the mesh engine; scarred_two_sided.h, issue #27)
+    if (a.solid != nullptr && b.solid != nullptr)
+      if (const auto e = detail::scarred_meshes_apart(*a.mesh, a.pose, *b.mesh, *b.solid, b.pose, fa.point_a)) {
+        out.distance = out.distance_lower = e->distance;
+        out.point_a = e->point_a, out.point_b = e->point_b, out.reverse = false;
+        out.solver = PartPairSolver::scarred, out.two_sided_exact = true;
+        out.evaluated += e->evaluated;
+        out.verdict = distance_verdict(out.distance, tol, clearance);
+        return out;
+      }
   }
   if (out.verdict == Verdict::clear) return out;  // a lower bound decides only clear
   out.verdict = Verdict::undecided;

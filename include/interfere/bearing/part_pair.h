@@ -28,8 +28,10 @@
 //   * two scarred rollers: no exact solver exists (B must be intact); each mesh is solved against
 //     the other's intact frustum or cylinder grown by its raise (assembly_tapered_scars.h,
 //     grown_roller_solid), the smaller a lower bound of S (the tapered assemblies' two scarred
-//     neighbours' bound): clear when that is clear and neither solid holds the other's centre
-//     (mesh_containment; inside: clash), else undecided.
+//     neighbours' bound); when that is above the touch tolerance and neither solid holds the
+//     other's centre (mesh_containment; inside: clash) the solids are apart and the value is their
+//     exact Euclidean distance, the smallest triangle-triangle distance by the mesh engine
+//     (src/bearing/scarred_two_sided.h; solver scarred, two_sided_exact; issue #27), else undecided.
 // A triangle-surface solver reports the minimum over A's surface; when that is > 0, B could still
 // lie wholly inside A's solid: mesh_containment decides it (B's centre by exact ray parity).
 //

@@ -113,7 +113,13 @@ TEST(BearingAssemblyTaperedScars, ScarredRowsAgainstTheOracle) {
           case AssemblyPairKind::roller_roller: {
             const Cylinder roller_b =
                 posed_cylinder(b.rollers.radius, b.rollers.top_radius, b.rollers.length, poses[pair.b]);
-            if (pa.scarred && pb.scarred) {
+            if (pa.scarred && pb.scarred && r.exact) {  // apart: the meshes' exact distance (scarred_two_sided.h;
+              // test_scarred_pairs_apart.cpp checks it against the brute force)
+              EXPECT_EQ(r.solver, AssemblySolver::scarred);
+              EXPECT_TRUE(r.two_sided);
+              EXPECT_GT(r.distance, 0);
+              ++seen["roller pair, both scarred, exact distance"];
+            } else if (pa.scarred && pb.scarred) {
               EXPECT_FALSE(r.exact);
               EXPECT_TRUE(r.solver == AssemblySolver::bound || r.solver == AssemblySolver::mesh);
               // a lower bound: not above the scarred A against the intact B
@@ -146,7 +152,7 @@ TEST(BearingAssemblyTaperedScars, ScarredRowsAgainstTheOracle) {
             }
             EXPECT_NEAR(r.distance, -best, 1e-9 * scale);
             EXPECT_EQ(r.solver, AssemblySolver::vertex);
-            EXPECT_FALSE(r.two_sided);
+            if (r.two_sided) EXPECT_LE(r.distance, 0);  // (certified S; test_scarred_two_sided_rings.cpp)
             ++seen["cup"];
             break;
           }
@@ -168,7 +174,7 @@ TEST(BearingAssemblyTaperedScars, ScarredRowsAgainstTheOracle) {
   EXPECT_GT(seen["cup"], 0);
   EXPECT_GT(seen["roller pair, one scarred"], 0);
   EXPECT_GT(seen["exact overlapping"], 0);  // the load presses scarred rollers into the cone
-  EXPECT_GT(seen["roller pair, both scarred, clear by the bound"], 0);
+  EXPECT_GT(seen["roller pair, both scarred, exact distance"], 0);  // (before: clear by the bound)
 }
 
 TEST(BearingAssemblyTaperedScars, TwoScarredNeighboursPressedTogether) {
@@ -190,15 +196,15 @@ TEST(BearingAssemblyTaperedScars, TwoScarredNeighboursPressedTogether) {
       moved.t = poses[pair.a].t + d * (shift / norm(d));
       poses[pair.b] = moved;
       const AssemblyPairResult r = solve_pair(*as, pair, poses, as->spec.clearance);
-      EXPECT_FALSE(r.exact);
-      EXPECT_FALSE(r.two_sided);
+      EXPECT_EQ(r.exact, shift > 16);  // apart: the meshes' exact distance (scarred_two_sided.h)
+      EXPECT_EQ(r.two_sided, shift > 16);
       EXPECT_TRUE(r.scar);
       if (shift < 16) {
         EXPECT_EQ(r.solver, AssemblySolver::mesh);
         EXPECT_EQ(r.verdict, Verdict::clash);
         EXPECT_LT(r.distance, 0);
       } else {
-        EXPECT_EQ(r.solver, AssemblySolver::bound);
+        EXPECT_EQ(r.solver, AssemblySolver::scarred);
         EXPECT_EQ(r.verdict, Verdict::clear);
         EXPECT_FALSE(meshes_clash(*as->parts[pair.a].mesh, poses[pair.a], *as->parts[pair.b].mesh, poses[pair.b]));
       }
