@@ -128,12 +128,23 @@ EllipsePoint point_ellipse_distance(double e0, double e1, double y0, double y1) 
   return out;
 }
 
+namespace {
+Vec3 accurate_cross(const Vec3& d, const Vec3& u) {
+  const Vec3 cr = cross(d, u);
+  return norm(cr) < 0x1p-10 ? cross(dot(d, u) >= 0 ? d - u : d + u, u) : cr;
+}
+}  // namespace
+
 RadialMin min_axis_distance(const Cylinder& a, const Vec3& c, const Vec3& u) {
   const Vec3 d = a.axis;
   const double r = a.radius, h = a.height;
   const Vec3 v0 = a.base - c;
   const double cg = dot(d, u);
-  const Vec3 cr = cross(d, u);
+  // d x u, for nearly (anti)parallel axes as the same vector (d -+ u) x u, whose d -+ u is exact
+  // (Sterbenz): cross(d, u) there is rounding noise and f1 = cr / |cr| a random direction (axes
+  // 1e-16 .. 1e-11 apart, as a bearing's posed rollers are, gave distances off by up to 6 mm, both
+  // ways; review, issue #27, test_review_parallel_axes.cpp)
+  const Vec3 cr = accurate_cross(d, u);
   const double sl = norm(cr);
   RadialMin out;
   if (!(sl > 1e-150)) {  // parallel axes: the projected shape is one circle
@@ -244,7 +255,11 @@ RadialMin min_axis_distance_tapered(const Cylinder& a, const Vec3& c, const Vec3
   const double h = a.height;
   const Vec3 v0 = a.base - c;
   const double cg = dot(d, u);
-  const Vec3 cr = cross(d, u);
+  // d x u, for nearly (anti)parallel axes as the same vector (d -+ u) x u, whose d -+ u is exact
+  // (Sterbenz): cross(d, u) there is rounding noise and f1 = cr / |cr| a random direction (axes
+  // 1e-16 .. 1e-11 apart, as a bearing's posed rollers are, gave distances off by up to 6 mm, both
+  // ways; review, issue #27, test_review_parallel_axes.cpp)
+  const Vec3 cr = accurate_cross(d, u);
   const double sl = norm(cr);
   const Vec3 f1 = sl > 1e-150 ? cr / sl : any_perpendicular(d);
   const Vec3 e2 = cross(u, f1);
@@ -347,7 +362,15 @@ namespace detail {
 bool slice_distance(const Cylinder& a, const Cylinder& b, PairDistance& out) {
   const double ab = dot(a.axis, b.axis);
   if (!(std::fabs(ab) >= 0.5)) return false;
+  // m = a - b (a . b) as del - b (del . b), del = a -+ b (exact for nearly (anti)parallel axes,
+  // Sterbenz; the same vector for unit axes): a - b (a . b) cancels to rounding noise there, and m
+  // left the plane across B's axis (axes 1e-16 .. 1e-13 apart gave depths off by up to 5.8 mm;
+  // review, issue #27, test_review_parallel_axes.cpp)
   Vec3 m = a.axis - b.axis * ab;
+  if (norm(m) < 0x1p-10) {
+    const Vec3 del = ab >= 0 ? a.axis - b.axis : a.axis + b.axis;
+    m = del - b.axis * dot(del, b.axis);
+  }
   const double ma = norm(m);  // = m . a after normalising: t_A grows by ma per unit x
   m = ma > 1e-300 ? m / ma : any_perpendicular(b.axis);
   const Vec3 n = cross(b.axis, m);
