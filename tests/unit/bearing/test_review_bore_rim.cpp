@@ -26,6 +26,7 @@
 #include <cstdlib>
 
 #include "../../../src/bearing/raceway_detail.h"
+#include "interfere/bearing/raceway.h"
 #include "unit/bearing/splitmix.h"
 
 using namespace interfere;
@@ -137,4 +138,71 @@ TEST(ReviewBoreRim, FarthestRimPointAgainstDenseSampling) {
   }
   std::printf("[review] bore rim: %d cases, worst oracle - reported %.3g (relative %.3g), worst witness %.3g\n",
               cases, worst_below, worst_rel, worst_witness);
+}
+
+// End to end: roller_bore_distance for a roller inside the width, its axis 0 .. 1e-6 from the
+// bore's (a bearing's rollers: parallel to the rings up to the rounding of their poses), in a
+// general orientation. s = R - max over the roller of rho, the maximum on an end circle: both
+// circles by the oracle above. Before the fix in max_axis_distance_on_rim the rim maximum was off
+// for such axes (ReviewBoreRim.FarthestRimPointAgainstDenseSampling).
+TEST(ReviewBoreRim, RollerInBoreNearlyParallel) {
+  SplitMix rng{0xb07e};
+  const double angles[] = {0, 1e-17, 1e-16, 1e-15, 1e-14, 1e-13, 1e-12, 1e-10, 1e-8, 1e-6};
+  double worst = 0;
+  int too_high = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const double eps = angles[i % 10];
+    const Vec3 u = unit({rng.in(-1, 1), rng.in(-1, 1), rng.in(-1, 1)});
+    const Vec3 p = unit(cross(u, std::fabs(u.x) < 0.6 ? Vec3{1, 0, 0} : Vec3{0, 1, 0}));
+    const Vec3 p2 = cross(u, p);
+    bearing::Bore bore;
+    bore.base = Vec3{rng.in(-1, 1), rng.in(-1, 1), rng.in(-1, 1)} * std::pow(10.0, rng.in(0, 3));
+    bore.axis = u, bore.radius = rng.in(60, 200), bore.width = rng.in(30, 60);
+    const double rr = rng.in(4, 15), h = rng.in(8, 0.8 * bore.width);
+    const double tw = rng.in(0, 2 * std::numbers::pi), ph = rng.in(0, 2 * std::numbers::pi);
+    Cylinder roller;
+    roller.axis = unit(u + (p * std::cos(tw) + p2 * std::sin(tw)) * eps);
+    roller.radius = rr, roller.height = h;
+    const double pitch = bore.radius - rr + rng.in(-0.05, 0.05);  // pressed or clear by up to 0.05
+    const double z0 = rng.in(1, bore.width - h - 1);
+    roller.base = bore.base + u * z0 + (p * std::cos(ph) + p2 * std::sin(ph)) * pitch;
+    const PairDistance got = roller_bore_distance(roller, bore);
+    const double reach = std::max(oracle({roller.base, rr}, roller.axis, bore.base, u).value,
+                                  oracle({roller.top_center(), rr}, roller.axis, bore.base, u).value);
+    const double ref = bore.radius - reach;
+    const double tol = 1e-11 * bore.radius + 1e-14 * norm(bore.base);
+    worst = std::max(worst, std::fabs(got.distance - ref));
+    too_high += got.distance > ref + tol;
+    EXPECT_NEAR(got.distance, ref, tol) << "case " << i << " angle " << eps << " path " << analytic_path_name(got.path)
+                                        << " |d x u| " << norm(cross(roller.axis, u)) << " d.u - 1 " << dot(roller.axis, u) - 1
+                                        << std::hexfloat << " roller base " << roller.base.x << " " << roller.base.y << " "
+                                        << roller.base.z << " axis " << roller.axis.x << " " << roller.axis.y << " "
+                                        << roller.axis.z << " r " << rr << " h " << h << " bore base " << bore.base.x << " "
+                                        << bore.base.y << " " << bore.base.z << " axis " << u.x << " " << u.y << " " << u.z
+                                        << " R " << bore.radius << " width " << bore.width << std::defaultfloat;
+  }
+  EXPECT_EQ(too_high, 0);
+  std::printf("[review] roller in bore, nearly parallel: worst |s - ref| %.3g, %d above the reference\n", worst,
+              too_high);
+}
+
+// The case that found raceway_slab.cpp's axial_extent bug: the roller's axis 1 ulp per component
+// from the bore's (cross product exactly 0), the roller at z 1.23 .. 12.74 inside a width of 37.3,
+// 0.0298 clear of the raceway; it came out path apart, 1.23 (its "axial gap"), since u - d (d . u)
+// was rounding noise and the rims' axial extent was taken along it.
+TEST(ReviewBoreRim, AxisOneUlpFromTheBores) {
+  Cylinder roller;
+  roller.base = {0x1.58f8d9d16e59bp+5, 0x1.c6175edffc15bp+5, -0x1.0b7b70cd51d1cp+5};
+  roller.axis = {-0x1.23223ba9f9effp-1, 0x1.6b5b0d084613ep-1, 0x1.a9f28e228c371p-2};
+  roller.radius = 0x1.c30eb18436a97p+3, roller.height = 0x1.7051d5c890288p+3;
+  bearing::Bore bore;
+  bore.base = {0x1.0a206f27f2c3cp+2, 0x1.5c957d12223fcp+2, -0x1.0c83913957dc7p+1};
+  bore.axis = {-0x1.23223ba9f9efep-1, 0x1.6b5b0d084613dp-1, 0x1.a9f28e228c37p-2};
+  bore.radius = 0x1.570cc37a894acp+6, bore.width = 0x1.2a8d301d14285p+5;
+  const PairDistance got = roller_bore_distance(roller, bore);
+  const double reach = std::max(oracle({roller.base, roller.radius}, roller.axis, bore.base, bore.axis).value,
+                                oracle({roller.top_center(), roller.radius}, roller.axis, bore.base, bore.axis).value);
+  EXPECT_EQ(got.path, AnalyticPath::bore);
+  EXPECT_NEAR(got.distance, bore.radius - reach, 1e-11);
+  EXPECT_NEAR(got.distance, 0.029780330329458593, 1e-11);
 }
