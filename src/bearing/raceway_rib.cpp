@@ -41,6 +41,16 @@ using detail::Rim;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+/// The row of a rib point found at height l over the face: the roller point p and its foot on the face.
+PairDistance rib_row(double l, const Vec3& p, const Vec3& n) {
+  PairDistance out;
+  out.distance = l;
+  out.point_a = p;
+  out.point_b = p - n * l;
+  out.path = AnalyticPath::rib;
+  return out;
+}
+
 /// The segment [z0, z1] of the line q + z u inside the solid frustum c; false when they miss.
 bool clip_line(const Cylinder& c, const Vec3& q, const Vec3& u, double& z0, double& z1) {
   const Vec3& d = c.axis;
@@ -403,33 +413,14 @@ PairDistance roller_rib_distance(const Cylinder& roller, const Rib& rib) {
   }
   // l is linear, so its minimum over the whole roller is plane_min (on a rim, (a)); when that point
   // lies in the shell it is the minimum over K too, and no point of (b) can be lower: done.
-  if (best.l == plane_min) {
-    PairDistance out;
-    out.distance = best.l;
-    out.point_a = best.p;
-    out.point_b = best.p - n * best.l;
-    out.path = AnalyticPath::rib;
-    return out;
-  }
+  if (best.l == plane_min) return rib_row(best.l, best.p, n);
   // (c) the usual case in closed form (certified; see outer_shell_closed_form)
-  if (Candidate c; outer_shell_closed_form(roller, rib, c)) {
-    PairDistance out;
-    out.distance = c.l;
-    out.point_a = c.p;
-    out.point_b = c.p - n * c.l;
-    out.path = AnalyticPath::rib;
-    return out;
-  }
+  if (Candidate c; outer_shell_closed_form(roller, rib, c)) return rib_row(c.l, c.p, n);
   // (d) the inner case in closed form (certified; see inner_shell_closed_form): the minimum over K
   // is on the ri curve, at the rim's crossing R; an (a) candidate can only tie it
   if (Candidate c; inner_shell_closed_form(roller, rib, c)) {
     if (c.l < best.l) best = c;
-    PairDistance out;
-    out.distance = best.l;
-    out.point_a = best.p;
-    out.point_b = best.p - n * best.l;
-    out.path = AnalyticPath::rib;
-    return out;
+    return rib_row(best.l, best.p, n);
   }
   // (b) the curves on rho = ro and rho = ri, searched over the roller's angular window seen from the
   // ring axis (bounding sphere of the roller: centre m, radius rb)
@@ -466,14 +457,8 @@ PairDistance roller_rib_distance(const Cylinder& roller, const Rib& rib) {
     if (c.l < best.l) best = c;
   }
   if (c_ri.l < best.l) best = c_ri;
+  if (best.l < kInf) return rib_row(best.l, best.p, n);
   PairDistance out;
-  if (best.l < kInf) {
-    out.distance = best.l;
-    out.point_a = best.p;
-    out.point_b = best.p - n * best.l;
-    out.path = AnalyticPath::rib;
-    return out;
-  }
   // no point over the annulus: a positive lower bound of the distance (radial gap to the shell, or
   // the plane gap of the whole roller)
   const double radial = std::max(min_rho - ro, ri - max_rho);

@@ -10,12 +10,28 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
+
 #include "interfere/bearing/assembly.h"
+#include "unit/bearing/assembly_fixture.h"
 #include "unit/bearing/splitmix.h"
 
 namespace interfere::bearing::test {
+
+/// One frame of `bearing` with every roller scarred (350 degrees wide, 0.08 deep; raised or inward).
+inline Assembly scarred_assembly(const std::string& bearing, bool raised) {
+  const std::string extra =
+      std::string(R"("frames": 1, "seed": 3, "clearance": 0.05, "scar": {"fraction": 1, "angle_width_deg": 350, "depth": 0.08, "seed": 9)") +
+      (raised ? R"(, "raised": true)" : "") + "},";
+  Expected<AssemblySpec> s = parse_assembly(assembly_json(extra, bearing), "t.json");
+  EXPECT_TRUE(s) << s.error().message();
+  Expected<Assembly> built = build_assembly(*s);
+  EXPECT_TRUE(built) << built.error().message();
+  return std::move(*built);
+}
 
 inline std::array<std::array<double, 3>, 3> rot_about(const Vec3& k, double angle) {
   const double c = std::cos(angle), s = std::sin(angle), v = 1 - c;

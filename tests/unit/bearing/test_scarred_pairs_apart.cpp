@@ -44,17 +44,6 @@ double brute_force_distance(const TriMesh& ma, const std::vector<Vec3>& pa, cons
   return best;
 }
 
-Assembly build(const std::string& bearing, bool raised) {
-  const std::string extra =
-      std::string(R"("frames": 1, "seed": 3, "clearance": 0.05, "scar": {"fraction": 1, "angle_width_deg": 350, "depth": 0.08, "seed": 9)") +
-      (raised ? R"(, "raised": true)" : "") + "},";
-  Expected<AssemblySpec> s = parse_assembly(test::assembly_json(extra, bearing), "t.json");
-  EXPECT_TRUE(s) << s.error().message();
-  Expected<Assembly> built = build_assembly(*s);
-  EXPECT_TRUE(built) << built.error().message();
-  return std::move(*built);
-}
-
 ScenePart scene_part(const Assembly& as, std::size_t i, const Transform& pose) {
   const BearingSpec& b = as.spec.bearings[as.parts[i].bearing];
   ScenePart s;
@@ -66,7 +55,7 @@ ScenePart scene_part(const Assembly& as, std::size_t i, const Transform& pose) {
 
 void check(const std::string& bearing, int& exact_rows, int& other_rows, double& worst) {
   for (const bool raised : {false, true}) {
-    const Assembly as = build(bearing, raised);
+    const Assembly as = test::scarred_assembly(bearing, raised);
     test::SplitMix rng{raised ? 5u : 3u};
     for (int round = 0; round < 3; ++round) {
       std::vector<Transform> poses;

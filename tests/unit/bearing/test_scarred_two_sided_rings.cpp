@@ -112,21 +112,10 @@ void check_rows(const Assembly& as, AssemblyPairKind kind, const RingRef& ring, 
   }
 }
 
-Assembly build(const std::string& bearing, bool raised) {
-  const std::string extra =
-      std::string(R"("frames": 1, "seed": 3, "clearance": 0.05, "scar": {"fraction": 1, "angle_width_deg": 350, "depth": 0.08, "seed": 9)") +
-      (raised ? R"(, "raised": true)" : "") + "},";
-  Expected<AssemblySpec> s = parse_assembly(test::assembly_json(extra, bearing), "t.json");
-  EXPECT_TRUE(s) << s.error().message();
-  Expected<Assembly> built = build_assembly(*s);
-  EXPECT_TRUE(built) << built.error().message();
-  return std::move(*built);
-}
-
 TEST(BearingScarredTwoSidedRings, ScarredRollersInTheBoreAgainstADenseReference) {
   Stats st;
   for (const bool raised : {false, true}) {
-    const Assembly as = build(test::kCylindricalBearing, raised);
+    const Assembly as = test::scarred_assembly(test::kCylindricalBearing, raised);
     const BearingSpec& b = as.spec.bearings[0];
     RingRef ring;
     ring.z0 = -0.5 * b.outer_width, ring.z1 = 0.5 * b.outer_width;
@@ -144,7 +133,7 @@ TEST(BearingScarredTwoSidedRings, ScarredRollersInTheBoreAgainstADenseReference)
 TEST(BearingScarredTwoSidedRings, ScarredTaperedRollersInTheCupAgainstADenseReference) {
   Stats st;
   for (const bool raised : {false, true}) {
-    const Assembly as = build(test::kTaperedBearing, raised);
+    const Assembly as = test::scarred_assembly(test::kTaperedBearing, raised);
     const BearingSpec& b = as.spec.bearings[0];
     const BearingGeometry& g = as.geometry[0];
     const double ta = std::tan(g.cup_half_angle);
