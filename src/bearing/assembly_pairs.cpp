@@ -1104,8 +1104,8 @@ AssemblyPairResult solve_pair(const Assembly& as, const AssemblyPair& pair, cons
     case AssemblyPairKind::roller_rib:
       if (as.parts[pair.a].scarred) r.two_sided = false;
       break;
-    case AssemblyPairKind::roller_cup:  // scarred rollers: one-sided (the cup's depth into the mesh is not computed)
-      if (as.parts[pair.a].scarred) r.two_sided = r.exact && r.two_sided && r.solver == AssemblySolver::vertex && r.distance <= 0;
+    case AssemblyPairKind::roller_cup:  // scarred rollers: S or the Euclidean distance where certified (scarred_two_sided.h)
+      if (as.parts[pair.a].scarred) r.two_sided = r.exact && r.two_sided && r.solver == AssemblySolver::vertex;
       break;
     default: break;  // (the structural kinds return above)
   }

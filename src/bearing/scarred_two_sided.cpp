@@ -12,7 +12,14 @@ namespace interfere::bearing::detail {
 
 bool scarred_ring_two_sided(const PairDistance& d, const Vec3& base, const Vec3& axis, double k, double width,
                             double outer_radius, const TriMesh& mesh, const Transform& pose) {
-  if (d.path != AnalyticPath::bore || !(d.distance <= 0)) return false;  // (a bound, or apart: not here)
+  if (d.path != AnalyticPath::bore) return false;  // (a bound)
+  if (d.distance > 0) {
+    // apart (scarred_two_sided.h (1), apart): the Euclidean distance when the witness's foot on the
+    // raceway's line lies within the width
+    const double zb = dot(d.point_b - base, axis);
+    return zb >= 0 && zb <= width;
+  }
+  if (!(d.distance <= 0)) return false;
   const double reach = -d.distance;  // r_f
   // fwd = r_f: the witness is at least r_f from the side faces' and the outside's lines
   const Vec3 w = d.point_a - base;

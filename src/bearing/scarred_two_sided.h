@@ -16,6 +16,14 @@
 //         of the clipped surface, a point of A_s with g(p*) = r_f) is at least r_f from the other
 //         free edges' lines (side faces z = 0 and z = width, the outside rho = outer radius).
 //     Then S = -max(fwd, rev) = -r_f: the row's value is the two-sided S.
+//     Apart (d.distance > 0, path bore: the solvers' maximum G of g over every vertex of the mesh,
+//     which lies within the width): the ring's meridian polygon lies in the half-plane g >= 0
+//     beyond the raceway's line (extended past the width), and rotating a ring point into another
+//     meridian plane never increases its distance, so every point x of A_s is at least -g(x) >= -G
+//     from the ring (g is convex: its maximum over the solid is at a vertex). The witness's foot on
+//     the line (point_b) is a ring point at distance -G when it lies within the width: then -G is
+//     the Euclidean distance, the same in both directions. (The whole roller need not lie within
+//     the width, unlike ring_two_sided.h's intact cup rows, whose solver maximises over K only.)
 //
 // (2) Two scarred rollers that are apart. When the caller's lower bound L (each mesh against the
 //     other's grown intact solid, part_pair.h) is above the touch tolerance, the surfaces do not
@@ -42,8 +50,9 @@ struct Model;
 
 namespace interfere::bearing::detail {
 
-/// (1): whether the one-sided ring value `d` of a scarred roller (path bore, d.distance <= 0,
-/// d.point_a its witness) is the two-sided S, for a ring of raceway line R(z) = R0 + k z over
+/// (1): whether the one-sided ring value `d` of a scarred roller (path bore, d.point_a its witness,
+/// d.point_b its foot on the raceway's line) is the two-sided S (overlapping) or the Euclidean
+/// distance (apart, d.distance > 0), for a ring of raceway line R(z) = R0 + k z over
 /// 0 <= z <= width (z along the unit `axis` from `base`) and outside radius `outer_radius`.
 /// `mesh`/`pose`: the roller's closed mesh, needed for a cup (k != 0: every vertex within the width).
 bool scarred_ring_two_sided(const PairDistance& d, const Vec3& base, const Vec3& axis, double k, double width,

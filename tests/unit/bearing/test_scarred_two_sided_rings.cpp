@@ -17,6 +17,11 @@
 
 #include "interfere/bearing/assembly.h"
 #include "unit/bearing/assembly_fixture.h"
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "../../../src/bearing/scarred_two_sided.h"
 #include "unit/bearing/scarred_reference.h"
 
 namespace interfere::bearing {
@@ -148,6 +153,114 @@ TEST(BearingScarredTwoSidedRings, ScarredTaperedRollersInTheCupAgainstADenseRefe
               "sampled rev / depth %.4f..%.4f\n",
               st.certified, st.uncertified_overlap, st.worst, st.rev_ratio_min, st.rev_ratio_max);
   EXPECT_GT(st.certified, 20);
+}
+
+/// The distance of (rho, z) to the ring part's meridian polygon (0 inside): the Euclidean distance
+/// of the point to the ring in 3D (a solid of revolution), by the polygon's four edges.
+double ring_distance(const RingRef& ring, double rho, double z) {
+  if (ring.depth(rho, z) >= 0) return 0;
+  const double P[4][2] = {{ring.raceway(ring.z0), ring.z0}, {ring.raceway(ring.z1), ring.z1}, {ring.outer, ring.z1}, {ring.outer, ring.z0}};
+  double best = std::numeric_limits<double>::infinity();
+  for (int e = 0; e < 4; ++e) {
+    const double* a = P[e];
+    const double* b = P[(e + 1) % 4];
+    const double ex = b[0] - a[0], ez = b[1] - a[1];
+    const double t = std::clamp(((rho - a[0]) * ex + (z - a[1]) * ez) / (ex * ex + ez * ez), 0.0, 1.0);
+    best = std::min(best, std::hypot(rho - a[0] - t * ex, z - a[1] - t * ez));
+  }
+  return best;
+}
+
+/// Apart rows (issue #27): a scarred roller pulled away from the ring. Rows flagged two-sided must be
+/// the Euclidean distance of the mesh to the ring: the minimum over every vertex and a barycentric
+/// grid of every posed triangle of ring_distance (the minimiser is a vertex when the row is right; a
+/// nearer point anywhere on the grid would show a wrong certificate).
+void check_apart_rows(const Assembly& as, AssemblyPairKind kind, const RingRef& ring, test::SplitMix& rng,
+                      double axial, int& certified, int& uncertified, double& worst) {
+  for (int round = 0; round < 6; ++round) {
+    const std::vector<Transform> poses = test::random_poses(as, rng, 1.0, -0.4, -0.02, axial, 0.3);
+    for (const AssemblyPair& pair : as.pairs) {
+      if (pair.kind != kind || !as.parts[pair.a].scarred) continue;
+      const AssemblyPairResult r = solve_pair(as, pair, poses, as.spec.clearance);
+      if (!(r.distance > 0)) continue;
+      if (!r.two_sided) {
+        ++uncertified;
+        continue;
+      }
+      ++certified;
+      SCOPED_TRACE(as.parts[pair.a].id + " round " + std::to_string(round));
+      const Transform& ring_pose = poses[pair.b];
+      const Vec3 axis = ring_pose.rotate({0, 0, 1});
+      const TriMesh& mesh = *as.parts[pair.a].mesh;
+      const std::vector<Vec3> pos = test::posed_positions(mesh, poses[pair.a]);
+      double ref = std::numeric_limits<double>::infinity();
+      const auto sample = [&](const Vec3& x) {
+        const Vec3 w = x - ring_pose.t;
+        const double z = dot(w, axis);
+        ref = std::min(ref, ring_distance(ring, norm(w - axis * z), z));
+      };
+      for (const Vec3& x : pos) sample(x);
+      constexpr int kGrid = 8;
+      for (const Tri& t : mesh.triangles)
+        for (int i = 0; i <= kGrid; ++i)
+          for (int j = 0; i + j <= kGrid; ++j)
+            sample(pos[t[0]] + (pos[t[1]] - pos[t[0]]) * (double(i) / kGrid) + (pos[t[2]] - pos[t[0]]) * (double(j) / kGrid));
+      const double diff = std::fabs(ref - r.distance) / std::max(1.0, ring.outer);
+      worst = std::max(worst, diff);
+      EXPECT_LE(diff, 1e-9) << "row " << r.distance << " reference " << ref;
+      EXPECT_TRUE(r.exact);
+    }
+  }
+}
+
+TEST(BearingScarredTwoSidedRings, ApartRowsAreTheEuclideanDistance) {
+  for (const bool tapered : {false, true}) {
+    int certified = 0, uncertified = 0;
+    double worst = 0;
+    for (const bool raised : {false, true}) {
+      const Assembly as = test::scarred_assembly(tapered ? test::kTaperedBearing : test::kCylindricalBearing, raised);
+      const BearingSpec& b = as.spec.bearings[0];
+      RingRef ring;
+      if (tapered) {
+        const BearingGeometry& g = as.geometry[0];
+        const double ta = std::tan(g.cup_half_angle);
+        ring.z0 = g.ring_lo, ring.z1 = g.ring_hi;
+        ring.R0 = (g.ring_lo - g.apex_z) * ta + b.cup_clearance / std::cos(g.cup_half_angle);
+        ring.k = ta, ring.outer = b.cup_outer;
+      } else {
+        ring.z0 = -0.5 * b.outer_width, ring.z1 = 0.5 * b.outer_width;
+        ring.R0 = b.outer_raceway, ring.k = 0, ring.outer = b.outer_radius;
+      }
+      test::SplitMix rng{(tapered ? 31u : 29u) + (raised ? 2u : 0u)};
+      check_apart_rows(as, tapered ? AssemblyPairKind::roller_cup : AssemblyPairKind::roller_outer, ring, rng,
+                       tapered ? 12.0 : 16.0, certified, uncertified, worst);
+    }
+    std::printf("%s apart: %d rows certified (the Euclidean distance), %d not, largest difference %.3g of the ring's size\n",
+                tapered ? "cup" : "bore", certified, uncertified, worst);
+    EXPECT_GT(certified, 20);
+  }
+}
+
+// The apart certificate's foot test, which the random poses above never reach (the witness's foot
+// leaves the width only when the witness lies within about k times the gap of a side face): a cup
+// line rho = 10 + 0.5 z over 0 <= z <= 4 and a witness at rho = 9. At z = 0.3 its foot on the line
+// lies at z < 0, beyond the width: the ring's nearest point is then its corner (10, 0), farther than
+// the line, so -g is only a lower bound; at z = 2 the foot is on the raceway.
+TEST(BearingScarredTwoSidedRings, ApartFootBeyondTheWidthIsNotCertified) {
+  const double k = 0.5, nk = std::sqrt(1 + k * k);
+  const Vec3 base{0, 0, 0}, axis{0, 0, 1};
+  for (const double zw : {0.3, 2.0}) {
+    const Vec3 p{9, 0, zw};
+    const double g = (9 - (10 + k * zw)) / nk;  // < 0: apart
+    const Vec3 n = Vec3{1, 0, -k} / nk;          // the line's outward normal in the meridian plane
+    PairDistance d;
+    d.path = AnalyticPath::bore, d.distance = -g, d.point_a = p, d.point_b = p - n * g;
+    const bool foot_in = d.point_b.z >= 0 && d.point_b.z <= 4;
+    EXPECT_EQ(foot_in, zw > 1) << "the set-up: foot z " << d.point_b.z;
+    const bool cert = detail::scarred_ring_two_sided(d, base, axis, k, 4.0, 30.0, TriMesh{}, Transform{});
+    EXPECT_EQ(cert, foot_in) << "witness z " << zw << ", foot z " << d.point_b.z;
+    if (!foot_in) EXPECT_GT(std::hypot(9 - 10, zw - 0), -g);  // the true distance exceeds the row's value
+  }
 }
 
 }  // namespace
