@@ -39,6 +39,34 @@ struct RingRef {
   }
 };
 
+/// Every vertex and an 8-step barycentric grid of every posed triangle.
+template <class F>
+void surface_samples(const TriMesh& mesh, const std::vector<Vec3>& pos, F&& sample) {
+  for (const Vec3& x : pos) sample(x);
+  constexpr int kGrid = 8;
+  for (const Tri& t : mesh.triangles)
+    for (int i = 0; i <= kGrid; ++i)
+      for (int j = 0; i + j <= kGrid; ++j)
+        sample(pos[t[0]] + (pos[t[1]] - pos[t[0]]) * (double(i) / kGrid) + (pos[t[2]] - pos[t[0]]) * (double(j) / kGrid));
+}
+
+/// The outer ring's part (a bore) or the cup of bearing 0, from the description.
+RingRef ring_of(const Assembly& as, bool cup) {
+  const BearingSpec& b = as.spec.bearings[0];
+  RingRef ring;
+  if (cup) {
+    const BearingGeometry& g = as.geometry[0];
+    const double ta = std::tan(g.cup_half_angle);
+    ring.z0 = g.ring_lo, ring.z1 = g.ring_hi;
+    ring.R0 = (g.ring_lo - g.apex_z) * ta + b.cup_clearance / std::cos(g.cup_half_angle);
+    ring.k = ta, ring.outer = b.cup_outer;
+  } else {
+    ring.z0 = -0.5 * b.outer_width, ring.z1 = 0.5 * b.outer_width;
+    ring.R0 = b.outer_raceway, ring.k = 0, ring.outer = b.outer_radius;
+  }
+  return ring;
+}
+
 struct Stats {
   int certified = 0, uncertified_overlap = 0;
   double worst = 0;
@@ -76,12 +104,7 @@ void check_rows(const Assembly& as, AssemblyPairKind kind, const RingRef& ring, 
         local(x, rho, z);
         fwd = std::max(fwd, ring.depth(rho, z));
       };
-      for (const Vec3& x : pos) sample(x);
-      constexpr int kGrid = 8;
-      for (const Tri& t : mesh.triangles)
-        for (int i = 0; i <= kGrid; ++i)
-          for (int j = 0; i + j <= kGrid; ++j)
-            sample(pos[t[0]] + (pos[t[1]] - pos[t[0]]) * (double(i) / kGrid) + (pos[t[2]] - pos[t[0]]) * (double(j) / kGrid));
+      surface_samples(mesh, pos, sample);
       // rev: ring points near the witness (the first 3 rows of each round: the brute force is slow)
       double rev = 0;
       if (rev_checked < 3) {
@@ -121,10 +144,7 @@ TEST(BearingScarredTwoSidedRings, ScarredRollersInTheBoreAgainstADenseReference)
   Stats st;
   for (const bool raised : {false, true}) {
     const Assembly as = test::scarred_assembly(test::kCylindricalBearing, raised);
-    const BearingSpec& b = as.spec.bearings[0];
-    RingRef ring;
-    ring.z0 = -0.5 * b.outer_width, ring.z1 = 0.5 * b.outer_width;
-    ring.R0 = b.outer_raceway, ring.k = 0, ring.outer = b.outer_radius;
+    const RingRef ring = ring_of(as, false);
     test::SplitMix rng{raised ? 21u : 17u};
     check_rows(as, AssemblyPairKind::roller_outer, ring, rng, 7.0, st);
   }
@@ -139,13 +159,7 @@ TEST(BearingScarredTwoSidedRings, ScarredTaperedRollersInTheCupAgainstADenseRefe
   Stats st;
   for (const bool raised : {false, true}) {
     const Assembly as = test::scarred_assembly(test::kTaperedBearing, raised);
-    const BearingSpec& b = as.spec.bearings[0];
-    const BearingGeometry& g = as.geometry[0];
-    const double ta = std::tan(g.cup_half_angle);
-    RingRef ring;
-    ring.z0 = g.ring_lo, ring.z1 = g.ring_hi;
-    ring.R0 = (g.ring_lo - g.apex_z) * ta + b.cup_clearance / std::cos(g.cup_half_angle);
-    ring.k = ta, ring.outer = b.cup_outer;
+    const RingRef ring = ring_of(as, true);
     test::SplitMix rng{raised ? 23u : 19u};
     check_rows(as, AssemblyPairKind::roller_cup, ring, rng, 3.0, st);
   }
@@ -199,12 +213,7 @@ void check_apart_rows(const Assembly& as, AssemblyPairKind kind, const RingRef& 
         const double z = dot(w, axis);
         ref = std::min(ref, ring_distance(ring, norm(w - axis * z), z));
       };
-      for (const Vec3& x : pos) sample(x);
-      constexpr int kGrid = 8;
-      for (const Tri& t : mesh.triangles)
-        for (int i = 0; i <= kGrid; ++i)
-          for (int j = 0; i + j <= kGrid; ++j)
-            sample(pos[t[0]] + (pos[t[1]] - pos[t[0]]) * (double(i) / kGrid) + (pos[t[2]] - pos[t[0]]) * (double(j) / kGrid));
+      surface_samples(mesh, pos, sample);
       const double diff = std::fabs(ref - r.distance) / std::max(1.0, ring.outer);
       worst = std::max(worst, diff);
       EXPECT_LE(diff, 1e-9) << "row " << r.distance << " reference " << ref;
@@ -219,18 +228,7 @@ TEST(BearingScarredTwoSidedRings, ApartRowsAreTheEuclideanDistance) {
     double worst = 0;
     for (const bool raised : {false, true}) {
       const Assembly as = test::scarred_assembly(tapered ? test::kTaperedBearing : test::kCylindricalBearing, raised);
-      const BearingSpec& b = as.spec.bearings[0];
-      RingRef ring;
-      if (tapered) {
-        const BearingGeometry& g = as.geometry[0];
-        const double ta = std::tan(g.cup_half_angle);
-        ring.z0 = g.ring_lo, ring.z1 = g.ring_hi;
-        ring.R0 = (g.ring_lo - g.apex_z) * ta + b.cup_clearance / std::cos(g.cup_half_angle);
-        ring.k = ta, ring.outer = b.cup_outer;
-      } else {
-        ring.z0 = -0.5 * b.outer_width, ring.z1 = 0.5 * b.outer_width;
-        ring.R0 = b.outer_raceway, ring.k = 0, ring.outer = b.outer_radius;
-      }
+      const RingRef ring = ring_of(as, tapered);
       test::SplitMix rng{(tapered ? 31u : 29u) + (raised ? 2u : 0u)};
       check_apart_rows(as, tapered ? AssemblyPairKind::roller_cup : AssemblyPairKind::roller_outer, ring, rng,
                        tapered ? 12.0 : 16.0, certified, uncertified, worst);
