@@ -128,12 +128,7 @@ EllipsePoint point_ellipse_distance(double e0, double e1, double y0, double y1) 
   return out;
 }
 
-namespace {
-Vec3 accurate_cross(const Vec3& d, const Vec3& u) {
-  const Vec3 cr = cross(d, u);
-  return norm(cr) < 0x1p-10 ? cross(dot(d, u) >= 0 ? d - u : d + u, u) : cr;
-}
-}  // namespace
+using detail::accurate_cross;
 
 RadialMin min_axis_distance(const Cylinder& a, const Vec3& c, const Vec3& u) {
   const Vec3 d = a.axis;
@@ -362,15 +357,10 @@ namespace detail {
 bool slice_distance(const Cylinder& a, const Cylinder& b, PairDistance& out) {
   const double ab = dot(a.axis, b.axis);
   if (!(std::fabs(ab) >= 0.5)) return false;
-  // m = a - b (a . b) as del - b (del . b), del = a -+ b (exact for nearly (anti)parallel axes,
-  // Sterbenz; the same vector for unit axes): a - b (a . b) cancels to rounding noise there, and m
-  // left the plane across B's axis (axes 1e-16 .. 1e-13 apart gave depths off by up to 5.8 mm;
-  // review, issue #27, test_review_parallel_axes.cpp)
-  Vec3 m = a.axis - b.axis * ab;
-  if (norm(m) < 0x1p-10) {
-    const Vec3 del = ab >= 0 ? a.axis - b.axis : a.axis + b.axis;
-    m = del - b.axis * dot(del, b.axis);
-  }
+  // m = a - b (a . b), accurate for nearly (anti)parallel axes (raceway_detail.h): plain, it cancels
+  // to rounding noise there and m left the plane across B's axis (axes 1e-16 .. 1e-13 apart gave
+  // depths off by up to 5.8 mm; review, issue #27, test_review_parallel_axes.cpp)
+  Vec3 m = detail::accurate_across(a.axis, b.axis);
   const double ma = norm(m);  // = m . a after normalising: t_A grows by ma per unit x
   m = ma > 1e-300 ? m / ma : any_perpendicular(b.axis);
   const Vec3 n = cross(b.axis, m);

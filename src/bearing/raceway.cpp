@@ -143,11 +143,9 @@ Far farthest_on_ellipse(double e0, double e1, double y0, double y1) {
 
 namespace detail {
 std::pair<double, Vec3> max_axis_distance_on_rim(const Rim& rim, const Vec3& d, const Vec3& base, const Vec3& u) {
-  Vec3 cr = cross(d, u);
-  // nearly (anti)parallel axes: d x u is rounding noise there (f1 left the rim's plane, the reach
-  // came out low by up to 7.5 %; review, issue #27): the same vector as (d -+ u) x u, whose d -+ u
-  // is exact (Sterbenz), so f1 keeps its direction to rounding
-  if (norm(cr) < 0x1p-10) cr = cross(dot(d, u) >= 0 ? d - u : d + u, u);
+  // accurate for nearly (anti)parallel axes (plain d x u there: f1 left the rim's plane, the reach
+  // came out low by up to 7.5 %; review, issue #27)
+  const Vec3 cr = accurate_cross(d, u);
   const double sl = norm(cr);
   const Vec3 f1 = sl > 0 ? cr / sl : perpendicular_unit(d);
   const Vec3 e2 = cross(u, f1), g2 = cross(d, f1);

@@ -26,6 +26,23 @@ struct Rim {
 };
 
 /// The radius of frustum c at axis parameter t in [0, height].
+/// d x u for unit axes, also when they are nearly (anti)parallel: there cross(d, u) is rounding
+/// noise and its direction arbitrary, so it is taken as the same vector (d -+ u) x u, whose d -+ u
+/// is exact (Sterbenz). Review, issue #27 (test_review_parallel_axes.cpp, test_review_bore_rim.cpp).
+inline Vec3 accurate_cross(const Vec3& d, const Vec3& u) {
+  const Vec3 cr = cross(d, u);
+  return norm(cr) < 0x1p-10 ? cross(dot(d, u) >= 0 ? d - u : d + u, u) : cr;
+}
+
+/// v - n (n . v), v's part across the unit n, for unit v, also when v and n are nearly
+/// (anti)parallel: then as del - n (del . n), del = v -+ n exact (Sterbenz), the same vector.
+inline Vec3 accurate_across(const Vec3& v, const Vec3& n) {
+  const Vec3 m = v - n * dot(n, v);
+  if (!(norm(m) < 0x1p-10)) return m;
+  const Vec3 del = dot(n, v) >= 0 ? v - n : v + n;
+  return del - n * dot(del, n);
+}
+
 inline double radius_at(const Cylinder& c, double t) { return c.radius + (c.top() - c.radius) * (t / c.height); }
 
 /// The point of the roller's rim at axis parameter t and angle phi in the frame (f1, f2).

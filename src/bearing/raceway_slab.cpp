@@ -17,15 +17,10 @@ namespace interfere::bearing::detail {
 
 AxialExtent axial_extent(const Cylinder& c, const Vec3& base, const Vec3& u) {
   const Vec3& d = c.axis;
-  Vec3 pu = u - d * dot(d, u);  // u's part in the end-circle planes
-  if (norm(pu) < 0x1p-10) {
-    // nearly (anti)parallel axes: u - d (d . u) is rounding noise there (dir any direction: a
-    // roller inside the width came out beyond a side face, path apart; review, issue #27,
-    // ReviewBoreRim.RollerInBoreNearlyParallel); the same vector as del - d (del . d), del = u -+ d
-    // exact (Sterbenz)
-    const Vec3 del = dot(d, u) >= 0 ? u - d : u + d;
-    pu = del - d * dot(del, d);
-  }
+  // u's part in the end-circle planes, accurate for nearly (anti)parallel axes (plain, it is rounding
+  // noise there: a roller inside the width came out beyond a side face, path apart; review, issue
+  // #27, ReviewBoreRim.RollerInBoreNearlyParallel)
+  const Vec3 pu = detail::accurate_across(u, d);
   const double spu = norm(pu);
   const Vec3 dir = spu > 0 ? pu / spu : Vec3{0, 0, 0};
   AxialExtent e;
