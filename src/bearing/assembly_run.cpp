@@ -1,16 +1,22 @@
 // Every pair of a bearing assembly at every frame (assembly.h, run_assembly). Each (frame, pair)
 // is a pure function of the poses (no temporal state), solved in parallel (oneTBB) into its own
-// slot: the rows, their order and every summary are identical for any thread count.
+// slot: the rows, their order and every summary are identical for any thread count and schedule.
+// The schedule (assembly_schedule.h; issue #27, speed): blocks of frames, and in each block tasks
+// of pairs (a scarred roller's pairs together, intact pairs by kind), each pair over the block's
+// frames before the next, so that a scarred roller's trees stay in cache between its rows.
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
 
+#include "assembly_schedule.h"
 #include "interfere/bearing/assembly.h"
 
 namespace interfere::bearing {
 
+// One pass, frame by frame (no division per row; the current minima kept in locals): the same
+// indices as comparing each row with the row indexed so far (first minimum on ties).
 void summarize_assembly(AssemblyResult& out, std::size_t np) {
   const std::size_t frames = np > 0 ? out.rows.size() / np : static_cast<std::size_t>(std::max(out.frames, 0));
   out.frames = static_cast<int>(frames);
@@ -19,40 +25,54 @@ void summarize_assembly(AssemblyResult& out, std::size_t np) {
   out.verdict = Verdict::clear;
   out.interfering_rows = out.scar_rows = out.inexact_rows = 0;
   out.worst_per_frame.assign(frames, 0);
-  for (std::size_t i = 0; i < out.rows.size(); ++i) {
-    const AssemblyPairResult& r = out.rows[i].result;
-    const std::size_t f = i / np;
-    if (i % np == 0 || r.distance < out.rows[out.worst_per_frame[f]].result.distance)
-      out.worst_per_frame[f] = static_cast<std::uint32_t>(i);
-    if (i == 0 || r.distance < out.rows[out.worst].result.distance) out.worst = static_cast<std::uint32_t>(i);
-    ++out.verdicts[static_cast<std::size_t>(r.verdict)];
-    out.verdict = worst(out.verdict, r.verdict);
-    if (r.distance < 0) ++out.interfering_rows;
-    if (r.scar) ++out.scar_rows;
-    if (!r.exact) ++out.inexact_rows;
+  if (np == 0 || out.rows.empty()) return;
+  double least = out.rows[0].result.distance;
+  std::uint64_t interfering = 0, scar = 0, inexact = 0;
+  for (std::size_t f = 0, i = 0; f < frames; ++f) {
+    std::uint32_t frame_worst = static_cast<std::uint32_t>(i);
+    double frame_distance = out.rows[i].result.distance;
+    for (const std::size_t end = i + np; i < end; ++i) {
+      const AssemblyPairResult& r = out.rows[i].result;
+      if (r.distance < frame_distance) frame_worst = static_cast<std::uint32_t>(i), frame_distance = r.distance;
+      if (r.distance < least) out.worst = static_cast<std::uint32_t>(i), least = r.distance;
+      ++out.verdicts[static_cast<std::size_t>(r.verdict)];
+      out.verdict = interfere::worst(out.verdict, r.verdict);
+      interfering += r.distance < 0;
+      scar += r.scar;
+      inexact += !r.exact;
+    }
+    out.worst_per_frame[f] = frame_worst;
   }
+  out.interfering_rows = interfering, out.scar_rows = scar, out.inexact_rows = inexact;
 }
 
 AssemblyResult run_assembly(const Assembly& as, const AssemblyMotion& motion,
                             const std::function<void(std::size_t, std::size_t)>& progress) {
   const auto start = std::chrono::steady_clock::now();
   AssemblyResult out;
-  out.frames = static_cast<int>(motion.poses.size());
-  const std::size_t np = as.pairs.size();
-  out.rows.resize(motion.poses.size() * np);
-  std::atomic<std::size_t> rows_done{0};  // (progress: whole frames done)
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.rows.size(), 4), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      AssemblyRow& row = out.rows[i];
-      row.frame = static_cast<std::int32_t>(i / np);
-      row.pair = static_cast<std::uint32_t>(i % np);
-      row.result = solve_pair(as, as.pairs[row.pair], motion.poses[i / np], as.spec.clearance);
-    }
-    if (progress && np > 0) {
-      const std::size_t after = rows_done.fetch_add(r.size()) + r.size();
-      if (after / np != (after - r.size()) / np) progress(after / np, motion.poses.size());
-    }
-  });
+  const std::size_t nf = motion.poses.size(), np = as.pairs.size();
+  out.frames = static_cast<int>(nf);
+  out.rows.resize(nf * np);
+  const detail::AssemblySchedule s = detail::assembly_schedule(as);
+  for (std::size_t f0 = 0; np > 0 && f0 < nf; f0 += detail::kFrameBlock) {
+    const std::size_t f1 = std::min(nf, f0 + detail::kFrameBlock);
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, s.tasks(), 1),
+        [&](const tbb::blocked_range<std::size_t>& r) {
+          for (std::size_t t = r.begin(); t != r.end(); ++t)
+            for (std::size_t k = s.task_begin(t); k != s.task_end[t]; ++k) {
+              const std::uint32_t p = s.pairs[k];
+              for (std::size_t f = f0; f != f1; ++f) {
+                AssemblyRow& row = out.rows[f * np + p];
+                row.frame = static_cast<std::int32_t>(f);
+                row.pair = p;
+                row.result = solve_pair(as, as.pairs[p], motion.poses[f], as.spec.clearance);
+              }
+            }
+        },
+        tbb::simple_partitioner());
+    if (progress) progress(f1, nf);  // (the calling thread: whole frames, in order)
+  }
   summarize_assembly(out, np);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;

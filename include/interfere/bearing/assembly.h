@@ -338,7 +338,9 @@ struct AssemblyResult {
 
 /// Every pair of every frame, in parallel over pairs (oneTBB), identical for any thread count.
 /// `progress`, when set, is called with (frames done, frame count) as frames finish, from worker
-/// threads, possibly at once (it must be thread-safe; the CLI's progress bar is).
+/// threads, possibly at once (it must be thread-safe; the CLI's progress bar is). (Today: from the
+/// calling thread after each block of frames, increasing, the last call with the frame count;
+/// the blocks and the order within them: src/bearing/assembly_schedule.h, issue #27.)
 AssemblyResult run_assembly(const Assembly& as, const AssemblyMotion& motion,
                             const std::function<void(std::size_t, std::size_t)>& progress = {});
 
