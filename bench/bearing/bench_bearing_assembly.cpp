@@ -10,6 +10,7 @@
 #include <map>
 #include <ctime>
 #include <string>
+#include <tbb/global_control.h>
 #include <vector>
 
 #include "interfere/bearing/assembly.h"
@@ -73,6 +74,43 @@ void BM_Assembly1024Rollers(benchmark::State& state) {
   run_frames(state, *spec, static_cast<int>(state.range(0)));
 }
 BENCHMARK(BM_Assembly1024Rollers)->Arg(4)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime()->Iterations(1);
+
+/// run_assembly's schedule (issue #27; src/bearing/assembly_schedule.h) over more frames than
+/// BM_Assembly1024Rollers' 4 (a scarred roller's pair over a block of 16 frames at a time), on
+/// range(1) threads (tbb::global_control): "ms_frame_cpu" is the process's CPU time per frame (on
+/// 1 thread robust to other load on the machine), "frames_per_second" the wall clock's rate.
+double process_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+void BM_Assembly1024Threads(benchmark::State& state) {
+  Expected<AssemblySpec> spec = spec_1024();
+  if (!spec) {
+    state.SkipWithError(spec.error().message().c_str());
+    return;
+  }
+  Expected<Assembly> as = build_assembly(*spec);
+  if (!as) {
+    state.SkipWithError(as.error().message().c_str());
+    return;
+  }
+  const int frames = static_cast<int>(state.range(0));
+  const AssemblyMotion motion = generate_motion(*as, frames, spec->seed);
+  tbb::global_control threads(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(state.range(1)));
+  double cpu = 0;
+  for (auto _ : state) {
+    const double t0 = process_seconds();
+    const AssemblyResult r = run_assembly(*as, motion);
+    cpu += process_seconds() - t0;
+    benchmark::DoNotOptimize(r.worst);
+  }
+  const double runs = static_cast<double>(frames) * static_cast<double>(state.iterations());
+  state.counters["ms_frame_cpu"] = 1e3 * cpu / runs;
+  state.counters["frames_per_second"] = benchmark::Counter(runs, benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_Assembly1024Threads)->Args({16, 1})->Args({16, 2})->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 
 /// Where the time goes: the pairs of the 1,024-roller scene solved on this thread, kind by kind
 /// (pairs with a scarred part apart), over several frames; the thread's CPU time per batch (robust
