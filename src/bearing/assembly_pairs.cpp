@@ -162,19 +162,23 @@ AssemblyPairResult from_two_sided(const TwoSidedRing& t, double clearance, doubl
   return out;
 }
 
-/// Two intact cylinders apart: s(a, b) > 0 is their Euclidean distance, equal to s(b, a), so the
-/// two-sided S is the forward value (part_pair.h would also compute the reverse, often by the slow
-/// general path). nullopt when they are not apart (then part_pair.h decides).
-std::optional<AssemblyPairResult> apart(const Cylinder& a, const Cylinder& b, double clearance,
-                                        PairDistance* forward = nullptr) {
-  const PairDistance f = cylinder_pair_distance(a, b);
-  if (forward) *forward = f;  // (for decide_part_pair when they are not apart: the same call)
-  if (!(f.distance > 0)) return std::nullopt;
+/// The row of two intact cylinders a, b whose two-sided S is `f` (the standard solver's value):
+/// what decide_part_pair returns for them (solver standard, exact, the verdict of S).
+AssemblyPairResult standard_row(const PairDistance& f, const Cylinder& a, const Cylinder& b, double clearance) {
   AssemblyPairResult out;
   out.distance = f.distance, out.point_a = f.point_a, out.point_b = f.point_b;
   out.solver = AssemblySolver::standard, out.path = f.path;
   out.verdict = distance_verdict(f.distance, touch_tolerance(a, b), clearance);
   return out;
+}
+
+/// Two intact cylinders apart: s(a, b) > 0 is their Euclidean distance, equal to s(b, a), so the
+/// two-sided S is the forward value (part_pair.h would also compute the reverse, often by the slow
+/// general path). nullopt when they are not apart (then part_pair.h decides).
+std::optional<AssemblyPairResult> apart(const Cylinder& a, const Cylinder& b, double clearance) {
+  const PairDistance f = cylinder_pair_distance(a, b);
+  if (!(f.distance > 0)) return std::nullopt;
+  return standard_row(f, a, b, clearance);
 }
 
 /// A scarred roller against an intact frustum (assembly_tapered_scars.h): solver `scarred`, exact
@@ -283,14 +287,14 @@ AssemblyPairResult solve_one(const Assembly& as, const AssemblyPair& pair, const
       ScenePart race;
       race.cylinder = posed(g.raceway, pose_b);
       race.partner = true;
-      PairDistance forward;
-      if (!scarred)
-        if (auto r = apart(roller, race.cylinder, clearance, &forward)) return *r;
-      // (issue #27, speed: the forward value apart() computed is decide_part_pair's own first call,
-      // cylinder_pair_distance(roller, raceway): passed on, not recomputed; bitwise the same)
-      return from_part_pair(decide_part_pair(roller_part(ra, roller, pose_a, scarred), race, clearance,
-                                             scarred ? nullptr : &forward),
-                            clearance, tol);
+      // an intact roller (issue #27, speed): S by intact_row_distance (part_pair.h; the simulation's
+      // roller-partner rows), which is decide_part_pair's intact branch (the roller as A, the raceway
+      // as B: s(A, B); apart, that value; else the reverse only when neither the tangent bound nor
+      // the secant bound of s(B, A) shows it >= s(A, B)) with the cheap tangent bound tried first.
+      // A skipped reverse could not have been below s(A, B) (both bounds are proven, with margins
+      // above the reverse solver's rounding): the same value, points and path bit for bit
+      if (!scarred) return standard_row(intact_row_distance(roller, race.cylinder), roller, race.cylinder, clearance);
+      return from_part_pair(decide_part_pair(roller_part(ra, roller, pose_a, scarred), race, clearance), clearance, tol);
     }
     case AssemblyPairKind::roller_roller: {
       const Cylinder other = posed_cylinder(b.rollers.radius, b.rollers.top_radius, b.rollers.length, pose_b);
