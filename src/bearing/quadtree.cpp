@@ -10,6 +10,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <stdexcept>
 
 namespace interfere::bearing {
 namespace {
@@ -231,6 +232,51 @@ struct Builder {
     fs.strip_cells.push_back({0, 0, 0});
     fs.leaf_of_triangle[t] = leaf;
   }
+  // The leaf record of node `id` (quadtree.h, StripLeaf): its entries tri_first .. + tri_count - 1
+  // (just appended to `corners`), their distinct corners copied in order of first appearance.
+  void add_leaf_record(std::int32_t id) {
+    FacetStrips& fs = tree.strips;
+    BoundNode& node = fs.tree.nodes[static_cast<std::size_t>(id)];
+    StripLeaf rec;
+    rec.entry = node.tri_first;
+    rec.count = static_cast<std::uint8_t>(node.tri_count);
+    if (node.tri_count < 1 || node.tri_count > 2) throw std::logic_error("facet strips: a leaf of 1 or 2 entries");
+    std::uint32_t ids[4];
+    int distinct = 0;
+    for (std::uint32_t k = 0; k < node.tri_count; ++k)
+      for (int c = 0; c < 3; ++c) {
+        const std::uint32_t v = fs.corners[node.tri_first + k][static_cast<std::size_t>(c)];
+        int at = 0;
+        while (at < distinct && ids[at] != v) ++at;
+        if (at == distinct) {
+          if (distinct == 4) throw std::logic_error("facet strips: a leaf with more than 4 corners");
+          ids[distinct] = v, rec.v[distinct] = roller.mesh.positions[v], ++distinct;
+        }
+        rec.corner[k][c] = static_cast<std::uint8_t>(at);
+      }
+    for (std::uint32_t k = 0; k < node.tri_count; ++k) {
+      const std::uint32_t e = node.tri_first + k;
+      rec.mesh_triangle[k] = fs.mesh_triangle[e];
+      if (fs.mesh_triangle[e] == FacetStrips::kStrip)
+        for (int c = 0; c < 3; ++c) rec.strip[c] = fs.strip_cells[e][static_cast<std::size_t>(c)];
+    }
+    rec.vertices = static_cast<std::uint8_t>(distinct);
+    const auto record = static_cast<std::int32_t>(fs.leaves.size());
+    node.first_child = record;  // (a leaf: child_count stays 0)
+    fs.leaves.push_back(rec);
+    for (std::uint32_t k = 0; k < node.tri_count; ++k) {
+      const std::uint32_t e = node.tri_first + k;
+      if (fs.mesh_triangle[e] != FacetStrips::kStrip) {
+        fs.leaf_record_of_triangle[fs.mesh_triangle[e]] = record;
+      } else {
+        const auto [i, j0, j1] = fs.strip_cells[e];
+        for (int j = j0; j < j1; ++j) {
+          const std::uint32_t t = roller.side_triangle(i, j);
+          fs.leaf_record_of_triangle[t] = fs.leaf_record_of_triangle[t + 1] = record;
+        }
+      }
+    }
+  }
   // side columns [i0, i1): the same boxes as bound_side's column nodes; one column: its pieces
   void strips_side(std::int32_t id, std::int32_t i0, std::int32_t i1) {
     bound(tree.strips.tree.nodes[static_cast<std::size_t>(id)], column_angle(0.5 * (i0 + i1)), [&](auto&& f) {
@@ -282,6 +328,7 @@ struct Builder {
       }
       fs.tree.nodes[static_cast<std::size_t>(id)].tri_count = 2;
       (void)node;
+      add_leaf_record(id);
       return;
     }
     const std::int32_t sm = (s0 + s1) / 2;
@@ -304,6 +351,7 @@ struct Builder {
           static_cast<std::uint32_t>(tree.strips.corners.size());
       tree.strips.tree.nodes[static_cast<std::size_t>(id)].tri_count = static_cast<std::uint32_t>(i1 - i0);
       for (int k = 0; k < i1 - i0; ++k) add_mesh_triangle(id, first_tri + static_cast<std::uint32_t>(k));
+      add_leaf_record(id);
       return;
     }
     const std::int32_t im = (i0 + i1) / 2;
@@ -315,6 +363,7 @@ struct Builder {
   void build_strips() {
     FacetStrips& fs = tree.strips;
     fs.leaf_of_triangle.assign(roller.mesh.triangles.size(), -1);
+    fs.leaf_record_of_triangle.assign(roller.mesh.triangles.size(), -1);
     fs.tree.nodes.reserve(4 * static_cast<std::size_t>(roller.n()) * 4 + 4 * roller.n());
     fs.tree.side_root = strip_node();
     strips_side(fs.tree.side_root, 0, roller.n());
@@ -322,6 +371,7 @@ struct Builder {
     strips_cap(fs.tree.bottom_root, 0, roller.n(), false);
     fs.tree.top_root = strip_node();
     strips_cap(fs.tree.top_root, 0, roller.n(), true);
+    fs.leaves.shrink_to_fit();
   }
 };
 
@@ -374,6 +424,11 @@ RollerQuadtree build_quadtree(const Roller& roller, const QuadtreeOptions& optio
   b.bound_cap(tree.bounds.top_root, 0, roller.n(), true);
   // the scarred solver's tree of coplanar facet strips (quadtree.h, FacetStrips)
   b.build_strips();
+  // (issue #27: the reservations above are upper bounds; a scarred roller keeps its trees for the
+  // whole run, 256 of them in the 1,024-roller scene)
+  tree.nodes.shrink_to_fit();
+  tree.bounds.nodes.shrink_to_fit();
+  tree.strips.tree.nodes.shrink_to_fit();
   return tree;
 }
 

@@ -124,8 +124,10 @@ bool certified_convex_min(G&& g, double lo, double hi, double z, double d, doubl
   return false;
 }
 
-/// Exact minimum of sd_B over a triangle given in B's local frame.
-TriangleMin local_triangle_min(const LocalFrame& f, const Vec3& a, const Vec3& b, const Vec3& c) {
+/// Exact minimum of sd_B over a triangle given in B's local frame. `cut` (issue #27, the solver's
+/// best value so far): a triangle that cannot hold a value <= cut may return early with a value
+/// above cut (a lower bound of its minimum) instead of its minimum.
+TriangleMin local_triangle_min(const LocalFrame& f, const Vec3& a, const Vec3& b, const Vec3& c, double cut = kInf) {
   TriangleMin out;
   // planar distance from B's axis (the origin) to the projected triangle
   const std::array<Vec3, 3> v = {a, b, c};
@@ -158,6 +160,24 @@ TriangleMin local_triangle_min(const LocalFrame& f, const Vec3& a, const Vec3& b
     if (dr >= 0 ? dz <= 0 : dz <= dr) {  // certificate: B's side is what is nearest
       out.value = dr, out.point = p, out.certified = true;
       return out;
+    }
+    // (issue #27, speed: the searches below for a triangle that cannot improve the solver's best)
+    // sd_B >= max(rho - R, |z| - hh) at every point (inside B it is that max; outside it is the
+    // distance to B, at least either), so over the triangle sd_B >= max(rho_min - R, |z|_min - hh).
+    // Every value returned below is sd_B (sd_rz) at a point of the triangle up to rounding (a few
+    // ulps of the scale), so with the margin 2^-40 of the scale, lb - margin > cut means the value
+    // would be > cut too: the caller (which keeps only values <= its best) decides the same.
+    if (cut < kInf) {
+      const double zl = std::min({a.z, b.z, c.z}), zh = std::max({a.z, b.z, c.z});
+      const double zmin = zl <= 0 && zh >= 0 ? 0.0 : std::min(std::fabs(zl), std::fabs(zh));
+      const double lb = std::max(dr, zmin - f.hh);
+      const double scale = std::max({std::fabs(a.x), std::fabs(a.y), std::fabs(a.z), std::fabs(b.x), std::fabs(b.y),
+                                     std::fabs(b.z), std::fabs(c.x), std::fabs(c.y), std::fabs(c.z)}) +
+                           f.R + f.hh;
+      if (lb - 0x1p-40 * scale > cut) {
+        out.value = lb, out.point = p, out.certified = true;
+        return out;
+      }
     }
   }
   // slices (analytic.h's slice path): sd_B = phi(rho, z) with phi nondecreasing in rho, so the
@@ -341,22 +361,28 @@ struct StripEvaluator {
   LocalFrame frame;
   MeshPairResult best;
   std::uint32_t best_entry = 0xffffffffu;
+  const StripLeaf* best_leaf = nullptr;  ///< the record holding best_entry
 
-  void entry(std::uint32_t e) {
-    const std::array<std::uint32_t, 3>& c = fs.corners[e];
-    const TriangleMin tm = local_triangle_min(frame, frame.local(roller.mesh.positions[c[0]]),
-                                              frame.local(roller.mesh.positions[c[1]]),
-                                              frame.local(roller.mesh.positions[c[2]]));
+  /// Entry r.entry + k with its corners in B's frame.
+  void entry(const StripLeaf& r, std::uint32_t k, const Vec3& a, const Vec3& b, const Vec3& c) {
+    const std::uint32_t e = r.entry + k;
+    const TriangleMin tm = local_triangle_min(frame, a, b, c, best.distance);
     ++best.evaluated;
     best.fallbacks += tm.certified ? 0 : 1;
     if (tm.value < best.distance || (tm.value == best.distance && e < best_entry)) {
       best.distance = tm.value;
-      best_entry = e;
+      best_entry = e, best_leaf = &r;
       best.point_a = tm.point;  // local for now
     }
   }
-  void leaf(const BoundNode& n) {
-    for (std::uint32_t k = 0; k < n.tri_count; ++k) entry(n.tri_first + k);
+  /// A leaf's entries from its record (quadtree.h, StripLeaf): the copies of its corners, each
+  /// mapped to B's frame once (the same doubles as the mesh's, so the same bits as mapping each
+  /// entry's three vertices).
+  void leaf(const StripLeaf& r) {
+    Vec3 q[4];
+    for (int k = 0; k < r.vertices; ++k) q[k] = frame.local(r.v[k]);
+    for (std::uint32_t k = 0; k < r.count; ++k)
+      entry(r, k, q[r.corner[k][0]], q[r.corner[k][1]], q[r.corner[k][2]]);
   }
   /// An end cap is skipped when it cannot hold a value below the best by more than 2^-44 of the
   /// local scale (issue #27: the cap's fan triangles next to a contact at the rim tie with the side's
@@ -392,15 +418,20 @@ struct StripEvaluator {
   /// witness, then the cell's triangle by the side of its diagonal v(i, j) .. v(i+1, j+1)).
   std::uint32_t mesh_triangle() const {
     if (best_entry == 0xffffffffu) return 0xffffffffu;
-    const std::uint32_t t = fs.mesh_triangle[best_entry];
+    const std::uint32_t t = best_leaf->mesh_triangle[best_entry - best_leaf->entry];
     if (t != FacetStrips::kStrip) return t;
-    const auto [i, j0, j1] = fs.strip_cells[best_entry];
+    const int i = best_leaf->strip[0], j0 = best_leaf->strip[1], j1 = best_leaf->strip[2];
     const Vec3 q = best.point_a - frame.o;  // body = m^T (local - o)
     const Vec3 p{frame.m[0][0] * q.x + frame.m[1][0] * q.y + frame.m[2][0] * q.z,
                  frame.m[0][1] * q.x + frame.m[1][1] * q.y + frame.m[2][1] * q.z,
                  frame.m[0][2] * q.x + frame.m[1][2] * q.y + frame.m[2][2] * q.z};
     const auto& pos = roller.mesh.positions;
-    int j = j0;
+    // the cell: the last row j in [j0, j1) with j == j0 or z(j) <= p.z (the rows' heights increase
+    // along a strip); from the row its height suggests (issue #27: a walk from j0 fetched a cache
+    // line per row), moved down and up to that same row
+    const double guess = p.z / roller.params.height * roller.m();
+    int j = std::isfinite(guess) ? std::clamp(static_cast<int>(guess), j0, j1 - 1) : j0;
+    while (j > j0 && !(pos[roller.side_vertex(i, j)].z <= p.z)) --j;
     while (j + 1 < j1 && pos[roller.side_vertex(i, j + 1)].z <= p.z) ++j;
     const Vec3& a = pos[roller.side_vertex(i, j)];
     const Vec3& b = pos[roller.side_vertex(i + 1, j)];
@@ -572,8 +603,13 @@ void descend(Evaluator& ev, const std::vector<Node>& nodes, std::array<std::int3
   }
 }
 
-/// The same descent over a FacetStrips tree; the leaves already evaluated (`skip`) are not again.
-void descend_strips(StripEvaluator& ev, const BoundTree& t, std::int32_t skip0, std::int32_t skip1) {
+/// The same descent over a FacetStrips tree; the leaves already evaluated (their records `skip`)
+/// are not again. `roots`: the bounds of the top, bottom and side roots (node_lower_bound without
+/// a cut: they do not depend on the best value, so the caller computes them while it waits for
+/// the first leaf's record).
+void descend_strips(StripEvaluator& ev, const FacetStrips& fs, std::int32_t skip0, std::int32_t skip1,
+                    const std::array<double, 3>& roots) {
+  const BoundTree& t = fs.tree;
   const std::vector<BoundNode>& nodes = t.nodes;
   struct Item {
     std::int32_t node;
@@ -583,8 +619,9 @@ void descend_strips(StripEvaluator& ev, const BoundTree& t, std::int32_t skip0, 
   int top = 0;
   // the side first (popped first), then the caps, each skipped when the side's best point shows it
   // cannot hold a lower value (cap_cannot_improve)
-  for (const std::int32_t root : {t.top_root, t.bottom_root, t.side_root})
-    stack[top++] = {root, node_lower_bound(ev.frame, nodes[static_cast<std::size_t>(root)])};
+  stack[top++] = {t.top_root, roots[0]};
+  stack[top++] = {t.bottom_root, roots[1]};
+  stack[top++] = {t.side_root, roots[2]};
   while (top > 0) {
     const Item it = stack[--top];
     if (it.lb >= ev.best.distance) continue;
@@ -592,7 +629,7 @@ void descend_strips(StripEvaluator& ev, const BoundTree& t, std::int32_t skip0, 
     const BoundNode& n = nodes[static_cast<std::size_t>(it.node)];
     ++ev.best.nodes_visited;
     if (n.child_count == 0) {
-      if (it.node != skip0 && it.node != skip1) ev.leaf(n);
+      if (n.first_child != skip0 && n.first_child != skip1) ev.leaf(fs.leaves[static_cast<std::size_t>(n.first_child)]);
       continue;
     }
     Item kids[2];
@@ -603,6 +640,9 @@ void descend_strips(StripEvaluator& ev, const BoundTree& t, std::int32_t skip0, 
       if (kid.child_count > 0) {
         const char* next = reinterpret_cast<const char*>(&nodes[static_cast<std::size_t>(kid.first_child)]);
         for (std::size_t b = 0; b < 2 * sizeof(BoundNode); b += 64) __builtin_prefetch(next + b);
+      } else {  // a leaf: its record (2 cache lines)
+        const char* rec = reinterpret_cast<const char*>(&fs.leaves[static_cast<std::size_t>(kid.first_child)]);
+        __builtin_prefetch(rec), __builtin_prefetch(rec + 64);
       }
       const double lb = node_lower_bound(ev.frame, kid, ev.best.distance);
       if (lb < ev.best.distance) kids[count++] = {id, lb};
@@ -640,22 +680,32 @@ MeshPairResult ScarredSolver::run(const Transform& pose, const Cylinder& b, cons
   // the leaves holding the previous frame's triangle and the hinted cell.
   if (!tree_->strips.empty() && g_facet_strips.load(std::memory_order_relaxed)) {
     const FacetStrips& fs = tree_->strips;
+    // (issue #27: a scarred roller's tree is cold in a frame) the hinted cell's record index and
+    // the roots are fetched while B's frame is set up
+    const std::uint32_t h = hint ? hinted_cell(*roller_, pose, *hint) : kNone;
+    const bool hinted = h != kNone && h < fs.leaf_record_of_triangle.size();
+    if (hinted) __builtin_prefetch(&fs.leaf_record_of_triangle[h]);
+    for (const std::int32_t root : {fs.tree.side_root, fs.tree.bottom_root, fs.tree.top_root}) {
+      const char* at = reinterpret_cast<const char*>(&fs.tree.nodes[static_cast<std::size_t>(root)]);
+      for (std::size_t k = 0; k < 3 * sizeof(BoundNode); k += 64) __builtin_prefetch(at + k);  // (and its children)
+    }
     StripEvaluator ev{*roller_, fs, LocalFrame(pose, b), {}};
     ev.best.distance = kInf;
     ev.best.triangle = kNone;
-    std::int32_t skip0 = -1, skip1 = -1;
-    if (previous_ != kNone && previous_ < fs.leaf_of_triangle.size()) {
-      skip0 = fs.leaf_of_triangle[previous_];
-      if (skip0 >= 0) ev.leaf(fs.tree.nodes[static_cast<std::size_t>(skip0)]);
-    }
-    if (hint) {
-      const std::uint32_t h = hinted_cell(*roller_, pose, *hint);
-      if (h != kNone && h < fs.leaf_of_triangle.size()) {
-        skip1 = fs.leaf_of_triangle[h];
-        if (skip1 >= 0 && skip1 != skip0) ev.leaf(fs.tree.nodes[static_cast<std::size_t>(skip1)]);
+    std::int32_t skip0 = -1, skip1 = -1;  // (records of the leaves evaluated first)
+    if (previous_ != kNone && previous_ < fs.leaf_record_of_triangle.size()) skip0 = fs.leaf_record_of_triangle[previous_];
+    if (hinted) skip1 = fs.leaf_record_of_triangle[h];
+    for (const std::int32_t r : {skip0, skip1})
+      if (r >= 0) {
+        const char* at = reinterpret_cast<const char*>(&fs.leaves[static_cast<std::size_t>(r)]);
+        __builtin_prefetch(at), __builtin_prefetch(at + 64);
       }
-    }
-    descend_strips(ev, fs.tree, skip0, skip1);
+    const std::array<double, 3> roots = {node_lower_bound(ev.frame, fs.tree.nodes[static_cast<std::size_t>(fs.tree.top_root)]),
+                                         node_lower_bound(ev.frame, fs.tree.nodes[static_cast<std::size_t>(fs.tree.bottom_root)]),
+                                         node_lower_bound(ev.frame, fs.tree.nodes[static_cast<std::size_t>(fs.tree.side_root)])};
+    if (skip0 >= 0) ev.leaf(fs.leaves[static_cast<std::size_t>(skip0)]);
+    if (skip1 >= 0 && skip1 != skip0) ev.leaf(fs.leaves[static_cast<std::size_t>(skip1)]);
+    descend_strips(ev, fs, skip0, skip1, roots);
     MeshPairResult out = ev.finish(b);
     previous_ = out.triangle;
     return out;

@@ -74,8 +74,29 @@ struct BoundTree {
 /// The tree: column-first as BoundTree (the same oriented boxes over the same vertices), a single
 /// column split over its pieces (runs and single cells) instead of its rows; a leaf is one piece.
 /// Leaves index `pieces` (tri_first .. + tri_count - 1) of `corners`.
+///
+/// The solver reads a leaf's entries from its `StripLeaf` record (issue #27, the 1,024-roller
+/// frame: a cold tree's cache misses were about half of a scarred row): copies of the body-frame
+/// positions of the leaf's (at most 4) distinct corners, contiguous, in leaf order, so an entry
+/// costs no fetch of `corners` and of 3 scattered mesh vertices, and a shared corner is mapped to
+/// B's frame once. The same doubles, so the same arithmetic and bits. A strip-tree leaf's
+/// `first_child` is the index of its record in `leaves` (its child_count is 0).
+struct alignas(64) StripLeaf {
+  Vec3 v[4];                      ///< body frame: copies of mesh positions
+  std::uint32_t entry = 0;        ///< the first entry (== the node's tri_first)
+  std::uint32_t mesh_triangle[2] = {};  ///< per entry: FacetStrips::mesh_triangle
+  std::int32_t strip[3] = {};     ///< a strip leaf: its column and rows [j0, j1) (FacetStrips::strip_cells)
+  std::uint8_t count = 0;         ///< entries (1 or 2; == the node's tri_count)
+  std::uint8_t vertices = 0;      ///< distinct corners (v[0 .. vertices - 1])
+  std::uint8_t corner[2][3] = {}; ///< per entry, its corners (the order of `corners`) as indices into v
+};
+static_assert(sizeof(StripLeaf) == 128, "a leaf record is two cache lines");
+
 struct FacetStrips {
   BoundTree tree;
+  std::vector<StripLeaf> leaves;  ///< per leaf node (its first_child), the entries' corners
+  /// per mesh triangle: the record (index into `leaves`) of the leaf that holds it
+  std::vector<std::int32_t> leaf_record_of_triangle;
   std::vector<std::array<std::uint32_t, 3>> corners;  ///< per entry: vertex ids of the roller mesh
   /// per entry: the mesh triangle it is (a cell's or a cap's), or kStrip for a strip triangle
   std::vector<std::uint32_t> mesh_triangle;
