@@ -130,44 +130,64 @@ TEST(BearingAssemblySchedule, ProgressReportsWholeFramesInOrder) {
 }
 
 /// summarize_assembly against the rule written row by row: each frame's first smallest distance
-/// (the frame's first row, then any row below the one kept), the same over all rows, the tallies.
+/// (the frame's first row, then any row below the one kept), the same over all rows, the tallies;
+/// ties, NaN rows (a frame opening with one, a frame of them, the very first row), 1 and 2 threads.
 TEST(BearingAssemblySchedule, SummariesAreTheRowByRowRule) {
   const std::size_t np = 4;
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  // ties, a frame opening with NaN, negative and positive values
-  const std::vector<double> d{0.5, 0.2, 0.2, 0.7, nan, 0.9, -0.1, -0.1, 0.3, nan, 0.3, 0.1, 1.0, 2.0, 3.0, 4.0};
-  AssemblyResult out;
-  for (std::size_t i = 0; i < d.size(); ++i) {
-    AssemblyRow row;
-    row.frame = static_cast<std::int32_t>(i / np), row.pair = static_cast<std::uint32_t>(i % np);
-    row.result.distance = d[i];
-    row.result.verdict = static_cast<Verdict>(i % 5);
-    row.result.scar = i % 3 == 0, row.result.exact = i % 4 != 1;
-    out.rows.push_back(row);
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  const std::vector<std::vector<double>> cases{
+      {0.5, 0.2, 0.2, 0.7, nan, 0.9, -0.1, -0.1, 0.3, nan, 0.3, 0.1, 1.0, 2.0, 3.0, 4.0},
+      {nan, 1.0, 0.5, 0.5, nan, nan, nan, nan, -1.0, nan, -2.0, -2.0},
+      {0.5, nan, 0.5, 0.4, nan, nan, nan, nan, 0.4, 0.4, inf, -inf, inf, inf, inf, inf},
+      {inf, inf, inf, inf, 0.0, -0.0, 0.0, -0.0}};
+  for (std::size_t c = 0; c < cases.size(); ++c) {
+    const std::vector<double>& d = cases[c];
+    AssemblyResult out;
+    for (std::size_t i = 0; i < d.size(); ++i) {
+      AssemblyRow row;
+      row.frame = static_cast<std::int32_t>(i / np), row.pair = static_cast<std::uint32_t>(i % np);
+      row.result.distance = d[i];
+      row.result.verdict = static_cast<Verdict>((i + c) % 5);
+      row.result.scar = i % 3 == 0, row.result.exact = i % 4 != 1;
+      out.rows.push_back(row);
+    }
+    const std::size_t frames = d.size() / np;
+    std::vector<std::uint32_t> per_frame(frames, 0);
+    std::uint32_t worst = 0;
+    std::array<std::uint64_t, 5> verdicts{};
+    std::uint64_t interfering = 0, scar = 0, inexact = 0;
+    Verdict v = Verdict::clear;
+    for (std::size_t i = 0; i < d.size(); ++i) {
+      if (i % np == 0 || d[i] < d[per_frame[i / np]]) per_frame[i / np] = static_cast<std::uint32_t>(i);
+      if (d[i] < d[worst]) worst = static_cast<std::uint32_t>(i);
+      ++verdicts[(i + c) % 5];
+      v = interfere::worst(v, static_cast<Verdict>((i + c) % 5));
+      interfering += d[i] < 0, scar += i % 3 == 0, inexact += i % 4 == 1;
+    }
+    for (const int threads : {1, 2}) {
+      tbb::global_control control(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+      summarize_assembly(out, np);
+      ASSERT_EQ(out.frames, static_cast<int>(frames));
+      EXPECT_EQ(out.worst_per_frame, per_frame) << c;
+      EXPECT_EQ(out.worst, worst) << c;
+      EXPECT_EQ(out.verdicts, verdicts) << c;
+      EXPECT_EQ(out.verdict, v) << c;
+      EXPECT_EQ(out.interfering_rows, interfering) << c;
+      EXPECT_EQ(out.scar_rows, scar) << c;
+      EXPECT_EQ(out.inexact_rows, inexact) << c;
+    }
   }
-  summarize_assembly(out, np);
-  ASSERT_EQ(out.frames, 4);
-  std::vector<std::uint32_t> per_frame(4, 0);
-  std::uint32_t worst = 0;
-  std::array<std::uint64_t, 5> verdicts{};
-  std::uint64_t interfering = 0, scar = 0, inexact = 0;
-  Verdict v = Verdict::clear;
-  for (std::size_t i = 0; i < d.size(); ++i) {
-    if (i % np == 0 || d[i] < d[per_frame[i / np]]) per_frame[i / np] = static_cast<std::uint32_t>(i);
-    if (d[i] < d[worst]) worst = static_cast<std::uint32_t>(i);
-    ++verdicts[i % 5];
-    v = interfere::worst(v, static_cast<Verdict>(i % 5));
-    interfering += d[i] < 0, scar += i % 3 == 0, inexact += i % 4 == 1;
-  }
-  EXPECT_EQ(out.worst_per_frame, per_frame);
-  EXPECT_EQ(out.worst, worst);
-  EXPECT_EQ(out.worst, 6u);
-  EXPECT_EQ(out.worst_per_frame[1], 4u);  // (the frame's first row, NaN: nothing is below it)
-  EXPECT_EQ(out.verdicts, verdicts);
-  EXPECT_EQ(out.verdict, v);
-  EXPECT_EQ(out.interfering_rows, interfering);
-  EXPECT_EQ(out.scar_rows, scar);
-  EXPECT_EQ(out.inexact_rows, inexact);
+  // (the cases' expected indices, by hand)
+  AssemblyResult a;
+  for (const double x : cases[0]) a.rows.push_back({0, 0, {.distance = x}});
+  summarize_assembly(a, np);
+  EXPECT_EQ(a.worst, 6u);
+  EXPECT_EQ(a.worst_per_frame, (std::vector<std::uint32_t>{1, 4, 11, 12}));
+  AssemblyResult b;
+  for (const double x : cases[1]) b.rows.push_back({0, 0, {.distance = x}});
+  summarize_assembly(b, np);
+  EXPECT_EQ(b.worst, 0u);  // (nothing is below a NaN)
+  EXPECT_EQ(b.worst_per_frame, (std::vector<std::uint32_t>{0, 4, 10}));
 }
 
 }  // namespace
