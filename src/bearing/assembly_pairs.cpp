@@ -32,6 +32,7 @@
 #include "assembly_cage_web.h"
 #include "assembly_raceway_scars.h"
 #include "assembly_tapered_scars.h"
+#include "scarred_rib_two_sided.h"
 #include "scarred_two_sided.h"
 #include "interfere/bearing/assembly.h"
 #include "interfere/bearing/raceway.h"
@@ -407,6 +408,13 @@ AssemblyPairResult solve_one(const Assembly& as, const AssemblyPair& pair, const
                         dot(c.top_center() - face.center, face.normal) - c.top() * s) -
                1e-9 * (1 + norm(c.center() - face.center) + c.height);
       };
+      // the ends decide: a rib row is S where certified (issue #27; scarred_rib_two_sided.h)
+      const auto ends_decide = [&](AssemblyPairResult e) {
+        if (rib)
+          e.two_sided = detail::scarred_rib_two_sided({e.distance, e.point_a, e.point_b, e.path}, face, b.rib_width,
+                                                      {pieces.ends.begin(), pieces.ends.end()}, pieces.middle);
+        return e;
+      };
       if (rib) {
         const std::size_t ne = pieces.ends.size();  // (at most 2)
         std::array<double, 2> low{};
@@ -423,13 +431,13 @@ AssemblyPairResult solve_one(const Assembly& as, const AssemblyPair& pair, const
         }
         for (std::size_t i = 0; i < ne; ++i)
           if (solved[i] && r[i].distance < best.distance) best = r[i];
-        if (rib_low(pieces.middle) > best.distance) return best;  // mid.distance > best: the ends decide
+        if (rib_low(pieces.middle) > best.distance) return ends_decide(best);  // mid.distance > best: the ends decide
       } else {
         for (const Cylinder& e : pieces.ends)
           if (AssemblyPairResult r = one(e); r.distance < best.distance) best = r;
       }
       const AssemblyPairResult mid = one(pieces.middle);
-      if (mid.distance > best.distance) return best;  // the intact ends decide: exact
+      if (mid.distance > best.distance) return ends_decide(best);  // the intact ends decide: exact
       // the scarred middle may decide: a bound (the enclosing middle) and the mesh engine's verdict
       AssemblyPairResult out = mid;
       out.exact = false;
@@ -655,8 +663,8 @@ AssemblyPairResult solve_pair(const Assembly& as, const AssemblyPair& pair, cons
     case AssemblyPairKind::roller_cage:
       if (r.scar || as.parts[pair.a].scarred) r.two_sided = r.exact && r.distance > 0;
       break;
-    case AssemblyPairKind::roller_rib:
-      if (as.parts[pair.a].scarred) r.two_sided = false;
+    case AssemblyPairKind::roller_rib:  // scarred rollers: S or the Euclidean distance where certified (solve_one)
+      if (as.parts[pair.a].scarred) r.two_sided = r.exact && r.two_sided && r.solver == AssemblySolver::raceway;
       break;
     case AssemblyPairKind::roller_cup:  // scarred rollers: S or the Euclidean distance where certified (scarred_two_sided.h)
       if (as.parts[pair.a].scarred) r.two_sided = r.exact && r.two_sided && r.solver == AssemblySolver::vertex;
