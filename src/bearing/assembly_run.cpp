@@ -2,8 +2,8 @@
 // is a pure function of the poses (no temporal state), solved in parallel (oneTBB) into its own
 // slot: the rows, their order and every summary are identical for any thread count and schedule.
 // The schedule (assembly_schedule.h; issue #27, speed): blocks of frames, and in each block tasks
-// of pairs (a scarred roller's pairs together, intact pairs by kind), each pair over the block's
-// frames before the next, so that a scarred roller's trees stay in cache between its rows.
+// of pairs (a scarred roller's pairs together, intact pairs in pair order), each pair over the
+// block's frames before the next, so that a scarred roller's trees stay in cache between its rows.
 #include <algorithm>
 #include <chrono>
 #include <tbb/blocked_range.h>

@@ -1,7 +1,7 @@
 // run_assembly's tasks (assembly_schedule.h; issue #27, the 1,024-roller frame rate).
 #include "assembly_schedule.h"
 
-#include <array>
+#include <vector>
 
 namespace interfere::bearing::detail {
 namespace {
@@ -49,19 +49,15 @@ AssemblySchedule assembly_schedule(const Assembly& as) {
     if (owner[i] != kNone) s.pairs[next[owner[i]]++] = static_cast<std::uint32_t>(i);
   for (std::size_t r = 0; r < as.parts.size(); ++r)
     if (owned[r] > 0) s.task_end.push_back(start[r + 1]);
-  // intact pairs by kind, in pair order within a kind, in chunks of about kChunkWeight
-  std::array<std::vector<std::uint32_t>, 256> by_kind;
-  for (std::size_t i = 0; i < np; ++i)
-    if (owner[i] == kNone) by_kind[static_cast<std::uint8_t>(as.pairs[i].kind)].push_back(static_cast<std::uint32_t>(i));
-  for (const std::vector<std::uint32_t>& kind : by_kind) {
-    std::uint32_t load = 0;
-    for (const std::uint32_t i : kind) {
-      s.pairs.push_back(i);
-      load += weight(as.pairs[i].kind);
-      if (load >= kChunkWeight) s.task_end.push_back(static_cast<std::uint32_t>(s.pairs.size())), load = 0;
-    }
-    if (load > 0) s.task_end.push_back(static_cast<std::uint32_t>(s.pairs.size()));
+  // intact pairs in pair order, in chunks of about kChunkWeight
+  std::uint32_t load = 0;
+  for (std::size_t i = 0; i < np; ++i) {
+    if (owner[i] != kNone) continue;
+    s.pairs.push_back(static_cast<std::uint32_t>(i));
+    load += weight(as.pairs[i].kind);
+    if (load >= kChunkWeight) s.task_end.push_back(static_cast<std::uint32_t>(s.pairs.size())), load = 0;
   }
+  if (load > 0) s.task_end.push_back(static_cast<std::uint32_t>(s.pairs.size()));
   return s;
 }
 

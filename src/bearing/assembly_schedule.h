@@ -8,8 +8,10 @@
 //    the roller's mesh, facet-strip tree and solid (~230 KB; 60 MB for the 256 scarred rollers of
 //    the scene, more than the caches hold), which a frame-by-frame order evicts between two
 //    frames: the same scarred row solved again at once costs about half of a cold one.
-//  * Intact pairs: grouped by kind (the same code and branches) in contiguous chunks of about
-//    kChunkWeight (an estimate of their cost, so that chunks are alike and balance the threads).
+//  * Intact pairs: in pair order (roller by roller: a roller's pose, posed cylinder and rows together),
+//    in contiguous chunks of about kChunkWeight (an estimate of their cost, so that chunks are alike
+//    and balance the threads). Grouping them by kind instead (the same code and branches one after
+//    the other) measured about 5 % slower over the whole frame (1,024 rollers, 1 and 2 threads).
 //
 // A task solves its pairs pair by pair, and each pair over every frame of a block of kFrameBlock
 // frames before the next pair (run_assembly reports progress after each block).
@@ -36,7 +38,7 @@ struct AssemblySchedule {
 };
 
 /// The tasks of `as`'s pair list: the scarred rollers' (in part order, each's pairs in pair order),
-/// then the intact pairs' chunks by kind (pair order within a kind). A function of the pair list.
+/// then the intact pairs' chunks in pair order. A function of the pair list.
 AssemblySchedule assembly_schedule(const Assembly& as);
 
 }  // namespace interfere::bearing::detail
