@@ -295,7 +295,10 @@ AssemblyPairResult solve_one(const Assembly& as, const AssemblyPair& pair, const
       // A skipped reverse could not have been below s(A, B) (both bounds are proven, with margins
       // above the reverse solver's rounding): the same value, points and path bit for bit
       if (!scarred) return standard_row(intact_row_distance(roller, race.cylinder), roller, race.cylinder, clearance);
-      return from_part_pair(decide_part_pair(roller_part(ra, roller, pose_a, scarred), race, clearance), clearance, tol);
+      // a scarred roller: the row carries no lower end (LowerEnd::decision, part_pair.h; issue #27, speed)
+      return from_part_pair(
+          decide_part_pair(roller_part(ra, roller, pose_a, scarred), race, clearance, nullptr, LowerEnd::decision),
+          clearance, tol);
     }
     case AssemblyPairKind::roller_roller: {
       const Cylinder other = posed_cylinder(b.rollers.radius, b.rollers.top_radius, b.rollers.length, pose_b);

@@ -34,9 +34,12 @@ Cylinder enclosing(const Cylinder& c, double raise = 0) {
 Cylinder enclosing(const ScenePart& p) { return enclosing(p.cylinder, p.mesh ? p.mesh->raise : 0.0); }
 
 /// A against the intact cylinder b: the scarred solver on A's surface, else the standard solver.
-PartPairResult solve(const ScenePart& a, const Cylinder& b, const PairDistance* known = nullptr) {
+/// `intact` (optional): set to s(A's cylinder, b), the scarred solver's hint.
+PartPairResult solve(const ScenePart& a, const Cylinder& b, const PairDistance* known = nullptr,
+                     PairDistance* intact = nullptr) {
   PartPairResult out;
   const PairDistance pd = known ? *known : cylinder_pair_distance(a.cylinder, b);  // (known: that same call's result)
+  if (intact) *intact = pd;
   out.path = pd.path;
   if (a.mesh == nullptr) {
     out.distance = pd.distance, out.point_a = pd.point_a, out.point_b = pd.point_b;
@@ -216,9 +219,29 @@ PartPairResult two_scarred_rollers(const ScenePart& a, const ScenePart& b, bool 
   return out;
 }
 
+/// Whether s(B, A0) < target is certified by one point of B (LowerEnd::decision; issue #27, speed):
+/// for any point c, s(B, A0) = min over B of sd_A0 <= sd_A0(c) + dist(c, B) <= sd_A0(c) +
+/// max(0, sd_B(c)) (sd_A0 is 1-Lipschitz). The point (any point is sound; this one is usually
+/// near the deepest): on B's surface at the foot of A's intact witness (`intact`: s(A's intact
+/// cylinder, B); point_b on B's boundary, often at an end of A, where B is barely inside A0),
+/// moved along B's axis toward A's centre by that depth. The margin, 1e-10 of the scene's scale (as
+/// intact_reverse_lower_bound's), is far above the rounding of these evaluations and of the reverse
+/// solver's minimum, so the solver's s(B, A0) would have been below `target` too.
+bool reverse_certified_below(const Cylinder& a0, const Cylinder& b, const PairDistance& intact, double target) {
+  const double depth = std::max(-intact.distance, 0.0);
+  const double toward = dot(a0.center() - intact.point_b, b.axis) > 0 ? depth : -depth;
+  const Vec3 c = intact.point_b + b.axis * toward;
+  const double v = point_signed_distance(a0, c) + std::max(0.0, point_signed_distance(b, c));
+  const double scale = 1 + std::max({std::fabs(a0.base.x), std::fabs(a0.base.y), std::fabs(a0.base.z),
+                                     std::fabs(b.base.x), std::fabs(b.base.y), std::fabs(b.base.z)}) +
+                       a0.height + b.height + a0.radius + b.radius;
+  return v < target - 1e-10 * scale;
+}
+
 }  // namespace
 
-PartPairResult decide_part_pair(const ScenePart& x, const ScenePart& y, double clearance, const PairDistance* forward) {
+PartPairResult decide_part_pair(const ScenePart& x, const ScenePart& y, double clearance, const PairDistance* forward,
+                                LowerEnd lower) {
   // roles: B must be an intact part (a cylinder for the standard solver, a cylinder or frustum for
   // the scarred one and for cone_pair_distance); prefer a partner as B (a roller against a partner
   // is the paper's pair), then an intact cylinder, then an intact (tapered) frustum; between parts
@@ -246,7 +269,8 @@ PartPairResult decide_part_pair(const ScenePart& x, const ScenePart& y, double c
   // B is an intact cylinder (a partner or an untapered roller), A an intact cylinder or a scarred
   // untapered roller
   const Cylinder& bc = b.cylinder;
-  PartPairResult out = solve(a, bc, swapped ? nullptr : forward);  // s(A, B) (A = x: forward is that call)
+  PairDistance intact;  // s(A's cylinder, B) (for LowerEnd::decision)
+  PartPairResult out = solve(a, bc, swapped ? nullptr : forward, &intact);  // s(A, B) (A = x: forward is that call)
   out.swapped = swapped;
   const double tol = touch_tolerance(a.cylinder, bc);
   out.distance_lower = out.distance;
@@ -281,8 +305,15 @@ PartPairResult decide_part_pair(const ScenePart& x, const ScenePart& y, double c
     // cylinder A0 (grown by a raised scar's raise):
     // s(B, A) >= s(B, A0). (Apart,
     // s(A, B) > tol, both one-sided values are the distance of the solids: nothing to add.)
-    const double lo = cylinder_pair_distance(bc, enclosing(a)).distance;
-    if (lo < out.distance) out.distance_lower = lo, out.two_sided_exact = false;
+    const Cylinder a0 = enclosing(a);
+    if (lower == LowerEnd::decision && reverse_certified_below(a0, bc, intact, std::min(out.distance, -tol))) {
+      // s(B, A0) < s(A, B) and < -tol: the verdict is the bracket's either way (clash, or
+      // undecided for a contact), not exact; the lower end only as the inradius bound (part_pair.h)
+      out.distance_lower = -std::min(a0.radius, 0.5 * a0.height), out.two_sided_exact = false;
+    } else {
+      const double lo = cylinder_pair_distance(bc, a0).distance;
+      if (lo < out.distance) out.distance_lower = lo, out.two_sided_exact = false;
+    }
   }
   out.verdict = contained ? Verdict::clash
                           : bracket_verdict(out.distance_lower, out.distance, tol, clearance);

@@ -150,12 +150,24 @@ double intact_reverse_tangent_bound(const Cylinder& a, const Cylinder& b,
 /// s(b, a) is the smaller one. The tapered assemblies' intact rows and decide_part_pair.
 PairDistance two_sided_frustum_distance(const Cylinder& a, const Cylinder& b, bool* reverse = nullptr);
 
+/// What a caller reads of a bracket's lower end (issue #27, speed).
+enum class LowerEnd : std::uint8_t {
+  value,     ///< distance_lower = s(B, A0) whenever that is below s(A, B) (above)
+  /// Only what the verdict and two_sided_exact need (the assemblies' rows, which carry no lower
+  /// end): when a point of B is certified deeper in A0 than min(s(A, B), -tol) by a margin far above
+  /// the reverse solver's rounding, s(B, A0) would be below both (two_sided_exact false, the verdict
+  /// that of the bracket either way), and s(B, A0) is not computed: distance_lower is then the
+  /// looser -min(R0, h0 / 2) (no point is deeper in A0 than its inradius). Everything else is the
+  /// same as with `value`, bit for bit.
+  decision,
+};
+
 /// Decides any two distinct parts of a scene (above). Deterministic (no temporal state).
 /// `forward` (optional): cylinder_pair_distance(x.cylinder, y.cylinder) when the caller already
 /// has it (issue #27, speed: the assemblies' intact roller-inner rows compute it first to find apart
 /// pairs); used only where this function would make that same call (x in the role of A), so the
-/// result is bitwise the same with or without it.
+/// result is bitwise the same with or without it. `lower`: above.
 PartPairResult decide_part_pair(const ScenePart& x, const ScenePart& y, double clearance,
-                                const PairDistance* forward = nullptr);
+                                const PairDistance* forward = nullptr, LowerEnd lower = LowerEnd::value);
 
 }  // namespace interfere::bearing
