@@ -2,6 +2,7 @@
 #include "assembly_tapered_scars.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -77,32 +78,63 @@ std::optional<PairDistance> roller_in_bore_by_columns(const Roller& roller, cons
     if (r2 > all2 || (r2 == all2 && idx < all_i)) all2 = r2, all_i = idx, far_all = x;
     if (z >= 0 && z <= width && r2 > best2) best2 = r2;
   };
-  // the column bounds; the largest first
-  std::vector<double> bound(static_cast<std::size_t>(n));
+  // the column bounds; the largest first (on the stack for the usual segment counts: no allocation)
+  std::array<double, 256> bound_small;
+  std::vector<double> bound_large;
+  double* bound = bound_small.data();
+  if (n > static_cast<int>(bound_small.size()))
+    bound_large.resize(static_cast<std::size_t>(n)), bound = bound_large.data();
   int first = 0;
   // the column directions by rotating (1, 0) by 2 pi / n step by step (a few ulps off the mesh's
   // cos and sin per step: far below the margin)
   const Vec3 ex = pose.rotate({1, 0, 0}), ey = pose.rotate({0, 1, 0});
   const double cd = std::cos(roller.angle(1)), sd = std::sin(roller.angle(1));
+  std::array<Vec3, 256> dir_small;  // (the columns' w, for their vertices' bounds)
+  std::vector<Vec3> dir_large;
+  Vec3* dir = dir_small.data();
+  if (n > static_cast<int>(dir_small.size()))
+    dir_large.resize(static_cast<std::size_t>(n)), dir = dir_large.data();
   double ca = 1, sa = 0;
   for (int i = 0; i < n; ++i) {
     const Vec3 w = ex * ca + ey * sa;
+    dir[i] = w;
     const double cn = ca * cd - sa * sd;
     sa = sa * cd + ca * sd, ca = cn;
     const Vec3 pw = across(w);
     const double lin = std::max(dot(q0, w), dot(q1, w));
-    bound[static_cast<std::size_t>(i)] = qq + std::max(0.0, 2 * r_max * lin + r_max * r_max * dot(pw, pw));
-    if (bound[static_cast<std::size_t>(i)] > bound[static_cast<std::size_t>(first)]) first = i;
+    bound[i] = qq + std::max(0.0, 2 * r_max * lin + r_max * r_max * dot(pw, pw));
+    if (bound[i] > bound[first]) first = i;
   }
+  // A column's vertex j lies at height z_j = roller.z(j) (update_positions), so the same bound with
+  // q(t) = q0 + t (q1 - q0), t = z_j / h, in place of the maximum over z holds for it alone:
+  // |q(t)|^2 + max(0, 2 r_max q(t).w + r_max^2 |P w|^2), a quadratic and a linear function of t
+  // (issue #27, speed: a side column's vertices are n apart in memory, a cache line each; most of
+  // a column is below the best so far, and its vertices are not read). The order of evaluation
+  // does not matter: the maxima compared are the same (rho^2, ties to the lowest index), and a
+  // vertex is skipped only when its bound is below best2, which only grows.
+  const Vec3 dq = q1 - q0;
+  const double c0 = dot(q0, q0), c1 = 2 * dot(q0, dq), c2 = dot(dq, dq);
+  const auto below = [&](double b) { return b + 0x1p-30 * b < best2; };
   const auto column = [&](int i) {
-    for (int j = 0; j <= m; ++j) vertex(roller.side_vertex(i, j));
+    const Vec3& w = dir[i];
+    const Vec3 pw = across(w);
+    const double a0 = 2 * r_max * dot(q0, w), a1 = 2 * r_max * dot(dq, w), a2 = r_max * r_max * dot(pw, pw);
+    const auto vertex_bound = [&](int j) {
+      const double t = roller.z(j) / h;
+      return c0 + t * (c1 + t * c2) + std::max(0.0, a0 + t * a1 + a2);
+    };
+    // the column's ends first (for a nearly parallel roller one of them is the farthest), then the rest
+    if (!below(vertex_bound(0))) vertex(roller.side_vertex(i, 0));
+    if (!below(vertex_bound(m))) vertex(roller.side_vertex(i, m));
+    for (int j = 1; j < m; ++j)
+      if (!below(vertex_bound(j))) vertex(roller.side_vertex(i, j));
   };
-  vertex(static_cast<std::uint32_t>(n * (m + 1))), vertex(static_cast<std::uint32_t>(n * (m + 1) + 1));  // the end centres
   column(first);
-  for (int i = 0; i < n; ++i) {
-    const double b = bound[static_cast<std::size_t>(i)];
-    if (i != first && !(b + 0x1p-30 * b < best2)) column(i);
-  }
+  // the end centres (on the axis: r = 0)
+  if (!below(dot(q0, q0))) vertex(static_cast<std::uint32_t>(n * (m + 1)));
+  if (!below(dot(q1, q1))) vertex(static_cast<std::uint32_t>(n * (m + 1) + 1));
+  for (int i = 0; i < n; ++i)
+    if (i != first && !below(bound[i])) column(i);
   const double z_all = dot(far_all - base, axis);
   if (!(all2 >= 0) || !(z_all >= 0 && z_all <= width)) return std::nullopt;
   // mesh_in_conical_bore's result when its maximiser lies in the width

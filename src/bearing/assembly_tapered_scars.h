@@ -61,8 +61,11 @@ PairDistance mesh_in_conical_bore(const TriMesh& mesh, const Transform& pose, co
 ///   rho^2 = |q(z)|^2 + 2 r q(z).w_i + r^2 |P w_i|^2
 ///        <= max(|q(0)|^2, |q(h)|^2) + max(0, 2 r_max max(q(0).w_i, q(h).w_i) + r_max^2 |P w_i|^2)
 /// (convex in r and in z, linear q.w): a column whose bound is below the largest rho^2 found (by a
-/// relative margin far above rounding) holds no maximiser and is skipped. The vertices compared
-/// are those mesh_in_conical_bore compares (rho^2, ties to the lowest index). nullopt when the
+/// relative margin far above rounding) holds no maximiser and is skipped; within a column the same
+/// bound at each vertex's own height z_j (q(z_j) instead of the maximum over z) skips the vertices
+/// below the best so far, unread (issue #27, speed: a column's vertices are a cache line apart).
+/// The vertices compared are those mesh_in_conical_bore compares (rho^2, ties to the lowest
+/// index), in any order (the maxima do not depend on it). nullopt when the
 /// mesh does not have the roller's layout, `scar_height` (the largest |displacement|,
 /// AssemblyPart::scar_height) is not below the smallest radius (r >= 0 is needed), or the
 /// maximiser lies outside the width (the caller then runs mesh_in_conical_bore).
