@@ -34,6 +34,7 @@
 #include "assembly_tapered_scars.h"
 #include "scarred_rib_two_sided.h"
 #include "scarred_two_sided.h"
+#include "scarred_web_two_sided.h"
 #include "interfere/bearing/assembly.h"
 #include "interfere/bearing/raceway.h"
 #include "interfere/bearing/ring_two_sided.h"
@@ -411,11 +412,15 @@ AssemblyPairResult solve_one(const Assembly& as, const AssemblyPair& pair, const
                         dot(c.top_center() - face.center, face.normal) - c.top() * s) -
                1e-9 * (1 + norm(c.center() - face.center) + c.height);
       };
-      // the ends decide: a rib row is S where certified (issue #27; scarred_rib_two_sided.h)
+      // the ends decide: a rib or web row is S where certified (issue #27; scarred_rib_two_sided.h,
+      // scarred_web_two_sided.h)
       const auto ends_decide = [&](AssemblyPairResult e) {
         if (rib)
           e.two_sided = detail::scarred_rib_two_sided({e.distance, e.point_a, e.point_b, e.path}, face, b.rib_width,
                                                       {pieces.ends.begin(), pieces.ends.end()}, pieces.middle);
+        else if (e.exact && e.distance <= 0)  // (apart: the Euclidean distance; scarred_web_two_sided.h)
+          e.two_sided = detail::scarred_web_two_sided(e.distance, roller, ra.roller->raise,
+                                                      {pieces.ends.begin(), pieces.ends.end()}, *web, g.webs[pair.feature], pose_b);
         return e;
       };
       if (rib) {
@@ -659,8 +664,8 @@ AssemblyPairResult solve_pair(const Assembly& as, const AssemblyPair& pair, cons
         r.two_sided = r.exact && ((r.distance > 0 && r.path == AnalyticPath::bore) ||
                                   (r.distance <= 0 && r.two_sided && r.solver == AssemblySolver::vertex));
       break;
-    case AssemblyPairKind::roller_cage:
-      if (r.scar || as.parts[pair.a].scarred) r.two_sided = r.exact && r.distance > 0;
+    case AssemblyPairKind::roller_cage:  // scarred rollers: apart, or S where certified (solve_one)
+      if (r.scar || as.parts[pair.a].scarred) r.two_sided = r.exact && (r.distance > 0 || r.two_sided);
       break;
     case AssemblyPairKind::roller_rib:  // scarred rollers: S or the Euclidean distance where certified (solve_one)
       if (as.parts[pair.a].scarred) r.two_sided = r.exact && r.two_sided && r.solver == AssemblySolver::raceway;

@@ -282,11 +282,11 @@ struct AssemblyPairResult {
   bool exact = true;          ///< false: distance is a bound (the verdict says what is decided)
   /// true: the value is two-sided, S = min(s(A, B), s(B, A)) (roller-inner, roller-roller,
   /// roller-cone; the ring and web rows of intact rollers, ring_two_sided.h), or a clearance that is
-  /// the Euclidean distance (symmetric); a scarred roller's bore, cup and rib rows where certified
-  /// (src/bearing/scarred_two_sided.h, scarred_rib_two_sided.h). false: one direction only (a scarred
-  /// roller's depth in the outer ring, cup or rib where not certified, the web's deepest point in a
-  /// scarred roller), and clearances that are not certified as the Euclidean distance (cup: to the
-  /// cone line; rib: over the annulus).
+  /// the Euclidean distance (symmetric); a scarred roller's bore, cup, rib and web rows where
+  /// certified (src/bearing/scarred_two_sided.h, scarred_rib_two_sided.h, scarred_web_two_sided.h).
+  /// false: one direction only (a scarred roller's depth in the outer ring, cup or rib, or the web's
+  /// deepest point in it, where not certified), and clearances that are not certified as the
+  /// Euclidean distance (cup: to the cone line; rib: over the annulus).
   bool two_sided = true;
   Verdict verdict = Verdict::clear;
   /// Which part carries the scar that `scar` reports: 0 none, 1 part a (the roller), 2 part b (the

@@ -1,4 +1,5 @@
-// Scarred rollers against the rib, two-sided (issue #27; src/bearing/scarred_rib_two_sided.h). A
+// Scarred rollers against the rib and the cage web, two-sided (issue #27; src/bearing/
+// scarred_rib_two_sided.h, scarred_web_two_sided.h; the web's test and reference below). A
 // scarred roller's rib row measures A' = its intact end cylinders [0, z0] and [z1, L] and the scarred
 // mesh between them (the end pieces decide when the row is exact). Rows flagged `two_sided` must
 // equal, against a reference written here from the description:
@@ -104,7 +105,7 @@ RollerRef roller_of(const Assembly& as, const AssemblyPair& pair, const Transfor
 /// The largest f over a patch (u, v) in [0, 1]^2: a grid, then twelve 41 x 41 grids, each five times
 /// finer, around the best point.
 double patch_max(const std::function<Vec3(double, double)>& at, const std::function<double(const Vec3&)>& f,
-                 int nu = 360, int nv = 40) {
+                 int nu = 360, int nv = 40, bool wrap = true) {
   double bu = 0, bv = 0, best = -kInf;
   for (int i = 0; i <= nu; ++i)
     for (int j = 0; j <= nv; ++j)
@@ -114,8 +115,9 @@ double patch_max(const std::function<Vec3(double, double)>& at, const std::funct
     const double cu = bu, cv = bv;
     for (int i = -20; i <= 20; ++i)
       for (int j = -20; j <= 20; ++j) {
-        // the angle wraps; the other coordinate is clamped
-        const double u = cu + hu * i / 20.0 - std::floor(cu + hu * i / 20.0), v = std::clamp(cv + hv * j / 20.0, 0.0, 1.0);
+        // the angle wraps (wrap); the other coordinate is clamped
+        const double uu = cu + hu * i / 20.0;
+        const double u = wrap ? uu - std::floor(uu) : std::clamp(uu, 0.0, 1.0), v = std::clamp(cv + hv * j / 20.0, 0.0, 1.0);
         if (const double val = f(at(u, v)); val > best) best = val, bu = u, bv = v;
       }
     hu /= 5, hv /= 5;
@@ -245,5 +247,126 @@ TEST(BearingScarredRibTwoSided, RowsAgainstADenseReference) {
   EXPECT_GT(st.apart_certified, 10);
 }
 
+
+// Scarred rollers against a cage web (src/bearing/scarred_web_two_sided.h): the web W is the posed
+// web mesh (a convex hexahedron; its depth the smallest distance to its 12 triangles' planes). Rows
+// flagged `two_sided` that overlap must equal S = -max(fwd, rev) of A' and W:
+//   fwd = max over A' of the depth in W (roller_max above);
+//   rev = max over W of the depth in A': each web triangle by a refined grid of the depth in the end
+//         cylinders (pieces of A', cut faces counted: a lower estimate), and a coarse grid of the web
+//         points in the scar window inside the mesh (ray parity) at their distance to the mesh.
+// Poses push the rollers tangentially into the webs (tilts to 1 degree); inward scars (the
+// certificate's usual case) and raised ones (the grown roller reaches deeper: most are refused).
+/// The largest value of a concave f over the triangle a + e1 u + e2 v (u, v >= 0, u + v <= 1): golden-section
+/// searches nested over u and v (an affine map; the partial maximum of a concave function is concave).
+template <class F>
+double triangle_max(const Vec3& a, const Vec3& e1, const Vec3& e2, const F& f) {
+  const auto golden = [](const auto& g, double lo, double hi) {
+    const double r = 0.5 * (std::sqrt(5.0) - 1);
+    double a = lo, b = hi, x1 = b - r * (b - a), x2 = a + r * (b - a), f1 = g(x1), f2 = g(x2);
+    for (int it = 0; it < 90; ++it) {
+      if (f1 < f2) a = x1, x1 = x2, f1 = f2, x2 = a + r * (b - a), f2 = g(x2);
+      else b = x2, x2 = x1, f2 = f1, x1 = b - r * (b - a), f1 = g(x1);
+    }
+    return std::max({f1, f2, g(lo), g(hi)});
+  };
+  return golden([&](double u) { return golden([&](double v) { return f(a + e1 * u + e2 * v); }, 0.0, 1.0 - u); }, 0.0, 1.0);
+}
+
+struct WebStats {
+  int overlapping = 0, certified = 0, refused = 0, refused_not_s = 0, apart = 0, bound = 0;
+  double worst = 0, rev_ratio_max = 0;
+};
+
+void check_web_rows(const Assembly& as, test::SplitMix& rng, int rounds, WebStats& st) {
+  for (int round = 0; round < rounds; ++round) {
+    const std::vector<Transform> poses = test::random_poses(as, rng, 1.0, -0.04, 0.04, 0.5, 0.7);
+    for (const AssemblyPair& pair : as.pairs) {
+      if (pair.kind != AssemblyPairKind::roller_cage || !as.parts[pair.a].scarred) continue;
+      SCOPED_TRACE(as.parts[pair.a].id + " web " + std::to_string(pair.feature) + " round " + std::to_string(round));
+      const AssemblyPairResult r = solve_pair(as, pair, poses, as.spec.clearance);
+      const RollerRef roller = roller_of(as, pair, poses[pair.a]);
+      const TriMesh& mesh = *as.parts[pair.a].mesh;
+      const std::vector<Vec3> pos = test::posed_positions(mesh, poses[pair.a]);
+      const TriMesh& web = as.webs[as.web_offset[as.parts[pair.a].bearing] + pair.feature].mesh;
+      const std::vector<Vec3> wpos = test::posed_positions(web, poses[pair.b]);
+      const auto web_depth = [&](const Vec3& x) {
+        double d = kInf;
+        for (const Tri& t : web.triangles) {
+          const Vec3 n = cross(wpos[t[1]] - wpos[t[0]], wpos[t[2]] - wpos[t[0]]);
+          d = std::min(d, dot(n, wpos[t[0]] - x) / norm(n));
+        }
+        return d;
+      };
+      if (r.distance > 0 || !r.exact) {
+        r.exact ? ++st.apart : ++st.bound;
+        if (r.verdict == Verdict::clear) {  // never a wrong clear: no sampled point of A' in the web
+          const double fwd = roller_max(roller, mesh, pos, web_depth);
+          EXPECT_LE(fwd, 0) << "a point of the roller lies in the web, verdict clear";
+        }
+        continue;
+      }
+      ++st.overlapping;
+      const double depth = -r.distance;
+      const double fwd = roller_max(roller, mesh, pos, web_depth);
+      // rev: the depth in the end pieces (refined), and in the mesh's window (coarse)
+      // (each piece's depth is concave: maximised over a web triangle by a nested golden-section search)
+      const auto depth_e0 = [&](const Vec3& q) {
+        const Vec3 w = q - roller.base;
+        const double z = dot(w, roller.axis);
+        return std::min({roller.R - norm(w - roller.axis * z), z, roller.z0 - z});
+      };
+      const auto depth_e1 = [&](const Vec3& q) {
+        const Vec3 w = q - roller.base;
+        const double z = dot(w, roller.axis);
+        return std::min({roller.R - norm(w - roller.axis * z), z - roller.z1, roller.L - z});
+      };
+      double rev = -kInf;
+      for (const Tri& t : web.triangles) {
+        const Vec3 a = wpos[t[0]], e1 = wpos[t[1]] - a, e2 = wpos[t[2]] - a;
+        const auto at = [&](double u, double v) { return a + e1 * u + e2 * (v * (1 - u)); };
+        rev = std::max({rev, triangle_max(a, e1, e2, depth_e0), triangle_max(a, e1, e2, depth_e1)});
+        constexpr int kCoarse = 40;
+        for (int i = 0; i <= kCoarse; ++i)
+          for (int j = 0; j <= kCoarse; ++j) {
+            const Vec3 q = at(double(i) / kCoarse, double(j) / kCoarse);
+            const double z = roller.z_of(q);
+            if (!(z > roller.z0 && z < roller.z1) || roller.cylinder_depth(q) + as.parts[pair.a].roller->raise <= 0) continue;
+            if (test::ref_inside(q, pos, mesh)) rev = std::max(rev, test::ref_point_mesh_distance(q, pos, mesh));
+          }
+      }
+      const double scale = norm(roller.base) + roller.L + roller.R;
+      if (r.two_sided) EXPECT_LE(rev, depth + 1e-12 * scale) << "the web reaches deeper into the roller than the row says";
+      if (depth > 0) st.rev_ratio_max = std::max(st.rev_ratio_max, rev / depth);
+      const double ref = -std::max(fwd, rev);
+      if (!r.two_sided) {
+        ++st.refused;
+        if (std::fabs(ref - r.distance) > 1e-6 * depth) ++st.refused_not_s;
+        continue;
+      }
+      ++st.certified;
+      const double diff = test::relative_difference(ref, r.distance);
+      st.worst = std::max(st.worst, diff);
+      EXPECT_LE(diff, 1e-9) << "row " << r.distance << ", reference " << ref << " (fwd " << fwd << ", rev " << rev << ")";
+    }
+  }
+}
+
+TEST(BearingScarredWebTwoSided, RowsAgainstADenseReference) {
+  for (const bool raised : {false, true}) {
+    WebStats st;
+    const Assembly as = test::scarred_assembly(test::kCylindricalBearing, raised);
+    test::SplitMix rng{raised ? 53u : 51u};
+    check_web_rows(as, rng, raised ? 3 : 8, st);
+    std::printf("web (%s scars): %d overlapping exact rows: %d certified (largest relative difference %.3g, sampled "
+                "rev / depth <= %.4f), %d refused (%d of them off the reference by more than 1e-6: not S); %d apart, %d bounds\n",
+                raised ? "raised" : "inward", st.overlapping, st.certified, st.worst, st.rev_ratio_max, st.refused,
+                st.refused_not_s, st.apart, st.bound);
+    if (!raised) {
+      EXPECT_GT(st.certified, 10);
+      EXPECT_GT(st.refused_not_s, 0);
+    }
+  }
+}
 }  // namespace
 }  // namespace interfere::bearing
