@@ -232,6 +232,15 @@ struct Builder {
     fs.strip_cells.push_back({0, 0, 0});
     fs.leaf_of_triangle[t] = leaf;
   }
+  // An inner node's entries: its two children's, contiguous (the children are filled one after the
+  // other, each appending its entries)
+  void entries_below(std::int32_t id, std::int32_t first) {
+    auto& nodes = tree.strips.tree.nodes;
+    const BoundNode &a = nodes[static_cast<std::size_t>(first)], &b = nodes[static_cast<std::size_t>(first) + 1];
+    if (b.tri_first != a.tri_first + a.tri_count) throw std::logic_error("facet strips: entries not contiguous");
+    nodes[static_cast<std::size_t>(id)].tri_first = a.tri_first;
+    nodes[static_cast<std::size_t>(id)].tri_count = a.tri_count + b.tri_count;
+  }
   // The leaf record of node `id` (quadtree.h, StripLeaf): its entries tri_first .. + tri_count - 1
   // (just appended to `corners`), their distinct corners copied in order of first appearance.
   void add_leaf_record(std::int32_t id) {
@@ -289,6 +298,7 @@ struct Builder {
       strip_children(id, first);
       strips_side(first, i0, im);
       strips_side(first + 1, im, i1);
+      entries_below(id, first);
       return;
     }
     const std::vector<Piece> pieces = pieces_of_column(i0);
@@ -336,6 +346,7 @@ struct Builder {
     strip_children(id, first);
     strips_column(first, i, pieces, s0, sm, false);
     strips_column(first + 1, i, pieces, sm, s1, false);
+    entries_below(id, first);
   }
   // the caps: as bound_cap, the fan triangles as entries
   void strips_cap(std::int32_t id, std::int32_t i0, std::int32_t i1, bool top) {
@@ -359,6 +370,7 @@ struct Builder {
     strip_children(id, first);
     strips_cap(first, i0, im, top);
     strips_cap(first + 1, im, i1, top);
+    entries_below(id, first);
   }
   void build_strips() {
     FacetStrips& fs = tree.strips;
@@ -372,6 +384,34 @@ struct Builder {
     fs.tree.top_root = strip_node();
     strips_cap(fs.tree.top_root, 0, roller.n(), true);
     fs.leaves.shrink_to_fit();
+    // the ancestors' first_child of every leaf (FacetStrips::leaf_paths)
+    std::array<std::uint16_t, 16> none;
+    none.fill(0xffff);
+    fs.leaf_paths.assign(fs.leaves.size(), none);
+    struct Item {
+      std::int32_t node;
+      std::array<std::uint16_t, 16> path;
+      int depth;
+    };
+    std::vector<Item> stack;
+    for (const std::int32_t root : {fs.tree.side_root, fs.tree.bottom_root, fs.tree.top_root}) stack.push_back({root, none, 0});
+    while (!stack.empty()) {
+      const Item it = stack.back();
+      stack.pop_back();
+      const BoundNode& node = fs.tree.nodes[static_cast<std::size_t>(it.node)];
+      if (node.child_count == 0) {
+        fs.leaf_paths[static_cast<std::size_t>(node.first_child)] = it.path;
+        continue;
+      }
+      Item kid = it;
+      if (kid.depth < 16 && node.first_child < 0xffff)
+        kid.path[static_cast<std::size_t>(kid.depth)] = static_cast<std::uint16_t>(node.first_child);
+      ++kid.depth;
+      for (std::int32_t k = 0; k < node.child_count; ++k) {
+        kid.node = node.first_child + k;
+        stack.push_back(kid);
+      }
+    }
   }
 };
 

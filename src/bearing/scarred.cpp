@@ -632,11 +632,16 @@ void descend_strips(StripEvaluator& ev, const FacetStrips& fs, std::int32_t skip
       if (n.first_child != skip0 && n.first_child != skip1) ev.leaf(fs.leaves[static_cast<std::size_t>(n.first_child)]);
       continue;
     }
-    Item kids[2];
-    int count = 0;
-    for (std::int32_t k = 0; k < n.child_count && k < 2; ++k) {
-      const std::int32_t id = n.first_child + k;
-      const BoundNode& kid = nodes[static_cast<std::size_t>(id)];
+    // (issue #27) a kid holding the best entry so far: a leaf was evaluated already (it gave the
+    // best), and an inner node's bound is at most the best value (it bounds that entry's triangle
+    // from below), so it is not pruned; its bound only orders it against its sibling, and is
+    // computed only when the sibling is not pruned (then the order is the one by bounds, as before)
+    const int nk = std::min<std::int32_t>(n.child_count, 2);
+    double lbs[2] = {kInf, kInf};
+    bool keep[2] = {false, false};
+    int holder = -1;
+    for (int k = 0; k < nk; ++k) {
+      const BoundNode& kid = nodes[static_cast<std::size_t>(n.first_child + k)];
       if (kid.child_count > 0) {
         const char* next = reinterpret_cast<const char*>(&nodes[static_cast<std::size_t>(kid.first_child)]);
         for (std::size_t b = 0; b < 2 * sizeof(BoundNode); b += 64) __builtin_prefetch(next + b);
@@ -644,9 +649,25 @@ void descend_strips(StripEvaluator& ev, const FacetStrips& fs, std::int32_t skip
         const char* rec = reinterpret_cast<const char*>(&fs.leaves[static_cast<std::size_t>(kid.first_child)]);
         __builtin_prefetch(rec), __builtin_prefetch(rec + 64);
       }
-      const double lb = node_lower_bound(ev.frame, kid, ev.best.distance);
-      if (lb < ev.best.distance) kids[count++] = {id, lb};
+      if (ev.best_entry - kid.tri_first < kid.tri_count) {
+        holder = k;
+        continue;
+      }
+      lbs[k] = node_lower_bound(ev.frame, kid, ev.best.distance);
+      keep[k] = lbs[k] < ev.best.distance;
     }
+    if (holder >= 0) {
+      const BoundNode& kid = nodes[static_cast<std::size_t>(n.first_child + holder)];
+      if (kid.child_count > 0) {
+        const bool sibling = keep[0] || keep[1];
+        lbs[holder] = sibling ? node_lower_bound(ev.frame, kid, ev.best.distance) : -kInf;
+        keep[holder] = lbs[holder] < ev.best.distance;
+      }
+    }
+    Item kids[2];
+    int count = 0;
+    for (int k = 0; k < nk; ++k)
+      if (keep[k]) kids[count++] = {n.first_child + k, lbs[k]};
     if (count == 2 && kids[0].lb < kids[1].lb) std::swap(kids[0], kids[1]);  // the smaller popped first
     for (int k = 0; k < count && top < 1024; ++k) stack[top++] = kids[k];
   }
@@ -699,6 +720,14 @@ MeshPairResult ScarredSolver::run(const Transform& pose, const Cylinder& b, cons
       if (r >= 0) {
         const char* at = reinterpret_cast<const char*>(&fs.leaves[static_cast<std::size_t>(r)]);
         __builtin_prefetch(at), __builtin_prefetch(at + 64);
+      }
+    // the node pairs on the way down to the first leaf (the descent visits them first: the leaf
+    // holds the best value so far), fetched together (FacetStrips::leaf_paths)
+    if (const std::int32_t r = skip1 >= 0 ? skip1 : skip0; r >= 0 && static_cast<std::size_t>(r) < fs.leaf_paths.size())
+      for (const std::uint16_t first : fs.leaf_paths[static_cast<std::size_t>(r)]) {
+        if (first == 0xffff) break;
+        const char* at = reinterpret_cast<const char*>(&fs.tree.nodes[first]);
+        for (std::size_t k = 0; k < 2 * sizeof(BoundNode); k += 64) __builtin_prefetch(at + k);
       }
     const std::array<double, 3> roots = {node_lower_bound(ev.frame, fs.tree.nodes[static_cast<std::size_t>(fs.tree.top_root)]),
                                          node_lower_bound(ev.frame, fs.tree.nodes[static_cast<std::size_t>(fs.tree.bottom_root)]),

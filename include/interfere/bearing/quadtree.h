@@ -80,7 +80,9 @@ struct BoundTree {
 /// positions of the leaf's (at most 4) distinct corners, contiguous, in leaf order, so an entry
 /// costs no fetch of `corners` and of 3 scattered mesh vertices, and a shared corner is mapped to
 /// B's frame once. The same doubles, so the same arithmetic and bits. A strip-tree leaf's
-/// `first_child` is the index of its record in `leaves` (its child_count is 0).
+/// `first_child` is the index of its record in `leaves` (its child_count is 0); an inner node's
+/// tri_first .. + tri_count - 1 are the entries of its subtree (contiguous: the solver does not
+/// bound a node that holds its best entry so far).
 struct alignas(64) StripLeaf {
   Vec3 v[4];                      ///< body frame: copies of mesh positions
   std::uint32_t entry = 0;        ///< the first entry (== the node's tri_first)
@@ -97,6 +99,11 @@ struct FacetStrips {
   std::vector<StripLeaf> leaves;  ///< per leaf node (its first_child), the entries' corners
   /// per mesh triangle: the record (index into `leaves`) of the leaf that holds it
   std::vector<std::int32_t> leaf_record_of_triangle;
+  /// per record: the first_child of the leaf's ancestors from its root down (the first 16; 0xffff
+  /// after the last, and where a node index does not fit): the solver fetches the node pairs on the
+  /// way to its first leaf at once instead of one level at a time (issue #27; a hint, no effect on
+  /// any value)
+  std::vector<std::array<std::uint16_t, 16>> leaf_paths;
   std::vector<std::array<std::uint32_t, 3>> corners;  ///< per entry: vertex ids of the roller mesh
   /// per entry: the mesh triangle it is (a cell's or a cap's), or kStrip for a strip triangle
   std::vector<std::uint32_t> mesh_triangle;

@@ -1,7 +1,8 @@
 // The scarred solver's leaf records (quadtree.h, StripLeaf; issue #27, the 1,024-roller frame rate):
 // every leaf of the facet-strip tree has a record with copies of its entries' corners (bit for bit
 // the mesh positions the entries name), the entries' mesh triangles and strip rows, and every mesh
-// triangle maps to the record of the leaf that holds it. Rollers with pits and raised scars, a
+// triangle maps to the record of the leaf that holds it; inner nodes carry their subtree's entries
+// and each record its leaf's path of first_child. Rollers with pits and raised scars, a
 // window across angle 0, odd segment counts (a cap leaf of one fan triangle).
 #include <gtest/gtest.h>
 
@@ -67,6 +68,35 @@ TEST(BearingScarredLayout, LeafRecordsCopyTheEntries) {
       }
     }
     for (const int u : used) EXPECT_EQ(u, 1);  // one record per leaf
+    // an inner node's entries are its subtree's (contiguous); a leaf's path lists its ancestors'
+    // first_child from its root down
+    for (const std::int32_t root : {fs.tree.side_root, fs.tree.bottom_root, fs.tree.top_root}) {
+      struct Item {
+        std::int32_t node;
+        std::vector<std::uint16_t> path;
+      };
+      std::vector<Item> stack{{root, {}}};
+      while (!stack.empty()) {
+        const Item it = stack.back();
+        stack.pop_back();
+        const BoundNode& node = fs.tree.nodes[static_cast<std::size_t>(it.node)];
+        if (node.child_count == 0) {
+          const auto& path = fs.leaf_paths[static_cast<std::size_t>(node.first_child)];
+          for (std::size_t d = 0; d < path.size(); ++d)
+            EXPECT_EQ(path[d], d < it.path.size() ? it.path[d] : 0xffff);
+          continue;
+        }
+        ASSERT_EQ(node.child_count, 2);
+        const BoundNode& a = fs.tree.nodes[static_cast<std::size_t>(node.first_child)];
+        const BoundNode& b = fs.tree.nodes[static_cast<std::size_t>(node.first_child) + 1];
+        EXPECT_EQ(a.tri_first, node.tri_first);
+        EXPECT_EQ(b.tri_first, a.tri_first + a.tri_count);
+        EXPECT_EQ(node.tri_count, a.tri_count + b.tri_count);
+        Item kid{0, it.path};
+        kid.path.push_back(static_cast<std::uint16_t>(node.first_child));
+        for (int k = 0; k < 2; ++k) kid.node = node.first_child + k, stack.push_back(kid);
+      }
+    }
     ASSERT_EQ(fs.leaf_record_of_triangle.size(), r.mesh.triangles.size());
     for (std::size_t t = 0; t < r.mesh.triangles.size(); ++t) {
       const std::int32_t rec = fs.leaf_record_of_triangle[t];
