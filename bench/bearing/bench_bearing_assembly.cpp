@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <chrono>
 #include <map>
+#include <optional>
+#include <utility>
 #include <ctime>
 #include <string>
 #include <tbb/global_control.h>
@@ -65,6 +67,22 @@ Expected<AssemblySpec> spec_1024() {
   return parse_assembly(text, "1024 rollers");
 }
 
+/// The 1,024-roller scene built (its description and assembly), or an error already reported to
+/// the benchmark (the caller returns).
+std::optional<std::pair<AssemblySpec, Assembly>> built_1024(benchmark::State& state) {
+  Expected<AssemblySpec> spec = spec_1024();
+  if (!spec) {
+    state.SkipWithError(spec.error().message().c_str());
+    return std::nullopt;
+  }
+  Expected<Assembly> as = build_assembly(*spec);
+  if (!as) {
+    state.SkipWithError(as.error().message().c_str());
+    return std::nullopt;
+  }
+  return std::make_pair(std::move(*spec), std::move(*as));
+}
+
 void BM_Assembly1024Rollers(benchmark::State& state) {
   Expected<AssemblySpec> spec = spec_1024();
   if (!spec) {
@@ -86,16 +104,10 @@ double process_seconds() {
 }
 
 void BM_Assembly1024Threads(benchmark::State& state) {
-  Expected<AssemblySpec> spec = spec_1024();
-  if (!spec) {
-    state.SkipWithError(spec.error().message().c_str());
-    return;
-  }
-  Expected<Assembly> as = build_assembly(*spec);
-  if (!as) {
-    state.SkipWithError(as.error().message().c_str());
-    return;
-  }
+  auto built = built_1024(state);
+  if (!built) return;
+  const AssemblySpec* spec = &built->first;
+  const Assembly* as = &built->second;
   const int frames = static_cast<int>(state.range(0));
   const AssemblyMotion motion = generate_motion(*as, frames, spec->seed);
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(state.range(1)));
@@ -124,16 +136,10 @@ double thread_seconds() {
 }
 
 void BM_Assembly1024ByKind(benchmark::State& state) {
-  Expected<AssemblySpec> spec = spec_1024();
-  if (!spec) {
-    state.SkipWithError(spec.error().message().c_str());
-    return;
-  }
-  Expected<Assembly> as = build_assembly(*spec);
-  if (!as) {
-    state.SkipWithError(as.error().message().c_str());
-    return;
-  }
+  auto built = built_1024(state);
+  if (!built) return;
+  const AssemblySpec* spec = &built->first;
+  const Assembly* as = &built->second;
   const int frames = 4;
   const AssemblyMotion motion = generate_motion(*as, frames, spec->seed);
   std::size_t kinds = 0;  // every kind the pair list has (the enum may grow)
