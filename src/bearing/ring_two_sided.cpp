@@ -2,6 +2,8 @@
 // search are derived in the header; docs/bearing.md, "Two-sided ring pairs".
 #include "interfere/bearing/ring_two_sided.h"
 
+#include "raceway_detail.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -15,15 +17,6 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 double scale_of(const Cylinder& roller, double ring) {
   const Vec3 m = roller.center();
   return std::max({std::fabs(m.x), std::fabs(m.y), std::fabs(m.z)}) + roller.height + roller.max_radius() + ring;
-}
-
-/// The axial extent [lo, hi] of the roller's solid along a unit axis (relative to `base`): its end
-/// circles' extremes.
-std::pair<double, double> axial_extent(const Cylinder& c, const Vec3& base, const Vec3& axis) {
-  const double cu = std::clamp(dot(c.axis, axis), -1.0, 1.0);
-  const double s = std::sqrt(std::max(0.0, 1 - cu * cu));
-  const double z0 = dot(c.base - base, axis), z1 = dot(c.top_center() - base, axis);
-  return {std::min(z0 - c.radius * s, z1 - c.top() * s), std::max(z0 + c.radius * s, z1 + c.top() * s)};
 }
 
 /// A solver's decision "meets" (<= 0 and not a lower bound of a positive distance).
@@ -225,7 +218,10 @@ TwoSidedRing two_sided_cup(const Cylinder& roller, const Cup& cup, double outer_
   out.value = roller_cup_distance(roller, cup);
   const PairDistance& f = out.value;
   const Vec3& a = cup.axis;
-  const auto [zlo, zhi] = axial_extent(roller, cup.base, a);
+  // the roller's axial extent along the ring's axis (raceway_slab.cpp's, accurate for nearly
+  // parallel axes; issue #27 review: this file's own copy took the sine as sqrt(1 - cos^2))
+  const detail::AxialExtent extent = detail::axial_extent(roller, cup.base, a);
+  const double zlo = extent.zmin, zhi = extent.zmax;
   const bool within = zlo >= 0 && zhi <= cup.width;
   if (!meets(f)) {
     // the distance to the cone line; the Euclidean distance to the ring when the whole roller lies in
