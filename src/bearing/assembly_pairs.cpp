@@ -32,6 +32,7 @@
 #include "assembly_cage_web.h"
 #include "assembly_raceway_scars.h"
 #include "assembly_tapered_scars.h"
+#include "raceway_detail.h"
 #include "scarred_rib_two_sided.h"
 #include "scarred_two_sided.h"
 #include "scarred_web_two_sided.h"
@@ -407,10 +408,7 @@ AssemblyPairResult solve_one(const Assembly& as, const AssemblyPair& pair, const
       // cannot be below it: not solved. Pieces are solved lowest bound first, and the best is still
       // the first smallest in the pieces' order, so the result is the same as solving them all.
       const auto rib_low = [&](const Cylinder& c) {
-        const double nu = std::clamp(dot(face.normal, c.axis), -1.0, 1.0), s = std::sqrt(std::max(0.0, 1 - nu * nu));
-        return std::min(dot(c.base - face.center, face.normal) - c.radius * s,
-                        dot(c.top_center() - face.center, face.normal) - c.top() * s) -
-               1e-9 * (1 + norm(c.center() - face.center) + c.height);
+        return detail::lowest_height(c, face.center, face.normal) - 1e-9 * (1 + norm(c.center() - face.center) + c.height);
       };
       // the ends decide: a rib or web row is S where certified (issue #27; scarred_rib_two_sided.h,
       // scarred_web_two_sided.h)

@@ -43,6 +43,14 @@ inline Vec3 accurate_across(const Vec3& v, const Vec3& n) {
   return del - n * dot(del, n);
 }
 
+/// The lowest height over the plane through `center` with unit normal `n` of a cylinder or frustum
+/// c: the lower of its two rims' lowest points (closed form; the rib rows' rule, intact and scarred:
+/// ring_two_sided.cpp, assembly_pairs.cpp, scarred_rib_two_sided.cpp).
+inline double lowest_height(const Cylinder& c, const Vec3& center, const Vec3& n) {
+  const double nu = std::clamp(dot(n, c.axis), -1.0, 1.0), s = std::sqrt(std::max(0.0, 1 - nu * nu));
+  return std::min(dot(c.base - center, n) - c.radius * s, dot(c.top_center() - center, n) - c.top() * s);
+}
+
 inline double radius_at(const Cylinder& c, double t) { return c.radius + (c.top() - c.radius) * (t / c.height); }
 
 /// The point of the roller's rim at axis parameter t and angle phi in the frame (f1, f2).

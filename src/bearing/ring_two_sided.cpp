@@ -285,13 +285,7 @@ TwoSidedRing two_sided_rib(const Cylinder& roller, const Rib& rib, double thickn
     // the gap over the annulus is the Euclidean distance when it is also the lowest height of the
     // whole roller (every point p is at least l(p) from the material, l <= 0 there), i.e. the lower
     // of the two rims' lowest points (closed form) is not below it
-    double low = kInf;
-    for (int end = 0; end < 2; ++end) {
-      const Vec3 c = end == 0 ? roller.base : roller.top_center();
-      const double r = end == 0 ? roller.radius : roller.top();
-      const double nu = std::clamp(dot(rib.normal, roller.axis), -1.0, 1.0);
-      low = std::min(low, dot(c - rib.center, rib.normal) - r * std::sqrt(std::max(0.0, 1 - nu * nu)));
-    }
+    const double low = detail::lowest_height(roller, rib.center, rib.normal);
     out.exact = f.path != AnalyticPath::apart && low >= f.distance - 0x1p-44 * scale_of(roller, rib.outer_radius);
     out.forward = out.reverse = f.distance;
     return out;

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "raceway_detail.h"
+
 namespace interfere::bearing::detail {
 
 bool scarred_rib_two_sided(const PairDistance& d, const Rib& rib, double thickness, std::span<const Cylinder> ends,
@@ -17,13 +19,8 @@ bool scarred_rib_two_sided(const PairDistance& d, const Rib& rib, double thickne
   }
   // apart: the lowest point of every piece (a rim point: centre.n - r sqrt(1 - (n.axis)^2); the pieces
   // share the roller's axis) not below v
-  const double nu = std::clamp(dot(rib.normal, middle.axis), -1.0, 1.0), s = std::sqrt(std::max(0.0, 1 - nu * nu));
-  const auto lowest = [&](const Cylinder& c) {
-    return std::min(dot(c.base - rib.center, rib.normal) - c.radius * s,
-                    dot(c.top_center() - rib.center, rib.normal) - c.top() * s);
-  };
-  double low = lowest(middle);
-  for (const Cylinder& c : ends) low = std::min(low, lowest(c));
+  double low = lowest_height(middle, rib.center, rib.normal);
+  for (const Cylinder& c : ends) low = std::min(low, lowest_height(c, rib.center, rib.normal));
   const Vec3 m = middle.center();
   const double scale = std::max({std::fabs(m.x), std::fabs(m.y), std::fabs(m.z)}) + middle.height + middle.max_radius() +
                        rib.outer_radius;
