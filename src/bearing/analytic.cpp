@@ -130,7 +130,30 @@ EllipsePoint point_ellipse_distance(double e0, double e1, double y0, double y1) 
 
 using detail::accurate_cross;
 
+namespace {
+/// B's slab |z - c.u| <= hh for min_axis_distance_in: `margin` far above the rounding of the point
+/// and of its height.
+struct Slab {
+  double hh, margin;
+};
+
+/// min_axis_distance; with `beyond` (issue #27, speed) the end path first bounds its point's height
+/// along u without solving the ellipse: the point is the end circle's centre plus r (cs f1 + sn g2)
+/// with cs^2 + sn^2 = 1 (or <= 1 on the disk), so its height differs from the centre's by at most
+/// r (|f1.u| + |g2.u|). When that puts it beyond the slab for certain (|z| - hh > 0 by more than the
+/// margin), cylinder_pair_distance's certificate cannot hold (dz > 0 fails both of its cases), so the
+/// point is not needed: returns false (out untouched). Otherwise the same operations as without it.
+bool min_axis_distance_in(const Cylinder& a, const Vec3& c, const Vec3& u, RadialMin& out, const Slab* beyond);
+}  // namespace
+
 RadialMin min_axis_distance(const Cylinder& a, const Vec3& c, const Vec3& u) {
+  RadialMin out;
+  min_axis_distance_in(a, c, u, out, nullptr);
+  return out;
+}
+
+namespace {
+bool min_axis_distance_in(const Cylinder& a, const Vec3& c, const Vec3& u, RadialMin& out, const Slab* beyond) {
   const Vec3 d = a.axis;
   const double r = a.radius, h = a.height;
   const Vec3 v0 = a.base - c;
@@ -141,7 +164,6 @@ RadialMin min_axis_distance(const Cylinder& a, const Vec3& c, const Vec3& u) {
   // ways; review, issue #27, test_review_parallel_axes.cpp)
   const Vec3 cr = accurate_cross(d, u);
   const double sl = norm(cr);
-  RadialMin out;
   if (!(sl > 1e-150)) {  // parallel axes: the projected shape is one circle
     out.path = AnalyticPath::parallel;
     const Vec3 perp = v0 - u * dot(v0, u);
@@ -158,7 +180,7 @@ RadialMin min_axis_distance(const Cylinder& a, const Vec3& c, const Vec3& u) {
       out.rho = 0;
       out.point = at - perp;
     }
-    return out;
+    return true;
   }
   const Vec3 f1 = cr / sl;         // in A's end-disk plane and perpendicular to u
   const Vec3 e2 = cross(u, f1);    // completes (f1, e2) in the plane perpendicular to u
@@ -177,12 +199,16 @@ RadialMin min_axis_distance(const Cylinder& a, const Vec3& c, const Vec3& u) {
       out.rho = 0;
       out.point = at + f1 * px;
     }
-    return out;
+    return true;
   }
-  out.path = AnalyticPath::end;
   const bool bottom = 0 < y0;
   const double py = bottom ? -y0 : -y1;
   const Vec3 center = bottom ? a.base : a.top_center();
+  if (beyond) {
+    const double zc = std::fabs(dot(center - c, u)), reach = r * (std::fabs(dot(f1, u)) + std::fabs(dot(g2, u)));
+    if (zc - reach - beyond->hh > beyond->margin) return false;
+  }
+  out.path = AnalyticPath::end;
   const EllipsePoint ep = point_ellipse_distance(r, r * std::fabs(cg), px, py);
   out.rho = ep.distance;
   if (ep.distance == 0) {
@@ -190,7 +216,7 @@ RadialMin min_axis_distance(const Cylinder& a, const Vec3& c, const Vec3& u) {
     const double cs = px / r;
     const double sn = cg != 0 ? py / (r * cg) : 0.0;
     out.point = center + f1 * (r * cs) + g2 * (r * sn);
-    return out;
+    return true;
   }
   double cs = ep.x0 / r, sn;
   if (cg != 0) {
@@ -202,8 +228,9 @@ RadialMin min_axis_distance(const Cylinder& a, const Vec3& c, const Vec3& u) {
   const double len = std::hypot(cs, sn);
   cs /= len, sn /= len;
   out.point = center + f1 * (r * cs) + g2 * (r * sn);
-  return out;
+  return true;
 }
+}  // namespace
 
 Vec3 nearest_on_cylinder_boundary(const Cylinder& b, const Vec3& p) {
   const Vec3 m = b.center();
@@ -411,12 +438,21 @@ bool slice_distance(const Cylinder& a, const Cylinder& b, PairDistance& out) {
 
 PairDistance cylinder_pair_distance(const Cylinder& a, const Cylinder& b) {
   const Vec3 bc = b.center();
-  const RadialMin rm = a.tapered() ? min_axis_distance_tapered(a, bc, b.axis) : min_axis_distance(a, bc, b.axis);
   const double R = b.radius, hh = 0.5 * b.height;
-  const double z = dot(rm.point - bc, b.axis);
-  const double dr = rm.rho - R, dz = std::fabs(z) - hh;
-  // certificate: at the minimiser of rho_B over A, sd_B = rho_B - R (B's side is nearest)
-  const bool certified = rm.rho > 0 && (dr >= 0 ? dz <= 0 : dz <= dr);
+  RadialMin rm;
+  bool certified = false;
+  // (issue #27, speed) an untapered A's end-path minimiser is not computed where it lies beyond B's
+  // slab for certain (min_axis_distance_in): the certificate below fails there, and nothing else
+  // reads rm; nearly parallel neighbouring rollers offset along their axes take this skip
+  const Slab slab{hh, 1e-9 * (1 + std::max({std::fabs(a.base.x), std::fabs(a.base.y), std::fabs(a.base.z),
+                                            std::fabs(bc.x), std::fabs(bc.y), std::fabs(bc.z)}) +
+                              a.height + a.radius + b.height + b.radius)};
+  if (a.tapered() ? (rm = min_axis_distance_tapered(a, bc, b.axis), true) : min_axis_distance_in(a, bc, b.axis, rm, &slab)) {
+    const double z = dot(rm.point - bc, b.axis);
+    const double dr = rm.rho - R, dz = std::fabs(z) - hh;
+    // certificate: at the minimiser of rho_B over A, sd_B = rho_B - R (B's side is nearest)
+    certified = rm.rho > 0 && (dr >= 0 ? dz <= 0 : dz <= dr);
+  }
   if (!certified && !b.tapered()) {
     // Apart solids: both one-sided values are their Euclidean distance, s(A, B) = s(B, A). So when
     // the reverse closed form is certified with a positive value (B's point nearest A's axis has
@@ -443,7 +479,7 @@ PairDistance cylinder_pair_distance(const Cylinder& a, const Cylinder& b) {
     return cylinder_pair_distance_general(a, b);
   }
   PairDistance out;
-  out.distance = dr;
+  out.distance = rm.rho - R;
   out.point_a = rm.point;
   out.point_b = nearest_on_cylinder_boundary(b, rm.point);
   out.path = rm.path;

@@ -273,8 +273,29 @@ PairDistance roller_bore_distance(const Cylinder& roller, const Bore& bore) {
   const detail::AxialExtent ext = detail::axial_extent(roller, bore.base, bore.axis);
   if (ext.zmax < 0 || ext.zmin > bore.width) return slab_gap(ext, bore.base, bore.axis, bore.width);
   // max of the convex rho over the frustum: at an extreme point, i.e. on an end circle
-  const auto lo = max_axis_distance_on_rim({roller.base, roller.radius}, roller.axis, bore.base, bore.axis);
-  const auto hi = max_axis_distance_on_rim({roller.top_center(), roller.top()}, roller.axis, bore.base, bore.axis);
+  // (issue #27, speed) a circle's maximum is at most its centre's rho plus its radius (rho is
+  // 1-Lipschitz): the circle whose centre is farther is solved first, and the other only when that
+  // bound (with a margin far above the rounding of both) does not put it below the first's maximum.
+  // A skipped circle could not have been taken (the larger is taken, the base circle's on ties), so
+  // the maximum and its point are the same as solving both
+  const Rim rim_lo{roller.base, roller.radius}, rim_hi{roller.top_center(), roller.top()};
+  const double reach_lo = norm(cross(rim_lo.c - bore.base, bore.axis)) + rim_lo.r;
+  const double reach_hi = norm(cross(rim_hi.c - bore.base, bore.axis)) + rim_hi.r;
+  const double margin = 1e-9 * (1 + std::max({std::fabs(roller.base.x), std::fabs(roller.base.y), std::fabs(roller.base.z),
+                                              std::fabs(bore.base.x), std::fabs(bore.base.y), std::fabs(bore.base.z)}) +
+                                roller.height + roller.max_radius() + bore.radius);
+  std::pair<double, Vec3> lo, hi;
+  if (reach_hi >= reach_lo) {
+    hi = max_axis_distance_on_rim(rim_hi, roller.axis, bore.base, bore.axis);
+    // (lo skipped: lo < hi, the top circle's is taken)
+    lo = reach_lo + margin < hi.first ? std::pair<double, Vec3>{-kInf, {}}
+                                      : max_axis_distance_on_rim(rim_lo, roller.axis, bore.base, bore.axis);
+  } else {
+    lo = max_axis_distance_on_rim(rim_lo, roller.axis, bore.base, bore.axis);
+    // (hi skipped: hi < lo, the base circle's is taken)
+    hi = reach_hi + margin < lo.first ? std::pair<double, Vec3>{-kInf, {}}
+                                      : max_axis_distance_on_rim(rim_hi, roller.axis, bore.base, bore.axis);
+  }
   double rho = hi.first > lo.first ? hi.first : lo.first;
   Vec3 pa = hi.first > lo.first ? hi.second : lo.second;
   PairDistance out;
