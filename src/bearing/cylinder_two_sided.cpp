@@ -119,7 +119,13 @@ double intact_reverse_lower_bound(const Cylinder& a, const Cylinder& b) {
 // nearly circular sections of nearly parallel axes, and merely less tight otherwise. Tangents at
 // z = 0 and h, then at the minimiser of the current bound (a vertex of the lines' upper envelope)
 // while the bound is below `target` (at most two more). The minimum of max(lines) over [0, h] is at
-// an end or a crossing of two lines. Margin as intact_reverse_lower_bound's.
+// an end or a crossing of two lines. Margin: 1e-13 of the scene's scale (issue #27, speed). It covers
+// the rounding of these lines and of the reverse solver's value, both a few tens of ulps of the
+// scale (world coordinates subtracted, then the plane's small quantities): the secant bound's 1e-10
+// is that same budget times the 1e3 its extrapolation can amplify it by, which the tangents (exact
+// lower bounds, no extrapolation) do not need. With 1e-10 the 1,024-roller scene (bearings up to
+// 9.3 m from the origin: a margin of ~1e-6 mm) fell through to the secant bound and the slice
+// reverse on its loaded roller-inner rows, where s(B, A) - s(A, B) is 1e-8 .. 1e-6 mm.
 double intact_reverse_tangent_bound(const Cylinder& a, const Cylinder& b, double target) {
   constexpr double kNone = -std::numeric_limits<double>::infinity();
   const double ab = dot(a.axis, b.axis);
@@ -188,7 +194,7 @@ double intact_reverse_tangent_bound(const Cylinder& a, const Cylinder& b, double
   const double scale = 1 + std::max({std::fabs(a.base.x), std::fabs(a.base.y), std::fabs(a.base.z),
                                      std::fabs(b.base.x), std::fabs(b.base.y), std::fabs(b.base.z)}) +
                        a.height + b.height + a.radius + b.radius;
-  const double margin = 1e-10 * scale;
+  const double margin = 1e-13 * scale;
   tangent(0);
   tangent(h);
   double lower = envelope_min();

@@ -290,11 +290,12 @@ PartPairResult decide_part_pair(const ScenePart& x, const ScenePart& y, double c
   if (a.intact()) {
     // two_sided_cylinder_distance(a, bc) without recomputing the forward value solve() just gave
     // (the same function of the same cylinders: bitwise the same result). The reverse (often the
-    // slow slice path) only when it can be the smaller one: skipped when intact_reverse_lower_bound
-    // (simulation.h, the bound of the simulation's intact rows) is not below s(A, B), so then
-    // s(B, A) >= s(A, B) and the result is the same bit for bit (issue #27, the assemblies'
-    // roller-inner and roller-roller pairs).
-    if (!(intact_reverse_lower_bound(a.cylinder, bc) >= out.distance)) {
+    // slow slice path) only when it can be the smaller one: skipped when intact_reverse_tangent_bound
+    // or, where that is not enough, intact_reverse_lower_bound (part_pair.h: the cheap tangents
+    // first, as intact_row_distance) is not below s(A, B), so then s(B, A) >= s(A, B) and the
+    // result is the same bit for bit (issue #27, the assemblies' roller-inner and roller-roller pairs).
+    if (!(intact_reverse_tangent_bound(a.cylinder, bc, out.distance) >= out.distance ||
+          intact_reverse_lower_bound(a.cylinder, bc) >= out.distance)) {
       const PairDistance rev = cylinder_pair_distance(bc, a.cylinder);
       out.reverse = rev.distance < out.distance;
       if (out.reverse) out.distance = rev.distance, out.point_a = rev.point_b, out.point_b = rev.point_a, out.path = rev.path;
