@@ -25,11 +25,13 @@
 // meridian distance beyond the cone line over the clipped mesh (the bore's code with k = tan alpha).
 #include <algorithm>
 #include <array>
+#include <vector>
 #include <cmath>
 #include <limits>
 #include <optional>
 
 #include "assembly_cage_web.h"
+#include "assembly_frame.h"
 #include "assembly_raceway_scars.h"
 #include "assembly_tapered_scars.h"
 #include "raceway_detail.h"
@@ -487,7 +489,7 @@ AssemblyPairResult bound_result(double bound, const Vec3& a, const Vec3& b, doub
 /// bearing-bearing: min over the part pairs of the two bearings of |c_p - c_q| - r_p - r_q (bounding
 /// spheres, assembly.h PartSphere).
 AssemblyPairResult solve_structural(const Assembly& as, const AssemblyPair& pair, const std::vector<Transform>& poses,
-                                    double clearance) {
+                                    double clearance, const detail::BearingSphere* spheres) {
   const AssemblyPart& pa = as.parts[pair.a];
   const BearingSpec& b = as.spec.bearings[pa.bearing];
   const BearingGeometry& g = as.geometry[pa.bearing];
@@ -500,26 +502,26 @@ AssemblyPairResult solve_structural(const Assembly& as, const AssemblyPair& pair
     };
     const auto [i0, i1] = range(pair.a);
     const auto [j0, j1] = range(pair.b);
-    // first the two bearings' spheres (about their outer rings' centres, holding every part's sphere)
-    const auto bearing_sphere = [&](std::size_t outer, std::size_t first, std::size_t last) {
-      const Vec3 c = poses[outer].apply(as.parts[outer].sphere.centre);
-      double r = 0;
-      for (std::size_t q = first; q < last; ++q)
-        r = std::max(r, norm(poses[q].apply(as.parts[q].sphere.centre) - c) + as.parts[q].sphere.radius);
-      return std::pair{c, r};
-    };
-    const auto [ci, ri] = bearing_sphere(pair.a, i0, i1);
-    const auto [cj, rj] = bearing_sphere(pair.b, j0, j1);
+    // first the two bearings' spheres (about their outer rings' centres, holding every part's
+    // sphere; assembly_frame.h: run_assembly's once per frame, the same values)
+    const detail::BearingSphere si = spheres ? spheres[as.parts[pair.a].bearing] : detail::bearing_sphere(as, pair.a, poses);
+    const detail::BearingSphere sj = spheres ? spheres[as.parts[pair.b].bearing] : detail::bearing_sphere(as, pair.b, poses);
+    const Vec3 ci = si.centre, cj = sj.centre;
+    const double ri = si.radius, rj = sj.radius;
     if (const double v = norm(cj - ci) - ri - rj; v > tol && v >= clearance) {
       const Vec3 u = (cj - ci) / norm(cj - ci);
       return bound_result(v, ci + u * ri, cj - u * rj, clearance, tol);
     }
+    // the parts' posed sphere centres, once per row (issue #27, speed: they were posed again for
+    // every part pair; the same operations, so the same values)
+    std::vector<Vec3> posed_j(j1 - j0);
+    for (std::size_t j = j0; j < j1; ++j) posed_j[j - j0] = poses[j].apply(as.parts[j].sphere.centre);
     double best = std::numeric_limits<double>::infinity();
     Vec3 wa, wb;
     for (std::size_t i = i0; i < i1; ++i) {
       const Vec3 ci = poses[i].apply(as.parts[i].sphere.centre);
       for (std::size_t j = j0; j < j1; ++j) {
-        const Vec3 cj = poses[j].apply(as.parts[j].sphere.centre);
+        const Vec3& cj = posed_j[j - j0];
         const double d = norm(cj - ci), v = d - as.parts[i].sphere.radius - as.parts[j].sphere.radius;
         if (v >= best) continue;
         if (v > tol && v >= clearance) {  // the spheres decide
@@ -638,11 +640,24 @@ AssemblyPairResult check_raceway_scar_row(const Assembly& as, const AssemblyPair
 
 }  // namespace
 
-AssemblyPairResult solve_pair(const Assembly& as, const AssemblyPair& pair, const std::vector<Transform>& poses,
-                              double clearance) {
+namespace detail {
+
+BearingSphere bearing_sphere(const Assembly& as, std::uint32_t outer, const std::vector<Transform>& poses) {
+  // a bearing's parts are contiguous in as.parts: inner, outer, cage, its rollers (build_assembly)
+  const std::size_t first = outer - 1;
+  const std::size_t last = first + 3 + static_cast<std::size_t>(as.spec.bearings[as.parts[outer].bearing].rollers.count);
+  BearingSphere s;
+  s.centre = poses[outer].apply(as.parts[outer].sphere.centre);
+  for (std::size_t q = first; q < last; ++q)
+    s.radius = std::max(s.radius, norm(poses[q].apply(as.parts[q].sphere.centre) - s.centre) + as.parts[q].sphere.radius);
+  return s;
+}
+
+AssemblyPairResult solve_pair_in_frame(const Assembly& as, const AssemblyPair& pair, const std::vector<Transform>& poses,
+                                       double clearance, const BearingSphere* spheres) {
   if (pair.kind == AssemblyPairKind::cage_inner || pair.kind == AssemblyPairKind::cage_outer ||
       pair.kind == AssemblyPairKind::bearing_bearing)
-    return solve_structural(as, pair, poses, clearance);
+    return solve_structural(as, pair, poses, clearance, spheres);
   // a roller in range of a scarred raceway (issue #27; raceway_scar_solver.h)
   if (auto scarred_raceway = detail::solve_raceway_scar_row(as, pair, poses, clearance))
     return check_raceway_scar_row(as, pair, poses, clearance, *scarred_raceway);
@@ -674,6 +689,13 @@ AssemblyPairResult solve_pair(const Assembly& as, const AssemblyPair& pair, cons
     default: break;  // (the structural kinds return above)
   }
   return r;
+}
+
+}  // namespace detail
+
+AssemblyPairResult solve_pair(const Assembly& as, const AssemblyPair& pair, const std::vector<Transform>& poses,
+                              double clearance) {
+  return detail::solve_pair_in_frame(as, pair, poses, clearance, nullptr);
 }
 
 }  // namespace interfere::bearing

@@ -6,10 +6,12 @@
 // block's frames before the next, so that a scarred roller's trees stay in cache between its rows.
 #include <algorithm>
 #include <chrono>
+#include <vector>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
 
+#include "assembly_frame.h"
 #include "assembly_schedule.h"
 #include "interfere/bearing/assembly.h"
 
@@ -54,8 +56,20 @@ AssemblyResult run_assembly(const Assembly& as, const AssemblyMotion& motion,
   out.frames = static_cast<int>(nf);
   out.rows.resize(nf * np);
   const detail::AssemblySchedule s = detail::assembly_schedule(as);
+  // the bearings' spheres, once per frame (assembly_frame.h; issue #27, speed: each bearing-bearing
+  // row computed both of its bearings' from every part's pose), for the bearings that have such rows
+  const std::size_t nb = as.spec.bearings.size();
+  std::vector<std::uint32_t> outer_of(nb, 0);
+  std::vector<char> has_sphere(nb, 0);
+  for (const AssemblyPair& p : as.pairs)
+    if (p.kind == AssemblyPairKind::bearing_bearing)
+      for (const std::uint32_t q : {p.a, p.b}) outer_of[as.parts[q].bearing] = q, has_sphere[as.parts[q].bearing] = 1;
+  std::vector<detail::BearingSphere> spheres(std::min(nf, detail::kFrameBlock) * nb);
   for (std::size_t f0 = 0; np > 0 && f0 < nf; f0 += detail::kFrameBlock) {
     const std::size_t f1 = std::min(nf, f0 + detail::kFrameBlock);
+    for (std::size_t f = f0; f != f1; ++f)
+      for (std::size_t b = 0; b < nb; ++b)
+        if (has_sphere[b]) spheres[(f - f0) * nb + b] = detail::bearing_sphere(as, outer_of[b], motion.poses[f]);
     tbb::parallel_for(
         tbb::blocked_range<std::size_t>(0, s.tasks(), 1),
         [&](const tbb::blocked_range<std::size_t>& r) {
@@ -66,7 +80,8 @@ AssemblyResult run_assembly(const Assembly& as, const AssemblyMotion& motion,
                 AssemblyRow& row = out.rows[f * np + p];
                 row.frame = static_cast<std::int32_t>(f);
                 row.pair = p;
-                row.result = solve_pair(as, as.pairs[p], motion.poses[f], as.spec.clearance);
+                row.result = detail::solve_pair_in_frame(as, as.pairs[p], motion.poses[f], as.spec.clearance,
+                                                         spheres.data() + (f - f0) * nb);
               }
             }
         },
