@@ -384,6 +384,23 @@ struct Builder {
     fs.tree.top_root = strip_node();
     strips_cap(fs.tree.top_root, 0, roller.n(), true);
     fs.leaves.shrink_to_fit();
+    // the rims (FacetStrips::rims)
+    const int n = roller.n();
+    for (int cap = 0; cap < 2; ++cap) {
+      const int j = cap ? roller.m() : 0;
+      FacetStrips::Rim& rim = fs.rims[static_cast<std::size_t>(cap)];
+      const Vec3& v0 = at(0, j);
+      rim.radius = std::hypot(v0.x, v0.y), rim.z = v0.z, rim.dev = 0;
+      for (int i = 0; i < n; ++i) {
+        const double a = 2.0 * std::numbers::pi * i / n;
+        const Vec3& v = at(i, j);
+        rim.dev = std::max(rim.dev, std::hypot(v.x - rim.radius * std::cos(a), v.y - rim.radius * std::sin(a), v.z - rim.z));
+      }
+      // (a margin for the rounding of the ideal points, far below any gap the test needs)
+      rim.dev = 2 * rim.dev + 64 * std::numeric_limits<double>::epsilon() * (rim.radius + std::fabs(rim.z));
+    }
+    const double step = 2.0 * std::numbers::pi / n;
+    fs.rim_gap = n >= 8 ? (1 - 1e-3) * (std::cos(0.6 * step) - std::cos(1.4 * step)) : 0.0;
     // the ancestors' first_child of every leaf (FacetStrips::leaf_paths)
     std::array<std::uint16_t, 16> none;
     none.fill(0xffff);

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -38,6 +39,16 @@ double frustum_sd_rz(double rho, double z, double Rm, double k, double nk, doubl
   const double dl = std::hypot(rho - (r0 + w * 2 * k * hh), z - (-hh + w * 2 * hh));
   return std::min({db, dt, dl});
 }
+
+/// node_lower_bound's terms that depend only on a node's frame angle (its cos_mid, sin_mid) and on
+/// B's frame: the box's radial and tangential axes in B's frame and, for the curvature bound, the
+/// radial axis projected along B's axis (|g_r| = gr, its direction (urx, ury); radial: gr^2 > 1/4).
+struct AngleTerms {
+  std::uint64_t cos_bits = ~std::uint64_t{0}, sin_bits = ~std::uint64_t{0};  // (a NaN: no angle yet)
+  double erx = 0, ery = 0, etx = 0, ety = 0, erz = 0, etz = 0;
+  bool radial = false;
+  double gr = 0, urx = 0, ury = 0;
+};
 
 /// B's local frame (centre at the origin, axis +z) and the map body(A) -> local(B). B is a cylinder
 /// (radius R) or a frustum (issue #27: a tapered roller, a tapered bearing's cone): radius
@@ -78,6 +89,27 @@ struct LocalFrame {
     return tapered ? frustum_sd_rz(rho, z, Rm, k, nk, hh) : signed_distance_rz(rho, z, R, hh);
   }
   double sd(const Vec3& q) const { return sd_rz(std::sqrt(q.x * q.x + q.y * q.y), q.z); }
+  /// node_lower_bound's terms for the angle (cos, sin), kept for the next node of the same angle
+  /// (compared bit for bit).
+  const AngleTerms& terms(double cos_mid, double sin_mid) const {
+    const auto cb = std::bit_cast<std::uint64_t>(cos_mid), sb = std::bit_cast<std::uint64_t>(sin_mid);
+    if (cb == angle_.cos_bits && sb == angle_.sin_bits) return angle_;
+    AngleTerms& at = angle_;
+    at.cos_bits = cb, at.sin_bits = sb;
+    at.erx = m[0][0] * cos_mid + m[0][1] * sin_mid;
+    at.ery = m[1][0] * cos_mid + m[1][1] * sin_mid;
+    at.etx = -m[0][0] * sin_mid + m[0][1] * cos_mid;
+    at.ety = -m[1][0] * sin_mid + m[1][1] * cos_mid;
+    at.erz = m[2][0] * cos_mid + m[2][1] * sin_mid;
+    at.etz = -m[2][0] * sin_mid + m[2][1] * cos_mid;
+    const double gr2 = at.erx * at.erx + at.ery * at.ery;
+    at.radial = gr2 > 0.25;
+    if (at.radial) at.gr = std::sqrt(gr2), at.urx = at.erx / at.gr, at.ury = at.ery / at.gr;
+    return at;
+  }
+
+ private:
+  mutable AngleTerms angle_;
 };
 
 /// The minimum of a convex G on [lo, hi] near a guess, certified: Newton steps on central differences
@@ -167,10 +199,14 @@ TriangleMin local_triangle_min(const LocalFrame& f, const Vec3& a, const Vec3& b
     // Every value returned below is sd_B (sd_rz) at a point of the triangle up to rounding (a few
     // ulps of the scale), so with the margin 2^-40 of the scale, lb - margin > cut means the value
     // would be > cut too: the caller (which keeps only values <= its best) decides the same.
+    // Beyond an end plane and outside B's side (zmin >= hh, rho >= R: a face overhanging B's end,
+    // e.g. a roller's end cap past its neighbour's end), every point of the triangle is, and sd_B
+    // there is hypot(rho - R, |z| - hh), nondecreasing in both: sd_B >= hypot(dr, zmin - hh)
+    // (issue #27, speed: those triangles took the searches below).
     if (cut < kInf) {
       const double zl = std::min({a.z, b.z, c.z}), zh = std::max({a.z, b.z, c.z});
       const double zmin = zl <= 0 && zh >= 0 ? 0.0 : std::min(std::fabs(zl), std::fabs(zh));
-      const double lb = std::max(dr, zmin - f.hh);
+      const double lb = dr >= 0 && zmin >= f.hh ? std::hypot(dr, zmin - f.hh) : std::max(dr, zmin - f.hh);
       const double scale = std::max({std::fabs(a.x), std::fabs(a.y), std::fabs(a.z), std::fabs(b.x), std::fabs(b.y),
                                      std::fabs(b.z), std::fabs(c.x), std::fabs(c.y), std::fabs(c.z)}) +
                            f.R + f.hh;
@@ -364,7 +400,7 @@ struct StripEvaluator {
   const StripLeaf* best_leaf = nullptr;  ///< the record holding best_entry
 
   /// Entry r.entry + k with its corners in B's frame.
-  void entry(const StripLeaf& r, std::uint32_t k, const Vec3& a, const Vec3& b, const Vec3& c) {
+  double entry(const StripLeaf& r, std::uint32_t k, const Vec3& a, const Vec3& b, const Vec3& c) {
     const std::uint32_t e = r.entry + k;
     const TriangleMin tm = local_triangle_min(frame, a, b, c, best.distance);
     ++best.evaluated;
@@ -374,15 +410,20 @@ struct StripEvaluator {
       best_entry = e, best_leaf = &r;
       best.point_a = tm.point;  // local for now
     }
+    return tm.value;
   }
   /// A leaf's entries from its record (quadtree.h, StripLeaf): the copies of its corners, each
   /// mapped to B's frame once (the same doubles as the mesh's, so the same bits as mapping each
   /// entry's three vertices).
-  void leaf(const StripLeaf& r) {
+  /// Returns the smallest value of its entries (an entry that returned early, above the best
+  /// value then: that larger value).
+  double leaf(const StripLeaf& r) {
     Vec3 q[4];
     for (int k = 0; k < r.vertices; ++k) q[k] = frame.local(r.v[k]);
+    double low = kInf;
     for (std::uint32_t k = 0; k < r.count; ++k)
-      entry(r, k, q[r.corner[k][0]], q[r.corner[k][1]], q[r.corner[k][2]]);
+      low = std::min(low, entry(r, k, q[r.corner[k][0]], q[r.corner[k][1]], q[r.corner[k][2]]));
+    return low;
   }
   /// An end cap is skipped when it cannot hold a value below the best by more than 2^-44 of the
   /// local scale (issue #27: the cap's fan triangles next to a contact at the rim tie with the side's
@@ -407,12 +448,82 @@ struct StripEvaluator {
     } else {
       g = {0, 0, sz};
     }
-    const int n = roller.n(), j = top ? roller.m() : 0;
+    const int n = roller.n();
     const auto& pos = roller.mesh.positions;
-    double low = dot(g, frame.local(pos[static_cast<std::size_t>(n) * (roller.m() + 1) + (top ? 1 : 0)]) - y);
-    for (int i = 0; i < n; ++i) low = std::min(low, dot(g, frame.local(pos[roller.side_vertex(i, j)]) - y));
+    const auto value = [&](std::size_t v) { return dot(g, frame.local(pos[v]) - y); };
+    double low = value(static_cast<std::size_t>(n) * (roller.m() + 1) + (top ? 1 : 0));  // the centre
+    const std::size_t rim0 = static_cast<std::size_t>(top ? roller.m() : 0) * static_cast<std::size_t>(n);
+    // (issue #27, speed) the rim's minimum from the 3 vertices nearest its minimising angle when
+    // that is certain, else from every rim vertex; the same values, so the same minimum, bit for
+    // bit. value(v) = c.v + g.(o - y) exactly, c = M^T g (body frame). On the regular polygon
+    // (FacetStrips::rims) c.v = r |c_xy| cos(a - psi) + c_z z, smallest at a = psi; the vertex i*
+    // nearest psi is within 0.5 step (0.6 with rounding) of it, every vertex not within one index
+    // of i* is 1.5 steps (1.4) or more away, so its exact value is above i*'s by r |c_xy| gap
+    // less 2 |c| dev (the rim's distance from the polygon). Each computed value is within err of
+    // its exact value (err, 2^-40 of the magnitudes, is far above the rounding of the few
+    // products and sums): with that difference above 2 err, every other vertex's computed value
+    // is above i*'s, and the minimum over all is the minimum over i* - 1 .. i* + 1.
+    const FacetStrips::Rim& rim = fs.rims[top ? 1 : 0];
+    const double cx = frame.m[0][0] * g.x + frame.m[1][0] * g.y + frame.m[2][0] * g.z;
+    const double cy = frame.m[0][1] * g.x + frame.m[1][1] * g.y + frame.m[2][1] * g.z;
+    const double cz = frame.m[0][2] * g.x + frame.m[1][2] * g.y + frame.m[2][2] * g.z;
+    const double err = 0x1p-40 * (rim.radius + std::fabs(rim.z) + std::fabs(frame.o.x) + std::fabs(frame.o.y) +
+                                  std::fabs(frame.o.z) + std::fabs(y.x) + std::fabs(y.y) + std::fabs(y.z));
+    const double cxy = std::hypot(cx, cy);
+    if (rim.radius * cxy * fs.rim_gap - 2 * std::hypot(cxy, cz) * rim.dev > 2 * err) {
+      const double u = std::atan2(-cy, -cx) / (2 * std::numbers::pi) * n;  // psi in steps
+      const int c = ((static_cast<int>(std::lround(u)) % n) + n) % n;
+      for (const int i : {c == 0 ? n - 1 : c - 1, c, c + 1 == n ? 0 : c + 1})
+        low = std::min(low, value(rim0 + static_cast<std::size_t>(i)));
+    } else {
+      for (int i = 0; i < n; ++i) low = std::min(low, value(rim0 + static_cast<std::size_t>(i)));
+    }
     const double scale = std::fabs(y.x) + std::fabs(y.y) + std::fabs(y.z) + frame.R + frame.hh;
     return frame.sd(y) + low >= best.distance - 0x1p-44 * scale;
+  }
+  /// (issue #27, speed) When the best point lies on a vertex line of its side leaf (a strip or a
+  /// cell of column i: on the generator of column i or i + 1), the first triangle of the cell of
+  /// the column beyond that line in the point's row, else kNone. An intact facetted roller's
+  /// nearest point to a part beside it is on a vertex line (the polygon's vertex nearest the
+  /// direction to the part), which the two columns sharing it reach with the same value: evaluated
+  /// first, that cell's leaf is not pruned but not searched for either (descend_strips). Only the
+  /// work depends on it. The leaf record's corners: v[0], v[3] on column i's line, v[1], v[2] on
+  /// column i + 1's (quadtree.cpp, add_leaf_record: (a0, b0, b1), (a0, b1, a1)).
+  std::uint32_t partner() const {
+    if (best_entry == 0xffffffffu || best_leaf->vertices != 4) return 0xffffffffu;
+    const std::uint32_t t = best_leaf->mesh_triangle[0];
+    const int n = roller.n(), m = roller.m();
+    int i;
+    if (t == FacetStrips::kStrip) {
+      i = best_leaf->strip[0];
+    } else if (t < 2 * static_cast<std::uint32_t>(n) * static_cast<std::uint32_t>(m)) {
+      i = static_cast<int>((t / 2) % static_cast<std::uint32_t>(n));
+    } else {
+      return 0xffffffffu;  // a cap
+    }
+    const Vec3 q = best.point_a - frame.o;  // body = m^T (local - o)
+    const Vec3 p{frame.m[0][0] * q.x + frame.m[1][0] * q.y + frame.m[2][0] * q.z,
+                 frame.m[0][1] * q.x + frame.m[1][1] * q.y + frame.m[2][1] * q.z,
+                 frame.m[0][2] * q.x + frame.m[1][2] * q.y + frame.m[2][2] * q.z};
+    const auto off_line = [&](const Vec3& a, const Vec3& b) {  // squared distance from the segment a b
+      const Vec3 d = b - a, w = p - a;
+      const double l2 = dot(d, d), s = l2 > 0 ? std::clamp(dot(w, d) / l2, 0.0, 1.0) : 0.0;
+      const Vec3 e = w - d * s;
+      return dot(e, e);
+    };
+    const Vec3* v = best_leaf->v;
+    const double tol = 1e-18 * (dot(v[0], v[0]) + dot(v[2], v[2]));  // (1e-9 of the scale, squared)
+    int c;
+    if (off_line(v[0], v[3]) <= tol) {
+      c = i == 0 ? n - 1 : i - 1;
+    } else if (off_line(v[1], v[2]) <= tol) {
+      c = i + 1 == n ? 0 : i + 1;
+    } else {
+      return 0xffffffffu;
+    }
+    const double guess = p.z / roller.params.height * m;
+    const int j = std::isfinite(guess) ? std::clamp(static_cast<int>(guess), 0, m - 1) : 0;
+    return roller.side_triangle(c, j);
   }
   /// The mesh triangle under the witness (a strip entry: the cell of its run that holds the
   /// witness, then the cell's triangle by the side of its diagonal v(i, j) .. v(i+1, j+1)).
@@ -464,15 +575,14 @@ double node_lower_bound(const LocalFrame& f, const Node& n, double cut = kInf) {
   const double rho = std::sqrt(c.x * c.x + c.y * c.y);
   if (!(rho > 0)) return -kInf;
   const double nx = c.x / rho, ny = c.y / rho;
-  const double erx = f.m[0][0] * n.cos_mid + f.m[0][1] * n.sin_mid;
-  const double ery = f.m[1][0] * n.cos_mid + f.m[1][1] * n.sin_mid;
-  const double etx = -f.m[0][0] * n.sin_mid + f.m[0][1] * n.cos_mid;
-  const double ety = -f.m[1][0] * n.sin_mid + f.m[1][1] * n.cos_mid;
+  // the box's axes in B's frame, from the node's angle: the last angle's (a column's nodes share
+  // theirs; issue #27, speed: the same operations on the same values, so the same bits)
+  const AngleTerms& at = f.terms(n.cos_mid, n.sin_mid);
+  const double erx = at.erx, ery = at.ery, etx = at.etx, ety = at.ety;
   const double ezx = f.m[0][2], ezy = f.m[1][2];
   // sd_B >= |z| - hh too (the slab of B's end planes): boxes beyond B's ends (a raceway's grid
   // past a roller's end, issue #27) are pruned by it where the lateral bound cannot
-  const double erz = f.m[2][0] * n.cos_mid + f.m[2][1] * n.sin_mid;
-  const double etz = -f.m[2][0] * n.sin_mid + f.m[2][1] * n.cos_mid;
+  const double erz = at.erz, etz = at.etz;
   // The box's distance from B's axis in the box's own directions (issue #27). Project along B's
   // axis: the box becomes c + sum s_i h_i g_i (|s_i| <= 1, g_r, g_t, g_z the projected axes); with
   // u_r = g_r / |g_r| and u_t = u_r turned by 90 degrees, every point x of it has
@@ -486,9 +596,8 @@ double node_lower_bound(const LocalFrame& f, const Node& n, double cut = kInf) {
   // Used when the box's radial axis is not nearly along B's axis (|g_r| > 1/2: within 60 degrees
   // of parallel; else -inf), less a rounding margin; the larger of it and the linear bound is taken.
   const auto box_rho = [&] {
-    const double gr2 = erx * erx + ery * ery;
-    if (!(gr2 > 0.25)) return -kInf;
-    const double gr = std::sqrt(gr2), urx = erx / gr, ury = ery / gr;
+    if (!at.radial) return -kInf;
+    const double gr = at.gr, urx = at.urx, ury = at.ury;
     const double cr = c.x * urx + c.y * ury, ct = c.y * urx - c.x * ury;
     const double a = std::max(0.0, std::fabs(cr) - n.half_r * gr - n.half_t * std::fabs(etx * urx + ety * ury) -
                                        n.half_z * std::fabs(ezx * urx + ezy * ury));
@@ -603,11 +712,18 @@ void descend(Evaluator& ev, const std::vector<Node>& nodes, std::array<std::int3
   }
 }
 
-/// The same descent over a FacetStrips tree; the leaves already evaluated (their records `skip`)
-/// are not again. `roots`: the bounds of the top, bottom and side roots (node_lower_bound without
-/// a cut: they do not depend on the best value, so the caller computes them while it waits for
-/// the first leaf's record).
-void descend_strips(StripEvaluator& ev, const FacetStrips& fs, std::int32_t skip0, std::int32_t skip1,
+/// A leaf evaluated before the descent (its record, its entries, its smallest value).
+struct Evaluated {
+  std::int32_t record = -1;
+  std::uint32_t entry = 0, count = 0;
+  double value = kInf;
+};
+
+/// The same descent over a FacetStrips tree; the leaves already evaluated (`done`, from
+/// StripEvaluator::leaf) are not again. `roots`: the bounds of the top, bottom and side roots
+/// (node_lower_bound without a cut; the caller computes them while it waits for the first leaf's
+/// record; -inf: not needed, see below).
+void descend_strips(StripEvaluator& ev, const FacetStrips& fs, const std::array<Evaluated, 3>& done,
                     const std::array<double, 3>& roots) {
   const BoundTree& t = fs.tree;
   const std::vector<BoundNode>& nodes = t.nodes;
@@ -622,6 +738,18 @@ void descend_strips(StripEvaluator& ev, const FacetStrips& fs, std::int32_t skip
   stack[top++] = {t.top_root, roots[0]};
   stack[top++] = {t.bottom_root, roots[1]};
   stack[top++] = {t.side_root, roots[2]};
+  // (issue #27) a node holding the best entry so far, or an entry evaluated first whose value ties
+  // with it (an intact roller's minimum is on a vertex line, shared by two columns' strips: the
+  // hinted one and its neighbour evaluated first, run()), is not pruned: its bound is at most that
+  // entry's value, the best value (it bounds that entry's triangle from below). So its bound only
+  // orders it against its sibling and is computed only when the sibling is not pruned (then the
+  // order is the one by bounds, as before).
+  const auto holds = [&](const BoundNode& kid) {
+    if (ev.best_entry - kid.tri_first < kid.tri_count) return true;
+    for (const Evaluated& e : done)
+      if (e.record >= 0 && e.value <= ev.best.distance && e.entry - kid.tri_first < kid.tri_count) return true;
+    return false;
+  };
   while (top > 0) {
     const Item it = stack[--top];
     if (it.lb >= ev.best.distance) continue;
@@ -629,17 +757,13 @@ void descend_strips(StripEvaluator& ev, const FacetStrips& fs, std::int32_t skip
     const BoundNode& n = nodes[static_cast<std::size_t>(it.node)];
     ++ev.best.nodes_visited;
     if (n.child_count == 0) {
-      if (n.first_child != skip0 && n.first_child != skip1) ev.leaf(fs.leaves[static_cast<std::size_t>(n.first_child)]);
+      if (n.first_child != done[0].record && n.first_child != done[1].record && n.first_child != done[2].record)
+        ev.leaf(fs.leaves[static_cast<std::size_t>(n.first_child)]);
       continue;
     }
-    // (issue #27) a kid holding the best entry so far: a leaf was evaluated already (it gave the
-    // best), and an inner node's bound is at most the best value (it bounds that entry's triangle
-    // from below), so it is not pruned; its bound only orders it against its sibling, and is
-    // computed only when the sibling is not pruned (then the order is the one by bounds, as before)
     const int nk = std::min<std::int32_t>(n.child_count, 2);
     double lbs[2] = {kInf, kInf};
-    bool keep[2] = {false, false};
-    int holder = -1;
+    bool keep[2] = {false, false}, holder[2] = {false, false};
     for (int k = 0; k < nk; ++k) {
       const BoundNode& kid = nodes[static_cast<std::size_t>(n.first_child + k)];
       if (kid.child_count > 0) {
@@ -649,20 +773,21 @@ void descend_strips(StripEvaluator& ev, const FacetStrips& fs, std::int32_t skip
         const char* rec = reinterpret_cast<const char*>(&fs.leaves[static_cast<std::size_t>(kid.first_child)]);
         __builtin_prefetch(rec), __builtin_prefetch(rec + 64);
       }
-      if (ev.best_entry - kid.tri_first < kid.tri_count) {
-        holder = k;
-        continue;
-      }
-      lbs[k] = node_lower_bound(ev.frame, kid, ev.best.distance);
+      holder[k] = holds(kid);
+    }
+    // (a holder leaf was evaluated already: not again)
+    for (int k = 0; k < nk; ++k) {
+      if (holder[k]) continue;
+      lbs[k] = node_lower_bound(ev.frame, nodes[static_cast<std::size_t>(n.first_child + k)], ev.best.distance);
       keep[k] = lbs[k] < ev.best.distance;
     }
-    if (holder >= 0) {
-      const BoundNode& kid = nodes[static_cast<std::size_t>(n.first_child + holder)];
-      if (kid.child_count > 0) {
-        const bool sibling = keep[0] || keep[1];
-        lbs[holder] = sibling ? node_lower_bound(ev.frame, kid, ev.best.distance) : -kInf;
-        keep[holder] = lbs[holder] < ev.best.distance;
-      }
+    const auto inner = [&](int k) { return nodes[static_cast<std::size_t>(n.first_child + k)].child_count > 0; };
+    for (int k = 0; k < nk; ++k) {
+      if (!holder[k] || !inner(k)) continue;
+      const bool sibling = nk == 2 && (keep[1 - k] || (holder[1 - k] && inner(1 - k)));
+      lbs[k] = sibling ? node_lower_bound(ev.frame, nodes[static_cast<std::size_t>(n.first_child + k)], ev.best.distance)
+                       : -kInf;
+      keep[k] = lbs[k] < ev.best.distance;
     }
     Item kids[2];
     int count = 0;
@@ -716,6 +841,15 @@ MeshPairResult ScarredSolver::run(const Transform& pose, const Cylinder& b, cons
     std::int32_t skip0 = -1, skip1 = -1;  // (records of the leaves evaluated first)
     if (previous_ != kNone && previous_ < fs.leaf_record_of_triangle.size()) skip0 = fs.leaf_record_of_triangle[previous_];
     if (hinted) skip1 = fs.leaf_record_of_triangle[h];
+    if (skip1 == skip0) skip1 = -1;
+    // the records of the hinted cell's neighbours in its row (the partner below is usually one)
+    if (hinted) {
+      const int n = roller_->n(), i = static_cast<int>((h / 2) % static_cast<std::uint32_t>(n));
+      const std::uint32_t row = h - 2 * static_cast<std::uint32_t>(i);
+      for (const int c : {i == 0 ? n - 1 : i - 1, i + 1 == n ? 0 : i + 1})
+        if (const std::int32_t r = fs.leaf_record_of_triangle[row + 2 * static_cast<std::uint32_t>(c)]; r >= 0)
+          __builtin_prefetch(&fs.leaves[static_cast<std::size_t>(r)]), __builtin_prefetch(reinterpret_cast<const char*>(&fs.leaves[static_cast<std::size_t>(r)]) + 64);
+    }
     for (const std::int32_t r : {skip0, skip1})
       if (r >= 0) {
         const char* at = reinterpret_cast<const char*>(&fs.leaves[static_cast<std::size_t>(r)]);
@@ -729,12 +863,26 @@ MeshPairResult ScarredSolver::run(const Transform& pose, const Cylinder& b, cons
         const char* at = reinterpret_cast<const char*>(&fs.tree.nodes[first]);
         for (std::size_t k = 0; k < 2 * sizeof(BoundNode); k += 64) __builtin_prefetch(at + k);
       }
-    const std::array<double, 3> roots = {node_lower_bound(ev.frame, fs.tree.nodes[static_cast<std::size_t>(fs.tree.top_root)]),
-                                         node_lower_bound(ev.frame, fs.tree.nodes[static_cast<std::size_t>(fs.tree.bottom_root)]),
-                                         node_lower_bound(ev.frame, fs.tree.nodes[static_cast<std::size_t>(fs.tree.side_root)])};
-    if (skip0 >= 0) ev.leaf(fs.leaves[static_cast<std::size_t>(skip0)]);
-    if (skip1 >= 0 && skip1 != skip0) ev.leaf(fs.leaves[static_cast<std::size_t>(skip1)]);
-    descend_strips(ev, fs, skip0, skip1, roots);
+    const BoundNode& side = fs.tree.nodes[static_cast<std::size_t>(fs.tree.side_root)];
+    std::array<double, 3> roots = {node_lower_bound(ev.frame, fs.tree.nodes[static_cast<std::size_t>(fs.tree.top_root)]),
+                                   node_lower_bound(ev.frame, fs.tree.nodes[static_cast<std::size_t>(fs.tree.bottom_root)]),
+                                   -kInf};
+    std::array<Evaluated, 3> done;
+    std::size_t k = 0;
+    for (const std::int32_t r : {skip0, skip1})
+      if (r >= 0) {
+        const StripLeaf& rec = fs.leaves[static_cast<std::size_t>(r)];
+        done[k++] = {r, rec.entry, rec.count, ev.leaf(rec)};
+      }
+    // the partner: the cell across the vertex line the best point lies on (StripEvaluator::partner)
+    if (const std::uint32_t t = ev.partner(); t != kNone)
+      if (const std::int32_t r = fs.leaf_record_of_triangle[t]; r >= 0 && r != skip0 && r != skip1) {
+        const StripLeaf& rec = fs.leaves[static_cast<std::size_t>(r)];
+        done[k++] = {r, rec.entry, rec.count, ev.leaf(rec)};
+      }
+    // the side root holding the best entry is not pruned (descend_strips): its bound is not needed
+    if (!(ev.best_entry - side.tri_first < side.tri_count)) roots[2] = node_lower_bound(ev.frame, side);
+    descend_strips(ev, fs, done, roots);
     MeshPairResult out = ev.finish(b);
     previous_ = out.triangle;
     return out;

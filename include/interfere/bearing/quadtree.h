@@ -112,6 +112,18 @@ struct FacetStrips {
   /// per mesh triangle: the leaf node of `tree` that holds it (for the solvers' first bounds)
   std::vector<std::int32_t> leaf_of_triangle;
   static constexpr std::uint32_t kStrip = 0xffffffffu;
+  /// The end caps' rims, for the solver's cap test (scarred.cpp, cap_cannot_improve; issue #27,
+  /// speed): per cap (0 bottom, 1 top) the radius r of its rim vertex 0, the rim's height z and
+  /// the largest distance `dev` of a rim vertex i from the regular polygon's (r cos a_i, r sin a_i,
+  /// z), a_i = 2 pi i / n (0 for an intact rim; a scarred rim: its displacement). `rim_gap` is
+  /// cos(0.6 * 2 pi / n) - cos(1.4 * 2 pi / n) (less a relative 1e-3): a linear function of the
+  /// regular polygon's vertices is larger at every vertex 1.5 steps or more from its minimising
+  /// angle than at the vertex nearest that angle, by at least r |its gradient across the axis| gap.
+  struct Rim {
+    double radius = 0, z = 0, dev = 0;
+  };
+  std::array<Rim, 2> rims{};
+  double rim_gap = 0;
   bool empty() const { return tree.empty(); }
 };
 

@@ -22,6 +22,10 @@
 //    upper bound is already (nearly) tight. Equal to surface_reference to rounding. It descends the
 //    tree of coplanar facet strips (quadtree.h, FacetStrips; issue #27): a planar run of intact
 //    cells of one column is minimised as one rectangle (two triangles), the scar's cells as before.
+//    First the leaves of the previous triangle, of the hinted cell and of its partner (the cell
+//    across the vertex line the best point lies on: an intact facetted roller's nearest point to
+//    a part beside it is on a vertex line, where two columns tie); nodes holding an entry of the
+//    best value are descended without their bound (issue #27, speed; only the work depends on it).
 //  - vertex methods (the paper's and its comparisons, approximate by construction): brute force over
 //    all vertices; Barbier–Galin distance over all vertices; the paper's quadtree method
 //    (calculation layer, virtual vertices, scar descent) over the window of Eq. (1).
