@@ -48,6 +48,25 @@ double segment_triangle_distance(const Vec3& s0, const Vec3& s1, const std::arra
   return d;
 }
 
+/// The distance from the origin to the planar triangle (a, b, c) (2D points): 0 inside, else the
+/// nearest of its edges (issue #27, speed: web_distance's projected bound).
+double origin_triangle_distance_2d(const std::array<double, 2>& a, const std::array<double, 2>& b,
+                                   const std::array<double, 2>& c) {
+  const auto cross2 = [](const std::array<double, 2>& p, const std::array<double, 2>& q) {
+    return p[0] * q[1] - p[1] * q[0];
+  };
+  // the origin's side of each edge (the orientation of (p, q, origin) is cross2(p, q))
+  const double s0 = cross2(a, b), s1 = cross2(b, c), s2 = cross2(c, a);
+  if ((s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0)) return 0;
+  const auto edge = [](const std::array<double, 2>& p, const std::array<double, 2>& q) {
+    const double dx = q[0] - p[0], dy = q[1] - p[1], l2 = dx * dx + dy * dy;
+    const double t = l2 > 0 ? std::clamp(-(p[0] * dx + p[1] * dy) / l2, 0.0, 1.0) : 0.0;
+    const double x = p[0] + dx * t, y = p[1] + dy * t;
+    return std::sqrt(x * x + y * y);
+  };
+  return std::min({edge(a, b), edge(b, c), edge(c, a)});
+}
+
 /// The closed form of web_distance for a web apart from the roller across one of its faces (issue
 /// #27, speed; docs/bearing.md "Cage webs in closed form"). The web is {x : n_j.x <= d_j, j = 0..5}.
 /// For a face j, g_j = min over the roller of n_j.x - d_j is the support function of the roller (a
@@ -240,6 +259,21 @@ WebValue web_distance(const Cylinder& roller, const TriMesh& web, const Transfor
       order[i] = {norm(c - foot) - rad - roller.radius - 1e-9 * (1 + norm(c - roller.base) + roller.height), i};
     }
     std::sort(order.begin(), order.begin() + nt);
+    // the corners projected across the roller's axis (coordinates about the axis), for the
+    // projected bound below; computed on first use
+    std::array<std::array<double, 2>, 8> q2{};
+    std::vector<std::array<double, 2>> q2_large;
+    std::array<double, 2>* q = nullptr;
+    const auto projected = [&] {
+      if (q) return q;
+      if (np > q2.size()) q2_large.resize(np);
+      q = q2_large.empty() ? q2.data() : q2_large.data();
+      const Vec3& u = roller.axis;
+      const Vec3 t1 = std::fabs(u.x) < 0.9 ? cross(u, Vec3{1, 0, 0}) : cross(u, Vec3{0, 1, 0});
+      const Vec3 e1 = t1 / norm(t1), e2 = cross(u, e1);
+      for (std::size_t i = 0; i < np; ++i) q[i] = {dot(p[i] - roller.base, e1), dot(p[i] - roller.base, e2)};
+      return q;
+    };
     for (std::size_t k = 0; k < nt; ++k) {
       if (!(order[k].first < out.distance)) break;
       const Tri& t = web.triangles[order[k].second];
@@ -265,6 +299,15 @@ WebValue web_distance(const Cylinder& roller, const TriMesh& web, const Transfor
           const double e0 = dot(roller.base - p[t[0]], tn) / tl, e1 = dot(top - p[t[0]], tn) / tl;
           if ((e0 > 0) == (e1 > 0) && e0 != 0 && e1 != 0 &&
               !(std::min(std::fabs(e0), std::fabs(e1)) - roller.radius - margin < out.distance))
+            continue;
+        }
+        // (issue #27, speed) a point's distance to the axis segment is at least its distance to the
+        // axis line, i.e. to the origin of the plane across the axis: at least the projected
+        // triangle's distance from it (a few flops against the segment-triangle distance's ~400;
+        // the same margin, so a triangle it skips could not be below the best either)
+        {
+          const std::array<double, 2>* qq = projected();
+          if (!(origin_triangle_distance_2d(qq[t[0]], qq[t[1]], qq[t[2]]) - roller.radius - margin < out.distance))
             continue;
         }
         const double seg = segment_triangle_distance(roller.base, top, {p[t[0]], p[t[1]], p[t[2]]});
