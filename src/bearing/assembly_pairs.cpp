@@ -35,6 +35,7 @@
 #include "assembly_raceway_scars.h"
 #include "assembly_tapered_scars.h"
 #include "raceway_detail.h"
+#include "rib_euclid_bound.h"
 #include "scarred_rib_two_sided.h"
 #include "scarred_two_sided.h"
 #include "scarred_web_two_sided.h"
@@ -393,7 +394,11 @@ AssemblyPairResult solve_one(const Assembly& as, const AssemblyPair& pair, const
         return from_distance(d, AssemblySolver::web, clearance, tol);
       };
       if (!scarred) {  // intact roller: two-sided (ring_two_sided.h)
-        if (rib) return from_two_sided(two_sided_rib(roller, face, b.rib_width), clearance, tol);
+        if (rib) {  // (not S: the verdict of the Euclidean distance's bracket; rib_euclid_bound.h)
+          AssemblyPairResult r = from_two_sided(two_sided_rib(roller, face, b.rib_width), clearance, tol);
+          detail::rib_euclid_row(r, roller, 0, face, b.rib_width, clearance, tol, true);
+          return r;
+        }
         const WebValue rev = web_distance(roller, *web, pose_b, &g.webs[pair.feature]);
         // apart (rev > 0): the Euclidean distance, symmetric
         const WebValue w = rev.distance > 0 ? rev : two_sided_web(roller, g.webs[pair.feature], pose_b, rev);
@@ -412,13 +417,19 @@ AssemblyPairResult solve_one(const Assembly& as, const AssemblyPair& pair, const
       const auto rib_low = [&](const Cylinder& c) {
         return detail::lowest_height(c, face.center, face.normal) - 1e-9 * (1 + norm(c.center() - face.center) + c.height);
       };
+      // a rib row that is not S: the verdict of the Euclidean distance's bracket, its lower bound from
+      // the roller grown by its raise (holding A'; rib_euclid_bound.h)
+      const auto rib_bracket = [&](AssemblyPairResult& e) {
+        detail::rib_euclid_row(e, roller, ra.roller->raise, face, b.rib_width, clearance, tol, false);
+      };
       // the ends decide: a rib or web row is S where certified (issue #27; scarred_rib_two_sided.h,
       // scarred_web_two_sided.h)
       const auto ends_decide = [&](AssemblyPairResult e) {
-        if (rib)
+        if (rib) {
           e.two_sided = detail::scarred_rib_two_sided({e.distance, e.point_a, e.point_b, e.path}, face, b.rib_width,
                                                       {pieces.ends.begin(), pieces.ends.end()}, pieces.middle);
-        else if (e.exact && e.distance <= 0)  // (apart: the Euclidean distance; scarred_web_two_sided.h)
+          rib_bracket(e);
+        } else if (e.exact && e.distance <= 0)  // (apart: the Euclidean distance; scarred_web_two_sided.h)
           e.two_sided = detail::scarred_web_two_sided(e.distance, roller, ra.roller->raise,
                                                       {pieces.ends.begin(), pieces.ends.end()}, *web, g.webs[pair.feature], pose_b);
         return e;
@@ -458,6 +469,8 @@ AssemblyPairResult solve_one(const Assembly& as, const AssemblyPair& pair, const
           out.verdict = mesh_verdict(*ra.mesh, pose_a, *web, pose_b, clearance);
           out.solver = AssemblySolver::mesh;
         }
+      } else if (rib) {
+        rib_bracket(out);  // (clear only when E's lower bound is too)
       }
       return out;
     }
