@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "assembly_tapered_scars.h"
 #include "raceway_detail.h"
@@ -49,7 +50,8 @@ double rib_euclid_lower(const Cylinder& c, const Rib& rib, double thickness, int
     const Vec3 v = f.point_a - f.point_b;
     if (f.distance > 0 && norm(v) > 0) best = std::max(best, rib_support_gap(c, rib, thickness, v / norm(v)));
   }
-  return best - margin_of(c, rib, thickness);
+  const double lower = best - margin_of(c, rib, thickness);
+  return lower == lower ? lower : -std::numeric_limits<double>::infinity();  // (NaN would read as clear)
 }
 
 void rib_euclid_verdict(AssemblyPairResult& row, const Cylinder& roller, double raise, const Rib& rib, double thickness,
