@@ -225,9 +225,11 @@ ScenePart roller_part(const AssemblyPart& p, const Cylinder& c, const Transform&
 /// Two neighbouring tapered rollers of which at least one is scarred (issue #27). One scarred: the
 /// scarred solver against the other's intact frustum (from_scarred_frustum). Both scarred: no exact
 /// solver (each is measured against the other's grown intact solid), so
-///   S >= min( s(A mesh, B0), s(B mesh, A0) ),  A0, B0 the grown intact frustums,
-/// a lower bound that decides `clear`; otherwise the mesh engine's verdict on the two meshes (solver
-/// `mesh`, not exact), as the cage rows of scarred rollers.
+///   S >= L = min( s(A mesh, B0), s(B mesh, A0) ),  A0, B0 the grown intact frustums,
+/// a lower bound that decides `clear`; the meshes' exact distance when they are apart; below the
+/// tolerance the bracket [L, U*] (scarred_two_sided.h (3), the cylindrical rows' function) when
+/// both ends agree (solver `bound`, distance U*); otherwise the mesh engine's verdict on the two
+/// meshes (solver `mesh`, not exact), as the cage rows of scarred rollers.
 AssemblyPairResult scarred_tapered_rollers(const AssemblyPart& ra, const Cylinder& a, const Transform& pose_a,
                                            const AssemblyPart& rb, const Cylinder& b, const Transform& pose_b,
                                            double clearance, double tol) {
@@ -237,34 +239,22 @@ AssemblyPairResult scarred_tapered_rollers(const AssemblyPart& ra, const Cylinde
   if (!ra.scarred)
     return from_scarred_frustum(
         detail::scarred_against_frustum(*rb.roller, *rb.tree, rb.solid.get(), pose_b, b, a, tol), true, clearance, tol);
-  const Cylinder a0 = detail::grown_roller_solid(a, ra.roller->raise), b0 = detail::grown_roller_solid(b, rb.roller->raise);
-  ScarredSolver sa(ra.roller.get(), ra.tree.get()), sb(rb.roller.get(), rb.tree.get());
-  const MeshPairResult fa = sa.solve(pose_a, b0), fb = sb.solve(pose_b, a0);
+  const detail::TwoScarredValue v = detail::two_scarred_value(roller_part(ra, a, pose_a, true), roller_part(rb, b, pose_b, true), tol);
   AssemblyPairResult out;
-  out.solver = AssemblySolver::bound, out.scar = true, out.exact = false, out.two_sided = false;
-  if (fa.distance <= fb.distance) out.distance = fa.distance, out.point_a = fa.point_a, out.point_b = fa.point_b;
-  else out.distance = fb.distance, out.point_a = fb.point_b, out.point_b = fb.point_a;
-  // apart surfaces could still hold one grown solid inside the other roller's solid: the centres
-  // (part_pair.h's mesh_containment) rule it out, else the mesh engine decides
-  bool inside = false;
-  if (out.distance > tol) {
-    ScenePart pa, pb;
-    pa.cylinder = a, pa.mesh = ra.roller.get(), pa.tree = ra.tree.get(), pa.solid = ra.solid.get(), pa.pose = pose_a;
-    pb.cylinder = b, pb.mesh = rb.roller.get(), pb.tree = rb.tree.get(), pb.solid = rb.solid.get(), pb.pose = pose_b;
-    Cylinder ia = a, ib = b;
-    ia.radius = std::min(a.radius, a.top()), ia.top_radius = -1;
-    ib.radius = std::min(b.radius, b.top()), ib.top_radius = -1;
-    inside = mesh_containment(pa, ib) != 0 || mesh_containment(pb, ia) != 0;
+  out.distance = v.upper, out.point_a = v.point_a, out.point_b = v.point_b;
+  out.scar = true;
+  if (v.exact) {  // the solids are apart: their exact distance (scarred_two_sided.h)
+    out.solver = AssemblySolver::scarred, out.exact = true, out.two_sided = true;
+    out.verdict = distance_verdict(out.distance, tol, clearance);
+    return out;
   }
-  out.verdict = distance_verdict(out.distance, tol, clearance);
-  if (out.distance > tol && !inside)  // the solids are apart: their exact distance (scarred_two_sided.h)
-    if (const auto e = detail::scarred_meshes_apart(*ra.roller, pose_a, *rb.roller, *rb.solid, pose_b, fa.point_a)) {
-      out.distance = e->distance, out.point_a = e->point_a, out.point_b = e->point_b;
-      out.solver = AssemblySolver::scarred, out.exact = true, out.two_sided = true;
-      out.verdict = distance_verdict(out.distance, tol, clearance);
-      return out;
-    }
-  if (out.verdict != Verdict::clear || inside) {  // a lower bound decides only `clear`
+  out.solver = AssemblySolver::bound, out.exact = false, out.two_sided = false;
+  const Verdict lo = distance_verdict(v.lower, tol, clearance), hi = distance_verdict(v.upper, tol, clearance);
+  out.verdict = lo == hi ? hi : Verdict::undecided;  // (L alone: upper = lower)
+  // a lower bound alone decides only `clear`, a bracket when its ends agree; else, or one solid
+  // holding the other, the mesh engine
+  const bool decided = v.upper_known ? out.verdict != Verdict::undecided : out.verdict == Verdict::clear;
+  if (v.contained != 0 || !decided) {
     out.verdict = mesh_verdict(*ra.mesh, pose_a, *rb.mesh, pose_b, clearance);
     out.solver = AssemblySolver::mesh;
   }

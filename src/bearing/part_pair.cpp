@@ -161,61 +161,45 @@ PartPairResult scarred_frustum_pair(const ScenePart& a, const ScenePart& b, bool
 }
 
 /// Two scarred rollers (part_pair.h): no exact solver (each is B of the other's solver only through
-/// its grown intact solid), so S >= min(s(A mesh, B0), s(B mesh, A0)), A0 and B0 the intact frustums
-/// (or cylinders) grown by their raises (assembly_tapered_scars.h, grown_roller_solid): the lower
-/// bound the tapered assemblies take for two scarred neighbours. Clear when that is clear and neither
-/// solid holds the other (a grown solid apart from the other's surface lies wholly inside that solid
-/// or outside it: mesh_containment of its inscribed cylinder's centre; inside is a clash).
+/// its grown intact solid), so S >= L = min(s(A mesh, B0), s(B mesh, A0)), A0 and B0 the intact
+/// frustums (or cylinders) grown by their raises (assembly_tapered_scars.h, grown_roller_solid): the
+/// lower bound the tapered assemblies take for two scarred neighbours. Clear when that is clear and
+/// neither solid holds the other (a grown solid apart from the other's surface lies wholly inside
+/// that solid or outside it: mesh_containment of its inscribed cylinder's centre; inside is a
+/// clash); apart, the meshes' exact distance. Below the tolerance, the bracket [L, U*] of
+/// scarred_two_sided.h (3) (distance U*, distance_lower L; the meshes' distance when they turn out
+/// apart): decided when both ends agree (issue #27).
 PartPairResult two_scarred_rollers(const ScenePart& a, const ScenePart& b, bool swapped, double clearance) {
-  const Cylinder a0 = detail::grown_roller_solid(a.cylinder, a.mesh->raise);
-  const Cylinder b0 = detail::grown_roller_solid(b.cylinder, b.mesh->raise);
-  ScarredSolver sa(a.mesh, a.tree), sb(b.mesh, b.tree);
-  const MeshPairResult fa = sa.solve(a.pose, b0), fb = sb.solve(b.pose, a0);
-  PartPairResult out;
-  out.swapped = swapped, out.solver = PartPairSolver::bound, out.two_sided_exact = false;
-  out.evaluated = fa.evaluated + fb.evaluated;
-  if (fa.distance <= fb.distance) {
-    out.distance = fa.distance, out.point_a = fa.point_a, out.point_b = fa.point_b;
-  } else {
-    out.distance = fb.distance, out.point_a = fb.point_b, out.point_b = fb.point_a, out.reverse = true;
-  }
-  out.distance_lower = out.distance;
   const double tol = touch_tolerance(a.cylinder, b.cylinder);
-  out.verdict = distance_verdict(out.distance, tol, clearance);
-  if (out.distance > tol) {
-    const auto inner = [](const Cylinder& c) {
-      Cylinder in = c;
-      in.radius = std::min(c.radius, c.top()), in.top_radius = -1;
-      return in;
-    };
-    const int in_a = mesh_containment(a, inner(b.cylinder)), in_b = mesh_containment(b, inner(a.cylinder));
-    if (in_a == 1 || in_b == 1) {
-      out.verdict = Verdict::clash;
-      return out;
-    }
-    if (in_a < 0 || in_b < 0) {
-      out.verdict = Verdict::undecided;
-      out.reason = "whether one scarred roller lies inside the other: every ray direction was degenerate";
-      return out;
-    }
-    // the surfaces do not meet (A's surface is clear of B0, which holds B's) and neither solid
-    // holds the other: the solids are apart, and S = s(A, B) = s(B, A) is their Euclidean distance,
-    // the smallest triangle-triangle distance (the mesh engine; scarred_two_sided.h, issue #27)
-    if (a.solid != nullptr && b.solid != nullptr)
-      if (const auto e = detail::scarred_meshes_apart(*a.mesh, a.pose, *b.mesh, *b.solid, b.pose, fa.point_a)) {
-        out.distance = out.distance_lower = e->distance;
-        out.point_a = e->point_a, out.point_b = e->point_b, out.reverse = false;
-        out.solver = PartPairSolver::scarred, out.two_sided_exact = true;
-        out.evaluated += e->evaluated;
-        out.verdict = distance_verdict(out.distance, tol, clearance);
-        return out;
-      }
+  const detail::TwoScarredValue v = detail::two_scarred_value(a, b, tol);
+  PartPairResult out;
+  out.swapped = swapped, out.solver = v.exact ? PartPairSolver::scarred : PartPairSolver::bound;
+  out.two_sided_exact = v.exact;
+  out.evaluated = v.evaluated;
+  out.distance = v.upper, out.distance_lower = v.lower;
+  out.point_a = v.point_a, out.point_b = v.point_b, out.reverse = v.reverse;
+  if (v.contained == 1) {
+    out.verdict = Verdict::clash;
+    return out;
   }
-  if (out.verdict == Verdict::clear) return out;  // a lower bound decides only clear
-  out.verdict = Verdict::undecided;
-  out.reason =
-      "two scarred rollers: no exact solver (B must be intact); each mesh against the other's grown "
-      "intact solid is not clear";
+  if (v.contained < 0) {
+    out.verdict = Verdict::undecided;
+    out.reason = "whether one scarred roller lies inside the other: every ray direction was degenerate";
+    return out;
+  }
+  out.verdict = v.upper_known ? bracket_verdict(v.lower, v.upper, tol, clearance)
+                              : distance_verdict(v.lower, tol, clearance);
+  if (v.exact || out.verdict == Verdict::clear) return out;  // (a lower bound alone decides only clear)
+  if (!v.upper_known) {
+    out.verdict = Verdict::undecided;
+    out.reason =
+        "two scarred rollers: no exact solver (B must be intact); each mesh against the other's grown "
+        "intact solid is not clear";
+  } else if (out.verdict == Verdict::undecided) {
+    out.reason =
+        "two scarred rollers: no exact solver (B must be intact); the bracket of S (each mesh against "
+        "the other's grown intact solid, a point of one surface inside the other's) gives different verdicts";
+  }
   return out;
 }
 

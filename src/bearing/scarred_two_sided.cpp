@@ -3,8 +3,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
+#include "assembly_tapered_scars.h"
+#include "interfere/bearing/scarred.h"
+#include "interfere/np/distance.h"
+#include "interfere/query/clash.h"
 #include "interfere/query/distance.h"
 #include "interfere/query/model.h"
 
@@ -116,11 +121,132 @@ std::optional<MeshesApart> scarred_meshes_apart(const Roller& ra, const Transfor
   DistanceRequest rq;
   rq.upper_bound = upper;
   const DistanceResult r = distance(ma, mb, rq);
-  if (r.intersecting || !std::isfinite(r.distance)) return std::nullopt;
+  if (!r.intersecting && !std::isfinite(r.distance)) return std::nullopt;
   MeshesApart out;
-  out.distance = r.distance;
+  out.distance = r.distance, out.meeting = r.intersecting;
   out.point_a = pa.apply(unturn(r.point_a)), out.point_b = pa.apply(unturn(r.point_b));
   out.evaluated = evaluated;
+  return out;
+}
+
+namespace {
+
+/// sd of the world point p to a scarred roller's closed mesh (`s`, body frame, posed by `pose`):
+/// the nearest triangle's distance, negative inside (exact ray parity); `foot` the nearest point
+/// (world). nullopt when every ray direction was degenerate.
+struct SolidDistance {
+  double value = 0;
+  Vec3 foot;
+};
+std::optional<SolidDistance> solid_signed_distance(const Model& s, const Transform& pose, const Vec3& p) {
+  const Vec3 body = to_body(pose, p);
+  std::uint32_t tri = kNoTriangle;
+  const double d2 = nearest_triangle_d2(s.mesh, s.bvh, body, &tri);
+  if (!std::isfinite(d2) || tri == kNoTriangle) return std::nullopt;
+  SolidDistance out;
+  out.foot = pose.apply(closest_point_on_triangle(body, s.mesh.corners(tri)));
+  out.value = std::sqrt(d2);
+  if (out.value == 0) return out;  // on the surface
+  const int in = point_in_solid(s, body);
+  if (in < 0) return std::nullopt;
+  if (in == 1) out.value = -out.value;
+  return out;
+}
+
+/// The intact cylinder inscribed in a roller (a frustum's smaller radius): its centre lies inside
+/// the scarred solid (scars are shallower than the radius).
+Cylinder inner(const Cylinder& c) {
+  Cylinder in = c;
+  in.radius = std::min(c.radius, c.top()), in.top_radius = -1;
+  return in;
+}
+
+}  // namespace
+
+TwoScarredValue two_scarred_value(const ScenePart& a, const ScenePart& b, double tol) {
+  // L = min(s(A mesh, B0), s(B mesh, A0)) <= S: B's solid lies in B0, so sd_B >= sd_B0 (part_pair.h)
+  const Cylinder a0 = grown_roller_solid(a.cylinder, a.mesh->raise);
+  const Cylinder b0 = grown_roller_solid(b.cylinder, b.mesh->raise);
+  ScarredSolver sa(a.mesh, a.tree), sb(b.mesh, b.tree);
+  const MeshPairResult fa = sa.solve(a.pose, b0), fb = sb.solve(b.pose, a0);
+  TwoScarredValue out;
+  out.evaluated = fa.evaluated + fb.evaluated;
+  if (fa.distance <= fb.distance) {
+    out.lower = fa.distance, out.point_a = fa.point_a, out.point_b = fa.point_b;
+  } else {
+    out.lower = fb.distance, out.point_a = fb.point_b, out.point_b = fb.point_a, out.reverse = true;
+  }
+  out.upper = out.lower;
+  // surfaces that do not meet: one solid inside the other, or apart; the centre of each inscribed
+  // cylinder (inside its own solid) in the other's solid decides (part_pair.h, mesh_containment)
+  const auto containment = [&] {
+    const int in_a = mesh_containment(a, inner(b.cylinder)), in_b = mesh_containment(b, inner(a.cylinder));
+    return in_a == 1 || in_b == 1 ? 1 : in_a < 0 || in_b < 0 ? -1 : 0;
+  };
+  const auto take_distance = [&](const MeshesApart& e) {
+    out.lower = out.upper = e.distance;
+    out.point_a = e.point_a, out.point_b = e.point_b, out.reverse = false;
+    out.exact = out.upper_known = true;
+    out.evaluated += e.evaluated;
+  };
+  if (out.lower > tol) {
+    // A's surface misses B0, which holds B's surface (and B's misses A0): the surfaces do not meet
+    out.contained = containment();
+    if (out.contained != 0) return out;
+    // neither solid holds the other: apart, S = s(A, B) = s(B, A) their Euclidean distance (2)
+    if (a.solid != nullptr && b.solid != nullptr)
+      if (const auto e = scarred_meshes_apart(*a.mesh, a.pose, *b.mesh, *b.solid, b.pose, fa.point_a); e && !e->meeting)
+        take_distance(*e);
+    return out;
+  }
+  if (a.solid == nullptr || b.solid == nullptr) return out;
+  // (3) U*: S <= s(A, B) <= sd_B(p) for p on A's surface, and the same with the roles exchanged;
+  // p the bound's witnesses (each surface's point deepest in the other's grown intact solid)
+  double upper = std::numeric_limits<double>::infinity();
+  Vec3 ua, ub;
+  bool reverse = false;
+  if (const auto d = solid_signed_distance(*b.solid, b.pose, fa.point_a); d && d->value < upper)
+    upper = d->value, ua = fa.point_a, ub = d->foot, reverse = false;
+  if (const auto d = solid_signed_distance(*a.solid, a.pose, fb.point_a); d && d->value < upper)
+    upper = d->value, ua = d->foot, ub = fb.point_a, reverse = true;
+  if (!(upper < -tol)) {
+    // the vertices: a faceted surface's most protruding points (a witness may lie over a pit of the
+    // other roller). Those of A inside B's enclosing cylinder (sd_B >= max(rho - R, -z, z - h)
+    // there, so the others cannot lower U*), and B's in A's; all of them, so that U* does not depend
+    // on the roles
+    const auto vertices = [&](const ScenePart& p, const ScenePart& q, bool rev) {
+      const Cylinder c = grown_roller_solid(q.cylinder, q.mesh->raise);
+      const double radius = c.max_radius();
+      for (const Vec3& v : p.mesh->mesh.positions) {
+        const Vec3 w = p.pose.apply(v);
+        const double z = dot(w - c.base, c.axis), rho = norm(cross(w - c.base, c.axis));
+        if (!(std::max({rho - radius, -z, z - c.height}) < std::min(upper, 0.0))) continue;
+        if (const auto d = solid_signed_distance(*q.solid, q.pose, w); d && d->value < upper) {
+          upper = d->value, reverse = rev;
+          (rev ? ub : ua) = w, (rev ? ua : ub) = d->foot;
+        }
+      }
+    };
+    vertices(a, b, false);
+    vertices(b, a, true);
+  }
+  if (!(upper < -tol)) {
+    // not decided by a point: the surfaces meet (S <= 0), or they do not and, neither solid holding
+    // the other, the solids are apart at their distance (2)
+    if (const auto e = scarred_meshes_apart(*a.mesh, a.pose, *b.mesh, *b.solid, b.pose, fa.point_a)) {
+      if (!e->meeting) {
+        out.contained = containment();
+        if (out.contained == 0) take_distance(*e);
+        return out;
+      }
+      out.evaluated += e->evaluated;
+      if (!(upper <= 0)) upper = 0, ua = e->point_a, ub = e->point_b, reverse = false;
+    }
+  }
+  if (!std::isfinite(upper)) return out;  // (every ray degenerate and no engine result: L only)
+  out.upper_known = true;
+  out.upper = upper, out.lower = std::min(out.lower, upper);  // (L <= S <= U*; min: rounding)
+  out.point_a = ua, out.point_b = ub, out.reverse = reverse;
   return out;
 }
 

@@ -36,12 +36,27 @@
 //     from the other's enclosing cylinder (which holds the other's solid): a lower bound of that
 //     distance, max(min over its corners of n.x - R, -max z, min z - h) in the other's body frame
 //     (rho >= n.x for the unit n across the axis toward the triangle's centroid; linear pieces
-//     take their minimum at a corner). Then two small BVHs (B's corners in A's body frame).
+//     take their minimum at a corner). Then two small BVHs (B's corners in A's body frame). The
+//     filter holds whatever L is (a closest pair lies within U of both rollers), and the engine's
+//     exact triangle-triangle test reports surfaces that meet (`meeting`).
+//
+// (3) Two scarred rollers that come close: L <= tol, no exact solver (B must be intact). The
+//     bracket [L, U*] of S (two_scarred_value): for any point p of A's surface S <= s(A, B) <=
+//     sd_B(p), sd_B the signed distance to B's closed mesh (its size the nearest triangle's
+//     distance, its sign exact ray parity, query/clash.h point_in_solid), and the same with the
+//     roles exchanged; p: the bound's two witnesses, the points of each surface deepest in the
+//     other's grown intact solid (where, away from a scar, the depth in the scarred solid differs
+//     by the facets' sagitta). U* < -tol decides clash (a point of A's surface deep inside B: the
+//     interiors overlap). Otherwise the engine of (2): surfaces that meet give S <= 0 (a common
+//     point p has sd_B(p) = 0), so U* <= 0; surfaces that do not meet, with neither solid holding
+//     the other (the centre test above), are apart and S is their distance (exact, now also below
+//     the tolerance). [L, U*] decides when both ends give the same verdict (clash, contact).
 #pragma once
 #include <cstdint>
 #include <optional>
 
 #include "interfere/bearing/analytic.h"
+#include "interfere/bearing/part_pair.h"
 #include "interfere/bearing/roller.h"
 
 namespace interfere {
@@ -61,15 +76,35 @@ bool scarred_ring_two_sided(const PairDistance& d, const Vec3& base, const Vec3&
 /// (2): the Euclidean distance of two scarred rollers' closed meshes (ra posed by pa; rb posed by
 /// pb, sb its body-frame model), for surfaces the caller certified apart with neither solid inside
 /// the other. `on_a`: a point of A's surface (world frame), e.g. the lower bound's witness (only
-/// the work depends on it). point_a on A's surface, point_b on B's (world). nullopt when the
-/// engine finds the surfaces meeting (then the caller keeps its bound).
+/// the work depends on it). point_a on A's surface, point_b on B's (world). `meeting`: the engine
+/// found the surfaces meeting (distance 0, point_a = point_b a common point; the caller keeps its
+/// bound). nullopt when no point of B's surface was found (empty mesh).
 struct MeshesApart {
   double distance = 0;
   Vec3 point_a, point_b;
   std::uint32_t evaluated = 0;  ///< B's triangles handed to the engine
+  bool meeting = false;
 };
 std::optional<MeshesApart> scarred_meshes_apart(const Roller& ra, const Transform& pa,
                                                 const Roller& rb, const Model& sb, const Transform& pb,
                                                 const Vec3& on_a);
+
+/// (3): two scarred rollers A and B (ScenePart with mesh, tree, solid and pose each), `tol` the
+/// pair's touch tolerance. The caller's verdict: `contained` 1 clash, -1 undecided; `exact` the
+/// value S (the meshes' distance); `upper_known` false: only S >= lower (L > tol and the distance
+/// not found), else the bracket lower <= S <= upper. The witnesses (world) are the reported
+/// value's: L's (the deeper of the two bounds, `reverse` when B's), the distance's, or U*'s (a
+/// point of one surface and the nearest point of the other's; `reverse`: a point of B's surface).
+struct TwoScarredValue {
+  double lower = 0;
+  double upper = 0;  ///< = lower when !upper_known
+  Vec3 point_a, point_b;
+  bool reverse = false;
+  bool exact = false;
+  bool upper_known = false;
+  int contained = 0;  ///< one solid holds the other: 1, -1 every ray degenerate, 0 not (or not tested)
+  std::uint32_t evaluated = 0;
+};
+TwoScarredValue two_scarred_value(const ScenePart& a, const ScenePart& b, double tol);
 
 }  // namespace interfere::bearing::detail

@@ -31,7 +31,12 @@
 //     neighbours' bound); when that is above the touch tolerance and neither solid holds the
 //     other's centre (mesh_containment; inside: clash) the solids are apart and the value is their
 //     exact Euclidean distance, the smallest triangle-triangle distance by the mesh engine
-//     (src/bearing/scarred_two_sided.h; solver scarred, two_sided_exact; issue #27), else undecided.
+//     (src/bearing/scarred_two_sided.h; solver scarred, two_sided_exact; issue #27). When the bound
+//     is not above the tolerance: the bracket [distance_lower, distance] = [L, U*] (solver bound),
+//     U* the signed distance of a point of one surface to the other's closed mesh (the bound's
+//     witnesses; 0 when the surfaces meet), or the meshes' exact distance when they turn out apart
+//     (scarred_two_sided.h (3)); the verdict when both ends agree (a clash when U* < -tol), else
+//     undecided.
 // A triangle-surface solver reports the minimum over A's surface; when that is > 0, B could still
 // lie wholly inside A's solid: mesh_containment decides it (B's centre by exact ray parity).
 //
@@ -96,13 +101,13 @@ int mesh_containment(const ScenePart& a, const Cylinder& b);
 enum class PartPairSolver : std::uint8_t {
   standard,  ///< analytic.h on A's cylinder
   scarred,   ///< scarred.h on A's triangle surface
-  bound,     ///< A against the cylinder enclosing B: a lower bound only
+  bound,     ///< two scarred rollers: a lower bound, or the bracket [distance_lower, distance] (above)
 };
 const char* part_pair_solver_name(PartPairSolver s);
 
 struct PartPairResult {
   double distance =
-      0;  ///< S(A, B) (two-sided, above); `bound`: a lower bound (clear, undecided), an upper one (clash)
+      0;  ///< S(A, B) (two-sided, above); `bound`: a lower bound where distance_lower equals it, else the upper end
   Vec3 point_a,
       point_b;  ///< witnesses (world frame), on A and on B's (or its enclosing cylinder's) boundary
   bool swapped = false;  ///< A is the second part given (y), B the first

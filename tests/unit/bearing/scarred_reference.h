@@ -153,9 +153,11 @@ inline double ref_point_mesh_distance(const Vec3& p, const std::vector<Vec3>& po
   return std::sqrt(d2);
 }
 
-/// Ray parity of p against a closed posed mesh along an oblique direction (Moller-Trumbore): true inside.
-inline bool ref_inside(const Vec3& p, const std::vector<Vec3>& pos, const TriMesh& m) {
-  const Vec3 d = Vec3{0.5773, 0.6112, 0.5413} / norm(Vec3{0.5773, 0.6112, 0.5413});
+/// Ray parity of p against a closed posed mesh along an oblique direction `dir` (Moller-Trumbore):
+/// true inside.
+inline bool ref_inside(const Vec3& p, const std::vector<Vec3>& pos, const TriMesh& m,
+                       const Vec3& dir = {0.5773, 0.6112, 0.5413}) {
+  const Vec3 d = dir / norm(dir);
   int crossings = 0;
   for (const Tri& t : m.triangles) {
     const Vec3 a = pos[t[0]], e1 = pos[t[1]] - a, e2 = pos[t[2]] - a;
@@ -172,6 +174,33 @@ inline bool ref_inside(const Vec3& p, const std::vector<Vec3>& pos, const TriMes
     if (f * dot(e2, q) > 0) ++crossings;
   }
   return crossings % 2 == 1;
+}
+
+/// Distance of two posed closed meshes whose surfaces do not meet: the smallest triangle-triangle
+/// distance over all pairs (pairs whose bounding spheres are farther than the best found skipped).
+inline double ref_mesh_distance(const TriMesh& ma, const std::vector<Vec3>& pa, const TriMesh& mb, const std::vector<Vec3>& pb) {
+  struct Sphere {
+    Vec3 c;
+    double r;
+  };
+  const auto spheres = [](const TriMesh& m, const std::vector<Vec3>& p) {
+    std::vector<Sphere> s;
+    for (const Tri& t : m.triangles) {
+      const Vec3 c = (p[t[0]] + p[t[1]] + p[t[2]]) / 3.0;
+      s.push_back({c, std::max({norm(p[t[0]] - c), norm(p[t[1]] - c), norm(p[t[2]] - c)})});
+    }
+    return s;
+  };
+  const std::vector<Sphere> sa = spheres(ma, pa), sb = spheres(mb, pb);
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < ma.triangles.size(); ++i)
+    for (std::size_t j = 0; j < mb.triangles.size(); ++j) {
+      if (norm(sa[i].c - sb[j].c) - sa[i].r - sb[j].r > best) continue;
+      const Tri& x = ma.triangles[i];
+      const Tri& y = mb.triangles[j];
+      best = std::min(best, ref_triangle_distance({pa[x[0]], pa[x[1]], pa[x[2]]}, {pb[y[0]], pb[y[1]], pb[y[2]]}));
+    }
+  return best;
 }
 
 inline double relative_difference(double a, double b) {

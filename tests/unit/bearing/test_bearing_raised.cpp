@@ -152,7 +152,10 @@ TEST(BearingRaisedScar, TwoScarredRollersBoundIncludesTheRaise) {
     const PartPairResult r = flip ? decide_part_pair(b, a, 0) : decide_part_pair(a, b, 0);
     EXPECT_EQ(r.solver, PartPairSolver::bound);
     EXPECT_NE(r.verdict, Verdict::clear) << "flip " << flip;
-    EXPECT_LE(r.distance, ref + 1e-9) << "a lower bound of S, flip " << flip;
+    EXPECT_LE(r.distance_lower, ref + 1e-9) << "a lower bound of S, flip " << flip;
+    // the bracket's upper end (scarred_two_sided.h (3)): a point of B's bump inside A certifies the clash
+    EXPECT_EQ(r.verdict, Verdict::clash) << "flip " << flip;
+    EXPECT_LE(r.distance, -1.9) << "flip " << flip;
   }
 }
 

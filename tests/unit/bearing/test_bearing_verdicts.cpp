@@ -12,6 +12,7 @@
 #include "interfere/bearing/part_pair.h"
 #include "interfere/bearing/scar.h"
 #include "interfere/bearing/simulation.h"
+#include "interfere/query/model.h"
 
 using namespace interfere;
 using namespace interfere::bearing;
@@ -179,12 +180,22 @@ TEST(BearingPartPair, ScarredRollersAgainstEachOtherAndIntactOnes) {
   EXPECT_EQ(d.solver, PartPairSolver::scarred);
   EXPECT_EQ(d.verdict, Verdict::clash);
   EXPECT_LT(d.distance, -4.5);  // the mesh lies within 0.1 + sagitta 0.05 of the cylinder
-  // two scarred rollers: apart is clear (a bound), overlapping is undecided
+  // two scarred rollers: apart is clear (a bound), overlapping is undecided (no closed meshes given)
   d = decide_part_pair(scarred({0, 0, 0}), scarred({25, 0, 0}), 0);
   EXPECT_EQ(d.solver, PartPairSolver::bound);
   EXPECT_EQ(d.verdict, Verdict::clear);
   d = decide_part_pair(scarred({0, 0, 0}), scarred({15, 0, 0}), 0);
   EXPECT_EQ(d.verdict, Verdict::undecided);
+  // with their closed meshes, a point of one surface inside the other certifies the clash (the
+  // bracket's upper end, src/bearing/scarred_two_sided.h (3); issue #27)
+  const Model solid = make_model(mesh.mesh, {}, false);
+  ScenePart x = scarred({0, 0, 0}), y = scarred({15, 0, 0});
+  x.solid = y.solid = &solid;
+  d = decide_part_pair(x, y, 0);
+  EXPECT_EQ(d.verdict, Verdict::clash);
+  EXPECT_EQ(d.solver, PartPairSolver::bound);
+  EXPECT_LT(d.distance, -4.5);
+  EXPECT_LE(d.distance_lower, d.distance);
 }
 
 TEST(BearingVerdicts, PartnerInsideAScarredRollerIsClash) {

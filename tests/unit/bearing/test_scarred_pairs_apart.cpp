@@ -19,31 +19,6 @@
 namespace interfere::bearing {
 namespace {
 
-double brute_force_distance(const TriMesh& ma, const std::vector<Vec3>& pa, const TriMesh& mb, const std::vector<Vec3>& pb) {
-  struct Sphere {
-    Vec3 c;
-    double r;
-  };
-  const auto spheres = [](const TriMesh& m, const std::vector<Vec3>& p) {
-    std::vector<Sphere> s;
-    for (const Tri& t : m.triangles) {
-      const Vec3 c = (p[t[0]] + p[t[1]] + p[t[2]]) / 3.0;
-      s.push_back({c, std::max({norm(p[t[0]] - c), norm(p[t[1]] - c), norm(p[t[2]] - c)})});
-    }
-    return s;
-  };
-  const std::vector<Sphere> sa = spheres(ma, pa), sb = spheres(mb, pb);
-  double best = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < ma.triangles.size(); ++i)
-    for (std::size_t j = 0; j < mb.triangles.size(); ++j) {
-      if (norm(sa[i].c - sb[j].c) - sa[i].r - sb[j].r > best) continue;
-      const Tri& x = ma.triangles[i];
-      const Tri& y = mb.triangles[j];
-      best = std::min(best, test::ref_triangle_distance({pa[x[0]], pa[x[1]], pa[x[2]]}, {pb[y[0]], pb[y[1]], pb[y[2]]}));
-    }
-  return best;
-}
-
 ScenePart scene_part(const Assembly& as, std::size_t i, const Transform& pose) {
   const BearingSpec& b = as.spec.bearings[as.parts[i].bearing];
   ScenePart s;
@@ -79,7 +54,7 @@ void check(const std::string& bearing, int& exact_rows, int& other_rows, double&
         EXPECT_EQ(r.solver, AssemblySolver::scarred);
         const TriMesh& ma = *as.parts[pair.a].mesh;
         const TriMesh& mb = *as.parts[pair.b].mesh;
-        const double ref = brute_force_distance(ma, test::posed_positions(ma, poses[pair.a]), mb,
+        const double ref = test::ref_mesh_distance(ma, test::posed_positions(ma, poses[pair.a]), mb,
                                                 test::posed_positions(mb, poses[pair.b]));
         const double diff = test::relative_difference(ref, r.distance);
         worst = std::max(worst, diff);
