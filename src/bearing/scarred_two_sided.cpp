@@ -211,9 +211,9 @@ TwoScarredValue two_scarred_value(const ScenePart& a, const ScenePart& b, double
     upper = d->value, ua = d->foot, ub = fb.point_a, reverse = true;
   if (!(upper < -tol)) {
     // the vertices: a faceted surface's most protruding points (a witness may lie over a pit of the
-    // other roller). Those of A inside B's enclosing cylinder (sd_B >= max(rho - R, -z, z - h)
-    // there, so the others cannot lower U*), and B's in A's; all of them, so that U* does not depend
-    // on the roles
+    // other roller). Those of A inside B's enclosing cylinder, and B's in A's: a vertex is skipped
+    // only when it cannot lower U* (sd_B >= max(rho - R, -z, z - h) in that cylinder's frame), so
+    // U* is the least over all of them, whatever the roles (to rounding)
     const auto vertices = [&](const ScenePart& p, const ScenePart& q, bool rev) {
       const Cylinder c = grown_roller_solid(q.cylinder, q.mesh->raise);
       const double radius = c.max_radius();
