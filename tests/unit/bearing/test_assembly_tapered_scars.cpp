@@ -15,6 +15,7 @@
 #include "frustum_oracle.h"
 #include "interfere/bearing/assembly.h"
 #include "interfere/query/clash.h"
+#include "scarred_pair_parts.h"
 
 using namespace interfere;
 using namespace interfere::bearing;
@@ -38,13 +39,7 @@ Cylinder posed_frustum(const Cylinder& c, const Transform& pose) {
   return out;
 }
 
-bool meshes_clash(const TriMesh& a, const Transform& pa, const TriMesh& b, const Transform& pb) {
-  const Model ma = make_model(transformed(a, pa)), mb = make_model(transformed(b, pb));
-  ClashRequest rq;
-  rq.parallel = false;
-  rq.regions = false;
-  return clash(ma, mb, rq).verdict == Verdict::clash;
-}
+using test::meshes_clash;
 
 std::string lively_tapered(bool raised, const char* fraction = "0.5") {
   std::string extra = test::kLively;

@@ -14,19 +14,13 @@
 #include "interfere/bearing/cylinder.h"
 #include "interfere/bearing/part_pair.h"
 #include "unit/bearing/assembly_fixture.h"
+#include "unit/bearing/scarred_pair_parts.h"
 #include "unit/bearing/scarred_reference.h"
 
 namespace interfere::bearing {
 namespace {
 
-ScenePart scene_part(const Assembly& as, std::size_t i, const Transform& pose) {
-  const BearingSpec& b = as.spec.bearings[as.parts[i].bearing];
-  ScenePart s;
-  s.cylinder = posed_cylinder(b.rollers.radius, b.rollers.top_radius, b.rollers.length, pose);
-  s.mesh = as.parts[i].roller.get(), s.tree = as.parts[i].tree.get(), s.solid = as.parts[i].solid.get();
-  s.pose = pose;
-  return s;
-}
+using test::scene_part;
 
 void check(const std::string& bearing, int& exact_rows, int& other_rows, double& worst) {
   for (const bool raised : {false, true}) {

@@ -26,10 +26,14 @@
 #include "interfere/bearing/cylinder.h"
 #include "interfere/bearing/part_pair.h"
 #include "interfere/query/clash.h"
+#include "unit/bearing/scarred_pair_parts.h"
 #include "unit/bearing/scarred_reference.h"
 
 namespace interfere::bearing {
 namespace {
+
+using test::meshes_clash;
+using test::scene_part;
 
 /// A posed closed mesh and its triangles' bounding spheres (centroid, largest corner distance).
 struct Posed {
@@ -101,23 +105,6 @@ Dense dense_min(const Posed& a, const Posed& b, const Cylinder& bc, int k) {
       }
   }
   return out;
-}
-
-bool meshes_clash(const TriMesh& a, const Transform& pa, const TriMesh& b, const Transform& pb) {
-  const Model ma = make_model(transformed(a, pa)), mb = make_model(transformed(b, pb));
-  ClashRequest rq;
-  rq.parallel = false;
-  rq.regions = false;
-  return clash(ma, mb, rq).verdict == Verdict::clash;
-}
-
-ScenePart scene_part(const Assembly& as, std::size_t i, const Transform& pose) {
-  const BearingSpec& b = as.spec.bearings[as.parts[i].bearing];
-  ScenePart s;
-  s.cylinder = posed_cylinder(b.rollers.radius, b.rollers.top_radius, b.rollers.length, pose);
-  s.mesh = as.parts[i].roller.get(), s.tree = as.parts[i].tree.get(), s.solid = as.parts[i].solid.get();
-  s.pose = pose;
-  return s;
 }
 
 struct Stats {
