@@ -45,7 +45,7 @@ double frustum_sd_rz(double rho, double z, double Rm, double k, double nk, doubl
 /// radial axis projected along B's axis (|g_r| = gr, its direction (urx, ury); radial: gr^2 > 1/4).
 struct AngleTerms {
   std::uint64_t cos_bits = ~std::uint64_t{0}, sin_bits = ~std::uint64_t{0};  // (a NaN: no angle yet)
-  double erx = 0, ery = 0, etx = 0, ety = 0, erz = 0, etz = 0;
+  double erx = 0, ery = 0, etx = 0, ety = 0, erz = 0, etz = 0, abs_erz = 0, abs_etz = 0;
   bool radial = false;
   double gr = 0, urx = 0, ury = 0;
 };
@@ -102,6 +102,7 @@ struct LocalFrame {
     at.ety = -m[1][0] * sin_mid + m[1][1] * cos_mid;
     at.erz = m[2][0] * cos_mid + m[2][1] * sin_mid;
     at.etz = -m[2][0] * sin_mid + m[2][1] * cos_mid;
+    at.abs_erz = std::fabs(at.erz), at.abs_etz = std::fabs(at.etz);
     const double gr2 = at.erx * at.erx + at.ery * at.ery;
     at.radial = gr2 > 0.25;
     if (at.radial) at.gr = std::sqrt(gr2), at.urx = at.erx / at.gr, at.ury = at.ery / at.gr;
@@ -469,10 +470,11 @@ struct StripEvaluator {
     const double cz = frame.m[0][2] * g.x + frame.m[1][2] * g.y + frame.m[2][2] * g.z;
     const double err = 0x1p-40 * (rim.radius + std::fabs(rim.z) + std::fabs(frame.o.x) + std::fabs(frame.o.y) +
                                   std::fabs(frame.o.z) + std::fabs(y.x) + std::fabs(y.y) + std::fabs(y.z));
-    const double cxy = std::hypot(cx, cy);
-    if (rim.radius * cxy * fs.rim_gap - 2 * std::hypot(cxy, cz) * rim.dev > 2 * err) {
-      const double u = std::atan2(-cy, -cx) / (2 * std::numbers::pi) * n;  // psi in steps
-      const int c = ((static_cast<int>(std::lround(u)) % n) + n) % n;
+    // (|c_xy| and |c| <= about 1: no overflow; the test decides only which vertices are read)
+    const double cxy = std::sqrt(cx * cx + cy * cy);
+    if (rim.radius * cxy * fs.rim_gap - 2 * std::sqrt(cxy * cxy + cz * cz) * rim.dev > 2 * err) {
+      const double u = std::atan2(-cy, -cx) / (2 * std::numbers::pi) * n;  // psi in steps, in [-n/2, n/2]
+      const int c = ((static_cast<int>(std::floor(u + 0.5)) % n) + n) % n;
       for (const int i : {c == 0 ? n - 1 : c - 1, c, c + 1 == n ? 0 : c + 1})
         low = std::min(low, value(rim0 + static_cast<std::size_t>(i)));
     } else {
@@ -608,8 +610,7 @@ double node_lower_bound(const LocalFrame& f, const Node& n, double cut = kInf) {
                            std::fabs(f.o.z));
     return std::sqrt(a * a + b * b) - margin;
   };
-  const double axial = std::fabs(c.z) - n.half_r * std::fabs(erz) - n.half_t * std::fabs(etz) -
-                       n.half_z * std::fabs(f.m[2][2]) - f.hh;
+  const double axial = std::fabs(c.z) - n.half_r * at.abs_erz - n.half_t * at.abs_etz - n.half_z * std::fabs(f.m[2][2]) - f.hh;
   double lateral;
   if (!f.tapered) {
     lateral = rho - n.half_r * std::fabs(nx * erx + ny * ery) - n.half_t * std::fabs(nx * etx + ny * ety) -
@@ -744,10 +745,14 @@ void descend_strips(StripEvaluator& ev, const FacetStrips& fs, const std::array<
   // entry's value, the best value (it bounds that entry's triangle from below). So its bound only
   // orders it against its sibling and is computed only when the sibling is not pruned (then the
   // order is the one by bounds, as before).
+  // (the entries of `done` whose leaf value is at most the best value: refreshed when it changes)
+  double tie_value = std::numeric_limits<double>::quiet_NaN();
+  std::uint32_t ties[3] = {};
+  int nties = 0;
   const auto holds = [&](const BoundNode& kid) {
     if (ev.best_entry - kid.tri_first < kid.tri_count) return true;
-    for (const Evaluated& e : done)
-      if (e.record >= 0 && e.value <= ev.best.distance && e.entry - kid.tri_first < kid.tri_count) return true;
+    for (int q = 0; q < nties; ++q)
+      if (ties[q] - kid.tri_first < kid.tri_count) return true;
     return false;
   };
   while (top > 0) {
@@ -764,6 +769,11 @@ void descend_strips(StripEvaluator& ev, const FacetStrips& fs, const std::array<
     const int nk = std::min<std::int32_t>(n.child_count, 2);
     double lbs[2] = {kInf, kInf};
     bool keep[2] = {false, false}, holder[2] = {false, false};
+    if (!(ev.best.distance == tie_value)) {
+      tie_value = ev.best.distance, nties = 0;
+      for (const Evaluated& e : done)
+        if (e.record >= 0 && e.value <= tie_value) ties[nties++] = e.entry;
+    }
     for (int k = 0; k < nk; ++k) {
       const BoundNode& kid = nodes[static_cast<std::size_t>(n.first_child + k)];
       if (kid.child_count > 0) {
