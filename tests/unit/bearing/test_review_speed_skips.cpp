@@ -21,6 +21,9 @@
 //  * ReviewTwoScarredBracket.CrossingCoaxialAndFarRollers: a clash is certified by a point of one
 //    surface deeper than the tolerance in the other's mesh (the oracle's sd there), a contact has no
 //    vertex of either mesh deeper than the tolerance in the other, L <= U*, both orders bitwise.
+//  * ReviewTwoScarredBracket.DenseAllScarredAssembly: an assembly whose motion presses scarred
+//    neighbours together (37 rollers, 0.38 mm apart at rest): exact rows equal the brute-force
+//    distance with no vertex inside the other roller, bracket clashes have a witness deeper than tol.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -336,6 +339,70 @@ TEST(ReviewTwoScarredBracket, CrossingCoaxialAndFarRollers) {
   }
   std::printf("[ two scarred ] %d clash, %d contact, %d other rows checked\n", clash, contact, other);
   EXPECT_GT(clash, 10);
+}
+
+TEST(ReviewTwoScarredBracket, DenseAllScarredAssembly) {
+  // 37 rollers of radius 10 on a pitch radius of 120.05 (0.38 mm between neighbours at rest), every
+  // one scarred, pocket play 4, tilt 3 deg, load 0.6: the motion presses scarred neighbours together
+  // (at a930634 these rows were `undecided` with a negative lower bound). Exact rows (the meshes
+  // apart) against the brute-force distance of every triangle pair with no vertex of either mesh
+  // inside the other (two-ray parity); clashes by the bracket: a witness deeper than tol in the other
+  // mesh by the oracle's sd.
+  for (const bool raised : {false, true}) {
+    const std::string bearing =
+        R"({"id": "b0", "type": "cylindrical", "position": [0, 0, 0], "axis": [1, 0, 0],
+        "inner_ring": {"bore_radius": 95, "raceway_radius": 110, "width": 50, "rib": {"height": 4, "width": 5}},
+        "outer_ring": {"raceway_radius": 130.1, "outer_radius": 145, "width": 50},
+        "rollers": {"count": 37, "radius": 10, "length": 38, "pitch_radius": 120.05},
+        "cage": {"pocket_clearance": 0.05, "web_thickness": 0.2}})";
+    const std::string text = std::string(R"({"seed": 3, "clearance": 0.05, "motion": {"max_tilt_deg": 3,
+        "load": {"displacement": 0.6}, "pocket_play": 4, "axial_play": 0}, "scar": {"fraction": 1,
+        "angle_width_deg": 350, "seed": 5)") + (raised ? R"(, "depth": 0.03, "raised": true)" : "") + R"(}, "bearings": [)" +
+                             bearing + "]}";
+    const Expected<AssemblySpec> spec = parse_assembly(text, "dense.json");
+    ASSERT_TRUE(spec) << spec.error().message();
+    const Expected<Assembly> as = build_assembly(*spec);
+    ASSERT_TRUE(as) << as.error().message();
+    const AssemblyMotion motion = generate_motion(*as, 6, spec->seed);
+    int exact = 0, clash = 0, rows = 0;
+    for (std::size_t f = 0; f < motion.poses.size(); ++f)
+      for (const AssemblyPair& pair : as->pairs) {
+        if (pair.kind != AssemblyPairKind::roller_roller || !as->parts[pair.a].scarred || !as->parts[pair.b].scarred) continue;
+        ++rows;
+        const std::vector<Transform>& poses = motion.poses[f];
+        const AssemblyPairResult r = solve_pair(*as, pair, poses, spec->clearance);
+        if (r.distance > 0.2) continue;  // (clear by far)
+        const TriMesh &ma = *as->parts[pair.a].mesh, &mb = *as->parts[pair.b].mesh;
+        const std::vector<Vec3> qa = test::posed_positions(ma, poses[pair.a]), qb = test::posed_positions(mb, poses[pair.b]);
+        const double tol = touch_tolerance(posed_cylinder(10, -1, 38, poses[pair.a]), posed_cylinder(10, -1, 38, poses[pair.b]));
+        SCOPED_TRACE(std::string(raised ? "raised" : "inward") + " frame " + std::to_string(f) + " " + as->parts[pair.a].id);
+        if (r.exact) {
+          ++exact;
+          int inside = 0;
+          const auto count = [&](const std::vector<Vec3>& p, const std::vector<Vec3>& o, const TriMesh& om, const Transform& opose) {
+            const Cylinder oc = posed_cylinder(10.5, -1, 38, opose);  // (holds the other solid: raise <= 0.03)
+            for (const Vec3& v : p) {
+              const double z = dot(v - oc.base, oc.axis), rho = norm(cross(v - oc.base, oc.axis));
+              if (rho > oc.radius || z < -0.5 || z > oc.height + 0.5) continue;  // (outside the other)
+              inside += test::ref_inside(v, o, om) && test::ref_inside(v, o, om, {-0.31, 0.72, 0.62});
+            }
+          };
+          count(qa, qb, mb, poses[pair.b]);
+          count(qb, qa, ma, poses[pair.a]);
+          EXPECT_EQ(inside, 0) << "an exact (apart) row with a vertex inside the other roller";
+          const double ref = test::ref_mesh_distance(ma, qa, mb, qb);
+          EXPECT_NEAR(r.distance, ref, 1e-9 * std::fabs(ref) + 1e-13) << verdict_name(r.verdict);
+        } else if (r.verdict == Verdict::clash && r.solver == AssemblySolver::bound) {
+          ++clash;
+          const double sd = std::min(oracle_sd(r.point_a, qb, mb), oracle_sd(r.point_b, qa, ma));
+          EXPECT_LT(sd, -tol) << "clash witness depth " << sd << " (row " << r.distance << ")";
+          EXPECT_NEAR(sd, r.distance, 1e-9);
+        }
+      }
+    std::printf("[ dense all scarred ] %s: %d two-scarred rows, %d exact (apart) checked, %d clashes by the bracket checked\n",
+                raised ? "raised" : "inward", rows, exact, clash);
+    EXPECT_GT(exact + clash, 0);
+  }
 }
 
 }  // namespace
