@@ -18,6 +18,10 @@
 //    limit, bearings scaled by 1e-3 far away): solve_pair, run_assembly on 1 and 2 threads and on
 //    the frames reversed give the same rows bit for bit (the scarred solver keeps the previous
 //    triangle between frames: a different history must not change a row).
+//  * ReviewSpeedSkips.ScarredSolverHistoryAndHintOnVertexLines: the scarred solver's new evaluation
+//    order (previous triangle, hinted cell, its partner across a vertex line; the holder rule) must
+//    not change a result: B beside a scarred roller on its facets' vertex lines (exact ties of two
+//    columns) and between, fresh, after other poses, with and without a hint, bit for bit.
 //  * ReviewTwoScarredBracket.CrossingCoaxialAndFarRollers: a clash is certified by a point of one
 //    surface deeper than the tolerance in the other's mesh (the oracle's sd there), a contact has no
 //    vertex of either mesh deeper than the tolerance in the other, L <= U*, both orders bitwise.
@@ -39,6 +43,7 @@
 #include "interfere/bearing/analytic.h"
 #include "interfere/bearing/assembly.h"
 #include "interfere/bearing/part_pair.h"
+#include "interfere/bearing/scarred.h"
 #include "unit/bearing/scarred_reference.h"
 #include "unit/bearing/splitmix.h"
 
@@ -151,6 +156,66 @@ TEST(ReviewSpeedSkips, TangentBoundKeepsTheReverse) {
   EXPECT_GT(skipped, 1000);
   // measured 0.997: the envelope's rounding (a few ulps of the scale) uses < 1 % of the margin
   EXPECT_GT(tightest, 0.5);
+}
+
+TEST(ReviewSpeedSkips, ScarredSolverHistoryAndHintOnVertexLines) {
+  // a26ed4c/8d47157 (scarred.cpp): the leaves evaluated first (the previous triangle's, the hinted
+  // cell's and its partner across the vertex line the best point lies on) and the holder rule
+  // change the order of the descent; ties keep the lowest entry, so the result must not depend on
+  // it. An intact cylinder B parallel beside a scarred roller, in the direction of a vertex line of
+  // its facets (two columns tie exactly there) and between two, on the scar's side and away from
+  // it, apart and overlapping, rest and 9.8 m away: the same distance, point and triangle, fresh,
+  // after other poses (another previous triangle), with a hint and without.
+  for (const bool raised : {false, true}) {
+    const Assembly as = test::scarred_assembly(test::kCylindricalBearing, raised);
+    std::size_t ia = 0;
+    while (as.parts[ia].kind != PartKind::roller || !as.parts[ia].scarred) ++ia;
+    const AssemblyPart& part = as.parts[ia];
+    const Roller& roller = *part.roller;
+    const int n = roller.n();
+    const double R = as.spec.bearings[0].rollers.radius, h = as.spec.bearings[0].rollers.length;
+    int compared = 0;
+    for (const bool far : {false, true}) {
+      Transform pose = part.rest;
+      if (far) pose.t = pose.t + Vec3{9800.0, 7000.5, -6000.25};
+      for (int k = 0; k < 16; ++k) {
+        const double angle = 2 * std::numbers::pi * ((k / 2) * (n / 8) + (k % 2 ? 0.5 : 0.0)) / n;  // vertex lines and between
+        for (const double gap : {0.3, 0.0, -0.05}) {
+          Cylinder b;
+          b.radius = 7, b.height = 30;
+          b.axis = pose.rotate({0, 0, 1});
+          b.base = pose.apply({(R + 7 + gap) * std::cos(angle), (R + 7 + gap) * std::sin(angle), 0.5 * (h - 30)});
+          const Vec3 hint = pose.apply({R * std::cos(angle), R * std::sin(angle), 0.5 * h});
+          ScarredSolver fresh(&roller, part.tree.get());
+          const MeshPairResult ref = fresh.solve(pose, b);
+          ScarredSolver warm(&roller, part.tree.get());
+          std::vector<MeshPairResult> got;
+          got.push_back(ScarredSolver(&roller, part.tree.get()).solve(pose, b, hint));
+          for (int other = 0; other < 4; ++other) {  // another pose first: its triangle is the previous one
+            Cylinder c = b;
+            const double a2 = angle + std::numbers::pi * (other + 1) / 2.5;
+            c.base = pose.apply({(R + 7.2) * std::cos(a2), (R + 7.2) * std::sin(a2), 0.5 * (h - 30) + other});
+            warm.solve(pose, c);
+            got.push_back(warm.solve(pose, b));
+            warm.solve(pose, c);
+            got.push_back(warm.solve(pose, b, hint));
+          }
+          got.push_back(warm.solve(pose, b));  // the same pose twice
+          for (const MeshPairResult& g : got) {
+            ++compared;
+            ASSERT_EQ(g.distance, ref.distance) << "k " << k << " gap " << gap << (far ? " far" : "");
+            ASSERT_EQ(g.triangle, ref.triangle) << "k " << k << " gap " << gap << (far ? " far" : "");
+            ASSERT_EQ(g.point_a.x, ref.point_a.x);
+            ASSERT_EQ(g.point_a.y, ref.point_a.y);
+            ASSERT_EQ(g.point_a.z, ref.point_a.z);
+            ASSERT_EQ(g.point_b.x, ref.point_b.x);
+          }
+        }
+      }
+    }
+    std::printf("[ scarred solver ] %s: %d solves with other histories and hints identical to the fresh ones\n",
+                raised ? "raised" : "inward", compared);
+  }
 }
 
 // ---- scenes ----
