@@ -22,7 +22,7 @@
 //    order (previous triangle, hinted cell, its partner across a vertex line; the holder rule) must
 //    not change a result: B beside a scarred roller on its facets' vertex lines (exact ties of two
 //    columns) and between, fresh, after other poses, with and without a hint, bit for bit.
-//  * ReviewTwoScarredBracket.CrossingCoaxialAndFarRollers: a clash is certified by a point of one
+//  * ReviewTwoScarredBracket.CrossingCoaxialAndFarRollers (cylindrical and tapered): a clash is certified by a point of one
 //    surface deeper than the tolerance in the other's mesh (the oracle's sd there), a contact has no
 //    vertex of either mesh deeper than the tolerance in the other, L <= U*, both orders bitwise.
 //  * ReviewTwoScarredBracket.DenseAllScarredAssembly: an assembly whose motion presses scarred
@@ -324,8 +324,9 @@ Transform translated(Transform t, const Vec3& by) {
 
 TEST(ReviewTwoScarredBracket, CrossingCoaxialAndFarRollers) {
   int clash = 0, contact = 0, other = 0;
+  for (const char* bearing : {test::kCylindricalBearing, test::kTaperedBearing})
   for (const bool raised : {false, true}) {
-    const Assembly as = test::scarred_assembly(test::kCylindricalBearing, raised);
+    const Assembly as = test::scarred_assembly(bearing, raised);
     const BearingSpec& b = as.spec.bearings[0];
     const double R = b.rollers.radius, h = b.rollers.length;
     std::size_t ia = 0;
@@ -333,7 +334,6 @@ TEST(ReviewTwoScarredBracket, CrossingCoaxialAndFarRollers) {
     const Transform pa0 = as.parts[ia].rest;
     const Vec3 ua = pa0.rotate({0, 0, 1}), ma = pa0.apply({0, 0, 0.5 * h});
     const Vec3 x = unit(ma - as.geometry[0].frame.t - ua * dot(ma - as.geometry[0].frame.t, ua));  // radial
-    const Vec3 y = cross(ua, x);
     // B: the same roller's mesh (another part of the same bearing: its own scar) posed from A's pose
     std::size_t ib = ia + 1;
     while (as.parts[ib].kind != PartKind::roller) ++ib;
