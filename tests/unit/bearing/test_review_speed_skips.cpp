@@ -22,6 +22,8 @@
 //    order (previous triangle, hinted cell, its partner across a vertex line; the holder rule) must
 //    not change a result: B beside a scarred roller on its facets' vertex lines (exact ties of two
 //    columns) and between, fresh, after other poses, with and without a hint, bit for bit.
+//  * ReviewSpeedSkips.RibEuclidBoundNaNIsNeverClear: a rib row with a NaN in its roller or rib that
+//    said clear or clearance becomes undecided (26b27f7), with and without a raise; no NaN bound.
 //  * ReviewTwoScarredBracket.CrossingCoaxialAndFarRollers (cylindrical and tapered): a clash is certified by a point of one
 //    surface deeper than the tolerance in the other's mesh (the oracle's sd there), a contact has no
 //    vertex of either mesh deeper than the tolerance in the other, L <= U*, both orders bitwise.
@@ -34,6 +36,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -45,6 +48,7 @@
 #include "interfere/bearing/part_pair.h"
 #include "interfere/bearing/scarred.h"
 #include "unit/bearing/scarred_reference.h"
+#include "../../../src/bearing/rib_euclid_bound.h"
 #include "unit/bearing/splitmix.h"
 
 namespace interfere::bearing {
@@ -216,6 +220,49 @@ TEST(ReviewSpeedSkips, ScarredSolverHistoryAndHintOnVertexLines) {
     std::printf("[ scarred solver ] %s: %d solves with other histories and hints identical to the fresh ones\n",
                 raised ? "raised" : "inward", compared);
   }
+}
+
+TEST(ReviewSpeedSkips, RibEuclidBoundNaNIsNeverClear) {
+  // 26b27f7: a NaN lower bound is taken as -inf (distance_verdict reads NaN as clear). A rib row
+  // whose roller or rib carries a NaN (a degenerate pose) and whose value said clear or clearance
+  // must come out undecided, never clear; the bound itself is never NaN.
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  Rib face;
+  face.center = {0, 0, 0}, face.axis = {0, 0, 1}, face.normal = {0, 0, 1};
+  face.inner_radius = 110, face.outer_radius = 114;
+  Cylinder roller;
+  roller.base = {120.05, 0, 1}, roller.axis = {0, 0, 1}, roller.radius = 10, roller.height = 38;
+  const double clearance = 0.05, tol = 1e-9;
+  for (int which = 0; which < 6; ++which) {
+    Cylinder c = roller;
+    Rib f = face;
+    if (which == 0) c.base.x = nan;
+    if (which == 1) c.axis = {nan, 0, 1};
+    if (which == 2) c.radius = nan;
+    if (which == 3) f.center.z = nan;
+    if (which == 4) f.normal = {0, nan, 1};
+    if (which == 5) f.outer_radius = nan;
+    for (int level = 0; level < 3; ++level) {
+      const double lower = detail::rib_euclid_lower(c, f, 5, level);
+      EXPECT_FALSE(std::isnan(lower)) << "case " << which << " level " << level;
+    }
+    for (const Verdict v : {Verdict::clear, Verdict::clearance}) {
+      AssemblyPairResult row;
+      row.distance = v == Verdict::clear ? 1.0 : 0.01, row.verdict = v, row.exact = true, row.two_sided = false;
+      row.path = AnalyticPath::side;
+      detail::rib_euclid_row(row, c, 0, f, 5, clearance, tol, true);
+      EXPECT_EQ(row.verdict, Verdict::undecided) << "case " << which;
+      AssemblyPairResult raised = row;
+      raised.verdict = v;
+      detail::rib_euclid_row(raised, c, 0.03, f, 5, clearance, tol, false);
+      EXPECT_EQ(raised.verdict, Verdict::undecided) << "case " << which << " (grown by a raise)";
+    }
+  }
+  // (and the same row without a NaN keeps its clear verdict: 1 mm over the face, E = 1)
+  AssemblyPairResult row;
+  row.distance = 1.0, row.verdict = Verdict::clear, row.exact = true, row.two_sided = false;
+  detail::rib_euclid_row(row, roller, 0, face, 5, clearance, tol, true);
+  EXPECT_EQ(row.verdict, Verdict::clear);
 }
 
 // ---- scenes ----
