@@ -204,8 +204,7 @@ AssemblyPairResult from_scarred_frustum(const detail::ScarredFrustumValue& v, bo
   } else if (v.contained < 0) {
     out.verdict = Verdict::undecided, out.exact = false;
   } else {
-    const Verdict hi = distance_verdict(v.distance, tol, clearance);
-    out.verdict = distance_verdict(v.lower, tol, clearance) == hi ? hi : Verdict::undecided;
+    out.verdict = bracket_verdict(v.lower, v.distance, tol, clearance);
   }
   return out;
 }
@@ -249,8 +248,7 @@ AssemblyPairResult scarred_tapered_rollers(const AssemblyPart& ra, const Cylinde
     return out;
   }
   out.solver = AssemblySolver::bound, out.exact = false, out.two_sided = false;
-  const Verdict lo = distance_verdict(v.lower, tol, clearance), hi = distance_verdict(v.upper, tol, clearance);
-  out.verdict = lo == hi ? hi : Verdict::undecided;  // (L alone: upper = lower)
+  out.verdict = bracket_verdict(v.lower, v.upper, tol, clearance);  // (L alone: upper = lower)
   // a lower bound alone decides only `clear`, a bracket when its ends agree; else, or one solid
   // holding the other, the mesh engine
   const bool decided = v.upper_known ? out.verdict != Verdict::undecided : out.verdict == Verdict::clear;

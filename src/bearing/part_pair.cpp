@@ -110,13 +110,12 @@ bool canonical_less(const ScenePart& x, const ScenePart& y) {
   return std::less<const void*>()(x.mesh, y.mesh);  // same solid: either order gives the same value
 }
 
-/// The verdict of a bracket [lo, hi] of S: decided when both ends agree.
+}  // namespace
+
 Verdict bracket_verdict(double lo, double hi, double tol, double clearance) {
   const Verdict vh = distance_verdict(hi, tol, clearance);
   return distance_verdict(lo, tol, clearance) == vh ? vh : Verdict::undecided;
 }
-
-}  // namespace
 
 PairDistance two_sided_frustum_distance(const Cylinder& a, const Cylinder& b, bool* reverse) {
   if (reverse) *reverse = false;

@@ -77,6 +77,9 @@ double touch_tolerance(const Cylinder& a, const Cylinder& b);
 /// The verdict of s (see above). `clearance` <= 0: no clearance verdict.
 Verdict distance_verdict(double s, double tolerance, double clearance);
 
+/// The verdict of a bracket [lo, hi] of S: the verdict both ends give, else `undecided`.
+Verdict bracket_verdict(double lo, double hi, double tolerance, double clearance);
+
 /// One part of a scene.
 struct ScenePart {
   /// Its solid; a scarred roller: its intact cylinder, which its solid lies in when the scar is
