@@ -47,6 +47,7 @@
 #include "interfere/bearing/assembly.h"
 #include "interfere/bearing/part_pair.h"
 #include "interfere/bearing/scarred.h"
+#include "unit/bearing/scarred_pair_parts.h"
 #include "unit/bearing/scarred_reference.h"
 #include "../../../src/bearing/rib_euclid_bound.h"
 #include "unit/bearing/splitmix.h"
@@ -355,15 +356,6 @@ double oracle_sd(const Vec3& p, const std::vector<Vec3>& pos, const TriMesh& m) 
   return in >= 2 ? -d : d;
 }
 
-ScenePart part(const Assembly& as, std::size_t i, const Transform& pose) {
-  const BearingSpec& b = as.spec.bearings[as.parts[i].bearing];
-  ScenePart s;
-  s.cylinder = posed_cylinder(b.rollers.radius, b.rollers.top_radius, b.rollers.length, pose);
-  s.mesh = as.parts[i].roller.get(), s.tree = as.parts[i].tree.get(), s.solid = as.parts[i].solid.get();
-  s.pose = pose;
-  return s;
-}
-
 Transform translated(Transform t, const Vec3& by) {
   t.t = t.t + by;
   return t;
@@ -414,7 +406,7 @@ TEST(ReviewTwoScarredBracket, CrossingCoaxialAndFarRollers) {
       for (const bool moved : {false, true}) {
         const Transform ta = moved ? translated(pa0, away) : pa0, tb = moved ? translated(pose.b, away) : pose.b;
         SCOPED_TRACE(std::string(raised ? "raised " : "inward ") + pose.what + (moved ? " far" : ""));
-        const ScenePart A = part(as, ia, ta), B = part(as, ib, tb);
+        const ScenePart A = test::scene_part(as, ia, ta), B = test::scene_part(as, ib, tb);
         const PartPairResult r = decide_part_pair(A, B, as.spec.clearance), q = decide_part_pair(B, A, as.spec.clearance);
         EXPECT_EQ(r.distance, q.distance);
         EXPECT_EQ(r.distance_lower, q.distance_lower);
