@@ -451,8 +451,8 @@ AssemblyPairResult solve_one(const Assembly& as, const AssemblyPair& pair, const
       out.scar = true;
       out.solver = AssemblySolver::bound;
       if (out.verdict != Verdict::clear) {  // a lower bound decides only `clear`
-        if (rib) {
-          out.verdict = Verdict::undecided;
+        if (rib) {  // E's lower bound may still say clear (rib_euclid_bound.h), else undecided
+          detail::rib_euclid_decide_clear(out, roller, ra.roller->raise, face, b.rib_width, clearance, tol);
         } else {
           out.verdict = mesh_verdict(*ra.mesh, pose_a, *web, pose_b, clearance);
           out.solver = AssemblySolver::mesh;

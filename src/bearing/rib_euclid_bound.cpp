@@ -54,6 +54,20 @@ double rib_euclid_lower(const Cylinder& c, const Rib& rib, double thickness, int
   return lower == lower ? lower : -std::numeric_limits<double>::infinity();  // (NaN would read as clear)
 }
 
+void rib_euclid_decide_clear(AssemblyPairResult& row, const Cylinder& roller, double raise, const Rib& rib,
+                             double thickness, double clearance, double tol) {
+  const Cylinder c = raise > 0 ? grown_roller_solid(roller, raise) : roller;  // (holds a scarred roller's A')
+  for (int level = 0; level < 3; ++level) {
+    const double lower = rib_euclid_lower(c, rib, thickness, level);
+    if (distance_verdict(lower, tol, clearance) == Verdict::clear) {
+      if (!row.exact) row.distance = std::max(row.distance, lower);  // (a lower bound either way)
+      row.verdict = Verdict::clear;
+      return;
+    }
+  }
+  row.verdict = Verdict::undecided;
+}
+
 void rib_euclid_verdict(AssemblyPairResult& row, const Cylinder& roller, double raise, const Rib& rib, double thickness,
                         double clearance, double tol, bool apart_bound) {
   if (row.exact && row.two_sided) return;  // S (ring_two_sided.h, scarred_rib_two_sided.h)

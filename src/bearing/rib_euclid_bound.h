@@ -46,10 +46,20 @@ double rib_euclid_lower(const Cylinder& c, const Rib& rib, double thickness, int
 void rib_euclid_verdict(AssemblyPairResult& row, const Cylinder& roller, double raise, const Rib& rib, double thickness,
                         double clearance, double tol, bool apart_bound);
 
+/// A rib row that is `undecided` or whose value is only a lower bound not saying `clear` (solver
+/// `bound`: the scarred middle's enclosing piece decides; roller_rib_distance's `apart` path): E's
+/// lower bound above (the levels in turn) is a lower bound of S too (apart solids: S = E), so when it
+/// says `clear` the row is clear (a row that is not exact takes it as its value when larger: still a
+/// lower bound); else the row is `undecided`. `roller` and `raise` as above.
+void rib_euclid_decide_clear(AssemblyPairResult& row, const Cylinder& roller, double raise, const Rib& rib,
+                             double thickness, double clearance, double tol);
+
 /// rib_euclid_verdict where it can change the row (inline: the other rows pay a test or two).
 inline void rib_euclid_row(AssemblyPairResult& row, const Cylinder& roller, double raise, const Rib& rib,
                            double thickness, double clearance, double tol, bool apart_bound) {
-  if ((row.exact && row.two_sided) || (row.verdict != Verdict::clear && row.verdict != Verdict::clearance)) return;
+  if (row.exact && row.two_sided) return;
+  if (row.verdict == Verdict::undecided) return rib_euclid_decide_clear(row, roller, raise, rib, thickness, clearance, tol);
+  if (row.verdict != Verdict::clear && row.verdict != Verdict::clearance) return;
   rib_euclid_verdict(row, roller, raise, rib, thickness, clearance, tol, apart_bound);
 }
 

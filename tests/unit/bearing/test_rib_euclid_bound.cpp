@@ -387,5 +387,52 @@ TEST(RibEuclidBound, AssemblyRowsAgainstTheOracle) {
   EXPECT_GT(worst_gap, 1e-4);  // the band exists in these scenes
 }
 
+TEST(RibEuclidBound, BoundRowsAtTheTiltLimit) {
+  // Eq. (1)'s tilt limit (27.76 degrees here), raised scars round the rollers: rib rows whose value is
+  // only a lower bound (a scarred piece's `apart` path, the scarred middle's bound) and does not say
+  // clear; E's lower bound may (review HR, 2026-11-30: three rows here were undecided with values
+  // 0.01-0.03 at sampled distances ~2.6; rib_euclid_decide_clear)
+  std::string bearings;
+  for (const char* x : {"5000", "5300", "5600"})
+    bearings += std::string(bearings.empty() ? "" : ", ") + R"({"id": "b)" + x + R"(", "type": "cylindrical", "position": [)" +
+                x + R"(, 0, 0], "axis": [1, 0, 0],
+      "inner_ring": {"bore_radius": 95, "raceway_radius": 110, "width": 50, "rib": {"height": 4, "width": 5}},
+      "outer_ring": {"raceway_radius": 130.1, "outer_radius": 145, "width": 50},
+      "rollers": {"count": 32, "radius": 10, "length": 38, "pitch_radius": 120.05},
+      "cage": {"pocket_clearance": 0.3, "web_thickness": 8}})";
+  const std::string json =
+      R"({"seed": 3, "clearance": 0.05, "motion": {"max_tilt_deg": 27.7, "load": {"displacement": 0.6}, "pocket_play": 2,
+      "axial_play": 2}, "scar": {"fraction": 0.5, "angle_width_deg": 350, "seed": 5, "raised": true}, "bearings": [)" +
+      bearings + "]}";
+  const Expected<AssemblySpec> spec = parse_assembly(json, "rib");
+  ASSERT_TRUE(spec.has_value()) << spec.error().message();
+  const Expected<Assembly> as = build_assembly(*spec);
+  ASSERT_TRUE(as.has_value()) << as.error().message();
+  const AssemblyMotion motion = generate_motion(*as, 3, spec->seed);
+  int bound_rows = 0, decided = 0, undecided = 0;
+  for (int f = 0; f < 3; ++f)
+    for (const AssemblyPair& pair : as->pairs) {
+      if (pair.kind != AssemblyPairKind::roller_rib) continue;
+      const AssemblyPairResult r = solve_pair(*as, pair, motion.poses[f], spec->clearance);
+      if (r.exact) continue;  // (rows whose value is a lower bound: `apart` pieces, the scarred middle's bound)
+      ++bound_rows;
+      const RibRow row = rib_row(*as, pair, motion.poses[f]);
+      const double e = oracle(row.pieces, row.extra, row.rib, 8);  // >= E (sampled)
+      const std::string what = "frame " + std::to_string(f) + " value " + std::to_string(r.distance);
+      EXPECT_LE(r.distance, e + 1e-9 * (1 + e)) << what << " oracle " << e;  // a lower bound
+      EXPECT_TRUE(r.verdict == Verdict::clear || r.verdict == Verdict::undecided) << what;
+      if (r.verdict == Verdict::clear) {
+        EXPECT_GE(r.distance, spec->clearance) << what;
+        EXPECT_GE(e, spec->clearance) << what << " oracle " << e;
+        decided += r.distance >= spec->clearance;
+      } else {
+        ++undecided;
+      }
+    }
+  std::printf("[ rib ] tilt 27.7: %d bound rows, %d clear, %d undecided\n", bound_rows, decided, undecided);
+  EXPECT_GT(bound_rows, 0);
+  EXPECT_EQ(undecided, 0);  // (three before rib_euclid_decide_clear)
+}
+
 }  // namespace
 }  // namespace interfere::bearing
