@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "assembly_tapered_scars.h"
 #include "raceway_detail.h"
@@ -54,18 +55,30 @@ double rib_euclid_lower(const Cylinder& c, const Rib& rib, double thickness, int
   return lower == lower ? lower : -std::numeric_limits<double>::infinity();  // (NaN would read as clear)
 }
 
+namespace {
+
+/// The first of E's lower bounds (the levels in turn, cheapest first: most rows are decided by the
+/// lowest height) whose verdict is `want`, for a row whose solid lies in `roller` grown by `raise`.
+std::optional<double> lower_giving(Verdict want, const Cylinder& roller, double raise, const Rib& rib, double thickness,
+                                   double clearance, double tol) {
+  const Cylinder c = raise > 0 ? grown_roller_solid(roller, raise) : roller;  // (holds a scarred roller's A')
+  for (int level = 0; level < 3; ++level)
+    if (const double lower = rib_euclid_lower(c, rib, thickness, level); distance_verdict(lower, tol, clearance) == want)
+      return lower;
+  return std::nullopt;
+}
+
+}  // namespace
+
 void rib_euclid_decide_clear(AssemblyPairResult& row, const Cylinder& roller, double raise, const Rib& rib,
                              double thickness, double clearance, double tol) {
-  const Cylinder c = raise > 0 ? grown_roller_solid(roller, raise) : roller;  // (holds a scarred roller's A')
-  for (int level = 0; level < 3; ++level) {
-    const double lower = rib_euclid_lower(c, rib, thickness, level);
-    if (distance_verdict(lower, tol, clearance) == Verdict::clear) {
-      if (!row.exact) row.distance = std::max(row.distance, lower);  // (a lower bound either way)
-      row.verdict = Verdict::clear;
-      return;
-    }
+  const std::optional<double> lower = lower_giving(Verdict::clear, roller, raise, rib, thickness, clearance, tol);
+  if (!lower) {
+    row.verdict = Verdict::undecided;
+    return;
   }
-  row.verdict = Verdict::undecided;
+  if (!row.exact) row.distance = std::max(row.distance, *lower);  // (a lower bound either way)
+  row.verdict = Verdict::clear;
 }
 
 void rib_euclid_verdict(AssemblyPairResult& row, const Cylinder& roller, double raise, const Rib& rib, double thickness,
@@ -73,13 +86,9 @@ void rib_euclid_verdict(AssemblyPairResult& row, const Cylinder& roller, double 
   if (row.exact && row.two_sided) return;  // S (ring_two_sided.h, scarred_rib_two_sided.h)
   if (apart_bound && row.path == AnalyticPath::apart) return;  // a lower bound of E already
   if (row.verdict != Verdict::clear && row.verdict != Verdict::clearance) return;
-  const Cylinder c = raise > 0 ? grown_roller_solid(roller, raise) : roller;  // (holds a scarred roller's A')
   // a bracket [lower, value]: the verdict both ends give (clear: lower >= the clearance; clearance:
-  // lower above the touch tolerance, the value (>= E: an attained height over the annulus) below it);
-  // the cheapest bound first (most rows are decided by the lowest height)
-  for (int level = 0; level < 3; ++level)
-    if (distance_verdict(rib_euclid_lower(c, rib, thickness, level), tol, clearance) == row.verdict) return;
-  row.verdict = Verdict::undecided;
+  // lower above the touch tolerance, the value (>= E: an attained height over the annulus) below it)
+  if (!lower_giving(row.verdict, roller, raise, rib, thickness, clearance, tol)) row.verdict = Verdict::undecided;
 }
 
 }  // namespace interfere::bearing::detail
